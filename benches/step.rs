@@ -1,0 +1,79 @@
+//! Step-loop throughput on the reference scene.
+//!
+//! Group `step`: a fixed number of `Integrator::step` calls at N = 200, 800
+//! and 3200 elements, reported as DOF-steps per second (criterion's
+//! "elements/s" = unknowns × steps / s). The integrator is rebuilt for every
+//! iteration outside the timed part, so each timed block starts at t = 0 and
+//! the carrier never runs off the beam.
+//!
+//! Group `run`: one complete `taut::run` of the reference scene as shipped
+//! (400 elements, 6000 steps, recording included), for context.
+//!
+//! Run with `cargo bench --bench step`.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
+use taut::integrate::Integrator;
+
+const SCENE: &str = include_str!("../scenes/reference.toml");
+
+/// Steps timed per iteration (0.1 s of simulated time at Δt = 1e-4 s).
+const STEPS_PER_ITER: usize = 1000;
+
+/// Element counts of the `step` group.
+const ELEMENTS: [usize; 3] = [200, 800, 3200];
+
+fn resolved(overrides: &[String]) -> taut::Resolved {
+    taut::resolve_scene(SCENE, overrides).expect("reference scene resolves")
+}
+
+fn bench_step(c: &mut Criterion) {
+    let mut group = c.benchmark_group("step");
+    group.sample_size(10).warm_up_time(Duration::from_secs(1));
+    for n in ELEMENTS {
+        // ≈ 20 ns per DOF-step: an iteration takes ≈ 8 ms at N = 200, 30 ms at
+        // 800 and 130 ms at 3200, so N = 3200 needs a longer window for 10 samples.
+        group.measurement_time(Duration::from_secs(if n >= 3200 { 9 } else { 4 }));
+        let sc = resolved(&[format!("mesh.elements={n}")]);
+        let dofs = Integrator::new(&sc).expect("integrator builds").dofs();
+        group.throughput(Throughput::Elements((dofs * STEPS_PER_ITER) as u64));
+        group.bench_function(format!("N={n}/dofs={dofs}"), |b| {
+            b.iter_batched(
+                || Integrator::new(&sc).expect("integrator builds"),
+                |mut it| {
+                    for _ in 0..STEPS_PER_ITER {
+                        it.step().expect("step succeeds");
+                    }
+                    black_box(it.beam_dofs()[0]);
+                    it
+                },
+                BatchSize::PerIteration,
+            );
+        });
+    }
+    group.finish();
+}
+
+fn bench_run(c: &mut Criterion) {
+    let sc = resolved(&[]);
+    let dofs = Integrator::new(&sc).expect("integrator builds").dofs();
+    let mut group = c.benchmark_group("run");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(5))
+        // DOF-steps of the whole run, comparable with the `step` group
+        .throughput(Throughput::Elements((dofs * sc.steps) as u64));
+    group.bench_function("reference", |b| {
+        b.iter(|| {
+            let out = taut::run(black_box(&sc), &mut |_, _| {}).expect("run succeeds");
+            black_box(out.steps)
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench_step, bench_run);
+criterion_main!(benches);

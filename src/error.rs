@@ -1,0 +1,107 @@
+//! One error type for the whole crate.
+//!
+//! Every variant carries enough structure to tell the user what went wrong
+//! and what is allowed: bad input names the field, the value and the allowed
+//! range; a run that goes unstable names the step, the time and the quantity.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in taut.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A scene value outside its allowed range.
+    #[error("invalid scene: `{field}` = {value}: {allowed}")]
+    Invalid {
+        /// Dotted path of the offending key, e.g. `beam.length`.
+        field: String,
+        /// The value as given.
+        value: String,
+        /// What is allowed, e.g. `must be > 0 (m)`.
+        allowed: String,
+    },
+
+    /// The scene file could not be parsed (syntax, unknown key, wrong type).
+    #[error("cannot read scene: {0}")]
+    Parse(String),
+
+    /// A `--set key.path=value` override that cannot be applied.
+    #[error("invalid override `{spec}`: {reason}")]
+    Override {
+        /// The override as typed.
+        spec: String,
+        /// Why it was rejected.
+        reason: String,
+    },
+
+    /// The integration went unstable: non-finite or absurd values.
+    #[error(
+        "run diverged at step {step} (t = {time:.6} s): {quantity} = {value:e}. Likely cause: {cause}"
+    )]
+    Diverged {
+        /// Step index (1-based: step 1 goes from t = 0 to t = dt).
+        step: usize,
+        /// Time at the end of the step, s.
+        time: f64,
+        /// The quantity that left its sane range.
+        quantity: String,
+        /// Its value.
+        value: f64,
+        /// A short diagnosis.
+        cause: String,
+    },
+
+    /// The contact law failed to find forces (e.g. an active set that cycles).
+    #[error("contact solve failed at step {step} (t = {time:.6} s): {reason}")]
+    Contact {
+        /// Step index.
+        step: usize,
+        /// Time at the end of the step, s.
+        time: f64,
+        /// Why.
+        reason: String,
+    },
+
+    /// File system trouble, with the path involved.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+
+    /// Writing an output (plot, JSON) failed.
+    #[error("cannot write output {path}: {reason}")]
+    Output {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
+}
+
+impl Error {
+    /// Shorthand for [`Error::Invalid`].
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl ToString,
+        allowed: impl Into<String>,
+    ) -> Self {
+        Error::Invalid {
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+
+    /// Attach a path to an I/O error.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// The crate's result type.
+pub type Result<T> = std::result::Result<T, Error>;

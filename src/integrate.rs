@@ -1,0 +1,541 @@
+//! Generalized-α time integration with point contact (MODEL §5).
+//!
+//! The system is `d = [d_b; q]`: beam dofs and one dof per mass carrier. M and
+//! K do not couple the beam with the masses (only the contact does), so the
+//! effective matrix `A = (1 − α_m)M + (1 − α_f)γΔt C + (1 − α_f)βΔt²K` is the
+//! banded beam block, factored once per run, plus one scalar per mass. Each
+//! step is the spelled-out step of MODEL §5: predictors, the free right-hand
+//! side F, one fused banded sweep for `A⁻¹F` and `A⁻¹r_f` of every contact,
+//! the free gaps and the Delassus matrix W, the contact law, the update. The
+//! step allocates nothing and does O(n) work.
+
+#![allow(non_snake_case)]
+
+use crate::contact::{ContactLaw, law_for};
+use crate::error::{Error, Result};
+use crate::model::banded::{BandedLdlt, SymBand};
+use crate::model::beam::{BeamModel, PointVector};
+use crate::scene::{CarrierKind, CarrierProps, Placement, Resolved};
+
+/// Generalized-α parameters from ρ∞ (Chung & Hulbert 1993, MODEL §5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GenAlpha {
+    /// α_m = (2ρ∞ − 1)/(ρ∞ + 1).
+    pub alpha_m: f64,
+    /// α_f = ρ∞/(ρ∞ + 1).
+    pub alpha_f: f64,
+    /// β = (1 − α_m + α_f)²/4.
+    pub beta: f64,
+    /// γ = 1/2 − α_m + α_f.
+    pub gamma: f64,
+}
+
+impl GenAlpha {
+    /// The parameters for spectral radius ρ∞ ∈ [0, 1].
+    pub fn from_rho_inf(rho: f64) -> Self {
+        let alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+        let alpha_f = rho / (rho + 1.0);
+        let gamma = 0.5 - alpha_m + alpha_f;
+        let beta = 0.25 * (1.0 - alpha_m + alpha_f).powi(2);
+        GenAlpha {
+            alpha_m,
+            alpha_f,
+            beta,
+            gamma,
+        }
+    }
+}
+
+/// Displacements beyond this many beam lengths are not a small-deflection
+/// answer: a linear model that gets there has blown up.
+const DISPLACEMENT_BOUND_IN_LENGTHS: f64 = 1.0;
+
+/// Contact forces beyond this multiple of the carriers' force scale
+/// (k(δ0 + L) + m g + F) are taken as a blow-up: no physical run of this model
+/// comes within orders of magnitude of it.
+const FORCE_BOUND_FACTOR: f64 = 1e3;
+
+/// The single mass dof of a mass–spring carrier.
+#[derive(Debug, Clone, Copy)]
+struct MassDof {
+    m: f64,
+    k: f64,
+    c: f64,
+    /// Constant force on q: k δ0 − s m g (MODEL §2).
+    f0: f64,
+    /// A_q = (1 − α_m)m + (1 − α_f)γΔt c + (1 − α_f)βΔt² k.
+    a_eff: f64,
+    q: f64,
+    v: f64,
+    a: f64,
+}
+
+/// One carrier's state during a run.
+#[derive(Debug, Clone)]
+struct CarrierState {
+    props: CarrierProps,
+    /// Side sign s.
+    s: f64,
+    mass: Option<MassDof>,
+    /// Index among the contacts (mass carriers), if any.
+    contact: Option<usize>,
+    /// r_b at x_m(t_{n+1−α_f}) and at x_m(t_{n+1}).
+    pv_f: PointVector,
+    pv_g: PointVector,
+}
+
+/// The per-carrier values recorded after each step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CarrierSample {
+    /// Position x_m, m.
+    pub x: f64,
+    /// Beam displacement under the carrier, w = s·v(x_m), m (positive into the beam).
+    pub w: f64,
+    /// Mass displacement q = s·ξ, m (positive into the beam; = w for a force).
+    pub q: f64,
+    /// Gap g = w − q, m.
+    pub gap: f64,
+    /// Contact force λ, N (the applied F for a moving force).
+    pub force: f64,
+    /// Contact closed this step.
+    pub in_contact: bool,
+}
+
+/// A generalized-α integrator for one scene.
+pub struct Integrator {
+    ga: GenAlpha,
+    dt: f64,
+    t: f64,
+    step: usize,
+    placement: Placement,
+    beam: BeamModel,
+    ldlt: BandedLdlt,
+    carriers: Vec<CarrierState>,
+    nc: usize,
+    law: Box<dyn ContactLaw>,
+    length: f64,
+    force_bound: f64,
+    // state (beam)
+    d: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    // scratch, allocated once
+    d_pred: Vec<f64>,
+    f: Vec<f64>,
+    u: Vec<f64>,
+    /// n × (1 + nc) right-hand sides, row-major: column 0 the free step,
+    /// column 1 + c the direction s_c r_b of contact c.
+    rhs: Vec<f64>,
+    g_free: Vec<f64>,
+    w: Vec<f64>,
+    lambda: Vec<f64>,
+    active: Vec<bool>,
+    /// Free accelerations of the mass dofs, per contact.
+    aq_free: Vec<f64>,
+}
+
+impl Integrator {
+    /// Build the model for a validated scene, factor A once, and set the
+    /// initial state (MODEL §5: beam straight and at rest, masses touching,
+    /// loads switched on at t = 0, accelerations consistent with contact).
+    pub fn new(sc: &Resolved) -> Result<Self> {
+        let ga = GenAlpha::from_rho_inf(sc.integrator.rho_inf);
+        let dt = sc.dt;
+        let beam = BeamModel::new(&sc.beam, sc.elements);
+        let n = beam.n;
+        let c_k = (1.0 - ga.alpha_f) * ga.beta * dt * dt;
+        let A: SymBand = beam.mass.combine(1.0 - ga.alpha_m, &beam.stiffness, c_k);
+        let ldlt = BandedLdlt::factor(&A)?;
+
+        let mut nc = 0;
+        let mut force_scale: f64 = 0.0;
+        let carriers: Vec<CarrierState> = sc
+            .carriers
+            .iter()
+            .map(|p| {
+                let s = p.side.sign();
+                let (mass, contact) = match p.kind {
+                    CarrierKind::MassSpring {
+                        mass,
+                        stiffness,
+                        damping,
+                        preload,
+                    } => {
+                        let idx = nc;
+                        nc += 1;
+                        force_scale =
+                            force_scale.max(stiffness * (preload + sc.beam.length) + mass * sc.g);
+                        let a_eff = (1.0 - ga.alpha_m) * mass
+                            + (1.0 - ga.alpha_f) * ga.gamma * dt * damping
+                            + c_k * stiffness;
+                        (
+                            Some(MassDof {
+                                m: mass,
+                                k: stiffness,
+                                c: damping,
+                                f0: stiffness * preload - s * mass * sc.g,
+                                a_eff,
+                                q: 0.0,
+                                v: 0.0,
+                                a: 0.0,
+                            }),
+                            Some(idx),
+                        )
+                    }
+                    CarrierKind::Force { force } => {
+                        force_scale = force_scale.max(force);
+                        (None, None)
+                    }
+                };
+                CarrierState {
+                    props: *p,
+                    s,
+                    mass,
+                    contact,
+                    pv_f: PointVector::default(),
+                    pv_g: PointVector::default(),
+                }
+            })
+            .collect();
+        let k = 1 + nc;
+        let mut it = Integrator {
+            ga,
+            dt,
+            t: 0.0,
+            step: 0,
+            placement: sc.contact.placement,
+            ldlt,
+            carriers,
+            nc,
+            law: law_for(&sc.contact, nc),
+            length: sc.beam.length,
+            force_bound: FORCE_BOUND_FACTOR * force_scale.max(f64::MIN_POSITIVE),
+            d: vec![0.0; n],
+            v: vec![0.0; n],
+            a: vec![0.0; n],
+            d_pred: vec![0.0; n],
+            f: vec![0.0; n],
+            u: vec![0.0; n],
+            rhs: vec![0.0; n * k],
+            g_free: vec![0.0; nc],
+            w: vec![0.0; nc * nc],
+            lambda: vec![0.0; nc],
+            active: vec![false; nc],
+            aq_free: vec![0.0; nc],
+            beam,
+        };
+        it.initial_accelerations()?;
+        Ok(it)
+    }
+
+    /// Number of unknowns: free beam dofs plus one per mass carrier.
+    pub fn dofs(&self) -> usize {
+        self.beam.n + self.nc
+    }
+
+    /// The beam model.
+    pub fn beam(&self) -> &BeamModel {
+        &self.beam
+    }
+
+    /// Current time, s.
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// Steps taken.
+    pub fn steps_taken(&self) -> usize {
+        self.step
+    }
+
+    /// Current beam dofs d_b.
+    pub fn beam_dofs(&self) -> &[f64] {
+        &self.d
+    }
+
+    /// Beam displacement v(x) (positive up), m, for a precomputed point vector.
+    pub fn displacement_at(&self, pv: &PointVector) -> f64 {
+        pv.dot(&self.d)
+    }
+
+    /// Consistent initial accelerations: M a₀ = f(0) + Σ λ r, with the gap
+    /// acceleration of each closed contact zero (the beam is straight and at
+    /// rest, so g̈ = rᵀa). Uses the same contact law at acceleration level.
+    fn initial_accelerations(&mut self) -> Result<()> {
+        let n = self.beam.n;
+        let k = 1 + self.nc;
+        let mfac = BandedLdlt::factor(&self.beam.mass)?;
+        for c in self.carriers.iter_mut() {
+            let x = c.props.motion.position(0.0);
+            c.pv_f = self.beam.point_vector(x);
+            c.pv_g = c.pv_f;
+        }
+        self.rhs.fill(0.0);
+        for i in 0..n {
+            self.rhs[i * k] = self.beam.load[i];
+        }
+        self.scatter_loads(k);
+        mfac.solve_many(&mut self.rhs, k);
+        for c in &self.carriers {
+            let (Some(j), Some(m)) = (c.contact, c.mass) else {
+                continue;
+            };
+            self.aq_free[j] = m.f0 / m.m;
+            self.g_free[j] = c.s * c.pv_g.dot_strided(&self.rhs, k, 0) - self.aq_free[j];
+        }
+        self.fill_delassus(1.0, |m| m.m);
+        self.law
+            .solve(&self.g_free, &self.w, &mut self.lambda, &mut self.active)
+            .map_err(|reason| Error::Contact {
+                step: 0,
+                time: 0.0,
+                reason,
+            })?;
+        for i in 0..n {
+            let mut acc = self.rhs[i * k];
+            for (j, l) in self.lambda.iter().enumerate() {
+                acc += l * self.rhs[i * k + 1 + j];
+            }
+            self.a[i] = acc;
+        }
+        for c in self.carriers.iter_mut() {
+            if let (Some(j), Some(m)) = (c.contact, c.mass.as_mut()) {
+                m.a = (m.f0 - self.lambda[j]) / m.m;
+            }
+        }
+        Ok(())
+    }
+
+    /// Scatter the moving forces into column 0 and the contact directions
+    /// s_c r_b(x_f) into columns 1 + c of `rhs`.
+    fn scatter_loads(&mut self, k: usize) {
+        for c in &self.carriers {
+            match (c.props.kind, c.contact) {
+                (CarrierKind::Force { force }, _) => {
+                    c.pv_f.scatter(c.s * force, &mut self.rhs, k, 0)
+                }
+                (_, Some(j)) => c.pv_f.scatter(c.s, &mut self.rhs, k, 1 + j),
+                _ => {}
+            }
+        }
+    }
+
+    /// W[i][j] = coef · (s_i s_j r_g,iᵀ A⁻¹ r_f,j + δ_ij / a_q,i), reading the
+    /// solved directions from `rhs`; `a_q` picks the scalar "A" of each mass.
+    fn fill_delassus(&mut self, coef: f64, a_q: impl Fn(&MassDof) -> f64) {
+        let k = 1 + self.nc;
+        let nc = self.nc;
+        for ci in &self.carriers {
+            let (Some(i), Some(mi)) = (ci.contact, ci.mass) else {
+                continue;
+            };
+            let pv = match self.placement {
+                Placement::End => ci.pv_g,
+                Placement::Alpha => ci.pv_f,
+            };
+            for j in 0..nc {
+                let mut wij = ci.s * pv.dot_strided(&self.rhs, k, 1 + j);
+                if i == j {
+                    wij += 1.0 / a_q(&mi);
+                }
+                self.w[i * nc + j] = coef * wij;
+            }
+        }
+    }
+
+    /// Advance one step, t_n → t_{n+1} (MODEL §5, "One step, spelled out").
+    pub fn step(&mut self) -> Result<()> {
+        let GenAlpha {
+            alpha_m: am,
+            alpha_f: af,
+            beta,
+            gamma,
+        } = self.ga;
+        let dt = self.dt;
+        let n = self.beam.n;
+        let k = 1 + self.nc;
+        // time from the step count (t_n = n·Δt, one rounding), not accumulated
+        let t1 = (self.step + 1) as f64 * dt;
+        let tf = t1 - af * dt;
+        let bdt2 = beta * dt * dt;
+
+        for c in self.carriers.iter_mut() {
+            c.pv_f = self.beam.point_vector(c.props.motion.position(tf));
+            c.pv_g = self.beam.point_vector(c.props.motion.position(t1));
+        }
+
+        // predictors and the argument of K: u = (1 − α_f) d̃ + α_f d_n
+        let c_pred = (0.5 - beta) * dt * dt;
+        for i in 0..n {
+            let dp = self.d[i] + dt * self.v[i] + c_pred * self.a[i];
+            self.d_pred[i] = dp;
+            self.u[i] = (1.0 - af) * dp + af * self.d[i];
+        }
+        // F = f(t_f) − α_m M a_n − K u
+        self.f.copy_from_slice(&self.beam.load);
+        self.beam.mass.mul_acc(&self.a, -am, &mut self.f);
+        self.beam.stiffness.mul_acc(&self.u, -1.0, &mut self.f);
+        for i in 0..n {
+            let row = &mut self.rhs[i * k..(i + 1) * k];
+            row[0] = self.f[i];
+            row[1..].fill(0.0);
+        }
+        self.scatter_loads(k);
+        // a★ = A⁻¹F and z_c = A⁻¹(s_c r_f,c) in one sweep
+        self.ldlt.solve_many(&mut self.rhs, k);
+
+        // free mass accelerations and free gaps
+        let gap_coef = match self.placement {
+            Placement::End => bdt2,
+            Placement::Alpha => (1.0 - af) * bdt2,
+        };
+        for c in &self.carriers {
+            let (Some(j), Some(m)) = (c.contact, c.mass) else {
+                continue;
+            };
+            let q_pred = m.q + dt * m.v + c_pred * m.a;
+            let v_pred = m.v + (1.0 - gamma) * dt * m.a;
+            let fq = m.f0
+                - am * m.m * m.a
+                - m.c * ((1.0 - af) * v_pred + af * m.v)
+                - m.k * ((1.0 - af) * q_pred + af * m.q);
+            let aq = fq / m.a_eff;
+            self.aq_free[j] = aq;
+            self.g_free[j] = match self.placement {
+                Placement::End => {
+                    c.s * (c.pv_g.dot(&self.d_pred) + bdt2 * c.pv_g.dot_strided(&self.rhs, k, 0))
+                        - (q_pred + bdt2 * aq)
+                }
+                Placement::Alpha => {
+                    let wb = (1.0 - af)
+                        * (c.pv_f.dot(&self.d_pred) + bdt2 * c.pv_f.dot_strided(&self.rhs, k, 0))
+                        + af * c.pv_f.dot(&self.d);
+                    let wq = (1.0 - af) * (q_pred + bdt2 * aq) + af * m.q;
+                    c.s * wb - wq
+                }
+            };
+        }
+        self.fill_delassus(gap_coef, |m| m.a_eff);
+        self.law
+            .solve(&self.g_free, &self.w, &mut self.lambda, &mut self.active)
+            .map_err(|reason| Error::Contact {
+                step: self.step + 1,
+                time: t1,
+                reason,
+            })?;
+
+        // update: a = a★ + Σ λ_c z_c; d = d̃ + βΔt² a; v = v_n + Δt((1−γ)a_n + γa)
+        for i in 0..n {
+            let row = &self.rhs[i * k..(i + 1) * k];
+            let mut acc = row[0];
+            for (j, l) in self.lambda.iter().enumerate() {
+                acc += l * row[1 + j];
+            }
+            self.v[i] += dt * ((1.0 - gamma) * self.a[i] + gamma * acc);
+            self.d[i] = self.d_pred[i] + bdt2 * acc;
+            self.a[i] = acc;
+        }
+        for c in self.carriers.iter_mut() {
+            let (Some(j), Some(m)) = (c.contact, c.mass.as_mut()) else {
+                continue;
+            };
+            let acc = self.aq_free[j] - self.lambda[j] / m.a_eff;
+            m.q += dt * m.v + c_pred * m.a + bdt2 * acc;
+            m.v += dt * ((1.0 - gamma) * m.a + gamma * acc);
+            m.a = acc;
+        }
+        self.t = t1;
+        self.step += 1;
+        Ok(())
+    }
+
+    /// The values of carrier `i` at the current time.
+    pub fn sample(&self, i: usize) -> CarrierSample {
+        let c = &self.carriers[i];
+        let x = c.props.motion.position(self.t);
+        let pv = if self.step == 0 { c.pv_f } else { c.pv_g };
+        let w = c.s * pv.dot(&self.d);
+        match (c.props.kind, c.contact, c.mass) {
+            (CarrierKind::Force { force }, _, _) => CarrierSample {
+                x,
+                w,
+                q: w,
+                gap: 0.0,
+                force,
+                in_contact: true,
+            },
+            (_, Some(j), Some(m)) => CarrierSample {
+                x,
+                w,
+                q: m.q,
+                gap: w - m.q,
+                force: self.lambda[j],
+                in_contact: self.active[j],
+            },
+            _ => unreachable!("a mass carrier always has a contact"),
+        }
+    }
+
+    /// Number of carriers.
+    pub fn carriers(&self) -> usize {
+        self.carriers.len()
+    }
+
+    /// Stop with a diagnosis if a recorded value is non-finite or absurd.
+    pub fn check(&self, s: &CarrierSample, carrier: usize) -> Result<()> {
+        let bound = DISPLACEMENT_BOUND_IN_LENGTHS * self.length;
+        let checks = [
+            ("contact force λ (N)", s.force, self.force_bound),
+            ("beam displacement under the carrier w (m)", s.w, bound),
+            ("mass displacement q (m)", s.q, bound),
+        ];
+        for (name, value, limit) in checks {
+            if !value.is_finite() || value.abs() > limit {
+                let moving = !self.carriers[carrier].props.motion.is_stationary();
+                let cause = if self.placement == Placement::Alpha && moving {
+                    "the gap is imposed at the α-level (contact.placement = \"alpha\"), which leaves an undamped step-to-step oscillation that a moving contact point drives unstable (MODEL §5); use contact.placement = \"end\"".to_string()
+                } else if !value.is_finite() {
+                    format!(
+                        "a non-finite value: check the scene's magnitudes and time.step = {} s",
+                        self.dt
+                    )
+                } else {
+                    format!(
+                        "|{name}| exceeds {limit:e}: time.step = {} s may be too coarse for the contact dynamics, or the scene is physically unbounded",
+                        self.dt
+                    )
+                };
+                return Err(Error::Diverged {
+                    step: self.step,
+                    time: self.t,
+                    quantity: format!("carrier {carrier}: {name}"),
+                    value,
+                    cause,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rho_one_is_the_study_s_parameter_set() {
+        let ga = GenAlpha::from_rho_inf(1.0);
+        assert_eq!(
+            (ga.alpha_m, ga.alpha_f, ga.beta, ga.gamma),
+            (0.5, 0.5, 0.25, 0.5)
+        );
+    }
+
+    #[test]
+    fn rho_zero_is_asymptotically_annihilating() {
+        let ga = GenAlpha::from_rho_inf(0.0);
+        assert_eq!((ga.alpha_m, ga.alpha_f), (-1.0, 0.0));
+        assert_eq!(ga.gamma, 1.5);
+        assert_eq!(ga.beta, 1.0);
+    }
+}

@@ -1,0 +1,35 @@
+//! # taut
+//!
+//! A verification-first testbed for the dynamic contact between a tensioned
+//! beam and a moving mass–spring. The physics contract is MODEL.md (in the
+//! project's shared spec, summarized in `docs/model.md`):
+//!
+//! * §1 the continuum `ρA v_tt + EI v_xxxx − T v_xx = p + λ δ(x − x_m)`;
+//! * §2 the carrier `m q_tt + c_s q_t + k q = k δ0 − s m g − λ` and the gap
+//!   `g = w − q ≥ 0` with Signorini conditions;
+//! * §3 speed profiles ([`model::motion`]);
+//! * §4 Hermite beam elements with tension ([`model::element`], [`model::beam`]);
+//! * §5 generalized-α with contact, A factored once per run ([`integrate`]);
+//! * §6 contact formulations ([`contact`]) and string elements for EI = 0;
+//! * §7 measured quantities ([`record`]).
+//!
+//! The flow of a run: [`scene`] (validated) → [`integrate::Integrator`] →
+//! [`record::History`] → [`report`] (CSV / JSON / SVG).
+
+// Numerical kernels index several arrays in lockstep (A[i][k], x[i − k], …);
+// index loops say that more plainly than zipped iterators.
+#![allow(clippy::needless_range_loop)]
+
+pub mod analytic;
+pub(crate) mod contact;
+pub mod error;
+pub mod integrate;
+pub mod model;
+pub mod record;
+pub mod report;
+pub mod run;
+pub mod scene;
+
+pub use error::{Error, Result};
+pub use run::{RunOutput, run};
+pub use scene::{Resolved, Scene, load_scene, resolve_scene};

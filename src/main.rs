@@ -1,0 +1,135 @@
+//! The `taut` command line: a thin layer over the library.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use taut::report::{Summary, write_run};
+use taut::{load_scene, run};
+
+/// taut: dynamic contact of a tensioned beam and a moving mass–spring.
+#[derive(Parser)]
+#[command(version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run one scene and write history.csv, summary.json and force.svg.
+    Run {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Override a scene value: --set beam.tension=2.01e4 (repeatable).
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output folder (default: out/<scene name>).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run {
+            scene,
+            set,
+            out,
+            quiet,
+        } => cmd_run(scene, set, out, quiet),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn cmd_run(
+    scene: PathBuf,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    quiet: bool,
+) -> taut::Result<()> {
+    let sc = load_scene(&scene, &set)?;
+    let dir = out.unwrap_or_else(|| {
+        let stem = scene.file_stem().map(|s| s.to_string_lossy().into_owned());
+        PathBuf::from("out").join(stem.unwrap_or_else(|| "run".into()))
+    });
+    let bar = if quiet {
+        ProgressBar::hidden()
+    } else {
+        let b = ProgressBar::new(sc.steps as u64);
+        b.set_style(
+            ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} steps ({eta} left)",
+            )
+            .expect("valid template"),
+        );
+        b
+    };
+    let output = run(&sc, &mut |done, _| bar.set_position(done as u64));
+    bar.finish_and_clear();
+    let output = output?;
+    let summary = write_run(&dir, &sc, &output)?;
+    print_summary(&scene, &dir, &summary);
+    Ok(())
+}
+
+fn print_summary(scene: &std::path::Path, dir: &std::path::Path, s: &Summary) {
+    let d = &s.derived;
+    println!("taut {} — {}", s.taut_version, scene.display());
+    println!(
+        "  beam     L = {} m, ρA = {:.4} kg/m, EI = {:.4e} N·m², T = {:.4e} N, c = {:.2} m/s",
+        s.scene.beam.length,
+        d.mass_per_length,
+        d.bending_stiffness,
+        s.scene.beam.tension,
+        d.wave_speed
+    );
+    let ratio = d
+        .speed_ratio
+        .map_or_else(|| "n/a".to_string(), |r| format!("{r:.4}"));
+    println!(
+        "  mesh     {} {} elements (h = {:.4} m), {} dofs; Δt = {} s, {} steps to t = {:.4} s; V0/c = {ratio}",
+        s.scene.mesh.elements, d.elements, d.element_length, d.dofs, d.dt, d.steps, d.end_time
+    );
+    for (i, c) in s.carriers.iter().enumerate() {
+        let f = &c.force;
+        println!(
+            "  carrier {i}: force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
+            f.mean, f.std, f.min, f.max
+        );
+        let first = c.first_loss_position.map_or_else(
+            || "never lost".to_string(),
+            |x| format!("first at x/L = {x:.4}"),
+        );
+        println!(
+            "             contact loss P_l = {:.4} ({} intervals, {first}), {} switches",
+            c.loss_fraction,
+            c.loss_intervals.len(),
+            c.contact_switches
+        );
+    }
+    for w in &s.warnings {
+        println!("  WARNING  {w}");
+    }
+    let rate = d.dofs as f64 * d.steps as f64 / s.wall_seconds.max(1e-12);
+    println!(
+        "  time     {:.3} s wall ({rate:.3e} dof-steps/s)",
+        s.wall_seconds
+    );
+    println!(
+        "  wrote    {}/{{history.csv, summary.json, force.svg}}",
+        dir.display()
+    );
+}

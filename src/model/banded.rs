@@ -1,0 +1,384 @@
+//! Symmetric banded matrices and their LDLᵀ factorization.
+//!
+//! Written by hand on purpose: neither faer nor nalgebra has a banded solver,
+//! and the general sparse LDLᵀ of faer is slower for this band (measured in
+//! `../shared/notes/crates.md`: ≈ 28 µs vs ≈ 23 µs per step at n = 2000). The
+//! per-step solve is bound by the dependency chain of the triangular sweeps
+//! (row i needs rows i−1..i−p), so the kernel below sweeps several right-hand
+//! sides at once (the free step and A⁻¹r of each contact, MODEL §5): their
+//! chains are independent and overlap in the CPU, for nearly the price of one.
+//! The half-bandwidth p and the number of right-hand sides are compile-time
+//! constants in the kernels (p = 3 Hermite, p = 1 string), so the inner loops
+//! unroll fully.
+
+use crate::error::{Error, Result};
+
+/// A symmetric banded matrix with half-bandwidth `p`, stored as full band
+/// rows: row i holds A[i, i−p ..= i+p] (entries outside the matrix are 0).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SymBand {
+    n: usize,
+    p: usize,
+    data: Vec<f64>,
+}
+
+impl SymBand {
+    /// An n×n zero matrix of half-bandwidth p.
+    pub fn zeros(n: usize, p: usize) -> Self {
+        SymBand {
+            n,
+            p,
+            data: vec![0.0; n * (2 * p + 1)],
+        }
+    }
+
+    /// Dimension n.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Half-bandwidth p.
+    pub fn bandwidth(&self) -> usize {
+        self.p
+    }
+
+    /// A[i, j] (0 outside the band).
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        if i.abs_diff(j) > self.p {
+            return 0.0;
+        }
+        self.data[i * (2 * self.p + 1) + (j + self.p - i)]
+    }
+
+    /// A[i, j] += v and A[j, i] += v when i ≠ j (symmetric assembly helper:
+    /// call it once per unordered pair, or use [`SymBand::add_entry`]).
+    pub fn add_entry(&mut self, i: usize, j: usize, v: f64) {
+        assert!(
+            i.abs_diff(j) <= self.p,
+            "entry ({i}, {j}) outside band {}",
+            self.p
+        );
+        let w = 2 * self.p + 1;
+        self.data[i * w + (j + self.p - i)] += v;
+    }
+
+    /// Linear combination a·self + b·other (same shape).
+    pub fn combine(&self, a: f64, other: &SymBand, b: f64) -> SymBand {
+        assert_eq!((self.n, self.p), (other.n, other.p));
+        SymBand {
+            n: self.n,
+            p: self.p,
+            data: self
+                .data
+                .iter()
+                .zip(&other.data)
+                .map(|(x, y)| a * x + b * y)
+                .collect(),
+        }
+    }
+
+    /// y += alpha · A x.
+    pub fn mul_acc(&self, x: &[f64], alpha: f64, y: &mut [f64]) {
+        match self.p {
+            1 => self.mul_acc_p::<1>(x, alpha, y),
+            3 => self.mul_acc_p::<3>(x, alpha, y),
+            _ => self.mul_acc_any(x, alpha, y),
+        }
+    }
+
+    fn mul_acc_any(&self, x: &[f64], alpha: f64, y: &mut [f64]) {
+        let (n, p) = (self.n, self.p);
+        let w = 2 * p + 1;
+        for i in 0..n {
+            let lo = i.saturating_sub(p);
+            let hi = (i + p).min(n - 1);
+            let row = &self.data[i * w..(i + 1) * w];
+            let mut acc = 0.0;
+            for j in lo..=hi {
+                acc += row[j + p - i] * x[j];
+            }
+            y[i] += alpha * acc;
+        }
+    }
+
+    fn mul_acc_p<const P: usize>(&self, x: &[f64], alpha: f64, y: &mut [f64]) {
+        let n = self.n;
+        if n <= 2 * P {
+            return self.mul_acc_any(x, alpha, y);
+        }
+        let w = 2 * P + 1;
+        // edges with bounds, interior without
+        for i in (0..P).chain(n - P..n) {
+            let lo = i.saturating_sub(P);
+            let hi = (i + P).min(n - 1);
+            let mut acc = 0.0;
+            for j in lo..=hi {
+                acc += self.data[i * w + j + P - i] * x[j];
+            }
+            y[i] += alpha * acc;
+        }
+        for (i, row) in self.data.chunks_exact(w).enumerate().take(n - P).skip(P) {
+            let xs = &x[i - P..i + P + 1];
+            let mut acc = 0.0;
+            for k in 0..w {
+                acc += row[k] * xs[k];
+            }
+            y[i] += alpha * acc;
+        }
+    }
+}
+
+/// LDLᵀ factorization of a symmetric positive definite banded matrix.
+///
+/// L is unit lower triangular with the same band; stored twice (by rows for
+/// the forward sweep, by columns for the backward sweep) so both sweeps read
+/// memory in order.
+#[derive(Debug, Clone)]
+pub struct BandedLdlt {
+    n: usize,
+    p: usize,
+    /// Row i: L[i, i−p .. i] (p entries; zeros before row 0).
+    rows: Vec<f64>,
+    /// Row i: L[i+1 ..= i+p, i] (p entries; zeros past row n−1).
+    cols: Vec<f64>,
+    /// 1 / D[i].
+    dinv: Vec<f64>,
+}
+
+impl BandedLdlt {
+    /// Factor A = L D Lᵀ. Fails if A is not positive definite (a pivot ≤ 0).
+    pub fn factor(a: &SymBand) -> Result<Self> {
+        let (n, p) = (a.n, a.p);
+        let mut rows = vec![0.0; n * p];
+        let mut d = vec![0.0; n];
+        for i in 0..n {
+            // L[i, j] for j in i−p .. i
+            for j in i.saturating_sub(p)..i {
+                let mut s = a.get(i, j);
+                for k in i.saturating_sub(p)..j {
+                    // L[i,k] D[k] L[j,k], with k within j's band too
+                    if j - k <= p {
+                        s -= rows[i * p + (k + p - i)] * d[k] * rows[j * p + (k + p - j)];
+                    }
+                }
+                rows[i * p + (j + p - i)] = s / d[j];
+            }
+            let mut s = a.get(i, i);
+            for k in i.saturating_sub(p)..i {
+                let l = rows[i * p + (k + p - i)];
+                s -= l * l * d[k];
+            }
+            if s.is_nan() || s <= 0.0 {
+                return Err(Error::invalid(
+                    "model",
+                    format!("pivot {i} = {s:e}"),
+                    "the effective matrix A = (1−α_m)M + (1−α_f)βΔt²K must be positive definite: check the mass and stiffness values",
+                ));
+            }
+            d[i] = s;
+        }
+        let mut cols = vec![0.0; n * p];
+        for i in 0..n {
+            for k in 1..=p {
+                if i + k < n {
+                    cols[i * p + (k - 1)] = rows[(i + k) * p + (i + p - (i + k))];
+                }
+            }
+        }
+        Ok(BandedLdlt {
+            n,
+            p,
+            rows,
+            cols,
+            dinv: d.iter().map(|x| 1.0 / x).collect(),
+        })
+    }
+
+    /// Dimension n.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Solve A X = B in place for `k` right-hand sides stored row-major:
+    /// `x[i * k + j]` is row i of column j. One fused sweep serves all columns.
+    pub fn solve_many(&self, x: &mut [f64], k: usize) {
+        assert_eq!(x.len(), self.n * k, "right-hand side has the wrong length");
+        macro_rules! dispatch {
+            ($($p:literal, $k:literal);*) => {
+                match (self.p, k) {
+                    $(($p, $k) => self.solve_kernel::<$p, $k>(x),)*
+                    _ => self.solve_generic(x, k),
+                }
+            };
+        }
+        dispatch!(3, 1; 3, 2; 3, 3; 3, 4; 1, 1; 1, 2; 1, 3; 1, 4)
+    }
+
+    /// Solve A x = b in place for one right-hand side.
+    pub fn solve(&self, x: &mut [f64]) {
+        self.solve_many(x, 1)
+    }
+
+    fn solve_kernel<const P: usize, const K: usize>(&self, x: &mut [f64]) {
+        let n = self.n;
+        let (x, _) = x.as_chunks_mut::<K>();
+        // forward: y_i = b_i − Σ_k L[i, i−k] y_{i−k}
+        for i in 1..n.min(P) {
+            let row = &self.rows[i * P..(i + 1) * P];
+            for kk in (P - i)..P {
+                let j = i + kk - P;
+                let l = row[kk];
+                let xj = x[j];
+                for c in 0..K {
+                    x[i][c] -= l * xj[c];
+                }
+            }
+        }
+        for i in P..n {
+            let row: &[f64; P] = self.rows[i * P..(i + 1) * P].try_into().unwrap();
+            let mut acc = x[i];
+            for kk in 0..P {
+                let xj = x[i - P + kk];
+                for c in 0..K {
+                    acc[c] -= row[kk] * xj[c];
+                }
+            }
+            x[i] = acc;
+        }
+        // diagonal
+        for (xi, &di) in x.iter_mut().zip(&self.dinv) {
+            for v in xi.iter_mut() {
+                *v *= di;
+            }
+        }
+        // backward: x_i = y_i − Σ_k L[i+k, i] x_{i+k}
+        for i in (n.saturating_sub(P)..n.saturating_sub(1)).rev() {
+            let col = &self.cols[i * P..(i + 1) * P];
+            for kk in 0..(n - 1 - i) {
+                let l = col[kk];
+                let xj = x[i + 1 + kk];
+                for c in 0..K {
+                    x[i][c] -= l * xj[c];
+                }
+            }
+        }
+        for i in (0..n.saturating_sub(P)).rev() {
+            let col: &[f64; P] = self.cols[i * P..(i + 1) * P].try_into().unwrap();
+            let mut acc = x[i];
+            for kk in 0..P {
+                let xj = x[i + 1 + kk];
+                for c in 0..K {
+                    acc[c] -= col[kk] * xj[c];
+                }
+            }
+            x[i] = acc;
+        }
+    }
+
+    fn solve_generic(&self, x: &mut [f64], k: usize) {
+        let (n, p) = (self.n, self.p);
+        for i in 0..n {
+            for j in i.saturating_sub(p)..i {
+                let l = self.rows[i * p + (j + p - i)];
+                for c in 0..k {
+                    x[i * k + c] -= l * x[j * k + c];
+                }
+            }
+        }
+        for i in 0..n {
+            for c in 0..k {
+                x[i * k + c] *= self.dinv[i];
+            }
+        }
+        for i in (0..n).rev() {
+            for kk in 1..=p {
+                if i + kk < n {
+                    let l = self.cols[i * p + (kk - 1)];
+                    for c in 0..k {
+                        x[i * k + c] -= l * x[(i + kk) * k + c];
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{DMatrix, DVector};
+
+    /// Residual bound for a well-conditioned SPD solve: n·ε scaled by ‖A‖‖x‖.
+    fn residual_tol(n: usize) -> f64 {
+        64.0 * n as f64 * f64::EPSILON
+    }
+
+    /// A deterministic SPD banded matrix (diagonally dominant).
+    fn sample(n: usize, p: usize) -> SymBand {
+        let mut a = SymBand::zeros(n, p);
+        for i in 0..n {
+            a.add_entry(i, i, 10.0 + (i % 7) as f64);
+            for k in 1..=p {
+                if i + k < n {
+                    let v = ((i * 31 + k * 17) % 11) as f64 / 11.0 - 0.5;
+                    a.add_entry(i, i + k, v);
+                    a.add_entry(i + k, i, v);
+                }
+            }
+        }
+        a
+    }
+
+    fn dense(a: &SymBand) -> DMatrix<f64> {
+        DMatrix::from_fn(a.n(), a.n(), |i, j| a.get(i, j))
+    }
+
+    #[test]
+    fn fused_solves_match_dense_cholesky() {
+        for &(n, p) in &[(1, 1), (2, 3), (5, 3), (40, 3), (40, 1), (17, 2)] {
+            let a = sample(n, p);
+            let f = BandedLdlt::factor(&a).unwrap();
+            let ad = dense(&a);
+            let chol = ad.clone().cholesky().unwrap();
+            for k in 1..=5 {
+                let b: Vec<f64> = (0..n * k).map(|i| ((i * 13) % 7) as f64 - 3.0).collect();
+                let mut x = b.clone();
+                f.solve_many(&mut x, k);
+                for c in 0..k {
+                    let bc = DVector::from_fn(n, |i, _| b[i * k + c]);
+                    let xc = DVector::from_fn(n, |i, _| x[i * k + c]);
+                    let xref = chol.solve(&bc);
+                    let r = (&ad * &xc - &bc).norm();
+                    assert!(
+                        r <= residual_tol(n) * ad.norm() * xc.norm().max(1.0),
+                        "n={n} p={p} k={k} r={r}"
+                    );
+                    assert!((xc - xref).norm() <= residual_tol(n) * 100.0 * (1.0 + bc.norm()));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn matvec_matches_dense() {
+        for &(n, p) in &[(3, 3), (9, 3), (30, 3), (30, 1), (12, 2)] {
+            let a = sample(n, p);
+            let x: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
+            let mut y = vec![1.0; n];
+            a.mul_acc(&x, -2.0, &mut y);
+            let yref = DVector::from_element(n, 1.0) - 2.0 * dense(&a) * DVector::from_vec(x);
+            for i in 0..n {
+                assert!((y[i] - yref[i]).abs() < 1e-13 * (1.0 + yref[i].abs()));
+            }
+        }
+    }
+
+    #[test]
+    fn indefinite_matrix_is_rejected() {
+        let mut a = SymBand::zeros(3, 1);
+        a.add_entry(0, 0, 1.0);
+        a.add_entry(1, 1, -1.0);
+        a.add_entry(2, 2, 1.0);
+        assert!(BandedLdlt::factor(&a).is_err());
+    }
+}

@@ -1,0 +1,7 @@
+//! What a scene turns into: the discretized beam, its banded matrices, and
+//! the carriers' kinematics.
+
+pub mod banded;
+pub mod beam;
+pub mod element;
+pub mod motion;

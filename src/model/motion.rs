@@ -1,0 +1,146 @@
+//! Carrier kinematics x_m(t), V(t) (MODEL §3).
+
+use crate::scene::SpeedProfile;
+use std::f64::consts::PI;
+
+/// How a carrier moves along the beam.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Motion {
+    /// x_m(0), m.
+    pub start: f64,
+    /// The speed profile.
+    pub profile: SpeedProfile,
+    /// Ramp time t0 = 2L/(5 V0), s (smooth ramp only; 0 otherwise).
+    pub ramp_time: f64,
+}
+
+impl Motion {
+    /// A motion starting at `start` (m) on a beam of length `length` (m).
+    pub fn new(start: f64, profile: SpeedProfile, length: f64) -> Self {
+        let ramp_time = match profile {
+            SpeedProfile::SmoothRamp { cruise } => 2.0 * length / (5.0 * cruise),
+            SpeedProfile::Constant { .. } => 0.0,
+        };
+        Motion {
+            start,
+            profile,
+            ramp_time,
+        }
+    }
+
+    /// Distance travelled since t = 0, m.
+    pub fn travelled(&self, t: f64) -> f64 {
+        match self.profile {
+            SpeedProfile::Constant { value } => value * t,
+            SpeedProfile::SmoothRamp { cruise } => {
+                let t0 = self.ramp_time;
+                if t <= t0 {
+                    // ∫ V0 (τ/t0 − sin(2πτ/t0)/(2π)) dτ
+                    cruise
+                        * (t * t / (2.0 * t0)
+                            + t0 / (4.0 * PI * PI) * ((2.0 * PI * t / t0).cos() - 1.0))
+                } else {
+                    cruise * (0.5 * t0 + (t - t0))
+                }
+            }
+        }
+    }
+
+    /// Position x_m(t), m.
+    pub fn position(&self, t: f64) -> f64 {
+        self.start + self.travelled(t)
+    }
+
+    /// Speed V(t), m/s.
+    pub fn speed(&self, t: f64) -> f64 {
+        match self.profile {
+            SpeedProfile::Constant { value } => value,
+            SpeedProfile::SmoothRamp { cruise } => {
+                let t0 = self.ramp_time;
+                if t <= t0 {
+                    cruise * (t / t0 - (2.0 * PI * t / t0).sin() / (2.0 * PI))
+                } else {
+                    cruise
+                }
+            }
+        }
+    }
+
+    /// True when the carrier never moves.
+    pub fn is_stationary(&self) -> bool {
+        self.profile.cruise_speed() == 0.0
+    }
+
+    /// Time at which x_m reaches the end x = `length`, s; `None` if it never moves.
+    pub fn time_to_leave(&self, length: f64) -> Option<f64> {
+        if self.is_stationary() {
+            return None;
+        }
+        let dist = length - self.start;
+        if dist <= 0.0 {
+            return Some(0.0);
+        }
+        match self.profile {
+            SpeedProfile::Constant { value } => Some(dist / value),
+            SpeedProfile::SmoothRamp { cruise } => {
+                let t0 = self.ramp_time;
+                let ramp_dist = 0.5 * cruise * t0;
+                if dist >= ramp_dist {
+                    Some(t0 + (dist - ramp_dist) / cruise)
+                } else {
+                    // travelled() is increasing on [0, t0]: bisection to round-off
+                    let (mut lo, mut hi) = (0.0, t0);
+                    for _ in 0..200 {
+                        let mid = 0.5 * (lo + hi);
+                        if self.travelled(mid) < dist {
+                            lo = mid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    Some(hi)
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    /// Reference-case ramp: V0 = 100 m/s on L = 50 m.
+    fn ramp() -> Motion {
+        Motion::new(0.0, SpeedProfile::SmoothRamp { cruise: 100.0 }, 50.0)
+    }
+
+    #[test]
+    fn ramp_covers_a_fifth_of_the_span_and_reaches_cruise() {
+        let m = ramp();
+        assert_relative_eq!(m.ramp_time, 0.2, max_relative = 1e-15);
+        assert_relative_eq!(m.position(m.ramp_time), 10.0, max_relative = 1e-14);
+        assert_relative_eq!(m.speed(m.ramp_time), 100.0, max_relative = 1e-14);
+        assert_eq!(m.speed(0.0), 0.0);
+    }
+
+    #[test]
+    fn speed_is_the_derivative_of_position() {
+        let m = ramp();
+        let h = 1e-6;
+        for &t in &[0.01, 0.1, 0.19, 0.3] {
+            let fd = (m.position(t + h) - m.position(t - h)) / (2.0 * h);
+            assert_relative_eq!(fd, m.speed(t), max_relative = 1e-7);
+        }
+    }
+
+    #[test]
+    fn leave_time_inverts_position() {
+        let m = ramp();
+        let t = m.time_to_leave(50.0).unwrap();
+        assert_relative_eq!(t, 0.2 + 0.4, max_relative = 1e-14);
+        let short = Motion::new(45.0, SpeedProfile::SmoothRamp { cruise: 100.0 }, 50.0);
+        let t = short.time_to_leave(50.0).unwrap();
+        assert_relative_eq!(short.position(t), 50.0, max_relative = 1e-12);
+    }
+}

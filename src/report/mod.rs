@@ -1,0 +1,38 @@
+//! Plain-file outputs of a run: `history.csv`, `summary.json`, `force.svg`
+//! (formats documented in `docs/output.md`).
+
+mod csv;
+mod plot;
+mod summary;
+
+pub use csv::write_history;
+pub use plot::write_force_plot;
+pub use summary::{Derived, Summary, write_summary};
+
+use std::path::Path;
+
+use crate::error::{Error, Result};
+use crate::run::RunOutput;
+use crate::scene::Resolved;
+
+/// Write all three outputs of a run into `dir` (created if missing).
+pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    write_history(&dir.join("history.csv"), out)?;
+    let summary = Summary::new(sc, out);
+    write_summary(&dir.join("summary.json"), &summary)?;
+    write_force_plot(&dir.join("force.svg"), sc, out)?;
+    Ok(summary)
+}
+
+/// Format a float compactly and exactly (shortest round-trip form).
+pub(crate) fn fmt_f64(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 {
+        "0".to_string()
+    } else if (1e-4..1e6).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}

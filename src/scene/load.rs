@@ -1,0 +1,158 @@
+//! Reading scene files and applying `--set key.path=value` overrides.
+//!
+//! Overrides act on the TOML tree before deserialization, so anything a scene
+//! file can say, a `--set` can say, and an override with an unknown key is
+//! rejected exactly as an unknown key in the file would be.
+
+use std::path::Path;
+
+use toml::{Table, Value};
+
+use super::{Resolved, Scene};
+use crate::error::{Error, Result};
+
+/// Parse scene text into a TOML tree.
+pub fn parse_scene(text: &str) -> Result<Table> {
+    text.parse::<Table>()
+        .map_err(|e| Error::Parse(e.to_string()))
+}
+
+/// Apply one override `key.path=value` to a TOML tree.
+///
+/// Path segments walk tables by key and arrays by index (`carrier.0.mass`);
+/// an array with exactly one entry may be walked without an index
+/// (`carrier.mass`). The value is read as a TOML value (`3e4`, `true`,
+/// `"text"`, `{ profile = "constant", value = 10 }`); if it is not valid TOML
+/// it is taken as a bare string, so `contact.kind=bilateral` works.
+pub fn apply_override(tree: &mut Table, spec: &str) -> Result<()> {
+    let bad = |reason: String| Error::Override {
+        spec: spec.to_string(),
+        reason,
+    };
+    let (path, raw) = spec
+        .split_once('=')
+        .ok_or_else(|| bad("expected key.path=value".into()))?;
+    let path = path.trim();
+    let raw = raw.trim();
+    if path.is_empty() {
+        return Err(bad("the key path is empty".into()));
+    }
+    if raw.is_empty() {
+        return Err(bad("the value is empty".into()));
+    }
+    let segments: Vec<&str> = path.split('.').collect();
+    if segments.iter().any(|s| s.is_empty()) {
+        return Err(bad(format!("`{path}` has an empty segment")));
+    }
+    let value = parse_value(raw);
+
+    let mut root = Value::Table(std::mem::take(tree));
+    let result = set_path(&mut root, &segments, value);
+    if let Value::Table(t) = root {
+        *tree = t;
+    }
+    result.map_err(bad)
+}
+
+/// Walk `segments` from `root` and store `value` at the end of the path.
+fn set_path(root: &mut Value, segments: &[&str], value: Value) -> std::result::Result<(), String> {
+    let mut node = root;
+    let mut walked = String::new();
+    let last = segments.len() - 1;
+    let mut i = 0;
+    while i <= last {
+        let seg = segments[i];
+        match node {
+            Value::Table(t) => {
+                if i == last {
+                    t.insert(seg.to_string(), value);
+                    return Ok(());
+                }
+                node = t
+                    .entry(seg.to_string())
+                    .or_insert_with(|| Value::Table(Table::new()));
+            }
+            Value::Array(a) => {
+                let n = a.len();
+                if let Ok(idx) = seg.parse::<usize>() {
+                    let slot = a.get_mut(idx).ok_or_else(|| match n {
+                        0 => format!("`{walked}` has no entries; index {idx} is out of range"),
+                        1 => format!("`{walked}` has 1 entry; index {idx} is out of range: use 0"),
+                        _ => format!(
+                            "`{walked}` has {n} entries; index {idx} is out of range: use 0 ..= {}",
+                            n - 1
+                        ),
+                    })?;
+                    if i == last {
+                        *slot = value;
+                        return Ok(());
+                    }
+                    node = slot;
+                } else if n == 1 {
+                    // the only entry: apply the same segment to it
+                    node = &mut a[0];
+                    continue;
+                } else {
+                    return Err(format!(
+                        "`{walked}` has {n} entries: give an index, e.g. `{walked}.0.{seg}`"
+                    ));
+                }
+            }
+            _ => return Err(format!("`{walked}` is a value, not a table")),
+        }
+        if !walked.is_empty() {
+            walked.push('.');
+        }
+        walked.push_str(seg);
+        i += 1;
+    }
+    Ok(())
+}
+
+/// Read a `--set` value: TOML if it parses, else a bare string.
+fn parse_value(raw: &str) -> Value {
+    let doc = format!("v = {raw}");
+    match doc.parse::<Table>() {
+        Ok(mut t) => t
+            .remove("v")
+            .unwrap_or_else(|| Value::String(raw.to_string())),
+        Err(_) => Value::String(raw.to_string()),
+    }
+}
+
+/// Deserialize a TOML tree into a [`Scene`], naming the key path on error.
+///
+/// The path is written the way `--set` takes it (`carrier.0.speed`, not
+/// `carrier[0].speed`), and the toml crate's own trailing "in `…`" line,
+/// which repeats the path without array indices, is dropped.
+pub fn scene_from_tree(tree: Table) -> Result<Scene> {
+    let value = Value::Table(tree);
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let path = e.path().to_string().replace('[', ".").replace(']', "");
+        let inner = e.into_inner().to_string();
+        let inner = inner.split("\nin `").next().unwrap_or(&inner).trim_end();
+        if path.is_empty() || path == "." {
+            Error::Parse(inner.to_string())
+        } else {
+            Error::Parse(format!("at `{path}`: {inner}"))
+        }
+    })
+}
+
+/// Parse scene text, apply overrides in order, deserialize and validate.
+pub fn resolve_scene(text: &str, overrides: &[String]) -> Result<Resolved> {
+    let mut tree = parse_scene(text)?;
+    for spec in overrides {
+        apply_override(&mut tree, spec)?;
+    }
+    scene_from_tree(tree)?.validate()
+}
+
+/// Read a scene file, apply overrides, deserialize and validate.
+pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Resolved> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    resolve_scene(&text, overrides).map_err(|e| match e {
+        Error::Parse(msg) => Error::Parse(format!("{}: {msg}", path.display())),
+        other => other,
+    })
+}

@@ -1,0 +1,304 @@
+//! Scene files: what a run needs, as plain serde data (MODEL.md §1–§5).
+//!
+//! A scene is TOML. Every table rejects unknown keys. Loading is three steps:
+//! parse the text into a TOML tree, apply `--set` overrides on the tree
+//! ([`load`]), then deserialize and [`Scene::validate`] into a [`Resolved`]
+//! set of physical parameters that the model is built from. Every key, its
+//! unit, default and allowed range is documented in `docs/scene.md`.
+
+mod load;
+mod speed;
+mod validate;
+
+pub use load::{apply_override, load_scene, parse_scene, resolve_scene};
+pub use speed::SpeedProfile;
+pub use validate::{BeamProps, CarrierKind, CarrierProps, Resolved};
+
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// A whole scene file.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// The tensioned beam (or string when EI = 0).
+    pub beam: BeamSpec,
+    /// The finite-element mesh.
+    pub mesh: MeshSpec,
+    /// One or more carriers: mass–springs or moving forces (`[[carrier]]`).
+    #[serde(rename = "carrier")]
+    pub carriers: Vec<CarrierSpec>,
+    /// Contact kind, formulation and constraint placement.
+    #[serde(default)]
+    pub contact: ContactSpec,
+    /// Time step and end time.
+    pub time: TimeSpec,
+    /// Generalized-α parameters.
+    #[serde(default)]
+    pub integrator: IntegratorSpec,
+    /// Gravity.
+    #[serde(default)]
+    pub gravity: GravitySpec,
+    /// Points whose beam displacement is recorded (`[[probe]]`).
+    #[serde(default, rename = "probe", skip_serializing_if = "Vec::is_empty")]
+    pub probes: Vec<ProbeSpec>,
+}
+
+/// Support condition at a beam end (MODEL §1).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Support {
+    /// v = 0 and v' = 0.
+    Clamped,
+    /// v = 0, moment free.
+    Pinned,
+    /// No constraint.
+    Free,
+}
+
+/// `[beam]`: geometry, material, tension and supports.
+///
+/// Mass per length is either `mass_per_length` or `density`·`area`; bending
+/// stiffness is either `bending_stiffness` or `youngs_modulus`·`second_moment`.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BeamSpec {
+    /// Span L, m (> 0).
+    pub length: f64,
+    /// Axial tension T, N (≥ 0).
+    pub tension: f64,
+    /// Support at x = 0.
+    pub left: Support,
+    /// Support at x = L.
+    pub right: Support,
+    /// Density ρ, kg/m³ (with `area`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<f64>,
+    /// Cross-section area A, m².
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub area: Option<f64>,
+    /// Young's modulus E, Pa (with `second_moment`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus: Option<f64>,
+    /// Second moment of area I, m⁴.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub second_moment: Option<f64>,
+    /// Mass per length ρA, kg/m (instead of `density`·`area`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass_per_length: Option<f64>,
+    /// Bending stiffness EI, N·m² (instead of `youngs_modulus`·`second_moment`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bending_stiffness: Option<f64>,
+}
+
+/// `[mesh]`.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Number of equal elements N (1 ..= 1 000 000).
+    pub elements: usize,
+}
+
+/// Which side of the beam the carrier's mass sits on (MODEL §2).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Side {
+    /// The mass is above the beam and pushes it down (s = −1).
+    Above,
+    /// The mass is below the beam and pushes it up (s = +1).
+    Below,
+}
+
+impl Side {
+    /// The sign `s` of MODEL §2: +1 below, −1 above.
+    pub fn sign(self) -> f64 {
+        match self {
+            Side::Above => -1.0,
+            Side::Below => 1.0,
+        }
+    }
+}
+
+/// `[[carrier]]`: a mass–spring (`mass`, `stiffness`, …) or a moving
+/// constant force (`force`, no mass).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CarrierSpec {
+    /// Mass m, kg (> 0). Absent for a moving force.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+    /// Spring stiffness k, N/m (≥ 0; 0 = a riding mass).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// Dashpot c_s, N·s/m (≥ 0, default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<f64>,
+    /// Spring preload δ0, m (≥ 0, default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preload: Option<f64>,
+    /// Moving constant force F, N (≥ 0, pressing into the beam from `side`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force: Option<f64>,
+    /// Side of the beam the carrier is on.
+    pub side: Side,
+    /// Initial position x_m(0), m (0 ≤ start ≤ L).
+    pub start: f64,
+    /// Speed profile (MODEL §3).
+    pub speed: SpeedProfile,
+}
+
+/// Unilateral (Signorini) or bilateral (always attached) contact.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactKind {
+    /// λ ≥ 0, g ≥ 0, λ·g = 0: contact can be lost and regained.
+    #[default]
+    Unilateral,
+    /// g = 0 always; λ may be negative.
+    Bilateral,
+}
+
+/// How the contact force is computed each step (MODEL §6).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Formulation {
+    /// Lagrange multiplier with an active set (the study's).
+    #[default]
+    Lagrange,
+}
+
+/// Where the gap condition is imposed (MODEL §5).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Placement {
+    /// g_{n+1} = 0 at the end of the step (default; stable).
+    #[default]
+    End,
+    /// g_{n+1−α_f} = 0 at the α-level (the study's literal statement).
+    Alpha,
+}
+
+/// `[contact]`.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq, Default)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// `unilateral` (default) or `bilateral`.
+    #[serde(default)]
+    pub kind: ContactKind,
+    /// `lagrange` (default).
+    #[serde(default)]
+    pub formulation: Formulation,
+    /// `end` (default) or `alpha`.
+    #[serde(default)]
+    pub placement: Placement,
+}
+
+/// `[time]`.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSpec {
+    /// Time step Δt, s (> 0).
+    pub step: f64,
+    /// End time, s, or `"carrier_leaves"`.
+    pub end: EndTime,
+}
+
+/// When a run stops.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EndTime {
+    /// At this time, s.
+    Seconds(f64),
+    /// When the first moving carrier reaches a beam end.
+    CarrierLeaves,
+}
+
+impl Serialize for EndTime {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        match self {
+            EndTime::Seconds(t) => s.serialize_f64(*t),
+            EndTime::CarrierLeaves => s.serialize_str("carrier_leaves"),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for EndTime {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = EndTime;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a time in seconds or the string \"carrier_leaves\"")
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> std::result::Result<EndTime, E> {
+                Ok(EndTime::Seconds(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> std::result::Result<EndTime, E> {
+                Ok(EndTime::Seconds(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> std::result::Result<EndTime, E> {
+                Ok(EndTime::Seconds(v as f64))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<EndTime, E> {
+                if v == "carrier_leaves" {
+                    Ok(EndTime::CarrierLeaves)
+                } else {
+                    Err(E::invalid_value(serde::de::Unexpected::Str(v), &self))
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// `[integrator]`: generalized-α (MODEL §5).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct IntegratorSpec {
+    /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1] (default 1: no dissipation).
+    #[serde(default = "one")]
+    pub rho_inf: f64,
+}
+
+impl Default for IntegratorSpec {
+    fn default() -> Self {
+        IntegratorSpec { rho_inf: 1.0 }
+    }
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn standard_gravity() -> f64 {
+    9.81
+}
+
+/// `[gravity]`.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct GravitySpec {
+    /// Gravitational acceleration g, m/s² (≥ 0, default 9.81). Acts on carrier masses.
+    #[serde(default = "standard_gravity")]
+    pub g: f64,
+    /// Also load the beam with its self-weight −ρA g (default false, MODEL §1).
+    #[serde(default)]
+    pub beam_self_weight: bool,
+}
+
+impl Default for GravitySpec {
+    fn default() -> Self {
+        GravitySpec {
+            g: standard_gravity(),
+            beam_self_weight: false,
+        }
+    }
+}
+
+/// `[[probe]]`: a point whose beam displacement v (positive up) is recorded.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeSpec {
+    /// Column name in `history.csv` (letters, digits, `_`, `-`).
+    pub name: String,
+    /// Position, m (0 ≤ x ≤ L).
+    pub x: f64,
+}

@@ -1,0 +1,45 @@
+//! Shared helpers for the integration tests.
+#![allow(dead_code)]
+
+use taut::{Resolved, RunOutput};
+
+/// Load a bundled scene with overrides.
+pub fn scene(name: &str, overrides: &[&str]) -> Resolved {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name);
+    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    taut::load_scene(&path, &o).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// Run a resolved scene without progress output.
+pub fn run(sc: &Resolved) -> RunOutput {
+    taut::run(sc, &mut |_, _| {}).unwrap_or_else(|e| panic!("run failed: {e}"))
+}
+
+/// The period of a sampled signal: the lag in [min_lag, max_lag] (s) that
+/// maximizes its normalized autocorrelation, refined by a parabola through
+/// the peak and its neighbours. `dt` is the sample spacing (s).
+pub fn period_by_autocorrelation(y: &[f64], dt: f64, min_lag: f64, max_lag: f64) -> f64 {
+    let n = y.len();
+    let mean = y.iter().sum::<f64>() / n as f64;
+    let z: Vec<f64> = y.iter().map(|v| v - mean).collect();
+    let corr = |lag: usize| -> f64 {
+        let m = n - lag;
+        let s: f64 = (0..m).map(|i| z[i] * z[i + lag]).sum();
+        s / m as f64
+    };
+    let lo = (min_lag / dt).round() as usize;
+    let hi = (max_lag / dt).round() as usize;
+    let (mut best, mut best_lag) = (f64::NEG_INFINITY, lo);
+    for lag in lo..=hi {
+        let c = corr(lag);
+        if c > best {
+            best = c;
+            best_lag = lag;
+        }
+    }
+    let (cm, c0, cp) = (corr(best_lag - 1), best, corr(best_lag + 1));
+    let shift = 0.5 * (cm - cp) / (cm - 2.0 * c0 + cp);
+    (best_lag as f64 + shift) * dt
+}
