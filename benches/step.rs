@@ -35,7 +35,7 @@ fn bench_step(c: &mut Criterion) {
     for n in ELEMENTS {
         // ≈ 20 ns per DOF-step: an iteration takes ≈ 8 ms at N = 200, 30 ms at
         // 800 and 130 ms at 3200, so N = 3200 needs a longer window for 10 samples.
-        group.measurement_time(Duration::from_secs(if n >= 3200 { 9 } else { 4 }));
+        group.measurement_time(Duration::from_secs(if n >= 3200 { 10 } else { 4 }));
         let sc = resolved(&[format!("mesh.elements={n}")]);
         let dofs = Integrator::new(&sc).expect("integrator builds").dofs();
         group.throughput(Throughput::Elements((dofs * STEPS_PER_ITER) as u64));
@@ -63,7 +63,7 @@ fn bench_run(c: &mut Criterion) {
     group
         .sample_size(10)
         .warm_up_time(Duration::from_secs(1))
-        .measurement_time(Duration::from_secs(5))
+        .measurement_time(Duration::from_secs(7))
         // DOF-steps of the whole run, comparable with the `step` group
         .throughput(Throughput::Elements((dofs * sc.steps) as u64));
     group.bench_function("reference", |b| {

@@ -13,7 +13,7 @@
 
 use crate::contact::{ContactLaw, law_for};
 use crate::error::{Error, Result};
-use crate::model::banded::{BandedLdlt, SymBand};
+use crate::model::banded::{BandedLdlt, SymBand, residual_into};
 use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::{CarrierKind, CarrierProps, Placement, Resolved};
 
@@ -121,7 +121,6 @@ pub struct Integrator {
     a: Vec<f64>,
     // scratch, allocated once
     d_pred: Vec<f64>,
-    f: Vec<f64>,
     u: Vec<f64>,
     /// n × (1 + nc) right-hand sides, row-major: column 0 the free step,
     /// column 1 + c the direction s_c r_b of contact c.
@@ -214,7 +213,6 @@ impl Integrator {
             v: vec![0.0; n],
             a: vec![0.0; n],
             d_pred: vec![0.0; n],
-            f: vec![0.0; n],
             u: vec![0.0; n],
             rhs: vec![0.0; n * k],
             g_free: vec![0.0; nc],
@@ -303,7 +301,24 @@ impl Integrator {
                 m.a = (m.f0 - self.lambda[j]) / m.m;
             }
         }
+        self.predict();
         Ok(())
+    }
+
+    /// Predictors of the next step from the current state (MODEL §5):
+    /// d̃ = d + Δt v + (½ − β)Δt² a and u = (1 − α_f) d̃ + α_f d. `step` keeps
+    /// them current in its update pass; this computes them at t = 0.
+    fn predict(&mut self) {
+        let GenAlpha {
+            alpha_f: af, beta, ..
+        } = self.ga;
+        let dt = self.dt;
+        let c_pred = (0.5 - beta) * dt * dt;
+        for i in 0..self.beam.n {
+            let dp = self.d[i] + dt * self.v[i] + c_pred * self.a[i];
+            self.d_pred[i] = dp;
+            self.u[i] = (1.0 - af) * dp + af * self.d[i];
+        }
     }
 
     /// Scatter the moving forces into column 0 and the contact directions
@@ -352,7 +367,6 @@ impl Integrator {
             gamma,
         } = self.ga;
         let dt = self.dt;
-        let n = self.beam.n;
         let k = 1 + self.nc;
         // time from the step count (t_n = n·Δt, one rounding), not accumulated
         let t1 = (self.step + 1) as f64 * dt;
@@ -364,22 +378,20 @@ impl Integrator {
             c.pv_g = self.beam.point_vector(c.props.motion.position(t1));
         }
 
-        // predictors and the argument of K: u = (1 − α_f) d̃ + α_f d_n
+        // the predictors d̃ and u = (1 − α_f) d̃ + α_f d_n were computed by the
+        // previous step's update pass (or by `predict` at t = 0)
         let c_pred = (0.5 - beta) * dt * dt;
-        for i in 0..n {
-            let dp = self.d[i] + dt * self.v[i] + c_pred * self.a[i];
-            self.d_pred[i] = dp;
-            self.u[i] = (1.0 - af) * dp + af * self.d[i];
-        }
-        // F = f(t_f) − α_m M a_n − K u
-        self.f.copy_from_slice(&self.beam.load);
-        self.beam.mass.mul_acc(&self.a, -am, &mut self.f);
-        self.beam.stiffness.mul_acc(&self.u, -1.0, &mut self.f);
-        for i in 0..n {
-            let row = &mut self.rhs[i * k..(i + 1) * k];
-            row[0] = self.f[i];
-            row[1..].fill(0.0);
-        }
+        // F = f(t_f) − α_m M a_n − K u into column 0, other columns zeroed
+        residual_into(
+            &self.beam.load,
+            &self.beam.mass,
+            &self.a,
+            am,
+            &self.beam.stiffness,
+            &self.u,
+            &mut self.rhs,
+            k,
+        );
         self.scatter_loads(k);
         // a★ = A⁻¹F and z_c = A⁻¹(s_c r_f,c) in one sweep
         self.ldlt.solve_many(&mut self.rhs, k);
@@ -424,16 +436,27 @@ impl Integrator {
                 reason,
             })?;
 
-        // update: a = a★ + Σ λ_c z_c; d = d̃ + βΔt² a; v = v_n + Δt((1−γ)a_n + γa)
-        for i in 0..n {
-            let row = &self.rhs[i * k..(i + 1) * k];
+        // update: a = a★ + Σ λ_c z_c; d = d̃ + βΔt² a; v = v_n + Δt((1−γ)a_n + γa),
+        // and in the same pass the next step's predictors (one sweep over memory)
+        let lambda = &self.lambda[..];
+        let rows = self.rhs.chunks_exact(k);
+        let state = self
+            .d
+            .iter_mut()
+            .zip(self.v.iter_mut())
+            .zip(self.a.iter_mut());
+        let pred = self.d_pred.iter_mut().zip(self.u.iter_mut());
+        for ((row, ((d, v), a)), (dp, u)) in rows.zip(state).zip(pred) {
             let mut acc = row[0];
-            for (j, l) in self.lambda.iter().enumerate() {
-                acc += l * row[1 + j];
+            for (l, z) in lambda.iter().zip(&row[1..]) {
+                acc += l * z;
             }
-            self.v[i] += dt * ((1.0 - gamma) * self.a[i] + gamma * acc);
-            self.d[i] = self.d_pred[i] + bdt2 * acc;
-            self.a[i] = acc;
+            *v += dt * ((1.0 - gamma) * *a + gamma * acc);
+            *d = *dp + bdt2 * acc;
+            *a = acc;
+            let next = *d + dt * *v + c_pred * acc;
+            *dp = next;
+            *u = (1.0 - af) * next + af * *d;
         }
         for c in self.carriers.iter_mut() {
             let (Some(j), Some(m)) = (c.contact, c.mass.as_mut()) else {

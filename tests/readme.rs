@@ -1,0 +1,45 @@
+//! The README's two set-up commands are the ones CI runs, and what they name exists.
+
+const README: &str = include_str!("../README.md");
+const CI: &str = include_str!("../.ci/run");
+
+/// The set-up commands, as written in the README's first `sh` block.
+const RUN_COMMAND: &str = "cargo run --release -- run scenes/reference.toml";
+const TEST_COMMAND: &str = "cargo test --release";
+
+#[test]
+fn readme_shows_the_two_setup_commands_first() {
+    let block_start = README.find("```sh\n").expect("an sh block") + 6;
+    let block = &README[block_start..block_start + README[block_start..].find("```").unwrap()];
+    let lines: Vec<&str> = block
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    assert_eq!(lines, [RUN_COMMAND, TEST_COMMAND]);
+}
+
+#[test]
+fn ci_runs_the_readme_commands() {
+    // CI adds --locked (and --quiet for the run) to the same commands
+    assert!(CI.contains("cargo run --release --locked -- run scenes/reference.toml"));
+    assert!(CI.contains("cargo test --release --locked"));
+    assert!(CI.contains("cargo fmt --all -- --check"));
+    assert!(CI.contains("-D warnings"));
+}
+
+#[test]
+fn the_reference_scene_and_plot_exist() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    assert!(root.join("scenes/reference.toml").is_file());
+    assert!(root.join("docs/reference_force.svg").is_file());
+    for doc in [
+        "docs/scene.md",
+        "docs/output.md",
+        "docs/numerics.md",
+        "docs/verification.md",
+    ] {
+        assert!(README.contains(doc), "README links {doc}");
+        assert!(root.join(doc).is_file(), "{doc} exists");
+    }
+}
