@@ -52,19 +52,31 @@ fn allocations_in_steps(text: &str, overrides: &[&str], steps: usize) -> usize {
 fn step_loop_does_not_allocate() {
     // through contact loss near the right support (steps 5000–6000)
     assert_eq!(allocations_in_steps(REFERENCE, &[], 6000), 0, "one contact");
-    assert_eq!(allocations_in_steps(REFERENCE, &["contact.kind=bilateral"], 2000), 0, "bilateral");
+    assert_eq!(
+        allocations_in_steps(REFERENCE, &["contact.kind=bilateral"], 2000),
+        0,
+        "bilateral"
+    );
     let two = REFERENCE.replacen(
         "[contact]",
         "[[carrier]]\nmass = 1.0\nstiffness = 987.0\npreload = 0.05\nside = \"above\"\nstart = 10.0\nspeed = { profile = \"smooth_ramp\", cruise = 100.0 }\n\n[contact]",
         1,
     );
     assert_eq!(allocations_in_steps(&two, &[], 4000), 0, "two contacts");
-    assert_eq!(allocations_in_steps(T2_STRING, &["time.end=0.5"], 4000), 0, "string");
+    assert_eq!(
+        allocations_in_steps(T2_STRING, &["time.end=0.5"], 4000),
+        0,
+        "string"
+    );
     let force = T2_STRING.replacen(
         "mass = 1.0               # kg\nstiffness = 987.0        # N/m\npreload = 0.05           # m\n",
         "force = 50.0\n",
         1,
     );
     assert!(force.contains("force = 50.0"));
-    assert_eq!(allocations_in_steps(&force, &["time.end=0.5"], 4000), 0, "moving force");
+    assert_eq!(
+        allocations_in_steps(&force, &["time.end=0.5"], 4000),
+        0,
+        "moving force"
+    );
 }
