@@ -59,6 +59,8 @@ pub enum Error {
         time: f64,
         /// Why.
         reason: String,
+        /// The failing problem as JSON, when the law can replay it.
+        problem: Option<String>,
     },
 
     /// File system trouble, with the path involved.

@@ -21,7 +21,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod analytic;
-pub(crate) mod contact;
+pub mod contact;
 pub mod error;
 pub mod integrate;
 pub mod model;
@@ -29,6 +29,7 @@ pub mod record;
 pub mod report;
 pub mod run;
 pub mod scene;
+pub mod study;
 
 pub use error::{Error, Result};
 pub use run::{RunOutput, run};

@@ -1,12 +1,13 @@
 //! The `taut` command line: a thin layer over the library.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use taut::report::{Summary, write_run};
+use taut::report::{Summary, compare_table, write_compare, write_run};
+use taut::study::compare::{compare, parse_formulations};
 use taut::{load_scene, run};
 
 /// taut: dynamic contact of a tensioned beam and a moving mass–spring.
@@ -33,6 +34,27 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Run one scene under several contact formulations and compare them
+    /// (compare.csv, compare.json, compare.svg).
+    Compare {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Comma-separated formulations: lagrange, penalty, complementarity, impact.
+        #[arg(long, default_value = "lagrange,penalty,complementarity,impact")]
+        formulations: String,
+        /// The formulation the differences are measured against.
+        #[arg(long, default_value = "lagrange")]
+        reference: String,
+        /// Override a scene value (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output folder (default: out/<scene name>-compare).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -44,6 +66,14 @@ fn main() -> ExitCode {
             out,
             quiet,
         } => cmd_run(scene, set, out, quiet),
+        Command::Compare {
+            scene,
+            formulations,
+            reference,
+            set,
+            out,
+            quiet,
+        } => cmd_compare(scene, &formulations, &reference, set, out, quiet),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -54,6 +84,40 @@ fn main() -> ExitCode {
     }
 }
 
+/// Default output folder: out/<scene stem><suffix>.
+fn default_dir(scene: &Path, suffix: &str) -> PathBuf {
+    let stem = scene.file_stem().map(|s| s.to_string_lossy().into_owned());
+    PathBuf::from("out").join(format!("{}{suffix}", stem.unwrap_or_else(|| "run".into())))
+}
+
+fn progress_bar(len: usize, unit: &str, quiet: bool) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let b = ProgressBar::new(len as u64);
+    let template = format!(
+        "{{spinner}} [{{elapsed_precise}}] {{bar:40}} {{pos}}/{{len}} {unit} ({{eta}} left)"
+    );
+    b.set_style(ProgressStyle::with_template(&template).expect("valid template"));
+    b
+}
+
+/// Save a failing contact problem next to the outputs so it can be replayed.
+fn save_failure(dir: &Path, e: taut::Error) -> taut::Error {
+    if let taut::Error::Contact {
+        step,
+        problem: Some(json),
+        ..
+    } = &e
+    {
+        let path = dir.join(format!("failed_contact_step_{step}.json"));
+        if std::fs::create_dir_all(dir).is_ok() && std::fs::write(&path, json).is_ok() {
+            eprintln!("saved the failing contact problem to {}", path.display());
+        }
+    }
+    e
+}
+
 fn cmd_run(
     scene: PathBuf,
     set: Vec<String>,
@@ -61,27 +125,49 @@ fn cmd_run(
     quiet: bool,
 ) -> taut::Result<()> {
     let sc = load_scene(&scene, &set)?;
-    let dir = out.unwrap_or_else(|| {
-        let stem = scene.file_stem().map(|s| s.to_string_lossy().into_owned());
-        PathBuf::from("out").join(stem.unwrap_or_else(|| "run".into()))
-    });
-    let bar = if quiet {
-        ProgressBar::hidden()
-    } else {
-        let b = ProgressBar::new(sc.steps as u64);
-        b.set_style(
-            ProgressStyle::with_template(
-                "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} steps ({eta} left)",
-            )
-            .expect("valid template"),
-        );
-        b
-    };
+    let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
+    let bar = progress_bar(sc.steps, "steps", quiet);
     let output = run(&sc, &mut |done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
-    let output = output?;
+    let output = output.map_err(|e| save_failure(&dir, e))?;
     let summary = write_run(&dir, &sc, &output)?;
     print_summary(&scene, &dir, &summary);
+    Ok(())
+}
+
+fn cmd_compare(
+    scene: PathBuf,
+    formulations: &str,
+    reference: &str,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    quiet: bool,
+) -> taut::Result<()> {
+    let list = parse_formulations(formulations)?;
+    let reference = parse_formulations(reference)?
+        .first()
+        .copied()
+        .expect("parse_formulations returns at least one");
+    let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
+    let total = list.len() + usize::from(!list.contains(&reference));
+    let bar = progress_bar(total, "formulations", quiet);
+    let result = compare(&text, &set, &list, reference, &mut |done, _| {
+        bar.set_position(done as u64)
+    });
+    bar.finish_and_clear();
+    let c = result.map_err(|e| save_failure(&dir, e))?;
+    write_compare(&dir, &c)?;
+    println!(
+        "taut {} — compare {}",
+        env!("CARGO_PKG_VERSION"),
+        scene.display()
+    );
+    print!("{}", compare_table(&c));
+    println!(
+        "  wrote    {}/{{compare.csv, compare.json, compare.svg}}",
+        dir.display()
+    );
     Ok(())
 }
 

@@ -116,6 +116,12 @@ pub struct ContactStats {
     pub force: ForceStats,
     /// Largest |gap| while in contact, m (round-off for the `end` placement).
     pub max_gap_in_contact: f64,
+    /// Largest penetration max(0, −g), m (round-off for Lagrange; ≈ λ/κ for penalty).
+    pub max_penetration: f64,
+    /// Smallest gap over the steps, m.
+    pub min_gap: f64,
+    /// Largest |g·λ| over the steps, N·m (complementarity residual; 0 for exact Signorini).
+    pub max_gap_force_product: f64,
 }
 
 impl ContactStats {
@@ -149,6 +155,8 @@ impl ContactStats {
             intervals.push([tr.x[s - 1] / length, tr.x[n - 1] / length]);
             intervals_t.push([t[s - 1], t[n - 1]]);
         }
+        let min_gap = tr.gap.iter().skip(1).copied().fold(f64::INFINITY, f64::min);
+        let min_gap = if min_gap.is_finite() { min_gap } else { 0.0 };
         let f = if n > 1 { &tr.force[1..] } else { &tr.force[..] };
         let m = f.len().max(1) as f64;
         let mean = f.iter().sum::<f64>() / m;
@@ -166,6 +174,11 @@ impl ContactStats {
                 max: f.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             },
             max_gap_in_contact: max_gap,
+            max_penetration: (-min_gap).max(0.0),
+            min_gap,
+            max_gap_force_product: (1..n)
+                .map(|i| (tr.gap[i] * tr.force[i]).abs())
+                .fold(0.0, f64::max),
         }
     }
 }

@@ -906,7 +906,7 @@ fn unknown_contact_formulation() {
         &[
             "at `contact.formulation`",
             "unknown variant `magic`",
-            "expected `lagrange`",
+            "expected one of `lagrange`, `penalty`, `complementarity`, `impact`",
         ],
     );
 }

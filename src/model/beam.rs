@@ -190,11 +190,25 @@ impl BeamModel {
 
     /// r_b(x): beam displacement v(x) = r_b(x)ᵀ d (MODEL §4).
     pub fn point_vector(&self, x: f64) -> PointVector {
+        self.shape_vector(x, false)
+    }
+
+    /// r_b'(x): beam slope v'(x) = r_b'(x)ᵀ d (for the convective part of a
+    /// moving contact's gap rate, V·v'(x_m)).
+    pub fn slope_vector(&self, x: f64) -> PointVector {
+        self.shape_vector(x, true)
+    }
+
+    fn shape_vector(&self, x: f64, slope: bool) -> PointVector {
         let (e, s) = self.locate(x);
         let mut pv = PointVector::default();
         match self.family {
             Family::Hermite => {
-                let n = element::hermite_shape(s, self.h);
+                let n = if slope {
+                    element::hermite_slope(s, self.h)
+                } else {
+                    element::hermite_shape(s, self.h)
+                };
                 for k in 0..4 {
                     if let Some(i) = self.dof_of[2 * e + k] {
                         pv.idx[k] = i;
@@ -203,7 +217,11 @@ impl BeamModel {
                 }
             }
             Family::String => {
-                let n = element::string_shape(s);
+                let n = if slope {
+                    [-1.0 / self.h, 1.0 / self.h]
+                } else {
+                    element::string_shape(s)
+                };
                 for k in 0..2 {
                     if let Some(i) = self.dof_of[e + k] {
                         pv.idx[k] = i;

@@ -64,6 +64,17 @@ pub fn hermite_shape(s: f64, h: f64) -> [f64; 4] {
     ]
 }
 
+/// x-derivatives dN1/dx..dN4/dx of the Hermite shape functions at s ∈ [0, 1].
+pub fn hermite_slope(s: f64, h: f64) -> [f64; 4] {
+    let s2 = s * s;
+    [
+        (-6.0 * s + 6.0 * s2) / h,
+        1.0 - 4.0 * s + 3.0 * s2,
+        (6.0 * s - 6.0 * s2) / h,
+        3.0 * s2 - 2.0 * s,
+    ]
+}
+
 /// String mass M_e = ρA h/6 [2 1; 1 2] (MODEL §6).
 pub fn string_mass(rho_a: f64, h: f64) -> Mat2 {
     Mat2::new(2.0, 1.0, 1.0, 2.0) * (rho_a * h / 6.0)
@@ -165,6 +176,19 @@ mod tests {
             let n = hermite_shape(s, H);
             let v: f64 = n.iter().zip(dofs).map(|(a, b)| a * b).sum();
             assert_relative_eq!(v, p(xa + s * H), epsilon = ROUNDOFF);
+        }
+    }
+
+    #[test]
+    fn slopes_are_the_derivative_of_a_reproduced_cubic() {
+        let p = |x: f64| 0.3 - 1.2 * x + 0.7 * x * x + 2.5 * x * x * x;
+        let dp = |x: f64| -1.2 + 1.4 * x + 7.5 * x * x;
+        let dofs = [p(0.0), dp(0.0), p(H), dp(H)];
+        for i in 0..=20 {
+            let s = i as f64 / 20.0;
+            let n = hermite_slope(s, H);
+            let v: f64 = n.iter().zip(dofs).map(|(a, b)| a * b).sum();
+            assert_relative_eq!(v, dp(s * H), epsilon = 1e-11);
         }
     }
 

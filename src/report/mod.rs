@@ -1,10 +1,12 @@
 //! Plain-file outputs of a run: `history.csv`, `summary.json`, `force.svg`
 //! (formats documented in `docs/output.md`).
 
+mod compare;
 mod csv;
 mod plot;
 mod summary;
 
+pub use compare::{COMPARE_COLUMNS, compare_table, write_compare};
 pub use csv::write_history;
 pub use plot::write_force_plot;
 pub use summary::{Derived, Summary, write_summary};

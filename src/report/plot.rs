@@ -1,5 +1,6 @@
-//! `force.svg`: contact force along the span (or in time for stationary
-//! carriers), contact loss shaded.
+//! SVG line plots: `force.svg` of a run and `compare.svg` of a comparison.
+//! Both are contact forces along x_m/L (or t for stationary carriers) with
+//! contact loss shaded; one helper draws them.
 
 use std::path::Path;
 
@@ -9,21 +10,103 @@ use crate::error::{Error, Result};
 use crate::run::RunOutput;
 use crate::scene::Resolved;
 
-/// Line colours for carriers 0, 1, 2, … (cycled).
-const PALETTE: [RGBColor; 4] = [
+/// Line colours, cycled.
+const PALETTE: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
     RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
 ];
 
-/// The force axis is clipped at this multiple of the 99.5th percentile.
+/// The force axis is clipped at this multiple of the 99.5th percentile:
+/// re-contact spikes (no impact law, TARGETS "What the study does not
+/// settle") can be ten times the force level and would flatten the curve.
 const CLIP_FACTOR: f64 = 2.0;
 
-/// Plot the contact force of every carrier against x_m/L, or against t when
-/// every carrier is stationary; shade each carrier's loss intervals.
+/// One line of a plot, with the x-intervals to shade in its colour.
+pub(crate) struct Series {
+    /// Legend label.
+    pub label: String,
+    /// (x, y) points.
+    pub points: Vec<(f64, f64)>,
+    /// Intervals [x0, x1] to shade (contact lost).
+    pub shaded: Vec<[f64; 2]>,
+}
+
+/// The x coordinate of a run's samples: x_m/L, or t when every carrier is
+/// stationary. Returns the values and the axis label.
+pub(crate) fn abscissa(sc: &Resolved, out: &RunOutput, carrier: usize) -> (Vec<f64>, &'static str) {
+    let h = &out.history;
+    if sc.carriers.iter().all(|c| c.motion.is_stationary()) {
+        (h.t.clone(), "t (s)")
+    } else {
+        let l = sc.beam.length;
+        (
+            h.carriers[carrier].x.iter().map(|x| x / l).collect(),
+            "x_m / L",
+        )
+    }
+}
+
+/// The force series of every carrier of a run, labelled `prefix` + carrier.
+pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<Series> {
+    let in_time = sc.carriers.iter().all(|c| c.motion.is_stationary());
+    let nc = out.history.carriers.len();
+    (0..nc)
+        .map(|c| {
+            let (xs, _) = abscissa(sc, out, c);
+            let points = xs
+                .into_iter()
+                .zip(out.history.carriers[c].force.iter().copied())
+                .skip(1)
+                .collect();
+            let stats = &out.stats[c];
+            let label = match (prefix.is_empty(), nc) {
+                (true, 1) => "λ".to_string(),
+                (true, _) => format!("carrier {c}"),
+                (false, 1) => prefix.to_string(),
+                (false, _) => format!("{prefix} {c}"),
+            };
+            Series {
+                label,
+                points,
+                shaded: if in_time {
+                    stats.loss_intervals_time.clone()
+                } else {
+                    stats.loss_intervals.clone()
+                },
+            }
+        })
+        .collect()
+}
+
+/// Plot the contact force of every carrier, loss shaded (`force.svg`).
 pub fn write_force_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()> {
-    draw(path, sc, out).map_err(|e| Error::Output {
+    let title = format!(
+        "contact force: {} elements, dt = {} s, P_l = {:.4}",
+        sc.elements, sc.dt, out.stats[0].loss_fraction
+    );
+    let (_, x_desc) = abscissa(sc, out, 0);
+    line_plot(
+        path,
+        &title,
+        x_desc,
+        "contact force λ (N)",
+        &force_series(sc, out, ""),
+    )
+}
+
+/// Draw series as lines with shaded intervals; clip the y axis above spikes.
+pub(crate) fn line_plot(
+    path: &Path,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+) -> Result<()> {
+    draw(path, title, x_desc, y_desc, series).map_err(|e| Error::Output {
         path: path.into(),
         reason: e.to_string(),
     })
@@ -31,114 +114,85 @@ pub fn write_force_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<(
 
 fn draw(
     path: &Path,
-    sc: &Resolved,
-    out: &RunOutput,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let h = &out.history;
-    let l = sc.beam.length;
-    let in_time = sc.carriers.iter().all(|c| c.motion.is_stationary());
-    let xs = |c: usize| -> Vec<f64> {
-        if in_time {
-            h.t.clone()
-        } else {
-            h.carriers[c].x.iter().map(|x| x / l).collect()
-        }
-    };
     let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
-    for c in 0..h.carriers.len() {
-        for (&x, &f) in xs(c).iter().zip(&h.carriers[c].force).skip(1) {
+    let mut ys: Vec<f64> = Vec::new();
+    for s in series {
+        for &(x, y) in &s.points {
             x0 = x0.min(x);
             x1 = x1.max(x);
-            y0 = y0.min(f);
-            y1 = y1.max(f);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+            ys.push(y);
         }
+    }
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
     }
     if x1 <= x0 {
         x1 = x0 + 1.0;
     }
-    // Re-contact spikes (no impact law, TARGETS "What the study does not
-    // settle") can be ten times the force level and flatten the curve: clip
-    // the axis at CLIP_FACTOR × the 99.5th percentile and say so.
-    let mut all: Vec<f64> = h
-        .carriers
-        .iter()
-        .flat_map(|c| c.force[1..].iter().copied())
-        .collect();
-    all.sort_by(f64::total_cmp);
-    let p995 = all
-        .get((0.995 * (all.len() as f64 - 1.0)) as usize)
+    ys.sort_by(f64::total_cmp);
+    let p995 = ys
+        .get((0.995 * (ys.len().max(1) - 1) as f64) as usize)
         .copied()
         .unwrap_or(y1);
-    let clipped = p995 > 0.0 && y1 > CLIP_FACTOR * p995;
     let true_max = y1;
+    let clipped = p995 > 0.0 && y1 > CLIP_FACTOR * p995;
     if clipped {
         y1 = CLIP_FACTOR * p995;
     }
     let pad = 0.05 * (y1 - y0).max(1e-9 * y1.abs().max(1.0));
     let (y0, y1) = (y0 - pad, y1 + pad);
+    let mut caption = title.to_string();
+    if clipped {
+        caption.push_str(&format!(" (axis clipped; peak {true_max:.0})"));
+    }
 
     let root = SVGBackend::new(path, (960, 480)).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut title = format!(
-        "contact force: {} elements, dt = {} s, P_l = {:.4}",
-        sc.elements, sc.dt, out.stats[0].loss_fraction
-    );
-    if clipped {
-        title.push_str(&format!(" (axis clipped; peak {true_max:.0} N)"));
-    }
     let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 18))
+        .caption(caption, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d(x0..x1, y0..y1)?;
     chart
         .configure_mesh()
-        .x_desc(if in_time { "t (s)" } else { "x_m / L" })
-        .y_desc("contact force λ (N)")
+        .x_desc(x_desc)
+        .y_desc(y_desc)
         .draw()?;
 
-    for (c, stats) in out.stats.iter().enumerate() {
-        let col = PALETTE[c % PALETTE.len()];
-        let shade = col.mix(0.15);
-        let ivs = if in_time {
-            &stats.loss_intervals_time
-        } else {
-            &stats.loss_intervals
-        };
+    for (i, s) in series.iter().enumerate() {
+        let shade = PALETTE[i % PALETTE.len()].mix(0.15);
         chart.draw_series(
-            ivs.iter()
+            s.shaded
+                .iter()
                 .map(|iv| Rectangle::new([(iv[0], y0), (iv[1], y1)], shade.filled())),
         )?;
     }
-    for c in 0..h.carriers.len() {
-        let col = PALETTE[c % PALETTE.len()];
-        let pts: Vec<(f64, f64)> = xs(c)
-            .into_iter()
-            .zip(h.carriers[c].force.iter().map(|&f| f.min(y1)))
-            .skip(1)
-            .collect();
-        let label = if h.carriers.len() == 1 {
-            "λ".to_string()
-        } else {
-            format!("carrier {c}")
-        };
+    for (i, s) in series.iter().enumerate() {
+        let col = PALETTE[i % PALETTE.len()];
+        let pts: Vec<(f64, f64)> = s.points.iter().map(|&(x, y)| (x, y.min(y1))).collect();
         chart
             .draw_series(LineSeries::new(pts, col.stroke_width(1)))?
-            .label(label)
+            .label(s.label.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col));
     }
-    if out.stats.iter().any(|s| !s.loss_intervals.is_empty()) {
+    if series.iter().any(|s| !s.shaded.is_empty()) {
+        let shade = PALETTE[0].mix(0.15);
         chart
             .draw_series(std::iter::once(Rectangle::new(
                 [(x0, y0), (x0, y0)],
-                PALETTE[0].mix(0.15).filled(),
+                shade.filled(),
             )))?
             .label("contact lost (shaded)")
-            .legend(|(x, y)| {
-                Rectangle::new([(x, y - 5), (x + 18, y + 5)], PALETTE[0].mix(0.15).filled())
-            });
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], shade.filled()));
     }
     chart
         .configure_series_labels()

@@ -174,6 +174,7 @@ impl Scene {
             ));
         }
         let g = non_negative("gravity.g", self.gravity.g, "m/s²")?;
+        validate_contact(&self.contact)?;
 
         let dt = positive("time.step", self.time.step, "s")?;
         let t_end = match self.time.end {
@@ -487,4 +488,57 @@ fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierPr
         side: c.side,
         motion: Motion::new(start, c.speed, l),
     })
+}
+
+/// Default penalty stiffness relative to the step's contact stiffness 1/W:
+/// the penalty force is then 1000/1001 of the Lagrange force per step.
+pub const DEFAULT_PENALTY_RELATIVE: f64 = 1e3;
+
+fn validate_contact(c: &super::ContactSpec) -> Result<()> {
+    let p = &c.penalty;
+    if let (Some(k), Some(_)) = (p.stiffness, p.relative) {
+        return Err(Error::invalid(
+            "contact.penalty.stiffness",
+            k,
+            "give either stiffness (N/m) or relative (× 1/W), not both",
+        ));
+    }
+    if let Some(k) = p.stiffness {
+        positive("contact.penalty.stiffness", k, "N/m")?;
+    }
+    if let Some(r) = p.relative {
+        positive("contact.penalty.relative", r, "dimensionless, × 1/W")?;
+    }
+    let q = &c.complementarity;
+    for (name, v) in [
+        ("tol_gap_abs", q.tol_gap_abs),
+        ("tol_gap_rel", q.tol_gap_rel),
+        ("tol_feas", q.tol_feas),
+    ] {
+        let field = format!("contact.complementarity.{name}");
+        positive(&field, v, "dimensionless")?;
+        if v >= 1e-2 {
+            return Err(Error::invalid(
+                field,
+                v,
+                "must be in (0, 1e-2): a looser QP is not a contact solve",
+            ));
+        }
+    }
+    if q.max_iter == 0 {
+        return Err(Error::invalid(
+            "contact.complementarity.max_iter",
+            0,
+            "must be ≥ 1",
+        ));
+    }
+    let e = c.impact.restitution;
+    if !(0.0..=1.0).contains(&e) {
+        return Err(Error::invalid(
+            "contact.impact.restitution",
+            e,
+            "must be in [0, 1]",
+        ));
+    }
+    Ok(())
 }

@@ -1,0 +1,3 @@
+//! Studies: loops of runs over scenes. They never reach inside the integrator.
+
+pub mod compare;
