@@ -34,6 +34,15 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Solve a saved contact problem again (a `failed_contact_step_N.json`
+    /// written by a failed run) and print the forces or the failure.
+    Replay {
+        /// The saved problem (JSON).
+        problem: PathBuf,
+        /// Override the saved iteration limit.
+        #[arg(long)]
+        max_iter: Option<u32>,
+    },
     /// Run one scene under several contact formulations and compare them
     /// (compare.csv, compare.json, compare.svg).
     Compare {
@@ -66,6 +75,7 @@ fn main() -> ExitCode {
             out,
             quiet,
         } => cmd_run(scene, set, out, quiet),
+        Command::Replay { problem, max_iter } => cmd_replay(&problem, max_iter),
         Command::Compare {
             scene,
             formulations,
@@ -133,6 +143,30 @@ fn cmd_run(
     let summary = write_run(&dir, &sc, &output)?;
     print_summary(&scene, &dir, &summary);
     Ok(())
+}
+
+fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {
+    let text = std::fs::read_to_string(path).map_err(|e| taut::Error::io(path, e))?;
+    let mut problem: taut::contact::ContactProblem = serde_json::from_str(&text)
+        .map_err(|e| taut::Error::Parse(format!("{}: {e}", path.display())))?;
+    if let Some(n) = max_iter {
+        problem.settings.max_iter = n;
+    }
+    // at step 0 the problem is the acceleration-level one (m/s², 1/kg)
+    println!("g_free = {:?} (m; m/s² at step 0)", problem.g_free);
+    println!("W      = {:?} (m/N; 1/kg at step 0)", problem.w);
+    match taut::contact::replay(&problem) {
+        Ok(lambda) => {
+            println!("λ      = {lambda:?} N");
+            Ok(())
+        }
+        Err(reason) => Err(taut::Error::Contact {
+            step: 0,
+            time: 0.0,
+            reason: format!("replay of {}: {reason}", path.display()),
+            problem: None,
+        }),
+    }
 }
 
 fn cmd_compare(

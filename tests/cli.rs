@@ -282,3 +282,92 @@ fn t1_history_has_a_tip_column() {
     let last = tip(rows.last().unwrap());
     assert!(last < 0.0, "tip deflection at the end = {last}");
 }
+
+#[test]
+fn compare_writes_the_table_and_three_files() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = out_dir(&tmp, "cmp");
+    let scene = crate_root().join("scenes/reference.toml");
+    let out = taut(&[
+        "compare",
+        scene.to_str().unwrap(),
+        "--formulations",
+        "lagrange,penalty,complementarity,impact",
+        "--set",
+        "time.end=0.3",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for f in [
+        "lagrange",
+        "penalty",
+        "complementarity",
+        "impact",
+        "differences against lagrange",
+    ] {
+        assert!(stdout.contains(f), "{stdout}");
+    }
+    let csv = std::fs::read_to_string(dir.join("compare.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        taut::report::COMPARE_COLUMNS.join(",")
+    );
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 4);
+    // the reference row differs from itself by exactly nothing
+    let lagrange: Vec<&str> = rows[0].split(',').collect();
+    assert_eq!(
+        (lagrange[0], lagrange[2], lagrange[3]),
+        ("lagrange", "0", "0")
+    );
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("compare.json")).unwrap()).unwrap();
+    assert_eq!(json["reference"], "lagrange");
+    assert_eq!(json["rows"].as_array().unwrap().len(), 4);
+    let svg = std::fs::read_to_string(dir.join("compare.svg")).unwrap();
+    assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"));
+}
+
+#[test]
+fn a_failed_qp_is_saved_and_replays() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = out_dir(&tmp, "qp");
+    let scene = crate_root().join("scenes/reference.toml");
+    let out = taut(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--set",
+        "contact.formulation=complementarity",
+        "--set",
+        "contact.complementarity.max_iter=1",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("MaxIterations") && stderr.contains("saved the failing contact problem"),
+        "{stderr}"
+    );
+    let saved = dir.join("failed_contact_step_0.json");
+    assert!(saved.is_file());
+    // the replay reproduces the failure, and solves with a sane limit
+    let again = taut(&["replay", saved.to_str().unwrap()]);
+    assert!(!again.status.success());
+    let fixed = taut(&["replay", saved.to_str().unwrap(), "--max-iter", "50"]);
+    assert!(
+        fixed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&fixed.stderr)
+    );
+    assert!(String::from_utf8_lossy(&fixed.stdout).contains("λ"));
+}
