@@ -6,8 +6,11 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use taut::report::{Summary, compare_table, write_compare, write_run};
+use taut::report::{
+    Summary, compare_table, converge_table, write_compare, write_converge, write_run,
+};
 use taut::study::compare::{compare, parse_formulations};
+use taut::study::converge::{Refine, converge};
 use taut::{load_scene, run};
 
 /// taut: dynamic contact of a tensioned beam and a moving mass–spring.
@@ -28,6 +31,30 @@ enum Command {
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
         /// Output folder (default: out/<scene name>).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Refine mesh, step or both and report errors, observed orders and GCI
+    /// (converge.csv, converge.json, converge.svg).
+    Converge {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// What to refine: mesh, step or both.
+        #[arg(long, default_value = "both")]
+        refine: String,
+        /// Number of levels (≥ 3 for observed orders).
+        #[arg(long, default_value_t = 4)]
+        levels: usize,
+        /// Refinement ratio between levels.
+        #[arg(long, default_value_t = 2.0)]
+        ratio: f64,
+        /// Override a scene value (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output folder (default: out/<scene name>-converge).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
         /// No progress bar.
@@ -76,6 +103,15 @@ fn main() -> ExitCode {
             quiet,
         } => cmd_run(scene, set, out, quiet),
         Command::Replay { problem, max_iter } => cmd_replay(&problem, max_iter),
+        Command::Converge {
+            scene,
+            refine,
+            levels,
+            ratio,
+            set,
+            out,
+            quiet,
+        } => cmd_converge(scene, &refine, levels, ratio, set, out, quiet),
         Command::Compare {
             scene,
             formulations,
@@ -142,6 +178,44 @@ fn cmd_run(
     let output = output.map_err(|e| save_failure(&dir, e))?;
     let summary = write_run(&dir, &sc, &output)?;
     print_summary(&scene, &dir, &summary);
+    Ok(())
+}
+
+fn cmd_converge(
+    scene: PathBuf,
+    refine: &str,
+    levels: usize,
+    ratio: f64,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    quiet: bool,
+) -> taut::Result<()> {
+    let refine: Refine = refine.parse()?;
+    let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
+    let bar = progress_bar(levels, "levels", quiet);
+    let result = converge(
+        &text,
+        &set,
+        refine,
+        levels,
+        ratio,
+        &taut::study::reference::analytic_w,
+        &mut |done, _| bar.set_position(done as u64),
+    );
+    bar.finish_and_clear();
+    let c = result.map_err(|e| save_failure(&dir, e))?;
+    write_converge(&dir, &c)?;
+    println!(
+        "taut {} — converge {} ({refine:?}, r = {ratio})",
+        env!("CARGO_PKG_VERSION"),
+        scene.display()
+    );
+    print!("{}", converge_table(&c));
+    println!(
+        "  wrote    {}/{{converge.csv, converge.json, converge.svg}}",
+        dir.display()
+    );
     Ok(())
 }
 

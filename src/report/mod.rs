@@ -2,11 +2,13 @@
 //! (formats documented in `docs/output.md`).
 
 mod compare;
+mod converge;
 mod csv;
 mod plot;
 mod summary;
 
 pub use compare::{COMPARE_COLUMNS, compare_table, write_compare};
+pub use converge::{CONVERGE_COLUMNS, converge_table, write_converge};
 pub use csv::write_history;
 pub use plot::write_force_plot;
 pub use summary::{Derived, Summary, write_summary};

@@ -1,3 +1,5 @@
 //! Studies: loops of runs over scenes. They never reach inside the integrator.
 
 pub mod compare;
+pub mod converge;
+pub mod reference;

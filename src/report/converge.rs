@@ -1,0 +1,246 @@
+//! `converge.csv`, `converge.json` and `converge.svg` of `taut converge`.
+
+use std::io::Write;
+use std::path::Path;
+
+use plotters::prelude::*;
+use serde::Serialize;
+
+use super::fmt_f64;
+use crate::error::{Error, Result};
+use crate::study::converge::{ConvergeRow, Convergence, GCI_SAFETY_FACTOR, QUANTITIES, Refine};
+
+/// Column order of `converge.csv`.
+pub const CONVERGE_COLUMNS: [&str; 9] = [
+    "level",
+    "h",
+    "dt",
+    "quantity",
+    "value",
+    "error",
+    "observed_order",
+    "gci",
+    "reference",
+];
+
+#[derive(Serialize)]
+struct ConvergeJson<'a> {
+    taut_version: &'static str,
+    refine: Refine,
+    ratio: f64,
+    gci_safety_factor: f64,
+    scene: &'a crate::scene::Scene,
+    levels: Vec<Level>,
+    rows: &'a [ConvergeRow],
+}
+
+#[derive(Serialize)]
+struct Level {
+    level: usize,
+    elements: usize,
+    h: f64,
+    dt: f64,
+    dofs: usize,
+    steps: usize,
+    wall_seconds: f64,
+}
+
+/// Write the three files into `dir`.
+pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let csv = dir.join("converge.csv");
+    let io = |e| Error::io(&csv, e);
+    let mut w = std::io::BufWriter::new(std::fs::File::create(&csv).map_err(io)?);
+    writeln!(w, "{}", CONVERGE_COLUMNS.join(",")).map_err(io)?;
+    for r in &c.rows {
+        let nan = |v: f64| {
+            if v.is_finite() {
+                fmt_f64(v)
+            } else {
+                String::new()
+            }
+        };
+        writeln!(
+            w,
+            "{},{},{},{},{},{},{},{},{}",
+            r.level,
+            fmt_f64(r.h),
+            fmt_f64(r.dt),
+            r.quantity,
+            nan(r.value),
+            nan(r.error),
+            nan(r.observed_order),
+            nan(r.gci),
+            r.reference
+        )
+        .map_err(io)?;
+    }
+    w.flush().map_err(io)?;
+
+    let json = dir.join("converge.json");
+    let doc = ConvergeJson {
+        taut_version: env!("CARGO_PKG_VERSION"),
+        refine: c.refine,
+        ratio: c.ratio,
+        gci_safety_factor: GCI_SAFETY_FACTOR,
+        scene: &c.scenes[0].scene,
+        levels: c
+            .scenes
+            .iter()
+            .zip(&c.runs)
+            .enumerate()
+            .map(|(l, (s, o))| Level {
+                level: l,
+                elements: s.elements,
+                h: s.beam.length / s.elements as f64,
+                dt: s.dt,
+                dofs: o.dofs,
+                steps: o.steps,
+                wall_seconds: o.wall_seconds,
+            })
+            .collect(),
+        rows: &c.rows,
+    };
+    // serde_json writes NaN as null
+    let text = serde_json::to_string_pretty(&doc).map_err(|e| Error::Output {
+        path: json.clone(),
+        reason: e.to_string(),
+    })?;
+    std::fs::write(&json, text + "\n").map_err(|e| Error::io(&json, e))?;
+    let svg = dir.join("converge.svg");
+    draw(&svg, c).map_err(|e| Error::Output {
+        path: svg.clone(),
+        reason: e.to_string(),
+    })
+}
+
+/// The terminal table.
+pub fn converge_table(c: &Convergence) -> String {
+    let mut s = format!(
+        "{:<20} {:>5} {:>10} {:>10} {:>13} {:>11} {:>7} {:>10}  {}\n",
+        "quantity", "level", "h m", "dt s", "value", "error", "order", "GCI", "reference"
+    );
+    for q in QUANTITIES {
+        for r in c.rows.iter().filter(|r| r.quantity == q) {
+            let f = |v: f64, w: usize| {
+                if v.is_finite() {
+                    format!("{v:>w$.4e}")
+                } else {
+                    format!("{:>w$}", "—")
+                }
+            };
+            s.push_str(&format!(
+                "{:<20} {:>5} {:>10.4e} {:>10.3e} {} {} {} {}  {}\n",
+                r.quantity,
+                r.level,
+                r.h,
+                r.dt,
+                f(r.value, 13),
+                f(r.error, 11),
+                if r.observed_order.is_finite() {
+                    format!("{:>7.2}", r.observed_order)
+                } else {
+                    format!("{:>7}", "—")
+                },
+                f(r.gci, 10),
+                r.reference
+            ));
+        }
+    }
+    s
+}
+
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
+
+fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let by_dt = c.refine == Refine::Step;
+    let xval = |r: &ConvergeRow| if by_dt { r.dt } else { r.h };
+    let pts: Vec<(&str, Vec<(f64, f64)>)> = QUANTITIES
+        .iter()
+        .map(|q| {
+            let v = c
+                .rows
+                .iter()
+                .filter(|r| r.quantity == *q && r.error.is_finite() && r.error > 0.0)
+                .map(|r| (xval(r), r.error / r.value.abs().max(f64::MIN_POSITIVE)))
+                .collect();
+            (*q, v)
+        })
+        .filter(|(_, v): &(&str, Vec<(f64, f64)>)| !v.is_empty())
+        .collect();
+    let all: Vec<(f64, f64)> = pts.iter().flat_map(|(_, v)| v.iter().copied()).collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for &(x, y) in &all {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if all.is_empty() {
+        (x0, x1, y0, y1) = (1e-3, 1.0, 1e-6, 1.0);
+    }
+    let (x0, x1) = (x0 / 1.5, x1 * 1.5);
+    let (y0, y1) = (y0 / 10.0, y1 * 10.0);
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!(
+                "relative error against the reference, refine = {:?}, r = {}",
+                c.refine, c.ratio
+            ),
+            ("sans-serif", 18),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc(match c.refine {
+            Refine::Mesh => "h (m)",
+            Refine::Step => "Δt (s)",
+            Refine::Both => "h (m), Δt ∝ h",
+        })
+        .y_desc("relative error")
+        .x_label_formatter(&|x| format!("{x:.1e}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .draw()?;
+    for (i, (q, v)) in pts.iter().enumerate() {
+        let col = PALETTE[i % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(v.clone(), col.stroke_width(2)))?
+            .label(*q)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col));
+        chart.draw_series(v.iter().map(|&p| Circle::new(p, 3, col.filled())))?;
+    }
+    // reference slopes through the middle of the data
+    if let Some(&(xm, ym)) = all.get(all.len() / 2) {
+        for (p, style) in [
+            (1.0, BLACK.mix(0.5)),
+            (2.0, BLACK.mix(0.35)),
+            (4.0, BLACK.mix(0.2)),
+        ] {
+            let line = vec![(x0, ym * (x0 / xm).powf(p)), (x1, ym * (x1 / xm).powf(p))];
+            chart
+                .draw_series(LineSeries::new(line, style.stroke_width(1)))?
+                .label(format!("slope {p}"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
+        }
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}

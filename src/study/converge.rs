@@ -1,0 +1,390 @@
+//! `taut converge`: a refinement study in mesh size, time step or both.
+//!
+//! Level ℓ = 0 … K−1 runs the scene with N_ℓ = N₀·r^ℓ elements (mesh) and/or
+//! Δt_ℓ = Δt₀/r^ℓ (step). Every level records at t = nΔt_ℓ; the coarsest
+//! level's times are a subset of every finer level's (r is an integer when the
+//! step is refined), so histories are compared sample by sample on the
+//! coarsest time grid.
+//!
+//! For each quantity, per level:
+//! * `value` — the scalar (P_l, first loss position) or the norm of the
+//!   history (displacement under the carrier, contact force);
+//! * `error` — against the analytic solution when the scene has one,
+//!   otherwise against a Richardson-extrapolated reference built from the
+//!   two finest levels with the observed order of the three finest
+//!   (u* = u_f + (u_f − u_m)/(r^p − 1), pointwise for histories);
+//! * `observed_order` — p = ln(‖u_{ℓ−2} − u_{ℓ−1}‖/‖u_{ℓ−1} − u_ℓ‖)/ln r from
+//!   successive differences (levels ℓ ≥ 2), or from the errors against the
+//!   analytic solution (levels ℓ ≥ 1);
+//! * `gci` — Roache's three-grid grid convergence index of level ℓ,
+//!   GCI = F_s·|ε|/(r^p − 1), ε = (u_ℓ − u_{ℓ−1})/u_ℓ, F_s = 1.25 (levels ℓ ≥ 2).
+//!
+//! Norms of histories: max over samples, and L2 as the RMS over samples.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::run::{RunOutput, run};
+use crate::scene::{Resolved, resolve_scene};
+
+/// Roache's safety factor for a three-grid study.
+pub const GCI_SAFETY_FACTOR: f64 = 1.25;
+
+/// What is refined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Refine {
+    /// The number of elements.
+    Mesh,
+    /// The time step.
+    Step,
+    /// Both together.
+    Both,
+}
+
+impl std::str::FromStr for Refine {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "mesh" => Ok(Refine::Mesh),
+            "step" => Ok(Refine::Step),
+            "both" => Ok(Refine::Both),
+            other => Err(Error::invalid(
+                "--refine",
+                other,
+                "must be mesh, step or both",
+            )),
+        }
+    }
+}
+
+/// A reference solution for the displacement under the carrier,
+/// w(x_m(t), t) as a function of t (m), when the scene has one.
+pub type AnalyticW = Box<dyn Fn(f64) -> f64 + Sync>;
+
+/// One row of `converge.csv`.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ConvergeRow {
+    /// Level ℓ (0 = coarsest).
+    pub level: usize,
+    /// Element length h, m.
+    pub h: f64,
+    /// Time step, s.
+    pub dt: f64,
+    /// Quantity name.
+    pub quantity: String,
+    /// Value at this level (scalar, or norm of the history).
+    pub value: f64,
+    /// Error against the reference (analytic or Richardson); NaN when unknown.
+    pub error: f64,
+    /// Observed order at this level; NaN when not yet defined.
+    pub observed_order: f64,
+    /// Grid convergence index (relative); NaN when not defined.
+    pub gci: f64,
+    /// "analytic" or "richardson" (or "finest" when no order could be observed).
+    pub reference: String,
+}
+
+/// A finished study.
+pub struct Convergence {
+    /// What was refined.
+    pub refine: Refine,
+    /// Refinement ratio r.
+    pub ratio: f64,
+    /// The resolved scene of each level.
+    pub scenes: Vec<Resolved>,
+    /// The runs, coarsest first.
+    pub runs: Vec<RunOutput>,
+    /// All rows, level-major.
+    pub rows: Vec<ConvergeRow>,
+    /// Wall seconds of each level.
+    pub wall_seconds: Vec<f64>,
+}
+
+/// Quantities reported, in order.
+pub const QUANTITIES: [&str; 6] = [
+    "displacement_max",
+    "displacement_l2",
+    "force_max",
+    "force_l2",
+    "loss_fraction",
+    "first_loss_position",
+];
+
+/// Run the refinement sequence.
+///
+/// * `text`, `overrides`: the scene and its `--set`s (level 0);
+/// * `levels` ≥ 2 (3 for observed orders), `ratio` r > 1 (an integer ≥ 2 when
+///   the step is refined);
+/// * `analytic`: builds a reference w(t) from a level's scene, if it has one;
+/// * `progress(done, total)` after each level.
+pub fn converge(
+    text: &str,
+    overrides: &[String],
+    refine: Refine,
+    levels: usize,
+    ratio: f64,
+    analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Convergence> {
+    if !(2..=12).contains(&levels) {
+        return Err(Error::invalid("--levels", levels, "must be in 2 ..= 12"));
+    }
+    if !(ratio > 1.0 && ratio.is_finite()) {
+        return Err(Error::invalid("--ratio", ratio, "must be > 1"));
+    }
+    let refines_step = refine != Refine::Mesh;
+    if refines_step && (ratio.fract() != 0.0) {
+        return Err(Error::invalid(
+            "--ratio",
+            ratio,
+            "must be an integer ≥ 2 when the step is refined (so coarse times are fine times)",
+        ));
+    }
+    let base = resolve_scene(text, overrides)?;
+    let mut scenes = Vec::with_capacity(levels);
+    for l in 0..levels {
+        let f = ratio.powi(l as i32);
+        let mut o = overrides.to_vec();
+        if refine != Refine::Step {
+            let n = (base.elements as f64 * f).round() as usize;
+            o.push(format!("mesh.elements={n}"));
+        }
+        if refines_step {
+            o.push(format!("time.step={:e}", base.dt / f));
+        }
+        scenes.push(resolve_scene(text, &o)?);
+    }
+    // the coarse time grid must be a subset of every level's
+    let stride: Vec<usize> = scenes
+        .iter()
+        .map(|s| (base.dt / s.dt).round() as usize)
+        .collect();
+    for (s, &m) in scenes.iter().zip(&stride) {
+        if s.steps != base.steps * m {
+            return Err(Error::invalid(
+                "time.end",
+                format!("{} steps at Δt = {:e} s", s.steps, s.dt),
+                format!(
+                    "must be a whole number of coarsest steps ({} × {m}) at every level: choose an end time that is a multiple of the coarsest step",
+                    base.steps
+                ),
+            ));
+        }
+    }
+    let mut runs = Vec::with_capacity(levels);
+    let mut wall = Vec::with_capacity(levels);
+    for (l, s) in scenes.iter().enumerate() {
+        let out = run(s, &mut |_, _| {})?;
+        wall.push(out.wall_seconds);
+        runs.push(out);
+        progress(l + 1, levels);
+    }
+    let reference = analytic(&scenes[levels - 1]);
+    let rows = tabulate(&scenes, &runs, &stride, ratio, reference.as_deref());
+    Ok(Convergence {
+        refine,
+        ratio,
+        scenes,
+        runs,
+        rows,
+        wall_seconds: wall,
+    })
+}
+
+/// Sampled history of carrier 0 on the coarsest time grid.
+fn sampled(out: &RunOutput, stride: usize, pick: impl Fn(usize) -> f64) -> Vec<f64> {
+    (0..out.history.len()).step_by(stride).map(pick).collect()
+}
+
+fn max_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+fn l2_norm(v: &[f64]) -> f64 {
+    (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt()
+}
+
+fn diff(a: &[f64], b: &[f64]) -> Vec<f64> {
+    a.iter().zip(b).map(|(x, y)| x - y).collect()
+}
+
+/// Observed order from three successive differences' norms.
+fn order(e_coarse: f64, e_fine: f64, r: f64) -> f64 {
+    if e_coarse > 0.0 && e_fine > 0.0 {
+        (e_coarse / e_fine).ln() / r.ln()
+    } else {
+        f64::NAN
+    }
+}
+
+fn tabulate(
+    scenes: &[Resolved],
+    runs: &[RunOutput],
+    stride: &[usize],
+    r: f64,
+    analytic: Option<&(dyn Fn(f64) -> f64 + Sync)>,
+) -> Vec<ConvergeRow> {
+    let k = runs.len();
+    let t0: Vec<f64> = runs[0].history.t.clone();
+    let w: Vec<Vec<f64>> = (0..k)
+        .map(|l| sampled(&runs[l], stride[l], |i| runs[l].history.carriers[0].w[i]))
+        .collect();
+    let f: Vec<Vec<f64>> = (0..k)
+        .map(|l| {
+            sampled(&runs[l], stride[l], |i| {
+                runs[l].history.carriers[0].force[i]
+            })
+        })
+        .collect();
+    let w_exact: Option<Vec<f64>> = analytic.map(|a| t0.iter().map(|&t| a(t)).collect());
+
+    let mut rows = Vec::new();
+    let mut push_fn =
+        |name: &str, hist: &[Vec<f64>], norm: fn(&[f64]) -> f64, exact: Option<&Vec<f64>>| {
+            // successive differences ‖u_{ℓ−1} − u_ℓ‖
+            let d: Vec<f64> = (1..k)
+                .map(|l| norm(&diff(&hist[l - 1], &hist[l])))
+                .collect();
+            let (reference, refvec): (&str, Option<Vec<f64>>) = match exact {
+                Some(e) => ("analytic", Some(e.clone())),
+                None if k >= 3 => {
+                    let p = order(d[k - 3], d[k - 2], r);
+                    if p.is_finite() && p > 0.0 {
+                        let fac = 1.0 / (r.powf(p) - 1.0);
+                        let ext = hist[k - 1]
+                            .iter()
+                            .zip(&hist[k - 2])
+                            .map(|(fine, mid)| fine + (fine - mid) * fac)
+                            .collect();
+                        ("richardson", Some(ext))
+                    } else {
+                        ("finest", Some(hist[k - 1].clone()))
+                    }
+                }
+                None => ("finest", Some(hist[k - 1].clone())),
+            };
+            let errors: Vec<f64> = (0..k)
+                .map(|l| {
+                    refvec
+                        .as_ref()
+                        .map_or(f64::NAN, |rv| norm(&diff(&hist[l], rv)))
+                })
+                .collect();
+            for l in 0..k {
+                let observed = if exact.is_some() {
+                    if l >= 1 {
+                        order(errors[l - 1], errors[l], r)
+                    } else {
+                        f64::NAN
+                    }
+                } else if l >= 2 {
+                    order(d[l - 2], d[l - 1], r)
+                } else {
+                    f64::NAN
+                };
+                let value = norm(&hist[l]);
+                let gci = if l >= 2 && observed.is_finite() && observed > 0.0 && value != 0.0 {
+                    GCI_SAFETY_FACTOR * (d[l - 1] / value) / (r.powf(observed) - 1.0)
+                } else {
+                    f64::NAN
+                };
+                rows.push((
+                    l,
+                    name.to_string(),
+                    value,
+                    errors[l],
+                    observed,
+                    gci,
+                    reference.to_string(),
+                ));
+            }
+        };
+    push_fn("displacement_max", &w, max_norm, w_exact.as_ref());
+    push_fn("displacement_l2", &w, l2_norm, w_exact.as_ref());
+    push_fn("force_max", &f, max_norm, None);
+    push_fn("force_l2", &f, l2_norm, None);
+
+    // scalars
+    let scalar = |name: &str, vals: Vec<f64>| -> Vec<(usize, String, f64, f64, f64, f64, String)> {
+        let d: Vec<f64> = (1..k).map(|l| (vals[l - 1] - vals[l]).abs()).collect();
+        let (reference, refval) = if k >= 3 {
+            let p = order(d[k - 3], d[k - 2], r);
+            if p.is_finite() && p > 0.0 {
+                (
+                    "richardson",
+                    vals[k - 1] + (vals[k - 1] - vals[k - 2]) / (r.powf(p) - 1.0),
+                )
+            } else {
+                ("finest", vals[k - 1])
+            }
+        } else {
+            ("finest", vals[k - 1])
+        };
+        (0..k)
+            .map(|l| {
+                let observed = if l >= 2 {
+                    order(d[l - 2], d[l - 1], r)
+                } else {
+                    f64::NAN
+                };
+                let gci = if l >= 2 && observed.is_finite() && observed > 0.0 && vals[l] != 0.0 {
+                    GCI_SAFETY_FACTOR * (d[l - 1] / vals[l].abs()) / (r.powf(observed) - 1.0)
+                } else {
+                    f64::NAN
+                };
+                (
+                    l,
+                    name.to_string(),
+                    vals[l],
+                    (vals[l] - refval).abs(),
+                    observed,
+                    gci,
+                    reference.to_string(),
+                )
+            })
+            .collect()
+    };
+    let pl: Vec<f64> = runs.iter().map(|o| o.stats[0].loss_fraction).collect();
+    let fl: Vec<f64> = runs
+        .iter()
+        .map(|o| o.stats[0].first_loss_position.unwrap_or(f64::NAN))
+        .collect();
+    let mut all: Vec<_> = Vec::new();
+    all.extend(scalar("loss_fraction", pl));
+    all.extend(scalar("first_loss_position", fl));
+
+    let mut out: Vec<ConvergeRow> = rows
+        .into_iter()
+        .chain(all)
+        .map(
+            |(l, quantity, value, error, observed_order, gci, reference)| ConvergeRow {
+                level: l,
+                h: scenes[l].beam.length / scenes[l].elements as f64,
+                dt: scenes[l].dt,
+                quantity,
+                value,
+                error,
+                observed_order,
+                gci,
+                reference,
+            },
+        )
+        .collect();
+    out.sort_by_key(|r| (r.level, QUANTITIES.iter().position(|q| *q == r.quantity)));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn order_of_a_second_order_sequence() {
+        // u_ℓ = 1 + C h_ℓ², h halves: differences fall by 4
+        let r = 2.0;
+        let e = [0.3, 0.075];
+        assert!((order(e[0], e[1], r) - 2.0).abs() < 1e-12);
+        assert!(order(0.0, 1.0, r).is_nan());
+    }
+}
