@@ -29,17 +29,28 @@ fn ci_runs_the_readme_commands() {
 }
 
 #[test]
-fn the_reference_scene_and_plot_exist() {
+fn the_reference_scene_and_every_linked_doc_exist() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     assert!(root.join("scenes/reference.toml").is_file());
-    assert!(root.join("docs/reference_force.svg").is_file());
+    // every `](docs/…)` link in the README points at a file
+    let links: Vec<&str> = README
+        .split("](")
+        .skip(1)
+        .filter_map(|rest| rest.split(')').next())
+        .filter(|target| target.starts_with("docs/"))
+        .collect();
     for doc in [
         "docs/scene.md",
         "docs/output.md",
         "docs/numerics.md",
         "docs/verification.md",
     ] {
-        assert!(README.contains(doc), "README links {doc}");
-        assert!(root.join(doc).is_file(), "{doc} exists");
+        assert!(links.contains(&doc), "README links {doc}");
+    }
+    for target in links {
+        assert!(
+            root.join(target).is_file(),
+            "README links {target}, which does not exist"
+        );
     }
 }

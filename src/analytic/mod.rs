@@ -1,6 +1,10 @@
 //! Closed-form and semi-analytic references (MODEL §8), each a small struct
 //! that validates its inputs and carries its own tests.
 
+pub mod modes;
+pub mod moving_load;
 pub mod static_load;
 
+pub use modes::{ClampedPinnedModes, Dispersion, PinnedPinnedModes};
+pub use moving_load::{MovingForceBeam, MovingForceString};
 pub use static_load::StaticPointLoad;

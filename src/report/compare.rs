@@ -129,5 +129,10 @@ pub fn compare_table(c: &Comparison) -> String {
         ));
     }
     s.push_str(&format!("(differences against {})\n", c.reference.name()));
+    for r in &c.rows {
+        for w in &r.warnings {
+            s.push_str(&format!("  WARNING  {}: {w}\n", r.formulation));
+        }
+    }
     s
 }

@@ -45,6 +45,8 @@ pub struct CompareRow {
     pub steps: usize,
     /// Wall-clock seconds of the run.
     pub wall_seconds: f64,
+    /// The run's warnings (e.g. contact chatter); empty when none.
+    pub warnings: Vec<String>,
 }
 
 /// A finished comparison.
@@ -105,7 +107,7 @@ pub fn compare(
         let mut o = overrides.to_vec();
         o.push(format!("contact.formulation={}", f.name()));
         let sc = resolve_scene(text, &o)?;
-        let out = run(&sc, &mut |_, _| {})?;
+        let out = run(&sc, &mut |_, _| {}).map_err(|e| name_failure(f, e))?;
         runs.push((f, sc, out));
         progress(i + 1, order.len());
     }
@@ -190,6 +192,38 @@ fn row(f: Formulation, sc: &Resolved, out: &RunOutput, reference: &RunOutput) ->
         contact_switches: s0.contact_switches,
         steps: out.steps,
         wall_seconds: out.wall_seconds,
+        warnings: out.warnings.clone(),
+    }
+}
+
+/// Say which formulation's run failed.
+fn name_failure(f: Formulation, e: Error) -> Error {
+    match e {
+        Error::Diverged {
+            step,
+            time,
+            quantity,
+            value,
+            cause,
+        } => Error::Diverged {
+            step,
+            time,
+            quantity: format!("formulation {}: {quantity}", f.name()),
+            value,
+            cause,
+        },
+        Error::Contact {
+            step,
+            time,
+            reason,
+            problem,
+        } => Error::Contact {
+            step,
+            time,
+            reason: format!("formulation {}: {reason}", f.name()),
+            problem,
+        },
+        other => other,
     }
 }
 
