@@ -34,7 +34,11 @@ pub(super) fn require_positive(field: &str, value: f64, unit: &str) -> Result<f6
     if value > 0.0 && value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::invalid(field, value, format!("must be > 0 ({unit})")))
+        Err(Error::invalid(
+            field,
+            value,
+            format!("must be > 0 ({unit})"),
+        ))
     }
 }
 
@@ -43,7 +47,11 @@ pub(super) fn require_nonnegative(field: &str, value: f64, unit: &str) -> Result
     if value >= 0.0 && value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::invalid(field, value, format!("must be ≥ 0 ({unit})")))
+        Err(Error::invalid(
+            field,
+            value,
+            format!("must be ≥ 0 ({unit})"),
+        ))
     }
 }
 
@@ -248,7 +256,7 @@ mod tests {
 
     /// Clamped–pinned Euler–Bernoulli βL, mpmath to 30 digits, truncated.
     const EB_CLAMPED_PINNED: [f64; 5] = [
-        3.926_602_312_047_918_8,
+        3.926_602_312_047_919,
         7.068_582_745_628_732,
         10.210_176_122_813_031,
         13.351_768_777_754_093,
@@ -325,11 +333,7 @@ mod tests {
         }
         // T → 0 continuously: the first correction is O(T L²/EI)
         let tiny = ClampedPinnedModes::new(ei, 1e-9 * ei / (l * l), ra, l).unwrap();
-        assert_relative_eq!(
-            tiny.beta(1) * l,
-            EB_CLAMPED_PINNED[0],
-            max_relative = 1e-9
-        );
+        assert_relative_eq!(tiny.beta(1) * l, EB_CLAMPED_PINNED[0], max_relative = 1e-9);
         // large modes: βL → (4j + 1)π/4
         let j = 200;
         assert_relative_eq!(
@@ -343,7 +347,7 @@ mod tests {
     fn clamped_pinned_tends_to_the_string_as_ei_vanishes() {
         // bending length ℓb = sqrt(EI/T). The clamp shortens the effective span
         // by ℓb: ω_j ≈ jπc/(L − ℓb), with O((ℓb/L)² + (jπℓb/L)²) left over.
-        let (t, ra, l) = (2e4, 1.35, 50.0);
+        let (t, ra, l): (f64, f64, f64) = (2e4, 1.35, 50.0);
         let c = (t / ra).sqrt();
         println!("  lb/L      j   (ω_j/(jπc/L) − 1)   (ω_j/(jπc/(L − lb)) − 1)");
         for lb_over_l in [1e-2, 1e-3, 1e-4, 1e-5] {
@@ -373,7 +377,10 @@ mod tests {
             let pp = PinnedPinnedModes::new(ei, t, 1.35, 10.0).unwrap();
             let w = cp.frequencies(30);
             for j in 1..=30 {
-                assert!(pp.omega(j) < w[j - 1] && w[j - 1] < pp.omega(j + 1), "{ei} {t} {j}");
+                assert!(
+                    pp.omega(j) < w[j - 1] && w[j - 1] < pp.omega(j + 1),
+                    "{ei} {t} {j}"
+                );
             }
         }
     }
@@ -414,7 +421,14 @@ mod tests {
     /// Hermite beam FE of MODEL §4, clamped–pinned, `n` elements: the lowest
     /// `modes` eigenfrequencies (an independent check of the characteristic
     /// equation for intermediate T L²/EI).
-    fn hermite_clamped_pinned(ei: f64, t: f64, ra: f64, l: f64, n: usize, modes: usize) -> Vec<f64> {
+    fn hermite_clamped_pinned(
+        ei: f64,
+        t: f64,
+        ra: f64,
+        l: f64,
+        n: usize,
+        modes: usize,
+    ) -> Vec<f64> {
         let h = l / n as f64;
         let dofs = 2 * (n + 1);
         let mut k = DMatrix::<f64>::zeros(dofs, dofs);
@@ -463,7 +477,9 @@ mod tests {
     fn hermite_elements_converge_to_the_roots_at_fourth_order() {
         // T L²/EI = 25: bending and tension both matter.
         let (ei, t, ra, l) = (4.0, 100.0, 1.35, 1.0);
-        let exact = ClampedPinnedModes::new(ei, t, ra, l).unwrap().frequencies(3);
+        let exact = ClampedPinnedModes::new(ei, t, ra, l)
+            .unwrap()
+            .frequencies(3);
         println!("  elements   rel. error of ω1, ω2, ω3");
         let mut prev: Option<Vec<f64>> = None;
         for n in [4, 8, 16] {
