@@ -4,4 +4,5 @@
 pub mod banded;
 pub mod beam;
 pub mod element;
+pub mod modal;
 pub mod motion;
