@@ -7,7 +7,8 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use taut::report::{
-    Summary, compare_table, converge_table, write_compare, write_converge, write_run,
+    Summary, compare_table, converge_table, gate_table, write_compare, write_converge, write_gate,
+    write_run,
 };
 use taut::study::compare::{compare, parse_formulations};
 use taut::study::converge::{Refine, converge};
@@ -61,6 +62,22 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Re-run a golden suite and compare each quantity with its reference
+    /// (gate.json, junit.xml); exit code 1 when any check fails.
+    Gate {
+        /// Suite folder of case files (*.json).
+        #[arg(default_value = "golden")]
+        suite: PathBuf,
+        /// Output folder for gate.json and junit.xml (default: out/gate).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Accept this run's values as the new references and show what changed.
+        #[arg(long)]
+        update: bool,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Solve a saved contact problem again (a `failed_contact_step_N.json`
     /// written by a failed run) and print the forces or the failure.
     Replay {
@@ -103,6 +120,16 @@ fn main() -> ExitCode {
             quiet,
         } => cmd_run(scene, set, out, quiet),
         Command::Replay { problem, max_iter } => cmd_replay(&problem, max_iter),
+        Command::Gate {
+            suite,
+            out,
+            update,
+            quiet,
+        } => match cmd_gate(&suite, out, update, quiet) {
+            Ok(true) => Ok(()),
+            Ok(false) => return ExitCode::from(1),
+            Err(e) => Err(e),
+        },
         Command::Converge {
             scene,
             refine,
@@ -217,6 +244,32 @@ fn cmd_converge(
         dir.display()
     );
     Ok(())
+}
+
+/// Returns whether the gate passed.
+fn cmd_gate(suite: &Path, out: Option<PathBuf>, update: bool, quiet: bool) -> taut::Result<bool> {
+    let n = taut::study::gate::case_files(suite)?.len();
+    let bar = progress_bar(n, "cases", quiet);
+    let report = taut::study::gate::gate(suite, update, &mut |done, _, _| {
+        bar.set_position(done as u64)
+    });
+    bar.finish_and_clear();
+    let report = report?;
+    let dir = out.unwrap_or_else(|| PathBuf::from("out").join("gate"));
+    write_gate(&dir, &report)?;
+    println!(
+        "taut {} — gate {}",
+        env!("CARGO_PKG_VERSION"),
+        suite.display()
+    );
+    print!("{}", gate_table(&report, update));
+    println!("  wrote    {}/{{gate.json, junit.xml}}", dir.display());
+    // an update accepts the new values: it passes unless a case could not run
+    Ok(if update {
+        report.errors.is_empty()
+    } else {
+        report.passed()
+    })
 }
 
 fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {

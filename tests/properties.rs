@@ -1,14 +1,17 @@
 //! Property tests over random *valid* scenes (MODEL §2, §5, §6).
 //!
 //! Every case starts from `scenes/reference.toml` (the study's case) and
-//! applies random `--set` overrides within physically sensible ranges: span,
-//! tension, bending stiffness (EI = 0 gives a pinned–pinned taut string),
-//! supports, mesh, time step, ρ∞, gravity, the carrier's mass, spring,
-//! dashpot, preload, side, start and speed (constant or smooth ramp, below
-//! and above the string wave speed), and the contact law. Runs are kept
-//! short (8–60 elements, at most 300 steps): the end is `"carrier_leaves"`
-//! when that comes within the step budget, else an explicit end time that
-//! stops before the carrier leaves the beam.
+//! applies random `--set` overrides within physically sensible ranges:
+//! L 5–60 m; T 1e3–1e5 N (or 0 for a beam); EI 0.1–10 × the reference, or
+//! EI = 0 (a pinned–pinned taut string, E and I removed from the text); any
+//! of the nine support pairs for a beam; 8–60 elements; Δt 1e-4–1e-3 s;
+//! ρ∞ 0–1; g 9.81 or 0, beam self-weight on or off; m 0.1–100 kg; k 0 or
+//! 10–1e5 N/m; c_s 0–50 N·s/m; δ0 0–0.1 m; side above or below; start in the
+//! first half; speed constant (0 included) or smooth ramp, 0.05–2 × the
+//! string wave speed sqrt(T/ρA); and the contact law. Runs are kept short
+//! (at most 300 steps): the end is `"carrier_leaves"` when that comes within
+//! the step budget, else an explicit end time that stops before the carrier
+//! leaves the beam.
 //!
 //! What is checked, and why:
 //!
@@ -29,6 +32,10 @@
 //! 4. `bilateral_gap_stays_closed`: `lagrange`, bilateral: g = 0 to round-off
 //!    on every row, contact always closed (MODEL §2).
 //!
+//! In 2–4 a `lagrange`/`end` run must succeed, as in 1; a diagnosed stop of
+//! another law (complementarity, penalty) skips the case, since property 1
+//! already allows it.
+//!
 //! The deterministic verification tests pin a handful of scenes; these check
 //! the contract over the whole valid parameter space, where the side sign,
 //! string elements, ρ∞ < 1, free or clamped ends, stationary carriers and
@@ -43,6 +50,9 @@
 //! free penetration |g_free| of a closed step. W_max is an a-priori bound on
 //! the Delassus number W = βΔt²(r_gᵀA⁻¹r_f + 1/A_q) from the element mass
 //! matrix alone (see `delassus_bound`), so no solver internals are needed.
+//! Calibration (20 000 cases per property, 4 seeds): lagrange, penalty and
+//! bilateral gaps stay within 16ε·S (4ε·S is exceeded); complementarity gaps
+//! within 64ε·S even without the QP term (16ε·S is exceeded).
 //!
 //! Determinism: a fixed RNG seed. `PROPTEST_CASES=2000` or
 //! `PROPTEST_RNG_SEED=n` override it for a longer local search. Failures are
@@ -59,7 +69,7 @@ const REFERENCE: &str = include_str!("../scenes/reference.toml");
 
 /// Cases per property: enough to mix every switch (formulation × kind ×
 /// side × profile × supports) a few times, small enough for CI (< 1 s each).
-const CASES: u32 = 48;
+const CASES: u32 = 64;
 
 /// Fixed seed: the same scenes on every machine and every run.
 const SEED: u64 = 0x7a07_2012;
@@ -78,7 +88,9 @@ const ROUNDOFF: f64 = 64.0 * f64::EPSILON;
 /// the dual residual |μ + q − z| < tol_feas·max(1, |q| + |μ| + |z|) ≤ 3·1e-12
 /// and the duality gap μ(μ + q) < tol_gap = 1e-12 (both unscaled by its
 /// equilibration). With μ ≈ 1 on a closed contact the scaled gap μ + q is
-/// then within 4e-12 of 0; 1e-10 leaves a margin of 25.
+/// then within 4e-12 of 0; 1e-10 leaves a margin of 25. (In practice the
+/// interior point lands on μ = 1 to round-off: the gaps measured stay within
+/// the `ROUNDOFF` term alone; this term is what the solver guarantees.)
 const QP_GAP_REL: f64 = 1e-10;
 
 /// max over s ∈ [0, 1] of n(s)ᵀ M̂⁻¹ n(s) for the Hermite element (MODEL §4,
@@ -93,6 +105,9 @@ const STRING_POINT_COMPLIANCE: f64 = 4.0;
 /// Mass per length of the reference beam (density 8900 kg/m³ × area 1.5e-4 m²),
 /// which the cases keep: it sets the speed scale sqrt(T/ρA).
 const REFERENCE_RHO_A: f64 = 8900.0 * 1.5e-4;
+
+/// Young's modulus of the reference beam, Pa (EI = 129 N·m² with its I).
+const REFERENCE_E: f64 = 1.34e11;
 
 /// Lower tension used for the speed scale when T = 0 (an untensioned beam has
 /// no string wave speed), N.
@@ -112,7 +127,10 @@ fn config() -> Config {
 // Scene generation
 
 /// One generated scene: the base text is the reference scene (with E and I
-/// removed for a string) and `overrides` are `--set` specs, in order.
+/// removed for a string) and `overrides` are `--set` specs, in order. To
+/// replay a case by hand: `taut run scenes/reference.toml --set …` with these
+/// overrides (for `string: true`, a copy of the scene without the
+/// `youngs_modulus` and `second_moment` lines).
 #[derive(Debug, Clone)]
 struct SceneCase {
     /// EI = 0: `youngs_modulus` and `second_moment` are removed from the text.
@@ -210,7 +228,7 @@ fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (lo..hi).prop_map(|e| 10f64.powf(e))
 }
 
-/// Beam: (string, length, tension, E factor, supports, self weight, g).
+/// The beam part of a case.
 #[derive(Debug, Clone)]
 struct BeamCase {
     string: bool,
@@ -253,7 +271,8 @@ fn beam_case() -> impl Strategy<Value = BeamCase> {
         )
 }
 
-/// Carrier: a mass–spring on either side, constant or ramped speed.
+/// The carrier part of a case: a mass–spring on either side, constant or
+/// ramped speed.
 #[derive(Debug, Clone)]
 struct CarrierCase {
     mass: f64,
@@ -336,7 +355,10 @@ fn build(
     if b.string {
         o.push("beam.bending_stiffness=0.0".into());
     } else {
-        o.push(format!("beam.youngs_modulus={:?}", 1.34e11 * b.e_factor));
+        o.push(format!(
+            "beam.youngs_modulus={:?}",
+            REFERENCE_E * b.e_factor
+        ));
     }
     let speed_scale = (b.tension.max(SPEED_SCALE_TENSION) / REFERENCE_RHO_A).sqrt();
     let v = c.speed_ratio * speed_scale;
@@ -419,13 +441,31 @@ fn delassus_bound(sc: &Resolved) -> f64 {
     beta * sc.dt * sc.dt / (1.0 - alpha_m) * (c / (sc.beam.rho_a * h) + 1.0 / mass)
 }
 
-/// The per-row scales of a run's carrier 0: S_i = D + W_max·|λ_i| (see the
-/// header).
-fn gap_scales(sc: &Resolved, out: &RunOutput) -> Vec<f64> {
+/// One recorded row of carrier 0, with its gap scale S = D + W_max·|λ|
+/// (see the header).
+struct Row {
+    /// Row index: 0 is t = 0, i ≥ 1 the end of step i.
+    i: usize,
+    gap: f64,
+    force: f64,
+    closed: bool,
+    scale: f64,
+}
+
+fn rows(sc: &Resolved, out: &RunOutput) -> Vec<Row> {
     let tr = &out.history.carriers[0];
     let d = tr.w.iter().chain(&tr.q).fold(0.0f64, |m, v| m.max(v.abs()));
     let w_max = delassus_bound(sc);
-    tr.force.iter().map(|l| d + w_max * l.abs()).collect()
+    let cols = tr.gap.iter().zip(&tr.force).zip(&tr.in_contact);
+    cols.enumerate()
+        .map(|(i, ((&gap, &force), &closed))| Row {
+            i,
+            gap,
+            force,
+            closed,
+            scale: d + w_max * force.abs(),
+        })
+        .collect()
 }
 
 /// Run a case. `Ok(None)`: a diagnosed stop (`Diverged`/`Contact`) of a
@@ -435,6 +475,16 @@ fn run_case(case: &SceneCase, sc: &Resolved) -> Result<Option<RunOutput>, TestCa
     match taut::run(sc, &mut |_, _| {}) {
         Ok(out) => Ok(Some(out)),
         Err(e @ (Error::Diverged { .. } | Error::Contact { .. })) => {
+            if must_succeed(sc) && supersonic_bilateral_mass(sc) {
+                // a genuine instability of the model: it may stop, but must say so
+                return if e.to_string().contains("faster than the wave speed") {
+                    Ok(None)
+                } else {
+                    Err(TestCaseError::fail(format!(
+                        "supersonic bilateral mass stopped without its diagnosis: {e}\n{case:?}"
+                    )))
+                };
+            }
             if must_succeed(sc) {
                 Err(TestCaseError::fail(format!(
                     "lagrange/end run stopped: {e}\n{case:?}"
@@ -449,8 +499,20 @@ fn run_case(case: &SceneCase, sc: &Resolved) -> Result<Option<RunOutput>, TestCa
     }
 }
 
+/// A mass held on the beam (bilateral) moving faster than the string wave
+/// speed: a moving inertial load above the wave speed can be genuinely
+/// unstable (anomalous Doppler waves), so a diagnosed stop is a right answer.
+fn supersonic_bilateral_mass(sc: &Resolved) -> bool {
+    let c = sc.beam.wave_speed();
+    sc.contact.kind == taut::scene::ContactKind::Bilateral
+        && sc.carriers.iter().any(|k| {
+            matches!(k.kind, taut::scene::CarrierKind::MassSpring { .. })
+                && k.motion.profile.cruise_speed() > c
+        })
+}
+
 /// `lagrange` with the `end` placement: exact and unconditionally stable, so
-/// every valid scene must run to its end.
+/// every valid scene must run to its end (except the supersonic bilateral mass above).
 fn must_succeed(sc: &Resolved) -> bool {
     sc.contact.formulation == Formulation::Lagrange && sc.contact.placement == Placement::End
 }
@@ -502,17 +564,14 @@ proptest! {
         };
         let qp = sc.contact.formulation == Formulation::Complementarity;
         let w_max = delassus_bound(&sc);
-        let scale = gap_scales(&sc, &out);
-        let tr = &out.history.carriers[0];
-        for i in 0..tr.gap.len() {
-            let (g, l) = (tr.gap[i], tr.force[i]);
+        for Row { i, gap: g, force: l, closed, scale } in rows(&sc, &out) {
             // exact constraint: round-off; QP: its tolerance on |g_free| ≤ W_max λ too
-            let tol = ROUNDOFF * scale[i] + if qp { QP_GAP_REL * w_max * l } else { 0.0 };
+            let tol = ROUNDOFF * scale + if qp { QP_GAP_REL * w_max * l } else { 0.0 };
             prop_assert!(g >= -tol, "row {}: gap {:e} < -{:e} (λ = {})", i, g, tol, l);
             prop_assert!(l >= 0.0, "row {}: force {} < 0", i, l);
             prop_assert!((g * l).abs() <= tol * l,
                 "row {}: |g·λ| = {:e} > {:e} (gap {:e}, λ {})", i, (g * l).abs(), tol * l, g, l);
-            if !tr.in_contact[i] {
+            if !closed {
                 prop_assert!(l == 0.0, "row {}: open contact carries λ = {:e}", i, l);
             }
         }
@@ -531,14 +590,11 @@ proptest! {
         };
         let kappa = sc.contact.penalty.stiffness.expect("absolute κ");
         let bilateral = sc.contact.kind == ContactKind::Bilateral;
-        let scale = gap_scales(&sc, &out);
-        let tr = &out.history.carriers[0];
         // steps only (rows 1..): row 0 is the initial state, whose force comes
         // from the acceleration-level problem (MODEL §5), not from a gap
-        for i in 1..tr.gap.len() {
-            let (g, l) = (tr.gap[i], tr.force[i]);
-            let tol_g = ROUNDOFF * scale[i];
-            if tr.in_contact[i] {
+        for Row { i, gap: g, force: l, closed, scale } in rows(&sc, &out).into_iter().skip(1) {
+            let tol_g = ROUNDOFF * scale;
+            if closed {
                 // κ·(gap round-off) plus the rounding of λ itself
                 let tol = kappa * tol_g + ROUNDOFF * l.abs();
                 prop_assert!((l + kappa * g).abs() <= tol,
@@ -562,13 +618,11 @@ proptest! {
         let Some(out) = run_case(&case, &sc)? else {
             return Ok(());
         };
-        let scale = gap_scales(&sc, &out);
-        let tr = &out.history.carriers[0];
-        for i in 0..tr.gap.len() {
-            let tol = ROUNDOFF * scale[i];
-            prop_assert!(tr.in_contact[i], "row {}: bilateral contact open", i);
-            prop_assert!(tr.gap[i].abs() <= tol,
-                "row {}: |gap| = {:e} > {:e} (λ = {})", i, tr.gap[i].abs(), tol, tr.force[i]);
+        for Row { i, gap, force, closed, scale } in rows(&sc, &out) {
+            let tol = ROUNDOFF * scale;
+            prop_assert!(closed, "row {}: bilateral contact open", i);
+            prop_assert!(gap.abs() <= tol,
+                "row {}: |gap| = {:e} > {:e} (λ = {})", i, gap.abs(), tol, force);
         }
     }
 }

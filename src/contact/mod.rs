@@ -37,6 +37,19 @@ pub(crate) trait ContactLaw {
         active: &mut [bool],
     ) -> Result<(), String>;
 
+    /// The acceleration-level problem at t = 0 (MODEL §5: initial
+    /// accelerations consistent with contact). `g_free` is then the free gap
+    /// acceleration (m/s²) and `w` is r M⁻¹ rᵀ (1/kg). Defaults to `solve`.
+    fn initial(
+        &mut self,
+        g_free: &[f64],
+        w: &[f64],
+        lambda: &mut [f64],
+        active: &mut [bool],
+    ) -> Result<(), String> {
+        self.solve(g_free, w, lambda, active)
+    }
+
     /// After a failed `solve`, the problem as JSON so it can be saved and
     /// replayed (laws backed by an external solver keep it).
     fn failed_problem(&mut self) -> Option<String> {

@@ -55,6 +55,22 @@ impl ContactLaw for Penalty {
         self.inner
             .solve(g_free, &self.w_mod[..nc * nc], lambda, active)
     }
+
+    /// At t = 0 the gap is zero, so the penalty force κ·max(0, −g) is zero:
+    /// the contacts touch without force until the first step penetrates.
+    /// (The Lagrange acceleration-level rule would add 1/κ, in m/N, to a
+    /// matrix in 1/kg.)
+    fn initial(
+        &mut self,
+        _g_free: &[f64],
+        _w: &[f64],
+        lambda: &mut [f64],
+        active: &mut [bool],
+    ) -> Result<(), String> {
+        lambda.fill(0.0);
+        active.fill(true);
+        Ok(())
+    }
 }
 
 #[cfg(test)]

@@ -4,12 +4,14 @@
 mod compare;
 mod converge;
 mod csv;
+mod gate;
 mod plot;
 mod summary;
 
 pub use compare::{COMPARE_COLUMNS, compare_table, write_compare};
 pub use converge::{CONVERGE_COLUMNS, converge_table, write_converge};
 pub use csv::write_history;
+pub use gate::{gate_table, junit_xml, write_gate};
 pub use plot::write_force_plot;
 pub use summary::{Derived, Summary, write_summary};
 

@@ -2,4 +2,5 @@
 
 pub mod compare;
 pub mod converge;
+pub mod gate;
 pub mod reference;

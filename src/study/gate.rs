@@ -1,0 +1,331 @@
+//! `taut gate`: re-run a suite of golden cases and compare each stored
+//! quantity with its reference, within per-quantity absolute and relative
+//! tolerances that carry their reasons.
+//!
+//! A suite is a folder of case files `*.json`:
+//!
+//! ```json
+//! {
+//!   "description": "the study's reference moving case",
+//!   "scene": "../scenes/reference.toml",
+//!   "set": ["mesh.elements=400"],
+//!   "quantities": {
+//!     "steps": { "value": 6000, "abs": 0, "rel": 0, "reason": "integer count" },
+//!     "force_mean": { "value": 46.3375, "abs": 0, "rel": 1e-6, "reason": "…" }
+//!   }
+//! }
+//! ```
+//!
+//! `scene` is relative to the case file. A quantity passes when
+//! |value − reference| ≤ abs + rel·|reference|. [`QUANTITY_NAMES`] lists what
+//! can be gated.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::run::{RunOutput, run};
+use crate::scene::load_scene;
+
+/// One gated quantity: reference value, tolerances and why.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Tolerance {
+    /// Reference value.
+    pub value: f64,
+    /// Absolute tolerance (≥ 0), in the quantity's unit.
+    pub abs: f64,
+    /// Relative tolerance (≥ 0).
+    pub rel: f64,
+    /// Why this tolerance.
+    pub reason: String,
+}
+
+/// A case file.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct GateCase {
+    /// What the case is.
+    pub description: String,
+    /// Scene path, relative to the case file.
+    pub scene: String,
+    /// `--set` overrides.
+    #[serde(default)]
+    pub set: Vec<String>,
+    /// Gated quantities by name.
+    pub quantities: BTreeMap<String, Tolerance>,
+}
+
+/// Quantities a case may gate: of carrier 0, or of carrier N with the suffix
+/// `_N` (`force_mean_1`); `final_probe_N` is probe N's last value.
+pub const QUANTITY_NAMES: [&str; 12] = [
+    "steps",
+    "dofs",
+    "contact_switches",
+    "loss_fraction",
+    "first_loss_position",
+    "force_mean",
+    "force_std",
+    "force_min",
+    "force_max",
+    "max_penetration",
+    "final_w",
+    "final_probe",
+];
+
+/// Extract a quantity from a run; `None` if the run does not have it.
+pub fn quantity(out: &RunOutput, name: &str) -> Option<f64> {
+    // `final_probe_N` is probe N; any other `NAME_N` is NAME of carrier N
+    if let Some(p) = name.strip_prefix("final_probe_") {
+        let p: usize = p.parse().ok()?;
+        return out.history.probes.get(p)?.1.last().copied();
+    }
+    let (base, carrier) = match name.rsplit_once('_') {
+        Some((b, c)) if !c.is_empty() && c.chars().all(|ch| ch.is_ascii_digit()) => {
+            (b, c.parse::<usize>().ok()?)
+        }
+        _ => (name, 0),
+    };
+    let s = out.stats.get(carrier)?;
+    let tr = out.history.carriers.get(carrier)?;
+    Some(match base {
+        "steps" => out.steps as f64,
+        "dofs" => out.dofs as f64,
+        "contact_switches" => s.contact_switches as f64,
+        "loss_fraction" => s.loss_fraction,
+        "first_loss_position" => s.first_loss_position.unwrap_or(-1.0),
+        "force_mean" => s.force.mean,
+        "force_std" => s.force.std,
+        "force_min" => s.force.min,
+        "force_max" => s.force.max,
+        "max_penetration" => s.max_penetration,
+        "final_w" => *tr.w.last()?,
+        _ => return None,
+    })
+}
+
+/// The result for one quantity.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Check {
+    /// Case name (file stem).
+    pub case: String,
+    /// Quantity name.
+    pub quantity: String,
+    /// Value of this run.
+    pub value: f64,
+    /// Reference value.
+    pub reference: f64,
+    /// Allowed |value − reference|.
+    pub tolerance: f64,
+    /// |value − reference|.
+    pub difference: f64,
+    /// Passed.
+    pub pass: bool,
+    /// The tolerance's reason.
+    pub reason: String,
+}
+
+/// A case that could not run (bad file, failed run).
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct CaseError {
+    /// Case name.
+    pub case: String,
+    /// What went wrong.
+    pub error: String,
+}
+
+/// The whole gate.
+#[derive(Debug, Clone, Serialize)]
+pub struct GateReport {
+    /// Every check, case by case.
+    pub checks: Vec<Check>,
+    /// Cases that did not run.
+    pub errors: Vec<CaseError>,
+    /// Wall seconds per case.
+    pub wall_seconds: BTreeMap<String, f64>,
+}
+
+impl GateReport {
+    /// True when every check passed and every case ran.
+    pub fn passed(&self) -> bool {
+        self.errors.is_empty() && self.checks.iter().all(|c| c.pass)
+    }
+}
+
+/// The case files of a suite, sorted by name.
+pub fn case_files(suite: &Path) -> Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(suite)
+        .map_err(|e| Error::io(suite, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(Error::invalid(
+            "SUITE_DIR",
+            suite.display(),
+            "must hold at least one case file (*.json)",
+        ));
+    }
+    Ok(files)
+}
+
+/// Read and check a case file.
+pub fn read_case(path: &Path) -> Result<GateCase> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let case: GateCase = serde_json::from_str(&text)
+        .map_err(|e| Error::Parse(format!("{}: {e}", path.display())))?;
+    for (name, t) in &case.quantities {
+        let field = format!("{}: quantities.{name}", path.display());
+        if !QUANTITY_NAMES.iter().any(|q| {
+            name == q
+                || name
+                    .strip_prefix(q)
+                    .is_some_and(|r| r.starts_with('_') && r[1..].parse::<usize>().is_ok())
+        }) {
+            return Err(Error::invalid(
+                field,
+                name,
+                format!("must be one of {}", QUANTITY_NAMES.join(", ")),
+            ));
+        }
+        if !(t.abs >= 0.0 && t.rel >= 0.0 && t.abs.is_finite() && t.rel.is_finite()) {
+            return Err(Error::invalid(
+                field,
+                format!("abs {} rel {}", t.abs, t.rel),
+                "tolerances must be finite and ≥ 0",
+            ));
+        }
+        if t.reason.trim().is_empty() {
+            return Err(Error::invalid(
+                field,
+                "reason \"\"",
+                "every tolerance needs its reason",
+            ));
+        }
+    }
+    Ok(case)
+}
+
+fn case_name(path: &Path) -> String {
+    path.file_stem()
+        .map_or_else(|| "case".into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// Run one case.
+pub fn run_case(path: &Path, case: &GateCase) -> Result<RunOutput> {
+    let scene = path.parent().unwrap_or(Path::new(".")).join(&case.scene);
+    let sc = load_scene(&scene, &case.set)?;
+    run(&sc, &mut |_, _| {})
+}
+
+/// Check one run against its case.
+pub fn check_case(name: &str, case: &GateCase, out: &RunOutput) -> Vec<Check> {
+    case.quantities
+        .iter()
+        .map(|(q, t)| {
+            let value = quantity(out, q).unwrap_or(f64::NAN);
+            let tolerance = t.abs + t.rel * t.value.abs();
+            let difference = (value - t.value).abs();
+            Check {
+                case: name.to_string(),
+                quantity: q.clone(),
+                value,
+                reference: t.value,
+                tolerance,
+                difference,
+                pass: difference <= tolerance,
+                reason: t.reason.clone(),
+            }
+        })
+        .collect()
+}
+
+/// Run a suite; `progress(done, total, case)` after each case. With
+/// `update`, every case file's reference values are replaced by this run's
+/// (tolerances and reasons kept) and the returned checks show what changed.
+pub fn gate(
+    suite: &Path,
+    update: bool,
+    progress: &mut dyn FnMut(usize, usize, &str),
+) -> Result<GateReport> {
+    let files = case_files(suite)?;
+    let mut checks = Vec::new();
+    let mut errors = Vec::new();
+    let mut wall = BTreeMap::new();
+    for (i, path) in files.iter().enumerate() {
+        let name = case_name(path);
+        let outcome = read_case(path).and_then(|case| run_case(path, &case).map(|out| (case, out)));
+        match outcome {
+            Ok((mut case, out)) => {
+                wall.insert(name.clone(), out.wall_seconds);
+                let c = check_case(&name, &case, &out);
+                if update {
+                    for (q, t) in case.quantities.iter_mut() {
+                        if let Some(v) = quantity(&out, q) {
+                            t.value = v;
+                        }
+                    }
+                    let text = serde_json::to_string_pretty(&case).map_err(|e| Error::Output {
+                        path: path.clone(),
+                        reason: e.to_string(),
+                    })?;
+                    std::fs::write(path, text + "\n").map_err(|e| Error::io(path, e))?;
+                }
+                checks.extend(c);
+            }
+            Err(e) => errors.push(CaseError {
+                case: name.clone(),
+                error: e.to_string(),
+            }),
+        }
+        progress(i + 1, files.len(), &name);
+    }
+    Ok(GateReport {
+        checks,
+        errors,
+        wall_seconds: wall,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tolerance_is_absolute_plus_relative() {
+        let case = GateCase {
+            description: "t".into(),
+            scene: "x".into(),
+            set: vec![],
+            quantities: BTreeMap::from([(
+                "steps".to_string(),
+                Tolerance {
+                    value: 100.0,
+                    abs: 1.0,
+                    rel: 0.01,
+                    reason: "test".into(),
+                },
+            )]),
+        };
+        let mut out = crate::run::RunOutput {
+            history: Default::default(),
+            stats: vec![crate::record::ContactStats::from_trace(
+                &[0.0],
+                &Default::default(),
+                1.0,
+            )],
+            dofs: 1,
+            steps: 102,
+            dt: 1.0,
+            wall_seconds: 0.0,
+            warnings: vec![],
+        };
+        out.history.carriers.push(Default::default());
+        assert!(check_case("c", &case, &out)[0].pass);
+        out.steps = 103;
+        assert!(!check_case("c", &case, &out)[0].pass);
+    }
+}
