@@ -26,6 +26,7 @@ fn ci_runs_the_readme_commands() {
     assert!(CI.contains("cargo test --release --locked"));
     assert!(CI.contains("cargo fmt --all -- --check"));
     assert!(CI.contains("-D warnings"));
+    assert!(CI.contains("-- gate golden"), "CI runs the regression gate");
 }
 
 #[test]
