@@ -46,7 +46,8 @@ fn config() -> Config {
     }
 }
 
-fn standing_scene(
+/// A standing mass–spring (no dashpot): no contact point moves.
+struct Standing {
     string: bool,
     elements: usize,
     mass: f64,
@@ -56,21 +57,23 @@ fn standing_scene(
     tension: f64,
     rho: f64,
     bilateral: bool,
-) -> taut::Resolved {
-    let text = if string { STRING } else { REFERENCE };
+}
+
+fn standing_scene(p: &Standing) -> taut::Resolved {
+    let text = if p.string { STRING } else { REFERENCE };
     let mut o = vec![
-        format!("mesh.elements={elements}"),
-        format!("carrier.mass={mass}"),
-        format!("carrier.stiffness={stiffness}"),
-        format!("carrier.preload={preload}"),
-        format!("carrier.start={x0}"),
+        format!("mesh.elements={}", p.elements),
+        format!("carrier.mass={}", p.mass),
+        format!("carrier.stiffness={}", p.stiffness),
+        format!("carrier.preload={}", p.preload),
+        format!("carrier.start={}", p.x0),
         "carrier.speed={ profile = \"constant\", value = 0.0 }".to_string(),
-        format!("beam.tension={tension}"),
-        format!("integrator.rho_inf={rho}"),
+        format!("beam.tension={}", p.tension),
+        format!("integrator.rho_inf={}", p.rho),
         "time.step=2e-4".to_string(),
         "time.end=0.06".to_string(),
     ];
-    if bilateral {
+    if p.bilateral {
         o.push("contact.kind=bilateral".into());
     }
     taut::resolve_scene(text, &o).unwrap()
@@ -91,7 +94,7 @@ proptest! {
         rho in prop_oneof![Just(1.0), 0.0f64..0.95],
         bilateral in any::<bool>(),
     ) {
-        let sc = standing_scene(string, elements, mass, stiffness, preload, x0, tension, rho, bilateral);
+        let sc = standing_scene(&Standing { string, elements, mass, stiffness, preload, x0, tension, rho, bilateral });
         let mut it = Integrator::new(&sc).unwrap();
         let e0 = it.energy();
         let mut scale = e0.scale();
@@ -220,7 +223,7 @@ fn quad(h: f64, f: impl Fn(f64) -> f64) -> f64 {
 /// Central-difference Hessian entry of a quadratic energy at d = 0; the
 /// rotation dofs are scaled by 1/h so both kinds of dof perturb alike.
 fn hessian(u: &dyn Fn(&[f64; 4]) -> f64, i: usize, j: usize, h: f64) -> f64 {
-    let step = |k: usize| if k % 2 == 0 { 1e-3 } else { 1e-3 / h };
+    let step = |k: usize| if k.is_multiple_of(2) { 1e-3 } else { 1e-3 / h };
     let (di, dj) = (step(i), step(j));
     let at = |si: f64, sj: f64| {
         let mut d = [0.0; 4];
