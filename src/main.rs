@@ -8,7 +8,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use taut::report::{
     Summary, compare_table, converge_table, gate_table, write_compare, write_converge, write_gate,
-    write_run,
+    write_run, write_sweep,
 };
 use taut::study::compare::{compare, parse_formulations};
 use taut::study::converge::{Refine, converge};
@@ -78,6 +78,42 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Sweep scene values or the study's dimensionless axes (speed_ratio,
+    /// tension_ratio, mass_ratio, stiffness_ratio) in parallel; resumable.
+    Sweep {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// An axis, key=start:stop:count (one or two).
+        #[arg(long = "vary", value_name = "KEY=START:STOP:COUNT", required = true)]
+        vary: Vec<String>,
+        /// Logarithmic spacing on every axis.
+        #[arg(long)]
+        log: bool,
+        /// Override a scene value (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output folder (default: out/<scene name>-sweep).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Run only the points with index ≡ i (mod n): i/n.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Join shard folders of one sweep into a single result.
+    Merge {
+        /// Shard output folders.
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
     /// Solve a saved contact problem again (a `failed_contact_step_N.json`
     /// written by a failed run) and print the forces or the failure.
     Replay {
@@ -120,6 +156,26 @@ fn main() -> ExitCode {
             quiet,
         } => cmd_run(scene, set, out, quiet),
         Command::Replay { problem, max_iter } => cmd_replay(&problem, max_iter),
+        Command::Sweep {
+            scene,
+            vary,
+            log,
+            set,
+            out,
+            shard,
+            threads,
+            quiet,
+        } => cmd_sweep(
+            scene,
+            &vary,
+            log,
+            set,
+            out,
+            shard.as_deref(),
+            threads,
+            quiet,
+        ),
+        Command::Merge { shards, out } => cmd_merge(&shards, &out),
         Command::Gate {
             suite,
             out,
@@ -270,6 +326,85 @@ fn cmd_gate(suite: &Path, out: Option<PathBuf>, update: bool, quiet: bool) -> ta
     } else {
         report.passed()
     })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn cmd_sweep(
+    scene: PathBuf,
+    vary: &[String],
+    log: bool,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    shard: Option<&str>,
+    threads: Option<usize>,
+    quiet: bool,
+) -> taut::Result<()> {
+    use taut::study::sweep::{Axis, Shard, SweepSpec, sweep};
+    let axes = vary
+        .iter()
+        .map(|v| Axis::parse(v, log))
+        .collect::<taut::Result<Vec<_>>>()?;
+    let shard = shard.map(Shard::parse).transpose()?;
+    let scene_text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let spec = SweepSpec {
+        scene_text,
+        set,
+        axes,
+    };
+    let dir = out.unwrap_or_else(|| default_dir(&scene, "-sweep"));
+    if let Some(n) = threads {
+        if n == 0 {
+            return Err(taut::Error::invalid("--threads", 0, "must be ≥ 1"));
+        }
+        // the global pool can be configured once; ignore a second attempt
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global();
+    }
+    let bar = progress_bar(spec.len(), "runs", quiet);
+    let start = std::time::Instant::now();
+    let records = sweep(&spec, &dir, shard, &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    let records = records?;
+    write_sweep(&dir, &spec, &records)?;
+    let wall = start.elapsed().as_secs_f64();
+    let failed = records.iter().filter(|r| r.error.is_some()).count();
+    println!(
+        "taut {} — sweep {}",
+        env!("CARGO_PKG_VERSION"),
+        scene.display()
+    );
+    println!(
+        "  {} runs{} in {wall:.2} s wall ({:.2} runs/s, {} threads); {failed} stopped with an error",
+        records.len(),
+        shard.map_or(String::new(), |s| format!(
+            " (shard {}/{})",
+            s.index, s.count
+        )),
+        records.len() as f64 / wall.max(1e-9),
+        rayon::current_num_threads()
+    );
+    println!(
+        "  wrote    {}/{{sweep.csv, sweep_force.csv, sweep_loss.csv, timing.csv, runs/}}",
+        dir.display()
+    );
+    Ok(())
+}
+
+fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<()> {
+    let (spec, records) = taut::study::sweep::merge(shards, out)?;
+    write_sweep(out, &spec, &records)?;
+    println!(
+        "taut {} — merged {} shards: {} runs into {}",
+        env!("CARGO_PKG_VERSION"),
+        shards.len(),
+        records.len(),
+        out.display()
+    );
+    Ok(())
 }
 
 fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {

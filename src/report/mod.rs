@@ -7,6 +7,7 @@ mod csv;
 mod gate;
 mod plot;
 mod summary;
+mod sweep;
 
 pub use compare::{COMPARE_COLUMNS, compare_table, write_compare};
 pub use converge::{CONVERGE_COLUMNS, converge_table, write_converge};
@@ -14,6 +15,7 @@ pub use csv::write_history;
 pub use gate::{gate_table, junit_xml, write_gate};
 pub use plot::write_force_plot;
 pub use summary::{Derived, Summary, write_summary};
+pub use sweep::write_sweep;
 
 use std::path::Path;
 

@@ -4,3 +4,4 @@ pub mod compare;
 pub mod converge;
 pub mod gate;
 pub mod reference;
+pub mod sweep;
