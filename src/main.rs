@@ -114,6 +114,30 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
     },
+    /// Work–precision: error against cost for each formulation over a
+    /// (mesh, Δt) grid, with the Pareto front (precision.csv, precision.svg).
+    Precision {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Comma-separated formulations.
+        #[arg(long, default_value = "lagrange,penalty,complementarity,impact")]
+        formulations: String,
+        /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels).
+        #[arg(long, default_value_t = 3)]
+        levels: usize,
+        /// Refinement ratio (integer).
+        #[arg(long, default_value_t = 2)]
+        ratio: usize,
+        /// Override a scene value (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output folder (default: out/<scene name>-precision).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Solve a saved contact problem again (a `failed_contact_step_N.json`
     /// written by a failed run) and print the forces or the failure.
     Replay {
@@ -176,6 +200,15 @@ fn main() -> ExitCode {
             quiet,
         ),
         Command::Merge { shards, out } => cmd_merge(&shards, &out),
+        Command::Precision {
+            scene,
+            formulations,
+            levels,
+            ratio,
+            set,
+            out,
+            quiet,
+        } => cmd_precision(scene, &formulations, levels, ratio, set, out, quiet),
         Command::Gate {
             suite,
             out,
@@ -403,6 +436,39 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<()> {
         shards.len(),
         records.len(),
         out.display()
+    );
+    Ok(())
+}
+
+fn cmd_precision(
+    scene: PathBuf,
+    formulations: &str,
+    levels: usize,
+    ratio: usize,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    quiet: bool,
+) -> taut::Result<()> {
+    let list = parse_formulations(formulations)?;
+    let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
+    let bar = progress_bar(1 + list.len() * levels * levels, "runs", quiet);
+    let result =
+        taut::study::precision::precision(&text, &set, &list, levels, ratio, &mut |d, _| {
+            bar.set_position(d as u64)
+        });
+    bar.finish_and_clear();
+    let p = result.map_err(|e| save_failure(&dir, e))?;
+    taut::report::write_precision(&dir, &p)?;
+    println!(
+        "taut {} — precision {}",
+        env!("CARGO_PKG_VERSION"),
+        scene.display()
+    );
+    print!("{}", taut::report::precision_table(&p));
+    println!(
+        "  wrote    {}/{{precision.csv, precision.svg}}",
+        dir.display()
     );
     Ok(())
 }

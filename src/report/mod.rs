@@ -6,6 +6,7 @@ mod converge;
 mod csv;
 mod gate;
 mod plot;
+mod precision;
 mod summary;
 mod sweep;
 
@@ -14,6 +15,7 @@ pub use converge::{CONVERGE_COLUMNS, converge_table, write_converge};
 pub use csv::write_history;
 pub use gate::{gate_table, junit_xml, write_gate};
 pub use plot::write_force_plot;
+pub use precision::{PRECISION_COLUMNS, precision_table, write_precision};
 pub use summary::{Derived, Summary, write_summary};
 pub use sweep::write_sweep;
 

@@ -3,5 +3,6 @@
 pub mod compare;
 pub mod converge;
 pub mod gate;
+pub mod precision;
 pub mod reference;
 pub mod sweep;

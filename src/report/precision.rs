@@ -1,0 +1,189 @@
+//! `precision.csv` and `precision.svg` of `taut precision`.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::fmt_f64;
+use crate::error::{Error, Result};
+use crate::study::precision::{Precision, PrecisionRow};
+
+/// Column order of `precision.csv`.
+pub const PRECISION_COLUMNS: [&str; 13] = [
+    "formulation",
+    "mesh_level",
+    "step_level",
+    "elements",
+    "dt",
+    "dofs",
+    "steps",
+    "dof_steps",
+    "wall_seconds",
+    "force_error",
+    "displacement_error",
+    "loss_fraction_error",
+    "pareto",
+];
+
+/// Write `precision.csv` and `precision.svg` into `dir`.
+pub fn write_precision(dir: &Path, p: &Precision) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let mut s = PRECISION_COLUMNS.join(",") + "\n";
+    for r in &p.rows {
+        s.push_str(&format!(
+            "{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            r.formulation,
+            r.mesh_level,
+            r.step_level,
+            r.elements,
+            fmt_f64(r.dt),
+            r.dofs,
+            r.steps,
+            fmt_f64(r.dof_steps),
+            fmt_f64(r.wall_seconds),
+            fmt_f64(r.force_error),
+            fmt_f64(r.displacement_error),
+            fmt_f64(r.loss_fraction_error),
+            r.pareto
+        ));
+    }
+    let csv = dir.join("precision.csv");
+    std::fs::write(&csv, s).map_err(|e| Error::io(&csv, e))?;
+    let svg = dir.join("precision.svg");
+    draw(&svg, p).map_err(|e| Error::Output {
+        path: svg.clone(),
+        reason: e.to_string(),
+    })
+}
+
+/// The terminal table: every row, Pareto points starred.
+pub fn precision_table(p: &Precision) -> String {
+    let mut s = format!(
+        "{:<16} {:>6} {:>10} {:>12} {:>9} {:>11} {:>11} {:>9}\n",
+        "formulation", "N", "dt s", "dof-steps", "wall s", "force err", "w err", "ΔP_l"
+    );
+    for r in &p.rows {
+        s.push_str(&format!(
+            "{:<16} {:>6} {:>10.3e} {:>12.3e} {:>9.4} {:>11.3e} {:>11.3e} {:>9.5}{}\n",
+            r.formulation,
+            r.elements,
+            r.dt,
+            r.dof_steps,
+            r.wall_seconds,
+            r.force_error,
+            r.displacement_error,
+            r.loss_fraction_error,
+            if r.pareto { " *" } else { "" }
+        ));
+    }
+    s.push_str(&format!(
+        "(* Pareto front per formulation; reference: lagrange, {} elements, dt = {:e} s, {:.2} s wall)\n",
+        p.reference.0, p.reference.1, p.reference_wall
+    ));
+    s
+}
+
+/// A labelled refinement path of one formulation and its line style.
+type RefinementPath<'a> = (&'a str, Vec<(f64, f64)>, ShapeStyle);
+
+const PALETTE: [RGBColor; 4] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+];
+
+fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let ok = |r: &&PrecisionRow| r.force_error > 0.0 && r.wall_seconds > 0.0;
+    let pts: Vec<&PrecisionRow> = p.rows.iter().filter(ok).collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for r in &pts {
+        x0 = x0.min(r.wall_seconds);
+        x1 = x1.max(r.wall_seconds);
+        y0 = y0.min(r.force_error);
+        y1 = y1.max(r.force_error);
+    }
+    if pts.is_empty() {
+        (x0, x1, y0, y1) = (1e-3, 1.0, 1e-6, 1.0);
+    }
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "work–precision: contact force error against wall time",
+            ("sans-serif", 18),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d(
+            (x0 / 1.5..x1 * 1.5).log_scale(),
+            (y0 / 2.0..y1 * 2.0).log_scale(),
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc("wall time per run (s)")
+        .x_labels(6)
+        .y_desc("relative RMS force error")
+        .x_label_formatter(&|x| format!("{x:.1e}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .draw()?;
+    let levels = p.rows.iter().map(|r| r.mesh_level).max().unwrap_or(0);
+    let mut names: Vec<&str> = p.rows.iter().map(|r| r.formulation.as_str()).collect();
+    names.dedup();
+    for (fi, name) in names.iter().enumerate() {
+        let col = PALETTE[fi % PALETTE.len()];
+        let of = |pred: &dyn Fn(&PrecisionRow) -> bool| -> Vec<(f64, f64)> {
+            p.rows
+                .iter()
+                .filter(|r| r.formulation == *name && pred(r))
+                .filter(ok)
+                .map(|r| (r.wall_seconds, r.force_error))
+                .collect()
+        };
+        let paths: [RefinementPath; 3] = [
+            (
+                "both",
+                of(&|r| r.mesh_level == r.step_level),
+                col.stroke_width(2),
+            ),
+            (
+                "mesh",
+                of(&|r| r.step_level == levels),
+                col.mix(0.6).stroke_width(1),
+            ),
+            (
+                "step",
+                of(&|r| r.mesh_level == levels),
+                col.mix(0.35).stroke_width(1),
+            ),
+        ];
+        for (label, v, style) in paths {
+            chart
+                .draw_series(LineSeries::new(v, style))?
+                .label(format!("{name}, refine {label}"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
+        }
+        chart.draw_series(
+            p.rows
+                .iter()
+                .filter(|r| r.formulation == *name)
+                .filter(ok)
+                .map(|r| {
+                    Circle::new(
+                        (r.wall_seconds, r.force_error),
+                        if r.pareto { 5 } else { 2 },
+                        col.filled(),
+                    )
+                }),
+        )?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}

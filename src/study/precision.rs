@@ -1,0 +1,216 @@
+//! `taut precision`: error against cost for each formulation over a grid of
+//! (mesh, Δt) — a work–precision study.
+//!
+//! The reference is one Lagrange run at the finest mesh and step of the grid,
+//! each refined once more by `ratio` (so every grid run is coarser than it).
+//! Grid points run at N₀·r^i elements and Δt₀/r^j (i, j = 0 … levels−1).
+//! Times nest (r is an integer), so errors are taken sample by sample on each
+//! run's own time grid against the reference sampled there:
+//!
+//! * `force_error` — RMS of λ − λ_ref over the run's steps, relative to the
+//!   RMS of λ_ref (carrier 0);
+//! * `displacement_error` — the same for w under the carrier;
+//! * `loss_fraction_error` — |P_l − P_l,ref|.
+//!
+//! Cost: wall seconds of the run (machine-dependent) and DOF-steps
+//! (unknowns × steps, machine-independent). A point is on the Pareto front of
+//! its formulation when no other point of that formulation has both a smaller
+//! force error and a smaller wall time.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::run::{RunOutput, run};
+use crate::scene::{Formulation, resolve_scene};
+
+/// One run of the study (a row of `precision.csv`).
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct PrecisionRow {
+    /// Formulation name.
+    pub formulation: String,
+    /// Mesh level i (N = N₀·rⁱ).
+    pub mesh_level: usize,
+    /// Step level j (Δt = Δt₀/rʲ).
+    pub step_level: usize,
+    /// Elements N.
+    pub elements: usize,
+    /// Time step, s.
+    pub dt: f64,
+    /// Unknowns.
+    pub dofs: usize,
+    /// Steps.
+    pub steps: usize,
+    /// dofs × steps.
+    pub dof_steps: f64,
+    /// Wall seconds (machine-dependent).
+    pub wall_seconds: f64,
+    /// Relative RMS error of the contact force.
+    pub force_error: f64,
+    /// Relative RMS error of w under the carrier.
+    pub displacement_error: f64,
+    /// |P_l − P_l,ref|.
+    pub loss_fraction_error: f64,
+    /// On its formulation's Pareto front (force error vs wall time).
+    pub pareto: bool,
+}
+
+/// A finished study.
+pub struct Precision {
+    /// Reference elements and step.
+    pub reference: (usize, f64),
+    /// Reference wall seconds.
+    pub reference_wall: f64,
+    /// All rows: formulation-major, then mesh level, then step level.
+    pub rows: Vec<PrecisionRow>,
+}
+
+fn rel_rms(a: &[f64], b_sampled: &[f64]) -> f64 {
+    let num: f64 = a
+        .iter()
+        .zip(b_sampled)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum();
+    let den: f64 = b_sampled.iter().map(|y| y * y).sum();
+    if den > 0.0 {
+        (num / den).sqrt()
+    } else {
+        num.sqrt()
+    }
+}
+
+/// Run the study. `progress(done, total)` after each run.
+pub fn precision(
+    text: &str,
+    overrides: &[String],
+    formulations: &[Formulation],
+    levels: usize,
+    ratio: usize,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Precision> {
+    if !(1..=5).contains(&levels) {
+        return Err(Error::invalid("--levels", levels, "must be in 1 ..= 5"));
+    }
+    if ratio < 2 {
+        return Err(Error::invalid("--ratio", ratio, "must be an integer ≥ 2"));
+    }
+    let base = resolve_scene(text, overrides)?;
+    let (n0, dt0) = (base.elements, base.dt);
+    let r = ratio as f64;
+    let fine = levels as i32; // one beyond the grid's finest
+    let ref_n = n0 * ratio.pow(fine as u32);
+    let ref_dt = dt0 / r.powi(fine);
+    let total = 1 + formulations.len() * levels * levels;
+    let mut done = 0;
+    let with = |n: usize, dt: f64, f: Formulation| {
+        let mut o = overrides.to_vec();
+        o.push(format!("mesh.elements={n}"));
+        o.push(format!("time.step={dt:e}"));
+        o.push(format!("contact.formulation={}", f.name()));
+        o
+    };
+    let ref_sc = resolve_scene(text, &with(ref_n, ref_dt, Formulation::Lagrange))?;
+    let reference = run(&ref_sc, &mut |_, _| {})?;
+    done += 1;
+    progress(done, total);
+    let mut rows = Vec::new();
+    for &f in formulations {
+        let first = rows.len();
+        for i in 0..levels {
+            for j in 0..levels {
+                let n = n0 * ratio.pow(i as u32);
+                let dt = dt0 / r.powi(j as i32);
+                let sc = resolve_scene(text, &with(n, dt, f))?;
+                let stride = (dt / ref_dt).round() as usize;
+                if sc.steps * stride != reference.steps {
+                    return Err(Error::invalid(
+                        "time.end",
+                        format!("{} steps at Δt = {dt:e} s", sc.steps),
+                        "must be a whole number of steps at every level (choose an end that is a multiple of the coarsest step)",
+                    ));
+                }
+                let out = run(&sc, &mut |_, _| {})?;
+                rows.push(row(f, i, j, &out, &reference, stride, n));
+                done += 1;
+                progress(done, total);
+            }
+        }
+        mark_pareto(&mut rows[first..]);
+    }
+    Ok(Precision {
+        reference: (ref_n, ref_dt),
+        reference_wall: reference.wall_seconds,
+        rows,
+    })
+}
+
+fn row(
+    f: Formulation,
+    i: usize,
+    j: usize,
+    out: &RunOutput,
+    reference: &RunOutput,
+    stride: usize,
+    elements: usize,
+) -> PrecisionRow {
+    let (t, tr) = (&out.history.carriers[0], &reference.history.carriers[0]);
+    let sample = |v: &[f64]| -> Vec<f64> { (1..t.force.len()).map(|k| v[k * stride]).collect() };
+    PrecisionRow {
+        formulation: f.name().to_string(),
+        mesh_level: i,
+        step_level: j,
+        elements,
+        dt: out.dt,
+        dofs: out.dofs,
+        steps: out.steps,
+        dof_steps: out.dofs as f64 * out.steps as f64,
+        wall_seconds: out.wall_seconds,
+        force_error: rel_rms(&t.force[1..], &sample(&tr.force)),
+        displacement_error: rel_rms(&t.w[1..], &sample(&tr.w)),
+        loss_fraction_error: (out.stats[0].loss_fraction - reference.stats[0].loss_fraction).abs(),
+        pareto: false,
+    }
+}
+
+/// Mark the points that no other point beats in both error and wall time.
+fn mark_pareto(rows: &mut [PrecisionRow]) {
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (r.force_error, r.wall_seconds))
+        .collect();
+    for (k, r) in rows.iter_mut().enumerate() {
+        r.pareto = !pts.iter().enumerate().any(|(m, &(e, w))| {
+            m != k && e <= pts[k].0 && w <= pts[k].1 && (e < pts[k].0 || w < pts[k].1)
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn r(e: f64, w: f64) -> PrecisionRow {
+        PrecisionRow {
+            formulation: "x".into(),
+            mesh_level: 0,
+            step_level: 0,
+            elements: 1,
+            dt: 1.0,
+            dofs: 1,
+            steps: 1,
+            dof_steps: 1.0,
+            wall_seconds: w,
+            force_error: e,
+            displacement_error: 0.0,
+            loss_fraction_error: 0.0,
+            pareto: false,
+        }
+    }
+
+    #[test]
+    fn pareto_front_keeps_the_undominated() {
+        let mut rows = vec![r(1.0, 1.0), r(0.5, 2.0), r(0.8, 3.0), r(0.1, 10.0)];
+        mark_pareto(&mut rows);
+        let front: Vec<bool> = rows.iter().map(|x| x.pareto).collect();
+        assert_eq!(front, [true, true, false, true]);
+    }
+}
