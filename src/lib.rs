@@ -30,6 +30,7 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod study;
+pub mod warnings;
 
 pub use error::{Error, Result};
 pub use run::{RunOutput, run};

@@ -322,15 +322,13 @@ fn cmd_converge(
     bar.finish_and_clear();
     let c = result.map_err(|e| save_failure(&dir, e))?;
     write_converge(&dir, &c)?;
-    println!(
-        "taut {} — converge {} ({refine:?}, r = {ratio})",
-        env!("CARGO_PKG_VERSION"),
-        scene.display()
-    );
-    print!("{}", converge_table(&c));
-    println!(
-        "  wrote    {}/{{converge.csv, converge.json, converge.svg}}",
-        dir.display()
+    let kind = format!("converge ({refine:?}, r = {ratio})");
+    print_study(
+        &kind,
+        &scene,
+        &converge_table(&c),
+        &dir,
+        "converge.csv, converge.json, converge.svg",
     );
     Ok(())
 }
@@ -403,6 +401,7 @@ fn cmd_sweep(
     bar.finish_and_clear();
     let records = records?;
     write_sweep(&dir, &spec, &records)?;
+    let maps = taut::report::write_sweep_maps(&dir, &spec, &records)?;
     let wall = start.elapsed().as_secs_f64();
     let failed = records.iter().filter(|r| r.error.is_some()).count();
     println!(
@@ -424,12 +423,31 @@ fn cmd_sweep(
         "  wrote    {}/{{sweep.csv, sweep_force.csv, sweep_loss.csv, timing.csv, runs/}}",
         dir.display()
     );
+    print_maps(&maps, shard.is_some());
     Ok(())
+}
+
+/// Name the maps a sweep or merge drew (a shard draws none: merge does).
+fn print_maps(maps: &[PathBuf], shard: bool) {
+    if let Some((first, rest)) = maps.split_first() {
+        let names: Vec<String> = rest
+            .iter()
+            .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+            .collect();
+        if names.is_empty() {
+            println!("  map      {}", first.display());
+        } else {
+            println!("  maps     {}, {}", first.display(), names.join(", "));
+        }
+    } else if shard {
+        println!("  maps     none for a shard: `taut merge` draws them for the whole grid");
+    }
 }
 
 fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<()> {
     let (spec, records) = taut::study::sweep::merge(shards, out)?;
     write_sweep(out, &spec, &records)?;
+    let maps = taut::report::write_sweep_maps(out, &spec, &records)?;
     println!(
         "taut {} — merged {} shards: {} runs into {}",
         env!("CARGO_PKG_VERSION"),
@@ -437,6 +455,7 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<()> {
         records.len(),
         out.display()
     );
+    print_maps(&maps, false);
     Ok(())
 }
 
@@ -460,15 +479,12 @@ fn cmd_precision(
     bar.finish_and_clear();
     let p = result.map_err(|e| save_failure(&dir, e))?;
     taut::report::write_precision(&dir, &p)?;
-    println!(
-        "taut {} — precision {}",
-        env!("CARGO_PKG_VERSION"),
-        scene.display()
-    );
-    print!("{}", taut::report::precision_table(&p));
-    println!(
-        "  wrote    {}/{{precision.csv, precision.svg}}",
-        dir.display()
+    print_study(
+        "precision",
+        &scene,
+        &taut::report::precision_table(&p),
+        &dir,
+        "precision.csv, precision.svg",
     );
     Ok(())
 }
@@ -520,17 +536,25 @@ fn cmd_compare(
     bar.finish_and_clear();
     let c = result.map_err(|e| save_failure(&dir, e))?;
     write_compare(&dir, &c)?;
+    print_study(
+        "compare",
+        &scene,
+        &compare_table(&c),
+        &dir,
+        "compare.csv, compare.json, compare.svg",
+    );
+    Ok(())
+}
+
+/// Header, table and written files of a study command.
+fn print_study(kind: &str, scene: &Path, table: &str, dir: &Path, files: &str) {
     println!(
-        "taut {} — compare {}",
+        "taut {} — {kind} {}",
         env!("CARGO_PKG_VERSION"),
         scene.display()
     );
-    print!("{}", compare_table(&c));
-    println!(
-        "  wrote    {}/{{compare.csv, compare.json, compare.svg}}",
-        dir.display()
-    );
-    Ok(())
+    print!("{table}");
+    println!("  wrote    {}/{{{files}}}", dir.display());
 }
 
 fn print_summary(scene: &std::path::Path, dir: &std::path::Path, s: &Summary) {

@@ -84,6 +84,7 @@ pub fn run(sc: &Resolved, progress: &mut dyn FnMut(usize, usize)) -> Result<RunO
     // arrival at a support: forces beyond the divergence bound, allowed there
     let bound = it.force_bound();
     let mut warnings: Vec<String> = warnings;
+    warnings.extend(crate::warnings::resolution_warnings(sc, &h, &stats));
     for (c, tr) in h.carriers.iter().enumerate() {
         let peak = (1..h.len())
             .filter(|&i| it.near_support(tr.x[i]))

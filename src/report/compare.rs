@@ -74,11 +74,7 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
         scene: &c.runs[0].1.scene,
         rows: &c.rows,
     };
-    let text = serde_json::to_string_pretty(&doc).map_err(|e| Error::Output {
-        path: json.clone(),
-        reason: e.to_string(),
-    })?;
-    std::fs::write(&json, text + "\n").map_err(|e| Error::io(&json, e))?;
+    super::write_json(&json, &doc)?;
 
     let (_, sc, out) = &c.runs[0];
     let (_, x_desc) = abscissa(sc, out, 0);

@@ -6,7 +6,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use super::fmt_f64;
+use super::{PALETTE, fmt_f64};
 use crate::error::{Error, Result};
 use crate::study::converge::{ConvergeRow, Convergence, GCI_SAFETY_FACTOR, QUANTITIES, Refine};
 
@@ -102,11 +102,7 @@ pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
         rows: &c.rows,
     };
     // serde_json writes NaN as null
-    let text = serde_json::to_string_pretty(&doc).map_err(|e| Error::Output {
-        path: json.clone(),
-        reason: e.to_string(),
-    })?;
-    std::fs::write(&json, text + "\n").map_err(|e| Error::io(&json, e))?;
+    super::write_json(&json, &doc)?;
     let svg = dir.join("converge.svg");
     draw(&svg, c).map_err(|e| Error::Output {
         path: svg.clone(),
@@ -149,15 +145,6 @@ pub fn converge_table(c: &Convergence) -> String {
     }
     s
 }
-
-const PALETTE: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(23, 190, 207),
-];
 
 fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::error::Error>> {
     let by_dt = c.refine == Refine::Step;

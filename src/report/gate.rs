@@ -70,18 +70,16 @@ pub fn junit_xml(r: &GateReport) -> String {
 pub fn write_gate(dir: &Path, r: &GateReport) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let json = dir.join("gate.json");
-    let text = serde_json::to_string_pretty(&serde_json::json!({
-        "taut_version": env!("CARGO_PKG_VERSION"),
-        "passed": r.passed(),
-        "checks": r.checks,
-        "errors": r.errors,
-        "wall_seconds": r.wall_seconds,
-    }))
-    .map_err(|e| Error::Output {
-        path: json.clone(),
-        reason: e.to_string(),
-    })?;
-    std::fs::write(&json, text + "\n").map_err(|e| Error::io(&json, e))?;
+    super::write_json(
+        &json,
+        &serde_json::json!({
+            "taut_version": env!("CARGO_PKG_VERSION"),
+            "passed": r.passed(),
+            "checks": r.checks,
+            "errors": r.errors,
+            "wall_seconds": r.wall_seconds,
+        }),
+    )?;
     let xml = dir.join("junit.xml");
     std::fs::write(&xml, junit_xml(r)).map_err(|e| Error::io(&xml, e))
 }

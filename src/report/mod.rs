@@ -9,6 +9,7 @@ mod plot;
 mod precision;
 mod summary;
 mod sweep;
+mod sweep_maps;
 
 pub use compare::{COMPARE_COLUMNS, compare_table, write_compare};
 pub use converge::{CONVERGE_COLUMNS, converge_table, write_converge};
@@ -18,6 +19,10 @@ pub use plot::write_force_plot;
 pub use precision::{PRECISION_COLUMNS, precision_table, write_precision};
 pub use summary::{Derived, Summary, write_summary};
 pub use sweep::write_sweep;
+pub use sweep_maps::{
+    SPEED_RATIO_LEVELS, axis_label, write_force_map, write_loss_fraction_map, write_loss_map,
+    write_sweep_maps,
+};
 
 use std::path::Path;
 
@@ -33,6 +38,32 @@ pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> 
     write_summary(&dir.join("summary.json"), &summary)?;
     write_force_plot(&dir.join("force.svg"), sc, out)?;
     Ok(summary)
+}
+
+/// Line colours of every plot (matplotlib's tab10), cycled.
+pub(crate) const PALETTE: [plotters::style::RGBColor; 10] = {
+    use plotters::style::RGBColor;
+    [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(148, 103, 189),
+        RGBColor(255, 127, 14),
+        RGBColor(23, 190, 207),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(127, 127, 127),
+        RGBColor(188, 189, 34),
+    ]
+};
+
+/// Write a value as pretty-printed JSON with a final newline.
+pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| Error::Output {
+        path: path.into(),
+        reason: e.to_string(),
+    })?;
+    std::fs::write(path, text + "\n").map_err(|e| Error::io(path, e))
 }
 
 /// Format a float compactly and exactly (shortest round-trip form).

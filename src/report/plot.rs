@@ -6,23 +6,10 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
+use super::PALETTE;
 use crate::error::{Error, Result};
 use crate::run::RunOutput;
 use crate::scene::Resolved;
-
-/// Line colours (the ten of matplotlib's tab10), cycled.
-const PALETTE: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(23, 190, 207),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-];
 
 /// The force axis is clipped at this multiple of the 99.5th percentile:
 /// re-contact spikes (no impact law, TARGETS "What the study does not

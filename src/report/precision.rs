@@ -4,7 +4,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::fmt_f64;
+use super::{PALETTE, fmt_f64};
 use crate::error::{Error, Result};
 use crate::study::precision::{Precision, PrecisionRow};
 
@@ -85,13 +85,6 @@ pub fn precision_table(p: &Precision) -> String {
 
 /// A labelled refinement path of one formulation and its line style.
 type RefinementPath<'a> = (&'a str, Vec<(f64, f64)>, ShapeStyle);
-
-const PALETTE: [RGBColor; 4] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-];
 
 fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::error::Error>> {
     let ok = |r: &&PrecisionRow| r.force_error > 0.0 && r.wall_seconds > 0.0;

@@ -4,7 +4,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::record::ContactStats;
 use crate::run::RunOutput;
 use crate::scene::{Resolved, Scene};
@@ -95,9 +95,5 @@ impl Summary {
 
 /// Write `summary.json` (pretty-printed).
 pub fn write_summary(path: &Path, s: &Summary) -> Result<()> {
-    let text = serde_json::to_string_pretty(s).map_err(|e| Error::Output {
-        path: path.into(),
-        reason: e.to_string(),
-    })?;
-    std::fs::write(path, text + "\n").map_err(|e| Error::io(path, e))
+    super::write_json(path, s)
 }
