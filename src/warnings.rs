@@ -52,7 +52,16 @@ pub fn resolution_warnings(sc: &Resolved, h: &History, stats: &[ContactStats]) -
                 ));
             }
         }
-        if sc.contact.kind == ContactKind::Bilateral && matches!(car.kind, CarrierKind::MassSpring { .. }) && c > 0.0 && v > c {
+        if v > 0.0 && b.ei == 0.0 && c > 0.0 && v > c {
+            w.push(format!(
+                "carrier {i}: moving at V = {v:.1} m/s, faster than the string's wave speed c = {c:.1} m/s, it trails a Mach front (a moving kink) that string elements smear at first order in h (the stability study: 20 % error at 50 elements, 0.6 % at 400): check with taut converge"
+            ));
+        }
+        if sc.contact.kind == ContactKind::Bilateral
+            && matches!(car.kind, CarrierKind::MassSpring { .. })
+            && c > 0.0
+            && v > c
+        {
             w.push(format!(
                 "carrier {i}: a mass held on the beam (bilateral) at V = {v:.1} m/s > c = {c:.1} m/s: a moving inertial load above the wave speed can be physically unstable (anomalous Doppler waves), and its forces need not converge under refinement; check with taut converge"
             ));
