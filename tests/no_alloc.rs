@@ -13,17 +13,29 @@ struct Counting;
 
 static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
 
+thread_local! {
+    /// Count only on the thread that measures: the test harness's own
+    /// threads allocate when they like (a process-wide count was flaky).
+    static MEASURING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+fn count() {
+    if MEASURING.with(|m| m.get()) {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
 // SAFETY: forwards to the system allocator, only counting calls.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        count();
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        count();
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -35,6 +47,7 @@ const REFERENCE: &str = include_str!("../scenes/reference.toml");
 const T2_STRING: &str = include_str!("../scenes/t2_stationary_mass_string.toml");
 
 fn allocations_in_steps(text: &str, overrides: &[&str], steps: usize) -> usize {
+    MEASURING.with(|m| m.set(true));
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     let sc = taut::resolve_scene(text, &o).unwrap();
     let start = ALLOCATIONS.load(Ordering::Relaxed);
