@@ -312,12 +312,7 @@ fn render(path: &Path, map: &Map) -> DynResult<()> {
         (false, false) => plot(&plot_area, x0..x1, y0..y1, map)?,
         (false, true) => plot(&plot_area, x0..x1, (y0..y1).log_scale(), map)?,
         (true, false) => plot(&plot_area, (x0..x1).log_scale(), y0..y1, map)?,
-        (true, true) => plot(
-            &plot_area,
-            (x0..x1).log_scale(),
-            (y0..y1).log_scale(),
-            map,
-        )?,
+        (true, true) => plot(&plot_area, (x0..x1).log_scale(), (y0..y1).log_scale(), map)?,
     }
     if let (Some(area), Paint::Scale { .. }) = (bar_area, &map.paint) {
         colour_bar(&area, &map.paint)?;
@@ -376,7 +371,8 @@ where
 
     // lines with a light halo, so they read on dark and light cells alike
     for o in &map.overlays {
-        let w = if o.bold { 3 } else { 1 };
+        // even widths on whole-pixel centres stay crisp (no half-covered pixels)
+        let w = if o.bold { 4 } else { 2 };
         chart.draw_series(std::iter::once(PathElement::new(
             o.points.clone(),
             WHITE.mix(0.7).stroke_width(w + 2),
@@ -415,10 +411,13 @@ where
     }
     // frame over the cells
     let (px, py) = chart.plotting_area().get_pixel_range();
-    chart.plotting_area().strip_coord_spec().draw(&Rectangle::new(
-        [(0, 0), (px.end - px.start - 1, py.end - py.start - 1)],
-        BLACK.stroke_width(1),
-    ))?;
+    chart
+        .plotting_area()
+        .strip_coord_spec()
+        .draw(&Rectangle::new(
+            [(0, 0), (px.end - px.start - 1, py.end - py.start - 1)],
+            BLACK.stroke_width(1),
+        ))?;
     Ok(())
 }
 
@@ -511,10 +510,13 @@ where
         Rectangle::new([(0.0, a), (1.0, b)], ramp.at(f).filled())
     }))?;
     let (px, py) = chart.plotting_area().get_pixel_range();
-    chart.plotting_area().strip_coord_spec().draw(&Rectangle::new(
-        [(0, 0), (px.end - px.start - 1, py.end - py.start - 1)],
-        BLACK.stroke_width(1),
-    ))?;
+    chart
+        .plotting_area()
+        .strip_coord_spec()
+        .draw(&Rectangle::new(
+            [(0, 0), (px.end - px.start - 1, py.end - py.start - 1)],
+            BLACK.stroke_width(1),
+        ))?;
     Ok(())
 }
 
@@ -669,12 +671,7 @@ pub fn write_loss_map(
 
 /// One iso-line level by marching squares over node values `s[i][j]` at
 /// plotted coordinates (`px[i]`, `py[j]`): segments in plotted coordinates.
-fn marching_squares(
-    px: &[f64],
-    py: &[f64],
-    s: &[Vec<f64>],
-    level: f64,
-) -> Vec<[(f64, f64); 2]> {
+fn marching_squares(px: &[f64], py: &[f64], s: &[Vec<f64>], level: f64) -> Vec<[(f64, f64); 2]> {
     let mut segs = Vec::new();
     if px.len() < 2 || py.len() < 2 {
         return segs;
