@@ -36,7 +36,7 @@ const BOLD_LEVELS: [f64; 2] = [0.64, 0.96];
 
 /// The force colour scale ends at this quantile of the cell values, so the
 /// re-contact spikes near the supports (no impact law: TARGETS; bin means
-/// up to 10⁴ N where the level is 50 N) do not wash out the map; larger
+/// of 10⁴ N and more where the level is 50 N) do not wash out the map; larger
 /// cells take the top colour and the bar says so.
 const FORCE_CLIP_QUANTILE: f64 = 0.98;
 
