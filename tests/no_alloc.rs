@@ -83,6 +83,12 @@ fn step_loop_does_not_allocate() {
         1,
     );
     assert_eq!(allocations_in_steps(&two, &[], 4000), 0, "two contacts");
+    // a mesh so small that the banded kernels take their general path
+    assert_eq!(
+        allocations_in_steps(REFERENCE, &["mesh.elements=2", "time.end=0.1"], 500),
+        0,
+        "two elements"
+    );
     assert_eq!(
         allocations_in_steps(T2_STRING, &["time.end=0.5"], 4000),
         0,

@@ -163,15 +163,15 @@ fn residual_any(
     out: &mut [f64],
     stride: usize,
 ) {
+    // row by row from the band, with bounds; no scratch vector (it runs every step)
+    let (n, p) = (m.n, m.p);
     for (i, row) in out.chunks_exact_mut(stride).enumerate() {
+        let mut acc = f[i];
+        for j in i.saturating_sub(p)..=(i + p).min(n - 1) {
+            acc -= alpha_m * m.get(i, j) * a[j] + k.get(i, j) * u[j];
+        }
         row.fill(0.0);
-        row[0] = f[i];
-    }
-    let mut col = vec![0.0; m.n];
-    m.mul_acc(a, -alpha_m, &mut col);
-    k.mul_acc(u, -1.0, &mut col);
-    for (i, c) in col.iter().enumerate() {
-        out[i * stride] += c;
+        row[0] = acc;
     }
 }
 
