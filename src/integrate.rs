@@ -5,15 +5,17 @@
 //! effective matrix `A = (1 − α_m)M + (1 − α_f)γΔt C + (1 − α_f)βΔt²K` is the
 //! banded beam block, factored once per run, plus one scalar per mass. Each
 //! step is the spelled-out step of MODEL §5: predictors, the free right-hand
-//! side F, one fused banded sweep for `A⁻¹F` and `A⁻¹r_f` of every contact,
-//! the free gaps and the Delassus matrix W, the contact law, the update. The
-//! step allocates nothing and does O(n) work.
+//! side F, one fused banded sweep for `A⁻¹F` and `A⁻¹r_f` of every contact
+//! (F is computed inside its forward pass), the free gaps and the Delassus
+//! matrix W, the contact law, the update (which also forms the next step's
+//! predictors). The step allocates nothing and does O(n) work in two passes
+//! over memory plus the backward sweep.
 
 #![allow(non_snake_case)]
 
 use crate::contact::{ContactLaw, law_for};
 use crate::error::{Error, Result};
-use crate::model::banded::{BandedLdlt, SymBand, residual_into};
+use crate::model::banded::{BandedLdlt, Residual, SymBand};
 use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::{CarrierKind, CarrierProps, Placement, Resolved};
 
@@ -443,20 +445,21 @@ impl Integrator {
         // the predictors d̃ and u = (1 − α_f) d̃ + α_f d_n were computed by the
         // previous step's update pass (or by `predict` at t = 0)
         let c_pred = (0.5 - beta) * dt * dt;
-        // F = f(t_f) − α_m M a_n − K u into column 0, other columns zeroed
-        residual_into(
-            &self.beam.load,
-            &self.beam.mass,
-            &self.a,
-            am,
-            &self.beam.stiffness,
-            &self.u,
-            &mut self.rhs,
-            k,
-        );
+        // B: the moving forces in column 0 and the contact directions s_c r_f,c
+        // in columns 1 + c, zero elsewhere
+        self.rhs.fill(0.0);
         self.scatter_loads(k);
-        // a★ = A⁻¹F and z_c = A⁻¹(s_c r_f,c) in one sweep
-        self.ldlt.solve_many(&mut self.rhs, k);
+        // a★ = A⁻¹(F + moving forces) and z_c = A⁻¹(s_c r_f,c) in one sweep,
+        // F = f(t_f) − α_m M a_n − K u computed inside its forward pass
+        let residual = Residual {
+            f: &self.beam.load,
+            m: &self.beam.mass,
+            a: &self.a,
+            alpha_m: am,
+            k: &self.beam.stiffness,
+            u: &self.u,
+        };
+        self.ldlt.solve_residual(&mut self.rhs, k, &residual);
 
         // free mass accelerations and free gaps
         let gap_coef = match self.placement {
