@@ -154,7 +154,16 @@ pub struct Integrator {
     a: Vec<f64>,
     // scratch, allocated once
     d_pred: Vec<f64>,
-    u: Vec<f64>,
+    /// ũ = u − α′ c_k a_n with u = (1 − α_f) d̃ + α_f d_n (see `step`), m.
+    u_shift: Vec<f64>,
+    /// h = f − α′ A a_n, N (see `step`).
+    h: Vec<f64>,
+    /// Column 0 of the last step's right-hand side before the solve, N.
+    b0: Vec<f64>,
+    /// α′ = α_m/(1 − α_m).
+    alpha_p: f64,
+    /// c_k = (1 − α_f)βΔt², s².
+    c_k: f64,
     /// n × (1 + nc) right-hand sides, row-major: column 0 the free step,
     /// column 1 + c the direction s_c r_b of contact c.
     rhs: Vec<f64>,
@@ -271,7 +280,11 @@ impl Integrator {
             v: vec![0.0; n],
             a: vec![0.0; n],
             d_pred: vec![0.0; n],
-            u: vec![0.0; n],
+            u_shift: vec![0.0; n],
+            h: vec![0.0; n],
+            b0: vec![0.0; n],
+            alpha_p: ga.alpha_m / (1.0 - ga.alpha_m),
+            c_k,
             rhs: vec![0.0; n * k],
             g_free: vec![0.0; nc],
             w: vec![0.0; nc * nc],
@@ -365,18 +378,29 @@ impl Integrator {
     }
 
     /// Predictors of the next step from the current state (MODEL §5):
-    /// d̃ = d + Δt v + (½ − β)Δt² a and u = (1 − α_f) d̃ + α_f d. `step` keeps
-    /// them current in its update pass; this computes them at t = 0.
+    /// d̃ = d + Δt v + (½ − β)Δt² a, u = (1 − α_f) d̃ + α_f d, and the
+    /// residual's operands ũ and h (see `step`). `step` keeps them current in
+    /// its update pass; this computes them at t = 0, with A a₀ formed
+    /// explicitly (the only time it is: afterwards A a_n is the last solve's
+    /// right-hand side).
     fn predict(&mut self) {
         let GenAlpha {
-            alpha_f: af, beta, ..
+            alpha_m: am,
+            alpha_f: af,
+            beta,
+            ..
         } = self.ga;
         let dt = self.dt;
         let c_pred = (0.5 - beta) * dt * dt;
+        let mut a_a = vec![0.0; self.beam.n];
+        self.beam.mass.mul_acc(&self.a, 1.0 - am, &mut a_a);
+        self.beam.stiffness.mul_acc(&self.a, self.c_k, &mut a_a);
         for i in 0..self.beam.n {
             let dp = self.d[i] + dt * self.v[i] + c_pred * self.a[i];
             self.d_pred[i] = dp;
-            self.u[i] = (1.0 - af) * dp + af * self.d[i];
+            let u = (1.0 - af) * dp + af * self.d[i];
+            self.u_shift[i] = u - self.alpha_p * self.c_k * self.a[i];
+            self.h[i] = self.beam.load[i] - self.alpha_p * a_a[i];
         }
     }
 
@@ -450,16 +474,19 @@ impl Integrator {
         self.rhs.fill(0.0);
         self.scatter_loads(k);
         // a★ = A⁻¹(F + moving forces) and z_c = A⁻¹(s_c r_f,c) in one sweep,
-        // F = f(t_f) − α_m M a_n − K u computed inside its forward pass
+        // F computed inside its forward pass. F = f − α_m M a_n − K u takes
+        // two band products; with M a_n = (A a_n − c_k K a_n)/(1 − α_m) it is
+        //   F = (f − α′ A a_n) − K (u − α′ c_k a_n) = h − K ũ,  α′ = α_m/(1 − α_m),
+        // one product, because A a_n needs none: it is the right-hand side the
+        // last step solved, b₀ + Σ λ_c s_c r_f,c (the same up to that solve's
+        // round-off, which is of the size of the round-off of M a_n itself).
         let residual = Residual {
-            f: &self.beam.load,
-            m: &self.beam.mass,
-            a: &self.a,
-            alpha_m: am,
+            h: &self.h,
             k: &self.beam.stiffness,
-            u: &self.u,
+            u: &self.u_shift,
         };
-        self.ldlt.solve_residual(&mut self.rhs, k, &residual);
+        self.ldlt
+            .solve_residual(&mut self.rhs, k, &residual, &mut self.b0);
 
         // free mass accelerations and free gaps
         let gap_coef = match self.placement {
@@ -507,26 +534,66 @@ impl Integrator {
         })?;
 
         // update: a = a★ + Σ λ_c z_c; d = d̃ + βΔt² a; v = v_n + Δt((1−γ)a_n + γa),
-        // and in the same pass the next step's predictors (one sweep over memory)
+        // and in the same pass the next step's predictors and residual
+        // operands ũ and h (one sweep over memory)
         let lambda = &self.lambda[..];
-        let rows = self.rhs.chunks_exact(k);
-        let state = self
-            .d
-            .iter_mut()
-            .zip(self.v.iter_mut())
-            .zip(self.a.iter_mut());
-        let pred = self.d_pred.iter_mut().zip(self.u.iter_mut());
-        for ((row, ((d, v), a)), (dp, u)) in rows.zip(state).zip(pred) {
-            let mut acc = row[0];
-            for (l, z) in lambda.iter().zip(&row[1..]) {
-                acc += l * z;
+        let alpha_p = self.alpha_p;
+        let coefs = UpdateCoefs {
+            dt,
+            gamma,
+            bdt2,
+            c_pred,
+            alpha_f: af,
+            c_shift: alpha_p * self.c_k,
+            alpha_p,
+        };
+        let rows = Rows {
+            d: &mut self.d,
+            v: &mut self.v,
+            a: &mut self.a,
+            d_pred: &mut self.d_pred,
+            u_shift: &mut self.u_shift,
+            h: &mut self.h,
+            b0: &self.b0,
+            f: &self.beam.load,
+        };
+        // a = a★ + Σ λ_c z_c per row; k is a compile-time constant for up to
+        // three contacts, so the pass vectorizes across rows
+        macro_rules! combine {
+            ($($k:literal),*) => {
+                match k {
+                    $($k => {
+                        let lk: [f64; $k] =
+                            core::array::from_fn(|c| if c == 0 { 1.0 } else { lambda[c - 1] });
+                        let (chunks, _) = self.rhs.as_chunks::<$k>();
+                        // (the range 1..1 of one column is empty on purpose)
+                        #[allow(clippy::reversed_empty_ranges)]
+                        let combine = |row: &[f64; $k]| {
+                            let mut acc = row[0];
+                            for c in 1..$k {
+                                acc += lk[c] * row[c];
+                            }
+                            acc
+                        };
+                        rows.update(chunks.iter().map(combine), coefs)
+                    })*
+                    _ => rows.update(self.rhs.chunks_exact(k).map(|row| {
+                        let mut acc = row[0];
+                        for (l, z) in lambda.iter().zip(&row[1..]) {
+                            acc += l * z;
+                        }
+                        acc
+                    }), coefs),
+                }
+            };
+        }
+        combine!(1, 2, 3, 4);
+        // A a_{n+1} = b₀ + Σ λ_c s_c r_f,c: the contact columns' part of h
+        for c in &self.carriers {
+            if let Some(j) = c.contact {
+                c.pv_f
+                    .scatter(-alpha_p * lambda[j] * c.s, &mut self.h, 1, 0);
             }
-            *v += dt * ((1.0 - gamma) * *a + gamma * acc);
-            *d = *dp + bdt2 * acc;
-            *a = acc;
-            let next = *d + dt * *v + c_pred * acc;
-            *dp = next;
-            *u = (1.0 - af) * next + af * *d;
         }
         for c in self.carriers.iter_mut() {
             let (Some(j), Some(m)) = (c.contact, c.mass.as_mut()) else {
@@ -794,5 +861,59 @@ mod tests {
         assert_eq!((ga.alpha_m, ga.alpha_f), (-1.0, 0.0));
         assert_eq!(ga.gamma, 1.5);
         assert_eq!(ga.beta, 1.0);
+    }
+}
+
+/// The constants of the update pass (MODEL §5, update and predictors).
+#[derive(Debug, Clone, Copy)]
+struct UpdateCoefs {
+    dt: f64,
+    gamma: f64,
+    /// βΔt².
+    bdt2: f64,
+    /// (½ − β)Δt².
+    c_pred: f64,
+    alpha_f: f64,
+    /// α′(1 − α_f)βΔt², the shift of ũ.
+    c_shift: f64,
+    /// α′ = α_m/(1 − α_m).
+    alpha_p: f64,
+}
+
+/// The beam rows the update pass reads and writes.
+struct Rows<'a> {
+    d: &'a mut [f64],
+    v: &'a mut [f64],
+    a: &'a mut [f64],
+    d_pred: &'a mut [f64],
+    u_shift: &'a mut [f64],
+    h: &'a mut [f64],
+    b0: &'a [f64],
+    f: &'a [f64],
+}
+
+impl Rows<'_> {
+    /// One pass: from each row's new acceleration a, d = d̃ + βΔt² a,
+    /// v = v_n + Δt((1−γ)a_n + γa), then the next step's d̃, ũ and h (the
+    /// residual's operands, see `Integrator::step`). Element-wise, so it
+    /// vectorizes when `acc` does.
+    #[inline(always)]
+    fn update(self, acc: impl Iterator<Item = f64>, c: UpdateCoefs) {
+        let state = self
+            .d
+            .iter_mut()
+            .zip(self.v.iter_mut())
+            .zip(self.a.iter_mut());
+        let pred = self.d_pred.iter_mut().zip(self.u_shift.iter_mut());
+        let load = self.h.iter_mut().zip(self.b0).zip(self.f);
+        for (((acc, ((d, v), a)), (dp, u)), ((h, b0), f)) in acc.zip(state).zip(pred).zip(load) {
+            *v += c.dt * ((1.0 - c.gamma) * *a + c.gamma * acc);
+            *d = *dp + c.bdt2 * acc;
+            *a = acc;
+            let next = *d + c.dt * *v + c.c_pred * acc;
+            *dp = next;
+            *u = (1.0 - c.alpha_f) * next + c.alpha_f * *d - c.c_shift * acc;
+            *h = f - c.alpha_p * b0;
+        }
     }
 }

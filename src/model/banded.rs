@@ -131,162 +131,76 @@ impl SymBand {
     }
 }
 
-/// The generalized-α residual in one pass (MODEL §5, step 3):
-/// `out[i·stride] = f_i − α_m (M a)_i − (K u)_i` and the other `stride − 1`
-/// columns of row i zeroed, ready for the contact directions. Fusing the two
-/// products, the load and the copy into the interleaved right-hand side saves
-/// three passes over memory per step.
-#[allow(clippy::too_many_arguments)]
-pub fn residual_into(
-    f: &[f64],
-    m: &SymBand,
-    a: &[f64],
-    alpha_m: f64,
-    k: &SymBand,
-    u: &[f64],
-    out: &mut [f64],
-    stride: usize,
-) {
-    assert_eq!((m.n, m.p), (k.n, k.p));
-    match m.p {
-        1 => residual_p::<1>(f, m, a, alpha_m, k, u, out, stride),
-        3 => residual_p::<3>(f, m, a, alpha_m, k, u, out, stride),
-        _ => residual_any(f, m, a, alpha_m, k, u, out, stride),
-    }
-}
-
-#[allow(clippy::too_many_arguments)]
-fn residual_any(
-    f: &[f64],
-    m: &SymBand,
-    a: &[f64],
-    alpha_m: f64,
-    k: &SymBand,
-    u: &[f64],
-    out: &mut [f64],
-    stride: usize,
-) {
-    // row by row from the band, with bounds; no scratch vector (it runs every step)
-    let (n, p) = (m.n, m.p);
-    for (i, row) in out.chunks_exact_mut(stride).enumerate() {
-        let mut acc = f[i];
-        for j in i.saturating_sub(p)..=(i + p).min(n - 1) {
-            acc -= alpha_m * m.get(i, j) * a[j] + k.get(i, j) * u[j];
-        }
-        row.fill(0.0);
-        row[0] = acc;
-    }
-}
-
-#[allow(clippy::too_many_arguments)]
-fn residual_p<const P: usize>(
-    f: &[f64],
-    m: &SymBand,
-    a: &[f64],
-    alpha_m: f64,
-    k: &SymBand,
-    u: &[f64],
-    out: &mut [f64],
-    stride: usize,
-) {
-    let n = m.n;
-    if n <= 2 * P {
-        return residual_any(f, m, a, alpha_m, k, u, out, stride);
-    }
-    let w = 2 * P + 1;
-    let edge = |i: usize| -> f64 {
-        let lo = i.saturating_sub(P);
-        let hi = (i + P).min(n - 1);
-        let mut acc = f[i];
-        for j in lo..=hi {
-            let o = i * w + j + P - i;
-            acc -= alpha_m * m.data[o] * a[j] + k.data[o] * u[j];
-        }
-        acc
-    };
-    for i in (0..P).chain(n - P..n) {
-        let row = &mut out[i * stride..(i + 1) * stride];
-        row.fill(0.0);
-        row[0] = edge(i);
-    }
-    for i in P..n - P {
-        let mr: &[f64] = &m.data[i * w..(i + 1) * w];
-        let kr: &[f64] = &k.data[i * w..(i + 1) * w];
-        let aa = &a[i - P..i + P + 1];
-        let uu = &u[i - P..i + P + 1];
-        let (mut sm, mut sk) = (0.0, 0.0);
-        for j in 0..w {
-            sm += mr[j] * aa[j];
-            sk += kr[j] * uu[j];
-        }
-        let row = &mut out[i * stride..(i + 1) * stride];
-        row[0] = f[i] - alpha_m * sm - sk;
-        for v in &mut row[1..] {
-            *v = 0.0;
-        }
-    }
-}
-
-/// The generalized-α residual `F = f − α_m M a − K u` (MODEL §5, step 3),
-/// as the operands of [`BandedLdlt::solve_residual`], which computes it row by
-/// row inside the forward sweep instead of in a pass of its own.
+/// The generalized-α residual in the form the step forms it, `F = h − K ũ`
+/// (MODEL §5, step 3, with α_m M a_n eliminated through A a_n; the algebra is
+/// in `Integrator::step`): one band product per step where `f − α_m M a − K u`
+/// takes two. [`BandedLdlt::solve_residual`] computes it row by row inside
+/// its forward sweep; [`residual_into`] is the same as a pass of its own.
 #[derive(Debug, Clone, Copy)]
 pub struct Residual<'a> {
-    /// Constant load f, N.
-    pub f: &'a [f64],
-    /// Mass matrix M.
-    pub m: &'a SymBand,
-    /// Accelerations a_n.
-    pub a: &'a [f64],
-    /// α_m.
-    pub alpha_m: f64,
+    /// h = f − α′ A a_n, N (α′ = α_m/(1 − α_m)).
+    pub h: &'a [f64],
     /// Stiffness matrix K.
     pub k: &'a SymBand,
-    /// u = (1 − α_f) d̃ + α_f d_n.
+    /// ũ = u − α′(1 − α_f)βΔt² a_n, m.
     pub u: &'a [f64],
 }
 
 impl Residual<'_> {
     /// Row i with bounds (edge rows and small meshes).
     fn row_any(&self, i: usize) -> f64 {
-        let (n, p) = (self.m.n, self.m.p);
-        let mut acc = self.f[i];
+        let (n, p) = (self.k.n, self.k.p);
+        let mut acc = self.h[i];
         for j in i.saturating_sub(p)..=(i + p).min(n - 1) {
-            acc -= self.alpha_m * self.m.get(i, j) * self.a[j] + self.k.get(i, j) * self.u[j];
+            acc -= self.k.get(i, j) * self.u[j];
         }
         acc
     }
 
-    /// Add F to column 0 of the row-major `x` (k columns), row by row with
-    /// the operations of `residual_into` (for the paths without a fused kernel).
-    fn add_to(&self, x: &mut [f64], k: usize) {
-        let n = self.m.n;
-        for (i, row) in x.chunks_exact_mut(k).enumerate() {
-            let interior = |p: usize| n > 2 * p && i >= p && i < n - p;
-            row[0] += match self.m.p {
-                1 if interior(1) => self.row_interior::<1>(i),
-                3 if interior(3) => self.row_interior::<3>(i),
-                _ => self.row_any(i),
-            };
-        }
-    }
-
     /// Row i for P ≤ i < n − P: the full band, no bounds in the inner loop.
-    /// The same operations in the same order as `residual_p` (so the fused
-    /// and the separate paths agree bit for bit).
     #[inline(always)]
     fn row_interior<const P: usize>(&self, i: usize) -> f64 {
         let w = 2 * P + 1;
-        let mr = &self.m.data[i * w..(i + 1) * w];
-        let kr = &self.k.data[i * w..(i + 1) * w];
-        let aa = &self.a[i - P..i + P + 1];
-        let uu = &self.u[i - P..i + P + 1];
-        let (mut sm, mut sk) = (0.0, 0.0);
-        for j in 0..w {
-            sm += mr[j] * aa[j];
-            sk += kr[j] * uu[j];
+        self.h[i] - Self::band_sum::<P>(&self.k.data[i * w..(i + 1) * w], &self.u[i - P..i + P + 1])
+    }
+
+    /// Σ_j K_ij ũ_j over one full band row (2P + 1 entries), summed in two
+    /// lanes (even and odd j) that compile to one SIMD multiply–add per pair:
+    /// half the instructions of a left-to-right sum, and half its depth,
+    /// which is what the CPU must overlap with the sweep's chain.
+    #[inline(always)]
+    fn band_sum<const P: usize>(kr: &[f64], uu: &[f64]) -> f64 {
+        let (kr, uu) = (&kr[..2 * P + 1], &uu[..2 * P + 1]);
+        let mut lane = [0.0; 2];
+        for q in 0..P {
+            for l in 0..2 {
+                lane[l] += kr[2 * q + l] * uu[2 * q + l];
+            }
         }
-        self.f[i] - self.alpha_m * sm - sk
+        (lane[0] + kr[2 * P] * uu[2 * P]) + lane[1]
+    }
+
+    /// Row i, by the interior kernel where the fused sweep uses it (so the
+    /// separate and the fused paths agree bit for bit).
+    fn row(&self, i: usize) -> f64 {
+        let n = self.k.n;
+        let interior = |p: usize| n > 2 * p && i >= p && i < n - p;
+        match self.k.p {
+            1 if interior(1) => self.row_interior::<1>(i),
+            3 if interior(3) => self.row_interior::<3>(i),
+            _ => self.row_any(i),
+        }
+    }
+}
+
+/// The residual as a pass of its own: `out[i·stride] = F_i` and the other
+/// `stride − 1` columns of row i zeroed (the reference for the fused sweep,
+/// and the "before" of `examples/step_profile.rs`).
+pub fn residual_into(r: &Residual, out: &mut [f64], stride: usize) {
+    assert_eq!(out.len(), r.k.n * stride, "output has the wrong length");
+    for (i, row) in out.chunks_exact_mut(stride).enumerate() {
+        row.fill(0.0);
+        row[0] = r.row(i);
     }
 }
 
@@ -368,16 +282,17 @@ impl BandedLdlt {
     }
 
     /// Solve A X = B + F e₀ᵀ in place: as [`BandedLdlt::solve_many`], with
-    /// the residual F of `r` added to column 0 of B. The residual is computed
-    /// inside the forward sweep: that sweep is bound by its dependency chain
-    /// (row i waits for row i − 1), which leaves the CPU's arithmetic units
-    /// mostly idle, and the residual's independent row sums fill them — the
-    /// pass over M, K, a and u that the residual would cost on its own is
-    /// hidden behind the chain.
-    pub fn solve_residual(&self, x: &mut [f64], k: usize, r: &Residual) {
-        assert_eq!((r.m.n, r.m.p), (self.n, self.p));
+    /// the residual F of `r` added to column 0 of B; `b0` receives that
+    /// column (B e₀ + F, before the solve), from which the integrator forms
+    /// the next step's A a_{n+1}. The residual is computed inside the forward
+    /// sweep: that sweep is bound by its dependency chain (row i waits for
+    /// row i − 1), which leaves the CPU's arithmetic units mostly idle, and
+    /// the residual's independent row sums fill them, so most of the pass
+    /// over K and ũ that the residual costs on its own is hidden.
+    pub fn solve_residual(&self, x: &mut [f64], k: usize, r: &Residual, b0: &mut [f64]) {
         assert_eq!((r.k.n, r.k.p), (self.n, self.p));
-        self.dispatch(x, k, Some(r))
+        assert_eq!(b0.len(), self.n, "b0 has the wrong length");
+        self.dispatch(x, k, Some((r, b0)))
     }
 
     /// Solve A x = b in place for one right-hand side.
@@ -385,15 +300,18 @@ impl BandedLdlt {
         self.solve_many(x, 1)
     }
 
-    fn dispatch(&self, x: &mut [f64], k: usize, r: Option<&Residual>) {
+    fn dispatch(&self, x: &mut [f64], k: usize, r: Option<(&Residual, &mut [f64])>) {
         assert_eq!(x.len(), self.n * k, "right-hand side has the wrong length");
         macro_rules! dispatch {
             ($($p:literal, $k:literal);*) => {
                 match (self.p, k) {
                     $(($p, $k) => self.solve_kernel::<$p, $k>(x, r),)*
                     _ => {
-                        if let Some(r) = r {
-                            r.add_to(x, k);
+                        if let Some((r, b0)) = r {
+                            for (i, row) in x.chunks_exact_mut(k).enumerate() {
+                                row[0] += r.row(i);
+                                b0[i] = row[0];
+                            }
                         }
                         self.solve_generic(x, k)
                     }
@@ -420,22 +338,24 @@ impl BandedLdlt {
         acc
     }
 
-    fn solve_kernel<const P: usize, const K: usize>(&self, x: &mut [f64], r: Option<&Residual>) {
+    fn solve_kernel<const P: usize, const K: usize>(
+        &self,
+        x: &mut [f64],
+        r: Option<(&Residual, &mut [f64])>,
+    ) {
         let n = self.n;
         let (x, _) = x.as_chunks_mut::<K>();
-        // rows whose residual is computed inside the sweep: P ..= n − P − 1
+        // rows whose residual is computed inside the sweep: P .. n − P; the
+        // others (the edges, or all rows of a tiny mesh) get theirs here
+        let inside = if n > 2 * P { P..n - P } else { 0..0 };
         let fused = match r {
-            Some(r) if n > 2 * P => {
-                for i in (0..P).chain(n - P..n) {
+            Some((r, b0)) => {
+                let edges = (0..inside.start.min(n)).chain(inside.end.max(inside.start)..n);
+                for i in edges.filter(|&i| !inside.contains(&i)) {
                     x[i][0] += r.row_any(i);
+                    b0[i] = x[i][0];
                 }
-                Some((r, n - P))
-            }
-            Some(r) => {
-                for (i, xi) in x.iter_mut().enumerate() {
-                    xi[0] += r.row_any(i);
-                }
-                None
+                (!inside.is_empty()).then_some((r, b0))
             }
             None => None,
         };
@@ -454,21 +374,30 @@ impl BandedLdlt {
         // The sliding window of the last P solved rows lives in registers: were
         // it re-read from `x`, every row would wait on a store-to-load
         // forwarding of the previous row (measured: the sweeps ran 2.2× slower).
+        // The loops run on zipped iterators so that no row pays bounds checks
+        // (the fused row is ≈ 40 instructions; checks and reloads had made it 72).
         if n >= P {
             let mut win: [[f64; K]; P] = core::array::from_fn(|j| x[j]);
-            let split = fused.map_or(P, |(_, end)| end);
-            if let Some((r, _)) = fused {
-                for i in P..split {
-                    let mut acc = x[i];
-                    acc[0] += r.row_interior::<P>(i);
-                    let acc = Self::eliminate(&self.rows[i * P..(i + 1) * P], &win, acc);
-                    x[i] = acc;
+            let split = if fused.is_some() { inside.end } else { P };
+            if let Some((r, b0)) = fused {
+                let w = 2 * P + 1;
+                let rows = self.rows[P * P..split * P].chunks_exact(P);
+                let kband = r.k.data[P * w..split * w].chunks_exact(w);
+                let operands = kband.zip(r.u.windows(w)).zip(&r.h[P..split]);
+                let out = x[P..split].iter_mut().zip(&mut b0[P..split]);
+                for ((xi, b), (row, ((kr, uu), h))) in out.zip(rows.zip(operands)) {
+                    let mut acc = *xi;
+                    acc[0] += h - Residual::band_sum::<P>(kr, uu);
+                    *b = acc[0];
+                    let acc = Self::eliminate(row, &win, acc);
+                    *xi = acc;
                     win = core::array::from_fn(|j| if j + 1 < P { win[j + 1] } else { acc });
                 }
             }
-            for i in split.max(P)..n {
-                let acc = Self::eliminate(&self.rows[i * P..(i + 1) * P], &win, x[i]);
-                x[i] = acc;
+            let rows = self.rows[split * P..].chunks_exact(P);
+            for (xi, row) in x[split..].iter_mut().zip(rows) {
+                let acc = Self::eliminate(row, &win, *xi);
+                *xi = acc;
                 win = core::array::from_fn(|j| if j + 1 < P { win[j + 1] } else { acc });
             }
         }
@@ -491,10 +420,13 @@ impl BandedLdlt {
         if n >= P {
             // win[k] = x_{i+1+k}; farthest row first, x_{i+1} last (as forward)
             let mut win: [[f64; K]; P] = core::array::from_fn(|j| x[tail + j]);
-            for i in (0..tail).rev() {
-                let col: &[f64; P] = self.cols[i * P..(i + 1) * P].try_into().unwrap();
-                let d = self.dinv[i];
-                let mut acc = x[i];
+            let cols = self.cols[..tail * P].chunks_exact(P).rev();
+            let rows = x[..tail]
+                .iter_mut()
+                .rev()
+                .zip(self.dinv[..tail].iter().rev());
+            for ((xi, &d), col) in rows.zip(cols) {
+                let mut acc = *xi;
                 for c in 0..K {
                     acc[c] *= d;
                 }
@@ -503,7 +435,7 @@ impl BandedLdlt {
                         acc[c] -= col[kk] * win[kk][c];
                     }
                 }
-                x[i] = acc;
+                *xi = acc;
                 win = core::array::from_fn(|j| if j == 0 { acc } else { win[j - 1] });
             }
         }
@@ -608,18 +540,23 @@ mod tests {
     }
 
     #[test]
-    fn fused_residual_matches_two_products() {
+    fn residual_is_h_minus_k_u() {
         for &(n, p, stride) in &[(4, 3, 2), (30, 3, 3), (30, 1, 1), (12, 2, 2)] {
-            let m = sample(n, p);
             let k = sample(n, p).combine(2.0, &sample(n, p), -0.5);
-            let f: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
-            let a: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).sin()).collect();
+            let h: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
             let u: Vec<f64> = (0..n).map(|i| 1.0 / (1.0 + i as f64)).collect();
-            let mut expect = f.clone();
-            m.mul_acc(&a, -0.4, &mut expect);
+            let mut expect = h.clone();
             k.mul_acc(&u, -1.0, &mut expect);
             let mut out = vec![7.0; n * stride];
-            residual_into(&f, &m, &a, 0.4, &k, &u, &mut out, stride);
+            residual_into(
+                &Residual {
+                    h: &h,
+                    k: &k,
+                    u: &u,
+                },
+                &mut out,
+                stride,
+            );
             for i in 0..n {
                 assert!((out[i * stride] - expect[i]).abs() < 1e-13 * (1.0 + expect[i].abs()));
                 assert!(
@@ -634,7 +571,7 @@ mod tests {
     #[test]
     fn fused_residual_solve_equals_residual_then_solve_bit_for_bit() {
         // p = 3 and 1 take the fused kernels (interior rows inside the sweep),
-        // p = 2 the generic path; n ≤ 2p has no interior rows
+        // p = 2 and k = 5 the generic path; n ≤ 2p has no interior rows
         for &(n, p) in &[
             (3, 3),
             (6, 3),
@@ -647,11 +584,14 @@ mod tests {
         ] {
             let a = sample(n, p);
             let fac = BandedLdlt::factor(&a).unwrap();
-            let m = sample(n, p);
             let kmat = sample(n, p).combine(2.0, &sample(n, p), -0.5);
-            let f: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
-            let acc: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).sin()).collect();
+            let h: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
             let u: Vec<f64> = (0..n).map(|i| 1.0 / (1.0 + i as f64)).collect();
+            let r = Residual {
+                h: &h,
+                k: &kmat,
+                u: &u,
+            };
             for k in 1..=5 {
                 // loads scattered into every column, as `Integrator::step` does
                 let scattered: Vec<f64> = (0..n * k)
@@ -664,22 +604,17 @@ mod tests {
                     })
                     .collect();
                 let mut separate = vec![0.0; n * k];
-                residual_into(&f, &m, &acc, 0.4, &kmat, &u, &mut separate, k);
+                residual_into(&r, &mut separate, k);
                 for (x, s) in separate.iter_mut().zip(&scattered) {
                     *x += s;
                 }
+                let b0_separate: Vec<f64> = separate.iter().step_by(k).copied().collect();
                 fac.solve_many(&mut separate, k);
                 let mut fused = scattered.clone();
-                let r = Residual {
-                    f: &f,
-                    m: &m,
-                    a: &acc,
-                    alpha_m: 0.4,
-                    k: &kmat,
-                    u: &u,
-                };
-                fac.solve_residual(&mut fused, k, &r);
+                let mut b0 = vec![f64::NAN; n];
+                fac.solve_residual(&mut fused, k, &r, &mut b0);
                 assert_eq!(fused, separate, "n={n} p={p} k={k}");
+                assert_eq!(b0, b0_separate, "n={n} p={p} k={k}");
             }
         }
     }
