@@ -96,6 +96,12 @@ fn main() {
         fac.solve_many(&mut x, k);
         black_box(&x);
     }) - copy;
+    let mut x1 = vec![0.0; n];
+    let sweeps_one = fastest(blocks, &mut || {
+        x1.copy_from_slice(&src[..n]);
+        fac.solve_many(&mut x1, 1);
+        black_box(&x1);
+    }) - copy / 2.0;
     let residual = fastest(blocks, &mut || {
         residual_into(&r, &mut x, k);
         black_box(&x);
@@ -131,6 +137,7 @@ fn main() {
         "chain floor of a step: 2(t_mul + t_add)·n",
         2.0 * (t_mul + t_add) * n as f64,
     );
+    row("two sweeps, k = 1 (no contact)", sweeps_one);
     row("two sweeps, k = 2", sweeps);
     row("residual as its own pass", residual);
     row("residual fused into the sweeps", fused);
