@@ -72,6 +72,19 @@ pub enum Error {
         source: std::io::Error,
     },
 
+    /// An accuracy-targeted run (`taut run --tolerance`) that cannot be made
+    /// honestly: the quantity does not converge on the pilot runs, or the
+    /// resolution it needs is beyond the cost limit.
+    #[error("--tolerance {tolerance:e} on --quantity {quantity}: {reason}")]
+    Tolerance {
+        /// The quantity the tolerance is on (`force`, `force_raw`, …).
+        quantity: String,
+        /// The requested tolerance.
+        tolerance: f64,
+        /// What was measured and what to do instead.
+        reason: String,
+    },
+
     /// Writing an output (plot, JSON) failed.
     #[error("cannot write output {path}: {reason}")]
     Output {

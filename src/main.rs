@@ -37,6 +37,15 @@ enum Command {
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
+        /// Choose mesh and Δt from measured convergence so the error of
+        /// --quantity is at most TOL (relative; absolute for loss_fraction),
+        /// and print an estimated error next to every result (docs/accuracy.md).
+        #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+        tolerance: Option<String>,
+        /// What --tolerance is on: force (0–20 Hz contact force), force_raw,
+        /// loss_fraction or displacement.
+        #[arg(long, value_name = "Q", requires = "tolerance")]
+        quantity: Option<String>,
     },
     /// Refine mesh, step or both and report errors, observed orders and GCI
     /// (converge.csv, converge.json, converge.svg).
@@ -178,6 +187,16 @@ fn main() -> ExitCode {
             set,
             out,
             quiet,
+            tolerance: Some(tol),
+            quantity,
+        } => cmd_run_tolerance(scene, set, out, quiet, &tol, quantity.as_deref()),
+        Command::Run {
+            scene,
+            set,
+            out,
+            quiet,
+            tolerance: None,
+            ..
         } => cmd_run(scene, set, out, quiet),
         Command::Replay { problem, max_iter } => cmd_replay(&problem, max_iter),
         Command::Sweep {
@@ -293,7 +312,32 @@ fn cmd_run(
     bar.finish_and_clear();
     let output = output.map_err(|e| save_failure(&dir, e))?;
     let summary = write_run(&dir, &sc, &output)?;
-    print_summary(&scene, &dir, &summary);
+    print_summary(&scene, &dir, &summary, None);
+    Ok(())
+}
+
+/// `taut run --tolerance`: pilots, model, the chosen run, estimates.
+fn cmd_run_tolerance(
+    scene: PathBuf,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    quiet: bool,
+    tolerance: &str,
+    quantity: Option<&str>,
+) -> taut::Result<()> {
+    use taut::study::tolerance::{Quantity, parse_tolerance, tolerance_run};
+    let quantity: Quantity = quantity.unwrap_or("force").parse()?;
+    let tol = parse_tolerance(tolerance)?;
+    let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
+    let bar = progress_bar(6, "runs", quiet);
+    let result = tolerance_run(&text, &set, quantity, tol, &mut |done, _| {
+        bar.set_position(done as u64)
+    });
+    bar.finish_and_clear();
+    let r = result.map_err(|e| save_failure(&dir, e))?;
+    let summary = taut::report::write_tolerant_run(&dir, &r)?;
+    print_summary(&scene, &dir, &summary, Some(&r.accuracy));
     Ok(())
 }
 
@@ -557,9 +601,19 @@ fn print_study(kind: &str, scene: &Path, table: &str, dir: &Path, files: &str) {
     println!("  wrote    {}/{{{files}}}", dir.display());
 }
 
-fn print_summary(scene: &std::path::Path, dir: &std::path::Path, s: &Summary) {
+/// The run's one-screen summary; with `accuracy` (a `--tolerance` run) the
+/// choice of resolution first and an estimated error beside every result.
+fn print_summary(
+    scene: &std::path::Path,
+    dir: &std::path::Path,
+    s: &Summary,
+    accuracy: Option<&taut::study::tolerance::Accuracy>,
+) {
     let d = &s.derived;
     println!("taut {} — {}", s.taut_version, scene.display());
+    if let Some(a) = accuracy {
+        print!("{}", taut::report::accuracy_header(a));
+    }
     println!(
         "  beam     L = {} m, ρA = {:.4} kg/m, EI = {:.4e} N·m², T = {:.4e} N, c = {:.2} m/s",
         s.scene.beam.length,
@@ -576,6 +630,11 @@ fn print_summary(scene: &std::path::Path, dir: &std::path::Path, s: &Summary) {
         s.scene.mesh.elements, d.elements, d.element_length, d.dofs, d.dt, d.steps, d.end_time
     );
     for (i, c) in s.carriers.iter().enumerate() {
+        if let Some(a) = accuracy {
+            println!("  carrier {i} (± estimated error at this N and Δt):");
+            print!("{}", taut::report::result_lines(a, i));
+            continue;
+        }
         let f = &c.force;
         println!(
             "  carrier {i}: force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
@@ -600,8 +659,15 @@ fn print_summary(scene: &std::path::Path, dir: &std::path::Path, s: &Summary) {
         "  time     {:.3} s wall ({rate:.3e} dof-steps/s)",
         s.wall_seconds
     );
-    println!(
-        "  wrote    {}/{{history.csv, summary.json, force.svg}}",
-        dir.display()
-    );
+    if accuracy.is_some() {
+        println!(
+            "  wrote    {}/{{history.csv, summary.json, force.svg, accuracy.csv}}",
+            dir.display()
+        );
+    } else {
+        println!(
+            "  wrote    {}/{{history.csv, summary.json, force.svg}}",
+            dir.display()
+        );
+    }
 }

@@ -10,6 +10,7 @@ mod precision;
 mod summary;
 mod sweep;
 mod sweep_maps;
+mod tolerance;
 
 pub use compare::{COMPARE_COLUMNS, compare_table, write_compare};
 pub use converge::{CONVERGE_COLUMNS, converge_table, write_converge};
@@ -22,6 +23,9 @@ pub use sweep::write_sweep;
 pub use sweep_maps::{
     SPEED_RATIO_LEVELS, axis_label, write_force_map, write_loss_fraction_map, write_loss_map,
     write_sweep_maps,
+};
+pub use tolerance::{
+    ACCURACY_COLUMNS, accuracy_csv, accuracy_header, result_lines, write_tolerant_run,
 };
 
 use std::path::Path;

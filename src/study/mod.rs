@@ -6,3 +6,4 @@ pub mod gate;
 pub mod precision;
 pub mod reference;
 pub mod sweep;
+pub mod tolerance;

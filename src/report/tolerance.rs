@@ -1,0 +1,249 @@
+//! Outputs of an accuracy-targeted run (`taut run --tolerance`): the usual
+//! three files, `summary.json` with an `accuracy` object, `accuracy.csv`
+//! (the pilots and the chosen run), and the terminal lines that put an
+//! estimated error next to every result (formats in `docs/output.md`).
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use super::{Summary, fmt_f64, write_force_plot, write_history};
+use crate::error::{Error, Result};
+use crate::study::tolerance::{Accuracy, Estimate, LadderFit, ResultEstimate, TolerantRun};
+
+/// Column order of `accuracy.csv`.
+pub const ACCURACY_COLUMNS: [&str; 11] = [
+    "role",
+    "elements",
+    "dt",
+    "steps",
+    "dofs",
+    "dof_steps",
+    "wall_seconds",
+    "ladder_difference",
+    "estimated_error",
+    "estimated_mesh_error",
+    "estimated_step_error",
+];
+
+/// `summary.json` of an accuracy-targeted run: the ordinary summary with
+/// `accuracy` added at the top level.
+#[derive(Serialize)]
+struct WithAccuracy<'a> {
+    #[serde(flatten)]
+    summary: &'a Summary,
+    accuracy: &'a Accuracy,
+}
+
+/// Write `history.csv`, `summary.json` (with `accuracy`), `force.svg` and
+/// `accuracy.csv` into `dir` (created if missing).
+pub fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    write_history(&dir.join("history.csv"), &r.output)?;
+    let summary = Summary::new(&r.scene, &r.output);
+    super::write_json(
+        &dir.join("summary.json"),
+        &WithAccuracy {
+            summary: &summary,
+            accuracy: &r.accuracy,
+        },
+    )?;
+    write_force_plot(&dir.join("force.svg"), &r.scene, &r.output)?;
+    let csv = dir.join("accuracy.csv");
+    std::fs::write(&csv, accuracy_csv(&r.accuracy)).map_err(|e| Error::io(&csv, e))?;
+    Ok(summary)
+}
+
+fn cell(v: f64) -> String {
+    if v.is_finite() {
+        fmt_f64(v)
+    } else {
+        String::new()
+    }
+}
+
+/// `accuracy.csv`: one row per pilot, then the chosen run (`chosen`).
+pub fn accuracy_csv(a: &Accuracy) -> String {
+    let mut s = ACCURACY_COLUMNS.join(",") + "\n";
+    let mut row = |role: &str,
+                   n: usize,
+                   dt: f64,
+                   steps: usize,
+                   dof_steps: f64,
+                   wall: f64,
+                   diff: f64,
+                   e: &Estimate| {
+        let dofs = (dof_steps / steps.max(1) as f64).round();
+        s.push_str(&format!(
+            "{role},{n},{},{steps},{dofs},{},{},{},{},{},{}\n",
+            fmt_f64(dt),
+            fmt_f64(dof_steps),
+            cell(wall),
+            cell(diff),
+            cell(e.total),
+            cell(e.mesh),
+            cell(e.step)
+        ));
+    };
+    for p in &a.pilots {
+        row(
+            p.role,
+            p.elements,
+            p.dt,
+            p.steps,
+            p.dof_steps,
+            p.wall_seconds,
+            p.ladder_difference,
+            &p.estimate,
+        );
+    }
+    let wall = match a.met_by_pilot {
+        Some(role) => a
+            .pilots
+            .iter()
+            .find(|p| p.role == role)
+            .map_or(f64::NAN, |p| p.wall_seconds),
+        None => a.run_wall_seconds,
+    };
+    row(
+        "chosen",
+        a.elements,
+        a.dt,
+        a.steps,
+        a.dof_steps,
+        wall,
+        f64::NAN,
+        &a.estimated_error,
+    );
+    s
+}
+
+fn order_text(f: &LadderFit) -> String {
+    if f.status == crate::study::tolerance::LadderStatus::Exact {
+        "none (no change over the pilots)".to_string()
+    } else if f.order == f.observed_order {
+        format!("{:.2}", f.order)
+    } else if f.observed_order.is_finite() {
+        format!(
+            "{:.2} (observed {:.3}, capped at the method's)",
+            f.order, f.observed_order
+        )
+    } else {
+        format!("{:.2}", f.order)
+    }
+}
+
+/// The terminal lines before the usual summary: what was asked, the pilots,
+/// the model and the choice.
+pub fn accuracy_header(a: &Accuracy) -> String {
+    let mut s = format!(
+        "  accuracy {} ≤ {:e} requested: {}\n",
+        a.quantity.name(),
+        a.tolerance,
+        a.description
+    );
+    let pilots: Vec<String> = a
+        .pilots
+        .iter()
+        .map(|p| format!("{} × {:e} s ({:.2} s)", p.elements, p.dt, p.wall_seconds))
+        .collect();
+    s.push_str(&format!(
+        "  pilots   N × Δt: {}; {:.2} s wall\n",
+        pilots.join(", "),
+        a.pilot_wall_seconds
+    ));
+    s.push_str(&format!(
+        "  model    e ≈ {}·(C_h h^p + C_t Δt^q): p = {}, C_h = {:.3e}; q = {}, C_t = {:.3e}\n",
+        a.model.safety_factor,
+        order_text(&a.model.mesh),
+        a.c_h,
+        order_text(&a.model.step),
+        a.c_t
+    ));
+    let how = match a.met_by_pilot {
+        Some(role) => format!("the pilot `{role}` already meets it"),
+        None => "the cheapest resolution the model allows".to_string(),
+    };
+    s.push_str(&format!(
+        "  chosen   N = {}, Δt = {:.5e} s ({how}): estimated error {:.3e} (mesh {:.3e}, step {:.3e}); the same run: --set mesh.elements={} --set time.step={:e}\n",
+        a.elements,
+        a.dt,
+        a.estimated_error.total,
+        a.estimated_error.mesh,
+        a.estimated_error.step,
+        a.elements,
+        a.dt
+    ));
+    for n in &a.notes {
+        s.push_str(&format!("  note     {n}\n"));
+    }
+    s
+}
+
+/// Labels of the results in the terminal, as the plain summary names them.
+fn label(name: &str) -> &'static str {
+    match name {
+        "force_mean" => "force mean λ",
+        "force_std" => "force std",
+        "force_min" => "force min",
+        "force_max" => "force max",
+        "filtered_force_std" => "0–20 Hz force std",
+        "filtered_force_min" => "0–20 Hz force min",
+        "filtered_force_max" => "0–20 Hz force max",
+        "loss_fraction" => "contact loss P_l",
+        "loss_interval_count" => "loss intervals",
+        "first_loss_position" => "first loss x/L",
+        "contact_switches" => "switches",
+        _ => "result",
+    }
+}
+
+fn estimate_text(r: &ResultEstimate) -> String {
+    match (r.estimated_error, r.status.as_str()) {
+        (Some(e), "exact") => format!("± {e:.2e} (exact over the pilots)"),
+        (Some(e), _) => format!("± {e:.2e} (est.)"),
+        (None, status) => {
+            let diffs = |f: &Option<LadderFit>| {
+                f.as_ref().map_or(String::new(), |f| {
+                    format!("{:.3e}, {:.3e}", f.differences[0], f.differences[1])
+                })
+            };
+            match status {
+                "not converging in h" => {
+                    format!("{status} (mesh differences {})", diffs(&r.mesh))
+                }
+                "not converging in Δt" => {
+                    format!("{status} (step differences {})", diffs(&r.step))
+                }
+                "not converging in h and Δt" => format!(
+                    "{status} (mesh differences {}; step differences {})",
+                    diffs(&r.mesh),
+                    diffs(&r.step)
+                ),
+                other => other.to_string(),
+            }
+        }
+    }
+}
+
+/// One line per result of carrier `carrier`: value, unit, estimated error.
+pub fn result_lines(a: &Accuracy, carrier: usize) -> String {
+    let mut s = String::new();
+    for r in a.results.iter().filter(|r| r.carrier == carrier) {
+        let value = match r.value {
+            Some(v) if r.unit == "N" => format!("{v:.4} N"),
+            Some(v) if matches!(r.name, "loss_interval_count" | "contact_switches") => {
+                format!("{v:.0}")
+            }
+            Some(v) => format!("{v:.4}"),
+            None => "none".to_string(),
+        };
+        s.push_str(&format!(
+            "    {:<20} {:>14}  {}\n",
+            label(r.name),
+            value,
+            estimate_text(r)
+        ));
+    }
+    s
+}
