@@ -3,13 +3,17 @@
 //! The system is `d = [d_b; q]`: beam dofs and one dof per mass carrier. M and
 //! K do not couple the beam with the masses (only the contact does), so the
 //! effective matrix `A = (1 − α_m)M + (1 − α_f)γΔt C + (1 − α_f)βΔt²K` is the
-//! banded beam block, factored once per run, plus one scalar per mass. Each
+//! banded beam block, factored once per run, plus one scalar per mass. The
+//! beam has no damping matrix (MODEL §1, eq. 1; only a carrier's dashpot c_s damps), so
+//! its block is `(1 − α_m)M + (1 − α_f)βΔt²K`; `step`'s one-product residual
+//! relies on that and would need a C term if beam damping were added. Each
 //! step is the spelled-out step of MODEL §5: predictors, the free right-hand
 //! side F, one fused banded sweep for `A⁻¹F` and `A⁻¹r_f` of every contact
 //! (F is computed inside its forward pass), the free gaps and the Delassus
 //! matrix W, the contact law, the update (which also forms the next step's
-//! predictors). The step allocates nothing and does O(n) work in two passes
-//! over memory plus the backward sweep.
+//! predictors). The step allocates nothing and does O(n) work: zeroing the
+//! right-hand side, the fused forward sweep, the backward sweep and the update
+//! pass.
 
 #![allow(non_snake_case)]
 
@@ -58,14 +62,16 @@ const DISPLACEMENT_BOUND_IN_LENGTHS: f64 = 1.0;
 const FORCE_BOUND_FACTOR: f64 = 1e3;
 
 /// Columns of the right-hand side for `nc` contacts: the free step and one
-/// per contact, and never fewer than two. With one column the compiler packs
-/// the sweep's window into vectors through general registers, which puts
-/// three extra moves on the dependency chain (measured: the sweeps of one
-/// column took 2.7× as long as those of two, `examples/step_profile.rs`); a
-/// second, zero column costs nothing beside the first in a SIMD lane. It
+/// per contact, rounded up to an even number (at least two). The sweeps carry
+/// the columns side by side in two-wide SIMD lanes: with one column the
+/// compiler packs the sweep's window into vectors through general registers,
+/// three extra moves on the dependency chain (measured: one-column sweeps took
+/// 2.7× as long as two-column ones, `examples/step_profile.rs`); with three, a
+/// half-empty lane and register spills (two carriers at N = 800: 1.16 × 10⁸
+/// DOF-steps/s with three columns, 1.55 × 10⁸ with four). A padding column
 /// stays zero (A⁻¹0 = 0) and enters the update with weight 0.
 fn rhs_columns(nc: usize) -> usize {
-    (1 + nc).max(2)
+    (1 + nc).max(2).next_multiple_of(2)
 }
 
 /// The single mass dof of a mass–spring carrier.
@@ -489,8 +495,9 @@ impl Integrator {
         // two band products; with M a_n = (A a_n − c_k K a_n)/(1 − α_m) it is
         //   F = (f − α′ A a_n) − K (u − α′ c_k a_n) = h − K ũ,  α′ = α_m/(1 − α_m),
         // one product, because A a_n needs none: it is the right-hand side the
-        // last step solved, b₀ + Σ λ_c s_c r_f,c (the same up to that solve's
-        // round-off, which is of the size of the round-off of M a_n itself).
+        // last step solved, b₀ + Σ λ_c s_c r_f,c. The two differ by that
+        // solve's backward error, ε|A||a_n|: an error every solve makes anyway,
+        // and which a's own round-off already carries into the step.
         let residual = Residual {
             h: &self.h,
             k: &self.beam.stiffness,
@@ -569,7 +576,7 @@ impl Integrator {
             f: &self.beam.load,
         };
         // a = a★ + Σ λ_c z_c per row; k is a compile-time constant for up to
-        // three contacts, so the pass vectorizes across rows
+        // five contacts, so the pass vectorizes across rows
         macro_rules! combine {
             ($($k:literal),*) => {
                 match k {
@@ -580,8 +587,6 @@ impl Integrator {
                                 _ => lambda.get(c - 1).copied().unwrap_or(0.0),
                             });
                         let (chunks, _) = self.rhs.as_chunks::<$k>();
-                        // (the range 1..1 of one column is empty on purpose)
-                        #[allow(clippy::reversed_empty_ranges)]
                         let combine = |row: &[f64; $k]| {
                             let mut acc = row[0];
                             for c in 1..$k {
@@ -601,7 +606,7 @@ impl Integrator {
                 }
             };
         }
-        combine!(1, 2, 3, 4);
+        combine!(2, 4, 6);
         // A a_{n+1} = b₀ + Σ λ_c s_c r_f,c: the contact columns' part of h
         for c in &self.carriers {
             if let Some(j) = c.contact {

@@ -54,6 +54,13 @@ fn chosen_run_meets_the_tolerance_against_the_analytic_solution() {
             a.elements, a.dt, a.estimated_error.total, a.met_by_pilot
         );
         assert!(a.estimated_error.total <= tol);
+        // both paths are exercised: the pilot's result and the model's new run
+        assert_eq!(
+            a.met_by_pilot.is_some(),
+            tol == 1e-2,
+            "tol {tol:e}: met by pilot {:?}",
+            a.met_by_pilot
+        );
         assert!(
             actual <= tol * TOLERANCE_SAFETY,
             "tol {tol:e}: actual error {actual:.3e} against the analytic solution (estimate {:.3e})",

@@ -318,7 +318,7 @@ impl BandedLdlt {
                 }
             };
         }
-        dispatch!(3, 1; 3, 2; 3, 3; 3, 4; 1, 1; 1, 2; 1, 3; 1, 4)
+        dispatch!(3, 1; 3, 2; 3, 3; 3, 4; 3, 6; 1, 1; 1, 2; 1, 3; 1, 4; 1, 6)
     }
 
     /// One elimination row: `acc − Σ_k row[k] win[k]`, oldest row first so the
@@ -506,7 +506,7 @@ mod tests {
             let f = BandedLdlt::factor(&a).unwrap();
             let ad = dense(&a);
             let chol = ad.clone().cholesky().unwrap();
-            for k in 1..=5 {
+            for k in 1..=7 {
                 let b: Vec<f64> = (0..n * k).map(|i| ((i * 13) % 7) as f64 - 3.0).collect();
                 let mut x = b.clone();
                 f.solve_many(&mut x, k);
@@ -571,8 +571,12 @@ mod tests {
     #[test]
     fn fused_residual_solve_equals_residual_then_solve_bit_for_bit() {
         // p = 3 and 1 take the fused kernels (interior rows inside the sweep),
-        // p = 2 and k = 5 the generic path; n ≤ 2p has no interior rows
+        // p = 2, k = 5 and k = 7 the generic path; n ≤ 2p has no interior rows, and
+        // n < p (a one-element clamped–pinned beam) not even a full window
         for &(n, p) in &[
+            (1, 3),
+            (2, 3),
+            (1, 1),
             (3, 3),
             (6, 3),
             (7, 3),
@@ -592,7 +596,7 @@ mod tests {
                 k: &kmat,
                 u: &u,
             };
-            for k in 1..=5 {
+            for k in 1..=7 {
                 // loads scattered into every column, as `Integrator::step` does
                 let scattered: Vec<f64> = (0..n * k)
                     .map(|i| {

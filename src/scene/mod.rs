@@ -12,7 +12,9 @@ mod validate;
 
 pub use load::{apply_override, load_scene, parse_scene, resolve_scene};
 pub use speed::SpeedProfile;
-pub use validate::{BeamProps, CarrierKind, CarrierProps, DEFAULT_PENALTY_RELATIVE, Resolved};
+pub use validate::{
+    BeamProps, CarrierKind, CarrierProps, DEFAULT_PENALTY_RELATIVE, Resolved, STEP_COUNT_SLACK,
+};
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 

@@ -12,6 +12,13 @@ pub const MAX_ELEMENTS: usize = 1_000_000;
 /// Largest number of steps accepted (10⁹ steps would take hours even at N = 4).
 pub const MAX_STEPS: usize = 1_000_000_000;
 
+/// Relative slack of the step count: a run has floor(t_end/Δt · (1 + slack))
+/// steps, so an end time that is a whole number of steps up to the round-off
+/// of the division (0.15 / 1e-4 = 1499.9999999999998) gets all its steps.
+/// A few ulps: any more would add a step to an end time that is really short
+/// of it.
+pub const STEP_COUNT_SLACK: f64 = 4.0 * f64::EPSILON;
+
 /// The beam's resolved properties (SI units).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BeamProps {
@@ -195,7 +202,7 @@ impl Scene {
         };
         // floor, with a little slack so that an end time that is a whole number
         // of steps up to round-off (0.15 / 1e-4) gets all its steps.
-        let steps_f = (t_end / dt * (1.0 + 4.0 * f64::EPSILON)).floor();
+        let steps_f = (t_end / dt * (1.0 + STEP_COUNT_SLACK)).floor();
         if steps_f < 1.0 {
             return Err(match self.time.end {
                 EndTime::Seconds(_) => Error::invalid(

@@ -51,12 +51,13 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::record::ContactStats;
 use crate::run::{RunOutput, run};
-use crate::scene::{EndTime, Resolved, resolve_scene};
+use crate::scene::{CarrierKind, EndTime, Resolved, STEP_COUNT_SLACK, resolve_scene};
 
 /// Largest run (unknowns × steps) an accuracy-targeted run will start, pilots
-/// included: 10¹¹ DOF-steps is about half an hour at the 5–7·10⁷ DOF-steps/s
-/// a laptop core reaches (docs/numerics.md). Beyond it the tool says what the
-/// tolerance would take instead of starting a run nobody waits for.
+/// included: 10¹¹ DOF-steps is about 9 minutes at the 1.9·10⁸ DOF-steps/s one
+/// core reaches at N ≤ 800, and 15 minutes or more on finer meshes
+/// (docs/performance.md). Beyond it the tool says what the tolerance would
+/// take instead of starting a run nobody waits for.
 pub const MAX_DOF_STEPS: f64 = 1e11;
 
 /// Two times are the same sample when they differ by less than this fraction
@@ -86,7 +87,12 @@ impl Quantity {
         Quantity::Displacement,
     ];
 
-    /// The CLI name.
+    /// A contact force (filtered or raw).
+    pub fn is_force(self) -> bool {
+        matches!(self, Quantity::Force | Quantity::ForceRaw)
+    }
+
+    /// The name used by `--quantity`.
     pub fn name(self) -> &'static str {
         match self {
             Quantity::Force => "force",
@@ -296,14 +302,49 @@ pub fn end_time(sc: &Resolved) -> f64 {
     }
 }
 
-/// The largest Δt ≤ `dt` that divides `t_end` into whole steps.
+/// Say which pilot a failed run was: a divergence or a contact failure names
+/// its step and time, which alone do not tell the ladder's rungs apart.
+fn in_pilot(e: Error, which: &str) -> Error {
+    match e {
+        Error::Diverged {
+            step,
+            time,
+            quantity,
+            value,
+            cause,
+        } => Error::Diverged {
+            step,
+            time,
+            quantity,
+            value,
+            cause: format!("{cause} (in {which})"),
+        },
+        Error::Contact {
+            step,
+            time,
+            reason,
+            problem,
+        } => Error::Contact {
+            step,
+            time,
+            reason: format!("{reason} (in {which})"),
+            problem,
+        },
+        other => other,
+    }
+}
+
+/// The largest Δt ≤ `dt` that divides `t_end` into whole steps. A ratio that
+/// scene validation counts as whole (within its [`STEP_COUNT_SLACK`]) keeps
+/// its Δt; any other is rounded up to whole steps, so that every pilot of the
+/// ladder, at Δt/2 and Δt/4, ends at the same time as the base pilot.
 pub fn whole_step(t_end: f64, dt: f64) -> f64 {
     let n = t_end / dt;
-    // a ratio that is a whole number up to round-off keeps its Δt
-    if (n - n.round()).abs() <= 1e-9 * n.max(1.0) {
+    let counted = (n * (1.0 + STEP_COUNT_SLACK)).floor();
+    if counted >= 1.0 && n <= counted * (1.0 + STEP_COUNT_SLACK) {
         dt
     } else {
-        t_end / n.ceil()
+        t_end / (n * (1.0 - STEP_COUNT_SLACK)).ceil()
     }
 }
 
@@ -484,7 +525,12 @@ pub fn tolerance_run(
                 ));
             }
         }
-        let out = run(&sc, &mut |_, _| {})?;
+        let out = run(&sc, &mut |_, _| {}).map_err(|e| {
+            in_pilot(
+                e,
+                &format!("the pilot `{role}` (N = {n}, Δt = {:e} s)", sc.dt),
+            )
+        })?;
         pilots.push(PilotRun {
             role,
             elements: n,
@@ -525,8 +571,12 @@ pub fn tolerance_run(
     let model = ErrorModel::new(mesh, step);
     if mesh.status == LadderStatus::Exact && step.status == LadderStatus::Exact {
         notes.push(format!(
-            "`{}` is the same at every pilot (a moving force's λ is its F): the tolerance is met at any resolution and says nothing about the rest of the solution; {} measures the beam",
+            "`{}` is the same at every pilot{}: the tolerance is met at any resolution and says nothing about the rest of the solution; {} measures the beam",
             quantity.name(),
+            match base.carriers[0].kind {
+                CarrierKind::Force { .. } if quantity.is_force() => " (a moving force's λ is its F)",
+                _ => "",
+            },
             if quantity == Quantity::Displacement { "another quantity" } else { "--quantity displacement" }
         ));
     }
@@ -558,9 +608,12 @@ pub fn tolerance_run(
             let (h, dt) = model
                 .cheapest(tol, length / n0 as f64, dt0)
                 .expect("both ladders usable");
-            // N up, Δt down to whole steps: the estimate only falls
-            let n = ((length / h) * (1.0 - 1e-12)).ceil().max(n0 as f64);
-            let steps = ((t_end / dt) * (1.0 - 1e-12)).ceil().max(1.0);
+            // N up, Δt down to whole steps: the estimate only falls (a ratio
+            // that is whole up to round-off is not rounded up past itself)
+            let n = ((length / h) * (1.0 - STEP_COUNT_SLACK))
+                .ceil()
+                .max(n0 as f64);
+            let steps = ((t_end / dt) * (1.0 - STEP_COUNT_SLACK)).ceil().max(1.0);
             let dt = t_end / steps;
             // unknowns grow linearly in N (2 per node for Hermite elements)
             let (a, b) = (&pilots[0], &pilots[1]);
