@@ -33,8 +33,8 @@ fn bench_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group.sample_size(10).warm_up_time(Duration::from_secs(1));
     for n in ELEMENTS {
-        // ≈ 5–8 ns per DOF-step: an iteration takes ≈ 2 ms at N = 200, 8 ms at
-        // 800 and 50 ms at 3200, so N = 3200 needs a longer window for 10 samples.
+        // ≈ 5–10 ns per DOF-step: an iteration takes ≈ 2 ms at N = 200, 8 ms at
+        // 800 and 65 ms at 3200, so N = 3200 needs a longer window for 10 samples.
         group.measurement_time(Duration::from_secs(if n >= 3200 { 10 } else { 4 }));
         let sc = resolved(&[format!("mesh.elements={n}")]);
         let dofs = Integrator::new(&sc).expect("integrator builds").dofs();
