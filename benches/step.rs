@@ -6,6 +6,11 @@
 //! iteration outside the timed part, so each timed block starts at t = 0 and
 //! the carrier never runs off the beam.
 //!
+//! Group `shapes`: the same at N = 800 for the other shapes of a step — two
+//! contacts (`scenes/two_pantographs.toml`: three right-hand-side columns,
+//! padded to four) and a moving force without a contact
+//! (`scenes/moving_force_beam.toml`: one column, padded to two).
+//!
 //! Group `run`: one complete `taut::run` of the reference scene as shipped
 //! (400 elements, 6000 steps, recording included), for context.
 //!
@@ -18,6 +23,8 @@ use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_mai
 use taut::integrate::Integrator;
 
 const SCENE: &str = include_str!("../scenes/reference.toml");
+const TWO_CONTACTS: &str = include_str!("../scenes/two_pantographs.toml");
+const MOVING_FORCE: &str = include_str!("../scenes/moving_force_beam.toml");
 
 /// Steps timed per iteration (0.1 s of simulated time at Δt = 1e-4 s).
 const STEPS_PER_ITER: usize = 1000;
@@ -29,6 +36,29 @@ fn resolved(overrides: &[String]) -> taut::Resolved {
     taut::resolve_scene(SCENE, overrides).expect("reference scene resolves")
 }
 
+/// Time STEPS_PER_ITER steps of a fresh integrator for `sc` as DOF-steps/s.
+fn bench_steps(
+    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    name: &str,
+    sc: &taut::Resolved,
+) {
+    let dofs = Integrator::new(sc).expect("integrator builds").dofs();
+    group.throughput(Throughput::Elements((dofs * STEPS_PER_ITER) as u64));
+    group.bench_function(format!("{name}/dofs={dofs}"), |b| {
+        b.iter_batched(
+            || Integrator::new(sc).expect("integrator builds"),
+            |mut it| {
+                for _ in 0..STEPS_PER_ITER {
+                    it.step().expect("step succeeds");
+                }
+                black_box(it.beam_dofs()[0]);
+                it
+            },
+            BatchSize::PerIteration,
+        );
+    });
+}
+
 fn bench_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("step");
     group.sample_size(10).warm_up_time(Duration::from_secs(1));
@@ -37,21 +67,24 @@ fn bench_step(c: &mut Criterion) {
         // 800 and 65 ms at 3200, so N = 3200 needs a longer window for 10 samples.
         group.measurement_time(Duration::from_secs(if n >= 3200 { 10 } else { 4 }));
         let sc = resolved(&[format!("mesh.elements={n}")]);
-        let dofs = Integrator::new(&sc).expect("integrator builds").dofs();
-        group.throughput(Throughput::Elements((dofs * STEPS_PER_ITER) as u64));
-        group.bench_function(format!("N={n}/dofs={dofs}"), |b| {
-            b.iter_batched(
-                || Integrator::new(&sc).expect("integrator builds"),
-                |mut it| {
-                    for _ in 0..STEPS_PER_ITER {
-                        it.step().expect("step succeeds");
-                    }
-                    black_box(it.beam_dofs()[0]);
-                    it
-                },
-                BatchSize::PerIteration,
-            );
-        });
+        bench_steps(&mut group, &format!("N={n}"), &sc);
+    }
+    group.finish();
+}
+
+fn bench_shapes(c: &mut Criterion) {
+    let mut group = c.benchmark_group("shapes");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(4));
+    let n800 = ["mesh.elements=800".to_string()];
+    for (name, text) in [
+        ("two_contacts", TWO_CONTACTS),
+        ("moving_force", MOVING_FORCE),
+    ] {
+        let sc = taut::resolve_scene(text, &n800).expect("bundled scene resolves");
+        bench_steps(&mut group, &format!("{name}/N=800"), &sc);
     }
     group.finish();
 }
@@ -75,5 +108,5 @@ fn bench_run(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_step, bench_run);
+criterion_group!(benches, bench_step, bench_shapes, bench_run);
 criterion_main!(benches);
