@@ -96,6 +96,41 @@ pub enum Error {
 }
 
 impl Error {
+    /// Name the run a failure happened in, for studies that make several
+    /// runs: a divergence or a contact failure gives its step and time, which
+    /// alone do not tell one run of a study from another. `run` is prefixed
+    /// to the diverged quantity or the contact failure's reason; other
+    /// errors are returned as they are.
+    pub fn in_run(self, run: &str) -> Self {
+        match self {
+            Error::Diverged {
+                step,
+                time,
+                quantity,
+                value,
+                cause,
+            } => Error::Diverged {
+                step,
+                time,
+                quantity: format!("{run}: {quantity}"),
+                value,
+                cause,
+            },
+            Error::Contact {
+                step,
+                time,
+                reason,
+                problem,
+            } => Error::Contact {
+                step,
+                time,
+                reason: format!("{run}: {reason}"),
+                problem,
+            },
+            other => other,
+        }
+    }
+
     /// Shorthand for [`Error::Invalid`].
     pub fn invalid(
         field: impl Into<String>,
@@ -120,3 +155,42 @@ impl Error {
 
 /// The crate's result type.
 pub type Result<T> = std::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn in_run_names_the_run_of_a_divergence_or_contact_failure_only() {
+        let diverged = Error::Diverged {
+            step: 3,
+            time: 0.3,
+            quantity: "λ".into(),
+            value: 1e9,
+            cause: "too large a step".into(),
+        }
+        .in_run("pilot `base`");
+        assert!(
+            diverged.to_string().contains("pilot `base`: λ = 1e9"),
+            "{diverged}"
+        );
+        let contact = Error::Contact {
+            step: 3,
+            time: 0.3,
+            reason: "active set cycles".into(),
+            problem: None,
+        }
+        .in_run("formulation penalty");
+        assert!(
+            contact
+                .to_string()
+                .contains("formulation penalty: active set cycles"),
+            "{contact}"
+        );
+        let invalid = Error::invalid("mesh.elements", 0, "≥ 1");
+        assert_eq!(
+            invalid.in_run("pilot `base`").to_string(),
+            Error::invalid("mesh.elements", 0, "≥ 1").to_string()
+        );
+    }
+}

@@ -107,7 +107,8 @@ pub fn compare(
         let mut o = overrides.to_vec();
         o.push(format!("contact.formulation={}", f.name()));
         let sc = resolve_scene(text, &o)?;
-        let out = run(&sc, &mut |_, _| {}).map_err(|e| name_failure(f, e))?;
+        let out =
+            run(&sc, &mut |_, _| {}).map_err(|e| e.in_run(&format!("formulation {}", f.name())))?;
         runs.push((f, sc, out));
         progress(i + 1, order.len());
     }
@@ -193,37 +194,6 @@ fn row(f: Formulation, sc: &Resolved, out: &RunOutput, reference: &RunOutput) ->
         steps: out.steps,
         wall_seconds: out.wall_seconds,
         warnings: out.warnings.clone(),
-    }
-}
-
-/// Say which formulation's run failed.
-fn name_failure(f: Formulation, e: Error) -> Error {
-    match e {
-        Error::Diverged {
-            step,
-            time,
-            quantity,
-            value,
-            cause,
-        } => Error::Diverged {
-            step,
-            time,
-            quantity: format!("formulation {}: {quantity}", f.name()),
-            value,
-            cause,
-        },
-        Error::Contact {
-            step,
-            time,
-            reason,
-            problem,
-        } => Error::Contact {
-            step,
-            time,
-            reason: format!("formulation {}: {reason}", f.name()),
-            problem,
-        },
-        other => other,
     }
 }
 

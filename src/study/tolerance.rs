@@ -302,38 +302,6 @@ pub fn end_time(sc: &Resolved) -> f64 {
     }
 }
 
-/// Say which pilot a failed run was: a divergence or a contact failure names
-/// its step and time, which alone do not tell the ladder's rungs apart.
-fn in_pilot(e: Error, which: &str) -> Error {
-    match e {
-        Error::Diverged {
-            step,
-            time,
-            quantity,
-            value,
-            cause,
-        } => Error::Diverged {
-            step,
-            time,
-            quantity,
-            value,
-            cause: format!("{cause} (in {which})"),
-        },
-        Error::Contact {
-            step,
-            time,
-            reason,
-            problem,
-        } => Error::Contact {
-            step,
-            time,
-            reason: format!("{reason} (in {which})"),
-            problem,
-        },
-        other => other,
-    }
-}
-
 /// The largest Δt ≤ `dt` that divides `t_end` into whole steps. A ratio that
 /// scene validation counts as whole (within its [`STEP_COUNT_SLACK`]) keeps
 /// its Δt; any other is rounded up to whole steps, so that every pilot of the
@@ -525,12 +493,8 @@ pub fn tolerance_run(
                 ));
             }
         }
-        let out = run(&sc, &mut |_, _| {}).map_err(|e| {
-            in_pilot(
-                e,
-                &format!("the pilot `{role}` (N = {n}, Δt = {:e} s)", sc.dt),
-            )
-        })?;
+        let out = run(&sc, &mut |_, _| {})
+            .map_err(|e| e.in_run(&format!("pilot `{role}` (N = {n}, Δt = {:e} s)", sc.dt)))?;
         pilots.push(PilotRun {
             role,
             elements: n,
