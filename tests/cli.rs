@@ -1,12 +1,14 @@
 //! End-to-end through the `taut` binary: outputs on disk, `--set`, and how a
 //! bad scene is reported.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use std::path::Path;
+use std::process::Output;
+
+use common::{crate_root, out_dir, run_fails, taut_bin};
 
 use serde_json::Value;
-
-const BIN: &str = env!("CARGO_BIN_EXE_taut");
 
 const HISTORY_HEADER: &str = "t,x_m,beam_w,mass_q,gap,force,in_contact";
 
@@ -26,18 +28,6 @@ const FORMULA_REL_TOL: f64 = 1e-12;
 /// The brief's "c ≈ 149.9 m/s" is quoted to 0.1 m/s.
 const QUOTED_WAVE_SPEED_TOL: f64 = 0.05;
 
-fn crate_root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn taut(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .current_dir(crate_root())
-        .args(args)
-        .output()
-        .expect("the taut binary runs")
-}
-
 /// `taut run SCENE --out DIR --quiet [--set …]…`, asserting success.
 fn run_ok(scene: &str, out: &Path, sets: &[&str]) -> Output {
     let mut args = vec!["run", scene, "--out", out.to_str().unwrap(), "--quiet"];
@@ -45,7 +35,7 @@ fn run_ok(scene: &str, out: &Path, sets: &[&str]) -> Output {
         args.push("--set");
         args.push(s);
     }
-    let o = taut(&args);
+    let o = taut_bin(&args);
     assert!(
         o.status.success(),
         "taut {args:?} failed ({}):\n{}",
@@ -53,31 +43,6 @@ fn run_ok(scene: &str, out: &Path, sets: &[&str]) -> Output {
         String::from_utf8_lossy(&o.stderr)
     );
     o
-}
-
-/// `taut run SCENE --out DIR --quiet [--set …]…`, asserting failure; returns stderr.
-fn run_fails(scene: &str, out: &Path, sets: &[&str]) -> String {
-    let mut args = vec!["run", scene, "--out", out.to_str().unwrap(), "--quiet"];
-    for s in sets {
-        args.push("--set");
-        args.push(s);
-    }
-    let o = taut(&args);
-    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(
-        !o.status.success(),
-        "taut {args:?} should fail but exited 0"
-    );
-    assert!(
-        stderr.starts_with("error: "),
-        "stderr should start with `error: `:\n{stderr}"
-    );
-    assert!(
-        !out.exists(),
-        "a failed run must not create its output folder {}",
-        out.display()
-    );
-    stderr
 }
 
 fn summary(dir: &Path) -> Value {
@@ -107,10 +72,6 @@ fn history(dir: &Path) -> (String, Vec<String>) {
 
 fn rel_err(a: f64, b: f64) -> f64 {
     ((a - b) / b).abs()
-}
-
-fn out_dir(tmp: &tempfile::TempDir, name: &str) -> PathBuf {
-    tmp.path().join(name)
 }
 
 #[test]
@@ -227,7 +188,7 @@ fn set_on_the_command_line_reaches_the_summary() {
 fn out_of_range_value_is_reported_on_stderr() {
     let tmp = tempfile::tempdir().unwrap();
     let out = out_dir(&tmp, "never");
-    let err = run_fails("scenes/reference.toml", &out, &["beam.length=-1"]);
+    let err = run_fails("scenes/reference.toml", &out, &["--set", "beam.length=-1"]);
     assert!(
         err.contains("`beam.length` = -1: must be > 0 (m)"),
         "stderr:\n{err}"
@@ -238,7 +199,11 @@ fn out_of_range_value_is_reported_on_stderr() {
 fn unknown_key_is_reported_on_stderr() {
     let tmp = tempfile::tempdir().unwrap();
     let out = out_dir(&tmp, "never");
-    let err = run_fails("scenes/reference.toml", &out, &["carrier.colour=red"]);
+    let err = run_fails(
+        "scenes/reference.toml",
+        &out,
+        &["--set", "carrier.colour=red"],
+    );
     assert!(
         err.contains("scenes/reference.toml"),
         "names the file:\n{err}"
@@ -250,7 +215,7 @@ fn unknown_key_is_reported_on_stderr() {
 fn bad_override_is_reported_on_stderr() {
     let tmp = tempfile::tempdir().unwrap();
     let out = out_dir(&tmp, "never");
-    let err = run_fails("scenes/reference.toml", &out, &["beam.length"]);
+    let err = run_fails("scenes/reference.toml", &out, &["--set", "beam.length"]);
     assert!(
         err.contains("invalid override `beam.length`"),
         "stderr:\n{err}"
@@ -288,7 +253,7 @@ fn compare_writes_the_table_and_three_files() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = out_dir(&tmp, "cmp");
     let scene = crate_root().join("scenes/reference.toml");
-    let out = taut(&[
+    let out = taut_bin(&[
         "compare",
         scene.to_str().unwrap(),
         "--formulations",
@@ -341,7 +306,7 @@ fn a_failed_qp_is_saved_and_replays() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = out_dir(&tmp, "qp");
     let scene = crate_root().join("scenes/reference.toml");
-    let out = taut(&[
+    let out = taut_bin(&[
         "run",
         scene.to_str().unwrap(),
         "--set",
@@ -361,9 +326,9 @@ fn a_failed_qp_is_saved_and_replays() {
     let saved = dir.join("failed_contact_step_0.json");
     assert!(saved.is_file());
     // the replay reproduces the failure, and solves with a sane limit
-    let again = taut(&["replay", saved.to_str().unwrap()]);
+    let again = taut_bin(&["replay", saved.to_str().unwrap()]);
     assert!(!again.status.success());
-    let fixed = taut(&["replay", saved.to_str().unwrap(), "--max-iter", "50"]);
+    let fixed = taut_bin(&["replay", saved.to_str().unwrap(), "--max-iter", "50"]);
     assert!(
         fixed.status.success(),
         "{}",

@@ -3,14 +3,13 @@
 //! never coarsen, bad flags and non-converging quantities are refused with
 //! errors that say why (docs/accuracy.md).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use common::{out_dir, run_fails, taut_bin};
 
 use serde_json::Value;
 use taut::study::reference::analytic_w;
 use taut::study::tolerance::{Quantity, TolerantRun, quantity_difference, tolerance_run};
-
-const BIN: &str = env!("CARGO_BIN_EXE_taut");
 
 const MOVING_FORCE: &str = include_str!("../scenes/moving_force_beam.toml");
 const REFERENCE: &str = include_str!("../scenes/reference.toml");
@@ -119,45 +118,6 @@ fn an_unaffordable_tolerance_says_what_it_would_take() {
 
 // ---- through the binary -------------------------------------------------
 
-fn crate_root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn taut(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .current_dir(crate_root())
-        .args(args)
-        .output()
-        .expect("the taut binary runs")
-}
-
-fn out_dir(tmp: &tempfile::TempDir, name: &str) -> PathBuf {
-    tmp.path().join(name)
-}
-
-/// `taut run SCENE --out DIR --quiet EXTRA…`, asserting failure with an
-/// `error: ` line and no output folder; returns stderr.
-fn run_fails(scene: &str, out: &Path, extra: &[&str]) -> String {
-    let mut args = vec!["run", scene, "--out", out.to_str().unwrap(), "--quiet"];
-    args.extend_from_slice(extra);
-    let o = taut(&args);
-    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(
-        !o.status.success(),
-        "taut {args:?} should fail but exited 0"
-    );
-    assert!(
-        stderr.starts_with("error: "),
-        "stderr should start with `error: `:\n{stderr}"
-    );
-    assert!(
-        !out.exists(),
-        "a refused run must not create its output folder {}",
-        out.display()
-    );
-    stderr
-}
-
 fn assert_mentions(msg: &str, parts: &[&str]) {
     for p in parts {
         assert!(msg.contains(p), "message lacks {p:?}:\n{msg}");
@@ -193,7 +153,7 @@ fn unknown_quantity_names_the_flag_the_value_and_the_choices() {
         ],
     );
     // --quantity alone: clap says it needs --tolerance
-    let o = taut(&[
+    let o = taut_bin(&[
         "run",
         "scenes/moving_force_beam.toml",
         "--quiet",
@@ -231,7 +191,7 @@ fn a_quantity_that_does_not_converge_is_refused_not_reported() {
 fn tolerance_run_writes_accuracy_next_to_every_result() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = out_dir(&tmp, "mf");
-    let o = taut(&[
+    let o = taut_bin(&[
         "run",
         "scenes/moving_force_beam.toml",
         "--out",

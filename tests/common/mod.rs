@@ -1,7 +1,52 @@
 //! Shared helpers for the integration tests.
 #![allow(dead_code)]
 
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
 use taut::{Resolved, RunOutput};
+
+/// The repository root (scenes/ and docs/ are relative to it).
+pub fn crate_root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Run the `taut` binary from the repository root.
+pub fn taut_bin(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_taut"))
+        .current_dir(crate_root())
+        .args(args)
+        .output()
+        .expect("the taut binary runs")
+}
+
+/// A not-yet-existing output folder `name` in `tmp`.
+pub fn out_dir(tmp: &tempfile::TempDir, name: &str) -> PathBuf {
+    tmp.path().join(name)
+}
+
+/// `taut run SCENE --out DIR --quiet EXTRA…`, asserting failure with an
+/// `error: ` line and no output folder; returns stderr.
+pub fn run_fails(scene: &str, out: &Path, extra: &[&str]) -> String {
+    let mut args = vec!["run", scene, "--out", out.to_str().unwrap(), "--quiet"];
+    args.extend_from_slice(extra);
+    let o = taut_bin(&args);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        !o.status.success(),
+        "taut {args:?} should fail but exited 0"
+    );
+    assert!(
+        stderr.starts_with("error: "),
+        "stderr should start with `error: `:\n{stderr}"
+    );
+    assert!(
+        !out.exists(),
+        "a failed run must not create its output folder {}",
+        out.display()
+    );
+    stderr
+}
 
 /// Load a bundled scene with overrides.
 pub fn scene(name: &str, overrides: &[&str]) -> Resolved {
