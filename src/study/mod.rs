@@ -7,3 +7,25 @@ pub mod precision;
 pub mod reference;
 pub mod sweep;
 pub mod tolerance;
+
+/// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.
+pub fn relative_rms(a: &[f64], b: &[f64]) -> f64 {
+    let num: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
+    let den: f64 = b.iter().map(|y| y * y).sum();
+    if den > 0.0 {
+        (num / den).sqrt()
+    } else {
+        (num / a.len().max(1) as f64).sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_rms_is_relative_to_the_second() {
+        assert!((relative_rms(&[1.1, 2.2], &[1.0, 2.0]) - 0.1).abs() < 1e-12);
+        assert_eq!(relative_rms(&[0.0, 0.0], &[0.0, 0.0]), 0.0);
+    }
+}

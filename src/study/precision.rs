@@ -19,6 +19,7 @@
 
 use serde::Serialize;
 
+use super::relative_rms;
 use crate::error::{Error, Result};
 use crate::run::{RunOutput, run};
 use crate::scene::{Formulation, resolve_scene};
@@ -62,20 +63,6 @@ pub struct Precision {
     pub reference_wall: f64,
     /// All rows: formulation-major, then mesh level, then step level.
     pub rows: Vec<PrecisionRow>,
-}
-
-fn rel_rms(a: &[f64], b_sampled: &[f64]) -> f64 {
-    let num: f64 = a
-        .iter()
-        .zip(b_sampled)
-        .map(|(x, y)| (x - y) * (x - y))
-        .sum();
-    let den: f64 = b_sampled.iter().map(|y| y * y).sum();
-    if den > 0.0 {
-        (num / den).sqrt()
-    } else {
-        num.sqrt()
-    }
 }
 
 /// Run the study. `progress(done, total)` after each run.
@@ -164,8 +151,8 @@ fn row(
         steps: out.steps,
         dof_steps: out.dofs as f64 * out.steps as f64,
         wall_seconds: out.wall_seconds,
-        force_error: rel_rms(&t.force[1..], &sample(&tr.force)),
-        displacement_error: rel_rms(&t.w[1..], &sample(&tr.w)),
+        force_error: relative_rms(&t.force[1..], &sample(&tr.force)),
+        displacement_error: relative_rms(&t.w[1..], &sample(&tr.w)),
         loss_fraction_error: (out.stats[0].loss_fraction - reference.stats[0].loss_fraction).abs(),
         pareto: false,
     }

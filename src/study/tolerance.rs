@@ -48,6 +48,7 @@ pub use model::{
 
 use serde::Serialize;
 
+use super::relative_rms;
 use crate::error::{Error, Result};
 use crate::record::ContactStats;
 use crate::run::{RunOutput, run};
@@ -362,17 +363,6 @@ pub fn quantity_difference(
     let sa = sample(&quantity_signal(q, a), a, grid.dt, grid.steps)?;
     let sb = sample(&quantity_signal(q, b), b, grid.dt, grid.steps)?;
     Ok(relative_rms(&sa, &sb))
-}
-
-/// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.
-pub fn relative_rms(a: &[f64], b: &[f64]) -> f64 {
-    let num: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
-    let den: f64 = b.iter().map(|y| y * y).sum();
-    if den > 0.0 {
-        (num / den).sqrt()
-    } else {
-        (num / a.len().max(1) as f64).sqrt()
-    }
 }
 
 /// Statistics of the 0–20 Hz force over the steps (rows 1 …), N.
@@ -833,11 +823,5 @@ mod tests {
         let dt = whole_step(0.15, 4e-2);
         assert!((dt - 0.0375).abs() < 1e-15);
         assert!(dt <= 4e-2);
-    }
-
-    #[test]
-    fn relative_rms_is_relative_to_the_second() {
-        assert!((relative_rms(&[1.1, 2.2], &[1.0, 2.0]) - 0.1).abs() < 1e-12);
-        assert_eq!(relative_rms(&[0.0, 0.0], &[0.0, 0.0]), 0.0);
     }
 }
