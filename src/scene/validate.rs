@@ -110,6 +110,9 @@ pub struct Resolved {
     pub dt: f64,
     /// Number of steps.
     pub steps: usize,
+    /// The run's end time `time.end`, s: as given, or when the first moving
+    /// carrier leaves the beam (the run stops at the last whole step before it).
+    pub t_end: f64,
     /// Probes: (name, x in m).
     pub probes: Vec<(String, f64)>,
 }
@@ -306,6 +309,7 @@ impl Scene {
             g,
             dt,
             steps: steps_f as usize,
+            t_end,
             probes,
         })
     }

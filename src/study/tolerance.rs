@@ -52,7 +52,7 @@ use super::relative_rms;
 use crate::error::{Error, Result};
 use crate::record::ContactStats;
 use crate::run::{RunOutput, run};
-use crate::scene::{CarrierKind, EndTime, Resolved, STEP_COUNT_SLACK, resolve_scene};
+use crate::scene::{CarrierKind, Resolved, STEP_COUNT_SLACK, resolve_scene};
 
 /// Largest run (unknowns × steps) an accuracy-targeted run will start, pilots
 /// included: 10¹¹ DOF-steps is about 9 minutes at the 1.9·10⁸ DOF-steps/s one
@@ -290,19 +290,6 @@ pub struct TolerantRun {
     pub accuracy: Accuracy,
 }
 
-/// The run's end time, s: the given one, or when the first moving carrier
-/// leaves the beam (as scene validation resolves `time.end`).
-pub fn end_time(sc: &Resolved) -> f64 {
-    match sc.scene.time.end {
-        EndTime::Seconds(t) => t,
-        EndTime::CarrierLeaves => sc
-            .carriers
-            .iter()
-            .filter_map(|c| c.motion.time_to_leave(sc.beam.length))
-            .fold(f64::INFINITY, f64::min),
-    }
-}
-
 /// The largest Δt ≤ `dt` that divides `t_end` into whole steps. A ratio that
 /// scene validation counts as whole (within its [`STEP_COUNT_SLACK`]) keeps
 /// its Δt; any other is rounded up to whole steps, so that every pilot of the
@@ -431,7 +418,7 @@ pub fn tolerance_run(
 ) -> Result<TolerantRun> {
     let tol = check_tolerance(tol)?;
     let base = resolve_scene(text, overrides)?;
-    let t_end = end_time(&base);
+    let t_end = base.t_end;
     let n0 = base.elements;
     let dt0 = whole_step(t_end, base.dt);
     let length = base.beam.length;
