@@ -479,7 +479,10 @@ fn section_time(d: &mut String, clock: &mut Clock, exact: &[f64]) -> Vec<String>
     let shifted: Vec<Vec<f64>> = (0..k)
         .map(|l| {
             let sc = &c.scenes[l];
-            let af = sc.integrator.rho_inf / (sc.integrator.rho_inf + 1.0);
+            let taut::scene::Scheme::GenAlpha(ga) = sc.scheme else {
+                unreachable!("the convergence report runs generalized-α")
+            };
+            let af = ga.alpha_f;
             let fl = &c.runs[l].history.carriers[0].force;
             t0[1..t0.len() - 1]
                 .iter()

@@ -14,13 +14,13 @@
 //! * the two sweeps alone, for the free step and one contact direction
 //!   (k = 2 right-hand sides, as in the reference scene);
 //! * the generalized-α residual as a pass of its own, and the residual fused
-//!   into the forward sweep (`BandedLdlt::solve_residual`, as the step runs);
+//!   into the forward sweep (`BandedLdlt::solve_affine`, as the step runs);
 //! * the whole `Integrator::step` on the reference scene.
 use std::hint::black_box;
 use std::time::Instant;
 
 use taut::integrate::Integrator;
-use taut::model::banded::{BandedLdlt, Residual, residual_into};
+use taut::model::banded::{Affine, BandedLdlt, affine_into};
 use taut::model::beam::BeamModel;
 
 const SCENE: &str = include_str!("../scenes/reference.toml");
@@ -71,7 +71,9 @@ fn main() {
     // the matrices of the reference scene; A as the integrator forms it
     let beam = BeamModel::new(&sc.beam, sc.elements);
     let n = beam.n;
-    let ga = taut::integrate::GenAlpha::from_rho_inf(sc.integrator.rho_inf);
+    let taut::scene::Scheme::GenAlpha(ga) = sc.scheme else {
+        unreachable!("the reference scene runs generalized-α")
+    };
     let c_k = (1.0 - ga.alpha_f) * ga.beta * sc.dt * sc.dt;
     let fac = BandedLdlt::factor(&beam.mass.combine(1.0 - ga.alpha_m, &beam.stiffness, c_k))
         .expect("A is positive definite");
@@ -80,7 +82,7 @@ fn main() {
     let k = 2;
     let src: Vec<f64> = (0..n * k).map(|i| (i as f64 * 0.37).sin()).collect();
     let mut x = vec![0.0; n * k];
-    let r = Residual {
+    let r = Affine {
         h: &h,
         k: &beam.stiffness,
         u: &u,
@@ -103,12 +105,12 @@ fn main() {
         black_box(&x1);
     }) - copy / 2.0;
     let residual = fastest(blocks, &mut || {
-        residual_into(&r, &mut x, k);
+        affine_into(&r, &mut x, k);
         black_box(&x);
     });
     let fused = fastest(blocks, &mut || {
         x.copy_from_slice(&src);
-        fac.solve_residual(&mut x, k, &r, &mut b0);
+        fac.solve_affine(&mut x, k, &r, &mut b0);
         black_box(&x);
     }) - copy;
     let mut it = Integrator::new(&sc).expect("integrator");

@@ -6,6 +6,8 @@
 
 use std::path::PathBuf;
 
+use crate::contact::{ContactFailure, ContactProblem};
+
 /// Everything that can go wrong in taut.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
@@ -51,16 +53,28 @@ pub enum Error {
     },
 
     /// The contact law failed to find forces (e.g. an active set that cycles).
-    #[error("contact solve failed at step {step} (t = {time:.6} s): {reason}")]
+    #[error("contact solve failed at step {step} (t = {time:.6} s): {run}{failure}")]
     Contact {
         /// Step index.
         step: usize,
         /// Time at the end of the step, s.
         time: f64,
-        /// Why.
+        /// Which run of a study it was (`"formulation penalty: "`), or empty.
+        run: String,
+        /// Why the law failed.
+        failure: ContactFailure,
+        /// The problem the law was given, to save and replay.
+        problem: Box<ContactProblem>,
+    },
+
+    /// A replayed contact problem (`taut replay`) that its law cannot solve,
+    /// or whose answer violates the contact conditions.
+    #[error("replay of {path}: {reason}")]
+    Replay {
+        /// The saved problem.
+        path: PathBuf,
+        /// What failed.
         reason: String,
-        /// The failing problem as JSON, when the law can replay it.
-        problem: Option<String>,
     },
 
     /// File system trouble, with the path involved.
@@ -119,12 +133,14 @@ impl Error {
             Error::Contact {
                 step,
                 time,
-                reason,
+                run: inner,
+                failure,
                 problem,
             } => Error::Contact {
                 step,
                 time,
-                reason: format!("{run}: {reason}"),
+                run: format!("{run}: {inner}"),
+                failure,
                 problem,
             },
             other => other,
@@ -177,14 +193,20 @@ mod tests {
         let contact = Error::Contact {
             step: 3,
             time: 0.3,
-            reason: "active set cycles".into(),
-            problem: None,
+            run: String::new(),
+            failure: ContactFailure::Cycling { passes: 64 },
+            problem: Box::new(ContactProblem {
+                level: crate::contact::Level::Position,
+                g_free: vec![-1.0],
+                w: vec![1.0],
+                contact: crate::scene::ContactSpec::default(),
+            }),
         }
         .in_run("formulation penalty");
         assert!(
             contact
                 .to_string()
-                .contains("formulation penalty: active set cycles"),
+                .contains("formulation penalty: the active set did not settle"),
             "{contact}"
         );
         let invalid = Error::invalid("mesh.elements", 0, "≥ 1");

@@ -9,7 +9,8 @@
 //!   `g = w − q ≥ 0` with Signorini conditions;
 //! * §3 speed profiles ([`model::motion`]);
 //! * §4 Hermite beam elements with tension ([`model::element`], [`model::beam`]);
-//! * §5 generalized-α with contact, A factored once per run ([`integrate`]);
+//! * §5 generalized-α with contact, A factored once per run, and §9.1 the
+//!   other time integrators behind one seam ([`integrate`]);
 //! * §6 contact formulations ([`contact`]) and string elements for EI = 0;
 //! * §7 measured quantities ([`record`]).
 //!
@@ -33,5 +34,5 @@ pub mod study;
 pub mod warnings;
 
 pub use error::{Error, Result};
-pub use run::{RunOutput, run};
+pub use run::{RunOutput, run, run_with};
 pub use scene::{Resolved, Scene, load_scene, resolve_scene};

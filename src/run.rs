@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use crate::error::Result;
-use crate::integrate::Integrator;
+use crate::integrate::{Integrator, MethodFactory};
 use crate::record::{ContactStats, History};
 use crate::scene::Resolved;
 
@@ -32,10 +32,30 @@ pub struct RunOutput {
 /// a step-to-step on/off pattern is a numerical oscillation (MODEL §5).
 pub const CHATTER_FRACTION: f64 = 0.05;
 
-/// Run a validated scene. `progress(done, total)` is called about 200 times.
+/// Run a validated scene with its own method (`[integrator]`).
+/// `progress(done, total)` is called about 200 times.
 pub fn run(sc: &Resolved, progress: &mut dyn FnMut(usize, usize)) -> Result<RunOutput> {
+    drive(sc, &|sc| Integrator::new(sc), progress)
+}
+
+/// Run a validated scene with the method `factory` builds (a method of
+/// one's own: `examples/custom_method.rs`).
+pub fn run_with(
+    sc: &Resolved,
+    factory: &dyn MethodFactory,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<RunOutput> {
+    drive(sc, &|sc| Integrator::with_method(sc, factory), progress)
+}
+
+/// Build the integrator, step it to the end, record and summarize.
+fn drive(
+    sc: &Resolved,
+    build: &dyn Fn(&Resolved) -> Result<Integrator>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<RunOutput> {
     let start = Instant::now();
-    let mut it = Integrator::new(sc)?;
+    let mut it = build(sc)?;
     let nc = it.carriers();
     let probes: Vec<_> = sc
         .probes

@@ -424,10 +424,10 @@ fn any_contact() -> impl Strategy<Value = ContactCase> {
 /// constant; Cauchy–Schwarz covers r_g ≠ r_f. The mass dof has
 /// A_q ≥ (1 − α_m)m (damping and spring only add).
 fn delassus_bound(sc: &Resolved) -> f64 {
-    let rho = sc.integrator.rho_inf;
-    let alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
-    let alpha_f = rho / (rho + 1.0);
-    let beta = 0.25 * (1.0 - alpha_m + alpha_f).powi(2);
+    let taut::scene::Scheme::GenAlpha(ga) = sc.scheme else {
+        unreachable!("these scenes run generalized-α")
+    };
+    let (alpha_m, beta) = (ga.alpha_m, ga.beta);
     let h = sc.beam.length / sc.elements as f64;
     let c = if sc.beam.is_string() {
         STRING_POINT_COMPLIANCE

@@ -16,37 +16,21 @@
 //! * An interior-point λ is never exactly 0. A contact counts as open when its
 //!   force is smaller than the force that would close its gap, λ_c < g_c/W_cc;
 //!   its λ is then set to 0 (a change within the solver tolerance).
-//! * A failed solve stops the run; the problem is returned as JSON
-//!   ([`ContactProblem`]) so it can be saved and replayed with [`replay`].
+//! * A failed solve stops the run with a typed [`ContactFailure`]; the
+//!   integrator's system saves the problem as a
+//!   [`ContactProblem`](super::ContactProblem) that `taut replay` solves again.
 
+use super::{ContactFailure, ContactLaw};
+use crate::scene::ComplementaritySpec;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
-use serde::{Deserialize, Serialize};
-
-use crate::scene::ComplementaritySpec;
-
-/// One step's contact problem, as saved when the solver fails.
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-pub struct ContactProblem {
-    /// Free gaps, m.
-    pub g_free: Vec<f64>,
-    /// Delassus matrix, row-major, m/N.
-    pub w: Vec<f64>,
-    /// Unilateral (λ ≥ 0) or bilateral.
-    pub bilateral: bool,
-    /// The solver settings used.
-    pub settings: ComplementaritySpec,
-}
 
 /// The clarabel-backed law.
 pub(crate) struct Complementarity {
-    spec: ComplementaritySpec,
     settings: DefaultSettings<f64>,
     bilateral: bool,
-    /// The last failing problem, kept for the error report.
-    pub(crate) failed: Option<ContactProblem>,
 }
 
 impl Complementarity {
@@ -61,22 +45,21 @@ impl Complementarity {
             .build()
             .expect("validated settings");
         Complementarity {
-            spec: spec.clone(),
             settings,
             bilateral,
-            failed: None,
         }
     }
+}
 
-    fn fail(&mut self, g_free: &[f64], w: &[f64], reason: String) -> String {
-        let problem = ContactProblem {
-            g_free: g_free.to_vec(),
-            w: w.to_vec(),
-            bilateral: self.bilateral,
-            settings: self.spec.clone(),
-        };
-        self.failed = Some(problem);
-        reason
+impl ContactLaw for Complementarity {
+    fn solve(
+        &mut self,
+        g_free: &[f64],
+        w: &[f64],
+        lambda: &mut [f64],
+        active: &mut [bool],
+    ) -> Result<(), ContactFailure> {
+        self.solve_qp(g_free, w, lambda, active)
     }
 }
 
@@ -88,7 +71,7 @@ impl Complementarity {
         w: &[f64],
         lambda: &mut [f64],
         active: &mut [bool],
-    ) -> Result<(), String> {
+    ) -> Result<(), ContactFailure> {
         let n = g_free.len();
         if n == 0 {
             return Ok(());
@@ -101,11 +84,13 @@ impl Complementarity {
         }
         let w0 = (0..n).fold(0.0f64, |m, c| m.max(w[c * n + c]));
         if !(w0 > 0.0 && w0.is_finite()) {
-            return Err(self.fail(
-                g_free,
-                w,
-                format!("Delassus diagonal {w0:e} is not positive"),
-            ));
+            let contact = (0..n)
+                .find(|&c| !(w[c * n + c] > 0.0 && w[c * n + c].is_finite()))
+                .unwrap_or(0);
+            return Err(ContactFailure::NotPositive {
+                contact,
+                w: w[contact * n + contact],
+            });
         }
         // P: upper triangle of the symmetric part of W/w0, column by column
         let mut colptr = Vec::with_capacity(n + 1);
@@ -130,20 +115,28 @@ impl Complementarity {
         };
         let mut solver = match DefaultSolver::new(&p, &q, &a, &b, &cones, self.settings.clone()) {
             Ok(s) => s,
-            Err(e) => return Err(self.fail(g_free, w, format!("clarabel setup failed: {e}"))),
+            Err(e) => return Err(ContactFailure::Setup(e.to_string())),
         };
         solver.solve();
         let sol = &solver.solution;
         if sol.status != SolverStatus::Solved {
-            let reason = format!(
-                "clarabel returned {:?} after {} iterations (primal residual {:e}, dual residual {:e})",
-                sol.status, sol.iterations, sol.r_prim, sol.r_dual
-            );
-            return Err(self.fail(g_free, w, reason));
+            return Err(ContactFailure::Solver {
+                status: format!("{:?}", sol.status),
+                iterations: sol.iterations,
+                r_prim: sol.r_prim,
+                r_dual: sol.r_dual,
+            });
         }
         let scale = g0 / w0;
         for c in 0..n {
             lambda[c] = sol.x[c] * scale;
+            if !lambda[c].is_finite() {
+                return Err(ContactFailure::NotFinite {
+                    contact: c,
+                    lambda: lambda[c],
+                    w: w[c * n + c],
+                });
+            }
         }
         if self.bilateral {
             active.fill(true);
@@ -163,27 +156,10 @@ impl Complementarity {
     }
 }
 
-/// Solve a saved problem again (e.g. one written by a failed run) and return λ.
-pub fn replay(problem: &ContactProblem) -> Result<Vec<f64>, String> {
-    let n = problem.g_free.len();
-    if problem.w.len() != n * n {
-        return Err(format!(
-            "w has {} entries, expected {}",
-            problem.w.len(),
-            n * n
-        ));
-    }
-    let mut law = Complementarity::new(&problem.settings, problem.bilateral);
-    let mut lambda = vec![0.0; n];
-    let mut active = vec![false; n];
-    law.solve_qp(&problem.g_free, &problem.w, &mut lambda, &mut active)?;
-    Ok(lambda)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::{ContactLaw, Lagrange};
+    use crate::contact::Lagrange;
 
     /// Agreement with the exact active set: the QP tolerance (1e-12, relative
     /// in the scaled variables) with a margin for the interior-point endgame.
@@ -227,8 +203,7 @@ mod tests {
     }
 
     #[test]
-    fn a_failing_problem_is_kept_for_replay() {
-        // an iteration limit of 1 cannot converge
+    fn an_iteration_limit_of_one_fails_with_the_solver_status() {
         let spec = ComplementaritySpec {
             max_iter: 1,
             ..ComplementaritySpec::default()
@@ -236,14 +211,9 @@ mod tests {
         let mut qp = Complementarity::new(&spec, false);
         let (mut l, mut a) = ([0.0], [false]);
         let err = qp.solve_qp(&[-3e-7], &[5e-9], &mut l, &mut a).unwrap_err();
-        assert!(err.contains("MaxIterations"), "{err}");
-        let saved = qp.failed.clone().unwrap();
-        let json = serde_json::to_string(&saved).unwrap();
-        let mut back: ContactProblem = serde_json::from_str(&json).unwrap();
-        assert_eq!(back, saved);
-        // replayed with a sane limit it solves
-        back.settings.max_iter = 100;
-        let lambda = replay(&back).unwrap();
-        assert!((lambda[0] - 60.0).abs() < 1e-6);
+        assert!(
+            matches!(&err, ContactFailure::Solver { status, .. } if status == "MaxIterations"),
+            "{err}"
+        );
     }
 }

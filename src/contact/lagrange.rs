@@ -2,8 +2,8 @@
 //! the active contacts, with an active set for unilateral contact (loss and
 //! reattachment) and none for bilateral contact.
 
-use super::ContactLaw;
 use super::dense::solve_in_place;
+use super::{ContactFailure, ContactLaw};
 
 /// Most active-set changes tried in one step before giving up. Each pass adds
 /// or drops one contact; with nc contacts a non-cycling search needs at most
@@ -37,7 +37,12 @@ impl Lagrange {
     }
 
     /// λ_A = −W_AA⁻¹ g_A for the current set; others 0.
-    fn solve_set(&mut self, g_free: &[f64], w: &[f64], lambda: &mut [f64]) -> Result<(), String> {
+    fn solve_set(
+        &mut self,
+        g_free: &[f64],
+        w: &[f64],
+        lambda: &mut [f64],
+    ) -> Result<(), ContactFailure> {
         let nc = g_free.len();
         let na = self.set.len();
         for (r, &i) in self.set.iter().enumerate() {
@@ -47,7 +52,7 @@ impl Lagrange {
             self.rhs[r] = -g_free[i];
         }
         if !solve_in_place(na, &mut self.waa[..na * na], &mut self.rhs[..na]) {
-            return Err("the Delassus matrix of the active contacts is singular".into());
+            return Err(ContactFailure::Singular);
         }
         lambda.fill(0.0);
         for (r, &i) in self.set.iter().enumerate() {
@@ -64,7 +69,7 @@ impl ContactLaw for Lagrange {
         w: &[f64],
         lambda: &mut [f64],
         active: &mut [bool],
-    ) -> Result<(), String> {
+    ) -> Result<(), ContactFailure> {
         let nc = g_free.len();
         if self.bilateral {
             self.set.clear();
@@ -80,7 +85,10 @@ impl ContactLaw for Lagrange {
             return if w[0] > 0.0 || !closed {
                 Ok(())
             } else {
-                Err(format!("Delassus W = {:e} is not positive", w[0]))
+                Err(ContactFailure::NotPositive {
+                    contact: 0,
+                    w: w[0],
+                })
             };
         }
         // Several contacts: start from the penetrating ones, then drop the most
@@ -129,9 +137,9 @@ impl ContactLaw for Lagrange {
                 }
             }
         }
-        Err(format!(
-            "the active set did not settle in {MAX_ACTIVE_SET_PASSES} passes (contacts cycle)"
-        ))
+        Err(ContactFailure::Cycling {
+            passes: MAX_ACTIVE_SET_PASSES,
+        })
     }
 }
 

@@ -1,31 +1,45 @@
 //! Contact formulations (MODEL §6): each is a rule that, given the free gaps
 //! `g_free` of a step and its Delassus matrix `W` (MODEL §5, g = g_free + Wλ),
-//! returns the contact forces λ.
+//! returns the contact forces λ (or impulses, at velocity level).
 //!
 //! Users pick a formulation through the serde enum
 //! [`crate::scene::Formulation`]; the behaviour lives behind the crate-private
-//! [`ContactLaw`] trait, so the integrator never knows which law it calls.
+//! [`ContactLaw`] trait, one file per law with its `impl`. The integrator's
+//! [`System`](crate::integrate::System) forms `(g_free, W)` at the level the
+//! law asks for ([`Level`]) and calls it; a law never reaches into an
+//! integrator. A law that fails returns a typed [`ContactFailure`], and the
+//! system saves the problem it was given as a [`ContactProblem`] that
+//! [`replay`] solves again.
 
 mod complementarity;
 mod dense;
+mod failure;
+mod impact;
 mod lagrange;
 mod penalty;
+mod problem;
 
-pub use complementarity::{ContactProblem, replay};
+pub use failure::ContactFailure;
+pub use problem::{
+    ContactProblem, Level, MAX_REPLAY_CONTACTS, ReplayOutcome, SIGNORINI_TOLERANCE, replay,
+};
+
 pub(crate) use lagrange::Lagrange;
-pub(crate) use penalty::{Kappa, Penalty};
 
 use crate::scene::{ContactKind, ContactSpec, DEFAULT_PENALTY_RELATIVE, Formulation};
 use complementarity::Complementarity;
+use impact::Impact;
+use penalty::{Kappa, Penalty};
 
 /// A contact law: λ from (g_free, W).
-pub(crate) trait ContactLaw {
+pub(crate) trait ContactLaw: Send {
     /// Compute the forces.
     ///
-    /// * `g_free` — gaps of the step taken with λ = 0 (m, or m/s² for the
-    ///   initial acceleration-level problem), one per contact;
-    /// * `w` — Delassus matrix, row-major `w[i * nc + j]` = ∂g_i/∂λ_j (m/N);
-    /// * `lambda` — output forces, N;
+    /// * `g_free` — gaps of the step taken with λ = 0, one per contact: m at
+    ///   position level, m/s at velocity level, m/s² for the initial
+    ///   acceleration-level problem;
+    /// * `w` — Delassus matrix, row-major `w[i * nc + j]` = ∂g_i/∂λ_j;
+    /// * `lambda` — output forces (N) or impulses (N·s at velocity level);
     /// * `active` — output: true where the contact is closed (λ from g = 0).
     ///
     /// Must not allocate: it runs once per step.
@@ -35,7 +49,7 @@ pub(crate) trait ContactLaw {
         w: &[f64],
         lambda: &mut [f64],
         active: &mut [bool],
-    ) -> Result<(), String>;
+    ) -> Result<(), ContactFailure>;
 
     /// The acceleration-level problem at t = 0 (MODEL §5: initial
     /// accelerations consistent with contact). `g_free` is then the free gap
@@ -46,79 +60,32 @@ pub(crate) trait ContactLaw {
         w: &[f64],
         lambda: &mut [f64],
         active: &mut [bool],
-    ) -> Result<(), String> {
+    ) -> Result<(), ContactFailure> {
         self.solve(g_free, w, lambda, active)
     }
 
-    /// After a failed `solve`, the problem as JSON so it can be saved and
-    /// replayed (laws backed by an external solver keep it).
-    fn failed_problem(&mut self) -> Option<String> {
-        None
-    }
-
-    /// True when the law works at velocity level (the `impact` formulation):
-    /// the integrator then passes gap rates and the velocity Delassus matrix.
-    fn velocity_level(&self) -> bool {
-        false
-    }
-}
-
-impl ContactLaw for Complementarity {
-    fn solve(
-        &mut self,
-        g_free: &[f64],
-        w: &[f64],
-        lambda: &mut [f64],
-        active: &mut [bool],
-    ) -> Result<(), String> {
-        self.solve_qp(g_free, w, lambda, active)
-    }
-
-    fn failed_problem(&mut self) -> Option<String> {
-        self.failed
-            .take()
-            .and_then(|p| serde_json::to_string_pretty(&p).ok())
-    }
-}
-
-/// The velocity-level law: the Lagrange active set applied to gap rates.
-struct Impact(Lagrange);
-
-impl ContactLaw for Impact {
-    fn solve(
-        &mut self,
-        g_free: &[f64],
-        w: &[f64],
-        lambda: &mut [f64],
-        active: &mut [bool],
-    ) -> Result<(), String> {
-        self.0.solve(g_free, w, lambda, active)
-    }
-
-    fn velocity_level(&self) -> bool {
-        true
+    /// The level of the problem the law solves during the run.
+    fn level(&self) -> Level {
+        Level::Position
     }
 }
 
 /// Build the law a scene asks for, for `nc` contacts.
 pub(crate) fn law_for(spec: &ContactSpec, nc: usize) -> Box<dyn ContactLaw> {
+    let bilateral = spec.kind == ContactKind::Bilateral;
     match spec.formulation {
-        Formulation::Lagrange => Box::new(Lagrange::new(spec.kind == ContactKind::Bilateral, nc)),
+        Formulation::Lagrange => Box::new(Lagrange::new(bilateral, nc)),
         Formulation::Penalty => {
             let kappa = match (spec.penalty.stiffness, spec.penalty.relative) {
                 (Some(k), _) => Kappa::Absolute(k),
                 (None, Some(r)) => Kappa::Relative(r),
                 (None, None) => Kappa::Relative(DEFAULT_PENALTY_RELATIVE),
             };
-            Box::new(Penalty::new(kappa, spec.kind == ContactKind::Bilateral, nc))
+            Box::new(Penalty::new(kappa, bilateral, nc))
         }
-        Formulation::Complementarity => Box::new(Complementarity::new(
-            &spec.complementarity,
-            spec.kind == ContactKind::Bilateral,
-        )),
-        Formulation::Impact => Box::new(Impact(Lagrange::new(
-            spec.kind == ContactKind::Bilateral,
-            nc,
-        ))),
+        Formulation::Complementarity => {
+            Box::new(Complementarity::new(&spec.complementarity, bilateral))
+        }
+        Formulation::Impact => Box::new(Impact::new(bilateral, nc)),
     }
 }

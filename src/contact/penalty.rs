@@ -5,7 +5,7 @@
 //! For one contact λ = κ max(0, −g_free)/(1 + κW), MODEL §6.
 //! The penetration is then −g = λ/κ.
 
-use super::{ContactLaw, Lagrange};
+use super::{ContactFailure, ContactLaw, Lagrange};
 
 /// How κ is given.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,7 +41,7 @@ impl ContactLaw for Penalty {
         w: &[f64],
         lambda: &mut [f64],
         active: &mut [bool],
-    ) -> Result<(), String> {
+    ) -> Result<(), ContactFailure> {
         let nc = g_free.len();
         let wm = &mut self.w_mod[..nc * nc];
         wm.copy_from_slice(&w[..nc * nc]);
@@ -66,7 +66,7 @@ impl ContactLaw for Penalty {
         _w: &[f64],
         lambda: &mut [f64],
         active: &mut [bool],
-    ) -> Result<(), String> {
+    ) -> Result<(), ContactFailure> {
         lambda.fill(0.0);
         active.fill(true);
         Ok(())

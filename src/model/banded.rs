@@ -10,9 +10,10 @@
 //! The half-bandwidth p and the number of right-hand sides are compile-time
 //! constants in the kernels (p = 3 Hermite, p = 1 string), so the inner loops
 //! unroll fully, the window of the last p solved rows stays in registers (no
-//! store-to-load forwarding on the chain), and the generalized-α residual is
-//! computed inside the forward sweep, in the arithmetic units the chain leaves
-//! idle ([`BandedLdlt::solve_residual`]; docs/performance.md has the figures).
+//! store-to-load forwarding on the chain), and an affine column h − K u (the
+//! generalized-α residual, `integrate::gen_alpha`) can be computed inside the
+//! forward sweep, in the arithmetic units the chain leaves idle
+//! ([`BandedLdlt::solve_affine`]; docs/performance.md has the figures).
 
 use crate::error::{Error, Result};
 
@@ -131,22 +132,22 @@ impl SymBand {
     }
 }
 
-/// The generalized-α residual in the form the step forms it, `F = h − K ũ`
-/// (MODEL §5, step 3, with α_m M a_n eliminated through A a_n; the algebra is
-/// in `Integrator::step`): one band product per step where `f − α_m M a − K u`
-/// takes two. [`BandedLdlt::solve_residual`] computes it row by row inside
-/// its forward sweep; [`residual_into`] is the same as a pass of its own.
+/// An affine column `h − K u` with K banded: what a time step's right-hand
+/// side is made of (for generalized-α, h = f − α′ A a_n and u = ũ; the
+/// algebra is in `integrate::gen_alpha`). [`BandedLdlt::solve_affine`]
+/// computes it row by row inside its forward sweep; [`affine_into`] is the
+/// same as a pass of its own.
 #[derive(Debug, Clone, Copy)]
-pub struct Residual<'a> {
-    /// h = f − α′ A a_n, N (α′ = α_m/(1 − α_m)).
+pub struct Affine<'a> {
+    /// h.
     pub h: &'a [f64],
-    /// Stiffness matrix K.
+    /// The banded matrix K.
     pub k: &'a SymBand,
-    /// ũ = u − α′(1 − α_f)βΔt² a_n, m.
+    /// u.
     pub u: &'a [f64],
 }
 
-impl Residual<'_> {
+impl Affine<'_> {
     /// Row i with bounds (edge rows and small meshes).
     fn row_any(&self, i: usize) -> f64 {
         let (n, p) = (self.k.n, self.k.p);
@@ -193,10 +194,10 @@ impl Residual<'_> {
     }
 }
 
-/// The residual as a pass of its own: `out[i·stride] = F_i` and the other
-/// `stride − 1` columns of row i zeroed (the reference for the fused sweep,
-/// and the "before" of `examples/step_profile.rs`).
-pub fn residual_into(r: &Residual, out: &mut [f64], stride: usize) {
+/// The affine column as a pass of its own: `out[i·stride] = (h − K u)_i` and
+/// the other `stride − 1` columns of row i zeroed (the reference for the
+/// fused sweep, and the "before" of `examples/step_profile.rs`).
+pub fn affine_into(r: &Affine, out: &mut [f64], stride: usize) {
     assert_eq!(out.len(), r.k.n * stride, "output has the wrong length");
     for (i, row) in out.chunks_exact_mut(stride).enumerate() {
         row.fill(0.0);
@@ -282,14 +283,14 @@ impl BandedLdlt {
     }
 
     /// Solve A X = B + F e₀ᵀ in place: as [`BandedLdlt::solve_many`], with
-    /// the residual F of `r` added to column 0 of B; `b0` receives that
-    /// column (B e₀ + F, before the solve), from which the integrator forms
-    /// the next step's A a_{n+1}. The residual is computed inside the forward
-    /// sweep: that sweep is bound by its dependency chain (row i waits for
-    /// row i − 1), which leaves the CPU's arithmetic units mostly idle, and
-    /// the residual's independent row sums fill them, so most of the pass
-    /// over K and ũ that the residual costs on its own is hidden.
-    pub fn solve_residual(&self, x: &mut [f64], k: usize, r: &Residual, b0: &mut [f64]) {
+    /// the affine column F = h − K u of `r` added to column 0 of B; `b0`
+    /// receives that column (B e₀ + F, before the solve), from which
+    /// generalized-α forms the next step's A a_{n+1}. F is computed inside
+    /// the forward sweep: that sweep is bound by its dependency chain (row i
+    /// waits for row i − 1), which leaves the CPU's arithmetic units mostly
+    /// idle, and F's independent row sums fill them, so most of the pass over
+    /// K and u that F costs on its own is hidden.
+    pub fn solve_affine(&self, x: &mut [f64], k: usize, r: &Affine, b0: &mut [f64]) {
         assert_eq!((r.k.n, r.k.p), (self.n, self.p));
         assert_eq!(b0.len(), self.n, "b0 has the wrong length");
         self.dispatch(x, k, Some((r, b0)))
@@ -300,7 +301,7 @@ impl BandedLdlt {
         self.solve_many(x, 1)
     }
 
-    fn dispatch(&self, x: &mut [f64], k: usize, r: Option<(&Residual, &mut [f64])>) {
+    fn dispatch(&self, x: &mut [f64], k: usize, r: Option<(&Affine, &mut [f64])>) {
         assert_eq!(x.len(), self.n * k, "right-hand side has the wrong length");
         macro_rules! dispatch {
             ($($p:literal, $k:literal);*) => {
@@ -341,7 +342,7 @@ impl BandedLdlt {
     fn solve_kernel<const P: usize, const K: usize>(
         &self,
         x: &mut [f64],
-        r: Option<(&Residual, &mut [f64])>,
+        r: Option<(&Affine, &mut [f64])>,
     ) {
         let n = self.n;
         let (x, _) = x.as_chunks_mut::<K>();
@@ -387,7 +388,7 @@ impl BandedLdlt {
                 let out = x[P..split].iter_mut().zip(&mut b0[P..split]);
                 for ((xi, b), (row, ((kr, uu), h))) in out.zip(rows.zip(operands)) {
                     let mut acc = *xi;
-                    acc[0] += h - Residual::band_sum::<P>(kr, uu);
+                    acc[0] += h - Affine::band_sum::<P>(kr, uu);
                     *b = acc[0];
                     let acc = Self::eliminate(row, &win, acc);
                     *xi = acc;
@@ -548,8 +549,8 @@ mod tests {
             let mut expect = h.clone();
             k.mul_acc(&u, -1.0, &mut expect);
             let mut out = vec![7.0; n * stride];
-            residual_into(
-                &Residual {
+            affine_into(
+                &Affine {
                     h: &h,
                     k: &k,
                     u: &u,
@@ -591,13 +592,13 @@ mod tests {
             let kmat = sample(n, p).combine(2.0, &sample(n, p), -0.5);
             let h: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
             let u: Vec<f64> = (0..n).map(|i| 1.0 / (1.0 + i as f64)).collect();
-            let r = Residual {
+            let r = Affine {
                 h: &h,
                 k: &kmat,
                 u: &u,
             };
             for k in 1..=7 {
-                // loads scattered into every column, as `Integrator::step` does
+                // loads scattered into every column, as generalized-α's step does
                 let scattered: Vec<f64> = (0..n * k)
                     .map(|i| {
                         if i % 3 == 0 {
@@ -608,7 +609,7 @@ mod tests {
                     })
                     .collect();
                 let mut separate = vec![0.0; n * k];
-                residual_into(&r, &mut separate, k);
+                affine_into(&r, &mut separate, k);
                 for (x, s) in separate.iter_mut().zip(&scattered) {
                     *x += s;
                 }
@@ -616,7 +617,7 @@ mod tests {
                 fac.solve_many(&mut separate, k);
                 let mut fused = scattered.clone();
                 let mut b0 = vec![f64::NAN; n];
-                fac.solve_residual(&mut fused, k, &r, &mut b0);
+                fac.solve_affine(&mut fused, k, &r, &mut b0);
                 assert_eq!(fused, separate, "n={n} p={p} k={k}");
                 assert_eq!(b0, b0_separate, "n={n} p={p} k={k}");
             }

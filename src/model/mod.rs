@@ -6,3 +6,4 @@ pub mod beam;
 pub mod element;
 pub mod modal;
 pub mod motion;
+pub mod spectrum;

@@ -7,11 +7,17 @@
 //! unit, default and allowed range is documented in `docs/scene.md`.
 
 mod load;
+mod method;
 mod speed;
 mod validate;
 
 pub use load::{apply_override, load_scene, parse_scene, resolve_scene};
+pub use method::{
+    DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, IntegratorSpec, Method,
+    Scheme, parse_methods,
+};
 pub use speed::SpeedProfile;
+pub(crate) use validate::validate_contact;
 pub use validate::{
     BeamProps, CarrierKind, CarrierProps, DEFAULT_PENALTY_RELATIVE, Resolved, STEP_COUNT_SLACK,
 };
@@ -34,7 +40,7 @@ pub struct Scene {
     pub contact: ContactSpec,
     /// Time step and end time.
     pub time: TimeSpec,
-    /// Generalized-α parameters.
+    /// The time integrator and its parameters (MODEL §5, §9.1).
     #[serde(default)]
     pub integrator: IntegratorSpec,
     /// Gravity.
@@ -344,25 +350,6 @@ impl<'de> Deserialize<'de> for EndTime {
         }
         d.deserialize_any(V)
     }
-}
-
-/// `[integrator]`: generalized-α (MODEL §5).
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct IntegratorSpec {
-    /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1] (default 1: no dissipation).
-    #[serde(default = "one")]
-    pub rho_inf: f64,
-}
-
-impl Default for IntegratorSpec {
-    fn default() -> Self {
-        IntegratorSpec { rho_inf: 1.0 }
-    }
-}
-
-fn one() -> f64 {
-    1.0
 }
 
 fn standard_gravity() -> f64 {

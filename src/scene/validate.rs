@@ -1,7 +1,10 @@
 //! Scene validation: every value checked against its allowed range, and the
 //! physical parameters resolved (ρA, EI, EA) as MODEL §1–§3 define them.
 
-use super::{ContactSpec, EndTime, IntegratorSpec, Scene, Side, SpeedProfile, Support};
+use super::{
+    ContactSpec, EndTime, Formulation, IntegratorSpec, Method, Placement, Scene, Scheme, Side,
+    SpeedProfile, Support,
+};
 use crate::error::{Error, Result};
 use crate::model::motion::Motion;
 
@@ -102,8 +105,10 @@ pub struct Resolved {
     pub elements: usize,
     /// Contact settings.
     pub contact: ContactSpec,
-    /// Generalized-α settings.
+    /// `[integrator]` as given.
     pub integrator: IntegratorSpec,
+    /// The time integrator with its parameters resolved (MODEL §9.1).
+    pub scheme: Scheme,
     /// Gravity on carrier masses, m/s².
     pub g: f64,
     /// Time step Δt, s.
@@ -174,17 +179,10 @@ impl Scene {
             .map(|(i, c)| resolve_carrier(i, c, l))
             .collect::<Result<Vec<_>>>()?;
 
-        // a range check is false for NaN, so it also rejects non-finite values
-        let rho = self.integrator.rho_inf;
-        if !(0.0..=1.0).contains(&rho) {
-            return Err(Error::invalid(
-                "integrator.rho_inf",
-                rho,
-                "must be in [0, 1]",
-            ));
-        }
+        let scheme = self.integrator.resolve()?;
         let g = non_negative("gravity.g", self.gravity.g, "m/s²")?;
         validate_contact(&self.contact)?;
+        check_combination(self.integrator.method, &self.contact)?;
 
         let dt = positive("time.step", self.time.step, "s")?;
         let t_end = match self.time.end {
@@ -306,6 +304,7 @@ impl Scene {
             elements,
             contact: self.contact.clone(),
             integrator: self.integrator.clone(),
+            scheme,
             g,
             dt,
             steps: steps_f as usize,
@@ -505,7 +504,8 @@ fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierPr
 /// the penalty force is then 1000/1001 of the Lagrange force per step.
 pub const DEFAULT_PENALTY_RELATIVE: f64 = 1e3;
 
-fn validate_contact(c: &super::ContactSpec) -> Result<()> {
+/// Check `[contact]`: penalty stiffness, QP tolerances, restitution.
+pub(crate) fn validate_contact(c: &super::ContactSpec) -> Result<()> {
     let p = &c.penalty;
     if let (Some(k), Some(_)) = (p.stiffness, p.relative) {
         return Err(Error::invalid(
@@ -550,6 +550,44 @@ fn validate_contact(c: &super::ContactSpec) -> Result<()> {
             e,
             "must be in [0, 1]",
         ));
+    }
+    Ok(())
+}
+
+/// Refuse a time integrator and contact setting that do not go together
+/// (the table in `docs/methods.md`), naming both keys.
+fn check_combination(method: Method, c: &ContactSpec) -> Result<()> {
+    let alpha_level = matches!(
+        method,
+        Method::GeneralizedAlpha | Method::Newmark | Method::Hht | Method::Wbz
+    );
+    if c.placement == Placement::Alpha && !alpha_level {
+        return Err(Error::invalid(
+            "contact.placement",
+            "\"alpha\"",
+            format!(
+                "imposes the gap at the generalized-α level t_{{n+1−α_f}}, which integrator.method = {} does not have: use contact.placement = \"end\" (or a generalized-α method)",
+                method.name()
+            ),
+        ));
+    }
+    if method == Method::MoreauJean {
+        let why = match c.formulation {
+            Formulation::Penalty => Some(
+                "penalty regularizes a position gap with a stiffness, while integrator.method = moreau_jean solves for impulses on gap rates: use lagrange or complementarity",
+            ),
+            Formulation::Impact => Some(
+                "integrator.method = moreau_jean is itself the velocity-level impact scheme (restitution from contact.impact.restitution): use lagrange (exact active set) or complementarity (clarabel) to solve its impulse problem",
+            ),
+            _ => None,
+        };
+        if let Some(why) = why {
+            return Err(Error::invalid(
+                "contact.formulation",
+                format!("\"{}\"", c.formulation.name()),
+                why,
+            ));
+        }
     }
     Ok(())
 }

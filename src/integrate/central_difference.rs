@@ -1,0 +1,182 @@
+//! Central difference, explicit in K (MODEL §9.1):
+//!
+//! ```text
+//!   M a_n = f_n − K d_n + Σ λ_c r_c,   v_{n+1/2} = v_{n−1/2} + Δt a_n,
+//!   d_{n+1} = d_n + Δt v_{n+1/2}
+//! ```
+//!
+//! with the consistent mass (its banded factor from the initial state is
+//! reused: one banded solve per step, no K solve). Contact by the
+//! forward-increment Lagrange multiplier (Carpenter, Taylor & Katona 1991):
+//! λ_n acts along r at x_m(t_n) and is chosen so that the gap at t_{n+1}
+//! closes, `W = Δt² r_{n+1}ᵀ M⁻¹ r_n` — in the [`System`]'s terms, the
+//! unknown is a_n with `d_{n+1} = (d_n + Δt v_{n−1/2}) + Δt² a_n`. A mass dof
+//! takes its dashpot at the average of the half-step velocities,
+//! `(m + c_sΔt/2) q̈_n = f0 − k q_n − c_s q̇_{n−1/2} − λ`, second order.
+//!
+//! Conditionally stable: Δt ≤ 2/ω_max. ω_max is computed from the assembled
+//! model by a Lanczos iteration with its residual bound
+//! ([`stability_limit`], `model::spectrum`); a scene above the limit is
+//! refused before the run, naming ω_max and the largest stable Δt.
+//!
+//! The state's `v` is the half-step velocity v_{n+1/2} (the method's own),
+//! and the force recorded at t_{n+1} is λ_n, the force that closed the gap
+//! at t_{n+1} (it acts at t_n).
+
+use crate::error::{Error, Result};
+use crate::model::banded::BandedLdlt;
+use crate::model::spectrum;
+use crate::scene::Resolved;
+
+use super::{
+    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, rhs_columns,
+};
+
+/// Lanczos steps for ω_max: after 100 steps the largest Ritz value is within
+/// 3e-5 of a dense solve's ω_max² on the reference beam at N = 400 and its
+/// residual bound closes the rest (`tests/methods.rs`; 13 ms there).
+pub const LANCZOS_STEPS: usize = 100;
+
+/// The explicit method's stability limit for a scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StabilityLimit {
+    /// ω_max the run is held to, rad/s: the smaller of the beam's two upper
+    /// figures, sqrt(θ + r) (Lanczos) and the element bound, or a
+    /// mass–spring's sqrt(k/m) if higher.
+    pub omega_max: f64,
+    /// sqrt(θ): the Lanczos estimate itself (≤ the beam's ω_max), rad/s.
+    pub omega_ritz: f64,
+    /// The element-eigenvalue bound (Irons), rad/s: ≥ the beam's ω_max.
+    pub omega_element_bound: f64,
+    /// The largest stable step 2/ω_max, s.
+    pub dt_max: f64,
+}
+
+/// ω_max and the largest stable Δt of central difference for a scene.
+pub fn stability_limit(sc: &Resolved, sys: &System, mass_factor: &BandedLdlt) -> StabilityLimit {
+    let beam = sys.beam();
+    let (theta, residual) = spectrum::lanczos_max(beam, mass_factor, LANCZOS_STEPS);
+    let bound = spectrum::element_bound(&sc.beam, beam.h);
+    let mut omega = (theta + residual).sqrt().min(bound);
+    for m in sys.masses() {
+        omega = omega.max((m.k / m.m).sqrt());
+    }
+    StabilityLimit {
+        omega_max: omega,
+        omega_ritz: theta.sqrt(),
+        omega_element_bound: bound,
+        dt_max: 2.0 / omega,
+    }
+}
+
+/// A central-difference stepper for one run.
+pub struct CentralDifference {
+    dt: f64,
+    mass_factor: BandedLdlt,
+    /// A_q = m + c_sΔt/2 per contact (the dashpot at the mean half-step velocity).
+    a_eff: Vec<f64>,
+    mass_pred: Vec<MassPrediction>,
+    /// d̃ = d_n + Δt v_{n−1/2}.
+    d_pred: Vec<f64>,
+    /// n × k right-hand sides: f_n − K d_n + moving forces, and s_c r_c.
+    rhs: Vec<f64>,
+    /// K d_n (scratch).
+    kd: Vec<f64>,
+    /// The stability limit checked at the start.
+    pub limit: StabilityLimit,
+}
+
+impl CentralDifference {
+    /// Check the stability limit and start from v_{−1/2} = v₀ − (Δt/2) a₀,
+    /// so that the first half-step velocity is v₀ + (Δt/2) a₀.
+    pub fn new(sc: &Resolved, sys: &System, st: &mut State, init: Initial) -> Result<Self> {
+        let dt = sys.dt();
+        let limit = stability_limit(sc, sys, &init.mass_factor);
+        if dt > limit.dt_max {
+            return Err(Error::invalid(
+                "time.step",
+                format!("{dt:e} s"),
+                format!(
+                    "integrator.method = central_difference is stable for Δt ≤ 2/ω_max = {:.4e} s, with ω_max = {:.6e} rad/s the highest natural frequency of the assembled model (Lanczos; the element bound is {:.4e} rad/s): use time.step ≤ {:.4e} s or an implicit method",
+                    limit.dt_max, limit.omega_max, limit.omega_element_bound, limit.dt_max
+                ),
+            ));
+        }
+        let n = sys.beam().n;
+        let nc = sys.contacts();
+        for i in 0..n {
+            st.v[i] -= 0.5 * dt * init.a[i];
+        }
+        for j in 0..nc {
+            st.q_dot[j] -= 0.5 * dt * init.aq[j];
+        }
+        let a_eff = sys.masses().iter().map(|m| m.m + 0.5 * dt * m.c).collect();
+        Ok(CentralDifference {
+            dt,
+            mass_factor: init.mass_factor,
+            a_eff,
+            mass_pred: vec![MassPrediction::default(); nc],
+            d_pred: vec![0.0; n],
+            rhs: vec![0.0; n * rhs_columns(nc)],
+            kd: vec![0.0; n],
+            limit,
+        })
+    }
+}
+
+impl Stepper for CentralDifference {
+    fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
+        let dt = self.dt;
+        let k = sys.columns();
+        let (t0, t1) = (st.t, st.next_time(dt));
+        sys.place(t0, t0, t1);
+        let beam = sys.beam();
+        // a★ = M⁻¹(f_n − K d_n + moving forces), z_c = M⁻¹ s_c r_c
+        self.kd.fill(0.0);
+        beam.stiffness.mul_acc(&st.d, 1.0, &mut self.kd);
+        self.rhs.fill(0.0);
+        for (i, row) in self.rhs.chunks_exact_mut(k).enumerate() {
+            row[0] = beam.load[i] - self.kd[i];
+        }
+        sys.scatter_loads(&mut self.rhs, k, 1.0);
+        self.mass_factor.solve_many(&mut self.rhs, k);
+        for (dp, (d, v)) in self.d_pred.iter_mut().zip(st.d.iter().zip(&st.v)) {
+            *dp = d + dt * v;
+        }
+        for (j, m) in sys.masses().iter().enumerate() {
+            let (q, v) = (st.q[j], st.q_dot[j]);
+            self.mass_pred[j] = MassPrediction {
+                q: q + dt * v,
+                q_dot: v,
+                u: (m.f0 - m.k * q - m.c * v) / self.a_eff[j],
+                a_eff: self.a_eff[j],
+            };
+        }
+        let map = StepMap {
+            solved: &self.rhs,
+            c_d: dt * dt,
+            c_v: dt,
+            d_pred: &self.d_pred,
+            v_pred: VelocityPrediction::Vector(&st.v),
+            alpha_weight: 0.0,
+            masses: &self.mass_pred,
+        };
+        sys.solve_contact(&map, st)?;
+        let lambda = sys.multipliers();
+        let dt2 = dt * dt;
+        for (i, row) in self.rhs.chunks_exact(k).enumerate() {
+            let mut a = row[0];
+            for (l, z) in lambda.iter().zip(&row[1..]) {
+                a += l * z;
+            }
+            st.v[i] += dt * a;
+            st.d[i] = self.d_pred[i] + dt2 * a;
+        }
+        for (j, m) in self.mass_pred.iter().enumerate() {
+            let a = m.u - lambda[j] / m.a_eff;
+            st.q_dot[j] += dt * a;
+            st.q[j] = m.q + dt2 * a;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,632 @@
+//! The system every time integrator shares (MODEL §2, §5, §6, §9.1): the
+//! discretized beam, the carriers and their contact kinematics, the mass
+//! dofs' parameters, and the contact problem of a step.
+//!
+//! A method solves its step with the contact multipliers λ as unknowns: its
+//! unknown vector `u` (an acceleration, a displacement or a velocity,
+//! depending on the method) is `u = u★ + Σ_c λ_c z_c`, with `u★` the free
+//! solution and `z_c = A⁻¹ s_c r_f,c` the response to a unit multiplier of
+//! contact c, and the step's end state is affine in it:
+//! `d_{n+1} = d̃ + c_d u`, `v_{n+1} = ṽ + c_v u` (the same for each mass dof,
+//! whose own unknown is `u_q = u★_q − λ/A_q`). The method describes that in a
+//! [`StepMap`]; [`System::solve_contact`] forms from it the pair `(g_free, W)`
+//! the contact law needs — gaps at force level, gap rates at velocity level
+//! (the `impact` law, Moreau–Jean's impulses) — and calls the law. So every
+//! contact formulation works with every method through this one seam, and a
+//! law never reaches into a method.
+
+use crate::contact::{ContactFailure, ContactLaw, ContactProblem, Level, law_for};
+use crate::error::{Error, Result};
+use crate::model::banded::BandedLdlt;
+use crate::model::beam::{BeamModel, PointVector};
+use crate::scene::{
+    CarrierKind, CarrierProps, ContactKind, ContactSpec, Placement, Resolved, Support,
+};
+
+use super::State;
+
+/// Contact forces beyond this multiple of the carriers' force scale
+/// (k(δ0 + L) + m g + F) are taken as a blow-up: no physical run of this model
+/// comes within orders of magnitude of it.
+const FORCE_BOUND_FACTOR: f64 = 1e3;
+
+/// Columns of a right-hand side for `nc` contacts: the free step and one
+/// per contact, rounded up to an even number (at least two). The banded
+/// sweeps carry the columns side by side in two-wide SIMD lanes: with one
+/// column the compiler packs the sweep's window into vectors through general
+/// registers, three extra moves on the dependency chain (measured: one-column
+/// sweeps took 2.7× as long as two-column ones, `examples/step_profile.rs`);
+/// with three, a half-empty lane and register spills (two carriers at
+/// N = 800: 1.16 × 10⁸ DOF-steps/s with three columns, 1.55 × 10⁸ with four).
+/// A padding column stays zero (A⁻¹0 = 0) and enters the update with weight 0.
+pub fn rhs_columns(nc: usize) -> usize {
+    (1 + nc).max(2).next_multiple_of(2)
+}
+
+/// A mass–spring carrier's mass dof: `m q̈ + c q̇ + k q = f0 − λ` (MODEL §2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassDof {
+    /// Mass m, kg.
+    pub m: f64,
+    /// Spring stiffness k, N/m.
+    pub k: f64,
+    /// Dashpot c_s, N·s/m.
+    pub c: f64,
+    /// Constant force on q: k δ0 − s m g, N (MODEL §2).
+    pub f0: f64,
+}
+
+/// What a method predicts for one mass dof this step (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MassPrediction {
+    /// q̃: the part of q_{n+1} independent of the unknown, m.
+    pub q: f64,
+    /// q̇̃: the part of q̇_{n+1} independent of the unknown, m/s.
+    pub q_dot: f64,
+    /// u★_q: the free unknown (λ = 0).
+    pub u: f64,
+    /// A_q: the method's effective scalar, u_q = u★_q − λ/A_q.
+    pub a_eff: f64,
+}
+
+/// ṽ of the beam, as the method keeps it.
+#[derive(Debug, Clone, Copy)]
+pub enum VelocityPrediction<'a> {
+    /// ṽ stored as a vector.
+    Vector(&'a [f64]),
+    /// ṽ = v_n + coef·shift (generalized-α: v_n + (1 − γ)Δt a_n), so the
+    /// method need not form it.
+    Shifted {
+        /// The vector added to v_n.
+        shift: &'a [f64],
+        /// Its coefficient.
+        coef: f64,
+    },
+}
+
+/// A method's step as the contact problem sees it (module docs).
+#[derive(Debug, Clone, Copy)]
+pub struct StepMap<'a> {
+    /// The solved right-hand sides, n × k row-major
+    /// ([`System::columns`] = k): column 0 is u★, column 1 + c is z_c.
+    pub solved: &'a [f64],
+    /// c_d in d_{n+1} = d̃ + c_d u.
+    pub c_d: f64,
+    /// c_v in v_{n+1} = ṽ + c_v u.
+    pub c_v: f64,
+    /// d̃ of the beam.
+    pub d_pred: &'a [f64],
+    /// ṽ of the beam.
+    pub v_pred: VelocityPrediction<'a>,
+    /// For `contact.placement = "alpha"`: the gap is imposed on
+    /// (1 − w) y_{n+1} + w y_n with w = α_f, along r_f (MODEL §5); 0 otherwise.
+    pub alpha_weight: f64,
+    /// One prediction per contact.
+    pub masses: &'a [MassPrediction],
+}
+
+/// How a method's multipliers are to be read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Multipliers {
+    /// Forces, N: the contact law works at its own level.
+    Forces,
+    /// Impulses over the step, N·s (Moreau–Jean): the law works at
+    /// velocity level and the reported force is P/Δt.
+    Impulses,
+}
+
+/// One carrier during a run.
+#[derive(Debug, Clone)]
+pub(crate) struct Carrier {
+    pub(crate) props: CarrierProps,
+    /// Side sign s.
+    pub(crate) s: f64,
+    /// Index among the contacts (mass carriers), if any.
+    pub(crate) contact: Option<usize>,
+    /// r_b where the force acts (x_m at the method's force time), and the
+    /// gap row (x_m at t_{n+1}).
+    pub(crate) pv_f: PointVector,
+    pub(crate) pv_g: PointVector,
+    /// r_b' at the gap point, and V there (velocity level only).
+    pub(crate) pv_s: PointVector,
+    pub(crate) speed: f64,
+}
+
+/// The shared system (module docs).
+pub struct System {
+    pub(crate) beam: BeamModel,
+    pub(crate) carriers: Vec<Carrier>,
+    pub(crate) masses: Vec<MassDof>,
+    pub(crate) dt: f64,
+    pub(crate) placement: Placement,
+    pub(crate) bilateral: bool,
+    pub(crate) length: f64,
+    pub(crate) supports: (Support, Support),
+    /// String wave speed c = sqrt(T/ρA), m/s.
+    pub(crate) wave_speed: f64,
+    pub(crate) force_bound: f64,
+    law: Box<dyn ContactLaw>,
+    contact: ContactSpec,
+    /// The level the law works at during the run.
+    level: Level,
+    multipliers: Multipliers,
+    restitution: f64,
+    g_free: Vec<f64>,
+    w: Vec<f64>,
+    /// 1/A_q of each mass dof (scratch).
+    inv_a: Vec<f64>,
+    pub(crate) lambda: Vec<f64>,
+    pub(crate) active: Vec<bool>,
+    /// Gap rates ġ_n (velocity level).
+    gap_rate: Vec<f64>,
+    // the velocity-level problem over Moreau's index set
+    red_idx: Vec<usize>,
+    red_g: Vec<f64>,
+    red_w: Vec<f64>,
+    red_l: Vec<f64>,
+    red_a: Vec<bool>,
+}
+
+/// Consistent initial accelerations (MODEL §5), for the methods that need them.
+pub struct Initial {
+    /// Beam accelerations a₀.
+    pub a: Vec<f64>,
+    /// Mass accelerations q̈₀, one per contact.
+    pub aq: Vec<f64>,
+    /// The factor of M, for a method that solves with M again (central difference).
+    pub mass_factor: BandedLdlt,
+}
+
+impl System {
+    /// Assemble the beam and the carriers of a validated scene.
+    pub fn new(sc: &Resolved) -> Self {
+        let beam = BeamModel::new(&sc.beam, sc.elements);
+        let mut nc = 0;
+        let mut masses = Vec::new();
+        let mut force_scale: f64 = 0.0;
+        let carriers: Vec<Carrier> = sc
+            .carriers
+            .iter()
+            .map(|p| {
+                let s = p.side.sign();
+                let contact = match p.kind {
+                    CarrierKind::MassSpring {
+                        mass,
+                        stiffness,
+                        damping,
+                        preload,
+                    } => {
+                        nc += 1;
+                        force_scale =
+                            force_scale.max(stiffness * (preload + sc.beam.length) + mass * sc.g);
+                        masses.push(MassDof {
+                            m: mass,
+                            k: stiffness,
+                            c: damping,
+                            f0: stiffness * preload - s * mass * sc.g,
+                        });
+                        Some(nc - 1)
+                    }
+                    CarrierKind::Force { force } => {
+                        force_scale = force_scale.max(force);
+                        None
+                    }
+                };
+                Carrier {
+                    props: *p,
+                    s,
+                    contact,
+                    pv_f: PointVector::default(),
+                    pv_g: PointVector::default(),
+                    pv_s: PointVector::default(),
+                    speed: 0.0,
+                }
+            })
+            .collect();
+        let law = law_for(&sc.contact, nc);
+        let level = law.level();
+        System {
+            dt: sc.dt,
+            placement: sc.contact.placement,
+            bilateral: sc.contact.kind == ContactKind::Bilateral,
+            length: sc.beam.length,
+            supports: (sc.beam.left, sc.beam.right),
+            wave_speed: sc.beam.wave_speed(),
+            force_bound: FORCE_BOUND_FACTOR * force_scale.max(f64::MIN_POSITIVE),
+            law,
+            contact: sc.contact.clone(),
+            level,
+            multipliers: Multipliers::Forces,
+            restitution: sc.contact.impact.restitution,
+            g_free: vec![0.0; nc],
+            w: vec![0.0; nc * nc],
+            inv_a: vec![0.0; nc],
+            lambda: vec![0.0; nc],
+            active: vec![false; nc],
+            gap_rate: vec![0.0; nc],
+            red_idx: Vec::with_capacity(nc),
+            red_g: vec![0.0; nc],
+            red_w: vec![0.0; nc * nc],
+            red_l: vec![0.0; nc],
+            red_a: vec![false; nc],
+            beam,
+            carriers,
+            masses,
+        }
+    }
+
+    /// The discretized beam: M, K, the distributed load, point vectors.
+    pub fn beam(&self) -> &BeamModel {
+        &self.beam
+    }
+
+    /// Time step Δt, s.
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// Number of contacts (mass–spring carriers).
+    pub fn contacts(&self) -> usize {
+        self.masses.len()
+    }
+
+    /// Columns of a right-hand side for [`System::scatter_loads`]:
+    /// [`rhs_columns`] of the number of contacts.
+    pub fn columns(&self) -> usize {
+        rhs_columns(self.masses.len())
+    }
+
+    /// The mass dofs, one per contact.
+    pub fn masses(&self) -> &[MassDof] {
+        &self.masses
+    }
+
+    /// The multipliers of the last contact solve (N, or N·s for impulses),
+    /// one per contact.
+    pub fn multipliers(&self) -> &[f64] {
+        &self.lambda
+    }
+
+    /// The level the contact law works at during the run.
+    pub fn level(&self) -> Level {
+        self.level
+    }
+
+    /// Declare how the method's multipliers are to be read; impulses make
+    /// the law work at velocity level (called once, before the run).
+    pub fn set_multipliers(&mut self, m: Multipliers) {
+        self.multipliers = m;
+        if m == Multipliers::Impulses {
+            self.level = Level::Velocity;
+        }
+    }
+
+    /// How the multipliers are read.
+    pub fn multiplier_kind(&self) -> Multipliers {
+        self.multipliers
+    }
+
+    /// Place the carriers for a step: moving forces at x_m(t_load), contact
+    /// force directions r_f at x_m(t_force), gap rows r_g at x_m(t_gap).
+    pub fn place(&mut self, t_load: f64, t_force: f64, t_gap: f64) {
+        let velocity = self.level == Level::Velocity;
+        for c in self.carriers.iter_mut() {
+            let tf = if c.contact.is_some() { t_force } else { t_load };
+            c.pv_f = self.beam.point_vector(c.props.motion.position(tf));
+            let xg = c.props.motion.position(t_gap);
+            c.pv_g = self.beam.point_vector(xg);
+            if velocity {
+                c.pv_s = self.beam.slope_vector(xg);
+                c.speed = c.props.motion.speed(t_gap);
+            }
+        }
+    }
+
+    /// Add the moving forces scale·s·F·r_f into column 0 of `rhs` (k
+    /// columns, row-major) and the contact directions s_c r_f,c into columns
+    /// 1 + c. `scale` is 1 for a force balance, Δt for an impulse balance.
+    pub fn scatter_loads(&self, rhs: &mut [f64], k: usize, scale: f64) {
+        for c in &self.carriers {
+            match (c.props.kind, c.contact) {
+                (CarrierKind::Force { force }, _) => c.pv_f.scatter(c.s * force * scale, rhs, k, 0),
+                (_, Some(j)) => c.pv_f.scatter(c.s, rhs, k, 1 + j),
+                _ => {}
+            }
+        }
+    }
+
+    /// Add coef·λ_c·s_c r_f,c of every contact into `y` (one column): the
+    /// contact forces' part of a right-hand side, after the solve.
+    pub fn scatter_contact_directions(&self, y: &mut [f64], coef: f64) {
+        for c in &self.carriers {
+            if let Some(j) = c.contact {
+                c.pv_f.scatter(coef * self.lambda[j] * c.s, y, 1, 0);
+            }
+        }
+    }
+
+    /// Where the gap condition is imposed (MODEL §5).
+    pub fn placement(&self) -> Placement {
+        self.placement
+    }
+
+    /// Consistent initial accelerations: M a₀ = f(0) + Σ λ r, with the gap
+    /// acceleration of each closed contact zero (the beam is straight and at
+    /// rest, so g̈ = rᵀa − q̈). The contact law solves this
+    /// acceleration-level problem; its λ is the force recorded at t = 0.
+    pub fn initial(&mut self) -> Result<Initial> {
+        let n = self.beam.n;
+        let nc = self.masses.len();
+        let k = rhs_columns(nc);
+        let mass_factor = BandedLdlt::factor(&self.beam.mass)?;
+        self.place(0.0, 0.0, 0.0);
+        let mut rhs = vec![0.0; n * k];
+        for i in 0..n {
+            rhs[i * k] = self.beam.load[i];
+        }
+        self.scatter_loads(&mut rhs, k, 1.0);
+        mass_factor.solve_many(&mut rhs, k);
+        let mut aq_free = vec![0.0; nc];
+        for c in &self.carriers {
+            let Some(j) = c.contact else { continue };
+            let m = self.masses[j];
+            aq_free[j] = m.f0 / m.m;
+            self.g_free[j] = c.s * c.pv_g.dot_strided(&rhs, k, 0) - aq_free[j];
+        }
+        for (j, m) in self.masses.iter().enumerate() {
+            self.inv_a[j] = 1.0 / m.m;
+        }
+        fill_delassus(
+            &self.carriers,
+            self.placement,
+            (&rhs, k),
+            1.0,
+            &self.inv_a,
+            &mut self.w,
+        );
+        if let Err(failure) =
+            self.law
+                .initial(&self.g_free, &self.w, &mut self.lambda, &mut self.active)
+        {
+            return Err(self.failure(0, 0.0, Level::Acceleration, failure, None));
+        }
+        let mut a = vec![0.0; n];
+        for i in 0..n {
+            let mut acc = rhs[i * k];
+            for (j, l) in self.lambda.iter().enumerate() {
+                acc += l * rhs[i * k + 1 + j];
+            }
+            a[i] = acc;
+        }
+        let aq = (0..nc)
+            .map(|j| (self.masses[j].f0 - self.lambda[j]) / self.masses[j].m)
+            .collect();
+        Ok(Initial { a, aq, mass_factor })
+    }
+
+    /// The contact problem of a step (module docs): free gaps and Delassus
+    /// matrix at the law's level, the law's multipliers into
+    /// [`System::multipliers`]. `st` is the state at t_n; a failure names
+    /// step n + 1 and saves the problem.
+    pub fn solve_contact(&mut self, map: &StepMap, st: &State) -> Result<()> {
+        let nc = self.masses.len();
+        if nc == 0 {
+            return Ok(());
+        }
+        let k = rhs_columns(nc);
+        let (c_d, w_a) = (map.c_d, map.alpha_weight);
+        for c in &self.carriers {
+            let Some(j) = c.contact else { continue };
+            let m = &map.masses[j];
+            self.g_free[j] = match self.placement {
+                Placement::End => {
+                    c.s * (c.pv_g.dot(map.d_pred) + c_d * c.pv_g.dot_strided(map.solved, k, 0))
+                        - (m.q + c_d * m.u)
+                }
+                Placement::Alpha => {
+                    let wb = (1.0 - w_a)
+                        * (c.pv_f.dot(map.d_pred) + c_d * c.pv_f.dot_strided(map.solved, k, 0))
+                        + w_a * c.pv_f.dot(&st.d);
+                    let wq = (1.0 - w_a) * (m.q + c_d * m.u) + w_a * st.q[j];
+                    c.s * wb - wq
+                }
+            };
+        }
+        let solved = match self.level {
+            Level::Velocity => self.solve_velocity_level(map, st),
+            _ => {
+                let coef = match self.placement {
+                    Placement::End => c_d,
+                    Placement::Alpha => (1.0 - w_a) * c_d,
+                };
+                for (j, m) in map.masses.iter().enumerate() {
+                    self.inv_a[j] = 1.0 / m.a_eff;
+                }
+                fill_delassus(
+                    &self.carriers,
+                    self.placement,
+                    (map.solved, k),
+                    coef,
+                    &self.inv_a,
+                    &mut self.w,
+                );
+                self.law
+                    .solve(&self.g_free, &self.w, &mut self.lambda, &mut self.active)
+                    .map_err(|f| (f, None))
+            }
+        };
+        solved.map_err(|(failure, reduced)| {
+            let step = st.step + 1;
+            let level = self.level;
+            self.failure(step, st.next_time(self.dt), level, failure, reduced)
+        })
+    }
+
+    /// The velocity-level problem (MODEL §6, §9.1).
+    ///
+    /// Index set: the contacts whose free step would close the gap
+    /// (g_free ≤ 0; all of them when bilateral). On it, Signorini at velocity
+    /// level with Newton's impact law: ġ_{n+1} + e·ġ_n ≥ 0, λ ≥ 0,
+    /// complementary. The gap rate of a moving contact has a convective part,
+    /// ġ = s(r_bᵀv + V r_b'ᵀd) − q̇, and with v_{n+1} = ṽ + c_v u,
+    /// d_{n+1} = d̃ + c_d u it is linear in λ:
+    /// ġ = ġ_free + W_v λ, W_v = c_v r_gᵀz + V c_d r_g'ᵀz (+ c_v/A_q on the mass).
+    /// The position gap is not imposed: it drifts by O(Δt²) per step, and
+    /// the largest penetration is reported.
+    #[allow(clippy::type_complexity)]
+    fn solve_velocity_level(
+        &mut self,
+        map: &StepMap,
+        st: &State,
+    ) -> std::result::Result<(), (ContactFailure, Option<usize>)> {
+        let nc = self.masses.len();
+        let k = rhs_columns(nc);
+        let (c_d, c_v) = (map.c_d, map.c_v);
+        let e = self.restitution;
+        self.red_idx.clear();
+        for j in 0..nc {
+            if self.bilateral || self.g_free[j] <= 0.0 {
+                self.red_idx.push(j);
+            }
+        }
+        let na = self.red_idx.len();
+        for c in &self.carriers {
+            let Some(j) = c.contact else { continue };
+            let Some(r) = self.red_idx.iter().position(|&i| i == j) else {
+                continue;
+            };
+            let m = &map.masses[j];
+            let u_star = c.pv_g.dot_strided(map.solved, k, 0);
+            let s_star = c.pv_s.dot_strided(map.solved, k, 0);
+            let v_pred = match map.v_pred {
+                VelocityPrediction::Vector(v) => c.pv_g.dot(v),
+                VelocityPrediction::Shifted { shift, coef } => {
+                    c.pv_g.dot(&st.v) + coef * c.pv_g.dot(shift)
+                }
+            };
+            let rate_free = c.s
+                * (v_pred + c_v * u_star + c.speed * (c.pv_s.dot(map.d_pred) + c_d * s_star))
+                - (m.q_dot + c_v * m.u);
+            self.red_g[r] = rate_free + e * self.gap_rate[j];
+            for (rr, &jj) in self.red_idx.iter().enumerate() {
+                let mut wv = c.s
+                    * (c_v * c.pv_g.dot_strided(map.solved, k, 1 + jj)
+                        + c.speed * c_d * c.pv_s.dot_strided(map.solved, k, 1 + jj));
+                if jj == j {
+                    wv += c_v / m.a_eff;
+                }
+                self.red_w[r * na + rr] = wv;
+            }
+        }
+        for r in 0..na {
+            let wv = self.red_w[r * na + r];
+            if wv.is_nan() || wv <= 0.0 {
+                let j = self.red_idx[r];
+                let speed = self
+                    .carriers
+                    .iter()
+                    .find(|c| c.contact == Some(j))
+                    .map_or(0.0, |c| c.speed);
+                return Err((
+                    ContactFailure::VelocityDelassus {
+                        contact: j,
+                        w: wv,
+                        travel: speed * self.dt,
+                        h: self.beam.h,
+                    },
+                    Some(na),
+                ));
+            }
+        }
+        self.law
+            .solve(
+                &self.red_g[..na],
+                &self.red_w[..na * na],
+                &mut self.red_l[..na],
+                &mut self.red_a[..na],
+            )
+            .map_err(|f| (f, Some(na)))?;
+        self.lambda.fill(0.0);
+        self.active.fill(false);
+        for (r, &j) in self.red_idx.iter().enumerate() {
+            self.lambda[j] = self.red_l[r];
+            self.active[j] = self.red_a[r];
+        }
+        Ok(())
+    }
+
+    /// The error for a failed law, with the problem it was given (the
+    /// reduced velocity-level one when `reduced` holds its size).
+    fn failure(
+        &self,
+        step: usize,
+        time: f64,
+        level: Level,
+        failure: ContactFailure,
+        reduced: Option<usize>,
+    ) -> Error {
+        let (g_free, w) = match reduced {
+            Some(na) => (self.red_g[..na].to_vec(), self.red_w[..na * na].to_vec()),
+            None => (self.g_free.clone(), self.w.clone()),
+        };
+        Error::Contact {
+            step,
+            time,
+            run: String::new(),
+            failure,
+            problem: Box::new(ContactProblem {
+                level,
+                g_free,
+                w,
+                contact: self.contact.clone(),
+            }),
+        }
+    }
+
+    /// After a step (state at t_{n+1}): keep the gap rates ġ_{n+1} that the
+    /// next velocity-level step's restitution term needs.
+    pub fn end_step(&mut self, st: &State) {
+        self.keep_gap_rates(&st.d, &st.v, &st.q_dot);
+    }
+
+    /// Keep the gap rates ġ = s(r_gᵀv + V r_g'ᵀd) − q̇ of a state given by
+    /// its parts (a method with sub-steps calls this between them), for the
+    /// restitution term of the next velocity-level problem.
+    pub fn keep_gap_rates(&mut self, d: &[f64], v: &[f64], q_dot: &[f64]) {
+        if self.level != Level::Velocity {
+            return;
+        }
+        for c in &self.carriers {
+            let Some(j) = c.contact else { continue };
+            self.gap_rate[j] = c.s * (c.pv_g.dot(v) + c.speed * c.pv_s.dot(d)) - q_dot[j];
+        }
+    }
+}
+
+/// W[i][j] = coef · (s_i r_iᵀ z_j + δ_ij · inv_a[i]), reading the solved
+/// directions z_j from column 1 + j of `solved` (k columns) and the gap rows
+/// r_i at the placement's point (r_g, or r_f for `alpha`).
+fn fill_delassus(
+    carriers: &[Carrier],
+    placement: Placement,
+    (solved, k): (&[f64], usize),
+    coef: f64,
+    inv_a: &[f64],
+    w: &mut [f64],
+) {
+    let nc = inv_a.len();
+    for ci in carriers {
+        let Some(i) = ci.contact else { continue };
+        let pv = match placement {
+            Placement::End => ci.pv_g,
+            Placement::Alpha => ci.pv_f,
+        };
+        for j in 0..nc {
+            let mut wij = ci.s * pv.dot_strided(solved, k, 1 + j);
+            if i == j {
+                wij += inv_a[i];
+            }
+            w[i * nc + j] = coef * wij;
+        }
+    }
+}
