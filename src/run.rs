@@ -95,9 +95,15 @@ fn drive(
         .enumerate()
         .filter(|(_, st)| st.contact_switches as f64 > CHATTER_FRACTION * sc.steps as f64)
         .map(|(i, st)| {
+            let cause = it.constraint_damping_note().map_or(String::new(), |w| {
+                format!("; likely cause: {w}")
+            });
             format!(
-                "carrier {i}: contact switched {} times in {} steps: step-to-step chatter, a numerical oscillation (contact.placement = {:?}; MODEL §5); these contact statistics are not a converged answer",
-                st.contact_switches, sc.steps, sc.contact.placement
+                "carrier {i}: contact switched {} times in {} steps: step-to-step chatter, a numerical oscillation (integrator.method = {}, contact.placement = {:?}; MODEL §5); these contact statistics are not a converged answer{cause}",
+                st.contact_switches,
+                sc.steps,
+                sc.integrator.method.name(),
+                sc.contact.placement
             )
         })
         .collect();

@@ -102,6 +102,19 @@ impl CentralDifference {
                 ),
             ));
         }
+        Ok(Self::start(sys, st, init, limit))
+    }
+
+    /// As [`CentralDifference::new`] without refusing a step above the
+    /// limit: for stability studies that show what happens beyond it (the
+    /// highest mode grows by |z| > 1 per step; `tests/methods.rs`).
+    pub fn unchecked(sc: &Resolved, sys: &System, st: &mut State, init: Initial) -> Self {
+        let limit = stability_limit(sc, sys, &init.mass_factor);
+        Self::start(sys, st, init, limit)
+    }
+
+    fn start(sys: &System, st: &mut State, init: Initial, limit: StabilityLimit) -> Self {
+        let dt = sys.dt();
         let n = sys.beam().n;
         let nc = sys.contacts();
         for i in 0..n {
@@ -111,7 +124,7 @@ impl CentralDifference {
             st.q_dot[j] -= 0.5 * dt * init.aq[j];
         }
         let a_eff = sys.masses().iter().map(|m| m.m + 0.5 * dt * m.c).collect();
-        Ok(CentralDifference {
+        CentralDifference {
             dt,
             mass_factor: init.mass_factor,
             a_eff,
@@ -120,7 +133,7 @@ impl CentralDifference {
             rhs: vec![0.0; n * rhs_columns(nc)],
             kd: vec![0.0; n],
             limit,
-        })
+        }
     }
 }
 

@@ -294,6 +294,19 @@ impl Integrator {
         self.sys.force_bound
     }
 
+    /// Why this method may leave a moving contact's constraint undamped
+    /// (Newmark, WBZ, HHT with small α), for warnings; `None` otherwise.
+    pub fn constraint_damping_note(&self) -> Option<String> {
+        let moving = self
+            .sys
+            .carriers
+            .iter()
+            .any(|c| c.contact.is_some() && !c.props.motion.is_stationary());
+        moving
+            .then(|| diagnose::weak_constraint_damping(&self.sys))
+            .flatten()
+    }
+
     /// True when x lies in the last element before a supported end.
     pub fn near_support(&self, x: f64) -> bool {
         diagnose::near_support(&self.sys, x)
