@@ -10,7 +10,7 @@ use taut::report::{
     Summary, compare_table, converge_table, gate_table, write_compare, write_converge, write_gate,
     write_run, write_sweep,
 };
-use taut::study::compare::{compare, parse_formulations};
+use taut::study::compare::parse_formulations;
 use taut::study::converge::{Refine, converge};
 use taut::{load_scene, run};
 
@@ -61,6 +61,10 @@ enum Command {
         /// Refinement ratio between levels.
         #[arg(long, default_value_t = 2.0)]
         ratio: f64,
+        /// Comma-separated time integrators to study side by side (default:
+        /// the scene's own).
+        #[arg(long)]
+        methods: Option<String>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
@@ -131,6 +135,9 @@ enum Command {
         /// Comma-separated formulations.
         #[arg(long, default_value = "lagrange,penalty,complementarity,impact")]
         formulations: String,
+        /// Comma-separated time integrators (default: the scene's own).
+        #[arg(long)]
+        methods: Option<String>,
         /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels).
         #[arg(long, default_value_t = 3)]
         levels: usize,
@@ -156,17 +163,25 @@ enum Command {
         #[arg(long)]
         max_iter: Option<u32>,
     },
-    /// Run one scene under several contact formulations and compare them
-    /// (compare.csv, compare.json, compare.svg).
+    /// Run one scene under several contact formulations and time integrators
+    /// and compare them (compare.csv, compare.json, compare.svg).
     Compare {
         /// Scene file (TOML).
         scene: PathBuf,
         /// Comma-separated formulations: lagrange, penalty, complementarity, impact.
         #[arg(long, default_value = "lagrange,penalty,complementarity,impact")]
         formulations: String,
+        /// Comma-separated time integrators (default: the scene's own):
+        /// generalized_alpha, newmark, hht, wbz, bathe, central_difference, moreau_jean.
+        #[arg(long)]
+        methods: Option<String>,
         /// The formulation the differences are measured against.
         #[arg(long, default_value = "lagrange")]
         reference: String,
+        /// The method the differences are measured against (default: the
+        /// first of --methods).
+        #[arg(long, value_name = "METHOD")]
+        reference_method: Option<String>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
@@ -222,12 +237,20 @@ fn main() -> ExitCode {
         Command::Precision {
             scene,
             formulations,
+            methods,
             levels,
             ratio,
             set,
             out,
             quiet,
-        } => cmd_precision(scene, &formulations, levels, ratio, set, out, quiet),
+        } => cmd_precision(
+            scene,
+            (&formulations, methods.as_deref()),
+            (levels, ratio),
+            set,
+            out,
+            quiet,
+        ),
         Command::Gate {
             suite,
             out,
@@ -243,18 +266,41 @@ fn main() -> ExitCode {
             refine,
             levels,
             ratio,
+            methods,
             set,
             out,
             quiet,
-        } => cmd_converge(scene, &refine, levels, ratio, set, out, quiet),
+        } => cmd_converge(
+            scene,
+            &refine,
+            (levels, ratio),
+            methods.as_deref(),
+            set,
+            out,
+            quiet,
+        ),
         Command::Compare {
             scene,
             formulations,
+            methods,
             reference,
+            reference_method,
             set,
             out,
             quiet,
-        } => cmd_compare(scene, &formulations, &reference, set, out, quiet),
+        } => match cmd_compare(
+            scene,
+            &formulations,
+            methods.as_deref(),
+            (&reference, reference_method.as_deref()),
+            set,
+            out,
+            quiet,
+        ) {
+            Ok(true) => Ok(()),
+            Ok(false) => return ExitCode::from(1),
+            Err(e) => Err(e),
+        },
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -343,29 +389,44 @@ fn cmd_run_tolerance(
 fn cmd_converge(
     scene: PathBuf,
     refine: &str,
-    levels: usize,
-    ratio: f64,
+    (levels, ratio): (usize, f64),
+    methods: Option<&str>,
     set: Vec<String>,
     out: Option<PathBuf>,
     quiet: bool,
 ) -> taut::Result<()> {
+    use taut::integrate::MethodFactory;
     let refine: Refine = refine.parse()?;
+    let methods = methods.map(taut::scene::parse_methods).transpose()?;
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
-    let bar = progress_bar(levels, "levels", quiet);
-    let result = converge(
-        &text,
-        &set,
-        refine,
-        levels,
-        ratio,
-        &taut::study::reference::analytic_w,
-        &mut |done, _| bar.set_position(done as u64),
-    );
+    let runs = levels * methods.as_ref().map_or(1, Vec::len);
+    let bar = progress_bar(runs, "runs", quiet);
+    let mut tick = |done: usize, _| bar.set_position(done as u64);
+    let analytic = &taut::study::reference::analytic_w;
+    let kind = format!("converge ({refine:?}, r = {ratio})");
+    if let Some(list) = methods {
+        let factories: Vec<&dyn MethodFactory> =
+            list.iter().map(|m| m as &dyn MethodFactory).collect();
+        let result = taut::study::converge::converge_methods(
+            &text, &set, &factories, refine, levels, ratio, analytic, &mut tick,
+        );
+        bar.finish_and_clear();
+        let (studies, skipped) = result.map_err(|e| save_failure(&dir, e))?;
+        taut::report::write_converge_methods(&dir, &studies, &skipped)?;
+        print_study(
+            &kind,
+            &scene,
+            &taut::report::converge_methods_table(&studies, &skipped),
+            &dir,
+            "converge.csv, converge.json, converge.svg",
+        );
+        return Ok(());
+    }
+    let result = converge(&text, &set, refine, levels, ratio, analytic, &mut tick);
     bar.finish_and_clear();
     let c = result.map_err(|e| save_failure(&dir, e))?;
     write_converge(&dir, &c)?;
-    let kind = format!("converge ({refine:?}, r = {ratio})");
     print_study(
         &kind,
         &scene,
@@ -504,21 +565,33 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<()> {
 
 fn cmd_precision(
     scene: PathBuf,
-    formulations: &str,
-    levels: usize,
-    ratio: usize,
+    (formulations, methods): (&str, Option<&str>),
+    (levels, ratio): (usize, usize),
     set: Vec<String>,
     out: Option<PathBuf>,
     quiet: bool,
 ) -> taut::Result<()> {
+    use taut::integrate::MethodFactory;
     let list = parse_formulations(formulations)?;
+    let methods = methods.map(taut::scene::parse_methods).transpose()?;
+    let factories: Vec<&dyn MethodFactory> = methods
+        .iter()
+        .flatten()
+        .map(|m| m as &dyn MethodFactory)
+        .collect();
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
-    let bar = progress_bar(1 + list.len() * levels * levels, "runs", quiet);
-    let result =
-        taut::study::precision::precision(&text, &set, &list, levels, ratio, &mut |d, _| {
-            bar.set_position(d as u64)
-        });
+    let n_methods = factories.len().max(1);
+    let bar = progress_bar(1 + n_methods * list.len() * levels * levels, "runs", quiet);
+    let result = taut::study::precision::precision_methods(
+        &text,
+        &set,
+        &factories,
+        &list,
+        levels,
+        ratio,
+        &mut |d, _| bar.set_position(d as u64),
+    );
     bar.finish_and_clear();
     let p = result.map_err(|e| save_failure(&dir, e))?;
     taut::report::write_precision(&dir, &p)?;
@@ -581,24 +654,58 @@ fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {
     }
 }
 
+/// Returns false when a run of the comparison stopped (tables are written
+/// for the others).
 fn cmd_compare(
     scene: PathBuf,
     formulations: &str,
-    reference: &str,
+    methods: Option<&str>,
+    (reference, reference_method): (&str, Option<&str>),
     set: Vec<String>,
     out: Option<PathBuf>,
     quiet: bool,
-) -> taut::Result<()> {
+) -> taut::Result<bool> {
+    use taut::integrate::MethodFactory;
+    use taut::study::compare::{CompareSpec, compare_methods};
     let list = parse_formulations(formulations)?;
     let reference = parse_formulations(reference)?
         .first()
         .copied()
         .expect("parse_formulations returns at least one");
+    let method_list = methods.map(taut::scene::parse_methods).transpose()?;
+    let reference_method = match (reference_method, &method_list) {
+        (None, _) => 0,
+        (Some(name), Some(list)) => {
+            let m = taut::scene::parse_methods(name)?[0];
+            list.iter().position(|x| *x == m).ok_or_else(|| {
+                taut::Error::invalid("--reference-method", name, "must be one of --methods")
+            })?
+        }
+        (Some(name), None) => {
+            return Err(taut::Error::invalid(
+                "--reference-method",
+                name,
+                "needs --methods",
+            ));
+        }
+    };
+    let factories: Vec<&dyn MethodFactory> = method_list
+        .iter()
+        .flatten()
+        .map(|m| m as &dyn MethodFactory)
+        .collect();
+    let spec = CompareSpec {
+        methods: factories,
+        formulations: list,
+        reference_method,
+        reference,
+    };
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
-    let total = list.len() + usize::from(!list.contains(&reference));
-    let bar = progress_bar(total, "formulations", quiet);
-    let result = compare(&text, &set, &list, reference, &mut |done, _| {
+    let n_methods = method_list.as_ref().map_or(1, Vec::len);
+    let bar = progress_bar(n_methods * spec.formulations.len(), "runs", quiet);
+    let result = compare_methods(&text, &set, &spec, &mut |done, total| {
+        bar.set_length(total as u64);
         bar.set_position(done as u64)
     });
     bar.finish_and_clear();
@@ -611,7 +718,7 @@ fn cmd_compare(
         &dir,
         "compare.csv, compare.json, compare.svg",
     );
-    Ok(())
+    Ok(c.failed.is_empty())
 }
 
 /// Header, table and written files of a study command.

@@ -275,7 +275,7 @@ fn compare_writes_the_table_and_three_files() {
         "penalty",
         "complementarity",
         "impact",
-        "differences against lagrange",
+        "differences against generalized_alpha/lagrange",
     ] {
         assert!(stdout.contains(f), "{stdout}");
     }
@@ -290,12 +290,13 @@ fn compare_writes_the_table_and_three_files() {
     // the reference row differs from itself by exactly nothing
     let lagrange: Vec<&str> = rows[0].split(',').collect();
     assert_eq!(
-        (lagrange[0], lagrange[2], lagrange[3]),
-        ("lagrange", "0", "0")
+        (lagrange[0], lagrange[1], lagrange[3], lagrange[4]),
+        ("generalized_alpha", "lagrange", "0", "0")
     );
     let json: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("compare.json")).unwrap()).unwrap();
     assert_eq!(json["reference"], "lagrange");
+    assert_eq!(json["reference_method"], "generalized_alpha");
     assert_eq!(json["rows"].as_array().unwrap().len(), 4);
     let svg = std::fs::read_to_string(dir.join("compare.svg")).unwrap();
     assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"));
@@ -335,4 +336,111 @@ fn a_failed_qp_is_saved_and_replays() {
         String::from_utf8_lossy(&fixed.stderr)
     );
     assert!(String::from_utf8_lossy(&fixed.stdout).contains("λ"));
+}
+
+#[test]
+fn compare_methods_tabulates_every_combination_and_skips_what_means_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = out_dir(&tmp, "methods");
+    let scene = crate_root().join("scenes/reference.toml");
+    let out = taut_bin(&[
+        "compare",
+        scene.to_str().unwrap(),
+        "--methods",
+        "generalized_alpha,bathe,moreau_jean",
+        "--formulations",
+        "lagrange,penalty",
+        "--set",
+        "time.end=0.2",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // moreau_jean with penalty means nothing: skipped, naming both keys
+    assert!(
+        stdout.contains("skipped  moreau_jean/penalty") && stdout.contains("contact.formulation"),
+        "{stdout}"
+    );
+    let csv = std::fs::read_to_string(dir.join("compare.csv")).unwrap();
+    let methods: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(
+        methods,
+        [
+            "generalized_alpha",
+            "generalized_alpha",
+            "bathe",
+            "bathe",
+            "moreau_jean"
+        ]
+    );
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("compare.json")).unwrap()).unwrap();
+    assert_eq!(json["skipped"].as_array().unwrap().len(), 1);
+    assert_eq!(json["failed"].as_array().unwrap().len(), 0);
+}
+
+#[test]
+fn converge_and_precision_take_methods() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = crate_root().join("scenes/moving_force_beam.toml");
+    let dir = out_dir(&tmp, "cv");
+    let out = taut_bin(&[
+        "converge",
+        scene.to_str().unwrap(),
+        "--refine",
+        "step",
+        "--levels",
+        "3",
+        "--methods",
+        "bathe,central_difference",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("converge.csv")).unwrap();
+    for m in ["bathe", "central_difference"] {
+        assert!(
+            csv.lines().any(|l| l.starts_with(&format!("{m},"))),
+            "{csv}"
+        );
+    }
+    let dir = out_dir(&tmp, "pr");
+    let out = taut_bin(&[
+        "precision",
+        crate_root().join("scenes/reference.toml").to_str().unwrap(),
+        "--methods",
+        "generalized_alpha,moreau_jean",
+        "--formulations",
+        "lagrange",
+        "--levels",
+        "1",
+        "--set",
+        "time.end=0.1",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("precision.csv")).unwrap();
+    assert!(csv.starts_with("method,formulation"), "{csv}");
+    assert_eq!(csv.lines().count(), 3, "{csv}");
 }

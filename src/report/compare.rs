@@ -8,10 +8,11 @@ use serde::Serialize;
 use super::fmt_f64;
 use super::plot::{abscissa, force_series, line_plot};
 use crate::error::{Error, Result};
-use crate::study::compare::{CompareRow, Comparison};
+use crate::study::compare::{CompareRow, Comparison, NotRun};
 
 /// Column order of `compare.csv` (documented in `docs/output.md`).
-pub const COMPARE_COLUMNS: [&str; 14] = [
+pub const COMPARE_COLUMNS: [&str; 15] = [
+    "method",
     "formulation",
     "loss_fraction",
     "loss_set_difference",
@@ -30,6 +31,7 @@ pub const COMPARE_COLUMNS: [&str; 14] = [
 
 fn cells(r: &CompareRow) -> Vec<String> {
     vec![
+        r.method.clone(),
         r.formulation.clone(),
         fmt_f64(r.loss_fraction),
         fmt_f64(r.loss_set_difference),
@@ -50,9 +52,12 @@ fn cells(r: &CompareRow) -> Vec<String> {
 #[derive(Serialize)]
 struct CompareJson<'a> {
     taut_version: &'static str,
+    reference_method: &'a str,
     reference: &'static str,
-    scene: &'a crate::scene::Scene,
+    scene: Option<&'a crate::scene::Scene>,
     rows: &'a [CompareRow],
+    skipped: &'a [NotRun],
+    failed: &'a [NotRun],
 }
 
 /// Write the three files into `dir`.
@@ -70,22 +75,41 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
     let json = dir.join("compare.json");
     let doc = CompareJson {
         taut_version: env!("CARGO_PKG_VERSION"),
+        reference_method: &c.reference_method,
         reference: c.reference.name(),
-        scene: &c.runs[0].1.scene,
+        scene: c.runs.first().map(|r| &r.scene.scene),
         rows: &c.rows,
+        skipped: &c.skipped,
+        failed: &c.failed,
     };
     super::write_json(&json, &doc)?;
 
-    let (_, sc, out) = &c.runs[0];
-    let (_, x_desc) = abscissa(sc, out, 0);
+    let Some(first) = c.runs.first() else {
+        return Ok(());
+    };
+    let (_, x_desc) = abscissa(&first.scene, &first.output, 0);
+    let several_methods = c.runs.iter().any(|r| r.method != first.method);
     let series: Vec<_> = c
         .runs
         .iter()
-        .flat_map(|(f, sc, out)| force_series(sc, out, f.name()))
+        .flat_map(|r| {
+            let label = if several_methods {
+                r.label()
+            } else {
+                r.formulation.name().to_string()
+            };
+            force_series(&r.scene, &r.output, &label)
+        })
         .collect();
     let title = format!(
-        "contact force by formulation: {} elements, dt = {} s",
-        sc.elements, sc.dt
+        "contact force by {}: {} elements, dt = {} s",
+        if several_methods {
+            "method and formulation"
+        } else {
+            "formulation"
+        },
+        first.scene.elements,
+        first.scene.dt
     );
     line_plot(
         &dir.join("compare.svg"),
@@ -99,7 +123,8 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
 /// The terminal table.
 pub fn compare_table(c: &Comparison) -> String {
     let mut s = format!(
-        "{:<16} {:>9} {:>10} {:>11} {:>11} {:>11} {:>10} {:>9} {:>8}\n",
+        "{:<19} {:<16} {:>9} {:>10} {:>11} {:>11} {:>11} {:>10} {:>9} {:>8}\n",
+        "method",
         "formulation",
         "P_l",
         "Δloss",
@@ -112,7 +137,8 @@ pub fn compare_table(c: &Comparison) -> String {
     );
     for r in &c.rows {
         s.push_str(&format!(
-            "{:<16} {:>9.5} {:>10.5} {:>11.4e} {:>11.4e} {:>11.3e} {:>10.2} {:>9} {:>8.3}\n",
+            "{:<19} {:<16} {:>9.5} {:>10.5} {:>11.4e} {:>11.4e} {:>11.3e} {:>10.2} {:>9} {:>8.3}\n",
+            r.method,
             r.formulation,
             r.loss_fraction,
             r.loss_set_difference,
@@ -124,11 +150,27 @@ pub fn compare_table(c: &Comparison) -> String {
             r.wall_seconds
         ));
     }
-    s.push_str(&format!("(differences against {})\n", c.reference.name()));
+    s.push_str(&format!(
+        "(differences against {}/{})\n",
+        c.reference_method,
+        c.reference.name()
+    ));
     for r in &c.rows {
         for w in &r.warnings {
-            s.push_str(&format!("  WARNING  {}: {w}\n", r.formulation));
+            s.push_str(&format!("  WARNING  {}/{}: {w}\n", r.method, r.formulation));
         }
+    }
+    for n in &c.skipped {
+        s.push_str(&format!(
+            "  skipped  {}/{}: {}\n",
+            n.method, n.formulation, n.reason
+        ));
+    }
+    for n in &c.failed {
+        s.push_str(&format!(
+            "  FAILED   {}/{}: {}\n",
+            n.method, n.formulation, n.reason
+        ));
     }
     s
 }

@@ -8,10 +8,14 @@ use serde::Serialize;
 
 use super::{PALETTE, fmt_f64};
 use crate::error::{Error, Result};
-use crate::study::converge::{ConvergeRow, Convergence, GCI_SAFETY_FACTOR, QUANTITIES, Refine};
+use crate::study::compare::NotRun;
+use crate::study::converge::{
+    ConvergeRow, Convergence, GCI_SAFETY_FACTOR, MethodStudy, QUANTITIES, Refine,
+};
 
 /// Column order of `converge.csv`.
-pub const CONVERGE_COLUMNS: [&str; 9] = [
+pub const CONVERGE_COLUMNS: [&str; 10] = [
+    "method",
     "level",
     "h",
     "dt",
@@ -30,8 +34,16 @@ struct ConvergeJson<'a> {
     ratio: f64,
     gci_safety_factor: f64,
     scene: &'a crate::scene::Scene,
+    /// One entry per method: its levels.
+    methods: Vec<MethodLevels<'a>>,
+    rows: Vec<&'a ConvergeRow>,
+    skipped: &'a [NotRun],
+}
+
+#[derive(Serialize)]
+struct MethodLevels<'a> {
+    method: &'a str,
     levels: Vec<Level>,
-    rows: &'a [ConvergeRow],
 }
 
 #[derive(Serialize)]
@@ -45,24 +57,46 @@ struct Level {
     wall_seconds: f64,
 }
 
-/// Write the three files into `dir`.
+/// Write the three files of one study into `dir`.
 pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
+    let name = c.rows.first().map_or("", |r| r.method.as_str());
+    write_studies(dir, &[(name, c)], &[])
+}
+
+/// Write the three files of a `--methods` study into `dir`.
+pub fn write_converge_methods(
+    dir: &Path,
+    studies: &[MethodStudy],
+    skipped: &[NotRun],
+) -> Result<()> {
+    let list: Vec<(&str, &Convergence)> = studies
+        .iter()
+        .map(|m| (m.method.as_str(), &m.study))
+        .collect();
+    write_studies(dir, &list, skipped)
+}
+
+fn write_studies(dir: &Path, studies: &[(&str, &Convergence)], skipped: &[NotRun]) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let Some(&(_, first)) = studies.first() else {
+        return Ok(());
+    };
     let csv = dir.join("converge.csv");
     let io = |e| Error::io(&csv, e);
     let mut w = std::io::BufWriter::new(std::fs::File::create(&csv).map_err(io)?);
     writeln!(w, "{}", CONVERGE_COLUMNS.join(",")).map_err(io)?;
-    for r in &c.rows {
-        let nan = |v: f64| {
-            if v.is_finite() {
-                fmt_f64(v)
-            } else {
-                String::new()
-            }
-        };
+    let nan = |v: f64| {
+        if v.is_finite() {
+            fmt_f64(v)
+        } else {
+            String::new()
+        }
+    };
+    for r in studies.iter().flat_map(|(_, c)| &c.rows) {
         writeln!(
             w,
-            "{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{}",
+            r.method,
             r.level,
             fmt_f64(r.h),
             fmt_f64(r.dt),
@@ -78,14 +112,8 @@ pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
     w.flush().map_err(io)?;
 
     let json = dir.join("converge.json");
-    let doc = ConvergeJson {
-        taut_version: env!("CARGO_PKG_VERSION"),
-        refine: c.refine,
-        ratio: c.ratio,
-        gci_safety_factor: GCI_SAFETY_FACTOR,
-        scene: &c.scenes[0].scene,
-        levels: c
-            .scenes
+    let levels = |c: &Convergence| -> Vec<Level> {
+        c.scenes
             .iter()
             .zip(&c.runs)
             .enumerate()
@@ -98,16 +126,50 @@ pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
                 steps: o.steps,
                 wall_seconds: o.wall_seconds,
             })
+            .collect()
+    };
+    let doc = ConvergeJson {
+        taut_version: env!("CARGO_PKG_VERSION"),
+        refine: first.refine,
+        ratio: first.ratio,
+        gci_safety_factor: GCI_SAFETY_FACTOR,
+        scene: &first.scenes[0].scene,
+        methods: studies
+            .iter()
+            .map(|(m, c)| MethodLevels {
+                method: m,
+                levels: levels(c),
+            })
             .collect(),
-        rows: &c.rows,
+        rows: studies.iter().flat_map(|(_, c)| &c.rows).collect(),
+        skipped,
     };
     // serde_json writes NaN as null
     super::write_json(&json, &doc)?;
     let svg = dir.join("converge.svg");
-    draw(&svg, c).map_err(|e| Error::Output {
+    let drawn = if studies.len() == 1 {
+        draw(&svg, first)
+    } else {
+        draw_methods(&svg, studies)
+    };
+    drawn.map_err(|e| Error::Output {
         path: svg.clone(),
         reason: e.to_string(),
     })
+}
+
+/// The terminal table of a `--methods` study: each method's table, then
+/// the methods that did not run.
+pub fn converge_methods_table(studies: &[MethodStudy], skipped: &[NotRun]) -> String {
+    let mut s = String::new();
+    for m in studies {
+        s.push_str(&format!("method {}\n", m.method));
+        s.push_str(&converge_table(&m.study));
+    }
+    for n in skipped {
+        s.push_str(&format!("  skipped  {}: {}\n", n.method, n.reason));
+    }
+    s
 }
 
 /// The terminal table.
@@ -215,6 +277,92 @@ fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::er
             (2.0, BLACK.mix(0.35)),
             (4.0, BLACK.mix(0.2)),
         ] {
+            let line = vec![(x0, ym * (x0 / xm).powf(p)), (x1, ym * (x1 / xm).powf(p))];
+            chart
+                .draw_series(LineSeries::new(line, style.stroke_width(1)))?
+                .label(format!("slope {p}"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
+        }
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+/// Several methods: the relative error of the displacement under the
+/// carrier (L2 over the history) against the refined parameter, one line
+/// per method, with reference slopes 1 and 2.
+fn draw_methods(
+    path: &Path,
+    studies: &[(&str, &Convergence)],
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    const QUANTITY: &str = "displacement_l2";
+    let first = studies[0].1;
+    let by_dt = first.refine == Refine::Step;
+    let pts: Vec<(&str, Vec<(f64, f64)>)> = studies
+        .iter()
+        .map(|(m, c)| {
+            let v = c
+                .rows
+                .iter()
+                .filter(|r| r.quantity == QUANTITY && r.error.is_finite() && r.error > 0.0)
+                .map(|r| {
+                    let x = if by_dt { r.dt } else { r.h };
+                    (x, r.error / r.value.abs().max(f64::MIN_POSITIVE))
+                })
+                .collect();
+            (*m, v)
+        })
+        .collect();
+    let all: Vec<(f64, f64)> = pts.iter().flat_map(|(_, v)| v.iter().copied()).collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for &(x, y) in &all {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if all.is_empty() {
+        (x0, x1, y0, y1) = (1e-3, 1.0, 1e-6, 1.0);
+    }
+    let (x0, x1) = (x0 / 1.5, x1 * 1.5);
+    let (y0, y1) = (y0 / 10.0, y1 * 10.0);
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!(
+                "{QUANTITY}: relative error by method, refine = {:?}, r = {}",
+                first.refine, first.ratio
+            ),
+            ("sans-serif", 18),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc(if by_dt { "Δt (s)" } else { "h (m)" })
+        .y_desc("relative error")
+        .x_label_formatter(&|x| format!("{x:.1e}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .draw()?;
+    for (i, (m, v)) in pts.iter().enumerate() {
+        let col = PALETTE[i % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(v.clone(), col.stroke_width(2)))?
+            .label(*m)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col));
+        chart.draw_series(v.iter().map(|&p| Circle::new(p, 3, col.filled())))?;
+    }
+    if let Some(&(xm, ym)) = all.get(all.len() / 2) {
+        for (p, style) in [(1.0, BLACK.mix(0.5)), (2.0, BLACK.mix(0.3))] {
             let line = vec![(x0, ym * (x0 / xm).powf(p)), (x1, ym * (x1 / xm).powf(p))];
             chart
                 .draw_series(LineSeries::new(line, style.stroke_width(1)))?

@@ -13,7 +13,10 @@ mod sweep_maps;
 mod tolerance;
 
 pub use compare::{COMPARE_COLUMNS, compare_table, write_compare};
-pub use converge::{CONVERGE_COLUMNS, converge_table, write_converge};
+pub use converge::{
+    CONVERGE_COLUMNS, converge_methods_table, converge_table, write_converge,
+    write_converge_methods,
+};
 pub use csv::write_history;
 pub use gate::{gate_table, junit_xml, write_gate};
 pub use plot::write_force_plot;

@@ -9,7 +9,8 @@ use crate::error::{Error, Result};
 use crate::study::precision::{Precision, PrecisionRow};
 
 /// Column order of `precision.csv`.
-pub const PRECISION_COLUMNS: [&str; 13] = [
+pub const PRECISION_COLUMNS: [&str; 14] = [
+    "method",
     "formulation",
     "mesh_level",
     "step_level",
@@ -31,7 +32,8 @@ pub fn write_precision(dir: &Path, p: &Precision) -> Result<()> {
     let mut s = PRECISION_COLUMNS.join(",") + "\n";
     for r in &p.rows {
         s.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            r.method,
             r.formulation,
             r.mesh_level,
             r.step_level,
@@ -59,12 +61,13 @@ pub fn write_precision(dir: &Path, p: &Precision) -> Result<()> {
 /// The terminal table: every row, Pareto points starred.
 pub fn precision_table(p: &Precision) -> String {
     let mut s = format!(
-        "{:<16} {:>6} {:>10} {:>12} {:>9} {:>11} {:>11} {:>9}\n",
-        "formulation", "N", "dt s", "dof-steps", "wall s", "force err", "w err", "ΔP_l"
+        "{:<19} {:<16} {:>6} {:>10} {:>12} {:>9} {:>11} {:>11} {:>9}\n",
+        "method", "formulation", "N", "dt s", "dof-steps", "wall s", "force err", "w err", "ΔP_l"
     );
     for r in &p.rows {
         s.push_str(&format!(
-            "{:<16} {:>6} {:>10.3e} {:>12.3e} {:>9.4} {:>11.3e} {:>11.3e} {:>9.5}{}\n",
+            "{:<19} {:<16} {:>6} {:>10.3e} {:>12.3e} {:>9.4} {:>11.3e} {:>11.3e} {:>9.5}{}\n",
+            r.method,
             r.formulation,
             r.elements,
             r.dt,
@@ -77,9 +80,15 @@ pub fn precision_table(p: &Precision) -> String {
         ));
     }
     s.push_str(&format!(
-        "(* Pareto front per formulation; reference: lagrange, {} elements, dt = {:e} s, {:.2} s wall)\n",
-        p.reference.0, p.reference.1, p.reference_wall
+        "(* Pareto front per method and formulation; reference: {}/lagrange, {} elements, dt = {:e} s, {:.2} s wall)\n",
+        p.reference_method, p.reference.0, p.reference.1, p.reference_wall
     ));
+    for n in &p.skipped {
+        s.push_str(&format!(
+            "  skipped  {}/{}: {}\n",
+            n.method, n.formulation, n.reason
+        ));
+    }
     s
 }
 
@@ -122,14 +131,26 @@ fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::erro
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()?;
     let levels = p.rows.iter().map(|r| r.mesh_level).max().unwrap_or(0);
-    let mut names: Vec<&str> = p.rows.iter().map(|r| r.formulation.as_str()).collect();
-    names.dedup();
-    for (fi, name) in names.iter().enumerate() {
+    // one family of lines per (method, formulation), in row order
+    let mut keys: Vec<(&str, &str)> = p
+        .rows
+        .iter()
+        .map(|r| (r.method.as_str(), r.formulation.as_str()))
+        .collect();
+    keys.dedup();
+    let several_methods = keys.iter().any(|k| k.0 != keys[0].0);
+    for (fi, key) in keys.iter().enumerate() {
         let col = PALETTE[fi % PALETTE.len()];
+        let name = if several_methods {
+            format!("{}/{}", key.0, key.1)
+        } else {
+            key.1.to_string()
+        };
+        let of_key = |r: &PrecisionRow| (r.method.as_str(), r.formulation.as_str()) == *key;
         let of = |pred: &dyn Fn(&PrecisionRow) -> bool| -> Vec<(f64, f64)> {
             p.rows
                 .iter()
-                .filter(|r| r.formulation == *name && pred(r))
+                .filter(|r| of_key(r) && pred(r))
                 .filter(ok)
                 .map(|r| (r.wall_seconds, r.force_error))
                 .collect()
@@ -157,19 +178,13 @@ fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::erro
                 .label(format!("{name}, refine {label}"))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
         }
-        chart.draw_series(
-            p.rows
-                .iter()
-                .filter(|r| r.formulation == *name)
-                .filter(ok)
-                .map(|r| {
-                    Circle::new(
-                        (r.wall_seconds, r.force_error),
-                        if r.pareto { 5 } else { 2 },
-                        col.filled(),
-                    )
-                }),
-        )?;
+        chart.draw_series(p.rows.iter().filter(|r| of_key(r)).filter(ok).map(|r| {
+            Circle::new(
+                (r.wall_seconds, r.force_error),
+                if r.pareto { 5 } else { 2 },
+                col.filled(),
+            )
+        }))?;
     }
     chart
         .configure_series_labels()

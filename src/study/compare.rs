@@ -1,20 +1,28 @@
-//! `taut compare`: the same scene under several contact formulations, with
-//! agreement on contact loss as the headline measure (issue: formulations
-//! side by side).
+//! `taut compare`: the same scene under several contact formulations and
+//! time integrators, with agreement on contact loss as the headline measure
+//! (issues: formulations side by side, methods side by side).
 //!
-//! Every formulation runs on the same scene text with the same overrides plus
+//! Every combination runs on the same scene text with the same overrides
+//! plus the method's `[integrator]` ([`MethodFactory::overrides`]) and
 //! `contact.formulation=<name>`, so meshes, steps and settings are identical
-//! and histories can be compared step by step.
+//! and histories can be compared step by step. A combination that means
+//! nothing (a scene error naming both keys, e.g. `moreau_jean` with
+//! `penalty`, or an explicit method above its stability limit) is skipped
+//! with its reason; a run that stops (divergence, failed contact solve) is
+//! listed as failed; the others are tabulated.
 
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::run::{RunOutput, run};
+use crate::integrate::MethodFactory;
+use crate::run::{RunOutput, run_with};
 use crate::scene::{Formulation, Resolved, resolve_scene};
 
-/// One formulation's row of the comparison (columns of `compare.csv`).
+/// One combination's row of the comparison (columns of `compare.csv`).
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct CompareRow {
+    /// Time integrator (`integrator.method`, or a custom method's name).
+    pub method: String,
     /// Formulation name.
     pub formulation: String,
     /// P_l (carrier 0).
@@ -49,14 +57,63 @@ pub struct CompareRow {
     pub warnings: Vec<String>,
 }
 
+/// A combination that did not give a row, and why.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct NotRun {
+    /// Time integrator.
+    pub method: String,
+    /// Formulation.
+    pub formulation: String,
+    /// The error, as the CLI would print it.
+    pub reason: String,
+}
+
+/// One run of a comparison.
+pub struct CompareRun {
+    /// Time integrator name.
+    pub method: String,
+    /// Formulation.
+    pub formulation: Formulation,
+    /// The resolved scene.
+    pub scene: Resolved,
+    /// What it produced.
+    pub output: RunOutput,
+}
+
+impl CompareRun {
+    /// `method/formulation`, the label of plots.
+    pub fn label(&self) -> String {
+        format!("{}/{}", self.method, self.formulation.name())
+    }
+}
+
 /// A finished comparison.
 pub struct Comparison {
+    /// The reference method.
+    pub reference_method: String,
     /// The reference formulation.
     pub reference: Formulation,
-    /// (formulation, resolved scene, run) in the order asked for.
-    pub runs: Vec<(Formulation, Resolved, RunOutput)>,
-    /// One row per formulation, same order.
+    /// The runs in the order asked for (methods outer, formulations inner).
+    pub runs: Vec<CompareRun>,
+    /// One row per run, same order.
     pub rows: Vec<CompareRow>,
+    /// Combinations that mean nothing for this scene (scene errors naming
+    /// both keys, an explicit method above its limit).
+    pub skipped: Vec<NotRun>,
+    /// Combinations whose run stopped (divergence, failed contact solve).
+    pub failed: Vec<NotRun>,
+}
+
+/// What to compare.
+pub struct CompareSpec<'a> {
+    /// Time integrators; empty for the scene's own.
+    pub methods: Vec<&'a dyn MethodFactory>,
+    /// Contact formulations.
+    pub formulations: Vec<Formulation>,
+    /// The reference method, an index into `methods` (the first by default).
+    pub reference_method: usize,
+    /// The reference formulation (run too if not listed).
+    pub reference: Formulation,
 }
 
 /// Parse `lagrange,penalty,…` into formulations.
@@ -89,8 +146,9 @@ pub fn parse_formulations(list: &str) -> Result<Vec<Formulation>> {
     Ok(out)
 }
 
-/// Run `text` (with `overrides`) once per formulation and compare each with
-/// `reference` (run too if not listed). `progress(done, total)` after each run.
+/// Run `text` (with `overrides`) once per formulation under the scene's own
+/// method and compare each with `reference` (run too if not listed).
+/// `progress(done, total)` after each run.
 pub fn compare(
     text: &str,
     overrides: &[String],
@@ -98,35 +156,114 @@ pub fn compare(
     reference: Formulation,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Comparison> {
-    let mut order: Vec<Formulation> = formulations.to_vec();
-    if !order.contains(&reference) {
-        order.push(reference);
-    }
-    let mut runs = Vec::with_capacity(order.len());
-    for (i, &f) in order.iter().enumerate() {
-        let mut o = overrides.to_vec();
-        o.push(format!("contact.formulation={}", f.name()));
-        let sc = resolve_scene(text, &o)?;
-        let out =
-            run(&sc, &mut |_, _| {}).map_err(|e| e.in_run(&format!("formulation {}", f.name())))?;
-        runs.push((f, sc, out));
-        progress(i + 1, order.len());
-    }
-    let ref_idx = order
-        .iter()
-        .position(|&f| f == reference)
-        .expect("pushed above");
-    let mut rows: Vec<CompareRow> = runs
-        .iter()
-        .map(|(f, sc, out)| row(*f, sc, out, &runs[ref_idx].2))
-        .collect();
-    // keep only the formulations asked for (the reference, if added, is last)
-    runs.truncate(formulations.len());
-    rows.truncate(formulations.len());
-    Ok(Comparison {
+    let spec = CompareSpec {
+        methods: Vec::new(),
+        formulations: formulations.to_vec(),
+        reference_method: 0,
         reference,
+    };
+    compare_methods(text, overrides, &spec, progress)
+}
+
+/// Run every method × formulation of `spec` and compare each with the
+/// reference combination. `progress(done, total)` after each run.
+pub fn compare_methods(
+    text: &str,
+    overrides: &[String],
+    spec: &CompareSpec,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Comparison> {
+    let base = resolve_scene(text, overrides)?;
+    let own = base.integrator.method;
+    let methods: Vec<&dyn MethodFactory> = if spec.methods.is_empty() {
+        vec![&own]
+    } else {
+        spec.methods.clone()
+    };
+    if spec.reference_method >= methods.len() {
+        return Err(Error::invalid(
+            "--reference-method",
+            spec.reference_method,
+            format!("must name one of the {} methods compared", methods.len()),
+        ));
+    }
+    // (method index, formulation, shown in the table)
+    let mut order: Vec<(usize, Formulation, bool)> = Vec::new();
+    for m in 0..methods.len() {
+        for &f in &spec.formulations {
+            order.push((m, f, true));
+        }
+    }
+    let reference = (spec.reference_method, spec.reference);
+    if !order.iter().any(|&(m, f, _)| (m, f) == reference) {
+        order.push((reference.0, reference.1, false));
+    }
+    let total = order.len();
+    let (mut runs, mut skipped, mut failed) = (Vec::new(), Vec::new(), Vec::new());
+    let mut shown = Vec::new();
+    for (i, &(m, f, show)) in order.iter().enumerate() {
+        let factory = methods[m];
+        let name = factory.name();
+        let not_run = |e: &Error| NotRun {
+            method: name.clone(),
+            formulation: f.name().to_string(),
+            reason: e.to_string(),
+        };
+        let mut o = overrides.to_vec();
+        o.extend(factory.overrides(&base.integrator));
+        o.push(format!("contact.formulation={}", f.name()));
+        let outcome = resolve_scene(text, &o)
+            .and_then(|sc| run_with(&sc, factory, &mut |_, _| {}).map(|out| (sc, out)));
+        match outcome {
+            Ok((scene, output)) => {
+                runs.push(CompareRun {
+                    method: name,
+                    formulation: f,
+                    scene,
+                    output,
+                });
+                shown.push(show);
+            }
+            // the combination means nothing for this scene: a scene error
+            // (both keys named) or a step the method cannot take
+            Err(e @ (Error::Invalid { .. } | Error::Parse(_) | Error::Override { .. })) => {
+                skipped.push(not_run(&e))
+            }
+            Err(e) => failed.push(not_run(&e.in_run(&format!("{name}/{}", f.name())))),
+        }
+        progress(i + 1, total);
+    }
+    let ref_name = methods[reference.0].name();
+    let ref_idx = runs
+        .iter()
+        .position(|r| r.method == ref_name && r.formulation == reference.1)
+        .ok_or_else(|| {
+            let why = skipped
+                .iter()
+                .chain(&failed)
+                .find(|n| n.method == ref_name && n.formulation == reference.1.name())
+                .map_or(String::new(), |n| format!(": {}", n.reason));
+            Error::invalid(
+                "--reference",
+                format!("{ref_name}/{}", reference.1.name()),
+                format!("the reference combination must run{why}"),
+            )
+        })?;
+    let rows: Vec<CompareRow> = runs.iter().map(|r| row(r, &runs[ref_idx].output)).collect();
+    // keep only the combinations asked for (the reference, if added, is last)
+    let (runs, rows): (Vec<_>, Vec<_>) = runs
+        .into_iter()
+        .zip(rows)
+        .zip(shown)
+        .filter_map(|(rr, show)| show.then_some(rr))
+        .unzip();
+    Ok(Comparison {
+        reference_method: ref_name,
+        reference: reference.1,
         runs,
         rows,
+        skipped,
+        failed,
     })
 }
 
@@ -151,7 +288,8 @@ fn loss_set_difference(sc: &Resolved, a: &RunOutput, b: &RunOutput) -> f64 {
     total
 }
 
-fn row(f: Formulation, sc: &Resolved, out: &RunOutput, reference: &RunOutput) -> CompareRow {
+fn row(r: &CompareRun, reference: &RunOutput) -> CompareRow {
+    let (sc, out) = (&r.scene, &r.output);
     let (mut max_d, mut sum2, mut count) = (0.0f64, 0.0, 0usize);
     for (ta, tb) in out.history.carriers.iter().zip(&reference.history.carriers) {
         for (x, y) in ta.force.iter().zip(&tb.force).skip(1) {
@@ -163,7 +301,8 @@ fn row(f: Formulation, sc: &Resolved, out: &RunOutput, reference: &RunOutput) ->
     }
     let s0 = &out.stats[0];
     CompareRow {
-        formulation: f.name().to_string(),
+        method: r.method.clone(),
+        formulation: r.formulation.name().to_string(),
         loss_fraction: s0.loss_fraction,
         loss_set_difference: loss_set_difference(sc, out, reference),
         max_force_difference: max_d,

@@ -24,8 +24,10 @@
 
 use serde::Serialize;
 
+use super::compare::NotRun;
 use crate::error::{Error, Result};
-use crate::run::{RunOutput, run};
+use crate::integrate::MethodFactory;
+use crate::run::{RunOutput, run, run_with};
 use crate::scene::{Resolved, resolve_scene};
 
 /// Roache's safety factor for a three-grid study.
@@ -66,6 +68,8 @@ pub type AnalyticW = Box<dyn Fn(f64) -> f64 + Sync>;
 /// One row of `converge.csv`.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct ConvergeRow {
+    /// Time integrator.
+    pub method: String,
     /// Level ℓ (0 = coarsest).
     pub level: usize,
     /// Element length h, m.
@@ -112,6 +116,72 @@ pub const QUANTITIES: [&str; 6] = [
     "first_loss_position",
 ];
 
+/// One method's refinement study in a `--methods` comparison.
+pub struct MethodStudy {
+    /// The method's name.
+    pub method: String,
+    /// Its study.
+    pub study: Convergence,
+}
+
+/// Run the refinement sequence once per method (`taut converge --methods`):
+/// the same levels, each method selected by its [`MethodFactory::overrides`].
+/// A method that cannot run the ladder (a scene error naming both keys, an
+/// explicit method above its stability limit at the coarse levels, a run
+/// that stops) is listed in the second vector with its reason; it is an
+/// error only when no method runs.
+#[allow(clippy::too_many_arguments)]
+pub fn converge_methods(
+    text: &str,
+    overrides: &[String],
+    methods: &[&dyn MethodFactory],
+    refine: Refine,
+    levels: usize,
+    ratio: f64,
+    analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<(Vec<MethodStudy>, Vec<NotRun>)> {
+    let total = levels * methods.len();
+    let (mut done, mut skipped) = (Vec::new(), Vec::new());
+    for (i, m) in methods.iter().enumerate() {
+        let mut inner = |l: usize, _: usize| progress(i * levels + l, total);
+        match converge_with(
+            text,
+            overrides,
+            Some(*m),
+            refine,
+            levels,
+            ratio,
+            analytic,
+            &mut inner,
+        ) {
+            Ok(study) => done.push(MethodStudy {
+                method: m.name(),
+                study,
+            }),
+            Err(e) => skipped.push(NotRun {
+                method: m.name(),
+                formulation: String::new(),
+                reason: e.in_run(&m.name()).to_string(),
+            }),
+        }
+        progress((i + 1) * levels, total);
+    }
+    if done.is_empty() {
+        let why: Vec<String> = skipped.iter().map(|n| n.reason.clone()).collect();
+        return Err(Error::invalid(
+            "--methods",
+            methods
+                .iter()
+                .map(|m| m.name())
+                .collect::<Vec<_>>()
+                .join(","),
+            format!("no method ran the ladder: {}", why.join("; ")),
+        ));
+    }
+    Ok((done, skipped))
+}
+
 /// Run the refinement sequence.
 ///
 /// * `text`, `overrides`: the scene and its `--set`s (level 0);
@@ -122,6 +192,23 @@ pub const QUANTITIES: [&str; 6] = [
 pub fn converge(
     text: &str,
     overrides: &[String],
+    refine: Refine,
+    levels: usize,
+    ratio: f64,
+    analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Convergence> {
+    converge_with(
+        text, overrides, None, refine, levels, ratio, analytic, progress,
+    )
+}
+
+/// [`converge`] with the method `method` builds (`None`: the scene's own).
+#[allow(clippy::too_many_arguments)]
+fn converge_with(
+    text: &str,
+    overrides: &[String],
+    method: Option<&dyn MethodFactory>,
     refine: Refine,
     levels: usize,
     ratio: f64,
@@ -142,6 +229,12 @@ pub fn converge(
             "must be an integer ≥ 2 when the step is refined (so coarse times are fine times)",
         ));
     }
+    let mut overrides = overrides.to_vec();
+    if let Some(m) = method {
+        let base = resolve_scene(text, &overrides)?;
+        overrides.extend(m.overrides(&base.integrator));
+    }
+    let overrides = &overrides[..];
     let base = resolve_scene(text, overrides)?;
     let mut scenes = Vec::with_capacity(levels);
     for l in 0..levels {
@@ -176,13 +269,20 @@ pub fn converge(
     let mut runs = Vec::with_capacity(levels);
     let mut wall = Vec::with_capacity(levels);
     for (l, s) in scenes.iter().enumerate() {
-        let out = run(s, &mut |_, _| {})?;
+        let out = match method {
+            None => run(s, &mut |_, _| {})?,
+            Some(m) => run_with(s, m, &mut |_, _| {})?,
+        };
         wall.push(out.wall_seconds);
         runs.push(out);
         progress(l + 1, levels);
     }
     let reference = analytic(&scenes[levels - 1]);
-    let rows = tabulate(&scenes, &runs, &stride, ratio, reference.as_deref());
+    let name = method.map_or_else(|| base.integrator.method.name().to_string(), |m| m.name());
+    let mut rows = tabulate(&scenes, &runs, &stride, ratio, reference.as_deref());
+    for r in &mut rows {
+        r.method.clone_from(&name);
+    }
     Ok(Convergence {
         refine,
         ratio,
@@ -356,6 +456,7 @@ fn tabulate(
         .chain(all)
         .map(
             |(l, quantity, value, error, observed_order, gci, reference)| ConvergeRow {
+                method: String::new(),
                 level: l,
                 h: scenes[l].beam.length / scenes[l].elements as f64,
                 dt: scenes[l].dt,

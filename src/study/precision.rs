@@ -1,8 +1,9 @@
-//! `taut precision`: error against cost for each formulation over a grid of
-//! (mesh, Δt) — a work–precision study.
+//! `taut precision`: error against cost for each time integrator and
+//! formulation over a grid of (mesh, Δt) — a work–precision study.
 //!
-//! The reference is one Lagrange run at the finest mesh and step of the grid,
-//! each refined once more by `ratio` (so every grid run is coarser than it).
+//! The reference is one Lagrange run under the scene's own method at the
+//! finest mesh and step of the grid, each refined once more by `ratio` (so
+//! every grid run is coarser than it).
 //! Grid points run at N₀·r^i elements and Δt₀/r^j (i, j = 0 … levels−1).
 //! Times nest (r is an integer), so errors are taken sample by sample on each
 //! run's own time grid against the reference sampled there:
@@ -15,18 +16,24 @@
 //! Cost: wall seconds of the run (machine-dependent) and DOF-steps
 //! (unknowns × steps, machine-independent). A point is on the Pareto front of
 //! its formulation when no other point of that formulation has both a smaller
-//! force error and a smaller wall time.
+//! force error and a smaller wall time. A grid point a method cannot take (an
+//! explicit method above its stability limit, a combination that means
+//! nothing) is skipped with its reason; a run that stops is an error.
 
 use serde::Serialize;
 
+use super::compare::NotRun;
 use super::relative_rms;
 use crate::error::{Error, Result};
-use crate::run::{RunOutput, run};
+use crate::integrate::MethodFactory;
+use crate::run::{RunOutput, run, run_with};
 use crate::scene::{Formulation, resolve_scene};
 
 /// One run of the study (a row of `precision.csv`).
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct PrecisionRow {
+    /// Time integrator.
+    pub method: String,
     /// Formulation name.
     pub formulation: String,
     /// Mesh level i (N = N₀·rⁱ).
@@ -61,14 +68,33 @@ pub struct Precision {
     pub reference: (usize, f64),
     /// Reference wall seconds.
     pub reference_wall: f64,
-    /// All rows: formulation-major, then mesh level, then step level.
+    /// The reference's method.
+    pub reference_method: String,
+    /// All rows: method-major, then formulation, mesh level, step level.
     pub rows: Vec<PrecisionRow>,
+    /// Grid points that were not run, with the reason.
+    pub skipped: Vec<NotRun>,
 }
 
-/// Run the study. `progress(done, total)` after each run.
+/// Run the study under the scene's own method. `progress(done, total)`
+/// after each run.
 pub fn precision(
     text: &str,
     overrides: &[String],
+    formulations: &[Formulation],
+    levels: usize,
+    ratio: usize,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Precision> {
+    precision_methods(text, overrides, &[], formulations, levels, ratio, progress)
+}
+
+/// Run the study for every method × formulation (`methods` empty: the
+/// scene's own). `progress(done, total)` after each run.
+pub fn precision_methods(
+    text: &str,
+    overrides: &[String],
+    methods: &[&dyn MethodFactory],
     formulations: &[Formulation],
     levels: usize,
     ratio: usize,
@@ -81,56 +107,87 @@ pub fn precision(
         return Err(Error::invalid("--ratio", ratio, "must be an integer ≥ 2"));
     }
     let base = resolve_scene(text, overrides)?;
+    let own = base.integrator.method;
+    let methods: Vec<&dyn MethodFactory> = if methods.is_empty() {
+        vec![&own]
+    } else {
+        methods.to_vec()
+    };
     let (n0, dt0) = (base.elements, base.dt);
     let r = ratio as f64;
     let fine = levels as i32; // one beyond the grid's finest
     let ref_n = n0 * ratio.pow(fine as u32);
     let ref_dt = dt0 / r.powi(fine);
-    let total = 1 + formulations.len() * levels * levels;
+    let total = 1 + methods.len() * formulations.len() * levels * levels;
     let mut done = 0;
-    let with = |n: usize, dt: f64, f: Formulation| {
+    let with = |n: usize, dt: f64, f: Formulation, m: Option<&dyn MethodFactory>| {
         let mut o = overrides.to_vec();
+        if let Some(m) = m {
+            o.extend(m.overrides(&base.integrator));
+        }
         o.push(format!("mesh.elements={n}"));
         o.push(format!("time.step={dt:e}"));
         o.push(format!("contact.formulation={}", f.name()));
         o
     };
-    let ref_sc = resolve_scene(text, &with(ref_n, ref_dt, Formulation::Lagrange))?;
+    let ref_sc = resolve_scene(text, &with(ref_n, ref_dt, Formulation::Lagrange, None))?;
     let reference = run(&ref_sc, &mut |_, _| {})?;
     done += 1;
     progress(done, total);
-    let mut rows = Vec::new();
-    for &f in formulations {
-        let first = rows.len();
-        for i in 0..levels {
-            for j in 0..levels {
-                let n = n0 * ratio.pow(i as u32);
-                let dt = dt0 / r.powi(j as i32);
-                let sc = resolve_scene(text, &with(n, dt, f))?;
-                let stride = (dt / ref_dt).round() as usize;
-                if sc.steps * stride != reference.steps {
-                    return Err(Error::invalid(
-                        "time.end",
-                        format!("{} steps at Δt = {dt:e} s", sc.steps),
-                        "must be a whole number of steps at every level (choose an end that is a multiple of the coarsest step)",
-                    ));
+    let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+    for &m in &methods {
+        for &f in formulations {
+            let first = rows.len();
+            for i in 0..levels {
+                for j in 0..levels {
+                    let n = n0 * ratio.pow(i as u32);
+                    let dt = dt0 / r.powi(j as i32);
+                    let not_run = |e: Error| NotRun {
+                        method: m.name(),
+                        formulation: f.name().to_string(),
+                        reason: format!("N = {n}, Δt = {dt:e} s: {e}"),
+                    };
+                    let sc = match resolve_scene(text, &with(n, dt, f, Some(m))) {
+                        Ok(sc) => sc,
+                        Err(e) => {
+                            skipped.push(not_run(e));
+                            done += 1;
+                            progress(done, total);
+                            continue;
+                        }
+                    };
+                    let stride = (dt / ref_dt).round() as usize;
+                    if sc.steps * stride != reference.steps {
+                        return Err(Error::invalid(
+                            "time.end",
+                            format!("{} steps at Δt = {dt:e} s", sc.steps),
+                            "must be a whole number of steps at every level (choose an end that is a multiple of the coarsest step)",
+                        ));
+                    }
+                    match run_with(&sc, m, &mut |_, _| {}) {
+                        Ok(out) => rows.push(row(&m.name(), f, i, j, &out, &reference, stride, n)),
+                        Err(e @ Error::Invalid { .. }) => skipped.push(not_run(e)),
+                        Err(e) => return Err(e.in_run(&format!("{}/{}", m.name(), f.name()))),
+                    }
+                    done += 1;
+                    progress(done, total);
                 }
-                let out = run(&sc, &mut |_, _| {})?;
-                rows.push(row(f, i, j, &out, &reference, stride, n));
-                done += 1;
-                progress(done, total);
             }
+            mark_pareto(&mut rows[first..]);
         }
-        mark_pareto(&mut rows[first..]);
     }
     Ok(Precision {
         reference: (ref_n, ref_dt),
         reference_wall: reference.wall_seconds,
+        reference_method: own.name().to_string(),
         rows,
+        skipped,
     })
 }
 
+#[allow(clippy::too_many_arguments)]
 fn row(
+    method: &str,
     f: Formulation,
     i: usize,
     j: usize,
@@ -142,6 +199,7 @@ fn row(
     let (t, tr) = (&out.history.carriers[0], &reference.history.carriers[0]);
     let sample = |v: &[f64]| -> Vec<f64> { (1..t.force.len()).map(|k| v[k * stride]).collect() };
     PrecisionRow {
+        method: method.to_string(),
         formulation: f.name().to_string(),
         mesh_level: i,
         step_level: j,
@@ -177,6 +235,7 @@ mod tests {
 
     fn r(e: f64, w: f64) -> PrecisionRow {
         PrecisionRow {
+            method: "m".into(),
             formulation: "x".into(),
             mesh_level: 0,
             step_level: 0,
