@@ -1,0 +1,225 @@
+//! Adding a time integrator outside the crate: first-order backward Euler
+//! against taut's public [`Stepper`] trait, run through the same studies as
+//! the built-in methods (docs/methods.md, "Adding a method", walks through it).
+//!
+//! ```text
+//!   M (v_{n+1} − v_n)/Δt + K d_{n+1} = f_{n+1} + Σ λ_c r_c,   d_{n+1} = d_n + Δt v_{n+1}
+//! ```
+//!
+//! Solved for u = d_{n+1}: `(M/Δt² + K) d_{n+1} = M(d_n + Δt v_n)/Δt² + f + Σ λ r`,
+//! one constant matrix factored once. For the contact problem the step is
+//! `d_{n+1} = 0 + 1·u`, `v_{n+1} = −d_n/Δt + (1/Δt)·u` ([`StepMap`] with
+//! c_d = 1, c_v = 1/Δt); the [`System`] does the rest (free gaps, Delassus
+//! matrix, whichever contact law the scene asks for).
+//!
+//! Run: `cargo run --release --example custom_method` — it prints the
+//! observed time order of backward Euler beside generalized-α's on the
+//! one-dof oscillator's step response (exact: first and second order) and
+//! through `taut converge`'s study on the moving-force analytic case, then
+//! compares both on the reference case, and writes
+//! `out/custom_method/{converge,compare}/`. `tests/methods.rs` runs the
+//! oscillator check.
+
+use taut::integrate::{
+    Initial, MassPrediction, MethodFactory, State, StepMap, Stepper, System, VelocityPrediction,
+};
+use taut::model::banded::BandedLdlt;
+use taut::scene::Method;
+use taut::{Resolved, Result};
+
+/// Backward Euler for one run.
+pub struct BackwardEuler {
+    dt: f64,
+    /// The factor of M/Δt² + K.
+    ldlt: BandedLdlt,
+    /// A_q = m/Δt² + c/Δt + k per contact.
+    a_eff: Vec<f64>,
+    mass_pred: Vec<MassPrediction>,
+    /// ṽ = −d_n/Δt, d̃ = 0, and scratch.
+    v_pred: Vec<f64>,
+    zeros: Vec<f64>,
+    w: Vec<f64>,
+    y: Vec<f64>,
+    rhs: Vec<f64>,
+}
+
+impl Stepper for BackwardEuler {
+    fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
+        let dt = self.dt;
+        let k = sys.columns();
+        let t1 = st.next_time(dt);
+        // loads, force directions and gap rows all at t_{n+1}
+        sys.place(t1, t1, t1);
+        let beam = sys.beam();
+        // column 0: f + M(d_n + Δt v_n)/Δt²; columns 1 + c: the contact directions
+        for i in 0..st.d.len() {
+            self.w[i] = (st.d[i] + dt * st.v[i]) / (dt * dt);
+            self.v_pred[i] = -st.d[i] / dt;
+        }
+        self.y.copy_from_slice(&beam.load);
+        beam.mass.mul_acc(&self.w, 1.0, &mut self.y);
+        self.rhs.fill(0.0);
+        for (row, y) in self.rhs.chunks_exact_mut(k).zip(&self.y) {
+            row[0] = *y;
+        }
+        sys.scatter_loads(&mut self.rhs, k, 1.0);
+        self.ldlt.solve_many(&mut self.rhs, k);
+        // the mass dofs by the same rule
+        for (j, m) in sys.masses().iter().enumerate() {
+            let (q, qd) = (st.q[j], st.q_dot[j]);
+            let b = m.f0 + m.m * (q + dt * qd) / (dt * dt) + m.c * q / dt;
+            self.mass_pred[j] = MassPrediction {
+                q: 0.0,
+                q_dot: -q / dt,
+                u: b / self.a_eff[j],
+                a_eff: self.a_eff[j],
+            };
+        }
+        // the contact problem: the system forms (g_free, W) and calls the law
+        let map = StepMap {
+            solved: &self.rhs,
+            c_d: 1.0,
+            c_v: 1.0 / dt,
+            d_pred: &self.zeros,
+            v_pred: VelocityPrediction::Vector(&self.v_pred),
+            alpha_weight: 0.0,
+            masses: &self.mass_pred,
+        };
+        sys.solve_contact(&map, st)?;
+        // the update with the multipliers
+        let lambda = sys.multipliers();
+        for (i, row) in self.rhs.chunks_exact(k).enumerate() {
+            let mut d = row[0];
+            for (l, z) in lambda.iter().zip(&row[1..]) {
+                d += l * z;
+            }
+            st.v[i] = (d - st.d[i]) / dt;
+            st.d[i] = d;
+        }
+        for (j, m) in self.mass_pred.iter().enumerate() {
+            let q = m.u - lambda[j] / m.a_eff;
+            st.q_dot[j] = (q - st.q[j]) / dt;
+            st.q[j] = q;
+        }
+        Ok(())
+    }
+}
+
+/// Builds [`BackwardEuler`] for a run: what the studies take.
+pub struct BackwardEulerFactory;
+
+impl MethodFactory for BackwardEulerFactory {
+    fn name(&self) -> String {
+        "backward_euler".into()
+    }
+
+    fn build(
+        &self,
+        _sc: &Resolved,
+        sys: &mut System,
+        _st: &mut State,
+        _init: Initial,
+    ) -> Result<Box<dyn Stepper>> {
+        let dt = sys.dt();
+        let beam = sys.beam();
+        let n = beam.n;
+        let a = beam.stiffness.combine(1.0, &beam.mass, 1.0 / (dt * dt));
+        let nc = sys.contacts();
+        Ok(Box::new(BackwardEuler {
+            dt,
+            ldlt: BandedLdlt::factor(&a)?,
+            a_eff: sys
+                .masses()
+                .iter()
+                .map(|m| m.m / (dt * dt) + m.c / dt + m.k)
+                .collect(),
+            mass_pred: vec![MassPrediction::default(); nc],
+            v_pred: vec![0.0; n],
+            zeros: vec![0.0; n],
+            w: vec![0.0; n],
+            y: vec![0.0; n],
+            rhs: vec![0.0; n * sys.columns()],
+        }))
+    }
+}
+
+/// Observed time order of `method` on the one-dof oscillator's step
+/// response (`scenes/oscillator_one_dof.toml`, exact d_s(1 − cos ωt)): the
+/// max error over 0.2 s at Δt = 5e-4 and 2.5e-4 s.
+pub fn oscillator_order(method: &dyn MethodFactory) -> Result<f64> {
+    let text = include_str!("../scenes/oscillator_one_dof.toml");
+    let (omega, static_deflection) = (60.0, 10.0 / 2400.0);
+    let mut errors = Vec::new();
+    for dt in [5e-4, 2.5e-4] {
+        let set = [format!("time.step={dt:e}"), "time.end=0.2".to_string()];
+        let sc = taut::resolve_scene(text, &set)?;
+        let out = taut::run_with(&sc, method, &mut |_, _| {})?;
+        let h = &out.history;
+        let err =
+            h.t.iter()
+                .zip(&h.probes[0].1)
+                .map(|(t, v)| (v - static_deflection * (1.0 - (omega * t).cos())).abs())
+                .fold(0.0, f64::max);
+        errors.push(err);
+    }
+    Ok((errors[0] / errors[1]).log2())
+}
+
+#[allow(dead_code)]
+fn main() -> Result<()> {
+    use taut::study::compare::{CompareSpec, compare_methods};
+    use taut::study::converge::{Refine, converge_methods};
+    let out = std::path::Path::new("out/custom_method");
+    let methods: [&dyn MethodFactory; 2] = [&BackwardEulerFactory, &Method::GeneralizedAlpha];
+
+    // observed time order on an exact one-dof case
+    for m in methods {
+        println!(
+            "{:18} observed time order {:.2} (oscillator step response)",
+            m.name(),
+            oscillator_order(m)?
+        );
+    }
+
+    // the same through `taut converge` on the moving-force analytic case; a
+    // first-order method damps the mesh's top modes by e^{−ω²Δt t/2}, which
+    // keeps it pre-asymptotic there over this ladder (docs/methods.md)
+    let moving_force = include_str!("../scenes/moving_force_beam.toml");
+    let (studies, skipped) = converge_methods(
+        moving_force,
+        &[],
+        &methods,
+        Refine::Step,
+        4,
+        2.0,
+        &taut::study::reference::analytic_w,
+        &mut |_, _| {},
+    )?;
+    for s in &studies {
+        let order = s
+            .study
+            .rows
+            .iter()
+            .rfind(|r| r.quantity == "displacement_l2")
+            .map_or(f64::NAN, |r| r.observed_order);
+        println!(
+            "{:18} observed time order {order:.2} (moving force, taut converge)",
+            s.method
+        );
+    }
+    taut::report::write_converge_methods(&out.join("converge"), &studies, &skipped)?;
+
+    // side by side on the study's reference case
+    let reference = include_str!("../scenes/reference.toml");
+    let spec = CompareSpec {
+        methods: methods.to_vec(),
+        formulations: vec![taut::scene::Formulation::Lagrange],
+        reference_method: 1,
+        reference: taut::scene::Formulation::Lagrange,
+    };
+    let c = compare_methods(reference, &[], &spec, &mut |_, _| {})?;
+    print!("{}", taut::report::compare_table(&c));
+    taut::report::write_compare(&out.join("compare"), &c)?;
+    println!("wrote {}/{{converge,compare}}/", out.display());
+    Ok(())
+}
