@@ -11,6 +11,11 @@
 //! padded to four) and a moving force without a contact
 //! (`scenes/moving_force_beam.toml`: one column, padded to two).
 //!
+//! Group `methods`: the same at N = 800 for every time integrator
+//! (`[integrator] method`, MODEL §9.1), the reference scene at its Δt =
+//! 1e-4 s; central difference, explicit, at 0.9 of its stability limit
+//! (2/ω_max ≈ 1.5e-5 s there), since it refuses larger steps.
+//!
 //! Group `run`: one complete `taut::run` of the reference scene as shipped
 //! (400 elements, 6000 steps, recording included), for context.
 //!
@@ -89,6 +94,30 @@ fn bench_shapes(c: &mut Criterion) {
     group.finish();
 }
 
+fn bench_methods(c: &mut Criterion) {
+    let mut group = c.benchmark_group("methods");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(4));
+    for m in taut::scene::Method::ALL {
+        let mut o = vec![
+            "mesh.elements=800".to_string(),
+            format!("integrator={{ method = \"{}\" }}", m.name()),
+        ];
+        if m == taut::scene::Method::CentralDifference {
+            let sc = resolved(&o);
+            let sys = taut::integrate::System::new(&sc);
+            let mf = taut::model::banded::BandedLdlt::factor(&sys.beam().mass).expect("M");
+            let limit = taut::integrate::stability_limit(&sc, &sys, &mf);
+            o.push(format!("time.step={:e}", 0.9 * limit.dt_max));
+        }
+        let sc = resolved(&o);
+        bench_steps(&mut group, &format!("{}/N=800", m.name()), &sc);
+    }
+    group.finish();
+}
+
 fn bench_run(c: &mut Criterion) {
     let sc = resolved(&[]);
     let dofs = Integrator::new(&sc).expect("integrator builds").dofs();
@@ -108,5 +137,5 @@ fn bench_run(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_step, bench_shapes, bench_run);
+criterion_group!(benches, bench_step, bench_shapes, bench_methods, bench_run);
 criterion_main!(benches);

@@ -19,7 +19,7 @@
 //! frequencies (spectral radius → 0 as ωΔt → ∞ for γ_B = ½).
 
 use crate::error::Result;
-use crate::model::banded::BandedLdlt;
+use crate::model::banded::{Affine, BandedLdlt};
 
 use super::{
     Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, rhs_columns,
@@ -51,16 +51,16 @@ pub struct Bathe {
     /// ṽ of the current sub-step, and d̃ = 0 (both sub-steps solve for d).
     v_pred: Vec<f64>,
     zeros: Vec<f64>,
-    /// Scratch: the vector M multiplies, and the column it makes.
+    /// Scratch: u of the affine column f − M u, and that column before the solve.
     w: Vec<f64>,
-    y: Vec<f64>,
+    b0: Vec<f64>,
     mass_pred: Vec<MassPrediction>,
     rhs: Vec<f64>,
 }
 
 impl Bathe {
     /// Factor both matrices once.
-    pub fn new(gamma: f64, sys: &System, _st: &State, init: Initial) -> Result<Self> {
+    pub fn new(gamma: f64, sys: &System, st: &State, init: Initial) -> Result<Self> {
         let dt = sys.dt();
         let beam = sys.beam();
         let n = beam.n;
@@ -82,7 +82,7 @@ impl Bathe {
             .iter()
             .map(|m| c3 * c3 * m.m + c3 * m.c + m.k)
             .collect();
-        Ok(Bathe {
+        let mut bathe = Bathe {
             dt,
             c0,
             c1,
@@ -102,32 +102,46 @@ impl Bathe {
             v_pred: vec![0.0; n],
             zeros: vec![0.0; n],
             w: vec![0.0; n],
-            y: vec![0.0; n],
+            b0: vec![0.0; n],
             mass_pred: vec![MassPrediction::default(); nc],
             rhs: vec![0.0; n * rhs_columns(nc)],
-        })
+        };
+        // the first sub-step's operands (later steps form them in the
+        // previous update pass)
+        for i in 0..n {
+            (bathe.w[i], bathe.v_pred[i]) = bathe.first_operands(st.d[i], st.v[i], bathe.a[i]);
+        }
+        Ok(bathe)
     }
 
-    /// Column 0 = load + sign·M w (w already formed), the moving forces and
-    /// contact directions added, then solved with `ldlt`.
+    /// Sub-step 1's operands from (d_n, v_n, a_n) of a row: w = −(c₀²d +
+    /// 2c₀v + a), so that f − M w = f + M(c₀²d + 2c₀v + a), and ṽ = −c₀d − v.
+    #[inline(always)]
+    fn first_operands(&self, d: f64, v: f64, a: f64) -> (f64, f64) {
+        let c0 = self.c0;
+        (-(c0 * c0 * d + 2.0 * c0 * v + a), -c0 * d - v)
+    }
+
+    /// Solve A X = B + (f − M w) e₀ᵀ with `ldlt`, B the moving forces and
+    /// contact directions; the band product M w is computed inside the
+    /// forward sweep ([`BandedLdlt::solve_affine`]).
     fn solve(
         rhs: &mut [f64],
-        y: &mut [f64],
+        b0: &mut [f64],
         w: &[f64],
-        sign: f64,
         sys: &System,
         ldlt: &BandedLdlt,
     ) {
         let beam = sys.beam();
         let k = sys.columns();
-        y.copy_from_slice(&beam.load);
-        beam.mass.mul_acc(w, sign, y);
         rhs.fill(0.0);
-        for (row, yi) in rhs.chunks_exact_mut(k).zip(y.iter()) {
-            row[0] = *yi;
-        }
         sys.scatter_loads(rhs, k, 1.0);
-        ldlt.solve_many(rhs, k)
+        let column = Affine {
+            h: &beam.load,
+            k: &beam.mass,
+            u: w,
+        };
+        ldlt.solve_affine(rhs, k, &column, b0);
     }
 }
 
@@ -139,11 +153,8 @@ impl Stepper for Bathe {
         // sub-step 1: trapezoidal to t_n + γ_BΔt
         let ts = st.t + self.h1;
         sys.place(ts, ts, ts);
-        for i in 0..st.d.len() {
-            self.w[i] = c0 * c0 * st.d[i] + 2.0 * c0 * st.v[i] + self.a[i];
-            self.v_pred[i] = -c0 * st.d[i] - st.v[i];
-        }
-        Self::solve(&mut self.rhs, &mut self.y, &self.w, 1.0, sys, &self.ldlt1);
+        // w and ṽ were formed by the previous step's last pass
+        Self::solve(&mut self.rhs, &mut self.b0, &self.w, sys, &self.ldlt1);
         for (j, m) in sys.masses().iter().enumerate() {
             let (q, qd, aq) = (st.q[j], st.q_dot[j], self.aq[j]);
             let b = m.f0 + m.m * (c0 * c0 * q + 2.0 * c0 * qd + aq) + m.c * (c0 * q + qd);
@@ -170,8 +181,14 @@ impl Stepper for Bathe {
             for (l, z) in lambda.iter().zip(&row[1..]) {
                 d += l * z;
             }
+            let v1 = self.v_pred[i] + c0 * d;
             self.d1[i] = d;
-            self.v1[i] = self.v_pred[i] + c0 * d;
+            self.v1[i] = v1;
+            // sub-step 2's operands: f − M w with
+            // w = c₁v_n + c₂v₁ + c₃(c₁d_n + c₂d₁), and ṽ = c₁d_n + c₂d₁
+            let v_pred = c1 * st.d[i] + c2 * d;
+            self.w[i] = c1 * st.v[i] + c2 * v1 + c3 * v_pred;
+            self.v_pred[i] = v_pred;
         }
         for (j, m) in self.mass_pred.iter().enumerate() {
             let q = m.u - lambda[j] / m.a_eff;
@@ -183,11 +200,7 @@ impl Stepper for Bathe {
         // sub-step 2: three-point backward Euler to t_{n+1}
         let t1 = st.next_time(self.dt);
         sys.place(t1, t1, t1);
-        for i in 0..st.d.len() {
-            self.w[i] = c1 * st.v[i] + c2 * self.v1[i] + c3 * (c1 * st.d[i] + c2 * self.d1[i]);
-            self.v_pred[i] = c1 * st.d[i] + c2 * self.d1[i];
-        }
-        Self::solve(&mut self.rhs, &mut self.y, &self.w, -1.0, sys, &self.ldlt2);
+        Self::solve(&mut self.rhs, &mut self.b0, &self.w, sys, &self.ldlt2);
         for (j, m) in sys.masses().iter().enumerate() {
             let (q, qd) = (st.q[j], st.q_dot[j]);
             let b = m.f0
@@ -217,9 +230,12 @@ impl Stepper for Bathe {
                 d += l * z;
             }
             let v = self.v_pred[i] + c3 * d;
-            self.a[i] = c1 * st.v[i] + c2 * self.v1[i] + c3 * v;
+            let a = c1 * st.v[i] + c2 * self.v1[i] + c3 * v;
+            self.a[i] = a;
             st.d[i] = d;
             st.v[i] = v;
+            // the next step's sub-step 1 operands
+            (self.w[i], self.v_pred[i]) = self.first_operands(d, v, a);
         }
         for (j, m) in self.mass_pred.iter().enumerate() {
             let q = m.u - lambda[j] / m.a_eff;

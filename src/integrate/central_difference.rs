@@ -24,7 +24,7 @@
 //! at t_{n+1} (it acts at t_n).
 
 use crate::error::{Error, Result};
-use crate::model::banded::BandedLdlt;
+use crate::model::banded::{Affine, BandedLdlt};
 use crate::model::spectrum;
 use crate::scene::Resolved;
 
@@ -80,8 +80,8 @@ pub struct CentralDifference {
     d_pred: Vec<f64>,
     /// n × k right-hand sides: f_n − K d_n + moving forces, and s_c r_c.
     rhs: Vec<f64>,
-    /// K d_n (scratch).
-    kd: Vec<f64>,
+    /// Column 0 before the solve (scratch).
+    b0: Vec<f64>,
     /// The stability limit checked at the start.
     pub limit: StabilityLimit,
 }
@@ -131,7 +131,7 @@ impl CentralDifference {
             mass_pred: vec![MassPrediction::default(); nc],
             d_pred: vec![0.0; n],
             rhs: vec![0.0; n * rhs_columns(nc)],
-            kd: vec![0.0; n],
+            b0: vec![0.0; n],
             limit,
         }
     }
@@ -144,15 +144,17 @@ impl Stepper for CentralDifference {
         let (t0, t1) = (st.t, st.next_time(dt));
         sys.place(t0, t0, t1);
         let beam = sys.beam();
-        // a★ = M⁻¹(f_n − K d_n + moving forces), z_c = M⁻¹ s_c r_c
-        self.kd.fill(0.0);
-        beam.stiffness.mul_acc(&st.d, 1.0, &mut self.kd);
+        // a★ = M⁻¹(f_n − K d_n + moving forces), z_c = M⁻¹ s_c r_c, the
+        // product K d_n inside the forward sweep
         self.rhs.fill(0.0);
-        for (i, row) in self.rhs.chunks_exact_mut(k).enumerate() {
-            row[0] = beam.load[i] - self.kd[i];
-        }
         sys.scatter_loads(&mut self.rhs, k, 1.0);
-        self.mass_factor.solve_many(&mut self.rhs, k);
+        let column = Affine {
+            h: &beam.load,
+            k: &beam.stiffness,
+            u: &st.d,
+        };
+        self.mass_factor
+            .solve_affine(&mut self.rhs, k, &column, &mut self.b0);
         for (dp, (d, v)) in self.d_pred.iter_mut().zip(st.d.iter().zip(&st.v)) {
             *dp = d + dt * v;
         }
