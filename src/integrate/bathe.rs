@@ -125,13 +125,7 @@ impl Bathe {
     /// Solve A X = B + (f − M w) e₀ᵀ with `ldlt`, B the moving forces and
     /// contact directions; the band product M w is computed inside the
     /// forward sweep ([`BandedLdlt::solve_affine`]).
-    fn solve(
-        rhs: &mut [f64],
-        b0: &mut [f64],
-        w: &[f64],
-        sys: &System,
-        ldlt: &BandedLdlt,
-    ) {
+    fn solve(rhs: &mut [f64], b0: &mut [f64], w: &[f64], sys: &System, ldlt: &BandedLdlt) {
         let beam = sys.beam();
         let k = sys.columns();
         rhs.fill(0.0);

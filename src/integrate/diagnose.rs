@@ -11,27 +11,25 @@ use super::{CarrierSample, State, System};
 /// answer: a linear model that gets there has blown up.
 const DISPLACEMENT_BOUND_IN_LENGTHS: f64 = 1.0;
 
-/// Below this α_f a generalized-α-family method leaves a moving constraint's
-/// step-to-step mode without enough damping: measured on the reference case
-/// (bilateral, V = 100 m/s), HHT diverges at α = 0.05 and 0.1 and runs at
-/// 0.2; Newmark and WBZ (α_f = 0) diverge (docs/methods.md).
-pub(crate) const WEAK_ALPHA_F: f64 = 0.2;
-
-/// When a generalized-α-family method imposes the gap at (or near) the
-/// instant its balance holds, a moving contact point drives the constrained
-/// direction's undamped step-to-step mode, as `contact.placement = "alpha"`
-/// does (MODEL §5): the cause to name when such a run goes unstable or chatters.
+/// A generalized-α-family method imposes the gap at t_{n+1} but balances
+/// forces at t_{n+1−α_f}: the constraint direction keeps a step-to-step
+/// (Nyquist) mode that only some parameter sets damp, and a moving contact
+/// point drives it (MODEL §5, as `contact.placement = "alpha"` does).
+/// Measured on the reference case at Δt = 1e-4 s (`examples/methods_report.rs`,
+/// docs/methods.md): with a bilateral mass Newmark, HHT α ≤ 0.1, WBZ ρ∞ = 0.8
+/// and generalized-α ρ∞ = 0.9 diverge, while ρ∞ = 1 or 0.5, HHT α ≥ 0.2,
+/// WBZ ρ∞ ≤ 0.5 and Bathe run. The cause to name when such a run goes
+/// unstable or chatters.
 pub(crate) fn weak_constraint_damping(sys: &System) -> Option<String> {
     let Scheme::GenAlpha(p) = sys.scheme else {
         return None;
     };
-    (p.alpha_f < WEAK_ALPHA_F).then(|| {
-        format!(
-            "integrator.method = {} balances forces at t_{{n+1−α_f}} with α_f = {:.3}, (nearly) where the gap is imposed, which leaves the constraint's step-to-step mode undamped (as contact.placement = \"alpha\" does, MODEL §5); a moving contact point drives it: use generalized_alpha, hht with alpha ≥ {WEAK_ALPHA_F}, wbz with rho_inf ≤ 0.5, or bathe (docs/methods.md)",
-            sys.method.name(),
-            p.alpha_f
-        )
-    })
+    Some(format!(
+        "the contact constraint's step-to-step mode, which integrator.method = {} (α_m = {:.3}, α_f = {:.3}) may leave undamped: a moving contact point drives it (MODEL §5; measured on the reference case, newmark, hht with alpha ≤ 0.1, wbz with rho_inf = 0.8 and generalized_alpha with rho_inf = 0.9 go unstable, while rho_inf = 1 or 0.5, hht with alpha ≥ 0.2, wbz with rho_inf ≤ 0.5 and bathe run: docs/methods.md)",
+        sys.method.name(),
+        p.alpha_m,
+        p.alpha_f
+    ))
 }
 
 /// True when x lies in the last element before a supported end (v = 0
@@ -70,26 +68,33 @@ pub(crate) fn check(sys: &System, st: &State, s: &CarrierSample, carrier: usize)
         let speed = c.props.motion.speed(st.t);
         let supersonic_mass =
             sys.bilateral && c.contact.is_some() && sys.wave_speed > 0.0 && speed > sys.wave_speed;
-        let weak = moving.then(|| weak_constraint_damping(sys)).flatten();
+        let weak = moving
+            .then(|| weak_constraint_damping(sys))
+            .flatten()
+            .filter(|_| c.contact.is_some());
         let cause = if sys.placement == Placement::Alpha && moving {
             "the gap is imposed at the α-level (contact.placement = \"alpha\"), which leaves an undamped step-to-step oscillation that a moving contact point drives unstable (MODEL §5); use contact.placement = \"end\"".to_string()
-        } else if let Some(weak) = weak.filter(|_| c.contact.is_some()) {
-            weak
         } else if supersonic_mass {
             format!(
                 "a mass held on the beam (bilateral) moves at V = {speed:.1} m/s, faster than the wave speed c = {:.1} m/s: a moving inertial load above the wave speed can be genuinely unstable (anomalous Doppler waves; Metrikine & Dieterman); growth that quickens as the mesh and step are refined is that instability, not the integrator",
                 sys.wave_speed
             )
-        } else if !value.is_finite() {
-            format!(
-                "a non-finite value: check the scene's magnitudes and time.step = {} s",
-                sys.dt
-            )
         } else {
-            format!(
-                "|{name}| exceeds {limit:e}: time.step = {} s may be too coarse for the contact dynamics, or the scene is physically unbounded",
-                sys.dt
-            )
+            let step = if !value.is_finite() {
+                format!(
+                    "a non-finite value: check the scene's magnitudes and time.step = {} s",
+                    sys.dt
+                )
+            } else {
+                format!(
+                    "|{name}| exceeds {limit:e}: time.step = {} s may be too coarse for the contact dynamics, or the scene is physically unbounded",
+                    sys.dt
+                )
+            };
+            match weak {
+                Some(weak) => format!("{weak}; or {step}"),
+                None => step,
+            }
         };
         return Err(Error::Diverged {
             step: st.step,
