@@ -44,6 +44,7 @@ fn the_reference_scene_and_every_linked_doc_exist() {
         "docs/scene.md",
         "docs/output.md",
         "docs/numerics.md",
+        "docs/methods.md",
         "docs/verification.md",
     ] {
         assert!(links.contains(&doc), "README links {doc}");
