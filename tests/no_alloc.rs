@@ -1,8 +1,8 @@
 //! The step loop allocates nothing (DESIGN habit 6; issue: "no allocation in
 //! the step loop"). A counting global allocator wraps the system one; after
 //! the integrator is built, a stretch of steps must not allocate at all, for
-//! one contact, two contacts (active set), a string, a moving force, and the
-//! penalty and impact formulations. The complementarity formulation is the
+//! one contact, two contacts (active set), a string, a moving force, the
+//! penalty and impact formulations, and every time integrator. The complementarity formulation is the
 //! exception: clarabel builds its solver per step (documented in
 //! docs/formulations.md).
 
@@ -77,6 +77,29 @@ fn step_loop_does_not_allocate() {
         0,
         "bilateral"
     );
+    // every time integrator, through contact loss; central difference at a
+    // step below its stability limit (2/ω_max = 6.1e-5 s at N = 400)
+    for (method, extra) in [
+        ("newmark", ""),
+        ("bathe", ""),
+        ("central_difference", "time.step=5e-5"),
+        ("moreau_jean", ""),
+    ] {
+        let m = format!("integrator={{ method = \"{method}\" }}");
+        let mut o = vec![m.as_str()];
+        if !extra.is_empty() {
+            o.push(extra);
+        }
+        assert_eq!(allocations_in_steps(REFERENCE, &o, 6000), 0, "{method}");
+        o.push("contact.formulation=impact");
+        if method != "moreau_jean" {
+            assert_eq!(
+                allocations_in_steps(REFERENCE, &o, 6000),
+                0,
+                "{method} with the impact law"
+            );
+        }
+    }
     let two = REFERENCE.replacen(
         "[contact]",
         "[[carrier]]\nmass = 1.0\nstiffness = 987.0\npreload = 0.05\nside = \"above\"\nstart = 10.0\nspeed = { profile = \"smooth_ramp\", cruise = 100.0 }\n\n[contact]",
