@@ -106,10 +106,7 @@ fn bench_methods(c: &mut Criterion) {
             format!("integrator={{ method = \"{}\" }}", m.name()),
         ];
         if m == taut::scene::Method::CentralDifference {
-            let sc = resolved(&o);
-            let sys = taut::integrate::System::new(&sc);
-            let mf = taut::model::banded::BandedLdlt::factor(&sys.beam().mass).expect("M");
-            let limit = taut::integrate::stability_limit(&sc, &sys, &mf);
+            let limit = taut::integrate::central_difference_limit(&resolved(&o)).expect("M");
             o.push(format!("time.step={:e}", 0.9 * limit.dt_max));
         }
         let sc = resolved(&o);

@@ -22,6 +22,7 @@
 
 use taut::integrate::{
     Initial, MassPrediction, MethodFactory, State, StepMap, Stepper, System, VelocityPrediction,
+    combine,
 };
 use taut::model::banded::BandedLdlt;
 use taut::scene::Method;
@@ -88,16 +89,12 @@ impl Stepper for BackwardEuler {
         sys.solve_contact(&map, st)?;
         // the update with the multipliers
         let lambda = sys.multipliers();
-        for (i, row) in self.rhs.chunks_exact(k).enumerate() {
-            let mut d = row[0];
-            for (l, z) in lambda.iter().zip(&row[1..]) {
-                d += l * z;
-            }
+        for (i, d) in combine(&self.rhs, k, lambda).enumerate() {
             st.v[i] = (d - st.d[i]) / dt;
             st.d[i] = d;
         }
         for (j, m) in self.mass_pred.iter().enumerate() {
-            let q = m.u - lambda[j] / m.a_eff;
+            let q = m.unknown(lambda[j]);
             st.q_dot[j] = (q - st.q[j]) / dt;
             st.q[j] = q;
         }

@@ -249,9 +249,9 @@ fn main() {
     let cd = "method = \"central_difference\"";
     let limit = {
         let sc = scene(cd, 1e-6, FAST);
-        let sys = taut::integrate::System::new(&sc);
-        let mf = taut::model::banded::BandedLdlt::factor(&sys.beam().mass).expect("M");
-        taut::integrate::stability_limit(&sc, &sys, &mf).dt_max
+        taut::integrate::central_difference_limit(&sc)
+            .expect("M factors")
+            .dt_max
     };
     let stable: Vec<f64> = (0..12)
         .map(|k| 1e-4 / 2f64.powi(k))

@@ -559,9 +559,7 @@ impl MethodFactory for Unchecked {
 fn central_difference_runs_below_its_limit_and_is_refused_above() {
     let base = ["mesh.elements=100".to_string(), "time.end=0.2".to_string()];
     let sc = resolve_scene(REFERENCE, &base).expect("scene");
-    let sys = System::new(&sc);
-    let mf = taut::model::banded::BandedLdlt::factor(&sys.beam().mass).expect("M");
-    let limit = taut::integrate::stability_limit(&sc, &sys, &mf);
+    let limit = taut::integrate::central_difference_limit(&sc).expect("M factors");
     let with_dt = |factor: f64| {
         let mut o = base.to_vec();
         o.push("integrator={ method = \"central_difference\" }".into());
@@ -671,20 +669,7 @@ fn the_study_s_t1_and_t2_hold_under_every_method() {
         }
         let sc = resolve_scene(t2, &o).expect("T2 resolves");
         let out = run(&sc, &mut |_, _| {}).expect("T2 runs");
-        let (f, t) = (&out.history.carriers[0].force, &out.history.t);
-        let idx = |time: f64| (time / sc.dt).round() as usize;
-        let plateau = &f[idx(0.3)..idx(0.5)];
-        let level = plateau.iter().sum::<f64>() / plateau.len() as f64;
-        let window = idx(0.5)..idx(0.8);
-        let peak = window
-            .clone()
-            .map(|i| (f[i] - level).abs())
-            .fold(0.0, f64::max);
-        let arrival = window
-            .clone()
-            .find(|&i| (f[i] - level).abs() >= 0.5 * peak)
-            .map(|i| t[i])
-            .expect("a returning pulse");
+        let arrival = common::t2_return_time(&out, sc.dt);
         let theory = 2.0 * (sc.beam.length - 1.0) / sc.beam.wave_speed();
         println!(
             "T2 {}: return {arrival:.4} s (theory {theory:.4} s)",

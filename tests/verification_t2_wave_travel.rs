@@ -15,7 +15,7 @@
 //!   independent continuum solve (`analytic::StaticPointLoad`).
 
 mod common;
-use common::{run, scene};
+use common::{run, scene, t2_return_time};
 use taut::analytic::StaticPointLoad;
 
 /// x0, m.
@@ -38,27 +38,10 @@ struct T2 {
 fn t2(name: &str) -> T2 {
     let sc = scene(name, &[]);
     let out = run(&sc);
-    let f = &out.history.carriers[0].force;
-    let t = &out.history.t;
     let c = sc.beam.wave_speed();
     let l = sc.beam.length;
     let theory_return = 2.0 * (l - X0) / c;
-    // plateau between the launch transient and the first return
-    let idx = |time: f64| (time / sc.dt).round() as usize;
-    let plateau = &f[idx(0.3)..idx(0.5)];
-    let level = plateau.iter().sum::<f64>() / plateau.len() as f64;
-    // the first pulse: largest deviation in [0.5, 0.8] s, then the first
-    // sample reaching half of it
-    let window = idx(0.5)..idx(0.8);
-    let peak = window
-        .clone()
-        .map(|i| (f[i] - level).abs())
-        .fold(0.0, f64::max);
-    let arrival = window
-        .clone()
-        .find(|&i| (f[i] - level).abs() >= 0.5 * peak)
-        .map(|i| t[i])
-        .unwrap();
+    let arrival = t2_return_time(&out, sc.dt);
 
     let (k, m, preload) = match sc.carriers[0].kind {
         taut::scene::CarrierKind::MassSpring {

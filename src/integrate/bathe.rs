@@ -22,7 +22,8 @@ use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
 
 use super::{
-    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, rhs_columns,
+    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,
+    rhs_columns,
 };
 
 /// A Bathe stepper for one run.
@@ -170,11 +171,7 @@ impl Stepper for Bathe {
         };
         sys.solve_contact(&map, st)?;
         let lambda = sys.multipliers();
-        for (i, row) in self.rhs.chunks_exact(k).enumerate() {
-            let mut d = row[0];
-            for (l, z) in lambda.iter().zip(&row[1..]) {
-                d += l * z;
-            }
+        for (i, d) in combine(&self.rhs, k, lambda).enumerate() {
             let v1 = self.v_pred[i] + c0 * d;
             self.d1[i] = d;
             self.v1[i] = v1;
@@ -185,7 +182,7 @@ impl Stepper for Bathe {
             self.v_pred[i] = v_pred;
         }
         for (j, m) in self.mass_pred.iter().enumerate() {
-            let q = m.u - lambda[j] / m.a_eff;
+            let q = m.unknown(lambda[j]);
             self.q1[j] = q;
             self.qd1[j] = m.q_dot + c0 * q;
         }
@@ -218,11 +215,7 @@ impl Stepper for Bathe {
         };
         sys.solve_contact(&map, st)?;
         let lambda = sys.multipliers();
-        for (i, row) in self.rhs.chunks_exact(k).enumerate() {
-            let mut d = row[0];
-            for (l, z) in lambda.iter().zip(&row[1..]) {
-                d += l * z;
-            }
+        for (i, d) in combine(&self.rhs, k, lambda).enumerate() {
             let v = self.v_pred[i] + c3 * d;
             let a = c1 * st.v[i] + c2 * self.v1[i] + c3 * v;
             self.a[i] = a;
@@ -232,7 +225,7 @@ impl Stepper for Bathe {
             (self.w[i], self.v_pred[i]) = self.first_operands(d, v, a);
         }
         for (j, m) in self.mass_pred.iter().enumerate() {
-            let q = m.u - lambda[j] / m.a_eff;
+            let q = m.unknown(lambda[j]);
             let qd = m.q_dot + c3 * q;
             self.aq[j] = c1 * st.q_dot[j] + c2 * self.qd1[j] + c3 * qd;
             st.q[j] = q;

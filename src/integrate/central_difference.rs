@@ -29,7 +29,8 @@ use crate::model::spectrum;
 use crate::scene::Resolved;
 
 use super::{
-    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, rhs_columns,
+    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,
+    rhs_columns,
 };
 
 /// Lanczos steps for ω_max: after 100 steps the largest Ritz value is within
@@ -50,6 +51,14 @@ pub struct StabilityLimit {
     pub omega_element_bound: f64,
     /// The largest stable step 2/ω_max, s.
     pub dt_max: f64,
+}
+
+/// The stability limit of central difference for a validated scene, from
+/// scratch (assembles the system and factors M): for studies choosing Δt.
+pub fn central_difference_limit(sc: &Resolved) -> Result<StabilityLimit> {
+    let sys = System::new(sc);
+    let mass_factor = BandedLdlt::factor(&sys.beam().mass)?;
+    Ok(stability_limit(sc, &sys, &mass_factor))
 }
 
 /// ω_max and the largest stable Δt of central difference for a scene.
@@ -179,16 +188,12 @@ impl Stepper for CentralDifference {
         sys.solve_contact(&map, st)?;
         let lambda = sys.multipliers();
         let dt2 = dt * dt;
-        for (i, row) in self.rhs.chunks_exact(k).enumerate() {
-            let mut a = row[0];
-            for (l, z) in lambda.iter().zip(&row[1..]) {
-                a += l * z;
-            }
+        for (i, a) in combine(&self.rhs, k, lambda).enumerate() {
             st.v[i] += dt * a;
             st.d[i] = self.d_pred[i] + dt2 * a;
         }
         for (j, m) in self.mass_pred.iter().enumerate() {
-            let a = m.u - lambda[j] / m.a_eff;
+            let a = m.unknown(lambda[j]);
             st.q_dot[j] += dt * a;
             st.q[j] = m.q + dt2 * a;
         }

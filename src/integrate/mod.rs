@@ -30,13 +30,16 @@ mod state;
 mod system;
 
 pub use bathe::Bathe;
-pub use central_difference::{CentralDifference, StabilityLimit, stability_limit};
+pub use central_difference::{
+    CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
+};
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
 pub use moreau_jean::MoreauJean;
 pub use state::State;
 pub use system::{
-    Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, rhs_columns,
+    Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, combine,
+    rhs_columns,
 };
 
 use crate::error::Result;

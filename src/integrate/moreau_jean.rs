@@ -29,7 +29,9 @@
 use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
 
-use super::{MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, rhs_columns};
+use super::{
+    MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine, rhs_columns,
+};
 
 /// A Moreau–Jean stepper for one run.
 pub struct MoreauJean {
@@ -122,16 +124,12 @@ impl Stepper for MoreauJean {
         sys.solve_contact(&map, st)?;
         let impulse = sys.multipliers();
         let c_d = theta * dt;
-        for (i, row) in self.rhs.chunks_exact(k).enumerate() {
-            let mut dv = row[0];
-            for (p, z) in impulse.iter().zip(&row[1..]) {
-                dv += p * z;
-            }
+        for (i, dv) in combine(&self.rhs, k, impulse).enumerate() {
             st.v[i] += dv;
             st.d[i] = self.d_pred[i] + c_d * dv;
         }
         for (j, m) in self.mass_pred.iter().enumerate() {
-            let dqd = m.u - impulse[j] / m.a_eff;
+            let dqd = m.unknown(impulse[j]);
             st.q_dot[j] += dqd;
             st.q[j] = m.q + c_d * dqd;
         }

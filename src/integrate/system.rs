@@ -70,6 +70,32 @@ pub struct MassPrediction {
     pub a_eff: f64,
 }
 
+impl MassPrediction {
+    /// The mass dof's unknown once its multiplier λ is known:
+    /// u_q = u★_q − λ/A_q (the contact pushes the mass with −λ).
+    #[inline]
+    pub fn unknown(&self, lambda: f64) -> f64 {
+        self.u - lambda / self.a_eff
+    }
+}
+
+/// The beam unknown of each row once the multipliers are known,
+/// u = u★ + Σ_c λ_c z_c, from the solved right-hand sides (`k` columns,
+/// row-major: column 0 u★, column 1 + c z_c).
+pub fn combine<'a>(
+    solved: &'a [f64],
+    k: usize,
+    lambda: &'a [f64],
+) -> impl Iterator<Item = f64> + 'a {
+    solved.chunks_exact(k).map(move |row| {
+        let mut u = row[0];
+        for (l, z) in lambda.iter().zip(&row[1..]) {
+            u += l * z;
+        }
+        u
+    })
+}
+
 /// ṽ of the beam, as the method keeps it.
 #[derive(Debug, Clone, Copy)]
 pub enum VelocityPrediction<'a> {

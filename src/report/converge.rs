@@ -208,23 +208,64 @@ pub fn converge_table(c: &Convergence) -> String {
     s
 }
 
+/// One study: each quantity's relative error against h (or Δt), with
+/// reference slopes 1, 2 and 4.
 fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let by_dt = c.refine == Refine::Step;
-    let xval = |r: &ConvergeRow| if by_dt { r.dt } else { r.h };
-    let pts: Vec<(&str, Vec<(f64, f64)>)> = QUANTITIES
+    let series: Vec<(String, Vec<(f64, f64)>)> = QUANTITIES
         .iter()
-        .map(|q| {
-            let v = c
-                .rows
-                .iter()
-                .filter(|r| r.quantity == *q && r.error.is_finite() && r.error > 0.0)
-                .map(|r| (xval(r), r.error / r.value.abs().max(f64::MIN_POSITIVE)))
-                .collect();
-            (*q, v)
-        })
-        .filter(|(_, v): &(&str, Vec<(f64, f64)>)| !v.is_empty())
+        .map(|q| (q.to_string(), relative_errors(c, q)))
         .collect();
-    let all: Vec<(f64, f64)> = pts.iter().flat_map(|(_, v)| v.iter().copied()).collect();
+    let caption = format!(
+        "relative error against the reference, refine = {:?}, r = {}",
+        c.refine, c.ratio
+    );
+    log_log(path, &caption, c.refine, &series, &[1.0, 2.0, 4.0])
+}
+
+/// Several methods: the relative error of the displacement under the
+/// carrier (L2 over the history), one line per method, with slopes 1 and 2.
+fn draw_methods(
+    path: &Path,
+    studies: &[(&str, &Convergence)],
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    const QUANTITY: &str = "displacement_l2";
+    let first = studies[0].1;
+    let series: Vec<(String, Vec<(f64, f64)>)> = studies
+        .iter()
+        .map(|(m, c)| (m.to_string(), relative_errors(c, QUANTITY)))
+        .collect();
+    let caption = format!(
+        "{QUANTITY}: relative error by method, refine = {:?}, r = {}",
+        first.refine, first.ratio
+    );
+    log_log(path, &caption, first.refine, &series, &[1.0, 2.0])
+}
+
+/// (h or Δt, relative error) of a quantity's rows with a known error.
+fn relative_errors(c: &Convergence, quantity: &str) -> Vec<(f64, f64)> {
+    let by_dt = c.refine == Refine::Step;
+    c.rows
+        .iter()
+        .filter(|r| r.quantity == quantity && r.error.is_finite() && r.error > 0.0)
+        .map(|r| {
+            let x = if by_dt { r.dt } else { r.h };
+            (x, r.error / r.value.abs().max(f64::MIN_POSITIVE))
+        })
+        .collect()
+}
+
+/// Labelled error series on log–log axes, with reference slopes through the
+/// middle of the data.
+fn log_log(
+    path: &Path,
+    caption: &str,
+    refine: Refine,
+    series: &[(String, Vec<(f64, f64)>)],
+    slopes: &[f64],
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let series: Vec<&(String, Vec<(f64, f64)>)> =
+        series.iter().filter(|(_, v)| !v.is_empty()).collect();
+    let all: Vec<(f64, f64)> = series.iter().flat_map(|(_, v)| v.iter().copied()).collect();
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for &(x, y) in &all {
         x0 = x0.min(x);
@@ -240,20 +281,14 @@ fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::er
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!(
-                "relative error against the reference, refine = {:?}, r = {}",
-                c.refine, c.ratio
-            ),
-            ("sans-serif", 18),
-        )
+        .caption(caption, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(80)
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     chart
         .configure_mesh()
-        .x_desc(match c.refine {
+        .x_desc(match refine {
             Refine::Mesh => "h (m)",
             Refine::Step => "Δt (s)",
             Refine::Both => "h (m), Δt ∝ h",
@@ -262,107 +297,17 @@ fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::er
         .x_label_formatter(&|x| format!("{x:.1e}"))
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()?;
-    for (i, (q, v)) in pts.iter().enumerate() {
+    for (i, (label, v)) in series.iter().enumerate() {
         let col = PALETTE[i % PALETTE.len()];
         chart
             .draw_series(LineSeries::new(v.clone(), col.stroke_width(2)))?
-            .label(*q)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col));
-        chart.draw_series(v.iter().map(|&p| Circle::new(p, 3, col.filled())))?;
-    }
-    // reference slopes through the middle of the data
-    if let Some(&(xm, ym)) = all.get(all.len() / 2) {
-        for (p, style) in [
-            (1.0, BLACK.mix(0.5)),
-            (2.0, BLACK.mix(0.35)),
-            (4.0, BLACK.mix(0.2)),
-        ] {
-            let line = vec![(x0, ym * (x0 / xm).powf(p)), (x1, ym * (x1 / xm).powf(p))];
-            chart
-                .draw_series(LineSeries::new(line, style.stroke_width(1)))?
-                .label(format!("slope {p}"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
-        }
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
-    Ok(())
-}
-
-/// Several methods: the relative error of the displacement under the
-/// carrier (L2 over the history) against the refined parameter, one line
-/// per method, with reference slopes 1 and 2.
-fn draw_methods(
-    path: &Path,
-    studies: &[(&str, &Convergence)],
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    const QUANTITY: &str = "displacement_l2";
-    let first = studies[0].1;
-    let by_dt = first.refine == Refine::Step;
-    let pts: Vec<(&str, Vec<(f64, f64)>)> = studies
-        .iter()
-        .map(|(m, c)| {
-            let v = c
-                .rows
-                .iter()
-                .filter(|r| r.quantity == QUANTITY && r.error.is_finite() && r.error > 0.0)
-                .map(|r| {
-                    let x = if by_dt { r.dt } else { r.h };
-                    (x, r.error / r.value.abs().max(f64::MIN_POSITIVE))
-                })
-                .collect();
-            (*m, v)
-        })
-        .collect();
-    let all: Vec<(f64, f64)> = pts.iter().flat_map(|(_, v)| v.iter().copied()).collect();
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-    for &(x, y) in &all {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if all.is_empty() {
-        (x0, x1, y0, y1) = (1e-3, 1.0, 1e-6, 1.0);
-    }
-    let (x0, x1) = (x0 / 1.5, x1 * 1.5);
-    let (y0, y1) = (y0 / 10.0, y1 * 10.0);
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!(
-                "{QUANTITY}: relative error by method, refine = {:?}, r = {}",
-                first.refine, first.ratio
-            ),
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(80)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc(if by_dt { "Δt (s)" } else { "h (m)" })
-        .y_desc("relative error")
-        .x_label_formatter(&|x| format!("{x:.1e}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
-        .draw()?;
-    for (i, (m, v)) in pts.iter().enumerate() {
-        let col = PALETTE[i % PALETTE.len()];
-        chart
-            .draw_series(LineSeries::new(v.clone(), col.stroke_width(2)))?
-            .label(*m)
+            .label(label.as_str())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col));
         chart.draw_series(v.iter().map(|&p| Circle::new(p, 3, col.filled())))?;
     }
     if let Some(&(xm, ym)) = all.get(all.len() / 2) {
-        for (p, style) in [(1.0, BLACK.mix(0.5)), (2.0, BLACK.mix(0.3))] {
+        for (k, &p) in slopes.iter().enumerate() {
+            let style = BLACK.mix(0.5 - 0.15 * k as f64);
             let line = vec![(x0, ym * (x0 / xm).powf(p)), (x1, ym * (x1 / xm).powf(p))];
             chart
                 .draw_series(LineSeries::new(line, style.stroke_width(1)))?

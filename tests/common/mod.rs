@@ -88,3 +88,26 @@ pub fn period_by_autocorrelation(y: &[f64], dt: f64, min_lag: f64, max_lag: f64)
     let shift = 0.5 * (cm - cp) / (cm - 2.0 * c0 + cp);
     (best_lag as f64 + shift) * dt
 }
+
+/// TARGETS T2's return time of the wave a standing carrier launches at
+/// t = 0 (s): the force's plateau level between the launch transient and
+/// the first return (0.3–0.5 s), then the first sample in 0.5–0.8 s whose
+/// deviation from it reaches half the pulse's peak deviation (a
+/// threshold-free pick that does not depend on the ringing level).
+pub fn t2_return_time(out: &RunOutput, dt: f64) -> f64 {
+    let f = &out.history.carriers[0].force;
+    let t = &out.history.t;
+    let idx = |time: f64| (time / dt).round() as usize;
+    let plateau = &f[idx(0.3)..idx(0.5)];
+    let level = plateau.iter().sum::<f64>() / plateau.len() as f64;
+    let window = idx(0.5)..idx(0.8);
+    let peak = window
+        .clone()
+        .map(|i| (f[i] - level).abs())
+        .fold(0.0, f64::max);
+    window
+        .clone()
+        .find(|&i| (f[i] - level).abs() >= 0.5 * peak)
+        .map(|i| t[i])
+        .expect("a returning pulse")
+}
