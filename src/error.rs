@@ -6,7 +6,8 @@
 
 use std::path::PathBuf;
 
-use crate::contact::{ContactFailure, ContactProblem};
+use crate::contact::failure::ContactFailure;
+use crate::contact::problem::ContactProblem;
 
 /// Everything that can go wrong in taut.
 #[derive(Debug, thiserror::Error)]

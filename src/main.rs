@@ -613,7 +613,7 @@ fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {
     if let Some(n) = max_iter {
         problem.contact.complementarity.max_iter = n;
     }
-    problem.validate()?;
+    taut::contact::validate(&problem)?;
     let (gap, force) = match problem.level {
         Level::Acceleration => ("m/s²", "N"),
         Level::Position => ("m", "N"),

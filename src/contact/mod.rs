@@ -13,16 +13,16 @@
 
 mod complementarity;
 mod dense;
-mod failure;
+pub mod failure;
 mod impact;
 mod lagrange;
 mod penalty;
-mod problem;
+pub mod problem;
+mod replay;
 
 pub use failure::ContactFailure;
-pub use problem::{
-    ContactProblem, Level, MAX_REPLAY_CONTACTS, ReplayOutcome, SIGNORINI_TOLERANCE, replay,
-};
+pub use problem::{ContactProblem, Level};
+pub use replay::{MAX_REPLAY_CONTACTS, ReplayOutcome, SIGNORINI_TOLERANCE, replay, validate};
 
 pub(crate) use lagrange::Lagrange;
 
