@@ -223,7 +223,7 @@ fn main() -> ExitCode {
             shard,
             threads,
             quiet,
-        } => cmd_sweep(
+        } => match cmd_sweep(
             scene,
             &vary,
             log,
@@ -232,8 +232,16 @@ fn main() -> ExitCode {
             shard.as_deref(),
             threads,
             quiet,
-        ),
-        Command::Merge { shards, out } => cmd_merge(&shards, &out),
+        ) {
+            Ok(true) => Ok(()),
+            Ok(false) => return ExitCode::from(1),
+            Err(e) => Err(e),
+        },
+        Command::Merge { shards, out } => match cmd_merge(&shards, &out) {
+            Ok(true) => Ok(()),
+            Ok(false) => return ExitCode::from(1),
+            Err(e) => Err(e),
+        },
         Command::Precision {
             scene,
             formulations,
@@ -473,8 +481,8 @@ fn cmd_sweep(
     shard: Option<&str>,
     threads: Option<usize>,
     quiet: bool,
-) -> taut::Result<()> {
-    use taut::study::sweep::{Axis, Shard, SweepSpec, sweep};
+) -> taut::Result<bool> {
+    use taut::study::sweep::{Axis, Shard, SweepSpec, claim, sweep_in};
     let axes = vary
         .iter()
         .map(|v| Axis::parse(v, log))
@@ -498,7 +506,9 @@ fn cmd_sweep(
     }
     let bar = progress_bar(spec.len(), "runs", quiet);
     let start = std::time::Instant::now();
-    let records = sweep(&spec, &dir, shard, &|done, total| {
+    spec.validate()?;
+    let claimed = claim(&dir)?;
+    let records = sweep_in(&claimed, &spec, shard, &|done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     });
@@ -507,7 +517,7 @@ fn cmd_sweep(
     write_sweep(&dir, &spec, &records)?;
     let maps = taut::report::write_sweep_maps(&dir, &spec, &records)?;
     let wall = start.elapsed().as_secs_f64();
-    let failed = records.iter().filter(|r| r.error.is_some()).count();
+    let failed = stopped_points(&records);
     println!(
         "taut {} — sweep {}",
         env!("CARGO_PKG_VERSION"),
@@ -528,7 +538,42 @@ fn cmd_sweep(
         dir.display()
     );
     print_maps(&maps, shard.is_some());
-    Ok(())
+    report_stopped(&records);
+    Ok(failed == 0)
+}
+
+/// Number of sweep points whose run stopped with an error.
+fn stopped_points(records: &[taut::study::sweep::SweepRecord]) -> usize {
+    records.iter().filter(|r| r.error.is_some()).count()
+}
+
+/// Most stopped points a sweep names on the terminal (all are in sweep.csv).
+const STOPPED_SHOWN: usize = 5;
+
+/// Name the points of a sweep whose run stopped, on stderr: the tables and
+/// maps are written, and the exit status (1) says some points failed.
+fn report_stopped(records: &[taut::study::sweep::SweepRecord]) {
+    let stopped: Vec<_> = records.iter().filter(|r| r.error.is_some()).collect();
+    if stopped.is_empty() {
+        return;
+    }
+    eprintln!(
+        "{} of {} points stopped with an error; their rows in sweep.csv carry it (column \
+         `error`), the maps show them grey, and a resumed sweep keeps them:",
+        stopped.len(),
+        records.len()
+    );
+    for r in stopped.iter().take(STOPPED_SHOWN) {
+        eprintln!(
+            "  point {} {:?}: {}",
+            r.index,
+            r.values,
+            r.error.as_deref().unwrap_or_default()
+        );
+    }
+    if stopped.len() > STOPPED_SHOWN {
+        eprintln!("  … and {} more", stopped.len() - STOPPED_SHOWN);
+    }
 }
 
 /// Name the maps a sweep or merge drew (a shard draws none: merge does).
@@ -548,8 +593,9 @@ fn print_maps(maps: &[PathBuf], shard: bool) {
     }
 }
 
-fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<()> {
-    let (spec, records) = taut::study::sweep::merge(shards, out)?;
+fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
+    let claimed = taut::study::sweep::claim(out)?;
+    let (spec, records) = taut::study::sweep::merge_into(&claimed, shards)?;
     write_sweep(out, &spec, &records)?;
     let maps = taut::report::write_sweep_maps(out, &spec, &records)?;
     println!(
@@ -560,7 +606,8 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<()> {
         out.display()
     );
     print_maps(&maps, false);
-    Ok(())
+    report_stopped(&records);
+    Ok(stopped_points(&records) == 0)
 }
 
 fn cmd_precision(

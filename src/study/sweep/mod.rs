@@ -16,10 +16,18 @@
 //!   nothing. The outputs are assembled in grid order from those files, so
 //!   they are the same bytes whatever the thread count or interruption
 //!   (wall times are kept apart, in `timing.csv`).
+//! * A run that stops (divergence, failed contact solve, even a panic) is a
+//!   finished point too: its record carries the error, the tables and maps
+//!   mark it, and a resumed sweep does not run it again (the same scene and
+//!   binary stop the same way).
+//! * The folder is claimed by one sweep at a time and every record is
+//!   stamped with its sweep, index and values ([`folder`]).
 //! * `--shard i/n` runs the points with index ≡ i (mod n); `merge` joins
 //!   shard folders (same `sweep.json` spec) into one.
 
-use std::path::{Path, PathBuf};
+pub mod folder;
+
+use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
@@ -29,6 +37,8 @@ use crate::error::{Error, Result};
 use crate::run::run;
 use crate::scene::{CarrierKind, Resolved, resolve_scene};
 
+pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
+
 /// The study's dimensionless axes.
 pub const DIMENSIONLESS: [&str; 4] = [
     "speed_ratio",
@@ -36,6 +46,25 @@ pub const DIMENSIONLESS: [&str; 4] = [
     "mass_ratio",
     "stiffness_ratio",
 ];
+
+/// Relative distance below which a grid value on an axis between whole
+/// numbers is taken as the whole number it approximates: round-off of the
+/// spacing formula is ~1e-15; a genuine grid value is further than 1e-9
+/// from a whole number unless it is one.
+pub const WHOLE_SNAP: f64 = 1e-9;
+
+/// A grid value as a `--set` value: whole numbers as TOML integers (so an
+/// integer key such as `mesh.elements` takes them, and a real key reads the
+/// same number), anything else in exponent notation (exact round trip).
+fn set_value(v: f64) -> String {
+    /// Whole numbers below 2^53 are exact as both i64 and f64.
+    const EXACT_WHOLE: f64 = 9_007_199_254_740_992.0;
+    if v.fract() == 0.0 && v.abs() < EXACT_WHOLE {
+        format!("{}", v as i64)
+    } else {
+        format!("{v:e}")
+    }
+}
 
 /// Number of x_m/L bins of the per-run force and loss profiles.
 pub const PROFILE_BINS: usize = 200;
@@ -92,16 +121,28 @@ impl Axis {
         })
     }
 
-    /// The i-th value.
+    /// The i-th value: `start` and `stop` exactly at the ends. On an axis
+    /// between whole numbers, a value within [`WHOLE_SNAP`] of a whole number
+    /// is that number, so `mesh.elements=100:1600:5 --log` gives 200, 400, 800
+    /// (integer keys take them) rather than 199.99999999999997.
     pub fn value(&self, i: usize) -> f64 {
-        if self.count == 1 {
+        if i == 0 || self.count == 1 {
             return self.start;
         }
+        if i + 1 == self.count {
+            return self.stop;
+        }
         let f = i as f64 / (self.count - 1) as f64;
-        if self.log {
+        let v = if self.log {
             (self.start.ln() + f * (self.stop.ln() - self.start.ln())).exp()
         } else {
             self.start + f * (self.stop - self.start)
+        };
+        let whole_ends = self.start.fract() == 0.0 && self.stop.fract() == 0.0;
+        if whole_ends && (v - v.round()).abs() <= WHOLE_SNAP * v.abs().max(1.0) {
+            v.round()
+        } else {
+            v
         }
     }
 }
@@ -148,7 +189,7 @@ impl SweepSpec {
             if DIMENSIONLESS.contains(&a.key.as_str()) {
                 ratios.push((a.key.as_str(), *v));
             } else {
-                o.push(format!("{}={v:e}", a.key));
+                o.push(format!("{}={}", a.key, set_value(*v)));
             }
         }
         // tension first: the others depend on T
@@ -168,6 +209,14 @@ impl SweepSpec {
                 }
                 "speed_ratio" => {
                     let c = sc.beam.wave_speed();
+                    if c <= 0.0 {
+                        return Err(Error::invalid(
+                            "--vary speed_ratio",
+                            v,
+                            "needs a wave speed c = sqrt(T/ρA) > 0, and the scene has T = 0: \
+                             vary the carrier's speed itself",
+                        ));
+                    }
                     for (i, car) in sc.carriers.iter().enumerate() {
                         let path = match car.motion.profile {
                             crate::scene::SpeedProfile::Constant { .. } => "value",
@@ -187,6 +236,28 @@ impl SweepSpec {
                     } else {
                         "stiffness"
                     };
+                    if !sc
+                        .carriers
+                        .iter()
+                        .any(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
+                    {
+                        return Err(Error::invalid(
+                            format!("--vary {key}"),
+                            v,
+                            format!(
+                                "sets the {field} of every mass–spring carrier, and the scene \
+                                 has none (only moving forces): the axis would change nothing"
+                            ),
+                        ));
+                    }
+                    if scale <= 0.0 {
+                        return Err(Error::invalid(
+                            format!("--vary {key}"),
+                            v,
+                            "is k/(T/L), and the scene has T = 0: the axis would set k = 0 at \
+                             every point; vary carrier.stiffness itself",
+                        ));
+                    }
                     for (i, car) in sc.carriers.iter().enumerate() {
                         if matches!(car.kind, CarrierKind::MassSpring { .. }) {
                             o.push(format!("carrier.{i}.{field}={:e}", v * scale));
@@ -199,7 +270,19 @@ impl SweepSpec {
         resolve_scene(&self.scene_text, &o)
     }
 
-    /// Check every point resolves (fail before any run starts).
+    /// The resolved scene at per-axis indices `at`.
+    fn resolve_at(&self, at: &[usize]) -> Result<Resolved> {
+        let index = at
+            .iter()
+            .zip(&self.axes)
+            .fold(0, |acc, (&i, a)| acc * a.count + i);
+        self.resolve(index)
+    }
+
+    /// Check the grid before any run starts: one or two distinct axes, a
+    /// bounded number of points, every point resolves, and every axis changes
+    /// the scene (an axis that changes nothing would fill a map with one
+    /// answer and call it a study).
     pub fn validate(&self) -> Result<()> {
         if self.axes.is_empty() || self.axes.len() > 2 {
             return Err(Error::invalid(
@@ -208,27 +291,89 @@ impl SweepSpec {
                 "give one or two axes",
             ));
         }
+        if let [a, b] = self.axes.as_slice()
+            && a.key == b.key
+        {
+            return Err(Error::invalid(
+                "--vary",
+                &a.key,
+                "is given twice: give each axis once",
+            ));
+        }
+        let points = self
+            .axes
+            .iter()
+            .try_fold(1usize, |n, a| n.checked_mul(a.count))
+            .filter(|&n| n <= MAX_POINTS);
+        if points.is_none() {
+            return Err(Error::invalid(
+                "--vary",
+                self.axes
+                    .iter()
+                    .map(|a| a.count.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" × "),
+                format!(
+                    "a sweep has at most {MAX_POINTS} points: use fewer, or split the range into several sweeps"
+                ),
+            ));
+        }
         for i in 0..self.len() {
-            self.resolve(i).map_err(|e| match e {
-                Error::Invalid {
-                    field,
-                    value,
-                    allowed,
-                } => Error::Invalid {
-                    field,
-                    value,
-                    allowed: format!("{allowed} (at sweep point {i}: {:?})", self.point(i)),
-                },
-                other => other,
-            })?;
+            self.resolve(i)
+                .map_err(|e| at_point(e, i, &self.point(i)))?;
+        }
+        for (k, a) in self.axes.iter().enumerate() {
+            if a.count < 2 {
+                continue;
+            }
+            let first = vec![0; self.axes.len()];
+            let mut last = first.clone();
+            last[k] = a.count - 1;
+            let (x, y) = (self.resolve_at(&first)?, self.resolve_at(&last)?);
+            if a.value(0) == a.value(a.count - 1) || format!("{x:?}") == format!("{y:?}") {
+                return Err(Error::invalid(
+                    "--vary",
+                    format!("{}={}:{}:{}", a.key, a.start, a.stop, a.count),
+                    "changes nothing in this scene (the first and last points resolve to the \
+                     same scene: equal ends, or a value another axis or the scene overrides): \
+                     drop the axis or give it a range",
+                ));
+            }
         }
         Ok(())
     }
 }
 
-/// What a finished run contributes to the sweep.
+/// The most points a sweep may have: 100 000 runs is days of work at the
+/// reference resolution and ~0.4 GB of records; a larger grid is several sweeps.
+pub const MAX_POINTS: usize = 100_000;
+
+/// Name the sweep point a resolution error happened at.
+fn at_point(e: Error, i: usize, values: &[f64]) -> Error {
+    match e {
+        Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => Error::Invalid {
+            field,
+            value,
+            allowed: format!("{allowed} (at sweep point {i}: {values:?})"),
+        },
+        Error::Parse(m) => Error::Parse(format!("{m} (at sweep point {i}: {values:?})")),
+        other => other,
+    }
+}
+
+/// What a finished run contributes to the sweep. A run that stopped is a
+/// record too: its statistics are NaN (`null` in the file), its profiles
+/// empty and `error` says why.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct SweepRecord {
+    /// The sweep this record belongs to ([`folder::sweep_id`]); empty in
+    /// records of taut before stamping, which are refused.
+    #[serde(default)]
+    pub sweep_id: String,
     /// Grid index.
     pub index: usize,
     /// Axis values.
@@ -236,14 +381,19 @@ pub struct SweepRecord {
     /// V0/c of carrier 0 (null when c = 0).
     pub speed_ratio: Option<f64>,
     /// P_l (carrier 0).
+    #[serde(with = "nan_as_null")]
     pub loss_fraction: f64,
     /// Force statistics (carrier 0), N.
+    #[serde(with = "nan_as_null")]
     pub force_mean: f64,
     /// Standard deviation, N.
+    #[serde(with = "nan_as_null")]
     pub force_std: f64,
     /// Minimum, N.
+    #[serde(with = "nan_as_null")]
     pub force_min: f64,
     /// Maximum, N.
+    #[serde(with = "nan_as_null")]
     pub force_max: f64,
     /// x_m/L of the first loss (null if none).
     pub first_loss_position: Option<f64>,
@@ -263,25 +413,53 @@ pub struct SweepRecord {
     pub wall_seconds: Option<f64>,
 }
 
-fn record(spec: &SweepSpec, index: usize) -> SweepRecord {
+/// A statistic that is NaN for a stopped run: written as `null` (JSON has
+/// no NaN) and read back as NaN.
+mod nan_as_null {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if v.is_nan() {
+            s.serialize_none()
+        } else {
+            s.serialize_f64(*v)
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+    }
+}
+
+impl SweepRecord {
+    /// The record of a point that stopped before giving statistics (the
+    /// caller sets `error`).
+    fn stopped(sweep_id: &str, index: usize, values: Vec<f64>) -> Self {
+        SweepRecord {
+            sweep_id: sweep_id.to_string(),
+            index,
+            values,
+            speed_ratio: None,
+            loss_fraction: f64::NAN,
+            force_mean: f64::NAN,
+            force_std: f64::NAN,
+            force_min: f64::NAN,
+            force_max: f64::NAN,
+            first_loss_position: None,
+            contact_switches: 0,
+            force_profile: vec![],
+            loss_profile: vec![],
+            warnings: vec![],
+            error: None,
+            wall_seconds: None,
+        }
+    }
+}
+
+/// Run point `index` and reduce it to its record.
+fn record(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
     let values = spec.point(index);
-    let nan = SweepRecord {
-        index,
-        values: values.clone(),
-        speed_ratio: None,
-        loss_fraction: f64::NAN,
-        force_mean: f64::NAN,
-        force_std: f64::NAN,
-        force_min: f64::NAN,
-        force_max: f64::NAN,
-        first_loss_position: None,
-        contact_switches: 0,
-        force_profile: vec![],
-        loss_profile: vec![],
-        warnings: vec![],
-        error: None,
-        wall_seconds: None,
-    };
+    let nan = SweepRecord::stopped(id, index, values.clone());
     let sc = match spec.resolve(index) {
         Ok(sc) => sc,
         Err(e) => {
@@ -316,6 +494,7 @@ fn record(spec: &SweepSpec, index: usize) -> SweepRecord {
     }
     let c = sc.beam.wave_speed();
     SweepRecord {
+        sweep_id: id.to_string(),
         index,
         values,
         speed_ratio: (c > 0.0).then(|| sc.carriers[0].motion.profile.cruise_speed() / c),
@@ -368,17 +547,10 @@ impl Shard {
     }
 }
 
-fn run_file(dir: &Path, index: usize) -> PathBuf {
-    dir.join("runs").join(format!("{index:06}.json"))
-}
-
-fn read_record(path: &Path) -> Option<SweepRecord> {
-    serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
-}
-
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid
-/// order.
+/// order; a run that stopped is a record with its error, not a failure of
+/// the sweep. The folder is claimed for the duration ([`folder::claim`]).
 pub fn sweep(
     spec: &SweepSpec,
     dir: &Path,
@@ -386,116 +558,63 @@ pub fn sweep(
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Vec<SweepRecord>> {
     spec.validate()?;
-    std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
-    let spec_path = dir.join("sweep.json");
-    let spec_text = serde_json::to_string_pretty(spec).expect("serializable") + "\n";
-    if let Ok(existing) = std::fs::read_to_string(&spec_path) {
-        if existing != spec_text {
-            return Err(Error::invalid(
-                "--out",
-                dir.display(),
-                "holds a different sweep (sweep.json differs): use another folder or remove it",
-            ));
-        }
-    } else {
-        std::fs::write(&spec_path, &spec_text).map_err(|e| Error::io(&spec_path, e))?;
-    }
+    sweep_in(&folder::claim(dir)?, spec, shard, progress)
+}
+
+/// [`sweep`] into a folder the caller has claimed (and holds while it
+/// writes the tables), for a spec the caller has validated
+/// ([`SweepSpec::validate`]; a point that does not resolve would still only
+/// be that point's error).
+pub fn sweep_in(
+    claimed: &FolderLock,
+    spec: &SweepSpec,
+    shard: Option<Shard>,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Vec<SweepRecord>> {
+    let dir = claimed.dir();
+    let had_spec = folder::check_spec(dir, spec)?;
+    let id = folder::sweep_id(spec);
     let mine: Vec<usize> = (0..spec.len())
         .filter(|&i| shard.is_none_or(|s| s.owns(i)))
         .collect();
-    let todo: Vec<usize> = mine
-        .iter()
-        .copied()
-        .filter(|&i| read_record(&run_file(dir, i)).is_none())
-        .collect();
+    let mut todo = Vec::new();
+    for &i in &mine {
+        if folder::load(dir, spec, &id, i)?.is_none() {
+            todo.push(i);
+        }
+    }
+    // only once the folder's records are known to be this sweep's
+    if !had_spec {
+        folder::write_spec(dir, spec)?;
+    }
     let done = AtomicUsize::new(mine.len() - todo.len());
     progress(done.load(Ordering::Relaxed), mine.len());
     todo.par_iter().try_for_each(|&i| -> Result<()> {
-        let r = record(spec, i);
-        let path = run_file(dir, i);
-        // write then rename, so a killed sweep never leaves a half file
-        let tmp = path.with_extension("json.tmp");
-        let text = serde_json::to_string(&r).expect("serializable");
-        std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
-        std::fs::rename(&tmp, &path).map_err(|e| Error::io(&path, e))?;
+        folder::save(dir, &record_guarded(spec, &id, i))?;
         let n = done.fetch_add(1, Ordering::Relaxed) + 1;
         progress(n, mine.len());
         Ok(())
     })?;
-    collect(dir, &mine)
+    folder::collect(dir, spec, &mine)
 }
 
-/// Read the records of the given indices from `dir/runs`.
-pub fn collect(dir: &Path, indices: &[usize]) -> Result<Vec<SweepRecord>> {
-    indices
-        .iter()
-        .map(|&i| {
-            let p = run_file(dir, i);
-            read_record(&p).ok_or_else(|| {
-                Error::invalid(
-                    "runs",
-                    p.display(),
-                    "a finished run's record is missing or unreadable",
-                )
-            })
-        })
-        .collect()
-}
-
-/// Read a sweep folder's spec.
-pub fn read_spec(dir: &Path) -> Result<SweepSpec> {
-    let p = dir.join("sweep.json");
-    let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
-    serde_json::from_str(&text).map_err(|e| Error::Parse(format!("{}: {e}", p.display())))
-}
-
-/// Join shard folders into `out`: same spec, every point present once.
-pub fn merge(shards: &[PathBuf], out: &Path) -> Result<(SweepSpec, Vec<SweepRecord>)> {
-    let first = shards
-        .first()
-        .ok_or_else(|| Error::invalid("merge", "(none)", "name at least one shard folder"))?;
-    let spec = read_spec(first)?;
-    for s in &shards[1..] {
-        if read_spec(s)? != spec {
-            return Err(Error::invalid(
-                "merge",
-                s.display(),
-                "holds a different sweep than the first shard",
-            ));
-        }
-    }
-    std::fs::create_dir_all(out.join("runs")).map_err(|e| Error::io(out, e))?;
-    std::fs::write(
-        out.join("sweep.json"),
-        serde_json::to_string_pretty(&spec).expect("serializable") + "\n",
-    )
-    .map_err(|e| Error::io(out, e))?;
-    let mut missing = Vec::new();
-    for i in 0..spec.len() {
-        let found = shards.iter().map(|s| run_file(s, i)).find(|p| p.is_file());
-        match found {
-            Some(p) if p != run_file(out, i) => {
-                std::fs::copy(&p, run_file(out, i)).map_err(|e| Error::io(&p, e))?;
+/// [`record`], with a panic inside the run turned into that point's error,
+/// so one bad point cannot take the sweep's other points down with it.
+fn record_guarded(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| record(spec, id, index)))
+        .unwrap_or_else(|payload| {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "no message".into());
+            SweepRecord {
+                error: Some(format!(
+                    "internal error (a panic in taut, please report it): {what}"
+                )),
+                ..SweepRecord::stopped(id, index, spec.point(index))
             }
-            Some(_) => {}
-            None => missing.push(i),
-        }
-    }
-    if !missing.is_empty() {
-        return Err(Error::invalid(
-            "merge",
-            format!(
-                "{} of {} points missing (first: {})",
-                missing.len(),
-                spec.len(),
-                missing[0]
-            ),
-            "every point must be in some shard: run the missing shards (or resume them) first",
-        ));
-    }
-    let all: Vec<usize> = (0..spec.len()).collect();
-    let records = collect(out, &all)?;
-    Ok((spec, records))
+        })
 }
 
 #[cfg(test)]

@@ -1,0 +1,304 @@
+//! A sweep's folder: who may write it, and which records belong to it.
+//!
+//! * **One writer at a time.** A sweep or merge claims its folder with an
+//!   operating-system lock on `sweep.lock` ([`FolderLock`]), held until it
+//!   finishes. A second sweep on the same folder is refused at once instead of
+//!   mixing its records with the first's. The lock dies with its process, so a
+//!   sweep killed with `kill -9` leaves nothing stale to clear: resuming it
+//!   just works.
+//! * **Every record stamped.** Each `runs/NNNNNN.json` carries the identity of
+//!   its sweep ([`sweep_id`], a hash of `sweep.json`), its grid index and its
+//!   axis values. A record is used only when all three match the folder's
+//!   sweep and the file it sits in; anything else (a record of another sweep,
+//!   of an older taut, under the wrong index) is refused with its path, on
+//!   resume and on merge alike, never silently reused or overwritten.
+//! * **Nothing half-written.** Records are written to a temporary file and
+//!   renamed. An empty or unparsable record (what a machine crash can leave)
+//!   is not evidence of anything: its point is run again.
+
+use std::fs::{File, OpenOptions, TryLockError};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use super::{SweepRecord, SweepSpec};
+use crate::error::{Error, Result};
+
+/// The lock file a running sweep or merge holds in its folder.
+pub const LOCK_FILE: &str = "sweep.lock";
+
+/// A claimed sweep folder; the claim ends when this is dropped (or the
+/// process dies).
+#[derive(Debug)]
+pub struct FolderLock {
+    dir: PathBuf,
+    _file: File,
+}
+
+impl FolderLock {
+    /// The claimed folder.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+}
+
+/// Claim `dir` for one sweep or merge (creating it), or refuse if another
+/// process holds it.
+pub fn claim(dir: &Path) -> Result<FolderLock> {
+    std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
+    let path = dir.join(LOCK_FILE);
+    let mut file = OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .read(true)
+        .write(true)
+        .open(&path)
+        .map_err(|e| Error::io(&path, e))?;
+    match file.try_lock() {
+        Ok(()) => {}
+        Err(TryLockError::WouldBlock) => {
+            let holder = std::fs::read_to_string(&path).unwrap_or_default();
+            return Err(Error::invalid(
+                "--out",
+                dir.display(),
+                format!(
+                    "is in use by another sweep or merge running now ({}): wait for it to \
+                     finish, or use another folder",
+                    holder.trim().lines().next().unwrap_or("its lock is held")
+                ),
+            ));
+        }
+        Err(TryLockError::Error(e)) => return Err(Error::io(&path, e)),
+    }
+    // who holds it, for a person looking at the folder (the lock itself is the OS's)
+    file.set_len(0).map_err(|e| Error::io(&path, e))?;
+    writeln!(file, "process {}", std::process::id()).map_err(|e| Error::io(&path, e))?;
+    Ok(FolderLock {
+        dir: dir.to_path_buf(),
+        _file: file,
+    })
+}
+
+/// The text of `sweep.json` for a spec.
+pub fn spec_text(spec: &SweepSpec) -> String {
+    serde_json::to_string_pretty(spec).expect("a sweep spec is plain data") + "\n"
+}
+
+/// A sweep's identity: FNV-1a (64 bit) of its `sweep.json` text, in hex.
+/// It tells records of different sweeps apart (not a defence against forgery).
+pub fn sweep_id(spec: &SweepSpec) -> String {
+    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0100_0000_01b3;
+    let h = spec_text(spec)
+        .bytes()
+        .fold(OFFSET, |h, b| (h ^ u64::from(b)).wrapping_mul(PRIME));
+    format!("{h:016x}")
+}
+
+/// Check that the folder's `sweep.json`, if any, is this sweep's; `Ok(false)`
+/// when there is none yet (write it with [`write_spec`] once the records
+/// already in the folder have been checked).
+pub fn check_spec(dir: &Path, spec: &SweepSpec) -> Result<bool> {
+    let path = dir.join("sweep.json");
+    match std::fs::read_to_string(&path) {
+        Ok(existing) if existing == spec_text(spec) => Ok(true),
+        Ok(_) => Err(Error::invalid(
+            "--out",
+            dir.display(),
+            "holds a different sweep (sweep.json differs): use another folder or remove it",
+        )),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(false),
+        Err(e) => Err(Error::io(&path, e)),
+    }
+}
+
+/// Write the folder's `sweep.json`.
+pub fn write_spec(dir: &Path, spec: &SweepSpec) -> Result<()> {
+    write_atomic(&dir.join("sweep.json"), &spec_text(spec))
+}
+
+/// Path of point `index`'s record.
+pub fn run_file(dir: &Path, index: usize) -> PathBuf {
+    dir.join("runs").join(format!("{index:06}.json"))
+}
+
+/// Write `text` to `path` through a temporary file and a rename, so a killed
+/// process never leaves half a file.
+pub fn write_atomic(path: &Path, text: &str) -> Result<()> {
+    let tmp = path.with_extension("json.tmp");
+    std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
+    std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
+}
+
+/// Save point `record.index`'s record.
+pub fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
+    let text = serde_json::to_string(record).expect("a sweep record is plain data");
+    write_atomic(&run_file(dir, record.index), &text)
+}
+
+/// The record of point `index` in `dir`, checked against the sweep:
+/// `Ok(None)` when the point has not finished (no file, or an empty or
+/// unparsable one), an error when the file holds a record that is not this
+/// sweep's point `index`.
+pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Option<SweepRecord>> {
+    let path = run_file(dir, index);
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(Error::io(&path, e)),
+    };
+    let Ok(record) = serde_json::from_str::<SweepRecord>(&text) else {
+        return Ok(None);
+    };
+    let foreign = |why: String| {
+        Error::invalid(
+            "runs",
+            path.display(),
+            format!(
+                "{why}: it is not this sweep's record of point {index} (remove it to run the \
+                 point again, or use another folder)"
+            ),
+        )
+    };
+    if record.sweep_id != id {
+        return Err(foreign(format!(
+            "belongs to sweep {} (this sweep is {id})",
+            if record.sweep_id.is_empty() {
+                "(unstamped: an older taut)"
+            } else {
+                &record.sweep_id
+            }
+        )));
+    }
+    if record.index != index {
+        return Err(foreign(format!("holds point {}", record.index)));
+    }
+    let values = spec.point(index);
+    let same = record.values.len() == values.len()
+        && record
+            .values
+            .iter()
+            .zip(&values)
+            .all(|(a, b)| a.to_bits() == b.to_bits());
+    if !same {
+        return Err(foreign(format!(
+            "holds axis values {:?}, the point is at {values:?}",
+            record.values
+        )));
+    }
+    Ok(Some(record))
+}
+
+/// Read the records of the given indices, every one present and checked.
+pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
+    let id = sweep_id(spec);
+    indices
+        .iter()
+        .map(|&i| {
+            load(dir, spec, &id, i)?.ok_or_else(|| {
+                Error::invalid(
+                    "runs",
+                    run_file(dir, i).display(),
+                    "a finished run's record is missing or unreadable: resume the sweep to run \
+                     the point",
+                )
+            })
+        })
+        .collect()
+}
+
+/// Read a sweep folder's spec.
+pub fn read_spec(dir: &Path) -> Result<SweepSpec> {
+    let p = dir.join("sweep.json");
+    let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
+    serde_json::from_str(&text).map_err(|e| Error::Parse(format!("{}: {e}", p.display())))
+}
+
+/// Join shard folders into `out`: same spec, every point present, each
+/// record checked against the sweep, a point run in two shards the same in
+/// both. `out` is claimed for the merge.
+pub fn merge(shards: &[PathBuf], out: &Path) -> Result<(SweepSpec, Vec<SweepRecord>)> {
+    merge_into(&claim(out)?, shards)
+}
+
+/// [`merge`] into a folder the caller has claimed (and holds while it
+/// writes the tables).
+pub fn merge_into(out: &FolderLock, shards: &[PathBuf]) -> Result<(SweepSpec, Vec<SweepRecord>)> {
+    let out = out.dir();
+    let first = shards
+        .first()
+        .ok_or_else(|| Error::invalid("merge", "(none)", "name at least one shard folder"))?;
+    let spec = read_spec(first)?;
+    for s in &shards[1..] {
+        if read_spec(s)? != spec {
+            return Err(Error::invalid(
+                "merge",
+                s.display(),
+                "holds a different sweep than the first shard",
+            ));
+        }
+    }
+    let had_spec = check_spec(out, &spec)?;
+    let id = sweep_id(&spec);
+    let mut missing = Vec::new();
+    for i in 0..spec.len() {
+        let mut found: Option<(PathBuf, SweepRecord)> = None;
+        for s in shards {
+            let Some(r) = load(s, &spec, &id, i)? else {
+                continue;
+            };
+            match &found {
+                None => found = Some((s.clone(), r)),
+                Some((first, f)) => {
+                    if !same_result(f, &r) {
+                        return Err(Error::invalid(
+                            "merge",
+                            s.display(),
+                            format!(
+                                "point {i} differs from its record in {}: the shards were not \
+                                 run by the same binary, or a record was edited",
+                                first.display()
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        match found {
+            Some((shard, r)) => {
+                if run_file(&shard, i) != run_file(out, i) {
+                    save(out, &r)?;
+                }
+            }
+            None => missing.push(i),
+        }
+    }
+    if !had_spec {
+        write_spec(out, &spec)?;
+    }
+    if let Some(first_missing) = missing.first() {
+        return Err(Error::invalid(
+            "merge",
+            format!(
+                "{} of {} points missing (first: {first_missing})",
+                missing.len(),
+                spec.len(),
+            ),
+            "every point must be in some shard: run the missing shards (or resume them) first",
+        ));
+    }
+    let all: Vec<usize> = (0..spec.len()).collect();
+    let records = collect(out, &spec, &all)?;
+    Ok((spec, records))
+}
+
+/// Two records of one point agree on everything but wall time.
+fn same_result(a: &SweepRecord, b: &SweepRecord) -> bool {
+    let strip = |r: &SweepRecord| {
+        serde_json::to_string(&SweepRecord {
+            wall_seconds: None,
+            ..r.clone()
+        })
+        .expect("plain data")
+    };
+    strip(a) == strip(b)
+}
