@@ -508,7 +508,10 @@ fn cmd_sweep(
     let start = std::time::Instant::now();
     spec.validate()?;
     let claimed = claim(&dir)?;
+    // the first report says how many points an earlier start had finished
+    let resumed = std::sync::OnceLock::new();
     let records = sweep_in(&claimed, &spec, shard, &|done, total| {
+        resumed.get_or_init(|| done);
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     });
@@ -523,14 +526,21 @@ fn cmd_sweep(
         env!("CARGO_PKG_VERSION"),
         scene.display()
     );
+    let resumed = resumed.get().copied().unwrap_or(0);
+    let ran = records.len() - resumed.min(records.len());
     println!(
-        "  {} runs{} in {wall:.2} s wall ({:.2} runs/s, {} threads); {failed} stopped with an error",
+        "  {} runs{}{} in {wall:.2} s wall ({:.2} runs/s, {} threads); {failed} stopped with an error",
         records.len(),
         shard.map_or(String::new(), |s| format!(
             " (shard {}/{})",
             s.index, s.count
         )),
-        records.len() as f64 / wall.max(1e-9),
+        if resumed > 0 {
+            format!(" ({ran} run now, {resumed} kept from an earlier start)")
+        } else {
+            String::new()
+        },
+        ran as f64 / wall.max(1e-9),
         rayon::current_num_threads()
     );
     println!(
