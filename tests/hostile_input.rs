@@ -359,16 +359,16 @@ fn value() -> impl Strategy<Value = String> {
 /// A TOML fragment appended to the scene text.
 fn fragment() -> impl Strategy<Value = String> {
     prop_oneof![
-        (number()).prop_map(|n| format!("\n[output]\nrecord_every = {n}\n")),
-        (number(), "[a-z0-9_\"-]{0,6}").prop_map(|(x, n)| format!(
+        1 => (number()).prop_map(|n| format!("\n[output]\nrecord_every = {n}\n")),
+        1 => (number(), "[a-z0-9_\"-]{0,6}").prop_map(|(x, n)| format!(
             "\n[[probe]]\nname = \"{n}\"\nx = {x}\n"
         )),
-        (number(), number()).prop_map(|(m, s)| format!(
+        1 => (number(), number()).prop_map(|(m, s)| format!(
             "\n[[carrier]]\nmass = {m}\nstiffness = 1.0\nside = \"below\"\nstart = {s}\nspeed = {{ profile = \"constant\", value = 0.0 }}\n"
         )),
-        (key(), value()).prop_map(|(k, v)| format!("\n{k} = {v}\n")),
-        "[ -~\n]{0,30}".prop_map(|s| format!("\n{s}\n")),
-        Just(String::new()),
+        1 => (key(), value()).prop_map(|(k, v)| format!("\n{k} = {v}\n")),
+        1 => "[ -~\n]{0,30}".prop_map(|s| format!("\n{s}\n")),
+        5 => Just(String::new()),
     ]
 }
 
@@ -410,11 +410,22 @@ fn one_line_or_ok<T>(what: &str, r: std::thread::Result<taut::Result<T>>) -> Opt
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 192,
+        // 192 by default (about a second in release); PROPTEST_CASES=n for a
+        // longer search
+        cases: std::env::var("PROPTEST_CASES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(192),
         failure_persistence: Some(Box::new(
             proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
         )),
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x7a07),
+        // a fixed seed (PROPTEST_RNG_SEED=n for another search)
+        rng_seed: proptest::test_runner::RngSeed::Fixed(
+            std::env::var("PROPTEST_RNG_SEED")
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .unwrap_or(0x7a07),
+        ),
         ..ProptestConfig::default()
     })]
 
@@ -424,9 +435,9 @@ proptest! {
     fn hostile_scenes_load_or_fail_in_one_line(
         base in scene_text(),
         frag in fragment(),
-        sets in proptest::collection::vec((key(), value()), 0..4),
+        sets in proptest::collection::vec((key(), value()), 0..3),
         shrink in any::<bool>(),
-        raw in proptest::option::of("[ -~]{0,20}"),
+        raw in proptest::option::weighted(0.2, "[ -~]{0,20}"),
     ) {
         let text = format!("{base}{frag}");
         let mut overrides: Vec<String> = if shrink {
