@@ -170,6 +170,32 @@ impl Error {
     }
 }
 
+/// Text for a one-line error message: line breaks become `; ` (a TOML
+/// parser's multi-line report, or a key or value that itself holds a line
+/// break) and other control characters are escaped, so that every error is
+/// one line whatever the input (`taut` prints `error: …` on one line).
+pub fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for (i, line) in text
+        .split('\n')
+        .map(str::trim_end)
+        .filter(|l| !l.trim().is_empty())
+        .enumerate()
+    {
+        if i > 0 {
+            out.push_str("; ");
+        }
+        for c in line.chars() {
+            if c.is_control() {
+                out.extend(c.escape_default());
+            } else {
+                out.push(c);
+            }
+        }
+    }
+    out
+}
+
 /// The crate's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 

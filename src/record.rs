@@ -57,12 +57,22 @@ pub struct History {
     pub carriers: Vec<CarrierTrace>,
     /// Probe names and their beam displacement v (positive up), m.
     pub probes: Vec<(String, Vec<f64>)>,
+    /// Rows are row 0 (t = 0), every `record_every`-th step and the last
+    /// step (`output.record_every`; 0 in a default history means 1).
+    pub record_every: usize,
 }
 
 impl History {
-    /// Empty history with room for `rows` rows.
-    pub fn with_capacity(rows: usize, carriers: usize, probes: &[(String, f64)]) -> Self {
+    /// Empty history with room for `rows` rows, recording every
+    /// `record_every`-th step.
+    pub fn with_capacity(
+        rows: usize,
+        record_every: usize,
+        carriers: usize,
+        probes: &[(String, f64)],
+    ) -> Self {
         History {
+            record_every,
             t: Vec::with_capacity(rows),
             carriers: (0..carriers)
                 .map(|_| CarrierTrace::with_capacity(rows))
@@ -125,60 +135,192 @@ pub struct ContactStats {
 }
 
 impl ContactStats {
-    /// Statistics of one trace; `length` is the span L (m).
+    /// Statistics of one trace; `length` is the span L (m). The same
+    /// numbers, bit for bit, as [`ContactAccumulator`] fed row by row.
+    /// Rows beyond the shortest column are ignored.
     pub fn from_trace(t: &[f64], tr: &CarrierTrace, length: f64) -> Self {
-        let n = t.len();
-        let steps = n.saturating_sub(1).max(1);
-        let mut lost = 0usize;
-        let mut intervals = Vec::new();
-        let mut intervals_t = Vec::new();
-        let mut open: Option<usize> = None;
-        let mut switches = 0;
-        let mut max_gap = 0.0f64;
-        for i in 1..n {
-            let c = tr.in_contact[i];
-            if c != tr.in_contact[i - 1] {
-                switches += 1;
+        let mut acc = ContactAccumulator::new(length);
+        let n = [
+            t.len(),
+            tr.x.len(),
+            tr.w.len(),
+            tr.q.len(),
+            tr.gap.len(),
+            tr.force.len(),
+            tr.in_contact.len(),
+        ]
+        .into_iter()
+        .min()
+        .unwrap_or(0);
+        for i in 0..n {
+            acc.push(
+                t[i],
+                &CarrierSample {
+                    x: tr.x[i],
+                    w: tr.w[i],
+                    q: tr.q[i],
+                    gap: tr.gap[i],
+                    force: tr.force[i],
+                    in_contact: tr.in_contact[i],
+                },
+            );
+        }
+        acc.finish()
+    }
+}
+
+/// One carrier's contact statistics, accumulated a sample at a time over
+/// every step, so that they do not depend on which rows the history keeps
+/// (`output.record_every`). Row 0 (t = 0) is the initial state; statistics
+/// are over the steps (rows 1..), as MODEL §5 defines P_l.
+///
+/// The force's standard deviation is Welford's running update, and its mean
+/// the plain running sum over the steps divided by their number.
+#[derive(Debug, Clone)]
+pub struct ContactAccumulator {
+    length: f64,
+    /// Samples seen (row 0 included).
+    rows: usize,
+    prev_contact: bool,
+    prev_x: f64,
+    prev_t: f64,
+    lost: usize,
+    /// (x, t) at the row before the first lost step of the open interval.
+    open: Option<(f64, f64)>,
+    intervals: Vec<[f64; 2]>,
+    intervals_t: Vec<[f64; 2]>,
+    switches: usize,
+    max_gap: f64,
+    min_gap: f64,
+    max_gap_force: f64,
+    sum: f64,
+    mean: f64,
+    m2: f64,
+    min: f64,
+    max: f64,
+    /// Row 0's force, used only when no step follows it.
+    force0: f64,
+    /// Largest |w| over every row (row 0 included), m.
+    max_abs_w: f64,
+}
+
+impl ContactAccumulator {
+    /// Empty statistics on a span of `length` m.
+    pub fn new(length: f64) -> Self {
+        ContactAccumulator {
+            length,
+            rows: 0,
+            prev_contact: false,
+            prev_x: 0.0,
+            prev_t: 0.0,
+            lost: 0,
+            open: None,
+            intervals: Vec::new(),
+            intervals_t: Vec::new(),
+            switches: 0,
+            max_gap: 0.0,
+            min_gap: f64::INFINITY,
+            max_gap_force: 0.0,
+            sum: -0.0,
+            mean: 0.0,
+            m2: 0.0,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            force0: 0.0,
+            max_abs_w: 0.0,
+        }
+    }
+
+    /// Add the sample of the next row (row 0 first) at time `t`. Allocates
+    /// only when a loss interval closes beyond the intervals' capacity.
+    pub fn push(&mut self, t: f64, s: &CarrierSample) {
+        self.max_abs_w = self.max_abs_w.max(s.w.abs());
+        if self.rows == 0 {
+            self.force0 = s.force;
+        } else {
+            let c = s.in_contact;
+            if c != self.prev_contact {
+                self.switches += 1;
             }
             if c {
-                max_gap = max_gap.max(tr.gap[i].abs());
-                if let Some(s) = open.take() {
-                    intervals.push([tr.x[s - 1] / length, tr.x[i - 1] / length]);
-                    intervals_t.push([t[s - 1], t[i - 1]]);
+                self.max_gap = self.max_gap.max(s.gap.abs());
+                if let Some((x0, t0)) = self.open.take() {
+                    self.intervals
+                        .push([x0 / self.length, self.prev_x / self.length]);
+                    self.intervals_t.push([t0, self.prev_t]);
                 }
             } else {
-                lost += 1;
-                open.get_or_insert(i);
+                self.lost += 1;
+                self.open.get_or_insert((self.prev_x, self.prev_t));
             }
+            self.min_gap = self.min_gap.min(s.gap);
+            self.max_gap_force = self.max_gap_force.max((s.gap * s.force).abs());
+            let f = s.force;
+            self.sum += f;
+            let k = self.rows as f64; // steps so far, this one included
+            let d = f - self.mean;
+            self.mean += d / k;
+            self.m2 += d * (f - self.mean);
+            self.min = self.min.min(f);
+            self.max = self.max.max(f);
         }
-        if let Some(s) = open {
-            intervals.push([tr.x[s - 1] / length, tr.x[n - 1] / length]);
-            intervals_t.push([t[s - 1], t[n - 1]]);
+        self.prev_contact = s.in_contact;
+        self.prev_x = s.x;
+        self.prev_t = t;
+        self.rows += 1;
+    }
+
+    /// Largest |w| seen (row 0 included), m.
+    pub fn max_abs_w(&self) -> f64 {
+        self.max_abs_w
+    }
+
+    /// The statistics of every sample pushed.
+    pub fn finish(mut self) -> ContactStats {
+        if let Some((x0, t0)) = self.open.take() {
+            self.intervals
+                .push([x0 / self.length, self.prev_x / self.length]);
+            self.intervals_t.push([t0, self.prev_t]);
         }
-        let min_gap = tr.gap.iter().skip(1).copied().fold(f64::INFINITY, f64::min);
-        let min_gap = if min_gap.is_finite() { min_gap } else { 0.0 };
-        let f = if n > 1 { &tr.force[1..] } else { &tr.force[..] };
-        let m = f.len().max(1) as f64;
-        let mean = f.iter().sum::<f64>() / m;
-        let var = f.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / m;
+        let steps = self.rows.saturating_sub(1);
+        let min_gap = if self.min_gap.is_finite() {
+            self.min_gap
+        } else {
+            0.0
+        };
+        let force = if steps == 0 {
+            // no step: the initial state's force alone (or nothing)
+            let f = if self.rows == 0 { 0.0 } else { self.force0 };
+            let (min, max) = if self.rows == 0 {
+                (f64::INFINITY, f64::NEG_INFINITY)
+            } else {
+                (f, f)
+            };
+            ForceStats {
+                mean: f,
+                std: 0.0,
+                min,
+                max,
+            }
+        } else {
+            ForceStats {
+                mean: self.sum / steps as f64,
+                std: (self.m2 / steps as f64).sqrt(),
+                min: self.min,
+                max: self.max,
+            }
+        };
         ContactStats {
-            loss_fraction: lost as f64 / steps as f64,
-            first_loss_position: intervals.first().map(|iv| iv[0]),
-            loss_intervals: intervals,
-            loss_intervals_time: intervals_t,
-            contact_switches: switches,
-            force: ForceStats {
-                mean,
-                std: var.sqrt(),
-                min: f.iter().copied().fold(f64::INFINITY, f64::min),
-                max: f.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            },
-            max_gap_in_contact: max_gap,
+            loss_fraction: self.lost as f64 / steps.max(1) as f64,
+            first_loss_position: self.intervals.first().map(|iv| iv[0]),
+            loss_intervals: self.intervals,
+            loss_intervals_time: self.intervals_t,
+            contact_switches: self.switches,
+            force,
+            max_gap_in_contact: self.max_gap,
             max_penetration: (-min_gap).max(0.0),
             min_gap,
-            max_gap_force_product: (1..n)
-                .map(|i| (tr.gap[i] * tr.force[i]).abs())
-                .fold(0.0, f64::max),
+            max_gap_force_product: self.max_gap_force,
         }
     }
 }

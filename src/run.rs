@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use crate::error::Result;
 use crate::integrate::{Integrator, MethodFactory};
-use crate::record::{ContactStats, History};
+use crate::record::{ContactAccumulator, ContactStats, History};
 use crate::scene::Resolved;
 
 /// What a run produces.
@@ -62,33 +62,51 @@ fn drive(
         .iter()
         .map(|(_, x)| it.beam().point_vector(*x))
         .collect();
-    let mut h = History::with_capacity(sc.steps + 1, nc, &sc.probes);
-    let record = |it: &Integrator, h: &mut History| -> Result<()> {
-        h.t.push(it.time());
+    let every = sc.record_every.max(1);
+    let mut h = History::with_capacity(sc.history_rows(), every, nc, &sc.probes);
+    // statistics over every step, whatever rows the history keeps; the
+    // near-support force peak (below) likewise
+    let mut acc: Vec<ContactAccumulator> = (0..nc)
+        .map(|_| ContactAccumulator::new(sc.beam.length))
+        .collect();
+    let mut support_peak = vec![0.0f64; nc];
+    let mut observe = |it: &Integrator, h: &mut History, keep: bool, first: bool| -> Result<()> {
+        let t = it.time();
+        if keep {
+            h.t.push(t);
+        }
         for c in 0..nc {
             let s = it.sample(c);
             it.check(&s, c)?;
-            h.carriers[c].push(&s);
+            acc[c].push(t, &s);
+            if !first && it.near_support(s.x) {
+                support_peak[c] = support_peak[c].max(s.force.abs());
+            }
+            if keep {
+                h.carriers[c].push(&s);
+            }
         }
-        for (pv, (_, col)) in probes.iter().zip(h.probes.iter_mut()) {
-            col.push(it.displacement_at(pv));
+        if keep {
+            for (pv, (_, col)) in probes.iter().zip(h.probes.iter_mut()) {
+                col.push(it.displacement_at(pv));
+            }
         }
         Ok(())
     };
-    record(&it, &mut h)?;
-    let every = (sc.steps / 200).max(1);
+    observe(&it, &mut h, true, true)?;
+    let report_every = (sc.steps / 200).max(1);
     for n in 1..=sc.steps {
         it.step()?;
-        record(&it, &mut h)?;
-        if n % every == 0 || n == sc.steps {
+        observe(&it, &mut h, n % every == 0 || n == sc.steps, false)?;
+        if n % report_every == 0 || n == sc.steps {
             progress(n, sc.steps);
         }
     }
     let wall_seconds = start.elapsed().as_secs_f64();
-    let stats = h
-        .carriers
-        .iter()
-        .map(|tr| ContactStats::from_trace(&h.t, tr, sc.beam.length))
+    let max_abs_w: Vec<f64> = acc.iter().map(ContactAccumulator::max_abs_w).collect();
+    let stats = acc
+        .into_iter()
+        .map(ContactAccumulator::finish)
         .collect::<Vec<ContactStats>>();
     let warnings = stats
         .iter()
@@ -110,12 +128,8 @@ fn drive(
     // arrival at a support: forces beyond the divergence bound, allowed there
     let bound = it.force_bound();
     let mut warnings: Vec<String> = warnings;
-    warnings.extend(crate::warnings::resolution_warnings(sc, &h, &stats));
-    for (c, tr) in h.carriers.iter().enumerate() {
-        let peak = (1..h.len())
-            .filter(|&i| it.near_support(tr.x[i]))
-            .map(|i| tr.force[i].abs())
-            .fold(0.0, f64::max);
+    warnings.extend(crate::warnings::resolution_warnings(sc, &max_abs_w, &stats));
+    for (c, &peak) in support_peak.iter().enumerate() {
         if peak > bound {
             warnings.push(format!(
                 "carrier {c}: contact force {peak:.3e} N in the last element before a support (beyond the {bound:.1e} N bound applied elsewhere): the mass arrives with the beam under it deflected and is forced to w = 0 within one element, an impact the model has no law for; it grows as the step falls, and force_max includes it"

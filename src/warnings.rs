@@ -5,7 +5,6 @@
 //! plain coarse mesh: use `taut converge`).
 
 use crate::record::ContactStats;
-use crate::record::History;
 use crate::scene::{CarrierKind, ContactKind, Formulation, Resolved};
 
 /// A time step longer than a wave's crossing time of one element (Courant
@@ -26,8 +25,13 @@ pub const MIN_ELEMENTS_PER_SHED_WAVE: f64 = 8.0;
 /// by 89 %; κ ≥ ρ = 1e3 × 1/W keeps it below 1e-3).
 pub const MAX_PENALTY_PENETRATION_FRACTION: f64 = 0.01;
 
-/// The warnings of a finished run.
-pub fn resolution_warnings(sc: &Resolved, h: &History, stats: &[ContactStats]) -> Vec<String> {
+/// The warnings of a finished run; `max_abs_w[c]` is the largest |w| under
+/// carrier c over every step.
+pub fn resolution_warnings(
+    sc: &Resolved,
+    max_abs_w: &[f64],
+    stats: &[ContactStats],
+) -> Vec<String> {
     let mut w = Vec::new();
     let b = &sc.beam;
     let c = b.wave_speed();
@@ -67,16 +71,15 @@ pub fn resolution_warnings(sc: &Resolved, h: &History, stats: &[ContactStats]) -
             ));
         }
         if sc.contact.formulation == Formulation::Penalty
-            && let (Some(st), Some(tr)) = (stats.get(i), h.carriers.get(i))
+            && let (Some(st), Some(&wmax)) = (stats.get(i), max_abs_w.get(i))
+            && wmax > 0.0
+            && st.max_penetration > MAX_PENALTY_PENETRATION_FRACTION * wmax
         {
-            let wmax = tr.w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            if wmax > 0.0 && st.max_penetration > MAX_PENALTY_PENETRATION_FRACTION * wmax {
-                w.push(format!(
-                    "carrier {i}: penalty penetration {:.3e} m is {:.1} % of the largest deflection under the carrier ({wmax:.3e} m): κ is soft enough to change the contact forces and loss; raise contact.penalty",
-                    st.max_penetration,
-                    100.0 * st.max_penetration / wmax
-                ));
-            }
+            w.push(format!(
+                "carrier {i}: penalty penetration {:.3e} m is {:.1} % of the largest deflection under the carrier ({wmax:.3e} m): κ is soft enough to change the contact forces and loss; raise contact.penalty",
+                st.max_penetration,
+                100.0 * st.max_penetration / wmax
+            ));
         }
     }
     w

@@ -9,12 +9,29 @@ use std::path::Path;
 use toml::{Table, Value};
 
 use super::{Resolved, Scene};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, one_line};
 
-/// Parse scene text into a TOML tree.
+/// Parse scene text into a TOML tree. A syntax error is one line: its
+/// line and column, the parser's message and the offending line.
 pub fn parse_scene(text: &str) -> Result<Table> {
-    text.parse::<Table>()
-        .map_err(|e| Error::Parse(e.to_string()))
+    text.parse::<Table>().map_err(|e| {
+        let at = e.span().map(|span| {
+            let start = (0..=span.start.min(text.len()))
+                .rev()
+                .find(|&i| text.is_char_boundary(i))
+                .unwrap_or(0);
+            let before = &text[..start];
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+            let source = text.lines().nth(line - 1).unwrap_or("").trim();
+            format!("line {line}, column {column} (`{source}`): ")
+        });
+        Error::Parse(one_line(&format!(
+            "{}{}",
+            at.unwrap_or_default(),
+            e.message()
+        )))
+    })
 }
 
 /// Apply one override `key.path=value` to a TOML tree.
@@ -26,8 +43,8 @@ pub fn parse_scene(text: &str) -> Result<Table> {
 /// it is taken as a bare string, so `contact.kind=bilateral` works.
 pub fn apply_override(tree: &mut Table, spec: &str) -> Result<()> {
     let bad = |reason: String| Error::Override {
-        spec: spec.to_string(),
-        reason,
+        spec: one_line(spec),
+        reason: one_line(&reason),
     };
     let (path, raw) = spec
         .split_once('=')
@@ -132,9 +149,9 @@ pub fn scene_from_tree(tree: Table) -> Result<Scene> {
         let inner = e.into_inner().to_string();
         let inner = inner.split("\nin `").next().unwrap_or(&inner).trim_end();
         if path.is_empty() || path == "." {
-            Error::Parse(inner.to_string())
+            Error::Parse(one_line(inner))
         } else {
-            Error::Parse(format!("at `{path}`: {inner}"))
+            Error::Parse(one_line(&format!("at `{path}`: {inner}")))
         }
     })
 }

@@ -7,11 +7,15 @@
 //! unit, default and allowed range is documented in `docs/scene.md`.
 
 mod load;
+mod memory;
 mod method;
 mod speed;
 mod validate;
 
 pub use load::{apply_override, load_scene, parse_scene, resolve_scene};
+pub use memory::{
+    MEMORY_BUDGET_BYTES, MemoryEstimate, check_budget, estimate as estimate_memory, history_rows,
+};
 pub use method::{
     DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, IntegratorSpec, Method,
     Scheme, parse_methods,
@@ -49,6 +53,9 @@ pub struct Scene {
     /// Points whose beam displacement is recorded (`[[probe]]`).
     #[serde(default, rename = "probe", skip_serializing_if = "Vec::is_empty")]
     pub probes: Vec<ProbeSpec>,
+    /// What the history records (`[output]`).
+    #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
+    pub output: OutputSpec,
 }
 
 /// Support condition at a beam end (MODEL §1).
@@ -385,4 +392,34 @@ pub struct ProbeSpec {
     pub name: String,
     /// Position, m (0 ≤ x ≤ L).
     pub x: f64,
+}
+
+/// `[output]`: what the run's history (`history.csv`) keeps.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Record every K-th step in the history (K ≥ 1, default 1); the last
+    /// step is always recorded. Statistics are computed from every step
+    /// whatever K.
+    #[serde(default = "every_step")]
+    pub record_every: u64,
+}
+
+fn every_step() -> u64 {
+    1
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec {
+            record_every: every_step(),
+        }
+    }
+}
+
+impl OutputSpec {
+    /// True for the defaults (then `[output]` is left out when serialized).
+    pub fn is_default(&self) -> bool {
+        *self == OutputSpec::default()
+    }
 }

@@ -5,6 +5,8 @@ use super::{
     ContactSpec, EndTime, Formulation, IntegratorSpec, Method, Placement, Scene, Scheme, Side,
     SpeedProfile, Support,
 };
+use std::collections::HashMap;
+
 use crate::error::{Error, Result};
 use crate::model::motion::Motion;
 
@@ -120,6 +122,32 @@ pub struct Resolved {
     pub t_end: f64,
     /// Probes: (name, x in m).
     pub probes: Vec<(String, f64)>,
+    /// The history records row 0, every `record_every`-th step and the last
+    /// step (`output.record_every`, ≥ 1); statistics use every step.
+    pub record_every: usize,
+}
+
+impl Resolved {
+    /// Rows the run's history will hold.
+    pub fn history_rows(&self) -> usize {
+        super::memory::history_rows(self.steps, self.record_every)
+    }
+
+    /// Refuse a scene that records only every K-th step (K > 1), for a study
+    /// (`what`) that reads the history step by step.
+    pub fn require_every_step(&self, what: &str) -> Result<()> {
+        if self.record_every == 1 {
+            Ok(())
+        } else {
+            Err(Error::invalid(
+                "output.record_every",
+                self.record_every,
+                format!(
+                    "{what} reads the history at every step: must be 1 (leave out [output] record_every)"
+                ),
+            ))
+        }
+    }
 }
 
 fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
@@ -249,6 +277,7 @@ impl Scene {
         }
 
         let mut probes = Vec::with_capacity(self.probes.len());
+        let mut seen: HashMap<&str, usize> = HashMap::with_capacity(self.probes.len());
         for (i, p) in self.probes.iter().enumerate() {
             let field = format!("probe.{i}.x");
             let x = p.x;
@@ -287,15 +316,50 @@ impl Scene {
                     "must differ from the history.csv columns (t, x_m, beam_w, mass_q, gap, force, in_contact and their _0, _1, … forms)",
                 ));
             }
-            if probes.iter().any(|(n, _): &(String, f64)| n == &p.name) {
+            // a set, not a scan of the probes so far: 10⁵ probes are 10⁵
+            // look-ups, not 10¹⁰ comparisons
+            if let Some(first) = seen.insert(p.name.as_str(), i) {
                 return Err(Error::invalid(
                     format!("probe.{i}.name"),
                     format!("{:?}", p.name),
-                    "must be unique among probes",
+                    format!("must be unique among probes: probe.{first}.name has it too"),
                 ));
             }
             probes.push((p.name.clone(), x));
         }
+
+        if self.output.record_every == 0 {
+            return Err(Error::invalid(
+                "output.record_every",
+                0,
+                "must be an integer ≥ 1 (record every K-th step; 1 = every step)",
+            ));
+        }
+        let record_every = usize::try_from(self.output.record_every).unwrap_or(usize::MAX);
+        let steps = steps_f as usize;
+        let (per_node, half_band) = if beam.is_string() { (1, 1) } else { (2, 3) };
+        let masses = carriers
+            .iter()
+            .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
+            .count();
+        let need = super::memory::estimate(
+            steps,
+            record_every,
+            elements,
+            per_node,
+            half_band,
+            carriers.len(),
+            masses,
+            probes.len(),
+        );
+        super::memory::check_budget(
+            &need,
+            steps,
+            record_every,
+            elements,
+            carriers.len(),
+            probes.len(),
+        )?;
 
         Ok(Resolved {
             scene: self.clone(),
@@ -307,9 +371,10 @@ impl Scene {
             scheme,
             g,
             dt,
-            steps: steps_f as usize,
+            steps,
             t_end,
             probes,
+            record_every,
         })
     }
 

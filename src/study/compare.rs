@@ -174,6 +174,7 @@ pub fn compare_methods(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Comparison> {
     let base = resolve_scene(text, overrides)?;
+    base.require_every_step("taut compare")?;
     let own = base.integrator.method;
     let methods: Vec<&dyn MethodFactory> = if spec.methods.is_empty() {
         vec![&own]

@@ -236,6 +236,7 @@ fn converge_with(
     }
     let overrides = &overrides[..];
     let base = resolve_scene(text, overrides)?;
+    base.require_every_step("taut converge")?;
     let mut scenes = Vec::with_capacity(levels);
     for l in 0..levels {
         let f = ratio.powi(l as i32);

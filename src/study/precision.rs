@@ -107,6 +107,7 @@ pub fn precision_methods(
         return Err(Error::invalid("--ratio", ratio, "must be an integer ≥ 2"));
     }
     let base = resolve_scene(text, overrides)?;
+    base.require_every_step("taut precision")?;
     let own = base.integrator.method;
     let methods: Vec<&dyn MethodFactory> = if methods.is_empty() {
         vec![&own]

@@ -418,6 +418,7 @@ pub fn tolerance_run(
 ) -> Result<TolerantRun> {
     let tol = check_tolerance(tol)?;
     let base = resolve_scene(text, overrides)?;
+    base.require_every_step("taut run --tolerance")?;
     let t_end = base.t_end;
     let n0 = base.elements;
     let dt0 = whole_step(t_end, base.dt);

@@ -1,0 +1,175 @@
+//! The memory a run will need, estimated from the validated scene before
+//! anything is allocated, and the budget it must fit.
+//!
+//! Every input within its documented range is accepted by the range checks,
+//! but some combinations (10⁹ steps recorded row by row, 10⁵ probes, 10⁴
+//! carriers on a fine mesh) would exhaust the machine's memory and abort the
+//! process. Such a run is refused at validation with the estimate, the
+//! budget and a way out (`output.record_every`, fewer probes, elements or
+//! carriers) — never started.
+
+use crate::error::{Error, Result};
+use crate::integrate::rhs_columns;
+
+/// Largest memory one run may plan to use, bytes (2 GiB). A fixed number,
+/// not the machine's free memory, so that a scene is accepted or refused the
+/// same way on every machine (and in CI); 2 GiB fits a laptop running a
+/// sweep on a few cores, and is 100× the reference case at its finest
+/// converge level. The largest mesh (10⁶ elements, ≈ 0.5 GiB by the estimate
+/// below) fits it with room for its history.
+pub const MEMORY_BUDGET_BYTES: u64 = 2 << 30;
+
+/// Bytes of one history row for the time column (`t`, f64).
+pub const ROW_TIME_BYTES: u64 = 8;
+
+/// Bytes of one history row per carrier: x_m, w, q, g and λ as f64, and the
+/// contact flag as a bool (`record::CarrierTrace`).
+pub const ROW_CARRIER_BYTES: u64 = 5 * 8 + 1;
+
+/// Bytes of one history row per probe (v as f64).
+pub const ROW_PROBE_BYTES: u64 = 8;
+
+/// Banded n×n matrices a run keeps at once, counted generously: mass,
+/// stiffness, damping, the effective matrix and its factor, the mass
+/// factor of the initial state, and two spare for a method's second stage
+/// (Bathe) or the spectrum estimate (central difference).
+pub const BANDED_MATRICES: u64 = 8;
+
+/// Dense n × `rhs_columns(nc)` blocks a run keeps at once: the step's
+/// right-hand sides and the constraint columns A⁻¹r of every carrier, plus
+/// the initial state's, counted generously.
+pub const RHS_BLOCKS: u64 = 4;
+
+/// Dense nc × nc matrices of the contact solve (W, its reduced and modified
+/// copies, the active block), counted generously.
+pub const DENSE_CONTACT_MATRICES: u64 = 6;
+
+/// The memory a run is estimated to need, bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MemoryEstimate {
+    /// The recorded history: rows × (t + carriers + probes).
+    pub history: u64,
+    /// Bytes of one history row.
+    pub row: u64,
+    /// Rows the history will hold.
+    pub rows: u64,
+    /// The model and the integrator's work arrays.
+    pub model: u64,
+}
+
+impl MemoryEstimate {
+    /// Everything, bytes.
+    pub fn total(&self) -> u64 {
+        self.history.saturating_add(self.model)
+    }
+}
+
+/// Rows of a history that records row 0 (t = 0), every `every`-th step and
+/// always the last step.
+pub fn history_rows(steps: usize, every: usize) -> usize {
+    1 + steps.div_ceil(every.max(1))
+}
+
+/// Estimate the memory of a run of `steps` steps on `elements` elements
+/// (`per_node` dofs per node, half-bandwidth `half_band`) with `carriers`
+/// carriers (`masses` of them with a mass dof) and `probes` probes,
+/// recording every `every`-th step. Saturating arithmetic: an absurd input
+/// gives `u64::MAX`, never an overflow.
+#[allow(clippy::too_many_arguments)]
+pub fn estimate(
+    steps: usize,
+    every: usize,
+    elements: usize,
+    per_node: usize,
+    half_band: usize,
+    carriers: usize,
+    masses: usize,
+    probes: usize,
+) -> MemoryEstimate {
+    let u = |x: usize| x as u64;
+    let rows = u(history_rows(steps, every));
+    let row = ROW_TIME_BYTES
+        .saturating_add(ROW_CARRIER_BYTES.saturating_mul(u(carriers)))
+        .saturating_add(ROW_PROBE_BYTES.saturating_mul(u(probes)));
+    let dofs = u(elements)
+        .saturating_add(1)
+        .saturating_mul(u(per_node))
+        .saturating_add(u(masses));
+    let per_dof = BANDED_MATRICES
+        .saturating_mul(2 * u(half_band) + 1)
+        .saturating_add(RHS_BLOCKS.saturating_mul(u(rhs_columns(carriers))));
+    let model = dofs
+        .saturating_mul(per_dof)
+        .saturating_mul(8)
+        .saturating_add(
+            u(carriers)
+                .saturating_mul(u(carriers))
+                .saturating_mul(8 * DENSE_CONTACT_MATRICES),
+        );
+    MemoryEstimate {
+        history: rows.saturating_mul(row),
+        row,
+        rows,
+        model,
+    }
+}
+
+/// Bytes as GiB (MiB below 1 GiB), for messages.
+fn gib(b: u64) -> String {
+    if b >= 1 << 30 {
+        format!("{:.3} GiB", b as f64 / (1u64 << 30) as f64)
+    } else {
+        format!("{:.1} MiB", b as f64 / (1u64 << 20) as f64)
+    }
+}
+
+/// Refuse a run whose estimate is above [`MEMORY_BUDGET_BYTES`], naming the
+/// estimate, the budget and what to change: `output.record_every` when the
+/// history is what does not fit, else the mesh, carriers or probes.
+pub fn check_budget(
+    e: &MemoryEstimate,
+    steps: usize,
+    every: usize,
+    elements: usize,
+    carriers: usize,
+    probes: usize,
+) -> Result<()> {
+    let budget = MEMORY_BUDGET_BYTES;
+    if e.total() <= budget {
+        return Ok(());
+    }
+    let need = format!(
+        "the run needs an estimated {} ({} rows × {} bytes of history + {} of model), above the memory budget of {}",
+        gib(e.total()),
+        e.rows,
+        e.row,
+        gib(e.model),
+        gib(budget)
+    );
+    if e.model.saturating_add(2 * e.row) > budget {
+        // even a two-row history does not fit: the model or a row is too big
+        return Err(if e.model > budget / 2 {
+            Error::invalid(
+                "mesh.elements",
+                elements,
+                format!("with {carriers} carrier(s): {need}: use fewer elements or carriers"),
+            )
+        } else {
+            Error::invalid(
+                "probe",
+                format!("{probes} probes"),
+                format!("{need}: use fewer probes or carriers"),
+            )
+        });
+    }
+    // the fewest rows that fit, and the record_every that gives them
+    let rows_fit = (budget - e.model) / e.row; // ≥ 2 here
+    let min_every = (steps as u64).div_ceil(rows_fit - 1).max(every as u64 + 1);
+    Err(Error::invalid(
+        "output.record_every",
+        every,
+        format!(
+            "{need}: record fewer rows with [output] record_every ≥ {min_every} (statistics still use every step), or give fewer steps or probes"
+        ),
+    ))
+}
