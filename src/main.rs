@@ -111,7 +111,7 @@ enum Command {
         /// Run only the points with index ≡ i (mod n): i/n.
         #[arg(long, value_name = "I/N")]
         shard: Option<String>,
-        /// Worker threads (default: all cores).
+        /// Worker threads (default: all cores; at most 4 per core, 1024).
         #[arg(long)]
         threads: Option<usize>,
         /// No progress bar.
@@ -487,15 +487,8 @@ fn cmd_sweep(
         axes,
     };
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-sweep"));
-    if let Some(n) = threads {
-        if n == 0 {
-            return Err(taut::Error::invalid("--threads", 0, "must be ≥ 1"));
-        }
-        // the global pool can be configured once; ignore a second attempt
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build_global();
-    }
+    // bounded, and a pool that cannot start is an error, not a panic
+    taut::study::threads::start_pool(threads)?;
     let bar = progress_bar(spec.len(), "runs", quiet);
     let start = std::time::Instant::now();
     let records = sweep(&spec, &dir, shard, &|done, total| {

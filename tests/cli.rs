@@ -444,3 +444,43 @@ fn converge_and_precision_take_methods() {
     assert!(csv.starts_with("method,formulation"), "{csv}");
     assert_eq!(csv.lines().count(), 3, "{csv}");
 }
+
+/// A thread count the machine cannot use is refused before any run, naming
+/// `--threads`, the value and the range; it used to spawn threads for
+/// minutes and then panic (`GlobalPoolAlreadyInitialized`) under a memory
+/// limit.
+#[test]
+fn sweep_threads_are_bounded_and_never_panic() {
+    let tmp = tempfile::tempdir().unwrap();
+    let max = taut::study::threads::max_threads();
+    let too_many = (max + 1).to_string();
+    for bad in ["0", too_many.as_str(), "100000"] {
+        let dir = out_dir(&tmp, "threads");
+        let start = std::time::Instant::now();
+        let out = taut_bin(&[
+            "sweep",
+            "scenes/reference.toml",
+            "--vary",
+            "carrier.speed.cruise=50:60:2",
+            "--set",
+            "time.end=0.01",
+            "--threads",
+            bad,
+            "--out",
+            dir.to_str().unwrap(),
+            "--quiet",
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "--threads {bad}: {stderr}");
+        assert!(
+            stderr.starts_with("error: ")
+                && stderr.contains(&format!("`--threads` = {bad}:"))
+                && stderr.contains(&format!("1 ..= {max}"))
+                && !stderr.contains("panicked"),
+            "{stderr}"
+        );
+        assert!(!dir.exists(), "no output for a refused sweep");
+        // refused up front: no thread was started (generous for a busy CI)
+        assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
+    }
+}
