@@ -484,3 +484,26 @@ fn sweep_threads_are_bounded_and_never_panic() {
         assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
     }
 }
+
+/// A file that is not a scene is named and refused, its content never
+/// reproduced: toml's own message quotes the offending line.
+#[test]
+fn a_file_that_is_not_a_scene_is_refused_without_its_content() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cases = [
+        ("passwd", "root:x:0:0:SECRET_A:/root:/bin/bash\n"),
+        (
+            "env.toml",
+            "SECRET_B = \"hunter2\"\n[package]\nname = \"x\"\n",
+        ),
+    ];
+    for (name, content) in cases {
+        let file = tmp.path().join(name);
+        std::fs::write(&file, content).unwrap();
+        let err = run_fails(file.to_str().unwrap(), &out_dir(&tmp, "o"), &[]);
+        assert!(err.contains(file.to_str().unwrap()), "{err}");
+        for secret in ["SECRET", "hunter2", "root", "package"] {
+            assert!(!err.contains(secret), "{name}: content reproduced: {err}");
+        }
+    }
+}
