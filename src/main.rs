@@ -457,7 +457,7 @@ fn cmd_gate(suite: &Path, out: Option<PathBuf>, update: bool, quiet: bool) -> ta
     println!("  wrote    {}/{{gate.json, junit.xml}}", dir.display());
     // an update accepts the new values: it passes unless a case could not run
     Ok(if update {
-        report.errors.is_empty()
+        report.errors.is_empty() && !report.checks.is_empty()
     } else {
         report.passed()
     })
@@ -601,6 +601,7 @@ fn cmd_precision(
 fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {
     use taut::contact::{Level, SIGNORINI_TOLERANCE, replay};
     let text = std::fs::read_to_string(path).map_err(|e| taut::Error::io(path, e))?;
+    taut::json_keys::reject_duplicate_keys(&text, path)?;
     let mut problem: taut::contact::ContactProblem = serde_json::from_str(&text)
         .map_err(|e| taut::Error::Parse(format!("{}: {e}", path.display())))?;
     if let Some(n) = max_iter {
