@@ -507,3 +507,49 @@ fn a_file_that_is_not_a_scene_is_refused_without_its_content() {
         }
     }
 }
+
+/// Sweep files read back are checked: a tampered spec (no axes) and a record
+/// in the wrong file are errors naming what is wrong, not a silent merge.
+#[test]
+fn merge_checks_the_files_it_reads_back() {
+    let tmp = tempfile::tempdir().unwrap();
+    let shard = out_dir(&tmp, "shard");
+    let o = taut_bin(&[
+        "sweep",
+        "scenes/reference.toml",
+        "--vary",
+        "carrier.speed.cruise=50:60:2",
+        "--set",
+        "time.end=0.01",
+        "--out",
+        shard.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let merge = |name: &str| {
+        let o = taut_bin(&[
+            "merge",
+            shard.to_str().unwrap(),
+            "--out",
+            out_dir(&tmp, name).to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(1));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    // a record moved into another point's file
+    let runs = shard.join("runs");
+    let first = std::fs::read_to_string(runs.join("000000.json")).unwrap();
+    let second = std::fs::read_to_string(runs.join("000001.json")).unwrap();
+    std::fs::write(runs.join("000001.json"), &first).unwrap();
+    let e = merge("m1");
+    assert!(e.contains("000001.json: index` = 0: must be 1"), "{e}");
+    std::fs::write(runs.join("000001.json"), second).unwrap();
+    // a spec whose axes were removed
+    let spec_path = shard.join("sweep.json");
+    let mut spec: Value =
+        serde_json::from_str(&std::fs::read_to_string(&spec_path).unwrap()).unwrap();
+    spec["axes"] = serde_json::json!([]);
+    std::fs::write(&spec_path, spec.to_string()).unwrap();
+    let e = merge("m2");
+    assert!(e.contains("`--vary` = 0: give one or two axes"), "{e}");
+}

@@ -431,13 +431,22 @@ pub fn collect(dir: &Path, indices: &[usize]) -> Result<Vec<SweepRecord>> {
         .iter()
         .map(|&i| {
             let p = run_file(dir, i);
-            read_record(&p).ok_or_else(|| {
+            let r = read_record(&p).ok_or_else(|| {
                 Error::invalid(
                     "runs",
                     p.display(),
                     "a finished run's record is missing or unreadable",
                 )
-            })
+            })?;
+            // a record copied or edited into the wrong file is refused
+            if r.index != i {
+                return Err(Error::invalid(
+                    format!("{}: index", p.display()),
+                    r.index,
+                    format!("must be {i}, the point this file holds"),
+                ));
+            }
+            Ok(r)
         })
         .collect()
 }
@@ -455,6 +464,9 @@ pub fn merge(shards: &[PathBuf], out: &Path) -> Result<(SweepSpec, Vec<SweepReco
         .first()
         .ok_or_else(|| Error::invalid("merge", "(none)", "name at least one shard folder"))?;
     let spec = read_spec(first)?;
+    // a spec read back is checked as a typed one is (one or two axes, every
+    // point a valid scene)
+    spec.validate()?;
     for s in &shards[1..] {
         if read_spec(s)? != spec {
             return Err(Error::invalid(
