@@ -25,6 +25,7 @@ pub mod analytic;
 pub mod contact;
 pub mod error;
 pub mod integrate;
+pub mod json_keys;
 pub mod model;
 pub mod record;
 pub mod report;

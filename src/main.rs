@@ -111,7 +111,7 @@ enum Command {
         /// Run only the points with index ≡ i (mod n): i/n.
         #[arg(long, value_name = "I/N")]
         shard: Option<String>,
-        /// Worker threads (default: all cores).
+        /// Worker threads (default: all cores; at most 4 per core, 1024).
         #[arg(long)]
         threads: Option<usize>,
         /// No progress bar.
@@ -465,7 +465,7 @@ fn cmd_gate(suite: &Path, out: Option<PathBuf>, update: bool, quiet: bool) -> ta
     println!("  wrote    {}/{{gate.json, junit.xml}}", dir.display());
     // an update accepts the new values: it passes unless a case could not run
     Ok(if update {
-        report.errors.is_empty()
+        report.errors.is_empty() && !report.checks.is_empty()
     } else {
         report.passed()
     })
@@ -495,15 +495,8 @@ fn cmd_sweep(
         axes,
     };
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-sweep"));
-    if let Some(n) = threads {
-        if n == 0 {
-            return Err(taut::Error::invalid("--threads", 0, "must be ≥ 1"));
-        }
-        // the global pool can be configured once; ignore a second attempt
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build_global();
-    }
+    // bounded, and a pool that cannot start is an error, not a panic
+    taut::study::threads::start_pool(threads)?;
     let bar = progress_bar(spec.len(), "runs", quiet);
     let start = std::time::Instant::now();
     spec.validate()?;
@@ -665,6 +658,7 @@ fn cmd_precision(
 fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {
     use taut::contact::{Level, SIGNORINI_TOLERANCE, replay};
     let text = std::fs::read_to_string(path).map_err(|e| taut::Error::io(path, e))?;
+    taut::json_keys::reject_duplicate_keys(&text, path)?;
     let mut problem: taut::contact::ContactProblem = serde_json::from_str(&text)
         .map_err(|e| taut::Error::Parse(format!("{}: {e}", path.display())))?;
     if let Some(n) = max_iter {

@@ -444,3 +444,112 @@ fn converge_and_precision_take_methods() {
     assert!(csv.starts_with("method,formulation"), "{csv}");
     assert_eq!(csv.lines().count(), 3, "{csv}");
 }
+
+/// A thread count the machine cannot use is refused before any run, naming
+/// `--threads`, the value and the range; it used to spawn threads for
+/// minutes and then panic (`GlobalPoolAlreadyInitialized`) under a memory
+/// limit.
+#[test]
+fn sweep_threads_are_bounded_and_never_panic() {
+    let tmp = tempfile::tempdir().unwrap();
+    let max = taut::study::threads::max_threads();
+    let too_many = (max + 1).to_string();
+    for bad in ["0", too_many.as_str(), "100000"] {
+        let dir = out_dir(&tmp, "threads");
+        let start = std::time::Instant::now();
+        let out = taut_bin(&[
+            "sweep",
+            "scenes/reference.toml",
+            "--vary",
+            "carrier.speed.cruise=50:60:2",
+            "--set",
+            "time.end=0.01",
+            "--threads",
+            bad,
+            "--out",
+            dir.to_str().unwrap(),
+            "--quiet",
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "--threads {bad}: {stderr}");
+        assert!(
+            stderr.starts_with("error: ")
+                && stderr.contains(&format!("`--threads` = {bad}:"))
+                && stderr.contains(&format!("1 ..= {max}"))
+                && !stderr.contains("panicked"),
+            "{stderr}"
+        );
+        assert!(!dir.exists(), "no output for a refused sweep");
+        // refused up front: no thread was started (generous for a busy CI)
+        assert!(start.elapsed().as_secs() < 30, "{:?}", start.elapsed());
+    }
+}
+
+/// A file that is not a scene is named and refused, its content never
+/// reproduced: toml's own message quotes the offending line.
+#[test]
+fn a_file_that_is_not_a_scene_is_refused_without_its_content() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cases = [
+        ("passwd", "root:x:0:0:SECRET_A:/root:/bin/bash\n"),
+        (
+            "env.toml",
+            "SECRET_B = \"hunter2\"\n[package]\nname = \"x\"\n",
+        ),
+    ];
+    for (name, content) in cases {
+        let file = tmp.path().join(name);
+        std::fs::write(&file, content).unwrap();
+        let err = run_fails(file.to_str().unwrap(), &out_dir(&tmp, "o"), &[]);
+        assert!(err.contains(file.to_str().unwrap()), "{err}");
+        for secret in ["SECRET", "hunter2", "root", "package"] {
+            assert!(!err.contains(secret), "{name}: content reproduced: {err}");
+        }
+    }
+}
+
+/// Sweep files read back are checked: a tampered spec (no axes) and a record
+/// in the wrong file are errors naming what is wrong, not a silent merge.
+#[test]
+fn merge_checks_the_files_it_reads_back() {
+    let tmp = tempfile::tempdir().unwrap();
+    let shard = out_dir(&tmp, "shard");
+    let o = taut_bin(&[
+        "sweep",
+        "scenes/reference.toml",
+        "--vary",
+        "carrier.speed.cruise=50:60:2",
+        "--set",
+        "time.end=0.01",
+        "--out",
+        shard.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let merge = |name: &str| {
+        let o = taut_bin(&[
+            "merge",
+            shard.to_str().unwrap(),
+            "--out",
+            out_dir(&tmp, name).to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(1));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    // a record moved into another point's file
+    let runs = shard.join("runs");
+    let first = std::fs::read_to_string(runs.join("000000.json")).unwrap();
+    let second = std::fs::read_to_string(runs.join("000001.json")).unwrap();
+    std::fs::write(runs.join("000001.json"), &first).unwrap();
+    let e = merge("m1");
+    assert!(e.contains("000001.json") && e.contains("holds point 0"), "{e}");
+    std::fs::write(runs.join("000001.json"), second).unwrap();
+    // a spec whose axes were removed
+    let spec_path = shard.join("sweep.json");
+    let mut spec: Value =
+        serde_json::from_str(&std::fs::read_to_string(&spec_path).unwrap()).unwrap();
+    spec["axes"] = serde_json::json!([]);
+    std::fs::write(&spec_path, spec.to_string()).unwrap();
+    let e = merge("m2");
+    assert!(e.contains("`--vary` = 0: give one or two axes"), "{e}");
+}

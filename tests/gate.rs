@@ -165,3 +165,141 @@ fn golden_cases_are_pinned_as_rounded_snapshots() {
         });
     }
 }
+
+/// `taut gate SUITE --out OUT --quiet`: (exit code, stdout + stderr).
+fn gate_cli(suite: &Path, out: &Path) -> (Option<i32>, String) {
+    let o = Command::new(BIN)
+        .args([
+            "gate",
+            suite.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
+        .output()
+        .unwrap();
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    (o.status.code(), text)
+}
+
+/// The reference case, its scene path made absolute, as JSON text.
+fn reference_case_text() -> String {
+    let tmp = tempfile::tempdir().unwrap();
+    let suite = tampered_suite(tmp.path(), 1.0);
+    std::fs::read_to_string(suite.join("reference.json")).unwrap()
+}
+
+#[test]
+fn an_empty_suite_fails() {
+    let tmp = tempfile::tempdir().unwrap();
+    let suite = tmp.path().join("empty");
+    std::fs::create_dir_all(&suite).unwrap();
+    // a file that is not a case does not make the suite non-empty
+    std::fs::write(suite.join("README.md"), "cases go here").unwrap();
+    let e = gate(&suite, false, &mut |_, _, _| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("SUITE_DIR") && e.contains("at least one case"),
+        "{e}"
+    );
+    let (code, text) = gate_cli(&suite, &tmp.path().join("out"));
+    assert_eq!(code, Some(1), "{text}");
+    assert!(text.contains("at least one case file"), "{text}");
+}
+
+#[test]
+fn a_case_with_no_quantities_fails() {
+    let tmp = tempfile::tempdir().unwrap();
+    let suite = tmp.path().join("suite");
+    std::fs::create_dir_all(&suite).unwrap();
+    let mut case: serde_json::Value = serde_json::from_str(&reference_case_text()).unwrap();
+    case["quantities"] = serde_json::json!({});
+    let file = suite.join("nothing.json");
+    std::fs::write(&file, case.to_string()).unwrap();
+    let e = read_case(&file).unwrap_err().to_string();
+    assert!(
+        e.contains("nothing.json: quantities") && e.contains("at least one quantity"),
+        "{e}"
+    );
+    let out = tmp.path().join("out");
+    let (code, text) = gate_cli(&suite, &out);
+    assert_eq!(code, Some(1), "{text}");
+    assert!(text.contains("at least one quantity"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("gate.json")).unwrap()).unwrap();
+    assert_eq!(json["passed"], false);
+    assert!(
+        std::fs::read_to_string(out.join("junit.xml"))
+            .unwrap()
+            .contains("<error message=")
+    );
+}
+
+#[test]
+fn a_duplicated_key_is_an_error_naming_the_key_and_the_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let suite = tmp.path().join("suite");
+    std::fs::create_dir_all(&suite).unwrap();
+    // a tampered first copy of force_mean's value, the true one after it:
+    // serde_json alone keeps the second and the gate would pass
+    let text = reference_case_text();
+    let at = text.find("\"force_mean\": {").unwrap() + "\"force_mean\": {".len();
+    let tampered = format!("{}\n      \"value\": 1e9,{}", &text[..at], &text[at..]);
+    let file = suite.join("reference.json");
+    std::fs::write(&file, tampered).unwrap();
+    let e = read_case(&file).unwrap_err().to_string();
+    assert!(
+        e.contains("quantities.force_mean.value") && e.contains("reference.json"),
+        "{e}"
+    );
+    let (code, text) = gate_cli(&suite, &tmp.path().join("out"));
+    assert_eq!(code, Some(1), "{text}");
+    assert!(text.contains("quantities.force_mean.value"), "{text}");
+    // a top-level key too
+    let text = reference_case_text().replacen('{', "{\"scene\": \"x.toml\",", 1);
+    std::fs::write(&file, text).unwrap();
+    let e = read_case(&file).unwrap_err().to_string();
+    assert!(e.contains("reference.json: scene`"), "{e}");
+}
+
+/// A case whose `scene` names a file that is not a scene: the file is named
+/// and refused, its content in no message, gate.json or junit.xml.
+#[test]
+fn a_scene_that_is_not_a_scene_file_is_refused_and_never_reproduced() {
+    let tmp = tempfile::tempdir().unwrap();
+    let secrets = tmp.path().join("secrets");
+    std::fs::create_dir_all(&secrets).unwrap();
+    let files = [
+        ("passwd", "root:x:0:0:SECRET_A:/root:/bin/bash\n"),
+        ("passwd.toml", "root:x:0:0:SECRET_B:/root:/bin/bash\n"),
+        ("env.toml", "SECRET_C = \"hunter2\"\n"),
+    ];
+    for (name, content) in files {
+        std::fs::write(secrets.join(name), content).unwrap();
+        let suite = tmp.path().join(format!("suite-{name}"));
+        std::fs::create_dir_all(&suite).unwrap();
+        let mut case: serde_json::Value = serde_json::from_str(&reference_case_text()).unwrap();
+        let target = secrets.join(name);
+        case["scene"] = serde_json::Value::String(target.to_string_lossy().into_owned());
+        std::fs::write(suite.join("case.json"), case.to_string()).unwrap();
+        let out = tmp.path().join(format!("out-{name}"));
+        let (code, text) = gate_cli(&suite, &out);
+        assert_eq!(code, Some(1), "{text}");
+        assert!(text.contains(target.to_str().unwrap()), "{name}: {text}");
+        let written = [
+            text,
+            std::fs::read_to_string(out.join("gate.json")).unwrap(),
+            std::fs::read_to_string(out.join("junit.xml")).unwrap(),
+        ];
+        for w in written {
+            for secret in ["SECRET", "hunter2", "root:x"] {
+                assert!(!w.contains(secret), "{name}: content reproduced: {w}");
+            }
+        }
+    }
+}

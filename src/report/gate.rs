@@ -110,6 +110,9 @@ pub fn gate_table(r: &GateReport, updated: bool) -> String {
     for e in &r.errors {
         s.push_str(&format!("{:<24} ERROR: {}\n", e.case, e.error));
     }
+    if r.checks.is_empty() {
+        s.push_str("no quantity was checked: a gate that checks nothing fails\n");
+    }
     let failed = r.checks.iter().filter(|c| !c.pass).count();
     s.push_str(&format!(
         "{} checks, {} passed, {} failed, {} cases with errors\n",

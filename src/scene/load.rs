@@ -11,27 +11,65 @@ use toml::{Table, Value};
 use super::{Resolved, Scene};
 use crate::error::{Error, Result, one_line};
 
-/// Parse scene text into a TOML tree. A syntax error is one line: its
-/// line and column, the parser's message and the offending line.
+/// The top-level tables of a scene ([`Scene`]'s fields, as spelled in a
+/// file). A file with none of them is not a scene, and is refused without
+/// naming its keys ([`check_is_scene`]).
+pub const SCENE_TABLES: [&str; 9] = [
+    "beam",
+    "mesh",
+    "carrier",
+    "contact",
+    "time",
+    "integrator",
+    "gravity",
+    "probe",
+    "output",
+];
+
+/// Parse scene text into a TOML tree.
+///
+/// A syntax error is reported by line, column and reason only. The toml
+/// crate's own message quotes the offending line, and the file may not be a
+/// scene at all (`taut run /etc/passwd`, a gate case naming any file): its
+/// content must never be reproduced in a message, a log or a JUnit report.
 pub fn parse_scene(text: &str) -> Result<Table> {
     text.parse::<Table>().map_err(|e| {
-        let at = e.span().map(|span| {
-            let start = (0..=span.start.min(text.len()))
-                .rev()
-                .find(|&i| text.is_char_boundary(i))
-                .unwrap_or(0);
-            let before = &text[..start];
-            let line = before.matches('\n').count() + 1;
-            let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-            let source = text.lines().nth(line - 1).unwrap_or("").trim();
-            format!("line {line}, column {column} (`{source}`): ")
-        });
-        Error::Parse(one_line(&format!(
-            "{}{}",
-            at.unwrap_or_default(),
-            e.message()
-        )))
+        let reason = one_line(e.message().lines().next().unwrap_or("").trim());
+        Error::Parse(match e.span() {
+            Some(span) => {
+                let (line, column) = line_column(text, span.start);
+                format!("TOML syntax error at line {line}, column {column}: {reason}")
+            }
+            None => format!("TOML syntax error: {reason}"),
+        })
     })
+}
+
+/// 1-based line and column (in characters) of byte `offset` in `text`.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    // the span may fall inside a multi-byte character: back off to its start
+    let mut at = offset.min(text.len());
+    while !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    (line, before[start..].chars().count() + 1)
+}
+
+/// Refuse a TOML tree none of whose top-level keys is a scene table: it is
+/// some other file, and naming its keys (as "unknown field" would) would
+/// reproduce its content.
+pub fn check_is_scene(tree: &Table) -> Result<()> {
+    if tree.keys().any(|k| SCENE_TABLES.contains(&k.as_str())) {
+        return Ok(());
+    }
+    Err(Error::Parse(format!(
+        "not a scene: none of its {} top-level keys is a scene table (a scene has [beam], [mesh], [[carrier]] and [time], optionally {}); the file's own keys are not shown",
+        tree.len(),
+        "[contact], [integrator], [gravity], [[probe]], [output]"
+    )))
 }
 
 /// Apply one override `key.path=value` to a TOML tree.
@@ -159,6 +197,7 @@ pub fn scene_from_tree(tree: Table) -> Result<Scene> {
 /// Parse scene text, apply overrides in order, deserialize and validate.
 pub fn resolve_scene(text: &str, overrides: &[String]) -> Result<Resolved> {
     let mut tree = parse_scene(text)?;
+    check_is_scene(&tree)?;
     for spec in overrides {
         apply_override(&mut tree, spec)?;
     }
@@ -172,4 +211,52 @@ pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Resolved> {
         Error::Parse(msg) => Error::Parse(format!("{}: {msg}", path.display())),
         other => other,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scene_tables_are_the_scene_fields() {
+        let text = include_str!("../../scenes/reference.toml");
+        let scene = scene_from_tree(parse_scene(text).unwrap()).unwrap();
+        let value = Value::try_from(&scene).unwrap();
+        let keys: Vec<&str> = value
+            .as_table()
+            .unwrap()
+            .keys()
+            .map(|k| k.as_str())
+            .collect();
+        // every field but the (empty, skipped) probes is written
+        for k in &keys {
+            assert!(SCENE_TABLES.contains(k), "{k}");
+        }
+        assert_eq!(keys.len(), SCENE_TABLES.len() - 1, "{keys:?}");
+    }
+
+    #[test]
+    fn a_syntax_error_gives_line_and_column_not_the_text() {
+        let e = parse_scene("a = 1\nroot:x:0:0:SECRET:/root\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("line 2, column "), "{e}");
+        assert!(!e.contains("SECRET") && !e.contains("root"), "{e}");
+        assert_eq!(line_column("ab\ncé\nx", 7), (3, 1));
+        assert_eq!(line_column("ab\ncé", 5), (2, 2));
+    }
+
+    #[test]
+    fn a_file_with_no_scene_table_is_not_a_scene_and_its_keys_are_not_named() {
+        let e = resolve_scene("SECRET_TOKEN = \"abc\"\n[package]\nname = \"x\"\n", &[])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("not a scene") && e.contains("[beam]"), "{e}");
+        assert!(!e.contains("SECRET") && !e.contains("package"), "{e}");
+        // a scene with a typo still has its unknown key named
+        let e = resolve_scene("[beam]\nlenght = 3\n", &[])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("lenght") && e.contains("length"), "{e}");
+    }
 }

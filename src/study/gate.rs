@@ -148,9 +148,10 @@ pub struct GateReport {
 }
 
 impl GateReport {
-    /// True when every check passed and every case ran.
+    /// True when every case ran, at least one quantity was checked and
+    /// every check passed: a gate that checked nothing does not pass.
     pub fn passed(&self) -> bool {
-        self.errors.is_empty() && self.checks.iter().all(|c| c.pass)
+        self.errors.is_empty() && !self.checks.is_empty() && self.checks.iter().all(|c| c.pass)
     }
 }
 
@@ -172,11 +173,35 @@ pub fn case_files(suite: &Path) -> Result<Vec<PathBuf>> {
     Ok(files)
 }
 
-/// Read and check a case file.
+/// Read and check a case file: no key repeated at any level (serde_json
+/// would keep the last copy silently), at least one quantity, known
+/// quantity names, finite non-negative tolerances with their reasons, and a
+/// scene file (`*.toml`).
 pub fn read_case(path: &Path) -> Result<GateCase> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    crate::json_keys::reject_duplicate_keys(&text, path)?;
     let case: GateCase = serde_json::from_str(&text)
         .map_err(|e| Error::Parse(format!("{}: {e}", path.display())))?;
+    if case.quantities.is_empty() {
+        return Err(Error::invalid(
+            format!("{}: quantities", path.display()),
+            "{} (none)",
+            format!(
+                "must gate at least one quantity ({}): a case that checks nothing would pass whatever the run gives",
+                QUANTITY_NAMES.join(", ")
+            ),
+        ));
+    }
+    if Path::new(&case.scene)
+        .extension()
+        .is_none_or(|x| x != "toml")
+    {
+        return Err(Error::invalid(
+            format!("{}: scene", path.display()),
+            &case.scene,
+            "must be a scene file (*.toml); a relative path is taken from the case file",
+        ));
+    }
     for (name, t) in &case.quantities {
         let field = format!("{}: quantities.{name}", path.display());
         if !QUANTITY_NAMES.iter().any(|q| {
@@ -191,11 +216,14 @@ pub fn read_case(path: &Path) -> Result<GateCase> {
                 format!("must be one of {}", QUANTITY_NAMES.join(", ")),
             ));
         }
-        if !(t.abs >= 0.0 && t.rel >= 0.0 && t.abs.is_finite() && t.rel.is_finite()) {
+        // abs + rel·|value| must be finite too: an infinite allowance passes
+        // anything
+        let allowance = t.abs + t.rel * t.value.abs();
+        if !(t.abs >= 0.0 && t.rel >= 0.0 && allowance.is_finite()) {
             return Err(Error::invalid(
                 field,
-                format!("abs {} rel {}", t.abs, t.rel),
-                "tolerances must be finite and ≥ 0",
+                format!("abs {} rel {} (value {})", t.abs, t.rel, t.value),
+                "tolerances must be ≥ 0 and abs + rel·|value| finite",
             ));
         }
         if t.reason.trim().is_empty() {

@@ -6,6 +6,7 @@ pub mod gate;
 pub mod precision;
 pub mod reference;
 pub mod sweep;
+pub mod threads;
 pub mod tolerance;
 
 /// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.

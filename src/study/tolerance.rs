@@ -160,11 +160,18 @@ impl std::str::FromStr for Quantity {
     }
 }
 
-/// The allowed tolerances: a relative error (absolute for P_l) in (0, 1].
-pub const TOLERANCE_RANGE: &str =
-    "must be a number in (0, 1]: a relative error (absolute for loss_fraction), e.g. 1e-3";
+/// The smallest tolerance: [`ROUND_OFF`]. The pilots' differences are
+/// relative (absolute for P_l, itself at most 1), and differences below
+/// [`ROUND_OFF`] are counted as round-off, so a smaller tolerance could not
+/// be told from round-off; it would also ask for a resolution beyond
+/// [`MAX_DOF_STEPS`] (or one that underflows) on any scene that is not exact.
+pub const MIN_TOLERANCE: f64 = ROUND_OFF;
 
-/// Read `--tolerance`: a finite number in (0, 1].
+/// The allowed tolerances: a relative error (absolute for P_l) in
+/// [[`MIN_TOLERANCE`], 1].
+pub const TOLERANCE_RANGE: &str = "must be a number in [1e-12, 1]: a relative error (absolute for loss_fraction), e.g. 1e-3; below 1e-12 differences are round-off";
+
+/// Read `--tolerance`: a finite number in [[`MIN_TOLERANCE`], 1].
 pub fn parse_tolerance(s: &str) -> Result<f64> {
     let bad = || Error::invalid("--tolerance", s, TOLERANCE_RANGE);
     let v: f64 = s.trim().parse().map_err(|_| bad())?;
@@ -172,7 +179,7 @@ pub fn parse_tolerance(s: &str) -> Result<f64> {
 }
 
 fn check_tolerance(v: f64) -> Result<f64> {
-    if v.is_finite() && v > 0.0 && v <= 1.0 {
+    if v.is_finite() && (MIN_TOLERANCE..=1.0).contains(&v) {
         Ok(v)
     } else {
         Err(Error::invalid("--tolerance", v, TOLERANCE_RANGE))
@@ -547,9 +554,25 @@ pub fn tolerance_run(
             (sc, p.output.clone(), Some(p.role), 0.0)
         }
         None => {
-            let (h, dt) = model
-                .cheapest(tol, length / n0 as f64, dt0)
-                .expect("both ladders usable");
+            // `None` when the tolerance asks for an h or Δt that is not a
+            // positive finite number (it underflows): no run can meet it
+            let (h, dt) = model.cheapest(tol, length / n0 as f64, dt0).ok_or_else(|| {
+                too_costly(
+                    quantity,
+                    tol,
+                    format!(
+                        "the model (C_h = {:.3e}, p = {}, C_t = {:.3e}, q = {}) gives no representable mesh and step for it. Ask for a looser tolerance; the best pilot's estimate is {:.3e}",
+                        model.mesh.constant,
+                        model.mesh.order,
+                        model.step.constant,
+                        model.step.order,
+                        pilots
+                            .iter()
+                            .map(|p| p.estimate.total)
+                            .fold(f64::INFINITY, f64::min)
+                    ),
+                )
+            })?;
             // N up, Δt down to whole steps: the estimate only falls (a ratio
             // that is whole up to round-off is not rounded up past itself)
             let n = ((length / h) * (1.0 - STEP_COUNT_SLACK))
@@ -562,7 +585,8 @@ pub fn tolerance_run(
             let per_element = (b.dofs as f64 - a.dofs as f64) / (b.elements - a.elements) as f64;
             let dofs = a.dofs as f64 + per_element * (n - a.elements as f64);
             let cost = dofs * steps;
-            if cost > MAX_DOF_STEPS {
+            // a NaN cost is refused too
+            if cost.is_nan() || cost > MAX_DOF_STEPS {
                 let rate = pilots
                     .iter()
                     .map(|p| p.dof_steps / p.wall_seconds.max(1e-12))
@@ -788,9 +812,15 @@ mod tests {
         for ok in ["1e-3", "1", " 0.5 "] {
             assert!(parse_tolerance(ok).is_ok(), "{ok}");
         }
-        for bad in ["0", "-1e-3", "1.0001", "NaN", "inf", "", "abc"] {
+        assert!(parse_tolerance("1e-12").is_ok());
+        for bad in [
+            "0", "-1e-3", "1.0001", "NaN", "inf", "", "abc", "1e-200", "9e-13", "1e300",
+        ] {
             let e = parse_tolerance(bad).unwrap_err().to_string();
-            assert!(e.contains("`--tolerance`") && e.contains("(0, 1]"), "{e}");
+            assert!(
+                e.contains("`--tolerance`") && e.contains("[1e-12, 1]"),
+                "{e}"
+            );
         }
     }
 

@@ -228,6 +228,9 @@ pub fn merge_into(out: &FolderLock, shards: &[PathBuf]) -> Result<(SweepSpec, Ve
         .first()
         .ok_or_else(|| Error::invalid("merge", "(none)", "name at least one shard folder"))?;
     let spec = read_spec(first)?;
+    // a spec read back is checked as a typed one is (one or two axes, every
+    // point a valid scene, every axis changing something)
+    spec.validate()?;
     for s in &shards[1..] {
         if read_spec(s)? != spec {
             return Err(Error::invalid(

@@ -1,0 +1,83 @@
+//! Worker threads of the parallel studies (`taut sweep --threads N`): a
+//! bounded count, and a pool that either starts or says why not.
+
+use crate::error::{Error, Result};
+
+/// Most worker threads per available core. Each sweep point is one
+/// CPU-bound run, so threads beyond the cores add no speed, only memory (a
+/// stack and a run's buffers each) and switching; a few per core still
+/// allows for cores the process does not see (a container's CPU quota) or
+/// runs that wait on the disk.
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// Most worker threads on any machine, however many cores it reports:
+/// starting a thread costs a stack mapping and a kernel task, and 10⁵ of
+/// them took minutes to start and exhausted a memory limit.
+pub const MAX_THREADS: usize = 1024;
+
+/// The largest `--threads` allowed here: [`MAX_THREADS_PER_CORE`] × the
+/// cores available to the process (1 if unknown), at most [`MAX_THREADS`].
+pub fn max_threads() -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    cores.saturating_mul(MAX_THREADS_PER_CORE).min(MAX_THREADS)
+}
+
+fn allowed(max: usize) -> String {
+    format!(
+        "must be in 1 ..= {max} ({MAX_THREADS_PER_CORE} × the {} cores available, at most {MAX_THREADS}): each run is CPU-bound, so more threads add memory, not speed",
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    )
+}
+
+/// Check a `--threads` value: 1 ..= [`max_threads`].
+pub fn check_threads(n: usize) -> Result<usize> {
+    let max = max_threads();
+    if (1..=max).contains(&n) {
+        Ok(n)
+    } else {
+        Err(Error::invalid("--threads", n, allowed(max)))
+    }
+}
+
+/// Start the process-wide worker pool with `threads` workers (default: one
+/// per core) and return how many it has. A value outside
+/// [`check_threads`]'s range, or a pool the system cannot start (threads
+/// refused under a memory or process limit), is an error naming
+/// `--threads`, never a panic in the first parallel loop.
+pub fn start_pool(threads: Option<usize>) -> Result<usize> {
+    let n = threads.map(check_threads).transpose()?;
+    rayon::ThreadPoolBuilder::new()
+        // 0: rayon's default, one per core
+        .num_threads(n.unwrap_or(0))
+        .build_global()
+        .map_err(|e| {
+            Error::invalid(
+                "--threads",
+                n.map_or_else(|| "default (one per core)".to_string(), |n| n.to_string()),
+                format!(
+                    "the worker pool could not start ({e}): give fewer threads, or raise the process's thread or memory limit"
+                ),
+            )
+        })?;
+    Ok(rayon::current_num_threads())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thread_counts_outside_one_to_the_cap_are_refused() {
+        let max = max_threads();
+        assert!((MAX_THREADS_PER_CORE..=MAX_THREADS).contains(&max));
+        assert_eq!(check_threads(1).unwrap(), 1);
+        assert_eq!(check_threads(max).unwrap(), max);
+        for bad in [0, max + 1, 100_000, usize::MAX] {
+            let e = check_threads(bad).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("`--threads` = {bad}:")) && e.contains(&format!("1 ..= {max}")),
+                "{e}"
+            );
+        }
+    }
+}
