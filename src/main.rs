@@ -785,6 +785,39 @@ fn print_study(kind: &str, scene: &Path, table: &str, dir: &Path, files: &str) {
 
 /// The run's one-screen summary; with `accuracy` (a `--tolerance` run) the
 /// choice of resolution first and an estimated error beside every result.
+/// The terminal's contact-loss lines of one carrier: P_l split into the
+/// in-span part (the number to quote) and the support part, the first loss
+/// flagged when the run does not resolve it, the re-contacts.
+fn contact_loss_lines(c: &taut::record::ContactStats) -> String {
+    use taut::record::LossClass;
+    let mut s = format!(
+        "             contact loss P_l = {:.4} = {:.4} in span + {:.4} at supports (zone {:.2} m); {} intervals, {} switches\n",
+        c.loss_fraction,
+        c.loss_fraction_span,
+        c.loss_fraction_support,
+        c.support_zone,
+        c.loss_interval_count,
+        c.contact_switches
+    );
+    if let Some(x) = c.first_loss_position {
+        let note = match c.loss_interval_class.first() {
+            Some(LossClass::Unresolved) => " (unresolved: see WARNING)",
+            Some(LossClass::Support) => " (in a support zone)",
+            _ => "",
+        };
+        s.push_str(&format!("             first loss at x/L = {x:.4}{note}\n"));
+    }
+    if c.recontact_count > 0 {
+        let peak = c.recontacts.iter().map(|r| r.peak).fold(0.0, f64::max);
+        let impulse = c.recontacts.iter().map(|r| r.impulse).fold(0.0, f64::max);
+        s.push_str(&format!(
+            "             {} re-contacts: peak λ up to {peak:.1} N (grows as Δt falls), impulse up to {impulse:.4} N·s\n",
+            c.recontact_count
+        ));
+    }
+    s
+}
+
 fn print_summary(
     scene: &std::path::Path,
     dir: &std::path::Path,
@@ -822,16 +855,7 @@ fn print_summary(
             "  carrier {i}: force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
             f.mean, f.std, f.min, f.max
         );
-        let first = c.first_loss_position.map_or_else(
-            || "never lost".to_string(),
-            |x| format!("first at x/L = {x:.4}"),
-        );
-        println!(
-            "             contact loss P_l = {:.4} ({} intervals, {first}), {} switches",
-            c.loss_fraction,
-            c.loss_intervals.len(),
-            c.contact_switches
-        );
+        print!("{}", contact_loss_lines(c));
     }
     for w in &s.warnings {
         println!("  WARNING  {w}");

@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use crate::error::Result;
 use crate::integrate::{Integrator, MethodFactory};
-use crate::record::{ContactAccumulator, ContactStats, History};
+use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry};
 use crate::scene::Resolved;
 
 /// What a run produces.
@@ -67,7 +67,7 @@ fn drive(
     // statistics over every step, whatever rows the history keeps; the
     // near-support force peak (below) likewise
     let mut acc: Vec<ContactAccumulator> = (0..nc)
-        .map(|_| ContactAccumulator::new(sc.beam.length))
+        .map(|c| ContactAccumulator::new(LossGeometry::of(sc, c)))
         .collect();
     let mut support_peak = vec![0.0f64; nc];
     let mut observe = |it: &Integrator, h: &mut History, keep: bool, first: bool| -> Result<()> {

@@ -153,7 +153,7 @@ fn unknown_quantity_names_the_flag_the_value_and_the_choices() {
         &err,
         &[
             "`--quantity` = speed",
-            "force, force_raw, loss_fraction or displacement",
+            "force, force_raw, loss_fraction, loss_fraction_span or displacement",
         ],
     );
     // --quantity alone: clap says it needs --tolerance

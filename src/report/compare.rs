@@ -11,10 +11,11 @@ use crate::error::{Error, Result};
 use crate::study::compare::{CompareRow, Comparison, NotRun};
 
 /// Column order of `compare.csv` (documented in `docs/output.md`).
-pub const COMPARE_COLUMNS: [&str; 15] = [
+pub const COMPARE_COLUMNS: [&str; 16] = [
     "method",
     "formulation",
     "loss_fraction",
+    "loss_fraction_span",
     "loss_set_difference",
     "max_force_difference",
     "rms_force_difference",
@@ -34,6 +35,7 @@ fn cells(r: &CompareRow) -> Vec<String> {
         r.method.clone(),
         r.formulation.clone(),
         fmt_f64(r.loss_fraction),
+        fmt_f64(r.loss_fraction_span),
         fmt_f64(r.loss_set_difference),
         fmt_f64(r.max_force_difference),
         fmt_f64(r.rms_force_difference),

@@ -35,7 +35,7 @@ pub fn write_sweep(dir: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Res
     if !has_ratio {
         s.push_str(",speed_ratio");
     }
-    s.push_str(",loss_fraction,force_mean,force_std,force_min,force_max,first_loss_position,contact_switches,warnings,error\n");
+    s.push_str(",loss_fraction,loss_fraction_span,loss_fraction_support,force_mean,force_std,force_min,force_max,first_loss_position,contact_switches,warnings,error\n");
     for r in records {
         let vals: Vec<String> = r.values.iter().map(|v| fmt_f64(*v)).collect();
         s.push_str(&vals.join(","));
@@ -44,8 +44,10 @@ pub fn write_sweep(dir: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Res
             s.push_str(&opt(r.speed_ratio));
         }
         s.push_str(&format!(
-            ",{},{},{},{},{},{},{},{},{}\n",
+            ",{},{},{},{},{},{},{},{},{},{},{}\n",
             num(r.loss_fraction),
+            num(r.loss_fraction_span),
+            num(r.loss_fraction_support),
             num(r.force_mean),
             num(r.force_std),
             num(r.force_min),

@@ -27,6 +27,8 @@ pub struct CompareRow {
     pub formulation: String,
     /// P_l (carrier 0).
     pub loss_fraction: f64,
+    /// Its in-span part (outside the support zones), the part to quote.
+    pub loss_fraction_span: f64,
     /// Measure of the symmetric difference between this formulation's loss
     /// set and the reference's, in x_m/L (t/t_end for stationary carriers),
     /// summed over carriers.
@@ -305,6 +307,7 @@ fn row(r: &CompareRun, reference: &RunOutput) -> CompareRow {
         method: r.method.clone(),
         formulation: r.formulation.name().to_string(),
         loss_fraction: s0.loss_fraction,
+        loss_fraction_span: s0.loss_fraction_span,
         loss_set_difference: loss_set_difference(sc, out, reference),
         max_force_difference: max_d,
         rms_force_difference: (sum2 / count.max(1) as f64).sqrt(),

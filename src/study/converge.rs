@@ -107,12 +107,14 @@ pub struct Convergence {
 }
 
 /// Quantities reported, in order.
-pub const QUANTITIES: [&str; 6] = [
+pub const QUANTITIES: [&str; 8] = [
     "displacement_max",
     "displacement_l2",
     "force_max",
     "force_l2",
     "loss_fraction",
+    "loss_fraction_span",
+    "loss_fraction_support",
     "first_loss_position",
 ];
 
@@ -448,8 +450,15 @@ fn tabulate(
         .iter()
         .map(|o| o.stats[0].first_loss_position.unwrap_or(f64::NAN))
         .collect();
+    let span: Vec<f64> = runs.iter().map(|o| o.stats[0].loss_fraction_span).collect();
+    let support: Vec<f64> = runs
+        .iter()
+        .map(|o| o.stats[0].loss_fraction_support)
+        .collect();
     let mut all: Vec<_> = Vec::new();
     all.extend(scalar("loss_fraction", pl));
+    all.extend(scalar("loss_fraction_span", span));
+    all.extend(scalar("loss_fraction_support", support));
     all.extend(scalar("first_loss_position", fl));
 
     let mut out: Vec<ConvergeRow> = rows

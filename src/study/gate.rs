@@ -60,11 +60,13 @@ pub struct GateCase {
 
 /// Quantities a case may gate: of carrier 0, or of carrier N with the suffix
 /// `_N` (`force_mean_1`); `final_probe_N` is probe N's last value.
-pub const QUANTITY_NAMES: [&str; 12] = [
+pub const QUANTITY_NAMES: [&str; 14] = [
     "steps",
     "dofs",
     "contact_switches",
     "loss_fraction",
+    "loss_fraction_span",
+    "loss_fraction_support",
     "first_loss_position",
     "force_mean",
     "force_std",
@@ -95,6 +97,8 @@ pub fn quantity(out: &RunOutput, name: &str) -> Option<f64> {
         "dofs" => out.dofs as f64,
         "contact_switches" => s.contact_switches as f64,
         "loss_fraction" => s.loss_fraction,
+        "loss_fraction_span" => s.loss_fraction_span,
+        "loss_fraction_support" => s.loss_fraction_support,
         "first_loss_position" => s.first_loss_position.unwrap_or(-1.0),
         "force_mean" => s.force.mean,
         "force_std" => s.force.std,
@@ -343,7 +347,7 @@ mod tests {
             stats: vec![crate::record::ContactStats::from_trace(
                 &[0.0],
                 &Default::default(),
-                1.0,
+                crate::record::LossGeometry::span_only(1.0),
             )],
             dofs: 1,
             steps: 102,

@@ -75,18 +75,27 @@ pub enum Quantity {
     ForceRaw,
     /// P_l of carrier 0, absolute.
     LossFraction,
+    /// The in-span part of P_l of carrier 0 (outside the support zones),
+    /// absolute: the part that converges (`docs/contact_loss.md`).
+    LossFractionSpan,
     /// w under carrier 0, relative RMS.
     Displacement,
 }
 
 impl Quantity {
     /// Every quantity, in the order the CLI lists them.
-    pub const ALL: [Quantity; 4] = [
+    pub const ALL: [Quantity; 5] = [
         Quantity::Force,
         Quantity::ForceRaw,
         Quantity::LossFraction,
+        Quantity::LossFractionSpan,
         Quantity::Displacement,
     ];
+
+    /// A part of P_l (absolute error, one number per run).
+    pub fn is_loss(self) -> bool {
+        matches!(self, Quantity::LossFraction | Quantity::LossFractionSpan)
+    }
 
     /// A contact force (filtered or raw).
     pub fn is_force(self) -> bool {
@@ -99,6 +108,7 @@ impl Quantity {
             Quantity::Force => "force",
             Quantity::ForceRaw => "force_raw",
             Quantity::LossFraction => "loss_fraction",
+            Quantity::LossFractionSpan => "loss_fraction_span",
             Quantity::Displacement => "displacement",
         }
     }
@@ -111,6 +121,9 @@ impl Quantity {
             }
             Quantity::ForceRaw => "contact force of carrier 0, relative RMS error over the run",
             Quantity::LossFraction => "P_l of carrier 0, absolute error",
+            Quantity::LossFractionSpan => {
+                "P_l of carrier 0 in the span (outside the support zones), absolute error"
+            }
             Quantity::Displacement => {
                 "beam displacement w under carrier 0, relative RMS error over the run"
             }
@@ -137,6 +150,9 @@ impl Quantity {
                 "--quantity force (the 0–20 Hz force, which sees a re-contact spike by its impulse)"
             }
             Quantity::LossFraction => {
+                "--quantity loss_fraction_span (the in-span part of P_l; the support part, the carrier's arrival at a support, does not converge in Δt)"
+            }
+            Quantity::LossFractionSpan => {
                 "--quantity force (P_l counts the short bounces after a re-contact, whose number grows as Δt falls)"
             }
             Quantity::Displacement => "--quantity force",
@@ -154,7 +170,7 @@ impl std::str::FromStr for Quantity {
                 Error::invalid(
                     "--quantity",
                     s,
-                    "must be force, force_raw, loss_fraction or displacement",
+                    "must be force, force_raw, loss_fraction, loss_fraction_span or displacement",
                 )
             })
     }
@@ -320,6 +336,7 @@ pub fn quantity_signal(q: Quantity, out: &RunOutput) -> Vec<f64> {
         Quantity::ForceRaw => tr.force.clone(),
         Quantity::Displacement => tr.w.clone(),
         Quantity::LossFraction => vec![out.stats[0].loss_fraction],
+        Quantity::LossFractionSpan => vec![out.stats[0].loss_fraction_span],
     }
 }
 
@@ -351,8 +368,9 @@ pub fn quantity_difference(
     b: &RunOutput,
     grid: &RunOutput,
 ) -> Result<f64> {
-    if q == Quantity::LossFraction {
-        return Ok((a.stats[0].loss_fraction - b.stats[0].loss_fraction).abs());
+    if q.is_loss() {
+        let (pa, pb) = (quantity_signal(q, a), quantity_signal(q, b));
+        return Ok((pa[0] - pb[0]).abs());
     }
     let sa = sample(&quantity_signal(q, a), a, grid.dt, grid.steps)?;
     let sb = sample(&quantity_signal(q, b), b, grid.dt, grid.steps)?;
@@ -376,7 +394,7 @@ fn filtered_stats(out: &RunOutput, carrier: usize) -> [f64; 3] {
 type ResultFn = fn(&ContactStats, &[f64; 3]) -> Option<f64>;
 
 /// Every scalar result that gets an estimate, in print order.
-pub const RESULTS: [(&str, &str); 11] = [
+pub const RESULTS: [(&str, &str); 13] = [
     ("force_mean", "N"),
     ("force_std", "N"),
     ("force_min", "N"),
@@ -385,12 +403,14 @@ pub const RESULTS: [(&str, &str); 11] = [
     ("filtered_force_min", "N"),
     ("filtered_force_max", "N"),
     ("loss_fraction", "-"),
+    ("loss_fraction_span", "-"),
+    ("loss_fraction_support", "-"),
     ("loss_interval_count", "-"),
     ("first_loss_position", "x/L"),
     ("contact_switches", "-"),
 ];
 
-const RESULT_FNS: [ResultFn; 11] = [
+const RESULT_FNS: [ResultFn; 13] = [
     |s, _| Some(s.force.mean),
     |s, _| Some(s.force.std),
     |s, _| Some(s.force.min),
@@ -399,7 +419,9 @@ const RESULT_FNS: [ResultFn; 11] = [
     |_, f| Some(f[1]),
     |_, f| Some(f[2]),
     |s, _| Some(s.loss_fraction),
-    |s, _| Some(s.loss_intervals.len() as f64),
+    |s, _| Some(s.loss_fraction_span),
+    |s, _| Some(s.loss_fraction_support),
+    |s, _| Some(s.loss_interval_count as f64),
     |s, _| s.first_loss_position,
     |s, _| Some(s.contact_switches as f64),
 ];

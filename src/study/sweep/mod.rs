@@ -383,6 +383,12 @@ pub struct SweepRecord {
     /// P_l (carrier 0).
     #[serde(with = "nan_as_null")]
     pub loss_fraction: f64,
+    /// Its in-span part (outside the support zones): the part to quote.
+    #[serde(with = "nan_as_null")]
+    pub loss_fraction_span: f64,
+    /// Its support part (the carrier's arrival at a support).
+    #[serde(with = "nan_as_null")]
+    pub loss_fraction_support: f64,
     /// Force statistics (carrier 0), N.
     #[serde(with = "nan_as_null")]
     pub force_mean: f64,
@@ -441,6 +447,8 @@ impl SweepRecord {
             values,
             speed_ratio: None,
             loss_fraction: f64::NAN,
+            loss_fraction_span: f64::NAN,
+            loss_fraction_support: f64::NAN,
             force_mean: f64::NAN,
             force_std: f64::NAN,
             force_min: f64::NAN,
@@ -499,6 +507,8 @@ fn record(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
         values,
         speed_ratio: (c > 0.0).then(|| sc.carriers[0].motion.profile.cruise_speed() / c),
         loss_fraction: s.loss_fraction,
+        loss_fraction_span: s.loss_fraction_span,
+        loss_fraction_support: s.loss_fraction_support,
         force_mean: s.force.mean,
         force_std: s.force.std,
         force_min: s.force.min,

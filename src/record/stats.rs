@@ -1,0 +1,448 @@
+//! A carrier's contact statistics (MODEL §7), accumulated over every step:
+//! P_l and its split at the supports, loss intervals, force statistics, the
+//! re-contacts with their peaks and impulses, and which losses a resolution
+//! artefact may explain.
+
+use serde::Serialize;
+
+use super::CarrierTrace;
+use super::zone::LossGeometry;
+use crate::integrate::CarrierSample;
+
+/// Mean, standard deviation, min and max of the contact force, N.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct ForceStats {
+    /// Mean, N.
+    pub mean: f64,
+    /// Standard deviation (population), N.
+    pub std: f64,
+    /// Minimum, N.
+    pub min: f64,
+    /// Maximum, N.
+    pub max: f64,
+}
+
+/// Longest a re-contact's impulse is summed over, s: the first closed
+/// interval after the re-contact, cut at this window. A rigid contact on the
+/// reference wire relaxes over m/Z ≈ 2.5 ms (Z = 2·sqrt(T·ρA) ≈ 400 N·s/m, the
+/// string's drive-point impedance, m = 1 kg); 2 ms holds the impact and
+/// little of the steady force that follows (`docs/contact_loss.md`).
+pub const RECONTACT_WINDOW: f64 = 2e-3;
+
+/// Most loss intervals and re-contacts a run stores one by one (they are
+/// all counted): a contact that chatters every step over 10⁹ steps would
+/// otherwise hold gigabytes of intervals.
+pub const MAX_STORED_EVENTS: usize = 10_000;
+
+/// Relative slack on the window's end, so that round-off in summed steps
+/// does not drop the step that ends exactly at the window.
+const WINDOW_SLACK: f64 = 1e-9;
+
+/// One re-contact: contact closing after being lost.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct Recontact {
+    /// Time of the first closed step, s.
+    pub time: f64,
+    /// x_m/L there.
+    pub position: f64,
+    /// Whether it lies in a support zone ([`LossGeometry`]).
+    pub at_support: bool,
+    /// Largest λ over the window, N (grows as Δt falls: an impact).
+    pub peak: f64,
+    /// Contact impulse ∫λ dt over the window, N·s (what converges where the
+    /// peak does not).
+    pub impulse: f64,
+    /// The window's length, s: the closed steps after the re-contact, at
+    /// most [`RECONTACT_WINDOW`].
+    pub window: f64,
+}
+
+/// Where a loss interval lies, and whether the run resolves it.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum LossClass {
+    /// In the span, resolved: part of the P_l to quote.
+    Span,
+    /// In the span, shorter than the run resolves: a likely artefact.
+    Unresolved,
+    /// Touching a support zone (the carrier's arrival or start).
+    Support,
+}
+
+/// A carrier's contact statistics over the steps of a run.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ContactStats {
+    /// P_l: steps with the contact open over all steps.
+    pub loss_fraction: f64,
+    /// The part of P_l in the span, outside the support zones: the number
+    /// to quote (it converges in h and Δt where P_l does not).
+    pub loss_fraction_span: f64,
+    /// The part of P_l in the support zones (the carrier's arrival at a
+    /// support; does not converge in Δt). Span + support = P_l.
+    pub loss_fraction_support: f64,
+    /// Width z of the support zone at each held end, m ([`LossGeometry`]).
+    pub support_zone: f64,
+    /// Loss intervals as [x_start/L, x_end/L]: a lost step covers
+    /// [x_{i−1}, x_i], and adjacent lost steps merge. At most
+    /// [`MAX_STORED_EVENTS`] are listed.
+    pub loss_intervals: Vec<[f64; 2]>,
+    /// The same intervals in time, [t_start, t_end], s.
+    pub loss_intervals_time: Vec<[f64; 2]>,
+    /// What each listed interval is: `span`, `unresolved` (in the span,
+    /// shorter than 3 steps or h/V) or `support`.
+    pub loss_interval_class: Vec<LossClass>,
+    /// Number of loss intervals (all of them, listed or not).
+    pub loss_interval_count: usize,
+    /// Loss intervals in the span shorter than the run resolves (fewer than
+    /// 3 steps, or shorter than h/V): likely resolution artefacts.
+    pub suspect_loss_intervals: usize,
+    /// Their share of the steps (a part of `loss_fraction_span`).
+    pub suspect_loss_fraction: f64,
+    /// Re-contacts, with peak and impulse (at most [`MAX_STORED_EVENTS`]).
+    pub recontacts: Vec<Recontact>,
+    /// Number of re-contacts (all of them).
+    pub recontact_count: usize,
+    /// x_m/L where contact is first lost (null if never).
+    pub first_loss_position: Option<f64>,
+    /// Number of contact state changes (closed → open and open → closed).
+    pub contact_switches: usize,
+    /// Force statistics over the steps, N (λ = 0 counts where contact is lost).
+    pub force: ForceStats,
+    /// Largest |gap| while in contact, m (round-off for the `end` placement).
+    pub max_gap_in_contact: f64,
+    /// Largest penetration max(0, −g), m (round-off for Lagrange; ≈ λ/κ for penalty).
+    pub max_penetration: f64,
+    /// Smallest gap over the steps, m.
+    pub min_gap: f64,
+    /// Largest |g·λ| over the steps, N·m (complementarity residual; 0 for exact Signorini).
+    pub max_gap_force_product: f64,
+}
+
+impl ContactStats {
+    /// Statistics of one trace over `geometry` (the span and its support
+    /// zones). The same numbers, bit for bit, as [`ContactAccumulator`] fed
+    /// row by row. Rows beyond the shortest column are ignored.
+    pub fn from_trace(t: &[f64], tr: &CarrierTrace, geometry: LossGeometry) -> Self {
+        let mut acc = ContactAccumulator::new(geometry);
+        let n = [
+            t.len(),
+            tr.x.len(),
+            tr.w.len(),
+            tr.q.len(),
+            tr.gap.len(),
+            tr.force.len(),
+            tr.in_contact.len(),
+        ]
+        .into_iter()
+        .min()
+        .unwrap_or(0);
+        for i in 0..n {
+            acc.push(
+                t[i],
+                &CarrierSample {
+                    x: tr.x[i],
+                    w: tr.w[i],
+                    q: tr.q[i],
+                    gap: tr.gap[i],
+                    force: tr.force[i],
+                    in_contact: tr.in_contact[i],
+                },
+            );
+        }
+        acc.finish()
+    }
+}
+
+/// One carrier's contact statistics, accumulated a sample at a time over
+/// every step, so that they do not depend on which rows the history keeps
+/// (`output.record_every`). Row 0 (t = 0) is the initial state; statistics
+/// are over the steps (rows 1..), as MODEL §5 defines P_l.
+///
+/// The force's standard deviation is Welford's running update, and its mean
+/// the plain running sum over the steps divided by their number.
+#[derive(Debug, Clone)]
+pub struct ContactAccumulator {
+    geometry: LossGeometry,
+    length: f64,
+    /// Samples seen (row 0 included).
+    rows: usize,
+    prev_contact: bool,
+    prev_x: f64,
+    prev_t: f64,
+    lost: usize,
+    /// Lost steps in a support zone.
+    lost_support: usize,
+    /// (x, t) at the row before the first lost step of the open interval.
+    open: Option<(f64, f64)>,
+    /// Steps of the open interval, and whether one lay in a support zone.
+    open_steps: usize,
+    open_at_support: bool,
+    intervals: Vec<[f64; 2]>,
+    intervals_t: Vec<[f64; 2]>,
+    classes: Vec<LossClass>,
+    interval_count: usize,
+    suspect_intervals: usize,
+    suspect_steps: usize,
+    recontacts: Vec<Recontact>,
+    recontact_count: usize,
+    /// The re-contact whose window is open (not yet stored when beyond the cap).
+    window: Option<Recontact>,
+    switches: usize,
+    max_gap: f64,
+    min_gap: f64,
+    max_gap_force: f64,
+    sum: f64,
+    mean: f64,
+    m2: f64,
+    min: f64,
+    max: f64,
+    /// Row 0's force, used only when no step follows it.
+    force0: f64,
+    /// Largest |w| over every row (row 0 included), m.
+    max_abs_w: f64,
+}
+
+impl ContactAccumulator {
+    /// Empty statistics over `geometry` (the span and its support zones).
+    pub fn new(geometry: LossGeometry) -> Self {
+        ContactAccumulator {
+            geometry,
+            length: geometry.length,
+            rows: 0,
+            prev_contact: false,
+            prev_x: 0.0,
+            prev_t: 0.0,
+            lost: 0,
+            lost_support: 0,
+            open: None,
+            open_steps: 0,
+            open_at_support: false,
+            intervals: Vec::new(),
+            intervals_t: Vec::new(),
+            classes: Vec::new(),
+            interval_count: 0,
+            suspect_intervals: 0,
+            suspect_steps: 0,
+            recontacts: Vec::new(),
+            recontact_count: 0,
+            window: None,
+            switches: 0,
+            max_gap: 0.0,
+            min_gap: f64::INFINITY,
+            max_gap_force: 0.0,
+            sum: -0.0,
+            mean: 0.0,
+            m2: 0.0,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            force0: 0.0,
+            max_abs_w: 0.0,
+        }
+    }
+
+    /// Add the sample of the next row (row 0 first) at time `t`. Allocates
+    /// only when a loss interval closes beyond the intervals' capacity.
+    pub fn push(&mut self, t: f64, s: &CarrierSample) {
+        self.max_abs_w = self.max_abs_w.max(s.w.abs());
+        if self.rows == 0 {
+            self.force0 = s.force;
+        } else {
+            let c = s.in_contact;
+            if c != self.prev_contact {
+                self.switches += 1;
+            }
+            if c {
+                self.max_gap = self.max_gap.max(s.gap.abs());
+                if self.open.is_some() {
+                    self.close_interval();
+                    self.window = Some(Recontact {
+                        time: t,
+                        position: s.x / self.length,
+                        at_support: self.geometry.in_support_zone(s.x),
+                        peak: s.force,
+                        impulse: s.force * (t - self.prev_t),
+                        window: t - self.prev_t,
+                    });
+                } else if let Some(w) = &mut self.window {
+                    let dt = t - self.prev_t;
+                    if w.window + dt <= RECONTACT_WINDOW * (1.0 + WINDOW_SLACK) {
+                        w.peak = w.peak.max(s.force);
+                        w.impulse += s.force * dt;
+                        w.window += dt;
+                    } else {
+                        self.close_window();
+                    }
+                }
+            } else {
+                self.close_window();
+                self.lost += 1;
+                let at_support = self.geometry.in_support_zone(s.x);
+                self.lost_support += usize::from(at_support);
+                if self.open.is_none() {
+                    self.open = Some((self.prev_x, self.prev_t));
+                    self.open_steps = 0;
+                    self.open_at_support = false;
+                }
+                self.open_steps += 1;
+                self.open_at_support |= at_support;
+            }
+            self.min_gap = self.min_gap.min(s.gap);
+            self.max_gap_force = self.max_gap_force.max((s.gap * s.force).abs());
+            let f = s.force;
+            self.sum += f;
+            let k = self.rows as f64; // steps so far, this one included
+            let d = f - self.mean;
+            self.mean += d / k;
+            self.m2 += d * (f - self.mean);
+            self.min = self.min.min(f);
+            self.max = self.max.max(f);
+        }
+        self.prev_contact = s.in_contact;
+        self.prev_x = s.x;
+        self.prev_t = t;
+        self.rows += 1;
+    }
+
+    /// Store the open loss interval (ending at the previous row) and judge
+    /// whether the run resolves it.
+    fn close_interval(&mut self) {
+        let Some((x0, t0)) = self.open.take() else {
+            return;
+        };
+        self.interval_count += 1;
+        let class = if self.open_at_support {
+            LossClass::Support
+        } else if self.geometry.unresolved(self.open_steps, self.prev_t - t0) {
+            self.suspect_intervals += 1;
+            self.suspect_steps += self.open_steps;
+            LossClass::Unresolved
+        } else {
+            LossClass::Span
+        };
+        if self.intervals.len() < MAX_STORED_EVENTS {
+            self.intervals
+                .push([x0 / self.length, self.prev_x / self.length]);
+            self.intervals_t.push([t0, self.prev_t]);
+            self.classes.push(class);
+        }
+    }
+
+    /// Store the re-contact whose window is open.
+    fn close_window(&mut self) {
+        if let Some(w) = self.window.take() {
+            self.recontact_count += 1;
+            if self.recontacts.len() < MAX_STORED_EVENTS {
+                self.recontacts.push(w);
+            }
+        }
+    }
+
+    /// Largest |w| seen (row 0 included), m.
+    pub fn max_abs_w(&self) -> f64 {
+        self.max_abs_w
+    }
+
+    /// The statistics of every sample pushed.
+    pub fn finish(mut self) -> ContactStats {
+        self.close_interval();
+        self.close_window();
+        let steps = self.rows.saturating_sub(1);
+        let per_step = 1.0 / steps.max(1) as f64;
+        let min_gap = if self.min_gap.is_finite() {
+            self.min_gap
+        } else {
+            0.0
+        };
+        let force = if steps == 0 {
+            // no step: the initial state's force alone (or nothing)
+            let f = if self.rows == 0 { 0.0 } else { self.force0 };
+            let (min, max) = if self.rows == 0 {
+                (f64::INFINITY, f64::NEG_INFINITY)
+            } else {
+                (f, f)
+            };
+            ForceStats {
+                mean: f,
+                std: 0.0,
+                min,
+                max,
+            }
+        } else {
+            ForceStats {
+                mean: self.sum / steps as f64,
+                std: (self.m2 / steps as f64).sqrt(),
+                min: self.min,
+                max: self.max,
+            }
+        };
+        ContactStats {
+            loss_fraction: self.lost as f64 / steps.max(1) as f64,
+            loss_fraction_span: (self.lost - self.lost_support) as f64 * per_step,
+            loss_fraction_support: self.lost_support as f64 * per_step,
+            support_zone: self.geometry.support_zone,
+            first_loss_position: self.intervals.first().map(|iv| iv[0]),
+            loss_intervals: self.intervals,
+            loss_intervals_time: self.intervals_t,
+            loss_interval_class: self.classes,
+            loss_interval_count: self.interval_count,
+            suspect_loss_intervals: self.suspect_intervals,
+            suspect_loss_fraction: self.suspect_steps as f64 * per_step,
+            recontacts: self.recontacts,
+            recontact_count: self.recontact_count,
+            contact_switches: self.switches,
+            force,
+            max_gap_in_contact: self.max_gap,
+            max_penetration: (-min_gap).max(0.0),
+            min_gap,
+            max_gap_force_product: self.max_gap_force,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::record::CarrierTrace;
+
+    fn trace(contact: &[bool]) -> (Vec<f64>, CarrierTrace) {
+        let n = contact.len();
+        let t: Vec<f64> = (0..n).map(|i| i as f64).collect();
+        let tr = CarrierTrace {
+            x: t.clone(),
+            w: vec![0.0; n],
+            q: vec![0.0; n],
+            gap: vec![0.0; n],
+            force: contact.iter().map(|&c| if c { 2.0 } else { 0.0 }).collect(),
+            in_contact: contact.to_vec(),
+        };
+        (t, tr)
+    }
+
+    #[test]
+    fn loss_fraction_and_intervals_agree() {
+        // steps 1..=8; lost at steps 3,4 and 8
+        let (t, tr) = trace(&[true, true, true, false, false, true, true, true, false]);
+        let s = ContactStats::from_trace(&t, &tr, LossGeometry::span_only(8.0));
+        assert_eq!(s.loss_fraction, 3.0 / 8.0);
+        assert_eq!(
+            s.loss_intervals,
+            vec![[2.0 / 8.0, 4.0 / 8.0], [7.0 / 8.0, 1.0]]
+        );
+        let measure: f64 = s.loss_intervals_time.iter().map(|iv| iv[1] - iv[0]).sum();
+        assert_eq!(measure / 8.0, s.loss_fraction);
+        assert_eq!(s.contact_switches, 3);
+        assert_eq!(s.first_loss_position, Some(0.25));
+        assert_eq!(s.force.min, 0.0);
+        assert_eq!(s.force.max, 2.0);
+    }
+
+    #[test]
+    fn no_loss_gives_no_interval() {
+        let (t, tr) = trace(&[true; 5]);
+        let s = ContactStats::from_trace(&t, &tr, LossGeometry::span_only(4.0));
+        assert_eq!(s.loss_fraction, 0.0);
+        assert!(s.loss_intervals.is_empty());
+        assert_eq!(s.first_loss_position, None);
+        assert_eq!(s.force.std, 0.0);
+    }
+}

@@ -1,0 +1,133 @@
+//! Where a carrier's contact loss is a number to quote, and where it is not.
+//!
+//! **The support zone.** A pinned or clamped end forces w = 0. A carrier
+//! that arrives there with the beam under it still deflected is driven to
+//! w = 0 over the beam's bending boundary layer, of width ℓ_b = sqrt(EI/T):
+//! on a taut string (EI = 0) the trajectory of a moving mass is
+//! discontinuous at the support (Smith 1964; Dyniewicz & Bajer), and on a
+//! tensioned beam the same arrival is an impact whose loss does not converge
+//! in Δt (`docs/contact_loss.md`). The zone is the part of the span within
+//!
+//! ```text
+//! z = max(4·ℓ_b, 4·h, 4·V·Δt)
+//! ```
+//!
+//! of a held (not free) end: a few bending lengths, and never less than a few
+//! elements or steps of travel, so that it always holds the part of the
+//! arrival the resolution cannot follow. P_l splits into an in-span part and
+//! a support part over the same denominator (all steps): they add up to P_l.
+//!
+//! **Suspect losses.** A loss interval that lasts fewer than
+//! [`MIN_RESOLVED_LOSS_STEPS`] steps, or less than the time the carrier
+//! takes to cross one element (h/V), away from the support zone, is below
+//! what the run resolves: a resolution artefact is likely (the reference
+//! scene's one-step loss at x/L = 0.6512 vanishes under refinement,
+//! `docs/convergence.md`). Such intervals are counted and warned about.
+
+use serde::Serialize;
+
+use crate::scene::{Resolved, Support};
+
+/// Bending lengths ℓ_b = sqrt(EI/T) in the support zone: the boundary layer
+/// decays like e^(−x/ℓ_b), to 2 % at 4 ℓ_b; measured on the reference case at
+/// V0/c = 0.9 and N = 1600, the non-converging loss lies within the last
+/// 0.25 m ≈ 3.8 ℓ_b (`docs/contact_loss.md`).
+pub const SUPPORT_BENDING_LENGTHS: f64 = 4.0;
+
+/// Elements in the support zone: a coarse mesh spreads the arrival over a
+/// few elements, whatever ℓ_b.
+pub const SUPPORT_ELEMENTS: f64 = 4.0;
+
+/// Steps of carrier travel in the support zone: a coarse step jumps over the
+/// boundary layer in a few steps, whatever ℓ_b and h.
+pub const SUPPORT_STEPS: f64 = 4.0;
+
+/// A loss interval shorter than this many steps is not resolved in time.
+pub const MIN_RESOLVED_LOSS_STEPS: usize = 3;
+
+/// Where a carrier's losses count as in the span or at a support, and what a
+/// run resolves.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct LossGeometry {
+    /// Span L, m.
+    pub length: f64,
+    /// Width z of the support zone at each held end, m (0: no zone).
+    pub support_zone: f64,
+    /// Whether each end (x = 0, x = L) is held (pinned or clamped).
+    #[serde(skip)]
+    pub held: (bool, bool),
+    /// h/V, s: the time the carrier takes to cross one element (null for a
+    /// carrier at rest).
+    pub element_passing_time: Option<f64>,
+}
+
+impl LossGeometry {
+    /// No support zone and no resolution criterion in time (statistics of a
+    /// bare trace on a span of `length` m).
+    pub fn span_only(length: f64) -> Self {
+        LossGeometry {
+            length,
+            support_zone: 0.0,
+            held: (false, false),
+            element_passing_time: None,
+        }
+    }
+
+    /// The zone and resolution of carrier `carrier` of a scene.
+    pub fn of(sc: &Resolved, carrier: usize) -> Self {
+        let b = &sc.beam;
+        let h = b.length / sc.elements as f64;
+        let bending_length = if b.tension > 0.0 {
+            (b.ei / b.tension).sqrt()
+        } else {
+            0.0
+        };
+        let v = sc
+            .carriers
+            .get(carrier)
+            .map_or(0.0, |c| c.motion.profile.cruise_speed().abs());
+        let zone = (SUPPORT_BENDING_LENGTHS * bending_length)
+            .max(SUPPORT_ELEMENTS * h)
+            .max(SUPPORT_STEPS * v * sc.dt)
+            // a zone never covers more than half the span
+            .min(0.5 * b.length);
+        let held = |s: Support| s != Support::Free;
+        LossGeometry {
+            length: b.length,
+            support_zone: zone,
+            held: (held(b.left), held(b.right)),
+            element_passing_time: (v > 0.0).then(|| h / v),
+        }
+    }
+
+    /// Whether position `x` (m) lies in a support zone.
+    pub fn in_support_zone(&self, x: f64) -> bool {
+        (self.held.0 && x < self.support_zone)
+            || (self.held.1 && x > self.length - self.support_zone)
+    }
+
+    /// Whether a loss interval of `steps` steps lasting `duration` s is
+    /// shorter than what the run resolves.
+    pub fn unresolved(&self, steps: usize, duration: f64) -> bool {
+        steps < MIN_RESOLVED_LOSS_STEPS || self.element_passing_time.is_some_and(|p| duration < p)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_zone_holds_a_few_bending_lengths_elements_or_steps_at_held_ends() {
+        let g = LossGeometry {
+            length: 50.0,
+            support_zone: 0.5,
+            held: (true, false),
+            element_passing_time: Some(1e-3),
+        };
+        assert!(g.in_support_zone(0.4) && !g.in_support_zone(0.6));
+        assert!(!g.in_support_zone(49.9), "a free end has no zone");
+        assert!(g.unresolved(2, 1.0) && g.unresolved(5, 5e-4) && !g.unresolved(5, 2e-3));
+        assert!(!LossGeometry::span_only(50.0).unresolved(3, 0.0));
+    }
+}
