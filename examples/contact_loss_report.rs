@@ -41,14 +41,7 @@ pub const SUPPORT_STEPS: f64 = 4.0;
 
 /// Width z (m) of the support zone at each end support, with `bending`
 /// bending lengths: z = max(bending·ℓ_b, 4h, 4VΔt). ℓ_b = 0 for a string.
-pub fn support_zone_with(
-    bending: f64,
-    ei: f64,
-    tension: f64,
-    h: f64,
-    speed: f64,
-    dt: f64,
-) -> f64 {
+pub fn support_zone_with(bending: f64, ei: f64, tension: f64, h: f64, speed: f64, dt: f64) -> f64 {
     let lb = if ei > 0.0 && tension > 0.0 {
         (ei / tension).sqrt()
     } else {
@@ -138,6 +131,14 @@ const IMPULSE_WINDOW: f64 = 2e-3;
 /// §4e: their number grows as Δt falls). 0.2 ms = 2 steps at Δt = 1e-4 s,
 /// so the closing speed can be estimated at every level.
 const MIN_LOSS_TIME: f64 = 2e-4;
+/// The arrival-force law is fitted from this many carrier steps V·Δt before
+/// the support (the last steps land at a Δt-dependent distance from L).
+const ARRIVAL_FIT_STEPS: f64 = 4.0;
+/// Meshes for the peak's dependence on h at fixed Δt (full run only).
+const PEAK_MESHES: [usize; 3] = [800, 1600, 3200];
+/// The Δt values of that check: one in the range where the peak follows
+/// Δt^(−½) and the finest of the ladder.
+const PEAK_MESH_DTS: [f64; 2] = [2.5e-5, 3.125e-6];
 /// Re-contacts of two runs are the same event when their times differ by
 /// less than this (s); loss intervals at V0/c = 0.9 are ≥ several ms apart.
 const MATCH_TOLERANCE: f64 = 1e-3;
@@ -244,8 +245,7 @@ fn log_slope(x: &[f64], y: &[f64]) -> Option<f64> {
 fn successive_slopes(x: &[f64], y: &[f64]) -> Vec<Option<f64>> {
     (1..x.len())
         .map(|i| {
-            (y[i] > 0.0 && y[i - 1] > 0.0)
-                .then(|| (y[i] / y[i - 1]).ln() / (x[i] / x[i - 1]).ln())
+            (y[i] > 0.0 && y[i - 1] > 0.0).then(|| (y[i] / y[i - 1]).ln() / (x[i] / x[i - 1]).ln())
         })
         .collect()
 }
@@ -369,8 +369,16 @@ fn fit_line(label: &str, x: &[f64], y: &[f64]) -> Option<f64> {
         .map(|v| fmt_opt(v, 2))
         .collect();
     println!(
-        "* support part ∝ {label}^p: least-squares p = {} over all levels; successive p = {}; over the three finest levels p = {}",
+        "* support part ∝ {label}^p: least-squares p = {} over all levels; over the first four (the issue's ladder) p = {}; successive p = {}; over the three finest levels p = {}",
         fmt_opt(s, 2),
+        fmt_opt(
+            if x.len() >= 4 {
+                log_slope(&x[..4], &y[..4])
+            } else {
+                None
+            },
+            2
+        ),
         succ.join(", "),
         fmt_opt(
             if x.len() >= 3 {
@@ -428,7 +436,7 @@ fn distance_table(runs: &[&Done], by_dt: bool) {
 /// The in-span part under other zone constants (bending lengths), and its
 /// change between the two finest levels of a ladder.
 fn candidates_table(runs: &[&Done], by_dt: bool) -> Vec<(f64, f64, bool)> {
-    let mut head = String::from(if by_dt { "| zone | " } else { "| zone | " });
+    let mut head = String::from("| zone | ");
     for d in runs {
         if by_dt {
             head.push_str(&format!("Δt = {:e} | ", d.case.dt));
@@ -436,9 +444,9 @@ fn candidates_table(runs: &[&Done], by_dt: bool) -> Vec<(f64, f64, bool)> {
             head.push_str(&format!("N = {} | ", d.case.elements));
         }
     }
-    head.push_str("change, two finest | converged (< 2 %) |");
+    head.push_str("change, two finest | largest change, three finest | converged (< 2 %) |");
     println!("{head}");
-    println!("|---{}|---|---|", "|---".repeat(runs.len()));
+    println!("|---{}|---|---|---|", "|---".repeat(runs.len()));
     let mut verdicts = Vec::new();
     for &k in &ZONE_CANDIDATES {
         let vals: Vec<f64> = runs
@@ -454,17 +462,178 @@ fn candidates_table(runs: &[&Done], by_dt: bool) -> Vec<(f64, f64, bool)> {
         let n = vals.len();
         let change = rel_change(vals[n - 1], vals[n - 2]);
         let ok = change.is_none_or(|c| c.abs() < CONVERGED_CHANGE);
+        let worst = (n.saturating_sub(3) + 1..n)
+            .filter_map(|i| rel_change(vals[i], vals[i - 1]))
+            .map(f64::abs)
+            .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
         let cells: Vec<String> = vals.iter().map(|v| format!("{v:.5}")).collect();
         println!(
-            "| max({k}ℓ_b, 4h, 4VΔt) | {} | {} | {} |",
+            "| max({k}ℓ_b, 4h, 4VΔt) | {} | {} | {} | {} |",
             cells.join(" | "),
             pct(change),
+            worst.map_or("—".into(), |w| format!("{:.2} %", 100.0 * w)),
             if ok { "yes" } else { "no" }
         );
         verdicts.push((k, change.unwrap_or(0.0), ok));
     }
     println!();
     verdicts
+}
+
+/// The carrier's arrival at the right support, run by run: where the last
+/// step lands, the force there, the largest force and ∫λ dt in the right
+/// support zone, and the mass's vertical speed at the last step. Then, in
+/// the finest run, the law of λ against the distance L − x_m over the last
+/// element (rows with L − x_m between ARRIVAL_FIT_STEPS·VΔt and h).
+fn arrival_table(runs: &[&Done], by_dt: bool) -> Option<f64> {
+    println!(
+        "| {} | L − x_m at the last step (mm) | λ at the last step (N) | max λ in the zone (N) | ∫λ dt in the zone (N·s) | ∫λ dt in the last element (N·s) | q̇ at the last step (m/s) |",
+        if by_dt { "Δt (s)" } else { "N" }
+    );
+    println!("|---|---|---|---|---|---|---|");
+    for d in runs {
+        let p = Props::of(&d.sc);
+        let tr = &d.out.history.carriers[0];
+        let n = tr.x.len();
+        let h = p.length / d.case.elements as f64;
+        let zone = support_zone(p.ei, p.tension, h, d.case.speed, d.case.dt);
+        let in_zone = |i: &usize| tr.x[*i] > p.length - zone;
+        let max_zone = (1..n)
+            .filter(in_zone)
+            .map(|i| tr.force[i])
+            .fold(0.0, f64::max);
+        let imp_zone: f64 = (1..n)
+            .filter(in_zone)
+            .map(|i| tr.force[i] * d.case.dt)
+            .sum();
+        let imp_elem: f64 = (1..n)
+            .filter(|&i| tr.x[i] > p.length - h)
+            .map(|i| tr.force[i] * d.case.dt)
+            .sum();
+        let lead = if by_dt {
+            format!("{:e}", d.case.dt)
+        } else {
+            format!("{}", d.case.elements)
+        };
+        println!(
+            "| {lead} | {:.3} | {:.4e} | {:.4e} | {:.4} | {:.4} | {:.3} |",
+            1e3 * (p.length - tr.x[n - 1]),
+            tr.force[n - 1],
+            max_zone,
+            imp_zone,
+            imp_elem,
+            (tr.q[n - 1] - tr.q[n - 2]) / d.case.dt
+        );
+    }
+    println!();
+    if !by_dt {
+        return None;
+    }
+    let d = runs[runs.len() - 1];
+    let p = Props::of(&d.sc);
+    let tr = &d.out.history.carriers[0];
+    let h = p.length / d.case.elements as f64;
+    let lo = ARRIVAL_FIT_STEPS * d.case.speed * d.case.dt;
+    let (x, y): (Vec<f64>, Vec<f64>) = (1..tr.x.len())
+        .filter(|&i| {
+            let dist = p.length - tr.x[i];
+            tr.in_contact[i] && dist >= lo && dist <= h
+        })
+        .map(|i| (p.length - tr.x[i], tr.force[i]))
+        .unzip();
+    let slope = log_slope(&x, &y);
+    println!(
+        "In the finest run (Δt = {:e} s), over the last element (L − x_m from {:.2} mm to h = {:.2} mm, {} steps, contact closed): λ ∝ (L − x_m)^({}) (least squares).\n",
+        d.case.dt,
+        1e3 * lo,
+        1e3 * h,
+        x.len(),
+        fmt_opt(slope, 2)
+    );
+    slope
+}
+
+/// The peak of each primary re-contact at a fixed Δt over the meshes of
+/// PEAK_MESHES: whether the peak at small Δt is the mesh's as well.
+fn peak_mesh_table(speed: f64, dts: &[f64]) {
+    let cases: Vec<Case> = dts
+        .iter()
+        .flat_map(|&dt| {
+            PEAK_MESHES.iter().map(move |&elements| Case {
+                speed,
+                elements,
+                dt,
+            })
+        })
+        .collect();
+    let done: Vec<Done> = cases
+        .par_iter()
+        .map(|&case| {
+            let sc = scene(case);
+            let out = run(&sc, &mut |_, _| {}).unwrap_or_else(|e| panic!("{case:?}: {e}"));
+            eprintln!(
+                "ran V = {} m/s, N = {}, Δt = {:e} s: {} steps in {:.2} s",
+                case.speed, case.elements, case.dt, out.steps, out.wall_seconds
+            );
+            Done { case, sc, out }
+        })
+        .collect();
+    let p = Props::of(&done[0].sc);
+    let omegas: Vec<String> = PEAK_MESHES
+        .iter()
+        .map(|&n| {
+            let h = p.length / n as f64;
+            let w = (p.ei / p.rho_a).sqrt() * (std::f64::consts::PI / h).powi(2);
+            format!("N = {n}: ω_2h = {w:.3e} rad/s, 1/ω_2h = {:.2e} s", 1.0 / w)
+        })
+        .collect();
+    println!(
+        "The bending frequency of a wave of length 2h, ω_2h = sqrt(EI/ρA)·(π/h)², is the highest the mesh carries as a beam: {}.\n",
+        omegas.join("; ")
+    );
+    let heads: Vec<String> = PEAK_MESHES.iter().map(|n| format!("N = {n}")).collect();
+    println!(
+        "| Δt (s) | # | t (s) | zone | {} | a_h = slope of log peak against log h |",
+        heads.join(" | ")
+    );
+    println!("|---|---|---|---|{}---|", "---|".repeat(PEAK_MESHES.len()));
+    for &dt in dts {
+        let row: Vec<&Done> = done.iter().filter(|d| d.case.dt == dt).collect();
+        let anchor = row
+            .iter()
+            .find(|d| d.case.elements == DT_LADDER_ELEMENTS)
+            .expect("the N of the Δt ladder is among PEAK_MESHES");
+        let per: Vec<Vec<Recontact>> = row.iter().map(|d| recontacts(d).0).collect();
+        for (k, e) in recontacts(anchor).0.iter().enumerate() {
+            let peaks: Vec<Option<f64>> = per
+                .iter()
+                .map(|ev| {
+                    ev.iter()
+                        .filter(|o| (o.t - e.t).abs() < MATCH_TOLERANCE)
+                        .min_by(|a, b| (a.t - e.t).abs().total_cmp(&(b.t - e.t).abs()))
+                        .map(|o| o.peak)
+                })
+                .collect();
+            let (hx, py): (Vec<f64>, Vec<f64>) = row
+                .iter()
+                .zip(&peaks)
+                .filter_map(|(d, p)| p.map(|p| (50.0 / d.case.elements as f64, p)))
+                .unzip();
+            println!(
+                "| {dt:e} | {} | {:.4} | {} | {} | {} |",
+                k + 1,
+                e.t,
+                if e.support { "support" } else { "span" },
+                peaks
+                    .iter()
+                    .map(|p| p.map_or("—".into(), |p| format!("{p:.0}")))
+                    .collect::<Vec<_>>()
+                    .join(" | "),
+                fmt_opt(log_slope(&hx, &py), 2)
+            );
+        }
+    }
+    println!();
 }
 
 // ---------------------------------------------------------------------------
@@ -605,7 +774,10 @@ fn recontact_study(runs: &[&Done]) -> RecontactSummary {
             .zip(row)
             .filter_map(|(dt, r)| r.map(|r| (*dt, r.peak)))
             .unzip();
-        let a = (x.len() >= 3).then(|| log_slope(&x, &y)).flatten().map(|s| -s);
+        let a = (x.len() >= 3)
+            .then(|| log_slope(&x, &y))
+            .flatten()
+            .map(|s| -s);
         if let Some(a) = a {
             if e.support {
                 a_support.push(a);
@@ -761,9 +933,15 @@ fn recontact_study(runs: &[&Done]) -> RecontactSummary {
         a_span: median(&mut a_span),
         a_support: median(&mut a_support),
         a_span_range: range(&a_span),
-        max_change_span: ch_span.iter().copied().fold(None, |m, v| Some(m.map_or(v, |m: f64| m.max(v)))),
+        max_change_span: ch_span
+            .iter()
+            .copied()
+            .fold(None, |m, v| Some(m.map_or(v, |m: f64| m.max(v)))),
         median_change_span: median(&mut ch_span),
-        max_change_support: ch_support.iter().copied().fold(None, |m, v| Some(m.map_or(v, |m: f64| m.max(v)))),
+        max_change_support: ch_support
+            .iter()
+            .copied()
+            .fold(None, |m, v| Some(m.map_or(v, |m: f64| m.max(v)))),
         ratio_slope: {
             let (x, y): (Vec<f64>, Vec<f64>) = dts
                 .iter()
@@ -850,7 +1028,10 @@ fn main() {
 
     let p = Props::of(&done[0].sc);
     let lb = p.bending_length();
-    println!("# Contact loss report{}\n", if quick { " (quick)" } else { "" });
+    println!(
+        "# Contact loss report{}\n",
+        if quick { " (quick)" } else { "" }
+    );
     println!(
         "Reference scene (`scenes/reference.toml`): L = {} m, EI = {:.1} N·m², T = {} N, ρA = {:.4} kg/m, m = {} kg; ℓ_b = sqrt(EI/T) = {:.4} m; Z = 2 sqrt(T ρA) = {:.1} N·s/m; t_c = {:.3e} s. Zone z = max({}ℓ_b, {}h, {}VΔt) from each end support.\n",
         p.length,
@@ -939,18 +1120,43 @@ fn main() {
         println!("h ladder, Δt = {H_LADDER_DT:e} s:\n");
         distance_table(&h_runs, false);
 
-        println!("### 1d. The in-span part under other zone widths\n\nΔt ladder, N = {DT_LADDER_ELEMENTS}:\n");
+        println!(
+            "### 1d. The in-span part under other zone widths\n\nΔt ladder, N = {DT_LADDER_ELEMENTS}:\n"
+        );
         let v_dt = candidates_table(&dt_runs, true);
         println!("h ladder, Δt = {H_LADDER_DT:e} s:\n");
         let v_h = candidates_table(&h_runs, false);
 
+        println!(
+            "### 1e. The arrival at the right support (x = L, pinned)\n\nΔt ladder, N = {DT_LADDER_ELEMENTS}; the zone is the right support zone (x_m > L − z):\n"
+        );
+        let arrival = arrival_table(&dt_runs, true);
+        println!("h ladder, Δt = {H_LADDER_DT:e} s:\n");
+        arrival_table(&h_runs, false);
+
         println!("### 2. Re-contacts over the Δt ladder (N = {DT_LADDER_ELEMENTS})\n");
         let rs = recontact_study(&dt_runs);
-        summaries.push((speed, p_dt, p_h, span_change_dt, span_change_h, v_dt, v_h, rs));
+        if !quick && speed == FAST_SPEED {
+            println!(
+                "**Peak λ (N) over the mesh at fixed Δt** (primary re-contacts of the N = {DT_LADDER_ELEMENTS} run, matched by time):\n"
+            );
+            peak_mesh_table(speed, &PEAK_MESH_DTS);
+        }
+        summaries.push((
+            speed,
+            p_dt,
+            p_h,
+            span_change_dt,
+            span_change_h,
+            v_dt,
+            v_h,
+            rs,
+            arrival,
+        ));
     }
 
     println!("## Summary\n");
-    for (speed, p_dt, p_h, cdt, ch, v_dt, v_h, rs) in &summaries {
+    for (speed, p_dt, p_h, cdt, ch, v_dt, v_h, rs, arrival) in &summaries {
         let ok = |v: &Vec<(f64, f64, bool)>| {
             v.iter()
                 .filter(|x| x.2)
@@ -977,6 +1183,10 @@ fn main() {
             pct(rs.median_change_span),
             pct(rs.max_change_span),
             pct(rs.max_change_support)
+        );
+        println!(
+            "* V0 = {speed} m/s: at the arrival, λ ∝ (L − x_m)^({}) over the last element (finest Δt).",
+            fmt_opt(*arrival, 2)
         );
     }
 }
