@@ -762,11 +762,16 @@ fn recontact_study(runs: &[&Done]) -> RecontactSummary {
         "**Peak λ (N)** over the first {PEAK_STEPS} steps of each primary re-contact of the finest run, matched by time (±{MATCH_TOLERANCE:e} s) in the others; a = −(least-squares slope of log peak against log Δt) over the levels where the event is found:\n"
     );
     println!(
-        "| # | t (s) | x_m/L | zone | loss before (ms) | {} | a |",
+        "| # | t (s) | x_m/L | zone | loss before (ms) | {} | a | a (Δt ≥ 1/ω_2h) |",
         dt_head.join(" | ")
     );
-    println!("|---|---|---|---|---|{}---|", "---|".repeat(dts.len()));
+    println!("|---|---|---|---|---|{}---|---|", "---|".repeat(dts.len()));
+    // the mesh's highest beam frequency (a wave of length 2h): below
+    // Δt = 1/ω_2h the step resolves times the mesh does not (section 2b)
+    let h = p.length / runs[0].case.elements as f64;
+    let w2h = (p.ei / p.rho_a).sqrt() * (std::f64::consts::PI / h).powi(2);
     let mut a_span = Vec::new();
+    let mut a_span_resolved = Vec::new();
     let mut a_support = Vec::new();
     for (k, (e, row)) in matched.iter().enumerate() {
         let (x, y): (Vec<f64>, Vec<f64>) = dts
@@ -778,6 +783,19 @@ fn recontact_study(runs: &[&Done]) -> RecontactSummary {
             .then(|| log_slope(&x, &y))
             .flatten()
             .map(|s| -s);
+        let (xr, yr): (Vec<f64>, Vec<f64>) = x
+            .iter()
+            .zip(&y)
+            .filter(|(dt, _)| **dt * w2h >= 1.0)
+            .map(|(a, b)| (*a, *b))
+            .unzip();
+        let a_res = (xr.len() >= 3)
+            .then(|| log_slope(&xr, &yr))
+            .flatten()
+            .map(|s| -s);
+        if let (Some(a), false) = (a_res, e.support) {
+            a_span_resolved.push(a);
+        }
         if let Some(a) = a {
             if e.support {
                 a_support.push(a);
@@ -790,14 +808,15 @@ fn recontact_study(runs: &[&Done]) -> RecontactSummary {
             .map(|r| r.map_or("—".into(), |r| format!("{:.0}", r.peak)))
             .collect();
         println!(
-            "| {} | {:.4} | {:.4} | {} | {:.2} | {} | {} |",
+            "| {} | {:.4} | {:.4} | {} | {:.2} | {} | {} | {} |",
             k + 1,
             e.t,
             e.x_over_l,
             if e.support { "support" } else { "span" },
             1e3 * e.loss,
             cells.join(" | "),
-            fmt_opt(a, 2)
+            fmt_opt(a, 2),
+            fmt_opt(a_res, 2)
         );
     }
     println!();
@@ -928,8 +947,25 @@ fn recontact_study(runs: &[&Done]) -> RecontactSummary {
             .join(" | ")
     );
     println!();
+    let (mx, my): (Vec<f64>, Vec<f64>) = dts
+        .iter()
+        .zip(&med)
+        .filter_map(|(d, m)| m.map(|m| (*d, m)))
+        .unzip();
+    println!(
+        "Median peak/(ZΔv) (span): successive exponents a = {}; 1/ω_2h = {:.2e} s at N = {} (ω_2h = sqrt(EI/ρA)(π/h)²). Median a over in-span events, levels with Δt ≥ 1/ω_2h only: {}.\n",
+        successive_slopes(&mx, &my)
+            .into_iter()
+            .map(|v| fmt_opt(v.map(|v| -v), 2))
+            .collect::<Vec<_>>()
+            .join(", "),
+        1.0 / w2h,
+        runs[0].case.elements,
+        fmt_opt(median(&mut a_span_resolved.clone()), 2)
+    );
 
     RecontactSummary {
+        a_span_resolved: median(&mut a_span_resolved),
         a_span: median(&mut a_span),
         a_support: median(&mut a_support),
         a_span_range: range(&a_span),
@@ -964,6 +1000,7 @@ fn range(v: &[f64]) -> Option<(f64, f64)> {
 }
 
 struct RecontactSummary {
+    a_span_resolved: Option<f64>,
     a_span: Option<f64>,
     a_support: Option<f64>,
     a_span_range: Option<(f64, f64)>,
@@ -1174,10 +1211,11 @@ fn main() {
             ok(v_h)
         );
         println!(
-            "* V0 = {speed} m/s: peak ∝ Δt^(−a), median a = {} over in-span primary re-contacts (range {}), {} in the support zone; median peak/(ZΔv) ∝ Δt^(−{}); impulse over {IMPULSE_WINDOW:e} s, |change| between the two finest Δt: median {}, max {} (span), max {} (support).",
+            "* V0 = {speed} m/s: peak ∝ Δt^(−a), median a = {} over in-span primary re-contacts (range {}), {} over the levels with Δt ≥ 1/ω_2h, {} in the support zone; median peak/(ZΔv) ∝ Δt^(−{}); impulse over {IMPULSE_WINDOW:e} s, |change| between the two finest Δt: median {}, max {} (span), max {} (support).",
             fmt_opt(rs.a_span, 2),
             rs.a_span_range
                 .map_or("—".into(), |(a, b)| format!("{a:.2}–{b:.2}")),
+            fmt_opt(rs.a_span_resolved, 2),
             fmt_opt(rs.a_support, 2),
             fmt_opt(rs.ratio_slope, 2),
             pct(rs.median_change_span),
