@@ -87,6 +87,10 @@ pub fn split_loss(x: &[f64], in_contact: &[bool], length: f64, zone: f64) -> Los
     }
 }
 
+/// The two parts are sums of 1/steps over disjoint sets of steps; their sum
+/// differs from the library's count/steps by round-off only.
+const PARTS_SUM_TOLERANCE: f64 = 1e-12;
+
 // ---------------------------------------------------------------------------
 // Study settings
 // ---------------------------------------------------------------------------
@@ -297,6 +301,15 @@ fn split_row(d: &Done) -> SplitRow {
     let h = p.length / d.case.elements as f64;
     let zone = support_zone(p.ei, p.tension, h, d.case.speed, d.case.dt);
     let split = split_loss(&tr.x, &tr.in_contact, p.length, zone);
+    // the two parts add up to the library's P_l (same steps, same denominator)
+    let pl = d.out.stats[0].loss_fraction;
+    assert!(
+        (split.in_span + split.support - pl).abs() <= PARTS_SUM_TOLERANCE * pl.max(1.0),
+        "{:?}: in-span {} + support {} ≠ P_l {pl}",
+        d.case,
+        split.in_span,
+        split.support
+    );
     let steps = (tr.x.len() - 1) as f64;
     let mut bands = [0.0; 3];
     for i in 1..tr.x.len() {
@@ -1226,5 +1239,32 @@ fn main() {
             "* V0 = {speed} m/s: at the arrival, λ ∝ (L − x_m)^({}) over the last element (finest Δt).",
             fmt_opt(*arrival, 2)
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn zone_takes_the_largest_of_its_three_widths() {
+        // reference beam: ℓ_b = sqrt(129.2/30000) = 0.0656 m
+        let (ei, t): (f64, f64) = (129.2, 30000.0);
+        let lb = (ei / t).sqrt();
+        assert_eq!(support_zone(ei, t, 0.03125, 134.92, 2.5e-5), 4.0 * lb);
+        assert_eq!(support_zone(ei, t, 0.125, 134.92, 2.5e-5), 0.5);
+        assert_eq!(support_zone(ei, t, 0.01, 100.0, 1e-3), 0.4);
+        // a string has no bending length
+        assert_eq!(support_zone(0.0, t, 0.01, 100.0, 1e-5), 0.04);
+    }
+
+    #[test]
+    fn parts_add_up_and_fall_where_the_zone_says() {
+        // L = 10, z = 1: rows 1..=6 at x = 0.5 (support), 2, 5, 8 (span), 9.5, 9.9 (support)
+        let x = [0.0, 0.5, 2.0, 5.0, 8.0, 9.5, 9.9];
+        let c = [true, false, true, false, false, false, true];
+        let s = split_loss(&x, &c, 10.0, 1.0);
+        assert_eq!(s.support, 2.0 / 6.0);
+        assert_eq!(s.in_span, 2.0 / 6.0);
     }
 }
