@@ -26,18 +26,12 @@ use taut::{Resolved, RunOutput, resolve_scene, run};
 const REFERENCE: &str = include_str!("../scenes/reference.toml");
 
 // ---------------------------------------------------------------------------
-// The support zone (the definition; the library will get its own copy)
+// The support zone: the library's constants (taut::record::zone), with the
+// width in bending lengths left free so other widths can be tried; every run
+// checks that this split at 4 ℓ_b is the library's loss_fraction_span.
 // ---------------------------------------------------------------------------
 
-/// Zone width in bending lengths ℓ_b = sqrt(EI/T): the beam's boundary layer
-/// at a support has width ~ℓ_b (w is forced to 0 there over a few ℓ_b).
-pub const SUPPORT_BENDING_LENGTHS: f64 = 4.0;
-/// Zone width in elements: the discrete boundary layer cannot be narrower
-/// than a few elements when h > ℓ_b.
-pub const SUPPORT_ELEMENTS: f64 = 4.0;
-/// Zone width in carrier steps V·Δt: the last steps' positions are sampled
-/// V·Δt apart, so the zone holds at least a few steps.
-pub const SUPPORT_STEPS: f64 = 4.0;
+use taut::record::zone::{SUPPORT_BENDING_LENGTHS, SUPPORT_ELEMENTS, SUPPORT_STEPS};
 
 /// Width z (m) of the support zone at each end support, with `bending`
 /// bending lengths: z = max(bending·ℓ_b, 4h, 4VΔt). ℓ_b = 0 for a string.
@@ -309,6 +303,17 @@ fn split_row(d: &Done) -> SplitRow {
         d.case,
         split.in_span,
         split.support
+    );
+    // and this split is the library's own (taut::record::LossGeometry)
+    let lib = &d.out.stats[0];
+    assert!(
+        (split.in_span - lib.loss_fraction_span).abs() <= PARTS_SUM_TOLERANCE
+            && (zone - lib.support_zone).abs() <= PARTS_SUM_TOLERANCE * zone,
+        "{:?}: in-span {} (zone {zone} m) ≠ the library's {} (zone {} m)",
+        d.case,
+        split.in_span,
+        lib.loss_fraction_span,
+        lib.support_zone
     );
     let steps = (tr.x.len() - 1) as f64;
     let mut bands = [0.0; 3];

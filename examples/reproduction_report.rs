@@ -485,6 +485,7 @@ fn run_1d(clock: &Clock, t: &Target1, res: Res, maps: &Path) -> Run1 {
         scene_text: reference_text(),
         set: res_sets(res),
         axes: vec![Axis::parse(t.axis, false).expect("valid axis")],
+        check_refinement: false,
     };
     let name = format!("{}_{}", t.id.to_lowercase(), res.tag);
     let recs = run_sweep(clock, &name, &spec);
@@ -697,6 +698,7 @@ fn write_1d(md: &mut String, t: &Target1, s: &Run1, c: &Run1) {
             scene_text: reference_text(),
             set: vec![],
             axes: vec![Axis::parse("tension_ratio=0.001:0.001:1", false).unwrap()],
+            check_refinement: false,
         };
         let sc = spec.resolve(0).unwrap();
         let cw = sc.beam.wave_speed();
@@ -1050,6 +1052,7 @@ fn run_t7(clock: &Clock, res: Res, n: usize, maps: &Path) -> Run2 {
         scene_text: reference_text(),
         set: res_sets(res),
         axes: t7_axes(n),
+        check_refinement: false,
     };
     let name = format!("t7_{}", res.tag);
     let recs = run_sweep(clock, &name, &spec);
@@ -1593,6 +1596,7 @@ fn findings(
         scene_text: reference_text(),
         set: vec![],
         axes: vec![Axis::parse("tension_ratio=0.001:0.001:1", false).unwrap()],
+        check_refinement: false,
     };
     let cw = spec.resolve(0).unwrap().beam.wave_speed();
 

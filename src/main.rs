@@ -111,6 +111,11 @@ enum Command {
         /// Run only the points with index ≡ i (mod n): i/n.
         #[arg(long, value_name = "I/N")]
         shard: Option<String>,
+        /// Run each point a second time with twice the elements and half the
+        /// step, and add the change of P_l and of its in-span part as columns
+        /// (and, for a 2-D sweep, a map of where the loss map is converged).
+        #[arg(long)]
+        check_refinement: bool,
         /// Worker threads (default: all cores; at most 4 per core, 1024).
         #[arg(long)]
         threads: Option<usize>,
@@ -221,12 +226,12 @@ fn main() -> ExitCode {
             set,
             out,
             shard,
+            check_refinement,
             threads,
             quiet,
         } => match cmd_sweep(
             scene,
-            &vary,
-            log,
+            (&vary, log, check_refinement),
             set,
             out,
             shard.as_deref(),
@@ -474,8 +479,7 @@ fn cmd_gate(suite: &Path, out: Option<PathBuf>, update: bool, quiet: bool) -> ta
 #[allow(clippy::too_many_arguments)]
 fn cmd_sweep(
     scene: PathBuf,
-    vary: &[String],
-    log: bool,
+    (vary, log, check_refinement): (&[String], bool, bool),
     set: Vec<String>,
     out: Option<PathBuf>,
     shard: Option<&str>,
@@ -493,6 +497,7 @@ fn cmd_sweep(
         scene_text,
         set,
         axes,
+        check_refinement,
     };
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-sweep"));
     // bounded, and a pool that cannot start is an error, not a panic

@@ -542,7 +542,10 @@ fn merge_checks_the_files_it_reads_back() {
     let second = std::fs::read_to_string(runs.join("000001.json")).unwrap();
     std::fs::write(runs.join("000001.json"), &first).unwrap();
     let e = merge("m1");
-    assert!(e.contains("000001.json") && e.contains("holds point 0"), "{e}");
+    assert!(
+        e.contains("000001.json") && e.contains("holds point 0"),
+        "{e}"
+    );
     std::fs::write(runs.join("000001.json"), second).unwrap();
     // a spec whose axes were removed
     let spec_path = shard.join("sweep.json");

@@ -20,6 +20,7 @@ fn spec(axes: Vec<Axis>) -> SweepSpec {
             "time.end=0.2".into(),
         ],
         axes,
+        check_refinement: false,
     }
 }
 

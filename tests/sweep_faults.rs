@@ -37,6 +37,7 @@ fn spec(axes: &[&str]) -> SweepSpec {
             .iter()
             .map(|a| Axis::parse(a, false).unwrap())
             .collect(),
+        check_refinement: false,
     }
 }
 

@@ -6,7 +6,7 @@
 
 use crate::integrate::CarrierSample;
 
-mod stats;
+pub mod stats;
 pub mod zone;
 
 pub use stats::{ContactAccumulator, ContactStats, ForceStats, LossClass, Recontact};
@@ -98,4 +98,3 @@ impl History {
         self.t.is_empty()
     }
 }
-

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use super::fmt_f64;
 use crate::error::{Error, Result};
-use crate::study::sweep::{PROFILE_BINS, SweepRecord, SweepSpec};
+use crate::study::sweep::{PROFILE_BINS, SweepRecord, SweepSpec, refinement_converged};
 
 fn opt(v: Option<f64>) -> String {
     v.filter(|x| x.is_finite()).map(fmt_f64).unwrap_or_default()
@@ -25,6 +25,29 @@ fn write(path: &Path, text: &str) -> Result<()> {
     f.write_all(text.as_bytes()).map_err(|e| Error::io(path, e))
 }
 
+/// The `--check-refinement` columns of a row: the refined run's N, Δt, P_l
+/// and in-span P_l, the changes, whether the in-span part is converged.
+fn refined_cells(r: &SweepRecord) -> String {
+    let Some(f) = &r.refined else {
+        return ",,,,,,,,".into();
+    };
+    let converged = refinement_converged(r.loss_fraction_span, f.loss_fraction_span)
+        .map_or("", |c| if c { "yes" } else { "no" });
+    format!(
+        ",{},{},{},{},{},{},{converged},{}",
+        f.elements,
+        num(f.dt),
+        num(f.loss_fraction),
+        num(f.loss_fraction_span),
+        num(f.loss_fraction - r.loss_fraction),
+        num(f.loss_fraction_span - r.loss_fraction_span),
+        f.error
+            .as_deref()
+            .map(|e| format!("\"{}\"", e.replace('"', "'")))
+            .unwrap_or_default()
+    )
+}
+
 /// Write the CSV outputs of a sweep into `dir`. Wall times go to
 /// `timing.csv` only, so the other files are the same bytes on any machine
 /// and thread count.
@@ -35,7 +58,11 @@ pub fn write_sweep(dir: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Res
     if !has_ratio {
         s.push_str(",speed_ratio");
     }
-    s.push_str(",loss_fraction,loss_fraction_span,loss_fraction_support,force_mean,force_std,force_min,force_max,first_loss_position,contact_switches,warnings,error\n");
+    s.push_str(",loss_fraction,loss_fraction_span,loss_fraction_support,force_mean,force_std,force_min,force_max,first_loss_position,contact_switches,warnings,error");
+    if spec.check_refinement {
+        s.push_str(",refined_elements,refined_dt,refined_loss_fraction,refined_loss_fraction_span,loss_fraction_change,loss_fraction_span_change,loss_fraction_span_converged,refined_error");
+    }
+    s.push('\n');
     for r in records {
         let vals: Vec<String> = r.values.iter().map(|v| fmt_f64(*v)).collect();
         s.push_str(&vals.join(","));
@@ -44,7 +71,7 @@ pub fn write_sweep(dir: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Res
             s.push_str(&opt(r.speed_ratio));
         }
         s.push_str(&format!(
-            ",{},{},{},{},{},{},{},{},{},{},{}\n",
+            ",{},{},{},{},{},{},{},{},{},{},{}",
             num(r.loss_fraction),
             num(r.loss_fraction_span),
             num(r.loss_fraction_support),
@@ -60,6 +87,10 @@ pub fn write_sweep(dir: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Res
                 .map(|e| format!("\"{}\"", e.replace('"', "'")))
                 .unwrap_or_default()
         ));
+        if spec.check_refinement {
+            s.push_str(&refined_cells(r));
+        }
+        s.push('\n');
     }
     write(&dir.join("sweep.csv"), &s)?;
 

@@ -156,6 +156,10 @@ pub struct SweepSpec {
     pub set: Vec<String>,
     /// One or two axes; the last varies fastest.
     pub axes: Vec<Axis>,
+    /// Run each point a second time, refined (N × 2, Δt / 2), to show
+    /// where P_l is converged (`--check-refinement`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub check_refinement: bool,
 }
 
 impl SweepSpec {
@@ -180,8 +184,22 @@ impl SweepSpec {
         self.axes.iter().zip(idx).map(|(a, i)| a.value(i)).collect()
     }
 
+    /// The resolved scene of point `index`, refined: twice the elements and
+    /// half the time step (`--check-refinement`).
+    pub fn resolve_refined(&self, index: usize) -> Result<Resolved> {
+        let (sc, mut o) = self.resolve_with_overrides(index)?;
+        o.push(format!("mesh.elements={}", 2 * sc.elements));
+        o.push(format!("time.step={:e}", sc.dt / 2.0));
+        resolve_scene(&self.scene_text, &o)
+    }
+
     /// The resolved scene of point `index`.
     pub fn resolve(&self, index: usize) -> Result<Resolved> {
+        self.resolve_with_overrides(index).map(|(sc, _)| sc)
+    }
+
+    /// The resolved scene of point `index` and the overrides that make it.
+    fn resolve_with_overrides(&self, index: usize) -> Result<(Resolved, Vec<String>)> {
         let values = self.point(index);
         let mut o = self.set.clone();
         let mut ratios: Vec<(&str, f64)> = Vec::new();
@@ -267,7 +285,8 @@ impl SweepSpec {
                 _ => unreachable!("DIMENSIONLESS"),
             }
         }
-        resolve_scene(&self.scene_text, &o)
+        let sc = resolve_scene(&self.scene_text, &o)?;
+        Ok((sc, o))
     }
 
     /// The resolved scene at per-axis indices `at`.
@@ -321,6 +340,11 @@ impl SweepSpec {
         for i in 0..self.len() {
             self.resolve(i)
                 .map_err(|e| at_point(e, i, &self.point(i)))?;
+            if self.check_refinement {
+                self.resolve_refined(i).map_err(|e| {
+                    at_point(e, i, &self.point(i)).in_run("the refined run of --check-refinement")
+                })?;
+            }
         }
         for (k, a) in self.axes.iter().enumerate() {
             if a.count < 2 {
@@ -412,6 +436,9 @@ pub struct SweepRecord {
     pub loss_profile: Vec<Option<f64>>,
     /// Warnings of the run.
     pub warnings: Vec<String>,
+    /// The same point refined (N × 2, Δt / 2), with `--check-refinement`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refined: Option<Refined>,
     /// The run's error, if it stopped (then the statistics are NaN/empty).
     pub error: Option<String>,
     /// Wall seconds (machine-dependent: written to timing.csv only).
@@ -458,11 +485,50 @@ impl SweepRecord {
             force_profile: vec![],
             loss_profile: vec![],
             warnings: vec![],
+            refined: None,
             error: None,
             wall_seconds: None,
         }
     }
 }
+
+/// A sweep point run again refined (`--check-refinement`): twice the
+/// elements, half the step.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Refined {
+    /// Elements of the refined run.
+    pub elements: usize,
+    /// Its time step, s.
+    pub dt: f64,
+    /// Its P_l (null when it stopped).
+    #[serde(with = "nan_as_null")]
+    pub loss_fraction: f64,
+    /// Its in-span P_l (null when it stopped).
+    #[serde(with = "nan_as_null")]
+    pub loss_fraction_span: f64,
+    /// Why it stopped, if it did.
+    pub error: Option<String>,
+}
+
+/// Whether a P_l is converged under one refinement: the change is at most
+/// [`REFINEMENT_REL`] of the refined value or [`REFINEMENT_ABS`] (None when
+/// either run stopped).
+pub fn refinement_converged(base: f64, refined: f64) -> Option<bool> {
+    let d = (refined - base).abs();
+    d.is_finite()
+        .then(|| d <= (REFINEMENT_REL * refined.abs()).max(REFINEMENT_ABS))
+}
+
+/// Relative change of P_l under one refinement (N × 2, Δt / 2) taken as
+/// converged: the in-span P_l of the reference case changes by 0.02–4 %
+/// between its finest levels (`docs/contact_loss.md`), a non-converged one
+/// by tens of per cent.
+pub const REFINEMENT_REL: f64 = 0.05;
+
+/// Absolute change of P_l taken as converged whatever its size: 5e-4 is
+/// three steps of loss in the reference run's 6000, below what a loss map
+/// resolves.
+pub const REFINEMENT_ABS: f64 = 5e-4;
 
 /// Run point `index` and reduce it to its record.
 fn record(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
@@ -522,8 +588,34 @@ fn record(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
             .map(|b| (n[b] > 0).then(|| lost[b] as f64 / n[b] as f64))
             .collect(),
         warnings: out.warnings.clone(),
+        refined: spec.check_refinement.then(|| refined(spec, index)),
         error: None,
         wall_seconds: Some(out.wall_seconds),
+    }
+}
+
+/// Run point `index` refined.
+fn refined(spec: &SweepSpec, index: usize) -> Refined {
+    let stopped = |elements, dt, e: Error| Refined {
+        elements,
+        dt,
+        loss_fraction: f64::NAN,
+        loss_fraction_span: f64::NAN,
+        error: Some(e.to_string()),
+    };
+    let sc = match spec.resolve_refined(index) {
+        Ok(sc) => sc,
+        Err(e) => return stopped(0, f64::NAN, e),
+    };
+    match run(&sc, &mut |_, _| {}) {
+        Ok(o) => Refined {
+            elements: sc.elements,
+            dt: sc.dt,
+            loss_fraction: o.stats[0].loss_fraction,
+            loss_fraction_span: o.stats[0].loss_fraction_span,
+            error: None,
+        },
+        Err(e) => stopped(sc.elements, sc.dt, e),
     }
 }
 
