@@ -158,6 +158,22 @@ struct Done {
     out: RunOutput,
 }
 
+/// Run every case, in parallel, in order.
+fn run_all(cases: &[Case]) -> Vec<Done> {
+    cases
+        .par_iter()
+        .map(|&case| {
+            let sc = scene(case);
+            let out = run(&sc, &mut |_, _| {}).unwrap_or_else(|e| panic!("{case:?}: {e}"));
+            eprintln!(
+                "ran V = {} m/s, N = {}, Δt = {:e} s: {} steps in {:.2} s",
+                case.speed, case.elements, case.dt, out.steps, out.wall_seconds
+            );
+            Done { case, sc, out }
+        })
+        .collect()
+}
+
 fn scene(case: Case) -> Resolved {
     let o = vec![
         format!("carrier.speed.cruise={}", case.speed),
@@ -584,18 +600,7 @@ fn peak_mesh_table(speed: f64, dts: &[f64]) {
             })
         })
         .collect();
-    let done: Vec<Done> = cases
-        .par_iter()
-        .map(|&case| {
-            let sc = scene(case);
-            let out = run(&sc, &mut |_, _| {}).unwrap_or_else(|e| panic!("{case:?}: {e}"));
-            eprintln!(
-                "ran V = {} m/s, N = {}, Δt = {:e} s: {} steps in {:.2} s",
-                case.speed, case.elements, case.dt, out.steps, out.wall_seconds
-            );
-            Done { case, sc, out }
-        })
-        .collect();
+    let done = run_all(&cases);
     let p = Props::of(&done[0].sc);
     let omegas: Vec<String> = PEAK_MESHES
         .iter()
@@ -1062,18 +1067,7 @@ fn main() {
         }
     }
     let clock = Instant::now();
-    let done: Vec<Done> = cases
-        .par_iter()
-        .map(|&case| {
-            let sc = scene(case);
-            let out = run(&sc, &mut |_, _| {}).unwrap_or_else(|e| panic!("{case:?}: {e}"));
-            eprintln!(
-                "ran V = {} m/s, N = {}, Δt = {:e} s: {} steps in {:.2} s",
-                case.speed, case.elements, case.dt, out.steps, out.wall_seconds
-            );
-            Done { case, sc, out }
-        })
-        .collect();
+    let done = run_all(&cases);
     eprintln!(
         "{} runs in {:.1} s wall",
         done.len(),

@@ -94,26 +94,22 @@ fn a_sweep_whose_runs_stop_writes_its_tables_and_resume_keeps_the_stopped_points
     }
 
     // resume: nothing is run again (the stops are deterministic), same tables
-    let before: Vec<_> = (0..3)
-        .map(|i| {
-            std::fs::metadata(out.join(format!("runs/{i:06}.json")))
-                .unwrap()
-                .modified()
-                .unwrap()
-        })
-        .collect();
+    let mtimes = || -> Vec<_> {
+        (0..3)
+            .map(|i| {
+                std::fs::metadata(out.join(format!("runs/{i:06}.json")))
+                    .unwrap()
+                    .modified()
+                    .unwrap()
+            })
+            .collect()
+    };
+    let before = mtimes();
     let first = tables(&out);
     std::thread::sleep(Duration::from_millis(20));
     let o = stopping_sweep(&out);
     assert_eq!(o.status.code(), Some(1));
-    let after: Vec<_> = (0..3)
-        .map(|i| {
-            std::fs::metadata(out.join(format!("runs/{i:06}.json")))
-                .unwrap()
-                .modified()
-                .unwrap()
-        })
-        .collect();
+    let after = mtimes();
     assert_eq!(before, after, "a resumed sweep reran a stopped point");
     assert_eq!(first, tables(&out));
 }
