@@ -116,9 +116,9 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
     line_plot(
         &dir.join("compare.svg"),
         &title,
-        x_desc,
-        "contact force λ (N)",
+        (x_desc, "contact force λ (N)"),
         &series,
+        super::plot::LOSS_SHADING,
     )
 }
 

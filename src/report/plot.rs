@@ -83,21 +83,25 @@ pub fn write_force_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<(
     line_plot(
         path,
         &title,
-        x_desc,
-        "contact force λ (N)",
+        (x_desc, "contact force λ (N)"),
         &force_series(sc, out, ""),
+        LOSS_SHADING,
     )
 }
 
-/// Draw series as lines with shaded intervals; clip the y axis above spikes.
+/// What the shaded intervals of a force plot mean.
+pub(crate) const LOSS_SHADING: &str = "contact lost (shaded)";
+
+/// Draw series as lines with shaded intervals (meaning `shading`, in the
+/// legend); clip the y axis above spikes.
 pub(crate) fn line_plot(
     path: &Path,
     title: &str,
-    x_desc: &str,
-    y_desc: &str,
+    (x_desc, y_desc): (&str, &str),
     series: &[Series],
+    shading: &str,
 ) -> Result<()> {
-    draw(path, title, x_desc, y_desc, series).map_err(|e| Error::Output {
+    draw(path, title, x_desc, y_desc, series, shading).map_err(|e| Error::Output {
         path: path.into(),
         reason: e.to_string(),
     })
@@ -109,6 +113,7 @@ fn draw(
     x_desc: &str,
     y_desc: &str,
     series: &[Series],
+    shading: &str,
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
     let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -182,7 +187,7 @@ fn draw(
                 [(x0, y0), (x0, y0)],
                 shade.filled(),
             )))?
-            .label("contact lost (shaded)")
+            .label(shading)
             .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], shade.filled()));
     }
     chart
