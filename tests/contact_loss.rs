@@ -239,6 +239,26 @@ fn sweep_check_refinement_adds_the_change_and_a_map() {
         svg.contains("under refinement"),
         "the map says what it shows"
     );
+
+    // a 1-D sweep gets the two P_l curves, the unconverged stretch shaded
+    let one = tmp.path().join("one");
+    let o = taut_bin(&[
+        "sweep",
+        "scenes/reference.toml",
+        "--vary",
+        "speed_ratio=0.6:0.9:3",
+        "--set",
+        "mesh.elements=100",
+        "--set",
+        "time.step=2e-4",
+        "--check-refinement",
+        "--quiet",
+        "--out",
+        one.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let svg = std::fs::read_to_string(one.join("refinement.svg")).unwrap();
+    assert!(svg.contains("points converged") && svg.contains("refined: 2N"));
 }
 
 #[test]
