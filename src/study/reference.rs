@@ -65,7 +65,7 @@ pub const RIDING_MASS_MIN_MODES: usize = 800;
 pub const RIDING_MASS_MODES_PER_ELEMENT: usize = 4;
 
 /// Cap on J: the RK4 step falls like 1/ω_J ∝ J⁻² in the bending range, so
-/// the cost grows like J³ (J = 1600: ≈ 6 s for 0.4 s of motion); beyond
+/// the cost grows like J³ (J = 1600: a few seconds for 0.4 s of motion); beyond
 /// this the reference would cost more than the FE ladder it checks.
 pub const RIDING_MASS_MAX_MODES: usize = 3200;
 
