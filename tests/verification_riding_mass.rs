@@ -11,7 +11,8 @@
 //!
 //! Checks:
 //! * the Galerkin solution converges in J (w and filtered λ);
-//! * `taut converge` picks it as the analytic reference for this scene;
+//! * `taut converge` picks it as the analytic reference for this scene (and
+//!   not for a spring or a unilateral contact), and the CLI reports its errors;
 //! * the FE displacement under the mass converges to it as (N, Δt) are
 //!   refined together, (50, 4e-4 s) → (200, 1e-4 s), with an observed order
 //!   and a finest-level error bounded by named tolerances;
@@ -22,7 +23,7 @@
 //! `cargo test --release --test verification_riding_mass -- --ignored --nocapture`.
 
 mod common;
-use common::{run, scene};
+use common::{out_dir, run, scene, taut_bin};
 use taut::analytic::{RidingMassBeam, RidingMassHistory};
 
 const SCENE: &str = "riding_mass_pinned.toml";
@@ -221,6 +222,44 @@ fn fe_displacement_and_filtered_force_converge_to_the_galerkin_solution() {
         assert!(e[0] >= MIN_FORCE_RATIO * e[1], "force errors {ef:?}");
     }
     assert!(ef[2] <= MAX_FE_ERROR_FORCE, "force error {} N", ef[2]);
+}
+
+/// The CLI path: `taut converge` on the bundled scene reports errors against
+/// the analytic (Galerkin) reference, and they match the test's ladder.
+#[test]
+fn taut_converge_reports_the_galerkin_errors() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = out_dir(&tmp, "conv");
+    let o = taut_bin(&[
+        "converge",
+        "scenes/riding_mass_pinned.toml",
+        "--levels",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("converge.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .filter(|r: &Vec<&str>| r[4] == "displacement_max")
+        .collect();
+    assert_eq!(rows.len(), 3);
+    let errors: Vec<f64> = rows.iter().map(|r| r[6].parse().unwrap()).collect();
+    for r in &rows {
+        assert_eq!(r[9], "analytic", "{r:?}");
+    }
+    println!(
+        "taut converge --levels 3: displacement_max errors {}",
+        sci(&errors)
+    );
+    assert!(errors[2] <= MAX_FE_ERROR_W, "{errors:?}");
+    for e in errors.windows(2) {
+        assert!((e[0] / e[1]).log2() >= MIN_FE_ORDER, "{errors:?}");
+    }
 }
 
 /// The longer ladder: N = 400 at Δt = 5e-5 s against J = 1600 (≈ 10 s).
