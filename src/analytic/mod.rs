@@ -3,8 +3,10 @@
 
 pub mod modes;
 pub mod moving_load;
+pub mod riding_mass;
 pub mod static_load;
 
 pub use modes::{ClampedPinnedModes, Dispersion, PinnedPinnedModes};
 pub use moving_load::{MovingForceBeam, MovingForceString};
+pub use riding_mass::{RidingMassBeam, RidingMassHistory};
 pub use static_load::StaticPointLoad;
