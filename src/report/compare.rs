@@ -125,10 +125,11 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
 /// The terminal table.
 pub fn compare_table(c: &Comparison) -> String {
     let mut s = format!(
-        "{:<19} {:<16} {:>9} {:>10} {:>11} {:>11} {:>11} {:>10} {:>9} {:>8}\n",
+        "{:<19} {:<16} {:>9} {:>9} {:>10} {:>11} {:>11} {:>11} {:>10} {:>9} {:>8}\n",
         "method",
         "formulation",
         "P_l",
+        "in span",
         "Δloss",
         "max|Δλ| N",
         "rms Δλ N",
@@ -139,10 +140,11 @@ pub fn compare_table(c: &Comparison) -> String {
     );
     for r in &c.rows {
         s.push_str(&format!(
-            "{:<19} {:<16} {:>9.5} {:>10.5} {:>11.4e} {:>11.4e} {:>11.3e} {:>10.2} {:>9} {:>8.3}\n",
+            "{:<19} {:<16} {:>9.5} {:>9.5} {:>10.5} {:>11.4e} {:>11.4e} {:>11.3e} {:>10.2} {:>9} {:>8.3}\n",
             r.method,
             r.formulation,
             r.loss_fraction,
+            r.loss_fraction_span,
             r.loss_set_difference,
             r.max_force_difference,
             r.rms_force_difference,

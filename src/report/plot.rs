@@ -76,8 +76,8 @@ pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<
 /// Plot the contact force of every carrier, loss shaded (`force.svg`).
 pub fn write_force_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()> {
     let title = format!(
-        "contact force: {} elements, dt = {} s, P_l = {:.4}",
-        sc.elements, sc.dt, out.stats[0].loss_fraction
+        "contact force: {} elements, dt = {} s, P_l = {:.4} ({:.4} in span)",
+        sc.elements, sc.dt, out.stats[0].loss_fraction, out.stats[0].loss_fraction_span
     );
     let (_, x_desc) = abscissa(sc, out, 0);
     line_plot(
