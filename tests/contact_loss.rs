@@ -234,6 +234,8 @@ fn sweep_check_refinement_adds_the_change_and_a_map() {
         assert_eq!(change, refined - base);
         assert!(["yes", "no"].contains(&cells[at("loss_fraction_span_converged")]));
     }
+    let span = std::fs::read_to_string(out.join("loss_fraction_span_map.svg")).unwrap();
+    assert!(span.contains("P_l in span"));
     let svg = std::fs::read_to_string(out.join("refinement_map.svg")).unwrap();
     assert!(
         svg.contains("under refinement"),

@@ -995,7 +995,23 @@ pub fn write_sweep_maps(
         2 => {
             let p = dir.join("loss_fraction_map.svg");
             write_loss_fraction_map(&p, spec, records, None, &SPEED_RATIO_LEVELS)?;
-            let mut maps = vec![p];
+            // the in-span part, the one to quote (docs/contact_loss.md)
+            let s = dir.join("loss_fraction_span_map.svg");
+            let span: Vec<SweepRecord> = records
+                .iter()
+                .map(|r| SweepRecord {
+                    loss_fraction: r.loss_fraction_span,
+                    ..r.clone()
+                })
+                .collect();
+            write_loss_fraction_map(
+                &s,
+                spec,
+                &span,
+                Some("P_l in span (outside the support zones)"),
+                &SPEED_RATIO_LEVELS,
+            )?;
+            let mut maps = vec![p, s];
             if spec.check_refinement {
                 let r = dir.join("refinement_map.svg");
                 write_refinement_map(&r, spec, records)?;
