@@ -24,7 +24,7 @@
 
 mod common;
 use common::{out_dir, run, scene, taut_bin};
-use taut::analytic::{RidingMassBeam, RidingMassHistory};
+use taut::analytic::RidingMassHistory;
 
 const SCENE: &str = "riding_mass_pinned.toml";
 
@@ -89,25 +89,7 @@ const DT0: f64 = 4e-4;
 
 fn galerkin(modes: usize) -> RidingMassHistory {
     let sc = scene(SCENE, &[]);
-    let (b, c) = (&sc.beam, &sc.carriers[0]);
-    let taut::scene::CarrierKind::MassSpring { mass, .. } = c.kind else {
-        panic!("{SCENE} has a mass carrier");
-    };
-    let taut::scene::SpeedProfile::Constant { value: speed } = c.motion.profile else {
-        panic!("{SCENE} moves at constant speed");
-    };
-    let r = RidingMassBeam::new(
-        b.ei,
-        b.tension,
-        b.rho_a,
-        b.length,
-        mass,
-        sc.g,
-        c.side,
-        c.motion.start,
-        speed,
-    )
-    .unwrap();
+    let r = taut::study::reference::riding_mass_beam(&sc).expect("a riding-mass scene");
     r.solve(modes, r.max_step(modes), DT0, sc.steps as f64 * sc.dt)
         .unwrap()
 }

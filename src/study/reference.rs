@@ -75,8 +75,10 @@ pub fn riding_mass_modes(elements: usize) -> usize {
     (RIDING_MASS_MODES_PER_ELEMENT * elements).clamp(RIDING_MASS_MIN_MODES, RIDING_MASS_MAX_MODES)
 }
 
-/// The riding-mass reference w(t), when `sc` is such a scene (module docs).
-fn riding_mass_w(sc: &Resolved) -> Option<AnalyticW> {
+/// The Galerkin riding mass of a scene, when `sc` is one (a single mass
+/// without spring or dashpot, bilateral, at constant speed, on a
+/// pinned–pinned beam without distributed load; module docs).
+pub fn riding_mass_beam(sc: &Resolved) -> Option<RidingMassBeam> {
     let [c] = sc.carriers.as_slice() else {
         return None;
     };
@@ -102,7 +104,7 @@ fn riding_mass_w(sc: &Resolved) -> Option<AnalyticW> {
     {
         return None;
     }
-    let r = RidingMassBeam::new(
+    RidingMassBeam::new(
         b.ei,
         b.tension,
         b.rho_a,
@@ -113,7 +115,12 @@ fn riding_mass_w(sc: &Resolved) -> Option<AnalyticW> {
         c.motion.start,
         speed,
     )
-    .ok()?;
+    .ok()
+}
+
+/// The riding-mass reference w(t), when `sc` is such a scene (module docs).
+fn riding_mass_w(sc: &Resolved) -> Option<AnalyticW> {
+    let r = riding_mass_beam(sc)?;
     let modes = riding_mass_modes(sc.elements);
     let h = r
         .solve(modes, r.max_step(modes), sc.dt, sc.steps as f64 * sc.dt)
