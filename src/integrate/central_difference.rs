@@ -56,7 +56,7 @@ pub struct StabilityLimit {
 /// The stability limit of central difference for a validated scene, from
 /// scratch (assembles the system and factors M): for studies choosing Δt.
 pub fn central_difference_limit(sc: &Resolved) -> Result<StabilityLimit> {
-    let sys = System::new(sc);
+    let sys = System::new(sc)?;
     let mass_factor = BandedLdlt::factor(&sys.beam().mass)?;
     Ok(stability_limit(sc, &sys, &mass_factor))
 }
@@ -65,7 +65,7 @@ pub fn central_difference_limit(sc: &Resolved) -> Result<StabilityLimit> {
 pub fn stability_limit(sc: &Resolved, sys: &System, mass_factor: &BandedLdlt) -> StabilityLimit {
     let beam = sys.beam();
     let (theta, residual) = spectrum::lanczos_max(beam, mass_factor, LANCZOS_STEPS);
-    let bound = spectrum::element_bound(&sc.beam, beam.h);
+    let bound = beam.omega_bound(&sc.beam);
     let mut omega = (theta + residual).sqrt().min(bound);
     for m in sys.masses() {
         omega = omega.max((m.k / m.m).sqrt());

@@ -185,7 +185,7 @@ impl Integrator {
         sc: &Resolved,
         make: &dyn Fn(&Resolved, &mut System, &mut State, Initial) -> Result<Box<dyn Stepper>>,
     ) -> Result<Self> {
-        let mut sys = System::new(sc);
+        let mut sys = System::new(sc)?;
         let mut state = State::at_rest(sys.beam().n, sys.contacts());
         let init = sys.initial()?;
         let stepper = make(sc, &mut sys, &mut state, init)?;
@@ -255,7 +255,7 @@ impl Integrator {
         let (sys, st) = (&self.sys, &self.state);
         let c = &sys.carriers[i];
         let x = c.props.motion.position(st.t);
-        let pv = if st.step == 0 { c.pv_f } else { c.pv_g };
+        let pv = if st.step == 0 { &c.pv_f } else { &c.pv_g };
         let w = c.s * pv.dot(&st.d);
         match (c.props.kind, c.contact) {
             (CarrierKind::Force { force }, _) => CarrierSample {

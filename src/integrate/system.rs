@@ -209,8 +209,8 @@ pub struct Initial {
 
 impl System {
     /// Assemble the beam and the carriers of a validated scene.
-    pub fn new(sc: &Resolved) -> Self {
-        let beam = BeamModel::new(&sc.beam, sc.elements);
+    pub fn new(sc: &Resolved) -> Result<Self> {
+        let beam = BeamModel::from_scene(sc)?;
         let mut nc = 0;
         let mut masses = Vec::new();
         let mut force_scale: f64 = 0.0;
@@ -255,7 +255,7 @@ impl System {
             .collect();
         let law = law_for(&sc.contact, nc);
         let level = law.level();
-        System {
+        Ok(System {
             dt: sc.dt,
             placement: sc.contact.placement,
             bilateral: sc.contact.kind == ContactKind::Bilateral,
@@ -284,7 +284,7 @@ impl System {
             beam,
             carriers,
             masses,
-        }
+        })
     }
 
     /// The discretized beam: M, K, the distributed load, point vectors.
@@ -344,11 +344,12 @@ impl System {
         let velocity = self.level == Level::Velocity;
         for c in self.carriers.iter_mut() {
             let tf = if c.contact.is_some() { t_force } else { t_load };
-            c.pv_f = self.beam.point_vector(c.props.motion.position(tf));
+            self.beam
+                .point_vector_into(c.props.motion.position(tf), false, &mut c.pv_f);
             let xg = c.props.motion.position(t_gap);
-            c.pv_g = self.beam.point_vector(xg);
+            self.beam.point_vector_into(xg, false, &mut c.pv_g);
             if velocity {
-                c.pv_s = self.beam.slope_vector(xg);
+                self.beam.point_vector_into(xg, true, &mut c.pv_s);
                 c.speed = c.props.motion.speed(t_gap);
             }
         }
@@ -650,8 +651,8 @@ fn fill_delassus(
     for ci in carriers {
         let Some(i) = ci.contact else { continue };
         let pv = match placement {
-            Placement::End => ci.pv_g,
-            Placement::Alpha => ci.pv_f,
+            Placement::End => &ci.pv_g,
+            Placement::Alpha => &ci.pv_f,
         };
         for j in 0..nc {
             let mut wij = ci.s * pv.dot_strided(solved, k, 1 + j);

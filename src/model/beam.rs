@@ -1,13 +1,24 @@
-//! The discretized beam: uniform mesh, dof numbering with supports removed,
-//! global banded M and K (MODEL §4, §6), and point vectors r_b(x).
+//! The discretized beam (MODEL §4, §6, §9.2): the unknowns, their mass and
+//! stiffness matrices M and K (banded), the distributed load, and point
+//! vectors r_b(x) with v(x) = r_b(x)ᵀd.
 //!
 //! Only what the scene requires: Hermite elements (v, θ per node,
 //! half-bandwidth 3) when EI > 0, linear string elements (v per node,
-//! half-bandwidth 1) when EI = 0.
+//! half-bandwidth 1) when EI = 0, on a uniform or graded [`Mesh`]. Two more
+//! bases share the seam (`[mesh] kind`, MODEL §9.2): the J lowest FE modes
+//! (`modal`, FE modal truncation) and the J exact modes of the continuous
+//! beam (`galerkin`). Both are mass-normalized, so their M is the identity
+//! and K = diag(ω_j²), stored as bands of half-bandwidth 0: every time
+//! integrator and contact law runs on them unchanged, at O(J) per step,
+//! through M, K, the load and the point vectors (which become dense
+//! J-vectors, `r_j = φ_j(x)`).
 
 use super::banded::SymBand;
 use super::element;
-use crate::scene::{BeamProps, Support};
+use super::mesh::Mesh;
+use crate::analytic::ModeShapes;
+use crate::error::Result;
+use crate::scene::{BeamProps, Discretization, Resolved, Support};
 
 /// Which element family the beam uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -18,70 +29,147 @@ pub enum Family {
     String,
 }
 
-/// A sparse vector over at most four beam dofs: the shape functions of the
-/// element holding a point (MODEL §4, r_b(x)). Supported dofs carry weight 0.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// A point vector r(x) over the unknowns: v(x) = r(x)ᵀd (MODEL §4, r_b(x)).
+///
+/// On a mesh it is sparse, the shape functions of the element holding the
+/// point (at most four dofs; supported dofs carry weight 0). In a modal
+/// basis it is dense, `r_j = φ_j(x)`, kept in a buffer that
+/// [`BeamModel::point_vector_into`] refills without allocating.
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct PointVector {
     /// Global dof indices (unused slots point at 0 with weight 0).
     pub idx: [usize; 4],
     /// Weights (shape function values).
     pub val: [f64; 4],
+    /// The dense weights of a modal basis (empty on a mesh).
+    dense: Vec<f64>,
 }
 
 impl PointVector {
+    /// The dense weights r_j of a modal basis (empty on a mesh).
+    pub fn dense(&self) -> &[f64] {
+        &self.dense
+    }
+
     /// rᵀx.
     #[inline]
     pub fn dot(&self, x: &[f64]) -> f64 {
-        self.val[0] * x[self.idx[0]]
-            + self.val[1] * x[self.idx[1]]
-            + self.val[2] * x[self.idx[2]]
-            + self.val[3] * x[self.idx[3]]
+        if self.dense.is_empty() {
+            self.val[0] * x[self.idx[0]]
+                + self.val[1] * x[self.idx[1]]
+                + self.val[2] * x[self.idx[2]]
+                + self.val[3] * x[self.idx[3]]
+        } else {
+            self.dense.iter().zip(x).map(|(r, x)| r * x).sum()
+        }
     }
 
     /// y += a·r. `y` has `stride` interleaved columns; this writes column `col`.
     #[inline]
     pub fn scatter(&self, a: f64, y: &mut [f64], stride: usize, col: usize) {
-        for k in 0..4 {
-            y[self.idx[k] * stride + col] += a * self.val[k];
+        if self.dense.is_empty() {
+            for k in 0..4 {
+                y[self.idx[k] * stride + col] += a * self.val[k];
+            }
+        } else {
+            for (r, y) in self.dense.iter().zip(y.chunks_exact_mut(stride)) {
+                y[col] += a * r;
+            }
         }
     }
 
     /// rᵀx where x has `stride` interleaved columns; reads column `col`.
     #[inline]
     pub fn dot_strided(&self, x: &[f64], stride: usize, col: usize) -> f64 {
-        (0..4)
-            .map(|k| self.val[k] * x[self.idx[k] * stride + col])
-            .sum()
+        if self.dense.is_empty() {
+            (0..4)
+                .map(|k| self.val[k] * x[self.idx[k] * stride + col])
+                .sum()
+        } else {
+            self.dense
+                .iter()
+                .zip(x.chunks_exact(stride))
+                .map(|(r, x)| r * x[col])
+                .sum()
+        }
     }
+}
+
+/// What the unknowns are (MODEL §9.2).
+#[derive(Debug, Clone)]
+pub enum Basis {
+    /// Nodal values of the finite elements.
+    Elements,
+    /// Modal coordinates of the J lowest FE modes: v(x) = Σ_j φ_j(x) η_j,
+    /// φ_j(x) = r_b(x)ᵀΦ_j.
+    Modal {
+        /// Φ row by row: FE dof i's entries of the J modes at i·J .. (i+1)·J.
+        shapes: Vec<f64>,
+        /// J.
+        modes: usize,
+    },
+    /// Coordinates of the J exact modes of the continuous beam.
+    Galerkin(ModeShapes),
 }
 
 /// The assembled beam.
 #[derive(Debug, Clone)]
 pub struct BeamModel {
-    /// Element family.
+    /// Element family of the FE mesh (of the mesh a `modal` basis is taken
+    /// from; for `galerkin`, the family the section would use).
     pub family: Family,
-    /// Number of elements N.
+    /// Number of elements N of the FE mesh (0 for `galerkin`: no mesh).
     pub elements: usize,
     /// Span L, m.
     pub length: f64,
-    /// Element length h = L/N, m.
+    /// The shortest length the discretization resolves, m: the shortest
+    /// element (h = L/N on a uniform mesh), or for a modal basis of J
+    /// modes the larger of that and the half-wavelength L/J of its last
+    /// mode (what a support-arrival or resolution check compares with).
     pub h: f64,
+    /// The FE mesh (a one-element placeholder for `galerkin`).
+    pub mesh: Mesh,
     /// For each node-local dof (node·dofs_per_node + local), its global index
-    /// or `None` when a support removes it.
+    /// or `None` when a support removes it (the FE dofs).
     pub dof_of: Vec<Option<usize>>,
-    /// Number of free dofs n.
+    /// Number of unknowns n (FE dofs, or J modes).
     pub n: usize,
-    /// Global consistent mass matrix M, kg (and kg·m² on rotations).
+    /// Global mass matrix M, kg (and kg·m² on rotations; the identity in a
+    /// mass-normalized modal basis).
     pub mass: SymBand,
-    /// Global stiffness K = K_B + K_T, N/m.
+    /// Global stiffness K = K_B + K_T, N/m (diag ω_j² in a modal basis).
     pub stiffness: SymBand,
     /// Consistent load vector of the distributed load p, N.
     pub load: Vec<f64>,
+    /// What the unknowns are.
+    pub basis: Basis,
 }
 
 impl BeamModel {
     /// Assemble the beam for `props` on `elements` equal elements.
     pub fn new(props: &BeamProps, elements: usize) -> Self {
+        Self::on_mesh(props, Mesh::uniform(props.length, elements))
+    }
+
+    /// The scene's discretization (`[mesh]`, MODEL §9.2). The modal bases
+    /// are computed here, once per run.
+    pub fn from_scene(sc: &Resolved) -> Result<Self> {
+        match sc.discretization {
+            Discretization::Hermite => Ok(Self::on_mesh(&sc.beam, Self::scene_mesh(sc)?)),
+            Discretization::Modal { modes } => {
+                Self::modal(Self::on_mesh(&sc.beam, Self::scene_mesh(sc)?), modes)
+            }
+            Discretization::Galerkin { modes } => Self::galerkin(&sc.beam, modes),
+        }
+    }
+
+    fn scene_mesh(sc: &Resolved) -> Result<Mesh> {
+        Mesh::new(sc.beam.length, sc.elements, sc.grading)
+    }
+
+    /// Assemble the finite elements on a mesh.
+    pub fn on_mesh(props: &BeamProps, mesh: Mesh) -> Self {
+        let elements = mesh.elements();
         let family = if props.is_string() {
             Family::String
         } else {
@@ -117,7 +205,6 @@ impl BeamModel {
                 }
             })
             .collect();
-        let h = props.length / elements as f64;
         let p = match family {
             Family::Hermite => 3,
             Family::String => 1,
@@ -126,13 +213,14 @@ impl BeamModel {
         let mut stiffness = SymBand::zeros(n, p);
         let mut load = vec![0.0; n];
         let w = props.distributed_load;
-        match family {
-            Family::Hermite => {
-                let me = element::hermite_mass(props.rho_a, h);
-                let ke = element::hermite_bending(props.ei, h)
-                    + element::hermite_tension(props.tension, h);
-                let fe = element::hermite_uniform_load(w, h);
-                for e in 0..elements {
+        for e in 0..elements {
+            let h = mesh.element_length(e);
+            match family {
+                Family::Hermite => {
+                    let me = element::hermite_mass(props.rho_a, h);
+                    let ke = element::hermite_bending(props.ei, h)
+                        + element::hermite_tension(props.tension, h);
+                    let fe = element::hermite_uniform_load(w, h);
                     let dofs: [Option<usize>; 4] = std::array::from_fn(|k| dof_of[2 * e + k]);
                     scatter(
                         &mut mass,
@@ -144,12 +232,10 @@ impl BeamModel {
                         fe.as_slice(),
                     );
                 }
-            }
-            Family::String => {
-                let me = element::string_mass(props.rho_a, h);
-                let ke = element::string_stiffness(props.tension, h);
-                let fe = element::string_uniform_load(w, h);
-                for e in 0..elements {
+                Family::String => {
+                    let me = element::string_mass(props.rho_a, h);
+                    let ke = element::string_stiffness(props.tension, h);
+                    let fe = element::string_uniform_load(w, h);
                     let dofs: [Option<usize>; 2] = [dof_of[e], dof_of[e + 1]];
                     scatter(
                         &mut mass,
@@ -167,71 +253,191 @@ impl BeamModel {
             family,
             elements,
             length: props.length,
-            h,
+            h: mesh.h_min(),
+            mesh,
             dof_of,
             n,
             mass,
             stiffness,
             load,
+            basis: Basis::Elements,
         }
     }
 
-    /// Half-bandwidth of M and K.
+    /// FE modal truncation (MODEL §9.2): the J lowest eigenpairs of the
+    /// assembled (K, M), mass-normalized ([`super::eigen`]), as the basis.
+    pub fn modal(fe: BeamModel, modes: usize) -> Result<Self> {
+        let pairs = super::eigen::lowest_eigenpairs(&fe.mass, &fe.stiffness, modes)?;
+        let (n_fe, j) = (fe.n, modes);
+        // Φ row-major: a point vector sums four rows of it
+        let mut shapes = vec![0.0; n_fe * j];
+        for col in 0..j {
+            for i in 0..n_fe {
+                shapes[i * j + col] = pairs.shapes[col * n_fe + i];
+            }
+        }
+        let mut load = vec![0.0; j];
+        for (i, f) in fe.load.iter().enumerate() {
+            for (l, phi) in load.iter_mut().zip(&shapes[i * j..(i + 1) * j]) {
+                *l += phi * f;
+            }
+        }
+        let h = fe.h.max(fe.length / j as f64);
+        Ok(BeamModel {
+            n: j,
+            h,
+            mass: diagonal(&vec![1.0; j]),
+            stiffness: diagonal(&pairs.omega_sq),
+            load,
+            basis: Basis::Modal { shapes, modes: j },
+            ..fe
+        })
+    }
+
+    /// The analytic-mode Galerkin basis (MODEL §9.2): the J exact modes of
+    /// the continuous beam, mass-normalized; no finite element on its path.
+    pub fn galerkin(props: &BeamProps, modes: usize) -> Result<Self> {
+        let shapes = ModeShapes::new(props, modes)?;
+        let omega_sq: Vec<f64> = shapes.omega().iter().map(|w| w * w).collect();
+        let load = shapes.uniform_load(props.distributed_load);
+        Ok(BeamModel {
+            family: if props.is_string() {
+                Family::String
+            } else {
+                Family::Hermite
+            },
+            elements: 0,
+            length: props.length,
+            h: props.length / modes as f64,
+            mesh: Mesh::uniform(props.length, 1),
+            dof_of: Vec::new(),
+            n: modes,
+            mass: diagonal(&vec![1.0; modes]),
+            stiffness: diagonal(&omega_sq),
+            load,
+            basis: Basis::Galerkin(shapes),
+        })
+    }
+
+    /// Half-bandwidth of M and K (0 in a modal basis).
     pub fn bandwidth(&self) -> usize {
         self.mass.bandwidth()
     }
 
     /// The element holding x and the local coordinate s ∈ [0, 1].
     pub fn locate(&self, x: f64) -> (usize, f64) {
-        let xi = (x / self.h).clamp(0.0, self.elements as f64);
-        let e = (xi.floor() as usize).min(self.elements - 1);
-        (e, (xi - e as f64).clamp(0.0, 1.0))
+        self.mesh.locate(x)
     }
 
     /// r_b(x): beam displacement v(x) = r_b(x)ᵀ d (MODEL §4).
     pub fn point_vector(&self, x: f64) -> PointVector {
-        self.shape_vector(x, false)
+        let mut pv = PointVector::default();
+        self.point_vector_into(x, false, &mut pv);
+        pv
     }
 
     /// r_b'(x): beam slope v'(x) = r_b'(x)ᵀ d (for the convective part of a
     /// moving contact's gap rate, V·v'(x_m)).
     pub fn slope_vector(&self, x: f64) -> PointVector {
-        self.shape_vector(x, true)
+        let mut pv = PointVector::default();
+        self.point_vector_into(x, true, &mut pv);
+        pv
     }
 
-    fn shape_vector(&self, x: f64, slope: bool) -> PointVector {
+    /// r_b(x), or r_b'(x) when `slope`, into `pv`, reusing its buffer: no
+    /// allocation once `pv` has held a vector of this basis.
+    pub fn point_vector_into(&self, x: f64, slope: bool, pv: &mut PointVector) {
+        match &self.basis {
+            Basis::Elements => {
+                pv.dense.clear();
+                let (idx, val) = self.element_vector(x, slope);
+                pv.idx = idx;
+                pv.val = val;
+            }
+            Basis::Modal { shapes, modes } => {
+                let (idx, val) = self.element_vector(x, slope);
+                pv.idx = [0; 4];
+                pv.val = [0.0; 4];
+                pv.dense.clear();
+                pv.dense.resize(*modes, 0.0);
+                for (i, w) in idx.into_iter().zip(val) {
+                    if w != 0.0 {
+                        let row = &shapes[i * modes..(i + 1) * modes];
+                        for (r, phi) in pv.dense.iter_mut().zip(row) {
+                            *r += w * phi;
+                        }
+                    }
+                }
+            }
+            Basis::Galerkin(modes) => {
+                pv.idx = [0; 4];
+                pv.val = [0.0; 4];
+                pv.dense.resize(modes.count(), 0.0);
+                if slope {
+                    modes.slopes_into(x, &mut pv.dense);
+                } else {
+                    modes.values_into(x, &mut pv.dense);
+                }
+            }
+        }
+    }
+
+    /// The FE shape functions (or their slopes) of the element holding x.
+    fn element_vector(&self, x: f64, slope: bool) -> ([usize; 4], [f64; 4]) {
         let (e, s) = self.locate(x);
-        let mut pv = PointVector::default();
+        let h = self.mesh.element_length(e);
+        let (mut idx, mut val) = ([0usize; 4], [0.0; 4]);
         match self.family {
             Family::Hermite => {
                 let n = if slope {
-                    element::hermite_slope(s, self.h)
+                    element::hermite_slope(s, h)
                 } else {
-                    element::hermite_shape(s, self.h)
+                    element::hermite_shape(s, h)
                 };
                 for k in 0..4 {
                     if let Some(i) = self.dof_of[2 * e + k] {
-                        pv.idx[k] = i;
-                        pv.val[k] = n[k];
+                        idx[k] = i;
+                        val[k] = n[k];
                     }
                 }
             }
             Family::String => {
                 let n = if slope {
-                    [-1.0 / self.h, 1.0 / self.h]
+                    [-1.0 / h, 1.0 / h]
                 } else {
                     element::string_shape(s)
                 };
                 for k in 0..2 {
                     if let Some(i) = self.dof_of[e + k] {
-                        pv.idx[k] = i;
-                        pv.val[k] = n[k];
+                        idx[k] = i;
+                        val[k] = n[k];
                     }
                 }
             }
         }
-        pv
+        (idx, val)
     }
+
+    /// An upper bound of the model's highest natural frequency ω_max, rad/s:
+    /// the element-eigenvalue bound at the shortest element on a mesh, the
+    /// exact ω_J in a modal basis (K and M diagonal).
+    pub fn omega_bound(&self, props: &BeamProps) -> f64 {
+        match self.basis {
+            Basis::Elements => super::spectrum::element_bound(props, self.h),
+            _ => (0..self.n)
+                .map(|j| (self.stiffness.get(j, j) / self.mass.get(j, j)).sqrt())
+                .fold(0.0, f64::max),
+        }
+    }
+}
+
+/// A diagonal matrix as a band of half-bandwidth 0.
+fn diagonal(d: &[f64]) -> SymBand {
+    let mut m = SymBand::zeros(d.len(), 0);
+    for (i, v) in d.iter().enumerate() {
+        m.add_entry(i, i, *v);
+    }
+    m
 }
 
 /// Add one element's matrices and load into the global band.

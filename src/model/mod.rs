@@ -3,7 +3,9 @@
 
 pub mod banded;
 pub mod beam;
+pub mod eigen;
 pub mod element;
+pub mod mesh;
 pub mod modal;
 pub mod motion;
 pub mod spectrum;

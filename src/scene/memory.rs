@@ -44,6 +44,20 @@ pub const RHS_BLOCKS: u64 = 4;
 /// copies, the active block), counted generously.
 pub const DENSE_CONTACT_MATRICES: u64 = 6;
 
+/// Dense n_fe × n_fe matrices the `modal` basis's eigenproblem holds at
+/// once (the reduced matrix, its eigenvectors and the solver's workspace),
+/// counted generously.
+pub const MODAL_DENSE_MATRICES: u64 = 4;
+
+/// The extra memory of a `modal` basis of J modes over n_fe FE unknowns:
+/// the dense eigenproblem and the n_fe × J mode shapes kept for the run.
+pub fn modal_bytes(n_fe: usize, modes: usize) -> u64 {
+    let n = n_fe as u64;
+    n.saturating_mul(n)
+        .saturating_mul(8 * MODAL_DENSE_MATRICES)
+        .saturating_add(n.saturating_mul(modes as u64).saturating_mul(8))
+}
+
 /// The memory a run is estimated to need, bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MemoryEstimate {

@@ -7,7 +7,9 @@ use super::{
 };
 use std::collections::HashMap;
 
+use super::Discretization;
 use crate::error::{Error, Result};
+use crate::model::mesh::Grading;
 use crate::model::motion::Motion;
 
 /// Largest mesh accepted: beyond this the run would not fit a sane budget
@@ -103,8 +105,12 @@ pub struct Resolved {
     pub beam: BeamProps,
     /// Carriers, in scene order.
     pub carriers: Vec<CarrierProps>,
-    /// Number of elements N.
+    /// Number of elements N (`mesh.elements`).
     pub elements: usize,
+    /// The space discretization (`mesh.kind`, MODEL §9.2).
+    pub discretization: Discretization,
+    /// The mesh grading (`mesh.grading`).
+    pub grading: Grading,
     /// Contact settings.
     pub contact: ContactSpec,
     /// `[integrator]` as given.
@@ -192,6 +198,7 @@ impl Scene {
                 format!("must be in 1 ..= {MAX_ELEMENTS}"),
             ));
         }
+        let (discretization, grading) = super::discretization::resolve(&self.mesh, &beam)?;
 
         if self.carriers.is_empty() {
             return Err(Error::invalid(
@@ -342,7 +349,7 @@ impl Scene {
             .iter()
             .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
             .count();
-        let need = super::memory::estimate(
+        let mut need = super::memory::estimate(
             steps,
             record_every,
             elements,
@@ -352,6 +359,12 @@ impl Scene {
             masses,
             probes.len(),
         );
+        if let Discretization::Modal { modes } = discretization {
+            need.model = need.model.saturating_add(super::memory::modal_bytes(
+                super::discretization::fe_unknowns(&beam, elements),
+                modes,
+            ));
+        }
         super::memory::check_budget(
             &need,
             steps,
@@ -366,6 +379,8 @@ impl Scene {
             beam,
             carriers,
             elements,
+            discretization,
+            grading,
             contact: self.contact.clone(),
             integrator: self.integrator.clone(),
             scheme,
