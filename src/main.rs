@@ -65,6 +65,11 @@ enum Command {
         /// the scene's own).
         #[arg(long)]
         methods: Option<String>,
+        /// Comma-separated space discretizations to study side by side:
+        /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
+        /// the scene's mesh.modes). Default: the scene's own.
+        #[arg(long, value_name = "LIST")]
+        discretizations: Option<String>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
@@ -143,6 +148,11 @@ enum Command {
         /// Comma-separated time integrators (default: the scene's own).
         #[arg(long)]
         methods: Option<String>,
+        /// Comma-separated space discretizations to study side by side:
+        /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
+        /// the scene's mesh.modes). Default: the scene's own.
+        #[arg(long, value_name = "LIST")]
+        discretizations: Option<String>,
         /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels).
         #[arg(long, default_value_t = 3)]
         levels: usize,
@@ -180,6 +190,11 @@ enum Command {
         /// generalized_alpha, newmark, hht, wbz, bathe, central_difference, moreau_jean.
         #[arg(long)]
         methods: Option<String>,
+        /// Comma-separated space discretizations to study side by side:
+        /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
+        /// the scene's mesh.modes). Default: the scene's own.
+        #[arg(long, value_name = "LIST")]
+        discretizations: Option<String>,
         /// The formulation the differences are measured against.
         #[arg(long, default_value = "lagrange")]
         reference: String,
@@ -251,6 +266,7 @@ fn main() -> ExitCode {
             scene,
             formulations,
             methods,
+            discretizations,
             levels,
             ratio,
             set,
@@ -258,7 +274,11 @@ fn main() -> ExitCode {
             quiet,
         } => cmd_precision(
             scene,
-            (&formulations, methods.as_deref()),
+            (
+                &formulations,
+                methods.as_deref(),
+                discretizations.as_deref(),
+            ),
             (levels, ratio),
             set,
             out,
@@ -280,6 +300,7 @@ fn main() -> ExitCode {
             levels,
             ratio,
             methods,
+            discretizations,
             set,
             out,
             quiet,
@@ -287,7 +308,7 @@ fn main() -> ExitCode {
             scene,
             &refine,
             (levels, ratio),
-            methods.as_deref(),
+            (methods.as_deref(), discretizations.as_deref()),
             set,
             out,
             quiet,
@@ -296,6 +317,7 @@ fn main() -> ExitCode {
             scene,
             formulations,
             methods,
+            discretizations,
             reference,
             reference_method,
             set,
@@ -304,7 +326,7 @@ fn main() -> ExitCode {
         } => match cmd_compare(
             scene,
             &formulations,
-            methods.as_deref(),
+            (methods.as_deref(), discretizations.as_deref()),
             (&reference, reference_method.as_deref()),
             set,
             out,
@@ -403,7 +425,7 @@ fn cmd_converge(
     scene: PathBuf,
     refine: &str,
     (levels, ratio): (usize, f64),
-    methods: Option<&str>,
+    (methods, discretizations): (Option<&str>, Option<&str>),
     set: Vec<String>,
     out: Option<PathBuf>,
     quiet: bool,
@@ -411,18 +433,32 @@ fn cmd_converge(
     use taut::integrate::MethodFactory;
     let refine: Refine = refine.parse()?;
     let methods = methods.map(taut::scene::parse_methods).transpose()?;
+    let spaces = discretizations
+        .map(taut::study::space::SpaceChoice::parse_list)
+        .transpose()?;
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
-    let runs = levels * methods.as_ref().map_or(1, Vec::len);
+    let runs = levels * methods.as_ref().map_or(1, Vec::len) * spaces.as_ref().map_or(1, Vec::len);
     let bar = progress_bar(runs, "runs", quiet);
     let mut tick = |done: usize, _| bar.set_position(done as u64);
     let analytic = &taut::study::reference::analytic_w;
     let kind = format!("converge ({refine:?}, r = {ratio})");
-    if let Some(list) = methods {
-        let factories: Vec<&dyn MethodFactory> =
-            list.iter().map(|m| m as &dyn MethodFactory).collect();
-        let result = taut::study::converge::converge_methods(
-            &text, &set, &factories, refine, levels, ratio, analytic, &mut tick,
+    if methods.is_some() || spaces.is_some() {
+        let factories: Vec<&dyn MethodFactory> = methods
+            .iter()
+            .flatten()
+            .map(|m| m as &dyn MethodFactory)
+            .collect();
+        let result = taut::study::converge::converge_variants(
+            &text,
+            &set,
+            &factories,
+            spaces.as_deref().unwrap_or(&[]),
+            refine,
+            levels,
+            ratio,
+            analytic,
+            &mut tick,
         );
         bar.finish_and_clear();
         let (studies, skipped) = result.map_err(|e| save_failure(&dir, e))?;
@@ -620,7 +656,7 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
 
 fn cmd_precision(
     scene: PathBuf,
-    (formulations, methods): (&str, Option<&str>),
+    (formulations, methods, discretizations): (&str, Option<&str>, Option<&str>),
     (levels, ratio): (usize, usize),
     set: Vec<String>,
     out: Option<PathBuf>,
@@ -636,15 +672,18 @@ fn cmd_precision(
         .collect();
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
-    let n_methods = factories.len().max(1);
+    let spaces = discretizations
+        .map(taut::study::space::SpaceChoice::parse_list)
+        .transpose()?
+        .unwrap_or_default();
+    let n_methods = factories.len().max(1) * spaces.len().max(1);
     let bar = progress_bar(1 + n_methods * list.len() * levels * levels, "runs", quiet);
-    let result = taut::study::precision::precision_methods(
+    let result = taut::study::precision::precision_variants(
         &text,
         &set,
-        &factories,
+        (&factories, &spaces),
         &list,
-        levels,
-        ratio,
+        (levels, ratio),
         &mut |d, _| bar.set_position(d as u64),
     );
     bar.finish_and_clear();
@@ -715,7 +754,7 @@ fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {
 fn cmd_compare(
     scene: PathBuf,
     formulations: &str,
-    methods: Option<&str>,
+    (methods, discretizations): (Option<&str>, Option<&str>),
     (reference, reference_method): (&str, Option<&str>),
     set: Vec<String>,
     out: Option<PathBuf>,
@@ -750,16 +789,27 @@ fn cmd_compare(
         .flatten()
         .map(|m| m as &dyn MethodFactory)
         .collect();
+    let discretizations = discretizations
+        .map(taut::study::space::SpaceChoice::parse_list)
+        .transpose()?
+        .unwrap_or_default();
+    let n_spaces = discretizations.len().max(1);
     let spec = CompareSpec {
         methods: factories,
         formulations: list,
+        discretizations,
         reference_method,
+        reference_discretization: 0,
         reference,
     };
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
     let n_methods = method_list.as_ref().map_or(1, Vec::len);
-    let bar = progress_bar(n_methods * spec.formulations.len(), "runs", quiet);
+    let bar = progress_bar(
+        n_methods * n_spaces * spec.formulations.len(),
+        "runs",
+        quiet,
+    );
     let result = compare_methods(&text, &set, &spec, &mut |done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64)
@@ -846,8 +896,12 @@ fn print_summary(
         .speed_ratio
         .map_or_else(|| "n/a".to_string(), |r| format!("{r:.4}"));
     println!(
-        "  mesh     {} {} elements (h = {:.4} m), {} dofs; Δt = {} s, {} steps to t = {:.4} s; V0/c = {ratio}",
-        s.scene.mesh.elements, d.elements, d.element_length, d.dofs, d.dt, d.steps, d.end_time
+        "  mesh     {}, {} dofs; Δt = {} s, {} steps to t = {:.4} s; V0/c = {ratio}",
+        taut::report::mesh_label(s),
+        d.dofs,
+        d.dt,
+        d.steps,
+        d.end_time
     );
     for (i, c) in s.carriers.iter().enumerate() {
         if let Some(a) = accuracy {

@@ -35,7 +35,7 @@ pub fn resolution_warnings(
     let mut w = unresolved_loss_warnings(stats);
     let b = &sc.beam;
     let c = b.wave_speed();
-    let el = b.length / sc.elements as f64;
+    let el = sc.resolution();
     let courant = c * sc.dt / el;
     if courant > MAX_COURANT {
         w.push(format!(

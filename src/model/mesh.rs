@@ -70,6 +70,17 @@ impl Grading {
         }
     }
 
+    /// h_max/h_min of a graded mesh (None when uniform).
+    pub fn ratio(&self) -> Option<f64> {
+        match *self {
+            Grading::Uniform => None,
+            Grading::Supports { ratio }
+            | Grading::Left { ratio }
+            | Grading::Right { ratio }
+            | Grading::Point { ratio, .. } => Some(ratio),
+        }
+    }
+
     /// Fewest elements the grading needs (one per graded segment).
     pub fn min_elements(&self) -> usize {
         match self {

@@ -76,7 +76,7 @@ impl LossGeometry {
     /// The zone and resolution of carrier `carrier` of a scene.
     pub fn of(sc: &Resolved, carrier: usize) -> Self {
         let b = &sc.beam;
-        let h = b.length / sc.elements as f64;
+        let h = sc.resolution();
         let bending_length = if b.tension > 0.0 {
             (b.ei / b.tension).sqrt()
         } else {

@@ -11,8 +11,9 @@ use crate::error::{Error, Result};
 use crate::study::compare::{CompareRow, Comparison, NotRun};
 
 /// Column order of `compare.csv` (documented in `docs/output.md`).
-pub const COMPARE_COLUMNS: [&str; 16] = [
+pub const COMPARE_COLUMNS: [&str; 17] = [
     "method",
+    "discretization",
     "formulation",
     "loss_fraction",
     "loss_fraction_span",
@@ -33,6 +34,7 @@ pub const COMPARE_COLUMNS: [&str; 16] = [
 fn cells(r: &CompareRow) -> Vec<String> {
     vec![
         r.method.clone(),
+        r.discretization.clone(),
         r.formulation.clone(),
         fmt_f64(r.loss_fraction),
         fmt_f64(r.loss_fraction_span),
@@ -91,12 +93,13 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
     };
     let (_, x_desc) = abscissa(&first.scene, &first.output, 0);
     let several_methods = c.runs.iter().any(|r| r.method != first.method);
+    let space = c.several_discretizations;
     let series: Vec<_> = c
         .runs
         .iter()
         .flat_map(|r| {
-            let label = if several_methods {
-                r.label()
+            let label = if several_methods || space {
+                r.label(space)
             } else {
                 r.formulation.name().to_string()
             };
@@ -104,13 +107,18 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
         })
         .collect();
     let title = format!(
-        "contact force by {}: {} elements, dt = {} s",
-        if several_methods {
-            "method and formulation"
-        } else {
-            "formulation"
+        "contact force by {}: {}, dt = {} s",
+        match (several_methods, space) {
+            (true, true) => "method, discretization and formulation",
+            (false, true) => "discretization and formulation",
+            (true, false) => "method and formulation",
+            (false, false) => "formulation",
         },
-        first.scene.elements,
+        if space {
+            "discretizations as labelled".to_string()
+        } else {
+            format!("{} elements", first.scene.elements)
+        },
         first.scene.dt
     );
     line_plot(
@@ -124,9 +132,21 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
 
 /// The terminal table.
 pub fn compare_table(c: &Comparison) -> String {
+    let space = c.several_discretizations;
+    let who = |m: &str, d: &str| {
+        if space {
+            format!("{m}/{d}")
+        } else {
+            m.to_string()
+        }
+    };
     let mut s = format!(
         "{:<19} {:<16} {:>9} {:>9} {:>10} {:>11} {:>11} {:>11} {:>10} {:>9} {:>8}\n",
-        "method",
+        if space {
+            "method/discretization"
+        } else {
+            "method"
+        },
         "formulation",
         "P_l",
         "in span",
@@ -141,7 +161,7 @@ pub fn compare_table(c: &Comparison) -> String {
     for r in &c.rows {
         s.push_str(&format!(
             "{:<19} {:<16} {:>9.5} {:>9.5} {:>10.5} {:>11.4e} {:>11.4e} {:>11.3e} {:>10.2} {:>9} {:>8.3}\n",
-            r.method,
+            who(&r.method, &r.discretization),
             r.formulation,
             r.loss_fraction,
             r.loss_fraction_span,
@@ -156,24 +176,32 @@ pub fn compare_table(c: &Comparison) -> String {
     }
     s.push_str(&format!(
         "(differences against {}/{})\n",
-        c.reference_method,
+        who(&c.reference_method, &c.reference_discretization),
         c.reference.name()
     ));
     for r in &c.rows {
         for w in &r.warnings {
-            s.push_str(&format!("  WARNING  {}/{}: {w}\n", r.method, r.formulation));
+            s.push_str(&format!(
+                "  WARNING  {}/{}: {w}\n",
+                who(&r.method, &r.discretization),
+                r.formulation
+            ));
         }
     }
     for n in &c.skipped {
         s.push_str(&format!(
             "  skipped  {}/{}: {}\n",
-            n.method, n.formulation, n.reason
+            who(&n.method, &n.discretization),
+            n.formulation,
+            n.reason
         ));
     }
     for n in &c.failed {
         s.push_str(&format!(
             "  FAILED   {}/{}: {}\n",
-            n.method, n.formulation, n.reason
+            who(&n.method, &n.discretization),
+            n.formulation,
+            n.reason
         ));
     }
     s

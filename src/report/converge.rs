@@ -14,10 +14,12 @@ use crate::study::converge::{
 };
 
 /// Column order of `converge.csv`.
-pub const CONVERGE_COLUMNS: [&str; 10] = [
+pub const CONVERGE_COLUMNS: [&str; 12] = [
     "method",
+    "discretization",
     "level",
     "h",
+    "modes",
     "dt",
     "quantity",
     "value",
@@ -50,6 +52,8 @@ struct MethodLevels<'a> {
 struct Level {
     level: usize,
     elements: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    modes: Option<usize>,
     h: f64,
     dt: f64,
     dofs: usize,
@@ -95,10 +99,12 @@ fn write_studies(dir: &Path, studies: &[(&str, &Convergence)], skipped: &[NotRun
     for r in studies.iter().flat_map(|(_, c)| &c.rows) {
         writeln!(
             w,
-            "{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{}",
             r.method,
+            r.discretization,
             r.level,
             fmt_f64(r.h),
+            r.modes.map_or_else(String::new, |j| j.to_string()),
             fmt_f64(r.dt),
             r.quantity,
             nan(r.value),
@@ -120,7 +126,8 @@ fn write_studies(dir: &Path, studies: &[(&str, &Convergence)], skipped: &[NotRun
             .map(|(l, (s, o))| Level {
                 level: l,
                 elements: s.elements,
-                h: s.beam.length / s.elements as f64,
+                modes: s.discretization.modes(),
+                h: s.resolution(),
                 dt: s.dt,
                 dofs: o.dofs,
                 steps: o.steps,

@@ -21,7 +21,7 @@ pub use csv::write_history;
 pub use gate::{gate_table, junit_xml, write_gate};
 pub use plot::write_force_plot;
 pub use precision::{PRECISION_COLUMNS, precision_table, write_precision};
-pub use summary::{Derived, Summary, write_summary};
+pub use summary::{Derived, Summary, mesh_label, write_summary};
 pub use sweep::write_sweep;
 pub use sweep_maps::{
     SPEED_RATIO_LEVELS, axis_label, write_force_map, write_loss_fraction_map, write_loss_map,

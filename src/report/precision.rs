@@ -9,12 +9,14 @@ use crate::error::{Error, Result};
 use crate::study::precision::{Precision, PrecisionRow};
 
 /// Column order of `precision.csv`.
-pub const PRECISION_COLUMNS: [&str; 14] = [
+pub const PRECISION_COLUMNS: [&str; 16] = [
     "method",
+    "discretization",
     "formulation",
     "mesh_level",
     "step_level",
     "elements",
+    "modes",
     "dt",
     "dofs",
     "steps",
@@ -32,12 +34,14 @@ pub fn write_precision(dir: &Path, p: &Precision) -> Result<()> {
     let mut s = PRECISION_COLUMNS.join(",") + "\n";
     for r in &p.rows {
         s.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
             r.method,
+            r.discretization,
             r.formulation,
             r.mesh_level,
             r.step_level,
             r.elements,
+            r.modes.map_or_else(String::new, |j| j.to_string()),
             fmt_f64(r.dt),
             r.dofs,
             r.steps,
@@ -60,6 +64,17 @@ pub fn write_precision(dir: &Path, p: &Precision) -> Result<()> {
 
 /// The terminal table: every row, Pareto points starred.
 pub fn precision_table(p: &Precision) -> String {
+    let space = p
+        .rows
+        .iter()
+        .any(|r| r.discretization != p.rows[0].discretization);
+    let who = |r: &PrecisionRow| {
+        if space {
+            format!("{}/{}", r.method, r.discretization)
+        } else {
+            r.method.clone()
+        }
+    };
     let mut s = format!(
         "{:<19} {:<16} {:>6} {:>10} {:>12} {:>9} {:>11} {:>11} {:>9}\n",
         "method", "formulation", "N", "dt s", "dof-steps", "wall s", "force err", "w err", "ΔP_l"
@@ -67,9 +82,10 @@ pub fn precision_table(p: &Precision) -> String {
     for r in &p.rows {
         s.push_str(&format!(
             "{:<19} {:<16} {:>6} {:>10.3e} {:>12.3e} {:>9.4} {:>11.3e} {:>11.3e} {:>9.5}{}\n",
-            r.method,
+            who(r),
             r.formulation,
-            r.elements,
+            r.modes
+                .map_or_else(|| r.elements.to_string(), |j| format!("J={j}")),
             r.dt,
             r.dof_steps,
             r.wall_seconds,
@@ -80,7 +96,7 @@ pub fn precision_table(p: &Precision) -> String {
         ));
     }
     s.push_str(&format!(
-        "(* Pareto front per method and formulation; reference: {}/lagrange, {} elements, dt = {:e} s, {:.2} s wall)\n",
+        "(* Pareto front per method, discretization and formulation; N is J for a modal basis; reference: {}/lagrange, {} elements, dt = {:e} s, {:.2} s wall)\n",
         p.reference_method, p.reference.0, p.reference.1, p.reference_wall
     ));
     for n in &p.skipped {
@@ -132,21 +148,26 @@ fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::erro
         .draw()?;
     let levels = p.rows.iter().map(|r| r.mesh_level).max().unwrap_or(0);
     // one family of lines per (method, formulation), in row order
-    let mut keys: Vec<(&str, &str)> = p
-        .rows
-        .iter()
-        .map(|r| (r.method.as_str(), r.formulation.as_str()))
-        .collect();
+    let key_of = |r: &PrecisionRow| {
+        (
+            r.method.clone(),
+            r.discretization.clone(),
+            r.formulation.clone(),
+        )
+    };
+    let mut keys: Vec<(String, String, String)> = p.rows.iter().map(key_of).collect();
     keys.dedup();
     let several_methods = keys.iter().any(|k| k.0 != keys[0].0);
+    let several_spaces = keys.iter().any(|k| k.1 != keys[0].1);
     for (fi, key) in keys.iter().enumerate() {
         let col = PALETTE[fi % PALETTE.len()];
-        let name = if several_methods {
-            format!("{}/{}", key.0, key.1)
-        } else {
-            key.1.to_string()
+        let name = match (several_methods, several_spaces) {
+            (true, true) => format!("{}/{}/{}", key.0, key.1, key.2),
+            (true, false) => format!("{}/{}", key.0, key.2),
+            (false, true) => format!("{}/{}", key.1, key.2),
+            (false, false) => key.2.clone(),
         };
-        let of_key = |r: &PrecisionRow| (r.method.as_str(), r.formulation.as_str()) == *key;
+        let of_key = |r: &PrecisionRow| key_of(r) == *key;
         let of = |pred: &dyn Fn(&PrecisionRow) -> bool| -> Vec<(f64, f64)> {
             p.rows
                 .iter()

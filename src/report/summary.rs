@@ -7,7 +7,7 @@ use serde::Serialize;
 use crate::error::Result;
 use crate::record::ContactStats;
 use crate::run::RunOutput;
-use crate::scene::{Resolved, Scene};
+use crate::scene::{Discretization, Resolved, Scene};
 
 /// Figures derived from the scene and the run.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -26,7 +26,10 @@ pub struct Derived {
     pub tension_ratio: Option<f64>,
     /// Beam mass M = ρA L, kg.
     pub beam_mass: f64,
-    /// Element length h, m.
+    /// The length the discretization resolves, m: the element length
+    /// h = L/N on a uniform mesh, the longest element of a graded one, L/J
+    /// for `galerkin`, the larger of the two for `modal`
+    /// ([`Resolved::resolution`]).
     pub element_length: f64,
     /// Unknowns (beam dofs + mass dofs).
     pub dofs: usize,
@@ -36,8 +39,15 @@ pub struct Derived {
     pub dt: f64,
     /// End time, s.
     pub end_time: f64,
-    /// Element family: "hermite" or "string".
+    /// The discretization: "hermite" or "string" elements, or the modal
+    /// bases "galerkin" and "modal" (`mesh.kind`, MODEL §9.2).
     pub elements: &'static str,
+    /// Number of modes J of a modal basis (absent for elements).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
+    /// The mesh grading and its h_max/h_min (absent when uniform).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grading: Option<(&'static str, f64)>,
 }
 
 /// The whole `summary.json`.
@@ -78,18 +88,68 @@ impl Summary {
                 speed_ratio: (c > 0.0).then(|| v0 / c),
                 tension_ratio: b.ea.map(|ea| b.tension / ea),
                 beam_mass: b.total_mass(),
-                element_length: b.length / sc.elements as f64,
+                element_length: sc.resolution(),
                 dofs: out.dofs,
                 steps: out.steps,
                 dt: out.dt,
                 end_time: out.history.t.last().copied().unwrap_or(0.0),
-                elements: if b.is_string() { "string" } else { "hermite" },
+                elements: match sc.discretization {
+                    Discretization::Hermite if b.is_string() => "string",
+                    d => d.name(),
+                },
+                modes: sc.discretization.modes(),
+                grading: sc.grading.ratio().map(|r| (sc.grading.name(), r)),
             },
             contact: out.stats[0].clone(),
             carriers: out.stats.clone(),
             wall_seconds: out.wall_seconds,
             warnings: out.warnings.clone(),
         }
+    }
+}
+
+/// The terminal's description of a run's discretization, e.g.
+/// `400 hermite elements (h = 0.1250 m)` or `modal: the J = 40 lowest modes
+/// of 400 hermite elements (resolves 1.2500 m)`.
+pub fn mesh_label(s: &Summary) -> String {
+    let d = &s.derived;
+    let n = s.scene.mesh.elements;
+    let family = if s.derived.bending_stiffness == 0.0 {
+        "string"
+    } else {
+        "hermite"
+    };
+    let graded = match d.grading {
+        Some((name, r)) => format!(
+            " graded toward {} (h_max/h_min = {r})",
+            match name {
+                "supports" => "both supports",
+                "left" => "x = 0",
+                "right" => "x = L",
+                _ => "the point mesh.grading_at",
+            }
+        ),
+        None => String::new(),
+    };
+    match (d.elements, d.modes) {
+        ("galerkin", Some(j)) => format!(
+            "galerkin: the J = {j} exact modes of the continuous beam (resolves L/J = {:.4} m)",
+            d.element_length
+        ),
+        ("modal", Some(j)) => format!(
+            "modal: the J = {j} lowest modes of {n} {family} elements{graded} (resolves {:.4} m)",
+            d.element_length
+        ),
+        (_, _) if graded.is_empty() => {
+            format!(
+                "{n} {} elements (h = {:.4} m)",
+                d.elements, d.element_length
+            )
+        }
+        _ => format!(
+            "{n} {} elements{graded} (h_max = {:.4} m)",
+            d.elements, d.element_length
+        ),
     }
 }
 

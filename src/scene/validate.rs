@@ -134,6 +134,25 @@ pub struct Resolved {
 }
 
 impl Resolved {
+    /// The length the space discretization resolves, m: h = L/N on a
+    /// uniform mesh, the longest element of a graded one (the coarsest
+    /// place), L/J for a `galerkin` basis of J modes (the half-wavelength
+    /// of its last mode), and the larger of the mesh's and L/J for `modal`.
+    /// Resolution checks and the contact-loss support zone use it.
+    pub fn resolution(&self) -> f64 {
+        let l = self.beam.length;
+        let mesh = || match self.grading {
+            Grading::Uniform => l / self.elements as f64,
+            g => crate::model::mesh::Mesh::new(l, self.elements, g)
+                .map_or(l / self.elements as f64, |m| m.h_max()),
+        };
+        match self.discretization {
+            Discretization::Hermite => mesh(),
+            Discretization::Galerkin { modes } => l / modes as f64,
+            Discretization::Modal { modes } => mesh().max(l / modes as f64),
+        }
+    }
+
     /// Rows the run's history will hold.
     pub fn history_rows(&self) -> usize {
         super::memory::history_rows(self.steps, self.record_every)

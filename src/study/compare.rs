@@ -1,5 +1,5 @@
-//! `taut compare`: the same scene under several contact formulations and
-//! time integrators, with agreement on contact loss as the headline measure
+//! `taut compare`: the same scene under several contact formulations, time
+//! integrators and space discretizations, with agreement on contact loss as the headline measure
 //! (issues: formulations side by side, methods side by side).
 //!
 //! Every combination runs on the same scene text with the same overrides
@@ -13,6 +13,7 @@
 
 use serde::Serialize;
 
+use super::space::SpaceChoice;
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
 use crate::run::{RunOutput, run_with};
@@ -23,6 +24,9 @@ use crate::scene::{Formulation, Resolved, resolve_scene};
 pub struct CompareRow {
     /// Time integrator (`integrator.method`, or a custom method's name).
     pub method: String,
+    /// Space discretization (`mesh.kind`, with J for the modal kinds:
+    /// `modal J=40`).
+    pub discretization: String,
     /// Formulation name.
     pub formulation: String,
     /// P_l (carrier 0).
@@ -64,6 +68,9 @@ pub struct CompareRow {
 pub struct NotRun {
     /// Time integrator.
     pub method: String,
+    /// Space discretization (empty when the study has one).
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub discretization: String,
     /// Formulation.
     pub formulation: String,
     /// The error, as the CLI would print it.
@@ -74,6 +81,8 @@ pub struct NotRun {
 pub struct CompareRun {
     /// Time integrator name.
     pub method: String,
+    /// Space discretization label (`hermite`, `modal J=40`).
+    pub discretization: String,
     /// Formulation.
     pub formulation: Formulation,
     /// The resolved scene.
@@ -83,9 +92,19 @@ pub struct CompareRun {
 }
 
 impl CompareRun {
-    /// `method/formulation`, the label of plots.
-    pub fn label(&self) -> String {
-        format!("{}/{}", self.method, self.formulation.name())
+    /// `method/formulation`, the label of plots (with the discretization
+    /// when `space` is true: `method/modal J=40/formulation`).
+    pub fn label(&self, space: bool) -> String {
+        if space {
+            format!(
+                "{}/{}/{}",
+                self.method,
+                self.discretization,
+                self.formulation.name()
+            )
+        } else {
+            format!("{}/{}", self.method, self.formulation.name())
+        }
     }
 }
 
@@ -95,7 +114,12 @@ pub struct Comparison {
     pub reference_method: String,
     /// The reference formulation.
     pub reference: Formulation,
-    /// The runs in the order asked for (methods outer, formulations inner).
+    /// The reference discretization's label.
+    pub reference_discretization: String,
+    /// True when several discretizations are compared.
+    pub several_discretizations: bool,
+    /// The runs in the order asked for (methods outer, discretizations,
+    /// formulations inner).
     pub runs: Vec<CompareRun>,
     /// One row per run, same order.
     pub rows: Vec<CompareRow>,
@@ -112,8 +136,13 @@ pub struct CompareSpec<'a> {
     pub methods: Vec<&'a dyn MethodFactory>,
     /// Contact formulations.
     pub formulations: Vec<Formulation>,
+    /// Space discretizations; empty for the scene's own.
+    pub discretizations: Vec<SpaceChoice>,
     /// The reference method, an index into `methods` (the first by default).
     pub reference_method: usize,
+    /// The reference discretization, an index into `discretizations` (the
+    /// first by default).
+    pub reference_discretization: usize,
     /// The reference formulation (run too if not listed).
     pub reference: Formulation,
 }
@@ -161,7 +190,9 @@ pub fn compare(
     let spec = CompareSpec {
         methods: Vec::new(),
         formulations: formulations.to_vec(),
+        discretizations: Vec::new(),
         reference_method: 0,
+        reference_discretization: 0,
         reference,
     };
     compare_methods(text, overrides, &spec, progress)
@@ -190,25 +221,57 @@ pub fn compare_methods(
             format!("must name one of the {} methods compared", methods.len()),
         ));
     }
-    // (method index, formulation, shown in the table)
-    let mut order: Vec<(usize, Formulation, bool)> = Vec::new();
+    let spaces: Vec<Option<SpaceChoice>> = if spec.discretizations.is_empty() {
+        vec![None]
+    } else {
+        spec.discretizations.iter().copied().map(Some).collect()
+    };
+    if spec.reference_discretization >= spaces.len() {
+        return Err(Error::invalid(
+            "--reference-discretization",
+            spec.reference_discretization,
+            format!(
+                "must name one of the {} discretizations compared",
+                spaces.len()
+            ),
+        ));
+    }
+    // (method index, discretization index, formulation, shown in the table)
+    let mut order: Vec<(usize, usize, Formulation, bool)> = Vec::new();
     for m in 0..methods.len() {
-        for &f in &spec.formulations {
-            order.push((m, f, true));
+        for d in 0..spaces.len() {
+            for &f in &spec.formulations {
+                order.push((m, d, f, true));
+            }
         }
     }
-    let reference = (spec.reference_method, spec.reference);
-    if !order.iter().any(|&(m, f, _)| (m, f) == reference) {
-        order.push((reference.0, reference.1, false));
+    let reference = (
+        spec.reference_method,
+        spec.reference_discretization,
+        spec.reference,
+    );
+    if !order.iter().any(|&(m, d, f, _)| (m, d, f) == reference) {
+        order.push((reference.0, reference.1, reference.2, false));
     }
     let total = order.len();
     let (mut runs, mut skipped, mut failed) = (Vec::new(), Vec::new(), Vec::new());
     let mut shown = Vec::new();
-    for (i, &(m, f, show)) in order.iter().enumerate() {
+    let space_label = |d: usize, sc: Option<&Resolved>| match (spaces[d], sc) {
+        (_, Some(sc)) => sc.discretization.label(),
+        (Some(c), None) => c.name().to_string(),
+        (None, None) => base.discretization.label(),
+    };
+    let mut keys = Vec::new();
+    for (i, &(m, d, f, show)) in order.iter().enumerate() {
         let factory = methods[m];
         let name = factory.name();
         let not_run = |e: &Error| NotRun {
             method: name.clone(),
+            discretization: if spaces.len() > 1 {
+                space_label(d, None)
+            } else {
+                String::new()
+            },
             formulation: f.name().to_string(),
             reason: e.to_string(),
         };
@@ -216,15 +279,21 @@ pub fn compare_methods(
         o.extend(factory.overrides(&base.integrator));
         o.push(format!("contact.formulation={}", f.name()));
         let outcome = resolve_scene(text, &o)
+            .and_then(|sc| match spaces[d] {
+                Some(c) => c.apply(&sc, 1.0),
+                None => Ok(sc),
+            })
             .and_then(|sc| run_with(&sc, factory, &mut |_, _| {}).map(|out| (sc, out)));
         match outcome {
             Ok((scene, output)) => {
                 runs.push(CompareRun {
                     method: name,
+                    discretization: space_label(d, Some(&scene)),
                     formulation: f,
                     scene,
                     output,
                 });
+                keys.push((m, d, f));
                 shown.push(show);
             }
             // the combination means nothing for this scene: a scene error
@@ -237,21 +306,21 @@ pub fn compare_methods(
         progress(i + 1, total);
     }
     let ref_name = methods[reference.0].name();
-    let ref_idx = runs
-        .iter()
-        .position(|r| r.method == ref_name && r.formulation == reference.1)
-        .ok_or_else(|| {
-            let why = skipped
-                .iter()
-                .chain(&failed)
-                .find(|n| n.method == ref_name && n.formulation == reference.1.name())
-                .map_or(String::new(), |n| format!(": {}", n.reason));
-            Error::invalid(
-                "--reference",
-                format!("{ref_name}/{}", reference.1.name()),
-                format!("the reference combination must run{why}"),
-            )
-        })?;
+    let ref_space = space_label(reference.1, None);
+    let ref_idx = keys.iter().position(|&k| k == reference).ok_or_else(|| {
+        let why = skipped
+            .iter()
+            .chain(&failed)
+            .find(|n| n.method == ref_name && n.formulation == reference.2.name())
+            .map_or(String::new(), |n| format!(": {}", n.reason));
+        Error::invalid(
+            "--reference",
+            format!("{ref_name}/{}", reference.2.name()),
+            format!("the reference combination must run{why}"),
+        )
+    })?;
+    let reference_discretization = runs[ref_idx].discretization.clone();
+    let _ = ref_space;
     let rows: Vec<CompareRow> = runs.iter().map(|r| row(r, &runs[ref_idx].output)).collect();
     // keep only the combinations asked for (the reference, if added, is last)
     let (runs, rows): (Vec<_>, Vec<_>) = runs
@@ -262,7 +331,9 @@ pub fn compare_methods(
         .unzip();
     Ok(Comparison {
         reference_method: ref_name,
-        reference: reference.1,
+        reference: reference.2,
+        reference_discretization,
+        several_discretizations: spaces.len() > 1,
         runs,
         rows,
         skipped,
@@ -305,6 +376,7 @@ fn row(r: &CompareRun, reference: &RunOutput) -> CompareRow {
     let s0 = &out.stats[0];
     CompareRow {
         method: r.method.clone(),
+        discretization: r.discretization.clone(),
         formulation: r.formulation.name().to_string(),
         loss_fraction: s0.loss_fraction,
         loss_fraction_span: s0.loss_fraction_span,

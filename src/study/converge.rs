@@ -25,6 +25,7 @@
 use serde::Serialize;
 
 use super::compare::NotRun;
+use super::space::SpaceChoice;
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
 use crate::run::{RunOutput, run, run_with};
@@ -70,10 +71,17 @@ pub type AnalyticW = Box<dyn Fn(f64) -> f64 + Sync>;
 pub struct ConvergeRow {
     /// Time integrator.
     pub method: String,
+    /// Space discretization (`mesh.kind`).
+    pub discretization: String,
     /// Level ℓ (0 = coarsest).
     pub level: usize,
-    /// Element length h, m.
+    /// The length the discretization resolves, m: the element length h
+    /// (the longest of a graded mesh), L/J for a modal basis
+    /// ([`Resolved::resolution`]).
     pub h: f64,
+    /// Modes J of a modal basis (the level parameter of `galerkin` and
+    /// `modal`); `None` for elements.
+    pub modes: Option<usize>,
     /// Time step, s.
     pub dt: f64,
     /// Quantity name.
@@ -118,9 +126,11 @@ pub const QUANTITIES: [&str; 8] = [
     "first_loss_position",
 ];
 
-/// One method's refinement study in a `--methods` comparison.
+/// One method's (or discretization's) refinement study in a `--methods`
+/// or `--discretizations` comparison.
 pub struct MethodStudy {
-    /// The method's name.
+    /// The method's name, `discretization` or `method/discretization`
+    /// when both vary.
     pub method: String,
     /// Its study.
     pub study: Convergence,
@@ -143,42 +153,102 @@ pub fn converge_methods(
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<(Vec<MethodStudy>, Vec<NotRun>)> {
-    let total = levels * methods.len();
+    converge_variants(
+        text,
+        overrides,
+        methods,
+        &[],
+        refine,
+        levels,
+        ratio,
+        analytic,
+        progress,
+    )
+}
+
+/// Run the refinement sequence once per method × discretization
+/// (`taut converge --methods … --discretizations …`; either list may be
+/// empty for the scene's own). A discretization's level parameter is its
+/// own: N for `hermite`, J for `galerkin` and `modal` (module docs of
+/// [`super::space`]); with `--refine step` only Δt is refined. Skipped
+/// variants as in [`converge_methods`].
+#[allow(clippy::too_many_arguments)]
+pub fn converge_variants(
+    text: &str,
+    overrides: &[String],
+    methods: &[&dyn MethodFactory],
+    spaces: &[SpaceChoice],
+    refine: Refine,
+    levels: usize,
+    ratio: f64,
+    analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<(Vec<MethodStudy>, Vec<NotRun>)> {
+    let ms: Vec<Option<&dyn MethodFactory>> = if methods.is_empty() {
+        vec![None]
+    } else {
+        methods.iter().copied().map(Some).collect()
+    };
+    let ss: Vec<Option<SpaceChoice>> = if spaces.is_empty() {
+        vec![None]
+    } else {
+        spaces.iter().copied().map(Some).collect()
+    };
+    let total = levels * ms.len() * ss.len();
     let (mut done, mut skipped) = (Vec::new(), Vec::new());
-    for (i, m) in methods.iter().enumerate() {
-        let mut inner = |l: usize, _: usize| progress(i * levels + l, total);
-        match converge_with(
-            text,
-            overrides,
-            Some(*m),
-            refine,
-            levels,
-            ratio,
-            analytic,
-            &mut inner,
-        ) {
-            Ok(study) => done.push(MethodStudy {
-                method: m.name(),
-                study,
-            }),
-            Err(e) => skipped.push(NotRun {
-                method: m.name(),
-                formulation: String::new(),
-                reason: e.in_run(&m.name()).to_string(),
-            }),
+    let mut i = 0;
+    for &m in &ms {
+        for &s in &ss {
+            let label = match (m, s) {
+                (Some(m), Some(s)) if ms.len() > 1 => format!("{}/{}", m.name(), s.name()),
+                (_, Some(s)) => s.name().to_string(),
+                (Some(m), None) => m.name(),
+                (None, None) => String::new(),
+            };
+            let mut inner = |l: usize, _: usize| progress(i * levels + l, total);
+            match converge_with(
+                text, overrides, m, s, refine, levels, ratio, analytic, &mut inner,
+            ) {
+                Ok(study) => done.push(MethodStudy {
+                    method: label,
+                    study,
+                }),
+                Err(e) => skipped.push(NotRun {
+                    method: m.map_or_else(String::new, |m| m.name()),
+                    discretization: s.map_or_else(String::new, |s| s.name().to_string()),
+                    formulation: String::new(),
+                    reason: e.in_run(&label).to_string(),
+                }),
+            }
+            i += 1;
+            progress(i * levels, total);
         }
-        progress((i + 1) * levels, total);
     }
     if done.is_empty() {
         let why: Vec<String> = skipped.iter().map(|n| n.reason.clone()).collect();
+        let (field, list) = if spaces.is_empty() {
+            (
+                "--methods",
+                methods
+                    .iter()
+                    .map(|m| m.name())
+                    .collect::<Vec<_>>()
+                    .join(","),
+            )
+        } else {
+            (
+                "--discretizations",
+                spaces
+                    .iter()
+                    .map(|s| s.name())
+                    .collect::<Vec<_>>()
+                    .join(","),
+            )
+        };
         return Err(Error::invalid(
-            "--methods",
-            methods
-                .iter()
-                .map(|m| m.name())
-                .collect::<Vec<_>>()
-                .join(","),
-            format!("no method ran the ladder: {}", why.join("; ")),
+            field,
+            list,
+            format!("no variant ran the ladder: {}", why.join("; ")),
         ));
     }
     Ok((done, skipped))
@@ -201,7 +271,7 @@ pub fn converge(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Convergence> {
     converge_with(
-        text, overrides, None, refine, levels, ratio, analytic, progress,
+        text, overrides, None, None, refine, levels, ratio, analytic, progress,
     )
 }
 
@@ -211,6 +281,7 @@ fn converge_with(
     text: &str,
     overrides: &[String],
     method: Option<&dyn MethodFactory>,
+    space: Option<SpaceChoice>,
     refine: Refine,
     levels: usize,
     ratio: f64,
@@ -240,18 +311,26 @@ fn converge_with(
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut converge")?;
     let mut scenes = Vec::with_capacity(levels);
+    let modal = space.is_some_and(|s| s.is_modal());
     for l in 0..levels {
         let f = ratio.powi(l as i32);
         let mut o = overrides.to_vec();
-        if refine != Refine::Step {
+        if refine != Refine::Step && !modal {
             let n = (base.elements as f64 * f).round() as usize;
             o.push(format!("mesh.elements={n}"));
         }
         if refines_step {
             o.push(format!("time.step={:e}", base.dt / f));
         }
-        scenes.push(resolve_scene(text, &o)?);
+        let sc = resolve_scene(text, &o)?;
+        scenes.push(match space {
+            // a modal basis's level parameter is J (its mesh stays)
+            Some(s) if modal && refine != Refine::Step => s.apply(&sc, f)?,
+            Some(s) => s.apply(&sc, 1.0)?,
+            None => sc,
+        });
     }
+    let base = &scenes[0];
     // the coarse time grid must be a subset of every level's
     let stride: Vec<usize> = scenes
         .iter()
@@ -467,8 +546,10 @@ fn tabulate(
         .map(
             |(l, quantity, value, error, observed_order, gci, reference)| ConvergeRow {
                 method: String::new(),
+                discretization: scenes[l].discretization.name().to_string(),
                 level: l,
-                h: scenes[l].beam.length / scenes[l].elements as f64,
+                h: scenes[l].resolution(),
+                modes: scenes[l].discretization.modes(),
                 dt: scenes[l].dt,
                 quantity,
                 value,

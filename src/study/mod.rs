@@ -5,6 +5,7 @@ pub mod converge;
 pub mod gate;
 pub mod precision;
 pub mod reference;
+pub mod space;
 pub mod sweep;
 pub mod threads;
 pub mod tolerance;

@@ -24,16 +24,19 @@ use serde::Serialize;
 
 use super::compare::NotRun;
 use super::relative_rms;
+use super::space::SpaceChoice;
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
 use crate::run::{RunOutput, run, run_with};
-use crate::scene::{Formulation, resolve_scene};
+use crate::scene::{Formulation, MeshKind, Resolved, resolve_scene};
 
 /// One run of the study (a row of `precision.csv`).
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct PrecisionRow {
     /// Time integrator.
     pub method: String,
+    /// Space discretization (`mesh.kind`).
+    pub discretization: String,
     /// Formulation name.
     pub formulation: String,
     /// Mesh level i (N = N₀·rⁱ).
@@ -42,6 +45,8 @@ pub struct PrecisionRow {
     pub step_level: usize,
     /// Elements N.
     pub elements: usize,
+    /// Modes J of a modal basis (its level parameter); `None` for elements.
+    pub modes: Option<usize>,
     /// Time step, s.
     pub dt: f64,
     /// Unknowns.
@@ -100,6 +105,29 @@ pub fn precision_methods(
     ratio: usize,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Precision> {
+    precision_variants(
+        text,
+        overrides,
+        (methods, &[]),
+        formulations,
+        (levels, ratio),
+        progress,
+    )
+}
+
+/// Run the study for every method × discretization × formulation (either
+/// list empty: the scene's own). A discretization's mesh level is its own
+/// level parameter: N₀·rⁱ elements for `hermite`, J₀·rⁱ modes for
+/// `galerkin` and `modal` (on the scene's mesh). The reference is the
+/// Hermite one of the module docs. `progress(done, total)` after each run.
+pub fn precision_variants(
+    text: &str,
+    overrides: &[String],
+    (methods, spaces): (&[&dyn MethodFactory], &[SpaceChoice]),
+    formulations: &[Formulation],
+    (levels, ratio): (usize, usize),
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Precision> {
     if !(1..=5).contains(&levels) {
         return Err(Error::invalid("--levels", levels, "must be in 1 ..= 5"));
     }
@@ -119,7 +147,12 @@ pub fn precision_methods(
     let fine = levels as i32; // one beyond the grid's finest
     let ref_n = n0 * ratio.pow(fine as u32);
     let ref_dt = dt0 / r.powi(fine);
-    let total = 1 + methods.len() * formulations.len() * levels * levels;
+    let spaces: Vec<Option<SpaceChoice>> = if spaces.is_empty() {
+        vec![None]
+    } else {
+        spaces.iter().copied().map(Some).collect()
+    };
+    let total = 1 + methods.len() * spaces.len() * formulations.len() * levels * levels;
     let mut done = 0;
     let with = |n: usize, dt: f64, f: Formulation, m: Option<&dyn MethodFactory>| {
         let mut o = overrides.to_vec();
@@ -132,49 +165,71 @@ pub fn precision_methods(
         o
     };
     let ref_sc = resolve_scene(text, &with(ref_n, ref_dt, Formulation::Lagrange, None))?;
+    // the reference is a Hermite run whatever the scene's own kind
+    let ref_sc = SpaceChoice {
+        kind: MeshKind::Hermite,
+        modes: None,
+    }
+    .apply(&ref_sc, 1.0)?;
     let reference = run(&ref_sc, &mut |_, _| {})?;
     done += 1;
     progress(done, total);
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
     for &m in &methods {
-        for &f in formulations {
-            let first = rows.len();
-            for i in 0..levels {
-                for j in 0..levels {
-                    let n = n0 * ratio.pow(i as u32);
-                    let dt = dt0 / r.powi(j as i32);
-                    let not_run = |e: Error| NotRun {
-                        method: m.name(),
-                        formulation: f.name().to_string(),
-                        reason: format!("N = {n}, Δt = {dt:e} s: {e}"),
-                    };
-                    let sc = match resolve_scene(text, &with(n, dt, f, Some(m))) {
-                        Ok(sc) => sc,
-                        Err(e) => {
-                            skipped.push(not_run(e));
-                            done += 1;
-                            progress(done, total);
-                            continue;
+        for &space in &spaces {
+            let modal = space.is_some_and(|s| s.is_modal());
+            for &f in formulations {
+                let first = rows.len();
+                for i in 0..levels {
+                    for j in 0..levels {
+                        let factor = ratio.pow(i as u32);
+                        let n = if modal { n0 } else { n0 * factor };
+                        let dt = dt0 / r.powi(j as i32);
+                        let not_run = |e: Error| NotRun {
+                            method: m.name(),
+                            discretization: space
+                                .map_or_else(String::new, |s| s.name().to_string()),
+                            formulation: f.name().to_string(),
+                            reason: format!("level {i}, Δt = {dt:e} s: {e}"),
+                        };
+                        let sc =
+                            resolve_scene(text, &with(n, dt, f, Some(m))).and_then(
+                                |sc| match space {
+                                    Some(s) if modal => s.apply(&sc, factor as f64),
+                                    Some(s) => s.apply(&sc, 1.0),
+                                    None => Ok(sc),
+                                },
+                            );
+                        let sc = match sc {
+                            Ok(sc) => sc,
+                            Err(e) => {
+                                skipped.push(not_run(e));
+                                done += 1;
+                                progress(done, total);
+                                continue;
+                            }
+                        };
+                        let stride = (dt / ref_dt).round() as usize;
+                        if sc.steps * stride != reference.steps {
+                            return Err(Error::invalid(
+                                "time.end",
+                                format!("{} steps at Δt = {dt:e} s", sc.steps),
+                                "must be a whole number of steps at every level (choose an end that is a multiple of the coarsest step)",
+                            ));
                         }
-                    };
-                    let stride = (dt / ref_dt).round() as usize;
-                    if sc.steps * stride != reference.steps {
-                        return Err(Error::invalid(
-                            "time.end",
-                            format!("{} steps at Δt = {dt:e} s", sc.steps),
-                            "must be a whole number of steps at every level (choose an end that is a multiple of the coarsest step)",
-                        ));
+                        match run_with(&sc, m, &mut |_, _| {}) {
+                            Ok(out) => {
+                                rows.push(row(&m.name(), f, (i, j), &out, &reference, stride, &sc))
+                            }
+                            Err(e @ Error::Invalid { .. }) => skipped.push(not_run(e)),
+                            Err(e) => return Err(e.in_run(&format!("{}/{}", m.name(), f.name()))),
+                        }
+                        done += 1;
+                        progress(done, total);
                     }
-                    match run_with(&sc, m, &mut |_, _| {}) {
-                        Ok(out) => rows.push(row(&m.name(), f, i, j, &out, &reference, stride, n)),
-                        Err(e @ Error::Invalid { .. }) => skipped.push(not_run(e)),
-                        Err(e) => return Err(e.in_run(&format!("{}/{}", m.name(), f.name()))),
-                    }
-                    done += 1;
-                    progress(done, total);
                 }
+                mark_pareto(&mut rows[first..]);
             }
-            mark_pareto(&mut rows[first..]);
         }
     }
     Ok(Precision {
@@ -186,25 +241,25 @@ pub fn precision_methods(
     })
 }
 
-#[allow(clippy::too_many_arguments)]
 fn row(
     method: &str,
     f: Formulation,
-    i: usize,
-    j: usize,
+    (i, j): (usize, usize),
     out: &RunOutput,
     reference: &RunOutput,
     stride: usize,
-    elements: usize,
+    sc: &Resolved,
 ) -> PrecisionRow {
     let (t, tr) = (&out.history.carriers[0], &reference.history.carriers[0]);
     let sample = |v: &[f64]| -> Vec<f64> { (1..t.force.len()).map(|k| v[k * stride]).collect() };
     PrecisionRow {
         method: method.to_string(),
+        discretization: sc.discretization.name().to_string(),
         formulation: f.name().to_string(),
         mesh_level: i,
         step_level: j,
-        elements,
+        elements: sc.elements,
+        modes: sc.discretization.modes(),
         dt: out.dt,
         dofs: out.dofs,
         steps: out.steps,
@@ -237,10 +292,12 @@ mod tests {
     fn r(e: f64, w: f64) -> PrecisionRow {
         PrecisionRow {
             method: "m".into(),
+            discretization: "hermite".into(),
             formulation: "x".into(),
             mesh_level: 0,
             step_level: 0,
             elements: 1,
+            modes: None,
             dt: 1.0,
             dofs: 1,
             steps: 1,
