@@ -73,7 +73,7 @@
 //!
 //! `∫₀ᴸ φ² dx` and `∫₀ᴸ φ dx` of the stable form are sums of elementary
 //! integrals (`∫ e^{−2αx}`, `∫ e^{−αx} cos βx`, `∫ cos² βx`, …; see
-//! [`Stable::integral_of_square`]), each evaluated without overflow and
+//! `Stable::integral_of_square`), each evaluated without overflow and
 //! without cancellation beyond a few ulps (the result ≈ L/2 is dominated by
 //! the positive `cos²`/`sin²` terms; the exponential cross terms are
 //! O(1/α)). This is exact, costs O(1) per mode, and needs no argument about
@@ -369,7 +369,9 @@ impl ModeShapes {
 
     /// `φ_j(x)`, kg^{−1/2}, for all j into `out` (length J). `x` is clamped to
     /// `[0, L]`. No allocation: O(J) `sin_cos` (and, off pinned–pinned, two
-    /// `exp`) calls.
+    /// `exp`) calls. Pinned–pinned uses plain `sin_cos` per mode, not the
+    /// three-term recurrence: its error grows with j and the saving is not
+    /// worth an accuracy argument.
     pub fn values_into(&self, x: f64, out: &mut [f64]) {
         assert_eq!(out.len(), self.modes.len(), "one slot per mode");
         let (s, _) = self.local(x);
@@ -466,15 +468,23 @@ mod tests {
     /// Closed forms evaluated two ways (PP shapes, frequencies shared with
     /// modes.rs): a few ulps of arithmetic.
     const ROUND_OFF: f64 = 1e-13;
-    /// Boundary conditions and closed-form vs quadrature comparisons, relative
-    /// to the size of the quantity: the phase error `ε β_J L` of the root
-    /// (≈ 10⁻¹³ at J = 50, 1.4·10⁻¹² at J = MAX_MODES, module docs) with
-    /// slack for the sums of O(J·panels) quadrature terms.
-    const SHAPE: f64 = 1e-10;
-    /// Central differences of step `FD_STEP·(1/α_J)`: truncation
-    /// `(FD_STEP)²/6` of the layer scale plus round-off `ε/FD_STEP`.
+    /// Boundary conditions, relative to the size of the quantity (value
+    /// `sqrt(2/(ρA L))`, slope ×β, curvature ×αβ). The roots are bisected to
+    /// round-off of the scaled characteristic functions, whose terms are
+    /// O(hypot(α, β)); the clamp-slope residual is therefore ~`ε α/β` (a
+    /// few 10⁻¹² for the EXTREME case, μL ≈ 1.6·10⁵) and the phase error
+    /// `ε β_J L` adds ~10⁻¹³ at J = MAX_MODES. Worst observed 1.1·10⁻¹¹.
+    const BOUNDARY: f64 = 1e-10;
+    /// Closed-form normalization and loads against composite Gauss–Legendre
+    /// quadrature (≤ ~10⁵ nodes, errors ~0.5²⁰/20! per panel): summation
+    /// round-off only. Worst observed 1.3·10⁻¹⁴ (M, K, loads, single modes
+    /// up to J = MAX_MODES).
+    const ORTHO: f64 = 1e-12;
+    /// Central differences with step `FD_STEP/max(α_J, β_J)`: truncation
+    /// `FD_STEP²/6 ≈ 1.7·10⁻⁹` of the fastest scale, round-off
+    /// `ε/FD_STEP ≈ 2·10⁻¹²`. Worst observed 2.4·10⁻⁹.
     const FD_STEP: f64 = 1e-4;
-    const FD: f64 = 1e-6;
+    const FD: f64 = 1e-8;
     /// Roots compared with 16-digit Euler–Bernoulli references
     /// (`cos x cosh x = 1`, Blevins table 8-1): their printed precision.
     const ROOT: f64 = 1e-12;
@@ -805,13 +815,17 @@ mod tests {
                     for (i, m) in s.modes.iter().enumerate() {
                         let slope = amp * m.beta;
                         let curv = amp * m.beta * m.alpha.max(m.beta);
-                        assert!(v[i].abs() <= SHAPE * amp, "{ends:?} {x} {i}: {}", v[i]);
+                        assert!(v[i].abs() <= BOUNDARY * amp, "{ends:?} {x} {i}: {}", v[i]);
                         match support {
                             Support::Clamped => {
-                                assert!(d[i].abs() <= SHAPE * slope, "{ends:?} {x} {i}: {}", d[i])
+                                assert!(
+                                    d[i].abs() <= BOUNDARY * slope,
+                                    "{ends:?} {x} {i}: {}",
+                                    d[i]
+                                )
                             }
                             _ => {
-                                assert!(c[i].abs() <= SHAPE * curv, "{ends:?} {x} {i}: {}", c[i])
+                                assert!(c[i].abs() <= BOUNDARY * curv, "{ends:?} {x} {i}: {}", c[i])
                             }
                         }
                     }
@@ -915,7 +929,7 @@ mod tests {
                 assert_diagonal(
                     &m,
                     &vec![1.0; s.count()],
-                    SHAPE,
+                    ORTHO,
                     &format!("M {case:?} {ends:?}"),
                 );
                 let (kb, kt) = (gram(&nodes, &c, &c), gram(&nodes, &d, &d));
@@ -925,7 +939,7 @@ mod tests {
                     .map(|(b, t_)| b.iter().zip(t_).map(|(b, t_)| ei * b + t * t_).collect())
                     .collect();
                 let w2: Vec<f64> = s.omega().iter().map(|w| w * w).collect();
-                assert_diagonal(&k, &w2, SHAPE, &format!("K {case:?} {ends:?}"));
+                assert_diagonal(&k, &w2, ORTHO, &format!("K {case:?} {ends:?}"));
             }
         }
     }
@@ -941,13 +955,13 @@ mod tests {
             .into_iter()
             .map(|r| r.into_iter().map(|x| ra * x).collect())
             .collect();
-        assert_diagonal(&m, &vec![1.0; 30], SHAPE, "M string");
+        assert_diagonal(&m, &vec![1.0; 30], ORTHO, "M string");
         let k: Vec<Vec<f64>> = gram(&nodes, &d, &d)
             .into_iter()
             .map(|r| r.into_iter().map(|x| t * x).collect())
             .collect();
         let w2: Vec<f64> = s.omega().iter().map(|w| w * w).collect();
-        assert_diagonal(&k, &w2, SHAPE, "K string");
+        assert_diagonal(&k, &w2, ORTHO, "K string");
     }
 
     #[test]
@@ -977,7 +991,7 @@ mod tests {
                 // the boundary conditions at the top of the basis
                 for x in [0.0, l] {
                     let v = at(&s, ModeShapes::values_into, x);
-                    assert!(v.iter().all(|v| v.abs() <= SHAPE * amp), "{ends:?} {x}");
+                    assert!(v.iter().all(|v| v.abs() <= BOUNDARY * amp), "{ends:?} {x}");
                 }
                 // normalization of single modes across the range, by quadrature
                 for j in [1, 10, 100, MAX_MODES] {
@@ -990,7 +1004,7 @@ mod tests {
                     let nodes = quadrature(&one);
                     let v = table(&one, &nodes, ModeShapes::values_into);
                     let n = ra * gram(&nodes, &v, &v)[0][0];
-                    assert!((n - 1.0).abs() <= SHAPE, "{case:?} {ends:?} mode {j}: {n}");
+                    assert!((n - 1.0).abs() <= ORTHO, "{case:?} {ends:?} mode {j}: {n}");
                 }
             }
         }
@@ -1015,7 +1029,7 @@ mod tests {
                 let scale = p.abs() * (l / ra).sqrt();
                 for (a, b) in s.uniform_load(p).iter().zip(&q) {
                     assert!(
-                        (a - b).abs() <= SHAPE * scale,
+                        (a - b).abs() <= ORTHO * scale,
                         "{case:?} {ends:?}: {a} vs {b}"
                     );
                 }
