@@ -188,6 +188,12 @@ impl Stable {
 /// The first J exact eigenfunctions of the tensioned beam on its supports
 /// (module docs), mass-normalized: `∫ ρA φ_i φ_j dx = δ_ij`, so the modal
 /// mass is the identity and the modal stiffness `diag(ω_j²)`.
+///
+/// Units: `φ` in kg^{−1/2} (so `φ_j(x) q_j` is metres when the modal
+/// coordinate `q_j` is in m·kg^{1/2}), slopes per metre, curvatures per m².
+/// Evaluation points are clamped to `[0, L]`. Signs are as the stable forms
+/// in the module docs give them (pinned–pinned: `+sin`); nothing else is
+/// promised about them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModeShapes {
     length: f64,
@@ -414,6 +420,35 @@ impl ModeShapes {
                 v += m.alpha * m.alpha * (m.p * (-m.alpha * s).exp() + m.q * (-m.alpha * r).exp());
             }
             *o = v;
+        }
+    }
+
+    /// Values, slopes and curvatures at one point in one pass (one
+    /// `sin_cos` and two `exp` per mode instead of three of each): what a
+    /// riding mass's contact row and convective terms need every step. Each
+    /// slice has length J; equal to [`Self::values_into`],
+    /// [`Self::slopes_into`] and [`Self::curvatures_into`].
+    pub fn all_into(&self, x: f64, values: &mut [f64], slopes: &mut [f64], curvatures: &mut [f64]) {
+        let n = self.modes.len();
+        assert!(
+            values.len() == n && slopes.len() == n && curvatures.len() == n,
+            "one slot per mode"
+        );
+        let (s, sign) = self.local(x);
+        let r = self.length - s;
+        for (i, m) in self.modes.iter().enumerate() {
+            let (sn, cs) = (m.beta * s).sin_cos();
+            let (osc, dosc) = (m.c * cs + m.d * sn, m.d * cs - m.c * sn);
+            let (mut v, mut d, mut c) = (osc, m.beta * dosc, -m.beta * m.beta * osc);
+            if m.alpha > 0.0 {
+                let (left, right) = (m.p * (-m.alpha * s).exp(), m.q * (-m.alpha * r).exp());
+                v += left + right;
+                d += m.alpha * (right - left);
+                c += m.alpha * m.alpha * (left + right);
+            }
+            values[i] = v;
+            slopes[i] = sign * d;
+            curvatures[i] = c;
         }
     }
 
@@ -1046,6 +1081,22 @@ mod tests {
                 0.0
             };
             assert!((fj - want).abs() <= ROUND_OFF * want.abs().max(1e-300));
+        }
+    }
+    #[test]
+    fn all_into_equals_the_separate_evaluations() {
+        for case in [REFERENCE, BARE] {
+            let l = case.3;
+            for ends in BEAM_ENDS {
+                let s = shapes(case, ends, 30);
+                for x in [0.0, 1e-3 * l, 0.42 * l, l] {
+                    let (mut v, mut d, mut c) = (vec![0.0; 30], vec![0.0; 30], vec![0.0; 30]);
+                    s.all_into(x, &mut v, &mut d, &mut c);
+                    assert_eq!(v, at(&s, ModeShapes::values_into, x));
+                    assert_eq!(d, at(&s, ModeShapes::slopes_into, x));
+                    assert_eq!(c, at(&s, ModeShapes::curvatures_into, x));
+                }
+            }
         }
     }
 }
