@@ -7,7 +7,7 @@ pub mod moving_load;
 pub mod riding_mass;
 pub mod static_load;
 
-pub use mode_shapes::ModeShapes;
+pub use mode_shapes::{MAX_MODES, ModeShapes};
 pub use modes::{ClampedPinnedModes, Dispersion, PinnedPinnedModes};
 pub use moving_load::{MovingForceBeam, MovingForceString};
 pub use riding_mass::{RidingMassBeam, RidingMassHistory};

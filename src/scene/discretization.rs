@@ -12,11 +12,10 @@ use crate::model::mesh::{Grading, MAX_GRADING_RATIO};
 /// within a factor of about 2 for the implicit methods' accuracy.
 pub const DEFAULT_GRADING_RATIO: f64 = 4.0;
 
-/// Most modes a `galerkin` basis takes: the mode shapes are evaluated in
-/// double precision from their closed forms, and past a few thousand modes
-/// the run costs more than the Hermite mesh that resolves the same
-/// wavelengths (J modes resolve L/J; N = J/2 Hermite elements do as well).
-pub const MAX_GALERKIN_MODES: usize = 4000;
+/// Most modes a `galerkin` basis takes ([`crate::analytic::MAX_MODES`]:
+/// the phase of mode J carries a relative error of about ε·Jπ, and 1000
+/// modes resolve half-wavelengths of L/1000, finer than any bundled mesh).
+pub const MAX_GALERKIN_MODES: usize = crate::analytic::MAX_MODES;
 
 /// The space discretization of a run (MODEL §9.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
