@@ -3,6 +3,7 @@
 
 pub mod banded;
 pub mod beam;
+pub mod eigen;
 pub mod element;
 pub mod modal;
 pub mod motion;
