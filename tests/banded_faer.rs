@@ -218,11 +218,11 @@ fn random_spd(n: usize, p: usize, delta: f64, seed: u64) -> (SymBand, f64) {
     }
     let mut lo = f64::INFINITY;
     let mut hi = 0.0_f64;
-    for i in 0..n {
+    for (i, off) in offsum.iter().enumerate() {
         let margin = delta * (1.0 + rng.uniform(0.0, 1.0));
-        a.add_entry(i, i, offsum[i] + margin);
+        a.add_entry(i, i, off + margin);
         lo = lo.min(margin);
-        hi = hi.max(2.0 * offsum[i] + margin);
+        hi = hi.max(2.0 * off + margin);
     }
     (a, hi / lo)
 }
