@@ -28,25 +28,29 @@
 //!
 //! # Cost
 //!
-//! Measured in release on this project's 2-core machine (`cargo test --release
-//! --lib model::eigen::tests::timing -- --ignored --nocapture`), clamped–pinned
-//! Hermite meshes, all pairs computed (the count asked for changes only step 4):
+//! Measured in release on this project's 2-core machine, shared with other
+//! builds at the time (load average ≈ 5, so an idle machine is faster), by
+//! `cargo test --release --lib model::eigen::tests::timing -- --ignored
+//! --nocapture`; clamped–pinned Hermite meshes, all n pairs computed by faer
+//! (the count kept changes only step 4):
 //!
-//! | N elements | n unknowns | reduction (steps 1–2) | eigen (step 3) | total |
-//! |---|---|---|---|---|
-//! | 800 | 1599 | TIMING_800_RED | TIMING_800_EIG | TIMING_800_TOT |
-//! | 1600 | 3199 | TIMING_1600_RED | TIMING_1600_EIG | TIMING_1600_TOT |
+//! | N elements | n unknowns | reduction (steps 1–2) | eigen (step 3) | `lowest_eigenpairs(·, ·, 20)` | [`eigenvalues`] (values only) |
+//! |---|---|---|---|---|---|
+//! | 800 | 1599 | 0.08 s | 1.07 s | 0.86 s | 0.39 s |
+//! | 1600 | 3199 | 0.33 s | 9.1 s | 10.6 s | 7.2 s |
 //!
-//! Memory: two dense n×n matrices (C and the eigenvectors) plus faer's
-//! workspace, ≈ 3 n² · 8 bytes (≈ 250 MB at n = 3199).
+//! The n³ eigen solve dominates (×8.5 for ×2 in n); the O(n² p) reduction is
+//! a few per cent of it. Memory: the reduction holds two dense n×n matrices
+//! (W and C), the eigensolver C, the eigenvectors and its workspace: a peak of
+//! ≈ 3–4 n² · 8 bytes (≈ 250–330 MB at n = 3199).
 
 use faer::{Mat, Side};
 
 use super::banded::SymBand;
 use crate::error::{Error, Result};
 
-/// Largest n solved: memory ≈ 3 n² · 8 bytes (≈ 1 GB at 6400) and time
-/// ∝ n³ (8× the n = 3199 figure above, about a minute and a half on 2 cores).
+/// Largest n solved: memory ≈ 3–4 n² · 8 bytes (≈ 1–1.3 GB at 6400) and time
+/// ∝ n³ (8× the n = 3199 figure above: about a minute and a half on 2 cores).
 /// 6400 unknowns is N = 3200 Hermite elements, finer than any mesh the
 /// studies use; beyond it a sparse shift-invert Lanczos is the right tool.
 pub const MAX_MODAL_DOFS: usize = 6400;
