@@ -266,9 +266,10 @@ mod tests {
     /// relative to the scale of the product (1 for M, ω²_max for K). The
     /// reduction and the eigensolver are backward stable, so the residuals
     /// are O(n ε) amplified by the conditioning of L (√κ(M), about 1/h for a
-    /// consistent Hermite mass whose θ rows scale as h²): measured ≤ 9·10⁻¹⁴ over the cases below
-    /// (n ≤ 79). 10⁻¹¹ leaves a factor of 100, while a wrong normalization,
-    /// a wrong reduction or a lost mode fails by O(1).
+    /// consistent Hermite mass, whose θ rows scale as h²): measured
+    /// ≤ 9·10⁻¹⁴ over the cases below (n ≤ 79). 10⁻¹¹ leaves a factor of 100,
+    /// while a wrong normalization, a wrong reduction or a lost mode fails by
+    /// O(1).
     const ORTHO_TOL: f64 = 1e-11;
 
     /// Relative agreement of ω_j with the nalgebra path
