@@ -5,8 +5,10 @@
 //!
 //! Dense on purpose: the checks need a few hundred unknowns at most, where a
 //! Cholesky reduction L⁻¹KL⁻ᵀ and nalgebra's symmetric eigensolver take
-//! milliseconds. A sparse shift-invert solver (faer) would pay off only for
-//! large meshes, which no check needs.
+//! milliseconds. A sparse shift-invert solver would pay off only for large
+//! meshes, which no check needs. The eigenpairs the `modal` discretization
+//! runs on come from [`super::eigen`] (faer, banded reduction, mode shapes);
+//! this nalgebra path stays as its independent reference.
 
 use nalgebra::DMatrix;
 
