@@ -177,6 +177,9 @@ enum Command {
         /// Override the saved iteration limit.
         #[arg(long)]
         max_iter: Option<u32>,
+        /// Override the saved complementarity solver: `direct` or `clarabel`.
+        #[arg(long)]
+        solver: Option<String>,
     },
     /// Run one scene under several contact formulations and time integrators
     /// and compare them (compare.csv, compare.json, compare.svg).
@@ -233,7 +236,11 @@ fn main() -> ExitCode {
             tolerance: None,
             ..
         } => cmd_run(scene, set, out, quiet),
-        Command::Replay { problem, max_iter } => cmd_replay(&problem, max_iter),
+        Command::Replay {
+            problem,
+            max_iter,
+            solver,
+        } => cmd_replay(&problem, max_iter, solver.as_deref()),
         Command::Sweep {
             scene,
             vary,
@@ -699,7 +706,7 @@ fn cmd_precision(
     Ok(())
 }
 
-fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {
+fn cmd_replay(path: &Path, max_iter: Option<u32>, solver: Option<&str>) -> taut::Result<()> {
     use taut::contact::{Level, SIGNORINI_TOLERANCE, replay};
     let text = std::fs::read_to_string(path).map_err(|e| taut::Error::io(path, e))?;
     taut::json_keys::reject_duplicate_keys(&text, path)?;
@@ -707,6 +714,20 @@ fn cmd_replay(path: &Path, max_iter: Option<u32>) -> taut::Result<()> {
         .map_err(|e| taut::Error::Parse(format!("{}: {e}", path.display())))?;
     if let Some(n) = max_iter {
         problem.contact.complementarity.max_iter = n;
+    }
+    if let Some(name) = solver {
+        use taut::scene::ComplementaritySolver;
+        problem.contact.complementarity.solver = match name {
+            "direct" => ComplementaritySolver::Direct,
+            "clarabel" => ComplementaritySolver::Clarabel,
+            other => {
+                return Err(taut::Error::invalid(
+                    "--solver",
+                    other,
+                    "must be `direct` or `clarabel`",
+                ));
+            }
+        };
     }
     taut::contact::validate(&problem)?;
     let (gap, force) = match problem.level {

@@ -912,6 +912,19 @@ fn unknown_contact_formulation() {
 }
 
 #[test]
+fn unknown_complementarity_solver() {
+    expect_parse(
+        REFERENCE,
+        &["contact.complementarity.solver=lemke"],
+        &[
+            "at `contact.complementarity.solver`",
+            "unknown variant `lemke`",
+            "expected `direct` or `clarabel`",
+        ],
+    );
+}
+
+#[test]
 fn unknown_support() {
     expect_parse(
         REFERENCE,

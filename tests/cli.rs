@@ -313,6 +313,8 @@ fn a_failed_qp_is_saved_and_replays() {
         "--set",
         "contact.formulation=complementarity",
         "--set",
+        "contact.complementarity.solver=clarabel",
+        "--set",
         "contact.complementarity.max_iter=1",
         "--out",
         dir.to_str().unwrap(),
@@ -336,6 +338,13 @@ fn a_failed_qp_is_saved_and_replays() {
         String::from_utf8_lossy(&fixed.stderr)
     );
     assert!(String::from_utf8_lossy(&fixed.stdout).contains("λ"));
+    // the direct solver answers the same file
+    let direct = taut_bin(&["replay", saved.to_str().unwrap(), "--solver", "direct"]);
+    assert!(
+        direct.status.success(),
+        "{}",
+        String::from_utf8_lossy(&direct.stderr)
+    );
 }
 
 #[test]

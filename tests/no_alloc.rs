@@ -2,9 +2,11 @@
 //! the step loop"). A counting global allocator wraps the system one; after
 //! the integrator is built, a stretch of steps must not allocate at all, for
 //! one contact, two contacts (active set), a string, a moving force, the
-//! penalty and impact formulations, and every time integrator. The complementarity formulation is the
-//! exception: clarabel builds its solver per step (documented in
-//! docs/formulations.md).
+//! penalty, impact and complementarity formulations, and every time
+//! integrator. The complementarity law keeps one clarabel solver per problem
+//! size for the run and updates its data in place (src/contact/complementarity.rs);
+//! its cases also count the steps in which a contact was closed and open, so
+//! they cannot pass without the law having solved QPs.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -45,8 +47,23 @@ static GLOBAL: Counting = Counting;
 
 const REFERENCE: &str = include_str!("../scenes/reference.toml");
 const T2_STRING: &str = include_str!("../scenes/t2_stationary_mass_string.toml");
+const TWO_PANTOGRAPHS: &str = include_str!("../scenes/two_pantographs.toml");
+
+/// What a measured stretch of steps did.
+struct Stretch {
+    /// Allocations counted during the steps.
+    allocations: usize,
+    /// Carrier-steps with the contact closed and a positive force.
+    closed: usize,
+    /// Carrier-steps with the contact open.
+    open: usize,
+}
 
 fn allocations_in_steps(text: &str, overrides: &[&str], steps: usize) -> usize {
+    measure_steps(text, overrides, steps).allocations
+}
+
+fn measure_steps(text: &str, overrides: &[&str], steps: usize) -> Stretch {
     MEASURING.with(|m| m.set(true));
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
     let sc = taut::resolve_scene(text, &o).unwrap();
@@ -55,12 +72,24 @@ fn allocations_in_steps(text: &str, overrides: &[&str], steps: usize) -> usize {
     let before = ALLOCATIONS.load(Ordering::Relaxed);
     // the counter works: building the model allocates its buffers
     assert!(before > start, "the counting allocator must see the setup");
+    let (mut closed, mut open) = (0, 0);
     for _ in 0..steps {
         it.step().unwrap();
-        let s = it.sample(0);
-        it.check(&s, 0).unwrap();
+        for i in 0..it.carriers() {
+            let s = it.sample(i);
+            it.check(&s, i).unwrap();
+            if s.in_contact && s.force > 0.0 {
+                closed += 1;
+            } else if !s.in_contact {
+                open += 1;
+            }
+        }
     }
-    ALLOCATIONS.load(Ordering::Relaxed) - before
+    Stretch {
+        allocations: ALLOCATIONS.load(Ordering::Relaxed) - before,
+        closed,
+        open,
+    }
 }
 
 // One test function: the counter is global, so parallel tests would mix counts.
@@ -72,6 +101,7 @@ fn step_loop_does_not_allocate() {
         let o = format!("contact.formulation={f}");
         assert_eq!(allocations_in_steps(REFERENCE, &[&o], 6000), 0, "{f}");
     }
+    complementarity();
     assert_eq!(
         allocations_in_steps(REFERENCE, &["contact.kind=bilateral"], 2000),
         0,
@@ -127,5 +157,44 @@ fn step_loop_does_not_allocate() {
         allocations_in_steps(&force, &["time.end=0.5"], 4000),
         0,
         "moving force"
+    );
+}
+
+/// The complementarity law (clarabel, one solver per problem size updated in
+/// place): one contact through contact loss, two contacts, bilateral, and the
+/// velocity-level moreau_jean step whose index set changes size. Each case
+/// must see closed contacts (λ > 0 from a QP) during the measured steps.
+fn complementarity() {
+    let qp = "contact.formulation=complementarity";
+    let one = measure_steps(REFERENCE, &[qp], 6000);
+    assert_eq!(one.allocations, 0, "complementarity, one contact");
+    // in contact for most of the run, and through the loss near the support
+    assert!(one.closed > 4000, "closed in {} steps", one.closed);
+    assert!(one.open > 0, "the contact never opened");
+
+    let two = measure_steps(TWO_PANTOGRAPHS, &[qp], 4000);
+    assert_eq!(two.allocations, 0, "complementarity, two contacts");
+    assert!(
+        two.closed > 2 * 3000,
+        "closed in {} carrier-steps",
+        two.closed
+    );
+
+    let bilateral = measure_steps(REFERENCE, &[qp, "contact.kind=bilateral"], 2000);
+    assert_eq!(bilateral.allocations, 0, "complementarity, bilateral");
+    assert!(
+        bilateral.closed > 1000,
+        "closed in {} steps",
+        bilateral.closed
+    );
+
+    let mj = "integrator={ method = \"moreau_jean\" }";
+    let velocity = measure_steps(TWO_PANTOGRAPHS, &[qp, mj], 4000);
+    assert_eq!(velocity.allocations, 0, "complementarity, moreau_jean");
+    assert!(
+        velocity.closed > 0 && velocity.open > 0,
+        "closed {} open {}",
+        velocity.closed,
+        velocity.open
     );
 }

@@ -84,7 +84,7 @@ pub(crate) fn law_for(spec: &ContactSpec, nc: usize) -> Box<dyn ContactLaw> {
             Box::new(Penalty::new(kappa, bilateral, nc))
         }
         Formulation::Complementarity => {
-            Box::new(Complementarity::new(&spec.complementarity, bilateral))
+            Box::new(Complementarity::new(&spec.complementarity, bilateral, nc))
         }
         Formulation::Impact => Box::new(Impact::new(bilateral, nc)),
     }

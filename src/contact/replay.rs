@@ -119,7 +119,7 @@ pub fn replay(problem: &ContactProblem) -> std::result::Result<ReplayOutcome, Co
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{ComplementaritySpec, ContactSpec};
+    use crate::scene::{ComplementaritySolver, ComplementaritySpec, ContactSpec};
 
     fn problem(formulation: Formulation, g: Vec<f64>, w: Vec<f64>) -> ContactProblem {
         ContactProblem {
@@ -146,6 +146,7 @@ mod tests {
     fn a_failing_qp_is_kept_and_solves_with_a_sane_limit() {
         let mut p = problem(Formulation::Complementarity, vec![-3e-7], vec![5e-9]);
         p.contact.complementarity = ComplementaritySpec {
+            solver: ComplementaritySolver::Clarabel,
             max_iter: 1,
             ..ComplementaritySpec::default()
         };
@@ -157,6 +158,10 @@ mod tests {
         back.contact.complementarity.max_iter = 100;
         let out = replay(&back).unwrap();
         assert!((out.lambda[0] - 60.0).abs() < 1e-6);
+        // and the direct solver answers it exactly
+        back.contact.complementarity.solver = ComplementaritySolver::Direct;
+        let out = replay(&back).unwrap();
+        assert!((out.lambda[0] - 60.0).abs() < 1e-12);
     }
 
     #[test]

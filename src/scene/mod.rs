@@ -252,7 +252,8 @@ pub enum Formulation {
     Lagrange,
     /// Penalty λ = κ·max(0, −g), solved exactly per step (`[contact.penalty]`).
     Penalty,
-    /// The per-step LCP as a QP solved by clarabel (`[contact.complementarity]`).
+    /// The per-step LCP (the QP of MODEL §6), solved directly or by clarabel
+    /// (`[contact.complementarity]`).
     Complementarity,
     /// Velocity-level (Moreau–Jean style) contact with restitution (`[contact.impact]`).
     Impact,
@@ -292,10 +293,28 @@ pub struct PenaltySpec {
     pub relative: Option<f64>,
 }
 
-/// `[contact.complementarity]`: clarabel settings for the per-step QP.
+/// Which solver answers the complementarity law's per-step LCP
+/// (`contact.complementarity.solver`).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum ComplementaritySolver {
+    /// Exact principal pivoting (Murty) on preallocated scratch: no
+    /// allocation per step (default).
+    #[default]
+    Direct,
+    /// clarabel's interior-point QP solver (the general-QP-solver reference;
+    /// the tolerances and `max_iter` below apply to it).
+    Clarabel,
+}
+
+/// `[contact.complementarity]`: the solver of the per-step LCP and clarabel's
+/// settings.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ComplementaritySpec {
+    /// `direct` (default) or `clarabel`.
+    #[serde(default)]
+    pub solver: ComplementaritySolver,
     /// Absolute duality-gap tolerance (default 1e-12).
     #[serde(default = "qp_tol")]
     pub tol_gap_abs: f64,
@@ -321,6 +340,7 @@ fn qp_max_iter() -> u32 {
 impl Default for ComplementaritySpec {
     fn default() -> Self {
         ComplementaritySpec {
+            solver: ComplementaritySolver::default(),
             tol_gap_abs: qp_tol(),
             tol_gap_rel: qp_tol(),
             tol_feas: qp_tol(),
