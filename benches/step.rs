@@ -16,6 +16,14 @@
 //! 1e-4 s; central difference, explicit, at 0.9 of its stability limit
 //! (2/ω_max ≈ 1.5e-5 s there), since it refuses larger steps.
 //!
+//! Group `discretizations`: the per-step cost of each space discretization
+//! (`[mesh] kind`, MODEL §9.2) on the reference beam: Hermite uniform and
+//! graded at N = 800, and the modal bases (`galerkin`, `modal` of the
+//! N = 800 model) at J = 50, 200 and 800. The carrier crawls at 0.5 m/s so a
+//! long-lived integrator is timed block after block (a modal basis's
+//! eigenproblem is paid once per run, outside the timing; its cost is in
+//! `model::eigen`'s docs).
+//!
 //! Group `run`: one complete `taut::run` of the reference scene as shipped
 //! (400 elements, 6000 steps, recording included), for context.
 //!
@@ -134,5 +142,69 @@ fn bench_run(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_step, bench_shapes, bench_methods, bench_run);
+fn bench_discretizations(c: &mut Criterion) {
+    let mut group = c.benchmark_group("discretizations");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(4));
+    let crawl = [
+        "mesh.elements=800".to_string(),
+        "carrier.0.speed={ profile = \"constant\", value = 0.5 }".to_string(),
+        "time.end=90".to_string(),
+        "output.record_every=100000".to_string(),
+    ];
+    let kinds: [(&str, &[&str]); 8] = [
+        ("hermite", &[]),
+        (
+            "hermite_graded",
+            &["mesh.grading=supports", "mesh.grading_ratio=8"],
+        ),
+        ("galerkin_J=50", &["mesh.kind=galerkin", "mesh.modes=50"]),
+        ("galerkin_J=200", &["mesh.kind=galerkin", "mesh.modes=200"]),
+        ("galerkin_J=800", &["mesh.kind=galerkin", "mesh.modes=800"]),
+        ("modal_J=50", &["mesh.kind=modal", "mesh.modes=50"]),
+        ("modal_J=200", &["mesh.kind=modal", "mesh.modes=200"]),
+        ("modal_J=800", &["mesh.kind=modal", "mesh.modes=800"]),
+    ];
+    for (name, set) in kinds {
+        let mut o = crawl.to_vec();
+        o.extend(set.iter().map(|s| s.to_string()));
+        let sc = resolved(&o);
+        let mut it = Integrator::new(&sc).expect("integrator builds");
+        let mut taken = 0;
+        let dofs = it.dofs();
+        group.throughput(Throughput::Elements((dofs * STEPS_PER_ITER) as u64));
+        group.bench_function(format!("{name}/dofs={dofs}"), |b| {
+            b.iter_custom(|iters| {
+                let mut total = Duration::ZERO;
+                for _ in 0..iters {
+                    if taken + STEPS_PER_ITER > sc.steps {
+                        // the carrier nears the end: start again, untimed
+                        it = Integrator::new(&sc).expect("integrator builds");
+                        taken = 0;
+                    }
+                    taken += STEPS_PER_ITER;
+                    let start = std::time::Instant::now();
+                    for _ in 0..STEPS_PER_ITER {
+                        it.step().expect("step succeeds");
+                    }
+                    total += start.elapsed();
+                    black_box(it.beam_dofs()[0]);
+                }
+                total
+            });
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_step,
+    bench_shapes,
+    bench_methods,
+    bench_discretizations,
+    bench_run
+);
 criterion_main!(benches);

@@ -211,7 +211,9 @@ fn main() -> Result<()> {
     let spec = CompareSpec {
         methods: methods.to_vec(),
         formulations: vec![taut::scene::Formulation::Lagrange],
+        discretizations: Vec::new(),
         reference_method: 1,
+        reference_discretization: 0,
         reference: taut::scene::Formulation::Lagrange,
     };
     let c = compare_methods(reference, &[], &spec, &mut |_, _| {})?;

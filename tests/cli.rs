@@ -290,8 +290,14 @@ fn compare_writes_the_table_and_three_files() {
     // the reference row differs from itself by exactly nothing
     let lagrange: Vec<&str> = rows[0].split(',').collect();
     assert_eq!(
-        (lagrange[0], lagrange[1], lagrange[3], lagrange[4]),
-        ("generalized_alpha", "lagrange", "0", "0")
+        (
+            lagrange[0],
+            lagrange[1],
+            lagrange[2],
+            lagrange[4],
+            lagrange[5]
+        ),
+        ("generalized_alpha", "hermite", "lagrange", "0", "0")
     );
     let json: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("compare.json")).unwrap()).unwrap();
@@ -450,8 +456,105 @@ fn converge_and_precision_take_methods() {
         String::from_utf8_lossy(&out.stderr)
     );
     let csv = std::fs::read_to_string(dir.join("precision.csv")).unwrap();
-    assert!(csv.starts_with("method,formulation"), "{csv}");
+    assert!(
+        csv.starts_with("method,discretization,formulation"),
+        "{csv}"
+    );
     assert_eq!(csv.lines().count(), 3, "{csv}");
+}
+
+/// `--discretizations` in compare, converge and precision (MODEL §9.2):
+/// one row (or ladder) per discretization, J as the modal kinds' level
+/// parameter, and a bad list named.
+#[test]
+fn studies_take_discretizations() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = crate_root().join("scenes/moving_force_beam.toml");
+    let ok = |args: &[&str]| {
+        let out = taut_bin(args);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    let dir = out_dir(&tmp, "cmp");
+    ok(&[
+        "compare",
+        scene.to_str().unwrap(),
+        "--formulations",
+        "lagrange",
+        "--discretizations",
+        "hermite,galerkin:20,modal:20",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let csv = std::fs::read_to_string(dir.join("compare.csv")).unwrap();
+    let kinds: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap())
+        .collect();
+    assert_eq!(kinds, ["hermite", "galerkin J=20", "modal J=20"], "{csv}");
+    let dir = out_dir(&tmp, "cv");
+    ok(&[
+        "converge",
+        scene.to_str().unwrap(),
+        "--refine",
+        "mesh",
+        "--levels",
+        "3",
+        "--discretizations",
+        "galerkin:5,modal:5",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let csv = std::fs::read_to_string(dir.join("converge.csv")).unwrap();
+    // J doubles level by level: the modes column of the modal ladders
+    for (kind, j) in [("galerkin", "5"), ("galerkin", "10"), ("modal", "20")] {
+        assert!(
+            csv.lines()
+                .any(|l| l.contains(&format!("{kind},")) && l.split(',').nth(4) == Some(j)),
+            "{kind} J={j}: {csv}"
+        );
+    }
+    let dir = out_dir(&tmp, "pr");
+    ok(&[
+        "precision",
+        scene.to_str().unwrap(),
+        "--formulations",
+        "lagrange",
+        "--discretizations",
+        "hermite,modal:10",
+        "--levels",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let csv = std::fs::read_to_string(dir.join("precision.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+    assert!(
+        csv.lines()
+            .any(|l| l.contains(",modal,") && l.contains(",10,")),
+        "{csv}"
+    );
+    let out = taut_bin(&[
+        "compare",
+        scene.to_str().unwrap(),
+        "--discretizations",
+        "hermite,fourier",
+        "--out",
+        out_dir(&tmp, "bad").to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--discretizations") && err.contains("fourier"),
+        "{err}"
+    );
 }
 
 /// A thread count the machine cannot use is refused before any run, naming

@@ -102,6 +102,25 @@ fn step_loop_does_not_allocate() {
         assert_eq!(allocations_in_steps(REFERENCE, &[&o], 6000), 0, "{f}");
     }
     complementarity();
+    // the space discretizations (MODEL §9.2): dense point vectors refilled
+    // in place; graded meshes, a Moreau–Jean step (slope vectors too)
+    for (kind, extra) in [
+        ("mesh.kind=galerkin", "mesh.modes=60"),
+        ("mesh.kind=modal", "mesh.modes=60"),
+        ("mesh.grading=supports", "mesh.grading_ratio=8"),
+    ] {
+        assert_eq!(
+            allocations_in_steps(REFERENCE, &[kind, extra], 6000),
+            0,
+            "{kind}"
+        );
+        let mj = "integrator={ method = \"moreau_jean\" }";
+        assert_eq!(
+            allocations_in_steps(REFERENCE, &[kind, extra, mj], 6000),
+            0,
+            "{kind} with moreau_jean"
+        );
+    }
     assert_eq!(
         allocations_in_steps(REFERENCE, &["contact.kind=bilateral"], 2000),
         0,

@@ -227,12 +227,12 @@ fn taut_converge_reports_the_galerkin_errors() {
         .lines()
         .skip(1)
         .map(|l| l.split(',').collect())
-        .filter(|r: &Vec<&str>| r[4] == "displacement_max")
+        .filter(|r: &Vec<&str>| r[6] == "displacement_max")
         .collect();
     assert_eq!(rows.len(), 3);
-    let errors: Vec<f64> = rows.iter().map(|r| r[6].parse().unwrap()).collect();
+    let errors: Vec<f64> = rows.iter().map(|r| r[8].parse().unwrap()).collect();
     for r in &rows {
-        assert_eq!(r[9], "analytic", "{r:?}");
+        assert_eq!(r[11], "analytic", "{r:?}");
     }
     println!(
         "taut converge --levels 3: displacement_max errors {}",

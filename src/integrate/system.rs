@@ -242,13 +242,16 @@ impl System {
                         None
                     }
                 };
+                // point vectors sized for the basis now (a modal basis's
+                // are dense J-vectors), so that no step allocates
+                let x0 = p.motion.position(0.0);
                 Carrier {
                     props: *p,
                     s,
                     contact,
-                    pv_f: PointVector::default(),
-                    pv_g: PointVector::default(),
-                    pv_s: PointVector::default(),
+                    pv_f: beam.point_vector(x0),
+                    pv_g: beam.point_vector(x0),
+                    pv_s: beam.slope_vector(x0),
                     speed: 0.0,
                 }
             })

@@ -16,7 +16,8 @@
 //!   there, MODEL §9.2);
 //! * `left`, `right`: the whole span graded toward one support;
 //! * `point`: toward a position x_p, the two sides graded toward it with
-//!   elements shared in proportion to their lengths.
+//!   elements shared in proportion to their lengths (R holds on each side;
+//!   their smallest elements differ by the rounding of that split).
 //!
 //! A uniform mesh keeps the arithmetic it always had (x/h lookup, one
 //! element length), so its runs are bit-identical to the code before grading.
@@ -252,6 +253,11 @@ mod tests {
     /// Node positions are sums of element sizes: a few ulps of L.
     const POSITION_TOL: f64 = 1e-12;
 
+    /// Relative excess of a `point` mesh's overall h_max/h_min over R: the
+    /// element split between the sides is rounded to whole elements
+    /// (measured 1.6 % for 40 elements, x_p = L/4).
+    const POINT_SPLIT_TOL: f64 = 0.05;
+
     #[test]
     fn uniform_lookup_is_the_old_arithmetic() {
         let m = Mesh::uniform(10.0, 7);
@@ -288,7 +294,14 @@ mod tests {
                 | Grading::Point { ratio, .. } => ratio,
                 Grading::Uniform => 1.0,
             };
-            assert!((r - want).abs() < 1e-9 * want, "{g:?}: {r}");
+            // R holds on each graded side; a point's two sides have their
+            // own h_min (lengths and element counts differ), so the overall
+            // ratio is R up to the rounding of the element split
+            let tol = match g {
+                Grading::Point { .. } => POINT_SPLIT_TOL,
+                _ => 1e-9,
+            };
+            assert!((r - want).abs() < tol * want, "{g:?}: {r}");
         }
         // grading toward the supports puts the smallest elements there
         let m = Mesh::new(l, 40, Grading::Supports { ratio: 8.0 }).unwrap();

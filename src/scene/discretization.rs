@@ -4,6 +4,7 @@
 
 use super::{BeamProps, GradingKind, MeshKind, MeshSpec, Support};
 use crate::error::{Error, Result};
+use crate::model::eigen::MAX_MODAL_DOFS;
 use crate::model::mesh::{Grading, MAX_GRADING_RATIO};
 
 /// Size ratio h_max/h_min of a graded mesh when `grading_ratio` is not
@@ -113,6 +114,15 @@ pub(super) fn resolve(mesh: &MeshSpec, beam: &BeamProps) -> Result<(Discretizati
         MeshKind::Hermite => Discretization::Hermite,
         MeshKind::Modal => {
             let n = fe_unknowns(beam, mesh.elements);
+            if n > MAX_MODAL_DOFS {
+                return Err(Error::invalid(
+                    "mesh.elements",
+                    mesh.elements,
+                    format!(
+                        "gives {n} FE unknowns; mesh.kind = \"modal\" solves a dense eigenproblem of at most {MAX_MODAL_DOFS} (n² memory, n³ time: model::eigen): use fewer elements, or galerkin"
+                    ),
+                ));
+            }
             if modes > n {
                 return Err(Error::invalid(
                     "mesh.modes",
