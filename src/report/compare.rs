@@ -140,8 +140,9 @@ pub fn compare_table(c: &Comparison) -> String {
             m.to_string()
         }
     };
+    let w = if space { 34 } else { 19 };
     let mut s = format!(
-        "{:<19} {:<16} {:>9} {:>9} {:>10} {:>11} {:>11} {:>11} {:>10} {:>9} {:>8}\n",
+        "{:<w$} {:<16} {:>9} {:>9} {:>10} {:>11} {:>11} {:>11} {:>10} {:>9} {:>8}\n",
         if space {
             "method/discretization"
         } else {
@@ -160,7 +161,7 @@ pub fn compare_table(c: &Comparison) -> String {
     );
     for r in &c.rows {
         s.push_str(&format!(
-            "{:<19} {:<16} {:>9.5} {:>9.5} {:>10.5} {:>11.4e} {:>11.4e} {:>11.3e} {:>10.2} {:>9} {:>8.3}\n",
+            "{:<w$} {:<16} {:>9.5} {:>9.5} {:>10.5} {:>11.4e} {:>11.4e} {:>11.3e} {:>10.2} {:>9} {:>8.3}\n",
             who(&r.method, &r.discretization),
             r.formulation,
             r.loss_fraction,

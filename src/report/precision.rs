@@ -75,13 +75,14 @@ pub fn precision_table(p: &Precision) -> String {
             r.method.clone()
         }
     };
+    let w = if space { 28 } else { 19 };
     let mut s = format!(
-        "{:<19} {:<16} {:>6} {:>10} {:>12} {:>9} {:>11} {:>11} {:>9}\n",
+        "{:<w$} {:<16} {:>6} {:>10} {:>12} {:>9} {:>11} {:>11} {:>9}\n",
         "method", "formulation", "N", "dt s", "dof-steps", "wall s", "force err", "w err", "ΔP_l"
     );
     for r in &p.rows {
         s.push_str(&format!(
-            "{:<19} {:<16} {:>6} {:>10.3e} {:>12.3e} {:>9.4} {:>11.3e} {:>11.3e} {:>9.5}{}\n",
+            "{:<w$} {:<16} {:>6} {:>10.3e} {:>12.3e} {:>9.4} {:>11.3e} {:>11.3e} {:>9.5}{}\n",
             who(r),
             r.formulation,
             r.modes
