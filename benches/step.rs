@@ -199,12 +199,54 @@ fn bench_discretizations(c: &mut Criterion) {
     group.finish();
 }
 
+/// Group `batch`: runs that share a matrix stepped together
+/// (`integrate::batch`): B reference runs at N = 1600 (a speed sweep,
+/// Δt = 6.25e-5 s, 0.05 s of motion each) alone one after the other and as
+/// one batch, reported as DOF-steps per second of all B runs on one core.
+/// The target: batched throughput ≥ 4× the single-run throughput.
+fn bench_batch(c: &mut Criterion) {
+    let mut group = c.benchmark_group("batch");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(8));
+    for b in [1usize, 2, 4, 8] {
+        let scenes: Vec<taut::Resolved> = (0..b)
+            .map(|i| {
+                resolved(&[
+                    "mesh.elements=1600".to_string(),
+                    "time.step=6.25e-5".to_string(),
+                    "time.end=0.05".to_string(),
+                    format!("carrier.0.speed.cruise={}", 80.0 + 5.0 * i as f64),
+                ])
+            })
+            .collect();
+        let dofs = Integrator::new(&scenes[0]).expect("integrator").dofs();
+        let steps: usize = scenes.iter().map(|s| s.steps).sum();
+        group.throughput(Throughput::Elements((dofs * steps) as u64));
+        group.bench_function(format!("alone/B={b}"), |bch| {
+            bch.iter(|| {
+                for sc in &scenes {
+                    black_box(taut::run(sc, &mut |_, _| {}).expect("run").steps);
+                }
+            })
+        });
+        if b > 1 {
+            group.bench_function(format!("batched/B={b}"), |bch| {
+                bch.iter(|| black_box(taut::run_batch(&scenes, b, &mut |_| {}).len()))
+            });
+        }
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
     bench_step,
     bench_shapes,
     bench_methods,
     bench_discretizations,
+    bench_batch,
     bench_run
 );
 criterion_main!(benches);

@@ -35,5 +35,5 @@ pub mod study;
 pub mod warnings;
 
 pub use error::{Error, Result};
-pub use run::{RunOutput, run, run_with};
+pub use run::{RunOutput, run, run_batch, run_with};
 pub use scene::{Resolved, Scene, load_scene, resolve_scene};

@@ -124,6 +124,11 @@ enum Command {
         /// Worker threads (default: all cores; at most 4 per core, 1024).
         #[arg(long)]
         threads: Option<usize>,
+        /// Runs stepped together when they share their effective matrix
+        /// (1 ..= 8; 1: every run alone; default: chosen from the model
+        /// size). The records are the same bytes whatever the width.
+        #[arg(long, value_name = "B")]
+        batch: Option<usize>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -250,6 +255,7 @@ fn main() -> ExitCode {
             shard,
             check_refinement,
             threads,
+            batch,
             quiet,
         } => match cmd_sweep(
             scene,
@@ -257,7 +263,7 @@ fn main() -> ExitCode {
             set,
             out,
             shard.as_deref(),
-            threads,
+            (threads, batch),
             quiet,
         ) {
             Ok(true) => Ok(()),
@@ -526,10 +532,11 @@ fn cmd_sweep(
     set: Vec<String>,
     out: Option<PathBuf>,
     shard: Option<&str>,
-    threads: Option<usize>,
+    (threads, batch): (Option<usize>, Option<usize>),
     quiet: bool,
 ) -> taut::Result<bool> {
-    use taut::study::sweep::{Axis, Shard, SweepSpec, claim, sweep_in};
+    use taut::study::sweep::{Axis, Shard, SweepSpec, claim, sweep_batched};
+    let batch = parse_batch(batch)?;
     let axes = vary
         .iter()
         .map(|v| Axis::parse(v, log))
@@ -551,7 +558,7 @@ fn cmd_sweep(
     let claimed = claim(&dir)?;
     // the first report says how many points an earlier start had finished
     let resumed = std::sync::OnceLock::new();
-    let records = sweep_in(&claimed, &spec, shard, &|done, total| {
+    let records = sweep_batched(&claimed, &spec, shard, batch, &|done, total| {
         resumed.get_or_init(|| done);
         bar.set_length(total as u64);
         bar.set_position(done as u64);
@@ -955,5 +962,20 @@ fn print_summary(
             "  wrote    {}/{{history.csv, summary.json, force.svg}}",
             dir.display()
         );
+    }
+}
+
+/// `--batch B`: 1 ..= MAX_LANES, or automatic when absent.
+fn parse_batch(b: Option<usize>) -> taut::Result<taut::study::sweep::BatchWidth> {
+    use taut::study::sweep::BatchWidth;
+    let max = taut::integrate::MAX_LANES;
+    match b {
+        None => Ok(BatchWidth::Auto),
+        Some(b) if (1..=max).contains(&b) => Ok(BatchWidth::Fixed(b)),
+        Some(b) => Err(taut::Error::invalid(
+            "--batch",
+            b,
+            format!("must be in 1 ..= {max} (runs stepped together; 1 steps every run alone)"),
+        )),
     }
 }

@@ -3,7 +3,8 @@
 use std::time::Instant;
 
 use crate::error::Result;
-use crate::integrate::{Integrator, MethodFactory};
+use crate::error::Error;
+use crate::integrate::{Batch, CarrierSample, Integrator, MAX_LANES, MethodFactory, batch_key};
 use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry};
 use crate::scene::Resolved;
 
@@ -56,93 +57,309 @@ fn drive(
 ) -> Result<RunOutput> {
     let start = Instant::now();
     let mut it = build(sc)?;
-    let nc = it.carriers();
-    let probes: Vec<_> = sc
-        .probes
-        .iter()
-        .map(|(_, x)| it.beam().point_vector(*x))
-        .collect();
-    let every = sc.record_every.max(1);
-    let mut h = History::with_capacity(sc.history_rows(), every, nc, &sc.probes);
-    // statistics over every step, whatever rows the history keeps; the
-    // near-support force peak (below) likewise
-    let mut acc: Vec<ContactAccumulator> = (0..nc)
-        .map(|c| ContactAccumulator::new(LossGeometry::of(sc, c)))
-        .collect();
-    let mut support_peak = vec![0.0f64; nc];
-    let mut observe = |it: &Integrator, h: &mut History, keep: bool, first: bool| -> Result<()> {
-        let t = it.time();
-        if keep {
-            h.t.push(t);
-        }
-        for c in 0..nc {
-            let s = it.sample(c);
-            it.check(&s, c)?;
-            acc[c].push(t, &s);
-            if !first && it.near_support(s.x) {
-                support_peak[c] = support_peak[c].max(s.force.abs());
-            }
-            if keep {
-                h.carriers[c].push(&s);
-            }
-        }
-        if keep {
-            for (pv, (_, col)) in probes.iter().zip(h.probes.iter_mut()) {
-                col.push(it.displacement_at(pv));
-            }
-        }
-        Ok(())
-    };
-    observe(&it, &mut h, true, true)?;
+    let mut rec = Recorder::new(sc, it.beam(), it.carriers());
+    rec.observe(
+        it.time(),
+        true,
+        true,
+        |c| it.sample(c),
+        |s, c| it.check(s, c),
+        |x| it.near_support(x),
+        |pv| it.displacement_at(pv),
+    )?;
     let report_every = (sc.steps / 200).max(1);
     for n in 1..=sc.steps {
         it.step()?;
-        observe(&it, &mut h, n % every == 0 || n == sc.steps, false)?;
+        rec.observe(
+            it.time(),
+            rec.keeps(n, sc.steps),
+            false,
+            |c| it.sample(c),
+            |s, c| it.check(s, c),
+            |x| it.near_support(x),
+            |pv| it.displacement_at(pv),
+        )?;
         if n % report_every == 0 || n == sc.steps {
             progress(n, sc.steps);
         }
     }
     let wall_seconds = start.elapsed().as_secs_f64();
-    let max_abs_w: Vec<f64> = acc.iter().map(ContactAccumulator::max_abs_w).collect();
-    let stats = acc
-        .into_iter()
-        .map(ContactAccumulator::finish)
-        .collect::<Vec<ContactStats>>();
-    let warnings = stats
-        .iter()
-        .enumerate()
-        .filter(|(_, st)| st.contact_switches as f64 > CHATTER_FRACTION * sc.steps as f64)
-        .map(|(i, st)| {
-            let cause = it.constraint_damping_note().map_or(String::new(), |w| {
-                format!("; likely cause: {w}")
-            });
-            format!(
-                "carrier {i}: contact switched {} times in {} steps: step-to-step chatter, a numerical oscillation (integrator.method = {}, contact.placement = {:?}; MODEL §5); these contact statistics are not a converged answer{cause}",
-                st.contact_switches,
-                sc.steps,
-                sc.integrator.method.name(),
-                sc.contact.placement
-            )
-        })
-        .collect();
-    // arrival at a support: forces beyond the divergence bound, allowed there
-    let bound = it.force_bound();
-    let mut warnings: Vec<String> = warnings;
-    warnings.extend(crate::warnings::resolution_warnings(sc, &max_abs_w, &stats));
-    for (c, &peak) in support_peak.iter().enumerate() {
-        if peak > bound {
-            warnings.push(format!(
-                "carrier {c}: contact force {peak:.3e} N in the last element before a support (beyond the {bound:.1e} N bound applied elsewhere): the mass arrives with the beam under it deflected and is forced to w = 0 within one element, an impact the model has no law for; it grows as the step falls, and force_max includes it"
-            ));
+    Ok(rec.finish(
+        sc,
+        Finish {
+            wall_seconds,
+            dofs: it.dofs(),
+            steps: it.steps_taken(),
+            force_bound: it.force_bound(),
+            damping_note: it.constraint_damping_note(),
+        },
+    ))
+}
+
+/// What a run's end adds to its record.
+struct Finish {
+    wall_seconds: f64,
+    dofs: usize,
+    steps: usize,
+    force_bound: f64,
+    damping_note: Option<String>,
+}
+
+/// A run's history and statistics as they are recorded, step by step:
+/// what [`run`] and a batch of runs ([`run_batch`]) share.
+struct Recorder {
+    h: History,
+    acc: Vec<ContactAccumulator>,
+    support_peak: Vec<f64>,
+    probes: Vec<crate::model::beam::PointVector>,
+    every: usize,
+}
+
+impl Recorder {
+    fn new(sc: &Resolved, beam: &crate::model::beam::BeamModel, nc: usize) -> Self {
+        let every = sc.record_every.max(1);
+        Recorder {
+            h: History::with_capacity(sc.history_rows(), every, nc, &sc.probes),
+            // statistics over every step, whatever rows the history keeps;
+            // the near-support force peak (below) likewise
+            acc: (0..nc)
+                .map(|c| ContactAccumulator::new(LossGeometry::of(sc, c)))
+                .collect(),
+            support_peak: vec![0.0f64; nc],
+            probes: sc
+                .probes
+                .iter()
+                .map(|(_, x)| beam.point_vector(*x))
+                .collect(),
+            every,
         }
     }
-    Ok(RunOutput {
-        warnings,
-        dofs: it.dofs(),
-        steps: it.steps_taken(),
-        dt: sc.dt,
-        history: h,
-        stats,
-        wall_seconds,
-    })
+
+    /// True when step n's row is kept in the history.
+    fn keeps(&self, n: usize, steps: usize) -> bool {
+        n % self.every == 0 || n == steps
+    }
+
+    /// Record the state at time t (checking every carrier's values).
+    #[allow(clippy::too_many_arguments)]
+    fn observe(
+        &mut self,
+        t: f64,
+        keep: bool,
+        first: bool,
+        sample: impl Fn(usize) -> CarrierSample,
+        check: impl Fn(&CarrierSample, usize) -> Result<()>,
+        near_support: impl Fn(f64) -> bool,
+        displacement: impl Fn(&crate::model::beam::PointVector) -> f64,
+    ) -> Result<()> {
+        if keep {
+            self.h.t.push(t);
+        }
+        for c in 0..self.acc.len() {
+            let s = sample(c);
+            check(&s, c)?;
+            self.acc[c].push(t, &s);
+            if !first && near_support(s.x) {
+                self.support_peak[c] = self.support_peak[c].max(s.force.abs());
+            }
+            if keep {
+                self.h.carriers[c].push(&s);
+            }
+        }
+        if keep {
+            for (pv, (_, col)) in self.probes.iter().zip(self.h.probes.iter_mut()) {
+                col.push(displacement(pv));
+            }
+        }
+        Ok(())
+    }
+
+    /// Statistics and warnings of the finished run.
+    fn finish(self, sc: &Resolved, f: Finish) -> RunOutput {
+        let max_abs_w: Vec<f64> = self.acc.iter().map(ContactAccumulator::max_abs_w).collect();
+        let stats = self
+            .acc
+            .into_iter()
+            .map(ContactAccumulator::finish)
+            .collect::<Vec<ContactStats>>();
+        let mut warnings: Vec<String> = stats
+            .iter()
+            .enumerate()
+            .filter(|(_, st)| st.contact_switches as f64 > CHATTER_FRACTION * sc.steps as f64)
+            .map(|(i, st)| {
+                let cause = f.damping_note.as_ref().map_or(String::new(), |w| {
+                    format!("; likely cause: {w}")
+                });
+                format!(
+                    "carrier {i}: contact switched {} times in {} steps: step-to-step chatter, a numerical oscillation (integrator.method = {}, contact.placement = {:?}; MODEL §5); these contact statistics are not a converged answer{cause}",
+                    st.contact_switches,
+                    sc.steps,
+                    sc.integrator.method.name(),
+                    sc.contact.placement
+                )
+            })
+            .collect();
+        // arrival at a support: forces beyond the divergence bound, allowed there
+        let bound = f.force_bound;
+        warnings.extend(crate::warnings::resolution_warnings(sc, &max_abs_w, &stats));
+        for (c, &peak) in self.support_peak.iter().enumerate() {
+            if peak > bound {
+                warnings.push(format!(
+                    "carrier {c}: contact force {peak:.3e} N in the last element before a support (beyond the {bound:.1e} N bound applied elsewhere): the mass arrives with the beam under it deflected and is forced to w = 0 within one element, an impact the model has no law for; it grows as the step falls, and force_max includes it"
+                ));
+            }
+        }
+        RunOutput {
+            warnings,
+            dofs: f.dofs,
+            steps: f.steps,
+            dt: sc.dt,
+            history: self.h,
+            stats,
+            wall_seconds: f.wall_seconds,
+        }
+    }
+}
+
+/// Run several validated scenes, stepping together those that share their
+/// effective matrix ([`crate::integrate::batch_key`]) in batches of at most
+/// `batch` runs (`integrate::batch`); the others, and all of them when
+/// `batch` is 1, run alone. Results in the order of `scenes`, each
+/// bit-identical to [`run`] of that scene alone (but `wall_seconds`: a
+/// batched run reports the batch's wall time divided by its runs).
+/// `done(i)` after scene i finishes.
+pub fn run_batch(
+    scenes: &[Resolved],
+    batch: usize,
+    done: &mut dyn FnMut(usize),
+) -> Vec<Result<RunOutput>> {
+    let mut out: Vec<Option<Result<RunOutput>>> = (0..scenes.len()).map(|_| None).collect();
+    let width = batch.clamp(1, MAX_LANES);
+    // group by key, in order of first appearance
+    let mut groups: Vec<(Option<String>, Vec<usize>)> = Vec::new();
+    for (i, sc) in scenes.iter().enumerate() {
+        let key = if width > 1 { batch_key(sc) } else { None };
+        match groups
+            .iter_mut()
+            .find(|(k, g)| key.is_some() && *k == key && g.len() < width)
+        {
+            Some((_, g)) => g.push(i),
+            None => groups.push((key, vec![i])),
+        }
+    }
+    for (key, members) in groups {
+        if key.is_none() || members.len() == 1 {
+            for i in members {
+                out[i] = Some(run(&scenes[i], &mut |_, _| {}));
+                done(i);
+            }
+            continue;
+        }
+        for (i, r) in drive_batch(scenes, &members) {
+            out[i] = Some(r);
+            done(i);
+        }
+    }
+    out.into_iter()
+        .map(|r| r.expect("every scene is run"))
+        .collect()
+}
+
+/// Step `members` of `scenes` as one batch (equal keys); falls back to
+/// running them alone when no kernel fits.
+fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<RunOutput>)> {
+    let start = Instant::now();
+    let list: Vec<(usize, &Resolved)> = members.iter().map(|&i| (i, &scenes[i])).collect();
+    let (batch, errors) = Batch::new(&list);
+    let mut results: Vec<(usize, Result<RunOutput>)> =
+        errors.into_iter().map(|(i, e)| (i, Err(e))).collect();
+    let Some(mut b) = batch else {
+        return results;
+    };
+    if !b.supported() {
+        for lane in b.lanes() {
+            results.push((lane.id, run(&scenes[lane.id], &mut |_, _| {})));
+        }
+        return results;
+    }
+    let runs = b.lanes().len() as f64;
+    let mut recs: Vec<Option<Recorder>> = b
+        .lanes()
+        .iter()
+        .map(|lane| {
+            Some(Recorder::new(
+                &scenes[lane.id],
+                lane.sys.beam(),
+                lane.sys.carriers.len(),
+            ))
+        })
+        .collect();
+    // recorders follow their lanes: index by lane, compacted with the batch
+    let observe = |b: &Batch, recs: &mut Vec<Option<Recorder>>, first: bool| {
+        let mut gone = Vec::new();
+        for (l, lane) in b.lanes().iter().enumerate() {
+            let sc = &scenes[lane.id];
+            let rec = recs[l].as_mut().expect("a recorder per lane");
+            let n = lane.st.step;
+            let outcome = match &lane.failed {
+                Some(_) => Err(None),
+                None => rec
+                    .observe(
+                        lane.st.t,
+                        first || rec.keeps(n, sc.steps),
+                        first,
+                        |c| b.sample(l, c),
+                        |s, c| crate::integrate::check_lane(&lane.sys, &lane.st, s, c),
+                        |x| crate::integrate::near_support_lane(&lane.sys, x),
+                        |pv| b.displacement_at(l, pv),
+                    )
+                    .map_err(Some),
+            };
+            match outcome {
+                Ok(()) if n < sc.steps => {}
+                other => gone.push((l, other.err())),
+            }
+        }
+        gone
+    };
+    let mut pending = observe(&b, &mut recs, true);
+    loop {
+        // retire finished and stopped runs
+        if !pending.is_empty() {
+            let idx: Vec<usize> = pending.iter().map(|(l, _)| *l).collect();
+            let mut errs: Vec<Option<Option<Error>>> = pending.into_iter().map(|(_, e)| e).collect();
+            let lanes = b.retire(&idx);
+            for (k, (lane, l)) in lanes.into_iter().zip(&idx).enumerate().rev() {
+                let rec = recs.remove(*l).expect("a recorder per lane");
+                let sc = &scenes[lane.id];
+                let result = match (lane.failed, errs[k].take()) {
+                    (Some(e), _) | (None, Some(Some(e))) => Err(e),
+                    _ => Ok(rec.finish(
+                        sc,
+                        Finish {
+                            wall_seconds: start.elapsed().as_secs_f64() / runs,
+                            dofs: lane.sys.beam().n + lane.sys.contacts(),
+                            steps: lane.st.step,
+                            force_bound: lane.sys.force_bound,
+                            damping_note: crate::integrate::damping_note_of(&lane.sys),
+                        },
+                    )),
+                };
+                results.push((lane.id, result));
+            }
+            if b.lanes().is_empty() {
+                break;
+            }
+            if !b.supported() {
+                // fewer lanes than any kernel: the rest continue alone, from the start
+                for lane in b.lanes() {
+                    results.push((lane.id, run(&scenes[lane.id], &mut |_, _| {})));
+                }
+                break;
+            }
+        }
+        b.step();
+        pending = observe(&b, &mut recs, false);
+    }
+    results
 }

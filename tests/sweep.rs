@@ -107,9 +107,14 @@ fn same_bytes_for_any_thread_count_resume_and_shards() {
         cli(&a);
     };
     let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
-    base(&one, &["--threads", "1"]);
+    base(&one, &["--threads", "1", "--batch", "1"]);
     base(&two, &["--threads", "2"]);
     assert_eq!(files(&one), files(&two));
+    // batched stepping (the runs of one speed ratio share a matrix): the
+    // same bytes as every run alone
+    let three = tmp.path().join("three");
+    base(&three, &["--batch", "3"]);
+    assert_eq!(files(&one), files(&three));
     let csv = String::from_utf8(std::fs::read(one.join("sweep.csv")).unwrap()).unwrap();
     assert!(
         csv.starts_with("speed_ratio,carrier.mass,loss_fraction,"),

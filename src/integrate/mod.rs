@@ -20,6 +20,7 @@
 //! [`Integrator`] drives one run: it builds the system, the consistent
 //! initial state and the stepper, and advances time.
 
+mod batch;
 mod bathe;
 mod central_difference;
 mod diagnose;
@@ -29,6 +30,7 @@ mod moreau_jean;
 mod state;
 mod system;
 
+pub use batch::{Batch, Lane, MAX_LANES, batch_key};
 pub use bathe::Bathe;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
@@ -252,11 +254,49 @@ impl Integrator {
 
     /// The values of carrier `i` at the current time.
     pub fn sample(&self, i: usize) -> CarrierSample {
-        let (sys, st) = (&self.sys, &self.state);
-        let c = &sys.carriers[i];
-        let x = c.props.motion.position(st.t);
-        let pv = if st.step == 0 { &c.pv_f } else { &c.pv_g };
-        let w = c.s * pv.dot(&st.d);
+        sample_of(&self.sys, &self.state, i, |pv| pv.dot(&self.state.d))
+    }
+
+    /// The discrete energy, J ([`Energy`]; allocates: for checks).
+    pub fn energy(&self) -> Energy {
+        energy::energy(&self.sys, &self.state)
+    }
+
+    /// Largest |λ| accepted before a run is taken as diverged, N.
+    pub fn force_bound(&self) -> f64 {
+        self.sys.force_bound
+    }
+
+    /// Why this method may leave a moving contact's constraint undamped
+    /// (Newmark, WBZ, HHT with small α), for warnings; `None` otherwise.
+    pub fn constraint_damping_note(&self) -> Option<String> {
+        damping_note_of(&self.sys)
+    }
+
+    /// True when x lies in the last element before a supported end.
+    pub fn near_support(&self, x: f64) -> bool {
+        near_support_lane(&self.sys, x)
+    }
+
+    /// Stop with a diagnosis if a recorded value is non-finite or absurd.
+    pub fn check(&self, s: &CarrierSample, carrier: usize) -> Result<()> {
+        check_lane(&self.sys, &self.state, s, carrier)
+    }
+}
+
+/// The values of carrier `i` of a run: its system, its state, and `dot`,
+/// which takes rᵀd of the run's beam displacements (its own vector, or its
+/// lane of a batch's).
+pub(crate) fn sample_of(
+    sys: &System,
+    st: &State,
+    i: usize,
+    dot: impl Fn(&PointVector) -> f64,
+) -> CarrierSample {
+    let c = &sys.carriers[i];
+    let x = c.props.motion.position(st.t);
+    let pv = if st.step == 0 { &c.pv_f } else { &c.pv_g };
+    let w = c.s * dot(pv);
         match (c.props.kind, c.contact) {
             (CarrierKind::Force { force }, _) => CarrierSample {
                 x,
@@ -285,38 +325,26 @@ impl Integrator {
             }
             _ => unreachable!("a mass carrier always has a contact"),
         }
-    }
+}
 
-    /// The discrete energy, J ([`Energy`]; allocates: for checks).
-    pub fn energy(&self) -> Energy {
-        energy::energy(&self.sys, &self.state)
-    }
+/// [`Integrator::constraint_damping_note`] of a run's system (alone or in
+/// a batch).
+pub(crate) fn damping_note_of(sys: &System) -> Option<String> {
+    let moving = sys
+        .carriers
+        .iter()
+        .any(|c| c.contact.is_some() && !c.props.motion.is_stationary());
+    moving
+        .then(|| diagnose::weak_constraint_damping(sys))
+        .flatten()
+}
 
-    /// Largest |λ| accepted before a run is taken as diverged, N.
-    pub fn force_bound(&self) -> f64 {
-        self.sys.force_bound
-    }
+/// [`Integrator::near_support`] of a run's system.
+pub(crate) fn near_support_lane(sys: &System, x: f64) -> bool {
+    diagnose::near_support(sys, x)
+}
 
-    /// Why this method may leave a moving contact's constraint undamped
-    /// (Newmark, WBZ, HHT with small α), for warnings; `None` otherwise.
-    pub fn constraint_damping_note(&self) -> Option<String> {
-        let moving = self
-            .sys
-            .carriers
-            .iter()
-            .any(|c| c.contact.is_some() && !c.props.motion.is_stationary());
-        moving
-            .then(|| diagnose::weak_constraint_damping(&self.sys))
-            .flatten()
-    }
-
-    /// True when x lies in the last element before a supported end.
-    pub fn near_support(&self, x: f64) -> bool {
-        diagnose::near_support(&self.sys, x)
-    }
-
-    /// Stop with a diagnosis if a recorded value is non-finite or absurd.
-    pub fn check(&self, s: &CarrierSample, carrier: usize) -> Result<()> {
-        diagnose::check(&self.sys, &self.state, s, carrier)
-    }
+/// [`Integrator::check`] of a run (alone or in a batch).
+pub(crate) fn check_lane(sys: &System, st: &State, s: &CarrierSample, carrier: usize) -> Result<()> {
+    diagnose::check(sys, st, s, carrier)
 }

@@ -132,6 +132,41 @@ pub struct StepMap<'a> {
     pub masses: &'a [MassPrediction],
 }
 
+/// Where one run's columns and vectors sit when several runs step together
+/// (batched stepping, `integrate::batch`): `count` runs side by side, this
+/// one at `lane`. A right-hand side then has `k·count` columns (column c of
+/// this run at `c·count + lane`) and a beam vector holds the runs
+/// interleaved (`x[i·count + lane]`). [`Lanes::ONE`] is a run alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Lanes {
+    /// Runs side by side.
+    pub count: usize,
+    /// This run's lane.
+    pub lane: usize,
+}
+
+impl Lanes {
+    /// A run alone.
+    pub const ONE: Lanes = Lanes { count: 1, lane: 0 };
+
+    /// The column of this run's column c.
+    #[inline]
+    pub fn col(&self, c: usize) -> usize {
+        c * self.count + self.lane
+    }
+
+    /// rᵀx for this run's part of an interleaved vector (the run's own
+    /// vector when alone): bit-identical either way.
+    #[inline]
+    pub fn dot(&self, pv: &PointVector, x: &[f64]) -> f64 {
+        if self.count == 1 {
+            pv.dot(x)
+        } else {
+            pv.dot_lane(x, self.count, self.lane)
+        }
+    }
+}
+
 /// How a method's multipliers are to be read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Multipliers {
@@ -362,10 +397,20 @@ impl System {
     /// columns, row-major) and the contact directions s_c r_f,c into columns
     /// 1 + c. `scale` is 1 for a force balance, Δt for an impulse balance.
     pub fn scatter_loads(&self, rhs: &mut [f64], k: usize, scale: f64) {
+        self.scatter_loads_in(rhs, k, Lanes::ONE, scale)
+    }
+
+    /// [`System::scatter_loads`] into this run's columns of a batched
+    /// right-hand side (`k` columns per run, [`Lanes`]).
+    pub fn scatter_loads_in(&self, rhs: &mut [f64], k: usize, lanes: Lanes, scale: f64) {
+        let stride = k * lanes.count;
         for c in &self.carriers {
             match (c.props.kind, c.contact) {
-                (CarrierKind::Force { force }, _) => c.pv_f.scatter(c.s * force * scale, rhs, k, 0),
-                (_, Some(j)) => c.pv_f.scatter(c.s, rhs, k, 1 + j),
+                (CarrierKind::Force { force }, _) => {
+                    c.pv_f
+                        .scatter(c.s * force * scale, rhs, stride, lanes.col(0))
+                }
+                (_, Some(j)) => c.pv_f.scatter(c.s, rhs, stride, lanes.col(1 + j)),
                 _ => {}
             }
         }
@@ -374,9 +419,16 @@ impl System {
     /// Add coef·λ_c·s_c r_f,c of every contact into `y` (one column): the
     /// contact forces' part of a right-hand side, after the solve.
     pub fn scatter_contact_directions(&self, y: &mut [f64], coef: f64) {
+        self.scatter_contact_directions_in(y, Lanes::ONE, coef)
+    }
+
+    /// [`System::scatter_contact_directions`] into this run's lane of an
+    /// interleaved vector.
+    pub fn scatter_contact_directions_in(&self, y: &mut [f64], lanes: Lanes, coef: f64) {
         for c in &self.carriers {
             if let Some(j) = c.contact {
-                c.pv_f.scatter(coef * self.lambda[j] * c.s, y, 1, 0);
+                c.pv_f
+                    .scatter(coef * self.lambda[j] * c.s, y, lanes.count, lanes.lane);
             }
         }
     }
@@ -415,7 +467,7 @@ impl System {
         fill_delassus(
             &self.carriers,
             self.placement,
-            (&rhs, k),
+            (&rhs, k, Lanes::ONE),
             1.0,
             &self.inv_a,
             &mut self.w,
@@ -445,31 +497,46 @@ impl System {
     /// [`System::multipliers`]. `st` is the state at t_n; a failure names
     /// step n + 1 and saves the problem.
     pub fn solve_contact(&mut self, map: &StepMap, st: &State) -> Result<()> {
+        self.solve_contact_in(map, Lanes::ONE, st)
+    }
+
+    /// [`System::solve_contact`] for a run stepping in a batch: `map`'s
+    /// solved columns and beam vectors hold the batch's runs side by side
+    /// ([`Lanes`]). Only the force level with the `end` placement steps in
+    /// batches (`integrate::batch`), so `st` is read for its mass dofs and
+    /// step count only.
+    pub fn solve_contact_in(&mut self, map: &StepMap, lanes: Lanes, st: &State) -> Result<()> {
         let nc = self.masses.len();
         if nc == 0 {
             return Ok(());
         }
-        let k = rhs_columns(nc);
+        let k = rhs_columns(nc) * lanes.count;
+        let col0 = lanes.col(0);
         let (c_d, w_a) = (map.c_d, map.alpha_weight);
         for c in &self.carriers {
             let Some(j) = c.contact else { continue };
             let m = &map.masses[j];
             self.g_free[j] = match self.placement {
                 Placement::End => {
-                    c.s * (c.pv_g.dot(map.d_pred) + c_d * c.pv_g.dot_strided(map.solved, k, 0))
+                    c.s * (lanes.dot(&c.pv_g, map.d_pred)
+                        + c_d * c.pv_g.dot_strided(map.solved, k, col0))
                         - (m.q + c_d * m.u)
                 }
                 Placement::Alpha => {
                     let wb = (1.0 - w_a)
-                        * (c.pv_f.dot(map.d_pred) + c_d * c.pv_f.dot_strided(map.solved, k, 0))
-                        + w_a * c.pv_f.dot(&st.d);
+                        * (lanes.dot(&c.pv_f, map.d_pred)
+                            + c_d * c.pv_f.dot_strided(map.solved, k, col0))
+                        + w_a * lanes.dot(&c.pv_f, &st.d);
                     let wq = (1.0 - w_a) * (m.q + c_d * m.u) + w_a * st.q[j];
                     c.s * wb - wq
                 }
             };
         }
         let solved = match self.level {
-            Level::Velocity => self.solve_velocity_level(map, st),
+            Level::Velocity => {
+                debug_assert_eq!(lanes, Lanes::ONE, "the velocity level steps alone");
+                self.solve_velocity_level(map, st)
+            }
             _ => {
                 let coef = match self.placement {
                     Placement::End => c_d,
@@ -481,7 +548,7 @@ impl System {
                 fill_delassus(
                     &self.carriers,
                     self.placement,
-                    (map.solved, k),
+                    (map.solved, k, lanes),
                     coef,
                     &self.inv_a,
                     &mut self.w,
@@ -645,7 +712,7 @@ impl System {
 fn fill_delassus(
     carriers: &[Carrier],
     placement: Placement,
-    (solved, k): (&[f64], usize),
+    (solved, k, lanes): (&[f64], usize, Lanes),
     coef: f64,
     inv_a: &[f64],
     w: &mut [f64],
@@ -658,7 +725,7 @@ fn fill_delassus(
             Placement::Alpha => &ci.pv_f,
         };
         for j in 0..nc {
-            let mut wij = ci.s * pv.dot_strided(solved, k, 1 + j);
+            let mut wij = ci.s * pv.dot_strided(solved, k, lanes.col(1 + j));
             if i == j {
                 wij += inv_a[i];
             }

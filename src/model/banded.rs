@@ -154,12 +154,41 @@ pub struct Affine<'a> {
 impl Affine<'_> {
     /// Row i with bounds (edge rows and small meshes).
     fn row_any(&self, i: usize) -> f64 {
+        self.row_any_lane(i, 1, 0)
+    }
+
+    /// Row i of lane `lane` when h and u hold `lanes` runs interleaved
+    /// (`h[i·lanes + lane]`): the same operations, in the same order, as
+    /// [`Affine::row_any`] on that run alone.
+    #[inline(always)]
+    fn row_any_lane(&self, i: usize, lanes: usize, lane: usize) -> f64 {
         let (n, p) = (self.k.n, self.k.p);
-        let mut acc = self.h[i];
+        let mut acc = self.h[i * lanes + lane];
         for j in i.saturating_sub(p)..=(i + p).min(n - 1) {
-            acc -= self.k.get(i, j) * self.u[j];
+            acc -= self.k.get(i, j) * self.u[j * lanes + lane];
         }
         acc
+    }
+
+    /// [`Affine::band_sum`] of L interleaved runs (`uu[j·L + l]`): each
+    /// lane summed in exactly the single run's order, so a batched run's
+    /// residual has the same bits as the run alone; across lanes the sums
+    /// are independent, which is what vectorizes.
+    #[inline(always)]
+    fn band_sum_lanes<const P: usize, const L: usize>(kr: &[f64], uu: &[f64]) -> [f64; L] {
+        let (kr, uu) = (&kr[..2 * P + 1], &uu[..(2 * P + 1) * L]);
+        let mut lane = [[0.0; L]; 2];
+        for q in 0..P {
+            for l in 0..2 {
+                let k = kr[2 * q + l];
+                let u = &uu[(2 * q + l) * L..(2 * q + l + 1) * L];
+                for r in 0..L {
+                    lane[l][r] += k * u[r];
+                }
+            }
+        }
+        let last = &uu[2 * P * L..(2 * P + 1) * L];
+        core::array::from_fn(|r| (lane[0][r] + kr[2 * P] * last[r]) + lane[1][r])
     }
 
     /// Row i for P ≤ i < n − P: the full band, no bounds in the inner loop.
@@ -305,12 +334,90 @@ impl BandedLdlt {
         self.solve_many(x, 1)
     }
 
+    /// Solve L runs' systems at once, their columns side by side in one
+    /// sweep (batched stepping): `x` holds n rows of `k·lanes` columns,
+    /// column c of run l at `c·lanes + l`; the affine column of run l
+    /// (`r.h`, `r.u` interleaved, `h[i·lanes + l]`) is added to its column 0,
+    /// and `b0[i·lanes + l]` receives it. Every column gets exactly the
+    /// operations the run alone would get from [`BandedLdlt::solve_affine`]
+    /// with `k` columns (the same kernel, more columns), so a batched run is
+    /// bit-identical to the run alone. Returns false, touching nothing,
+    /// when no kernel is compiled for this (band, k, lanes) — the caller
+    /// then steps its runs alone.
+    pub fn solve_affine_lanes(
+        &self,
+        x: &mut [f64],
+        k: usize,
+        lanes: usize,
+        r: &Affine,
+        b0: &mut [f64],
+    ) -> bool {
+        assert_eq!((r.k.n, r.k.p), (self.n, self.p));
+        assert_eq!(x.len(), self.n * k * lanes, "right-hand side has the wrong length");
+        assert_eq!(b0.len(), self.n * lanes, "b0 has the wrong length");
+        assert_eq!(r.h.len(), self.n * lanes, "h has the wrong length");
+        let r = Some((r, b0));
+        macro_rules! lanes {
+            ($($p:literal, $k:literal, $kl:literal, $l:literal);*) => {
+                match (self.p, k, lanes) {
+                    $(($p, $k, $l) => self.lanes_kernel::<$p, $kl, $l>(x, r),)*
+                    _ => return false,
+                }
+            };
+        }
+        lanes!(3, 2, 4, 2; 3, 2, 6, 3; 3, 2, 8, 4; 3, 2, 10, 5; 3, 2, 12, 6; 3, 2, 14, 7;
+               3, 2, 16, 8; 3, 4, 8, 2; 3, 4, 12, 3; 3, 4, 16, 4;
+               1, 2, 4, 2; 1, 2, 6, 3; 1, 2, 8, 4; 1, 2, 10, 5; 1, 2, 12, 6; 1, 2, 14, 7;
+               1, 2, 16, 8; 1, 4, 8, 2; 1, 4, 12, 3; 1, 4, 16, 4);
+        true
+    }
+
+    /// The batched sweep, with AVX2 where the CPU has it (found at run
+    /// time; four lanes per vector instead of SSE2's two) and the portable
+    /// path otherwise. Both round alike: the same IEEE operations in the same
+    /// order, and no fused multiply–add (Rust never contracts `a·b + c`, and
+    /// the `fma` feature is not enabled).
+    #[inline(always)]
+    fn lanes_kernel<const P: usize, const K: usize, const L: usize>(
+        &self,
+        x: &mut [f64],
+        r: Option<(&Affine, &mut [f64])>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            unsafe { self.solve_kernel_avx2::<P, K, L>(x, r) };
+            return;
+        }
+        self.solve_kernel::<P, K, L>(x, r)
+    }
+
+    /// [`BandedLdlt::solve_kernel`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn solve_kernel_avx2<const P: usize, const K: usize, const L: usize>(
+        &self,
+        x: &mut [f64],
+        r: Option<(&Affine, &mut [f64])>,
+    ) {
+        self.solve_kernel::<P, K, L>(x, r)
+    }
+
+    /// True when [`BandedLdlt::solve_affine_lanes`] has a kernel for `k`
+    /// columns per run and `lanes` runs on this band.
+    pub fn has_lanes(&self, k: usize, lanes: usize) -> bool {
+        matches!(
+            (self.p, k, lanes),
+            (3 | 1, 2, 2..=8) | (3 | 1, 4, 2..=4)
+        ) && self.n > 0
+    }
+
     fn dispatch(&self, x: &mut [f64], k: usize, r: Option<(&Affine, &mut [f64])>) {
         assert_eq!(x.len(), self.n * k, "right-hand side has the wrong length");
         macro_rules! dispatch {
             ($($p:literal, $k:literal);*) => {
                 match (self.p, k) {
-                    $(($p, $k) => self.solve_kernel::<$p, $k>(x, r),)*
+                    $(($p, $k) => self.solve_kernel::<$p, $k, 1>(x, r),)*
                     _ => {
                         if let Some((r, b0)) = r {
                             for (i, row) in x.chunks_exact_mut(k).enumerate() {
@@ -343,7 +450,11 @@ impl BandedLdlt {
         acc
     }
 
-    fn solve_kernel<const P: usize, const K: usize>(
+    /// The sweep for K columns; with L > 1 the columns are L runs' (column
+    /// c of run l at c·L + l) and the affine column of run l goes to column
+    /// l ([`BandedLdlt::solve_affine_lanes`]).
+    #[inline(always)]
+    fn solve_kernel<const P: usize, const K: usize, const L: usize>(
         &self,
         x: &mut [f64],
         r: Option<(&Affine, &mut [f64])>,
@@ -357,8 +468,10 @@ impl BandedLdlt {
             Some((r, b0)) => {
                 let edges = (0..inside.start.min(n)).chain(inside.end.max(inside.start)..n);
                 for i in edges.filter(|&i| !inside.contains(&i)) {
-                    x[i][0] += r.row_any(i);
-                    b0[i] = x[i][0];
+                    for l in 0..L {
+                        x[i][l] += r.row_any_lane(i, L, l);
+                        b0[i * L + l] = x[i][l];
+                    }
                 }
                 (!inside.is_empty()).then_some((r, b0))
             }
@@ -384,7 +497,25 @@ impl BandedLdlt {
         if n >= P {
             let mut win: [[f64; K]; P] = core::array::from_fn(|j| x[j]);
             let split = if fused.is_some() { inside.end } else { P };
-            if let Some((r, b0)) = fused {
+            let (lanes, single) = if L > 1 { (fused, None) } else { (None, fused) };
+            if let Some((r, b0)) = lanes {
+                // L runs side by side: their residuals vectorize across lanes
+                let w = 2 * P + 1;
+                let rows = self.rows[P * P..split * P].chunks_exact(P);
+                let kband = r.k.data[P * w..split * w].chunks_exact(w);
+                for (i, (row, kr)) in (P..split).zip(rows.zip(kband)) {
+                    let f = Affine::band_sum_lanes::<P, L>(kr, &r.u[(i - P) * L..(i + P + 1) * L]);
+                    let mut acc = x[i];
+                    let (h, b) = (&r.h[i * L..(i + 1) * L], &mut b0[i * L..(i + 1) * L]);
+                    for l in 0..L {
+                        acc[l] += h[l] - f[l];
+                        b[l] = acc[l];
+                    }
+                    let acc = Self::eliminate(row, &win, acc);
+                    x[i] = acc;
+                    win = core::array::from_fn(|j| if j + 1 < P { win[j + 1] } else { acc });
+                }
+            } else if let Some((r, b0)) = single {
                 let w = 2 * P + 1;
                 let rows = self.rows[P * P..split * P].chunks_exact(P);
                 let kband = r.k.data[P * w..split * w].chunks_exact(w);

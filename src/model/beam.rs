@@ -64,6 +64,26 @@ impl PointVector {
         }
     }
 
+    /// rᵀx where x holds `lanes` runs interleaved (`x[i·lanes + lane]`,
+    /// batched stepping): the same operations in the same order as
+    /// [`PointVector::dot`] on that run's own vector, so the bits agree.
+    #[inline]
+    pub fn dot_lane(&self, x: &[f64], lanes: usize, lane: usize) -> f64 {
+        let at = |i: usize| x[i * lanes + lane];
+        if self.dense.is_empty() {
+            self.val[0] * at(self.idx[0])
+                + self.val[1] * at(self.idx[1])
+                + self.val[2] * at(self.idx[2])
+                + self.val[3] * at(self.idx[3])
+        } else {
+            self.dense
+                .iter()
+                .enumerate()
+                .map(|(i, r)| r * at(i))
+                .sum()
+        }
+    }
+
     /// y += a·r. `y` has `stride` interleaved columns; this writes column `col`.
     #[inline]
     pub fn scatter(&self, a: f64, y: &mut [f64], stride: usize, col: usize) {

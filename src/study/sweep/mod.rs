@@ -34,7 +34,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::run::run;
+use crate::run::{RunOutput, run};
 use crate::scene::{CarrierKind, Resolved, resolve_scene};
 
 pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
@@ -532,25 +532,33 @@ pub const REFINEMENT_ABS: f64 = 5e-4;
 
 /// Run point `index` and reduce it to its record.
 fn record(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
+    let sc = spec.resolve(index);
+    let out = sc
+        .as_ref()
+        .map_err(|e| e.to_string())
+        .and_then(|sc| run(sc, &mut |_, _| {}).map_err(|e| e.to_string()));
+    record_of(spec, id, index, sc.as_ref().ok(), out)
+}
+
+/// Point `index`'s record from its scene and what its run gave.
+fn record_of(
+    spec: &SweepSpec,
+    id: &str,
+    index: usize,
+    sc: Option<&Resolved>,
+    out: std::result::Result<RunOutput, String>,
+) -> SweepRecord {
     let values = spec.point(index);
     let nan = SweepRecord::stopped(id, index, values.clone());
-    let sc = match spec.resolve(index) {
-        Ok(sc) => sc,
-        Err(e) => {
+    let (sc, out) = match (sc, out) {
+        (Some(sc), Ok(o)) => (sc, o),
+        (_, Err(e)) => {
             return SweepRecord {
-                error: Some(e.to_string()),
+                error: Some(e),
                 ..nan
             };
         }
-    };
-    let out = match run(&sc, &mut |_, _| {}) {
-        Ok(o) => o,
-        Err(e) => {
-            return SweepRecord {
-                error: Some(e.to_string()),
-                ..nan
-            };
-        }
+        (None, Ok(_)) => unreachable!("a run needs its scene"),
     };
     let s = &out.stats[0];
     let tr = &out.history.carriers[0];
@@ -673,6 +681,20 @@ pub fn sweep_in(
     shard: Option<Shard>,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Vec<SweepRecord>> {
+    sweep_batched(claimed, spec, shard, BatchWidth::Auto, progress)
+}
+
+/// [`sweep_in`] with the batch width given (`--batch`): points that share
+/// their effective matrix step together, up to that many at a time; the
+/// records are the same bytes whatever the width (their `wall_seconds`
+/// aside).
+pub fn sweep_batched(
+    claimed: &FolderLock,
+    spec: &SweepSpec,
+    shard: Option<Shard>,
+    batch: BatchWidth,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Vec<SweepRecord>> {
     let dir = claimed.dir();
     let had_spec = folder::check_spec(dir, spec)?;
     let id = folder::sweep_id(spec);
@@ -691,13 +713,123 @@ pub fn sweep_in(
     }
     let done = AtomicUsize::new(mine.len() - todo.len());
     progress(done.load(Ordering::Relaxed), mine.len());
-    todo.par_iter().try_for_each(|&i| -> Result<()> {
-        folder::save(dir, &record_guarded(spec, &id, i))?;
-        let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-        progress(n, mine.len());
+    let items = batches(spec, &todo, batch);
+    items.par_iter().try_for_each(|item| -> Result<()> {
+        for r in records_guarded(spec, &id, item) {
+            folder::save(dir, &r)?;
+            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+            progress(n, mine.len());
+        }
         Ok(())
     })?;
     folder::collect(dir, spec, &mine)
+}
+
+/// How many runs a sweep steps together (`--batch`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BatchWidth {
+    /// Chosen from the size of the model ([`auto_batch`]).
+    Auto,
+    /// At most this many (1: every run alone, the unbatched path).
+    Fixed(usize),
+}
+
+/// Bytes of a batch's per-row working set the automatic width keeps within:
+/// half of this machine kind's 1 MiB L2 cache per core. Above it the
+/// batched sweep streams from L3 and is bound by its bandwidth, not by the
+/// dependency chain the batch shares (docs/performance.md).
+pub const AUTO_BATCH_BYTES: usize = 512 * 1024;
+
+/// The automatic batch width for a model of n unknowns and k right-hand
+/// sides per run: the most lanes (2 ..= [`crate::integrate::MAX_LANES`])
+/// whose interleaved vectors (seven per run), right-hand sides and the
+/// shared factor fit [`AUTO_BATCH_BYTES`], at least 2.
+pub fn auto_batch(n: usize, k: usize) -> usize {
+    let shared = n * (2 * 3 + 7) * 8;
+    let per_lane = n * (7 + k) * 8;
+    let room = AUTO_BATCH_BYTES.saturating_sub(shared);
+    (room / per_lane.max(1)).clamp(2, crate::integrate::MAX_LANES)
+}
+
+/// The sweep's work items: points that share their effective matrix
+/// ([`crate::integrate::batch_key`]), in grid order, grouped up to the
+/// batch width; every other point alone.
+fn batches(spec: &SweepSpec, todo: &[usize], width: BatchWidth) -> Vec<Vec<usize>> {
+    if width == BatchWidth::Fixed(1) {
+        return todo.iter().map(|&i| vec![i]).collect();
+    }
+    let mut open: Vec<(String, usize, Vec<usize>)> = Vec::new();
+    let mut items: Vec<Vec<usize>> = Vec::new();
+    for &i in todo {
+        let key = spec.resolve(i).ok().and_then(|sc| {
+            let key = crate::integrate::batch_key(&sc)?;
+            let k = crate::integrate::rhs_columns(sc.carriers.len());
+            let n = 2 * (sc.elements + 1);
+            let w = match width {
+                BatchWidth::Fixed(b) => b,
+                BatchWidth::Auto => auto_batch(n, k),
+            };
+            Some((key, w))
+        });
+        let Some((key, w)) = key else {
+            items.push(vec![i]);
+            continue;
+        };
+        match open.iter_mut().position(|(k, ..)| *k == key) {
+            Some(p) => {
+                open[p].2.push(i);
+                if open[p].2.len() >= open[p].1 {
+                    items.push(open.remove(p).2);
+                }
+            }
+            None => open.push((key, w, vec![i])),
+        }
+    }
+    items.extend(open.into_iter().map(|(.., g)| g));
+    items
+}
+
+/// The records of one work item, run together when it has several points
+/// ([`crate::run::run_batch`]); a panic inside makes every point of the
+/// item an error record (none of them is trusted), never the sweep's end.
+fn records_guarded(spec: &SweepSpec, id: &str, item: &[usize]) -> Vec<SweepRecord> {
+    if let [i] = item {
+        return vec![record_guarded(spec, id, *i)];
+    }
+    let go = || {
+        let scenes: Vec<Result<Resolved>> = item.iter().map(|&i| spec.resolve(i)).collect();
+        let ok: Vec<Resolved> = scenes.iter().filter_map(|s| s.as_ref().ok().cloned()).collect();
+        let mut outs = crate::run::run_batch(&ok, item.len(), &mut |_| {}).into_iter();
+        item.iter()
+            .zip(&scenes)
+            .map(|(&i, sc)| {
+                let out = match sc {
+                    Ok(_) => outs
+                        .next()
+                        .expect("one output per scene")
+                        .map_err(|e| e.to_string()),
+                    Err(e) => Err(e.to_string()),
+                };
+                record_of(spec, id, i, sc.as_ref().ok(), out)
+            })
+            .collect::<Vec<_>>()
+    };
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(go)).unwrap_or_else(|payload| {
+        let what = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "no message".into());
+        item.iter()
+            .map(|&i| SweepRecord {
+                error: Some(format!(
+                    "internal error (a panic in taut, please report it), in a batch of {} runs: {what}",
+                    item.len()
+                )),
+                ..SweepRecord::stopped(id, i, spec.point(i))
+            })
+            .collect()
+    })
 }
 
 /// [`record`], with a panic inside the run turned into that point's error,
