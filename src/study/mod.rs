@@ -3,12 +3,15 @@
 pub mod compare;
 pub mod converge;
 pub mod gate;
+pub mod grid;
 pub mod precision;
 pub mod reference;
+pub mod scalars;
 pub mod space;
 pub mod sweep;
 pub mod threads;
 pub mod tolerance;
+pub mod variant;
 
 /// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.
 pub fn relative_rms(a: &[f64], b: &[f64]) -> f64 {
