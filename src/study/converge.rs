@@ -387,8 +387,6 @@ fn diff(a: &[f64], b: &[f64]) -> Vec<f64> {
     a.iter().zip(b).map(|(x, y)| x - y).collect()
 }
 
-use observed_order as order;
-
 fn tabulate(
     scenes: &[Resolved],
     runs: &[RunOutput],
@@ -424,7 +422,7 @@ fn tabulate(
             let (reference, refvec): (&str, Option<Vec<f64>>) = match exact {
                 Some(e) => ("analytic", Some(e.clone())),
                 None if k >= 3 => {
-                    let p = order(d[k - 3], d[k - 2], r);
+                    let p = observed_order(d[k - 3], d[k - 2], r);
                     if p.is_finite() && p > 0.0 {
                         let fac = 1.0 / (r.powf(p) - 1.0);
                         let ext = hist[k - 1]
@@ -450,7 +448,7 @@ fn tabulate(
                 // from successive differences, which isolate what is refined
                 // (against an analytic solution the unrefined error would mask it)
                 let observed = if l >= 2 {
-                    order(d[l - 2], d[l - 1], r)
+                    observed_order(d[l - 2], d[l - 1], r)
                 } else {
                     f64::NAN
                 };
@@ -480,7 +478,7 @@ fn tabulate(
     let scalar = |name: &str, vals: Vec<f64>| -> Vec<(usize, String, f64, f64, f64, f64, String)> {
         let d: Vec<f64> = (1..k).map(|l| (vals[l - 1] - vals[l]).abs()).collect();
         let (reference, refval) = if k >= 3 {
-            let p = order(d[k - 3], d[k - 2], r);
+            let p = observed_order(d[k - 3], d[k - 2], r);
             if p.is_finite() && p > 0.0 {
                 (
                     "richardson",
@@ -495,7 +493,7 @@ fn tabulate(
         (0..k)
             .map(|l| {
                 let observed = if l >= 2 {
-                    order(d[l - 2], d[l - 1], r)
+                    observed_order(d[l - 2], d[l - 1], r)
                 } else {
                     f64::NAN
                 };
@@ -548,18 +546,4 @@ fn tabulate(
         .collect();
     out.sort_by_key(|r| (r.level, QUANTITIES.iter().position(|q| *q == r.quantity)));
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn order_of_a_second_order_sequence() {
-        // u_ℓ = 1 + C h_ℓ², h halves: differences fall by 4
-        let r = 2.0;
-        let e = [0.3, 0.075];
-        assert!((order(e[0], e[1], r) - 2.0).abs() < 1e-12);
-        assert!(order(0.0, 1.0, r).is_nan());
-    }
 }

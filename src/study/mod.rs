@@ -1,4 +1,9 @@
 //! Studies: loops of runs over scenes. They never reach inside the integrator.
+//!
+//! What they share is here once: a run as typed changes to a base scene
+//! ([`variant`]), time grids that nest, resampling and observed orders
+//! ([`grid`]), the scalar outputs of a run ([`scalars`]) and the space
+//! discretizations ([`space`]).
 
 pub mod compare;
 pub mod converge;
