@@ -97,6 +97,29 @@ impl Scalar {
         }
     }
 
+    /// Its label in terminal output.
+    pub fn label(self) -> &'static str {
+        match self {
+            Scalar::Steps => "steps",
+            Scalar::Dofs => "unknowns",
+            Scalar::ContactSwitches => "switches",
+            Scalar::LossFraction => "contact loss P_l",
+            Scalar::LossFractionSpan => "P_l in span",
+            Scalar::LossFractionSupport => "P_l at supports",
+            Scalar::LossIntervalCount => "loss intervals",
+            Scalar::FirstLossPosition => "first loss x/L",
+            Scalar::ForceMean => "force mean λ",
+            Scalar::ForceStd => "force std",
+            Scalar::ForceMin => "force min",
+            Scalar::ForceMax => "force max",
+            Scalar::FilteredForceStd => "0–20 Hz force std",
+            Scalar::FilteredForceMin => "0–20 Hz force min",
+            Scalar::FilteredForceMax => "0–20 Hz force max",
+            Scalar::MaxPenetration => "max penetration",
+            Scalar::FinalW => "final w",
+        }
+    }
+
     /// Unit: `N`, `m`, `x/L` or `-`.
     pub fn unit(self) -> &'static str {
         match self {
