@@ -9,6 +9,7 @@ use serde::Serialize;
 
 use super::{Summary, fmt_f64, write_force_plot, write_history};
 use crate::error::{Error, Result};
+use crate::study::scalars::Scalar;
 use crate::study::tolerance::{Accuracy, Estimate, LadderFit, ResultEstimate, TolerantRun};
 
 /// Column order of `accuracy.csv`.
@@ -180,22 +181,9 @@ pub fn accuracy_header(a: &Accuracy) -> String {
     s
 }
 
-/// Labels of the results in the terminal, as the plain summary names them.
+/// Labels of the results in the terminal ([`Scalar::label`]).
 fn label(name: &str) -> &'static str {
-    match name {
-        "force_mean" => "force mean λ",
-        "force_std" => "force std",
-        "force_min" => "force min",
-        "force_max" => "force max",
-        "filtered_force_std" => "0–20 Hz force std",
-        "filtered_force_min" => "0–20 Hz force min",
-        "filtered_force_max" => "0–20 Hz force max",
-        "loss_fraction" => "contact loss P_l",
-        "loss_interval_count" => "loss intervals",
-        "first_loss_position" => "first loss x/L",
-        "contact_switches" => "switches",
-        _ => "result",
-    }
+    Scalar::from_name(name).map_or("result", Scalar::label)
 }
 
 fn estimate_text(r: &ResultEstimate) -> String {

@@ -194,14 +194,20 @@ pub fn scene_from_tree(tree: Table) -> Result<Scene> {
     })
 }
 
-/// Parse scene text, apply overrides in order, deserialize and validate.
-pub fn resolve_scene(text: &str, overrides: &[String]) -> Result<Resolved> {
+/// Parse scene text, apply overrides in order and deserialize, without
+/// validating (a study applies its typed changes, then validates once).
+pub fn scene_with_overrides(text: &str, overrides: &[String]) -> Result<Scene> {
     let mut tree = parse_scene(text)?;
     check_is_scene(&tree)?;
     for spec in overrides {
         apply_override(&mut tree, spec)?;
     }
-    scene_from_tree(tree)?.validate()
+    scene_from_tree(tree)
+}
+
+/// Parse scene text, apply overrides in order, deserialize and validate.
+pub fn resolve_scene(text: &str, overrides: &[String]) -> Result<Resolved> {
+    scene_with_overrides(text, overrides)?.validate()
 }
 
 /// Read a scene file, apply overrides, deserialize and validate.

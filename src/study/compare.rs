@@ -3,8 +3,9 @@
 //! (issues: formulations side by side, methods side by side).
 //!
 //! Every combination runs on the same scene text with the same overrides
-//! plus the method's `[integrator]` ([`MethodFactory::overrides`]) and
-//! `contact.formulation=<name>`, so meshes, steps and settings are identical
+//! plus the method's `[integrator]` ([`MethodFactory::overrides`]), with
+//! its formulation and discretization set as a typed
+//! [`RunVariant`], so meshes, steps and settings are identical
 //! and histories can be compared step by step. A combination that means
 //! nothing (a scene error naming both keys, e.g. `moreau_jean` with
 //! `penalty`, or an explicit method above its stability limit) is skipped
@@ -14,10 +15,11 @@
 use serde::Serialize;
 
 use super::space::SpaceChoice;
+use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
 use crate::run::{RunOutput, run_with};
-use crate::scene::{Formulation, Resolved, resolve_scene};
+use crate::scene::{Formulation, Resolved, Scene, resolve_scene};
 
 /// One combination's row of the comparison (columns of `compare.csv`).
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -262,6 +264,11 @@ pub fn compare_methods(
         (None, None) => base.discretization.label(),
     };
     let mut keys = Vec::new();
+    // each method's scene, parsed once
+    let method_scenes: Vec<Result<Scene>> = methods
+        .iter()
+        .map(|&m| base_scene(text, overrides, Some((m, &base.integrator))))
+        .collect();
     for (i, &(m, d, f, show)) in order.iter().enumerate() {
         let factory = methods[m];
         let name = factory.name();
@@ -275,15 +282,18 @@ pub fn compare_methods(
             formulation: f.name().to_string(),
             reason: e.to_string(),
         };
-        let mut o = overrides.to_vec();
-        o.extend(factory.overrides(&base.integrator));
-        o.push(format!("contact.formulation={}", f.name()));
-        let outcome = resolve_scene(text, &o)
-            .and_then(|sc| match spaces[d] {
-                Some(c) => c.apply(&sc, 1.0),
-                None => Ok(sc),
-            })
-            .and_then(|sc| run_with(&sc, factory, &mut |_, _| {}).map(|out| (sc, out)));
+        let variant = RunVariant {
+            formulation: Some(f),
+            space: spaces[d].map(|c| (c, 1.0)),
+            ..RunVariant::default()
+        };
+        let outcome = match &method_scenes[m] {
+            Ok(scene) => variant.apply_to(scene),
+            // parsed again only to hand this combination its own error
+            Err(_) => base_scene(text, overrides, Some((factory, &base.integrator)))
+                .and_then(|scene| variant.apply_to(&scene)),
+        }
+        .and_then(|sc| run_with(&sc, factory, &mut |_, _| {}).map(|out| (sc, out)));
         match outcome {
             Ok((scene, output)) => {
                 runs.push(CompareRun {

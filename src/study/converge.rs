@@ -25,7 +25,10 @@
 use serde::Serialize;
 
 use super::compare::NotRun;
+use super::grid::{Reach, nest, observed_order, resample};
+use super::scalars::Scalar;
 use super::space::SpaceChoice;
+use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
 use crate::run::{RunOutput, run, run_with};
@@ -124,6 +127,14 @@ pub const QUANTITIES: [&str; 8] = [
     "loss_fraction_span",
     "loss_fraction_support",
     "first_loss_position",
+];
+
+/// The scalar outputs ([`Scalar`]) among [`QUANTITIES`], in that order.
+pub const SCALARS: [Scalar; 4] = [
+    Scalar::LossFraction,
+    Scalar::LossFractionSpan,
+    Scalar::LossFractionSupport,
+    Scalar::FirstLossPosition,
 ];
 
 /// One method's (or discretization's) refinement study in a `--methods`
@@ -302,52 +313,41 @@ fn converge_with(
             "must be an integer ≥ 2 when the step is refined (so coarse times are fine times)",
         ));
     }
-    let mut overrides = overrides.to_vec();
-    if let Some(m) = method {
-        let base = resolve_scene(text, &overrides)?;
-        overrides.extend(m.overrides(&base.integrator));
-    }
-    let overrides = &overrides[..];
     let base = resolve_scene(text, overrides)?;
+    let base = match method {
+        None => base,
+        Some(m) => base_scene(text, overrides, Some((m, &base.integrator)))?.validate()?,
+    };
     base.require_every_step("taut converge")?;
     let mut scenes = Vec::with_capacity(levels);
     let modal = space.is_some_and(|s| s.is_modal());
     for l in 0..levels {
         let f = ratio.powi(l as i32);
-        let mut o = overrides.to_vec();
-        if refine != Refine::Step && !modal {
-            let n = (base.elements as f64 * f).round() as usize;
-            o.push(format!("mesh.elements={n}"));
-        }
-        if refines_step {
-            o.push(format!("time.step={:e}", base.dt / f));
-        }
-        let sc = resolve_scene(text, &o)?;
-        scenes.push(match space {
+        let variant = RunVariant {
+            elements: (refine != Refine::Step && !modal)
+                .then(|| (base.elements as f64 * f).round() as usize),
+            dt: refines_step.then(|| base.dt / f),
+            formulation: None,
             // a modal basis's level parameter is J (its mesh stays)
-            Some(s) if modal && refine != Refine::Step => s.apply(&sc, f)?,
-            Some(s) => s.apply(&sc, 1.0)?,
-            None => sc,
-        });
+            space: space.map(|s| {
+                (
+                    s,
+                    if modal && refine != Refine::Step {
+                        f
+                    } else {
+                        1.0
+                    },
+                )
+            }),
+        };
+        scenes.push(variant.apply(&base)?);
     }
     let base = &scenes[0];
     // the coarse time grid must be a subset of every level's
-    let stride: Vec<usize> = scenes
+    let stride = scenes
         .iter()
-        .map(|s| (base.dt / s.dt).round() as usize)
-        .collect();
-    for (s, &m) in scenes.iter().zip(&stride) {
-        if s.steps != base.steps * m {
-            return Err(Error::invalid(
-                "time.end",
-                format!("{} steps at Δt = {:e} s", s.steps, s.dt),
-                format!(
-                    "must be a whole number of coarsest steps ({} × {m}) at every level: choose an end time that is a multiple of the coarsest step",
-                    base.steps
-                ),
-            ));
-        }
-    }
+        .map(|s| nest((base.steps, base.dt), (s.steps, s.dt), Reach::SameEnd))
+        .collect::<Result<Vec<usize>>>()?;
     let mut runs = Vec::with_capacity(levels);
     let mut wall = Vec::with_capacity(levels);
     for (l, s) in scenes.iter().enumerate() {
@@ -375,11 +375,6 @@ fn converge_with(
     })
 }
 
-/// Sampled history of carrier 0 on the coarsest time grid.
-fn sampled(out: &RunOutput, stride: usize, pick: impl Fn(usize) -> f64) -> Vec<f64> {
-    (0..out.history.len()).step_by(stride).map(pick).collect()
-}
-
 fn max_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
@@ -392,15 +387,6 @@ fn diff(a: &[f64], b: &[f64]) -> Vec<f64> {
     a.iter().zip(b).map(|(x, y)| x - y).collect()
 }
 
-/// Observed order from three successive differences' norms.
-fn order(e_coarse: f64, e_fine: f64, r: f64) -> f64 {
-    if e_coarse > 0.0 && e_fine > 0.0 {
-        (e_coarse / e_fine).ln() / r.ln()
-    } else {
-        f64::NAN
-    }
-}
-
 fn tabulate(
     scenes: &[Resolved],
     runs: &[RunOutput],
@@ -410,16 +396,20 @@ fn tabulate(
 ) -> Vec<ConvergeRow> {
     let k = runs.len();
     let t0: Vec<f64> = runs[0].history.t.clone();
-    let w: Vec<Vec<f64>> = (0..k)
-        .map(|l| sampled(&runs[l], stride[l], |i| runs[l].history.carriers[0].w[i]))
-        .collect();
-    let f: Vec<Vec<f64>> = (0..k)
-        .map(|l| {
-            sampled(&runs[l], stride[l], |i| {
-                runs[l].history.carriers[0].force[i]
+    let coarse = 0..runs[0].history.len();
+    let on_coarse = |pick: fn(&crate::record::CarrierTrace) -> &[f64]| -> Vec<Vec<f64>> {
+        (0..k)
+            .map(|l| {
+                resample(
+                    pick(&runs[l].history.carriers[0]),
+                    stride[l],
+                    coarse.clone(),
+                )
             })
-        })
-        .collect();
+            .collect()
+    };
+    let w = on_coarse(|c| &c.w);
+    let f = on_coarse(|c| &c.force);
     let w_exact: Option<Vec<f64>> = analytic.map(|a| t0.iter().map(|&t| a(t)).collect());
 
     let mut rows = Vec::new();
@@ -432,7 +422,7 @@ fn tabulate(
             let (reference, refvec): (&str, Option<Vec<f64>>) = match exact {
                 Some(e) => ("analytic", Some(e.clone())),
                 None if k >= 3 => {
-                    let p = order(d[k - 3], d[k - 2], r);
+                    let p = observed_order(d[k - 3], d[k - 2], r);
                     if p.is_finite() && p > 0.0 {
                         let fac = 1.0 / (r.powf(p) - 1.0);
                         let ext = hist[k - 1]
@@ -458,7 +448,7 @@ fn tabulate(
                 // from successive differences, which isolate what is refined
                 // (against an analytic solution the unrefined error would mask it)
                 let observed = if l >= 2 {
-                    order(d[l - 2], d[l - 1], r)
+                    observed_order(d[l - 2], d[l - 1], r)
                 } else {
                     f64::NAN
                 };
@@ -488,7 +478,7 @@ fn tabulate(
     let scalar = |name: &str, vals: Vec<f64>| -> Vec<(usize, String, f64, f64, f64, f64, String)> {
         let d: Vec<f64> = (1..k).map(|l| (vals[l - 1] - vals[l]).abs()).collect();
         let (reference, refval) = if k >= 3 {
-            let p = order(d[k - 3], d[k - 2], r);
+            let p = observed_order(d[k - 3], d[k - 2], r);
             if p.is_finite() && p > 0.0 {
                 (
                     "richardson",
@@ -503,7 +493,7 @@ fn tabulate(
         (0..k)
             .map(|l| {
                 let observed = if l >= 2 {
-                    order(d[l - 2], d[l - 1], r)
+                    observed_order(d[l - 2], d[l - 1], r)
                 } else {
                     f64::NAN
                 };
@@ -524,21 +514,15 @@ fn tabulate(
             })
             .collect()
     };
-    let pl: Vec<f64> = runs.iter().map(|o| o.stats[0].loss_fraction).collect();
-    let fl: Vec<f64> = runs
-        .iter()
-        .map(|o| o.stats[0].first_loss_position.unwrap_or(f64::NAN))
-        .collect();
-    let span: Vec<f64> = runs.iter().map(|o| o.stats[0].loss_fraction_span).collect();
-    let support: Vec<f64> = runs
-        .iter()
-        .map(|o| o.stats[0].loss_fraction_support)
-        .collect();
+    // a value a run does not have (no first loss) is NaN: an empty cell, JSON null
     let mut all: Vec<_> = Vec::new();
-    all.extend(scalar("loss_fraction", pl));
-    all.extend(scalar("loss_fraction_span", span));
-    all.extend(scalar("loss_fraction_support", support));
-    all.extend(scalar("first_loss_position", fl));
+    for q in SCALARS {
+        let vals = runs
+            .iter()
+            .map(|o| q.of(o, 0).unwrap_or(f64::NAN))
+            .collect();
+        all.extend(scalar(q.name(), vals));
+    }
 
     let mut out: Vec<ConvergeRow> = rows
         .into_iter()
@@ -562,18 +546,4 @@ fn tabulate(
         .collect();
     out.sort_by_key(|r| (r.level, QUANTITIES.iter().position(|q| *q == r.quantity)));
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn order_of_a_second_order_sequence() {
-        // u_ℓ = 1 + C h_ℓ², h halves: differences fall by 4
-        let r = 2.0;
-        let e = [0.3, 0.075];
-        assert!((order(e[0], e[1], r) - 2.0).abs() < 1e-12);
-        assert!(order(0.0, 1.0, r).is_nan());
-    }
 }

@@ -25,6 +25,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::scalars::Scalar;
 use crate::error::{Error, Result};
 use crate::run::{RunOutput, run};
 use crate::scene::load_scene;
@@ -58,26 +59,34 @@ pub struct GateCase {
     pub quantities: BTreeMap<String, Tolerance>,
 }
 
-/// Quantities a case may gate: of carrier 0, or of carrier N with the suffix
-/// `_N` (`force_mean_1`); `final_probe_N` is probe N's last value.
-pub const QUANTITY_NAMES: [&str; 14] = [
+/// Quantities a case may gate: every scalar output of a run ([`Scalar`],
+/// the list `run --tolerance` estimates and `converge` refines), of carrier
+/// 0, or of carrier N with the suffix `_N` (`force_mean_1`);
+/// `final_probe_N` is probe N's last value.
+pub const QUANTITY_NAMES: [&str; 18] = [
     "steps",
     "dofs",
     "contact_switches",
     "loss_fraction",
     "loss_fraction_span",
     "loss_fraction_support",
+    "loss_interval_count",
     "first_loss_position",
     "force_mean",
     "force_std",
     "force_min",
     "force_max",
+    "filtered_force_std",
+    "filtered_force_min",
+    "filtered_force_max",
     "max_penetration",
     "final_w",
     "final_probe",
 ];
 
-/// Extract a quantity from a run; `None` if the run does not have it.
+/// Extract a quantity from a run; `None` if the run does not have it (an
+/// unknown name, a carrier or probe it does not have, the first loss of a
+/// contact never lost): such a check fails.
 pub fn quantity(out: &RunOutput, name: &str) -> Option<f64> {
     // `final_probe_N` is probe N; any other `NAME_N` is NAME of carrier N
     if let Some(p) = name.strip_prefix("final_probe_") {
@@ -90,24 +99,7 @@ pub fn quantity(out: &RunOutput, name: &str) -> Option<f64> {
         }
         _ => (name, 0),
     };
-    let s = out.stats.get(carrier)?;
-    let tr = out.history.carriers.get(carrier)?;
-    Some(match base {
-        "steps" => out.steps as f64,
-        "dofs" => out.dofs as f64,
-        "contact_switches" => s.contact_switches as f64,
-        "loss_fraction" => s.loss_fraction,
-        "loss_fraction_span" => s.loss_fraction_span,
-        "loss_fraction_support" => s.loss_fraction_support,
-        "first_loss_position" => s.first_loss_position.unwrap_or(-1.0),
-        "force_mean" => s.force.mean,
-        "force_std" => s.force.std,
-        "force_min" => s.force.min,
-        "force_max" => s.force.max,
-        "max_penetration" => s.max_penetration,
-        "final_w" => *tr.w.last()?,
-        _ => return None,
-    })
+    Scalar::from_name(base)?.of(out, carrier)
 }
 
 /// The result for one quantity.
@@ -325,6 +317,13 @@ pub fn gate(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_scalar_can_be_gated() {
+        let names: Vec<&str> = Scalar::ALL.iter().map(|s| s.name()).collect();
+        assert_eq!(QUANTITY_NAMES[..names.len()], names[..]);
+        assert_eq!(QUANTITY_NAMES[names.len()..], ["final_probe"]);
+    }
 
     #[test]
     fn tolerance_is_absolute_plus_relative() {

@@ -1,14 +1,22 @@
 //! Studies: loops of runs over scenes. They never reach inside the integrator.
+//!
+//! What they share is here once: a run as typed changes to a base scene
+//! ([`variant`]), time grids that nest, resampling and observed orders
+//! ([`grid`]), the scalar outputs of a run ([`scalars`]) and the space
+//! discretizations ([`space`]).
 
 pub mod compare;
 pub mod converge;
 pub mod gate;
+pub mod grid;
 pub mod precision;
 pub mod reference;
+pub mod scalars;
 pub mod space;
 pub mod sweep;
 pub mod threads;
 pub mod tolerance;
+pub mod variant;
 
 /// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.
 pub fn relative_rms(a: &[f64], b: &[f64]) -> f64 {

@@ -23,8 +23,10 @@
 use serde::Serialize;
 
 use super::compare::NotRun;
+use super::grid::{Reach, nest, resample};
 use super::relative_rms;
 use super::space::SpaceChoice;
+use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
 use crate::run::{RunOutput, run, run_with};
@@ -154,28 +156,28 @@ pub fn precision_variants(
     };
     let total = 1 + methods.len() * spaces.len() * formulations.len() * levels * levels;
     let mut done = 0;
-    let with = |n: usize, dt: f64, f: Formulation, m: Option<&dyn MethodFactory>| {
-        let mut o = overrides.to_vec();
-        if let Some(m) = m {
-            o.extend(m.overrides(&base.integrator));
-        }
-        o.push(format!("mesh.elements={n}"));
-        o.push(format!("time.step={dt:e}"));
-        o.push(format!("contact.formulation={}", f.name()));
-        o
-    };
-    let ref_sc = resolve_scene(text, &with(ref_n, ref_dt, Formulation::Lagrange, None))?;
     // the reference is a Hermite run whatever the scene's own kind
-    let ref_sc = SpaceChoice {
-        kind: MeshKind::Hermite,
-        modes: None,
+    let ref_sc = RunVariant {
+        elements: Some(ref_n),
+        dt: Some(ref_dt),
+        formulation: Some(Formulation::Lagrange),
+        space: Some((
+            SpaceChoice {
+                kind: MeshKind::Hermite,
+                modes: None,
+            },
+            1.0,
+        )),
     }
-    .apply(&ref_sc, 1.0)?;
+    .apply(&base)?;
     let reference = run(&ref_sc, &mut |_, _| {})?;
     done += 1;
     progress(done, total);
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
     for &m in &methods {
+        // the method's scene, parsed once (an error is each point's reason)
+        let method_scene =
+            base_scene(text, overrides, Some((m, &base.integrator))).map_err(|e| e.to_string());
         for &space in &spaces {
             let modal = space.is_some_and(|s| s.is_modal());
             for &f in formulations {
@@ -185,43 +187,39 @@ pub fn precision_variants(
                         let factor = ratio.pow(i as u32);
                         let n = if modal { n0 } else { n0 * factor };
                         let dt = dt0 / r.powi(j as i32);
-                        let not_run = |e: Error| NotRun {
+                        let not_run = |e: &dyn std::fmt::Display| NotRun {
                             method: m.name(),
                             discretization: space
                                 .map_or_else(String::new, |s| s.name().to_string()),
                             formulation: f.name().to_string(),
                             reason: format!("level {i}, Δt = {dt:e} s: {e}"),
                         };
-                        let sc =
-                            resolve_scene(text, &with(n, dt, f, Some(m))).and_then(
-                                |sc| match space {
-                                    Some(s) if modal => s.apply(&sc, factor as f64),
-                                    Some(s) => s.apply(&sc, 1.0),
-                                    None => Ok(sc),
-                                },
-                            );
+                        let variant = RunVariant {
+                            elements: Some(n),
+                            dt: Some(dt),
+                            formulation: Some(f),
+                            space: space.map(|s| (s, if modal { factor as f64 } else { 1.0 })),
+                        };
+                        let sc = match &method_scene {
+                            Ok(scene) => variant.apply_to(scene).map_err(|e| e.to_string()),
+                            Err(e) => Err(e.clone()),
+                        };
                         let sc = match sc {
                             Ok(sc) => sc,
                             Err(e) => {
-                                skipped.push(not_run(e));
+                                skipped.push(not_run(&e));
                                 done += 1;
                                 progress(done, total);
                                 continue;
                             }
                         };
-                        let stride = (dt / ref_dt).round() as usize;
-                        if sc.steps * stride != reference.steps {
-                            return Err(Error::invalid(
-                                "time.end",
-                                format!("{} steps at Δt = {dt:e} s", sc.steps),
-                                "must be a whole number of steps at every level (choose an end that is a multiple of the coarsest step)",
-                            ));
-                        }
+                        let stride =
+                            nest((sc.steps, dt), (reference.steps, ref_dt), Reach::SameEnd)?;
                         match run_with(&sc, m, &mut |_, _| {}) {
                             Ok(out) => {
                                 rows.push(row(&m.name(), f, (i, j), &out, &reference, stride, &sc))
                             }
-                            Err(e @ Error::Invalid { .. }) => skipped.push(not_run(e)),
+                            Err(e @ Error::Invalid { .. }) => skipped.push(not_run(&e)),
                             Err(e) => return Err(e.in_run(&format!("{}/{}", m.name(), f.name()))),
                         }
                         done += 1;
@@ -251,7 +249,7 @@ fn row(
     sc: &Resolved,
 ) -> PrecisionRow {
     let (t, tr) = (&out.history.carriers[0], &reference.history.carriers[0]);
-    let sample = |v: &[f64]| -> Vec<f64> { (1..t.force.len()).map(|k| v[k * stride]).collect() };
+    let sample = |v: &[f64]| resample(v, stride, 1..t.force.len());
     PrecisionRow {
         method: method.to_string(),
         discretization: sc.discretization.name().to_string(),

@@ -10,7 +10,7 @@
 //! modes J for `galerkin` and `modal` (whose FE mesh stays the scene's).
 
 use crate::error::{Error, Result};
-use crate::scene::{GradingKind, MeshKind, Resolved};
+use crate::scene::{GradingKind, MeshKind, Resolved, Scene};
 
 /// A space discretization of a study (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,6 +90,14 @@ impl SpaceChoice {
     /// `factor` (N for hermite, J for the modal kinds; 1 keeps it).
     pub fn apply(&self, sc: &Resolved, factor: f64) -> Result<Resolved> {
         let mut scene = sc.scene.clone();
+        self.set(&mut scene, factor)?;
+        scene.validate()
+    }
+
+    /// Set this discretization's `[mesh]` fields on `scene`, its level
+    /// parameter scaled by `factor` ([`SpaceChoice::apply`] without the
+    /// validation, for [`super::variant::RunVariant`]).
+    pub fn set(&self, scene: &mut Scene, factor: f64) -> Result<()> {
         let mesh = &mut scene.mesh;
         mesh.kind = self.kind;
         match self.kind {
@@ -118,7 +126,7 @@ impl SpaceChoice {
                 }
             }
         }
-        scene.validate()
+        Ok(())
     }
 }
 

@@ -12,7 +12,7 @@
 //!    the base pilot's and histories compare sample by sample on that grid
 //!    (as [`crate::study::converge`] does).
 //! 2. **Model.** e(h, Δt) ≈ F_s (C_h h^p + C_t Δt^q) from the ladders'
-//!    successive differences ([`model`]). A ladder whose differences do not
+//!    successive differences ([`error_model`]). A ladder whose differences do not
 //!    fall at order ≥ [`MIN_ORDER`] stops the run with an error that names
 //!    the quantity, the differences and orders, and another quantity to try:
 //!    nothing is extrapolated from a quantity that does not converge.
@@ -37,20 +37,22 @@
 //! are the alternatives. See docs/accuracy.md for what this measures on the
 //! reference case.
 
+mod error_model;
 mod filter;
-mod model;
 
-pub use filter::{FORCE_BAND_HZ, design_cutoff_hz, lowpass_zero_phase};
-pub use model::{
+pub use error_model::{
     ErrorModel, Estimate, LADDER_RATIO, LadderFit, LadderStatus, MAX_MESH_ORDER,
     MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, MIN_ORDER, ROUND_OFF,
 };
+pub use filter::{FORCE_BAND_HZ, design_cutoff_hz, lowpass_zero_phase};
 
 use serde::Serialize;
 
+use super::grid::{Reach, nest, resample};
 use super::relative_rms;
+use super::scalars::{self, Scalar};
+use super::variant::RunVariant;
 use crate::error::{Error, Result};
-use crate::record::ContactStats;
 use crate::run::{RunOutput, run};
 use crate::scene::{CarrierKind, Resolved, STEP_COUNT_SLACK, resolve_scene};
 
@@ -60,10 +62,6 @@ use crate::scene::{CarrierKind, Resolved, STEP_COUNT_SLACK, resolve_scene};
 /// (docs/performance.md). Beyond it the tool says what the tolerance would
 /// take instead of starting a run nobody waits for.
 pub const MAX_DOF_STEPS: f64 = 1e11;
-
-/// Two times are the same sample when they differ by less than this fraction
-/// of the coarse step (they are i·Δt computed in floating point).
-const SAME_TIME: f64 = 1e-6;
 
 /// What the tolerance is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -341,22 +339,12 @@ pub fn quantity_signal(q: Quantity, out: &RunOutput) -> Vec<f64> {
 }
 
 /// Rows of `out` at the times of a grid with step `grid_dt` and `steps`
-/// steps (rows 1 … steps of that grid), or an error when they do not nest.
+/// steps (rows 1 … steps of that grid), or an error when they do not nest
+/// (`out` may run on past the grid's end: a finer run of a
+/// `carrier_leaves` scene).
 fn sample(values: &[f64], out: &RunOutput, grid_dt: f64, steps: usize) -> Result<Vec<f64>> {
-    let stride = (grid_dt / out.dt).round() as usize;
-    let nested = stride >= 1
-        && ((stride as f64 * out.dt) - grid_dt).abs() <= SAME_TIME * grid_dt
-        && out.steps >= steps * stride;
-    if !nested {
-        return Err(Error::invalid(
-            "time.step",
-            format!("{:e} s", out.dt),
-            format!(
-                "must divide the comparison grid's step {grid_dt:e} s into a whole number of steps over {steps} steps, so the runs' times nest"
-            ),
-        ));
-    }
-    Ok((1..=steps).map(|k| values[k * stride]).collect())
+    let stride = nest((steps, grid_dt), (out.steps, out.dt), Reach::AtLeast)?;
+    Ok(resample(values, stride, 1..steps + 1))
 }
 
 /// The error measure of `q` between two runs on the time grid of `grid`
@@ -377,63 +365,28 @@ pub fn quantity_difference(
     Ok(relative_rms(&sa, &sb))
 }
 
-/// Statistics of the 0–20 Hz force over the steps (rows 1 …), N.
-fn filtered_stats(out: &RunOutput, carrier: usize) -> [f64; 3] {
-    let f = lowpass_zero_phase(&out.history.carriers[carrier].force, out.dt, FORCE_BAND_HZ);
-    let f = if f.len() > 1 { &f[1..] } else { &f[..] };
-    let m = f.len().max(1) as f64;
-    let mean = f.iter().sum::<f64>() / m;
-    let std = (f.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / m).sqrt();
-    let min = f.iter().copied().fold(f64::INFINITY, f64::min);
-    let max = f.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    [std, min, max]
-}
-
-/// How a result is read from a carrier's statistics and the [std, min, max]
-/// of its 0–20 Hz force.
-type ResultFn = fn(&ContactStats, &[f64; 3]) -> Option<f64>;
-
-/// Every scalar result that gets an estimate, in print order.
-pub const RESULTS: [(&str, &str); 13] = [
-    ("force_mean", "N"),
-    ("force_std", "N"),
-    ("force_min", "N"),
-    ("force_max", "N"),
-    ("filtered_force_std", "N"),
-    ("filtered_force_min", "N"),
-    ("filtered_force_max", "N"),
-    ("loss_fraction", "-"),
-    ("loss_fraction_span", "-"),
-    ("loss_fraction_support", "-"),
-    ("loss_interval_count", "-"),
-    ("first_loss_position", "x/L"),
-    ("contact_switches", "-"),
-];
-
-const RESULT_FNS: [ResultFn; 13] = [
-    |s, _| Some(s.force.mean),
-    |s, _| Some(s.force.std),
-    |s, _| Some(s.force.min),
-    |s, _| Some(s.force.max),
-    |_, f| Some(f[0]),
-    |_, f| Some(f[1]),
-    |_, f| Some(f[2]),
-    |s, _| Some(s.loss_fraction),
-    |s, _| Some(s.loss_fraction_span),
-    |s, _| Some(s.loss_fraction_support),
-    |s, _| Some(s.loss_interval_count as f64),
-    |s, _| s.first_loss_position,
-    |s, _| Some(s.contact_switches as f64),
+/// Every scalar result that gets an estimate, in print order (names and
+/// units: [`Scalar`]).
+pub const RESULTS: [Scalar; 13] = [
+    Scalar::ForceMean,
+    Scalar::ForceStd,
+    Scalar::ForceMin,
+    Scalar::ForceMax,
+    Scalar::FilteredForceStd,
+    Scalar::FilteredForceMin,
+    Scalar::FilteredForceMax,
+    Scalar::LossFraction,
+    Scalar::LossFractionSpan,
+    Scalar::LossFractionSupport,
+    Scalar::LossIntervalCount,
+    Scalar::FirstLossPosition,
+    Scalar::ContactSwitches,
 ];
 
 /// The values of [`RESULTS`] for one carrier of a run, in that order
 /// (`None` where undefined, e.g. the first loss of a contact never lost).
 pub fn result_values(out: &RunOutput, carrier: usize) -> Vec<Option<f64>> {
-    let filtered = filtered_stats(out, carrier);
-    RESULT_FNS
-        .iter()
-        .map(|f| f(&out.stats[carrier], &filtered))
-        .collect()
+    scalars::values(out, carrier, &RESULTS)
 }
 
 /// Run the scene at the resolution that meets `tol` on `quantity`.
@@ -460,10 +413,12 @@ pub fn tolerance_run(
         ));
     }
     let with = |n: usize, dt: f64| {
-        let mut o = overrides.to_vec();
-        o.push(format!("mesh.elements={n}"));
-        o.push(format!("time.step={dt:e}"));
-        o
+        RunVariant {
+            elements: Some(n),
+            dt: Some(dt),
+            ..RunVariant::default()
+        }
+        .apply(&base)
     };
     let total = 6;
     let ladder: [(&'static str, usize, f64); 5] = [
@@ -475,19 +430,9 @@ pub fn tolerance_run(
     ];
     let mut pilots: Vec<PilotRun> = Vec::with_capacity(5);
     for (k, &(role, n, dt)) in ladder.iter().enumerate() {
-        let sc = resolve_scene(text, &with(n, dt))?;
+        let sc = with(n, dt)?;
         if let Some(first) = pilots.first() {
-            let m = (dt0 / dt).round() as usize;
-            if sc.steps != first.steps * m {
-                return Err(Error::invalid(
-                    "time.end",
-                    format!("{} steps at Δt = {dt:e} s", sc.steps),
-                    format!(
-                        "must be a whole number of base steps ({} × {m}) at every pilot: choose an end time that is a multiple of time.step",
-                        first.steps
-                    ),
-                ));
-            }
+            nest((first.steps, first.dt), (sc.steps, sc.dt), Reach::SameEnd)?;
             // all five pilots cost 13 base runs: refuse before running them
             let pilot_cost = 13.0 * first.dof_steps;
             if k == 1 && pilot_cost > MAX_DOF_STEPS {
@@ -572,7 +517,7 @@ pub fn tolerance_run(
                 "the pilot `{}` (N = {}, Δt = {:e} s) already meets the tolerance (estimate {:.3e}): it is the result, no further run",
                 p.role, p.elements, p.dt, p.estimate.total
             ));
-            let sc = resolve_scene(text, &with(p.elements, p.dt))?;
+            let sc = with(p.elements, p.dt)?;
             (sc, p.output.clone(), Some(p.role), 0.0)
         }
         None => {
@@ -626,7 +571,7 @@ pub fn tolerance_run(
                     ),
                 ));
             }
-            let sc = resolve_scene(text, &with(n as usize, dt)).map_err(|e| {
+            let sc = with(n as usize, dt).map_err(|e| {
                 too_costly(
                     quantity,
                     tol,
@@ -692,7 +637,8 @@ fn estimate_results(
         let at_pilots: Vec<Vec<Option<f64>>> =
             pilots.iter().map(|p| result_values(&p.output, c)).collect();
         let at_chosen = result_values(chosen, c);
-        for (k, &(name, unit)) in RESULTS.iter().enumerate() {
+        for (k, q) in RESULTS.iter().enumerate() {
+            let (name, unit) = (q.name(), q.unit());
             let vals: Vec<Option<f64>> = at_pilots.iter().map(|v| v[k]).collect();
             let value = at_chosen[k];
             let defined = vals.iter().filter(|v| v.is_some()).count();

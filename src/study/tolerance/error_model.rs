@@ -23,6 +23,7 @@
 use serde::Serialize;
 
 use crate::study::converge::GCI_SAFETY_FACTOR;
+use crate::study::grid::observed_order;
 
 /// Refinement ratio of each pilot ladder: 2, so every coarser time is a
 /// finer time and histories compare sample by sample.
@@ -128,7 +129,7 @@ impl LadderFit {
         let observed = if d2 == 0.0 {
             f64::INFINITY
         } else {
-            (d1 / d2).ln() / r.ln()
+            observed_order(d1, d2, r)
         };
         if observed < MIN_ORDER {
             return not(observed);

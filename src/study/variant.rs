@@ -1,0 +1,120 @@
+//! A study's runs as typed changes to a base scene, not `--set` strings
+//! formatted and parsed again for every run.
+//!
+//! A study parses its scene text and `--set`s once into a [`Scene`]
+//! ([`base_scene`]), then each run is a [`RunVariant`]: the number of
+//! elements, the time step, the contact formulation and the space
+//! discretization set on a clone of that scene, which is validated once, so
+//! every range check of a scene file applies and a study reports the error
+//! a scene would.
+//!
+//! A time step set here is the very f64 the study computed: the string path
+//! it replaces (`time.step={:e}` parsed as TOML) gave the same value, since
+//! `{:e}` prints the shortest representation that reads back exactly.
+//!
+//! Methods stay strings, applied once per method to the base scene's text:
+//! a method is a [`MethodFactory`], which may be a custom one outside this
+//! crate (`examples/custom_method.rs`) that selects itself only through its
+//! [`MethodFactory::overrides`]; the trait gives no typed `[integrator]`.
+
+use super::space::SpaceChoice;
+use crate::error::Result;
+use crate::integrate::MethodFactory;
+use crate::scene::{Formulation, IntegratorSpec, Resolved, Scene, scene_with_overrides};
+
+/// One run of a study, as typed changes to a base scene (`None`: the base
+/// scene's own).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RunVariant {
+    /// `mesh.elements`.
+    pub elements: Option<usize>,
+    /// `time.step`, s.
+    pub dt: Option<f64>,
+    /// `contact.formulation`.
+    pub formulation: Option<Formulation>,
+    /// A space discretization and the factor on its level parameter
+    /// ([`SpaceChoice::set`]), applied after `elements`.
+    pub space: Option<(SpaceChoice, f64)>,
+}
+
+impl RunVariant {
+    /// The base scene with these changes, validated.
+    pub fn apply(&self, base: &Resolved) -> Result<Resolved> {
+        self.apply_to(&base.scene)
+    }
+
+    /// [`RunVariant::apply`] on a scene not yet validated (a method's
+    /// [`base_scene`], which may be valid only with this formulation).
+    pub fn apply_to(&self, base: &Scene) -> Result<Resolved> {
+        let mut scene = base.clone();
+        if let Some(n) = self.elements {
+            scene.mesh.elements = n;
+        }
+        if let Some(dt) = self.dt {
+            scene.time.step = dt;
+        }
+        if let Some(f) = self.formulation {
+            scene.contact.formulation = f;
+        }
+        if let Some((choice, factor)) = self.space {
+            choice.set(&mut scene, factor)?;
+        }
+        scene.validate()
+    }
+}
+
+/// The scene text with its `--set`s and, when given, the method's
+/// overrides for a scene whose `[integrator]` is `integrator`; not
+/// validated (its runs' variants are).
+pub fn base_scene(
+    text: &str,
+    overrides: &[String],
+    method: Option<(&dyn MethodFactory, &IntegratorSpec)>,
+) -> Result<Scene> {
+    match method {
+        None => scene_with_overrides(text, overrides),
+        Some((m, integrator)) => {
+            let mut o = overrides.to_vec();
+            o.extend(m.overrides(integrator));
+            scene_with_overrides(text, &o)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::resolve_scene;
+
+    const REFERENCE: &str = include_str!("../../scenes/reference.toml");
+
+    /// The typed changes give the scene the `--set` strings gave.
+    #[test]
+    fn typed_changes_are_the_override_strings() {
+        let base = resolve_scene(REFERENCE, &[]).unwrap();
+        for (n, dt) in [(37, 1e-4 / 3.0), (800, 2.5e-5), (50, 0.1 / 7.0)] {
+            let v = RunVariant {
+                elements: Some(n),
+                dt: Some(dt),
+                formulation: Some(Formulation::Penalty),
+                space: None,
+            };
+            let typed = v.apply(&base).unwrap();
+            let strings = resolve_scene(
+                REFERENCE,
+                &[
+                    format!("mesh.elements={n}"),
+                    format!("time.step={dt:e}"),
+                    "contact.formulation=penalty".to_string(),
+                ],
+            )
+            .unwrap();
+            assert_eq!(typed.scene, strings.scene);
+            assert_eq!(typed.dt.to_bits(), strings.dt.to_bits());
+            assert_eq!(
+                (typed.steps, typed.elements),
+                (strings.steps, strings.elements)
+            );
+        }
+    }
+}
