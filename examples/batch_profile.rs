@@ -3,12 +3,18 @@
 use std::time::Instant;
 
 fn main() {
-    let b: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(4);
+    let b: usize = std::env::args()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(4);
     let text = include_str!("../scenes/reference.toml");
     let scenes: Vec<taut::Resolved> = (0..b)
         .map(|i| {
             let o = vec![
-                format!("mesh.elements={}", std::env::args().nth(2).unwrap_or("1600".into())),
+                format!(
+                    "mesh.elements={}",
+                    std::env::args().nth(2).unwrap_or("1600".into())
+                ),
                 "time.step=6.25e-5".to_string(),
                 "time.end=0.2".to_string(),
                 format!("carrier.0.speed.cruise={}", 80.0 + 5.0 * i as f64),
@@ -25,5 +31,8 @@ fn main() {
     let out = taut::run_batch(&scenes, b, &mut |_| {});
     let batched = t.elapsed().as_secs_f64();
     assert!(out.iter().all(|r| r.is_ok()));
-    println!("B = {b}: alone {alone:.3} s, batched {batched:.3} s, speed-up {:.2}", alone / batched);
+    println!(
+        "B = {b}: alone {alone:.3} s, batched {batched:.3} s, speed-up {:.2}",
+        alone / batched
+    );
 }

@@ -215,6 +215,7 @@ fn main() -> Result<()> {
         reference_method: 1,
         reference_discretization: 0,
         reference: taut::scene::Formulation::Lagrange,
+        batch: 1,
     };
     let c = compare_methods(reference, &[], &spec, &mut |_, _| {})?;
     print!("{}", taut::report::compare_table(&c));

@@ -210,6 +210,11 @@ enum Command {
         /// first of --methods).
         #[arg(long, value_name = "METHOD")]
         reference_method: Option<String>,
+        /// Runs stepped together when they share their effective matrix
+        /// (formulations under one method and discretization; 1 ..= 8,
+        /// 1: every run alone; default 4). The table is the same whatever it is.
+        #[arg(long, value_name = "B")]
+        batch: Option<usize>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
@@ -333,6 +338,7 @@ fn main() -> ExitCode {
             discretizations,
             reference,
             reference_method,
+            batch,
             set,
             out,
             quiet,
@@ -340,7 +346,7 @@ fn main() -> ExitCode {
             scene,
             &formulations,
             (methods.as_deref(), discretizations.as_deref()),
-            (&reference, reference_method.as_deref()),
+            (&reference, reference_method.as_deref(), batch),
             set,
             out,
             quiet,
@@ -783,7 +789,7 @@ fn cmd_compare(
     scene: PathBuf,
     formulations: &str,
     (methods, discretizations): (Option<&str>, Option<&str>),
-    (reference, reference_method): (&str, Option<&str>),
+    (reference, reference_method, batch): (&str, Option<&str>, Option<usize>),
     set: Vec<String>,
     out: Option<PathBuf>,
     quiet: bool,
@@ -829,6 +835,10 @@ fn cmd_compare(
         reference_method,
         reference_discretization: 0,
         reference,
+        batch: match parse_batch(batch)? {
+            taut::study::sweep::BatchWidth::Auto => taut::study::sweep::AUTO_BATCH_LANES,
+            taut::study::sweep::BatchWidth::Fixed(b) => b,
+        },
     };
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));

@@ -2,8 +2,8 @@
 
 use std::time::Instant;
 
-use crate::error::Result;
 use crate::error::Error;
+use crate::error::Result;
 use crate::integrate::{Batch, CarrierSample, Integrator, MAX_LANES, MethodFactory, batch_key};
 use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry};
 use crate::scene::Resolved;
@@ -137,7 +137,7 @@ impl Recorder {
 
     /// True when step n's row is kept in the history.
     fn keeps(&self, n: usize, steps: usize) -> bool {
-        n % self.every == 0 || n == steps
+        n.is_multiple_of(self.every) || n == steps
     }
 
     /// Record the state at time t (checking every carrier's values).
@@ -265,6 +265,37 @@ pub fn run_batch(
         .collect()
 }
 
+/// Run several scenes, each with its method: those whose method is the
+/// scene's own ([`MethodFactory::is_scene_method`]) through [`run_batch`]
+/// (batches of at most `batch`), the others alone with [`run_with`].
+/// Results in order, each the same as its run alone.
+pub fn run_many(
+    jobs: &[(Resolved, &dyn MethodFactory)],
+    batch: usize,
+    done: &mut dyn FnMut(usize),
+) -> Vec<Result<RunOutput>> {
+    let mut out: Vec<Option<Result<RunOutput>>> = (0..jobs.len()).map(|_| None).collect();
+    let own: Vec<usize> = (0..jobs.len())
+        .filter(|&i| jobs[i].1.is_scene_method())
+        .collect();
+    let scenes: Vec<Resolved> = own.iter().map(|&i| jobs[i].0.clone()).collect();
+    for (j, r) in run_batch(&scenes, batch, &mut |j| done(own[j]))
+        .into_iter()
+        .enumerate()
+    {
+        out[own[j]] = Some(r);
+    }
+    for (i, (sc, m)) in jobs.iter().enumerate() {
+        if out[i].is_none() {
+            out[i] = Some(run_with(sc, *m, &mut |_, _| {}));
+            done(i);
+        }
+    }
+    out.into_iter()
+        .map(|r| r.expect("every job is run"))
+        .collect()
+}
+
 /// Step `members` of `scenes` as one batch (equal keys); falls back to
 /// running them alone when no kernel fits.
 fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<RunOutput>)> {
@@ -327,7 +358,8 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
         // retire finished and stopped runs
         if !pending.is_empty() {
             let idx: Vec<usize> = pending.iter().map(|(l, _)| *l).collect();
-            let mut errs: Vec<Option<Option<Error>>> = pending.into_iter().map(|(_, e)| e).collect();
+            let mut errs: Vec<Option<Option<Error>>> =
+                pending.into_iter().map(|(_, e)| e).collect();
             let lanes = b.retire(&idx);
             for (k, (lane, l)) in lanes.into_iter().zip(&idx).enumerate().rev() {
                 let rec = recs.remove(*l).expect("a recorder per lane");

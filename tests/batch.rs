@@ -40,7 +40,10 @@ fn assert_same(scenes: &[Resolved], batch: usize) {
     for (i, (a, b)) in alone.iter().zip(&together).enumerate() {
         match (a, b) {
             (Ok(a), Ok(b)) => {
-                assert!(bits(a) == bits(b), "run {i} (batch {batch}): histories differ");
+                assert!(
+                    bits(a) == bits(b),
+                    "run {i} (batch {batch}): histories differ"
+                );
                 assert_eq!(stats(a), stats(b), "run {i} (batch {batch})");
             }
             (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "run {i}"),
@@ -137,7 +140,10 @@ fn what_cannot_batch_runs_alone_with_the_same_answers() {
     let scenes: Vec<Resolved> = [
         vec!["mesh.elements=100".to_string()],
         vec!["mesh.elements=120".to_string()],
-        vec!["mesh.elements=100".into(), "contact.formulation=impact".into()],
+        vec![
+            "mesh.elements=100".into(),
+            "contact.formulation=impact".into(),
+        ],
         vec!["mesh.elements=100".into(), "contact.placement=alpha".into()],
         vec!["mesh.kind=modal".into(), "mesh.modes=40".into()],
     ]

@@ -302,12 +302,11 @@ impl Batch {
             u: &self.u_shift[..n * L],
         };
         if L == 1 {
-            self.ldlt
-                .solve_affine(rhs, k, &residual, &mut self.b0[..n]);
+            self.ldlt.solve_affine(rhs, k, &residual, &mut self.b0[..n]);
         } else {
-            let solved =
-                self.ldlt
-                    .solve_affine_lanes(rhs, k, L, &residual, &mut self.b0[..n * L]);
+            let solved = self
+                .ldlt
+                .solve_affine_lanes(rhs, k, L, &residual, &mut self.b0[..n * L]);
             assert!(solved, "a batch is only built for compiled kernels");
         }
         for (l, lane) in self.lanes.iter_mut().enumerate() {
@@ -374,8 +373,18 @@ impl Batch {
             };
         }
         update!(
-            (2, 1, 2), (2, 2, 4), (2, 3, 6), (2, 4, 8), (2, 5, 10), (2, 6, 12), (2, 7, 14),
-            (2, 8, 16), (4, 1, 4), (4, 2, 8), (4, 3, 12), (4, 4, 16)
+            (2, 1, 2),
+            (2, 2, 4),
+            (2, 3, 6),
+            (2, 4, 8),
+            (2, 5, 10),
+            (2, 6, 12),
+            (2, 7, 14),
+            (2, 8, 16),
+            (4, 1, 4),
+            (4, 2, 8),
+            (4, 3, 12),
+            (4, 4, 16)
         );
         for (l, lane) in self.lanes.iter_mut().enumerate() {
             lane.sys.scatter_contact_directions_in(
@@ -405,7 +414,7 @@ impl Batch {
     ) {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
-            if L % 4 == 0 {
+            if L >= 4 {
                 // SAFETY: the CPU supports AVX2 (checked just above).
                 unsafe { self.update_avx2_x4::<K, L, KL>(lk, c) };
             } else {
@@ -417,9 +426,10 @@ impl Batch {
         self.update::<K, L, KL>(lk, c)
     }
 
-    /// [`Batch::update`] written in AVX2 vectors of four lanes, for L a
-    /// multiple of 4: the compiler, left to itself, vectorizes across rows
-    /// and transposes (measured 3× slower per element than a run alone).
+    /// [`Batch::update`] written in AVX2 vectors of four lanes (L ≥ 4; the
+    /// lanes past the last multiple of 4 by the scalar formulas): the
+    /// compiler, left to itself, vectorizes across rows and transposes
+    /// (measured 3× slower per element than a run alone).
     /// Each vector operation is the scalar code's operation on four lanes,
     /// in the scalar code's order and association, so the bits agree.
     #[cfg(target_arch = "x86_64")]
@@ -436,13 +446,31 @@ impl Batch {
         let (bdt2, c_pred, alpha_p) = (s(c.bdt2), s(c.c_pred), s(c.alpha_p));
         let (af, one_m_af, c_shift) = (s(c.alpha_f), s(1.0 - c.alpha_f), s(c.c_shift));
         let rhs = &self.rhs[..n * KL];
-        let (d, v, a) = (&mut self.d[..n * L], &mut self.v[..n * L], &mut self.a[..n * L]);
+        let (d, v, a) = (
+            &mut self.d[..n * L],
+            &mut self.v[..n * L],
+            &mut self.a[..n * L],
+        );
         let (dp, u) = (&mut self.d_pred[..n * L], &mut self.u_shift[..n * L]);
         let (h, b0) = (&mut self.h[..n * L], &self.b0[..n * L]);
         for i in 0..n {
             let row = &rhs[i * KL..(i + 1) * KL];
             let f = s(self.load[i]);
-            for g in (0..L).step_by(4) {
+            for l in L - L % 4..L {
+                let at = i * L + l;
+                let mut acc = row[l];
+                for cc in 1..K {
+                    acc += lk[cc][l] * row[cc * L + l];
+                }
+                v[at] += c.dt * ((1.0 - c.gamma) * a[at] + c.gamma * acc);
+                d[at] = dp[at] + c.bdt2 * acc;
+                a[at] = acc;
+                let next = d[at] + c.dt * v[at] + c.c_pred * acc;
+                dp[at] = next;
+                u[at] = (1.0 - c.alpha_f) * next + c.alpha_f * d[at] - c.c_shift * acc;
+                h[at] = self.load[i] - c.alpha_p * b0[at];
+            }
+            for g in (0..L - L % 4).step_by(4) {
                 let at = i * L + g;
                 // SAFETY: every slice below has at least four elements from
                 // its start (at + 3 < n·L, g + 3 < L, cc·L + g + 3 < KL).
@@ -523,7 +551,9 @@ impl Batch {
         let state = d.iter_mut().zip(v.iter_mut()).zip(a.iter_mut());
         let pred = dp.iter_mut().zip(u.iter_mut());
         let load = h.iter_mut().zip(b0).zip(&self.load);
-        for ((row, ((d, v), a)), ((dp, u), ((h, b0), f))) in rhs.iter().zip(state).zip(pred.zip(load)) {
+        for ((row, ((d, v), a)), ((dp, u), ((h, b0), f))) in
+            rhs.iter().zip(state).zip(pred.zip(load))
+        {
             for l in 0..L {
                 let mut acc = row[l];
                 for cc in 1..K {

@@ -87,6 +87,13 @@ pub trait MethodFactory: Sync {
         st: &mut State,
         init: Initial,
     ) -> Result<Box<dyn Stepper>>;
+
+    /// True when this factory builds what the scene's own `[integrator]`
+    /// builds (the built-in methods), so its runs may step in batches
+    /// (`integrate::batch`); a method of one's own steps alone.
+    fn is_scene_method(&self) -> bool {
+        false
+    }
 }
 
 impl MethodFactory for Method {
@@ -122,6 +129,10 @@ impl MethodFactory for Method {
         init: Initial,
     ) -> Result<Box<dyn Stepper>> {
         stepper_for(sc, sys, st, init)
+    }
+
+    fn is_scene_method(&self) -> bool {
+        true
     }
 }
 
@@ -297,34 +308,34 @@ pub(crate) fn sample_of(
     let x = c.props.motion.position(st.t);
     let pv = if st.step == 0 { &c.pv_f } else { &c.pv_g };
     let w = c.s * dot(pv);
-        match (c.props.kind, c.contact) {
-            (CarrierKind::Force { force }, _) => CarrierSample {
+    match (c.props.kind, c.contact) {
+        (CarrierKind::Force { force }, _) => CarrierSample {
+            x,
+            w,
+            q: w,
+            gap: 0.0,
+            force,
+            in_contact: true,
+        },
+        (_, Some(j)) => {
+            let force = match sys.multiplier_kind() {
+                Multipliers::Forces => sys.lambda[j],
+                // the impulse of the step over its length; at t = 0 the
+                // recorded value is the initial force itself
+                Multipliers::Impulses if st.step > 0 => sys.lambda[j] / sys.dt,
+                Multipliers::Impulses => sys.lambda[j],
+            };
+            CarrierSample {
                 x,
                 w,
-                q: w,
-                gap: 0.0,
+                q: st.q[j],
+                gap: w - st.q[j],
                 force,
-                in_contact: true,
-            },
-            (_, Some(j)) => {
-                let force = match sys.multiplier_kind() {
-                    Multipliers::Forces => sys.lambda[j],
-                    // the impulse of the step over its length; at t = 0 the
-                    // recorded value is the initial force itself
-                    Multipliers::Impulses if st.step > 0 => sys.lambda[j] / sys.dt,
-                    Multipliers::Impulses => sys.lambda[j],
-                };
-                CarrierSample {
-                    x,
-                    w,
-                    q: st.q[j],
-                    gap: w - st.q[j],
-                    force,
-                    in_contact: sys.active[j],
-                }
+                in_contact: sys.active[j],
             }
-            _ => unreachable!("a mass carrier always has a contact"),
         }
+        _ => unreachable!("a mass carrier always has a contact"),
+    }
 }
 
 /// [`Integrator::constraint_damping_note`] of a run's system (alone or in
@@ -345,6 +356,11 @@ pub(crate) fn near_support_lane(sys: &System, x: f64) -> bool {
 }
 
 /// [`Integrator::check`] of a run (alone or in a batch).
-pub(crate) fn check_lane(sys: &System, st: &State, s: &CarrierSample, carrier: usize) -> Result<()> {
+pub(crate) fn check_lane(
+    sys: &System,
+    st: &State,
+    s: &CarrierSample,
+    carrier: usize,
+) -> Result<()> {
     diagnose::check(sys, st, s, carrier)
 }

@@ -176,19 +176,24 @@ impl Affine<'_> {
     /// are independent, which is what vectorizes.
     #[inline(always)]
     fn band_sum_lanes<const P: usize, const L: usize>(kr: &[f64], uu: &[f64]) -> [f64; L] {
-        let (kr, uu) = (&kr[..2 * P + 1], &uu[..(2 * P + 1) * L]);
-        let mut lane = [[0.0; L]; 2];
+        let kr = &kr[..2 * P + 1];
+        // fixed-size rows of the window, so each lane operation is one
+        // vector operation (slices of run-time length kept it scalar)
+        let (rows, _) = uu[..(2 * P + 1) * L].as_chunks::<L>();
+        let mut even = [0.0; L];
+        let mut odd = [0.0; L];
         for q in 0..P {
-            for l in 0..2 {
-                let k = kr[2 * q + l];
-                let u = &uu[(2 * q + l) * L..(2 * q + l + 1) * L];
-                for r in 0..L {
-                    lane[l][r] += k * u[r];
-                }
+            let (ke, ko) = (kr[2 * q], kr[2 * q + 1]);
+            let (ue, uo) = (&rows[2 * q], &rows[2 * q + 1]);
+            for r in 0..L {
+                even[r] += ke * ue[r];
+            }
+            for r in 0..L {
+                odd[r] += ko * uo[r];
             }
         }
-        let last = &uu[2 * P * L..(2 * P + 1) * L];
-        core::array::from_fn(|r| (lane[0][r] + kr[2 * P] * last[r]) + lane[1][r])
+        let (kl, last) = (kr[2 * P], &rows[2 * P]);
+        core::array::from_fn(|r| (even[r] + kl * last[r]) + odd[r])
     }
 
     /// Row i for P ≤ i < n − P: the full band, no bounds in the inner loop.
@@ -353,7 +358,11 @@ impl BandedLdlt {
         b0: &mut [f64],
     ) -> bool {
         assert_eq!((r.k.n, r.k.p), (self.n, self.p));
-        assert_eq!(x.len(), self.n * k * lanes, "right-hand side has the wrong length");
+        assert_eq!(
+            x.len(),
+            self.n * k * lanes,
+            "right-hand side has the wrong length"
+        );
         assert_eq!(b0.len(), self.n * lanes, "b0 has the wrong length");
         assert_eq!(r.h.len(), self.n * lanes, "h has the wrong length");
         let r = Some((r, b0));
@@ -406,10 +415,7 @@ impl BandedLdlt {
     /// True when [`BandedLdlt::solve_affine_lanes`] has a kernel for `k`
     /// columns per run and `lanes` runs on this band.
     pub fn has_lanes(&self, k: usize, lanes: usize) -> bool {
-        matches!(
-            (self.p, k, lanes),
-            (3 | 1, 2, 2..=8) | (3 | 1, 4, 2..=4)
-        ) && self.n > 0
+        matches!((self.p, k, lanes), (3 | 1, 2, 2..=8) | (3 | 1, 4, 2..=4)) && self.n > 0
     }
 
     fn dispatch(&self, x: &mut [f64], k: usize, r: Option<(&Affine, &mut [f64])>) {
@@ -509,8 +515,8 @@ impl BandedLdlt {
                     let (h, b) = (&r.h[i * L..(i + 1) * L], &mut b0[i * L..(i + 1) * L]);
                     for l in 0..L {
                         acc[l] += h[l] - f[l];
-                        b[l] = acc[l];
                     }
+                    b.copy_from_slice(&acc[..L]);
                     let acc = Self::eliminate(row, &win, acc);
                     x[i] = acc;
                     win = core::array::from_fn(|j| if j + 1 < P { win[j + 1] } else { acc });

@@ -76,11 +76,7 @@ impl PointVector {
                 + self.val[2] * at(self.idx[2])
                 + self.val[3] * at(self.idx[3])
         } else {
-            self.dense
-                .iter()
-                .enumerate()
-                .map(|(i, r)| r * at(i))
-                .sum()
+            self.dense.iter().enumerate().map(|(i, r)| r * at(i)).sum()
         }
     }
 

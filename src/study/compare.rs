@@ -18,7 +18,7 @@ use super::space::SpaceChoice;
 use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
-use crate::run::{RunOutput, run_with};
+use crate::run::RunOutput;
 use crate::scene::{Formulation, Resolved, Scene, resolve_scene};
 
 /// One combination's row of the comparison (columns of `compare.csv`).
@@ -147,6 +147,9 @@ pub struct CompareSpec<'a> {
     pub reference_discretization: usize,
     /// The reference formulation (run too if not listed).
     pub reference: Formulation,
+    /// Runs stepped together when they share their effective matrix
+    /// (`--batch`; 1: every run alone). The rows are the same whatever it is.
+    pub batch: usize,
 }
 
 /// Parse `lagrange,penalty,…` into formulations.
@@ -196,6 +199,7 @@ pub fn compare(
         reference_method: 0,
         reference_discretization: 0,
         reference,
+        batch: crate::study::sweep::AUTO_BATCH_LANES,
     };
     compare_methods(text, overrides, &spec, progress)
 }
@@ -269,7 +273,36 @@ pub fn compare_methods(
         .iter()
         .map(|&m| base_scene(text, overrides, Some((m, &base.integrator))))
         .collect();
-    for (i, &(m, d, f, show)) in order.iter().enumerate() {
+    // every combination's scene first, then the runs together: those that
+    // share a matrix step in batches (`--batch`), each bit-identical alone
+    let resolved: Vec<Result<Resolved>> = order
+        .iter()
+        .map(|&(m, d, f, _)| {
+            let variant = RunVariant {
+                formulation: Some(f),
+                space: spaces[d].map(|c| (c, 1.0)),
+                ..RunVariant::default()
+            };
+            match &method_scenes[m] {
+                Ok(scene) => variant.apply_to(scene),
+                // parsed again only to hand this combination its own error
+                Err(_) => base_scene(text, overrides, Some((methods[m], &base.integrator)))
+                    .and_then(|scene| variant.apply_to(&scene)),
+            }
+        })
+        .collect();
+    let jobs: Vec<(Resolved, &dyn MethodFactory)> = order
+        .iter()
+        .zip(&resolved)
+        .filter_map(|(&(m, ..), sc)| sc.as_ref().ok().map(|sc| (sc.clone(), methods[m])))
+        .collect();
+    let mut finished = 0;
+    let mut outputs = crate::run::run_many(&jobs, spec.batch, &mut |_| {
+        finished += 1;
+        progress(finished, total);
+    })
+    .into_iter();
+    for (&(m, d, f, show), sc) in order.iter().zip(resolved) {
         let factory = methods[m];
         let name = factory.name();
         let not_run = |e: &Error| NotRun {
@@ -282,18 +315,10 @@ pub fn compare_methods(
             formulation: f.name().to_string(),
             reason: e.to_string(),
         };
-        let variant = RunVariant {
-            formulation: Some(f),
-            space: spaces[d].map(|c| (c, 1.0)),
-            ..RunVariant::default()
-        };
-        let outcome = match &method_scenes[m] {
-            Ok(scene) => variant.apply_to(scene),
-            // parsed again only to hand this combination its own error
-            Err(_) => base_scene(text, overrides, Some((factory, &base.integrator)))
-                .and_then(|scene| variant.apply_to(&scene)),
-        }
-        .and_then(|sc| run_with(&sc, factory, &mut |_, _| {}).map(|out| (sc, out)));
+        let outcome = sc.and_then(|sc| {
+            let out = outputs.next().expect("one output per resolved scene");
+            out.map(|out| (sc, out))
+        });
         match outcome {
             Ok((scene, output)) => {
                 runs.push(CompareRun {
@@ -313,8 +338,8 @@ pub fn compare_methods(
             }
             Err(e) => failed.push(not_run(&e.in_run(&format!("{name}/{}", f.name())))),
         }
-        progress(i + 1, total);
     }
+    progress(total, total);
     let ref_name = methods[reference.0].name();
     let ref_space = space_label(reference.1, None);
     let ref_idx = keys.iter().position(|&k| k == reference).ok_or_else(|| {

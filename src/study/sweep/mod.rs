@@ -740,15 +740,22 @@ pub enum BatchWidth {
 /// dependency chain the batch shares (docs/performance.md).
 pub const AUTO_BATCH_BYTES: usize = 512 * 1024;
 
+/// Lanes the automatic width prefers: four runs fill one AVX2 vector, and
+/// measured on the reference case (`cargo run --release --example
+/// batch_profile -- B N`) four gave the best throughput at N = 400, 800 and
+/// 1600 (1.6–1.9× the runs alone), eight less (its sweep window no longer
+/// fits the sixteen vector registers).
+pub const AUTO_BATCH_LANES: usize = 4;
+
 /// The automatic batch width for a model of n unknowns and k right-hand
-/// sides per run: the most lanes (2 ..= [`crate::integrate::MAX_LANES`])
-/// whose interleaved vectors (seven per run), right-hand sides and the
-/// shared factor fit [`AUTO_BATCH_BYTES`], at least 2.
+/// sides per run: [`AUTO_BATCH_LANES`], fewer when the batch's interleaved
+/// vectors (seven per run), right-hand sides and the shared factor would
+/// not fit [`AUTO_BATCH_BYTES`], at least 2.
 pub fn auto_batch(n: usize, k: usize) -> usize {
     let shared = n * (2 * 3 + 7) * 8;
     let per_lane = n * (7 + k) * 8;
     let room = AUTO_BATCH_BYTES.saturating_sub(shared);
-    (room / per_lane.max(1)).clamp(2, crate::integrate::MAX_LANES)
+    (room / per_lane.max(1)).clamp(2, AUTO_BATCH_LANES)
 }
 
 /// The sweep's work items: points that share their effective matrix
@@ -798,7 +805,10 @@ fn records_guarded(spec: &SweepSpec, id: &str, item: &[usize]) -> Vec<SweepRecor
     }
     let go = || {
         let scenes: Vec<Result<Resolved>> = item.iter().map(|&i| spec.resolve(i)).collect();
-        let ok: Vec<Resolved> = scenes.iter().filter_map(|s| s.as_ref().ok().cloned()).collect();
+        let ok: Vec<Resolved> = scenes
+            .iter()
+            .filter_map(|s| s.as_ref().ok().cloned())
+            .collect();
         let mut outs = crate::run::run_batch(&ok, item.len(), &mut |_| {}).into_iter();
         item.iter()
             .zip(&scenes)
