@@ -41,6 +41,12 @@ impl FolderLock {
     }
 }
 
+/// How long a claim waits for a lock that looks held before refusing the
+/// folder ([`claim`]): a fork–exec window is microseconds to milliseconds
+/// even on a loaded machine; a sweep or merge holding the folder holds it
+/// for its whole run.
+pub const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500);
+
 /// Claim `dir` for one sweep or merge (creating it), or refuse if another
 /// process holds it.
 pub fn claim(dir: &Path) -> Result<FolderLock> {
@@ -53,7 +59,19 @@ pub fn claim(dir: &Path) -> Result<FolderLock> {
         .write(true)
         .open(&path)
         .map_err(|e| Error::io(&path, e))?;
-    match file.try_lock() {
+    // A lock just released can look held for a moment: a thread of this
+    // process that forks a child (std::process::Command) duplicates every
+    // open descriptor until the child's exec closes it, and the lock lives
+    // while any duplicate does. Waiting up to LOCK_WAIT for that to pass
+    // tells such a moment from a sweep that really holds the folder (a run
+    // takes far longer).
+    let deadline = std::time::Instant::now() + LOCK_WAIT;
+    let mut attempt = file.try_lock();
+    while matches!(attempt, Err(TryLockError::WouldBlock)) && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        attempt = file.try_lock();
+    }
+    match attempt {
         Ok(()) => {}
         Err(TryLockError::WouldBlock) => {
             let holder = std::fs::read_to_string(&path).unwrap_or_default();
