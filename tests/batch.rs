@@ -157,3 +157,55 @@ fn what_cannot_batch_runs_alone_with_the_same_answers() {
     .collect();
     assert_same(&scenes, 8);
 }
+
+#[test]
+fn compare_and_precision_give_the_same_rows_batched() {
+    use taut::study::compare::{CompareSpec, compare_methods};
+    use taut::study::precision::precision_variants;
+    let set = ["mesh.elements=100".to_string(), "time.end=0.15".to_string()];
+    let rows = |batch: usize| {
+        let spec = CompareSpec {
+            methods: Vec::new(),
+            formulations: taut::scene::Formulation::ALL.to_vec(),
+            discretizations: Vec::new(),
+            reference_method: 0,
+            reference_discretization: 0,
+            reference: taut::scene::Formulation::Lagrange,
+            batch,
+        };
+        let c = compare_methods(REFERENCE, &set, &spec, &mut |_, _| {}).unwrap();
+        c.rows
+            .into_iter()
+            .map(|mut r| {
+                r.wall_seconds = 0.0;
+                format!("{r:?}")
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(rows(1), rows(4));
+    let grid = |batch: usize| {
+        let p = precision_variants(
+            REFERENCE,
+            &set,
+            (&[], &[]),
+            &[
+                taut::scene::Formulation::Lagrange,
+                taut::scene::Formulation::Penalty,
+                taut::scene::Formulation::Complementarity,
+            ],
+            (2, 2, batch),
+            &mut |_, _| {},
+        )
+        .unwrap();
+        // wall time and the Pareto flag (error against wall time) aside
+        p.rows
+            .into_iter()
+            .map(|mut r| {
+                r.wall_seconds = 0.0;
+                r.pareto = false;
+                format!("{r:?}")
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(grid(1), grid(4));
+}

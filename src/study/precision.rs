@@ -29,7 +29,7 @@ use super::space::SpaceChoice;
 use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
-use crate::run::{RunOutput, run, run_with};
+use crate::run::{RunOutput, run};
 use crate::scene::{Formulation, MeshKind, Resolved, resolve_scene};
 
 /// One run of the study (a row of `precision.csv`).
@@ -112,7 +112,7 @@ pub fn precision_methods(
         overrides,
         (methods, &[]),
         formulations,
-        (levels, ratio),
+        (levels, ratio, crate::study::sweep::AUTO_BATCH_LANES),
         progress,
     )
 }
@@ -127,7 +127,7 @@ pub fn precision_variants(
     overrides: &[String],
     (methods, spaces): (&[&dyn MethodFactory], &[SpaceChoice]),
     formulations: &[Formulation],
-    (levels, ratio): (usize, usize),
+    (levels, ratio, batch): (usize, usize, usize),
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Precision> {
     if !(1..=5).contains(&levels) {
@@ -174,6 +174,17 @@ pub fn precision_variants(
     done += 1;
     progress(done, total);
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+    // every grid point's scene first (in the study's order), then the runs
+    // together: the formulations of one point share a matrix and step in
+    // batches (`--batch`), each bit-identical to the run alone
+    struct Point<'a> {
+        m: &'a dyn MethodFactory,
+        space: Option<SpaceChoice>,
+        f: Formulation,
+        at: (usize, usize, f64),
+        scene: std::result::Result<(Resolved, usize), String>,
+    }
+    let mut points: Vec<Point> = Vec::new();
     for &m in &methods {
         // the method's scene, parsed once (an error is each point's reason)
         let method_scene =
@@ -181,55 +192,80 @@ pub fn precision_variants(
         for &space in &spaces {
             let modal = space.is_some_and(|s| s.is_modal());
             for &f in formulations {
-                let first = rows.len();
                 for i in 0..levels {
                     for j in 0..levels {
                         let factor = ratio.pow(i as u32);
                         let n = if modal { n0 } else { n0 * factor };
                         let dt = dt0 / r.powi(j as i32);
-                        let not_run = |e: &dyn std::fmt::Display| NotRun {
-                            method: m.name(),
-                            discretization: space
-                                .map_or_else(String::new, |s| s.name().to_string()),
-                            formulation: f.name().to_string(),
-                            reason: format!("level {i}, Δt = {dt:e} s: {e}"),
-                        };
                         let variant = RunVariant {
                             elements: Some(n),
                             dt: Some(dt),
                             formulation: Some(f),
                             space: space.map(|s| (s, if modal { factor as f64 } else { 1.0 })),
                         };
-                        let sc = match &method_scene {
+                        let scene = match &method_scene {
                             Ok(scene) => variant.apply_to(scene).map_err(|e| e.to_string()),
                             Err(e) => Err(e.clone()),
                         };
-                        let sc = match sc {
-                            Ok(sc) => sc,
-                            Err(e) => {
-                                skipped.push(not_run(&e));
-                                done += 1;
-                                progress(done, total);
-                                continue;
+                        let scene = match scene {
+                            Ok(sc) => {
+                                let stride = nest(
+                                    (sc.steps, dt),
+                                    (reference.steps, ref_dt),
+                                    Reach::SameEnd,
+                                )?;
+                                Ok((sc, stride))
                             }
+                            Err(e) => Err(e),
                         };
-                        let stride =
-                            nest((sc.steps, dt), (reference.steps, ref_dt), Reach::SameEnd)?;
-                        match run_with(&sc, m, &mut |_, _| {}) {
-                            Ok(out) => {
-                                rows.push(row(&m.name(), f, (i, j), &out, &reference, stride, &sc))
-                            }
-                            Err(e @ Error::Invalid { .. }) => skipped.push(not_run(&e)),
-                            Err(e) => return Err(e.in_run(&format!("{}/{}", m.name(), f.name()))),
-                        }
-                        done += 1;
-                        progress(done, total);
+                        points.push(Point {
+                            m,
+                            space,
+                            f,
+                            at: (i, j, dt),
+                            scene,
+                        });
                     }
                 }
-                mark_pareto(&mut rows[first..]);
             }
         }
     }
+    let jobs: Vec<(Resolved, &dyn MethodFactory)> = points
+        .iter()
+        .filter_map(|p| p.scene.as_ref().ok().map(|(sc, _)| (sc.clone(), p.m)))
+        .collect();
+    let mut outputs = crate::run::run_many(&jobs, batch, &mut |_| {
+        done += 1;
+        progress(done, total);
+    })
+    .into_iter();
+    let mut first = 0;
+    for (k, p) in points.iter().enumerate() {
+        let (i, j, dt) = p.at;
+        let not_run = |e: &dyn std::fmt::Display| NotRun {
+            method: p.m.name(),
+            discretization: p.space.map_or_else(String::new, |s| s.name().to_string()),
+            formulation: p.f.name().to_string(),
+            reason: format!("level {i}, Δt = {dt:e} s: {e}"),
+        };
+        match &p.scene {
+            Err(e) => skipped.push(not_run(e)),
+            Ok((sc, stride)) => match outputs.next().expect("one output per scene") {
+                Ok(out) => rows.push(row(&p.m.name(), p.f, (i, j), &out, &reference, *stride, sc)),
+                Err(e @ Error::Invalid { .. }) => skipped.push(not_run(&e)),
+                Err(e) => {
+                    return Err(e.in_run(&format!("{}/{}", p.m.name(), p.f.name())));
+                }
+            },
+        }
+        // the last grid point of a method/discretization/formulation
+        if (k + 1) % (levels * levels) == 0 {
+            mark_pareto(&mut rows[first..]);
+            first = rows.len();
+        }
+    }
+    done = total;
+    progress(done, total);
     Ok(Precision {
         reference: (ref_n, ref_dt),
         reference_wall: reference.wall_seconds,

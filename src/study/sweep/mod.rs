@@ -728,35 +728,20 @@ pub fn sweep_batched(
 /// How many runs a sweep steps together (`--batch`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BatchWidth {
-    /// Chosen from the size of the model ([`auto_batch`]).
+    /// [`AUTO_BATCH_LANES`].
     Auto,
     /// At most this many (1: every run alone, the unbatched path).
     Fixed(usize),
 }
 
-/// Bytes of a batch's per-row working set the automatic width keeps within:
-/// half of this machine kind's 1 MiB L2 cache per core. Above it the
-/// batched sweep streams from L3 and is bound by its bandwidth, not by the
-/// dependency chain the batch shares (docs/performance.md).
-pub const AUTO_BATCH_BYTES: usize = 512 * 1024;
-
-/// Lanes the automatic width prefers: four runs fill one AVX2 vector, and
-/// measured on the reference case (`cargo run --release --example
-/// batch_profile -- B N`) four gave the best throughput at N = 400, 800 and
-/// 1600 (1.6–1.9× the runs alone), eight less (its sweep window no longer
-/// fits the sixteen vector registers).
+/// The automatic batch width: four runs, one AVX2 vector of lanes.
+/// Measured on the reference case (criterion group `batch`, N = 1600, and
+/// `cargo run --release --example batch_profile -- B N` at N = 400, 800,
+/// 1600), four lanes gave the best throughput at every size (1.7–2.4× the
+/// runs alone), two none (0.9×: the half-width vectors do not pay for the
+/// interleaving), eight less than four (the sweep's window of 3 × 16
+/// columns no longer fits the sixteen vector registers).
 pub const AUTO_BATCH_LANES: usize = 4;
-
-/// The automatic batch width for a model of n unknowns and k right-hand
-/// sides per run: [`AUTO_BATCH_LANES`], fewer when the batch's interleaved
-/// vectors (seven per run), right-hand sides and the shared factor would
-/// not fit [`AUTO_BATCH_BYTES`], at least 2.
-pub fn auto_batch(n: usize, k: usize) -> usize {
-    let shared = n * (2 * 3 + 7) * 8;
-    let per_lane = n * (7 + k) * 8;
-    let room = AUTO_BATCH_BYTES.saturating_sub(shared);
-    (room / per_lane.max(1)).clamp(2, AUTO_BATCH_LANES)
-}
 
 /// The sweep's work items: points that share their effective matrix
 /// ([`crate::integrate::batch_key`]), in grid order, grouped up to the
@@ -770,11 +755,9 @@ fn batches(spec: &SweepSpec, todo: &[usize], width: BatchWidth) -> Vec<Vec<usize
     for &i in todo {
         let key = spec.resolve(i).ok().and_then(|sc| {
             let key = crate::integrate::batch_key(&sc)?;
-            let k = crate::integrate::rhs_columns(sc.carriers.len());
-            let n = 2 * (sc.elements + 1);
             let w = match width {
                 BatchWidth::Fixed(b) => b,
-                BatchWidth::Auto => auto_batch(n, k),
+                BatchWidth::Auto => AUTO_BATCH_LANES,
             };
             Some((key, w))
         });
