@@ -278,7 +278,7 @@ impl Batch {
         let L = self.lanes.len();
         let (n, k) = (self.n, self.k);
         let GenAlphaParams {
-            alpha_m: am,
+            alpha_m: _,
             alpha_f: af,
             beta,
             gamma,
@@ -312,19 +312,9 @@ impl Batch {
         for (l, lane) in self.lanes.iter_mut().enumerate() {
             let rhs = &self.rhs[..n * kl];
             for (j, m) in lane.sys.masses().iter().enumerate() {
-                let (q, v, a) = (lane.st.q[j], lane.st.q_dot[j], lane.aq[j]);
-                let q_pred = q + dt * v + c_pred * a;
-                let v_pred = v + (1.0 - gamma) * dt * a;
-                let fq = m.f0
-                    - am * m.m * a
-                    - m.c * ((1.0 - af) * v_pred + af * v)
-                    - m.k * ((1.0 - af) * q_pred + af * q);
-                lane.mass_pred[j] = MassPrediction {
-                    q: q_pred,
-                    q_dot: v_pred,
-                    u: fq / lane.a_eff[j],
-                    a_eff: lane.a_eff[j],
-                };
+                let now = (lane.st.q[j], lane.st.q_dot[j], lane.aq[j]);
+                lane.mass_pred[j] =
+                    super::gen_alpha::mass_prediction(self.p, dt, m, now, lane.a_eff[j]);
             }
             let map = StepMap {
                 solved: rhs,

@@ -138,7 +138,7 @@ impl Stepper for GenAlpha {
     /// Advance one step, t_n → t_{n+1} (MODEL §5, "One step, spelled out").
     fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
         let GenAlphaParams {
-            alpha_m: am,
+            alpha_m: _,
             alpha_f: af,
             beta,
             gamma,
@@ -169,19 +169,13 @@ impl Stepper for GenAlpha {
 
         // free mass accelerations
         for (j, m) in sys.masses().iter().enumerate() {
-            let (q, v, a) = (st.q[j], st.q_dot[j], self.aq[j]);
-            let q_pred = q + dt * v + c_pred * a;
-            let v_pred = v + (1.0 - gamma) * dt * a;
-            let fq = m.f0
-                - am * m.m * a
-                - m.c * ((1.0 - af) * v_pred + af * v)
-                - m.k * ((1.0 - af) * q_pred + af * q);
-            self.mass_pred[j] = MassPrediction {
-                q: q_pred,
-                q_dot: v_pred,
-                u: fq / self.a_eff[j],
-                a_eff: self.a_eff[j],
-            };
+            self.mass_pred[j] = mass_prediction(
+                self.p,
+                dt,
+                m,
+                (st.q[j], st.q_dot[j], self.aq[j]),
+                self.a_eff[j],
+            );
         }
         let alpha_weight = match sys.placement {
             Placement::End => 0.0,
@@ -267,6 +261,33 @@ impl Stepper for GenAlpha {
             self.aq[j] = acc;
         }
         Ok(())
+    }
+}
+
+/// What generalized-α predicts for one mass dof (q, q̇, q̈ at t_n = `s`)
+/// this step: q̃, q̇̃ and the free acceleration u★ = F_q/A_q (MODEL §2, §5);
+/// shared by a run alone and a batch of runs (`integrate::batch`).
+#[inline]
+pub(crate) fn mass_prediction(
+    p: GenAlphaParams,
+    dt: f64,
+    m: &super::MassDof,
+    (q, v, a): (f64, f64, f64),
+    a_eff: f64,
+) -> MassPrediction {
+    let (am, af) = (p.alpha_m, p.alpha_f);
+    let c_pred = (0.5 - p.beta) * dt * dt;
+    let q_pred = q + dt * v + c_pred * a;
+    let v_pred = v + (1.0 - p.gamma) * dt * a;
+    let fq = m.f0
+        - am * m.m * a
+        - m.c * ((1.0 - af) * v_pred + af * v)
+        - m.k * ((1.0 - af) * q_pred + af * q);
+    MassPrediction {
+        q: q_pred,
+        q_dot: v_pred,
+        u: fq / a_eff,
+        a_eff,
     }
 }
 
