@@ -92,6 +92,11 @@ enum Command {
         /// Accept this run's values as the new references and show what changed.
         #[arg(long)]
         update: bool,
+        /// Cases stepped together when their runs share the effective
+        /// matrix (1 ..= 8, 1: every case alone; default 4). The checks are
+        /// the same whatever it is.
+        #[arg(long, value_name = "B")]
+        batch: Option<usize>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -312,8 +317,9 @@ fn main() -> ExitCode {
             suite,
             out,
             update,
+            batch,
             quiet,
-        } => match cmd_gate(&suite, out, update, quiet) {
+        } => match cmd_gate(&suite, out, (update, batch), quiet) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
             Err(e) => Err(e),
@@ -512,10 +518,19 @@ fn cmd_converge(
 }
 
 /// Returns whether the gate passed.
-fn cmd_gate(suite: &Path, out: Option<PathBuf>, update: bool, quiet: bool) -> taut::Result<bool> {
+fn cmd_gate(
+    suite: &Path,
+    out: Option<PathBuf>,
+    (update, batch): (bool, Option<usize>),
+    quiet: bool,
+) -> taut::Result<bool> {
+    let batch = match parse_batch(batch)? {
+        taut::study::sweep::BatchWidth::Auto => taut::study::sweep::AUTO_BATCH_LANES,
+        taut::study::sweep::BatchWidth::Fixed(b) => b,
+    };
     let n = taut::study::gate::case_files(suite)?.len();
     let bar = progress_bar(n, "cases", quiet);
-    let report = taut::study::gate::gate(suite, update, &mut |done, _, _| {
+    let report = taut::study::gate::gate_batched(suite, update, batch, &mut |done, _, _| {
         bar.set_position(done as u64)
     });
     bar.finish_and_clear();

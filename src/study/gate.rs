@@ -275,13 +275,49 @@ pub fn gate(
     update: bool,
     progress: &mut dyn FnMut(usize, usize, &str),
 ) -> Result<GateReport> {
+    gate_batched(
+        suite,
+        update,
+        crate::study::sweep::AUTO_BATCH_LANES,
+        progress,
+    )
+}
+
+/// [`gate`] with the batch width given (`--batch`): cases whose runs share
+/// their effective matrix (the same scene and mesh with other carriers, or
+/// formulations) step together (`integrate::batch`); each case's numbers
+/// are the same whatever the width.
+pub fn gate_batched(
+    suite: &Path,
+    update: bool,
+    batch: usize,
+    progress: &mut dyn FnMut(usize, usize, &str),
+) -> Result<GateReport> {
     let files = case_files(suite)?;
     let mut checks = Vec::new();
     let mut errors = Vec::new();
     let mut wall = BTreeMap::new();
-    for (i, path) in files.iter().enumerate() {
+    // every case's scene first, then the runs together
+    let prepared: Vec<Result<(GateCase, crate::scene::Resolved)>> = files
+        .iter()
+        .map(|path| {
+            read_case(path).and_then(|case| {
+                let scene = path.parent().unwrap_or(Path::new(".")).join(&case.scene);
+                load_scene(&scene, &case.set).map(|sc| (case, sc))
+            })
+        })
+        .collect();
+    let scenes: Vec<crate::scene::Resolved> = prepared
+        .iter()
+        .filter_map(|p| p.as_ref().ok().map(|(_, sc)| sc.clone()))
+        .collect();
+    let mut outputs = crate::run::run_batch(&scenes, batch, &mut |_| {}).into_iter();
+    for (i, (path, prepared)) in files.iter().zip(prepared).enumerate() {
         let name = case_name(path);
-        let outcome = read_case(path).and_then(|case| run_case(path, &case).map(|out| (case, out)));
+        let outcome = prepared.and_then(|(case, _)| {
+            let out = outputs.next().expect("one output per scene")?;
+            Ok((case, out))
+        });
         match outcome {
             Ok((mut case, out)) => {
                 wall.insert(name.clone(), out.wall_seconds);
