@@ -92,6 +92,33 @@ fn measure_steps(text: &str, overrides: &[&str], steps: usize) -> Stretch {
     }
 }
 
+/// Allocations while a batch of runs (`integrate::batch`) steps: four
+/// reference runs at different speeds, through contact loss.
+fn batch_allocations(steps: usize) -> (usize, usize) {
+    MEASURING.with(|m| m.set(true));
+    let scenes: Vec<taut::Resolved> = (0..4)
+        .map(|i| {
+            let o = vec![format!("carrier.0.speed.cruise={}", 90.0 + 5.0 * i as f64)];
+            taut::resolve_scene(REFERENCE, &o).unwrap()
+        })
+        .collect();
+    let list: Vec<(usize, &taut::Resolved)> = scenes.iter().enumerate().collect();
+    let (batch, errors) = taut::integrate::Batch::new(&list);
+    assert!(errors.is_empty());
+    let mut b = batch.unwrap();
+    assert!(b.supported());
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    let mut open = 0;
+    for _ in 0..steps {
+        b.step();
+        for l in 0..b.lanes().len() {
+            assert!(b.lanes()[l].failed.is_none());
+            open += usize::from(!b.sample(l, 0).in_contact);
+        }
+    }
+    (ALLOCATIONS.load(Ordering::Relaxed) - before, open)
+}
+
 // One test function: the counter is global, so parallel tests would mix counts.
 #[test]
 fn step_loop_does_not_allocate() {
@@ -102,6 +129,10 @@ fn step_loop_does_not_allocate() {
         assert_eq!(allocations_in_steps(REFERENCE, &[&o], 6000), 0, "{f}");
     }
     complementarity();
+    // batched stepping: four runs as lanes of one sweep, through contact loss
+    let (allocations, open) = batch_allocations(5500);
+    assert_eq!(allocations, 0, "a batch of four runs");
+    assert!(open > 0, "the batch must pass through contact loss");
     // the space discretizations (MODEL §9.2): dense point vectors refilled
     // in place; graded meshes, a Moreau–Jean step (slope vectors too)
     for (kind, extra) in [
