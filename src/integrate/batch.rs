@@ -40,22 +40,11 @@ use crate::model::banded::{Affine, BandedLdlt, SymBand};
 use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::{Discretization, Formulation, GenAlphaParams, Placement, Resolved, Scheme};
 
+use super::gen_alpha::{RowState, UpdateCoefs};
 use super::system::Lanes;
 use super::{
     CarrierSample, MassPrediction, State, StepMap, System, VelocityPrediction, rhs_columns,
 };
-
-/// The constants of the update pass (gen_alpha's, MODEL §5).
-#[derive(Debug, Clone, Copy)]
-struct UpdateCoefs {
-    dt: f64,
-    gamma: f64,
-    bdt2: f64,
-    c_pred: f64,
-    alpha_f: f64,
-    c_shift: f64,
-    alpha_p: f64,
-}
 
 /// Most runs a batch steps together (the widest kernel compiled).
 pub const MAX_LANES: usize = 8;
@@ -452,13 +441,15 @@ impl Batch {
                 for cc in 1..K {
                     acc += lk[cc][l] * row[cc * L + l];
                 }
-                v[at] += c.dt * ((1.0 - c.gamma) * a[at] + c.gamma * acc);
-                d[at] = dp[at] + c.bdt2 * acc;
-                a[at] = acc;
-                let next = d[at] + c.dt * v[at] + c.c_pred * acc;
-                dp[at] = next;
-                u[at] = (1.0 - c.alpha_f) * next + c.alpha_f * d[at] - c.c_shift * acc;
-                h[at] = self.load[i] - c.alpha_p * b0[at];
+                let r = RowState {
+                    d: &mut d[at],
+                    v: &mut v[at],
+                    a: &mut a[at],
+                    dp: &mut dp[at],
+                    u: &mut u[at],
+                    h: &mut h[at],
+                };
+                c.row(acc, r, b0[at], self.load[i]);
             }
             for g in (0..L - L % 4).step_by(4) {
                 let at = i * L + g;
@@ -549,13 +540,15 @@ impl Batch {
                 for cc in 1..K {
                     acc += lk[cc][l] * row[cc * L + l];
                 }
-                v[l] += c.dt * ((1.0 - c.gamma) * a[l] + c.gamma * acc);
-                d[l] = dp[l] + c.bdt2 * acc;
-                a[l] = acc;
-                let next = d[l] + c.dt * v[l] + c.c_pred * acc;
-                dp[l] = next;
-                u[l] = (1.0 - c.alpha_f) * next + c.alpha_f * d[l] - c.c_shift * acc;
-                h[l] = f - c.alpha_p * b0[l];
+                let r = RowState {
+                    d: &mut d[l],
+                    v: &mut v[l],
+                    a: &mut a[l],
+                    dp: &mut dp[l],
+                    u: &mut u[l],
+                    h: &mut h[l],
+                };
+                c.row(acc, r, b0[l], *f);
             }
         }
     }

@@ -293,18 +293,46 @@ pub(crate) fn mass_prediction(
 
 /// The constants of the update pass (MODEL §5, update and predictors).
 #[derive(Debug, Clone, Copy)]
-struct UpdateCoefs {
-    dt: f64,
-    gamma: f64,
+pub(crate) struct UpdateCoefs {
+    pub(crate) dt: f64,
+    pub(crate) gamma: f64,
     /// βΔt².
-    bdt2: f64,
+    pub(crate) bdt2: f64,
     /// (½ − β)Δt².
-    c_pred: f64,
-    alpha_f: f64,
+    pub(crate) c_pred: f64,
+    pub(crate) alpha_f: f64,
     /// α′(1 − α_f)βΔt², the shift of ũ.
-    c_shift: f64,
+    pub(crate) c_shift: f64,
     /// α′ = α_m/(1 − α_m).
-    alpha_p: f64,
+    pub(crate) alpha_p: f64,
+}
+
+/// One row's state in the update pass: d, v, a, d̃, ũ, h (written) and the
+/// solve's b₀ and the load f (read).
+pub(crate) struct RowState<'a> {
+    pub(crate) d: &'a mut f64,
+    pub(crate) v: &'a mut f64,
+    pub(crate) a: &'a mut f64,
+    pub(crate) dp: &'a mut f64,
+    pub(crate) u: &'a mut f64,
+    pub(crate) h: &'a mut f64,
+}
+
+impl UpdateCoefs {
+    /// The update of one row from its new acceleration `acc` (a run alone
+    /// and every lane of a batch use this, so their bits agree):
+    /// v += Δt((1−γ)a + γ acc), d = d̃ + βΔt² acc, a = acc, then the next
+    /// step's d̃, ũ and h (module docs).
+    #[inline(always)]
+    pub(crate) fn row(&self, acc: f64, r: RowState, b0: f64, f: f64) {
+        *r.v += self.dt * ((1.0 - self.gamma) * *r.a + self.gamma * acc);
+        *r.d = *r.dp + self.bdt2 * acc;
+        *r.a = acc;
+        let next = *r.d + self.dt * *r.v + self.c_pred * acc;
+        *r.dp = next;
+        *r.u = (1.0 - self.alpha_f) * next + self.alpha_f * *r.d - self.c_shift * acc;
+        *r.h = f - self.alpha_p * b0;
+    }
 }
 
 /// The beam rows the update pass reads and writes.
@@ -334,13 +362,7 @@ impl Rows<'_> {
         let pred = self.d_pred.iter_mut().zip(self.u_shift.iter_mut());
         let load = self.h.iter_mut().zip(self.b0).zip(self.f);
         for (((acc, ((d, v), a)), (dp, u)), ((h, b0), f)) in acc.zip(state).zip(pred).zip(load) {
-            *v += c.dt * ((1.0 - c.gamma) * *a + c.gamma * acc);
-            *d = *dp + c.bdt2 * acc;
-            *a = acc;
-            let next = *d + c.dt * *v + c.c_pred * acc;
-            *dp = next;
-            *u = (1.0 - c.alpha_f) * next + c.alpha_f * *d - c.c_shift * acc;
-            *h = f - c.alpha_p * b0;
+            c.row(acc, RowState { d, v, a, dp, u, h }, *b0, *f);
         }
     }
 }

@@ -737,9 +737,9 @@ pub enum BatchWidth {
 /// The automatic batch width: four runs, one AVX2 vector of lanes.
 /// Measured on the reference case (criterion group `batch`, N = 1600, and
 /// `cargo run --release --example batch_profile -- B N` at N = 400, 800,
-/// 1600), four lanes gave the best throughput at every size (1.7–2.4× the
-/// runs alone), two none (0.9×: the half-width vectors do not pay for the
-/// interleaving), eight less than four (the sweep's window of 3 × 16
+/// 1600), four lanes gave the best throughput at every size (2.2–2.6× the
+/// runs alone), two little (0.94–1.35×: the half-width vectors barely pay
+/// for the interleaving), eight less than four (the sweep's window of 3 × 16
 /// columns no longer fits the sixteen vector registers).
 pub const AUTO_BATCH_LANES: usize = 4;
 
