@@ -239,9 +239,13 @@ pub fn run_batch(
     let mut groups: Vec<(Option<String>, Vec<usize>)> = Vec::new();
     for (i, sc) in scenes.iter().enumerate() {
         let key = if width > 1 { batch_key(sc) } else { None };
+        // no wider than the kernels compiled for this run's columns
+        let cap = width.min(crate::integrate::max_lanes(
+            crate::integrate::scene_columns(sc),
+        ));
         match groups
             .iter_mut()
-            .find(|(k, g)| key.is_some() && *k == key && g.len() < width)
+            .find(|(k, g)| key.is_some() && *k == key && g.len() < cap)
         {
             Some((_, g)) => g.push(i),
             None => groups.push((key, vec![i])),

@@ -101,6 +101,20 @@ fn masses_springs_preloads_and_formulations_batch_bit_identically() {
         .map(|m| scene(TWO, &[format!("carrier.1.mass={m}"), "time.end=0.2".into()]))
         .collect();
     assert_same(&two, 3);
+    // wider than the four-column kernels: split into batches of at most four
+    let six: Vec<Resolved> = (0..6)
+        .map(|i| {
+            scene(
+                TWO,
+                &[
+                    format!("carrier.1.mass={}", 0.5 + 0.25 * i as f64),
+                    "time.end=0.1".into(),
+                ],
+            )
+        })
+        .collect();
+    assert_eq!(taut::integrate::max_lanes(4), 4);
+    assert_same(&six, 8);
 }
 
 #[test]

@@ -49,6 +49,24 @@ use super::{
 /// Most runs a batch steps together (the widest kernel compiled).
 pub const MAX_LANES: usize = 8;
 
+/// Most runs of `k` right-hand-side columns each a batch takes: the
+/// kernels compiled in `BandedLdlt::solve_affine_lanes` (2 ..= 8 lanes of
+/// two columns, 2 ..= 4 of four).
+pub fn max_lanes(k: usize) -> usize {
+    if k <= 2 { MAX_LANES } else { 4 }
+}
+
+/// Right-hand-side columns of a scene's runs: the free step and one per
+/// contact (mass–spring carrier), [`rhs_columns`].
+pub fn scene_columns(sc: &Resolved) -> usize {
+    rhs_columns(
+        sc.carriers
+            .iter()
+            .filter(|c| matches!(c.kind, crate::scene::CarrierKind::MassSpring { .. }))
+            .count(),
+    )
+}
+
 /// The key of the runs that may step together: `None` when `sc` cannot
 /// batch (module docs); runs with equal keys share their effective matrix
 /// and their number of right-hand-side columns.
@@ -62,12 +80,7 @@ pub fn batch_key(sc: &Resolved) -> Option<String> {
     {
         return None;
     }
-    let masses = sc
-        .carriers
-        .iter()
-        .filter(|c| matches!(c.kind, crate::scene::CarrierKind::MassSpring { .. }))
-        .count();
-    let k = rhs_columns(masses);
+    let k = scene_columns(sc);
     if k > 4 {
         return None;
     }
@@ -247,11 +260,6 @@ impl Batch {
     /// The runs still in the batch, in lane order.
     pub fn lanes(&self) -> &[Lane] {
         &self.lanes
-    }
-
-    /// Number of unknowns of each run (beam dofs + mass dofs).
-    pub fn dofs(&self) -> usize {
-        self.n + self.lanes.first().map_or(0, |l| l.sys.contacts())
     }
 
     /// True when the kernel for this many lanes exists (else the caller

@@ -30,7 +30,7 @@ mod moreau_jean;
 mod state;
 mod system;
 
-pub use batch::{Batch, Lane, MAX_LANES, batch_key};
+pub use batch::{Batch, Lane, MAX_LANES, batch_key, max_lanes, scene_columns};
 pub use bathe::Bathe;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,

@@ -219,7 +219,9 @@ impl Mesh {
     }
 }
 
-fn check_elements(grading: Grading, elements: usize) -> Result<()> {
+/// At least one element per graded segment ([`Grading::min_elements`]),
+/// else an error naming `mesh.elements` (scene validation and [`Mesh::new`]).
+pub fn check_elements(grading: Grading, elements: usize) -> Result<()> {
     let min = grading.min_elements();
     if elements < min {
         return Err(Error::invalid(

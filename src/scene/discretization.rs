@@ -220,18 +220,7 @@ fn resolve_grading(mesh: &MeshSpec, beam: &BeamProps) -> Result<Grading> {
             "applies only to mesh.grading = \"point\"",
         ));
     }
-    let min = match g {
-        GradingKind::Supports | GradingKind::Point => 2,
-        _ => 1,
-    };
-    if mesh.elements < min {
-        return Err(Error::invalid(
-            "mesh.elements",
-            mesh.elements,
-            format!("must be ≥ {min} for a mesh graded toward two sides (one element per side)"),
-        ));
-    }
-    Ok(match g {
+    let grading = match g {
         GradingKind::Uniform => Grading::Uniform,
         GradingKind::Supports => Grading::Supports { ratio },
         GradingKind::Left => Grading::Left { ratio },
@@ -254,5 +243,8 @@ fn resolve_grading(mesh: &MeshSpec, beam: &BeamProps) -> Result<Grading> {
             }
             Grading::Point { ratio, at }
         }
-    })
+    };
+    // the mesh builder's own check: one element per graded segment
+    crate::model::mesh::check_elements(grading, mesh.elements)?;
+    Ok(grading)
 }

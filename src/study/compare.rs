@@ -341,7 +341,6 @@ pub fn compare_methods(
     }
     progress(total, total);
     let ref_name = methods[reference.0].name();
-    let ref_space = space_label(reference.1, None);
     let ref_idx = keys.iter().position(|&k| k == reference).ok_or_else(|| {
         let why = skipped
             .iter()
@@ -355,7 +354,6 @@ pub fn compare_methods(
         )
     })?;
     let reference_discretization = runs[ref_idx].discretization.clone();
-    let _ = ref_space;
     let rows: Vec<CompareRow> = runs.iter().map(|r| row(r, &runs[ref_idx].output)).collect();
     // keep only the combinations asked for (the reference, if added, is last)
     let (runs, rows): (Vec<_>, Vec<_>) = runs
