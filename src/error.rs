@@ -24,8 +24,21 @@ pub enum Error {
     },
 
     /// The scene file could not be parsed (syntax, unknown key, wrong type).
-    #[error("cannot read scene: {0}")]
-    Parse(String),
+    #[error("cannot read scene: {reason}")]
+    Parse {
+        /// What is wrong, with the line and column or the key path.
+        reason: String,
+        /// Dotted path of the table or key at fault (`beam`, `carrier.0.speed`)
+        /// when the fault is in one (an unknown key, a wrong type); `None`
+        /// for a syntax error or a file that is not a scene.
+        field: Option<String>,
+    },
+
+    /// Work stopped because it was asked to ([`crate::interrupt`]): Ctrl-C
+    /// in the Python module. Not a failure of the run: a sweep keeps no
+    /// record of it, so a resumed sweep runs the point again.
+    #[error("interrupted on request")]
+    Interrupted,
 
     /// A `--set key.path=value` override that cannot be applied.
     #[error("invalid override `{spec}`: {reason}")]
@@ -145,6 +158,14 @@ impl Error {
                 problem,
             },
             other => other,
+        }
+    }
+
+    /// Shorthand for an [`Error::Parse`] not tied to a key.
+    pub fn parse(reason: impl Into<String>) -> Self {
+        Error::Parse {
+            reason: reason.into(),
+            field: None,
         }
     }
 

@@ -25,6 +25,7 @@ pub mod analytic;
 pub mod contact;
 pub mod error;
 pub mod integrate;
+pub mod interrupt;
 pub mod json_keys;
 pub mod model;
 pub mod record;
@@ -33,6 +34,9 @@ pub mod run;
 pub mod scene;
 pub mod study;
 pub mod warnings;
+
+/// The library's version (`taut --version`).
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 pub use error::{Error, Result};
 pub use run::{RunOutput, run, run_batch, run_with};

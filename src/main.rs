@@ -10,8 +10,7 @@ use taut::report::{
     Summary, compare_table, converge_table, gate_table, write_compare, write_converge, write_gate,
     write_run, write_sweep,
 };
-use taut::study::compare::parse_formulations;
-use taut::study::converge::{Refine, converge};
+use taut::study::converge::Refine;
 use taut::{load_scene, run};
 
 /// taut: dynamic contact of a tensioned beam and a moving mass–spring.
@@ -461,56 +460,35 @@ fn cmd_converge(
     out: Option<PathBuf>,
     quiet: bool,
 ) -> taut::Result<()> {
-    use taut::integrate::MethodFactory;
+    use taut::study::request::{ConvergeOutcome, ConvergeRequest};
+    let request = ConvergeRequest {
+        refine: refine.to_string(),
+        levels,
+        ratio,
+        methods: methods.map(str::to_string),
+        discretizations: discretizations.map(str::to_string),
+    };
     let refine: Refine = refine.parse()?;
-    let methods = methods.map(taut::scene::parse_methods).transpose()?;
-    let spaces = discretizations
-        .map(taut::study::space::SpaceChoice::parse_list)
-        .transpose()?;
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
-    let runs = levels * methods.as_ref().map_or(1, Vec::len) * spaces.as_ref().map_or(1, Vec::len);
-    let bar = progress_bar(runs, "runs", quiet);
-    let mut tick = |done: usize, _| bar.set_position(done as u64);
-    let analytic = &taut::study::reference::analytic_w;
-    let kind = format!("converge ({refine:?}, r = {ratio})");
-    if methods.is_some() || spaces.is_some() {
-        let factories: Vec<&dyn MethodFactory> = methods
-            .iter()
-            .flatten()
-            .map(|m| m as &dyn MethodFactory)
-            .collect();
-        let result = taut::study::converge::converge_variants(
-            &text,
-            &set,
-            &factories,
-            spaces.as_deref().unwrap_or(&[]),
-            refine,
-            levels,
-            ratio,
-            analytic,
-            &mut tick,
-        );
-        bar.finish_and_clear();
-        let (studies, skipped) = result.map_err(|e| save_failure(&dir, e))?;
-        taut::report::write_converge_methods(&dir, &studies, &skipped)?;
-        print_study(
-            &kind,
-            &scene,
-            &taut::report::converge_methods_table(&studies, &skipped),
-            &dir,
-            "converge.csv, converge.json, converge.svg",
-        );
-        return Ok(());
-    }
-    let result = converge(&text, &set, refine, levels, ratio, analytic, &mut tick);
+    let bar = progress_bar(request.runs()?, "runs", quiet);
+    let result = request.run(&text, &set, &mut |done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
-    let c = result.map_err(|e| save_failure(&dir, e))?;
-    write_converge(&dir, &c)?;
+    let kind = format!("converge ({refine:?}, r = {ratio})");
+    let table = match result.map_err(|e| save_failure(&dir, e))? {
+        ConvergeOutcome::One(c) => {
+            write_converge(&dir, &c)?;
+            converge_table(&c)
+        }
+        ConvergeOutcome::Variants { studies, skipped } => {
+            taut::report::write_converge_methods(&dir, &studies, &skipped)?;
+            taut::report::converge_methods_table(&studies, &skipped)
+        }
+    };
     print_study(
         &kind,
         &scene,
-        &converge_table(&c),
+        &table,
         &dir,
         "converge.csv, converge.json, converge.svg",
     );
@@ -524,10 +502,7 @@ fn cmd_gate(
     (update, batch): (bool, Option<usize>),
     quiet: bool,
 ) -> taut::Result<bool> {
-    let batch = match parse_batch(batch)? {
-        taut::study::sweep::BatchWidth::Auto => taut::study::sweep::AUTO_BATCH_LANES,
-        taut::study::sweep::BatchWidth::Fixed(b) => b,
-    };
+    let batch = taut::study::request::batch_lanes(batch)?;
     let n = taut::study::gate::case_files(suite)?.len();
     let bar = progress_bar(n, "cases", quiet);
     let report = taut::study::gate::gate_batched(suite, update, batch, &mut |done, _, _| {
@@ -563,7 +538,7 @@ fn cmd_sweep(
     quiet: bool,
 ) -> taut::Result<bool> {
     use taut::study::sweep::{Axis, Shard, SweepSpec, claim, sweep_batched};
-    let batch = parse_batch(batch)?;
+    let batch = taut::study::request::batch_width(batch)?;
     let axes = vary
         .iter()
         .map(|v| Axis::parse(v, log))
@@ -703,37 +678,18 @@ fn cmd_precision(
     out: Option<PathBuf>,
     quiet: bool,
 ) -> taut::Result<()> {
-    use taut::integrate::MethodFactory;
-    let list = parse_formulations(formulations)?;
-    let methods = methods.map(taut::scene::parse_methods).transpose()?;
-    let factories: Vec<&dyn MethodFactory> = methods
-        .iter()
-        .flatten()
-        .map(|m| m as &dyn MethodFactory)
-        .collect();
+    let request = taut::study::request::PrecisionRequest {
+        formulations: formulations.to_string(),
+        methods: methods.map(str::to_string),
+        discretizations: discretizations.map(str::to_string),
+        levels,
+        ratio,
+        batch,
+    };
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
-    let spaces = discretizations
-        .map(taut::study::space::SpaceChoice::parse_list)
-        .transpose()?
-        .unwrap_or_default();
-    let n_methods = factories.len().max(1) * spaces.len().max(1);
-    let bar = progress_bar(1 + n_methods * list.len() * levels * levels, "runs", quiet);
-    let result = taut::study::precision::precision_variants(
-        &text,
-        &set,
-        (&factories, &spaces),
-        &list,
-        (
-            levels,
-            ratio,
-            match parse_batch(batch)? {
-                taut::study::sweep::BatchWidth::Auto => taut::study::sweep::AUTO_BATCH_LANES,
-                taut::study::sweep::BatchWidth::Fixed(b) => b,
-            },
-        ),
-        &mut |d, _| bar.set_position(d as u64),
-    );
+    let bar = progress_bar(request.runs()?, "runs", quiet);
+    let result = request.run(&text, &set, &mut |d, _| bar.set_position(d as u64));
     bar.finish_and_clear();
     let p = result.map_err(|e| save_failure(&dir, e))?;
     taut::report::write_precision(&dir, &p)?;
@@ -752,7 +708,7 @@ fn cmd_replay(path: &Path, max_iter: Option<u32>, solver: Option<&str>) -> taut:
     let text = std::fs::read_to_string(path).map_err(|e| taut::Error::io(path, e))?;
     taut::json_keys::reject_duplicate_keys(&text, path)?;
     let mut problem: taut::contact::ContactProblem = serde_json::from_str(&text)
-        .map_err(|e| taut::Error::Parse(format!("{}: {e}", path.display())))?;
+        .map_err(|e| taut::Error::parse(format!("{}: {e}", path.display())))?;
     if let Some(n) = max_iter {
         problem.contact.complementarity.max_iter = n;
     }
@@ -822,61 +778,18 @@ fn cmd_compare(
     out: Option<PathBuf>,
     quiet: bool,
 ) -> taut::Result<bool> {
-    use taut::integrate::MethodFactory;
-    use taut::study::compare::{CompareSpec, compare_methods};
-    let list = parse_formulations(formulations)?;
-    let reference = parse_formulations(reference)?
-        .first()
-        .copied()
-        .expect("parse_formulations returns at least one");
-    let method_list = methods.map(taut::scene::parse_methods).transpose()?;
-    let reference_method = match (reference_method, &method_list) {
-        (None, _) => 0,
-        (Some(name), Some(list)) => {
-            let m = taut::scene::parse_methods(name)?[0];
-            list.iter().position(|x| *x == m).ok_or_else(|| {
-                taut::Error::invalid("--reference-method", name, "must be one of --methods")
-            })?
-        }
-        (Some(name), None) => {
-            return Err(taut::Error::invalid(
-                "--reference-method",
-                name,
-                "needs --methods",
-            ));
-        }
-    };
-    let factories: Vec<&dyn MethodFactory> = method_list
-        .iter()
-        .flatten()
-        .map(|m| m as &dyn MethodFactory)
-        .collect();
-    let discretizations = discretizations
-        .map(taut::study::space::SpaceChoice::parse_list)
-        .transpose()?
-        .unwrap_or_default();
-    let n_spaces = discretizations.len().max(1);
-    let spec = CompareSpec {
-        methods: factories,
-        formulations: list,
-        discretizations,
-        reference_method,
-        reference_discretization: 0,
-        reference,
-        batch: match parse_batch(batch)? {
-            taut::study::sweep::BatchWidth::Auto => taut::study::sweep::AUTO_BATCH_LANES,
-            taut::study::sweep::BatchWidth::Fixed(b) => b,
-        },
+    let request = taut::study::request::CompareRequest {
+        formulations: formulations.to_string(),
+        methods: methods.map(str::to_string),
+        discretizations: discretizations.map(str::to_string),
+        reference: reference.to_string(),
+        reference_method: reference_method.map(str::to_string),
+        batch,
     };
     let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
-    let n_methods = method_list.as_ref().map_or(1, Vec::len);
-    let bar = progress_bar(
-        n_methods * n_spaces * spec.formulations.len(),
-        "runs",
-        quiet,
-    );
-    let result = compare_methods(&text, &set, &spec, &mut |done, total| {
+    let bar = progress_bar(request.runs()?, "runs", quiet);
+    let result = request.run(&text, &set, &mut |done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64)
     });
@@ -1000,20 +913,5 @@ fn print_summary(
             "  wrote    {}/{{history.csv, summary.json, force.svg}}",
             dir.display()
         );
-    }
-}
-
-/// `--batch B`: 1 ..= MAX_LANES, or automatic when absent.
-fn parse_batch(b: Option<usize>) -> taut::Result<taut::study::sweep::BatchWidth> {
-    use taut::study::sweep::BatchWidth;
-    let max = taut::integrate::MAX_LANES;
-    match b {
-        None => Ok(BatchWidth::Auto),
-        Some(b) if (1..=max).contains(&b) => Ok(BatchWidth::Fixed(b)),
-        Some(b) => Err(taut::Error::invalid(
-            "--batch",
-            b,
-            format!("must be in 1 ..= {max} (runs stepped together; 1 steps every run alone)"),
-        )),
     }
 }

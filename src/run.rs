@@ -69,6 +69,9 @@ fn drive(
     )?;
     let report_every = (sc.steps / 200).max(1);
     for n in 1..=sc.steps {
+        if crate::interrupt::requested() {
+            return Err(Error::Interrupted);
+        }
         it.step()?;
         rec.observe(
             it.time(),
@@ -393,6 +396,12 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                 }
                 break;
             }
+        }
+        if crate::interrupt::requested() {
+            for lane in b.lanes() {
+                results.push((lane.id, Err(Error::Interrupted)));
+            }
+            break;
         }
         b.step();
         pending = observe(&b, &mut recs, false);

@@ -81,7 +81,7 @@ fn expect_invalid(text: &str, overrides: &[&str], field: &str, value: &str, allo
 fn expect_parse(text: &str, overrides: &[&str], parts: &[&str]) {
     let err = rejected(text, overrides);
     assert!(
-        matches!(err, Error::Parse(_)),
+        matches!(err, Error::Parse { .. }),
         "expected a parse error, got: {err}"
     );
     assert_mentions(&err, parts);
@@ -993,7 +993,7 @@ fn toml_syntax_error() {
     let text = edit(REFERENCE, LENGTH_LINE, "length = = 50\n");
     let err = rejected(&text, &[]);
     assert!(
-        matches!(err, Error::Parse(_)),
+        matches!(err, Error::Parse { .. }),
         "expected a parse error, got: {err}"
     );
     assert_mentions(&err, &["cannot read scene"]);

@@ -129,7 +129,7 @@ fn record_every_must_be_an_integer_of_at_least_one() {
     for bad in ["1.5", "-3", "\"7\"", "true", "[7]"] {
         let e = resolve_scene(REFERENCE, &o(&[&format!("output.record_every={bad}")])).unwrap_err();
         assert!(
-            matches!(e, Error::Parse(_)) && e.to_string().contains("`output.record_every`"),
+            matches!(e, Error::Parse { .. }) && e.to_string().contains("`output.record_every`"),
             "{bad}: {e}"
         );
     }

@@ -30,6 +30,20 @@ fn ci_runs_the_readme_commands() {
 }
 
 #[test]
+fn the_python_install_command_is_the_one_ci_runs() {
+    // README "From Python": one command installs the module; CI installs it
+    // the same way (with the test extras) and runs its tests and example
+    assert!(README.contains("pip install ./python"));
+    assert!(CI.contains("pip install --quiet --disable-pip-version-check \"./python[test]\""));
+    assert!(CI.contains("pytest python/tests"));
+    assert!(CI.contains("python/examples/speed_map.py --check"));
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for f in ["python/pyproject.toml", "python/examples/speed_map.py", "docs/python.md"] {
+        assert!(root.join(f).is_file(), "{f}");
+    }
+}
+
+#[test]
 fn the_reference_scene_and_every_linked_doc_exist() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     assert!(root.join("scenes/reference.toml").is_file());

@@ -1,12 +1,11 @@
 //! `compare.csv`, `compare.json` and `compare.svg` of `taut compare`.
 
-use std::io::Write;
 use std::path::Path;
 
 use serde::Serialize;
 
-use super::fmt_f64;
 use super::plot::{abscissa, force_series, line_plot};
+use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::{CompareRow, Comparison, NotRun};
 
@@ -31,26 +30,38 @@ pub const COMPARE_COLUMNS: [&str; 17] = [
     "wall_seconds",
 ];
 
-fn cells(r: &CompareRow) -> Vec<String> {
-    vec![
-        r.method.clone(),
-        r.discretization.clone(),
-        r.formulation.clone(),
-        fmt_f64(r.loss_fraction),
-        fmt_f64(r.loss_fraction_span),
-        fmt_f64(r.loss_set_difference),
-        fmt_f64(r.max_force_difference),
-        fmt_f64(r.rms_force_difference),
-        fmt_f64(r.max_penetration),
-        fmt_f64(r.min_gap),
-        fmt_f64(r.min_force),
-        fmt_f64(r.max_gap_force_product),
-        fmt_f64(r.mean_force),
-        fmt_f64(r.max_force),
-        r.contact_switches.to_string(),
-        r.steps.to_string(),
-        fmt_f64(r.wall_seconds),
-    ]
+/// `compare.csv` as a table ([`COMPARE_COLUMNS`]): one row per run.
+pub fn compare_rows(c: &Comparison) -> Table {
+    let rows = &c.rows;
+    let label =
+        |f: fn(&CompareRow) -> &str| Column::Label(rows.iter().map(|r| f(r).to_string()).collect());
+    let real = |f: fn(&CompareRow) -> f64| Column::Real(rows.iter().map(f).collect());
+    let count =
+        |f: fn(&CompareRow) -> usize| Column::Count(rows.iter().map(|r| f(r) as u64).collect());
+    let columns = [
+        label(|r| &r.method),
+        label(|r| &r.discretization),
+        label(|r| &r.formulation),
+        real(|r| r.loss_fraction),
+        real(|r| r.loss_fraction_span),
+        real(|r| r.loss_set_difference),
+        real(|r| r.max_force_difference),
+        real(|r| r.rms_force_difference),
+        real(|r| r.max_penetration),
+        real(|r| r.min_gap),
+        real(|r| r.min_force),
+        real(|r| r.max_gap_force_product),
+        real(|r| r.mean_force),
+        real(|r| r.max_force),
+        count(|r| r.contact_switches),
+        count(|r| r.steps),
+        real(|r| r.wall_seconds),
+    ];
+    let mut t = Table::new();
+    for (name, column) in COMPARE_COLUMNS.into_iter().zip(columns) {
+        t.push(name, column);
+    }
+    t
 }
 
 #[derive(Serialize)]
@@ -67,14 +78,7 @@ struct CompareJson<'a> {
 /// Write the three files into `dir`.
 pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let csv = dir.join("compare.csv");
-    let io = |e| Error::io(&csv, e);
-    let mut w = std::io::BufWriter::new(std::fs::File::create(&csv).map_err(io)?);
-    writeln!(w, "{}", COMPARE_COLUMNS.join(",")).map_err(io)?;
-    for r in &c.rows {
-        writeln!(w, "{}", cells(r).join(",")).map_err(io)?;
-    }
-    w.flush().map_err(io)?;
+    compare_rows(c).write_csv(&dir.join("compare.csv"))?;
 
     let json = dir.join("compare.json");
     let doc = CompareJson {

@@ -1,12 +1,12 @@
 //! `converge.csv`, `converge.json` and `converge.svg` of `taut converge`.
 
-use std::io::Write;
 use std::path::Path;
 
 use plotters::prelude::*;
 use serde::Serialize;
 
-use super::{PALETTE, fmt_f64};
+use super::PALETTE;
+use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::NotRun;
 use crate::study::converge::{
@@ -61,6 +61,37 @@ struct Level {
     wall_seconds: f64,
 }
 
+/// `converge.csv` as a table ([`CONVERGE_COLUMNS`]): one row per level and
+/// quantity, study after study.
+pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
+    let label = |f: fn(&ConvergeRow) -> &str| {
+        Column::Label(rows.iter().map(|r| f(r).to_string()).collect())
+    };
+    // h and Δt are always known; the measured columns may not be (NaN)
+    let real = |f: fn(&ConvergeRow) -> f64| Column::Real(rows.iter().map(|r| f(r)).collect());
+    let measured =
+        |f: fn(&ConvergeRow) -> f64| Column::RealOrNone(rows.iter().map(|r| f(r)).collect());
+    let columns = [
+        label(|r| &r.method),
+        label(|r| &r.discretization),
+        Column::Count(rows.iter().map(|r| r.level as u64).collect()),
+        real(|r| r.h),
+        Column::CountOrNone(rows.iter().map(|r| r.modes.map(|j| j as u64)).collect()),
+        real(|r| r.dt),
+        label(|r| &r.quantity),
+        measured(|r| r.value),
+        measured(|r| r.error),
+        measured(|r| r.observed_order),
+        measured(|r| r.gci),
+        label(|r| &r.reference),
+    ];
+    let mut t = Table::new();
+    for (name, column) in CONVERGE_COLUMNS.into_iter().zip(columns) {
+        t.push(name, column);
+    }
+    t
+}
+
 /// Write the three files of one study into `dir`.
 pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
     let name = c.rows.first().map_or("", |r| r.method.as_str());
@@ -85,37 +116,8 @@ fn write_studies(dir: &Path, studies: &[(&str, &Convergence)], skipped: &[NotRun
     let Some(&(_, first)) = studies.first() else {
         return Ok(());
     };
-    let csv = dir.join("converge.csv");
-    let io = |e| Error::io(&csv, e);
-    let mut w = std::io::BufWriter::new(std::fs::File::create(&csv).map_err(io)?);
-    writeln!(w, "{}", CONVERGE_COLUMNS.join(",")).map_err(io)?;
-    let nan = |v: f64| {
-        if v.is_finite() {
-            fmt_f64(v)
-        } else {
-            String::new()
-        }
-    };
-    for r in studies.iter().flat_map(|(_, c)| &c.rows) {
-        writeln!(
-            w,
-            "{},{},{},{},{},{},{},{},{},{},{},{}",
-            r.method,
-            r.discretization,
-            r.level,
-            fmt_f64(r.h),
-            r.modes.map_or_else(String::new, |j| j.to_string()),
-            fmt_f64(r.dt),
-            r.quantity,
-            nan(r.value),
-            nan(r.error),
-            nan(r.observed_order),
-            nan(r.gci),
-            r.reference
-        )
-        .map_err(io)?;
-    }
-    w.flush().map_err(io)?;
+    let rows: Vec<&ConvergeRow> = studies.iter().flat_map(|(_, c)| &c.rows).collect();
+    converge_rows(&rows).write_csv(&dir.join("converge.csv"))?;
 
     let json = dir.join("converge.json");
     let levels = |c: &Convergence| -> Vec<Level> {

@@ -10,23 +10,25 @@ mod precision;
 mod summary;
 mod sweep;
 mod sweep_maps;
+mod table;
 mod tolerance;
 
-pub use compare::{COMPARE_COLUMNS, compare_table, write_compare};
+pub use compare::{COMPARE_COLUMNS, compare_rows, compare_table, write_compare};
 pub use converge::{
-    CONVERGE_COLUMNS, converge_methods_table, converge_table, write_converge,
+    CONVERGE_COLUMNS, converge_methods_table, converge_rows, converge_table, write_converge,
     write_converge_methods,
 };
-pub use csv::write_history;
+pub use csv::{history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
 pub use plot::write_force_plot;
-pub use precision::{PRECISION_COLUMNS, precision_table, write_precision};
+pub use precision::{PRECISION_COLUMNS, precision_rows, precision_table, write_precision};
 pub use summary::{Derived, Summary, mesh_label, write_summary};
-pub use sweep::write_sweep;
+pub use sweep::{sweep_table, write_sweep};
 pub use sweep_maps::{
     SPEED_RATIO_LEVELS, axis_label, write_force_map, write_loss_fraction_map, write_loss_map,
     write_sweep_maps,
 };
+pub use table::{Column, Table};
 pub use tolerance::{
     ACCURACY_COLUMNS, accuracy_csv, accuracy_header, result_lines, write_tolerant_run,
 };

@@ -4,7 +4,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::{PALETTE, fmt_f64};
+use super::PALETTE;
+use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::precision::{Precision, PrecisionRow};
 
@@ -28,33 +29,44 @@ pub const PRECISION_COLUMNS: [&str; 16] = [
     "pareto",
 ];
 
+/// `precision.csv` as a table ([`PRECISION_COLUMNS`]): one row per run.
+pub fn precision_rows(p: &Precision) -> Table {
+    let rows = &p.rows;
+    let label = |f: fn(&PrecisionRow) -> &str| {
+        Column::Label(rows.iter().map(|r| f(r).to_string()).collect())
+    };
+    let count =
+        |f: fn(&PrecisionRow) -> usize| Column::Count(rows.iter().map(|r| f(r) as u64).collect());
+    let real = |f: fn(&PrecisionRow) -> f64| Column::Real(rows.iter().map(f).collect());
+    let columns = [
+        label(|r| &r.method),
+        label(|r| &r.discretization),
+        label(|r| &r.formulation),
+        count(|r| r.mesh_level),
+        count(|r| r.step_level),
+        count(|r| r.elements),
+        Column::CountOrNone(rows.iter().map(|r| r.modes.map(|j| j as u64)).collect()),
+        real(|r| r.dt),
+        count(|r| r.dofs),
+        count(|r| r.steps),
+        real(|r| r.dof_steps),
+        real(|r| r.wall_seconds),
+        real(|r| r.force_error),
+        real(|r| r.displacement_error),
+        real(|r| r.loss_fraction_error),
+        Column::Bool(rows.iter().map(|r| r.pareto).collect()),
+    ];
+    let mut t = Table::new();
+    for (name, column) in PRECISION_COLUMNS.into_iter().zip(columns) {
+        t.push(name, column);
+    }
+    t
+}
+
 /// Write `precision.csv` and `precision.svg` into `dir`.
 pub fn write_precision(dir: &Path, p: &Precision) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let mut s = PRECISION_COLUMNS.join(",") + "\n";
-    for r in &p.rows {
-        s.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-            r.method,
-            r.discretization,
-            r.formulation,
-            r.mesh_level,
-            r.step_level,
-            r.elements,
-            r.modes.map_or_else(String::new, |j| j.to_string()),
-            fmt_f64(r.dt),
-            r.dofs,
-            r.steps,
-            fmt_f64(r.dof_steps),
-            fmt_f64(r.wall_seconds),
-            fmt_f64(r.force_error),
-            fmt_f64(r.displacement_error),
-            fmt_f64(r.loss_fraction_error),
-            r.pareto
-        ));
-    }
-    let csv = dir.join("precision.csv");
-    std::fs::write(&csv, s).map_err(|e| Error::io(&csv, e))?;
+    precision_rows(p).write_csv(&dir.join("precision.csv"))?;
     let svg = dir.join("precision.svg");
     draw(&svg, p).map_err(|e| Error::Output {
         path: svg.clone(),

@@ -5,19 +5,12 @@ use std::io::Write;
 use std::path::Path;
 
 use super::fmt_f64;
+use super::table::{Column, Table};
 use crate::error::{Error, Result};
-use crate::study::sweep::{PROFILE_BINS, SweepRecord, SweepSpec, refinement_converged};
+use crate::study::sweep::{PROFILE_BINS, Refined, SweepRecord, SweepSpec, refinement_converged};
 
 fn opt(v: Option<f64>) -> String {
     v.filter(|x| x.is_finite()).map(fmt_f64).unwrap_or_default()
-}
-
-fn num(v: f64) -> String {
-    if v.is_finite() {
-        fmt_f64(v)
-    } else {
-        String::new()
-    }
 }
 
 fn write(path: &Path, text: &str) -> Result<()> {
@@ -25,27 +18,114 @@ fn write(path: &Path, text: &str) -> Result<()> {
     f.write_all(text.as_bytes()).map_err(|e| Error::io(path, e))
 }
 
-/// The `--check-refinement` columns of a row: the refined run's N, Δt, P_l
-/// and in-span P_l, the changes, whether the in-span part is converged.
-fn refined_cells(r: &SweepRecord) -> String {
-    let Some(f) = &r.refined else {
-        return ",,,,,,,,".into();
+/// `sweep.csv` as a table: the swept values, `speed_ratio` (unless swept),
+/// the point's results, and with `--check-refinement` the refined run's
+/// N, Δt, P_l and in-span P_l, their changes and whether the in-span part
+/// is converged. A stopped point has empty results and its `error`.
+pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
+    let mut t = Table::new();
+    for (k, a) in spec.axes.iter().enumerate() {
+        t.push(
+            a.key.clone(),
+            Column::Real(records.iter().map(|r| r.values[k]).collect()),
+        );
+    }
+    let real = |f: fn(&SweepRecord) -> f64| Column::RealOrNone(records.iter().map(f).collect());
+    if !spec.axes.iter().any(|a| a.key == "speed_ratio") {
+        t.push("speed_ratio", real(|r| r.speed_ratio.unwrap_or(f64::NAN)));
+    }
+    t.push("loss_fraction", real(|r| r.loss_fraction));
+    t.push("loss_fraction_span", real(|r| r.loss_fraction_span));
+    t.push("loss_fraction_support", real(|r| r.loss_fraction_support));
+    t.push("force_mean", real(|r| r.force_mean));
+    t.push("force_std", real(|r| r.force_std));
+    t.push("force_min", real(|r| r.force_min));
+    t.push("force_max", real(|r| r.force_max));
+    t.push(
+        "first_loss_position",
+        real(|r| r.first_loss_position.unwrap_or(f64::NAN)),
+    );
+    t.push(
+        "contact_switches",
+        Column::Count(records.iter().map(|r| r.contact_switches as u64).collect()),
+    );
+    t.push(
+        "warnings",
+        Column::Count(records.iter().map(|r| r.warnings.len() as u64).collect()),
+    );
+    t.push(
+        "error",
+        Column::Text(records.iter().map(|r| r.error.clone()).collect()),
+    );
+    if !spec.check_refinement {
+        return t;
+    }
+    let refined = |f: fn(&Refined) -> f64| {
+        Column::RealOrNone(
+            records
+                .iter()
+                .map(|r| r.refined.as_ref().map_or(f64::NAN, f))
+                .collect(),
+        )
     };
-    let converged = refinement_converged(r.loss_fraction_span, f.loss_fraction_span)
-        .map_or("", |c| if c { "yes" } else { "no" });
-    format!(
-        ",{},{},{},{},{},{},{converged},{}",
-        f.elements,
-        num(f.dt),
-        num(f.loss_fraction),
-        num(f.loss_fraction_span),
-        num(f.loss_fraction - r.loss_fraction),
-        num(f.loss_fraction_span - r.loss_fraction_span),
-        f.error
-            .as_deref()
-            .map(|e| format!("\"{}\"", e.replace('"', "'")))
-            .unwrap_or_default()
-    )
+    let change = |f: fn(&Refined, &SweepRecord) -> f64| {
+        Column::RealOrNone(
+            records
+                .iter()
+                .map(|r| r.refined.as_ref().map_or(f64::NAN, |x| f(x, r)))
+                .collect(),
+        )
+    };
+    t.push(
+        "refined_elements",
+        Column::CountOrNone(
+            records
+                .iter()
+                .map(|r| r.refined.as_ref().map(|f| f.elements as u64))
+                .collect(),
+        ),
+    );
+    t.push("refined_dt", refined(|f| f.dt));
+    t.push("refined_loss_fraction", refined(|f| f.loss_fraction));
+    t.push(
+        "refined_loss_fraction_span",
+        refined(|f| f.loss_fraction_span),
+    );
+    t.push(
+        "loss_fraction_change",
+        change(|f, r| f.loss_fraction - r.loss_fraction),
+    );
+    t.push(
+        "loss_fraction_span_change",
+        change(|f, r| f.loss_fraction_span - r.loss_fraction_span),
+    );
+    t.push(
+        "loss_fraction_span_converged",
+        Column::Label(
+            records
+                .iter()
+                .map(|r| {
+                    r.refined
+                        .as_ref()
+                        .and_then(|f| {
+                            refinement_converged(r.loss_fraction_span, f.loss_fraction_span)
+                        })
+                        .map_or("", |c| if c { "yes" } else { "no" })
+                        .to_string()
+                })
+                .collect(),
+        ),
+    );
+    t.push(
+        "refined_error",
+        Column::Text(
+            records
+                .iter()
+                .map(|r| r.refined.as_ref().and_then(|f| f.error.clone()))
+                .collect(),
+        ),
+    );
+    t
 }
 
 /// Write the CSV outputs of a sweep into `dir`. Wall times go to
@@ -53,46 +133,7 @@ fn refined_cells(r: &SweepRecord) -> String {
 /// and thread count.
 pub fn write_sweep(dir: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Result<()> {
     let names: Vec<&str> = spec.axes.iter().map(|a| a.key.as_str()).collect();
-    let has_ratio = names.contains(&"speed_ratio");
-    let mut s = names.join(",");
-    if !has_ratio {
-        s.push_str(",speed_ratio");
-    }
-    s.push_str(",loss_fraction,loss_fraction_span,loss_fraction_support,force_mean,force_std,force_min,force_max,first_loss_position,contact_switches,warnings,error");
-    if spec.check_refinement {
-        s.push_str(",refined_elements,refined_dt,refined_loss_fraction,refined_loss_fraction_span,loss_fraction_change,loss_fraction_span_change,loss_fraction_span_converged,refined_error");
-    }
-    s.push('\n');
-    for r in records {
-        let vals: Vec<String> = r.values.iter().map(|v| fmt_f64(*v)).collect();
-        s.push_str(&vals.join(","));
-        if !has_ratio {
-            s.push(',');
-            s.push_str(&opt(r.speed_ratio));
-        }
-        s.push_str(&format!(
-            ",{},{},{},{},{},{},{},{},{},{},{}",
-            num(r.loss_fraction),
-            num(r.loss_fraction_span),
-            num(r.loss_fraction_support),
-            num(r.force_mean),
-            num(r.force_std),
-            num(r.force_min),
-            num(r.force_max),
-            opt(r.first_loss_position),
-            r.contact_switches,
-            r.warnings.len(),
-            r.error
-                .as_deref()
-                .map(|e| format!("\"{}\"", e.replace('"', "'")))
-                .unwrap_or_default()
-        ));
-        if spec.check_refinement {
-            s.push_str(&refined_cells(r));
-        }
-        s.push('\n');
-    }
-    write(&dir.join("sweep.csv"), &s)?;
+    sweep_table(spec, records).write_csv(&dir.join("sweep.csv"))?;
 
     for (file, pick) in [
         (

@@ -35,7 +35,7 @@ pub const SCENE_TABLES: [&str; 9] = [
 pub fn parse_scene(text: &str) -> Result<Table> {
     text.parse::<Table>().map_err(|e| {
         let reason = one_line(e.message().lines().next().unwrap_or("").trim());
-        Error::Parse(match e.span() {
+        Error::parse(match e.span() {
             Some(span) => {
                 let (line, column) = line_column(text, span.start);
                 format!("TOML syntax error at line {line}, column {column}: {reason}")
@@ -65,7 +65,7 @@ pub fn check_is_scene(tree: &Table) -> Result<()> {
     if tree.keys().any(|k| SCENE_TABLES.contains(&k.as_str())) {
         return Ok(());
     }
-    Err(Error::Parse(format!(
+    Err(Error::parse(format!(
         "not a scene: none of its {} top-level keys is a scene table (a scene has [beam], [mesh], [[carrier]] and [time], optionally {}); the file's own keys are not shown",
         tree.len(),
         "[contact], [integrator], [gravity], [[probe]], [output]"
@@ -187,9 +187,12 @@ pub fn scene_from_tree(tree: Table) -> Result<Scene> {
         let inner = e.into_inner().to_string();
         let inner = inner.split("\nin `").next().unwrap_or(&inner).trim_end();
         if path.is_empty() || path == "." {
-            Error::Parse(one_line(inner))
+            Error::parse(one_line(inner))
         } else {
-            Error::Parse(one_line(&format!("at `{path}`: {inner}")))
+            Error::Parse {
+                reason: one_line(&format!("at `{path}`: {inner}")),
+                field: Some(one_line(&path)),
+            }
         }
     })
 }
@@ -214,7 +217,10 @@ pub fn resolve_scene(text: &str, overrides: &[String]) -> Result<Resolved> {
 pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Resolved> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     resolve_scene(&text, overrides).map_err(|e| match e {
-        Error::Parse(msg) => Error::Parse(format!("{}: {msg}", path.display())),
+        Error::Parse { reason, field } => Error::Parse {
+            reason: format!("{}: {reason}", path.display()),
+            field,
+        },
         other => other,
     })
 }

@@ -333,7 +333,7 @@ pub fn compare_methods(
             }
             // the combination means nothing for this scene: a scene error
             // (both keys named) or a step the method cannot take
-            Err(e @ (Error::Invalid { .. } | Error::Parse(_) | Error::Override { .. })) => {
+            Err(e @ (Error::Invalid { .. } | Error::Parse { .. } | Error::Override { .. })) => {
                 skipped.push(not_run(&e))
             }
             Err(e) => failed.push(not_run(&e.in_run(&format!("{name}/{}", f.name())))),

@@ -177,7 +177,7 @@ pub fn read_case(path: &Path) -> Result<GateCase> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     crate::json_keys::reject_duplicate_keys(&text, path)?;
     let case: GateCase = serde_json::from_str(&text)
-        .map_err(|e| Error::Parse(format!("{}: {e}", path.display())))?;
+        .map_err(|e| Error::parse(format!("{}: {e}", path.display())))?;
     if case.quantities.is_empty() {
         return Err(Error::invalid(
             format!("{}: quantities", path.display()),

@@ -11,6 +11,7 @@ pub mod gate;
 pub mod grid;
 pub mod precision;
 pub mod reference;
+pub mod request;
 pub mod scalars;
 pub mod space;
 pub mod sweep;

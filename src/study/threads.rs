@@ -62,6 +62,26 @@ pub fn start_pool(threads: Option<usize>) -> Result<usize> {
     Ok(rayon::current_num_threads())
 }
 
+/// Run `work` in a worker pool of its own with `threads` workers (default:
+/// one per core), for a caller that makes several studies in one process
+/// with different thread counts (the Python module's `threads=`): the
+/// process-wide pool of [`start_pool`] can be started only once. The same
+/// bounds and errors as [`start_pool`].
+pub fn in_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> R + Send) -> Result<R> {
+    let n = threads.map(check_threads).transpose()?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(n.unwrap_or(0))
+        .build()
+        .map_err(|e| {
+            Error::invalid(
+                "threads",
+                n.map_or_else(|| "default (one per core)".to_string(), |n| n.to_string()),
+                format!("the worker pool could not start ({e}): give fewer threads"),
+            )
+        })?;
+    Ok(pool.install(work))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

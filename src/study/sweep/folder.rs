@@ -228,7 +228,7 @@ pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<Sw
 pub fn read_spec(dir: &Path) -> Result<SweepSpec> {
     let p = dir.join("sweep.json");
     let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
-    serde_json::from_str(&text).map_err(|e| Error::Parse(format!("{}: {e}", p.display())))
+    serde_json::from_str(&text).map_err(|e| Error::parse(format!("{}: {e}", p.display())))
 }
 
 /// Join shard folders into `out`: same spec, every point present, each

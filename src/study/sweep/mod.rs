@@ -384,7 +384,10 @@ fn at_point(e: Error, i: usize, values: &[f64]) -> Error {
             value,
             allowed: format!("{allowed} (at sweep point {i}: {values:?})"),
         },
-        Error::Parse(m) => Error::Parse(format!("{m} (at sweep point {i}: {values:?})")),
+        Error::Parse { reason, field } => Error::Parse {
+            reason: format!("{reason} (at sweep point {i}: {values:?})"),
+            field,
+        },
         other => other,
     }
 }
@@ -715,7 +718,12 @@ pub fn sweep_batched(
     progress(done.load(Ordering::Relaxed), mine.len());
     let items = batches(spec, &todo, batch);
     items.par_iter().try_for_each(|item| -> Result<()> {
-        for r in records_guarded(spec, &id, item) {
+        let records = records_guarded(spec, &id, item);
+        // a run stopped on request is no result: save none of the item's
+        if crate::interrupt::requested() {
+            return Err(Error::Interrupted);
+        }
+        for r in records {
             folder::save(dir, &r)?;
             let n = done.fetch_add(1, Ordering::Relaxed) + 1;
             progress(n, mine.len());

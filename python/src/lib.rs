@@ -1,0 +1,515 @@
+//! `taut._taut`: the native half of the `taut` Python package.
+//!
+//! A thin layer over the Rust library: every function here parses nothing
+//! and computes nothing of its own. It hands the caller's words to the same
+//! library calls the CLI makes (`taut::run`, `study::request`,
+//! `study::sweep`), and hands back the same tables the CLI writes as CSV
+//! (`taut::report::Table`), column by column, so that the numbers are the
+//! CLI's bit for bit. The Pythonic surface (keyword arguments, numpy
+//! arrays, exceptions with attributes, tqdm) is `python/taut/__init__.py`.
+//!
+//! Three things only a binding has to do are done here:
+//! * the GIL is released while runs execute: the work runs on a thread of
+//!   its own while the calling thread waits without the GIL ([`work`]);
+//! * progress reaches the Python callback on the calling thread, which is
+//!   also where Ctrl-C is noticed (`Python::check_signals`, main thread
+//!   only); a Ctrl-C or a callback that raises asks every run to stop at its
+//!   next step ([`taut::interrupt`]) and the call raises once they have;
+//! * `taut::Error` becomes an exception of `taut._errors` with the error's
+//!   fields as attributes ([`to_py_err`]).
+
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::time::Duration;
+
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyList};
+
+use taut::report::{Column, Table};
+use taut::study::request::{CompareRequest, ConvergeRequest, PrecisionRequest};
+use taut::study::sweep::{Axis, SweepSpec};
+
+/// How often the waiting thread wakes to deliver progress and to look for
+/// Ctrl-C: a tenth of a second is below what a person notices and costs
+/// nothing against runs of milliseconds to hours.
+const POLL: Duration = Duration::from_millis(100);
+
+/// Where a scene comes from: a file (read here, so that a parse error names
+/// it as the CLI's does) or TOML text given directly.
+fn scene_text(path: Option<&str>, text: Option<String>) -> taut::Result<(String, Option<PathBuf>)> {
+    match (path, text) {
+        (Some(p), _) => {
+            let p = PathBuf::from(p);
+            let t = std::fs::read_to_string(&p).map_err(|e| taut::Error::io(&p, e))?;
+            Ok((t, Some(p)))
+        }
+        (None, Some(t)) => Ok((t, None)),
+        (None, None) => Err(taut::Error::invalid(
+            "scene",
+            "none",
+            "a path to a scene file or the scene's TOML text",
+        )),
+    }
+}
+
+/// Name a parse error's file as `taut::load_scene` does.
+fn named(e: taut::Error, path: Option<&Path>) -> taut::Error {
+    match (e, path) {
+        (taut::Error::Parse { reason, field }, Some(p)) => taut::Error::Parse {
+            reason: format!("{}: {reason}", p.display()),
+            field,
+        },
+        (e, _) => e,
+    }
+}
+
+/// An exception of `taut._errors` built from `args`.
+fn raise<'py>(py: Python<'py>, class: &str, args: impl pyo3::call::PyCallArgs<'py>) -> PyErr {
+    let made = py
+        .import("taut._errors")
+        .and_then(|m| m.getattr(class))
+        .and_then(|c| c.call1(args));
+    match made {
+        Ok(exc) => PyErr::from_value(exc),
+        Err(e) => e,
+    }
+}
+
+/// The Python name of a CLI flag named in an error (`--batch` → `batch`).
+fn python_name(field: &str) -> Option<String> {
+    field.strip_prefix("--").map(|flag| flag.replace('-', "_"))
+}
+
+/// `taut::Error` as a Python exception with the error's fields as
+/// attributes (classes in `python/taut/_errors.py`, docs/python.md).
+fn to_py_err(py: Python<'_>, e: taut::Error) -> PyErr {
+    use taut::Error as E;
+    let message = e.to_string();
+    match e {
+        E::Invalid {
+            field,
+            value,
+            allowed,
+        } => match python_name(&field) {
+            Some(name) => raise(
+                py,
+                "SceneError",
+                (
+                    format!("invalid argument: `{name}` = {value}: {allowed}"),
+                    name,
+                    Some(value),
+                    Some(allowed),
+                ),
+            ),
+            None => raise(
+                py,
+                "SceneError",
+                (message, field, Some(value), Some(allowed)),
+            ),
+        },
+        E::Parse { field, .. } => raise(
+            py,
+            "SceneError",
+            (message, field, None::<String>, None::<String>),
+        ),
+        E::Override { spec, reason } => {
+            let (key, value) = match spec.split_once('=') {
+                Some((k, v)) => (k.trim().to_string(), Some(v.trim().to_string())),
+                None => (spec.clone(), None),
+            };
+            raise(py, "SceneError", (message, key, value, Some(reason)))
+        }
+        E::Diverged {
+            step,
+            time,
+            quantity,
+            value,
+            cause,
+        } => raise(
+            py,
+            "DivergedError",
+            (message, step, time, quantity, value, cause),
+        ),
+        E::Contact {
+            step,
+            time,
+            problem,
+            ..
+        } => {
+            let problem = serde_json::to_string(&problem).unwrap_or_default();
+            raise(py, "ContactError", (message, step, time, problem))
+        }
+        E::Tolerance {
+            quantity,
+            tolerance,
+            reason,
+        } => raise(py, "ToleranceError", (message, quantity, tolerance, reason)),
+        E::Io { path, .. } | E::Output { path, .. } | E::Replay { path, .. } => raise(
+            py,
+            "OutputError",
+            (message, path.to_string_lossy().into_owned()),
+        ),
+        E::Interrupted => PyKeyboardInterrupt::new_err(message),
+    }
+}
+
+/// Run `job` on a thread of its own while this thread, without the GIL,
+/// waits for it; deliver its progress reports to `progress` (on this
+/// thread, with the GIL), and turn a Ctrl-C or an exception in `progress`
+/// into a stop request ([`taut::interrupt`]) and, once the job has
+/// stopped, into that exception. A panic in the job is a `RuntimeError`
+/// (never an abort of the interpreter).
+fn work<R: Send>(
+    py: Python<'_>,
+    progress: Option<&Bound<'_, PyAny>>,
+    job: impl FnOnce(&(dyn Fn(usize, usize) + Sync)) -> R + Send,
+) -> PyResult<R> {
+    let (tx, mut rx) = mpsc::channel::<(usize, usize)>();
+    let (outcome, failure) = std::thread::scope(|s| {
+        let handle = s.spawn(move || {
+            let report = move |done: usize, total: usize| {
+                // the receiver lives until the job ends: a send cannot fail
+                let _ = tx.send((done, total));
+            };
+            job(&report)
+        });
+        let mut failure: Option<PyErr> = None;
+        loop {
+            let (back, msg) = py.detach(move || {
+                let msg = rx.recv_timeout(POLL);
+                (rx, msg)
+            });
+            rx = back;
+            match msg {
+                Ok(mut last) => {
+                    while let Ok(m) = rx.try_recv() {
+                        last = m;
+                    }
+                    if let (None, Some(cb)) = (&failure, progress)
+                        && let Err(e) = cb.call1(last)
+                    {
+                        failure = Some(e);
+                        taut::interrupt::request();
+                    }
+                }
+                Err(RecvTimeoutError::Timeout) => {}
+                Err(RecvTimeoutError::Disconnected) => break,
+            }
+            if failure.is_none()
+                && let Err(e) = py.check_signals()
+            {
+                failure = Some(e);
+                taut::interrupt::request();
+            }
+        }
+        (py.detach(move || handle.join()), failure)
+    });
+    let interrupted = taut::interrupt::requested();
+    taut::interrupt::clear();
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    let out = outcome.map_err(|payload| {
+        let what = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "no message".into());
+        PyRuntimeError::new_err(format!(
+            "internal error (a panic in taut, please report it): {what}"
+        ))
+    })?;
+    if interrupted {
+        return Err(PyKeyboardInterrupt::new_err(
+            "taut: interrupted (another call in this process was stopped)",
+        ));
+    }
+    Ok(out)
+}
+
+/// `f64`s as little-endian bytes (`numpy.frombuffer(b, "<f8")`): one copy,
+/// and no build-time dependency on numpy's C API, so one abi3 wheel serves
+/// every Python ≥ 3.9 and numpy ≥ 1.21.
+fn f64_bytes<'py>(py: Python<'py>, v: impl ExactSizeIterator<Item = f64>) -> Bound<'py, PyBytes> {
+    let mut b = Vec::with_capacity(8 * v.len());
+    for x in v {
+        b.extend_from_slice(&x.to_le_bytes());
+    }
+    PyBytes::new(py, &b)
+}
+
+/// A table as a list of `(name, kind, data)`: `kind` says how
+/// `taut._table` makes the array (docs/python.md), `data` is bytes for
+/// numbers and a list for text.
+fn table_to_py<'py>(py: Python<'py>, t: &Table) -> PyResult<Bound<'py, PyList>> {
+    let out = PyList::empty(py);
+    for (name, col) in &t.columns {
+        let (kind, data): (&str, Bound<'py, PyAny>) = match col {
+            Column::Real(v) | Column::RealOrNone(v) => {
+                // RealOrNone's "none" is its non-finite values: NaN in Python
+                let none = matches!(col, Column::RealOrNone(_));
+                let it = v
+                    .iter()
+                    .map(move |&x| if none && !x.is_finite() { f64::NAN } else { x });
+                ("f8", f64_bytes(py, it).into_any())
+            }
+            Column::Count(v) => {
+                let mut b = Vec::with_capacity(8 * v.len());
+                for x in v {
+                    b.extend_from_slice(&(*x as i64).to_le_bytes());
+                }
+                ("i8", PyBytes::new(py, &b).into_any())
+            }
+            Column::CountOrNone(v) => (
+                "f8",
+                f64_bytes(py, v.iter().map(|x| x.map_or(f64::NAN, |n| n as f64))).into_any(),
+            ),
+            Column::Bit(v) | Column::Bool(v) => {
+                let b: Vec<u8> = v.iter().map(|&x| u8::from(x)).collect();
+                ("b1", PyBytes::new(py, &b).into_any())
+            }
+            Column::Label(v) => ("str", PyList::new(py, v)?.into_any()),
+            Column::Text(v) => ("str", PyList::new(py, v)?.into_any()),
+        };
+        out.append((name, kind, data))?;
+    }
+    Ok(out)
+}
+
+/// A run a study could not make: `(method, discretization, formulation,
+/// reason)`.
+type NotRunTuple = (String, String, String, String);
+
+fn not_run(n: &taut::study::compare::NotRun) -> NotRunTuple {
+    (
+        n.method.clone(),
+        n.discretization.clone(),
+        n.formulation.clone(),
+        n.reason.clone(),
+    )
+}
+
+/// One run: `(summary_json, history_columns, warnings)`; with `out` the
+/// CLI's files (`history.csv`, `summary.json`, `force.svg`) are written too.
+#[pyfunction]
+#[pyo3(signature = (path, text, set, out, progress))]
+fn run<'py>(
+    py: Python<'py>,
+    path: Option<&str>,
+    text: Option<String>,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<(String, Bound<'py, PyList>, Vec<String>)> {
+    let err = |e| to_py_err(py, e);
+    let (text, path) = scene_text(path, text).map_err(err)?;
+    let sc = taut::resolve_scene(&text, &set)
+        .map_err(|e| named(e, path.as_deref()))
+        .map_err(err)?;
+    let output = work(py, progress.as_ref(), |report| {
+        taut::run(&sc, &mut |done, total| report(done, total))
+    })?
+    .map_err(err)?;
+    let summary = match &out {
+        Some(dir) => taut::report::write_run(dir, &sc, &output).map_err(err)?,
+        None => taut::report::Summary::new(&sc, &output),
+    };
+    let json = serde_json::to_string_pretty(&summary)
+        .map_err(|e| PyRuntimeError::new_err(format!("summary as JSON: {e}")))?;
+    let history = table_to_py(py, &taut::report::history_table(&output))?;
+    Ok((json, history, output.warnings))
+}
+
+/// A sweep into folder `out` (resumable: finished points are kept there);
+/// returns the columns of `sweep.csv`. `files` writes the CLI's tables and
+/// maps into `out` as well.
+#[pyfunction]
+#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress))]
+#[allow(clippy::too_many_arguments)]
+fn sweep<'py>(
+    py: Python<'py>,
+    path: Option<&str>,
+    text: Option<String>,
+    vary: Vec<String>,
+    log: bool,
+    set: Vec<String>,
+    out: PathBuf,
+    files: bool,
+    threads: Option<usize>,
+    batch: Option<usize>,
+    check_refinement: bool,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let err = |e| to_py_err(py, e);
+    let (scene_text, path) = scene_text(path, text).map_err(err)?;
+    let axes = vary
+        .iter()
+        .map(|v| Axis::parse(v, log))
+        .collect::<taut::Result<Vec<_>>>()
+        .map_err(err)?;
+    let batch = taut::study::request::batch_width(batch).map_err(err)?;
+    let spec = SweepSpec {
+        scene_text,
+        set,
+        axes,
+        check_refinement,
+    };
+    spec.validate()
+        .map_err(|e| named(e, path.as_deref()))
+        .map_err(err)?;
+    let claimed = taut::study::sweep::claim(&out).map_err(err)?;
+    let records = work(py, progress.as_ref(), |report| {
+        taut::study::threads::in_pool(threads, || {
+            taut::study::sweep::sweep_batched(&claimed, &spec, None, batch, report)
+        })
+    })?
+    .and_then(|r| r)
+    .map_err(err)?;
+    if files {
+        taut::report::write_sweep(&out, &spec, &records).map_err(err)?;
+        taut::report::write_sweep_maps(&out, &spec, &records).map_err(err)?;
+    }
+    table_to_py(py, &taut::report::sweep_table(&spec, &records))
+}
+
+/// A comparison: `(compare.csv columns, failed)`, `failed` the runs that
+/// stopped as `(label, reason)`; with `out` the CLI's files too.
+#[pyfunction]
+#[pyo3(signature = (path, text, set, formulations, methods, discretizations, reference, reference_method, batch, out, progress))]
+#[allow(clippy::too_many_arguments)]
+fn compare<'py>(
+    py: Python<'py>,
+    path: Option<&str>,
+    text: Option<String>,
+    set: Vec<String>,
+    formulations: String,
+    methods: Option<String>,
+    discretizations: Option<String>,
+    reference: String,
+    reference_method: Option<String>,
+    batch: Option<usize>,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
+    let err = |e| to_py_err(py, e);
+    let (text, path) = scene_text(path, text).map_err(err)?;
+    let request = CompareRequest {
+        formulations,
+        methods,
+        discretizations,
+        reference,
+        reference_method,
+        batch,
+    };
+    let c = work(py, progress.as_ref(), |report| {
+        request.run(&text, &set, &mut |d, t| report(d, t))
+    })?
+    .map_err(|e| named(e, path.as_deref()))
+    .map_err(err)?;
+    if let Some(dir) = &out {
+        taut::report::write_compare(dir, &c).map_err(err)?;
+    }
+    let failed = c.failed.iter().map(not_run).collect();
+    Ok((table_to_py(py, &taut::report::compare_rows(&c))?, failed))
+}
+
+/// A convergence study: `(converge.csv columns, skipped)`; with `out` the
+/// CLI's files too.
+#[pyfunction]
+#[pyo3(signature = (path, text, set, refine, levels, ratio, methods, discretizations, out, progress))]
+#[allow(clippy::too_many_arguments)]
+fn converge<'py>(
+    py: Python<'py>,
+    path: Option<&str>,
+    text: Option<String>,
+    set: Vec<String>,
+    refine: String,
+    levels: usize,
+    ratio: f64,
+    methods: Option<String>,
+    discretizations: Option<String>,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
+    use taut::study::request::ConvergeOutcome;
+    let err = |e| to_py_err(py, e);
+    let (text, path) = scene_text(path, text).map_err(err)?;
+    let request = ConvergeRequest {
+        refine,
+        levels,
+        ratio,
+        methods,
+        discretizations,
+    };
+    let outcome = work(py, progress.as_ref(), |report| {
+        request.run(&text, &set, &mut |d, t| report(d, t))
+    })?
+    .map_err(|e| named(e, path.as_deref()))
+    .map_err(err)?;
+    if let Some(dir) = &out {
+        match &outcome {
+            ConvergeOutcome::One(c) => taut::report::write_converge(dir, c),
+            ConvergeOutcome::Variants { studies, skipped } => {
+                taut::report::write_converge_methods(dir, studies, skipped)
+            }
+        }
+        .map_err(err)?;
+    }
+    let skipped = outcome.skipped().iter().map(not_run).collect();
+    let rows = taut::report::converge_rows(&outcome.rows());
+    Ok((table_to_py(py, &rows)?, skipped))
+}
+
+/// A work–precision study: the columns of `precision.csv`; with `out` the
+/// CLI's files too.
+#[pyfunction]
+#[pyo3(signature = (path, text, set, formulations, methods, discretizations, levels, ratio, batch, out, progress))]
+#[allow(clippy::too_many_arguments)]
+fn precision<'py>(
+    py: Python<'py>,
+    path: Option<&str>,
+    text: Option<String>,
+    set: Vec<String>,
+    formulations: String,
+    methods: Option<String>,
+    discretizations: Option<String>,
+    levels: usize,
+    ratio: usize,
+    batch: Option<usize>,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let err = |e| to_py_err(py, e);
+    let (text, path) = scene_text(path, text).map_err(err)?;
+    let request = PrecisionRequest {
+        formulations,
+        methods,
+        discretizations,
+        levels,
+        ratio,
+        batch,
+    };
+    let p = work(py, progress.as_ref(), |report| {
+        request.run(&text, &set, &mut |d, t| report(d, t))
+    })?
+    .map_err(|e| named(e, path.as_deref()))
+    .map_err(err)?;
+    if let Some(dir) = &out {
+        taut::report::write_precision(dir, &p).map_err(err)?;
+    }
+    table_to_py(py, &taut::report::precision_rows(&p))
+}
+
+/// The native module.
+#[pymodule]
+fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("taut_version", taut::VERSION)?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(converge, m)?)?;
+    m.add_function(wrap_pyfunction!(precision, m)?)?;
+    Ok(())
+}

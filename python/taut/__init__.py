@@ -1,0 +1,447 @@
+"""taut from Python: the runs and studies of the `taut` command line, as numpy
+arrays, computed by the same Rust library.
+
+    >>> import taut
+    >>> r = taut.run("scenes/reference.toml", set={"mesh.elements": 200})
+    >>> r.summary["carriers"][0]["loss_fraction"]
+    >>> t = taut.sweep("scenes/reference.toml", vary={"carrier.speed.cruise": (50, 230, 10)})
+    >>> t["loss_fraction_span"]
+
+Every function takes a scene as a path (str or os.PathLike) or as TOML text,
+and `set`, a dict of dotted keys to values: the CLI's `--set`. The numbers
+are the CLI's for the same scene, bit for bit (the module calls the same
+library functions and reads the same tables the CLI writes as CSV).
+
+While runs execute the GIL is released. Progress goes to `progress`: a
+callable `progress(done, total)`, False for none, or by default a tqdm bar
+when tqdm is installed. Ctrl-C stops the work at the next step of every run
+and raises KeyboardInterrupt; nothing half-written is left behind (a sweep
+into `out` keeps the points it finished, and resumes from them).
+
+Errors are exceptions with the fields of the error as attributes:
+SceneError (field, value, allowed), DivergedError (step, time, quantity,
+value, cause), ContactError, ToleranceError, OutputError; all derive from
+TautError. The API is documented in docs/python.md.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+
+from . import _taut
+from ._errors import (
+    ContactError,
+    DivergedError,
+    OutputError,
+    SceneError,
+    TautError,
+    ToleranceError,
+)
+from ._table import Table, _not_run, table
+
+__all__ = [
+    "run",
+    "sweep",
+    "compare",
+    "converge",
+    "precision",
+    "Run",
+    "Table",
+    "TautError",
+    "SceneError",
+    "DivergedError",
+    "ContactError",
+    "ToleranceError",
+    "OutputError",
+    "__version__",
+]
+
+__version__: str = _taut.__version__
+
+Scene = Union[str, "os.PathLike[str]"]
+"""A path to a scene file, or the scene's TOML text."""
+
+Progress = Union[None, bool, Callable[[int, int], Any]]
+"""None: a tqdm bar if tqdm is installed; False: none; True: tqdm (if
+installed); a callable: called as progress(done, total) on the calling
+thread."""
+
+ALL_FORMULATIONS = ("lagrange", "penalty", "complementarity", "impact")
+
+
+class Run:
+    """One run's results.
+
+    Attributes:
+        summary: the dict of the CLI's `summary.json` (scene, derived
+            quantities, per-carrier statistics, warnings, wall time).
+        history: the columns of `history.csv` as a Table of arrays (`t`,
+            `x_m`, `beam_w`, `mass_q`, `gap`, `force`, `in_contact`, probes;
+            suffixed `_0`, `_1`, ... with several carriers).
+        warnings: findings that make the numbers suspect, as the CLI prints them.
+    """
+
+    def __init__(self, summary: Dict[str, Any], history: Table, warnings: List[str]) -> None:
+        self.summary = summary
+        self.history = history
+        self.warnings = warnings
+
+    def __repr__(self) -> str:
+        c = self.summary.get("carriers", [{}])[0]
+        return (
+            f"taut.Run({self.history.rows} rows, P_l = {c.get('loss_fraction')}, "
+            f"{len(self.warnings)} warnings)"
+        )
+
+
+def _scene(scene: Scene) -> Tuple[Optional[str], Optional[str]]:
+    """(path, text): a PathLike or a one-line str is a path; a str with a
+    line break or starting with a TOML table is the scene's text."""
+    if isinstance(scene, os.PathLike):
+        return os.fspath(scene), None
+    if isinstance(scene, str):
+        if "\n" in scene or scene.lstrip().startswith("["):
+            return None, scene
+        return scene, None
+    raise TypeError(
+        f"scene: expected a path (str or os.PathLike) or TOML text, got {type(scene).__name__}"
+    )
+
+
+def _toml(value: Any) -> str:
+    """A Python value as the TOML value `--set` reads."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(int(value))
+    if isinstance(value, float):
+        # repr is the shortest text that reads back as the same float (a
+        # numpy float64 too, once a float); nan and inf are TOML as well,
+        # and the scene check names the key they are refused for
+        return repr(float(value))
+    if isinstance(value, str):
+        return value
+    if isinstance(value, Mapping):
+        inner = ", ".join(f"{k} = {_toml_quoted(v)}" for k, v in value.items())
+        return "{ " + inner + " }"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_quoted(v) for v in value) + "]"
+    if hasattr(value, "item"):  # a numpy scalar
+        return _toml(value.item())
+    raise SceneError(
+        f"set: a value of type {type(value).__name__} cannot be a scene value",
+        field="set",
+        value=repr(value),
+        allowed="a bool, number, str, list or dict",
+    )
+
+
+def _toml_quoted(value: Any) -> str:
+    """Inside a table or list a string must be quoted."""
+    if isinstance(value, str):
+        return json.dumps(value)
+    return _toml(value)
+
+
+def _overrides(set: Union[None, Mapping[str, Any], Iterable[str]]) -> List[str]:
+    """`set` as the CLI's `--set key=value` list, in order."""
+    if set is None:
+        return []
+    if isinstance(set, Mapping):
+        return [f"{k}={_toml(v)}" for k, v in set.items()]
+    if isinstance(set, str):
+        return [set]
+    return [str(s) for s in set]
+
+
+def _list(value: Union[str, Sequence[str]]) -> str:
+    """A list of names as the CLI's comma list."""
+    if isinstance(value, str):
+        return value
+    return ",".join(str(v) for v in value)
+
+
+def _names(value: Union[None, str, Sequence[str]]) -> Optional[str]:
+    """An optional list of names (None: the scene's own)."""
+    return None if value is None else _list(value)
+
+
+def _axes(vary: Union[str, Mapping[str, Any], Iterable[str]]) -> List[str]:
+    """`vary` as the CLI's `--vary key=start:stop:count` list."""
+    if isinstance(vary, str):
+        return [vary]
+    if isinstance(vary, Mapping):
+        out = []
+        for key, axis in vary.items():
+            if isinstance(axis, str):
+                out.append(f"{key}={axis}")
+                continue
+            try:
+                start, stop, count = axis
+            except (TypeError, ValueError):
+                raise SceneError(
+                    f"vary: `{key}` = {axis!r}: must be (start, stop, count)",
+                    field=f"vary.{key}",
+                    value=repr(axis),
+                    allowed="(start, stop, count)",
+                ) from None
+            out.append(f"{key}={_toml(start)}:{_toml(stop)}:{_toml(count)}")
+        return out
+    return [str(v) for v in vary]
+
+
+class _Sink:
+    """Where progress goes: the caller's callable, a tqdm bar, or nowhere."""
+
+    def __init__(self, progress: Progress, unit: str) -> None:
+        self.bar: Any = None
+        self.unit = unit
+        self.call: Optional[Callable[[int, int], Any]] = None
+        if callable(progress):
+            self.call = progress
+        elif progress is None or progress is True:
+            try:
+                from tqdm.auto import tqdm
+            except ImportError:
+                return
+            self.tqdm = tqdm
+            self.call = self._tqdm
+
+    def _tqdm(self, done: int, total: int) -> None:
+        # made at the first report: a call that fails at once shows no bar
+        if self.bar is None:
+            self.bar = self.tqdm(total=total, unit=self.unit, leave=False)
+        if self.bar.total != total:
+            self.bar.total = total
+        self.bar.n = done
+        self.bar.refresh()
+
+    def __enter__(self) -> Optional[Callable[[int, int], Any]]:
+        return self.call
+
+    def __exit__(self, *exc: Any) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _out(out: Union[None, str, "os.PathLike[str]"]) -> Optional[str]:
+    return None if out is None else os.fspath(out)
+
+
+def run(
+    scene: Scene,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    *,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+) -> Run:
+    """Run one scene (`taut run`).
+
+    Args:
+        scene: a path to a scene file, or its TOML text.
+        set: overrides, {"beam.tension": 2.01e4, "mesh.elements": 400}
+            (the CLI's `--set`; a list of "key=value" strings works too).
+        out: a folder to write the CLI's files into as well (history.csv,
+            summary.json, force.svg).
+        progress: see the module doc (steps done, steps).
+
+    Returns:
+        Run with `.summary` (dict of summary.json), `.history` (Table of
+        history.csv's columns) and `.warnings`.
+
+    Raises:
+        SceneError, DivergedError, ContactError, OutputError; KeyboardInterrupt.
+    """
+    path, text = _scene(scene)
+    with _Sink(progress, "steps") as p:
+        summary, history, warnings = _taut.run(path, text, _overrides(set), _out(out), p)
+    return Run(json.loads(summary), table(history), list(warnings))
+
+
+def sweep(
+    scene: Scene,
+    vary: Union[str, Mapping[str, Any], Iterable[str]],
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    threads: Optional[int] = None,
+    *,
+    log: bool = False,
+    check_refinement: bool = False,
+    batch: Optional[int] = None,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+) -> Table:
+    """Sweep one or two scene values or dimensionless axes (`taut sweep`).
+
+    Args:
+        scene: a path to a scene file, or its TOML text.
+        vary: {"carrier.speed.cruise": (50, 230, 41)} (start, stop, count;
+            one or two axes, the last varying fastest), or the CLI's
+            "key=start:stop:count" strings. Axes may be `speed_ratio`,
+            `tension_ratio`, `mass_ratio`, `stiffness_ratio`.
+        set: fixed overrides, as for run().
+        threads: worker threads (default: one per core).
+        log: logarithmic spacing on every axis.
+        check_refinement: run each point again with 2N elements and Δt/2 and
+            add the refined P_l and its change as columns.
+        batch: runs stepped together when they share their matrix (1 ..= 8;
+            default 4); the table is the same whatever it is.
+        out: a folder for the CLI's files (sweep.csv, maps, runs/). The sweep
+            is resumable there: an interrupted sweep keeps the points it
+            finished, and the same call resumes from them. Without `out`
+            the work happens in a temporary folder, removed afterwards.
+        progress: see the module doc (points done, points).
+
+    Returns:
+        Table of sweep.csv's columns: the swept values, speed_ratio,
+        loss_fraction, loss_fraction_span, ..., error (the message of a
+        point whose run stopped: its results are NaN; the sweep goes on).
+    """
+    path, text = _scene(scene)
+    args = (_axes(vary), log, _overrides(set))
+    with _Sink(progress, "runs") as p:
+        if out is not None:
+            cols = _taut.sweep(
+                path, text, *args, os.fspath(out), True, threads, batch, check_refinement, p
+            )
+        else:
+            with tempfile.TemporaryDirectory(prefix="taut-sweep-") as tmp:
+                cols = _taut.sweep(
+                    path, text, *args, tmp, False, threads, batch, check_refinement, p
+                )
+    return table(cols)
+
+
+def compare(
+    scene: Scene,
+    formulations: Union[str, Sequence[str]] = ALL_FORMULATIONS,
+    *,
+    methods: Union[None, str, Sequence[str]] = None,
+    discretizations: Union[None, str, Sequence[str]] = None,
+    reference: str = "lagrange",
+    reference_method: Optional[str] = None,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    batch: Optional[int] = None,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+) -> Table:
+    """Compare contact formulations, time integrators and space
+    discretizations on one scene (`taut compare`).
+
+    Args:
+        formulations: lagrange, penalty, complementarity, impact.
+        methods: generalized_alpha, newmark, hht, wbz, bathe,
+            central_difference, moreau_jean (default: the scene's own).
+        discretizations: hermite, "galerkin:J", "modal:J" (default: the scene's own).
+        reference: the formulation differences are measured against.
+        reference_method: the method they are measured against (one of methods).
+        set, batch, out, progress: as for sweep().
+
+    Returns:
+        Table of compare.csv's columns, one row per run; `.failed` lists
+        the runs that stopped, with their reasons.
+    """
+    path, text = _scene(scene)
+    with _Sink(progress, "runs") as p:
+        cols, failed = _taut.compare(
+            path,
+            text,
+            _overrides(set),
+            _list(formulations),
+            _names(methods),
+            _names(discretizations),
+            reference,
+            reference_method,
+            batch,
+            _out(out),
+            p,
+        )
+    t = table(cols)
+    t.failed = _not_run(failed)
+    return t
+
+
+def converge(
+    scene: Scene,
+    refine: str = "both",
+    levels: int = 4,
+    ratio: float = 2.0,
+    *,
+    methods: Union[None, str, Sequence[str]] = None,
+    discretizations: Union[None, str, Sequence[str]] = None,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+) -> Table:
+    """Refine mesh, step or both and measure errors, observed orders and GCI
+    (`taut converge`).
+
+    Args:
+        refine: "mesh", "step" or "both".
+        levels: refinement levels (≥ 3 for observed orders).
+        ratio: refinement ratio between levels.
+        methods, discretizations: study each side by side (default: the
+            scene's own); a modal discretization refines its J.
+        set, out, progress: as for sweep().
+
+    Returns:
+        Table of converge.csv's columns (method, discretization, level, h,
+        modes, dt, quantity, value, error, observed_order, gci, reference);
+        `.skipped` lists the variants that could not run the ladder.
+    """
+    path, text = _scene(scene)
+    with _Sink(progress, "runs") as p:
+        cols, skipped = _taut.converge(
+            path,
+            text,
+            _overrides(set),
+            refine,
+            levels,
+            ratio,
+            _names(methods),
+            _names(discretizations),
+            _out(out),
+            p,
+        )
+    t = table(cols)
+    t.skipped = _not_run(skipped)
+    return t
+
+
+def precision(
+    scene: Scene,
+    formulations: Union[str, Sequence[str]] = ALL_FORMULATIONS,
+    *,
+    methods: Union[None, str, Sequence[str]] = None,
+    discretizations: Union[None, str, Sequence[str]] = None,
+    levels: int = 3,
+    ratio: int = 2,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    batch: Optional[int] = None,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+) -> Table:
+    """Work against precision over a (mesh, Δt) grid, per formulation,
+    method and discretization (`taut precision`).
+
+    Returns:
+        Table of precision.csv's columns, with the Pareto flag.
+    """
+    path, text = _scene(scene)
+    with _Sink(progress, "runs") as p:
+        cols = _taut.precision(
+            path,
+            text,
+            _overrides(set),
+            _list(formulations),
+            _names(methods),
+            _names(discretizations),
+            levels,
+            ratio,
+            batch,
+            _out(out),
+            p,
+        )
+    return table(cols)

@@ -1,0 +1,77 @@
+"""Type stubs of the native module `taut._taut` (python/src/lib.rs).
+
+Not for direct use: `taut.run`, `taut.sweep`, `taut.compare`,
+`taut.converge` and `taut.precision` (python/taut/__init__.py) call these
+with the CLI's words and turn their `(name, kind, data)` columns into
+numpy arrays (python/taut/_table.py).
+"""
+
+from typing import Callable, List, Optional, Tuple, Union
+
+__version__: str
+taut_version: str
+
+__all__ = ["__version__", "compare", "converge", "precision", "run", "sweep", "taut_version"]
+
+_Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
+_NotRun = Tuple[str, str, str, str]
+_Progress = Optional[Callable[[int, int], object]]
+
+def run(
+    path: Optional[str],
+    text: Optional[str],
+    set: List[str],
+    out: Optional[str],
+    progress: _Progress,
+) -> Tuple[str, List[_Column], List[str]]: ...
+def sweep(
+    path: Optional[str],
+    text: Optional[str],
+    vary: List[str],
+    log: bool,
+    set: List[str],
+    out: str,
+    files: bool,
+    threads: Optional[int],
+    batch: Optional[int],
+    check_refinement: bool,
+    progress: _Progress,
+) -> List[_Column]: ...
+def compare(
+    path: Optional[str],
+    text: Optional[str],
+    set: List[str],
+    formulations: str,
+    methods: Optional[str],
+    discretizations: Optional[str],
+    reference: str,
+    reference_method: Optional[str],
+    batch: Optional[int],
+    out: Optional[str],
+    progress: _Progress,
+) -> Tuple[List[_Column], List[_NotRun]]: ...
+def converge(
+    path: Optional[str],
+    text: Optional[str],
+    set: List[str],
+    refine: str,
+    levels: int,
+    ratio: float,
+    methods: Optional[str],
+    discretizations: Optional[str],
+    out: Optional[str],
+    progress: _Progress,
+) -> Tuple[List[_Column], List[_NotRun]]: ...
+def precision(
+    path: Optional[str],
+    text: Optional[str],
+    set: List[str],
+    formulations: str,
+    methods: Optional[str],
+    discretizations: Optional[str],
+    levels: int,
+    ratio: int,
+    batch: Optional[int],
+    out: Optional[str],
+    progress: _Progress,
+) -> List[_Column]: ...

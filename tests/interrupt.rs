@@ -1,0 +1,96 @@
+//! Stopping on request (`taut::interrupt`, what the Python module does on
+//! Ctrl-C): a run stops at its next step with `Error::Interrupted`, a batch
+//! stops every lane, and a sweep saves no record of a stopped run, so that
+//! resuming it gives the table of an uninterrupted sweep.
+//!
+//! The request is process-wide, so this file is its own test binary with a
+//! single test: no other test can run while the flag is set.
+
+use taut::study::sweep::{Axis, BatchWidth, SweepSpec, claim, sweep_batched};
+use taut::{Error, interrupt, resolve_scene};
+
+const REFERENCE: &str = include_str!("../scenes/reference.toml");
+
+fn short() -> Vec<String> {
+    vec![
+        "mesh.elements=60".into(),
+        "time.step=2e-4".into(),
+        "time.end=0.3".into(),
+    ]
+}
+
+#[test]
+fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results() {
+    let sc = resolve_scene(REFERENCE, &short()).unwrap();
+
+    // a run stops at the step after the request, from inside its progress
+    let mut reports = 0;
+    let out = taut::run(&sc, &mut |_, _| {
+        reports += 1;
+        interrupt::request();
+    });
+    assert!(matches!(out, Err(Error::Interrupted)), "{out:?}");
+    assert_eq!(reports, 1, "no step after the request");
+    interrupt::clear();
+    assert!(
+        taut::run(&sc, &mut |_, _| {}).is_ok(),
+        "cleared: runs again"
+    );
+
+    // a batch: every lane stops
+    interrupt::request();
+    let outs = taut::run_batch(
+        &[sc.clone(), sc.clone(), sc.clone(), sc.clone()],
+        4,
+        &mut |_| {},
+    );
+    interrupt::clear();
+    assert_eq!(outs.len(), 4);
+    assert!(outs.iter().all(|o| matches!(o, Err(Error::Interrupted))));
+
+    // a sweep stopped after its second finished point keeps whole records
+    // of finished points only, and resumes to the uninterrupted table
+    let spec = SweepSpec {
+        scene_text: REFERENCE.to_string(),
+        set: short(),
+        axes: vec![Axis::parse("speed_ratio=0.4:1.2:8", false).unwrap()],
+        check_refinement: false,
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("s");
+    let stopped = {
+        let claimed = claim(&dir).unwrap();
+        sweep_batched(&claimed, &spec, None, BatchWidth::Fixed(1), &|done, _| {
+            if done >= 2 {
+                interrupt::request();
+            }
+        })
+    };
+    interrupt::clear();
+    assert!(matches!(stopped, Err(Error::Interrupted)), "{stopped:?}");
+    let saved = std::fs::read_dir(dir.join("runs")).unwrap().count();
+    assert!((2..8).contains(&saved), "{saved} records saved");
+    let resumed = sweep_batched(
+        &claim(&dir).unwrap(),
+        &spec,
+        None,
+        BatchWidth::Auto,
+        &|_, _| {},
+    )
+    .unwrap();
+    let fresh_dir = tmp.path().join("fresh");
+    let fresh = sweep_batched(
+        &claim(&fresh_dir).unwrap(),
+        &spec,
+        None,
+        BatchWidth::Auto,
+        &|_, _| {},
+    )
+    .unwrap();
+    // as CSV: the same bytes (NaN cells included, which == would not equate)
+    assert_eq!(
+        taut::report::sweep_table(&spec, &resumed).to_csv(),
+        taut::report::sweep_table(&spec, &fresh).to_csv()
+    );
+    assert!(resumed.iter().all(|r| r.error.is_none()));
+}
