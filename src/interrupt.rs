@@ -5,25 +5,58 @@
 //! then stops before its next step with [`Error::Interrupted`]
 //! (`crate::error::Error`), a batch of runs stops all its lanes, and a sweep
 //! saves no record of a run that stopped this way (the finished points it
-//! saved stay, so the sweep resumes where it was). The caller [`clear`]s the
-//! request once the interrupted call has returned.
+//! saved stay, so the sweep resumes where it was).
 //!
-//! The flag is process-wide: work is spread over worker threads (rayon) that
-//! no per-call token reaches without threading one through every study's
-//! signature, and a Ctrl-C is meant for all the work of the process anyway.
-//! The CLI never sets it (Ctrl-C ends the process; a sweep keeps what it
+//! The request is process-wide: work is spread over worker threads (rayon)
+//! that no per-call token reaches without threading one through every
+//! study's signature, and a Ctrl-C is meant for all the work of the process
+//! anyway. So a request stops every call that is running, and stays until
+//! the last of them has returned: each call holds a [`Call`] while it works,
+//! and the request is withdrawn when the last `Call` is dropped. Until then
+//! every running call sees it, stops, and can tell its caller so (a call
+//! that finished its work while the request stood reports the stop too,
+//! rather than results some of whose runs may have been cut short). The CLI
+//! never requests a stop (Ctrl-C ends the process; a sweep keeps what it
 //! saved).
 
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 static REQUESTED: AtomicBool = AtomicBool::new(false);
+
+/// Calls that hold a [`Call`]; the lock also orders a request's withdrawal
+/// against a call's entry.
+static ACTIVE: Mutex<usize> = Mutex::new(0);
+
+/// A call at work. Dropping the last withdraws any stop request.
+#[must_use = "the call is at work while this is held"]
+pub struct Call(());
+
+impl Call {
+    /// Enter a call (the Python module, around each function).
+    pub fn enter() -> Call {
+        *ACTIVE.lock().unwrap_or_else(|p| p.into_inner()) += 1;
+        Call(())
+    }
+}
+
+impl Drop for Call {
+    fn drop(&mut self) {
+        let mut n = ACTIVE.lock().unwrap_or_else(|p| p.into_inner());
+        *n -= 1;
+        if *n == 0 {
+            clear();
+        }
+    }
+}
 
 /// Ask every run in the process to stop at its next step.
 pub fn request() {
     REQUESTED.store(true, Ordering::SeqCst);
 }
 
-/// Withdraw the request (once the interrupted work has returned).
+/// Withdraw the request. [`Call`] does it when the last call returns; a
+/// caller without calls (a test) may do it directly.
 pub fn clear() {
     REQUESTED.store(false, Ordering::SeqCst);
 }

@@ -396,15 +396,8 @@ fn progress_bar(len: usize, unit: &str, quiet: bool) -> ProgressBar {
 
 /// Save a failing contact problem next to the outputs so it can be replayed.
 fn save_failure(dir: &Path, e: taut::Error) -> taut::Error {
-    if let taut::Error::Contact { step, problem, .. } = &e {
-        let path = dir.join(format!("failed_contact_step_{step}.json"));
-        let saved = serde_json::to_string_pretty(problem)
-            .ok()
-            .filter(|_| std::fs::create_dir_all(dir).is_ok())
-            .is_some_and(|json| std::fs::write(&path, json).is_ok());
-        if saved {
-            eprintln!("saved the failing contact problem to {}", path.display());
-        }
+    if let Some(path) = taut::report::save_failed_contact(dir, &e) {
+        eprintln!("saved the failing contact problem to {}", path.display());
     }
     e
 }
@@ -438,14 +431,16 @@ fn cmd_run_tolerance(
     use taut::study::tolerance::{Quantity, parse_tolerance, tolerance_run};
     let quantity: Quantity = quantity.unwrap_or("force").parse()?;
     let tol = parse_tolerance(tolerance)?;
-    let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
     let bar = progress_bar(6, "runs", quiet);
     let result = tolerance_run(&text, &set, quantity, tol, &mut |done, _| {
         bar.set_position(done as u64)
     });
     bar.finish_and_clear();
-    let r = result.map_err(|e| save_failure(&dir, e))?;
+    let r = result
+        .map_err(|e| taut::scene::in_file(e, &scene))
+        .map_err(|e| save_failure(&dir, e))?;
     let summary = taut::report::write_tolerant_run(&dir, &r)?;
     print_summary(&scene, &dir, &summary, Some(&r.accuracy));
     Ok(())
@@ -469,13 +464,16 @@ fn cmd_converge(
         discretizations: discretizations.map(str::to_string),
     };
     let refine: Refine = refine.parse()?;
-    let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
     let kind = format!("converge ({refine:?}, r = {ratio})");
-    let table = match result.map_err(|e| save_failure(&dir, e))? {
+    let outcome = result
+        .map_err(|e| taut::scene::in_file(e, &scene))
+        .map_err(|e| save_failure(&dir, e))?;
+    let table = match outcome {
         ConvergeOutcome::One(c) => {
             write_converge(&dir, &c)?;
             converge_table(&c)
@@ -544,7 +542,7 @@ fn cmd_sweep(
         .map(|v| Axis::parse(v, log))
         .collect::<taut::Result<Vec<_>>>()?;
     let shard = shard.map(Shard::parse).transpose()?;
-    let scene_text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let scene_text = taut::scene::read_scene(&scene)?;
     let spec = SweepSpec {
         scene_text,
         set,
@@ -556,7 +554,8 @@ fn cmd_sweep(
     taut::study::threads::start_pool(threads)?;
     let bar = progress_bar(spec.len(), "runs", quiet);
     let start = std::time::Instant::now();
-    spec.validate()?;
+    spec.validate()
+        .map_err(|e| taut::scene::in_file(e, &scene))?;
     let claimed = claim(&dir)?;
     // the first report says how many points an earlier start had finished
     let resumed = std::sync::OnceLock::new();
@@ -686,12 +685,14 @@ fn cmd_precision(
         ratio,
         batch,
     };
-    let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |d, _| bar.set_position(d as u64));
     bar.finish_and_clear();
-    let p = result.map_err(|e| save_failure(&dir, e))?;
+    let p = result
+        .map_err(|e| taut::scene::in_file(e, &scene))
+        .map_err(|e| save_failure(&dir, e))?;
     taut::report::write_precision(&dir, &p)?;
     print_study(
         "precision",
@@ -786,7 +787,7 @@ fn cmd_compare(
         reference_method: reference_method.map(str::to_string),
         batch,
     };
-    let text = std::fs::read_to_string(&scene).map_err(|e| taut::Error::io(&scene, e))?;
+    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |done, total| {
@@ -794,7 +795,9 @@ fn cmd_compare(
         bar.set_position(done as u64)
     });
     bar.finish_and_clear();
-    let c = result.map_err(|e| save_failure(&dir, e))?;
+    let c = result
+        .map_err(|e| taut::scene::in_file(e, &scene))
+        .map_err(|e| save_failure(&dir, e))?;
     write_compare(&dir, &c)?;
     print_study(
         "compare",

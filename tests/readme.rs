@@ -38,7 +38,11 @@ fn the_python_install_command_is_the_one_ci_runs() {
     assert!(CI.contains("pytest python/tests"));
     assert!(CI.contains("python/examples/speed_map.py --check"));
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    for f in ["python/pyproject.toml", "python/examples/speed_map.py", "docs/python.md"] {
+    for f in [
+        "python/pyproject.toml",
+        "python/examples/speed_map.py",
+        "docs/python.md",
+    ] {
         assert!(root.join(f).is_file(), "{f}");
     }
 }

@@ -20,7 +20,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{self, RecvTimeoutError};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
 use pyo3::prelude::*;
@@ -41,8 +41,7 @@ fn scene_text(path: Option<&str>, text: Option<String>) -> taut::Result<(String,
     match (path, text) {
         (Some(p), _) => {
             let p = PathBuf::from(p);
-            let t = std::fs::read_to_string(&p).map_err(|e| taut::Error::io(&p, e))?;
-            Ok((t, Some(p)))
+            Ok((taut::scene::read_scene(&p)?, Some(p)))
         }
         (None, Some(t)) => Ok((t, None)),
         (None, None) => Err(taut::Error::invalid(
@@ -53,14 +52,11 @@ fn scene_text(path: Option<&str>, text: Option<String>) -> taut::Result<(String,
     }
 }
 
-/// Name a parse error's file as `taut::load_scene` does.
+/// Name the scene file, if there is one, in a parse error of its text.
 fn named(e: taut::Error, path: Option<&Path>) -> taut::Error {
-    match (e, path) {
-        (taut::Error::Parse { reason, field }, Some(p)) => taut::Error::Parse {
-            reason: format!("{}: {reason}", p.display()),
-            field,
-        },
-        (e, _) => e,
+    match path {
+        Some(p) => taut::scene::in_file(e, p),
+        None => e,
     }
 }
 
@@ -84,7 +80,14 @@ fn python_name(field: &str) -> Option<String> {
 /// `taut::Error` as a Python exception with the error's fields as
 /// attributes (classes in `python/taut/_errors.py`, docs/python.md).
 fn to_py_err(py: Python<'_>, e: taut::Error) -> PyErr {
+    failed(py, e, None)
+}
+
+/// [`to_py_err`] for a call with an output folder: a failed contact solve
+/// saves its problem there first, as the CLI does, for `taut replay`.
+fn failed(py: Python<'_>, e: taut::Error, out: Option<&Path>) -> PyErr {
     use taut::Error as E;
+    let saved = out.and_then(|dir| taut::report::save_failed_contact(dir, &e));
     let message = e.to_string();
     match e {
         E::Invalid {
@@ -134,11 +137,26 @@ fn to_py_err(py: Python<'_>, e: taut::Error) -> PyErr {
         E::Contact {
             step,
             time,
+            run,
+            failure,
             problem,
-            ..
         } => {
             let problem = serde_json::to_string(&problem).unwrap_or_default();
-            raise(py, "ContactError", (message, step, time, problem))
+            let run = run.trim_end_matches(": ").to_string();
+            let saved = saved.map(|p| p.to_string_lossy().into_owned());
+            raise(
+                py,
+                "ContactError",
+                (
+                    message,
+                    step,
+                    time,
+                    run,
+                    failure.to_string(),
+                    problem,
+                    saved,
+                ),
+            )
         }
         E::Tolerance {
             quantity,
@@ -160,11 +178,16 @@ fn to_py_err(py: Python<'_>, e: taut::Error) -> PyErr {
 /// into a stop request ([`taut::interrupt`]) and, once the job has
 /// stopped, into that exception. A panic in the job is a `RuntimeError`
 /// (never an abort of the interpreter).
+///
+/// Reports are delivered in order of `done` (workers of a sweep may send
+/// theirs out of order; a smaller one after a larger is dropped), at most
+/// one per [`POLL`], and the last one always.
 fn work<R: Send>(
     py: Python<'_>,
     progress: Option<&Bound<'_, PyAny>>,
     job: impl FnOnce(&(dyn Fn(usize, usize) + Sync)) -> R + Send,
 ) -> PyResult<R> {
+    let call = taut::interrupt::Call::enter();
     let (tx, mut rx) = mpsc::channel::<(usize, usize)>();
     let (outcome, failure) = std::thread::scope(|s| {
         let handle = s.spawn(move || {
@@ -175,38 +198,54 @@ fn work<R: Send>(
             job(&report)
         });
         let mut failure: Option<PyErr> = None;
+        let mut pending: Option<(usize, usize)> = None;
+        let mut delivered: Option<(usize, usize)> = None;
+        let mut last: Option<Instant> = None;
         loop {
             let (back, msg) = py.detach(move || {
                 let msg = rx.recv_timeout(POLL);
                 (rx, msg)
             });
             rx = back;
-            match msg {
-                Ok(mut last) => {
+            let finished = match msg {
+                Ok(m) => {
+                    pending = pending.max(Some(m));
                     while let Ok(m) = rx.try_recv() {
-                        last = m;
+                        pending = pending.max(Some(m));
                     }
-                    if let (None, Some(cb)) = (&failure, progress)
-                        && let Err(e) = cb.call1(last)
-                    {
-                        failure = Some(e);
-                        taut::interrupt::request();
-                    }
+                    false
                 }
-                Err(RecvTimeoutError::Timeout) => {}
-                Err(RecvTimeoutError::Disconnected) => break,
+                Err(RecvTimeoutError::Timeout) => false,
+                Err(RecvTimeoutError::Disconnected) => true,
+            };
+            let due = finished || last.is_none_or(|t| t.elapsed() >= POLL);
+            if let (true, None, Some(cb), Some(m)) = (due, &failure, progress, pending)
+                && pending > delivered
+            {
+                last = Some(Instant::now());
+                delivered = pending;
+                if let Err(e) = cb.call1(m) {
+                    failure = Some(e);
+                    taut::interrupt::request();
+                }
             }
-            if failure.is_none()
-                && let Err(e) = py.check_signals()
+            // a Ctrl-C stops the work; a second one while it stops is the same request
+            if let Err(e) = py.check_signals()
+                && failure.is_none()
             {
                 failure = Some(e);
                 taut::interrupt::request();
             }
+            if finished {
+                break;
+            }
         }
         (py.detach(move || handle.join()), failure)
     });
+    // a stop requested while this call worked (here or by another call)
+    // means some of its runs may have been cut short: never return them
     let interrupted = taut::interrupt::requested();
-    taut::interrupt::clear();
+    drop(call);
     if let Some(e) = failure {
         return Err(e);
     }
@@ -222,7 +261,7 @@ fn work<R: Send>(
     })?;
     if interrupted {
         return Err(PyKeyboardInterrupt::new_err(
-            "taut: interrupted (another call in this process was stopped)",
+            "taut: stopped by a stop request (Ctrl-C or an exception in a progress callback) made during this call",
         ));
     }
     Ok(out)
@@ -290,35 +329,88 @@ fn not_run(n: &taut::study::compare::NotRun) -> NotRunTuple {
     )
 }
 
-/// One run: `(summary_json, history_columns, warnings)`; with `out` the
-/// CLI's files (`history.csv`, `summary.json`, `force.svg`) are written too.
+/// What `run` hands back: `(summary_json, history_columns, warnings,
+/// accuracy_columns)`, the last for a `tolerance` run only.
+type RunTuple<'py> = (
+    String,
+    Bound<'py, PyList>,
+    Vec<String>,
+    Option<Bound<'py, PyList>>,
+);
+
+/// One run (`taut run`), or with `tolerance` an accuracy-targeted one
+/// (`taut run --tolerance TOL --quantity Q`); with `out` the CLI's files
+/// (`history.csv`, `summary.json`, `force.svg`, and `accuracy.csv`) are
+/// written too.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, out, progress))]
+#[pyo3(signature = (path, text, set, out, tolerance, quantity, progress))]
+#[allow(clippy::too_many_arguments)]
 fn run<'py>(
     py: Python<'py>,
     path: Option<&str>,
     text: Option<String>,
     set: Vec<String>,
     out: Option<PathBuf>,
+    tolerance: Option<String>,
+    quantity: Option<String>,
     progress: Option<Bound<'py, PyAny>>,
-) -> PyResult<(String, Bound<'py, PyList>, Vec<String>)> {
+) -> PyResult<RunTuple<'py>> {
     let err = |e| to_py_err(py, e);
     let (text, path) = scene_text(path, text).map_err(err)?;
+    if let Some(tol) = tolerance {
+        use taut::study::tolerance::{Quantity, parse_tolerance, tolerance_run};
+        let quantity: Quantity = quantity
+            .as_deref()
+            .unwrap_or("force")
+            .parse()
+            .map_err(err)?;
+        let tol = parse_tolerance(&tol).map_err(err)?;
+        let r = work(py, progress.as_ref(), |report| {
+            tolerance_run(&text, &set, quantity, tol, &mut |d, t| report(d, t))
+        })?
+        .map_err(|e| named(e, path.as_deref()))
+        .map_err(|e| failed(py, e, out.as_deref()))?;
+        let summary = match &out {
+            Some(dir) => taut::report::write_tolerant_run(dir, &r).map_err(err)?,
+            None => taut::report::Summary::new(&r.scene, &r.output),
+        };
+        let doc = taut::report::WithAccuracy {
+            summary: &summary,
+            accuracy: &r.accuracy,
+        };
+        return Ok((
+            pretty(&doc)?,
+            table_to_py(py, &taut::report::history_table(&r.output))?,
+            r.output.warnings.clone(),
+            Some(table_to_py(py, &taut::report::accuracy_table(&r.accuracy))?),
+        ));
+    }
+    if let Some(q) = quantity {
+        return Err(err(taut::Error::invalid(
+            "--quantity",
+            q,
+            "is what --tolerance is on: give tolerance too",
+        )));
+    }
     let sc = taut::resolve_scene(&text, &set)
         .map_err(|e| named(e, path.as_deref()))
         .map_err(err)?;
     let output = work(py, progress.as_ref(), |report| {
         taut::run(&sc, &mut |done, total| report(done, total))
     })?
-    .map_err(err)?;
+    .map_err(|e| failed(py, e, out.as_deref()))?;
     let summary = match &out {
         Some(dir) => taut::report::write_run(dir, &sc, &output).map_err(err)?,
         None => taut::report::Summary::new(&sc, &output),
     };
-    let json = serde_json::to_string_pretty(&summary)
-        .map_err(|e| PyRuntimeError::new_err(format!("summary as JSON: {e}")))?;
     let history = table_to_py(py, &taut::report::history_table(&output))?;
-    Ok((json, history, output.warnings))
+    Ok((pretty(&summary)?, history, output.warnings, None))
+}
+
+/// A summary as `summary.json` holds it.
+fn pretty(value: &impl serde::Serialize) -> PyResult<String> {
+    serde_json::to_string_pretty(value)
+        .map_err(|e| PyRuntimeError::new_err(format!("summary as JSON: {e}")))
 }
 
 /// A sweep into folder `out` (resumable: finished points are kept there);
@@ -373,8 +465,9 @@ fn sweep<'py>(
     table_to_py(py, &taut::report::sweep_table(&spec, &records))
 }
 
-/// A comparison: `(compare.csv columns, failed)`, `failed` the runs that
-/// stopped as `(label, reason)`; with `out` the CLI's files too.
+/// A comparison: `(compare.csv columns, failed, skipped)`: the runs that
+/// stopped and the combinations that could not run; with `out` the CLI's
+/// files too.
 #[pyfunction]
 #[pyo3(signature = (path, text, set, formulations, methods, discretizations, reference, reference_method, batch, out, progress))]
 #[allow(clippy::too_many_arguments)]
@@ -391,7 +484,7 @@ fn compare<'py>(
     batch: Option<usize>,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
-) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
+) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
     let (text, path) = scene_text(path, text).map_err(err)?;
     let request = CompareRequest {
@@ -406,12 +499,15 @@ fn compare<'py>(
         request.run(&text, &set, &mut |d, t| report(d, t))
     })?
     .map_err(|e| named(e, path.as_deref()))
-    .map_err(err)?;
+    .map_err(|e| failed(py, e, out.as_deref()))?;
     if let Some(dir) = &out {
         taut::report::write_compare(dir, &c).map_err(err)?;
     }
-    let failed = c.failed.iter().map(not_run).collect();
-    Ok((table_to_py(py, &taut::report::compare_rows(&c))?, failed))
+    Ok((
+        table_to_py(py, &taut::report::compare_rows(&c))?,
+        c.failed.iter().map(not_run).collect(),
+        c.skipped.iter().map(not_run).collect(),
+    ))
 }
 
 /// A convergence study: `(converge.csv columns, skipped)`; with `out` the
@@ -446,7 +542,7 @@ fn converge<'py>(
         request.run(&text, &set, &mut |d, t| report(d, t))
     })?
     .map_err(|e| named(e, path.as_deref()))
-    .map_err(err)?;
+    .map_err(|e| failed(py, e, out.as_deref()))?;
     if let Some(dir) = &out {
         match &outcome {
             ConvergeOutcome::One(c) => taut::report::write_converge(dir, c),
@@ -461,8 +557,8 @@ fn converge<'py>(
     Ok((table_to_py(py, &rows)?, skipped))
 }
 
-/// A work–precision study: the columns of `precision.csv`; with `out` the
-/// CLI's files too.
+/// A work–precision study: `(precision.csv columns, skipped)`; with `out`
+/// the CLI's files too.
 #[pyfunction]
 #[pyo3(signature = (path, text, set, formulations, methods, discretizations, levels, ratio, batch, out, progress))]
 #[allow(clippy::too_many_arguments)]
@@ -479,7 +575,7 @@ fn precision<'py>(
     batch: Option<usize>,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyList>> {
+) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
     let (text, path) = scene_text(path, text).map_err(err)?;
     let request = PrecisionRequest {
@@ -494,11 +590,14 @@ fn precision<'py>(
         request.run(&text, &set, &mut |d, t| report(d, t))
     })?
     .map_err(|e| named(e, path.as_deref()))
-    .map_err(err)?;
+    .map_err(|e| failed(py, e, out.as_deref()))?;
     if let Some(dir) = &out {
         taut::report::write_precision(dir, &p).map_err(err)?;
     }
-    table_to_py(py, &taut::report::precision_rows(&p))
+    Ok((
+        table_to_py(py, &taut::report::precision_rows(&p))?,
+        p.skipped.iter().map(not_run).collect(),
+    ))
 }
 
 /// The native module.

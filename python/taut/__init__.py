@@ -82,12 +82,23 @@ class Run:
             `x_m`, `beam_w`, `mass_q`, `gap`, `force`, `in_contact`, probes;
             suffixed `_0`, `_1`, ... with several carriers).
         warnings: findings that make the numbers suspect, as the CLI prints them.
+        accuracy: for a run with `tolerance`, the columns of the CLI's
+            `accuracy.csv` (the pilot runs, then the chosen one, with their
+            estimated errors; summary["accuracy"] has the whole account);
+            None otherwise.
     """
 
-    def __init__(self, summary: Dict[str, Any], history: Table, warnings: List[str]) -> None:
+    def __init__(
+        self,
+        summary: Dict[str, Any],
+        history: Table,
+        warnings: List[str],
+        accuracy: Optional[Table] = None,
+    ) -> None:
         self.summary = summary
         self.history = history
         self.warnings = warnings
+        self.accuracy = accuracy
 
     def __repr__(self) -> str:
         c = self.summary.get("carriers", [{}])[0]
@@ -125,7 +136,7 @@ def _toml(value: Any) -> str:
     if isinstance(value, str):
         return value
     if isinstance(value, Mapping):
-        inner = ", ".join(f"{k} = {_toml_quoted(v)}" for k, v in value.items())
+        inner = ", ".join(f"{_key(str(k))} = {_toml_quoted(v)}" for k, v in value.items())
         return "{ " + inner + " }"
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml_quoted(v) for v in value) + "]"
@@ -137,6 +148,50 @@ def _toml(value: Any) -> str:
         value=repr(value),
         allowed="a bool, number, str, list or dict",
     )
+
+
+def _key(key: str) -> str:
+    """A TOML key: bare when it may be, else quoted."""
+    return key if key and all(c.isascii() and (c.isalnum() or c in "_-") for c in key) else json.dumps(key)
+
+
+def _opt_count(name: str, value: Optional[int], least: int) -> Optional[int]:
+    """An optional integer argument (None: the default), as `_count`."""
+    return None if value is None else _count(name, value, least)
+
+
+def _count(name: str, value: int, least: int) -> int:
+    """An integer argument: refused by name unless an int ≥ `least` (the
+    library checks the upper bounds and names them the same way)."""
+    if isinstance(value, bool) or not isinstance(value, int) and not hasattr(value, "__index__"):
+        raise SceneError(
+            f"invalid argument: `{name}` = {value!r}: must be an integer ≥ {least}",
+            field=name,
+            value=repr(value),
+            allowed=f"an integer ≥ {least}",
+        )
+    n = int(value)
+    if n < least:
+        raise SceneError(
+            f"invalid argument: `{name}` = {n}: must be an integer ≥ {least}",
+            field=name,
+            value=str(n),
+            allowed=f"an integer ≥ {least}",
+        )
+    return n
+
+
+def _real(name: str, value: float) -> float:
+    """A real argument: refused by name unless a number."""
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise SceneError(
+            f"invalid argument: `{name}` = {value!r}: must be a number",
+            field=name,
+            value=repr(value),
+            allowed="a number",
+        ) from None
 
 
 def _toml_quoted(value: Any) -> str:
@@ -235,30 +290,51 @@ def run(
     scene: Scene,
     set: Union[None, Mapping[str, Any], Iterable[str]] = None,
     *,
+    tolerance: Optional[float] = None,
+    quantity: Optional[str] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
 ) -> Run:
-    """Run one scene (`taut run`).
+    """Run one scene (`taut run`), or choose its mesh and Δt for an accuracy
+    target first (`taut run --tolerance`, docs/accuracy.md).
 
     Args:
         scene: a path to a scene file, or its TOML text.
         set: overrides, {"beam.tension": 2.01e4, "mesh.elements": 400}
             (the CLI's `--set`; a list of "key=value" strings works too).
+        tolerance: the largest error allowed in `quantity` (relative;
+            absolute for loss fractions): pilot runs measure convergence,
+            the run is made at the resolution they call for, and every
+            result gets an estimated error (`Run.accuracy`,
+            summary["accuracy"]).
+        quantity: what the tolerance is on: "force" (0–20 Hz contact force,
+            the default), "force_raw", "loss_fraction", "loss_fraction_span"
+            or "displacement".
         out: a folder to write the CLI's files into as well (history.csv,
-            summary.json, force.svg).
-        progress: see the module doc (steps done, steps).
+            summary.json, force.svg; accuracy.csv with a tolerance).
+        progress: see the module doc (steps done, steps; pilot runs done,
+            runs with a tolerance).
 
     Returns:
         Run with `.summary` (dict of summary.json), `.history` (Table of
         history.csv's columns) and `.warnings`.
 
     Raises:
-        SceneError, DivergedError, ContactError, OutputError; KeyboardInterrupt.
+        SceneError, DivergedError, ContactError, ToleranceError, OutputError;
+        KeyboardInterrupt.
     """
     path, text = _scene(scene)
-    with _Sink(progress, "steps") as p:
-        summary, history, warnings = _taut.run(path, text, _overrides(set), _out(out), p)
-    return Run(json.loads(summary), table(history), list(warnings))
+    tol = None if tolerance is None else _toml(tolerance)
+    with _Sink(progress, "steps" if tol is None else "runs") as p:
+        summary, history, warnings, accuracy = _taut.run(
+            path, text, _overrides(set), _out(out), tol, quantity, p
+        )
+    return Run(
+        json.loads(summary),
+        table(history),
+        list(warnings),
+        None if accuracy is None else table(accuracy),
+    )
 
 
 def sweep(
@@ -301,15 +377,16 @@ def sweep(
     """
     path, text = _scene(scene)
     args = (_axes(vary), log, _overrides(set))
+    n_threads, n_batch = _opt_count("threads", threads, 0), _opt_count("batch", batch, 0)
     with _Sink(progress, "runs") as p:
         if out is not None:
             cols = _taut.sweep(
-                path, text, *args, os.fspath(out), True, threads, batch, check_refinement, p
+                path, text, *args, os.fspath(out), True, n_threads, n_batch, check_refinement, p
             )
         else:
             with tempfile.TemporaryDirectory(prefix="taut-sweep-") as tmp:
                 cols = _taut.sweep(
-                    path, text, *args, tmp, False, threads, batch, check_refinement, p
+                    path, text, *args, tmp, False, n_threads, n_batch, check_refinement, p
                 )
     return table(cols)
 
@@ -341,11 +418,12 @@ def compare(
 
     Returns:
         Table of compare.csv's columns, one row per run; `.failed` lists
-        the runs that stopped, with their reasons.
+        the runs that stopped and `.skipped` the combinations that could not
+        run (a method outside its stability limit), with their reasons.
     """
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
-        cols, failed = _taut.compare(
+        cols, failed, skipped = _taut.compare(
             path,
             text,
             _overrides(set),
@@ -354,12 +432,13 @@ def compare(
             _names(discretizations),
             reference,
             reference_method,
-            batch,
+            _opt_count("batch", batch, 0),
             _out(out),
             p,
         )
     t = table(cols)
     t.failed = _not_run(failed)
+    t.skipped = _not_run(skipped)
     return t
 
 
@@ -398,8 +477,8 @@ def converge(
             text,
             _overrides(set),
             refine,
-            levels,
-            ratio,
+            _count("levels", levels, 0),
+            _real("ratio", ratio),
             _names(methods),
             _names(discretizations),
             _out(out),
@@ -427,21 +506,24 @@ def precision(
     method and discretization (`taut precision`).
 
     Returns:
-        Table of precision.csv's columns, with the Pareto flag.
+        Table of precision.csv's columns, with the Pareto flag; `.skipped`
+        lists the combinations that could not run.
     """
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
-        cols = _taut.precision(
+        cols, skipped = _taut.precision(
             path,
             text,
             _overrides(set),
             _list(formulations),
             _names(methods),
             _names(discretizations),
-            levels,
-            ratio,
-            batch,
+            _count("levels", levels, 0),
+            _count("ratio", ratio, 0),
+            _opt_count("batch", batch, 0),
             _out(out),
             p,
         )
-    return table(cols)
+    t = table(cols)
+    t.skipped = _not_run(skipped)
+    return t

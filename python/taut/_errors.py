@@ -70,15 +70,30 @@ class ContactError(TautError):
     Attributes:
         step: the step.
         time: the time at the end of that step, s.
+        run: which run of a study it was (`formulation penalty`), or "".
+        reason: why the law failed (`the active set did not settle …`).
         problem: the contact problem the law was given, as the dict the CLI
             saves to `failed_contact_step_N.json` (`taut replay` solves it).
+        saved: where it was saved (a call with `out`), or None.
     """
 
-    def __init__(self, message: str, step: int, time: float, problem: str) -> None:
+    def __init__(
+        self,
+        message: str,
+        step: int,
+        time: float,
+        run: str,
+        reason: str,
+        problem: str,
+        saved: Optional[str] = None,
+    ) -> None:
         super().__init__(message)
         self.step = step
         self.time = time
+        self.run = run
+        self.reason = reason
         self.problem: Any = json.loads(problem) if problem else None
+        self.saved = saved
 
 
 class ToleranceError(TautError, ValueError):

@@ -22,8 +22,10 @@ def run(
     text: Optional[str],
     set: List[str],
     out: Optional[str],
+    tolerance: Optional[str],
+    quantity: Optional[str],
     progress: _Progress,
-) -> Tuple[str, List[_Column], List[str]]: ...
+) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]]]: ...
 def sweep(
     path: Optional[str],
     text: Optional[str],
@@ -49,7 +51,7 @@ def compare(
     batch: Optional[int],
     out: Optional[str],
     progress: _Progress,
-) -> Tuple[List[_Column], List[_NotRun]]: ...
+) -> Tuple[List[_Column], List[_NotRun], List[_NotRun]]: ...
 def converge(
     path: Optional[str],
     text: Optional[str],
@@ -74,4 +76,4 @@ def precision(
     batch: Optional[int],
     out: Optional[str],
     progress: _Progress,
-) -> List[_Column]: ...
+) -> Tuple[List[_Column], List[_NotRun]]: ...

@@ -3,6 +3,8 @@ fields as attributes, never a panic or a silent NaN."""
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 import taut
@@ -66,6 +68,18 @@ def test_study_arguments_are_named_as_python_arguments():
     assert e.value.field == "set"
 
 
+def test_tolerance_arguments_are_checked_by_name():
+    with pytest.raises(taut.SceneError) as e:
+        taut.run(REFERENCE, tolerance=-1.0, progress=False)
+    assert e.value.field == "tolerance"
+    with pytest.raises(taut.SceneError) as e:
+        taut.run(REFERENCE, tolerance=1e-3, quantity="speed", progress=False)
+    assert (e.value.field, e.value.value) == ("quantity", "speed")
+    with pytest.raises(taut.SceneError) as e:
+        taut.run(REFERENCE, quantity="force", progress=False)
+    assert e.value.field == "quantity" and "tolerance" in e.value.allowed
+
+
 def test_a_non_finite_value_is_refused_by_name():
     with pytest.raises(taut.SceneError) as e:
         taut.run(REFERENCE, set={"beam.tension": float("nan")}, progress=False)
@@ -96,3 +110,43 @@ def test_a_scene_that_is_not_a_scene_does_not_echo_its_content():
     with pytest.raises(taut.SceneError) as e:
         taut.run("[secret]\npassword = 'hunter2'\n", progress=False)
     assert "hunter2" not in str(e.value) and "not a scene" in str(e.value)
+
+
+def test_a_failed_contact_solve_raises_with_its_problem_and_saves_it_with_out(tmp_path):
+    # an iteration limit of 1 for the QP solver (tests/cli.rs does the same)
+    bad = {
+        "contact.formulation": "complementarity",
+        "contact.complementarity.solver": "clarabel",
+        "contact.complementarity.max_iter": 1,
+    }
+    with pytest.raises(taut.ContactError) as e:
+        taut.run(REFERENCE, set=bad, out=tmp_path, progress=False)
+    err = e.value
+    assert err.step == 0 and err.time == 0.0
+    assert "MaxIterations" in err.reason and err.run == ""
+    assert set(err.problem) >= {"level", "g_free", "w", "contact"}
+    assert err.saved == str(tmp_path / "failed_contact_step_0.json")
+    assert json.loads((tmp_path / "failed_contact_step_0.json").read_text()) == err.problem
+    with pytest.raises(taut.ContactError) as e:
+        taut.run(REFERENCE, set=bad, progress=False)
+    assert e.value.saved is None, "nothing is written without out"
+
+
+def test_integer_arguments_are_checked_by_name():
+    for kwargs, field in (
+        ({"levels": -1}, "levels"),
+        ({"levels": 2.5}, "levels"),
+        ({"ratio": "two"}, "ratio"),
+    ):
+        with pytest.raises(taut.SceneError) as e:
+            taut.converge(REFERENCE, **kwargs, progress=False)
+        assert e.value.field == field, kwargs
+    with pytest.raises(taut.SceneError) as e:
+        taut.precision(REFERENCE, ratio=2.0, progress=False)
+    assert e.value.field == "ratio"
+    with pytest.raises(taut.SceneError) as e:
+        taut.precision(REFERENCE, ratio=10**6, levels=5, progress=False)
+    assert e.value.field == "ratio" and "overflows" in e.value.allowed
+    with pytest.raises(taut.SceneError) as e:
+        taut.sweep(REFERENCE, {"speed_ratio": (0.5, 1.0, 2)}, threads=-2, progress=False)
+    assert e.value.field == "threads"

@@ -44,6 +44,28 @@ def test_run_is_the_cli_run(cli, tmp_path):
     assert r.history["force"].dtype == np.float64
 
 
+def without_wall(doc):
+    """A JSON document without its wall-clock times (any key naming one)."""
+    if isinstance(doc, dict):
+        return {k: without_wall(v) for k, v in doc.items() if "wall_seconds" not in k}
+    if isinstance(doc, list):
+        return [without_wall(v) for v in doc]
+    return doc
+
+
+def test_a_tolerance_run_is_the_cli_tolerance_run(cli, tmp_path):
+    scene = ROOT / "scenes" / "moving_force_beam.toml"
+    run_cli(cli, "run", scene, "--tolerance", "1e-3", "--quantity", "displacement", "--out", tmp_path / "cli", "--quiet")
+    r = taut.run(scene, tolerance=1e-3, quantity="displacement", progress=False)
+    assert r.accuracy is not None and list(r.accuracy["role"])[-1] == "chosen"
+    assert_same_table(tmp_path / "cli" / "accuracy.csv", r.accuracy, skip=WALL)
+    assert_same_table(tmp_path / "cli" / "history.csv", r.history)
+    summary = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    assert without_wall(summary) == without_wall(r.summary)
+    assert "accuracy" in r.summary
+    assert taut.run(scene, progress=False).accuracy is None
+
+
 def test_run_writes_the_cli_files_with_out(tmp_path):
     r = taut.run(REFERENCE, set=SHORT, out=tmp_path / "py", progress=False)
     for f in ("history.csv", "summary.json", "force.svg"):
@@ -138,3 +160,20 @@ def test_to_pandas_gives_the_same_columns():
     assert isinstance(df, pd.DataFrame)
     assert list(df.columns) == list(t)
     assert np.array_equal(df["loss_fraction"].to_numpy(), t["loss_fraction"])
+
+
+def test_compare_lists_the_runs_it_skipped_as_the_cli_does(cli, tmp_path):
+    # central difference at Δt = 2e-4 s is above its stability limit on 400 elements
+    run_cli(
+        cli, "compare", REFERENCE, *SHORT_CLI, "--set", "mesh.elements=400",
+        "--methods", "generalized_alpha,central_difference", "--out", tmp_path / "cli", "--quiet",
+    )
+    t = taut.compare(
+        REFERENCE, set={**SHORT, "mesh.elements": 400},
+        methods=["generalized_alpha", "central_difference"], progress=False,
+    )
+    doc = json.loads((tmp_path / "cli" / "compare.json").read_text())
+    assert len(t.skipped) == 4 and t.failed == []
+    # compare.json leaves out an empty discretization
+    assert [{k: v for k, v in s.items() if v} for s in t.skipped] == doc["skipped"]
+    assert_same_table(tmp_path / "cli" / "compare.csv", t, skip=WALL)

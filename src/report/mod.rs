@@ -30,7 +30,8 @@ pub use sweep_maps::{
 };
 pub use table::{Column, Table};
 pub use tolerance::{
-    ACCURACY_COLUMNS, accuracy_csv, accuracy_header, result_lines, write_tolerant_run,
+    ACCURACY_COLUMNS, WithAccuracy, accuracy_csv, accuracy_header, accuracy_table, result_lines,
+    write_tolerant_run,
 };
 
 use std::path::Path;
@@ -38,6 +39,21 @@ use std::path::Path;
 use crate::error::{Error, Result};
 use crate::run::RunOutput;
 use crate::scene::Resolved;
+
+/// Save the contact problem of a failed contact solve ([`Error::Contact`])
+/// as `dir/failed_contact_step_N.json`, which `taut replay` solves again;
+/// returns the file, or None for another error or a folder that cannot be
+/// written (the error itself is what the caller reports).
+pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> {
+    let Error::Contact { step, problem, .. } = e else {
+        return None;
+    };
+    let path = dir.join(format!("failed_contact_step_{step}.json"));
+    let json = serde_json::to_string_pretty(problem).ok()?;
+    std::fs::create_dir_all(dir).ok()?;
+    std::fs::write(&path, json).ok()?;
+    Some(path)
+}
 
 /// Write all three outputs of a run into `dir` (created if missing).
 pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> {

@@ -7,7 +7,8 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::{Summary, fmt_f64, write_force_plot, write_history};
+use super::table::{Column, Table};
+use super::{Summary, write_force_plot, write_history};
 use crate::error::{Error, Result};
 use crate::study::scalars::Scalar;
 use crate::study::tolerance::{Accuracy, Estimate, LadderFit, ResultEstimate, TolerantRun};
@@ -30,10 +31,12 @@ pub const ACCURACY_COLUMNS: [&str; 11] = [
 /// `summary.json` of an accuracy-targeted run: the ordinary summary with
 /// `accuracy` added at the top level.
 #[derive(Serialize)]
-struct WithAccuracy<'a> {
+pub struct WithAccuracy<'a> {
+    /// The run's summary.
     #[serde(flatten)]
-    summary: &'a Summary,
-    accuracy: &'a Accuracy,
+    pub summary: &'a Summary,
+    /// How the resolution was chosen and the estimated errors.
+    pub accuracy: &'a Accuracy,
 }
 
 /// Write `history.csv`, `summary.json` (with `accuracy`), `force.svg` and
@@ -55,49 +58,35 @@ pub fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary> {
     Ok(summary)
 }
 
-fn cell(v: f64) -> String {
-    if v.is_finite() {
-        fmt_f64(v)
-    } else {
-        String::new()
+/// `accuracy.csv` as a table ([`ACCURACY_COLUMNS`]): one row per pilot,
+/// then the chosen run (`chosen`). Unknown values (a pilot's ladder
+/// difference before it has a finer neighbour, an estimate that cannot be
+/// made) are empty cells.
+pub fn accuracy_table(a: &Accuracy) -> Table {
+    struct Row<'a> {
+        role: &'a str,
+        elements: usize,
+        dt: f64,
+        steps: usize,
+        dof_steps: f64,
+        wall: f64,
+        diff: f64,
+        estimate: &'a Estimate,
     }
-}
-
-/// `accuracy.csv`: one row per pilot, then the chosen run (`chosen`).
-pub fn accuracy_csv(a: &Accuracy) -> String {
-    let mut s = ACCURACY_COLUMNS.join(",") + "\n";
-    let mut row = |role: &str,
-                   n: usize,
-                   dt: f64,
-                   steps: usize,
-                   dof_steps: f64,
-                   wall: f64,
-                   diff: f64,
-                   e: &Estimate| {
-        let dofs = (dof_steps / steps.max(1) as f64).round();
-        s.push_str(&format!(
-            "{role},{n},{},{steps},{dofs},{},{},{},{},{},{}\n",
-            fmt_f64(dt),
-            fmt_f64(dof_steps),
-            cell(wall),
-            cell(diff),
-            cell(e.total),
-            cell(e.mesh),
-            cell(e.step)
-        ));
-    };
-    for p in &a.pilots {
-        row(
-            p.role,
-            p.elements,
-            p.dt,
-            p.steps,
-            p.dof_steps,
-            p.wall_seconds,
-            p.ladder_difference,
-            &p.estimate,
-        );
-    }
+    let mut rows: Vec<Row> = a
+        .pilots
+        .iter()
+        .map(|p| Row {
+            role: p.role,
+            elements: p.elements,
+            dt: p.dt,
+            steps: p.steps,
+            dof_steps: p.dof_steps,
+            wall: p.wall_seconds,
+            diff: p.ladder_difference,
+            estimate: &p.estimate,
+        })
+        .collect();
     let wall = match a.met_by_pilot {
         Some(role) => a
             .pilots
@@ -106,17 +95,41 @@ pub fn accuracy_csv(a: &Accuracy) -> String {
             .map_or(f64::NAN, |p| p.wall_seconds),
         None => a.run_wall_seconds,
     };
-    row(
-        "chosen",
-        a.elements,
-        a.dt,
-        a.steps,
-        a.dof_steps,
+    rows.push(Row {
+        role: "chosen",
+        elements: a.elements,
+        dt: a.dt,
+        steps: a.steps,
+        dof_steps: a.dof_steps,
         wall,
-        f64::NAN,
-        &a.estimated_error,
-    );
-    s
+        diff: f64::NAN,
+        estimate: &a.estimated_error,
+    });
+    let count = |f: fn(&Row) -> u64| Column::Count(rows.iter().map(f).collect());
+    let measured = |f: fn(&Row) -> f64| Column::RealOrNone(rows.iter().map(f).collect());
+    let columns = [
+        Column::Label(rows.iter().map(|r| r.role.to_string()).collect()),
+        count(|r| r.elements as u64),
+        Column::Real(rows.iter().map(|r| r.dt).collect()),
+        count(|r| r.steps as u64),
+        count(|r| (r.dof_steps / r.steps.max(1) as f64).round() as u64),
+        Column::Real(rows.iter().map(|r| r.dof_steps).collect()),
+        measured(|r| r.wall),
+        measured(|r| r.diff),
+        measured(|r| r.estimate.total),
+        measured(|r| r.estimate.mesh),
+        measured(|r| r.estimate.step),
+    ];
+    let mut t = Table::new();
+    for (name, column) in ACCURACY_COLUMNS.into_iter().zip(columns) {
+        t.push(name, column);
+    }
+    t
+}
+
+/// `accuracy.csv`'s text ([`accuracy_table`]).
+pub fn accuracy_csv(a: &Accuracy) -> String {
+    accuracy_table(a).to_csv()
 }
 
 fn order_text(f: &LadderFit) -> String {

@@ -215,14 +215,25 @@ pub fn resolve_scene(text: &str, overrides: &[String]) -> Result<Resolved> {
 
 /// Read a scene file, apply overrides, deserialize and validate.
 pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Resolved> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    resolve_scene(&text, overrides).map_err(|e| match e {
+    let text = read_scene(path)?;
+    resolve_scene(&text, overrides).map_err(|e| in_file(e, path))
+}
+
+/// A scene file's text (an unreadable file is an I/O error naming it).
+pub fn read_scene(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).map_err(|e| Error::io(path, e))
+}
+
+/// Name the scene file in a parse error of its text (made by a function
+/// that was given the text only: a study, a sweep); other errors as they are.
+pub fn in_file(e: Error, path: &Path) -> Error {
+    match e {
         Error::Parse { reason, field } => Error::Parse {
             reason: format!("{}: {reason}", path.display()),
             field,
         },
         other => other,
-    })
+    }
 }
 
 #[cfg(test)]

@@ -14,7 +14,10 @@ mod speed;
 mod validate;
 
 pub use discretization::{DEFAULT_GRADING_RATIO, Discretization, MAX_GALERKIN_MODES};
-pub use load::{apply_override, load_scene, parse_scene, resolve_scene, scene_with_overrides};
+pub use load::{
+    apply_override, in_file, load_scene, parse_scene, read_scene, resolve_scene,
+    scene_with_overrides,
+};
 pub use memory::{
     MEMORY_BUDGET_BYTES, MemoryEstimate, check_budget, estimate as estimate_memory, history_rows,
 };

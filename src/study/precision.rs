@@ -147,7 +147,18 @@ pub fn precision_variants(
     let (n0, dt0) = (base.elements, base.dt);
     let r = ratio as f64;
     let fine = levels as i32; // one beyond the grid's finest
-    let ref_n = n0 * ratio.pow(fine as u32);
+    // the finest mesh of the reference run, checked: a ratio so large it
+    // overflows would wrap to a meaningless mesh in a release build
+    let ref_n = ratio
+        .checked_pow(fine as u32)
+        .and_then(|p| n0.checked_mul(p))
+        .ok_or_else(|| {
+            Error::invalid(
+                "--ratio",
+                ratio,
+                format!("too large: the reference mesh, N₀ = {n0} × ratio^{fine}, overflows"),
+            )
+        })?;
     let ref_dt = dt0 / r.powi(fine);
     let spaces: Vec<Option<SpaceChoice>> = if spaces.is_empty() {
         vec![None]
