@@ -329,6 +329,26 @@ fn not_run(n: &taut::study::compare::NotRun) -> NotRunTuple {
     )
 }
 
+/// The course every call takes: read the scene, run `job` on its text and
+/// overrides ([`work`]: without the GIL, with progress and Ctrl-C), name
+/// the scene file in a parse error, and save a failed contact problem into
+/// `out` as the CLI does.
+fn call<R: Send>(
+    py: Python<'_>,
+    (path, text): (Option<&str>, Option<String>),
+    set: &[String],
+    out: Option<&Path>,
+    progress: Option<&Bound<'_, PyAny>>,
+    job: impl FnOnce(&str, &[String], &mut dyn FnMut(usize, usize)) -> taut::Result<R> + Send,
+) -> PyResult<R> {
+    let (text, path) = scene_text(path, text).map_err(|e| to_py_err(py, e))?;
+    work(py, progress, |report| {
+        job(&text, set, &mut |d, t| report(d, t))
+    })?
+    .map_err(|e| named(e, path.as_deref()))
+    .map_err(|e| failed(py, e, out))
+}
+
 /// What `run` hands back: `(summary_json, history_columns, warnings,
 /// accuracy_columns)`, the last for a `tolerance` run only.
 type RunTuple<'py> = (
@@ -356,7 +376,7 @@ fn run<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<RunTuple<'py>> {
     let err = |e| to_py_err(py, e);
-    let (text, path) = scene_text(path, text).map_err(err)?;
+    let scene = (path, text);
     if let Some(tol) = tolerance {
         use taut::study::tolerance::{Quantity, parse_tolerance, tolerance_run};
         let quantity: Quantity = quantity
@@ -365,11 +385,14 @@ fn run<'py>(
             .parse()
             .map_err(err)?;
         let tol = parse_tolerance(&tol).map_err(err)?;
-        let r = work(py, progress.as_ref(), |report| {
-            tolerance_run(&text, &set, quantity, tol, &mut |d, t| report(d, t))
-        })?
-        .map_err(|e| named(e, path.as_deref()))
-        .map_err(|e| failed(py, e, out.as_deref()))?;
+        let r = call(
+            py,
+            scene,
+            &set,
+            out.as_deref(),
+            progress.as_ref(),
+            |text, set, p| tolerance_run(text, set, quantity, tol, p),
+        )?;
         let summary = match &out {
             Some(dir) => taut::report::write_tolerant_run(dir, &r).map_err(err)?,
             None => taut::report::Summary::new(&r.scene, &r.output),
@@ -392,13 +415,17 @@ fn run<'py>(
             "is what --tolerance is on: give tolerance too",
         )));
     }
-    let sc = taut::resolve_scene(&text, &set)
-        .map_err(|e| named(e, path.as_deref()))
-        .map_err(err)?;
-    let output = work(py, progress.as_ref(), |report| {
-        taut::run(&sc, &mut |done, total| report(done, total))
-    })?
-    .map_err(|e| failed(py, e, out.as_deref()))?;
+    let (sc, output) = call(
+        py,
+        scene,
+        &set,
+        out.as_deref(),
+        progress.as_ref(),
+        |text, set, p| {
+            let sc = taut::resolve_scene(text, set)?;
+            taut::run(&sc, p).map(|o| (sc, o))
+        },
+    )?;
     let summary = match &out {
         Some(dir) => taut::report::write_run(dir, &sc, &output).map_err(err)?,
         None => taut::report::Summary::new(&sc, &output),
@@ -486,7 +513,6 @@ fn compare<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
-    let (text, path) = scene_text(path, text).map_err(err)?;
     let request = CompareRequest {
         formulations,
         methods,
@@ -495,11 +521,14 @@ fn compare<'py>(
         reference_method,
         batch,
     };
-    let c = work(py, progress.as_ref(), |report| {
-        request.run(&text, &set, &mut |d, t| report(d, t))
-    })?
-    .map_err(|e| named(e, path.as_deref()))
-    .map_err(|e| failed(py, e, out.as_deref()))?;
+    let c = call(
+        py,
+        (path, text),
+        &set,
+        out.as_deref(),
+        progress.as_ref(),
+        |text, set, p| request.run(text, set, p),
+    )?;
     if let Some(dir) = &out {
         taut::report::write_compare(dir, &c).map_err(err)?;
     }
@@ -530,7 +559,6 @@ fn converge<'py>(
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     use taut::study::request::ConvergeOutcome;
     let err = |e| to_py_err(py, e);
-    let (text, path) = scene_text(path, text).map_err(err)?;
     let request = ConvergeRequest {
         refine,
         levels,
@@ -538,11 +566,14 @@ fn converge<'py>(
         methods,
         discretizations,
     };
-    let outcome = work(py, progress.as_ref(), |report| {
-        request.run(&text, &set, &mut |d, t| report(d, t))
-    })?
-    .map_err(|e| named(e, path.as_deref()))
-    .map_err(|e| failed(py, e, out.as_deref()))?;
+    let outcome = call(
+        py,
+        (path, text),
+        &set,
+        out.as_deref(),
+        progress.as_ref(),
+        |text, set, p| request.run(text, set, p),
+    )?;
     if let Some(dir) = &out {
         match &outcome {
             ConvergeOutcome::One(c) => taut::report::write_converge(dir, c),
@@ -577,7 +608,6 @@ fn precision<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
-    let (text, path) = scene_text(path, text).map_err(err)?;
     let request = PrecisionRequest {
         formulations,
         methods,
@@ -586,11 +616,14 @@ fn precision<'py>(
         ratio,
         batch,
     };
-    let p = work(py, progress.as_ref(), |report| {
-        request.run(&text, &set, &mut |d, t| report(d, t))
-    })?
-    .map_err(|e| named(e, path.as_deref()))
-    .map_err(|e| failed(py, e, out.as_deref()))?;
+    let p = call(
+        py,
+        (path, text),
+        &set,
+        out.as_deref(),
+        progress.as_ref(),
+        |text, set, p| request.run(text, set, p),
+    )?;
     if let Some(dir) = &out {
         taut::report::write_precision(dir, &p).map_err(err)?;
     }
