@@ -95,10 +95,10 @@ class Run:
         warnings: List[str],
         accuracy: Optional[Table] = None,
     ) -> None:
-        self.summary = summary
-        self.history = history
-        self.warnings = warnings
-        self.accuracy = accuracy
+        self.summary: Dict[str, Any] = summary
+        self.history: Table = history
+        self.warnings: List[str] = warnings
+        self.accuracy: Optional[Table] = accuracy
 
     def __repr__(self) -> str:
         c = self.summary.get("carriers", [{}])[0]
