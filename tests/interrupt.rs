@@ -21,6 +21,14 @@ fn short() -> Vec<String> {
 
 #[test]
 fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results() {
+    // a request stands until the last call at work returns
+    let (a, b) = (interrupt::Call::enter(), interrupt::Call::enter());
+    interrupt::request();
+    drop(a);
+    assert!(interrupt::requested(), "one call still at work");
+    drop(b);
+    assert!(!interrupt::requested(), "withdrawn with the last call");
+
     let sc = resolve_scene(REFERENCE, &short()).unwrap();
 
     // a run stops at the step after the request, from inside its progress

@@ -226,7 +226,10 @@ fn work<R: Send>(
                 delivered = pending;
                 if let Err(e) = cb.call1(m) {
                     failure = Some(e);
-                    taut::interrupt::request();
+                    // the last report comes after the work: nothing to stop
+                    if !finished {
+                        taut::interrupt::request();
+                    }
                 }
             }
             // a Ctrl-C stops the work; a second one while it stops is the same request

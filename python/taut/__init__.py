@@ -101,11 +101,8 @@ class Run:
         self.accuracy: Optional[Table] = accuracy
 
     def __repr__(self) -> str:
-        c = self.summary.get("carriers", [{}])[0]
-        return (
-            f"taut.Run({self.history.rows} rows, P_l = {c.get('loss_fraction')}, "
-            f"{len(self.warnings)} warnings)"
-        )
+        loss = [c.get("loss_fraction") for c in self.summary.get("carriers", [])]
+        return f"taut.Run({self.history.rows} rows, P_l = {loss}, {len(self.warnings)} warnings)"
 
 
 def _scene(scene: Scene) -> Tuple[Optional[str], Optional[str]]:
@@ -155,6 +152,10 @@ def _key(key: str) -> str:
     return key if key and all(c.isascii() and (c.isalnum() or c in "_-") for c in key) else json.dumps(key)
 
 
+# the largest integer the library takes (a 64-bit size)
+_LARGEST = 2**63 - 1
+
+
 def _opt_count(name: str, value: Optional[int], least: int) -> Optional[int]:
     """An optional integer argument (None: the default), as `_count`."""
     return None if value is None else _count(name, value, least)
@@ -171,12 +172,12 @@ def _count(name: str, value: int, least: int) -> int:
             allowed=f"an integer ≥ {least}",
         )
     n = int(value)
-    if n < least:
+    if n < least or n > _LARGEST:
         raise SceneError(
-            f"invalid argument: `{name}` = {n}: must be an integer ≥ {least}",
+            f"invalid argument: `{name}` = {n}: must be an integer in {least} ..= {_LARGEST}",
             field=name,
             value=str(n),
-            allowed=f"an integer ≥ {least}",
+            allowed=f"an integer in {least} ..= {_LARGEST}",
         )
     return n
 
@@ -317,14 +318,15 @@ def run(
 
     Returns:
         Run with `.summary` (dict of summary.json), `.history` (Table of
-        history.csv's columns) and `.warnings`.
+        history.csv's columns), `.warnings`, and with a tolerance
+        `.accuracy` (Table of accuracy.csv's columns).
 
     Raises:
         SceneError, DivergedError, ContactError, ToleranceError, OutputError;
         KeyboardInterrupt.
     """
     path, text = _scene(scene)
-    tol = None if tolerance is None else _toml(tolerance)
+    tol = None if tolerance is None else _toml(_real("tolerance", tolerance))
     with _Sink(progress, "steps" if tol is None else "runs") as p:
         summary, history, warnings, accuracy = _taut.run(
             path, text, _overrides(set), _out(out), tol, quantity, p

@@ -1,6 +1,10 @@
 """The exceptions taut raises: each carries the fields of the library's error
 (`taut::Error`, src/error.rs) as attributes, besides the CLI's message.
 
+The parameters after the message have defaults so that an exception
+survives pickling (multiprocessing): unpickling calls the class with the
+message only and then restores the attributes.
+
 Every class derives from `TautError`, and from the built-in exception a
 Python user would expect (`ValueError` for bad input, `OSError` for files),
 so `except ValueError` keeps working in code that does not know taut.
@@ -54,7 +58,13 @@ class DivergedError(TautError, ArithmeticError):
     """
 
     def __init__(
-        self, message: str, step: int, time: float, quantity: str, value: float, cause: str
+        self,
+        message: str,
+        step: int = 0,
+        time: float = 0.0,
+        quantity: str = "",
+        value: float = 0.0,
+        cause: str = "",
     ) -> None:
         super().__init__(message)
         self.step = step
@@ -80,11 +90,11 @@ class ContactError(TautError):
     def __init__(
         self,
         message: str,
-        step: int,
-        time: float,
-        run: str,
-        reason: str,
-        problem: str,
+        step: int = 0,
+        time: float = 0.0,
+        run: str = "",
+        reason: str = "",
+        problem: str = "",
         saved: Optional[str] = None,
     ) -> None:
         super().__init__(message)
@@ -102,7 +112,9 @@ class ToleranceError(TautError, ValueError):
     Attributes: quantity, tolerance, reason.
     """
 
-    def __init__(self, message: str, quantity: str, tolerance: float, reason: str) -> None:
+    def __init__(
+        self, message: str, quantity: str = "", tolerance: float = 0.0, reason: str = ""
+    ) -> None:
         super().__init__(message)
         self.quantity = quantity
         self.tolerance = tolerance
@@ -116,7 +128,7 @@ class OutputError(TautError, OSError):
         path: the file or folder.
     """
 
-    def __init__(self, message: str, path: str) -> None:
+    def __init__(self, message: str, path: str = "") -> None:
         super().__init__(message)
         self.path = path
 

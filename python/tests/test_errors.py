@@ -78,6 +78,9 @@ def test_tolerance_arguments_are_checked_by_name():
     with pytest.raises(taut.SceneError) as e:
         taut.run(REFERENCE, quantity="force", progress=False)
     assert e.value.field == "quantity" and "tolerance" in e.value.allowed
+    with pytest.raises(taut.SceneError) as e:
+        taut.run(REFERENCE, tolerance=object(), progress=False)  # type: ignore[arg-type]
+    assert e.value.field == "tolerance"
 
 
 def test_a_non_finite_value_is_refused_by_name():
@@ -150,3 +153,23 @@ def test_integer_arguments_are_checked_by_name():
     with pytest.raises(taut.SceneError) as e:
         taut.sweep(REFERENCE, {"speed_ratio": (0.5, 1.0, 2)}, threads=-2, progress=False)
     assert e.value.field == "threads"
+    with pytest.raises(taut.SceneError) as e:
+        taut.sweep(REFERENCE, {"speed_ratio": (0.5, 1.0, 2)}, batch=2**70, progress=False)
+    assert e.value.field == "batch"
+
+
+def test_exceptions_survive_pickling_with_their_attributes():
+    """multiprocessing sends exceptions between processes by pickle."""
+    import pickle
+
+    made = [
+        taut.SceneError("m", field="beam.length", value="-1", allowed="must be > 0 (m)"),
+        taut.DivergedError("m", 3, 0.5, "λ", 1e9, "too large a step"),
+        taut.ContactError("m", 1, 0.1, "formulation penalty", "cycling", '{"level": "position"}', "/tmp/x.json"),
+        taut.ToleranceError("m", "force", 1e-3, "does not converge"),
+        taut.OutputError("m", "/tmp/out"),
+    ]
+    for e in made:
+        back = pickle.loads(pickle.dumps(e))
+        assert type(back) is type(e) and str(back) == str(e)
+        assert vars(back) == vars(e), type(e).__name__
