@@ -123,6 +123,24 @@ def test_a_stop_stops_every_call_running_in_the_process():
     assert r.history.rows > 100
 
 
+def test_runs_in_threads_give_the_numbers_of_runs_in_turn():
+    """The GIL is released, so a thread pool runs several runs at once; the
+    numbers are those of the same runs made one after another."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    sets = [{"beam.tension": t, "mesh.elements": 100, "time.step": 2e-4, "time.end": 0.3} for t in (2e4, 2.5e4, 3e4, 3.5e4)]
+
+    def one(s):
+        return taut.run(REFERENCE, set=s, progress=False)
+
+    alone = [one(s) for s in sets]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        together = list(pool.map(one, sets))
+    for a, b in zip(alone, together):
+        for k in a.history:
+            assert np.array_equal(a.history[k], b.history[k]), k
+
+
 def test_sweep_progress_is_in_order_and_ends_at_the_total_with_workers_racing():
     seen = []
     taut.sweep(
