@@ -45,6 +45,35 @@ fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results
         "cleared: runs again"
     );
 
+    // a study stops as a whole: a stopped run is not one of its failures
+    interrupt::request();
+    let compare = taut::study::request::CompareRequest {
+        formulations: "lagrange,penalty".into(),
+        methods: Some("generalized_alpha,bathe".into()),
+        discretizations: None,
+        reference: "lagrange".into(),
+        reference_method: None,
+        batch: None,
+    }
+    .run(REFERENCE, &short(), &mut |_, _| {});
+    let converge = taut::study::request::ConvergeRequest {
+        refine: "step".into(),
+        levels: 3,
+        ratio: 2.0,
+        methods: Some("newmark,bathe".into()),
+        discretizations: None,
+    }
+    .run(REFERENCE, &short(), &mut |_, _| {});
+    interrupt::clear();
+    assert!(
+        matches!(compare, Err(Error::Interrupted)),
+        "compare listed it"
+    );
+    assert!(
+        matches!(converge, Err(Error::Interrupted)),
+        "converge listed it"
+    );
+
     // a batch: every lane stops
     interrupt::request();
     let outs = taut::run_batch(

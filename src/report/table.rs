@@ -6,6 +6,7 @@
 //! two can never disagree on a column's name, order or value: the CSV
 //! writers and the module read the same [`Table`].
 
+use std::io::Write;
 use std::path::Path;
 
 use super::fmt_f64;
@@ -129,23 +130,44 @@ impl Table {
 
     /// The table as CSV: a header line, then one line per row.
     pub fn to_csv(&self) -> String {
-        let mut s = self.names().join(",");
-        s.push('\n');
-        for i in 0..self.rows() {
-            for (k, (_, c)) in self.columns.iter().enumerate() {
-                if k > 0 {
-                    s.push(',');
-                }
-                c.write_cell(i, &mut s);
-            }
-            s.push('\n');
-        }
+        let mut s = String::new();
+        self.rows_into(&mut |line| {
+            s.push_str(line);
+            Ok(())
+        })
+        .expect("writing to a String cannot fail");
         s
     }
 
-    /// Write [`Table::to_csv`] to `path`.
+    /// Write [`Table::to_csv`] to `path`, a line at a time (a long run's
+    /// history is never held as one text).
     pub fn write_csv(&self, path: &Path) -> Result<()> {
-        std::fs::write(path, self.to_csv()).map_err(|e| Error::io(path, e))
+        let io = |e| Error::io(path, e);
+        let file = std::fs::File::create(path).map_err(io)?;
+        let mut w = std::io::BufWriter::new(file);
+        self.rows_into(&mut |line| w.write_all(line.as_bytes()))
+            .map_err(io)?;
+        w.flush().map_err(io)
+    }
+
+    /// Hand the header and then each row, as a CSV line with its line
+    /// break, to `sink`.
+    fn rows_into(&self, sink: &mut dyn FnMut(&str) -> std::io::Result<()>) -> std::io::Result<()> {
+        let mut line = self.names().join(",");
+        line.push('\n');
+        sink(&line)?;
+        for i in 0..self.rows() {
+            line.clear();
+            for (k, (_, c)) in self.columns.iter().enumerate() {
+                if k > 0 {
+                    line.push(',');
+                }
+                c.write_cell(i, &mut line);
+            }
+            line.push('\n');
+            sink(&line)?;
+        }
+        Ok(())
     }
 }
 

@@ -331,6 +331,8 @@ pub fn compare_methods(
                 keys.push((m, d, f));
                 shown.push(show);
             }
+            // stopped on request: not this combination's failure
+            Err(Error::Interrupted) => return Err(Error::Interrupted),
             // the combination means nothing for this scene: a scene error
             // (both keys named) or a step the method cannot take
             Err(e @ (Error::Invalid { .. } | Error::Parse { .. } | Error::Override { .. })) => {

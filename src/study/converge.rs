@@ -224,6 +224,8 @@ pub fn converge_variants(
                     method: label,
                     study,
                 }),
+                // stopped on request: not this variant's failure
+                Err(Error::Interrupted) => return Err(Error::Interrupted),
                 Err(e) => skipped.push(NotRun {
                     method: m.map_or_else(String::new, |m| m.name()),
                     discretization: s.map_or_else(String::new, |s| s.name().to_string()),

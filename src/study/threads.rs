@@ -46,20 +46,26 @@ pub fn check_threads(n: usize) -> Result<usize> {
 /// `--threads`, never a panic in the first parallel loop.
 pub fn start_pool(threads: Option<usize>) -> Result<usize> {
     let n = threads.map(check_threads).transpose()?;
-    rayon::ThreadPoolBuilder::new()
-        // 0: rayon's default, one per core
-        .num_threads(n.unwrap_or(0))
+    pool_builder(n)
         .build_global()
-        .map_err(|e| {
-            Error::invalid(
-                "--threads",
-                n.map_or_else(|| "default (one per core)".to_string(), |n| n.to_string()),
-                format!(
-                    "the worker pool could not start ({e}): give fewer threads, or raise the process's thread or memory limit"
-                ),
-            )
-        })?;
+        .map_err(|e| pool_error(n, e))?;
     Ok(rayon::current_num_threads())
+}
+
+/// A pool of `n` workers (`None`: rayon's default, one per core).
+fn pool_builder(n: Option<usize>) -> rayon::ThreadPoolBuilder {
+    rayon::ThreadPoolBuilder::new().num_threads(n.unwrap_or(0))
+}
+
+/// A pool the system would not start, as an error naming `--threads`.
+fn pool_error(n: Option<usize>, e: rayon::ThreadPoolBuildError) -> Error {
+    Error::invalid(
+        "--threads",
+        n.map_or_else(|| "default (one per core)".to_string(), |n| n.to_string()),
+        format!(
+            "the worker pool could not start ({e}): give fewer threads, or raise the process's thread or memory limit"
+        ),
+    )
 }
 
 /// Run `work` in a worker pool of its own with `threads` workers (default:
@@ -69,16 +75,7 @@ pub fn start_pool(threads: Option<usize>) -> Result<usize> {
 /// bounds and errors as [`start_pool`].
 pub fn in_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> R + Send) -> Result<R> {
     let n = threads.map(check_threads).transpose()?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(n.unwrap_or(0))
-        .build()
-        .map_err(|e| {
-            Error::invalid(
-                "threads",
-                n.map_or_else(|| "default (one per core)".to_string(), |n| n.to_string()),
-                format!("the worker pool could not start ({e}): give fewer threads"),
-            )
-        })?;
+    let pool = pool_builder(n).build().map_err(|e| pool_error(n, e))?;
     Ok(pool.install(work))
 }
 
