@@ -24,6 +24,14 @@
 //! eigenproblem is paid once per run, outside the timing; its cost is in
 //! `model::eigen`'s docs).
 //!
+//! Group `fine`: the step loop from N = 800 to 6400 at Δt = 1e-4 s, alone
+//! and as a batch of four speeds (`integrate::batch`), DOF-steps/s. The first
+//! 1000 steps are timed, when the solve's decaying tails run ahead of the
+//! waves over an undisturbed beam: without the sweeps' flush of negligible
+//! values (`model::banded`, "Subnormals") they passed through the subnormal
+//! range there, and DOF-steps/s fell up to 10× at N ≥ 1400 on an Intel Xeon.
+//! The target: DOF-steps/s flat within 1.5× across N, alone and batched.
+//!
 //! Group `run`: one complete `taut::run` of the reference scene as shipped
 //! (400 elements, 6000 steps, recording included), for context.
 //!
@@ -240,8 +248,47 @@ fn bench_batch(c: &mut Criterion) {
     group.finish();
 }
 
+/// Group `fine` (module docs).
+fn bench_fine(c: &mut Criterion) {
+    let mut group = c.benchmark_group("fine");
+    group.sample_size(10).warm_up_time(Duration::from_secs(1));
+    for n in [800usize, 1600, 3200, 6400] {
+        // ≈ 10 ns per DOF-step: 0.13 s per iteration at N = 6400
+        group.measurement_time(Duration::from_secs(if n >= 3200 { 15 } else { 6 }));
+        let at = |speed: f64| {
+            resolved(&[
+                format!("mesh.elements={n}"),
+                "time.step=1e-4".to_string(),
+                format!("carrier.0.speed.cruise={speed}"),
+            ])
+        };
+        bench_steps(&mut group, &format!("alone/N={n}"), &at(100.0));
+        let scenes: Vec<taut::Resolved> = [90.0, 100.0, 110.0, 120.0].map(at).to_vec();
+        let list: Vec<(usize, &taut::Resolved)> = scenes.iter().enumerate().collect();
+        let dofs = Integrator::new(&scenes[0]).expect("integrator").dofs();
+        group.throughput(Throughput::Elements(
+            (dofs * STEPS_PER_ITER * scenes.len()) as u64,
+        ));
+        group.bench_function(format!("batched4/N={n}/dofs={dofs}"), |b| {
+            b.iter_batched(
+                || taut::integrate::Batch::new(&list).0.expect("one batch"),
+                |mut batch| {
+                    for _ in 0..STEPS_PER_ITER {
+                        batch.step();
+                    }
+                    black_box(batch.lanes().len());
+                    batch
+                },
+                BatchSize::PerIteration,
+            );
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
+    bench_fine,
     bench_step,
     bench_shapes,
     bench_methods,

@@ -561,6 +561,12 @@ impl Batch {
         }
     }
 
+    /// The beam displacements and velocities of every lane, interleaved
+    /// (`d[i·L + l]` is dof i of lane l), for checks (`tests/subnormal.rs`).
+    pub fn beam_vectors(&self) -> (&[f64], &[f64]) {
+        (&self.d, &self.v)
+    }
+
     /// rᵀd of lane `l` (a carrier's or a probe's displacement).
     pub fn displacement_at(&self, l: usize, pv: &PointVector) -> f64 {
         pv.dot_lane(&self.d, self.lanes.len(), l)
