@@ -479,7 +479,7 @@ fn ladder_slope(errors: &[f64]) -> f64 {
 }
 
 /// Observed order of Moreau–Jean through impacts, over the whole ladder:
-/// measured 1.03 with θ = ½ (single halvings scatter from 0.8 to 1.3, as
+/// measured 1.03 with θ = ½ (single halvings scatter from 0.77 to 1.29, as
 /// the impact instants fall at different places within the steps);
 /// ±0.25 separates it from second order.
 const IMPACT_ORDER_TOL: f64 = 0.25;

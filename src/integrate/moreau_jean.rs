@@ -39,10 +39,10 @@
 //! W_v becomes negative, and the law has no solution (measured: the
 //! reference case at V0 = 120 and 125 m/s, Δt = 1e-4 s, stopped at its last
 //! step). At most a step or two per arrival takes the end point, so a
-//! run's order is unchanged. The recorded force P/Δt is the step's
-//! mean force: read as λ(t_{n+1}) it lags by about θΔt, so the force
-//! history is first order in Δt (measured 0.97–1.05 on a riding mass in 40
-//! exact modes) while the displacements are second order.
+//! run's order is unchanged. The recorded force P/Δt is the step's mean
+//! force, the force near t_{n+θ}: read as λ(t_{n+1}) it lags by about θΔt,
+//! a first-order offset in the force history, while the displacements are
+//! second order.
 //!
 //! The position gap is not imposed, only its rate: between impacts, with
 //! U_n = U_{n+1} = 0, it drifts by O(Δt³) per step and O(Δt²) over a run
