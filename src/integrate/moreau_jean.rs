@@ -20,11 +20,36 @@
 //! unknown is Δv with v_{n+1} = v_n + Δv (c_v = 1) and
 //! d_{n+1} = d_n + Δt v_n + θΔt Δv (c_d = θΔt), and the multipliers are
 //! impulses: the system hands the law
-//! `(U_free, W_v)` and the force recorded is P/Δt. The position gap is not
-//! imposed, so it drifts by O(Δt²) per impact (the largest penetration is
-//! reported). First order where impacts occur, however small Δt; second
-//! order between them with θ = ½ (the trapezoidal rule, which conserves a
-//! linear system's energy).
+//! `(U_free, W_v)` and the force recorded is P/Δt.
+//!
+//! **Where the impulse acts.** The gap rate is taken at t_{n+1} (the law's
+//! condition), but the impulse P_{n+1} is applied at the carrier's position
+//! at t_{n+θ}, `r(x_m(t_{n+θ}))`, like every other force of the θ-rule:
+//! P stands for `∫ r(x_m(t)) λ(t) dt` over the step, and with θ = ½ that is
+//! the midpoint rule, O(Δt³) per step. Applying it at `x_m(t_{n+1})`
+//! instead puts the force, on average, VΔt/2 ahead of where it acts: an
+//! O(Δt²) error per step (`V r'λΔt²/2`), first order over a run. Measured on
+//! a riding mass (docs/methods.md): first order (0.99–1.00) with the
+//! impulse at t_{n+1}, second order (1.98–2.01) at t_{n+½}. For a carrier
+//! at rest the two are the same. One exception: a step that ends with a
+//! carrier within one step's travel (|V|Δt) of an end of the beam applies
+//! its impulse at x_m(t_{n+1}). Arriving at a pinned end, the mass follows
+//! the beam's slope there (the convective rate V·v'), and an impulse
+//! behind it tilts that slope the wrong way: the velocity-level Delassus
+//! W_v becomes negative, and the law has no solution (measured: the
+//! reference case at V0 = 120 and 125 m/s, Δt = 1e-4 s, stopped at its last
+//! step). At most a step or two per arrival takes the end point, so a
+//! run's order is unchanged. The recorded force P/Δt is the step's mean
+//! force, the force near t_{n+θ}: read as λ(t_{n+1}) it lags by about θΔt,
+//! a first-order offset in the force history, while the displacements are
+//! second order.
+//!
+//! The position gap is not imposed, only its rate: between impacts, with
+//! U_n = U_{n+1} = 0, it drifts by O(Δt³) per step and O(Δt²) over a run
+//! (measured 4e-8 m at Δt = 1.25e-5 s on the riding mass), and by O(Δt²)
+//! at an impact; the largest penetration is reported. First order where
+//! impacts occur, however small Δt; second order between them with θ = ½
+//! (the trapezoidal rule, which conserves a linear system's energy).
 
 use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
@@ -79,14 +104,31 @@ impl MoreauJean {
     }
 }
 
+/// When the impulse acts (module docs): t_{n+θ}, or t_{n+1} when a
+/// contact carrier ends the step within one step's travel, |V|Δt, of an
+/// end of the beam.
+fn impulse_time(sys: &System, t_theta: f64, t1: f64) -> f64 {
+    let near_end = sys
+        .carriers
+        .iter()
+        .filter(|c| c.contact.is_some())
+        .any(|c| {
+            let x = c.props.motion.position(t1);
+            x.min(sys.length - x) < c.props.motion.speed(t1).abs() * sys.dt
+        });
+    if near_end { t1 } else { t_theta }
+}
+
 impl Stepper for MoreauJean {
     fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
         let (theta, dt) = (self.theta, self.dt);
         let k = sys.columns();
         let t1 = st.next_time(dt);
         let t_theta = st.t + theta * dt;
-        // loads at t_{n+θ}; the impulse direction and the gap row at t_{n+1}
-        sys.place(t_theta, t1, t1);
+        // loads and the impulse direction at t_{n+θ} (at t_{n+1} within a
+        // step's travel of an end), the gap row at t_{n+1} (module docs:
+        // where the impulse acts)
+        sys.place(t_theta, impulse_time(sys, t_theta, t1), t1);
         let beam = sys.beam();
         for i in 0..st.d.len() {
             self.w[i] = dt * (st.d[i] + theta * dt * st.v[i]);
