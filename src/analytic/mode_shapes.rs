@@ -103,7 +103,7 @@ pub const MAX_MODES: usize = 1000;
 
 /// Which supported end pair the basis is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Ends {
+pub(super) enum Ends {
     PinnedPinned,
     ClampedPinned,
     /// Evaluated as clamped–pinned at `L − x`.
@@ -114,13 +114,13 @@ enum Ends {
 /// One mode in the stable form `P e^{−αs} + Q e^{−α(L−s)} + C cos βs + D sin βs`
 /// (`s = x`, or `L − x` for a mirrored basis), coefficients mass-normalized.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Stable {
-    alpha: f64,
-    beta: f64,
-    p: f64,
-    q: f64,
-    c: f64,
-    d: f64,
+pub(super) struct Stable {
+    pub(super) alpha: f64,
+    pub(super) beta: f64,
+    pub(super) p: f64,
+    pub(super) q: f64,
+    pub(super) c: f64,
+    pub(super) d: f64,
 }
 
 impl Stable {
@@ -360,6 +360,12 @@ impl ModeShapes {
     /// ω_j, rad/s, ascending (the modal stiffness is `diag(ω_j²)`).
     pub fn omega(&self) -> &[f64] {
         &self.omega
+    }
+
+    /// The end pair and every mode's stable-form coefficients, for the
+    /// fast evaluation at a moving point ([`super::FastShapes`]).
+    pub(super) fn parts(&self) -> (Ends, &[Stable]) {
+        (self.ends, &self.modes)
     }
 
     /// The coordinate `s` the stable form is written in, and `ds/dx`.

@@ -9,7 +9,8 @@
 //!   mass dofs.
 //! * [`Stepper`]: one method's step. A method is one file:
 //!   `gen_alpha.rs` (generalized-α, Newmark, HHT, WBZ), `bathe.rs`,
-//!   `central_difference.rs`, `moreau_jean.rs`. [`stepper_for`] picks the
+//!   `central_difference.rs`, `moreau_jean.rs`, `modal_exact.rs` (with
+//!   `oscillator.rs`, the exact step of one mode). [`stepper_for`] picks the
 //!   one a scene asks for (`[integrator] method`, [`crate::scene::Method`]);
 //!   a method written outside the crate implements [`Stepper`] and
 //!   [`MethodFactory`] and runs through [`Integrator::with_method`],
@@ -26,7 +27,9 @@ mod central_difference;
 mod diagnose;
 mod energy;
 mod gen_alpha;
+mod modal_exact;
 mod moreau_jean;
+mod oscillator;
 mod state;
 mod system;
 
@@ -37,6 +40,8 @@ pub use central_difference::{
 };
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
+pub use modal_exact::{ModalCoefs, ModalExact};
+pub use oscillator::{MassStep, ModeSteps};
 pub use moreau_jean::MoreauJean;
 pub use state::State;
 pub use system::{
@@ -151,6 +156,7 @@ pub fn stepper_for(
             sys.set_multipliers(Multipliers::Impulses);
             Box::new(MoreauJean::new(theta, sys, st)?)
         }
+        Scheme::ModalExact => Box::new(ModalExact::new(sys)?),
     })
 }
 

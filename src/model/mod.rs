@@ -4,6 +4,7 @@
 pub mod banded;
 pub mod beam;
 pub mod eigen;
+pub mod lanes;
 pub mod element;
 pub mod mesh;
 pub mod modal;

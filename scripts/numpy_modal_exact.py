@@ -1,0 +1,359 @@
+#!/usr/bin/env python3
+"""taut's ``modal_exact`` integrator in plain numpy/scipy, timed against taut.
+
+What this is
+------------
+A numpy/scipy implementation of the algorithm behind
+``integrator.method = "modal_exact"`` on ``mesh.kind = "galerkin"`` (MODEL
+§9.3, docs/methods.md "modal_exact"), vectorized over the modes and over the
+runs of a sweep, run beside the taut binary in one run of this script on one
+machine. It
+
+1. runs ``taut sweep SCENE --vary carrier.speed.cruise=START:STOP:COUNT``
+   (or one ``taut run`` per speed with ``--histories``) with the modal_exact
+   settings, R times, best process wall time, and reads sweep.csv;
+2. runs the numpy version of every run of that sweep at once (arrays of
+   runs × modes), R times, best in-process wall time (basis, coefficients,
+   the loop with recording);
+3. compares each run's P_l, contact switches and force statistics with
+   taut's, and (``--histories``) the histories step by step.
+
+The algorithm (the same as src/integrate/modal_exact.rs)
+-------------------------------------------------------
+- Basis (src/analytic/mode_shapes.rs): the J exact modes of the continuous
+  beam, mass-normalized; pinned–pinned ``sqrt(2/(ρA L)) sin(jπx/L)``,
+  clamped–pinned in the stable form ``P e^{−αx} + Q e^{−α(L−x)} + C cos βx
+  + D sin βx`` with β_j the roots of the characteristic equation on
+  ``βL ∈ [jπ, jπ + π/2]`` (bisected, vectorized over j), normalized in
+  closed form. taut evaluates the shapes at a moving point without
+  transcendental calls per mode (src/analytic/fast_shapes.rs); numpy calls
+  ``np.sin``/``np.cos``/``np.exp`` on the whole runs × modes array, its own
+  fastest way. The two agree to ~1e-13 of the shapes' size.
+- Each mode is an undamped oscillator ``η̈ + ω² η = f(t)``, its load linear
+  in time over a step between the samples at t_n and t_{n+1} (first-order
+  hold): ``η_{n+1} = cos(ωh) η + sin(ωh)/ω η̇ + a0 f_n + a1 f_{n+1}``,
+  ``η̇_{n+1} = −ω sin(ωh) η + cos(ωh) η̇ + b0 f_n + b1 f_{n+1}``
+  (``oscillator_coefficients``). The mass dof ``m q̈ + c q̇ + k q = f0 − λ``
+  likewise, exactly, through the exponential of its augmented 4 × 4 matrix.
+- The contact force is the unknown sample λ_{n+1}: the gap at the step's
+  end is ``g = g_free + W λ`` with ``W = Σ_j a1_j φ_j(x_{n+1})² + a1_q``;
+  Lagrange: ``λ = max(0, −g_free/W)`` (bilateral: ``−g_free/W``).
+- Initial state: beam at rest, mass touching, λ_0 from the acceleration
+  balance (as src/integrate/system.rs ``System::initial``).
+
+Agreement: the same discrete method in double precision; the shapes and the
+summation order differ, so histories agree to round-off magnified by the
+contact solve (checked with the tolerances named below).
+
+How to run
+----------
+From the repository root::
+
+    pip install -r scripts/requirements.txt && cargo build --release
+    python3 scripts/numpy_modal_exact.py --speeds 50:230:41 --modes 400 \\
+        --dt 1e-4 --repeat 3 [--check] [--json FILE]
+
+``--runs-alone`` also times numpy on one run at a time (the loop over runs
+in Python) and taut's ``--batch 1``.
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import scipy
+import scipy.linalg as sla
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from numpy_taut import load_scene, vector_position, parse_sweep  # noqa: E402
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+# --------------------------------------------------------------------------
+# The galerkin basis (src/analytic/mode_shapes.rs, src/analytic/modes.rs)
+# --------------------------------------------------------------------------
+
+
+def bisect_roots(f, lo, hi, iterations=64):
+    """Roots of f (vectorized over the arrays lo, hi: one bracket per mode)."""
+    f_lo = f(lo)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        f_mid = f(mid)
+        same = (f_mid > 0.0) == (f_lo > 0.0)
+        lo = np.where(same, mid, lo)
+        f_lo = np.where(same, f_mid, f_lo)
+        hi = np.where(same, hi, mid)
+    return np.where(np.abs(f(lo)) <= np.abs(f(hi)), lo, hi)
+
+
+class Basis:
+    """The J exact modes (pinned–pinned or clamped–pinned), mass-normalized."""
+
+    def __init__(self, sc, modes):
+        L, ei, t, ra = sc.length, sc.ei, sc.tension, sc.rho_a
+        j = np.arange(1, modes + 1, dtype=float)
+        self.length = L
+        if (sc.left, sc.right) == ("pinned", "pinned"):
+            k = j * math.pi / L
+            self.omega = k * np.sqrt((ei * k * k + t) / ra)
+            self.beta = k
+            self.alpha = np.zeros(modes)
+            amp = math.sqrt(2.0 / (ra * L))
+            self.p = self.q = self.c = np.zeros(modes)
+            self.d = np.full(modes, amp)
+            self.load_integral = np.where(j % 2 == 1, 2.0 * amp / k, 0.0)
+        elif (sc.left, sc.right) == ("clamped", "pinned") and ei > 0.0:
+            mu2 = t / ei
+
+            def h(beta):
+                alpha = np.sqrt(beta * beta + mu2)
+                num = alpha * np.sin(beta * L) - beta * np.tanh(alpha * L) * np.cos(beta * L)
+                return num / np.hypot(alpha, beta)
+
+            beta = bisect_roots(h, j * math.pi / L, (j * math.pi + 0.5 * math.pi) / L)
+            alpha = np.sqrt(beta * beta + mu2)
+            self.omega = math.sqrt(ei / ra) * alpha * beta
+            e = np.exp(-alpha * L)
+            r = beta / alpha
+            p, q, c, d = r, -r * e, -r * (1.0 - e * e), 1.0 + e * e
+            scale = 1.0 / np.sqrt(ra * integral_of_square(alpha, beta, p, q, c, d, L))
+            self.beta, self.alpha = beta, alpha
+            self.p, self.q, self.c, self.d = p * scale, q * scale, c * scale, d * scale
+            sl, cl = np.sin(beta * L), np.cos(beta * L)
+            ends = -np.expm1(-alpha * L) / alpha
+            self.load_integral = ((self.p + self.q) * ends + self.c * sl / beta
+                                  + self.d * (1.0 - cl) / beta)
+        else:
+            raise SystemExit(f"supports {sc.left}–{sc.right}: this script has the "
+                             "pinned–pinned and clamped–pinned bases only")
+
+    def values(self, x):
+        """φ_j(x) for positions x (shape R): an R × J array."""
+        x = np.clip(x, 0.0, self.length)[:, None]
+        v = self.c * np.cos(self.beta * x) + self.d * np.sin(self.beta * x)
+        if self.alpha[0] > 0.0:
+            v += (self.p * np.exp(-self.alpha * x)
+                  + self.q * np.exp(-self.alpha * (self.length - x)))
+        return v
+
+
+def integral_of_square(a, b, p, q, c, d, L):
+    """∫₀ᴸ φ² of the stable form, closed form (Stable::integral_of_square)."""
+    sl, cl = np.sin(b * L), np.cos(b * L)
+    s2 = np.sin(2.0 * b * L) / (4.0 * b)
+    cc, ss, cs = 0.5 * L + s2, 0.5 * L - s2, sl * sl / (2.0 * b)
+    trig = c * c * cc + d * d * ss + 2.0 * c * d * cs
+    e = np.exp(-a * L)
+    uu = -np.expm1(-2.0 * a * L) / (2.0 * a)
+    uw = L * e
+    k2 = a * a + b * b
+    ic = (a - e * (a * cl - b * sl)) / k2
+    is_ = (b - e * (a * sl + b * cl)) / k2
+    wc = cl * ic + sl * is_
+    ws = sl * ic - cl * is_
+    return (p * p * uu + q * q * uu + 2.0 * p * q * uw + 2.0 * p * (c * ic + d * is_)
+            + 2.0 * q * (c * wc + d * ws) + trig)
+
+
+# --------------------------------------------------------------------------
+# Exact propagation over a step (src/integrate/oscillator.rs)
+# --------------------------------------------------------------------------
+
+
+def oscillator_coefficients(omega, h):
+    """Per mode (arrays over ω): the step map of η̈ + ω²η = f with f linear
+    over the step, [η, η̇]_{n+1} = E [η, η̇]_n + [a0; b0] f_n + [a1; b1] f_{n+1}.
+
+    With u = ωh: a1 = h² (u − sin u)/u³, a0 = h² (2 sin²(u/2)/u²) − a1,
+    b1 = h (2 sin²(u/2)/u²), b0 = h sin(u)/u − b1; (u − sin u)/u³ by its
+    series below u = 1 (no cancellation)."""
+    u = omega * h
+    su, cu = np.sin(u), np.cos(u)
+    half = np.sin(0.5 * u)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c2 = np.where(u > 0.0, 2.0 * half * half / (u * u), 0.5)
+        sinc = np.where(u > 0.0, su / u, 1.0)
+        s3_direct = (u - su) / (u * u * u)
+        u2 = u * u
+        series, term = np.zeros_like(u), np.ones_like(u)
+        for k in range(10):  # Σ (−u²)^k / (2k + 3)!
+            series += term / math.factorial(2 * k + 3)
+            term = term * (-u2)
+        s3 = np.where(u < 1.0, series, s3_direct)
+    a1 = h * h * s3
+    a0 = h * h * c2 - a1
+    b1 = h * c2
+    b0 = h * sinc - b1
+    return {
+        "c": cu,
+        "s_over_w": h * sinc,
+        "w_s": -omega * su,
+        "a0": a0, "a1": a1, "b0": b0, "b1": b1,
+    }
+
+
+def mass_coefficients(m, k, c, h):
+    """The mass dof m q̈ + c q̇ + k q = F(t), F linear over the step, exactly:
+    the exponential of the augmented matrix of (q, q̇, F_n, (F_{n+1} − F_n)/h).
+    Returns E (2×2), g0 and g1 (2-vectors): [q, q̇]_{n+1} = E [q, q̇]_n
+    + g0 F_n + g1 F_{n+1}."""
+    a = np.array([[0.0, 1.0, 0.0, 0.0],
+                  [-k / m, -c / m, 1.0 / m, 0.0],
+                  [0.0, 0.0, 0.0, 1.0],
+                  [0.0, 0.0, 0.0, 0.0]])
+    ex = sla.expm(a * h)
+    e = ex[:2, :2]
+    g1 = ex[:2, 3] / h
+    g0 = ex[:2, 2] - g1
+    return e, g0, g1
+
+
+# --------------------------------------------------------------------------
+# The runs of a sweep, all at once
+# --------------------------------------------------------------------------
+
+
+def simulate_batch(scenes, modes):
+    """All runs at once (they share the beam and Δt; each has its own
+    carrier speed, mass, spring, preload). Arrays are runs × modes. Runs
+    that end retire (their rows dropped). Returns per-run histories."""
+    t_start = time.perf_counter()
+    sc = scenes[0]
+    R = len(scenes)
+    dt, s = sc.dt, sc.side
+    basis = Basis(sc, modes)
+    co = oscillator_coefficients(basis.omega, dt)
+    c, sw, ws = co["c"], co["s_over_w"], co["w_s"]
+    a0, a1, b0, b1 = co["a0"], co["a1"], co["b0"], co["b1"]
+    p = sc.distributed_load * basis.load_integral
+    # the uniform load is the same at both samples: (a0 + a1) p, (b0 + b1) p
+    ap, bp = (a0 + a1) * p, (b0 + b1) * p
+
+    steps_all = np.array([x.steps for x in scenes])
+    order = np.argsort(-steps_all, kind="stable")
+    runs = [scenes[j] for j in order]
+    steps = steps_all[order]
+    mq = [mass_coefficients(r.mass, r.stiffness, r.damping, dt) for r in runs]
+    e_q = np.array([x[0] for x in mq])  # R × 2 × 2
+    g0_q = np.array([x[1] for x in mq])
+    g1_q = np.array([x[2] for x in mq])
+    gq = g0_q + g1_q  # a force held over the step
+    f0 = np.array([r.f0 for r in runs])
+    m = np.array([r.mass for r in runs])
+    smax = int(steps[0])
+    t = np.arange(smax + 1) * dt
+    x_all = np.column_stack([vector_position(r.motion, t) for r in runs])
+    x_all[0] = [r.motion.position(0.0) for r in runs]
+
+    hist = {
+        "beam_w": np.full((smax + 1, R), np.nan),
+        "mass_q": np.full((smax + 1, R), np.nan),
+        "force": np.full((smax + 1, R), np.nan),
+        "in_contact": np.zeros((smax + 1, R), dtype=bool),
+    }
+    # initial state: λ_0 from the acceleration balance (System::initial)
+    phi = basis.values(x_all[0])
+    g_acc = s * (phi @ p) - f0 / m
+    w_acc = (phi * phi).sum(1) + 1.0 / m
+    closed = np.full(R, True) if sc.bilateral else g_acc < 0.0
+    lam = np.where(closed, -g_acc / w_acc, 0.0)
+    eta = np.zeros((R, modes))
+    etad = np.zeros((R, modes))
+    q, qd = np.zeros(R), np.zeros(R)
+    hist["beam_w"][0] = 0.0
+    hist["mass_q"][0] = 0.0
+    hist["force"][0] = lam
+    hist["in_contact"][0] = closed
+    t_setup = time.perf_counter()
+
+    nb = R
+    for step in range(1, smax + 1):
+        if steps[nb - 1] < step:
+            nb = int(np.count_nonzero(steps >= step))
+            eta, etad, phi = eta[:nb], etad[:nb], phi[:nb]
+            q, qd, lam, f0, e_q, gq = (x[:nb] for x in (q, qd, lam, f0, e_q, gq))
+        phi_next = basis.values(x_all[step, :nb])
+        # the free step: E [η, η̇] and the uniform load (held)
+        eta_free = c * eta + sw * etad + ap
+        etad_free = ws * eta + c * etad + bp
+        q_free = e_q[:, 0, 0] * q + e_q[:, 0, 1] * qd + gq[:, 0] * f0
+        qd_free = e_q[:, 1, 0] * q + e_q[:, 1, 1] * qd + gq[:, 1] * f0
+        # a unit contact force held over the step, along the carrier's path
+        zq = a0 * phi + a1 * phi_next
+        zv = b0 * phi + b1 * phi_next
+        g_free = s * (phi_next * eta_free).sum(1) - q_free
+        w = (phi_next * zq).sum(1) + gq[:, 0]
+        closed = np.full(nb, True) if sc.bilateral else g_free < 0.0
+        lam = np.where(closed, -g_free / w, 0.0)
+        sl = (s * lam)[:, None]
+        eta = eta_free + sl * zq
+        etad = etad_free + sl * zv
+        q = q_free - gq[:, 0] * lam
+        qd = qd_free - gq[:, 1] * lam
+        phi = phi_next
+        hist["beam_w"][step, :nb] = s * (phi * eta).sum(1)
+        hist["mass_q"][step, :nb] = q
+        hist["force"][step, :nb] = lam
+        hist["in_contact"][step, :nb] = closed
+    t_end = time.perf_counter()
+    inv = np.empty(R, dtype=np.int64)
+    inv[order] = np.arange(R)
+    out = []
+    for j in range(R):
+        col, nj = inv[j], int(steps_all[j])
+        hh = {key: arr[:nj + 1, col] for key, arr in hist.items()}
+        hh["t"] = np.arange(nj + 1) * dt
+        hh["x_m"] = x_all[:nj + 1, col]
+        hh["gap"] = hh["beam_w"] - hh["mass_q"]
+        out.append(hh)
+    return {
+        "histories": out,
+        "setup_seconds": t_setup - t_start,
+        "loop_seconds": t_end - t_setup,
+        "wall_seconds": t_end - t_start,
+    }
+
+
+def zone_width(sc, modes):
+    """The support zone of src/record/zone.rs for a galerkin run (h = L/J)."""
+    lb = math.sqrt(sc.ei / sc.tension) if sc.tension > 0.0 else 0.0
+    v = sc.motion.v0
+    return min(max(4.0 * lb, 4.0 * sc.length / modes, 4.0 * v * sc.dt), 0.5 * sc.length)
+
+
+def loss_fractions(h, sc, zone):
+    """(P_l, in-span P_l) over steps 1 … n (src/record/stats.rs)."""
+    open_ = ~h["in_contact"][1:]
+    x = h["x_m"][1:]
+    in_zone = (x < zone) | (x > sc.length - zone)
+    n = len(open_)
+    return open_.sum() / n, (open_ & ~in_zone).sum() / n
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--scene", type=Path, default=REPO / "scenes" / "reference.toml")
+    ap.add_argument("--modes", type=int, default=400)
+    ap.add_argument("--dt", type=float, default=1e-4)
+    ap.add_argument("--speeds", default="134.91570401925506:134.91570401925506:1")
+    args = ap.parse_args()
+    _, _, _, _, speeds = parse_sweep("speed=" + args.speeds)
+    scenes = [load_scene(args.scene, 0, {"time.step": args.dt, "carrier.speed.cruise": v})
+              for v in speeds]
+    res = simulate_batch(scenes, args.modes)
+    for sc, h in zip(scenes, res["histories"]):
+        pl, pls = loss_fractions(h, sc, zone_width(sc, args.modes))
+        print(f"V0 = {sc.motion.v0:.3f}: P_l = {pl:.5f}, in span {pls:.5f}, "
+              f"mean λ {h['force'][1:].mean():.4f}")
+    print(f"setup {res['setup_seconds']:.3f} s, loop {res['loop_seconds']:.3f} s")
