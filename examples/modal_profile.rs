@@ -51,7 +51,10 @@ fn step_time(o: &[String]) -> f64 {
 }
 
 fn main() {
-    let args: Vec<usize> = std::env::args().skip(1).map(|a| a.parse().expect("a number")).collect();
+    let args: Vec<usize> = std::env::args()
+        .skip(1)
+        .map(|a| a.parse().expect("a number"))
+        .collect();
     let j = args.first().copied().unwrap_or(800);
     let n = args.get(1).copied().unwrap_or(1600);
     let speed = 0.9 * (3.0e4f64 / 1.335).sqrt();
@@ -69,7 +72,10 @@ fn main() {
     hermite.push(format!("mesh.elements={n}"));
     let t_modal = step_time(&modal);
     if std::env::var_os("MODAL_ONLY").is_some() {
-        println!("modal_exact step, galerkin J = {j}: {:8.3} µs", 1e6 * t_modal);
+        println!(
+            "modal_exact step, galerkin J = {j}: {:8.3} µs",
+            1e6 * t_modal
+        );
         return;
     }
     let t_herm = step_time(&hermite);
@@ -90,9 +96,25 @@ fn main() {
         x = if x > 40.0 { 10.0 } else { x + 0.0084 };
         shapes.values_into(black_box(x), &mut out);
     });
-    println!("modal_exact step, galerkin J = {j}:   {:8.3} µs", 1e6 * t_modal);
-    println!("generalized-α step, Hermite N = {n}: {:8.3} µs  (ratio {:.1})", 1e6 * t_herm, t_herm / t_modal);
-    println!("fast shapes, mid-span:              {:8.3} µs", 1e6 * t_fast_mid);
-    println!("fast shapes, within 1 m of the clamp: {:6.3} µs", 1e6 * t_fast_end);
-    println!("direct shapes (ModeShapes):         {:8.3} µs", 1e6 * t_direct);
+    println!(
+        "modal_exact step, galerkin J = {j}:   {:8.3} µs",
+        1e6 * t_modal
+    );
+    println!(
+        "generalized-α step, Hermite N = {n}: {:8.3} µs  (ratio {:.1})",
+        1e6 * t_herm,
+        t_herm / t_modal
+    );
+    println!(
+        "fast shapes, mid-span:              {:8.3} µs",
+        1e6 * t_fast_mid
+    );
+    println!(
+        "fast shapes, within 1 m of the clamp: {:6.3} µs",
+        1e6 * t_fast_end
+    );
+    println!(
+        "direct shapes (ModeShapes):         {:8.3} µs",
+        1e6 * t_direct
+    );
 }

@@ -77,19 +77,32 @@ fn modal_exact_is_refused_where_it_means_nothing() {
         "{e}"
     );
     let g = galerkin(40);
-    let e = resolve("reference.toml", &with(&g, &[EXACT, "contact.formulation=impact"]))
-        .unwrap_err()
-        .to_string();
+    let e = resolve(
+        "reference.toml",
+        &with(&g, &[EXACT, "contact.formulation=impact"]),
+    )
+    .unwrap_err()
+    .to_string();
     assert!(
         e.contains("contact.formulation") && e.contains("impulse") && e.contains("lagrange"),
         "{e}"
     );
-    let e = resolve("reference.toml", &with(&g, &[EXACT, "contact.placement=alpha"]))
-        .unwrap_err()
-        .to_string();
+    let e = resolve(
+        "reference.toml",
+        &with(&g, &[EXACT, "contact.placement=alpha"]),
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("contact.placement"), "{e}");
     // and it runs where it means something
-    for kind in [galerkin(40).to_vec(), vec!["mesh.kind=modal".into(), "mesh.modes=40".into(), "mesh.elements=60".into()]] {
+    for kind in [
+        galerkin(40).to_vec(),
+        vec![
+            "mesh.kind=modal".into(),
+            "mesh.modes=40".into(),
+            "mesh.elements=60".into(),
+        ],
+    ] {
         assert!(resolve("reference.toml", &with(&kind, &[EXACT])).is_ok());
     }
 }
@@ -163,7 +176,11 @@ fn a_moving_force_converges_at_second_order_to_the_j_mode_series() {
         full.push(ef);
     }
     let ratios: Vec<f64> = errs.windows(2).map(|p| p[0] / p[1]).collect();
-    println!("moving force, J = {j}: max |w − J-mode series| {} m (ratios {ratios:.2?}); against the full series {} m", sci(&errs), sci(&full));
+    println!(
+        "moving force, J = {j}: max |w − J-mode series| {} m (ratios {ratios:.2?}); against the full series {} m",
+        sci(&errs),
+        sci(&full)
+    );
     for r in &ratios {
         assert!(*r >= SECOND_ORDER_RATIO, "{ratios:?}");
     }
@@ -189,7 +206,10 @@ fn a_bilateral_contact_converges_at_second_order() {
     let ff = &fine.history.carriers[0];
     let (mut ew, mut ef) = (Vec::new(), Vec::new());
     for dt in [4e-4f64, 2e-4, 1e-4, 5e-5] {
-        let out = run(&sc("reference.toml", &with(&base, &[&format!("time.step={dt:e}")])));
+        let out = run(&sc(
+            "reference.toml",
+            &with(&base, &[&format!("time.step={dt:e}")]),
+        ));
         let tr = &out.history.carriers[0];
         let st = (dt / fine_dt).round() as usize;
         let mut w = 0.0f64;
@@ -258,7 +278,10 @@ const COMPLEMENTARITY_REL: f64 = 1e-9;
 fn the_force_level_laws_agree() {
     let base = with(&galerkin(100), &[EXACT, "time.end=0.25"]);
     let mean = |f: &str| {
-        let out = run(&sc("reference.toml", &with(&base, &[&format!("contact.formulation={f}")])));
+        let out = run(&sc(
+            "reference.toml",
+            &with(&base, &[&format!("contact.formulation={f}")]),
+        ));
         (out.stats[0].force.mean, out.stats[0].loss_fraction)
     };
     let (l, pl) = mean("lagrange");
@@ -281,11 +304,18 @@ fn two_carriers_a_dashpot_self_weight_and_the_fe_modal_basis_agree_with_generali
         ("two_pantographs.toml", galerkin(120).to_vec()),
         (
             "reference.toml",
-            with(&galerkin(120), &["carrier.0.damping=15", "gravity.beam_self_weight=true"]),
+            with(
+                &galerkin(120),
+                &["carrier.0.damping=15", "gravity.beam_self_weight=true"],
+            ),
         ),
         (
             "reference.toml",
-            vec!["mesh.kind=modal".into(), "mesh.modes=120".into(), "mesh.elements=100".into()],
+            vec![
+                "mesh.kind=modal".into(),
+                "mesh.modes=120".into(),
+                "mesh.elements=100".into(),
+            ],
         ),
     ];
     for (name, o) in cases {

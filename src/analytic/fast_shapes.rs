@@ -148,10 +148,7 @@ impl Layer {
             let d = k as f64 * spacing;
             // every mode that counts anywhere within half a row of d
             let near = (d - 0.5 * spacing).max(0.0);
-            let m = alpha
-                .iter()
-                .take_while(|a| **a * near < LAYER_CUT)
-                .count();
+            let m = alpha.iter().take_while(|a| **a * near < LAYER_CUT).count();
             values.extend((0..m).map(|j| coef[j] * (-alpha[j] * d).exp()));
             starts.push(values.len());
         }
@@ -482,7 +479,10 @@ mod tests {
                     let f = FastShapes::new(&s);
                     let (w, at) = worst(&s, &f, amp);
                     println!("{case:?} {ends:?} {j}: {w:.2e} ({at})");
-                    assert!(w <= FAST_SHAPES_AGREEMENT, "{case:?} {ends:?} J = {j}: {w:e}");
+                    assert!(
+                        w <= FAST_SHAPES_AGREEMENT,
+                        "{case:?} {ends:?} J = {j}: {w:e}"
+                    );
                 }
             }
         }
@@ -531,7 +531,10 @@ mod tests {
                 cheb_worst = cheb_worst.max(c);
             }
         }
-        assert!(cheb_worst > 1e3, "the three-term recurrence loses accuracy near θ = 0, π");
+        assert!(
+            cheb_worst > 1e3,
+            "the three-term recurrence loses accuracy near θ = 0, π"
+        );
     }
 
     #[test]
@@ -542,7 +545,10 @@ mod tests {
             assert!((s - y.sin()).abs() <= 2.0 * f64::EPSILON, "{y}");
             assert!((c - y.cos()).abs() <= 2.0 * f64::EPSILON, "{y}");
             let e = exp_minus(8.0 * y);
-            assert!((e / (-8.0 * y).exp() - 1.0).abs() <= 4.0 * f64::EPSILON, "{y}");
+            assert!(
+                (e / (-8.0 * y).exp() - 1.0).abs() <= 4.0 * f64::EPSILON,
+                "{y}"
+            );
         }
     }
 

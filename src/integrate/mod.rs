@@ -22,27 +22,31 @@
 //! initial state and the stepper, and advances time.
 
 mod batch;
+mod batch_run;
 mod bathe;
 mod central_difference;
 mod diagnose;
 mod energy;
 mod gen_alpha;
+mod modal_batch;
 mod modal_exact;
 mod moreau_jean;
 mod oscillator;
 mod state;
 mod system;
 
-pub use batch::{Batch, Lane, MAX_LANES, batch_key, max_lanes, scene_columns};
+pub use batch::{Batch, Lane, MAX_LANES, max_lanes, scene_columns};
+pub use batch_run::{RunBatch, batch_key, lanes_cap, new_batch};
 pub use bathe::Bathe;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
+pub use modal_batch::{ModalBatch, modal_key};
 pub use modal_exact::{ModalCoefs, ModalExact};
-pub use oscillator::{MassStep, ModeSteps};
 pub use moreau_jean::MoreauJean;
+pub use oscillator::{MassStep, ModeSteps};
 pub use state::State;
 pub use system::{
     Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, combine,

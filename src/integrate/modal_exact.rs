@@ -241,7 +241,8 @@ pub(crate) fn step(
                 for cj in &sys.carriers {
                     let Some(j) = cj.contact else { continue };
                     let wij = path_dot(m, ci.pv_g.dense(), cj.pv_f.dense(), cj.pv_g.dense());
-                    w[i * nc + j] = ci.s * cj.s * wij + if i == j { mass_steps[i].g[0] } else { 0.0 };
+                    w[i * nc + j] =
+                        ci.s * cj.s * wij + if i == j { mass_steps[i].g[0] } else { 0.0 };
                 }
             }
         }
@@ -378,16 +379,28 @@ unsafe fn free_with_pair_avx2(
     // SAFETY (whole body): loads and stores at i .. i + 4 < full.
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let mut g = [_mm256_loadu_pd(gs.as_ptr()), _mm256_loadu_pd(gs.as_ptr().add(4))];
-        let mut w = [_mm256_loadu_pd(ws.as_ptr()), _mm256_loadu_pd(ws.as_ptr().add(4))];
+        let mut g = [
+            _mm256_loadu_pd(gs.as_ptr()),
+            _mm256_loadu_pd(gs.as_ptr().add(4)),
+        ];
+        let mut w = [
+            _mm256_loadu_pd(ws.as_ptr()),
+            _mm256_loadu_pd(ws.as_ptr().add(4)),
+        ];
         let mut i = 0;
         while i < full {
             for h in 0..2 {
                 let k = i + 4 * h;
                 let (e, ev) = (ld(d, k), ld(v, k));
                 let c = ld(&m.cos, k);
-                let e1 = _mm256_add_pd(_mm256_mul_pd(c, e), _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
-                let v1 = _mm256_add_pd(_mm256_mul_pd(ld(&m.minus_omega_sin, k), e), _mm256_mul_pd(c, ev));
+                let e1 = _mm256_add_pd(
+                    _mm256_mul_pd(c, e),
+                    _mm256_mul_pd(ld(&m.sin_over_omega, k), ev),
+                );
+                let v1 = _mm256_add_pd(
+                    _mm256_mul_pd(ld(&m.minus_omega_sin, k), e),
+                    _mm256_mul_pd(c, ev),
+                );
                 _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
                 _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
                 let q = ld(pn1, k);

@@ -217,7 +217,11 @@ mod tests {
             let b1 = simpson(&|t| gd(dt - t) * t / dt);
             let b0 = simpson(&|t| gd(dt - t) * (1.0 - t / dt));
             let scale = dt * dt;
-            assert!((m.a1[0] - a1).abs() <= 1e-10 * scale, "{w}: {} {a1}", m.a1[0]);
+            assert!(
+                (m.a1[0] - a1).abs() <= 1e-10 * scale,
+                "{w}: {} {a1}",
+                m.a1[0]
+            );
             assert!((m.a0[0] - a0).abs() <= 1e-10 * scale, "{w}");
             assert!((m.b1[0] - b1).abs() <= 1e-10 * dt, "{w}");
             assert!((m.b0[0] - b0).abs() <= 1e-10 * dt, "{w}");

@@ -245,7 +245,13 @@ pub struct Initial {
 impl System {
     /// Assemble the beam and the carriers of a validated scene.
     pub fn new(sc: &Resolved) -> Result<Self> {
-        let beam = BeamModel::from_scene(sc)?;
+        Self::with_beam(sc, BeamModel::from_scene(sc)?)
+    }
+
+    /// [`System::new`] with the beam already built (`BeamModel::from_scene`
+    /// of `sc`, or of a scene with the same beam and discretization: a
+    /// batch builds a basis once for all its runs).
+    pub fn with_beam(sc: &Resolved, beam: BeamModel) -> Result<Self> {
         let mut nc = 0;
         let mut masses = Vec::new();
         let mut force_scale: f64 = 0.0;
@@ -575,7 +581,11 @@ impl System {
         if nc == 0 {
             return Ok(());
         }
-        debug_assert_eq!(self.level, Level::Position, "modal_exact works at force level");
+        debug_assert_eq!(
+            self.level,
+            Level::Position,
+            "modal_exact works at force level"
+        );
         self.g_free.copy_from_slice(&g_free[..nc]);
         self.w.copy_from_slice(&w[..nc * nc]);
         self.law

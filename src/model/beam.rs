@@ -87,7 +87,11 @@ impl PointVector {
             let full = n / super::lanes::LANES * super::lanes::LANES;
             let mut acc = [0.0; super::lanes::LANES];
             for (i, r) in self.dense.iter().enumerate() {
-                let l = if i < full { i % super::lanes::LANES } else { i - full };
+                let l = if i < full {
+                    i % super::lanes::LANES
+                } else {
+                    i - full
+                };
                 acc[l] += r * at(i);
             }
             super::lanes::reduce(&acc)

@@ -30,7 +30,10 @@ pub fn dot(x: &[f64], y: &[f64]) -> f64 {
     }
     let mut acc = [0.0; LANES];
     let full = n / LANES * LANES;
-    for (a, b) in x[..full].chunks_exact(LANES).zip(y[..full].chunks_exact(LANES)) {
+    for (a, b) in x[..full]
+        .chunks_exact(LANES)
+        .zip(y[..full].chunks_exact(LANES))
+    {
         for l in 0..LANES {
             acc[l] += a[l] * b[l];
         }
@@ -84,8 +87,12 @@ mod tests {
     #[test]
     fn the_lanes_give_the_scalar_order_and_the_sum() {
         for n in [0, 1, 7, 8, 9, 64, 803] {
-            let x: Vec<f64> = (0..n).map(|i| ((i * 37 % 101) as f64 - 50.0) / 7.0).collect();
-            let y: Vec<f64> = (0..n).map(|i| ((i * 13 % 97) as f64).sqrt() - 3.0).collect();
+            let x: Vec<f64> = (0..n)
+                .map(|i| ((i * 37 % 101) as f64 - 50.0) / 7.0)
+                .collect();
+            let y: Vec<f64> = (0..n)
+                .map(|i| ((i * 13 % 97) as f64).sqrt() - 3.0)
+                .collect();
             // the scalar path, written out
             let mut acc = [0.0; LANES];
             let full = n / LANES * LANES;

@@ -4,8 +4,8 @@
 pub mod banded;
 pub mod beam;
 pub mod eigen;
-pub mod lanes;
 pub mod element;
+pub mod lanes;
 pub mod mesh;
 pub mod modal;
 pub mod motion;
