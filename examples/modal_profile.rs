@@ -50,6 +50,47 @@ fn step_time(o: &[String]) -> f64 {
     best
 }
 
+/// Seconds per run-step of 8 runs at different speeds, stepped alone
+/// (each a whole run in turn) and as one batch, over the first 4000 steps
+/// (the fastest of `RUNS` repetitions).
+fn batch_times(o: &[String]) -> (f64, f64) {
+    use taut::integrate::new_batch;
+    let steps = 4000;
+    let scenes: Vec<taut::Resolved> = (0..8)
+        .map(|i| {
+            let mut o = o.to_vec();
+            o.push(format!("carrier.speed.cruise={}", 100.0 + 5.0 * i as f64));
+            taut::resolve_scene(SCENE, &o).expect("scene")
+        })
+        .collect();
+    let (mut alone, mut batch) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..RUNS {
+        let mut its: Vec<Integrator> = scenes
+            .iter()
+            .map(|s| Integrator::new(s).expect("run"))
+            .collect();
+        let t0 = Instant::now();
+        for it in &mut its {
+            for _ in 0..steps {
+                it.step().expect("step");
+                black_box(it.sample(0));
+            }
+        }
+        alone = alone.min(t0.elapsed().as_secs_f64() / (8 * steps) as f64);
+        let list: Vec<(usize, &taut::Resolved)> = scenes.iter().enumerate().collect();
+        let mut b = new_batch(&list).0.expect("a batch");
+        let t0 = Instant::now();
+        for _ in 0..steps {
+            b.step();
+            for l in 0..8 {
+                black_box(b.sample(l, 0));
+            }
+        }
+        batch = batch.min(t0.elapsed().as_secs_f64() / (8 * steps) as f64);
+    }
+    (alone, batch)
+}
+
 fn main() {
     let args: Vec<usize> = std::env::args()
         .skip(1)
@@ -78,6 +119,7 @@ fn main() {
         );
         return;
     }
+    let (t_alone, t_batch) = batch_times(&modal);
     let t_herm = step_time(&hermite);
     let sc = taut::resolve_scene(SCENE, &modal).expect("scene");
     let shapes = ModeShapes::new(&sc.beam, j).expect("basis");
@@ -116,5 +158,11 @@ fn main() {
     println!(
         "direct shapes (ModeShapes):         {:8.3} µs",
         1e6 * t_direct
+    );
+    println!(
+        "8 runs (speeds 100…135 m/s), per run-step: alone {:.3} µs, as one batch {:.3} µs (×{:.2})",
+        1e6 * t_alone,
+        1e6 * t_batch,
+        t_alone / t_batch
     );
 }

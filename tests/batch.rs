@@ -235,7 +235,8 @@ fn modal_exact_runs_batch_bit_identically() {
         let mut o = vec![
             "integrator={ method = \"modal_exact\" }".to_string(),
             "mesh.kind=galerkin".into(),
-            "mesh.modes=60".into(),
+            // more than one block of modes (BLOCK_MODES = 64), the last one partial
+            "mesh.modes=150".into(),
             "time.step=2e-4".into(),
         ];
         o.extend_from_slice(more);
@@ -270,6 +271,14 @@ fn modal_exact_runs_batch_bit_identically() {
     ));
     // another basis, another step, an FE modal basis
     scenes.push(scene(REFERENCE, &exact(&["mesh.modes=50".into()])));
+    // self-weight: a held load in every mode
+    scenes.push(scene(
+        REFERENCE,
+        &exact(&[
+            "gravity.beam_self_weight=true".into(),
+            "time.end=0.2".into(),
+        ]),
+    ));
     scenes.push(scene(
         REFERENCE,
         &exact(&["time.step=1e-4".into(), "time.end=0.1".into()]),
@@ -278,7 +287,7 @@ fn modal_exact_runs_batch_bit_identically() {
         REFERENCE,
         &exact(&[
             "mesh.kind=modal".into(),
-            "mesh.elements=60".into(),
+            "mesh.elements=100".into(),
             "time.end=0.1".into(),
         ]),
     ));
@@ -286,6 +295,7 @@ fn modal_exact_runs_batch_bit_identically() {
     assert!(keys.iter().all(Option::is_some));
     assert_eq!(keys[0], keys[7]);
     assert_ne!(keys[0], keys[9]);
+    assert_ne!(keys[0], keys[10]);
     let together = run_batch(&scenes, 8, &mut |_| {});
     assert!(together[8].is_err(), "the clarabel run must stop");
     for batch in [1, 2, 3, 8] {

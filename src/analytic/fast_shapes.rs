@@ -53,6 +53,12 @@
 //! the layer is 2.6 m wide at the clamped end and absent at the pinned one
 //! (there `Q_j = −P_j e^{−α_j L}` underflows to 0).
 //!
+//! ## Fused operations, vector and scalar paths
+//!
+//! The kernels round `a·b + c` once (AVX2 + FMA vectors, or
+//! [`f64::mul_add`] lane by lane on a CPU without them: the same bits,
+//! `crate::model::lanes`), which saves about a third of the operations.
+//!
 //! ## Accuracy
 //!
 //! Against the direct evaluation [`super::ModeShapes::values_into`] (itself
@@ -61,6 +67,7 @@
 //! for every support pair and J up to [`super::MAX_MODES`] (`tests`).
 
 use super::mode_shapes::{Ends, ModeShapes};
+use crate::model::lanes;
 use std::f64::consts::PI;
 
 /// Modes advanced together by the rotation recurrence (module docs): four
@@ -75,8 +82,9 @@ pub const LAYER_CUT: f64 = 40.0;
 /// Fast against direct evaluation, relative to the amplitude
 /// `sqrt(2/(ρA L))`: measured worst 9.2·10⁻¹³ over the test cases up to
 /// J = 1000, growing linearly in j (the recurrence's ~j/16 products and the
-/// direct evaluation's own phase error `ε β_j L`, mode_shapes.rs); 10⁻¹¹
-/// leaves a factor 10.
+/// direct evaluation's own phase error `ε β_j L`, mode_shapes.rs), so
+/// ~4·10⁻¹² at J = 4000 (measured on the reference span); 10⁻¹¹ leaves a
+/// factor 2.5 there.
 pub const FAST_SHAPES_AGREEMENT: f64 = 1e-11;
 
 /// Table rows per radian of slow phase: `|ε_j δ| ≤ 1/64` (module docs).
@@ -161,65 +169,110 @@ impl Layer {
     }
 
     /// Add `coef_j e^{−α_j d}` into `out` for the modes that count at `d`
-    /// (AVX2 where the CPU has it: the same operations, the same bits).
-    fn add_into(&self, d: f64, out: &mut [f64]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2 (checked just above).
-            unsafe { self.add_into_avx2(d, out) };
-            return;
-        }
-        self.add_into_kernel(d, out)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn add_into_avx2(&self, d: f64, out: &mut [f64]) {
-        self.add_into_kernel(d, out)
-    }
-
+    /// (AVX2 + FMA where the CPU has them: the same fused operations, the
+    /// same bits; `crate::model::lanes`).
     #[inline(always)]
-    fn add_into_kernel(&self, d: f64, out: &mut [f64]) {
+    fn add_into(&self, d: f64, out: &mut [f64], vector: bool) {
         let k = (d / self.spacing).round() as usize;
         if k + 1 >= self.starts.len() {
             return;
         }
         let delta = d - k as f64 * self.spacing;
         let row = &self.values[self.starts[k]..self.starts[k + 1]];
-        for ((o, v), a) in out.iter_mut().zip(row).zip(&self.alpha) {
-            *o += v * exp_minus(a * delta);
+        let (out, alpha) = (&mut out[..row.len()], &self.alpha[..row.len()]);
+        let mut done = 0;
+        #[cfg(target_arch = "x86_64")]
+        if vector {
+            // SAFETY: the caller checked AVX2 and FMA (lanes::avx2_fma).
+            done = unsafe { layer_avx2(row, alpha, delta, out) };
+        }
+        for i in done..row.len() {
+            out[i] = row[i].mul_add(exp_minus(alpha[i] * delta), out[i]);
         }
     }
 }
 
+/// `1/k!`, k = 0 … [`LAYER_DEGREE`].
+const INV_FACT: [f64; LAYER_DEGREE + 1] = {
+    let mut f = [1.0; LAYER_DEGREE + 1];
+    let mut k = 1;
+    while k <= LAYER_DEGREE {
+        f[k] = f[k - 1] / k as f64;
+        k += 1;
+    }
+    f
+};
+
 /// `e^{−y}` for `|y| ≤ 1/2` by its Taylor polynomial of degree
-/// [`LAYER_DEGREE`] (Horner).
+/// [`LAYER_DEGREE`] (Horner, fused).
 #[inline(always)]
 fn exp_minus(y: f64) -> f64 {
-    const INV_FACT: [f64; LAYER_DEGREE + 1] = {
-        let mut f = [1.0; LAYER_DEGREE + 1];
-        let mut k = 1;
-        while k <= LAYER_DEGREE {
-            f[k] = f[k - 1] / k as f64;
-            k += 1;
-        }
-        f
-    };
     let z = -y;
     let mut acc = INV_FACT[LAYER_DEGREE];
     for k in (0..LAYER_DEGREE).rev() {
-        acc = acc * z + INV_FACT[k];
+        acc = acc.mul_add(z, INV_FACT[k]);
     }
     acc
 }
 
-/// `(sin y, cos y)` for `|y| ≤ 1/64` (cos to y⁶, sin to y⁵; module docs).
+/// [`Layer::add_into`] four modes at a time, as many as fill whole
+/// vectors; returns how many it did.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; the three slices have equal lengths.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn layer_avx2(row: &[f64], alpha: &[f64], delta: f64, out: &mut [f64]) -> usize {
+    use std::arch::x86_64::*;
+    let full = row.len() / 4 * 4;
+    let minus_delta = _mm256_set1_pd(-delta);
+    let mut i = 0;
+    while i < full {
+        // SAFETY: i + 4 ≤ full ≤ the slices' length.
+        unsafe {
+            // z = −(α δ): the scalar path's −y with y = α·δ rounds the same
+            let z = _mm256_mul_pd(_mm256_loadu_pd(alpha.as_ptr().add(i)), minus_delta);
+            let mut acc = _mm256_set1_pd(INV_FACT[LAYER_DEGREE]);
+            for k in (0..LAYER_DEGREE).rev() {
+                acc = _mm256_fmadd_pd(acc, z, _mm256_set1_pd(INV_FACT[k]));
+            }
+            let o = out.as_mut_ptr().add(i);
+            _mm256_storeu_pd(
+                o,
+                _mm256_fmadd_pd(
+                    _mm256_loadu_pd(row.as_ptr().add(i)),
+                    acc,
+                    _mm256_loadu_pd(o),
+                ),
+            );
+        }
+        i += 4;
+    }
+    full
+}
+
+/// Taylor coefficients of cos y (y², y⁴, y⁶) and sin y / y (y², y⁴).
+const COS: [f64; 3] = [-0.5, 1.0 / 24.0, -1.0 / 720.0];
+const SIN: [f64; 2] = [-1.0 / 6.0, 1.0 / 120.0];
+
+/// `(sin y, cos y)` for `|y| ≤ 1/64` (cos to y⁶, sin to y⁵; module docs),
+/// fused.
 #[inline(always)]
 fn small_sin_cos(y: f64) -> (f64, f64) {
     let y2 = y * y;
-    let c = 1.0 + y2 * (-0.5 + y2 * (1.0 / 24.0 + y2 * (-1.0 / 720.0)));
-    let s = y * (1.0 + y2 * (-1.0 / 6.0 + y2 * (1.0 / 120.0)));
+    let c = y2.mul_add(y2.mul_add(y2.mul_add(COS[2], COS[1]), COS[0]), 1.0);
+    let s = y * y2.mul_add(y2.mul_add(SIN[1], SIN[0]), 1.0);
     (s, c)
+}
+
+/// One mode's shifted oscillating part: `Re[T e^{iy} R]` with
+/// `T = tr + i·ti`, `R = rr + i·ri`, `y = ε δ` (module docs), fused.
+#[inline(always)]
+fn shifted(e: f64, delta: f64, (tr, ti): (f64, f64), (rr, ri): (f64, f64)) -> f64 {
+    let (sy, cy) = small_sin_cos(e * delta);
+    let zr = tr.mul_add(cy, -(ti * sy));
+    let zi = tr.mul_add(sy, ti * cy);
+    zr.mul_add(rr, -(zi * ri))
 }
 
 /// `e^{ijθ}` for j = 1 … B (the first block) and `e^{iBθ}`, from `e^{iθ}`
@@ -235,8 +288,7 @@ fn first_block(theta: f64) -> ([f64; BLOCK], [f64; BLOCK], (f64, f64)) {
         // modes have+1 … 2·have from modes 1 … have times e^{i·have·θ}
         let (cr, ci) = (re[have - 1], im[have - 1]);
         for j in 0..have {
-            re[have + j] = re[j] * cr - im[j] * ci;
-            im[have + j] = re[j] * ci + im[j] * cr;
+            (re[have + j], im[have + j]) = rotate((re[j], im[j]), (cr, ci));
         }
         have *= 2;
     }
@@ -307,109 +359,231 @@ impl FastShapes {
     /// [`ModeShapes::values_into`] within [`FAST_SHAPES_AGREEMENT`] of the
     /// amplitude. `x` is clamped to `[0, L]`. No allocation; one `sin_cos`.
     pub fn values_into(&self, x: f64, out: &mut [f64]) {
+        self.values_by(x, out, lanes::avx2_fma())
+    }
+
+    /// [`FastShapes::values_into`] by the AVX2 + FMA path (`vector`, only
+    /// where the CPU has both) or the scalar one: the same bits. The vector
+    /// path compiles the whole evaluation for AVX2 + FMA, so its scalar
+    /// parts (the first block of the recurrence, the last partial block)
+    /// use the FMA instruction, not its software emulation.
+    fn values_by(&self, x: f64, out: &mut [f64], vector: bool) {
+        #[cfg(target_arch = "x86_64")]
+        if vector {
+            // SAFETY: the caller checked AVX2 and FMA (lanes::avx2_fma).
+            unsafe { self.values_fma(x, out) };
+            return;
+        }
+        self.values_kernel(x, out, false)
+    }
+
+    /// # Safety
+    /// The CPU supports AVX2 and FMA.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn values_fma(&self, x: f64, out: &mut [f64]) {
+        self.values_kernel(x, out, true)
+    }
+
+    #[inline(always)]
+    fn values_kernel(&self, x: f64, out: &mut [f64], vector: bool) {
         assert_eq!(out.len(), self.count, "one slot per mode");
         let x = x.clamp(0.0, self.length);
         let s = if self.mirrored { self.length - x } else { x };
         let xi = s / self.length;
-        self.oscillating_into(xi, out);
+        self.oscillating_into(xi, out, vector);
         if let Some(l) = &self.left {
-            l.add_into(s, out);
+            l.add_into(s, out, vector);
         }
         if let Some(r) = &self.right {
-            r.add_into(self.length - s, out);
+            r.add_into(self.length - s, out, vector);
         }
     }
 
     /// The oscillating parts at `ξ = s/L` (module docs), overwriting `out`:
-    /// with AVX2 where the CPU has it (the same operations in the same
-    /// order, so the same bits: no fused multiply–add either way).
-    fn oscillating_into(&self, xi: f64, out: &mut [f64]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2 (checked just above).
-            unsafe { self.oscillating_avx2(xi, out) };
-            return;
-        }
-        self.oscillating_kernel(xi, out)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn oscillating_avx2(&self, xi: f64, out: &mut [f64]) {
-        self.oscillating_kernel(xi, out)
-    }
-
-    /// [`FastShapes::oscillating_into`]: blocks of [`BLOCK`] modes, each
-    /// an independent lane of the recurrence, then the last partial block.
+    /// blocks of [`BLOCK`] modes, each an independent lane of the
+    /// recurrence, with AVX2 + FMA where the CPU has them (the same fused
+    /// operations, the same bits), then the last partial block.
     #[inline(always)]
-    fn oscillating_kernel(&self, xi: f64, out: &mut [f64]) {
+    fn oscillating_into(&self, xi: f64, out: &mut [f64], vector: bool) {
         let (mut rr, mut ri, rot) = first_block(PI * xi);
         let j = self.count;
         let full = j / BLOCK * BLOCK;
+        let out = &mut out[..j];
         match &self.oscillating {
             Oscillating::Sine { d } => {
-                let (o_full, o_tail) = out[..j].split_at_mut(full);
-                for (o, d) in o_full
-                    .chunks_exact_mut(BLOCK)
-                    .zip(d[..full].chunks_exact(BLOCK))
-                {
+                let mut done = 0;
+                #[cfg(target_arch = "x86_64")]
+                if vector {
+                    // SAFETY: AVX2 and FMA (the caller checked); d and out hold ≥ full.
+                    unsafe { sine_avx2(&d[..full], &mut out[..full], (&mut rr, &mut ri), rot) };
+                    done = full;
+                }
+                for at in (done..full).step_by(BLOCK) {
                     for l in 0..BLOCK {
-                        o[l] = d[l] * ri[l];
+                        out[at + l] = d[at + l] * ri[l];
                     }
                     advance(&mut rr, &mut ri, rot);
                 }
-                for (l, o) in o_tail.iter_mut().enumerate() {
-                    *o = d[full + l] * ri[l];
+                for i in full..j {
+                    out[i] = d[i] * ri[i - full];
                 }
             }
             Oscillating::Shifted { eps, rows, re, im } => {
                 let k = (xi * *rows as f64).round() as usize;
                 let delta = xi - k as f64 / *rows as f64;
                 let (tre, tim) = (&re[k * j..(k + 1) * j], &im[k * j..(k + 1) * j]);
-                let one = |at: usize, rr: f64, ri: f64| {
-                    let (sy, cy) = small_sin_cos(eps[at] * delta);
-                    // Z = T e^{iε δ}; φ = Re[Z e^{ijθ}]
-                    let zr = tre[at] * cy - tim[at] * sy;
-                    let zi = tre[at] * sy + tim[at] * cy;
-                    zr * rr - zi * ri
-                };
-                let (o_full, o_tail) = out[..j].split_at_mut(full);
-                for (b, o) in o_full.chunks_exact_mut(BLOCK).enumerate() {
-                    let at = b * BLOCK;
-                    let (e, tr, ti): (&[f64; BLOCK], &[f64; BLOCK], &[f64; BLOCK]) = (
-                        eps[at..at + BLOCK].try_into().expect("a block"),
-                        tre[at..at + BLOCK].try_into().expect("a block"),
-                        tim[at..at + BLOCK].try_into().expect("a block"),
-                    );
+                let mut done = 0;
+                #[cfg(target_arch = "x86_64")]
+                if vector {
+                    // SAFETY: AVX2 and FMA (the caller checked); every slice holds ≥ full.
+                    unsafe {
+                        shifted_avx2(
+                            (&eps[..full], &tre[..full], &tim[..full]),
+                            delta,
+                            &mut out[..full],
+                            (&mut rr, &mut ri),
+                            rot,
+                        )
+                    };
+                    done = full;
+                }
+                for at in (done..full).step_by(BLOCK) {
                     for l in 0..BLOCK {
-                        let (sy, cy) = small_sin_cos(e[l] * delta);
-                        let zr = tr[l] * cy - ti[l] * sy;
-                        let zi = tr[l] * sy + ti[l] * cy;
-                        o[l] = zr * rr[l] - zi * ri[l];
+                        let i = at + l;
+                        out[i] = shifted(eps[i], delta, (tre[i], tim[i]), (rr[l], ri[l]));
                     }
                     advance(&mut rr, &mut ri, rot);
                 }
-                for (l, o) in o_tail.iter_mut().enumerate() {
-                    *o = one(full + l, rr[l], ri[l]);
+                for i in full..j {
+                    let l = i - full;
+                    out[i] = shifted(eps[i], delta, (tre[i], tim[i]), (rr[l], ri[l]));
                 }
             }
         }
     }
 }
 
+/// `a·b` for complex a, b, fused: `(a_r b_r − a_i b_i, a_r b_i + a_i b_r)`.
+#[inline(always)]
+fn rotate((a, b): (f64, f64), (cr, ci): (f64, f64)) -> (f64, f64) {
+    (a.mul_add(cr, -(b * ci)), a.mul_add(ci, b * cr))
+}
+
+/// The whole blocks of [`FastShapes::oscillating_into`] for pinned–pinned
+/// modes: `d_j sin(jθ)`, the recurrence advanced after each block (left
+/// at the first mode past them).
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; `d` and `out` have equal lengths, a
+/// multiple of [`BLOCK`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sine_avx2(
+    d: &[f64],
+    out: &mut [f64],
+    (rr, ri): (&mut [f64; BLOCK], &mut [f64; BLOCK]),
+    rot: (f64, f64),
+) {
+    use std::arch::x86_64::*;
+    const V: usize = BLOCK / 4;
+    // SAFETY (whole body): every access is within a block of BLOCK entries
+    // at `at` < len, or within rr/ri.
+    unsafe {
+        let (cr, ci) = (_mm256_set1_pd(rot.0), _mm256_set1_pd(rot.1));
+        let mut vr: [__m256d; V] = std::array::from_fn(|v| _mm256_loadu_pd(rr.as_ptr().add(4 * v)));
+        let mut vi: [__m256d; V] = std::array::from_fn(|v| _mm256_loadu_pd(ri.as_ptr().add(4 * v)));
+        let mut at = 0;
+        while at < d.len() {
+            for v in 0..V {
+                let i = at + 4 * v;
+                _mm256_storeu_pd(
+                    out.as_mut_ptr().add(i),
+                    _mm256_mul_pd(_mm256_loadu_pd(d.as_ptr().add(i)), vi[v]),
+                );
+                let (a, b) = (vr[v], vi[v]);
+                vr[v] = _mm256_fmsub_pd(a, cr, _mm256_mul_pd(b, ci));
+                vi[v] = _mm256_fmadd_pd(a, ci, _mm256_mul_pd(b, cr));
+            }
+            at += BLOCK;
+        }
+        for v in 0..V {
+            _mm256_storeu_pd(rr.as_mut_ptr().add(4 * v), vr[v]);
+            _mm256_storeu_pd(ri.as_mut_ptr().add(4 * v), vi[v]);
+        }
+    }
+}
+
+/// The whole blocks of [`FastShapes::oscillating_into`] for shifted modes
+/// ([`shifted`], four at a time), the recurrence advanced after each block.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; the slices have equal lengths, a
+/// multiple of [`BLOCK`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn shifted_avx2(
+    (eps, tre, tim): (&[f64], &[f64], &[f64]),
+    delta: f64,
+    out: &mut [f64],
+    (rr, ri): (&mut [f64; BLOCK], &mut [f64; BLOCK]),
+    rot: (f64, f64),
+) {
+    use std::arch::x86_64::*;
+    const V: usize = BLOCK / 4;
+    // SAFETY (whole body): as in `sine_avx2`.
+    unsafe {
+        let s = _mm256_set1_pd;
+        let (cr, ci, dl, one) = (s(rot.0), s(rot.1), s(delta), s(1.0));
+        let (c0, c1, c2) = (s(COS[0]), s(COS[1]), s(COS[2]));
+        let (s0, s1) = (s(SIN[0]), s(SIN[1]));
+        let mut vr: [__m256d; V] = std::array::from_fn(|v| _mm256_loadu_pd(rr.as_ptr().add(4 * v)));
+        let mut vi: [__m256d; V] = std::array::from_fn(|v| _mm256_loadu_pd(ri.as_ptr().add(4 * v)));
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let mut at = 0;
+        while at < eps.len() {
+            for v in 0..V {
+                let i = at + 4 * v;
+                let y = _mm256_mul_pd(ld(eps, i), dl);
+                let y2 = _mm256_mul_pd(y, y);
+                let cy = _mm256_fmadd_pd(
+                    y2,
+                    _mm256_fmadd_pd(y2, _mm256_fmadd_pd(y2, c2, c1), c0),
+                    one,
+                );
+                let sy = _mm256_mul_pd(y, _mm256_fmadd_pd(y2, _mm256_fmadd_pd(y2, s1, s0), one));
+                let (tr, ti) = (ld(tre, i), ld(tim, i));
+                let zr = _mm256_fmsub_pd(tr, cy, _mm256_mul_pd(ti, sy));
+                let zi = _mm256_fmadd_pd(tr, sy, _mm256_mul_pd(ti, cy));
+                let (a, b) = (vr[v], vi[v]);
+                _mm256_storeu_pd(
+                    out.as_mut_ptr().add(i),
+                    _mm256_fmsub_pd(zr, a, _mm256_mul_pd(zi, b)),
+                );
+                vr[v] = _mm256_fmsub_pd(a, cr, _mm256_mul_pd(b, ci));
+                vi[v] = _mm256_fmadd_pd(a, ci, _mm256_mul_pd(b, cr));
+            }
+            at += BLOCK;
+        }
+        for v in 0..V {
+            _mm256_storeu_pd(rr.as_mut_ptr().add(4 * v), vr[v]);
+            _mm256_storeu_pd(ri.as_mut_ptr().add(4 * v), vi[v]);
+        }
+    }
+}
+
 /// The next block of `e^{ijθ}`: every entry times `e^{iBθ}`.
 #[inline(always)]
-fn advance(re: &mut [f64; BLOCK], im: &mut [f64; BLOCK], (cr, ci): (f64, f64)) {
+fn advance(re: &mut [f64; BLOCK], im: &mut [f64; BLOCK], rot: (f64, f64)) {
     for l in 0..BLOCK {
-        let (a, b) = (re[l], im[l]);
-        re[l] = a * cr - b * ci;
-        im[l] = a * ci + b * cr;
+        (re[l], im[l]) = rotate((re[l], im[l]), rot);
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analytic::MAX_MODES;
     use crate::scene::{BeamProps, Support};
 
     /// (EI, T, ρA, L): as mode_shapes.rs's cases.
@@ -474,7 +648,12 @@ mod tests {
         for case in [REFERENCE, SHORT, BALANCED, BARE, EXTREME] {
             let amp = (2.0 / (case.2 * case.3)).sqrt();
             for ends in ENDS {
-                for j in [7, 64, 1000] {
+                let top: &[usize] = if case == REFERENCE {
+                    &[1000, MAX_MODES]
+                } else {
+                    &[1000]
+                };
+                for &j in [7, 64].iter().chain(top) {
                     let s = shapes(case, ends, j);
                     let f = FastShapes::new(&s);
                     let (w, at) = worst(&s, &f, amp);
@@ -535,6 +714,37 @@ mod tests {
             cheb_worst > 1e3,
             "the three-term recurrence loses accuracy near θ = 0, π"
         );
+    }
+
+    #[test]
+    fn the_vector_and_scalar_paths_give_the_same_bits() {
+        if !lanes::avx2_fma() {
+            return;
+        }
+        for (case, ends) in [
+            (REFERENCE, ENDS[1]),
+            (BARE, ENDS[3]),
+            (SHORT, ENDS[0]),
+            (BARE, ENDS[2]),
+        ] {
+            for j in [5, 16, 61, 800] {
+                let s = shapes(case, ends, j);
+                let f = FastShapes::new(&s);
+                let (mut a, mut b) = (vec![0.0; j], vec![0.0; j]);
+                for i in 0..=400 {
+                    let x = case.3 * (i as f64 / 400.0).powi(3);
+                    f.values_by(x, &mut a, true);
+                    f.values_by(x, &mut b, false);
+                    for (u, v) in a.iter().zip(&b) {
+                        assert_eq!(
+                            u.to_bits(),
+                            v.to_bits(),
+                            "{case:?} {ends:?} J = {j} x = {x}"
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]

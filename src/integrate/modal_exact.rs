@@ -53,11 +53,12 @@
 //!    sums g_free and W when the scene has one contact and no moving force.
 //! 3. The law, then every mode's update with the multipliers.
 //!
-//! Sums over modes are taken in [`LANES`] partial sums (mode j into lane
-//! j mod 8) added in a fixed order, so the result does not depend on the
-//! vector width the loop is compiled for; a run in a batch
-//! ([`super::modal_batch`]) calls the same functions and gets the same
-//! bits. Nothing is allocated after [`ModalExact::new`].
+//! The kernels round `a·b + c` once and take sums over modes in eight
+//! partial sums (mode j into lane j mod 8) added in a fixed order: AVX2 +
+//! FMA where the CPU has both, `f64::mul_add` lane by lane otherwise, the
+//! same bits either way (`crate::model::lanes`). A run in a batch
+//! (`modal_batch.rs`) calls the same functions and gets the same bits.
+//! Nothing is allocated after [`ModalExact::new`].
 
 use std::sync::Arc;
 
@@ -191,50 +192,95 @@ impl Stepper for ModalExact {
     }
 }
 
-/// One step of one run (module docs), for a run alone and each run of a
-/// batch alike.
-pub(crate) fn step(
+/// The two sums of a run with one contact and no other carrier, in
+/// [`LANES`] partial sums (carried from one range of modes to the next
+/// when a pass is split, as the tests do):
+/// `Σ φ_j(x_{n+1}) η_free,j` and
+/// `Σ φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1}))`.
+#[derive(Debug, Clone, Copy, Default)]
+struct PairSums {
+    g: [f64; LANES],
+    w: [f64; LANES],
+}
+
+impl PairSums {
+    fn total(&self) -> (f64, f64) {
+        (lanes::reduce(&self.g), lanes::reduce(&self.w))
+    }
+}
+
+/// True when a run's step takes the fused single-contact path (one
+/// carrier, a mass on a spring): the free step and its two sums in one
+/// pass.
+#[inline(always)]
+fn is_single(sys: &System) -> bool {
+    sys.contacts() == 1 && sys.carriers.len() == 1
+}
+
+/// Phase 1: each carrier's previous `φ(x_{n+1})` becomes `φ(x_n)` (swapped,
+/// not copied) and `φ(x_{n+1})` is evaluated at t_{n+1}.
+#[inline(always)]
+fn place(coefs: &ModalCoefs, sys: &mut System, st: &State) {
+    let t1 = st.next_time(sys.dt);
+    let beam = &sys.beam;
+    for c in sys.carriers.iter_mut() {
+        std::mem::swap(&mut c.pv_f, &mut c.pv_g);
+        coefs.place(beam, c.props.motion.position(t1), &mut c.pv_g);
+    }
+}
+
+/// Phase 2 of a single-contact run over modes `lo .. hi` (`lo` a multiple
+/// of [`LANES`]): the free step and the pair's partial sums.
+#[inline(always)]
+fn free_pair_range(
+    coefs: &ModalCoefs,
+    sys: &System,
+    st: &mut State,
+    (lo, hi): (usize, usize),
+    sums: &mut PairSums,
+    vector: bool,
+) {
+    let c = &sys.carriers[0];
+    let phi = (c.pv_f.dense(), c.pv_g.dense());
+    free_with_pair(
+        &coefs.steps,
+        coefs.held.as_ref(),
+        st,
+        phi,
+        (lo, hi),
+        sums,
+        vector,
+    );
+}
+
+/// Phase 3: the mass dofs' free step, the contact problem (g_free and W,
+/// MODEL §9.3), the law, and the mass dofs' update. `pair` carries the two
+/// sums of a single-contact run; the general path forms them here.
+#[inline(always)]
+fn contact(
     coefs: &ModalCoefs,
     mass_steps: &[MassStep],
     (g, w): (&mut [f64], &mut [f64]),
+    pair: Option<(f64, f64)>,
     sys: &mut System,
     st: &mut State,
 ) -> Result<()> {
-    let t1 = st.next_time(sys.dt);
-    // 1. place: φ(x_n) ← φ(x_{n+1}) of the last step, then φ(x_{n+1})
-    {
-        let beam = &sys.beam;
-        for c in sys.carriers.iter_mut() {
-            std::mem::swap(&mut c.pv_f, &mut c.pv_g);
-            coefs.place(beam, c.props.motion.position(t1), &mut c.pv_g);
-        }
+    let nc = sys.contacts();
+    if nc == 0 {
+        return Ok(());
     }
     let m = &coefs.steps;
-    let nc = sys.contacts();
-    let single = nc == 1 && sys.carriers.len() == 1;
-    // 2. the free step (and, for one contact alone, its g_free and W sums)
-    let mut pair = (0.0, 0.0);
-    if single {
-        let c = &sys.carriers[0];
-        pair = free_with_pair(m, coefs.held.as_ref(), st, c.pv_f.dense(), c.pv_g.dense());
-    } else {
-        free(m, coefs.held.as_ref(), st);
-        for c in &sys.carriers {
-            if let CarrierKind::Force { force } = c.props.kind {
-                add_path_load(m, c.s * force, c.pv_f.dense(), c.pv_g.dense(), st);
-            }
-        }
+    // the mass dofs' free step (their constant force held)
+    for (j, (ms, dof)) in mass_steps.iter().zip(sys.masses()).enumerate() {
+        (st.q[j], st.q_dot[j]) = ms.apply((st.q[j], st.q_dot[j]), dof.f0);
     }
-    if nc > 0 {
-        // the mass dofs' free step (their constant force held)
-        for (j, (ms, dof)) in mass_steps.iter().zip(sys.masses()).enumerate() {
-            (st.q[j], st.q_dot[j]) = ms.apply((st.q[j], st.q_dot[j]), dof.f0);
-        }
-        if single {
+    match pair {
+        Some((dg, dw)) => {
             let s = sys.carriers[0].s;
-            g[0] = s * pair.0 - st.q[0];
-            w[0] = s * s * pair.1 + mass_steps[0].g[0];
-        } else {
+            g[0] = s * dg - st.q[0];
+            w[0] = s * s * dw + mass_steps[0].g[0];
+        }
+        None => {
             for ci in &sys.carriers {
                 let Some(i) = ci.contact else { continue };
                 g[i] = ci.s * lanes::dot(ci.pv_g.dense(), &st.d) - st.q[i];
@@ -246,58 +292,134 @@ pub(crate) fn step(
                 }
             }
         }
-        // 3. the law, then the update with the multipliers
-        sys.solve_formed(g, w, st)?;
-        for c in &sys.carriers {
-            let Some(j) = c.contact else { continue };
-            let lambda = sys.lambda[j];
-            if lambda != 0.0 {
-                add_path_load(m, c.s * lambda, c.pv_f.dense(), c.pv_g.dense(), st);
-            }
-            st.q[j] -= mass_steps[j].g[0] * lambda;
-            st.q_dot[j] -= mass_steps[j].g[1] * lambda;
-        }
+    }
+    sys.solve_formed(g, w, st)?;
+    for c in &sys.carriers {
+        let Some(j) = c.contact else { continue };
+        let lambda = sys.lambda[j];
+        st.q[j] -= mass_steps[j].g[0] * lambda;
+        st.q_dot[j] -= mass_steps[j].g[1] * lambda;
     }
     Ok(())
 }
 
-/// Calls the `$kernel` (an `#[inline(always)]` function) through a copy of
-/// it compiled for AVX2 when the CPU has it: the same operations in the
-/// same order either way (no fused multiply–add), so the same bits.
-macro_rules! with_avx2 {
-    ($(#[$doc:meta])* fn $name:ident => $kernel:ident ($($arg:ident: $ty:ty),*) $(-> $ret:ty)?) => {
-        $(#[$doc])*
-        fn $name($($arg: $ty),*) $(-> $ret)? {
-            #[cfg(target_arch = "x86_64")]
-            {
-                #[target_feature(enable = "avx2")]
-                fn avx2($($arg: $ty),*) $(-> $ret)? {
-                    $kernel($($arg),*)
-                }
-                if std::arch::is_x86_feature_detected!("avx2") {
-                    // SAFETY: the CPU supports AVX2 (checked just above).
-                    return unsafe { avx2($($arg),*) };
-                }
-            }
-            $kernel($($arg),*)
+/// Phase 4 over modes `lo .. hi`: each contact force, held over the step
+/// along its carrier's path, into every mode.
+#[inline(always)]
+fn update_range(
+    coefs: &ModalCoefs,
+    sys: &System,
+    st: &mut State,
+    range: (usize, usize),
+    vector: bool,
+) {
+    for c in &sys.carriers {
+        let Some(j) = c.contact else { continue };
+        let lambda = sys.lambda[j];
+        if lambda != 0.0 {
+            let phi = (c.pv_f.dense(), c.pv_g.dense());
+            add_path_load(&coefs.steps, c.s * lambda, phi, st, range, vector);
         }
-    };
+    }
 }
 
-with_avx2! {
-    /// The free step of every mode: `[η, η̇] ← E [η, η̇]` plus the held load.
-    fn free => free_kernel(m: &ModeSteps, held: Option<&(Vec<f64>, Vec<f64>)>, st: &mut State)
+/// One step of one run (module docs), for a run alone and each run of a
+/// batch: phases 1–4 over all modes. Where the CPU has AVX2 and FMA the
+/// whole step is compiled for them, so the scalar parts (a last partial
+/// vector, the general path of several carriers) use the FMA instruction
+/// rather than its software emulation; the bits are the same either way.
+pub(crate) fn step(
+    coefs: &ModalCoefs,
+    mass_steps: &[MassStep],
+    gw: (&mut [f64], &mut [f64]),
+    sys: &mut System,
+    st: &mut State,
+) -> Result<()> {
+    #[cfg(target_arch = "x86_64")]
+    if lanes::avx2_fma() {
+        // SAFETY: the CPU supports AVX2 and FMA (checked just above).
+        return unsafe { step_fma(coefs, mass_steps, gw, sys, st) };
+    }
+    step_kernel(coefs, mass_steps, gw, sys, st, false)
+}
+
+/// # Safety
+/// The CPU supports AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn step_fma(
+    coefs: &ModalCoefs,
+    mass_steps: &[MassStep],
+    gw: (&mut [f64], &mut [f64]),
+    sys: &mut System,
+    st: &mut State,
+) -> Result<()> {
+    step_kernel(coefs, mass_steps, gw, sys, st, true)
 }
 
 #[inline(always)]
-fn free_kernel(m: &ModeSteps, held: Option<&(Vec<f64>, Vec<f64>)>, st: &mut State) {
+fn step_kernel(
+    coefs: &ModalCoefs,
+    mass_steps: &[MassStep],
+    gw: (&mut [f64], &mut [f64]),
+    sys: &mut System,
+    st: &mut State,
+    vector: bool,
+) -> Result<()> {
+    place(coefs, sys, st);
+    let m = &coefs.steps;
+    let all = (0, m.len());
+    let pair = if is_single(sys) {
+        let mut sums = PairSums::default();
+        free_pair_range(coefs, sys, st, all, &mut sums, vector);
+        Some(sums.total())
+    } else {
+        free(m, coefs.held.as_ref(), st, vector);
+        for c in &sys.carriers {
+            if let CarrierKind::Force { force } = c.props.kind {
+                let phi = (c.pv_f.dense(), c.pv_g.dense());
+                add_path_load(m, c.s * force, phi, st, all, vector);
+            }
+        }
+        None
+    };
+    contact(coefs, mass_steps, gw, pair, sys, st)?;
+    update_range(coefs, sys, st, all, vector);
+    Ok(())
+}
+
+// The kernels below round `a·b + c` once (AVX2 + FMA vectors where the
+// CPU has both, `f64::mul_add` lane by lane otherwise: the same bits,
+// `crate::model::lanes`), and take sums over modes in its eight lanes.
+
+/// The free step of mode i: `(cos·η + sin/ω·η̇, −ω sin·η + cos·η̇)`, fused.
+#[inline(always)]
+fn rotate_mode(m: &ModeSteps, i: usize, e: f64, ev: f64) -> (f64, f64) {
+    (
+        m.cos[i].mul_add(e, m.sin_over_omega[i] * ev),
+        m.minus_omega_sin[i].mul_add(e, m.cos[i] * ev),
+    )
+}
+
+/// `a0 p + a1 q` (or b0, b1) of mode i, fused.
+#[inline(always)]
+fn path(a0: f64, p: f64, a1: f64, q: f64) -> f64 {
+    a0.mul_add(p, a1 * q)
+}
+
+/// The free step of every mode: `[η, η̇] ← E [η, η̇]`, plus the held load.
+#[inline(always)]
+fn free(m: &ModeSteps, held: Option<&(Vec<f64>, Vec<f64>)>, st: &mut State, vector: bool) {
     let j = m.len();
     let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
-    let (c, sw, ws) = (&m.cos[..j], &m.sin_over_omega[..j], &m.minus_omega_sin[..j]);
-    for i in 0..j {
-        let (e, ev) = (d[i], v[i]);
-        d[i] = c[i] * e + sw[i] * ev;
-        v[i] = ws[i] * e + c[i] * ev;
+    let mut done = 0;
+    #[cfg(target_arch = "x86_64")]
+    if vector {
+        // SAFETY: the caller checked AVX2 and FMA; every slice holds J.
+        done = unsafe { free_avx2(m, d, v) };
+    }
+    for i in done..j {
+        (d[i], v[i]) = rotate_mode(m, i, d[i], v[i]);
     }
     if let Some((hp, hv)) = held {
         for i in 0..j {
@@ -307,78 +429,101 @@ fn free_kernel(m: &ModeSteps, held: Option<&(Vec<f64>, Vec<f64>)>, st: &mut Stat
     }
 }
 
-/// [`free`] fused with the two sums a single contact needs:
-/// `Σ φ_j(x_{n+1}) η_free,j` and `Σ φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1}))`,
-/// in [`LANES`] partial sums; AVX2 where the CPU has it, the same
-/// operations lane by lane either way.
+/// The whole vectors of [`free`] (without the held load); returns how many
+/// modes it did.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; d, v and the coefficients hold J entries.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn free_avx2(m: &ModeSteps, d: &mut [f64], v: &mut [f64]) -> usize {
+    use std::arch::x86_64::*;
+    let full = d.len() / 4 * 4;
+    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ full.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let mut i = 0;
+        while i < full {
+            let (e, ev, c) = (ld(d, i), ld(v, i), ld(&m.cos, i));
+            let e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, i), ev));
+            let v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, i), e, _mm256_mul_pd(c, ev));
+            _mm256_storeu_pd(d.as_mut_ptr().add(i), e1);
+            _mm256_storeu_pd(v.as_mut_ptr().add(i), v1);
+            i += 4;
+        }
+    }
+    full
+}
+
+/// [`free`] over modes `lo .. hi` fused with the two sums of a single
+/// contact ([`PairSums`]); mode i ≥ ⌊J/8⌋·8 goes into lane i − ⌊J/8⌋·8, as
+/// [`lanes::dot`] puts its tail, so any split into ranges at multiples of
+/// [`LANES`] gives the sums of one pass.
+#[inline(always)]
 fn free_with_pair(
     m: &ModeSteps,
     held: Option<&(Vec<f64>, Vec<f64>)>,
     st: &mut State,
-    pn: &[f64],
-    pn1: &[f64],
-) -> (f64, f64) {
-    if held.is_some() {
-        // with a distributed load: the free step, then the two sums apart
-        free(m, held, st);
-        return (lanes::dot(pn1, &st.d), path_dot(m, pn1, pn, pn1));
-    }
+    (pn, pn1): (&[f64], &[f64]),
+    (lo, hi): (usize, usize),
+    sums: &mut PairSums,
+    vector: bool,
+) {
+    debug_assert!(lo % LANES == 0 && hi <= m.len());
     let j = m.len();
+    let full = j / LANES * LANES;
     let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
     let (pn, pn1) = (&pn[..j], &pn1[..j]);
-    let (mut gs, mut ws) = ([0.0; LANES], [0.0; LANES]);
-    let full = j / LANES * LANES;
+    let zeros: [f64; 0] = [];
+    let (hp, hv): (&[f64], &[f64]) = match held {
+        Some((hp, hv)) => (&hp[..j], &hv[..j]),
+        None => (&zeros, &zeros),
+    };
+    let mut done = lo;
     #[cfg(target_arch = "x86_64")]
-    let avx2 = std::arch::is_x86_feature_detected!("avx2");
-    #[cfg(not(target_arch = "x86_64"))]
-    let avx2 = false;
-    if avx2 {
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: the CPU supports AVX2 (checked just above); every slice
-        // has at least `full` entries.
-        unsafe {
-            free_with_pair_avx2(m, (d, v), (pn, pn1), full, (&mut gs, &mut ws))
-        };
-    } else {
-        for i in 0..full {
-            let l = i % LANES;
-            let (e, ev) = (d[i], v[i]);
-            let e1 = m.cos[i] * e + m.sin_over_omega[i] * ev;
-            d[i] = e1;
-            v[i] = m.minus_omega_sin[i] * e + m.cos[i] * ev;
-            gs[l] += pn1[i] * e1;
-            ws[l] += pn1[i] * (m.a0[i] * pn[i] + m.a1[i] * pn1[i]);
+    if vector {
+        let end = hi.min(full).max(lo);
+        // SAFETY: the caller checked AVX2 and FMA; every slice holds J ≥ end,
+        // `lo` and `end` are multiples of LANES, hp/hv hold J when present.
+        unsafe { free_with_pair_avx2(m, (d, v), (pn, pn1), (hp, hv), (lo, end), sums) };
+        done = end;
+    }
+    for i in done..hi {
+        let l = if i < full { i % LANES } else { i - full };
+        let (mut e1, mut v1) = rotate_mode(m, i, d[i], v[i]);
+        if held.is_some() {
+            e1 += hp[i];
+            v1 += hv[i];
         }
-    }
-    for i in full..j {
-        let (e, ev) = (d[i], v[i]);
-        let e1 = m.cos[i] * e + m.sin_over_omega[i] * ev;
         d[i] = e1;
-        v[i] = m.minus_omega_sin[i] * e + m.cos[i] * ev;
-        gs[i - full] += pn1[i] * e1;
-        ws[i - full] += pn1[i] * (m.a0[i] * pn[i] + m.a1[i] * pn1[i]);
+        v[i] = v1;
+        sums.g[l] = pn1[i].mul_add(e1, sums.g[l]);
+        sums.w[l] = pn1[i].mul_add(path(m.a0[i], pn[i], m.a1[i], pn1[i]), sums.w[l]);
     }
-    (lanes::reduce(&gs), lanes::reduce(&ws))
 }
 
-/// The first `full` modes of [`free_with_pair`], four at a time.
+/// Modes `lo .. end` of [`free_with_pair`], eight at a time.
 ///
 /// # Safety
-/// The CPU supports AVX2 and every slice has at least `full` entries
-/// (`full` a multiple of [`LANES`]).
+/// The CPU supports AVX2 and FMA; `lo` and `end` are multiples of
+/// [`LANES`]; every slice has at least `end` entries, or `hp` and `hv` are
+/// both empty (no held load).
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,fma")]
 unsafe fn free_with_pair_avx2(
     m: &ModeSteps,
     (d, v): (&mut [f64], &mut [f64]),
     (pn, pn1): (&[f64], &[f64]),
-    full: usize,
-    (gs, ws): (&mut [f64; LANES], &mut [f64; LANES]),
+    (hp, hv): (&[f64], &[f64]),
+    (lo, end): (usize, usize),
+    sums: &mut PairSums,
 ) {
     use std::arch::x86_64::*;
-    // SAFETY (whole body): loads and stores at i .. i + 4 < full.
+    let held = !hp.is_empty();
+    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ end.
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let (gs, ws) = (&mut sums.g, &mut sums.w);
         let mut g = [
             _mm256_loadu_pd(gs.as_ptr()),
             _mm256_loadu_pd(gs.as_ptr().add(4)),
@@ -387,29 +532,23 @@ unsafe fn free_with_pair_avx2(
             _mm256_loadu_pd(ws.as_ptr()),
             _mm256_loadu_pd(ws.as_ptr().add(4)),
         ];
-        let mut i = 0;
-        while i < full {
+        let mut i = lo;
+        while i < end {
             for h in 0..2 {
                 let k = i + 4 * h;
-                let (e, ev) = (ld(d, k), ld(v, k));
-                let c = ld(&m.cos, k);
-                let e1 = _mm256_add_pd(
-                    _mm256_mul_pd(c, e),
-                    _mm256_mul_pd(ld(&m.sin_over_omega, k), ev),
-                );
-                let v1 = _mm256_add_pd(
-                    _mm256_mul_pd(ld(&m.minus_omega_sin, k), e),
-                    _mm256_mul_pd(c, ev),
-                );
+                let (e, ev, c) = (ld(d, k), ld(v, k), ld(&m.cos, k));
+                let mut e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
+                let mut v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm256_mul_pd(c, ev));
+                if held {
+                    e1 = _mm256_add_pd(e1, ld(hp, k));
+                    v1 = _mm256_add_pd(v1, ld(hv, k));
+                }
                 _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
                 _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
                 let q = ld(pn1, k);
-                g[h] = _mm256_add_pd(g[h], _mm256_mul_pd(q, e1));
-                let z = _mm256_add_pd(
-                    _mm256_mul_pd(ld(&m.a0, k), ld(pn, k)),
-                    _mm256_mul_pd(ld(&m.a1, k), q),
-                );
-                w[h] = _mm256_add_pd(w[h], _mm256_mul_pd(q, z));
+                g[h] = _mm256_fmadd_pd(q, e1, g[h]);
+                let z = _mm256_fmadd_pd(ld(&m.a0, k), ld(pn, k), _mm256_mul_pd(ld(&m.a1, k), q));
+                w[h] = _mm256_fmadd_pd(q, z, w[h]);
             }
             i += LANES;
         }
@@ -420,41 +559,138 @@ unsafe fn free_with_pair_avx2(
     }
 }
 
-with_avx2! {
-    /// Add a force `f` (N) held over the step along the carrier's path into
-    /// every mode: `η += f (a0 φ(x_n) + a1 φ(x_{n+1}))`, `η̇ += f (b0 φ(x_n) + b1 φ(x_{n+1}))`.
-    fn add_path_load => add_path_load_kernel(m: &ModeSteps, f: f64, pn: &[f64], pn1: &[f64], st: &mut State)
-}
-
+/// Add a force `f` (N) held over the step along the carrier's path into
+/// modes `lo .. hi`: `η += f (a0 φ(x_n) + a1 φ(x_{n+1}))`,
+/// `η̇ += f (b0 φ(x_n) + b1 φ(x_{n+1}))` (mode by mode: any split gives the
+/// same bits).
 #[inline(always)]
-fn add_path_load_kernel(m: &ModeSteps, f: f64, pn: &[f64], pn1: &[f64], st: &mut State) {
-    let j = m.len();
-    let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
-    let (a0, a1, b0, b1) = (&m.a0[..j], &m.a1[..j], &m.b0[..j], &m.b1[..j]);
-    let (pn, pn1) = (&pn[..j], &pn1[..j]);
-    for i in 0..j {
-        d[i] += f * (a0[i] * pn[i] + a1[i] * pn1[i]);
-        v[i] += f * (b0[i] * pn[i] + b1[i] * pn1[i]);
+fn add_path_load(
+    m: &ModeSteps,
+    f: f64,
+    (pn, pn1): (&[f64], &[f64]),
+    st: &mut State,
+    (lo, hi): (usize, usize),
+    vector: bool,
+) {
+    let (d, v) = (&mut st.d[lo..hi], &mut st.v[lo..hi]);
+    let (pn, pn1) = (&pn[lo..hi], &pn1[lo..hi]);
+    let (a0, a1, b0, b1) = (&m.a0[lo..hi], &m.a1[lo..hi], &m.b0[lo..hi], &m.b1[lo..hi]);
+    let mut done = 0;
+    #[cfg(target_arch = "x86_64")]
+    if vector {
+        // SAFETY: the caller checked AVX2 and FMA; every slice holds hi − lo.
+        done = unsafe { add_path_load_avx2(f, (a0, a1, b0, b1), (pn, pn1), (d, v)) };
+    }
+    for i in done..hi - lo {
+        d[i] = f.mul_add(path(a0[i], pn[i], a1[i], pn1[i]), d[i]);
+        v[i] = f.mul_add(path(b0[i], pn[i], b1[i], pn1[i]), v[i]);
     }
 }
 
-with_avx2! {
-    /// `Σ_j r_j (a0_j p_j + a1_j q_j)`: a contact row against a unit force
-    /// held along a carrier's path (φ(x_n) = p, φ(x_{n+1}) = q), in
-    /// [`LANES`] partial sums.
-    fn path_dot => path_dot_kernel(m: &ModeSteps, r: &[f64], p: &[f64], q: &[f64]) -> f64
+/// The whole vectors of [`add_path_load`]; returns how many modes it did.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; every slice has the length of `d`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn add_path_load_avx2(
+    f: f64,
+    (a0, a1, b0, b1): (&[f64], &[f64], &[f64], &[f64]),
+    (pn, pn1): (&[f64], &[f64]),
+    (d, v): (&mut [f64], &mut [f64]),
+) -> usize {
+    use std::arch::x86_64::*;
+    let full = d.len() / 4 * 4;
+    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ full.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let fv = _mm256_set1_pd(f);
+        let mut i = 0;
+        while i < full {
+            let (p, q) = (ld(pn, i), ld(pn1, i));
+            let z = _mm256_fmadd_pd(ld(a0, i), p, _mm256_mul_pd(ld(a1, i), q));
+            let zv = _mm256_fmadd_pd(ld(b0, i), p, _mm256_mul_pd(ld(b1, i), q));
+            _mm256_storeu_pd(d.as_mut_ptr().add(i), _mm256_fmadd_pd(fv, z, ld(d, i)));
+            _mm256_storeu_pd(v.as_mut_ptr().add(i), _mm256_fmadd_pd(fv, zv, ld(v, i)));
+            i += 4;
+        }
+    }
+    full
 }
 
+/// `Σ_j r_j (a0_j p_j + a1_j q_j)`: a contact row against a unit force
+/// held along a carrier's path (φ(x_n) = p, φ(x_{n+1}) = q), in [`LANES`]
+/// partial sums (scalar: the general path of several carriers).
 #[inline(always)]
-fn path_dot_kernel(m: &ModeSteps, r: &[f64], p: &[f64], q: &[f64]) -> f64 {
+fn path_dot(m: &ModeSteps, r: &[f64], p: &[f64], q: &[f64]) -> f64 {
     let j = m.len();
     let mut acc = [0.0; LANES];
     let full = j / LANES * LANES;
-    for i in 0..full {
-        acc[i % LANES] += r[i] * (m.a0[i] * p[i] + m.a1[i] * q[i]);
-    }
-    for i in full..j {
-        acc[i - full] += r[i] * (m.a0[i] * p[i] + m.a1[i] * q[i]);
+    for i in 0..j {
+        let l = if i < full { i % LANES } else { i - full };
+        acc[l] = r[i].mul_add(path(m.a0[i], p[i], m.a1[i], q[i]), acc[l]);
     }
     lanes::reduce(&acc)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The vector and scalar paths of each kernel give the same bits.
+    #[test]
+    fn the_vector_and_scalar_kernels_agree_bit_for_bit() {
+        if !lanes::avx2_fma() {
+            return;
+        }
+        for j in [3, 8, 13, 64, 803] {
+            let omega: Vec<f64> = (1..=j)
+                .map(|i| 9.4 * i as f64 * (1.0 + 1e-3 * i as f64))
+                .collect();
+            let m = ModeSteps::new(&omega, 6.25e-5);
+            let wave =
+                |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
+            let (pn, pn1) = (wave(0.37), wave(0.371));
+            let st0 = State {
+                step: 3,
+                t: 0.0,
+                d: wave(1.3).iter().map(|x| 1e-3 * x).collect(),
+                v: wave(0.7),
+                q: vec![],
+                q_dot: vec![],
+            };
+            let held = (wave(0.2), wave(0.9));
+            for h in [None, Some(&held)] {
+                let (mut a, mut b, mut c) = (st0.clone(), st0.clone(), st0.clone());
+                let (mut sa, mut sb, mut sc) = (
+                    PairSums::default(),
+                    PairSums::default(),
+                    PairSums::default(),
+                );
+                free_with_pair(&m, h, &mut a, (&pn, &pn1), (0, j), &mut sa, true);
+                free_with_pair(&m, h, &mut b, (&pn, &pn1), (0, j), &mut sb, false);
+                // by ranges, as a batch takes them
+                for lo in (0..j).step_by(16) {
+                    let r = (lo, (lo + 16).min(j));
+                    free_with_pair(&m, h, &mut c, (&pn, &pn1), r, &mut sc, true);
+                }
+                let bits = |s: &PairSums| {
+                    let (g, w) = s.total();
+                    (g.to_bits(), w.to_bits())
+                };
+                assert_eq!(bits(&sa), bits(&sb), "J = {j}");
+                assert_eq!(bits(&sa), bits(&sc), "J = {j}");
+                assert_eq!(a, b);
+                assert_eq!(a, c);
+                add_path_load(&m, -37.5, (&pn, &pn1), &mut a, (0, j), true);
+                add_path_load(&m, -37.5, (&pn, &pn1), &mut b, (0, j), false);
+                for lo in (0..j).step_by(16) {
+                    let r = (lo, (lo + 16).min(j));
+                    add_path_load(&m, -37.5, (&pn, &pn1), &mut c, r, true);
+                }
+                assert_eq!(a, b, "J = {j}");
+                assert_eq!(a, c, "J = {j}");
+            }
+        }
+    }
 }

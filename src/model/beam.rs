@@ -92,7 +92,7 @@ impl PointVector {
                 } else {
                     i - full
                 };
-                acc[l] += r * at(i);
+                acc[l] = r.mul_add(at(i), acc[l]);
             }
             super::lanes::reduce(&acc)
         }
