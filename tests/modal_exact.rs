@@ -332,3 +332,81 @@ fn two_carriers_a_dashpot_self_weight_and_the_fe_modal_basis_agree_with_generali
         }
     }
 }
+
+/// `sweep --check-refinement` doubles J (not N) on a galerkin basis and
+/// halves Δt; `run --tolerance` ladders J: the pilots' J are J₀, 2J₀, 4J₀
+/// and the chosen run's J and Δt are what it reports.
+#[test]
+fn refinement_and_tolerance_refine_the_modes() {
+    use common::{out_dir, taut_bin};
+    let tmp = tempfile::tempdir().unwrap();
+    let out = out_dir(&tmp, "sweep");
+    let o = taut_bin(&[
+        "sweep",
+        "scenes/reference.toml",
+        "--vary",
+        "carrier.speed.cruise=120:140:2",
+        "--set",
+        "mesh.kind=galerkin",
+        "--set",
+        "mesh.modes=100",
+        "--set",
+        "time.step=2e-4",
+        "--set",
+        EXACT,
+        "--check-refinement",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let at = |c: &str| header.iter().position(|h| *h == c).unwrap();
+    for row in csv.lines().skip(1) {
+        let cells: Vec<&str> = row.split(',').collect();
+        assert_eq!(cells[at("refined_modes")], "200", "{row}");
+        assert_eq!(cells[at("refined_dt")], "0.0001", "{row}");
+        assert!(cells[at("refined_loss_fraction_span")].parse::<f64>().is_ok());
+    }
+
+    let out = out_dir(&tmp, "tol");
+    let o = taut_bin(&[
+        "run",
+        "scenes/reference.toml",
+        "--set",
+        "mesh.kind=galerkin",
+        "--set",
+        "mesh.modes=50",
+        "--set",
+        "time.step=2e-4",
+        "--set",
+        EXACT,
+        "--tolerance",
+        "1e-2",
+        "--quantity",
+        "displacement",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}\n{stdout}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("pilots   J × Δt: 50 × 2e-4 s"), "{stdout}");
+    let csv = std::fs::read_to_string(out.join("accuracy.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let at = |c: &str| header.iter().position(|h| *h == c).unwrap();
+    let modes: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|r| r.split(',').nth(at("modes")).unwrap())
+        .collect();
+    assert_eq!(&modes[..5], ["50", "100", "200", "50", "50"], "{csv}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let chosen = summary["accuracy"]["modes"].as_u64().unwrap();
+    assert_eq!(
+        summary["scene"]["mesh"]["modes"].as_u64(),
+        Some(chosen),
+        "the run reported is the chosen one"
+    );
+}
