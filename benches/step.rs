@@ -19,7 +19,8 @@
 //! Group `discretizations`: the per-step cost of each space discretization
 //! (`[mesh] kind`, MODEL §9.2) on the reference beam: Hermite uniform and
 //! graded at N = 800, and the modal bases (`galerkin`, `modal` of the
-//! N = 800 model) at J = 50, 200 and 800. The carrier crawls at 0.5 m/s so a
+//! N = 800 model) at J = 50, 200 and 800, under generalized-α and under
+//! `modal_exact`. The carrier crawls at 0.5 m/s so a
 //! long-lived integrator is timed block after block (a modal basis's
 //! eigenproblem is paid once per run, outside the timing; its cost is in
 //! `model::eigen`'s docs).
@@ -166,7 +167,8 @@ fn bench_discretizations(c: &mut Criterion) {
         "time.end=90".to_string(),
         "output.record_every=100000".to_string(),
     ];
-    let kinds: [(&str, &[&str]); 8] = [
+    let exact = "integrator={ method = \"modal_exact\" }";
+    let kinds: [(&str, &[&str]); 12] = [
         ("hermite", &[]),
         (
             "hermite_graded",
@@ -178,6 +180,22 @@ fn bench_discretizations(c: &mut Criterion) {
         ("modal_J=50", &["mesh.kind=modal", "mesh.modes=50"]),
         ("modal_J=200", &["mesh.kind=modal", "mesh.modes=200"]),
         ("modal_J=800", &["mesh.kind=modal", "mesh.modes=800"]),
+        (
+            "galerkin_J=50_modal_exact",
+            &["mesh.kind=galerkin", "mesh.modes=50", exact],
+        ),
+        (
+            "galerkin_J=200_modal_exact",
+            &["mesh.kind=galerkin", "mesh.modes=200", exact],
+        ),
+        (
+            "galerkin_J=800_modal_exact",
+            &["mesh.kind=galerkin", "mesh.modes=800", exact],
+        ),
+        (
+            "modal_J=800_modal_exact",
+            &["mesh.kind=modal", "mesh.modes=800", exact],
+        ),
     ];
     for (name, set) in kinds {
         let mut o = crawl.to_vec();
@@ -269,9 +287,18 @@ fn bench_modal_exact(c: &mut Criterion) {
     };
     let exact = "integrator={ method = \"modal_exact\" }";
     for (name, set) in [
-        ("galerkin_J=400", vec!["mesh.kind=galerkin", "mesh.modes=400", exact]),
-        ("galerkin_J=800", vec!["mesh.kind=galerkin", "mesh.modes=800", exact]),
-        ("hermite_N=1600_generalized_alpha", vec!["mesh.elements=1600"]),
+        (
+            "galerkin_J=400",
+            vec!["mesh.kind=galerkin", "mesh.modes=400", exact],
+        ),
+        (
+            "galerkin_J=800",
+            vec!["mesh.kind=galerkin", "mesh.modes=800", exact],
+        ),
+        (
+            "hermite_N=1600_generalized_alpha",
+            vec!["mesh.elements=1600"],
+        ),
     ] {
         let sc = case(&set);
         group.throughput(Throughput::Elements(sc.steps as u64));

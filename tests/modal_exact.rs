@@ -268,11 +268,14 @@ fn the_riding_mass_matches_the_galerkin_reference_in_the_same_modes() {
     assert!(errs[0] >= SECOND_ORDER_RATIO * errs[1], "{errs:?}");
 }
 
-/// Penalty at the default relative stiffness (10³/W) against Lagrange: the
-/// force is 1000/1001 of it per step, so statistics agree to ~1e-3; the
-/// complementarity LCP solves the same problem exactly.
-const PENALTY_REL: f64 = 5e-3;
-const COMPLEMENTARITY_REL: f64 = 1e-9;
+/// Penalty at the default relative stiffness (10³/W) against Lagrange on
+/// the mean force: while the gap closes the penalty force is 1000/1001 of
+/// Lagrange's, but the mean is the impulse balance of the carrier's weight
+/// and preload, which that does not move (measured 9e-9); 1e-6 fails a
+/// penalty law that is not converging to Lagrange's.
+const PENALTY_REL: f64 = 1e-6;
+/// The complementarity LCP solves the same problem exactly: measured 0.
+const COMPLEMENTARITY_REL: f64 = 1e-12;
 
 #[test]
 fn the_force_level_laws_agree() {
@@ -292,11 +295,12 @@ fn the_force_level_laws_agree() {
     assert!(((c - l) / l).abs() <= COMPLEMENTARITY_REL && pc == pl);
 }
 
-/// Mean contact force and P_l of modal_exact against generalized-α on the
-/// same basis at Δt = 1.25e-5 s (two carriers, a dashpot, self-weight, an
-/// FE modal basis): both converge to the same discrete-in-space model, so
-/// they agree to their time errors, measured below 1 % in force.
-const SAME_BASIS_FORCE_REL: f64 = 0.02;
+/// Mean contact force of modal_exact against generalized-α on the same
+/// basis at Δt = 1.25e-5 s (two carriers, a dashpot, self-weight, an FE
+/// modal basis): both are second order to the same discrete-in-space
+/// model, so they agree to their time errors (measured 8e-9 to 4.8e-8);
+/// 1e-6 leaves a factor 20.
+const SAME_BASIS_FORCE_REL: f64 = 1e-6;
 
 #[test]
 fn two_carriers_a_dashpot_self_weight_and_the_fe_modal_basis_agree_with_generalized_alpha() {
@@ -367,7 +371,11 @@ fn refinement_and_tolerance_refine_the_modes() {
         let cells: Vec<&str> = row.split(',').collect();
         assert_eq!(cells[at("refined_modes")], "200", "{row}");
         assert_eq!(cells[at("refined_dt")], "0.0001", "{row}");
-        assert!(cells[at("refined_loss_fraction_span")].parse::<f64>().is_ok());
+        assert!(
+            cells[at("refined_loss_fraction_span")]
+                .parse::<f64>()
+                .is_ok()
+        );
     }
 
     let out = out_dir(&tmp, "tol");
@@ -390,7 +398,11 @@ fn refinement_and_tolerance_refine_the_modes() {
         out.to_str().unwrap(),
     ]);
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{}\n{stdout}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "{}\n{stdout}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(stdout.contains("pilots   J × Δt: 50 × 2e-4 s"), "{stdout}");
     let csv = std::fs::read_to_string(out.join("accuracy.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
