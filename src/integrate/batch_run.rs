@@ -70,12 +70,14 @@ pub fn lanes_cap(sc: &Resolved) -> usize {
     }
 }
 
+/// A built batch (when any run built) and the runs that failed to build,
+/// with the caller's ids.
+pub type NewBatch = (Option<Box<dyn RunBatch>>, Vec<(usize, Error)>);
+
 /// Build the batch for `scenes` (equal [`batch_key`]s; `ids` are the
 /// caller's indices), of the kind the key names. A run that fails to build
 /// is returned in the error list with its id.
-pub fn new_batch(
-    scenes: &[(usize, &Resolved)],
-) -> (Option<Box<dyn RunBatch>>, Vec<(usize, Error)>) {
+pub fn new_batch(scenes: &[(usize, &Resolved)]) -> NewBatch {
     match scenes.first().map(|(_, sc)| sc.scheme) {
         Some(Scheme::ModalExact) => {
             let (b, e) = ModalBatch::new(scenes);

@@ -36,7 +36,7 @@ mod state;
 mod system;
 
 pub use batch::{Batch, Lane, MAX_LANES, max_lanes, scene_columns};
-pub use batch_run::{RunBatch, batch_key, lanes_cap, new_batch};
+pub use batch_run::{NewBatch, RunBatch, batch_key, lanes_cap, new_batch};
 pub use bathe::Bathe;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
