@@ -19,7 +19,8 @@
 //! Group `discretizations`: the per-step cost of each space discretization
 //! (`[mesh] kind`, MODEL §9.2) on the reference beam: Hermite uniform and
 //! graded at N = 800, and the modal bases (`galerkin`, `modal` of the
-//! N = 800 model) at J = 50, 200 and 800. The carrier crawls at 0.5 m/s so a
+//! N = 800 model) at J = 50, 200 and 800, under generalized-α and under
+//! `modal_exact`. The carrier crawls at 0.5 m/s so a
 //! long-lived integrator is timed block after block (a modal basis's
 //! eigenproblem is paid once per run, outside the timing; its cost is in
 //! `model::eigen`'s docs).
@@ -34,6 +35,14 @@
 //!
 //! Group `run`: one complete `taut::run` of the reference scene as shipped
 //! (400 elements, 6000 steps, recording included), for context.
+//!
+//! Group `modal_exact` (issue 24): one complete run of the reference case
+//! at V0/c = 0.9, Δt = 6.25e-5 s (7115 steps, recording every step),
+//! reported as steps per second: `modal_exact` on `galerkin` J = 400 and
+//! 800, and generalized-α on Hermite N = 1600 for the per-step ratio (the
+//! target: J = 800 at least 10× faster per step than N = 1600). Then eight
+//! runs of a speed sweep at J = 800 alone and as one batch (sharing the
+//! basis, `integrate::modal_batch`).
 //!
 //! Run with `cargo bench --bench step`.
 
@@ -116,7 +125,11 @@ fn bench_methods(c: &mut Criterion) {
         .sample_size(10)
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(4));
-    for m in taut::scene::Method::ALL {
+    // modal_exact needs a modal basis: the `modal` group below
+    for m in taut::scene::Method::ALL
+        .into_iter()
+        .filter(|m| !m.needs_modal_basis())
+    {
         let mut o = vec![
             "mesh.elements=800".to_string(),
             format!("integrator={{ method = \"{}\" }}", m.name()),
@@ -162,7 +175,8 @@ fn bench_discretizations(c: &mut Criterion) {
         "time.end=90".to_string(),
         "output.record_every=100000".to_string(),
     ];
-    let kinds: [(&str, &[&str]); 8] = [
+    let exact = "integrator={ method = \"modal_exact\" }";
+    let kinds: [(&str, &[&str]); 12] = [
         ("hermite", &[]),
         (
             "hermite_graded",
@@ -174,6 +188,22 @@ fn bench_discretizations(c: &mut Criterion) {
         ("modal_J=50", &["mesh.kind=modal", "mesh.modes=50"]),
         ("modal_J=200", &["mesh.kind=modal", "mesh.modes=200"]),
         ("modal_J=800", &["mesh.kind=modal", "mesh.modes=800"]),
+        (
+            "galerkin_J=50_modal_exact",
+            &["mesh.kind=galerkin", "mesh.modes=50", exact],
+        ),
+        (
+            "galerkin_J=200_modal_exact",
+            &["mesh.kind=galerkin", "mesh.modes=200", exact],
+        ),
+        (
+            "galerkin_J=800_modal_exact",
+            &["mesh.kind=galerkin", "mesh.modes=800", exact],
+        ),
+        (
+            "modal_J=800_modal_exact",
+            &["mesh.kind=modal", "mesh.modes=800", exact],
+        ),
     ];
     for (name, set) in kinds {
         let mut o = crawl.to_vec();
@@ -286,6 +316,59 @@ fn bench_fine(c: &mut Criterion) {
     group.finish();
 }
 
+fn bench_modal_exact(c: &mut Criterion) {
+    let mut group = c.benchmark_group("modal_exact");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(6));
+    let speed = 0.9 * (3.0e4f64 / 1.335).sqrt();
+    let case = |set: &[&str]| {
+        let mut o = vec![
+            "time.step=6.25e-5".to_string(),
+            format!("carrier.0.speed.cruise={speed}"),
+        ];
+        o.extend(set.iter().map(|s| s.to_string()));
+        resolved(&o)
+    };
+    let exact = "integrator={ method = \"modal_exact\" }";
+    for (name, set) in [
+        (
+            "galerkin_J=400",
+            vec!["mesh.kind=galerkin", "mesh.modes=400", exact],
+        ),
+        (
+            "galerkin_J=800",
+            vec!["mesh.kind=galerkin", "mesh.modes=800", exact],
+        ),
+        (
+            "hermite_N=1600_generalized_alpha",
+            vec!["mesh.elements=1600"],
+        ),
+    ] {
+        let sc = case(&set);
+        group.throughput(Throughput::Elements(sc.steps as u64));
+        group.bench_function(name, |b| {
+            b.iter(|| black_box(taut::run(&sc, &mut |_, _| {}).expect("run").steps))
+        });
+    }
+    let sweep: Vec<taut::Resolved> = (0..8)
+        .map(|i| {
+            let v = format!("carrier.0.speed.cruise={}", 100.0 + 5.0 * i as f64);
+            case(&["mesh.kind=galerkin", "mesh.modes=800", exact, v.as_str()])
+        })
+        .collect();
+    let steps: usize = sweep.iter().map(|s| s.steps).sum();
+    group.throughput(Throughput::Elements(steps as u64));
+    group.bench_function("sweep_of_8_J=800/alone", |b| {
+        b.iter(|| black_box(taut::run_batch(&sweep, 1, &mut |_| {}).len()))
+    });
+    group.bench_function("sweep_of_8_J=800/batched", |b| {
+        b.iter(|| black_box(taut::run_batch(&sweep, 8, &mut |_| {}).len()))
+    });
+    group.finish();
+}
+
 criterion_group!(
     benches,
     bench_fine,
@@ -294,6 +377,7 @@ criterion_group!(
     bench_methods,
     bench_discretizations,
     bench_batch,
-    bench_run
+    bench_run,
+    bench_modal_exact
 );
 criterion_main!(benches);

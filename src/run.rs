@@ -4,7 +4,9 @@ use std::time::Instant;
 
 use crate::error::Error;
 use crate::error::Result;
-use crate::integrate::{Batch, CarrierSample, Integrator, MAX_LANES, MethodFactory, batch_key};
+use crate::integrate::{
+    CarrierSample, Integrator, MAX_LANES, MethodFactory, RunBatch, batch_key, lanes_cap, new_batch,
+};
 use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry};
 use crate::scene::Resolved;
 
@@ -243,9 +245,7 @@ pub fn run_batch(
     for (i, sc) in scenes.iter().enumerate() {
         let key = if width > 1 { batch_key(sc) } else { None };
         // no wider than the kernels compiled for this run's columns
-        let cap = width.min(crate::integrate::max_lanes(
-            crate::integrate::scene_columns(sc),
-        ));
+        let cap = width.min(lanes_cap(sc));
         match groups
             .iter_mut()
             .find(|(k, g)| key.is_some() && *k == key && g.len() < cap)
@@ -308,7 +308,7 @@ pub fn run_many(
 fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<RunOutput>)> {
     let start = Instant::now();
     let list: Vec<(usize, &Resolved)> = members.iter().map(|&i| (i, &scenes[i])).collect();
-    let (batch, errors) = Batch::new(&list);
+    let (batch, errors) = new_batch(&list);
     let mut results: Vec<(usize, Result<RunOutput>)> =
         errors.into_iter().map(|(i, e)| (i, Err(e))).collect();
     let Some(mut b) = batch else {
@@ -333,7 +333,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
         })
         .collect();
     // recorders follow their lanes: index by lane, compacted with the batch
-    let observe = |b: &Batch, recs: &mut Vec<Option<Recorder>>, first: bool| {
+    let observe = |b: &dyn RunBatch, recs: &mut Vec<Option<Recorder>>, first: bool| {
         let mut gone = Vec::new();
         for (l, lane) in b.lanes().iter().enumerate() {
             let sc = &scenes[lane.id];
@@ -360,7 +360,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
         }
         gone
     };
-    let mut pending = observe(&b, &mut recs, true);
+    let mut pending = observe(&*b, &mut recs, true);
     loop {
         // retire finished and stopped runs
         if !pending.is_empty() {
@@ -404,7 +404,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
             break;
         }
         b.step();
-        pending = observe(&b, &mut recs, false);
+        pending = observe(&*b, &mut recs, false);
     }
     results
 }

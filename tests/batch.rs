@@ -223,3 +223,92 @@ fn compare_and_precision_give_the_same_rows_batched() {
     };
     assert_eq!(grid(1), grid(4));
 }
+
+/// `modal_exact` runs on one basis and Δt step together (`integrate::
+/// modal_batch`: the basis, step maps and shape tables built once), each
+/// bit-identical to the run alone: speeds (retirement), masses, springs,
+/// preloads, formulations, two carriers, a run that stops, and runs on
+/// other bases or steps in the same list (other batches, or alone).
+#[test]
+fn modal_exact_runs_batch_bit_identically() {
+    let exact = |more: &[String]| {
+        let mut o = vec![
+            "integrator={ method = \"modal_exact\" }".to_string(),
+            "mesh.kind=galerkin".into(),
+            // more than one block of modes (BLOCK_MODES = 64), the last one partial
+            "mesh.modes=150".into(),
+            "time.step=2e-4".into(),
+        ];
+        o.extend_from_slice(more);
+        o
+    };
+    let mut scenes: Vec<Resolved> = (0..6)
+        .map(|i| {
+            scene(
+                REFERENCE,
+                &exact(&[format!("carrier.0.speed.cruise={}", 70.0 + 12.0 * i as f64)]),
+            )
+        })
+        .collect();
+    for (m, k, f) in [(2.0, 500.0, "penalty"), (0.5, 2000.0, "complementarity")] {
+        scenes.push(scene(
+            REFERENCE,
+            &exact(&[
+                format!("carrier.0.mass={m}"),
+                format!("carrier.0.stiffness={k}"),
+                format!("contact.formulation={f}"),
+            ]),
+        ));
+    }
+    // a run that stops at its first closed contact (clarabel, one iteration)
+    scenes.push(scene(
+        REFERENCE,
+        &exact(&[
+            "contact.formulation=complementarity".into(),
+            "contact.complementarity.solver=clarabel".into(),
+            "contact.complementarity.max_iter=1".into(),
+        ]),
+    ));
+    // another basis, another step, an FE modal basis
+    scenes.push(scene(REFERENCE, &exact(&["mesh.modes=50".into()])));
+    // self-weight: a held load in every mode
+    scenes.push(scene(
+        REFERENCE,
+        &exact(&[
+            "gravity.beam_self_weight=true".into(),
+            "time.end=0.2".into(),
+        ]),
+    ));
+    scenes.push(scene(
+        REFERENCE,
+        &exact(&["time.step=1e-4".into(), "time.end=0.1".into()]),
+    ));
+    scenes.push(scene(
+        REFERENCE,
+        &exact(&[
+            "mesh.kind=modal".into(),
+            "mesh.elements=100".into(),
+            "time.end=0.1".into(),
+        ]),
+    ));
+    let keys: Vec<Option<String>> = scenes.iter().map(taut::integrate::batch_key).collect();
+    assert!(keys.iter().all(Option::is_some));
+    assert_eq!(keys[0], keys[7]);
+    assert_ne!(keys[0], keys[9]);
+    assert_ne!(keys[0], keys[10]);
+    let together = run_batch(&scenes, 8, &mut |_| {});
+    assert!(together[8].is_err(), "the clarabel run must stop");
+    for batch in [1, 2, 3, 8] {
+        assert_same(&scenes, batch);
+    }
+    let two: Vec<Resolved> = [0.5, 1.5]
+        .iter()
+        .map(|m| {
+            scene(
+                TWO,
+                &exact(&[format!("carrier.1.mass={m}"), "time.end=0.2".into()]),
+            )
+        })
+        .collect();
+    assert_same(&two, 2);
+}

@@ -208,6 +208,84 @@ fn step_loop_does_not_allocate() {
         0,
         "moving force"
     );
+    modal_exact(&force);
+}
+
+/// `modal_exact` (MODEL §9.3): on each diagonal basis through contact loss,
+/// the fast shapes near the clamped end (its boundary-layer table) and
+/// mid-span, two contacts, the penalty and complementarity laws, a moving
+/// force with self-weight, and a batch of runs sharing one basis.
+fn modal_exact(force: &str) {
+    let me = "integrator={ method = \"modal_exact\" }";
+    for (kind, extra) in [
+        ("mesh.kind=galerkin", "mesh.modes=200"),
+        ("mesh.kind=modal", "mesh.modes=60"),
+    ] {
+        let s = measure_steps(REFERENCE, &[me, kind, extra], 6000);
+        assert_eq!(s.allocations, 0, "modal_exact, {kind}");
+        assert!(s.open > 0, "modal_exact, {kind}: the contact never opened");
+    }
+    let g = ["mesh.kind=galerkin", "mesh.modes=100"];
+    for f in ["penalty", "complementarity"] {
+        let o = format!("contact.formulation={f}");
+        assert_eq!(
+            allocations_in_steps(REFERENCE, &[me, g[0], g[1], &o], 6000),
+            0,
+            "modal_exact, {f}"
+        );
+    }
+    assert_eq!(
+        allocations_in_steps(TWO_PANTOGRAPHS, &[me, g[0], g[1]], 4000),
+        0,
+        "modal_exact, two contacts"
+    );
+    assert_eq!(
+        allocations_in_steps(
+            force,
+            &[
+                me,
+                g[0],
+                g[1],
+                "gravity.beam_self_weight=true",
+                "time.end=0.5"
+            ],
+            4000
+        ),
+        0,
+        "modal_exact, a moving force"
+    );
+    MEASURING.with(|m| m.set(true));
+    let scenes: Vec<taut::Resolved> = (0..3)
+        .map(|i| {
+            let o = vec![
+                me.to_string(),
+                g[0].to_string(),
+                "mesh.modes=200".to_string(),
+                format!("carrier.0.speed.cruise={}", 96.0 + 2.0 * i as f64),
+            ];
+            taut::resolve_scene(REFERENCE, &o).unwrap()
+        })
+        .collect();
+    let list: Vec<(usize, &taut::Resolved)> = scenes.iter().enumerate().collect();
+    let (batch, errors) = taut::integrate::new_batch(&list);
+    assert!(errors.is_empty());
+    let mut b = batch.unwrap();
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    let mut open = 0;
+    let steps = scenes.iter().map(|s| s.steps).min().unwrap();
+    for _ in 0..steps {
+        b.step();
+        for l in 0..b.lanes().len() {
+            assert!(b.lanes()[l].failed.is_none());
+            open += usize::from(!b.sample(l, 0).in_contact);
+        }
+    }
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::Relaxed) - before,
+        0,
+        "a modal_exact batch"
+    );
+    assert!(open > 0, "the modal batch must pass through contact loss");
 }
 
 /// The complementarity law (clarabel, one solver per problem size updated in

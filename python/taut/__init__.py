@@ -412,7 +412,8 @@ def compare(
     Args:
         formulations: lagrange, penalty, complementarity, impact.
         methods: generalized_alpha, newmark, hht, wbz, bathe,
-            central_difference, moreau_jean (default: the scene's own).
+            central_difference, moreau_jean, modal_exact (the last on a
+            galerkin or modal discretization only) (default: the scene's own).
         discretizations: hermite, "galerkin:J", "modal:J" (default: the scene's own).
         reference: the formulation differences are measured against.
         reference_method: the method they are measured against (one of methods).

@@ -82,28 +82,31 @@
 //!
 //! ## The limit on J
 //!
-//! [`MAX_MODES`] = 1000. The root β_J is found to a relative round-off `ε`,
+//! [`MAX_MODES`] = 4000. The root β_J is found to a relative round-off `ε`,
 //! so the phase `β_J x` of the oscillating part carries an absolute error up
 //! to `ε β_J L ≈ ε J π` (and the argument reduction of `sin`/`cos` as much
-//! again): `≈ 1.4·10⁻¹²` at J = 1000, which keeps every shape, slope/β and
-//! curvature/β² within ~10⁻¹² of its size. It also exceeds any resolution
-//! the comparison needs: 1000 modes resolve half-wavelengths `L/1000` (5 cm on
-//! the 50 m reference span, finer than its 400 Hermite elements of 12.5 cm),
-//! and at O(J) transcendental calls per evaluation a larger basis would
-//! dominate the run time for nothing.
+//! again): `≈ 1.4·10⁻¹²` at J = 1000 and `≈ 5.6·10⁻¹²` at J = 4000, which
+//! keeps every shape, slope/β and curvature/β² within ~10⁻¹¹ of its size.
+//! 4000 modes resolve half-wavelengths `L/4000` (1.25 cm on the 50 m
+//! reference span, finer than its 1600-element refined Hermite meshes),
+//! enough for `modal_exact` to refine J past J = 1000 (`sweep
+//! --check-refinement` doubles it, `run --tolerance` quadruples it). At O(J)
+//! transcendental calls per evaluation such a basis is slow on this
+//! direct path; `modal_exact` evaluates it without them
+//! ([`super::FastShapes`]).
 
 use super::modes::{ClampedPinnedModes, PinnedPinnedModes};
 use crate::error::{Error, Result};
 use crate::scene::{BeamProps, Support};
 use std::f64::consts::PI;
 
-/// Largest basis accepted (module docs: phase error `ε β_J L` ≈ 10⁻¹² there,
+/// Largest basis accepted (module docs: phase error `ε β_J L` ≈ 6·10⁻¹² there,
 /// and finer than any mesh it is compared with).
-pub const MAX_MODES: usize = 1000;
+pub const MAX_MODES: usize = 4000;
 
 /// Which supported end pair the basis is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Ends {
+pub(super) enum Ends {
     PinnedPinned,
     ClampedPinned,
     /// Evaluated as clamped–pinned at `L − x`.
@@ -114,13 +117,13 @@ enum Ends {
 /// One mode in the stable form `P e^{−αs} + Q e^{−α(L−s)} + C cos βs + D sin βs`
 /// (`s = x`, or `L − x` for a mirrored basis), coefficients mass-normalized.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Stable {
-    alpha: f64,
-    beta: f64,
-    p: f64,
-    q: f64,
-    c: f64,
-    d: f64,
+pub(super) struct Stable {
+    pub(super) alpha: f64,
+    pub(super) beta: f64,
+    pub(super) p: f64,
+    pub(super) q: f64,
+    pub(super) c: f64,
+    pub(super) d: f64,
 }
 
 impl Stable {
@@ -360,6 +363,12 @@ impl ModeShapes {
     /// ω_j, rad/s, ascending (the modal stiffness is `diag(ω_j²)`).
     pub fn omega(&self) -> &[f64] {
         &self.omega
+    }
+
+    /// The end pair and every mode's stable-form coefficients, for the
+    /// fast evaluation at a moving point ([`super::FastShapes`]).
+    pub(super) fn parts(&self) -> (Ends, &[Stable]) {
+        (self.ends, &self.modes)
     }
 
     /// The coordinate `s` the stable form is written in, and `ds/dx`.

@@ -25,8 +25,9 @@
 //! **What batches**: generalized-α (and its named sets newmark, hht, wbz),
 //! contact laws at force level (lagrange, penalty, complementarity) with the
 //! `end` placement, Hermite or string elements (half-bandwidth 3 or 1), and
-//! 2 to 8 runs of one or two contacts ([`batch_key`]). Anything else steps
-//! alone, as before.
+//! 2 to 8 runs of one or two contacts ([`super::batch_key`]); `modal_exact`
+//! runs batch their own way (`modal_batch.rs`). Anything else steps alone,
+//! as before.
 //!
 //! **Retiring.** A run whose steps are done (its carrier left the beam) or
 //! that stops (divergence, failed contact solve) leaves the batch
@@ -67,10 +68,10 @@ pub fn scene_columns(sc: &Resolved) -> usize {
     )
 }
 
-/// The key of the runs that may step together: `None` when `sc` cannot
-/// batch (module docs); runs with equal keys share their effective matrix
-/// and their number of right-hand-side columns.
-pub fn batch_key(sc: &Resolved) -> Option<String> {
+/// The key of the generalized-α runs that may step together: `None` when
+/// `sc` cannot batch this way (module docs); runs with equal keys share
+/// their effective matrix and their number of right-hand-side columns.
+pub(crate) fn gen_alpha_key(sc: &Resolved) -> Option<String> {
     let Scheme::GenAlpha(p) = sc.scheme else {
         return None;
     };
@@ -105,25 +106,34 @@ pub fn batch_key(sc: &Resolved) -> Option<String> {
 }
 
 /// One run in a batch: its own system (carriers, contact law, multipliers)
-/// and mass dofs; its beam vectors live in the batch's interleaved arrays.
+/// and mass dofs. In a generalized-α [`Batch`] its beam vectors live in
+/// the batch's interleaved arrays; in a `modal_exact` batch
+/// ([`super::ModalBatch`]) in its own state.
 pub struct Lane {
     /// The run's system.
     pub sys: System,
-    /// Its state: step, time and mass dofs (the beam's d and v are the
-    /// batch's, at this lane).
+    /// Its state: step, time and mass dofs (the beam's d and v too, unless
+    /// the batch interleaves them).
     pub st: State,
-    aq: Vec<f64>,
-    a_eff: Vec<f64>,
-    mass_pred: Vec<MassPrediction>,
     /// The caller's index of this run.
     pub id: usize,
     /// An error this run stopped with during the last step.
     pub failed: Option<Error>,
 }
 
+/// What generalized-α keeps per run beyond its [`Lane`]: the mass dofs'
+/// accelerations, effective masses and this step's predictions.
+struct MassLane {
+    aq: Vec<f64>,
+    a_eff: Vec<f64>,
+    mass_pred: Vec<MassPrediction>,
+}
+
 /// L generalized-α runs sharing one factorization (module docs).
 pub struct Batch {
     lanes: Vec<Lane>,
+    /// Per lane, in lane order.
+    masses: Vec<MassLane>,
     p: GenAlphaParams,
     dt: f64,
     n: usize,
@@ -197,6 +207,7 @@ impl Batch {
         let lanes_n = built.len();
         let mut b = Batch {
             lanes: Vec::with_capacity(lanes_n),
+            masses: Vec::with_capacity(lanes_n),
             p,
             dt,
             n,
@@ -247,11 +258,13 @@ impl Batch {
                     ..st
                 },
                 sys,
+                id,
+                failed: None,
+            });
+            b.masses.push(MassLane {
                 aq: init.aq,
                 a_eff,
                 mass_pred: vec![MassPrediction::default(); nc],
-                id,
-                failed: None,
             });
         }
         (Some(b), errors)
@@ -306,12 +319,12 @@ impl Batch {
                 .solve_affine_lanes(rhs, k, L, &residual, &mut self.b0[..n * L]);
             assert!(solved, "a batch is only built for compiled kernels");
         }
-        for (l, lane) in self.lanes.iter_mut().enumerate() {
+        for (l, (lane, ml)) in self.lanes.iter_mut().zip(&mut self.masses).enumerate() {
             let rhs = &self.rhs[..n * kl];
             for (j, m) in lane.sys.masses().iter().enumerate() {
-                let now = (lane.st.q[j], lane.st.q_dot[j], lane.aq[j]);
-                lane.mass_pred[j] =
-                    super::gen_alpha::mass_prediction(self.p, dt, m, now, lane.a_eff[j]);
+                let now = (lane.st.q[j], lane.st.q_dot[j], ml.aq[j]);
+                ml.mass_pred[j] =
+                    super::gen_alpha::mass_prediction(self.p, dt, m, now, ml.a_eff[j]);
             }
             let map = StepMap {
                 solved: rhs,
@@ -323,7 +336,7 @@ impl Batch {
                     coef: (1.0 - gamma) * dt,
                 },
                 alpha_weight: 0.0,
-                masses: &lane.mass_pred,
+                masses: &ml.mass_pred,
             };
             if let Err(e) = lane
                 .sys
@@ -373,18 +386,18 @@ impl Batch {
             (4, 3, 12),
             (4, 4, 16)
         );
-        for (l, lane) in self.lanes.iter_mut().enumerate() {
+        for (l, (lane, ml)) in self.lanes.iter_mut().zip(&mut self.masses).enumerate() {
             lane.sys.scatter_contact_directions_in(
                 &mut self.h[..n * L],
                 Lanes { count: L, lane: l },
                 -alpha_p,
             );
-            for (j, m) in lane.mass_pred.iter().enumerate() {
+            for (j, m) in ml.mass_pred.iter().enumerate() {
                 let lambda = lane.sys.multipliers()[j];
-                let (a, acc) = (lane.aq[j], m.u - lambda / m.a_eff);
+                let (a, acc) = (ml.aq[j], m.u - lambda / m.a_eff);
                 lane.st.q[j] += dt * lane.st.q_dot[j] + c_pred * a + bdt2 * acc;
                 lane.st.q_dot[j] += dt * ((1.0 - gamma) * a + gamma * acc);
-                lane.aq[j] = acc;
+                ml.aq[j] = acc;
             }
             lane.st.step += 1;
             lane.st.t = lane.st.step as f64 * dt;
@@ -612,6 +625,7 @@ impl Batch {
         let mut out = Vec::with_capacity(gone.len());
         for &l in gone.iter().rev() {
             out.push(self.lanes.remove(l));
+            self.masses.remove(l);
         }
         out.reverse();
         out

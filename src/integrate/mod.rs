@@ -9,7 +9,8 @@
 //!   mass dofs.
 //! * [`Stepper`]: one method's step. A method is one file:
 //!   `gen_alpha.rs` (generalized-α, Newmark, HHT, WBZ), `bathe.rs`,
-//!   `central_difference.rs`, `moreau_jean.rs`. [`stepper_for`] picks the
+//!   `central_difference.rs`, `moreau_jean.rs`, `modal_exact.rs` (with
+//!   `oscillator.rs`, the exact step of one mode). [`stepper_for`] picks the
 //!   one a scene asks for (`[integrator] method`, [`crate::scene::Method`]);
 //!   a method written outside the crate implements [`Stepper`] and
 //!   [`MethodFactory`] and runs through [`Integrator::with_method`],
@@ -21,23 +22,31 @@
 //! initial state and the stepper, and advances time.
 
 mod batch;
+mod batch_run;
 mod bathe;
 mod central_difference;
 mod diagnose;
 mod energy;
 mod gen_alpha;
+mod modal_batch;
+mod modal_exact;
 mod moreau_jean;
+mod oscillator;
 mod state;
 mod system;
 
-pub use batch::{Batch, Lane, MAX_LANES, batch_key, max_lanes, scene_columns};
+pub use batch::{Batch, Lane, MAX_LANES, max_lanes, scene_columns};
+pub use batch_run::{NewBatch, RunBatch, batch_key, lanes_cap, new_batch};
 pub use bathe::Bathe;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
+pub use modal_batch::{ModalBatch, modal_key};
+pub use modal_exact::{ModalCoefs, ModalExact};
 pub use moreau_jean::MoreauJean;
+pub use oscillator::{MassStep, ModeSteps};
 pub use state::State;
 pub use system::{
     Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, combine,
@@ -151,6 +160,7 @@ pub fn stepper_for(
             sys.set_multipliers(Multipliers::Impulses);
             Box::new(MoreauJean::new(theta, sys, st)?)
         }
+        Scheme::ModalExact => Box::new(ModalExact::new(sys)?),
     })
 }
 

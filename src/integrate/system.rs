@@ -245,7 +245,13 @@ pub struct Initial {
 impl System {
     /// Assemble the beam and the carriers of a validated scene.
     pub fn new(sc: &Resolved) -> Result<Self> {
-        let beam = BeamModel::from_scene(sc)?;
+        Self::with_beam(sc, BeamModel::from_scene(sc)?)
+    }
+
+    /// [`System::new`] with the beam already built (`BeamModel::from_scene`
+    /// of `sc`, or of a scene with the same beam and discretization: a
+    /// batch builds a basis once for all its runs).
+    pub fn with_beam(sc: &Resolved, beam: BeamModel) -> Result<Self> {
         let mut nc = 0;
         let mut masses = Vec::new();
         let mut force_scale: f64 = 0.0;
@@ -563,6 +569,31 @@ impl System {
             let level = self.level;
             self.failure(step, st.next_time(self.dt), level, failure, reduced)
         })
+    }
+
+    /// The contact problem of a method that forms the pair itself
+    /// (`modal_exact`, MODEL §9.3: sums over modes): `g_free` (one per
+    /// contact, m) and `w` (row-major nc × nc, m/N), at force level. The
+    /// law's multipliers go into [`System::multipliers`]; a failure names
+    /// step n + 1 and saves the problem, as [`System::solve_contact`].
+    pub fn solve_formed(&mut self, g_free: &[f64], w: &[f64], st: &State) -> Result<()> {
+        let nc = self.masses.len();
+        if nc == 0 {
+            return Ok(());
+        }
+        debug_assert_eq!(
+            self.level,
+            Level::Position,
+            "modal_exact works at force level"
+        );
+        self.g_free.copy_from_slice(&g_free[..nc]);
+        self.w.copy_from_slice(&w[..nc * nc]);
+        self.law
+            .solve(&self.g_free, &self.w, &mut self.lambda, &mut self.active)
+            .map_err(|failure| {
+                let step = st.step + 1;
+                self.failure(step, st.next_time(self.dt), Level::Position, failure, None)
+            })
     }
 
     /// The velocity-level problem (MODEL §6, §9.1).

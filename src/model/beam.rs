@@ -51,6 +51,12 @@ impl PointVector {
         &self.dense
     }
 
+    /// The dense weights of a modal basis, to be written in place (a
+    /// method that evaluates the basis itself, `modal_exact`).
+    pub(crate) fn dense_mut(&mut self) -> &mut [f64] {
+        &mut self.dense
+    }
+
     /// rᵀx.
     #[inline]
     pub fn dot(&self, x: &[f64]) -> f64 {
@@ -60,7 +66,7 @@ impl PointVector {
                 + self.val[2] * x[self.idx[2]]
                 + self.val[3] * x[self.idx[3]]
         } else {
-            self.dense.iter().zip(x).map(|(r, x)| r * x).sum()
+            super::lanes::dot(&self.dense, x)
         }
     }
 
@@ -76,7 +82,19 @@ impl PointVector {
                 + self.val[2] * at(self.idx[2])
                 + self.val[3] * at(self.idx[3])
         } else {
-            self.dense.iter().enumerate().map(|(i, r)| r * at(i)).sum()
+            // super::lanes::dot's partial sums, in its order
+            let n = self.dense.len();
+            let full = n / super::lanes::LANES * super::lanes::LANES;
+            let mut acc = [0.0; super::lanes::LANES];
+            for (i, r) in self.dense.iter().enumerate() {
+                let l = if i < full {
+                    i % super::lanes::LANES
+                } else {
+                    i - full
+                };
+                acc[l] = r.mul_add(at(i), acc[l]);
+            }
+            super::lanes::reduce(&acc)
         }
     }
 

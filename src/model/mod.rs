@@ -5,6 +5,7 @@ pub mod banded;
 pub mod beam;
 pub mod eigen;
 pub mod element;
+pub mod lanes;
 pub mod mesh;
 pub mod modal;
 pub mod motion;

@@ -85,6 +85,15 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
                 .collect(),
         ),
     );
+    t.push(
+        "refined_modes",
+        Column::CountOrNone(
+            records
+                .iter()
+                .map(|r| r.refined.as_ref().and_then(|f| f.modes.map(|j| j as u64)))
+                .collect(),
+        ),
+    );
     t.push("refined_dt", refined(|f| f.dt));
     t.push("refined_loss_fraction", refined(|f| f.loss_fraction));
     t.push(

@@ -14,9 +14,10 @@ use crate::study::scalars::Scalar;
 use crate::study::tolerance::{Accuracy, Estimate, LadderFit, ResultEstimate, TolerantRun};
 
 /// Column order of `accuracy.csv`.
-pub const ACCURACY_COLUMNS: [&str; 11] = [
+pub const ACCURACY_COLUMNS: [&str; 12] = [
     "role",
     "elements",
+    "modes",
     "dt",
     "steps",
     "dofs",
@@ -66,6 +67,7 @@ pub fn accuracy_table(a: &Accuracy) -> Table {
     struct Row<'a> {
         role: &'a str,
         elements: usize,
+        modes: Option<usize>,
         dt: f64,
         steps: usize,
         dof_steps: f64,
@@ -79,6 +81,7 @@ pub fn accuracy_table(a: &Accuracy) -> Table {
         .map(|p| Row {
             role: p.role,
             elements: p.elements,
+            modes: p.modes,
             dt: p.dt,
             steps: p.steps,
             dof_steps: p.dof_steps,
@@ -98,6 +101,7 @@ pub fn accuracy_table(a: &Accuracy) -> Table {
     rows.push(Row {
         role: "chosen",
         elements: a.elements,
+        modes: a.modes,
         dt: a.dt,
         steps: a.steps,
         dof_steps: a.dof_steps,
@@ -110,6 +114,7 @@ pub fn accuracy_table(a: &Accuracy) -> Table {
     let columns = [
         Column::Label(rows.iter().map(|r| r.role.to_string()).collect()),
         count(|r| r.elements as u64),
+        Column::CountOrNone(rows.iter().map(|r| r.modes.map(|j| j as u64)).collect()),
         Column::Real(rows.iter().map(|r| r.dt).collect()),
         count(|r| r.steps as u64),
         count(|r| (r.dof_steps / r.steps.max(1) as f64).round() as u64),
@@ -156,13 +161,21 @@ pub fn accuracy_header(a: &Accuracy) -> String {
         a.tolerance,
         a.description
     );
+    // the mesh ladder's level: N, or J on a modal basis
+    let (sym, key) = match a.modes {
+        Some(_) => ("J", "mesh.modes"),
+        None => ("N", "mesh.elements"),
+    };
     let pilots: Vec<String> = a
         .pilots
         .iter()
-        .map(|p| format!("{} × {:e} s ({:.2} s)", p.elements, p.dt, p.wall_seconds))
+        .map(|p| {
+            let n = p.modes.unwrap_or(p.elements);
+            format!("{n} × {:e} s ({:.2} s)", p.dt, p.wall_seconds)
+        })
         .collect();
     s.push_str(&format!(
-        "  pilots   N × Δt: {}; {:.2} s wall\n",
+        "  pilots   {sym} × Δt: {}; {:.2} s wall\n",
         pilots.join(", "),
         a.pilot_wall_seconds
     ));
@@ -178,14 +191,20 @@ pub fn accuracy_header(a: &Accuracy) -> String {
         Some(role) => format!("the pilot `{role}` already meets it"),
         None => "the cheapest resolution the model allows".to_string(),
     };
+    let level = a.modes.unwrap_or(a.elements);
+    let fe = match a.modes {
+        // a modal basis's FE mesh grows with J
+        Some(_) if a.pilots.first().is_some_and(|p| p.elements != a.elements) => {
+            format!(" --set mesh.elements={}", a.elements)
+        }
+        _ => String::new(),
+    };
     s.push_str(&format!(
-        "  chosen   N = {}, Δt = {:.5e} s ({how}): estimated error {:.3e} (mesh {:.3e}, step {:.3e}); the same run: --set mesh.elements={} --set time.step={:e}\n",
-        a.elements,
+        "  chosen   {sym} = {level}, Δt = {:.5e} s ({how}): estimated error {:.3e} (mesh {:.3e}, step {:.3e}); the same run: --set {key}={level}{fe} --set time.step={:e}\n",
         a.dt,
         a.estimated_error.total,
         a.estimated_error.mesh,
         a.estimated_error.step,
-        a.elements,
         a.dt
     ));
     for n in &a.notes {

@@ -14,8 +14,8 @@ use crate::model::mesh::{Grading, MAX_GRADING_RATIO};
 pub const DEFAULT_GRADING_RATIO: f64 = 4.0;
 
 /// Most modes a `galerkin` basis takes ([`crate::analytic::MAX_MODES`]:
-/// the phase of mode J carries a relative error of about ε·Jπ, and 1000
-/// modes resolve half-wavelengths of L/1000, finer than any bundled mesh).
+/// the phase of mode J carries a relative error of about ε·Jπ, and 4000
+/// modes resolve half-wavelengths of L/4000, finer than any bundled mesh).
 pub const MAX_GALERKIN_MODES: usize = crate::analytic::MAX_MODES;
 
 /// The space discretization of a run (MODEL §9.2).

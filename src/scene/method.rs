@@ -32,11 +32,14 @@ pub enum Method {
     CentralDifference,
     /// Moreau–Jean's velocity-level θ-scheme with impulses (Jean 1999).
     MoreauJean,
+    /// Exact propagation of each mode of a diagonal basis over the step
+    /// (Duhamel; MODEL §9.3): `mesh.kind = "galerkin"` or `"modal"` only.
+    ModalExact,
 }
 
 impl Method {
     /// Every method, in the order `taut compare --methods` lists them.
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 8] = [
         Method::GeneralizedAlpha,
         Method::Newmark,
         Method::Hht,
@@ -44,6 +47,7 @@ impl Method {
         Method::Bathe,
         Method::CentralDifference,
         Method::MoreauJean,
+        Method::ModalExact,
     ];
 
     /// The scene name (`"generalized_alpha"`, …).
@@ -56,7 +60,14 @@ impl Method {
             Method::Bathe => "bathe",
             Method::CentralDifference => "central_difference",
             Method::MoreauJean => "moreau_jean",
+            Method::ModalExact => "modal_exact",
         }
+    }
+
+    /// True when the method needs a diagonal basis (`mesh.kind =
+    /// "galerkin"` or `"modal"`): it propagates each mode on its own.
+    pub fn needs_modal_basis(self) -> bool {
+        self == Method::ModalExact
     }
 
     /// The method named `name`, if any.
@@ -71,7 +82,7 @@ impl Method {
             Method::Hht => &["alpha"],
             Method::Bathe => &["gamma"],
             Method::MoreauJean => &["theta"],
-            Method::Newmark | Method::CentralDifference => &[],
+            Method::Newmark | Method::CentralDifference | Method::ModalExact => &[],
         }
     }
 }
@@ -168,6 +179,8 @@ pub enum Scheme {
         /// θ.
         theta: f64,
     },
+    /// Exact modal propagation (MODEL §9.3); no parameters.
+    ModalExact,
 }
 
 /// `[integrator]` as the scene gives it.
@@ -279,6 +292,7 @@ impl IntegratorSpec {
                 )?;
                 Scheme::MoreauJean { theta: t }
             }
+            Method::ModalExact => Scheme::ModalExact,
         })
     }
 }

@@ -237,6 +237,7 @@ impl Scene {
         let g = non_negative("gravity.g", self.gravity.g, "m/s²")?;
         validate_contact(&self.contact)?;
         check_combination(self.integrator.method, &self.contact)?;
+        check_basis(self.integrator.method, discretization)?;
 
         let dt = positive("time.step", self.time.step, "s")?;
         let t_end = match self.time.end {
@@ -653,6 +654,19 @@ pub(crate) fn validate_contact(c: &super::ContactSpec) -> Result<()> {
     Ok(())
 }
 
+/// Refuse a time integrator that needs a diagonal basis on any other
+/// (`modal_exact` propagates each mode on its own; MODEL §9.3).
+fn check_basis(method: Method, d: Discretization) -> Result<()> {
+    if method.needs_modal_basis() && d == Discretization::Hermite {
+        return Err(Error::invalid(
+            "integrator.method",
+            format!("\"{}\"", method.name()),
+            "propagates each mode of a diagonal basis exactly, and mesh.kind = \"hermite\" (or string elements) couples its unknowns through banded M and K: use mesh.kind = \"galerkin\" (the exact modes of the continuous beam) or mesh.kind = \"modal\" (the lowest FE modes), with mesh.modes = J",
+        ));
+    }
+    Ok(())
+}
+
 /// Refuse a time integrator and contact setting that do not go together
 /// (the table in `docs/methods.md`), naming both keys.
 fn check_combination(method: Method, c: &ContactSpec) -> Result<()> {
@@ -668,6 +682,13 @@ fn check_combination(method: Method, c: &ContactSpec) -> Result<()> {
                 "imposes the gap at the generalized-α level t_{{n+1−α_f}}, which integrator.method = {} does not have: use contact.placement = \"end\" (or a generalized-α method)",
                 method.name()
             ),
+        ));
+    }
+    if method == Method::ModalExact && c.formulation == Formulation::Impact {
+        return Err(Error::invalid(
+            "contact.formulation",
+            "\"impact\"",
+            "integrator.method = modal_exact holds the contact force over each step and imposes the gap itself at the step's end (MODEL §9.3); an impact law acts by impulses on the gap rate, which that representation has no place for, and a velocity-level condition would replace the position gap it propagates exactly: use lagrange, penalty or complementarity (or integrator.method = moreau_jean for an impact law)",
         ));
     }
     if method == Method::MoreauJean {

@@ -6,7 +6,9 @@
 //! result. The steps:
 //!
 //! 1. **Pilots.** Five runs from the scene's own (N₀, Δt₀): the mesh ladder
-//!    N₀, 2N₀, 4N₀ at Δt₀ and the step ladder Δt₀/2, Δt₀/4 at N₀ (the
+//!    N₀, 2N₀, 4N₀ at Δt₀ and the step ladder Δt₀/2, Δt₀/4 at N₀ (on a
+//!    `galerkin` or `modal` basis the ladder doubles the modes J instead,
+//!    with a `modal` basis's FE mesh grown in proportion; h = L/J) (the
 //!    (N₀, Δt₀) run serves both). Δt₀ is first shortened, if needed, so the
 //!    run's end is a whole number of steps, so every pilot's times contain
 //!    the base pilot's and histories compare sample by sample on that grid
@@ -51,10 +53,13 @@ use serde::Serialize;
 use super::grid::{Reach, nest, resample};
 use super::relative_rms;
 use super::scalars::{self, Scalar};
+use super::space::SpaceChoice;
 use super::variant::RunVariant;
 use crate::error::{Error, Result};
 use crate::run::{RunOutput, run};
-use crate::scene::{CarrierKind, Resolved, STEP_COUNT_SLACK, resolve_scene};
+use crate::scene::{
+    CarrierKind, Discretization, MeshKind, Resolved, STEP_COUNT_SLACK, resolve_scene,
+};
 
 /// Largest run (unknowns × steps) an accuracy-targeted run will start, pilots
 /// included: 10¹¹ DOF-steps is about 9 minutes at the 1.9·10⁸ DOF-steps/s one
@@ -207,6 +212,9 @@ pub struct PilotRun {
     pub role: &'static str,
     /// Elements N.
     pub elements: usize,
+    /// Modes J of a `galerkin` or `modal` basis (refined in J, not N).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
     /// Time step, s.
     pub dt: f64,
     /// Steps.
@@ -263,6 +271,9 @@ pub struct Accuracy {
     pub tolerance: f64,
     /// Chosen elements N.
     pub elements: usize,
+    /// Chosen modes J of a `galerkin` or `modal` basis.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
     /// Chosen time step, s.
     pub dt: f64,
     /// Steps of the chosen run.
@@ -402,7 +413,10 @@ pub fn tolerance_run(
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut run --tolerance")?;
     let t_end = base.t_end;
-    let n0 = base.elements;
+    // the level parameter of the space discretization: N of a Hermite
+    // mesh, J of a modal basis (whose FE mesh, for `modal`, grows with J)
+    let level = Level::of(&base);
+    let n0 = level.start();
     let dt0 = whole_step(t_end, base.dt);
     let length = base.beam.length;
     let mut notes = Vec::new();
@@ -412,14 +426,7 @@ pub fn tolerance_run(
             base.dt
         ));
     }
-    let with = |n: usize, dt: f64| {
-        RunVariant {
-            elements: Some(n),
-            dt: Some(dt),
-            ..RunVariant::default()
-        }
-        .apply(&base)
-    };
+    let with = |n: usize, dt: f64| level.variant(n, dt).apply(&base);
     let total = 6;
     let ladder: [(&'static str, usize, f64); 5] = [
         ("base", n0, dt0),
@@ -445,11 +452,17 @@ pub fn tolerance_run(
                 ));
             }
         }
-        let out = run(&sc, &mut |_, _| {})
-            .map_err(|e| e.in_run(&format!("pilot `{role}` (N = {n}, Δt = {:e} s)", sc.dt)))?;
+        let out = run(&sc, &mut |_, _| {}).map_err(|e| {
+            e.in_run(&format!(
+                "pilot `{role}` ({} = {n}, Δt = {:e} s)",
+                level.symbol(),
+                sc.dt
+            ))
+        })?;
         pilots.push(PilotRun {
             role,
-            elements: n,
+            elements: sc.elements,
+            modes: level.modes(n),
             dt: sc.dt,
             steps: out.steps,
             dofs: out.dofs,
@@ -482,7 +495,14 @@ pub fn tolerance_run(
     let mesh = LadderFit::new(dh, h_fine, 1.0, max_p);
     let step = LadderFit::new(dt_, dt_fine, 1.0, max_q);
     if !(mesh.usable() && step.usable()) {
-        return Err(not_converging(quantity, tol, &mesh, &step, n0, dt0));
+        return Err(not_converging(
+            quantity,
+            tol,
+            &mesh,
+            &step,
+            (level.symbol(), n0),
+            dt0,
+        ));
     }
     let model = ErrorModel::new(mesh, step);
     if mesh.status == LadderStatus::Exact && step.status == LadderStatus::Exact {
@@ -500,7 +520,7 @@ pub fn tolerance_run(
         pilots[k].ladder_difference = d;
     }
     for p in &mut pilots {
-        p.estimate = model.estimate(length / p.elements as f64, p.dt);
+        p.estimate = model.estimate(length / level.of_pilot(p) as f64, p.dt);
     }
 
     // the cheapest pilot that meets the tolerance, else the model's optimum
@@ -514,10 +534,14 @@ pub fn tolerance_run(
         Some(k) => {
             let p = &pilots[k];
             notes.push(format!(
-                "the pilot `{}` (N = {}, Δt = {:e} s) already meets the tolerance (estimate {:.3e}): it is the result, no further run",
-                p.role, p.elements, p.dt, p.estimate.total
+                "the pilot `{}` ({} = {}, Δt = {:e} s) already meets the tolerance (estimate {:.3e}): it is the result, no further run",
+                p.role,
+                level.symbol(),
+                level.of_pilot(p),
+                p.dt,
+                p.estimate.total
             ));
-            let sc = with(p.elements, p.dt)?;
+            let sc = with(level.of_pilot(p), p.dt)?;
             (sc, p.output.clone(), Some(p.role), 0.0)
         }
         None => {
@@ -549,8 +573,9 @@ pub fn tolerance_run(
             let dt = t_end / steps;
             // unknowns grow linearly in N (2 per node for Hermite elements)
             let (a, b) = (&pilots[0], &pilots[1]);
-            let per_element = (b.dofs as f64 - a.dofs as f64) / (b.elements - a.elements) as f64;
-            let dofs = a.dofs as f64 + per_element * (n - a.elements as f64);
+            let (la, lb) = (level.of_pilot(a), level.of_pilot(b));
+            let per_element = (b.dofs as f64 - a.dofs as f64) / (lb - la) as f64;
+            let dofs = a.dofs as f64 + per_element * (n - la as f64);
             let cost = dofs * steps;
             // a NaN cost is refused too
             if cost.is_nan() || cost > MAX_DOF_STEPS {
@@ -562,7 +587,8 @@ pub fn tolerance_run(
                     quantity,
                     tol,
                     format!(
-                        "it needs N = {n}, Δt = {dt:.4e} s ({steps} steps): {cost:.2e} DOF-steps, about {:.0} s at the pilots' {rate:.2e} DOF-steps/s, above the limit of {MAX_DOF_STEPS:e} DOF-steps. Ask for a looser tolerance; the best pilot's estimate is {:.3e}",
+                        "it needs {} = {n}, Δt = {dt:.4e} s ({steps} steps): {cost:.2e} DOF-steps, about {:.0} s at the pilots' {rate:.2e} DOF-steps/s, above the limit of {MAX_DOF_STEPS:e} DOF-steps. Ask for a looser tolerance; the best pilot's estimate is {:.3e}",
+                        level.symbol(),
                         cost / rate.max(1.0),
                         pilots
                             .iter()
@@ -576,7 +602,8 @@ pub fn tolerance_run(
                     quantity,
                     tol,
                     format!(
-                        "it needs N = {n}, Δt = {dt:.4e} s, outside what a scene may ask for: {e}"
+                        "it needs {} = {n}, Δt = {dt:.4e} s, outside what a scene may ask for: {e}",
+                        level.symbol()
                     ),
                 )
             })?;
@@ -587,7 +614,7 @@ pub fn tolerance_run(
     };
     progress(total, total);
 
-    let h = length / scene.elements as f64;
+    let h = length / level.of_scene(&scene) as f64;
     let estimated_error = model.estimate(h, scene.dt);
     let results = estimate_results(&pilots, &output, &model, h, scene.dt, h_fine, dt_fine);
     let accuracy = Accuracy {
@@ -596,6 +623,7 @@ pub fn tolerance_run(
         filter_band_hz: (quantity == Quantity::Force).then_some(FORCE_BAND_HZ),
         tolerance: tol,
         elements: scene.elements,
+        modes: scene.discretization.modes(),
         dt: scene.dt,
         steps: output.steps,
         dof_steps: output.dofs as f64 * output.steps as f64,
@@ -714,13 +742,99 @@ fn too_costly(quantity: Quantity, tol: f64, reason: String) -> Error {
     }
 }
 
+/// The level parameter the mesh ladder refines (module docs): the elements
+/// N of a Hermite (or string) mesh, the modes J of a `galerkin` basis, and
+/// the modes J of a `modal` basis with its FE mesh grown in proportion
+/// (J may not exceed the FE unknowns). `h = L/level` either way.
+#[derive(Debug, Clone, Copy)]
+enum Level {
+    Elements(usize),
+    Galerkin(usize),
+    /// (J₀, N₀) of the scene.
+    Modal(usize, usize),
+}
+
+impl Level {
+    fn of(sc: &Resolved) -> Self {
+        match sc.discretization {
+            Discretization::Hermite => Level::Elements(sc.elements),
+            Discretization::Galerkin { modes } => Level::Galerkin(modes),
+            Discretization::Modal { modes } => Level::Modal(modes, sc.elements),
+        }
+    }
+
+    /// The scene's own level (N₀ or J₀).
+    fn start(&self) -> usize {
+        match *self {
+            Level::Elements(n) | Level::Galerkin(n) | Level::Modal(n, _) => n,
+        }
+    }
+
+    /// `N` or `J`, for messages.
+    fn symbol(&self) -> &'static str {
+        match self {
+            Level::Elements(_) => "N",
+            _ => "J",
+        }
+    }
+
+    /// The run at level `n` and step `dt`.
+    fn variant(&self, n: usize, dt: f64) -> RunVariant {
+        let mut v = RunVariant {
+            dt: Some(dt),
+            ..RunVariant::default()
+        };
+        match *self {
+            Level::Elements(_) => v.elements = Some(n),
+            Level::Galerkin(_) => {
+                v.space = Some((
+                    SpaceChoice {
+                        kind: MeshKind::Galerkin,
+                        modes: Some(n),
+                    },
+                    1.0,
+                ))
+            }
+            Level::Modal(j0, n0) => {
+                v.elements = Some((n0 * n).div_ceil(j0));
+                v.space = Some((
+                    SpaceChoice {
+                        kind: MeshKind::Modal,
+                        modes: Some(n),
+                    },
+                    1.0,
+                ));
+            }
+        }
+        v
+    }
+
+    /// J on a modal basis (None for a Hermite mesh).
+    fn modes(&self, n: usize) -> Option<usize> {
+        match self {
+            Level::Elements(_) => None,
+            _ => Some(n),
+        }
+    }
+
+    /// The level of a pilot.
+    fn of_pilot(&self, p: &PilotRun) -> usize {
+        p.modes.unwrap_or(p.elements)
+    }
+
+    /// The level of a resolved scene.
+    fn of_scene(&self, sc: &Resolved) -> usize {
+        sc.discretization.modes().unwrap_or(sc.elements)
+    }
+}
+
 /// The error for a quantity whose pilot differences do not fall.
 fn not_converging(
     quantity: Quantity,
     tol: f64,
     mesh: &LadderFit,
     step: &LadderFit,
-    n0: usize,
+    (sym, n0): (&str, usize),
     dt0: f64,
 ) -> Error {
     let describe = |f: &LadderFit, what: &str, over: String| {
@@ -755,13 +869,13 @@ fn not_converging(
             describe(
                 mesh,
                 "in h",
-                format!("N = {n0}, {}, {} at Δt = {dt0:e} s", 2 * n0, 4 * n0)
+                format!("{sym} = {n0}, {}, {} at Δt = {dt0:e} s", 2 * n0, 4 * n0)
             ),
             describe(
                 step,
                 "in Δt",
                 format!(
-                    "Δt = {dt0:e}, {:e}, {:e} s at N = {n0}",
+                    "Δt = {dt0:e}, {:e}, {:e} s at {sym} = {n0}",
                     dt0 / 2.0,
                     dt0 / 4.0
                 )

@@ -35,7 +35,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::run::{RunOutput, run};
-use crate::scene::{CarrierKind, Resolved, resolve_scene};
+use crate::scene::{CarrierKind, Discretization, Resolved, resolve_scene};
 
 pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
 
@@ -156,8 +156,8 @@ pub struct SweepSpec {
     pub set: Vec<String>,
     /// One or two axes; the last varies fastest.
     pub axes: Vec<Axis>,
-    /// Run each point a second time, refined (N × 2, Δt / 2), to show
-    /// where P_l is converged (`--check-refinement`).
+    /// Run each point a second time, refined (N × 2, Δt / 2; J × 2 on a
+    /// modal basis), to show where P_l is converged (`--check-refinement`).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub check_refinement: bool,
 }
@@ -184,11 +184,20 @@ impl SweepSpec {
         self.axes.iter().zip(idx).map(|(a, i)| a.value(i)).collect()
     }
 
-    /// The resolved scene of point `index`, refined: twice the elements and
-    /// half the time step (`--check-refinement`).
+    /// The resolved scene of point `index`, refined (`--check-refinement`):
+    /// half the time step, and twice the space discretization's level
+    /// parameter — the elements N of a Hermite mesh, the modes J of a
+    /// `galerkin` basis, both N and J of a `modal` one (J may not exceed the
+    /// FE unknowns).
     pub fn resolve_refined(&self, index: usize) -> Result<Resolved> {
         let (sc, mut o) = self.resolve_with_overrides(index)?;
-        o.push(format!("mesh.elements={}", 2 * sc.elements));
+        let modes = sc.discretization.modes();
+        if !matches!(sc.discretization, Discretization::Galerkin { .. }) {
+            o.push(format!("mesh.elements={}", 2 * sc.elements));
+        }
+        if let Some(j) = modes {
+            o.push(format!("mesh.modes={}", 2 * j));
+        }
         o.push(format!("time.step={:e}", sc.dt / 2.0));
         resolve_scene(&self.scene_text, &o)
     }
@@ -496,11 +505,14 @@ impl SweepRecord {
 }
 
 /// A sweep point run again refined (`--check-refinement`): twice the
-/// elements, half the step.
+/// elements (modes on a modal basis), half the step.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct Refined {
     /// Elements of the refined run.
     pub elements: usize,
+    /// Its modes J, on a `galerkin` or `modal` basis.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
     /// Its time step, s.
     pub dt: f64,
     /// Its P_l (null when it stopped).
@@ -607,8 +619,9 @@ fn record_of(
 
 /// Run point `index` refined.
 fn refined(spec: &SweepSpec, index: usize) -> Refined {
-    let stopped = |elements, dt, e: Error| Refined {
+    let stopped = |elements, modes, dt, e: Error| Refined {
         elements,
+        modes,
         dt,
         loss_fraction: f64::NAN,
         loss_fraction_span: f64::NAN,
@@ -616,17 +629,19 @@ fn refined(spec: &SweepSpec, index: usize) -> Refined {
     };
     let sc = match spec.resolve_refined(index) {
         Ok(sc) => sc,
-        Err(e) => return stopped(0, f64::NAN, e),
+        Err(e) => return stopped(0, None, f64::NAN, e),
     };
+    let modes = sc.discretization.modes();
     match run(&sc, &mut |_, _| {}) {
         Ok(o) => Refined {
             elements: sc.elements,
+            modes,
             dt: sc.dt,
             loss_fraction: o.stats[0].loss_fraction,
             loss_fraction_span: o.stats[0].loss_fraction_span,
             error: None,
         },
-        Err(e) => stopped(sc.elements, sc.dt, e),
+        Err(e) => stopped(sc.elements, modes, sc.dt, e),
     }
 }
 
@@ -751,6 +766,18 @@ pub enum BatchWidth {
 /// columns no longer fits the sixteen vector registers).
 pub const AUTO_BATCH_LANES: usize = 4;
 
+/// The automatic batch width of a scene's runs: [`AUTO_BATCH_LANES`] for
+/// generalized-α (SIMD lanes of one band sweep), the widest batch for
+/// `modal_exact`, whose runs gain from sharing their basis and its tables
+/// (built once per batch) and lose nothing by stepping in turn
+/// (`integrate::modal_batch`).
+pub fn auto_lanes(sc: &Resolved) -> usize {
+    match sc.scheme {
+        crate::scene::Scheme::ModalExact => crate::integrate::MAX_LANES,
+        _ => AUTO_BATCH_LANES,
+    }
+}
+
 /// The sweep's work items: points that share their effective matrix
 /// ([`crate::integrate::batch_key`]), in grid order, grouped up to the
 /// batch width; every other point alone.
@@ -765,7 +792,7 @@ fn batches(spec: &SweepSpec, todo: &[usize], width: BatchWidth) -> Vec<Vec<usize
             let key = crate::integrate::batch_key(&sc)?;
             let w = match width {
                 BatchWidth::Fixed(b) => b,
-                BatchWidth::Auto => AUTO_BATCH_LANES,
+                BatchWidth::Auto => auto_lanes(&sc),
             };
             Some((key, w))
         });

@@ -1,0 +1,773 @@
+//! The J exact mode shapes at a moving point, without a transcendental call
+//! per mode (issue 24, MODEL §9.3): what `integrator.method = "modal_exact"`
+//! evaluates every step, for every carrier, on a `galerkin` basis.
+//!
+//! [`super::ModeShapes::values_into`] costs one `sin_cos` (and, off
+//! pinned–pinned, two `exp`) per mode: at J = 800 that is ~80 % of a
+//! modal step. Here the same values come from one `sin_cos` per call, a
+//! rotation recurrence, and small tables built once per basis and shared by
+//! every run on it.
+//!
+//! ## The oscillating part: a rotation recurrence and a table of phase shifts
+//!
+//! Every mode's oscillating part is `C cos βs + D sin βs = Re[(C − iD) e^{iβs}]`
+//! in the stable form's coordinate `s` (`x`, or `L − x` for a mirrored
+//! basis). Write `β_j L = jπ + ε_j`: `ε_j = 0` pinned–pinned, `ε_j ∈ [0, π/2)`
+//! clamped–pinned, `[0, π)` clamped–clamped (mode numbering of
+//! `mode_shapes.rs`). With `θ = πs/L` and `ξ = s/L`,
+//!
+//! ```text
+//! e^{iβ_j s} = e^{ijθ} · e^{iε_j ξ}.
+//! ```
+//!
+//! * `e^{ijθ}` for j = 1 … J by a **rotation recurrence** in blocks of
+//!   [`BLOCK`] modes: `e^{iθ}` from one `sin_cos`, the first block by
+//!   repeated squaring and products, then block b+1 = block b × `e^{iBθ}`
+//!   (a complex product per mode; the B chains are independent, so they
+//!   vectorize). Each product adds at most a few ulps, so mode j carries
+//!   about `2.2·(j/B + log₂B)·ε` relative error: linear growth, independent
+//!   of θ. The textbook three-term (Chebyshev) recurrence
+//!   `sin (j+1)θ = 2 cos θ sin jθ − sin (j−1)θ` is cheaper but amplifies
+//!   errors by up to `j/sin θ`, which is unbounded as the carrier nears a
+//!   support (θ → 0); `tests` measure both.
+//! * `e^{iε_j ξ}`, a slow phase (at most π over the span), from a **table**
+//!   at `ξ_k = k/K` holding `(C_j − iD_j) e^{iε_j ξ_k}`, times
+//!   `e^{iε_j δ}`, `δ = ξ − ξ_k`, by its Taylor polynomial (cos to y⁶, sin
+//!   to y⁵). `K = ⌈32 max ε_j⌉` keeps `|ε_j δ| ≤ 1/64`, where the
+//!   remainders are below `(1/64)⁸/8! ≈ 2·10⁻¹⁹` and `(1/64)⁷/7! ≈
+//!   4.5·10⁻¹⁷`: the table's interpolation error is below round-off by
+//!   construction. (A coarser table with longer polynomials costs more per
+//!   step: the step reads one row, but evaluates the polynomial for every
+//!   mode.)
+//!
+//! ## The boundary layers: tables in the distance to each end
+//!
+//! The terms `P_j e^{−α_j s}` and `Q_j e^{−α_j (L − s)}` (clamped ends,
+//! mode_shapes.rs) are tabulated in the distance `d` to their end at
+//! spacing `Δ = 1/α_J`, times `e^{−α_j δ}` (`|α_j δ| ≤ 1/2`) by its Taylor
+//! polynomial to degree 15 (remainder ≤ `e^{1/2}·0.5¹⁶/16! ≈ 1.2·10⁻¹⁸`).
+//! A term with `α_j d ≥` [`LAYER_CUT`] is below `e^{−40} ≈ 4·10⁻¹⁸` of its
+//! coefficient (itself at most ~2 amplitudes) and is left out: since α_j
+//! rises with j, row k keeps only the modes that count within half a row of
+//! it, and rows stop at `d = 40/α_1`. On the reference span (αL ≥ 760)
+//! the layer is 2.6 m wide at the clamped end and absent at the pinned one
+//! (there `Q_j = −P_j e^{−α_j L}` underflows to 0).
+//!
+//! ## Fused operations, vector and scalar paths
+//!
+//! The kernels round `a·b + c` once (AVX2 + FMA vectors, or
+//! [`f64::mul_add`] lane by lane on a CPU without them: the same bits,
+//! `crate::model::lanes`), which saves about a third of the operations.
+//!
+//! ## Accuracy
+//!
+//! Against the direct evaluation [`super::ModeShapes::values_into`] (itself
+//! accurate to ~10⁻¹² at J = 1000, mode_shapes.rs "The limit on J"), the
+//! values agree to [`FAST_SHAPES_AGREEMENT`] of the amplitude `sqrt(2/(ρA L))`
+//! for every support pair and J up to [`super::MAX_MODES`] (`tests`).
+
+use super::mode_shapes::{Ends, ModeShapes};
+use crate::model::lanes;
+use std::f64::consts::PI;
+
+/// Modes advanced together by the rotation recurrence (module docs): four
+/// AVX2 vectors of independent chains, so the chain's latency is hidden,
+/// and a chain of J/16 products.
+pub const BLOCK: usize = 16;
+
+/// Boundary-layer terms with `α_j d` at or above this are left out: they
+/// are below `e^{−40} ≈ 4.2·10⁻¹⁸` of their coefficient.
+pub const LAYER_CUT: f64 = 40.0;
+
+/// Fast against direct evaluation, relative to the amplitude
+/// `sqrt(2/(ρA L))`: measured worst 9.2·10⁻¹³ over the test cases up to
+/// J = 1000, growing linearly in j (the recurrence's ~j/16 products and the
+/// direct evaluation's own phase error `ε β_j L`, mode_shapes.rs), so
+/// ~4·10⁻¹² at J = 4000 (measured on the reference span); 10⁻¹¹ leaves a
+/// factor 2.5 there.
+pub const FAST_SHAPES_AGREEMENT: f64 = 1e-11;
+
+/// Table rows per radian of slow phase: `|ε_j δ| ≤ 1/64` (module docs).
+const ROWS_PER_RADIAN: f64 = 32.0;
+
+/// Half the boundary-layer row spacing times α_J: `|α_j δ| ≤ 1/2`.
+const LAYER_OFFSET: f64 = 0.5;
+
+/// Degree of the boundary layers' Taylor polynomial for `e^{−y}`, |y| ≤ 1/2.
+const LAYER_DEGREE: usize = 15;
+
+/// The J mode shapes of a [`ModeShapes`] basis, fast at any point (module
+/// docs). Built once per basis; [`FastShapes::values_into`] allocates nothing.
+#[derive(Debug, Clone)]
+pub struct FastShapes {
+    length: f64,
+    count: usize,
+    /// Evaluate at `s = L − x` (pinned–clamped).
+    mirrored: bool,
+    oscillating: Oscillating,
+    /// `P_j e^{−α_j s}` (the end at s = 0), when any P_j ≠ 0.
+    left: Option<Layer>,
+    /// `Q_j e^{−α_j (L − s)}` (the end at s = L), when any Q_j ≠ 0.
+    right: Option<Layer>,
+}
+
+/// The oscillating part of every mode.
+#[derive(Debug, Clone)]
+enum Oscillating {
+    /// Pinned–pinned: `d_j sin(jθ)`.
+    Sine { d: Vec<f64> },
+    /// `Re[(C_j − iD_j) e^{iε_j ξ} e^{ijθ}]` with the table of
+    /// `(C_j − iD_j) e^{iε_j ξ_k}` at `ξ_k = k/K`, row-major (row k at
+    /// `k·J`), real and imaginary parts apart.
+    Shifted {
+        eps: Vec<f64>,
+        rows: usize,
+        re: Vec<f64>,
+        im: Vec<f64>,
+    },
+}
+
+/// One end's boundary-layer terms `coef_j e^{−α_j d}` in the distance d to
+/// that end, tabulated (module docs).
+#[derive(Debug, Clone)]
+struct Layer {
+    alpha: Vec<f64>,
+    /// Row spacing Δ, m.
+    spacing: f64,
+    /// Row k's values `coef_j e^{−α_j kΔ}` for its first `starts[k+1] − starts[k]` modes.
+    values: Vec<f64>,
+    starts: Vec<usize>,
+}
+
+impl Layer {
+    /// The table for `coef_j e^{−α_j d}`, α ascending; `None` when every
+    /// coefficient is 0.
+    fn new(alpha: &[f64], coef: &[f64], length: f64) -> Option<Layer> {
+        if coef.iter().all(|c| *c == 0.0) {
+            return None;
+        }
+        let a_max = alpha.iter().copied().fold(0.0, f64::max);
+        let a_min = alpha.iter().copied().fold(f64::INFINITY, f64::min);
+        let spacing = 2.0 * LAYER_OFFSET / a_max;
+        let reach = (LAYER_CUT / a_min).min(length);
+        let rows = (reach / spacing).ceil() as usize + 1;
+        let (mut values, mut starts) = (Vec::new(), vec![0]);
+        for k in 0..rows {
+            let d = k as f64 * spacing;
+            // every mode that counts anywhere within half a row of d
+            let near = (d - 0.5 * spacing).max(0.0);
+            let m = alpha.iter().take_while(|a| **a * near < LAYER_CUT).count();
+            values.extend((0..m).map(|j| coef[j] * (-alpha[j] * d).exp()));
+            starts.push(values.len());
+        }
+        Some(Layer {
+            alpha: alpha.to_vec(),
+            spacing,
+            values,
+            starts,
+        })
+    }
+
+    /// Add `coef_j e^{−α_j d}` into `out` for the modes that count at `d`
+    /// (AVX2 + FMA where the CPU has them: the same fused operations, the
+    /// same bits; `crate::model::lanes`).
+    #[inline(always)]
+    fn add_into(&self, d: f64, out: &mut [f64], vector: bool) {
+        let k = (d / self.spacing).round() as usize;
+        if k + 1 >= self.starts.len() {
+            return;
+        }
+        let delta = d - k as f64 * self.spacing;
+        let row = &self.values[self.starts[k]..self.starts[k + 1]];
+        let (out, alpha) = (&mut out[..row.len()], &self.alpha[..row.len()]);
+        let mut done = 0;
+        #[cfg(target_arch = "x86_64")]
+        if vector {
+            // SAFETY: the caller checked AVX2 and FMA (lanes::avx2_fma).
+            done = unsafe { layer_avx2(row, alpha, delta, out) };
+        }
+        for i in done..row.len() {
+            out[i] = row[i].mul_add(exp_minus(alpha[i] * delta), out[i]);
+        }
+    }
+}
+
+/// `1/k!`, k = 0 … [`LAYER_DEGREE`].
+const INV_FACT: [f64; LAYER_DEGREE + 1] = {
+    let mut f = [1.0; LAYER_DEGREE + 1];
+    let mut k = 1;
+    while k <= LAYER_DEGREE {
+        f[k] = f[k - 1] / k as f64;
+        k += 1;
+    }
+    f
+};
+
+/// `e^{−y}` for `|y| ≤ 1/2` by its Taylor polynomial of degree
+/// [`LAYER_DEGREE`] (Horner, fused).
+#[inline(always)]
+fn exp_minus(y: f64) -> f64 {
+    let z = -y;
+    let mut acc = INV_FACT[LAYER_DEGREE];
+    for k in (0..LAYER_DEGREE).rev() {
+        acc = acc.mul_add(z, INV_FACT[k]);
+    }
+    acc
+}
+
+/// [`Layer::add_into`] four modes at a time, as many as fill whole
+/// vectors; returns how many it did.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; the three slices have equal lengths.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn layer_avx2(row: &[f64], alpha: &[f64], delta: f64, out: &mut [f64]) -> usize {
+    use std::arch::x86_64::*;
+    let full = row.len() / 4 * 4;
+    let minus_delta = _mm256_set1_pd(-delta);
+    let mut i = 0;
+    while i < full {
+        // SAFETY: i + 4 ≤ full ≤ the slices' length.
+        unsafe {
+            // z = −(α δ): the scalar path's −y with y = α·δ rounds the same
+            let z = _mm256_mul_pd(_mm256_loadu_pd(alpha.as_ptr().add(i)), minus_delta);
+            let mut acc = _mm256_set1_pd(INV_FACT[LAYER_DEGREE]);
+            for k in (0..LAYER_DEGREE).rev() {
+                acc = _mm256_fmadd_pd(acc, z, _mm256_set1_pd(INV_FACT[k]));
+            }
+            let o = out.as_mut_ptr().add(i);
+            _mm256_storeu_pd(
+                o,
+                _mm256_fmadd_pd(
+                    _mm256_loadu_pd(row.as_ptr().add(i)),
+                    acc,
+                    _mm256_loadu_pd(o),
+                ),
+            );
+        }
+        i += 4;
+    }
+    full
+}
+
+/// Taylor coefficients of cos y (y², y⁴, y⁶) and sin y / y (y², y⁴).
+const COS: [f64; 3] = [-0.5, 1.0 / 24.0, -1.0 / 720.0];
+const SIN: [f64; 2] = [-1.0 / 6.0, 1.0 / 120.0];
+
+/// `(sin y, cos y)` for `|y| ≤ 1/64` (cos to y⁶, sin to y⁵; module docs),
+/// fused.
+#[inline(always)]
+fn small_sin_cos(y: f64) -> (f64, f64) {
+    let y2 = y * y;
+    let c = y2.mul_add(y2.mul_add(y2.mul_add(COS[2], COS[1]), COS[0]), 1.0);
+    let s = y * y2.mul_add(y2.mul_add(SIN[1], SIN[0]), 1.0);
+    (s, c)
+}
+
+/// One mode's shifted oscillating part: `Re[T e^{iy} R]` with
+/// `T = tr + i·ti`, `R = rr + i·ri`, `y = ε δ` (module docs), fused.
+#[inline(always)]
+fn shifted(e: f64, delta: f64, (tr, ti): (f64, f64), (rr, ri): (f64, f64)) -> f64 {
+    let (sy, cy) = small_sin_cos(e * delta);
+    let zr = tr.mul_add(cy, -(ti * sy));
+    let zi = tr.mul_add(sy, ti * cy);
+    zr.mul_add(rr, -(zi * ri))
+}
+
+/// `e^{ijθ}` for j = 1 … B (the first block) and `e^{iBθ}`, from `e^{iθ}`
+/// by squaring and products (log₂B levels).
+#[inline(always)]
+fn first_block(theta: f64) -> ([f64; BLOCK], [f64; BLOCK], (f64, f64)) {
+    let (s1, c1) = theta.sin_cos();
+    let (mut re, mut im) = ([0.0; BLOCK], [0.0; BLOCK]);
+    re[0] = c1;
+    im[0] = s1;
+    let mut have = 1;
+    while have < BLOCK {
+        // modes have+1 … 2·have from modes 1 … have times e^{i·have·θ}
+        let (cr, ci) = (re[have - 1], im[have - 1]);
+        for j in 0..have {
+            (re[have + j], im[have + j]) = rotate((re[j], im[j]), (cr, ci));
+        }
+        have *= 2;
+    }
+    let rot = (re[BLOCK - 1], im[BLOCK - 1]);
+    (re, im, rot)
+}
+
+impl FastShapes {
+    /// The fast evaluator of a basis (tables built here, once).
+    pub fn new(shapes: &ModeShapes) -> Self {
+        let (ends, modes) = shapes.parts();
+        let length = shapes.length();
+        let count = modes.len();
+        let mirrored = ends == Ends::PinnedClamped;
+        let oscillating = if ends == Ends::PinnedPinned {
+            Oscillating::Sine {
+                d: modes.iter().map(|m| m.d).collect(),
+            }
+        } else {
+            let eps: Vec<f64> = modes
+                .iter()
+                .enumerate()
+                .map(|(i, m)| m.beta * length - (i + 1) as f64 * PI)
+                .collect();
+            let eps_max = eps.iter().fold(0.0f64, |a, e| a.max(e.abs()));
+            let rows = (ROWS_PER_RADIAN * eps_max).ceil().max(1.0) as usize;
+            let (mut re, mut im) = (vec![0.0; (rows + 1) * count], vec![0.0; (rows + 1) * count]);
+            for k in 0..=rows {
+                let xi = k as f64 / rows as f64;
+                for (j, (m, e)) in modes.iter().zip(&eps).enumerate() {
+                    let (s, c) = (e * xi).sin_cos();
+                    // (C − iD)(c + is)
+                    re[k * count + j] = m.c * c + m.d * s;
+                    im[k * count + j] = m.c * s - m.d * c;
+                }
+            }
+            Oscillating::Shifted { eps, rows, re, im }
+        };
+        let alpha: Vec<f64> = modes.iter().map(|m| m.alpha).collect();
+        let (p, q): (Vec<f64>, Vec<f64>) = modes.iter().map(|m| (m.p, m.q)).unzip();
+        let layers = ends != Ends::PinnedPinned;
+        FastShapes {
+            length,
+            count,
+            mirrored,
+            oscillating,
+            left: layers.then(|| Layer::new(&alpha, &p, length)).flatten(),
+            right: layers.then(|| Layer::new(&alpha, &q, length)).flatten(),
+        }
+    }
+
+    /// J, the number of modes.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// Bytes of the tables (what a basis shared across runs saves each run).
+    pub fn table_bytes(&self) -> usize {
+        let osc = match &self.oscillating {
+            Oscillating::Sine { d } => d.len(),
+            Oscillating::Shifted { eps, re, im, .. } => eps.len() + re.len() + im.len(),
+        };
+        let layer = |l: &Option<Layer>| l.as_ref().map_or(0, |l| l.values.len() + l.alpha.len());
+        8 * (osc + layer(&self.left) + layer(&self.right))
+    }
+
+    /// `φ_j(x)`, kg^{−1/2}, for all j into `out` (length J), equal to
+    /// [`ModeShapes::values_into`] within [`FAST_SHAPES_AGREEMENT`] of the
+    /// amplitude. `x` is clamped to `[0, L]`. No allocation; one `sin_cos`.
+    pub fn values_into(&self, x: f64, out: &mut [f64]) {
+        self.values_by(x, out, lanes::avx2_fma())
+    }
+
+    /// [`FastShapes::values_into`] by the AVX2 + FMA path (`vector`, only
+    /// where the CPU has both) or the scalar one: the same bits. The vector
+    /// path compiles the whole evaluation for AVX2 + FMA, so its scalar
+    /// parts (the first block of the recurrence, the last partial block)
+    /// use the FMA instruction, not its software emulation.
+    fn values_by(&self, x: f64, out: &mut [f64], vector: bool) {
+        #[cfg(target_arch = "x86_64")]
+        if vector {
+            // SAFETY: the caller checked AVX2 and FMA (lanes::avx2_fma).
+            unsafe { self.values_fma(x, out) };
+            return;
+        }
+        self.values_kernel(x, out, false)
+    }
+
+    /// # Safety
+    /// The CPU supports AVX2 and FMA.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn values_fma(&self, x: f64, out: &mut [f64]) {
+        self.values_kernel(x, out, true)
+    }
+
+    #[inline(always)]
+    fn values_kernel(&self, x: f64, out: &mut [f64], vector: bool) {
+        assert_eq!(out.len(), self.count, "one slot per mode");
+        let x = x.clamp(0.0, self.length);
+        let s = if self.mirrored { self.length - x } else { x };
+        let xi = s / self.length;
+        self.oscillating_into(xi, out, vector);
+        if let Some(l) = &self.left {
+            l.add_into(s, out, vector);
+        }
+        if let Some(r) = &self.right {
+            r.add_into(self.length - s, out, vector);
+        }
+    }
+
+    /// The oscillating parts at `ξ = s/L` (module docs), overwriting `out`:
+    /// blocks of [`BLOCK`] modes, each an independent lane of the
+    /// recurrence, with AVX2 + FMA where the CPU has them (the same fused
+    /// operations, the same bits), then the last partial block.
+    #[inline(always)]
+    fn oscillating_into(&self, xi: f64, out: &mut [f64], vector: bool) {
+        let (mut rr, mut ri, rot) = first_block(PI * xi);
+        let j = self.count;
+        let full = j / BLOCK * BLOCK;
+        let out = &mut out[..j];
+        match &self.oscillating {
+            Oscillating::Sine { d } => {
+                let mut done = 0;
+                #[cfg(target_arch = "x86_64")]
+                if vector {
+                    // SAFETY: AVX2 and FMA (the caller checked); d and out hold ≥ full.
+                    unsafe { sine_avx2(&d[..full], &mut out[..full], (&mut rr, &mut ri), rot) };
+                    done = full;
+                }
+                for at in (done..full).step_by(BLOCK) {
+                    for l in 0..BLOCK {
+                        out[at + l] = d[at + l] * ri[l];
+                    }
+                    advance(&mut rr, &mut ri, rot);
+                }
+                for i in full..j {
+                    out[i] = d[i] * ri[i - full];
+                }
+            }
+            Oscillating::Shifted { eps, rows, re, im } => {
+                let k = (xi * *rows as f64).round() as usize;
+                let delta = xi - k as f64 / *rows as f64;
+                let (tre, tim) = (&re[k * j..(k + 1) * j], &im[k * j..(k + 1) * j]);
+                let mut done = 0;
+                #[cfg(target_arch = "x86_64")]
+                if vector {
+                    // SAFETY: AVX2 and FMA (the caller checked); every slice holds ≥ full.
+                    unsafe {
+                        shifted_avx2(
+                            (&eps[..full], &tre[..full], &tim[..full]),
+                            delta,
+                            &mut out[..full],
+                            (&mut rr, &mut ri),
+                            rot,
+                        )
+                    };
+                    done = full;
+                }
+                for at in (done..full).step_by(BLOCK) {
+                    for l in 0..BLOCK {
+                        let i = at + l;
+                        out[i] = shifted(eps[i], delta, (tre[i], tim[i]), (rr[l], ri[l]));
+                    }
+                    advance(&mut rr, &mut ri, rot);
+                }
+                for i in full..j {
+                    let l = i - full;
+                    out[i] = shifted(eps[i], delta, (tre[i], tim[i]), (rr[l], ri[l]));
+                }
+            }
+        }
+    }
+}
+
+/// `a·b` for complex a, b, fused: `(a_r b_r − a_i b_i, a_r b_i + a_i b_r)`.
+#[inline(always)]
+fn rotate((a, b): (f64, f64), (cr, ci): (f64, f64)) -> (f64, f64) {
+    (a.mul_add(cr, -(b * ci)), a.mul_add(ci, b * cr))
+}
+
+/// The whole blocks of [`FastShapes::oscillating_into`] for pinned–pinned
+/// modes: `d_j sin(jθ)`, the recurrence advanced after each block (left
+/// at the first mode past them).
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; `d` and `out` have equal lengths, a
+/// multiple of [`BLOCK`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sine_avx2(
+    d: &[f64],
+    out: &mut [f64],
+    (rr, ri): (&mut [f64; BLOCK], &mut [f64; BLOCK]),
+    rot: (f64, f64),
+) {
+    use std::arch::x86_64::*;
+    const V: usize = BLOCK / 4;
+    // SAFETY (whole body): every access is within a block of BLOCK entries
+    // at `at` < len, or within rr/ri.
+    unsafe {
+        let (cr, ci) = (_mm256_set1_pd(rot.0), _mm256_set1_pd(rot.1));
+        let mut vr: [__m256d; V] = std::array::from_fn(|v| _mm256_loadu_pd(rr.as_ptr().add(4 * v)));
+        let mut vi: [__m256d; V] = std::array::from_fn(|v| _mm256_loadu_pd(ri.as_ptr().add(4 * v)));
+        let mut at = 0;
+        while at < d.len() {
+            for v in 0..V {
+                let i = at + 4 * v;
+                _mm256_storeu_pd(
+                    out.as_mut_ptr().add(i),
+                    _mm256_mul_pd(_mm256_loadu_pd(d.as_ptr().add(i)), vi[v]),
+                );
+                let (a, b) = (vr[v], vi[v]);
+                vr[v] = _mm256_fmsub_pd(a, cr, _mm256_mul_pd(b, ci));
+                vi[v] = _mm256_fmadd_pd(a, ci, _mm256_mul_pd(b, cr));
+            }
+            at += BLOCK;
+        }
+        for v in 0..V {
+            _mm256_storeu_pd(rr.as_mut_ptr().add(4 * v), vr[v]);
+            _mm256_storeu_pd(ri.as_mut_ptr().add(4 * v), vi[v]);
+        }
+    }
+}
+
+/// The whole blocks of [`FastShapes::oscillating_into`] for shifted modes
+/// ([`shifted`], four at a time), the recurrence advanced after each block.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; the slices have equal lengths, a
+/// multiple of [`BLOCK`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn shifted_avx2(
+    (eps, tre, tim): (&[f64], &[f64], &[f64]),
+    delta: f64,
+    out: &mut [f64],
+    (rr, ri): (&mut [f64; BLOCK], &mut [f64; BLOCK]),
+    rot: (f64, f64),
+) {
+    use std::arch::x86_64::*;
+    const V: usize = BLOCK / 4;
+    // SAFETY (whole body): as in `sine_avx2`.
+    unsafe {
+        let s = _mm256_set1_pd;
+        let (cr, ci, dl, one) = (s(rot.0), s(rot.1), s(delta), s(1.0));
+        let (c0, c1, c2) = (s(COS[0]), s(COS[1]), s(COS[2]));
+        let (s0, s1) = (s(SIN[0]), s(SIN[1]));
+        let mut vr: [__m256d; V] = std::array::from_fn(|v| _mm256_loadu_pd(rr.as_ptr().add(4 * v)));
+        let mut vi: [__m256d; V] = std::array::from_fn(|v| _mm256_loadu_pd(ri.as_ptr().add(4 * v)));
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let mut at = 0;
+        while at < eps.len() {
+            for v in 0..V {
+                let i = at + 4 * v;
+                let y = _mm256_mul_pd(ld(eps, i), dl);
+                let y2 = _mm256_mul_pd(y, y);
+                let cy = _mm256_fmadd_pd(
+                    y2,
+                    _mm256_fmadd_pd(y2, _mm256_fmadd_pd(y2, c2, c1), c0),
+                    one,
+                );
+                let sy = _mm256_mul_pd(y, _mm256_fmadd_pd(y2, _mm256_fmadd_pd(y2, s1, s0), one));
+                let (tr, ti) = (ld(tre, i), ld(tim, i));
+                let zr = _mm256_fmsub_pd(tr, cy, _mm256_mul_pd(ti, sy));
+                let zi = _mm256_fmadd_pd(tr, sy, _mm256_mul_pd(ti, cy));
+                let (a, b) = (vr[v], vi[v]);
+                _mm256_storeu_pd(
+                    out.as_mut_ptr().add(i),
+                    _mm256_fmsub_pd(zr, a, _mm256_mul_pd(zi, b)),
+                );
+                vr[v] = _mm256_fmsub_pd(a, cr, _mm256_mul_pd(b, ci));
+                vi[v] = _mm256_fmadd_pd(a, ci, _mm256_mul_pd(b, cr));
+            }
+            at += BLOCK;
+        }
+        for v in 0..V {
+            _mm256_storeu_pd(rr.as_mut_ptr().add(4 * v), vr[v]);
+            _mm256_storeu_pd(ri.as_mut_ptr().add(4 * v), vi[v]);
+        }
+    }
+}
+
+/// The next block of `e^{ijθ}`: every entry times `e^{iBθ}`.
+#[inline(always)]
+fn advance(re: &mut [f64; BLOCK], im: &mut [f64; BLOCK], rot: (f64, f64)) {
+    for l in 0..BLOCK {
+        (re[l], im[l]) = rotate((re[l], im[l]), rot);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analytic::MAX_MODES;
+    use crate::scene::{BeamProps, Support};
+
+    /// (EI, T, ρA, L): as mode_shapes.rs's cases.
+    const REFERENCE: (f64, f64, f64, f64) = (1.34e11 * 9.64e-10, 3.0e4, 8900.0 * 1.5e-4, 50.0);
+    const SHORT: (f64, f64, f64, f64) = (195.0, 2.0e4, 1.35, 20.0);
+    const BALANCED: (f64, f64, f64, f64) = (4.0, 100.0, 1.35, 1.0);
+    const BARE: (f64, f64, f64, f64) = (3.0, 0.0, 2.0, 1.7);
+    const EXTREME: (f64, f64, f64, f64) = (1e-2, 1e5, 1.35, 50.0);
+
+    const ENDS: [(Support, Support); 4] = [
+        (Support::Pinned, Support::Pinned),
+        (Support::Clamped, Support::Pinned),
+        (Support::Pinned, Support::Clamped),
+        (Support::Clamped, Support::Clamped),
+    ];
+
+    fn shapes(case: (f64, f64, f64, f64), ends: (Support, Support), j: usize) -> ModeShapes {
+        let (ei, tension, rho_a, length) = case;
+        let props = BeamProps {
+            length,
+            rho_a,
+            ei,
+            ea: None,
+            tension,
+            left: ends.0,
+            right: ends.1,
+            distributed_load: 0.0,
+        };
+        ModeShapes::new(&props, j).unwrap()
+    }
+
+    /// The worst |fast − direct| over a grid of points (with the points
+    /// near each end refined, where the layers are), relative to the
+    /// amplitude, and the mode where it occurs.
+    fn worst(s: &ModeShapes, f: &FastShapes, amp: f64) -> (f64, usize) {
+        let l = s.length();
+        let j = s.count();
+        let (mut a, mut b) = (vec![0.0; j], vec![0.0; j]);
+        let mut points: Vec<f64> = (0..=997).map(|i| l * i as f64 / 997.0).collect();
+        for i in 0..200 {
+            let d = l * 1e-4 * (1.05f64).powi(i);
+            points.extend([d.min(l), (l - d).max(0.0)]);
+        }
+        let (mut w, mut at) = (0.0f64, 0);
+        for x in points {
+            s.values_into(x, &mut a);
+            f.values_into(x, &mut b);
+            for (i, (a, b)) in a.iter().zip(&b).enumerate() {
+                let e = (a - b).abs() / amp;
+                if e > w {
+                    w = e;
+                    at = i + 1;
+                }
+            }
+        }
+        (w, at)
+    }
+
+    #[test]
+    fn fast_values_equal_the_direct_ones_for_every_support_pair() {
+        println!("case  ends  J  worst |fast − direct|/amp  (mode)");
+        for case in [REFERENCE, SHORT, BALANCED, BARE, EXTREME] {
+            let amp = (2.0 / (case.2 * case.3)).sqrt();
+            for ends in ENDS {
+                let top: &[usize] = if case == REFERENCE {
+                    &[1000, MAX_MODES]
+                } else {
+                    &[1000]
+                };
+                for &j in [7, 64].iter().chain(top) {
+                    let s = shapes(case, ends, j);
+                    let f = FastShapes::new(&s);
+                    let (w, at) = worst(&s, &f, amp);
+                    println!("{case:?} {ends:?} {j}: {w:.2e} ({at})");
+                    assert!(
+                        w <= FAST_SHAPES_AGREEMENT,
+                        "{case:?} {ends:?} J = {j}: {w:e}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The recurrence's error grows linearly in j whatever θ; the
+    /// three-term recurrence's is amplified by up to j/sin θ and blows up
+    /// near θ = 0 and π (a carrier near a support). θ is dyadic, so jθ is
+    /// exact and the reference sin(jθ) carries only libm's half ulp.
+    /// Printed for docs/methods.md; asserted: the rotation within
+    /// 4·2.2·(j/B + log₂B) ulps, the three-term recurrence beyond 10³ ulps
+    /// near a support.
+    #[test]
+    fn rotation_error_grows_linearly_and_chebyshev_does_not_near_a_support() {
+        let j_max = 4000;
+        println!("θ          j     rotation/ε   three-term/ε");
+        let mut cheb_worst = 0.0f64;
+        for theta in [1.0 / 4096.0, 0.25, 1.5, 201.0 / 64.0] {
+            let (mut rr, mut ri, rot) = first_block(theta);
+            let (mut s_prev, mut s_now) = (0.0, theta.sin());
+            let two_c = 2.0 * theta.cos();
+            let mut start = 0;
+            let mut rot_err = vec![0.0f64; j_max];
+            let mut cheb_err = vec![0.0f64; j_max];
+            while start < j_max {
+                for l in 0..BLOCK {
+                    let j = start + l + 1;
+                    let exact = (j as f64 * theta).sin();
+                    rot_err[j - 1] = (ri[l] - exact).abs() / f64::EPSILON;
+                }
+                advance(&mut rr, &mut ri, rot);
+                start += BLOCK;
+            }
+            for j in 1..=j_max {
+                let exact = (j as f64 * theta).sin();
+                cheb_err[j - 1] = (s_now - exact).abs() / f64::EPSILON;
+                let next = two_c * s_now - s_prev;
+                (s_prev, s_now) = (s_now, next);
+            }
+            for j in [16, 100, 1000, 4000] {
+                let r = rot_err[..j].iter().fold(0.0f64, |a, b| a.max(*b));
+                let c = cheb_err[..j].iter().fold(0.0f64, |a, b| a.max(*b));
+                println!("{theta:<10.6} {j:5} {r:10.1} {c:14.1}");
+                let bound = 4.0 * 2.2 * (j as f64 / BLOCK as f64 + 4.0);
+                assert!(r <= bound, "θ = {theta}, j = {j}: {r} > {bound}");
+                cheb_worst = cheb_worst.max(c);
+            }
+        }
+        assert!(
+            cheb_worst > 1e3,
+            "the three-term recurrence loses accuracy near θ = 0, π"
+        );
+    }
+
+    #[test]
+    fn the_vector_and_scalar_paths_give_the_same_bits() {
+        if !lanes::avx2_fma() {
+            return;
+        }
+        for (case, ends) in [
+            (REFERENCE, ENDS[1]),
+            (BARE, ENDS[3]),
+            (SHORT, ENDS[0]),
+            (BARE, ENDS[2]),
+        ] {
+            for j in [5, 16, 61, 800] {
+                let s = shapes(case, ends, j);
+                let f = FastShapes::new(&s);
+                let (mut a, mut b) = (vec![0.0; j], vec![0.0; j]);
+                for i in 0..=400 {
+                    let x = case.3 * (i as f64 / 400.0).powi(3);
+                    f.values_by(x, &mut a, true);
+                    f.values_by(x, &mut b, false);
+                    for (u, v) in a.iter().zip(&b) {
+                        assert_eq!(
+                            u.to_bits(),
+                            v.to_bits(),
+                            "{case:?} {ends:?} J = {j} x = {x}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_polynomials_match_the_library_functions() {
+        for i in -100..=100 {
+            let y = i as f64 / 6400.0;
+            let (s, c) = small_sin_cos(y);
+            assert!((s - y.sin()).abs() <= 2.0 * f64::EPSILON, "{y}");
+            assert!((c - y.cos()).abs() <= 2.0 * f64::EPSILON, "{y}");
+            let e = exp_minus(8.0 * y);
+            assert!(
+                (e / (-8.0 * y).exp() - 1.0).abs() <= 4.0 * f64::EPSILON,
+                "{y}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_reference_basis_has_one_small_layer_table_and_no_right_one() {
+        let s = shapes(REFERENCE, ENDS[1], 800);
+        let f = FastShapes::new(&s);
+        assert!(f.left.is_some() && f.right.is_none());
+        println!("table bytes at J = 800: {}", f.table_bytes());
+        assert!(f.table_bytes() < 4 << 20);
+    }
+}

@@ -1,0 +1,698 @@
+//! `modal_exact`: exact propagation of every mode of a diagonal basis over
+//! the step (MODEL §9.3; issue 24), on `mesh.kind = "galerkin"` or `"modal"`.
+//!
+//! In a mass-normalized diagonal basis each coordinate is an undamped
+//! oscillator `η̈_j + ω_j² η_j = f_j(t)` (the beam has no damping, MODEL §1),
+//! coupled to the others only through the contact force. Over a step its
+//! motion is closed form once the load's shape within the step is fixed
+//! ([`super::oscillator`]): the free vibration carries no time error and no
+//! numerical dispersion, and the step is O(J) with no recurrence across
+//! modes.
+//!
+//! ## The loads within a step, and the order
+//!
+//! * **Fixed loads** (the distributed load `p`, self-weight): held, exact.
+//! * **A moving force F** (constant, a `force` carrier): its modal load
+//!   `s F φ_j(x(t))` is taken linear in time between the samples at t_n
+//!   and t_{n+1} (first-order hold of the path): second order in Δt, the
+//!   error `∝ (β_j V Δt)²` largest in the highest modes; exact for a
+//!   carrier at rest.
+//! * **The contact force λ** of each mass carrier is **held over the step**:
+//!   the unknown λ_{n+1} is its mean over [t_n, t_{n+1}], applied along the
+//!   carrier's path (the same linear-in-time modal load as a moving force,
+//!   `s λ (a0 φ(x_n) + a1 φ(x_{n+1}))` in η_{n+1}), and the gap is imposed
+//!   at t_{n+1}. A force linear over the step, with the unknown its end
+//!   sample, makes the multiplier obey λ_{n+1} ≈ −2 λ_n + … (the linear-
+//!   acceleration weights of a compliant contact, 1/3 and 1/6): unstable,
+//!   measured ×(−3.73) a step on the reference scene (`python3
+//!   scripts/numpy_modal_exact.py --linear-force-demo --speeds 100:100:1
+//!   --modes 200 --dt 1e-4`). Held, the
+//!   multiplier recurrence has no λ_n term. Measured on the reference scene
+//!   with a bilateral contact (tests/modal_exact.rs): the displacement
+//!   under the carrier and the step-mean force both converge at **second
+//!   order** in Δt (the mean force differs from the force at t_{n+1} by
+//!   O(Δt): compare it as the step's mean, as generalized-α's force is the
+//!   one at t_{n+1/2}).
+//! * **The mass dof** `m q̈ + c q̇ + k q = k δ0 − s m g − λ` is propagated
+//!   exactly under the held force ([`MassStep`]), dashpot included.
+//!
+//! So `g_{n+1} = g_free + W λ_{n+1}` with
+//! `g_free = s φ(x_{n+1})ᵀ η_free − q_free` and
+//! `W = s² Σ_j φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1})) + g_q`: sums
+//! over modes, the pair every force-level law takes (Lagrange, penalty,
+//! complementarity; MODEL §5, §6). The impact law is refused
+//! (scene/validate.rs): an impulse on the gap rate has no place in a force
+//! held over the step.
+//!
+//! ## One step, O(J) in three passes
+//!
+//! 1. Place each carrier: the previous `φ(x_{n+1})` becomes `φ(x_n)`
+//!    (swapped, not copied) and `φ(x_{n+1})` is evaluated: without a
+//!    transcendental call per mode on a galerkin basis
+//!    ([`crate::analytic::FastShapes`]), from four rows of the FE modes on
+//!    a modal one.
+//! 2. The free step of every mode (and the moving forces), fused with the
+//!    sums g_free and W when the scene has one contact and no moving force.
+//! 3. The law, then every mode's update with the multipliers.
+//!
+//! The kernels round `a·b + c` once and take sums over modes in eight
+//! partial sums (mode j into lane j mod 8) added in a fixed order: AVX2 +
+//! FMA where the CPU has both, `f64::mul_add` lane by lane otherwise, the
+//! same bits either way (`crate::model::lanes`). A run in a batch
+//! (`modal_batch.rs`) calls the same functions and gets the same bits.
+//! Nothing is allocated after [`ModalExact::new`].
+
+use std::sync::Arc;
+
+use crate::analytic::FastShapes;
+use crate::error::{Error, Result};
+use crate::model::beam::{Basis, BeamModel, PointVector};
+use crate::model::lanes::{self, LANES};
+use crate::scene::CarrierKind;
+
+use super::oscillator::{MassStep, ModeSteps};
+use super::{State, Stepper, System};
+
+/// What every run on one basis at one Δt shares (module docs): the modes'
+/// step maps, the fixed load's share of them, and the fast shapes.
+#[derive(Debug)]
+pub struct ModalCoefs {
+    /// The exact step maps of the J modes.
+    pub steps: ModeSteps,
+    /// (a0 + a1) p_j and (b0 + b1) p_j: the held distributed load's step
+    /// (None when p = 0).
+    held: Option<(Vec<f64>, Vec<f64>)>,
+    /// The fast evaluator on a galerkin basis; `None` on a modal basis
+    /// (its point vectors are four rows of the FE modes already).
+    shapes: Option<FastShapes>,
+}
+
+impl ModalCoefs {
+    /// Build the shared data for a diagonal basis (`beam`) at `dt`.
+    pub fn new(beam: &BeamModel, dt: f64) -> Result<Self> {
+        let shapes = match &beam.basis {
+            Basis::Galerkin(m) => Some(FastShapes::new(m)),
+            Basis::Modal { .. } => None,
+            Basis::Elements => {
+                return Err(Error::invalid(
+                    "integrator.method",
+                    "\"modal_exact\"",
+                    "needs a diagonal basis (mesh.kind = \"galerkin\" or \"modal\")",
+                ));
+            }
+        };
+        let omega: Vec<f64> = (0..beam.n)
+            .map(|j| (beam.stiffness.get(j, j) / beam.mass.get(j, j)).sqrt())
+            .collect();
+        let steps = ModeSteps::new(&omega, dt);
+        let held = beam.load.iter().any(|p| *p != 0.0).then(|| {
+            let a = (0..beam.n)
+                .map(|j| (steps.a0[j] + steps.a1[j]) * beam.load[j])
+                .collect();
+            let b = (0..beam.n)
+                .map(|j| (steps.b0[j] + steps.b1[j]) * beam.load[j])
+                .collect();
+            (a, b)
+        });
+        Ok(ModalCoefs {
+            steps,
+            held,
+            shapes,
+        })
+    }
+
+    /// J.
+    pub fn modes(&self) -> usize {
+        self.steps.len()
+    }
+
+    /// `φ(x)` of the basis into `pv` (the fast shapes, or the FE modes'
+    /// interpolation on a modal basis).
+    #[inline]
+    pub fn place(&self, beam: &BeamModel, x: f64, pv: &mut PointVector) {
+        match &self.shapes {
+            Some(f) => f.values_into(x, pv.dense_mut()),
+            None => beam.point_vector_into(x, false, pv),
+        }
+    }
+}
+
+/// A `modal_exact` stepper for one run (module docs).
+pub struct ModalExact {
+    coefs: Arc<ModalCoefs>,
+    /// The exact step of each contact's mass dof under a held force.
+    mass_steps: Vec<MassStep>,
+    /// Free gaps and Delassus matrix of the step (scratch).
+    g: Vec<f64>,
+    w: Vec<f64>,
+}
+
+impl ModalExact {
+    /// The stepper for a run on a diagonal basis, its coefficients built
+    /// here (a run alone).
+    pub fn new(sys: &mut System) -> Result<Self> {
+        let coefs = Arc::new(ModalCoefs::new(sys.beam(), sys.dt())?);
+        Ok(Self::with_coefs(coefs, sys))
+    }
+
+    /// The stepper with coefficients shared by several runs on the same
+    /// basis and Δt (a batch). Re-evaluates the carriers' point vectors at
+    /// t = 0 with the basis's fast shapes, so every step reads shapes of one
+    /// kind.
+    pub fn with_coefs(coefs: Arc<ModalCoefs>, sys: &mut System) -> Self {
+        let dt = sys.dt();
+        let mass_steps = sys
+            .masses()
+            .iter()
+            .map(|m| MassStep::new(m.m, m.k, m.c, dt))
+            .collect();
+        let nc = sys.contacts();
+        let beam = &sys.beam;
+        for c in sys.carriers.iter_mut() {
+            let x0 = c.props.motion.position(0.0);
+            coefs.place(beam, x0, &mut c.pv_f);
+            coefs.place(beam, x0, &mut c.pv_g);
+        }
+        ModalExact {
+            coefs,
+            mass_steps,
+            g: vec![0.0; nc],
+            w: vec![0.0; nc * nc],
+        }
+    }
+}
+
+impl Stepper for ModalExact {
+    fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
+        step(
+            &self.coefs,
+            &self.mass_steps,
+            (&mut self.g, &mut self.w),
+            sys,
+            st,
+        )
+    }
+}
+
+/// The two sums of a run with one contact and no other carrier, in
+/// [`LANES`] partial sums (carried from one range of modes to the next
+/// when a pass is split, as the tests do):
+/// `Σ φ_j(x_{n+1}) η_free,j` and
+/// `Σ φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1}))`.
+#[derive(Debug, Clone, Copy, Default)]
+struct PairSums {
+    g: [f64; LANES],
+    w: [f64; LANES],
+}
+
+impl PairSums {
+    fn total(&self) -> (f64, f64) {
+        (lanes::reduce(&self.g), lanes::reduce(&self.w))
+    }
+}
+
+/// True when a run's step takes the fused single-contact path (one
+/// carrier, a mass on a spring): the free step and its two sums in one
+/// pass.
+#[inline(always)]
+fn is_single(sys: &System) -> bool {
+    sys.contacts() == 1 && sys.carriers.len() == 1
+}
+
+/// Phase 1: each carrier's previous `φ(x_{n+1})` becomes `φ(x_n)` (swapped,
+/// not copied) and `φ(x_{n+1})` is evaluated at t_{n+1}.
+#[inline(always)]
+fn place(coefs: &ModalCoefs, sys: &mut System, st: &State) {
+    let t1 = st.next_time(sys.dt);
+    let beam = &sys.beam;
+    for c in sys.carriers.iter_mut() {
+        std::mem::swap(&mut c.pv_f, &mut c.pv_g);
+        coefs.place(beam, c.props.motion.position(t1), &mut c.pv_g);
+    }
+}
+
+/// Phase 2 of a single-contact run over modes `lo .. hi` (`lo` a multiple
+/// of [`LANES`]): the free step and the pair's partial sums.
+#[inline(always)]
+fn free_pair_range(
+    coefs: &ModalCoefs,
+    sys: &System,
+    st: &mut State,
+    (lo, hi): (usize, usize),
+    sums: &mut PairSums,
+    vector: bool,
+) {
+    let c = &sys.carriers[0];
+    let phi = (c.pv_f.dense(), c.pv_g.dense());
+    free_with_pair(
+        &coefs.steps,
+        coefs.held.as_ref(),
+        st,
+        phi,
+        (lo, hi),
+        sums,
+        vector,
+    );
+}
+
+/// Phase 3: the mass dofs' free step, the contact problem (g_free and W,
+/// MODEL §9.3), the law, and the mass dofs' update. `pair` carries the two
+/// sums of a single-contact run; the general path forms them here.
+#[inline(always)]
+fn contact(
+    coefs: &ModalCoefs,
+    mass_steps: &[MassStep],
+    (g, w): (&mut [f64], &mut [f64]),
+    pair: Option<(f64, f64)>,
+    sys: &mut System,
+    st: &mut State,
+) -> Result<()> {
+    let nc = sys.contacts();
+    if nc == 0 {
+        return Ok(());
+    }
+    let m = &coefs.steps;
+    // the mass dofs' free step (their constant force held)
+    for (j, (ms, dof)) in mass_steps.iter().zip(sys.masses()).enumerate() {
+        (st.q[j], st.q_dot[j]) = ms.apply((st.q[j], st.q_dot[j]), dof.f0);
+    }
+    match pair {
+        Some((dg, dw)) => {
+            let s = sys.carriers[0].s;
+            g[0] = s * dg - st.q[0];
+            w[0] = s * s * dw + mass_steps[0].g[0];
+        }
+        None => {
+            for ci in &sys.carriers {
+                let Some(i) = ci.contact else { continue };
+                g[i] = ci.s * lanes::dot(ci.pv_g.dense(), &st.d) - st.q[i];
+                for cj in &sys.carriers {
+                    let Some(j) = cj.contact else { continue };
+                    let wij = path_dot(m, ci.pv_g.dense(), cj.pv_f.dense(), cj.pv_g.dense());
+                    w[i * nc + j] =
+                        ci.s * cj.s * wij + if i == j { mass_steps[i].g[0] } else { 0.0 };
+                }
+            }
+        }
+    }
+    sys.solve_formed(g, w, st)?;
+    for c in &sys.carriers {
+        let Some(j) = c.contact else { continue };
+        let lambda = sys.lambda[j];
+        st.q[j] -= mass_steps[j].g[0] * lambda;
+        st.q_dot[j] -= mass_steps[j].g[1] * lambda;
+    }
+    Ok(())
+}
+
+/// Phase 4 over modes `lo .. hi`: each contact force, held over the step
+/// along its carrier's path, into every mode.
+#[inline(always)]
+fn update_range(
+    coefs: &ModalCoefs,
+    sys: &System,
+    st: &mut State,
+    range: (usize, usize),
+    vector: bool,
+) {
+    for c in &sys.carriers {
+        let Some(j) = c.contact else { continue };
+        let lambda = sys.lambda[j];
+        if lambda != 0.0 {
+            let phi = (c.pv_f.dense(), c.pv_g.dense());
+            add_path_load(&coefs.steps, c.s * lambda, phi, st, range, vector);
+        }
+    }
+}
+
+/// One step of one run (module docs), for a run alone and each run of a
+/// batch: phases 1–4 over all modes. Where the CPU has AVX2 and FMA the
+/// whole step is compiled for them, so the scalar parts (a last partial
+/// vector, the general path of several carriers) use the FMA instruction
+/// rather than its software emulation; the bits are the same either way.
+pub(crate) fn step(
+    coefs: &ModalCoefs,
+    mass_steps: &[MassStep],
+    gw: (&mut [f64], &mut [f64]),
+    sys: &mut System,
+    st: &mut State,
+) -> Result<()> {
+    #[cfg(target_arch = "x86_64")]
+    if lanes::avx2_fma() {
+        // SAFETY: the CPU supports AVX2 and FMA (checked just above).
+        return unsafe { step_fma(coefs, mass_steps, gw, sys, st) };
+    }
+    step_kernel(coefs, mass_steps, gw, sys, st, false)
+}
+
+/// # Safety
+/// The CPU supports AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn step_fma(
+    coefs: &ModalCoefs,
+    mass_steps: &[MassStep],
+    gw: (&mut [f64], &mut [f64]),
+    sys: &mut System,
+    st: &mut State,
+) -> Result<()> {
+    step_kernel(coefs, mass_steps, gw, sys, st, true)
+}
+
+#[inline(always)]
+fn step_kernel(
+    coefs: &ModalCoefs,
+    mass_steps: &[MassStep],
+    gw: (&mut [f64], &mut [f64]),
+    sys: &mut System,
+    st: &mut State,
+    vector: bool,
+) -> Result<()> {
+    place(coefs, sys, st);
+    let m = &coefs.steps;
+    let all = (0, m.len());
+    let pair = if is_single(sys) {
+        let mut sums = PairSums::default();
+        free_pair_range(coefs, sys, st, all, &mut sums, vector);
+        Some(sums.total())
+    } else {
+        free(m, coefs.held.as_ref(), st, vector);
+        for c in &sys.carriers {
+            if let CarrierKind::Force { force } = c.props.kind {
+                let phi = (c.pv_f.dense(), c.pv_g.dense());
+                add_path_load(m, c.s * force, phi, st, all, vector);
+            }
+        }
+        None
+    };
+    contact(coefs, mass_steps, gw, pair, sys, st)?;
+    update_range(coefs, sys, st, all, vector);
+    Ok(())
+}
+
+// The kernels below round `a·b + c` once (AVX2 + FMA vectors where the
+// CPU has both, `f64::mul_add` lane by lane otherwise: the same bits,
+// `crate::model::lanes`), and take sums over modes in its eight lanes.
+
+/// The free step of mode i: `(cos·η + sin/ω·η̇, −ω sin·η + cos·η̇)`, fused.
+#[inline(always)]
+fn rotate_mode(m: &ModeSteps, i: usize, e: f64, ev: f64) -> (f64, f64) {
+    (
+        m.cos[i].mul_add(e, m.sin_over_omega[i] * ev),
+        m.minus_omega_sin[i].mul_add(e, m.cos[i] * ev),
+    )
+}
+
+/// `a0 p + a1 q` (or b0, b1) of mode i, fused.
+#[inline(always)]
+fn path(a0: f64, p: f64, a1: f64, q: f64) -> f64 {
+    a0.mul_add(p, a1 * q)
+}
+
+/// The free step of every mode: `[η, η̇] ← E [η, η̇]`, plus the held load.
+#[inline(always)]
+fn free(m: &ModeSteps, held: Option<&(Vec<f64>, Vec<f64>)>, st: &mut State, vector: bool) {
+    let j = m.len();
+    let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
+    let mut done = 0;
+    #[cfg(target_arch = "x86_64")]
+    if vector {
+        // SAFETY: the caller checked AVX2 and FMA; every slice holds J.
+        done = unsafe { free_avx2(m, d, v) };
+    }
+    for i in done..j {
+        (d[i], v[i]) = rotate_mode(m, i, d[i], v[i]);
+    }
+    if let Some((hp, hv)) = held {
+        for i in 0..j {
+            d[i] += hp[i];
+            v[i] += hv[i];
+        }
+    }
+}
+
+/// The whole vectors of [`free`] (without the held load); returns how many
+/// modes it did.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; d, v and the coefficients hold J entries.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn free_avx2(m: &ModeSteps, d: &mut [f64], v: &mut [f64]) -> usize {
+    use std::arch::x86_64::*;
+    let full = d.len() / 4 * 4;
+    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ full.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let mut i = 0;
+        while i < full {
+            let (e, ev, c) = (ld(d, i), ld(v, i), ld(&m.cos, i));
+            let e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, i), ev));
+            let v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, i), e, _mm256_mul_pd(c, ev));
+            _mm256_storeu_pd(d.as_mut_ptr().add(i), e1);
+            _mm256_storeu_pd(v.as_mut_ptr().add(i), v1);
+            i += 4;
+        }
+    }
+    full
+}
+
+/// [`free`] over modes `lo .. hi` fused with the two sums of a single
+/// contact ([`PairSums`]); mode i ≥ ⌊J/8⌋·8 goes into lane i − ⌊J/8⌋·8, as
+/// [`lanes::dot`] puts its tail, so any split into ranges at multiples of
+/// [`LANES`] gives the sums of one pass.
+#[inline(always)]
+fn free_with_pair(
+    m: &ModeSteps,
+    held: Option<&(Vec<f64>, Vec<f64>)>,
+    st: &mut State,
+    (pn, pn1): (&[f64], &[f64]),
+    (lo, hi): (usize, usize),
+    sums: &mut PairSums,
+    vector: bool,
+) {
+    debug_assert!(lo % LANES == 0 && hi <= m.len());
+    let j = m.len();
+    let full = j / LANES * LANES;
+    let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
+    let (pn, pn1) = (&pn[..j], &pn1[..j]);
+    let zeros: [f64; 0] = [];
+    let (hp, hv): (&[f64], &[f64]) = match held {
+        Some((hp, hv)) => (&hp[..j], &hv[..j]),
+        None => (&zeros, &zeros),
+    };
+    let mut done = lo;
+    #[cfg(target_arch = "x86_64")]
+    if vector {
+        let end = hi.min(full).max(lo);
+        // SAFETY: the caller checked AVX2 and FMA; every slice holds J ≥ end,
+        // `lo` and `end` are multiples of LANES, hp/hv hold J when present.
+        unsafe { free_with_pair_avx2(m, (d, v), (pn, pn1), (hp, hv), (lo, end), sums) };
+        done = end;
+    }
+    for i in done..hi {
+        let l = if i < full { i % LANES } else { i - full };
+        let (mut e1, mut v1) = rotate_mode(m, i, d[i], v[i]);
+        if held.is_some() {
+            e1 += hp[i];
+            v1 += hv[i];
+        }
+        d[i] = e1;
+        v[i] = v1;
+        sums.g[l] = pn1[i].mul_add(e1, sums.g[l]);
+        sums.w[l] = pn1[i].mul_add(path(m.a0[i], pn[i], m.a1[i], pn1[i]), sums.w[l]);
+    }
+}
+
+/// Modes `lo .. end` of [`free_with_pair`], eight at a time.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; `lo` and `end` are multiples of
+/// [`LANES`]; every slice has at least `end` entries, or `hp` and `hv` are
+/// both empty (no held load).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn free_with_pair_avx2(
+    m: &ModeSteps,
+    (d, v): (&mut [f64], &mut [f64]),
+    (pn, pn1): (&[f64], &[f64]),
+    (hp, hv): (&[f64], &[f64]),
+    (lo, end): (usize, usize),
+    sums: &mut PairSums,
+) {
+    use std::arch::x86_64::*;
+    let held = !hp.is_empty();
+    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ end.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let (gs, ws) = (&mut sums.g, &mut sums.w);
+        let mut g = [
+            _mm256_loadu_pd(gs.as_ptr()),
+            _mm256_loadu_pd(gs.as_ptr().add(4)),
+        ];
+        let mut w = [
+            _mm256_loadu_pd(ws.as_ptr()),
+            _mm256_loadu_pd(ws.as_ptr().add(4)),
+        ];
+        let mut i = lo;
+        while i < end {
+            for h in 0..2 {
+                let k = i + 4 * h;
+                let (e, ev, c) = (ld(d, k), ld(v, k), ld(&m.cos, k));
+                let mut e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
+                let mut v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm256_mul_pd(c, ev));
+                if held {
+                    e1 = _mm256_add_pd(e1, ld(hp, k));
+                    v1 = _mm256_add_pd(v1, ld(hv, k));
+                }
+                _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
+                _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
+                let q = ld(pn1, k);
+                g[h] = _mm256_fmadd_pd(q, e1, g[h]);
+                let z = _mm256_fmadd_pd(ld(&m.a0, k), ld(pn, k), _mm256_mul_pd(ld(&m.a1, k), q));
+                w[h] = _mm256_fmadd_pd(q, z, w[h]);
+            }
+            i += LANES;
+        }
+        _mm256_storeu_pd(gs.as_mut_ptr(), g[0]);
+        _mm256_storeu_pd(gs.as_mut_ptr().add(4), g[1]);
+        _mm256_storeu_pd(ws.as_mut_ptr(), w[0]);
+        _mm256_storeu_pd(ws.as_mut_ptr().add(4), w[1]);
+    }
+}
+
+/// Add a force `f` (N) held over the step along the carrier's path into
+/// modes `lo .. hi`: `η += f (a0 φ(x_n) + a1 φ(x_{n+1}))`,
+/// `η̇ += f (b0 φ(x_n) + b1 φ(x_{n+1}))` (mode by mode: any split gives the
+/// same bits).
+#[inline(always)]
+fn add_path_load(
+    m: &ModeSteps,
+    f: f64,
+    (pn, pn1): (&[f64], &[f64]),
+    st: &mut State,
+    (lo, hi): (usize, usize),
+    vector: bool,
+) {
+    let (d, v) = (&mut st.d[lo..hi], &mut st.v[lo..hi]);
+    let (pn, pn1) = (&pn[lo..hi], &pn1[lo..hi]);
+    let (a0, a1, b0, b1) = (&m.a0[lo..hi], &m.a1[lo..hi], &m.b0[lo..hi], &m.b1[lo..hi]);
+    let mut done = 0;
+    #[cfg(target_arch = "x86_64")]
+    if vector {
+        // SAFETY: the caller checked AVX2 and FMA; every slice holds hi − lo.
+        done = unsafe { add_path_load_avx2(f, (a0, a1, b0, b1), (pn, pn1), (d, v)) };
+    }
+    for i in done..hi - lo {
+        d[i] = f.mul_add(path(a0[i], pn[i], a1[i], pn1[i]), d[i]);
+        v[i] = f.mul_add(path(b0[i], pn[i], b1[i], pn1[i]), v[i]);
+    }
+}
+
+/// The whole vectors of [`add_path_load`]; returns how many modes it did.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; every slice has the length of `d`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn add_path_load_avx2(
+    f: f64,
+    (a0, a1, b0, b1): (&[f64], &[f64], &[f64], &[f64]),
+    (pn, pn1): (&[f64], &[f64]),
+    (d, v): (&mut [f64], &mut [f64]),
+) -> usize {
+    use std::arch::x86_64::*;
+    let full = d.len() / 4 * 4;
+    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ full.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let fv = _mm256_set1_pd(f);
+        let mut i = 0;
+        while i < full {
+            let (p, q) = (ld(pn, i), ld(pn1, i));
+            let z = _mm256_fmadd_pd(ld(a0, i), p, _mm256_mul_pd(ld(a1, i), q));
+            let zv = _mm256_fmadd_pd(ld(b0, i), p, _mm256_mul_pd(ld(b1, i), q));
+            _mm256_storeu_pd(d.as_mut_ptr().add(i), _mm256_fmadd_pd(fv, z, ld(d, i)));
+            _mm256_storeu_pd(v.as_mut_ptr().add(i), _mm256_fmadd_pd(fv, zv, ld(v, i)));
+            i += 4;
+        }
+    }
+    full
+}
+
+/// `Σ_j r_j (a0_j p_j + a1_j q_j)`: a contact row against a unit force
+/// held along a carrier's path (φ(x_n) = p, φ(x_{n+1}) = q), in [`LANES`]
+/// partial sums (scalar: the general path of several carriers).
+#[inline(always)]
+fn path_dot(m: &ModeSteps, r: &[f64], p: &[f64], q: &[f64]) -> f64 {
+    let j = m.len();
+    let mut acc = [0.0; LANES];
+    let full = j / LANES * LANES;
+    for i in 0..j {
+        let l = if i < full { i % LANES } else { i - full };
+        acc[l] = r[i].mul_add(path(m.a0[i], p[i], m.a1[i], q[i]), acc[l]);
+    }
+    lanes::reduce(&acc)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The vector and scalar paths of each kernel give the same bits.
+    #[test]
+    fn the_vector_and_scalar_kernels_agree_bit_for_bit() {
+        if !lanes::avx2_fma() {
+            return;
+        }
+        for j in [3, 8, 13, 64, 803] {
+            let omega: Vec<f64> = (1..=j)
+                .map(|i| 9.4 * i as f64 * (1.0 + 1e-3 * i as f64))
+                .collect();
+            let m = ModeSteps::new(&omega, 6.25e-5);
+            let wave =
+                |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
+            let (pn, pn1) = (wave(0.37), wave(0.371));
+            let st0 = State {
+                step: 3,
+                t: 0.0,
+                d: wave(1.3).iter().map(|x| 1e-3 * x).collect(),
+                v: wave(0.7),
+                q: vec![],
+                q_dot: vec![],
+            };
+            let held = (wave(0.2), wave(0.9));
+            for h in [None, Some(&held)] {
+                let (mut a, mut b, mut c) = (st0.clone(), st0.clone(), st0.clone());
+                let (mut sa, mut sb, mut sc) = (
+                    PairSums::default(),
+                    PairSums::default(),
+                    PairSums::default(),
+                );
+                free_with_pair(&m, h, &mut a, (&pn, &pn1), (0, j), &mut sa, true);
+                free_with_pair(&m, h, &mut b, (&pn, &pn1), (0, j), &mut sb, false);
+                // by ranges, as a batch takes them
+                for lo in (0..j).step_by(16) {
+                    let r = (lo, (lo + 16).min(j));
+                    free_with_pair(&m, h, &mut c, (&pn, &pn1), r, &mut sc, true);
+                }
+                let bits = |s: &PairSums| {
+                    let (g, w) = s.total();
+                    (g.to_bits(), w.to_bits())
+                };
+                assert_eq!(bits(&sa), bits(&sb), "J = {j}");
+                assert_eq!(bits(&sa), bits(&sc), "J = {j}");
+                assert_eq!(a, b);
+                assert_eq!(a, c);
+                add_path_load(&m, -37.5, (&pn, &pn1), &mut a, (0, j), true);
+                add_path_load(&m, -37.5, (&pn, &pn1), &mut b, (0, j), false);
+                for lo in (0..j).step_by(16) {
+                    let r = (lo, (lo + 16).min(j));
+                    add_path_load(&m, -37.5, (&pn, &pn1), &mut c, r, true);
+                }
+                assert_eq!(a, b, "J = {j}");
+                assert_eq!(a, c, "J = {j}");
+            }
+        }
+    }
+}
