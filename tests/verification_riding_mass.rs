@@ -165,14 +165,23 @@ fn converge_uses_the_galerkin_reference_for_this_scene() {
             g.w[i]
         );
     }
-    // a spring or a unilateral contact is not this case
-    for o in ["carrier.0.stiffness=1000", "contact.kind=unilateral"] {
-        let other = scene(SCENE, &[o]);
-        assert!(
-            taut::study::reference::analytic_w(&other).is_none(),
-            "{o} should have no analytic reference"
-        );
+    // a spring or a unilateral contact is not this case: the declared
+    // reference refuses the scene, naming reference.kind and the key
+    for (o, key) in [
+        ("carrier.0.stiffness=1000", "carrier.stiffness"),
+        ("contact.kind=unilateral", "contact.kind"),
+    ] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("scenes")
+            .join(SCENE);
+        let e = taut::load_scene(&path, &[o.to_string()])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("reference.kind") && e.contains(key), "{o}: {e}");
     }
+    // without the declaration the scene has no exact reference
+    let plain = scene(SCENE, &["reference.kind=richardson"]);
+    assert!(taut::study::reference::analytic_w(&plain).is_none());
 }
 
 #[test]
@@ -232,7 +241,7 @@ fn taut_converge_reports_the_galerkin_errors() {
     assert_eq!(rows.len(), 3);
     let errors: Vec<f64> = rows.iter().map(|r| r[8].parse().unwrap()).collect();
     for r in &rows {
-        assert_eq!(r[11], "analytic", "{r:?}");
+        assert_eq!(r[11], "riding_mass_galerkin", "{r:?}");
     }
     println!(
         "taut converge --levels 3: displacement_max errors {}",

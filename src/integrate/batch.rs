@@ -25,7 +25,8 @@
 //! **What batches**: generalized-α (and its named sets newmark, hht, wbz),
 //! contact laws at force level (lagrange, penalty, complementarity) with the
 //! `end` placement, Hermite or string elements (half-bandwidth 3 or 1), and
-//! 2 to 8 runs of one or two contacts ([`batch_key`]). Anything else steps
+//! 2 to 8 runs of one or two contacts ([`batch_key`]), without a
+//! manufactured source (its load depends on time). Anything else steps
 //! alone, as before.
 //!
 //! **Retiring.** A run whose steps are done (its carrier left the beam) or
@@ -77,6 +78,8 @@ pub fn batch_key(sc: &Resolved) -> Option<String> {
     if sc.contact.placement != Placement::End
         || sc.contact.formulation == Formulation::Impact
         || sc.discretization != Discretization::Hermite
+        // a manufactured source is a time-dependent load: alone
+        || sc.manufactured.is_some()
     {
         return None;
     }

@@ -8,4 +8,6 @@ pub mod element;
 pub mod mesh;
 pub mod modal;
 pub mod motion;
+pub mod quadrature;
+pub mod source;
 pub mod spectrum;
