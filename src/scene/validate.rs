@@ -159,6 +159,12 @@ impl Resolved {
         }
     }
 
+    /// The unknowns of the space discretization's FE mesh (before a modal
+    /// truncation): the most modes a `modal` basis can take.
+    pub fn beam_unknowns(&self) -> usize {
+        super::discretization::fe_unknowns(&self.beam, self.elements)
+    }
+
     /// Rows the run's history will hold.
     pub fn history_rows(&self) -> usize {
         super::memory::history_rows(self.steps, self.record_every)
