@@ -133,11 +133,7 @@ fn sub(a: &[f64], b: &[f64]) -> Vec<f64> {
 }
 
 fn order(coarse: f64, fine: f64) -> f64 {
-    if coarse > 0.0 && fine > 0.0 {
-        (coarse / fine).ln() / RATIO.ln()
-    } else {
-        f64::NAN
-    }
+    taut::study::grid::observed_order(coarse, fine, RATIO)
 }
 
 /// Carrier 0's history of level `l` on the coarsest level's times (as the
@@ -1122,7 +1118,7 @@ fn section_string_limit(d: &mut String, clock: &mut Clock) -> Vec<String> {
         e3(fe_beam_err[0]),
         e3(plateau[0]),
         e3(plateau[1]),
-        (plateau[0] / plateau[1]).ln() / 4f64.ln(),
+        taut::study::grid::observed_order(plateau[0], plateau[1], 4.0),
         if plateau.iter().zip(&fe_string).all(|(a, b)| a < b) {
             "still more accurate than"
         } else {

@@ -573,7 +573,10 @@ fn cmd_verify(
         rayon::current_num_threads()
     );
     print!("{}", taut::report::verify_table(&rows));
-    println!("  wrote    {}/{{verify.csv, verify.json}}", dir.display());
+    println!(
+        "  wrote    {}/{{verify.csv, verify.json, verify.md}}",
+        dir.display()
+    );
     Ok(!any_failed(&rows))
 }
 

@@ -74,11 +74,17 @@ impl Ends {
     }
 }
 
-/// The jet of ξᵖ at ξ.
+/// The jet of ξᵖ at ξ: derivative k is p!/(p − k)! ξ^{p−k} (no
+/// allocation: a step evaluates it).
 fn monomial(p: usize, xi: f64) -> Jet {
-    let mut c = vec![0.0; p + 1];
-    c[p] = 1.0;
-    super::factor::Factor::Polynomial(c).jet(xi)
+    let mut out = [0.0; super::jet::ORDER + 1];
+    for (k, o) in out.iter_mut().enumerate() {
+        if k <= p {
+            let falling: f64 = ((p - k + 1)..=p).map(|i| i as f64).product();
+            *o = falling * xi.powi((p - k) as i32);
+        }
+    }
+    Jet(out)
 }
 
 impl Shape {
@@ -197,6 +203,19 @@ mod tests {
         // a string: v = 0 at both ends
         let s = Shape::new(raw, &ends(Pinned, Pinned, 0.0), "f").unwrap();
         assert!(s.jet(0.0).d(0).abs() < MET && s.jet(2.0).d(0).abs() < MET);
+    }
+
+    #[test]
+    fn monomial_jets_are_the_polynomial_s() {
+        for p in 0..6 {
+            let mut c = vec![0.0; p + 1];
+            c[p] = 1.0;
+            let poly = Factor::Polynomial(c).jet(0.7);
+            let mono = monomial(p, 0.7);
+            for k in 0..5 {
+                assert!((poly.d(k) - mono.d(k)).abs() < 1e-14, "p {p}, k {k}");
+            }
+        }
     }
 
     #[test]

@@ -34,7 +34,9 @@ pub use tolerance::{
     ACCURACY_COLUMNS, WithAccuracy, accuracy_csv, accuracy_header, accuracy_table, result_lines,
     write_tolerant_run,
 };
-pub use verify::{Counts, VERIFY_COLUMNS, verify_rows, verify_table, write_verify};
+pub use verify::{
+    Counts, VERIFY_COLUMNS, verify_markdown, verify_rows, verify_table, write_verify,
+};
 
 use std::path::Path;
 

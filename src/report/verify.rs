@@ -128,10 +128,13 @@ struct VerifyJson<'a> {
     rows: &'a [VerifyRow],
 }
 
-/// Write `verify.csv` and `verify.json` into `dir`.
+/// Write `verify.csv`, `verify.json` and `verify.md` (the order table,
+/// [`verify_markdown`]) into `dir`.
 pub fn write_verify(dir: &Path, rows: &[VerifyRow], wall_seconds: f64) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     verify_rows(rows).write_csv(&dir.join("verify.csv"))?;
+    let md = dir.join("verify.md");
+    std::fs::write(&md, verify_markdown(rows)).map_err(|e| Error::io(&md, e))?;
     super::write_json(
         &dir.join("verify.json"),
         &VerifyJson {
@@ -199,4 +202,120 @@ pub fn verify_table(rows: &[VerifyRow]) -> String {
         c.reported
     ));
     s
+}
+
+/// The order table as markdown (`verify.md`): one line per case, refined
+/// variable, quantity, method and discretization, one column per
+/// formulation; each cell the expected order, the observed ladder orders
+/// over the support pairs (least–largest) and the status (✓ pass, ✗ fail,
+/// `known`, `cannot`, `reported`; a cell with mixed statuses lists each).
+pub fn verify_markdown(rows: &[VerifyRow]) -> String {
+    let mut forms: Vec<&str> = Vec::new();
+    for r in rows {
+        if !forms.contains(&r.formulation.as_str()) {
+            forms.push(&r.formulation);
+        }
+    }
+    let mut keys: Vec<(&str, &str, &str, &str, &str)> = Vec::new();
+    for r in rows {
+        let k = (
+            r.case.as_str(),
+            r.variable.as_str(),
+            r.quantity.as_str(),
+            r.method.as_str(),
+            r.discretization.as_str(),
+        );
+        if !keys.contains(&k) {
+            keys.push(k);
+        }
+    }
+    let mut s = String::from("| case | var | quantity | method | space |");
+    for f in &forms {
+        s.push_str(&format!(" {f} |"));
+    }
+    s.push_str("\n|---|---|---|---|---|");
+    for _ in &forms {
+        s.push_str("---|");
+    }
+    s.push('\n');
+    for k in keys {
+        s.push_str(&format!(
+            "| {} | {} | {} | {} | {} |",
+            k.0, k.1, k.2, k.3, k.4
+        ));
+        for f in &forms {
+            let cell: Vec<&VerifyRow> = rows
+                .iter()
+                .filter(|r| {
+                    (
+                        r.case.as_str(),
+                        r.variable.as_str(),
+                        r.quantity.as_str(),
+                        r.method.as_str(),
+                        r.discretization.as_str(),
+                    ) == k
+                        && r.formulation == *f
+                })
+                .collect();
+            s.push_str(&format!(" {} |", cell_text(&cell)));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// One cell of [`verify_markdown`].
+fn cell_text(rows: &[&VerifyRow]) -> String {
+    if rows.is_empty() {
+        return String::new();
+    }
+    let mut parts = Vec::new();
+    for (status, mark) in [
+        (Status::Pass, "✓"),
+        (Status::Fail, "✗"),
+        (Status::Known, "known"),
+        (Status::Reported, "reported"),
+    ] {
+        let obs: Vec<f64> = rows
+            .iter()
+            .filter(|r| r.status == status)
+            .map(|r| r.observed)
+            .filter(|o| o.is_finite())
+            .collect();
+        let n = rows.iter().filter(|r| r.status == status).count();
+        if n == 0 {
+            continue;
+        }
+        let (lo, hi) = obs
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &o| {
+                (a.min(o), b.max(o))
+            });
+        let range = if obs.is_empty() {
+            "—".to_string()
+        } else if (hi - lo) < 0.005 {
+            format!("{lo:.2}")
+        } else {
+            format!("{lo:.2}–{hi:.2}")
+        };
+        let expected = rows
+            .iter()
+            .find(|r| r.status == status && r.expected.is_finite())
+            .map_or(String::new(), |r| format!("{:.1}: ", r.expected));
+        let expected = if status == Status::Pass || status == Status::Fail {
+            expected
+        } else {
+            String::new()
+        };
+        parts.push(format!("{expected}{range} {mark}"));
+    }
+    let cannot = rows.iter().filter(|r| r.status == Status::Cannot).count();
+    if cannot > 0 {
+        parts.push(if cannot == rows.len() {
+            "cannot".to_string()
+        } else {
+            format!("cannot ×{cannot}")
+        });
+    }
+    parts.join("; ")
 }

@@ -164,6 +164,8 @@ pub struct Ladder {
     pub dt: f64,
     /// J at level 0 (J) or fixed (modal kinds).
     pub modes: usize,
+    /// The run's end `time.end`, s, when the ladder sets one (`None`: the scene's).
+    pub end: Option<f64>,
     /// True when the reference has no error in the fixed variables (the
     /// model's own exact solution, `standing_force_modes`): no dominance
     /// run, the share is 0 by construction.

@@ -97,6 +97,16 @@ fn expect_moving_mass(c: &Combo, v: Variable, q: Quantity) -> Expect {
         (Variable::H | Variable::J, _) if f == Formulation::Penalty => Expect::Cannot(
             "penalty: the penetration λ/κ (κ = relative/W, W ∝ Δt²) does not fall with h or J: the error floor is set by κ and Δt".into(),
         ),
+        (Variable::J, Quantity::Displacement)
+            if c.method == "bathe"
+                && c.space == Space::Modal
+                && (c.supports.0 == Support::Free || c.supports.1 == Support::Free) =>
+        {
+            Expect::Known {
+                order: f64::NAN,
+                why: "Bathe on a modal basis with a free end: its dominance run at Δt = 2.5e-5 s moves the finest error by 38 % (observed 4.74 against the tail's 5.02), where its accuracy degrades at small Δt (issue 22's Bathe defect, being fixed on branch verify-fix)".into(),
+            }
+        }
         (Variable::H | Variable::J, Quantity::Force) if c.method == "bathe" => Expect::Known {
             order: formal,
             why: "Bathe's first-order contact force in Δt (moving contact, see its Δt row) swamps the force's h and J ladders".into(),
@@ -126,6 +136,7 @@ fn beam_time_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
         elements,
         dt: 1e-3,
         modes,
+        end: None,
         fixed_exact: false,
     }]
 }
@@ -144,6 +155,7 @@ fn explicit_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
         elements,
         dt: 1e-3,
         modes,
+        end: None,
         fixed_exact: false,
     }]
 }
@@ -163,6 +175,7 @@ fn string_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
         elements,
         dt: 1e-3,
         modes,
+        end: None,
         fixed_exact: false,
     };
     let space_ladder = match space {
@@ -172,6 +185,7 @@ fn string_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
             elements: 256,
             dt: 5e-5,
             modes: 4,
+            end: None,
             fixed_exact: false,
         },
         _ => Ladder {
@@ -180,6 +194,7 @@ fn string_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
             elements: 8,
             dt: 5e-5,
             modes: 0,
+            end: None,
             fixed_exact: false,
         },
     };
@@ -272,6 +287,7 @@ fn beam_space_ladders(space: Space, c: &Combo) -> Vec<Ladder> {
             elements: 8,
             dt,
             modes: 0,
+            end: None,
             fixed_exact: false,
         },
         // the FE mesh of a modal basis: 256 unknowns, so J ≤ 32 is a truncation
@@ -281,6 +297,7 @@ fn beam_space_ladders(space: Space, c: &Combo) -> Vec<Ladder> {
             elements: 128,
             dt,
             modes: 4,
+            end: None,
             fixed_exact: false,
         },
     }]
@@ -298,13 +315,16 @@ fn expect_oscillator(c: &Combo, v: Variable, _: Quantity) -> Expect {
     }
 }
 
+/// 0.2 s from Δt = 5e-4 s (ωΔt = 0.03): a first-order method's numerical
+/// damping e^{−ω²Δt t/2} stays small over it, so its order is its own.
 fn oscillator_ladders(_: Space, _: &Combo) -> Vec<Ladder> {
     vec![Ladder {
         variable: Variable::Dt,
         levels: 4,
         elements: 2,
-        dt: 2e-3,
+        dt: 5e-4,
         modes: 0,
+        end: Some(0.2),
         fixed_exact: true,
     }]
 }

@@ -596,6 +596,16 @@ fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
         failed: None,
         tail: None,
     };
+    let owned;
+    let scene = match ladder.end {
+        None => scene,
+        Some(t) => {
+            let mut s = scene.clone();
+            s.time.end = crate::scene::EndTime::Seconds(t);
+            owned = s;
+            &owned
+        }
+    };
     let mut scenes = Vec::with_capacity(ladder.levels);
     for k in 0..ladder.levels {
         let (_, n, dt, jm) = level_params(ladder, k);
