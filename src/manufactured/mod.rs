@@ -253,7 +253,7 @@ impl Manufactured {
                 big = big.max(shape.jet(x).d(0).abs());
                 raw_big = raw_big.max(raw.jet(x / b.length).d(0).abs());
             }
-            if !(big > VANISHED * raw_big) {
+            if big.is_nan() || big <= VANISHED * raw_big {
                 return Err(Error::invalid(
                     field,
                     "a polynomial of degree ≤ 3",
@@ -357,7 +357,7 @@ impl Manufactured {
                     continue;
                 }
                 let lambda = self.lambda(c, t);
-                if !(lambda > 0.0) {
+                if lambda.is_nan() || lambda <= 0.0 {
                     return Err(Error::invalid(
                         "manufactured.term",
                         format!(

@@ -105,7 +105,8 @@ impl Shape {
             let a = DMatrix::from_fn(n, n, |i, j| columns[j][i]);
             let hadamard: f64 = a.row_iter().map(|r| r.norm()).product();
             let det = a.determinant();
-            if !(det.abs() > INDEPENDENT * hadamard) {
+            // NaN (a singular set) is dependent too
+            if det.is_nan() || det.abs() <= INDEPENDENT * hadamard {
                 continue;
             }
             let Some(c) = a.lu().solve(&DVector::from_vec(target.clone())) else {

@@ -116,8 +116,10 @@ pub struct ConvergeRow {
     pub formal_order: f64,
     /// `asymptotic`, `pre-asymptotic`, `limited by …` (the error against
     /// an exact reference does not fall with the refined variable),
-    /// `not converging` (successive differences do not fall), `exact`, or
-    /// empty before a level can tell (`docs/convergence.md`).
+    /// `growing: round-off or an instability` (it rises as the refined
+    /// variable falls), `not converging` (successive differences do not
+    /// fall, or rise), `exact`, or empty before a level can tell
+    /// (`docs/convergence.md`).
     pub regime: String,
     /// ω_max·Δt of the level's model (ω_max: the highest natural
     /// frequency, `central_difference_limit`): above 1 its top modes are
@@ -407,7 +409,14 @@ fn converge_with(
         _ => None,
     };
     let (formal, unrefined) = match refine {
-        Refine::Step => (time_order, if modal { "J" } else { "the mesh" }),
+        Refine::Step => (
+            time_order,
+            match base.discretization {
+                Discretization::Hermite => "the mesh",
+                Discretization::Galerkin { .. } => "J",
+                Discretization::Modal { .. } => "J or the modal basis's FE mesh",
+            },
+        ),
         Refine::Mesh => (space_order, "Δt"),
         Refine::Both => (
             match (time_order, space_order) {
@@ -515,6 +524,13 @@ fn regime(e: &[f64], orders: &[f64], l: usize, ctx: &Context, exact: bool) -> St
     }
     if cur == 0.0 {
         return "exact".into();
+    }
+    if prev / cur < 1.0 / STALL_RATIO {
+        return if exact {
+            "growing: round-off or an instability".into()
+        } else {
+            "not converging".into()
+        };
     }
     if prev / cur < STALL_RATIO {
         return if exact {

@@ -69,7 +69,7 @@ fn expect_moving_mass(c: &Combo, v: Variable, q: Quantity) -> Expect {
     if c.method == "central_difference" && f == Formulation::Impact {
         return Expect::Known {
             order: formal,
-            why: "central difference with the impact law: ġ = 0 is imposed on its half-step velocity v_{n+1/2} at x_m(t_{n+1}), an O(Δt) mismatch, so it is first order in Δt (measured 0.9–1.2) and that error swamps h and J ladders".into(),
+            why: "central difference with the impact law: ġ = 0 is imposed on its half-step velocity v_{n+1/2} at x_m(t_{n+1}), an O(Δt) mismatch, so it is first order in Δt (measured 1.00 on mms_beam_time at N = 32: `taut converge scenes/verify/mms_beam_time.toml --refine step --levels 4 --set time.step=4e-5 --set 'integrator={method=\"central_difference\"}' --set contact.formulation=impact`; on the 200 Hz case its second-order term still dominates) and that error swamps h and J ladders".into(),
         };
     }
     if c.method == "moreau_jean" {
@@ -86,10 +86,12 @@ fn expect_moving_mass(c: &Combo, v: Variable, q: Quantity) -> Expect {
         (Variable::Dt, Quantity::Force) if c.method == "central_difference" => Expect::Cannot(
             "central difference: at its stable steps Δt² ∝ h⁴, while the contact force's space error ∝ h² (the mass's path has a curvature jump at every node): the force's time error is below its space error on every mesh".into(),
         ),
-        (Variable::Dt, Quantity::Force) if c.method == "bathe" => Expect::Known {
-            order: formal,
-            why: "Bathe's contact force is first order with a moving contact (measured 1.0 on every discretization; second order with a standing one; its displacement is second order): reported for the Bathe work on branch verify-fix".into(),
-        },
+        (Variable::Dt, Quantity::Force) if c.method == "bathe" && f != Formulation::Impact => {
+            Expect::Known {
+                order: formal,
+                why: "Bathe's contact force at force level is about first order with a moving contact (measured 1.0–1.7 over the discretizations and supports; second order with a standing one, and with the impact law; its displacement is second order): reported for the Bathe work on branch verify-fix".into(),
+            }
+        }
         (Variable::Dt, _) => Expect::Order {
             order: formal,
             tol: ORDER_TOL,
@@ -107,10 +109,14 @@ fn expect_moving_mass(c: &Combo, v: Variable, q: Quantity) -> Expect {
                 why: "Bathe on a modal basis with a free end: its dominance run at Δt = 2.5e-5 s moves the finest error by 38 % (observed 4.74 against the tail's 5.02), where its accuracy degrades at small Δt (issue 22's Bathe defect, being fixed on branch verify-fix)".into(),
             }
         }
-        (Variable::H | Variable::J, Quantity::Force) if c.method == "bathe" => Expect::Known {
+        (Variable::H | Variable::J, Quantity::Force)
+            if c.method == "bathe" && f != Formulation::Impact =>
+        {
+            Expect::Known {
             order: formal,
             why: "Bathe's first-order contact force in Δt (moving contact, see its Δt row) swamps the force's h and J ladders".into(),
-        },
+        }
+        }
         (Variable::H, _) => Expect::Order {
             order: formal,
             tol: MOVING_CONTACT_TOL,
@@ -329,11 +335,40 @@ fn oscillator_ladders(_: Space, _: &Combo) -> Vec<Ladder> {
     }]
 }
 
+/// The moving force on the taut string against the series of MODEL §8:
+/// string elements under a point load between nodes, first order in h.
+fn expect_moving_force_string(c: &Combo, v: Variable, _: Quantity) -> Expect {
+    match v {
+        Variable::H => Expect::Order {
+            order: 1.0,
+            tol: ORDER_TOL,
+        },
+        _ => Expect::Cannot(format!(
+            "{}: only an h ladder is declared for this case",
+            c.method
+        )),
+    }
+}
+
+/// h from L/50 to L/400 at Δt = 5e-5 s (the error under the load is
+/// first order in h and Δt's share stays below 1 %).
+fn moving_force_string_ladders(_: Space, _: &Combo) -> Vec<Ladder> {
+    vec![Ladder {
+        variable: Variable::H,
+        levels: 4,
+        elements: 50,
+        dt: 5e-5,
+        modes: 0,
+        end: None,
+        fixed_exact: false,
+    }]
+}
+
 /// Methods the moving-mass time cases leave to `mms_beam_explicit`.
 const IMPLICIT: [&str; 1] = ["central_difference"];
 
 /// The declared cases, in table order.
-pub const CASES: [Case; 6] = [
+pub const CASES: [Case; 7] = [
     Case {
         name: "oscillator",
         file: "scenes/oscillator_one_dof.toml",
@@ -346,6 +381,21 @@ pub const CASES: [Case; 6] = [
         expect: expect_oscillator,
         quantities: &[Quantity::Displacement],
         quick: true,
+        only: &[],
+        skip: &[],
+    },
+    Case {
+        name: "moving_force_string",
+        file: "scenes/moving_force_string.toml",
+        text: include_str!("../../../scenes/moving_force_string.toml"),
+        about: "a force crossing a taut string against the modal series (MODEL §8): string elements under a moving point load",
+        supports: &[],
+        spaces: &[Space::Hermite],
+        contact: false,
+        ladders: moving_force_string_ladders,
+        expect: expect_moving_force_string,
+        quantities: &[Quantity::Displacement],
+        quick: false,
         only: &[],
         skip: &[],
     },
