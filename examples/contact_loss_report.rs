@@ -259,7 +259,9 @@ fn log_slope(x: &[f64], y: &[f64]) -> Option<f64> {
 fn successive_slopes(x: &[f64], y: &[f64]) -> Vec<Option<f64>> {
     (1..x.len())
         .map(|i| {
-            (y[i] > 0.0 && y[i - 1] > 0.0).then(|| (y[i] / y[i - 1]).ln() / (x[i] / x[i - 1]).ln())
+            // the slope is the observed order of y "refined" by x_i/x_{i−1}
+            let p = taut::study::grid::observed_order(y[i], y[i - 1], x[i] / x[i - 1]);
+            p.is_finite().then_some(p)
         })
         .collect()
 }

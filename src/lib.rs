@@ -27,6 +27,7 @@ pub mod error;
 pub mod integrate;
 pub mod interrupt;
 pub mod json_keys;
+pub mod manufactured;
 pub mod model;
 pub mod record;
 pub mod report;

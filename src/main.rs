@@ -183,6 +183,34 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Run the verification matrix: every method × discretization ×
+    /// formulation × support pair on the declared cases (manufactured and
+    /// exact), each observed order beside the expected one (verify.csv,
+    /// verify.json); exit code 1 when any row fails.
+    Verify {
+        /// Comma-separated time integrators (default: all seven).
+        #[arg(long)]
+        methods: Option<String>,
+        /// Comma-separated discretizations: hermite, graded, galerkin,
+        /// modal (default: all; string elements run on the string cases).
+        #[arg(long, value_name = "LIST")]
+        discretizations: Option<String>,
+        /// Comma-separated contact formulations (default: all four).
+        #[arg(long)]
+        formulations: Option<String>,
+        /// The cut-down matrix of the default test suite (two support pairs).
+        #[arg(long)]
+        quick: bool,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Output folder (default: out/verify).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Solve a saved contact problem again (a `failed_contact_step_N.json`
     /// written by a failed run) and print the forces or the failure.
     Replay {
@@ -278,6 +306,29 @@ fn main() -> ExitCode {
             out,
             shard.as_deref(),
             (threads, batch),
+            quiet,
+        ) {
+            Ok(true) => Ok(()),
+            Ok(false) => return ExitCode::from(1),
+            Err(e) => Err(e),
+        },
+        Command::Verify {
+            methods,
+            discretizations,
+            formulations,
+            quick,
+            threads,
+            out,
+            quiet,
+        } => match cmd_verify(
+            (
+                methods.as_deref(),
+                discretizations.as_deref(),
+                formulations.as_deref(),
+            ),
+            quick,
+            threads,
+            out,
             quiet,
         ) {
             Ok(true) => Ok(()),
@@ -491,6 +542,42 @@ fn cmd_converge(
         "converge.csv, converge.json, converge.svg",
     );
     Ok(())
+}
+
+/// Returns whether every row passed (or is known, cannot, reported).
+fn cmd_verify(
+    (methods, spaces, formulations): (Option<&str>, Option<&str>, Option<&str>),
+    quick: bool,
+    threads: Option<usize>,
+    out: Option<PathBuf>,
+    quiet: bool,
+) -> taut::Result<bool> {
+    use taut::study::verify::{any_failed, cases::CASES, selection, verify};
+    let sel = selection(methods, spaces, formulations, quick)?;
+    taut::study::threads::start_pool(threads)?;
+    let bar = progress_bar(0, "combinations", quiet);
+    let start = std::time::Instant::now();
+    let rows = verify(&CASES, &sel, &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64)
+    });
+    bar.finish_and_clear();
+    let rows = rows?;
+    let wall = start.elapsed().as_secs_f64();
+    let dir = out.unwrap_or_else(|| PathBuf::from("out").join("verify"));
+    taut::report::write_verify(&dir, &rows, wall)?;
+    println!(
+        "taut {} — verify ({} rows, {wall:.1} s on {} threads)",
+        env!("CARGO_PKG_VERSION"),
+        rows.len(),
+        rayon::current_num_threads()
+    );
+    print!("{}", taut::report::verify_table(&rows));
+    println!(
+        "  wrote    {}/{{verify.csv, verify.json, verify.md}}",
+        dir.display()
+    );
+    Ok(!any_failed(&rows))
 }
 
 /// Returns whether the gate passed.

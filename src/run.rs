@@ -28,6 +28,10 @@ pub struct RunOutput {
     pub wall_seconds: f64,
     /// Findings that make the numbers suspect (e.g. contact chatter).
     pub warnings: Vec<String>,
+    /// The contact force recorded at t is the method's multiplier acting at
+    /// t − force_lag·Δt ([`crate::integrate::System::force_lag`]; 0 for a
+    /// run of no steps). A reference force is compared there.
+    pub force_lag: f64,
 }
 
 /// A contact that opens or closes on more than this fraction of the steps is
@@ -97,6 +101,11 @@ fn drive(
             steps: it.steps_taken(),
             force_bound: it.force_bound(),
             damping_note: it.constraint_damping_note(),
+            force_lag: if it.steps_taken() > 0 {
+                it.force_lag()
+            } else {
+                0.0
+            },
         },
     ))
 }
@@ -108,6 +117,7 @@ struct Finish {
     steps: usize,
     force_bound: f64,
     damping_note: Option<String>,
+    force_lag: f64,
 }
 
 /// A run's history and statistics as they are recorded, step by step:
@@ -215,6 +225,7 @@ impl Recorder {
             }
         }
         RunOutput {
+            force_lag: f.force_lag,
             warnings,
             dofs: f.dofs,
             steps: f.steps,
@@ -381,6 +392,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                             steps: lane.st.step,
                             force_bound: lane.sys.force_bound,
                             damping_note: crate::integrate::damping_note_of(&lane.sys),
+                            force_lag: lane.sys.force_lag(lane.st.t),
                         },
                     )),
                 };

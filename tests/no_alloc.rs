@@ -48,6 +48,7 @@ static GLOBAL: Counting = Counting;
 const REFERENCE: &str = include_str!("../scenes/reference.toml");
 const T2_STRING: &str = include_str!("../scenes/t2_stationary_mass_string.toml");
 const TWO_PANTOGRAPHS: &str = include_str!("../scenes/two_pantographs.toml");
+const MMS_LOSS: &str = include_str!("../scenes/verify/mms_loss.toml");
 
 /// What a measured stretch of steps did.
 struct Stretch {
@@ -208,6 +209,28 @@ fn step_loop_does_not_allocate() {
         0,
         "moving force"
     );
+    // a manufactured source (MODEL §11): its load vectors, point loads and
+    // mass source evaluated every step, through the prescribed loss and
+    // reattachment, on every discretization and under every method
+    let m = measure_steps(MMS_LOSS, &[], 300);
+    assert_eq!(m.allocations, 0, "manufactured");
+    assert!(m.open > 0 && m.closed > 0, "through the loss: {}", m.open);
+    for o in [
+        &["mesh.kind=galerkin", "mesh.modes=32"][..],
+        &["mesh.kind=modal", "mesh.modes=32"],
+        &["integrator={ method = \"bathe\" }"],
+        &["integrator={ method = \"moreau_jean\" }"],
+        &[
+            "integrator={ method = \"central_difference\" }",
+            "time.step=2e-5",
+        ],
+    ] {
+        assert_eq!(
+            allocations_in_steps(MMS_LOSS, o, 300),
+            0,
+            "manufactured {o:?}"
+        );
+    }
     modal_exact(&force);
 }
 

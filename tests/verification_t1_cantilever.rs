@@ -59,7 +59,10 @@ fn tip_history_converges_with_observed_order() {
                 .fold(0.0, f64::max)
         })
         .collect();
-    let orders: Vec<f64> = diffs.windows(2).map(|d| (d[0] / d[1]).log2()).collect();
+    let orders: Vec<f64> = diffs
+        .windows(2)
+        .map(|d| taut::study::grid::observed_order(d[0], d[1], 2.0))
+        .collect();
     println!("T1 tip history: successive max differences {diffs:?}, observed orders {orders:.2?}");
     for p in &orders {
         assert!(

@@ -470,8 +470,10 @@ def converge(
 
     Returns:
         Table of converge.csv's columns (method, discretization, level, h,
-        modes, dt, quantity, value, error, observed_order, gci, reference);
-        `.skipped` lists the variants that could not run the ladder.
+        modes, dt, quantity, value, error, observed_order, gci, reference,
+        error_order, ratio_change, formal_order, regime, omega_max_dt;
+        docs/output.md); `.skipped` lists the variants that could not run
+        the ladder.
     """
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:

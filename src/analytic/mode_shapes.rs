@@ -466,6 +466,40 @@ impl ModeShapes {
     pub fn uniform_load(&self, p: f64) -> Vec<f64> {
         self.load.iter().map(|f| p * f).collect()
     }
+
+    /// Composite 10-point Gauss–Legendre nodes and weights on [0, L] that
+    /// resolve every mode of the basis: panels of width `0.5/α_J` in the
+    /// end layers (thickness `40/α_1`, where `e^{−αx}` < 10⁻¹⁷) and
+    /// `0.5/β_J` between them, so every panel spans ≤ 0.5 rad of the fastest
+    /// oscillation and ≤ 0.5 decay lengths of the thinnest layer (10-point
+    /// rule: error ~ 0.5²⁰/20! per panel); no panel wider than `max_panel`
+    /// (m), for an integrand that varies faster than the modes.
+    pub fn quadrature(&self, max_panel: f64) -> Vec<(f64, f64)> {
+        let l = self.length;
+        let last = self.modes.last().expect("a basis has a mode");
+        let first = self.modes[0];
+        let (h_layer, layer) = if first.alpha > 0.0 {
+            (
+                (0.5 / last.alpha).min(max_panel),
+                (40.0 / first.alpha).min(0.5 * l),
+            )
+        } else {
+            (l, 0.0)
+        };
+        let h_in = (0.5 / last.beta).min(max_panel);
+        let mut cuts = vec![0.0];
+        for (a, b, h) in [
+            (0.0, layer, h_layer),
+            (layer, l - layer, h_in),
+            (l - layer, l, h_layer),
+        ] {
+            if b > a {
+                let n = ((b - a) / h).ceil() as usize;
+                cuts.extend((1..=n).map(|i| a + (b - a) * i as f64 / n as f64));
+            }
+        }
+        crate::model::quadrature::composite(&crate::model::quadrature::gauss_legendre(10), &cuts)
+    }
 }
 
 /// `α = sqrt(β² + μ²)`, 1/m.
@@ -578,64 +612,8 @@ mod tests {
         ModeShapes::new(&props(case, ends.0, ends.1), j).unwrap()
     }
 
-    /// Gauss–Legendre nodes and weights on [−1, 1] (Newton on P_m).
-    fn gauss_legendre(m: usize) -> Vec<(f64, f64)> {
-        (1..=m)
-            .map(|i| {
-                let mut x = (PI * (i as f64 - 0.25) / (m as f64 + 0.5)).cos();
-                let mut dp = 0.0;
-                for _ in 0..100 {
-                    let (mut p0, mut p1) = (1.0, x);
-                    for k in 2..=m {
-                        let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                        p0 = p1;
-                        p1 = p2;
-                    }
-                    dp = m as f64 * (x * p1 - p0) / (x * x - 1.0);
-                    let dx = p1 / dp;
-                    x -= dx;
-                    if dx.abs() < 1e-16 {
-                        break;
-                    }
-                }
-                (x, 2.0 / ((1.0 - x * x) * dp * dp))
-            })
-            .collect()
-    }
-
-    /// Composite 10-point Gauss–Legendre nodes and weights for the modes of
-    /// `s`: panels of width `0.5/α_J` in the end layers (thickness `40/α_1`,
-    /// where `e^{−αx}` < 10⁻¹⁷) and `0.5/β_J` between them, so every panel
-    /// spans ≤ 0.5 rad of the fastest oscillation and ≤ 0.5 decay lengths of
-    /// the thinnest layer (10-point rule: error ~ 0.5²⁰/20! per panel).
     fn quadrature(s: &ModeShapes) -> Vec<(f64, f64)> {
-        let l = s.length;
-        let last = s.modes.last().unwrap();
-        let first = s.modes[0];
-        let (h_layer, layer) = if first.alpha > 0.0 {
-            (0.5 / last.alpha, (40.0 / first.alpha).min(0.5 * l))
-        } else {
-            (l, 0.0)
-        };
-        let h_in = 0.5 / last.beta;
-        let mut cuts = vec![0.0];
-        for (a, b, h) in [
-            (0.0, layer, h_layer),
-            (layer, l - layer, h_in),
-            (l - layer, l, h_layer),
-        ] {
-            if b > a {
-                let n = ((b - a) / h).ceil() as usize;
-                cuts.extend((1..=n).map(|i| a + (b - a) * i as f64 / n as f64));
-            }
-        }
-        let gl = gauss_legendre(10);
-        let mut out = Vec::new();
-        for w in cuts.windows(2) {
-            let (mid, half) = (0.5 * (w[0] + w[1]), 0.5 * (w[1] - w[0]));
-            out.extend(gl.iter().map(|(x, wt)| (mid + half * x, half * wt)));
-        }
-        out
+        s.quadrature(f64::INFINITY)
     }
 
     type Eval = fn(&ModeShapes, f64, &mut [f64]);

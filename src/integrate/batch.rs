@@ -25,9 +25,9 @@
 //! **What batches**: generalized-α (and its named sets newmark, hht, wbz),
 //! contact laws at force level (lagrange, penalty, complementarity) with the
 //! `end` placement, Hermite or string elements (half-bandwidth 3 or 1), and
-//! 2 to 8 runs of one or two contacts ([`super::batch_key`]); `modal_exact`
-//! runs batch their own way (`modal_batch.rs`). Anything else steps alone,
-//! as before.
+//! 2 to 8 runs of one or two contacts ([`super::batch_key`]), without a
+//! manufactured source (its load depends on time); `modal_exact` runs batch
+//! their own way (`modal_batch.rs`). Anything else steps alone, as before.
 //!
 //! **Retiring.** A run whose steps are done (its carrier left the beam) or
 //! that stops (divergence, failed contact solve) leaves the batch
@@ -78,6 +78,8 @@ pub(crate) fn gen_alpha_key(sc: &Resolved) -> Option<String> {
     if sc.contact.placement != Placement::End
         || sc.contact.formulation == Formulation::Impact
         || sc.discretization != Discretization::Hermite
+        // a manufactured source is a time-dependent load: alone
+        || sc.manufactured.is_some()
     {
         return None;
     }

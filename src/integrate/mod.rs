@@ -103,6 +103,14 @@ pub trait MethodFactory: Sync {
     fn is_scene_method(&self) -> bool {
         false
     }
+
+    /// The method's formal order in Δt for the scene `sc` (the order of its
+    /// local truncation error minus one, for smooth solutions), which
+    /// `taut converge` and `taut verify` hold observed orders against;
+    /// `None` when not declared.
+    fn time_order(&self, _sc: &Resolved) -> Option<f64> {
+        None
+    }
 }
 
 impl MethodFactory for Method {
@@ -142,6 +150,16 @@ impl MethodFactory for Method {
 
     fn is_scene_method(&self) -> bool {
         true
+    }
+
+    /// 2 for the generalized-α family, Bathe and central difference; for
+    /// Moreau–Jean 2 at θ = ½ (the trapezoidal rule) and 1 otherwise
+    /// (MODEL §9.1). `sc` is a scene of this method (its `scheme`).
+    fn time_order(&self, sc: &Resolved) -> Option<f64> {
+        Some(match sc.scheme {
+            Scheme::MoreauJean { theta } if theta != 0.5 => 1.0,
+            _ => 2.0,
+        })
     }
 }
 
@@ -281,6 +299,12 @@ impl Integrator {
     /// The discrete energy, J ([`Energy`]; allocates: for checks).
     pub fn energy(&self) -> Energy {
         energy::energy(&self.sys, &self.state)
+    }
+
+    /// After a step: the recorded contact force acts at t − lag·Δt
+    /// ([`System::force_lag`]).
+    pub fn force_lag(&self) -> f64 {
+        self.sys.force_lag(self.state.t)
     }
 
     /// Largest |λ| accepted before a run is taken as diverged, N.

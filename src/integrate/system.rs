@@ -19,6 +19,7 @@ use crate::contact::{ContactFailure, ContactLaw, ContactProblem, Level, law_for}
 use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;
 use crate::model::beam::{BeamModel, PointVector};
+use crate::model::source::Source;
 use crate::scene::{
     CarrierKind, CarrierProps, ContactKind, ContactSpec, Method, Placement, Resolved, Scheme,
     Support,
@@ -192,6 +193,23 @@ pub(crate) struct Carrier {
     /// r_b' at the gap point, and V there (velocity level only).
     pub(crate) pv_s: PointVector,
     pub(crate) speed: f64,
+    /// A manufactured source's point load at this carrier (MODEL §11): its
+    /// magnitude at the step's load time, N in +v, and, for a contact, r_b
+    /// there (a force's load point is `pv_f`). Unused without a source.
+    pub(crate) pv_l: PointVector,
+    pub(crate) point: f64,
+}
+
+/// A manufactured solution's source during a run (MODEL §11): the smooth
+/// part projected on the basis ([`Source`]), the load time of the current
+/// step, and the mass dofs' constant forces without the mass source.
+#[derive(Debug, Clone)]
+struct SourceState {
+    source: Source,
+    /// t at which [`System::place`] put the loads, s.
+    t_load: f64,
+    /// kδ0 − s m g of each mass dof (its `f0` is this plus the mass source).
+    f0: Vec<f64>,
 }
 
 /// The shared system (module docs).
@@ -230,6 +248,10 @@ pub struct System {
     red_w: Vec<f64>,
     red_l: Vec<f64>,
     red_a: Vec<bool>,
+    /// A manufactured scene's source; `None` costs a branch per step.
+    source: Option<SourceState>,
+    /// The time the last [`System::place`] put the contact forces at, s.
+    t_force: f64,
 }
 
 /// Consistent initial accelerations (MODEL §5), for the methods that need them.
@@ -294,12 +316,21 @@ impl System {
                     pv_g: beam.point_vector(x0),
                     pv_s: beam.slope_vector(x0),
                     speed: 0.0,
+                    pv_l: beam.point_vector(x0),
+                    point: 0.0,
                 }
             })
             .collect();
         let law = law_for(&sc.contact, nc);
         let level = law.level();
+        let source = sc.manufactured.as_ref().map(|m| SourceState {
+            source: Source::new(&beam, m),
+            t_load: 0.0,
+            f0: masses.iter().map(|m| m.f0).collect(),
+        });
         Ok(System {
+            source,
+            t_force: 0.0,
             dt: sc.dt,
             placement: sc.contact.placement,
             bilateral: sc.contact.kind == ContactKind::Bilateral,
@@ -382,10 +413,39 @@ impl System {
         self.multipliers
     }
 
+    /// The time the contact force recorded at `t` (after a step) acts at,
+    /// as a lag in steps: `(t − t_force)/Δt` of the method's last
+    /// [`System::place`] (generalized-α α_f, central difference 1, Bathe
+    /// and backward Euler 0), or ½ for impulses (P/Δt is the step's mean
+    /// force). A reference force is compared at `t − lag·Δt`.
+    pub fn force_lag(&self, t: f64) -> f64 {
+        match self.multipliers {
+            Multipliers::Impulses => 0.5,
+            Multipliers::Forces => (t - self.t_force) / self.dt,
+        }
+    }
+
     /// Place the carriers for a step: moving forces at x_m(t_load), contact
     /// force directions r_f at x_m(t_force), gap rows r_g at x_m(t_gap).
     pub fn place(&mut self, t_load: f64, t_force: f64, t_gap: f64) {
         let velocity = self.level == Level::Velocity;
+        self.t_force = t_force;
+        if let Some(src) = &mut self.source {
+            // a manufactured source: its loads at t_load (MODEL §11)
+            src.t_load = t_load;
+            let m = src.source.solution();
+            for (i, c) in self.carriers.iter_mut().enumerate() {
+                c.point = m.point_load(i, t_load);
+                if let Some(j) = c.contact {
+                    self.beam.point_vector_into(
+                        c.props.motion.position(t_load),
+                        false,
+                        &mut c.pv_l,
+                    );
+                    self.masses[j].f0 = src.f0[j] + m.mass_source(i, t_load);
+                }
+            }
+        }
         for c in self.carriers.iter_mut() {
             let tf = if c.contact.is_some() { t_force } else { t_load };
             self.beam
@@ -410,6 +470,20 @@ impl System {
     /// right-hand side (`k` columns per run, [`Lanes`]).
     pub fn scatter_loads_in(&self, rhs: &mut [f64], k: usize, lanes: Lanes, scale: f64) {
         let stride = k * lanes.count;
+        if let Some(src) = &self.source {
+            // a manufactured source: the smooth part and each carrier's
+            // point load, at the load time of `place` (MODEL §11)
+            src.source
+                .add_into(src.t_load, scale, rhs, stride, lanes.col(0));
+            for c in &self.carriers {
+                let pv = if c.contact.is_some() {
+                    &c.pv_l
+                } else {
+                    &c.pv_f
+                };
+                pv.scatter(c.point * scale, rhs, stride, lanes.col(0));
+            }
+        }
         for c in &self.carriers {
             match (c.props.kind, c.contact) {
                 (CarrierKind::Force { force }, _) => {

@@ -168,6 +168,12 @@ impl Mesh {
         self.uniform.is_some()
     }
 
+    /// Position of node i, m (node e starts element e).
+    #[inline]
+    pub fn node(&self, i: usize) -> f64 {
+        self.nodes[i]
+    }
+
     /// Length of element e, m.
     #[inline]
     pub fn element_length(&self, e: usize) -> f64 {

@@ -9,4 +9,6 @@ pub mod lanes;
 pub mod mesh;
 pub mod modal;
 pub mod motion;
+pub mod quadrature;
+pub mod source;
 pub mod spectrum;

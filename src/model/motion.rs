@@ -66,6 +66,23 @@ impl Motion {
         }
     }
 
+    /// Acceleration V̇(t), m/s² (MODEL §3: V0/t0 (1 − cos 2πt/t0) on the
+    /// ramp, 0 at constant speed); a manufactured solution's mass motion
+    /// needs it (MODEL §11).
+    pub fn acceleration(&self, t: f64) -> f64 {
+        match self.profile {
+            SpeedProfile::Constant { .. } => 0.0,
+            SpeedProfile::SmoothRamp { cruise } => {
+                let t0 = self.ramp_time;
+                if t <= t0 {
+                    cruise / t0 * (1.0 - (2.0 * PI * t / t0).cos())
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
     /// True when the carrier never moves.
     pub fn is_stationary(&self) -> bool {
         self.profile.cruise_speed() == 0.0
@@ -132,6 +149,17 @@ mod tests {
             let fd = (m.position(t + h) - m.position(t - h)) / (2.0 * h);
             assert_relative_eq!(fd, m.speed(t), max_relative = 1e-7);
         }
+    }
+
+    #[test]
+    fn acceleration_is_the_derivative_of_speed() {
+        let m = ramp();
+        let h = 1e-6;
+        for &t in &[0.01, 0.1, 0.19, 0.3] {
+            let fd = (m.speed(t + h) - m.speed(t - h)) / (2.0 * h);
+            assert!((fd - m.acceleration(t)).abs() <= 1e-6 * 1e3, "{t}: {fd}");
+        }
+        assert_eq!(m.acceleration(0.0), 0.0);
     }
 
     #[test]

@@ -14,7 +14,7 @@ use crate::study::converge::{
 };
 
 /// Column order of `converge.csv`.
-pub const CONVERGE_COLUMNS: [&str; 12] = [
+pub const CONVERGE_COLUMNS: [&str; 17] = [
     "method",
     "discretization",
     "level",
@@ -27,6 +27,11 @@ pub const CONVERGE_COLUMNS: [&str; 12] = [
     "observed_order",
     "gci",
     "reference",
+    "error_order",
+    "ratio_change",
+    "formal_order",
+    "regime",
+    "omega_max_dt",
 ];
 
 #[derive(Serialize)]
@@ -84,6 +89,11 @@ pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
         measured(|r| r.observed_order),
         measured(|r| r.gci),
         label(|r| &r.reference),
+        measured(|r| r.error_order),
+        measured(|r| r.ratio_change),
+        measured(|r| r.formal_order),
+        label(|r| &r.regime),
+        measured(|r| r.omega_max_dt),
     ];
     let mut t = Table::new();
     for (name, column) in CONVERGE_COLUMNS.into_iter().zip(columns) {
@@ -181,12 +191,32 @@ pub fn converge_methods_table(studies: &[MethodStudy], skipped: &[NotRun]) -> St
     s
 }
 
-/// The terminal table.
+/// The terminal table: per level the error against the reference and its
+/// order (`err p`), the order from successive differences (`diff p`, never
+/// from the reference), the GCI, ω_max·Δt and the regime.
 pub fn converge_table(c: &Convergence) -> String {
     let mut s = format!(
-        "{:<20} {:>5} {:>10} {:>10} {:>13} {:>11} {:>7} {:>10}  {}\n",
-        "quantity", "level", "h m", "dt s", "value", "error", "order", "GCI", "reference"
+        "{:<20} {:>5} {:>10} {:>10} {:>13} {:>11} {:>6} {:>6} {:>10} {:>8}  {:<22} {}\n",
+        "quantity",
+        "level",
+        "h m",
+        "dt s",
+        "value",
+        "error",
+        "err p",
+        "diff p",
+        "GCI",
+        "ωmax·Δt",
+        "regime",
+        "reference"
     );
+    let order = |p: f64| {
+        if p.is_finite() {
+            format!("{p:>6.2}")
+        } else {
+            format!("{:>6}", "—")
+        }
+    };
     for q in QUANTITIES {
         for r in c.rows.iter().filter(|r| r.quantity == q) {
             let f = |v: f64, w: usize| {
@@ -197,19 +227,22 @@ pub fn converge_table(c: &Convergence) -> String {
                 }
             };
             s.push_str(&format!(
-                "{:<20} {:>5} {:>10.4e} {:>10.3e} {} {} {} {}  {}\n",
+                "{:<20} {:>5} {:>10.4e} {:>10.3e} {} {} {} {} {} {}  {:<22} {}\n",
                 r.quantity,
                 r.level,
                 r.h,
                 r.dt,
                 f(r.value, 13),
                 f(r.error, 11),
-                if r.observed_order.is_finite() {
-                    format!("{:>7.2}", r.observed_order)
-                } else {
-                    format!("{:>7}", "—")
-                },
+                order(r.error_order),
+                order(r.observed_order),
                 f(r.gci, 10),
+                if r.omega_max_dt.is_finite() {
+                    format!("{:>8.3}", r.omega_max_dt)
+                } else {
+                    format!("{:>8}", "—")
+                },
+                r.regime,
                 r.reference
             ));
         }

@@ -12,6 +12,7 @@ mod sweep;
 mod sweep_maps;
 mod table;
 mod tolerance;
+mod verify;
 
 pub use compare::{COMPARE_COLUMNS, compare_rows, compare_table, write_compare};
 pub use converge::{
@@ -32,6 +33,9 @@ pub use table::{Column, Table};
 pub use tolerance::{
     ACCURACY_COLUMNS, WithAccuracy, accuracy_csv, accuracy_header, accuracy_table, result_lines,
     write_tolerant_run,
+};
+pub use verify::{
+    Counts, VERIFY_COLUMNS, verify_markdown, verify_rows, verify_table, write_verify,
 };
 
 use std::path::Path;

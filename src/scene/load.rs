@@ -14,7 +14,7 @@ use crate::error::{Error, Result, one_line};
 /// The top-level tables of a scene ([`Scene`]'s fields, as spelled in a
 /// file). A file with none of them is not a scene, and is refused without
 /// naming its keys ([`check_is_scene`]).
-pub const SCENE_TABLES: [&str; 9] = [
+pub const SCENE_TABLES: [&str; 11] = [
     "beam",
     "mesh",
     "carrier",
@@ -24,6 +24,8 @@ pub const SCENE_TABLES: [&str; 9] = [
     "gravity",
     "probe",
     "output",
+    "manufactured",
+    "reference",
 ];
 
 /// Parse scene text into a TOML tree.
@@ -68,7 +70,7 @@ pub fn check_is_scene(tree: &Table) -> Result<()> {
     Err(Error::parse(format!(
         "not a scene: none of its {} top-level keys is a scene table (a scene has [beam], [mesh], [[carrier]] and [time], optionally {}); the file's own keys are not shown",
         tree.len(),
-        "[contact], [integrator], [gravity], [[probe]], [output]"
+        "[contact], [integrator], [gravity], [[probe]], [output], [manufactured], [reference]"
     )))
 }
 
@@ -251,12 +253,13 @@ mod tests {
             .keys()
             .map(|k| k.as_str())
             .collect();
-        // every field but the (empty, skipped) probes and (default, skipped)
-        // output is written
+        // every field but the (empty, skipped) probes, the (default,
+        // skipped) output and the (absent, skipped) manufactured and
+        // reference tables is written
         for k in &keys {
             assert!(SCENE_TABLES.contains(k), "{k}");
         }
-        assert_eq!(keys.len(), SCENE_TABLES.len() - 2, "{keys:?}");
+        assert_eq!(keys.len(), SCENE_TABLES.len() - 4, "{keys:?}");
     }
 
     #[test]

@@ -8,6 +8,7 @@
 
 mod discretization;
 mod load;
+pub mod manufactured;
 mod memory;
 mod method;
 mod speed;
@@ -18,6 +19,7 @@ pub use load::{
     apply_override, in_file, load_scene, parse_scene, read_scene, resolve_scene,
     scene_with_overrides,
 };
+pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
 pub use memory::{
     MEMORY_BUDGET_BYTES, MemoryEstimate, check_budget, estimate as estimate_memory, history_rows,
 };
@@ -61,6 +63,14 @@ pub struct Scene {
     /// What the history records (`[output]`).
     #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
     pub output: OutputSpec,
+    /// A manufactured solution (`[manufactured]`, MODEL §11): its source is
+    /// added to the run and it is the scene's reference.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub manufactured: Option<ManufacturedSpec>,
+    /// The reference the scene declares for `taut converge` and `taut
+    /// verify` (`[reference]`; default: Richardson extrapolation).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceSpec>,
 }
 
 /// Support condition at a beam end (MODEL §1).

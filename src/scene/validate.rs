@@ -8,6 +8,7 @@ use super::{
 use std::collections::HashMap;
 
 use super::Discretization;
+use super::manufactured::{Declared, ReferenceKind};
 use crate::error::{Error, Result};
 use crate::model::mesh::Grading;
 use crate::model::motion::Motion;
@@ -131,6 +132,11 @@ pub struct Resolved {
     /// The history records row 0, every `record_every`-th step and the last
     /// step (`output.record_every`, ≥ 1); statistics use every step.
     pub record_every: usize,
+    /// The manufactured solution of a scene with `[manufactured]` (MODEL §11).
+    pub manufactured: Option<crate::manufactured::Manufactured>,
+    /// The reference the scene declares (`[reference]`, or the manufactured
+    /// solution), its assumptions checked.
+    pub reference: Declared,
 }
 
 impl Resolved {
@@ -151,6 +157,12 @@ impl Resolved {
             Discretization::Galerkin { modes } => l / modes as f64,
             Discretization::Modal { modes } => mesh().max(l / modes as f64),
         }
+    }
+
+    /// The unknowns of the space discretization's FE mesh (before a modal
+    /// truncation): the most modes a `modal` basis can take.
+    pub fn beam_unknowns(&self) -> usize {
+        super::discretization::fe_unknowns(&self.beam, self.elements)
     }
 
     /// Rows the run's history will hold.
@@ -394,7 +406,25 @@ impl Scene {
             probes.len(),
         )?;
 
+        let manufactured = match &self.manufactured {
+            None => None,
+            Some(spec) => Some(crate::manufactured::Manufactured::new(
+                spec,
+                crate::manufactured::Setting {
+                    beam: &beam,
+                    carriers: &carriers,
+                    contact: self.contact.kind,
+                    g,
+                    t_end,
+                    steps,
+                },
+            )?),
+        };
+        let reference = self.declared_reference(&beam, &carriers)?;
+
         Ok(Resolved {
+            manufactured,
+            reference,
             scene: self.clone(),
             beam,
             carriers,
@@ -411,6 +441,147 @@ impl Scene {
             probes,
             record_every,
         })
+    }
+
+    /// The reference the scene declares, its assumptions checked (MODEL §8;
+    /// `docs/scene.md`, `[reference]`): a declaration that does not fit the
+    /// scene is refused naming `reference.kind` and the key that breaks it.
+    fn declared_reference(&self, beam: &BeamProps, carriers: &[CarrierProps]) -> Result<Declared> {
+        if self.manufactured.is_some() {
+            if let Some(r) = &self.reference {
+                return Err(Error::invalid(
+                    "reference.kind",
+                    format!("\"{}\"", r.kind.name()),
+                    "must be left out with [manufactured]: the manufactured solution is the scene's reference",
+                ));
+            }
+            return Ok(Declared::Manufactured);
+        }
+        let Some(spec) = &self.reference else {
+            return Ok(Declared::Richardson);
+        };
+        let kind = spec.kind;
+        let refuse = |key: &str, value: String, why: &str| {
+            Err(Error::invalid(
+                "reference.kind",
+                format!("\"{}\"", kind.name()),
+                format!("needs {why}, but {key} = {value}"),
+            ))
+        };
+        if spec.modes.is_some() && kind != ReferenceKind::RidingMassGalerkin {
+            return Err(Error::invalid(
+                "reference.modes",
+                spec.modes.unwrap_or(0),
+                "is read only by kind = \"riding_mass_galerkin\": leave it out",
+            ));
+        }
+        let pinned = beam.left == Support::Pinned && beam.right == Support::Pinned;
+        let supports = || format!("{:?}–{:?}", beam.left, beam.right).to_lowercase();
+        match kind {
+            ReferenceKind::Richardson => Ok(Declared::Richardson),
+            ReferenceKind::MovingForceSeries | ReferenceKind::RidingMassGalerkin => {
+                if carriers.len() != 1 {
+                    return refuse(
+                        "carrier",
+                        format!("{} carriers", carriers.len()),
+                        "exactly one carrier",
+                    );
+                }
+                let c = &carriers[0];
+                let SpeedProfile::Constant { value: speed } = c.motion.profile else {
+                    return refuse(
+                        "carrier.speed.profile",
+                        "\"smooth_ramp\"".into(),
+                        "a constant speed",
+                    );
+                };
+                if !pinned {
+                    return refuse("beam.left/right", supports(), "pinned–pinned supports");
+                }
+                if beam.distributed_load != 0.0 {
+                    return refuse(
+                        "gravity.beam_self_weight",
+                        "true".into(),
+                        "no distributed load",
+                    );
+                }
+                if kind == ReferenceKind::MovingForceSeries {
+                    if !matches!(c.kind, CarrierKind::Force { .. }) {
+                        return refuse(
+                            "carrier.mass",
+                            "given".into(),
+                            "a moving force (carrier.force)",
+                        );
+                    }
+                    if speed <= 0.0 {
+                        return refuse("carrier.speed.value", speed.to_string(), "a speed > 0");
+                    }
+                    if c.motion.start != 0.0 {
+                        return refuse("carrier.start", c.motion.start.to_string(), "start = 0");
+                    }
+                    return Ok(Declared::MovingForceSeries);
+                }
+                let CarrierKind::MassSpring {
+                    stiffness, damping, ..
+                } = c.kind
+                else {
+                    return refuse("carrier.force", "given".into(), "a mass carrier");
+                };
+                if stiffness != 0.0 {
+                    return refuse(
+                        "carrier.stiffness",
+                        stiffness.to_string(),
+                        "a riding mass (stiffness = 0)",
+                    );
+                }
+                if damping != 0.0 {
+                    return refuse("carrier.damping", damping.to_string(), "no dashpot");
+                }
+                if self.contact.kind != super::ContactKind::Bilateral {
+                    return refuse(
+                        "contact.kind",
+                        "\"unilateral\"".into(),
+                        "a bilateral contact",
+                    );
+                }
+                if beam.is_string() {
+                    return refuse(
+                        "beam.bending_stiffness",
+                        "0".into(),
+                        "EI > 0 (a string's curvature under a mass has no limit)",
+                    );
+                }
+                if let Some(j) = spec.modes
+                    && !(1..=crate::analytic::MAX_MODES * 4).contains(&j)
+                {
+                    return Err(Error::invalid(
+                        "reference.modes",
+                        j,
+                        format!("must be in 1 ..= {}", crate::analytic::MAX_MODES * 4),
+                    ));
+                }
+                Ok(Declared::RidingMassGalerkin { modes: spec.modes })
+            }
+            ReferenceKind::StandingForceModes => {
+                for (i, c) in carriers.iter().enumerate() {
+                    if !matches!(c.kind, CarrierKind::Force { .. }) {
+                        return refuse(
+                            &format!("carrier.{i}.mass"),
+                            "given".into(),
+                            "standing forces only (carrier.force)",
+                        );
+                    }
+                    if !c.motion.is_stationary() {
+                        return refuse(
+                            &format!("carrier.{i}.speed"),
+                            c.motion.profile.cruise_speed().to_string(),
+                            "standing forces (speed 0)",
+                        );
+                    }
+                }
+                Ok(Declared::StandingForceModes)
+            }
+        }
     }
 
     fn resolve_beam(&self) -> Result<BeamProps> {

@@ -32,7 +32,7 @@ use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
 use crate::run::{RunOutput, run, run_with};
-use crate::scene::{Resolved, resolve_scene};
+use crate::scene::{Declared, Discretization, Resolved, resolve_scene};
 
 /// Roache's safety factor for a three-grid study.
 pub const GCI_SAFETY_FACTOR: f64 = 1.25;
@@ -97,8 +97,34 @@ pub struct ConvergeRow {
     pub observed_order: f64,
     /// Grid convergence index (relative); NaN when not defined.
     pub gci: f64,
-    /// "analytic" or "richardson" (or "finest" when no order could be observed).
+    /// What `error` is against: the scene's declared reference
+    /// (`manufactured`, `moving_force_series`, `riding_mass_galerkin`,
+    /// `standing_force_modes`), else `richardson`, or `finest` when no
+    /// order could be observed for an extrapolation.
     pub reference: String,
+    /// Order of `error` between levels ℓ−1 and ℓ, against an exact
+    /// reference only (NaN for `richardson` and `finest`, whose error is
+    /// built from the same runs).
+    pub error_order: f64,
+    /// Ratio of successive error ratios (e_{ℓ−2}/e_{ℓ−1})/(e_{ℓ−1}/e_ℓ),
+    /// from the errors against an exact reference, else from successive
+    /// differences: 1 in the asymptotic range ([`ORDER_DRIFT`]).
+    pub ratio_change: f64,
+    /// The formal order of the displacement in the refined variable
+    /// (Δt: the method's; h: Hermite 4, string elements 2; `both`: the
+    /// smaller), NaN when unknown (a modal basis's J, other quantities).
+    pub formal_order: f64,
+    /// `asymptotic`, `pre-asymptotic`, `limited by …` (the error against
+    /// an exact reference does not fall with the refined variable),
+    /// `growing: round-off or an instability` (it rises as the refined
+    /// variable falls), `not converging` (successive differences do not
+    /// fall, or rise), `exact`, or empty before a level can tell
+    /// (`docs/convergence.md`).
+    pub regime: String,
+    /// ω_max·Δt of the level's model (ω_max: the highest natural
+    /// frequency, `central_difference_limit`): above 1 its top modes are
+    /// not resolved in time, which caps a moving load's Δt order.
+    pub omega_max_dt: f64,
 }
 
 /// A finished study.
@@ -361,9 +387,60 @@ fn converge_with(
         runs.push(out);
         progress(l + 1, levels);
     }
-    let reference = analytic(&scenes[levels - 1]);
+    let finest = &scenes[levels - 1];
+    let reference = analytic(finest);
+    // the exact force of a reference that has one (manufactured, a force's)
+    let exact = match finest.reference {
+        Declared::Manufactured | Declared::MovingForceSeries | Declared::StandingForceModes
+            if reference.is_some() =>
+        {
+            crate::study::reference::exact(finest).ok().flatten()
+        }
+        _ => None,
+    };
     let name = method.map_or_else(|| base.integrator.method.name().to_string(), |m| m.name());
-    let mut rows = tabulate(&scenes, &runs, &stride, ratio, reference.as_deref());
+    let time_order = match method {
+        Some(m) => m.time_order(base),
+        None => MethodFactory::time_order(&base.integrator.method, base),
+    };
+    let space_order = match base.discretization {
+        Discretization::Hermite if base.beam.is_string() => Some(2.0),
+        Discretization::Hermite => Some(4.0),
+        _ => None,
+    };
+    let (formal, unrefined) = match refine {
+        Refine::Step => (
+            time_order,
+            match base.discretization {
+                Discretization::Hermite => "the mesh",
+                Discretization::Galerkin { .. } => "J",
+                Discretization::Modal { .. } => "J or the modal basis's FE mesh",
+            },
+        ),
+        Refine::Mesh => (space_order, "Δt"),
+        Refine::Both => (
+            match (time_order, space_order) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                _ => None,
+            },
+            "neither refined variable (a floor: the reference's accuracy or a fixed parameter)",
+        ),
+    };
+    let omega_dt = scenes
+        .iter()
+        .map(|s| {
+            crate::integrate::central_difference_limit(s).map_or(f64::NAN, |l| l.omega_max * s.dt)
+        })
+        .collect();
+    let ctx = Context {
+        w: reference.as_deref(),
+        force: exact.as_ref().and_then(|e| e.force.as_deref()),
+        name: finest.reference.name(),
+        formal,
+        unrefined,
+        omega_dt,
+    };
+    let mut rows = tabulate(&scenes, &runs, &stride, ratio, &ctx);
     for r in &mut rows {
         r.method.clone_from(&name);
     }
@@ -389,12 +466,242 @@ fn diff(a: &[f64], b: &[f64]) -> Vec<f64> {
     a.iter().zip(b).map(|(x, y)| x - y).collect()
 }
 
+/// What a study knows beyond its runs: the exact histories of its declared
+/// reference (if any), the orders the refined variable should show, and
+/// what stays fixed.
+struct Context<'a> {
+    /// w(t) under carrier 0, exact.
+    w: Option<&'a (dyn Fn(f64) -> f64 + Sync)>,
+    /// λ(t) of carrier 0, exact (compared at t − lag·Δt of each run).
+    force: Option<&'a (dyn Fn(f64) -> f64 + Sync)>,
+    /// The declared reference's name, for the `reference` column.
+    name: &'static str,
+    /// The displacement's formal order in the refined variable, if known.
+    formal: Option<f64>,
+    /// What the ladder does not refine ("the mesh", "Δt", "J", …).
+    unrefined: &'static str,
+    /// ω_max·Δt of each level.
+    omega_dt: Vec<f64>,
+}
+
+/// An error falling by less than this factor per level (order < 0.32 at
+/// r = 2) is not falling with the refined variable: a ladder limited by
+/// what it does not refine. Chosen between a converging ladder's slowest
+/// useful rate (first order: ×2 per halving) and the ±10 % a stalled error
+/// wanders by.
+pub const STALL_RATIO: f64 = 1.25;
+
+/// Successive observed orders differing by more than this are not yet in
+/// the asymptotic range: the ratio of successive error ratios is outside
+/// r^(±0.3) (0.81 … 1.23 at r = 2), where the leading error term does not
+/// yet dominate the next one.
+pub const ORDER_DRIFT: f64 = 0.3;
+
+/// An observed order this far from the formal one is pre-asymptotic (or
+/// the formal order does not hold for this solution: the regime says which
+/// to suspect, the numbers show it). The same ±0.3 the verification
+/// harness allows a smooth case.
+pub const FORMAL_GAP: f64 = 0.3;
+
+/// The regime of a level from the errors of its ladder (`e`, against an
+/// exact reference, or successive differences when `exact` is false) and
+/// the orders between levels (module docs, `docs/convergence.md`).
+fn regime(e: &[f64], orders: &[f64], l: usize, ctx: &Context, exact: bool) -> String {
+    // with differences, level ℓ's difference is index ℓ − 1
+    let (prev, cur) = if exact {
+        if l == 0 {
+            return String::new();
+        }
+        (e[l - 1], e[l])
+    } else {
+        if l < 2 {
+            return String::new();
+        }
+        (e[l - 2], e[l - 1])
+    };
+    if !(prev.is_finite() && cur.is_finite()) || prev == 0.0 {
+        return String::new();
+    }
+    if cur == 0.0 {
+        return "exact".into();
+    }
+    if prev / cur < 1.0 / STALL_RATIO {
+        return if exact {
+            "growing: round-off or an instability".into()
+        } else {
+            "not converging".into()
+        };
+    }
+    if prev / cur < STALL_RATIO {
+        return if exact {
+            format!("limited by {}", ctx.unrefined)
+        } else {
+            "not converging".into()
+        };
+    }
+    let p = orders[l];
+    let drift = l >= 2 && orders[l - 1].is_finite() && (p - orders[l - 1]).abs() > ORDER_DRIFT;
+    let off = ctx.formal.is_some_and(|f| (p - f).abs() > FORMAL_GAP);
+    if drift || off {
+        "pre-asymptotic".into()
+    } else if l >= 2 || ctx.formal.is_some() {
+        "asymptotic".into()
+    } else {
+        String::new()
+    }
+}
+
+/// Ratio of successive error ratios (e_{ℓ−2}/e_{ℓ−1})/(e_{ℓ−1}/e_ℓ): 1 in
+/// the asymptotic range ([`ORDER_DRIFT`]).
+fn ratio_change(a: f64, b: f64, c: f64) -> f64 {
+    if a > 0.0 && b > 0.0 && c > 0.0 {
+        (a / b) / (b / c)
+    } else {
+        f64::NAN
+    }
+}
+
+/// The rows of one quantity over the levels.
+struct Rows {
+    value: Vec<f64>,
+    error: Vec<f64>,
+    error_order: Vec<f64>,
+    observed: Vec<f64>,
+    gci: Vec<f64>,
+    ratio_change: Vec<f64>,
+    regime: Vec<String>,
+    reference: String,
+}
+
+/// Orders between successive entries of `e` (NaN at index 0).
+fn orders_of(e: &[f64], r: f64) -> Vec<f64> {
+    (0..e.len())
+        .map(|l| {
+            if l == 0 {
+                f64::NAN
+            } else {
+                observed_order(e[l - 1], e[l], r)
+            }
+        })
+        .collect()
+}
+
+/// Errors, orders, GCI and regime of a quantity given per level as
+/// `values` (a scalar, or the norm of a history) and the successive
+/// differences `d` (`d[ℓ−1]` between levels ℓ−1 and ℓ); `errors` against
+/// an exact reference when known, else built from Richardson or the finest.
+fn quantity_rows(
+    values: Vec<f64>,
+    d: Vec<f64>,
+    errors: Option<Vec<f64>>,
+    richardson: &dyn Fn(f64) -> Vec<f64>,
+    r: f64,
+    ctx: &Context,
+    formal: Option<f64>,
+) -> Rows {
+    let k = values.len();
+    // the successive-difference order of level ℓ (ℓ ≥ 2)
+    let observed: Vec<f64> = (0..k)
+        .map(|l| {
+            if l >= 2 {
+                observed_order(d[l - 2], d[l - 1], r)
+            } else {
+                f64::NAN
+            }
+        })
+        .collect();
+    let gci: Vec<f64> = (0..k)
+        .map(|l| {
+            let p = observed[l];
+            if l >= 2 && p.is_finite() && p > 0.0 && values[l] != 0.0 {
+                GCI_SAFETY_FACTOR * (d[l - 1] / values[l].abs()) / (r.powf(p) - 1.0)
+            } else {
+                f64::NAN
+            }
+        })
+        .collect();
+    let ctx = Context {
+        formal,
+        omega_dt: Vec::new(),
+        ..*ctx
+    };
+    match errors {
+        Some(e) => {
+            let error_order = orders_of(&e, r);
+            let regime = (0..k)
+                .map(|l| regime(&e, &error_order, l, &ctx, true))
+                .collect();
+            let ratio_change = (0..k)
+                .map(|l| {
+                    if l >= 2 {
+                        ratio_change(e[l - 2], e[l - 1], e[l])
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect();
+            Rows {
+                value: values,
+                error: e,
+                error_order,
+                observed,
+                gci,
+                ratio_change,
+                regime,
+                reference: ctx.name.to_string(),
+            }
+        }
+        None => {
+            let (reference, error) = if k >= 3 {
+                let p = observed_order(d[k - 3], d[k - 2], r);
+                if p.is_finite() && p > 0.0 {
+                    ("richardson", richardson(p))
+                } else {
+                    ("finest", richardson(f64::NAN))
+                }
+            } else {
+                ("finest", richardson(f64::NAN))
+            };
+            // orders from successive differences: the regime reads them
+            let regime = (0..k)
+                .map(|l| regime(&d_padded(&d), &observed, l, &ctx, false))
+                .collect();
+            let ratio_change = (0..k)
+                .map(|l| {
+                    if l >= 3 {
+                        ratio_change(d[l - 3], d[l - 2], d[l - 1])
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect();
+            Rows {
+                value: values,
+                error,
+                error_order: vec![f64::NAN; k],
+                observed,
+                gci,
+                ratio_change,
+                regime,
+                reference: reference.to_string(),
+            }
+        }
+    }
+}
+
+/// The differences as the regime reads them without an exact reference
+/// (index ℓ − 1 for level ℓ): as given.
+fn d_padded(d: &[f64]) -> Vec<f64> {
+    d.to_vec()
+}
+
+#[allow(clippy::too_many_arguments)]
 fn tabulate(
     scenes: &[Resolved],
     runs: &[RunOutput],
     stride: &[usize],
     r: f64,
-    analytic: Option<&(dyn Fn(f64) -> f64 + Sync)>,
+    ctx: &Context,
 ) -> Vec<ConvergeRow> {
     let k = runs.len();
     let t0: Vec<f64> = runs[0].history.t.clone();
@@ -412,140 +719,116 @@ fn tabulate(
     };
     let w = on_coarse(|c| &c.w);
     let f = on_coarse(|c| &c.force);
-    let w_exact: Option<Vec<f64>> = analytic.map(|a| t0.iter().map(|&t| a(t)).collect());
-
-    let mut rows = Vec::new();
-    let mut push_fn =
-        |name: &str, hist: &[Vec<f64>], norm: fn(&[f64]) -> f64, exact: Option<&Vec<f64>>| {
-            // successive differences ‖u_{ℓ−1} − u_ℓ‖
-            let d: Vec<f64> = (1..k)
-                .map(|l| norm(&diff(&hist[l - 1], &hist[l])))
-                .collect();
-            let (reference, refvec): (&str, Option<Vec<f64>>) = match exact {
-                Some(e) => ("analytic", Some(e.clone())),
-                None if k >= 3 => {
-                    let p = observed_order(d[k - 3], d[k - 2], r);
-                    if p.is_finite() && p > 0.0 {
-                        let fac = 1.0 / (r.powf(p) - 1.0);
-                        let ext = hist[k - 1]
-                            .iter()
-                            .zip(&hist[k - 2])
-                            .map(|(fine, mid)| fine + (fine - mid) * fac)
-                            .collect();
-                        ("richardson", Some(ext))
-                    } else {
-                        ("finest", Some(hist[k - 1].clone()))
-                    }
-                }
-                None => ("finest", Some(hist[k - 1].clone())),
-            };
-            let errors: Vec<f64> = (0..k)
-                .map(|l| {
-                    refvec
-                        .as_ref()
-                        .map_or(f64::NAN, |rv| norm(&diff(&hist[l], rv)))
-                })
-                .collect();
-            for l in 0..k {
-                // from successive differences, which isolate what is refined
-                // (against an analytic solution the unrefined error would mask it)
-                let observed = if l >= 2 {
-                    observed_order(d[l - 2], d[l - 1], r)
-                } else {
-                    f64::NAN
-                };
-                let value = norm(&hist[l]);
-                let gci = if l >= 2 && observed.is_finite() && observed > 0.0 && value != 0.0 {
-                    GCI_SAFETY_FACTOR * (d[l - 1] / value) / (r.powf(observed) - 1.0)
-                } else {
-                    f64::NAN
-                };
-                rows.push((
-                    l,
-                    name.to_string(),
-                    value,
-                    errors[l],
-                    observed,
-                    gci,
-                    reference.to_string(),
-                ));
-            }
-        };
-    push_fn("displacement_max", &w, max_norm, w_exact.as_ref());
-    push_fn("displacement_l2", &w, l2_norm, w_exact.as_ref());
-    push_fn("force_max", &f, max_norm, None);
-    push_fn("force_l2", &f, l2_norm, None);
-
-    // scalars
-    let scalar = |name: &str, vals: Vec<f64>| -> Vec<(usize, String, f64, f64, f64, f64, String)> {
-        let d: Vec<f64> = (1..k).map(|l| (vals[l - 1] - vals[l]).abs()).collect();
-        let (reference, refval) = if k >= 3 {
-            let p = observed_order(d[k - 3], d[k - 2], r);
-            if p.is_finite() && p > 0.0 {
-                (
-                    "richardson",
-                    vals[k - 1] + (vals[k - 1] - vals[k - 2]) / (r.powf(p) - 1.0),
-                )
-            } else {
-                ("finest", vals[k - 1])
-            }
-        } else {
-            ("finest", vals[k - 1])
-        };
+    let w_exact: Option<Vec<f64>> = ctx.w.map(|a| t0.iter().map(|&t| a(t)).collect());
+    // each level's force against the exact one at the time it acts
+    let f_exact: Option<Vec<Vec<f64>>> = ctx.force.map(|a| {
         (0..k)
             .map(|l| {
-                let observed = if l >= 2 {
-                    observed_order(d[l - 2], d[l - 1], r)
-                } else {
-                    f64::NAN
-                };
-                let gci = if l >= 2 && observed.is_finite() && observed > 0.0 && vals[l] != 0.0 {
-                    GCI_SAFETY_FACTOR * (d[l - 1] / vals[l].abs()) / (r.powf(observed) - 1.0)
-                } else {
-                    f64::NAN
-                };
-                (
-                    l,
-                    name.to_string(),
-                    vals[l],
-                    (vals[l] - refval).abs(),
-                    observed,
-                    gci,
-                    reference.to_string(),
-                )
+                let lag = runs[l].force_lag * scenes[l].dt;
+                t0.iter()
+                    .enumerate()
+                    .map(|(i, &t)| if i == 0 { a(0.0) } else { a(t - lag) })
+                    .collect()
             })
             .collect()
+    });
+
+    let mut all: Vec<(String, Rows)> = Vec::new();
+    let hist = |name: &str,
+                h: &[Vec<f64>],
+                norm: fn(&[f64]) -> f64,
+                exact: Option<Vec<Vec<f64>>>,
+                formal: Option<f64>|
+     -> (String, Rows) {
+        let d: Vec<f64> = (1..k).map(|l| norm(&diff(&h[l - 1], &h[l]))).collect();
+        let values: Vec<f64> = h.iter().map(|x| norm(x)).collect();
+        let errors = exact.map(|e| (0..k).map(|l| norm(&diff(&h[l], &e[l]))).collect());
+        let richardson = |p: f64| -> Vec<f64> {
+            let refvec: Vec<f64> = if p.is_finite() {
+                let fac = 1.0 / (r.powf(p) - 1.0);
+                h[k - 1]
+                    .iter()
+                    .zip(&h[k - 2])
+                    .map(|(fine, mid)| fine + (fine - mid) * fac)
+                    .collect()
+            } else {
+                h[k - 1].clone()
+            };
+            (0..k).map(|l| norm(&diff(&h[l], &refvec))).collect()
+        };
+        (
+            name.to_string(),
+            quantity_rows(values, d, errors, &richardson, r, ctx, formal),
+        )
     };
-    // a value a run does not have (no first loss) is NaN: an empty cell, JSON null
-    let mut all: Vec<_> = Vec::new();
+    let same = |e: &Vec<f64>| Some(vec![e.clone(); k]);
+    all.push(hist(
+        "displacement_max",
+        &w,
+        max_norm,
+        w_exact.as_ref().and_then(same),
+        ctx.formal,
+    ));
+    all.push(hist(
+        "displacement_l2",
+        &w,
+        l2_norm,
+        w_exact.as_ref().and_then(same),
+        ctx.formal,
+    ));
+    all.push(hist("force_max", &f, max_norm, f_exact.clone(), None));
+    all.push(hist("force_l2", &f, l2_norm, f_exact, None));
+
+    // scalars: a value a run does not have (no first loss) is NaN: an
+    // empty cell, JSON null
     for q in SCALARS {
-        let vals = runs
+        let vals: Vec<f64> = runs
             .iter()
             .map(|o| q.of(o, 0).unwrap_or(f64::NAN))
             .collect();
-        all.extend(scalar(q.name(), vals));
+        let d: Vec<f64> = (1..k).map(|l| (vals[l - 1] - vals[l]).abs()).collect();
+        let richardson = |p: f64| -> Vec<f64> {
+            let refval = if p.is_finite() {
+                vals[k - 1] + (vals[k - 1] - vals[k - 2]) / (r.powf(p) - 1.0)
+            } else {
+                vals[k - 1]
+            };
+            vals.iter().map(|v| (v - refval).abs()).collect()
+        };
+        all.push((
+            q.name().to_string(),
+            quantity_rows(vals.clone(), d, None, &richardson, r, ctx, None),
+        ));
     }
 
-    let mut out: Vec<ConvergeRow> = rows
-        .into_iter()
-        .chain(all)
-        .map(
-            |(l, quantity, value, error, observed_order, gci, reference)| ConvergeRow {
+    let mut out: Vec<ConvergeRow> = Vec::with_capacity(all.len() * k);
+    for (quantity, rows) in &all {
+        for l in 0..k {
+            out.push(ConvergeRow {
                 method: String::new(),
                 discretization: scenes[l].discretization.name().to_string(),
                 level: l,
                 h: scenes[l].resolution(),
                 modes: scenes[l].discretization.modes(),
                 dt: scenes[l].dt,
-                quantity,
-                value,
-                error,
-                observed_order,
-                gci,
-                reference,
-            },
-        )
-        .collect();
+                quantity: quantity.clone(),
+                value: rows.value[l],
+                error: rows.error[l],
+                observed_order: rows.observed[l],
+                gci: rows.gci[l],
+                reference: rows.reference.clone(),
+                error_order: rows.error_order[l],
+                ratio_change: rows.ratio_change[l],
+                formal_order: if quantity.starts_with("displacement") {
+                    ctx.formal.unwrap_or(f64::NAN)
+                } else {
+                    f64::NAN
+                },
+                regime: rows.regime[l].clone(),
+                omega_max_dt: ctx.omega_dt[l],
+            });
+        }
+    }
     out.sort_by_key(|r| (r.level, QUANTITIES.iter().position(|q| *q == r.quantity)));
     out
 }

@@ -389,6 +389,7 @@ mod tests {
             dt: 1.0,
             wall_seconds: 0.0,
             warnings: vec![],
+            force_lag: 0.0,
         };
         out.history.carriers.push(Default::default());
         assert!(check_case("c", &case, &out)[0].pass);

@@ -18,6 +18,7 @@ pub mod sweep;
 pub mod threads;
 pub mod tolerance;
 pub mod variant;
+pub mod verify;
 
 /// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.
 pub fn relative_rms(a: &[f64], b: &[f64]) -> f64 {

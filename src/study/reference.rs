@@ -1,55 +1,141 @@
-//! Which scenes have an analytic reference for `taut converge` (MODEL §8).
+//! The reference a scene declares (`[reference]`, or `[manufactured]`;
+//! MODEL §8, §11), built for a study: nothing is recognized from the
+//! scene's shape. The scene says what its reference is, and validation has
+//! checked that the scene meets that reference's assumptions
+//! ([`crate::scene::Declared`], `docs/scene.md`):
 //!
-//! A single moving constant force at constant speed, starting at x = 0, on a
-//! pinned–pinned string (EI = 0) or pinned–pinned tensioned beam, with no
-//! distributed load: the displacement under the force has the modal series of
-//! MODEL §8 ([`crate::analytic::MovingForceString`],
-//! [`crate::analytic::MovingForceBeam`]).
-//!
-//! A single riding mass (mass carrier with k = 0, no dashpot, bilateral
-//! contact) at constant speed on a pinned–pinned tensioned beam (EI > 0),
-//! with no distributed load: the Galerkin solution in the exact modes with
-//! the convective terms (MODEL §9.2, [`crate::analytic::RidingMassBeam`]),
-//! integrated once on the finest level's time grid with J from
-//! [`riding_mass_modes`].
-//!
-//! Everything else returns `None` and is compared against a
-//! Richardson-extrapolated reference.
+//! * `manufactured` — the manufactured solution, exact everywhere:
+//!   v*(x, t), and for every carrier w*, λ*, q* ([`crate::manufactured`]);
+//! * `moving_force_series` — the modal series of MODEL §8
+//!   ([`MovingForceString`], [`MovingForceBeam`]);
+//! * `riding_mass_galerkin` — the Galerkin solution in the exact modes with
+//!   the convective terms ([`RidingMassBeam`]), integrated once on the
+//!   finest level's time grid with J from `reference.modes` or
+//!   [`riding_mass_modes`];
+//! * `standing_force_modes` — the exact time history of the discretized
+//!   model under standing forces ([`StandingForce`]): no space error;
+//! * `richardson` (no `[reference]`) — none here: a study extrapolates its
+//!   own finest levels.
 
 use super::converge::AnalyticW;
-use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam};
-use crate::scene::{CarrierKind, ContactKind, Resolved, SpeedProfile, Support};
+use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam, StandingForce};
+use crate::error::{Error, Result};
+use crate::manufactured::Manufactured;
+use crate::scene::{CarrierKind, Declared, Resolved, SpeedProfile};
 
-/// The analytic w(t) = s·v(x_m(t), t) under the carrier, when the scene has one.
-///
-/// The carrier pushes the beam with s·F (MODEL §2), so v = s·v_F where v_F is
-/// the response to F in +v; w = s·v = v_F.
+/// v(x, t) of a reference that has it everywhere, m (positive up).
+pub type ExactField = Box<dyn Fn(f64, f64) -> f64 + Send + Sync>;
+
+/// What a declared reference gives for a scene: the histories a run
+/// records, as functions of time (carrier 0), and v(x, t) where known.
+pub struct Exact {
+    /// The declared kind.
+    pub kind: Declared,
+    /// w(t) = s·v(x_m(t), t) under carrier 0, m.
+    pub w: AnalyticW,
+    /// λ(t) of carrier 0, N, when the reference has it.
+    pub force: Option<AnalyticW>,
+    /// q(t) of carrier 0's mass, m, when it has one.
+    pub mass: Option<AnalyticW>,
+    /// v(x, t), when the reference has it everywhere (probes).
+    pub field: Option<ExactField>,
+    /// The manufactured solution itself (every carrier), for `manufactured`.
+    pub manufactured: Option<Manufactured>,
+}
+
+/// The exact reference of `sc` (`None` for Richardson), built for the
+/// scene's own time grid (a riding mass is integrated up to its end).
+pub fn exact(sc: &Resolved) -> Result<Option<Exact>> {
+    match sc.reference {
+        Declared::Richardson => Ok(None),
+        Declared::Manufactured => {
+            let m = sc
+                .manufactured
+                .clone()
+                .expect("a manufactured scene carries its solution");
+            let (a, b, c, d) = (m.clone(), m.clone(), m.clone(), m.clone());
+            let mass = matches!(sc.carriers[0].kind, CarrierKind::MassSpring { .. });
+            Ok(Some(Exact {
+                kind: sc.reference,
+                w: Box::new(move |t| a.w(0, t)[0]),
+                force: Some(Box::new(move |t| b.lambda(0, t))),
+                mass: mass.then(|| Box::new(move |t| c.q(0, t)) as AnalyticW),
+                field: Some(Box::new(move |x, t| d.v(x, t))),
+                manufactured: Some(m),
+            }))
+        }
+        Declared::MovingForceSeries => {
+            let c = &sc.carriers[0];
+            let (CarrierKind::Force { force }, SpeedProfile::Constant { value: speed }) =
+                (c.kind, c.motion.profile)
+            else {
+                unreachable!("validation checked a constant-speed force")
+            };
+            let (b, s) = (&sc.beam, c.side.sign());
+            let f: ExactField = if b.is_string() {
+                let m = MovingForceString::new(b.tension, b.rho_a, b.length, force, speed)?;
+                Box::new(move |x, t| s * m.deflection(x, t))
+            } else {
+                let m = MovingForceBeam::new(b.ei, b.tension, b.rho_a, b.length, force, speed)?;
+                Box::new(move |x, t| s * m.deflection(x, t))
+            };
+            let field = std::sync::Arc::new(f);
+            let under = field.clone();
+            // w = s·v under the force = the response to F in +v
+            Ok(Some(Exact {
+                kind: sc.reference,
+                w: Box::new(move |t| s * under(speed * t, t)),
+                force: Some(Box::new(move |_| force)),
+                mass: None,
+                field: Some(Box::new(move |x, t| field(x, t))),
+                manufactured: None,
+            }))
+        }
+        Declared::RidingMassGalerkin { modes } => {
+            let r = riding_mass_beam(sc).ok_or_else(|| {
+                Error::invalid(
+                    "reference.kind",
+                    "\"riding_mass_galerkin\"",
+                    "the scene's beam and carrier give no riding-mass reference",
+                )
+            })?;
+            let j = modes.unwrap_or_else(|| riding_mass_modes(sc.elements));
+            let h = r.solve(j, r.max_step(j), sc.dt, sc.steps as f64 * sc.dt)?;
+            Ok(Some(Exact {
+                kind: sc.reference,
+                w: Box::new(move |t| h.w_at(t)),
+                force: None,
+                mass: None,
+                field: None,
+                manufactured: None,
+            }))
+        }
+        Declared::StandingForceModes => {
+            let m = std::sync::Arc::new(StandingForce::new(sc)?);
+            let (c, u) = (sc.carriers[0], m.clone());
+            let (x, s) = (c.motion.position(0.0), c.side.sign());
+            let force = match c.kind {
+                CarrierKind::Force { force } => force,
+                CarrierKind::MassSpring { .. } => unreachable!("validation checked forces"),
+            };
+            Ok(Some(Exact {
+                kind: sc.reference,
+                w: Box::new(move |t| s * u.v(x, t)),
+                force: Some(Box::new(move |_| force)),
+                mass: None,
+                field: Some(Box::new(move |x, t| m.v(x, t))),
+                manufactured: None,
+            }))
+        }
+    }
+}
+
+/// The exact w(t) under carrier 0 of the scene's declared reference
+/// ([`exact`]), for a study's displacement errors; `None` for Richardson
+/// (or a reference that cannot be built, e.g. a model too large for the
+/// standing-force eigenproblem).
 pub fn analytic_w(sc: &Resolved) -> Option<AnalyticW> {
-    let [c] = sc.carriers.as_slice() else {
-        return None;
-    };
-    let CarrierKind::Force { force } = c.kind else {
-        return riding_mass_w(sc);
-    };
-    let SpeedProfile::Constant { value: speed } = c.motion.profile else {
-        return None;
-    };
-    let b = &sc.beam;
-    if c.motion.start != 0.0
-        || speed <= 0.0
-        || b.left != Support::Pinned
-        || b.right != Support::Pinned
-        || b.distributed_load != 0.0
-    {
-        return None;
-    }
-    if b.is_string() {
-        let m = MovingForceString::new(b.tension, b.rho_a, b.length, force, speed).ok()?;
-        Some(Box::new(move |t| m.deflection(speed * t, t)))
-    } else {
-        let m = MovingForceBeam::new(b.ei, b.tension, b.rho_a, b.length, force, speed).ok()?;
-        Some(Box::new(move |t| m.deflection(speed * t, t)))
-    }
+    exact(sc).ok().flatten().map(|e| e.w)
 }
 
 /// Fewest Galerkin modes for a riding-mass reference: measured on
@@ -75,35 +161,20 @@ pub fn riding_mass_modes(elements: usize) -> usize {
     (RIDING_MASS_MODES_PER_ELEMENT * elements).clamp(RIDING_MASS_MIN_MODES, RIDING_MASS_MAX_MODES)
 }
 
-/// The Galerkin riding mass of a scene, when `sc` is one (a single mass
-/// without spring or dashpot, bilateral, at constant speed, on a
-/// pinned–pinned beam without distributed load; module docs).
+/// The Galerkin riding mass of a scene that declares
+/// `reference.kind = "riding_mass_galerkin"` (validation checked its
+/// assumptions); `None` for any other scene.
 pub fn riding_mass_beam(sc: &Resolved) -> Option<RidingMassBeam> {
-    let [c] = sc.carriers.as_slice() else {
+    if !matches!(sc.reference, Declared::RidingMassGalerkin { .. }) {
         return None;
-    };
-    let CarrierKind::MassSpring {
-        mass,
-        stiffness,
-        damping,
-        ..
-    } = c.kind
+    }
+    let c = &sc.carriers[0];
+    let (CarrierKind::MassSpring { mass, .. }, SpeedProfile::Constant { value: speed }) =
+        (c.kind, c.motion.profile)
     else {
         return None;
     };
-    let SpeedProfile::Constant { value: speed } = c.motion.profile else {
-        return None;
-    };
     let b = &sc.beam;
-    if stiffness != 0.0
-        || damping != 0.0
-        || sc.contact.kind != ContactKind::Bilateral
-        || b.left != Support::Pinned
-        || b.right != Support::Pinned
-        || b.distributed_load != 0.0
-    {
-        return None;
-    }
     RidingMassBeam::new(
         b.ei,
         b.tension,
@@ -116,14 +187,4 @@ pub fn riding_mass_beam(sc: &Resolved) -> Option<RidingMassBeam> {
         speed,
     )
     .ok()
-}
-
-/// The riding-mass reference w(t), when `sc` is such a scene (module docs).
-fn riding_mass_w(sc: &Resolved) -> Option<AnalyticW> {
-    let r = riding_mass_beam(sc)?;
-    let modes = riding_mass_modes(sc.elements);
-    let h = r
-        .solve(modes, r.max_step(modes), sc.dt, sc.steps as f64 * sc.dt)
-        .ok()?;
-    Some(Box::new(move |t| h.w_at(t)))
 }

@@ -229,6 +229,7 @@ mod tests {
             dt: 1.0,
             wall_seconds: 0.0,
             warnings: vec![],
+            force_lag: 0.0,
         };
         out.history.carriers.push(Default::default());
         assert_eq!(Scalar::FirstLossPosition.of(&out, 0), None);
