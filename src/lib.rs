@@ -24,6 +24,7 @@
 pub mod analytic;
 pub mod contact;
 pub mod error;
+pub mod input;
 pub mod integrate;
 pub mod interrupt;
 pub mod json_keys;

@@ -706,7 +706,11 @@ fn cmd_precision(
 
 fn cmd_replay(path: &Path, max_iter: Option<u32>, solver: Option<&str>) -> taut::Result<()> {
     use taut::contact::{Level, SIGNORINI_TOLERANCE, replay};
-    let text = std::fs::read_to_string(path).map_err(|e| taut::Error::io(path, e))?;
+    let text = taut::input::read_text(
+        path,
+        "a saved contact problem",
+        taut::input::MAX_REPLAY_BYTES,
+    )?;
     taut::json_keys::reject_duplicate_keys(&text, path)?;
     let mut problem: taut::contact::ContactProblem = serde_json::from_str(&text)
         .map_err(|e| taut::Error::parse(format!("{}: {e}", path.display())))?;

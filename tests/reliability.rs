@@ -77,3 +77,111 @@ fn a_modal_sweep_is_the_same_bytes_on_1_2_and_4_threads() {
     assert_eq!(one, csv("2"), "2 threads");
     assert_eq!(one, csv("4"), "4 threads");
 }
+
+/// Run taut under a virtual-memory cap of `kib` KiB (`ulimit -v`), so that a
+/// regression to unbounded reading or allocation fails the test (an abort or
+/// a refused allocation) instead of taking the machine's memory.
+fn taut_capped(kib: u64, args: &[&str]) -> (i32, String, String) {
+    let o = Command::new("bash")
+        .current_dir(common::crate_root())
+        .arg("-c")
+        .arg(format!("ulimit -v {kib}; exec \"$0\" \"$@\""))
+        .arg(BIN)
+        .args(args)
+        .output()
+        .expect("bash runs");
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// Address space for one small run of taut: 1 GiB (a run of the reference
+/// case at 400 elements maps ≈ 100 MiB; the 16 MiB input cap is far below).
+const SMALL_RUN_KIB: u64 = 1 << 20;
+
+// ---------------------------------------------------------------------------
+// Class 2: every input file is read with a size cap, refused naming it.
+
+#[cfg(unix)]
+#[test]
+fn endless_or_binary_inputs_are_refused_naming_the_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let zero_toml = tmp.path().join("zero.toml");
+    std::os::unix::fs::symlink("/dev/zero", &zero_toml).unwrap();
+    let random_toml = tmp.path().join("random.toml");
+    std::os::unix::fs::symlink("/dev/urandom", &random_toml).unwrap();
+    let out = tmp.path().join("o");
+    let out = out.to_str().unwrap();
+    // a scene
+    for (dev, link) in [("/dev/zero", &zero_toml), ("/dev/urandom", &random_toml)] {
+        for args in [
+            vec!["run", link.to_str().unwrap(), "--out", out, "--quiet"],
+            vec!["run", dev, "--out", out, "--quiet"],
+            vec![
+                "sweep",
+                dev,
+                "--vary",
+                "speed_ratio=0.5:1:2",
+                "--out",
+                out,
+                "--quiet",
+            ],
+            vec!["converge", dev, "--out", out, "--quiet"],
+            vec!["replay", dev],
+        ] {
+            let (code, _, err) = taut_capped(SMALL_RUN_KIB, &args);
+            assert_eq!(code, 1, "{args:?}: {err}");
+            assert!(err.starts_with("error: "), "{args:?}: {err}");
+            assert!(
+                err.contains("zero.toml") || err.contains("random.toml") || err.contains(dev),
+                "{args:?} names the file: {err}"
+            );
+        }
+    }
+    // text, but past the cap: refused naming the cap
+    let big = tmp.path().join("big.toml");
+    let mut text = std::fs::read_to_string(scene("reference.toml")).unwrap();
+    text.push_str(&"# padding\n".repeat((17 << 20) / 10));
+    std::fs::write(&big, text).unwrap();
+    let (code, _, err) = taut_capped(
+        SMALL_RUN_KIB,
+        &["run", big.to_str().unwrap(), "--out", out, "--quiet"],
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("big.toml: larger than 16 MiB, the most a scene file may be"),
+        "{err}"
+    );
+    // a gate case whose scene is endless
+    let suite = tmp.path().join("suite");
+    std::fs::create_dir(&suite).unwrap();
+    std::fs::write(
+        suite.join("case.json"),
+        r#"{"description": "d", "scene": "../zero.toml", "set": [],
+            "quantities": {"dofs": {"value": 1.0, "abs": 0.0, "rel": 0.0, "reason": "r"}}}"#,
+    )
+    .unwrap();
+    // (a case that cannot run is a row of the gate's table, on stdout)
+    let (code, table, err) = taut_capped(
+        SMALL_RUN_KIB,
+        &["gate", suite.to_str().unwrap(), "--out", out, "--quiet"],
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        table.contains("zero.toml: holds a NUL byte at byte 0"),
+        "{table}"
+    );
+    // a gate case that is itself endless
+    std::os::unix::fs::symlink("/dev/zero", suite.join("endless.json")).unwrap();
+    let (code, table, err) = taut_capped(
+        SMALL_RUN_KIB,
+        &["gate", suite.to_str().unwrap(), "--out", out, "--quiet"],
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        format!("{table}{err}").contains("endless.json"),
+        "{table}{err}"
+    );
+}
