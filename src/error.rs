@@ -217,6 +217,19 @@ pub fn one_line(text: &str) -> String {
     out
 }
 
+/// A number for a message, compact whatever its size: Rust's shortest
+/// round-trip form, plain between 10⁻⁴ and 10¹⁵ (`0.25`, `120`), in
+/// exponent form outside (`1e308`, `-1e-300`, where `{}` would print 300
+/// digits), `NaN`, `inf` and `-inf` as they are.
+pub fn compact_number(v: f64) -> String {
+    let a = v.abs();
+    if !v.is_finite() || a == 0.0 || (1e-4..1e15).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// The crate's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 

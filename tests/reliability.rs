@@ -5,7 +5,6 @@
 
 mod common;
 
-use std::path::Path;
 use std::process::Command;
 
 const BIN: &str = env!("CARGO_BIN_EXE_taut");
@@ -78,14 +77,21 @@ fn a_modal_sweep_is_the_same_bytes_on_1_2_and_4_threads() {
     assert_eq!(one, csv("4"), "4 threads");
 }
 
-/// Run taut under a virtual-memory cap of `kib` KiB (`ulimit -v`), so that a
-/// regression to unbounded reading or allocation fails the test (an abort or
-/// a refused allocation) instead of taking the machine's memory.
+/// Longest a hostile case may take before it counts as a hang, s: each
+/// takes well under a second here; a hang is endless.
+const HANG_SECONDS: u64 = 120;
+
+/// Run taut under a virtual-memory cap of `kib` KiB (`ulimit -v`) and a
+/// time limit ([`HANG_SECONDS`], then SIGKILL: exit code 137), so that a
+/// regression to unbounded reading or allocation, or a hang, fails the test
+/// (an abort, a refused allocation, a kill) instead of taking the machine.
 fn taut_capped(kib: u64, args: &[&str]) -> (i32, String, String) {
     let o = Command::new("bash")
         .current_dir(common::crate_root())
         .arg("-c")
-        .arg(format!("ulimit -v {kib}; exec \"$0\" \"$@\""))
+        .arg(format!(
+            "ulimit -v {kib}; exec timeout -s KILL {HANG_SECONDS} \"$0\" \"$@\""
+        ))
         .arg(BIN)
         .args(args)
         .output()
@@ -183,5 +189,62 @@ fn endless_or_binary_inputs_are_refused_naming_the_file() {
     assert!(
         format!("{table}{err}").contains("endless.json"),
         "{table}{err}"
+    );
+}
+
+// ---------------------------------------------------------------------------
+// Class 1: a sweep whose axis or values a plot cannot draw still exits, with
+// its tables, its status and its folder released; the map is a note.
+
+#[test]
+fn sweeps_over_overflowing_axes_exit_with_their_tables_and_notes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    for (k, (vary, log)) in [
+        ("carrier.stiffness=1e100:1e300:2", true),
+        ("carrier.damping=0:1.7e308:2", false),
+        ("carrier.mass=1e-300:1e300:8", true),
+        ("beam.tension=1e300:1.7e308:2", false),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let out = tmp.path().join(format!("s{k}"));
+        let mut args = vec![
+            "sweep",
+            &reference,
+            "--vary",
+            vary,
+            "--set",
+            "mesh.elements=40",
+            "--set",
+            "time.end=0.02",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ];
+        if log {
+            args.push("--log");
+        }
+        let (code, stdout, err) = taut_capped(4 << 20, &args);
+        assert!(code == 0 || code == 1, "{vary}: exit {code}\n{err}");
+        assert!(stdout.contains("force_map.svg"), "{vary}: {stdout}");
+        for f in [
+            "sweep.csv",
+            "sweep_force.csv",
+            "force_map.svg",
+            "loss_map.svg",
+        ] {
+            assert!(out.join(f).exists(), "{vary}: {f}");
+        }
+        // the folder is free again: the same sweep resumes at once
+        let (code2, _, err2) = taut_capped(4 << 20, &args);
+        assert_eq!(code, code2, "{vary}: {err2}");
+    }
+    // an axis beyond what plotters draws gets a note naming the axis
+    let note = std::fs::read_to_string(tmp.path().join("s0/force_map.svg")).unwrap();
+    assert!(
+        note.contains("This plot is not drawn") && note.contains("carrier.stiffness"),
+        "{note}"
     );
 }

@@ -1,6 +1,7 @@
 //! Plain-file outputs of a run: `history.csv`, `summary.json`, `force.svg`
 //! (formats documented in `docs/output.md`).
 
+mod axis_range;
 mod compare;
 mod converge;
 mod csv;
