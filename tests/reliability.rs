@@ -248,3 +248,77 @@ fn sweeps_over_overflowing_axes_exit_with_their_tables_and_notes() {
         "{note}"
     );
 }
+
+// ---------------------------------------------------------------------------
+// Class 8: a record outside the grid is refused with its path, on merge and
+// on resume.
+
+#[test]
+fn a_record_outside_the_grid_is_refused_with_its_path() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let shard = |i: &str| {
+        let out = tmp.path().join(format!("shard{}", &i[..1]));
+        let (code, _, err) = taut(&[
+            "sweep",
+            &reference,
+            "--vary",
+            "speed_ratio=0.5:0.8:7",
+            "--set",
+            "mesh.elements=20",
+            "--set",
+            "time.end=0.01",
+            "--shard",
+            i,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        out
+    };
+    let (a, b) = (shard("0/2"), shard("1/2"));
+    // a copy of a real record under an index the 7-point grid does not have
+    let stray = b.join("runs/000008.json");
+    std::fs::copy(b.join("runs/000001.json"), &stray).unwrap();
+    let merged = tmp.path().join("merged");
+    let (code, _, err) = taut(&[
+        "merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("000008.json") && err.contains("outside this sweep's grid of 7 points"),
+        "{err}"
+    );
+    // resuming the shard is refused the same way
+    let (code, _, err) = taut(&[
+        "sweep",
+        &reference,
+        "--vary",
+        "speed_ratio=0.5:0.8:7",
+        "--set",
+        "mesh.elements=20",
+        "--set",
+        "time.end=0.01",
+        "--shard",
+        "1/2",
+        "--out",
+        b.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("000008.json"), "{err}");
+    // without it the merge goes through
+    std::fs::remove_file(&stray).unwrap();
+    ok(&[
+        "merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+}

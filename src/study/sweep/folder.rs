@@ -218,6 +218,62 @@ pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Opti
     Ok(Some(record))
 }
 
+/// Refuse a folder whose `runs/` holds a record file (`<digits>.json`)
+/// outside the sweep's grid, naming it: it is another sweep's, or a grid's
+/// that has since changed, and silently leaving it out would hide that (a
+/// `000008.json` among a 7-point grid's records). Other files are not
+/// records and are left alone.
+pub fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
+    let runs = dir.join("runs");
+    let entries = match std::fs::read_dir(&runs) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(Error::io(&runs, e)),
+    };
+    let mut strays: Vec<(usize, PathBuf)> = Vec::new();
+    for entry in entries {
+        let path = entry.map_err(|e| Error::io(&runs, e))?.path();
+        let Some(stem) = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .and_then(|n| n.strip_suffix(".json"))
+        else {
+            continue;
+        };
+        if stem.is_empty() || !stem.bytes().all(|b| b.is_ascii_digit()) {
+            continue;
+        }
+        let index = stem.parse::<usize>().unwrap_or(usize::MAX);
+        if index >= spec.len() {
+            strays.push((index, path));
+        }
+    }
+    strays.sort();
+    match strays.first() {
+        None => Ok(()),
+        Some((index, path)) => Err(Error::invalid(
+            "runs",
+            path.display(),
+            format!(
+                "is the record of point {}, outside this sweep's grid of {} points (0 ..= {}){}: \
+                 it is not this sweep's (remove it, or use another folder)",
+                if *index == usize::MAX {
+                    "(an index too large to read)".to_string()
+                } else {
+                    index.to_string()
+                },
+                spec.len(),
+                spec.len().saturating_sub(1),
+                if strays.len() > 1 {
+                    format!(", as are {} more", strays.len() - 1)
+                } else {
+                    String::new()
+                }
+            ),
+        )),
+    }
+}
+
 /// Read the records of the given indices, every one present and checked.
 pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
     let id = sweep_id(spec);
@@ -270,7 +326,11 @@ pub fn merge_into(out: &FolderLock, shards: &[PathBuf]) -> Result<(SweepSpec, Ve
             ));
         }
     }
+    for s in shards {
+        check_no_strays(s, &spec)?;
+    }
     let had_spec = check_spec(out, &spec)?;
+    check_no_strays(out, &spec)?;
     let id = sweep_id(&spec);
     let mut missing = Vec::new();
     for i in 0..spec.len() {

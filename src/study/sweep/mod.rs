@@ -700,6 +700,7 @@ pub fn sweep_batched(
 ) -> Result<Vec<SweepRecord>> {
     let dir = claimed.dir();
     let had_spec = folder::check_spec(dir, spec)?;
+    folder::check_no_strays(dir, spec)?;
     let id = folder::sweep_id(spec);
     let mine: Vec<usize> = (0..spec.len())
         .filter(|&i| shard.is_none_or(|s| s.owns(i)))
