@@ -394,6 +394,16 @@ fn progress_bar(len: usize, unit: &str, quiet: bool) -> ProgressBar {
     b
 }
 
+/// Remove the outputs an earlier command of this kind left in `dir`, saying
+/// so on stderr: a folder holds one run's outputs (report::outputs).
+fn fresh(dir: &Path, kind: taut::report::Outputs) -> taut::Result<()> {
+    let removed = taut::report::clear_earlier(dir, kind)?;
+    if let Some(note) = taut::report::cleared_note(dir, &removed) {
+        eprintln!("{note}");
+    }
+    Ok(())
+}
+
 /// Save a failing contact problem next to the outputs so it can be replayed.
 fn save_failure(dir: &Path, e: taut::Error) -> taut::Error {
     if let Some(path) = taut::report::save_failed_contact(dir, &e) {
@@ -408,8 +418,9 @@ fn cmd_run(
     out: Option<PathBuf>,
     quiet: bool,
 ) -> taut::Result<()> {
-    let sc = load_scene(&scene, &set)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
+    fresh(&dir, taut::report::Outputs::Run)?;
+    let sc = load_scene(&scene, &set)?;
     let bar = progress_bar(sc.steps, "steps", quiet);
     let output = run(&sc, &mut |done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
@@ -431,8 +442,9 @@ fn cmd_run_tolerance(
     use taut::study::tolerance::{Quantity, parse_tolerance, tolerance_run};
     let quantity: Quantity = quantity.unwrap_or("force").parse()?;
     let tol = parse_tolerance(tolerance)?;
-    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
+    fresh(&dir, taut::report::Outputs::Run)?;
+    let text = taut::scene::read_scene(&scene)?;
     let bar = progress_bar(6, "runs", quiet);
     let result = tolerance_run(&text, &set, quantity, tol, &mut |done, _| {
         bar.set_position(done as u64)
@@ -464,8 +476,9 @@ fn cmd_converge(
         discretizations: discretizations.map(str::to_string),
     };
     let refine: Refine = refine.parse()?;
-    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
+    fresh(&dir, taut::report::Outputs::Converge)?;
+    let text = taut::scene::read_scene(&scene)?;
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
@@ -501,6 +514,8 @@ fn cmd_gate(
     quiet: bool,
 ) -> taut::Result<bool> {
     let batch = taut::study::request::batch_lanes(batch)?;
+    let dir = out.unwrap_or_else(|| PathBuf::from("out").join("gate"));
+    fresh(&dir, taut::report::Outputs::Gate)?;
     let n = taut::study::gate::case_files(suite)?.len();
     let bar = progress_bar(n, "cases", quiet);
     let report = taut::study::gate::gate_batched(suite, update, batch, &mut |done, _, _| {
@@ -508,7 +523,6 @@ fn cmd_gate(
     });
     bar.finish_and_clear();
     let report = report?;
-    let dir = out.unwrap_or_else(|| PathBuf::from("out").join("gate"));
     write_gate(&dir, &report)?;
     println!(
         "taut {} — gate {}",
@@ -557,6 +571,7 @@ fn cmd_sweep(
     spec.validate()
         .map_err(|e| taut::scene::in_file(e, &scene))?;
     let claimed = claim(&dir)?;
+    fresh(&dir, taut::report::Outputs::Sweep)?;
     // the first report says how many points an earlier start had finished
     let resumed = std::sync::OnceLock::new();
     let records = sweep_batched(&claimed, &spec, shard, batch, &|done, total| {
@@ -654,6 +669,7 @@ fn print_maps(maps: &[PathBuf], shard: bool) {
 
 fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
     let claimed = taut::study::sweep::claim(out)?;
+    fresh(out, taut::report::Outputs::Sweep)?;
     let (spec, records) = taut::study::sweep::merge_into(&claimed, shards)?;
     write_sweep(out, &spec, &records)?;
     let maps = taut::report::write_sweep_maps(out, &spec, &records)?;
@@ -685,8 +701,9 @@ fn cmd_precision(
         ratio,
         batch,
     };
-    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
+    fresh(&dir, taut::report::Outputs::Precision)?;
+    let text = taut::scene::read_scene(&scene)?;
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |d, _| bar.set_position(d as u64));
     bar.finish_and_clear();
@@ -791,8 +808,9 @@ fn cmd_compare(
         reference_method: reference_method.map(str::to_string),
         batch,
     };
-    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
+    fresh(&dir, taut::report::Outputs::Compare)?;
+    let text = taut::scene::read_scene(&scene)?;
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |done, total| {
         bar.set_length(total as u64);

@@ -322,3 +322,58 @@ fn a_record_outside_the_grid_is_refused_with_its_path() {
         merged.to_str().unwrap(),
     ]);
 }
+
+// ---------------------------------------------------------------------------
+// Class 7: a failed command leaves no earlier outputs of its kind behind.
+
+#[test]
+fn a_failed_command_leaves_no_outputs_of_an_earlier_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let dir = tmp.path().join("o");
+    let out = dir.to_str().unwrap();
+    let small = ["--set", "mesh.elements=20", "--set", "time.end=0.02"];
+    // (command, the files it writes, a failing variant's extra arguments)
+    let cases: [(&str, &[&str], &[&str]); 3] = [
+        (
+            "run",
+            &["history.csv", "summary.json", "force.svg"],
+            &["--set", "beam.length=-1"],
+        ),
+        (
+            "compare",
+            &["compare.csv", "compare.json", "compare.svg"],
+            &["--set", "time.step=1e9"],
+        ),
+        (
+            "converge",
+            &["converge.csv", "converge.json", "converge.svg"],
+            &["--levels", "1"],
+        ),
+    ];
+    for (command, files, failing) in cases {
+        let mut args = vec![command, reference.as_str(), "--out", out, "--quiet"];
+        args.extend_from_slice(&small);
+        if command == "converge" {
+            args.extend_from_slice(&["--levels", "3", "--refine", "step"]);
+        }
+        ok(&args);
+        std::fs::write(dir.join("mine.txt"), "a user's file").unwrap();
+        for f in files {
+            assert!(dir.join(f).exists(), "{command}: {f}");
+        }
+        let mut bad = vec![command, reference.as_str(), "--out", out, "--quiet"];
+        bad.extend_from_slice(&small);
+        bad.extend_from_slice(failing);
+        let (code, _, err) = taut(&bad);
+        assert_eq!(code, 1, "{command}: {err}");
+        assert!(
+            err.contains("note: removed the outputs of an earlier run"),
+            "{command}: {err}"
+        );
+        for f in files {
+            assert!(!dir.join(f).exists(), "{command}: a stale {f} was left");
+        }
+        assert!(dir.join("mine.txt").exists(), "{command}: other files stay");
+    }
+}

@@ -340,16 +340,30 @@ fn call<R: Send>(
     py: Python<'_>,
     (path, text): (Option<&str>, Option<String>),
     set: &[String],
-    out: Option<&Path>,
+    (out, kind): (Option<&Path>, taut::report::Outputs),
     progress: Option<&Bound<'_, PyAny>>,
     job: impl FnOnce(&str, &[String], &mut dyn FnMut(usize, usize)) -> taut::Result<R> + Send,
 ) -> PyResult<R> {
+    if let Some(dir) = out {
+        fresh(dir, kind).map_err(|e| to_py_err(py, e))?;
+    }
     let (text, path) = scene_text(path, text).map_err(|e| to_py_err(py, e))?;
     work(py, progress, |report| {
         job(&text, set, &mut |d, t| report(d, t))
     })?
     .map_err(|e| named(e, path.as_deref()))
     .map_err(|e| failed(py, e, out))
+}
+
+/// Remove the outputs an earlier call or command of this kind left in
+/// `dir`, saying so on stderr as the CLI does: a folder holds one run's
+/// outputs (`taut::report::clear_earlier`); an empty `dir` is refused.
+fn fresh(dir: &Path, kind: taut::report::Outputs) -> taut::Result<()> {
+    let removed = taut::report::clear_earlier(dir, kind)?;
+    if let Some(note) = taut::report::cleared_note(dir, &removed) {
+        eprintln!("{note}");
+    }
+    Ok(())
 }
 
 /// What `run` hands back: `(summary_json, history_columns, warnings,
@@ -392,7 +406,7 @@ fn run<'py>(
             py,
             scene,
             &set,
-            out.as_deref(),
+            (out.as_deref(), taut::report::Outputs::Run),
             progress.as_ref(),
             |text, set, p| tolerance_run(text, set, quantity, tol, p),
         )?;
@@ -422,7 +436,7 @@ fn run<'py>(
         py,
         scene,
         &set,
-        out.as_deref(),
+        (out.as_deref(), taut::report::Outputs::Run),
         progress.as_ref(),
         |text, set, p| {
             let sc = taut::resolve_scene(text, set)?;
@@ -480,7 +494,11 @@ fn sweep<'py>(
     spec.validate()
         .map_err(|e| named(e, path.as_deref()))
         .map_err(err)?;
+    taut::report::check_out_dir(&out).map_err(err)?;
     let claimed = taut::study::sweep::claim(&out).map_err(err)?;
+    if files {
+        fresh(&out, taut::report::Outputs::Sweep).map_err(err)?;
+    }
     let records = work(py, progress.as_ref(), |report| {
         taut::study::threads::in_pool(threads, || {
             taut::study::sweep::sweep_batched(&claimed, &spec, None, batch, report)
@@ -528,7 +546,7 @@ fn compare<'py>(
         py,
         (path, text),
         &set,
-        out.as_deref(),
+        (out.as_deref(), taut::report::Outputs::Compare),
         progress.as_ref(),
         |text, set, p| request.run(text, set, p),
     )?;
@@ -573,7 +591,7 @@ fn converge<'py>(
         py,
         (path, text),
         &set,
-        out.as_deref(),
+        (out.as_deref(), taut::report::Outputs::Converge),
         progress.as_ref(),
         |text, set, p| request.run(text, set, p),
     )?;
@@ -623,7 +641,7 @@ fn precision<'py>(
         py,
         (path, text),
         &set,
-        out.as_deref(),
+        (out.as_deref(), taut::report::Outputs::Precision),
         progress.as_ref(),
         |text, set, p| request.run(text, set, p),
     )?;
