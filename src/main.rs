@@ -75,6 +75,10 @@ enum Command {
         /// Output folder (default: out/<scene name>-converge).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -117,6 +121,10 @@ enum Command {
         /// Output folder (default: out/<scene name>-sweep).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
         /// Run only the points with index ≡ i (mod n): i/n.
         #[arg(long, value_name = "I/N")]
         shard: Option<String>,
@@ -179,6 +187,10 @@ enum Command {
         /// Output folder (default: out/<scene name>-precision).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -230,6 +242,10 @@ enum Command {
         /// Output folder (default: out/<scene name>-compare).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -271,6 +287,7 @@ fn main() -> ExitCode {
             threads,
             batch,
             quiet,
+            yes,
         } => match cmd_sweep(
             scene,
             (&vary, log, check_refinement),
@@ -278,7 +295,7 @@ fn main() -> ExitCode {
             out,
             shard.as_deref(),
             (threads, batch),
-            quiet,
+            (quiet, yes),
         ) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
@@ -300,6 +317,7 @@ fn main() -> ExitCode {
             set,
             out,
             quiet,
+            yes,
         } => cmd_precision(
             scene,
             (
@@ -310,7 +328,7 @@ fn main() -> ExitCode {
             (levels, ratio, batch),
             set,
             out,
-            quiet,
+            (quiet, yes),
         ),
         Command::Gate {
             suite,
@@ -333,6 +351,7 @@ fn main() -> ExitCode {
             set,
             out,
             quiet,
+            yes,
         } => cmd_converge(
             scene,
             &refine,
@@ -340,7 +359,7 @@ fn main() -> ExitCode {
             (methods.as_deref(), discretizations.as_deref()),
             set,
             out,
-            quiet,
+            (quiet, yes),
         ),
         Command::Compare {
             scene,
@@ -353,6 +372,7 @@ fn main() -> ExitCode {
             set,
             out,
             quiet,
+            yes,
         } => match cmd_compare(
             scene,
             &formulations,
@@ -360,7 +380,7 @@ fn main() -> ExitCode {
             (&reference, reference_method.as_deref(), batch),
             set,
             out,
-            quiet,
+            (quiet, yes),
         ) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
@@ -400,6 +420,19 @@ fn fresh(dir: &Path, kind: taut::report::Outputs) -> taut::Result<()> {
     let removed = taut::report::clear_earlier(dir, kind)?;
     if let Some(note) = taut::report::cleared_note(dir, &removed) {
         eprintln!("{note}");
+    }
+    Ok(())
+}
+
+/// Refuse a study above the cost bound unless `yes` (study::cost); with
+/// `yes`, say on stderr what is being started.
+fn started(estimate: &taut::study::cost::Estimate, yes: bool) -> taut::Result<()> {
+    estimate.check(yes)?;
+    if estimate.over() {
+        eprintln!(
+            "note: {} (above the bound; --yes given)",
+            estimate.describe()
+        );
     }
     Ok(())
 }
@@ -465,7 +498,7 @@ fn cmd_converge(
     (methods, discretizations): (Option<&str>, Option<&str>),
     set: Vec<String>,
     out: Option<PathBuf>,
-    quiet: bool,
+    (quiet, yes): (bool, bool),
 ) -> taut::Result<()> {
     use taut::study::request::{ConvergeOutcome, ConvergeRequest};
     let request = ConvergeRequest {
@@ -474,11 +507,18 @@ fn cmd_converge(
         ratio,
         methods: methods.map(str::to_string),
         discretizations: discretizations.map(str::to_string),
+        yes,
     };
     let refine: Refine = refine.parse()?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
     fresh(&dir, taut::report::Outputs::Converge)?;
     let text = taut::scene::read_scene(&scene)?;
+    started(
+        &request
+            .estimate(&text, &set)
+            .map_err(|e| taut::scene::in_file(e, &scene))?,
+        yes,
+    )?;
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
@@ -547,7 +587,7 @@ fn cmd_sweep(
     out: Option<PathBuf>,
     shard: Option<&str>,
     (threads, batch): (Option<usize>, Option<usize>),
-    quiet: bool,
+    (quiet, yes): (bool, bool),
 ) -> taut::Result<bool> {
     use taut::study::sweep::{Axis, Shard, SweepSpec, claim, sweep_batched};
     let batch = taut::study::request::batch_width(batch)?;
@@ -570,6 +610,7 @@ fn cmd_sweep(
     let start = std::time::Instant::now();
     spec.validate()
         .map_err(|e| taut::scene::in_file(e, &scene))?;
+    started(&spec.estimate(shard)?, yes)?;
     let claimed = claim(&dir)?;
     fresh(&dir, taut::report::Outputs::Sweep)?;
     // the first report says how many points an earlier start had finished
@@ -691,7 +732,7 @@ fn cmd_precision(
     (levels, ratio, batch): (usize, usize, Option<usize>),
     set: Vec<String>,
     out: Option<PathBuf>,
-    quiet: bool,
+    (quiet, yes): (bool, bool),
 ) -> taut::Result<()> {
     let request = taut::study::request::PrecisionRequest {
         formulations: formulations.to_string(),
@@ -700,10 +741,19 @@ fn cmd_precision(
         levels,
         ratio,
         batch,
+        yes,
     };
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
     fresh(&dir, taut::report::Outputs::Precision)?;
     let text = taut::scene::read_scene(&scene)?;
+    if (1..=5).contains(&levels) {
+        started(
+            &request
+                .estimate(&text, &set)
+                .map_err(|e| taut::scene::in_file(e, &scene))?,
+            yes,
+        )?;
+    }
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |d, _| bar.set_position(d as u64));
     bar.finish_and_clear();
@@ -798,7 +848,7 @@ fn cmd_compare(
     (reference, reference_method, batch): (&str, Option<&str>, Option<usize>),
     set: Vec<String>,
     out: Option<PathBuf>,
-    quiet: bool,
+    (quiet, yes): (bool, bool),
 ) -> taut::Result<bool> {
     let request = taut::study::request::CompareRequest {
         formulations: formulations.to_string(),
@@ -807,10 +857,17 @@ fn cmd_compare(
         reference: reference.to_string(),
         reference_method: reference_method.map(str::to_string),
         batch,
+        yes,
     };
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
     fresh(&dir, taut::report::Outputs::Compare)?;
     let text = taut::scene::read_scene(&scene)?;
+    started(
+        &request
+            .estimate(&text, &set)
+            .map_err(|e| taut::scene::in_file(e, &scene))?,
+        yes,
+    )?;
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |done, total| {
         bar.set_length(total as u64);

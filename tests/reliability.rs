@@ -377,3 +377,91 @@ fn a_failed_command_leaves_no_outputs_of_an_earlier_one() {
         assert!(dir.join("mine.txt").exists(), "{command}: other files stay");
     }
 }
+
+// ---------------------------------------------------------------------------
+// Class 6: every study estimates its cost first and refuses above the bound
+// unless --yes, printing the estimate.
+
+#[test]
+fn costly_studies_are_refused_before_any_run_with_the_estimate() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let out = tmp.path().join("o");
+    let out = out.to_str().unwrap();
+    for (args, says) in [
+        (
+            vec![
+                "converge",
+                &reference,
+                "--set",
+                "mesh.elements=50",
+                "--set",
+                "time.end=0.05",
+                "--ratio",
+                "20",
+                "--levels",
+                "4",
+            ],
+            "taut converge would make 4 runs of 3.30e12 DOF-steps",
+        ),
+        (
+            vec!["precision", &reference, "--ratio", "100", "--levels", "2"],
+            "taut precision would make 17 runs",
+        ),
+        (
+            vec![
+                "compare",
+                &reference,
+                "--set",
+                "time.step=2e-8",
+                "--set",
+                "mesh.elements=1000",
+            ],
+            "taut compare would make 4 runs",
+        ),
+        (
+            vec![
+                "sweep",
+                &reference,
+                "--vary",
+                "speed_ratio=0.5:1:3",
+                "--set",
+                "time.step=2e-8",
+                "--set",
+                "mesh.elements=1000",
+            ],
+            "taut sweep would make 3 runs",
+        ),
+    ] {
+        let mut a = args.clone();
+        a.extend_from_slice(&["--out", out, "--quiet"]);
+        let start = std::time::Instant::now();
+        let (code, _, err) = taut_capped(SMALL_RUN_KIB, &a);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(
+            err.contains(says)
+                && err.contains("above the bound of 1e11 DOF-steps")
+                && err.contains("--yes"),
+            "{args:?}: {err}"
+        );
+        // refused before any run: at once
+        assert!(start.elapsed().as_secs() < HANG_SECONDS, "{args:?}");
+    }
+    // below the bound --yes changes nothing
+    ok(&[
+        "converge",
+        &reference,
+        "--set",
+        "mesh.elements=20",
+        "--set",
+        "time.end=0.02",
+        "--levels",
+        "3",
+        "--refine",
+        "step",
+        "--yes",
+        "--out",
+        out,
+        "--quiet",
+    ]);
+}

@@ -461,7 +461,7 @@ fn pretty(value: &impl serde::Serialize) -> PyResult<String> {
 /// returns the columns of `sweep.csv`. `files` writes the CLI's tables and
 /// maps into `out` as well.
 #[pyfunction]
-#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress))]
+#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress, yes))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -476,6 +476,7 @@ fn sweep<'py>(
     batch: Option<usize>,
     check_refinement: bool,
     progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
 ) -> PyResult<Bound<'py, PyList>> {
     let err = |e| to_py_err(py, e);
     let (scene_text, path) = scene_text(path, text).map_err(err)?;
@@ -493,6 +494,9 @@ fn sweep<'py>(
     };
     spec.validate()
         .map_err(|e| named(e, path.as_deref()))
+        .map_err(err)?;
+    spec.estimate(None)
+        .and_then(|e| e.check(yes))
         .map_err(err)?;
     taut::report::check_out_dir(&out).map_err(err)?;
     let claimed = taut::study::sweep::claim(&out).map_err(err)?;
@@ -517,7 +521,7 @@ fn sweep<'py>(
 /// stopped and the combinations that could not run; with `out` the CLI's
 /// files too.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, formulations, methods, discretizations, reference, reference_method, batch, out, progress))]
+#[pyo3(signature = (path, text, set, formulations, methods, discretizations, reference, reference_method, batch, out, progress, yes))]
 #[allow(clippy::too_many_arguments)]
 fn compare<'py>(
     py: Python<'py>,
@@ -532,6 +536,7 @@ fn compare<'py>(
     batch: Option<usize>,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
     let request = CompareRequest {
@@ -541,6 +546,7 @@ fn compare<'py>(
         reference,
         reference_method,
         batch,
+        yes,
     };
     let c = call(
         py,
@@ -563,7 +569,7 @@ fn compare<'py>(
 /// A convergence study: `(converge.csv columns, skipped)`; with `out` the
 /// CLI's files too.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, refine, levels, ratio, methods, discretizations, out, progress))]
+#[pyo3(signature = (path, text, set, refine, levels, ratio, methods, discretizations, out, progress, yes))]
 #[allow(clippy::too_many_arguments)]
 fn converge<'py>(
     py: Python<'py>,
@@ -577,6 +583,7 @@ fn converge<'py>(
     discretizations: Option<String>,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     use taut::study::request::ConvergeOutcome;
     let err = |e| to_py_err(py, e);
@@ -586,6 +593,7 @@ fn converge<'py>(
         ratio,
         methods,
         discretizations,
+        yes,
     };
     let outcome = call(
         py,
@@ -612,7 +620,7 @@ fn converge<'py>(
 /// A work–precision study: `(precision.csv columns, skipped)`; with `out`
 /// the CLI's files too.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, formulations, methods, discretizations, levels, ratio, batch, out, progress))]
+#[pyo3(signature = (path, text, set, formulations, methods, discretizations, levels, ratio, batch, out, progress, yes))]
 #[allow(clippy::too_many_arguments)]
 fn precision<'py>(
     py: Python<'py>,
@@ -627,6 +635,7 @@ fn precision<'py>(
     batch: Option<usize>,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
     let request = PrecisionRequest {
@@ -636,6 +645,7 @@ fn precision<'py>(
         levels,
         ratio,
         batch,
+        yes,
     };
     let p = call(
         py,

@@ -350,6 +350,7 @@ def sweep(
     batch: Optional[int] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
+    yes: bool = False,
 ) -> Table:
     """Sweep one or two scene values or dimensionless axes (`taut sweep`).
 
@@ -371,6 +372,9 @@ def sweep(
             finished, and the same call resumes from them. Without `out`
             the work happens in a temporary folder, removed afterwards.
         progress: see the module doc (points done, points).
+        yes: start even when the estimated cost is above 1e11 DOF-steps
+            (unknowns × steps over the runs); without it such a study raises
+            SceneError with the estimate, before any run.
 
     Returns:
         Table of sweep.csv's columns: the swept values, speed_ratio,
@@ -383,12 +387,12 @@ def sweep(
     with _Sink(progress, "runs") as p:
         if out is not None:
             cols = _taut.sweep(
-                path, text, *args, os.fspath(out), True, n_threads, n_batch, check_refinement, p
+                path, text, *args, os.fspath(out), True, n_threads, n_batch, check_refinement, p, yes
             )
         else:
             with tempfile.TemporaryDirectory(prefix="taut-sweep-") as tmp:
                 cols = _taut.sweep(
-                    path, text, *args, tmp, False, n_threads, n_batch, check_refinement, p
+                    path, text, *args, tmp, False, n_threads, n_batch, check_refinement, p, yes
                 )
     return table(cols)
 
@@ -405,6 +409,7 @@ def compare(
     batch: Optional[int] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
+    yes: bool = False,
 ) -> Table:
     """Compare contact formulations, time integrators and space
     discretizations on one scene (`taut compare`).
@@ -416,7 +421,7 @@ def compare(
         discretizations: hermite, "galerkin:J", "modal:J" (default: the scene's own).
         reference: the formulation differences are measured against.
         reference_method: the method they are measured against (one of methods).
-        set, batch, out, progress: as for sweep().
+        set, batch, out, progress, yes: as for sweep().
 
     Returns:
         Table of compare.csv's columns, one row per run; `.failed` lists
@@ -437,6 +442,7 @@ def compare(
             _opt_count("batch", batch, 0),
             _out(out),
             p,
+            yes,
         )
     t = table(cols)
     t.failed = _not_run(failed)
@@ -455,6 +461,7 @@ def converge(
     set: Union[None, Mapping[str, Any], Iterable[str]] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
+    yes: bool = False,
 ) -> Table:
     """Refine mesh, step or both and measure errors, observed orders and GCI
     (`taut converge`).
@@ -465,7 +472,7 @@ def converge(
         ratio: refinement ratio between levels.
         methods, discretizations: study each side by side (default: the
             scene's own); a modal discretization refines its J.
-        set, out, progress: as for sweep().
+        set, out, progress, yes: as for sweep().
 
     Returns:
         Table of converge.csv's columns (method, discretization, level, h,
@@ -485,6 +492,7 @@ def converge(
             _names(discretizations),
             _out(out),
             p,
+            yes,
         )
     t = table(cols)
     t.skipped = _not_run(skipped)
@@ -503,9 +511,11 @@ def precision(
     batch: Optional[int] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
+    yes: bool = False,
 ) -> Table:
     """Work against precision over a (mesh, Δt) grid, per formulation,
-    method and discretization (`taut precision`).
+    method and discretization (`taut precision`). Arguments as for
+    compare(); levels and ratio as the CLI's --levels and --ratio.
 
     Returns:
         Table of precision.csv's columns, with the Pareto flag; `.skipped`
@@ -525,6 +535,7 @@ def precision(
             _opt_count("batch", batch, 0),
             _out(out),
             p,
+            yes,
         )
     t = table(cols)
     t.skipped = _not_run(skipped)

@@ -38,6 +38,7 @@ def sweep(
     batch: Optional[int],
     check_refinement: bool,
     progress: _Progress,
+    yes: bool,
 ) -> List[_Column]: ...
 def compare(
     path: Optional[str],
@@ -51,6 +52,7 @@ def compare(
     batch: Optional[int],
     out: Optional[str],
     progress: _Progress,
+    yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun], List[_NotRun]]: ...
 def converge(
     path: Optional[str],
@@ -63,6 +65,7 @@ def converge(
     discretizations: Optional[str],
     out: Optional[str],
     progress: _Progress,
+    yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
 def precision(
     path: Optional[str],
@@ -76,4 +79,5 @@ def precision(
     batch: Optional[int],
     out: Optional[str],
     progress: _Progress,
+    yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun]]: ...

@@ -57,11 +57,10 @@ use crate::run::{RunOutput, run};
 use crate::scene::{CarrierKind, Resolved, STEP_COUNT_SLACK, resolve_scene};
 
 /// Largest run (unknowns × steps) an accuracy-targeted run will start, pilots
-/// included: 10¹¹ DOF-steps is about 9 minutes at the 1.9·10⁸ DOF-steps/s one
-/// core reaches at N ≤ 800, and 15 minutes or more on finer meshes
-/// (docs/performance.md). Beyond it the tool says what the tolerance would
-/// take instead of starting a run nobody waits for.
-pub const MAX_DOF_STEPS: f64 = 1e11;
+/// included: the bound every study shares ([`super::cost::MAX_DOF_STEPS`]).
+/// Beyond it the tool says what the tolerance would take instead of starting
+/// a run nobody waits for.
+pub use super::cost::MAX_DOF_STEPS;
 
 /// What the tolerance is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
