@@ -135,7 +135,7 @@ mod tests {
         assert!(
             msg.contains("taut converge would make 4 runs of 3.03e12 DOF-steps")
                 && msg.contains("the largest 3.00e12")
-                && msg.contains("days on one core")
+                && msg.contains("4.4 h on one core")
                 && msg.contains("Give --yes"),
             "{msg}"
         );
