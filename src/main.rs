@@ -55,10 +55,10 @@ enum Command {
         #[arg(long, default_value = "both")]
         refine: String,
         /// Number of levels (≥ 3 for observed orders).
-        #[arg(long, default_value_t = 4)]
+        #[arg(long, default_value_t = 4, allow_negative_numbers = true)]
         levels: usize,
         /// Refinement ratio between levels.
-        #[arg(long, default_value_t = 2.0)]
+        #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
         ratio: f64,
         /// Comma-separated time integrators to study side by side (default:
         /// the scene's own).
@@ -98,7 +98,7 @@ enum Command {
         /// Cases stepped together when their runs share the effective
         /// matrix (1 ..= 8, 1: every case alone; default 4). The checks are
         /// the same whatever it is.
-        #[arg(long, value_name = "B")]
+        #[arg(long, value_name = "B", allow_negative_numbers = true, value_parser = parse_batch)]
         batch: Option<usize>,
         /// No progress bar.
         #[arg(long)]
@@ -134,12 +134,12 @@ enum Command {
         #[arg(long)]
         check_refinement: bool,
         /// Worker threads (default: all cores; at most 4 per core, 1024).
-        #[arg(long)]
+        #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_threads)]
         threads: Option<usize>,
         /// Runs stepped together when they share their effective matrix
         /// (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of
         /// lanes). The records are the same bytes whatever the width.
-        #[arg(long, value_name = "B")]
+        #[arg(long, value_name = "B", allow_negative_numbers = true, value_parser = parse_batch)]
         batch: Option<usize>,
         /// No progress bar.
         #[arg(long)]
@@ -171,15 +171,15 @@ enum Command {
         #[arg(long, value_name = "LIST")]
         discretizations: Option<String>,
         /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels).
-        #[arg(long, default_value_t = 3)]
+        #[arg(long, default_value_t = 3, allow_negative_numbers = true)]
         levels: usize,
         /// Refinement ratio (integer).
-        #[arg(long, default_value_t = 2)]
+        #[arg(long, default_value_t = 2, allow_negative_numbers = true)]
         ratio: usize,
         /// Runs stepped together when they share their effective matrix
         /// (the formulations of a grid point; 1 ..= 8, 1: every run alone;
         /// default 4). The table is the same whatever it is.
-        #[arg(long, value_name = "B")]
+        #[arg(long, value_name = "B", allow_negative_numbers = true, value_parser = parse_batch)]
         batch: Option<usize>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
@@ -201,7 +201,7 @@ enum Command {
         /// The saved problem (JSON).
         problem: PathBuf,
         /// Override the saved iteration limit.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         max_iter: Option<u32>,
         /// Override the saved complementarity solver: `direct` or `clarabel`.
         #[arg(long)]
@@ -234,7 +234,7 @@ enum Command {
         /// Runs stepped together when they share their effective matrix
         /// (formulations under one method and discretization; 1 ..= 8,
         /// 1: every run alone; default 4). The table is the same whatever it is.
-        #[arg(long, value_name = "B")]
+        #[arg(long, value_name = "B", allow_negative_numbers = true, value_parser = parse_batch)]
         batch: Option<usize>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
@@ -394,6 +394,31 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `--threads N`: a whole number in the range the library allows, checked
+/// by it (study::threads), so that `-1` or `x` get the same message, naming
+/// the range, as `100000` (not the parser's "unexpected argument").
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let n = s.trim().parse::<usize>().unwrap_or(0);
+    taut::study::threads::check_threads(n).map_err(|_| {
+        let max = taut::study::threads::max_threads();
+        format!("must be a whole number in 1 ..= {max} (4 × the cores available, at most 1024)")
+    })
+}
+
+/// `--batch B`: a whole number in 1 ..= the lanes a batch may have,
+/// checked by the library (study::request::batch_width).
+fn parse_batch(s: &str) -> Result<usize, String> {
+    let n = s.trim().parse::<usize>().unwrap_or(0);
+    taut::study::request::batch_width(Some(n))
+        .map(|_| n)
+        .map_err(|_| {
+            format!(
+                "must be a whole number in 1 ..= {} (runs stepped together; 1 steps every run alone)",
+                taut::integrate::MAX_LANES
+            )
+        })
 }
 
 /// Default output folder: out/<scene stem><suffix>.

@@ -465,3 +465,144 @@ fn costly_studies_are_refused_before_any_run_with_the_estimate() {
         "--quiet",
     ]);
 }
+
+// ---------------------------------------------------------------------------
+// Class 5: Galerkin with clamped ends at tiny EI agrees with larger EI on
+// both sides of the old break, and is refused past its bound.
+
+#[test]
+fn galerkin_clamped_clamped_holds_at_tiny_ei_and_refuses_past_its_bound() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let out = tmp.path().join("g");
+    let run = |ei: &str| {
+        taut(&[
+            "run",
+            &reference,
+            "--set",
+            "mesh.kind=galerkin",
+            "--set",
+            "mesh.modes=100",
+            "--set",
+            &format!("beam.youngs_modulus={ei}"),
+            "--set",
+            "beam.second_moment=1",
+            "--set",
+            "beam.left=clamped",
+            "--set",
+            "beam.right=clamped",
+            "--set",
+            "time.end=0.05",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
+    };
+    let mean = |ei: &str| {
+        let (code, stdout, err) = run(ei);
+        assert_eq!(code, 0, "EI {ei}: {err}");
+        let line = stdout
+            .lines()
+            .find(|l| l.contains("force mean"))
+            .unwrap()
+            .to_string();
+        line.split("force mean ")
+            .nth(1)
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse::<f64>()
+            .unwrap()
+    };
+    // before the fix: 58.89 N at 1e-24, 53.7 N from 1e-25 down
+    let at = mean("1e-24");
+    for ei in ["1e-25", "1e-26", "1e-100"] {
+        assert_eq!(mean(ei), at, "EI {ei}");
+    }
+    let (code, _, err) = run("1e-194");
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("`beam.youngs_modulus`") && err.contains("T L²/EI ≤ 1e200"),
+        "{err}"
+    );
+}
+
+// ---------------------------------------------------------------------------
+// Class 9: messages name the field, print numbers compactly, clip huge
+// values, and blame the right thing.
+
+#[test]
+fn messages_name_the_field_and_stay_short() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let out = tmp.path().join("m");
+    let out = out.to_str().unwrap();
+    let fails = |extra: &[&str]| {
+        let mut a = vec!["run", reference.as_str(), "--out", out, "--quiet"];
+        a.extend_from_slice(extra);
+        let (code, _, err) = taut(&a);
+        assert_eq!(code, 1, "{extra:?}: {err}");
+        err
+    };
+    // a point at the very end of the span: refused naming grading_at
+    let e = fails(&[
+        "--set",
+        "mesh.grading=point",
+        "--set",
+        "mesh.grading_at=1e-300",
+    ]);
+    assert!(
+        e.contains("`mesh.grading_at` = 1e-300") && e.contains("shortest element"),
+        "{e}"
+    );
+    // just inside the bound it runs (2e-10 of L)
+    ok(&[
+        "run",
+        &reference,
+        "--set",
+        "mesh.grading=point",
+        "--set",
+        "mesh.grading_at=1e-8",
+        "--set",
+        "time.end=0.01",
+        "--out",
+        out,
+        "--quiet",
+    ]);
+    // numbers compact
+    let e = fails(&["--set", "beam.length=-1e-300"]);
+    assert!(e.contains("`beam.length` = -1e-300: must be > 0"), "{e}");
+    let e = fails(&["--set", "beam.length=1e308"]);
+    assert!(e.len() < 400, "{e}");
+    // a 10 MB value (in a scene file: an argument cannot be that long) is clipped
+    let text = std::fs::read_to_string(&reference).unwrap().replace(
+        "left = \"clamped\"",
+        &format!("left = \"{}\"", "x".repeat(10 << 20)),
+    );
+    let huge = tmp.path().join("huge.toml");
+    std::fs::write(&huge, text).unwrap();
+    let (code, _, e) = taut(&["run", huge.to_str().unwrap(), "--out", out, "--quiet"]);
+    assert_eq!(code, 1);
+    assert!(
+        e.len() < 5000 && e.contains("bytes in all") && e.contains("beam.left"),
+        "{}",
+        &e[..e.len().min(3000)]
+    );
+    // negative counts: the range, not "unexpected argument"
+    for flag in ["--threads", "--batch"] {
+        let (code, _, err) = taut(&[
+            "sweep",
+            &reference,
+            "--vary",
+            "speed_ratio=0.5:1:2",
+            flag,
+            "-1",
+        ]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("must be a whole number in 1 ..= "),
+            "{flag}: {err}"
+        );
+    }
+}
