@@ -606,3 +606,61 @@ fn messages_name_the_field_and_stay_short() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------
+// Class 4: the memory and output budgets are the whole process's and the
+// files'.
+
+#[test]
+fn a_run_whose_history_csv_would_not_fit_is_refused_with_the_numbers() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (code, _, err) = taut_capped(
+        SMALL_RUN_KIB,
+        &[
+            "run",
+            &scene("t2_stationary_mass.toml"),
+            "--set",
+            "mesh.elements=10",
+            "--set",
+            "time.step=2.3e-8",
+            "--set",
+            "time.end=1",
+            "--out",
+            tmp.path().join("o").to_str().unwrap(),
+            "--quiet",
+        ],
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("`output.record_every` = 1: history.csv would hold an estimated 4.535 GiB")
+            && err.contains("above the output budget of 4.000 GiB")
+            && err.contains("record_every ≥ 2"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_long_run_draws_a_small_force_plot() {
+    // 2·10⁵ rows: the plot keeps at most 4 × 2000 points of them
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    ok(&[
+        "run",
+        &scene("t2_stationary_mass.toml"),
+        "--set",
+        "mesh.elements=4",
+        "--set",
+        "time.step=1e-6",
+        "--set",
+        "time.end=0.2",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let svg = std::fs::metadata(out.join("force.svg")).unwrap().len();
+    let csv = std::fs::metadata(out.join("history.csv")).unwrap().len();
+    assert!(
+        svg < 600_000 && csv > 10_000_000,
+        "force.svg {svg} B, history.csv {csv} B"
+    );
+}

@@ -664,12 +664,24 @@ fn precision<'py>(
     ))
 }
 
+/// The ranges of the counted arguments the library checks:
+/// `(threads, batch)` upper bounds (both from 1), so that the Python layer
+/// names the real range for a value it refuses before the call.
+#[pyfunction]
+fn limits() -> (usize, usize) {
+    (
+        taut::study::threads::max_threads(),
+        taut::integrate::MAX_LANES,
+    )
+}
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("taut_version", taut::VERSION)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(limits, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;

@@ -26,6 +26,7 @@ def run(
     quantity: Optional[str],
     progress: _Progress,
 ) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]]]: ...
+def limits() -> Tuple[int, int]: ...
 def sweep(
     path: Optional[str],
     text: Optional[str],

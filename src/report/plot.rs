@@ -47,12 +47,19 @@ pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<
     let nc = out.history.carriers.len();
     (0..nc)
         .map(|c| {
-            let (xs, _) = abscissa(sc, out, c);
-            let points = xs
-                .into_iter()
-                .zip(out.history.carriers[c].force.iter().copied())
-                .skip(1)
-                .collect();
+            // rows 1 … n, reduced as they are read (no copy of the history)
+            let h = &out.history;
+            let force = &h.carriers[c].force;
+            let l = sc.beam.length;
+            let at = |i: usize| {
+                let x = if in_time {
+                    h.t[i + 1]
+                } else {
+                    h.carriers[c].x[i + 1] / l
+                };
+                (x, force[i + 1])
+            };
+            let points = decimate_with(force.len().saturating_sub(1), at);
             let stats = &out.stats[c];
             let label = match (prefix.is_empty(), nc) {
                 (true, 1) => "λ".to_string(),
@@ -121,38 +128,44 @@ pub(crate) const PLOT_BUCKETS: usize = 2000;
 /// (each once). Points with a non-finite coordinate are dropped (nothing to
 /// draw).
 pub(crate) fn decimate(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let finite = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite();
-    if points.len() <= 4 * PLOT_BUCKETS {
-        return points.iter().filter(finite).copied().collect();
+    decimate_with(points.len(), |i| points[i])
+}
+
+/// [`decimate`] of the `n` points `at(0) … at(n − 1)`, read once each in
+/// order and never gathered (a run's history is not copied to be drawn).
+pub(crate) fn decimate_with(n: usize, at: impl Fn(usize) -> (f64, f64)) -> Vec<(f64, f64)> {
+    let finite = |p: (f64, f64)| p.0.is_finite() && p.1.is_finite();
+    if n <= 4 * PLOT_BUCKETS {
+        return (0..n).map(&at).filter(|&p| finite(p)).collect();
     }
-    let per = points.len().div_ceil(PLOT_BUCKETS);
+    let per = n.div_ceil(PLOT_BUCKETS);
     let mut out = Vec::with_capacity(4 * PLOT_BUCKETS);
-    for chunk in points.chunks(per) {
-        let kept: Vec<(usize, &(f64, f64))> = chunk
-            .iter()
-            .enumerate()
-            .filter(|(_, p)| finite(p))
-            .collect();
-        let (Some(first), Some(last)) = (kept.first(), kept.last()) else {
-            continue;
-        };
-        let low = kept
-            .iter()
-            .min_by(|a, b| a.1.1.total_cmp(&b.1.1))
-            .expect("non-empty");
-        let high = kept
-            .iter()
-            .max_by(|a, b| a.1.1.total_cmp(&b.1.1))
-            .expect("non-empty");
-        let mut picks = [first.0, low.0, high.0, last.0];
-        picks.sort_unstable();
-        let mut prev = usize::MAX;
-        for i in picks {
-            if i != prev {
-                out.push(chunk[i]);
-                prev = i;
+    let mut start = 0;
+    while start < n {
+        let end = (start + per).min(n);
+        // (index, point) of the first, lowest, highest and last finite points
+        let mut picks: [Option<(usize, (f64, f64))>; 4] = [None; 4];
+        for i in start..end {
+            let p = at(i);
+            if !finite(p) {
+                continue;
             }
+            if picks[0].is_none() {
+                picks[0] = Some((i, p));
+            }
+            if picks[1].is_none_or(|(_, q)| p.1 < q.1) {
+                picks[1] = Some((i, p));
+            }
+            if picks[2].is_none_or(|(_, q)| p.1 > q.1) {
+                picks[2] = Some((i, p));
+            }
+            picks[3] = Some((i, p));
         }
+        let mut kept: Vec<(usize, (f64, f64))> = picks.into_iter().flatten().collect();
+        kept.sort_by_key(|k| k.0);
+        kept.dedup_by_key(|k| k.0);
+        out.extend(kept.into_iter().map(|k| k.1));
+        start = end;
     }
     out
 }

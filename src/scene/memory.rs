@@ -19,6 +19,18 @@ use crate::integrate::rhs_columns;
 /// below) fits it with room for its history.
 pub const MEMORY_BUDGET_BYTES: u64 = 2 << 30;
 
+/// Largest `history.csv` a run may plan to write, bytes (4 GiB), by the
+/// estimate [`CSV_BYTES_PER_VALUE`] × values per row × rows: like the memory
+/// budget a fixed number, so a scene is accepted the same way everywhere.
+/// A 4.35·10⁷-row run wrote a 4.15 GB file before it (issue 25).
+pub const OUTPUT_BUDGET_BYTES: u64 = 4 << 30;
+
+/// Bytes of one value of `history.csv`, counted generously: a value is at
+/// most 24 characters in shortest round-trip form and a comma; measured
+/// 95 bytes a row for 7 values (13.6 a value) on a 4.35·10⁷-row
+/// `t2_stationary_mass` run, so 16 is an upper estimate for typical rows.
+pub const CSV_BYTES_PER_VALUE: u64 = 16;
+
 /// Bytes of one history row for the time column (`t`, f64).
 pub const ROW_TIME_BYTES: u64 = 8;
 
@@ -69,6 +81,10 @@ pub struct MemoryEstimate {
     pub rows: u64,
     /// The model and the integrator's work arrays.
     pub model: u64,
+    /// The estimated size of `history.csv`, bytes (on disk, not in memory).
+    pub csv: u64,
+    /// Values in one row of `history.csv`.
+    pub csv_values: u64,
 }
 
 impl MemoryEstimate {
@@ -120,11 +136,17 @@ pub fn estimate(
                 .saturating_mul(u(carriers))
                 .saturating_mul(8 * DENSE_CONTACT_MATRICES),
         );
+    // t, then x, w, q, gap, λ and the contact flag per carrier, then probes
+    let csv_values = 1 + 6 * u(carriers) + u(probes);
     MemoryEstimate {
         history: rows.saturating_mul(row),
         row,
         rows,
         model,
+        csv: rows
+            .saturating_mul(csv_values)
+            .saturating_mul(CSV_BYTES_PER_VALUE),
+        csv_values,
     }
 }
 
@@ -149,8 +171,25 @@ pub fn check_budget(
     probes: usize,
 ) -> Result<()> {
     let budget = MEMORY_BUDGET_BYTES;
-    if e.total() <= budget {
+    if e.total() <= budget && e.csv <= OUTPUT_BUDGET_BYTES {
         return Ok(());
+    }
+    if e.total() <= budget {
+        // the memory fits; history.csv would not: fewer rows
+        let row_csv = e.csv_values * CSV_BYTES_PER_VALUE;
+        let rows_fit = (OUTPUT_BUDGET_BYTES / row_csv).max(2);
+        let min_every = (steps as u64).div_ceil(rows_fit - 1).max(every as u64 + 1);
+        return Err(Error::invalid(
+            "output.record_every",
+            every,
+            format!(
+                "history.csv would hold an estimated {} ({} rows × {} values × {CSV_BYTES_PER_VALUE} bytes), above the output budget of {}: record fewer rows with [output] record_every ≥ {min_every} (statistics still use every step), or give fewer steps or probes",
+                gib(e.csv),
+                e.rows,
+                e.csv_values,
+                gib(OUTPUT_BUDGET_BYTES)
+            ),
+        ));
     }
     let need = format!(
         "the run needs an estimated {} ({} rows × {} bytes of history + {} of model), above the memory budget of {}",

@@ -153,6 +153,40 @@ impl Resolved {
         }
     }
 
+    /// The memory the run is estimated to need (history, model, a modal
+    /// basis's eigenproblem) and the size of its `history.csv`: what
+    /// validation checks against the budgets and what a run reserves from
+    /// the process's budget while it runs ([`crate::budget`]).
+    pub fn memory_estimate(&self) -> super::memory::MemoryEstimate {
+        let (per_node, half_band) = if self.beam.is_string() {
+            (1, 1)
+        } else {
+            (2, 3)
+        };
+        let masses = self
+            .carriers
+            .iter()
+            .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
+            .count();
+        let mut need = super::memory::estimate(
+            self.steps,
+            self.record_every,
+            self.elements,
+            per_node,
+            half_band,
+            self.carriers.len(),
+            masses,
+            self.probes.len(),
+        );
+        if let Discretization::Modal { modes } = self.discretization {
+            need.model = need.model.saturating_add(super::memory::modal_bytes(
+                super::discretization::fe_unknowns(&self.beam, self.elements),
+                modes,
+            ));
+        }
+        need
+    }
+
     /// Rows the run's history will hold.
     pub fn history_rows(&self) -> usize {
         super::memory::history_rows(self.steps, self.record_every)
@@ -363,37 +397,7 @@ impl Scene {
         }
         let record_every = usize::try_from(self.output.record_every).unwrap_or(usize::MAX);
         let steps = steps_f as usize;
-        let (per_node, half_band) = if beam.is_string() { (1, 1) } else { (2, 3) };
-        let masses = carriers
-            .iter()
-            .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
-            .count();
-        let mut need = super::memory::estimate(
-            steps,
-            record_every,
-            elements,
-            per_node,
-            half_band,
-            carriers.len(),
-            masses,
-            probes.len(),
-        );
-        if let Discretization::Modal { modes } = discretization {
-            need.model = need.model.saturating_add(super::memory::modal_bytes(
-                super::discretization::fe_unknowns(&beam, elements),
-                modes,
-            ));
-        }
-        super::memory::check_budget(
-            &need,
-            steps,
-            record_every,
-            elements,
-            carriers.len(),
-            probes.len(),
-        )?;
-
-        Ok(Resolved {
+        let resolved = Resolved {
             scene: self.clone(),
             beam,
             carriers,
@@ -409,7 +413,16 @@ impl Scene {
             t_end,
             probes,
             record_every,
-        })
+        };
+        super::memory::check_budget(
+            &resolved.memory_estimate(),
+            steps,
+            record_every,
+            elements,
+            resolved.carriers.len(),
+            resolved.probes.len(),
+        )?;
+        Ok(resolved)
     }
 
     fn resolve_beam(&self) -> Result<BeamProps> {
