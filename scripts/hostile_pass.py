@@ -189,7 +189,7 @@ def main() -> int:
                             "--ratio", "20", "--levels", "4", *out("c")]),
         ("study precision", ["precision", ref, "--ratio", "100", "--levels", "2", *out("c")]),
         ("study compare", ["compare", ref, "--set", "time.step=2e-8", "--set", "mesh.elements=1000", *out("c")]),
-        ("study sweep", ["sweep", ref, "--vary", "speed_ratio=0.5:1:3", "--set", "time.step=2e-8",
+        ("study sweep", ["sweep", ref, "--vary", "speed_ratio=0.5:1:3", "--set", "time.step=2e-8", "--set", "output.record_every=10",
                          "--set", "mesh.elements=1000", *out("c2")]),
     ]
     if a.quick:

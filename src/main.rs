@@ -98,8 +98,8 @@ enum Command {
         /// Cases stepped together when their runs share the effective
         /// matrix (1 ..= 8, 1: every case alone; default 4). The checks are
         /// the same whatever it is.
-        #[arg(long, value_name = "B", allow_negative_numbers = true, value_parser = parse_batch)]
-        batch: Option<usize>,
+        #[arg(long, value_name = "B", allow_hyphen_values = true)]
+        batch: Option<String>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -134,13 +134,13 @@ enum Command {
         #[arg(long)]
         check_refinement: bool,
         /// Worker threads (default: all cores; at most 4 per core, 1024).
-        #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_threads)]
-        threads: Option<usize>,
+        #[arg(long, value_name = "N", allow_hyphen_values = true)]
+        threads: Option<String>,
         /// Runs stepped together when they share their effective matrix
         /// (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of
         /// lanes). The records are the same bytes whatever the width.
-        #[arg(long, value_name = "B", allow_negative_numbers = true, value_parser = parse_batch)]
-        batch: Option<usize>,
+        #[arg(long, value_name = "B", allow_hyphen_values = true)]
+        batch: Option<String>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -179,8 +179,8 @@ enum Command {
         /// Runs stepped together when they share their effective matrix
         /// (the formulations of a grid point; 1 ..= 8, 1: every run alone;
         /// default 4). The table is the same whatever it is.
-        #[arg(long, value_name = "B", allow_negative_numbers = true, value_parser = parse_batch)]
-        batch: Option<usize>,
+        #[arg(long, value_name = "B", allow_hyphen_values = true)]
+        batch: Option<String>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
@@ -234,8 +234,8 @@ enum Command {
         /// Runs stepped together when they share their effective matrix
         /// (formulations under one method and discretization; 1 ..= 8,
         /// 1: every run alone; default 4). The table is the same whatever it is.
-        #[arg(long, value_name = "B", allow_negative_numbers = true, value_parser = parse_batch)]
-        batch: Option<usize>,
+        #[arg(long, value_name = "B", allow_hyphen_values = true)]
+        batch: Option<String>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
@@ -396,29 +396,35 @@ fn main() -> ExitCode {
     }
 }
 
-/// `--threads N`: a whole number in the range the library allows, checked
-/// by it (study::threads), so that `-1` or `x` get the same message, naming
-/// the range, as `100000` (not the parser's "unexpected argument").
-fn parse_threads(s: &str) -> Result<usize, String> {
-    let n = s.trim().parse::<usize>().unwrap_or(0);
-    taut::study::threads::check_threads(n).map_err(|_| {
-        let max = taut::study::threads::max_threads();
-        format!("must be a whole number in 1 ..= {max} (4 × the cores available, at most 1024)")
-    })
+/// A count given on the command line (`--threads`, `--batch`), checked by
+/// the library's `check`: text that is not a whole number (`-1`, `x`) gets
+/// the same error, naming the flag, the text and the range, as a number out
+/// of range (not the parser's "unexpected argument").
+fn count(
+    text: Option<String>,
+    check: impl Fn(usize) -> taut::Result<usize>,
+) -> taut::Result<Option<usize>> {
+    let Some(text) = text else { return Ok(None) };
+    match text.trim().parse::<usize>() {
+        Ok(n) => check(n).map(Some),
+        // 0 is outside every count's range: its error, with the text given
+        Err(_) => match check(0) {
+            Err(taut::Error::Invalid { field, allowed, .. }) => {
+                Err(taut::Error::invalid(field, text, allowed))
+            }
+            other => other.map(Some),
+        },
+    }
 }
 
-/// `--batch B`: a whole number in 1 ..= the lanes a batch may have,
-/// checked by the library (study::request::batch_width).
-fn parse_batch(s: &str) -> Result<usize, String> {
-    let n = s.trim().parse::<usize>().unwrap_or(0);
-    taut::study::request::batch_width(Some(n))
-        .map(|_| n)
-        .map_err(|_| {
-            format!(
-                "must be a whole number in 1 ..= {} (runs stepped together; 1 steps every run alone)",
-                taut::integrate::MAX_LANES
-            )
-        })
+fn threads_arg(text: Option<String>) -> taut::Result<Option<usize>> {
+    count(text, taut::study::threads::check_threads)
+}
+
+fn batch_arg(text: Option<String>) -> taut::Result<Option<usize>> {
+    count(text, |n| {
+        taut::study::request::batch_width(Some(n)).map(|_| n)
+    })
 }
 
 /// Default output folder: out/<scene stem><suffix>.
@@ -575,10 +581,10 @@ fn cmd_converge(
 fn cmd_gate(
     suite: &Path,
     out: Option<PathBuf>,
-    (update, batch): (bool, Option<usize>),
+    (update, batch): (bool, Option<String>),
     quiet: bool,
 ) -> taut::Result<bool> {
-    let batch = taut::study::request::batch_lanes(batch)?;
+    let batch = taut::study::request::batch_lanes(batch_arg(batch)?)?;
     let dir = out.unwrap_or_else(|| PathBuf::from("out").join("gate"));
     fresh(&dir, taut::report::Outputs::Gate)?;
     let n = taut::study::gate::case_files(suite)?.len();
@@ -611,11 +617,12 @@ fn cmd_sweep(
     set: Vec<String>,
     out: Option<PathBuf>,
     shard: Option<&str>,
-    (threads, batch): (Option<usize>, Option<usize>),
+    (threads, batch): (Option<String>, Option<String>),
     (quiet, yes): (bool, bool),
 ) -> taut::Result<bool> {
     use taut::study::sweep::{Axis, Shard, SweepSpec, claim, sweep_batched};
-    let batch = taut::study::request::batch_width(batch)?;
+    let threads = threads_arg(threads)?;
+    let batch = taut::study::request::batch_width(batch_arg(batch)?)?;
     let axes = vary
         .iter()
         .map(|v| Axis::parse(v, log))
@@ -754,7 +761,7 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
 fn cmd_precision(
     scene: PathBuf,
     (formulations, methods, discretizations): (&str, Option<&str>, Option<&str>),
-    (levels, ratio, batch): (usize, usize, Option<usize>),
+    (levels, ratio, batch): (usize, usize, Option<String>),
     set: Vec<String>,
     out: Option<PathBuf>,
     (quiet, yes): (bool, bool),
@@ -765,7 +772,7 @@ fn cmd_precision(
         discretizations: discretizations.map(str::to_string),
         levels,
         ratio,
-        batch,
+        batch: batch_arg(batch)?,
         yes,
     };
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
@@ -870,7 +877,7 @@ fn cmd_compare(
     scene: PathBuf,
     formulations: &str,
     (methods, discretizations): (Option<&str>, Option<&str>),
-    (reference, reference_method, batch): (&str, Option<&str>, Option<usize>),
+    (reference, reference_method, batch): (&str, Option<&str>, Option<String>),
     set: Vec<String>,
     out: Option<PathBuf>,
     (quiet, yes): (bool, bool),
@@ -881,7 +888,7 @@ fn cmd_compare(
         discretizations: discretizations.map(str::to_string),
         reference: reference.to_string(),
         reference_method: reference_method.map(str::to_string),
-        batch,
+        batch: batch_arg(batch)?,
         yes,
     };
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));

@@ -11,7 +11,7 @@ from typing import Callable, List, Optional, Tuple, Union
 __version__: str
 taut_version: str
 
-__all__ = ["__version__", "compare", "converge", "precision", "run", "sweep", "taut_version"]
+__all__ = ["__version__", "compare", "converge", "limits", "precision", "run", "sweep", "taut_version"]
 
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
