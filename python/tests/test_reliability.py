@@ -45,3 +45,18 @@ def test_an_empty_out_is_refused(tmp_path, monkeypatch):
         taut.run(scene, set=SHORT, out="")
     assert e.value.field == "out"
     assert not (tmp_path / "summary.json").exists()
+
+
+def test_a_sweep_over_an_axis_a_plot_cannot_draw_returns_its_table(tmp_path):
+    # issue 25: this hung in the plotting library's tick code after the tables
+    t = taut.sweep(
+        REFERENCE,
+        vary={"carrier.stiffness": (1e100, 1e300, 2)},
+        log=True,
+        set={"mesh.elements": 40, "time.end": 0.02},
+        out=tmp_path / "s",
+        progress=False,
+    )
+    assert len(t["carrier.stiffness"]) == 2
+    note = (tmp_path / "s" / "force_map.svg").read_text()
+    assert "This plot is not drawn" in note
