@@ -171,25 +171,9 @@ pub fn check_budget(
     probes: usize,
 ) -> Result<()> {
     let budget = MEMORY_BUDGET_BYTES;
-    if e.total() <= budget && e.csv <= OUTPUT_BUDGET_BYTES {
+    let memory_over = e.total() > budget;
+    if !memory_over && e.csv <= OUTPUT_BUDGET_BYTES {
         return Ok(());
-    }
-    if e.total() <= budget {
-        // the memory fits; history.csv would not: fewer rows
-        let row_csv = e.csv_values * CSV_BYTES_PER_VALUE;
-        let rows_fit = (OUTPUT_BUDGET_BYTES / row_csv).max(2);
-        let min_every = (steps as u64).div_ceil(rows_fit - 1).max(every as u64 + 1);
-        return Err(Error::invalid(
-            "output.record_every",
-            every,
-            format!(
-                "history.csv would hold an estimated {} ({} rows × {} values × {CSV_BYTES_PER_VALUE} bytes), above the output budget of {}: record fewer rows with [output] record_every ≥ {min_every} (statistics still use every step), or give fewer steps or probes",
-                gib(e.csv),
-                e.rows,
-                e.csv_values,
-                gib(OUTPUT_BUDGET_BYTES)
-            ),
-        ));
     }
     let need = format!(
         "the run needs an estimated {} ({} rows × {} bytes of history + {} of model), above the memory budget of {}",
@@ -199,7 +183,7 @@ pub fn check_budget(
         gib(e.model),
         gib(budget)
     );
-    if e.model.saturating_add(2 * e.row) > budget {
+    if memory_over && e.model.saturating_add(2 * e.row) > budget {
         // even a two-row history does not fit: the model or a row is too big
         return Err(if e.model > budget / 2 {
             Error::invalid(
@@ -215,14 +199,33 @@ pub fn check_budget(
             )
         });
     }
-    // the fewest rows that fit, and the record_every that gives them
-    let rows_fit = (budget - e.model) / e.row; // ≥ 2 here
+    // the fewest rows that fit both budgets, and the record_every that gives them
+    let row_csv = e.csv_values.saturating_mul(CSV_BYTES_PER_VALUE).max(1);
+    let rows_fit_csv = (OUTPUT_BUDGET_BYTES / row_csv).max(2);
+    let rows_fit_memory = if memory_over {
+        (budget - e.model) / e.row.max(1) // ≥ 2 here
+    } else {
+        u64::MAX
+    };
+    let rows_fit = rows_fit_csv.min(rows_fit_memory).max(2);
     let min_every = (steps as u64).div_ceil(rows_fit - 1).max(every as u64 + 1);
+    let csv = format!(
+        "history.csv would hold an estimated {} ({} rows × {} values × {CSV_BYTES_PER_VALUE} bytes), above the output budget of {}",
+        gib(e.csv),
+        e.rows,
+        e.csv_values,
+        gib(OUTPUT_BUDGET_BYTES)
+    );
+    let why = match (memory_over, e.csv > OUTPUT_BUDGET_BYTES) {
+        (true, true) => format!("{need}; {csv}"),
+        (true, false) => need,
+        _ => csv,
+    };
     Err(Error::invalid(
         "output.record_every",
         every,
         format!(
-            "{need}: record fewer rows with [output] record_every ≥ {min_every} (statistics still use every step), or give fewer steps or probes"
+            "{why}: record fewer rows with [output] record_every ≥ {min_every} (statistics still use every step), or give fewer steps or probes"
         ),
     ))
 }
