@@ -644,6 +644,9 @@ fn cmd_sweep(
         .map_err(|e| taut::scene::in_file(e, &scene))?;
     started(&spec.estimate(shard)?, yes)?;
     let claimed = claim(&dir)?;
+    // tables and maps of this sweep only: a folder holding another sweep is
+    // refused (by check_spec) with its tables left as they are
+    taut::study::sweep::folder::check_spec(&dir, &spec)?;
     fresh(&dir, taut::report::Outputs::Sweep)?;
     // the first report says how many points an earlier start had finished
     let resumed = std::sync::OnceLock::new();
@@ -742,7 +745,14 @@ fn print_maps(maps: &[PathBuf], shard: bool) {
 
 fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
     let claimed = taut::study::sweep::claim(out)?;
-    fresh(out, taut::report::Outputs::Sweep)?;
+    // clear the tables only of a folder that holds this sweep (or none):
+    // merge_into refuses any other, which then keeps its tables
+    if let Some(first) = shards.first()
+        && let Ok(spec) = taut::study::sweep::read_spec(first)
+        && taut::study::sweep::folder::check_spec(out, &spec).is_ok()
+    {
+        fresh(out, taut::report::Outputs::Sweep)?;
+    }
     let (spec, records) = taut::study::sweep::merge_into(&claimed, shards)?;
     write_sweep(out, &spec, &records)?;
     let maps = taut::report::write_sweep_maps(out, &spec, &records)?;

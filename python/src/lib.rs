@@ -501,6 +501,8 @@ fn sweep<'py>(
     taut::report::check_out_dir(&out).map_err(err)?;
     let claimed = taut::study::sweep::claim(&out).map_err(err)?;
     if files {
+        // only a folder holding this sweep (or none) has its tables cleared
+        taut::study::sweep::folder::check_spec(&out, &spec).map_err(err)?;
         fresh(&out, taut::report::Outputs::Sweep).map_err(err)?;
     }
     let records = work(py, progress.as_ref(), |report| {
