@@ -287,7 +287,10 @@ impl PrecisionRequest {
     /// Δt₀/rʲ for every formulation, method and discretization, and the
     /// reference one level beyond the finest on both.
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
-        let base = base_dof_steps(text, overrides)?;
+        let sc = crate::scene::resolve_scene(text, overrides)?;
+        // the study's own refusal of an overflowing ratio comes first
+        super::precision::reference_elements(sc.elements, self.ratio, self.levels)?;
+        let base = run_dof_steps(&sc);
         let variants = (self.runs()? - 1) / (self.levels * self.levels).max(1);
         let r = self.ratio as f64;
         let level = |k: usize| r.powi(k.min(i32::MAX as usize) as i32);
