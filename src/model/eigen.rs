@@ -36,12 +36,13 @@
 //!
 //! | N elements | n unknowns | reduction (steps 1–2) | eigen (step 3) | `lowest_eigenpairs(·, ·, 20)` | [`eigenvalues`] (values only) |
 //! |---|---|---|---|---|---|
-//! | 800 | 1599 | 0.08 s | 1.07 s | 0.86 s | 0.39 s |
-//! | 1600 | 3199 | 0.33 s | 9.1 s | 10.6 s | 7.2 s |
+//! | 800 | 1599 | 0.08 s | 0.94 s | 1.05 s | 0.45 s |
+//! | 1600 | 3199 | 0.22 s | 7.6 s | 7.7 s | 4.3 s |
 //!
-//! The n³ eigen solve dominates (×8.5 for ×2 in n); the O(n² p) reduction
-//! is a few per cent of it. (These figures were taken when faer ran the solve
-//! on rayon's pool; it now runs sequentially, see *Determinism*.)
+//! The n³ eigen solve dominates (×8 for ×2 in n); the O(n² p) reduction
+//! is a few per cent of it. (Sequential, see *Determinism*; measured
+//! 2026-11-25 on the shared machine. The parallel solve it replaced was
+//! measured at 0.86 s and 10.6 s for the same two rows under load.)
 //!
 //! # Determinism
 //!
