@@ -668,3 +668,29 @@ fn a_long_run_draws_a_small_force_plot() {
         "force.svg {svg} B, history.csv {csv} B"
     );
 }
+
+#[test]
+fn a_tolerance_pilot_refused_says_it_is_a_pilot() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (code, _, err) = taut(&[
+        "run",
+        &scene("reference.toml"),
+        "--tolerance",
+        "1e-3",
+        "--set",
+        "integrator={ method = \"central_difference\" }",
+        "--set",
+        "time.step=1e-5",
+        "--set",
+        "time.end=0.05",
+        "--out",
+        tmp.path().join("o").to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("`time.step` = 1e-5 s")
+            && err.contains("for the pilot run `mesh x4`, N = 1600"),
+        "{err}"
+    );
+}

@@ -429,7 +429,24 @@ pub fn tolerance_run(
     ];
     let mut pilots: Vec<PilotRun> = Vec::with_capacity(5);
     for (k, &(role, n, dt)) in ladder.iter().enumerate() {
-        let sc = with(n, dt)?;
+        // a pilot the scene's own run is not refused for: say which, and why
+        // it is run at all (a central-difference step stable on N elements
+        // is not on 4N)
+        let pilot = |e: Error| match e {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } if k > 0 => Error::invalid(
+                field,
+                value,
+                format!(
+                    "{allowed} (for the pilot run `{role}`, N = {n}, Δt = {dt:e} s, which --tolerance makes to measure convergence: the scene's own run is accepted; every pilot must be too, so give values that hold for 2× and 4× mesh.elements and Δt/2, Δt/4)"
+                ),
+            ),
+            other => other,
+        };
+        let sc = with(n, dt).map_err(pilot)?;
         if let Some(first) = pilots.first() {
             nest((first.steps, first.dt), (sc.steps, sc.dt), Reach::SameEnd)?;
             // all five pilots cost 13 base runs: refuse before running them
@@ -445,6 +462,7 @@ pub fn tolerance_run(
             }
         }
         let out = run(&sc, &mut |_, _| {})
+            .map_err(pilot)
             .map_err(|e| e.in_run(&format!("pilot `{role}` (N = {n}, Δt = {:e} s)", sc.dt)))?;
         pilots.push(PilotRun {
             role,
