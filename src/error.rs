@@ -169,16 +169,18 @@ impl Error {
         }
     }
 
-    /// Shorthand for [`Error::Invalid`].
+    /// Shorthand for [`Error::Invalid`]. The value is shown as a person
+    /// reads it ([`for_message`]: numbers compact, a huge value clipped),
+    /// and so are the numbers in `allowed`.
     pub fn invalid(
         field: impl Into<String>,
         value: impl ToString,
         allowed: impl Into<String>,
     ) -> Self {
         Error::Invalid {
-            field: field.into(),
-            value: value.to_string(),
-            allowed: allowed.into(),
+            field: clip(&field.into(), MAX_FIELD_CHARS),
+            value: for_message(&value.to_string(), MAX_VALUE_CHARS),
+            allowed: for_message(&allowed.into(), MAX_MESSAGE_CHARS),
         }
     }
 
@@ -196,6 +198,7 @@ impl Error {
 /// break) and other control characters are escaped, so that every error is
 /// one line whatever the input (`taut` prints `error: …` on one line).
 pub fn one_line(text: &str) -> String {
+    let text = &for_message(text, MAX_MESSAGE_CHARS);
     let mut out = String::with_capacity(text.len());
     for (i, line) in text
         .split('\n')
@@ -217,12 +220,115 @@ pub fn one_line(text: &str) -> String {
     out
 }
 
+/// Most characters of a value shown in a message: enough for any number,
+/// path or key; a 10 MB string value is shown by its start and its length.
+pub const MAX_VALUE_CHARS: usize = 200;
+
+/// Most characters of a field name (a key path) shown in a message.
+pub const MAX_FIELD_CHARS: usize = 200;
+
+/// Most characters of any one part of a message (a reason, an allowed
+/// range): the longest real ones (a divergence's likely cause) are under
+/// 1 000.
+pub const MAX_MESSAGE_CHARS: usize = 2000;
+
+/// `text` cut to `max` characters, the cut said with the full length.
+pub fn clip(text: &str, max: usize) -> String {
+    match text.char_indices().nth(max) {
+        None => text.to_string(),
+        Some((at, _)) => format!("{}… ({} bytes in all)", &text[..at], text.len()),
+    }
+}
+
+/// Text for a message: every number written with more than 20 characters
+/// (`1e308` as `{}` prints 309 digits, `-1e-300` 302) rewritten compactly
+/// ([`compact_number`]), then [`clip`]ped to `max` characters.
+pub fn for_message(text: &str, max: usize) -> String {
+    /// A number longer than this is rewritten.
+    const LONG_NUMBER: usize = 20;
+    let mut out = String::with_capacity(text.len().min(max + 64));
+    let b = text.as_bytes();
+    let mut i = 0;
+    while i < b.len() {
+        let starts = b[i].is_ascii_digit()
+            || ((b[i] == b'-' || b[i] == b'.') && b.get(i + 1).is_some_and(u8::is_ascii_digit));
+        let after_word = i > 0 && (b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_');
+        if starts && !after_word {
+            let mut j = i + 1;
+            while j < b.len()
+                && (b[j].is_ascii_digit()
+                    || b[j] == b'.'
+                    || ((b[j] == b'e' || b[j] == b'E') && j + 1 < b.len())
+                    || ((b[j] == b'-' || b[j] == b'+') && (b[j - 1] == b'e' || b[j - 1] == b'E')))
+            {
+                j += 1;
+            }
+            let run = &text[i..j];
+            match run.parse::<f64>() {
+                Ok(v) if run.len() > LONG_NUMBER => out.push_str(&compact_number(v)),
+                _ => out.push_str(run),
+            }
+            i = j;
+        } else {
+            let c = text[i..].chars().next().expect("in bounds");
+            out.push(c);
+            i += c.len_utf8();
+        }
+        if out.len() > 4 * max + 64 {
+            break;
+        }
+    }
+    match out.char_indices().nth(max) {
+        None => out,
+        Some((at, _)) => format!("{}… ({} bytes in all)", &out[..at], text.len()),
+    }
+}
+
+/// A number for a message, compact whatever its size: Rust's shortest
+/// round-trip form, plain between 10⁻⁴ and 10¹⁵ (`0.25`, `120`), in
+/// exponent form outside (`1e308`, `-1e-300`, where `{}` would print 300
+/// digits), `NaN`, `inf` and `-inf` as they are.
+pub fn compact_number(v: f64) -> String {
+    let a = v.abs();
+    if !v.is_finite() || a == 0.0 || (1e-4..1e15).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// The crate's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_numbers_are_compact_and_long_values_clipped() {
+        let e = Error::invalid("beam.length", -1e-300, "must be > 0 (m)").to_string();
+        assert_eq!(e, "invalid scene: `beam.length` = -1e-300: must be > 0 (m)");
+        let e = Error::invalid(
+            "beam.length",
+            format!("{} m", 1e308),
+            format!("in (0, {}] m", 1e308),
+        )
+        .to_string();
+        assert_eq!(e, "invalid scene: `beam.length` = 1e308 m: in (0, 1e308] m");
+        // short numbers, keys with digits and words are as they were
+        assert_eq!(
+            for_message("carrier.0.speed = 120.5, pivot 1e-3, x2 = 3", 100),
+            "carrier.0.speed = 120.5, pivot 1e-3, x2 = 3"
+        );
+        let huge = "a".repeat(10 << 20);
+        let e = Error::invalid("beam.left", &huge, "pinned or clamped").to_string();
+        assert!(
+            e.len() < 400 && e.contains("(10485760 bytes in all)"),
+            "{}",
+            e.len()
+        );
+        assert!(one_line(&huge).len() < 2100);
+    }
 
     #[test]
     fn in_run_names_the_run_of_a_divergence_or_contact_failure_only() {

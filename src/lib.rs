@@ -22,8 +22,10 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod analytic;
+pub mod budget;
 pub mod contact;
 pub mod error;
+pub mod input;
 pub mod integrate;
 pub mod interrupt;
 pub mod json_keys;

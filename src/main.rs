@@ -55,10 +55,10 @@ enum Command {
         #[arg(long, default_value = "both")]
         refine: String,
         /// Number of levels (≥ 3 for observed orders).
-        #[arg(long, default_value_t = 4)]
+        #[arg(long, default_value_t = 4, allow_negative_numbers = true)]
         levels: usize,
         /// Refinement ratio between levels.
-        #[arg(long, default_value_t = 2.0)]
+        #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
         ratio: f64,
         /// Comma-separated time integrators to study side by side (default:
         /// the scene's own).
@@ -75,6 +75,10 @@ enum Command {
         /// Output folder (default: out/<scene name>-converge).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -94,8 +98,8 @@ enum Command {
         /// Cases stepped together when their runs share the effective
         /// matrix (1 ..= 8, 1: every case alone; default 4). The checks are
         /// the same whatever it is.
-        #[arg(long, value_name = "B")]
-        batch: Option<usize>,
+        #[arg(long, value_name = "B", allow_hyphen_values = true)]
+        batch: Option<String>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -117,6 +121,10 @@ enum Command {
         /// Output folder (default: out/<scene name>-sweep).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
         /// Run only the points with index ≡ i (mod n): i/n.
         #[arg(long, value_name = "I/N")]
         shard: Option<String>,
@@ -126,13 +134,13 @@ enum Command {
         #[arg(long)]
         check_refinement: bool,
         /// Worker threads (default: all cores; at most 4 per core, 1024).
-        #[arg(long)]
-        threads: Option<usize>,
+        #[arg(long, value_name = "N", allow_hyphen_values = true)]
+        threads: Option<String>,
         /// Runs stepped together when they share their effective matrix
         /// (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of
         /// lanes). The records are the same bytes whatever the width.
-        #[arg(long, value_name = "B")]
-        batch: Option<usize>,
+        #[arg(long, value_name = "B", allow_hyphen_values = true)]
+        batch: Option<String>,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -163,22 +171,26 @@ enum Command {
         #[arg(long, value_name = "LIST")]
         discretizations: Option<String>,
         /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels).
-        #[arg(long, default_value_t = 3)]
+        #[arg(long, default_value_t = 3, allow_negative_numbers = true)]
         levels: usize,
         /// Refinement ratio (integer).
-        #[arg(long, default_value_t = 2)]
+        #[arg(long, default_value_t = 2, allow_negative_numbers = true)]
         ratio: usize,
         /// Runs stepped together when they share their effective matrix
         /// (the formulations of a grid point; 1 ..= 8, 1: every run alone;
         /// default 4). The table is the same whatever it is.
-        #[arg(long, value_name = "B")]
-        batch: Option<usize>,
+        #[arg(long, value_name = "B", allow_hyphen_values = true)]
+        batch: Option<String>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
         /// Output folder (default: out/<scene name>-precision).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -217,7 +229,7 @@ enum Command {
         /// The saved problem (JSON).
         problem: PathBuf,
         /// Override the saved iteration limit.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         max_iter: Option<u32>,
         /// Override the saved complementarity solver: `direct` or `clarabel`.
         #[arg(long)]
@@ -250,14 +262,18 @@ enum Command {
         /// Runs stepped together when they share their effective matrix
         /// (formulations under one method and discretization; 1 ..= 8,
         /// 1: every run alone; default 4). The table is the same whatever it is.
-        #[arg(long, value_name = "B")]
-        batch: Option<usize>,
+        #[arg(long, value_name = "B", allow_hyphen_values = true)]
+        batch: Option<String>,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
         /// Output folder (default: out/<scene name>-compare).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -299,6 +315,7 @@ fn main() -> ExitCode {
             threads,
             batch,
             quiet,
+            yes,
         } => match cmd_sweep(
             scene,
             (&vary, log, check_refinement),
@@ -306,7 +323,7 @@ fn main() -> ExitCode {
             out,
             shard.as_deref(),
             (threads, batch),
-            quiet,
+            (quiet, yes),
         ) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
@@ -351,6 +368,7 @@ fn main() -> ExitCode {
             set,
             out,
             quiet,
+            yes,
         } => cmd_precision(
             scene,
             (
@@ -361,7 +379,7 @@ fn main() -> ExitCode {
             (levels, ratio, batch),
             set,
             out,
-            quiet,
+            (quiet, yes),
         ),
         Command::Gate {
             suite,
@@ -384,6 +402,7 @@ fn main() -> ExitCode {
             set,
             out,
             quiet,
+            yes,
         } => cmd_converge(
             scene,
             &refine,
@@ -391,7 +410,7 @@ fn main() -> ExitCode {
             (methods.as_deref(), discretizations.as_deref()),
             set,
             out,
-            quiet,
+            (quiet, yes),
         ),
         Command::Compare {
             scene,
@@ -404,6 +423,7 @@ fn main() -> ExitCode {
             set,
             out,
             quiet,
+            yes,
         } => match cmd_compare(
             scene,
             &formulations,
@@ -411,7 +431,7 @@ fn main() -> ExitCode {
             (&reference, reference_method.as_deref(), batch),
             set,
             out,
-            quiet,
+            (quiet, yes),
         ) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
@@ -425,6 +445,37 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// A count given on the command line (`--threads`, `--batch`), checked by
+/// the library's `check`: text that is not a whole number (`-1`, `x`) gets
+/// the same error, naming the flag, the text and the range, as a number out
+/// of range (not the parser's "unexpected argument").
+fn count(
+    text: Option<String>,
+    check: impl Fn(usize) -> taut::Result<usize>,
+) -> taut::Result<Option<usize>> {
+    let Some(text) = text else { return Ok(None) };
+    match text.trim().parse::<usize>() {
+        Ok(n) => check(n).map(Some),
+        // 0 is outside every count's range: its error, with the text given
+        Err(_) => match check(0) {
+            Err(taut::Error::Invalid { field, allowed, .. }) => {
+                Err(taut::Error::invalid(field, text, allowed))
+            }
+            other => other.map(Some),
+        },
+    }
+}
+
+fn threads_arg(text: Option<String>) -> taut::Result<Option<usize>> {
+    count(text, taut::study::threads::check_threads)
+}
+
+fn batch_arg(text: Option<String>) -> taut::Result<Option<usize>> {
+    count(text, |n| {
+        taut::study::request::batch_width(Some(n)).map(|_| n)
+    })
 }
 
 /// Default output folder: out/<scene stem><suffix>.
@@ -445,6 +496,29 @@ fn progress_bar(len: usize, unit: &str, quiet: bool) -> ProgressBar {
     b
 }
 
+/// Remove the outputs an earlier command of this kind left in `dir`, saying
+/// so on stderr: a folder holds one run's outputs (report::outputs).
+fn fresh(dir: &Path, kind: taut::report::Outputs) -> taut::Result<()> {
+    let removed = taut::report::clear_earlier(dir, kind)?;
+    if let Some(note) = taut::report::cleared_note(dir, &removed) {
+        eprintln!("{note}");
+    }
+    Ok(())
+}
+
+/// Refuse a study above the cost bound unless `yes` (study::cost); with
+/// `yes`, say on stderr what is being started.
+fn started(estimate: &taut::study::cost::Estimate, yes: bool) -> taut::Result<()> {
+    estimate.check(yes)?;
+    if estimate.over() {
+        eprintln!(
+            "note: {} (above the bound; --yes given)",
+            estimate.describe()
+        );
+    }
+    Ok(())
+}
+
 /// Save a failing contact problem next to the outputs so it can be replayed.
 fn save_failure(dir: &Path, e: taut::Error) -> taut::Error {
     if let Some(path) = taut::report::save_failed_contact(dir, &e) {
@@ -459,8 +533,9 @@ fn cmd_run(
     out: Option<PathBuf>,
     quiet: bool,
 ) -> taut::Result<()> {
-    let sc = load_scene(&scene, &set)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
+    fresh(&dir, taut::report::Outputs::Run)?;
+    let sc = load_scene(&scene, &set)?;
     let bar = progress_bar(sc.steps, "steps", quiet);
     let output = run(&sc, &mut |done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
@@ -482,8 +557,9 @@ fn cmd_run_tolerance(
     use taut::study::tolerance::{Quantity, parse_tolerance, tolerance_run};
     let quantity: Quantity = quantity.unwrap_or("force").parse()?;
     let tol = parse_tolerance(tolerance)?;
-    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
+    fresh(&dir, taut::report::Outputs::Run)?;
+    let text = taut::scene::read_scene(&scene)?;
     let bar = progress_bar(6, "runs", quiet);
     let result = tolerance_run(&text, &set, quantity, tol, &mut |done, _| {
         bar.set_position(done as u64)
@@ -504,7 +580,7 @@ fn cmd_converge(
     (methods, discretizations): (Option<&str>, Option<&str>),
     set: Vec<String>,
     out: Option<PathBuf>,
-    quiet: bool,
+    (quiet, yes): (bool, bool),
 ) -> taut::Result<()> {
     use taut::study::request::{ConvergeOutcome, ConvergeRequest};
     let request = ConvergeRequest {
@@ -513,10 +589,18 @@ fn cmd_converge(
         ratio,
         methods: methods.map(str::to_string),
         discretizations: discretizations.map(str::to_string),
+        yes,
     };
     let refine: Refine = refine.parse()?;
-    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
+    fresh(&dir, taut::report::Outputs::Converge)?;
+    let text = taut::scene::read_scene(&scene)?;
+    started(
+        &request
+            .estimate(&text, &set)
+            .map_err(|e| taut::scene::in_file(e, &scene))?,
+        yes,
+    )?;
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |done, _| bar.set_position(done as u64));
     bar.finish_and_clear();
@@ -584,10 +668,12 @@ fn cmd_verify(
 fn cmd_gate(
     suite: &Path,
     out: Option<PathBuf>,
-    (update, batch): (bool, Option<usize>),
+    (update, batch): (bool, Option<String>),
     quiet: bool,
 ) -> taut::Result<bool> {
-    let batch = taut::study::request::batch_lanes(batch)?;
+    let batch = taut::study::request::batch_lanes(batch_arg(batch)?)?;
+    let dir = out.unwrap_or_else(|| PathBuf::from("out").join("gate"));
+    fresh(&dir, taut::report::Outputs::Gate)?;
     let n = taut::study::gate::case_files(suite)?.len();
     let bar = progress_bar(n, "cases", quiet);
     let report = taut::study::gate::gate_batched(suite, update, batch, &mut |done, _, _| {
@@ -595,7 +681,6 @@ fn cmd_gate(
     });
     bar.finish_and_clear();
     let report = report?;
-    let dir = out.unwrap_or_else(|| PathBuf::from("out").join("gate"));
     write_gate(&dir, &report)?;
     println!(
         "taut {} — gate {}",
@@ -619,11 +704,12 @@ fn cmd_sweep(
     set: Vec<String>,
     out: Option<PathBuf>,
     shard: Option<&str>,
-    (threads, batch): (Option<usize>, Option<usize>),
-    quiet: bool,
+    (threads, batch): (Option<String>, Option<String>),
+    (quiet, yes): (bool, bool),
 ) -> taut::Result<bool> {
     use taut::study::sweep::{Axis, Shard, SweepSpec, claim, sweep_batched};
-    let batch = taut::study::request::batch_width(batch)?;
+    let threads = threads_arg(threads)?;
+    let batch = taut::study::request::batch_width(batch_arg(batch)?)?;
     let axes = vary
         .iter()
         .map(|v| Axis::parse(v, log))
@@ -643,7 +729,12 @@ fn cmd_sweep(
     let start = std::time::Instant::now();
     spec.validate()
         .map_err(|e| taut::scene::in_file(e, &scene))?;
+    started(&spec.estimate(shard)?, yes)?;
     let claimed = claim(&dir)?;
+    // tables and maps of this sweep only: a folder holding another sweep is
+    // refused (by check_spec) with its tables left as they are
+    taut::study::sweep::folder::check_spec(&dir, &spec)?;
+    fresh(&dir, taut::report::Outputs::Sweep)?;
     // the first report says how many points an earlier start had finished
     let resumed = std::sync::OnceLock::new();
     let records = sweep_batched(&claimed, &spec, shard, batch, &|done, total| {
@@ -741,6 +832,14 @@ fn print_maps(maps: &[PathBuf], shard: bool) {
 
 fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
     let claimed = taut::study::sweep::claim(out)?;
+    // clear the tables only of a folder that holds this sweep (or none):
+    // merge_into refuses any other, which then keeps its tables
+    if let Some(first) = shards.first()
+        && let Ok(spec) = taut::study::sweep::read_spec(first)
+        && taut::study::sweep::folder::check_spec(out, &spec).is_ok()
+    {
+        fresh(out, taut::report::Outputs::Sweep)?;
+    }
     let (spec, records) = taut::study::sweep::merge_into(&claimed, shards)?;
     write_sweep(out, &spec, &records)?;
     let maps = taut::report::write_sweep_maps(out, &spec, &records)?;
@@ -759,10 +858,10 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
 fn cmd_precision(
     scene: PathBuf,
     (formulations, methods, discretizations): (&str, Option<&str>, Option<&str>),
-    (levels, ratio, batch): (usize, usize, Option<usize>),
+    (levels, ratio, batch): (usize, usize, Option<String>),
     set: Vec<String>,
     out: Option<PathBuf>,
-    quiet: bool,
+    (quiet, yes): (bool, bool),
 ) -> taut::Result<()> {
     let request = taut::study::request::PrecisionRequest {
         formulations: formulations.to_string(),
@@ -770,10 +869,20 @@ fn cmd_precision(
         discretizations: discretizations.map(str::to_string),
         levels,
         ratio,
-        batch,
+        batch: batch_arg(batch)?,
+        yes,
     };
-    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
+    fresh(&dir, taut::report::Outputs::Precision)?;
+    let text = taut::scene::read_scene(&scene)?;
+    if (1..=5).contains(&levels) {
+        started(
+            &request
+                .estimate(&text, &set)
+                .map_err(|e| taut::scene::in_file(e, &scene))?,
+            yes,
+        )?;
+    }
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |d, _| bar.set_position(d as u64));
     bar.finish_and_clear();
@@ -793,7 +902,11 @@ fn cmd_precision(
 
 fn cmd_replay(path: &Path, max_iter: Option<u32>, solver: Option<&str>) -> taut::Result<()> {
     use taut::contact::{Level, SIGNORINI_TOLERANCE, replay};
-    let text = std::fs::read_to_string(path).map_err(|e| taut::Error::io(path, e))?;
+    let text = taut::input::read_text(
+        path,
+        "a saved contact problem",
+        taut::input::MAX_REPLAY_BYTES,
+    )?;
     taut::json_keys::reject_duplicate_keys(&text, path)?;
     let mut problem: taut::contact::ContactProblem = serde_json::from_str(&text)
         .map_err(|e| taut::Error::parse(format!("{}: {e}", path.display())))?;
@@ -861,10 +974,10 @@ fn cmd_compare(
     scene: PathBuf,
     formulations: &str,
     (methods, discretizations): (Option<&str>, Option<&str>),
-    (reference, reference_method, batch): (&str, Option<&str>, Option<usize>),
+    (reference, reference_method, batch): (&str, Option<&str>, Option<String>),
     set: Vec<String>,
     out: Option<PathBuf>,
-    quiet: bool,
+    (quiet, yes): (bool, bool),
 ) -> taut::Result<bool> {
     let request = taut::study::request::CompareRequest {
         formulations: formulations.to_string(),
@@ -872,10 +985,18 @@ fn cmd_compare(
         discretizations: discretizations.map(str::to_string),
         reference: reference.to_string(),
         reference_method: reference_method.map(str::to_string),
-        batch,
+        batch: batch_arg(batch)?,
+        yes,
     };
-    let text = taut::scene::read_scene(&scene)?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
+    fresh(&dir, taut::report::Outputs::Compare)?;
+    let text = taut::scene::read_scene(&scene)?;
+    started(
+        &request
+            .estimate(&text, &set)
+            .map_err(|e| taut::scene::in_file(e, &scene))?,
+        yes,
+    )?;
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |done, total| {
         bar.set_length(total as u64);

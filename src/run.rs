@@ -61,6 +61,8 @@ fn drive(
     build: &dyn Fn(&Resolved) -> Result<Integrator>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<RunOutput> {
+    // this run's share of the process's memory budget, held to its end
+    let _memory = crate::budget::reserve(sc.memory_estimate().total());
     let start = Instant::now();
     let mut it = build(sc)?;
     let mut rec = Recorder::new(sc, it.beam(), it.carriers());
@@ -317,6 +319,12 @@ pub fn run_many(
 /// Step `members` of `scenes` as one batch (equal keys); falls back to
 /// running them alone when no kernel fits.
 fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<RunOutput>)> {
+    let _memory = crate::budget::reserve(
+        members
+            .iter()
+            .map(|&i| scenes[i].memory_estimate().total())
+            .fold(0u64, u64::saturating_add),
+    );
     let start = Instant::now();
     let list: Vec<(usize, &Resolved)> = members.iter().map(|&i| (i, &scenes[i])).collect();
     let (batch, errors) = new_batch(&list);

@@ -54,6 +54,7 @@ fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results
         reference: "lagrange".into(),
         reference_method: None,
         batch: None,
+        yes: false,
     }
     .run(REFERENCE, &short(), &mut |_, _| {});
     let converge = taut::study::request::ConvergeRequest {
@@ -62,6 +63,7 @@ fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results
         ratio: 2.0,
         methods: Some("newmark,bathe".into()),
         discretizations: None,
+        yes: false,
     }
     .run(REFERENCE, &short(), &mut |_, _| {});
     interrupt::clear();

@@ -340,16 +340,30 @@ fn call<R: Send>(
     py: Python<'_>,
     (path, text): (Option<&str>, Option<String>),
     set: &[String],
-    out: Option<&Path>,
+    (out, kind): (Option<&Path>, taut::report::Outputs),
     progress: Option<&Bound<'_, PyAny>>,
     job: impl FnOnce(&str, &[String], &mut dyn FnMut(usize, usize)) -> taut::Result<R> + Send,
 ) -> PyResult<R> {
+    if let Some(dir) = out {
+        fresh(dir, kind).map_err(|e| to_py_err(py, e))?;
+    }
     let (text, path) = scene_text(path, text).map_err(|e| to_py_err(py, e))?;
     work(py, progress, |report| {
         job(&text, set, &mut |d, t| report(d, t))
     })?
     .map_err(|e| named(e, path.as_deref()))
     .map_err(|e| failed(py, e, out))
+}
+
+/// Remove the outputs an earlier call or command of this kind left in
+/// `dir`, saying so on stderr as the CLI does: a folder holds one run's
+/// outputs (`taut::report::clear_earlier`); an empty `dir` is refused.
+fn fresh(dir: &Path, kind: taut::report::Outputs) -> taut::Result<()> {
+    let removed = taut::report::clear_earlier(dir, kind)?;
+    if let Some(note) = taut::report::cleared_note(dir, &removed) {
+        eprintln!("{note}");
+    }
+    Ok(())
 }
 
 /// What `run` hands back: `(summary_json, history_columns, warnings,
@@ -392,7 +406,7 @@ fn run<'py>(
             py,
             scene,
             &set,
-            out.as_deref(),
+            (out.as_deref(), taut::report::Outputs::Run),
             progress.as_ref(),
             |text, set, p| tolerance_run(text, set, quantity, tol, p),
         )?;
@@ -422,7 +436,7 @@ fn run<'py>(
         py,
         scene,
         &set,
-        out.as_deref(),
+        (out.as_deref(), taut::report::Outputs::Run),
         progress.as_ref(),
         |text, set, p| {
             let sc = taut::resolve_scene(text, set)?;
@@ -447,7 +461,7 @@ fn pretty(value: &impl serde::Serialize) -> PyResult<String> {
 /// returns the columns of `sweep.csv`. `files` writes the CLI's tables and
 /// maps into `out` as well.
 #[pyfunction]
-#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress))]
+#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress, yes))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -462,6 +476,7 @@ fn sweep<'py>(
     batch: Option<usize>,
     check_refinement: bool,
     progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
 ) -> PyResult<Bound<'py, PyList>> {
     let err = |e| to_py_err(py, e);
     let (scene_text, path) = scene_text(path, text).map_err(err)?;
@@ -480,7 +495,16 @@ fn sweep<'py>(
     spec.validate()
         .map_err(|e| named(e, path.as_deref()))
         .map_err(err)?;
+    spec.estimate(None)
+        .and_then(|e| e.check(yes))
+        .map_err(err)?;
+    taut::report::check_out_dir(&out).map_err(err)?;
     let claimed = taut::study::sweep::claim(&out).map_err(err)?;
+    if files {
+        // only a folder holding this sweep (or none) has its tables cleared
+        taut::study::sweep::folder::check_spec(&out, &spec).map_err(err)?;
+        fresh(&out, taut::report::Outputs::Sweep).map_err(err)?;
+    }
     let records = work(py, progress.as_ref(), |report| {
         taut::study::threads::in_pool(threads, || {
             taut::study::sweep::sweep_batched(&claimed, &spec, None, batch, report)
@@ -499,7 +523,7 @@ fn sweep<'py>(
 /// stopped and the combinations that could not run; with `out` the CLI's
 /// files too.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, formulations, methods, discretizations, reference, reference_method, batch, out, progress))]
+#[pyo3(signature = (path, text, set, formulations, methods, discretizations, reference, reference_method, batch, out, progress, yes))]
 #[allow(clippy::too_many_arguments)]
 fn compare<'py>(
     py: Python<'py>,
@@ -514,6 +538,7 @@ fn compare<'py>(
     batch: Option<usize>,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
     let request = CompareRequest {
@@ -523,12 +548,13 @@ fn compare<'py>(
         reference,
         reference_method,
         batch,
+        yes,
     };
     let c = call(
         py,
         (path, text),
         &set,
-        out.as_deref(),
+        (out.as_deref(), taut::report::Outputs::Compare),
         progress.as_ref(),
         |text, set, p| request.run(text, set, p),
     )?;
@@ -545,7 +571,7 @@ fn compare<'py>(
 /// A convergence study: `(converge.csv columns, skipped)`; with `out` the
 /// CLI's files too.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, refine, levels, ratio, methods, discretizations, out, progress))]
+#[pyo3(signature = (path, text, set, refine, levels, ratio, methods, discretizations, out, progress, yes))]
 #[allow(clippy::too_many_arguments)]
 fn converge<'py>(
     py: Python<'py>,
@@ -559,6 +585,7 @@ fn converge<'py>(
     discretizations: Option<String>,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     use taut::study::request::ConvergeOutcome;
     let err = |e| to_py_err(py, e);
@@ -568,12 +595,13 @@ fn converge<'py>(
         ratio,
         methods,
         discretizations,
+        yes,
     };
     let outcome = call(
         py,
         (path, text),
         &set,
-        out.as_deref(),
+        (out.as_deref(), taut::report::Outputs::Converge),
         progress.as_ref(),
         |text, set, p| request.run(text, set, p),
     )?;
@@ -594,7 +622,7 @@ fn converge<'py>(
 /// A work–precision study: `(precision.csv columns, skipped)`; with `out`
 /// the CLI's files too.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, formulations, methods, discretizations, levels, ratio, batch, out, progress))]
+#[pyo3(signature = (path, text, set, formulations, methods, discretizations, levels, ratio, batch, out, progress, yes))]
 #[allow(clippy::too_many_arguments)]
 fn precision<'py>(
     py: Python<'py>,
@@ -609,6 +637,7 @@ fn precision<'py>(
     batch: Option<usize>,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
     let request = PrecisionRequest {
@@ -618,12 +647,13 @@ fn precision<'py>(
         levels,
         ratio,
         batch,
+        yes,
     };
     let p = call(
         py,
         (path, text),
         &set,
-        out.as_deref(),
+        (out.as_deref(), taut::report::Outputs::Precision),
         progress.as_ref(),
         |text, set, p| request.run(text, set, p),
     )?;
@@ -636,12 +666,24 @@ fn precision<'py>(
     ))
 }
 
+/// The ranges of the counted arguments the library checks:
+/// `(threads, batch)` upper bounds (both from 1), so that the Python layer
+/// names the real range for a value it refuses before the call.
+#[pyfunction]
+fn limits() -> (usize, usize) {
+    (
+        taut::study::threads::max_threads(),
+        taut::integrate::MAX_LANES,
+    )
+}
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("taut_version", taut::VERSION)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(limits, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;

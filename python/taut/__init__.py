@@ -137,8 +137,18 @@ def _toml(value: Any) -> str:
         return "{ " + inner + " }"
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml_quoted(v) for v in value) + "]"
-    if hasattr(value, "item"):  # a numpy scalar
-        return _toml(value.item())
+    if hasattr(value, "tolist"):  # a numpy scalar (a number) or array (a list)
+        try:
+            return _toml(value.tolist())
+        except SceneError:
+            raise
+        except Exception as e:  # an array numpy cannot turn into a list
+            raise SceneError(
+                f"set: a value of type {type(value).__name__} cannot be a scene value ({e})",
+                field="set",
+                value=_short(repr(value)),
+                allowed="a bool, number, str, list or dict (a numpy array becomes a list)",
+            ) from None
     raise SceneError(
         f"set: a value of type {type(value).__name__} cannot be a scene value",
         field="set",
@@ -156,14 +166,19 @@ def _key(key: str) -> str:
 _LARGEST = 2**63 - 1
 
 
-def _opt_count(name: str, value: Optional[int], least: int) -> Optional[int]:
-    """An optional integer argument (None: the default), as `_count`."""
-    return None if value is None else _count(name, value, least)
+def _opt_ranged(name: str, value: Optional[int]) -> Optional[int]:
+    """`threads` or `batch`: None (the default) or an int in the range the
+    library allows (1 ..= its limit), refused with that range."""
+    if value is None:
+        return None
+    threads, batch = _taut.limits()
+    return _count(name, value, 1, threads if name == "threads" else batch)
 
 
-def _count(name: str, value: int, least: int) -> int:
-    """An integer argument: refused by name unless an int ≥ `least` (the
-    library checks the upper bounds and names them the same way)."""
+def _count(name: str, value: int, least: int, most: int = _LARGEST) -> int:
+    """An integer argument: refused by name unless an int in `least ..=
+    most` (the library checks the upper bounds it knows and names them the
+    same way)."""
     if isinstance(value, bool) or not isinstance(value, int) and not hasattr(value, "__index__"):
         raise SceneError(
             f"invalid argument: `{name}` = {value!r}: must be an integer ≥ {least}",
@@ -172,20 +187,34 @@ def _count(name: str, value: int, least: int) -> int:
             allowed=f"an integer ≥ {least}",
         )
     n = int(value)
-    if n < least or n > _LARGEST:
+    if n < least or n > most:
+        shown = _short(str(n))
         raise SceneError(
-            f"invalid argument: `{name}` = {n}: must be an integer in {least} ..= {_LARGEST}",
+            f"invalid argument: `{name}` = {shown}: must be an integer in {least} ..= {most}",
             field=name,
-            value=str(n),
-            allowed=f"an integer in {least} ..= {_LARGEST}",
+            value=shown,
+            allowed=f"an integer in {least} ..= {most}",
         )
     return n
 
 
+def _short(text: str) -> str:
+    """Text for a message: at most 200 characters (the library clips so too)."""
+    return text if len(text) <= 200 else f"{text[:200]}… ({len(text)} characters in all)"
+
+
 def _real(name: str, value: float) -> float:
-    """A real argument: refused by name unless a number."""
+    """A real argument: refused by name unless a number a float can hold."""
     try:
         return float(value)
+    except OverflowError:
+        shown = _short(str(value))
+        raise SceneError(
+            f"invalid argument: `{name}` = {shown}: must be a number a float can hold (|x| < 1.8e308)",
+            field=name,
+            value=shown,
+            allowed="a number a float can hold (|x| < 1.8e308)",
+        ) from None
     except (TypeError, ValueError):
         raise SceneError(
             f"invalid argument: `{name}` = {value!r}: must be a number",
@@ -207,7 +236,16 @@ def _overrides(set: Union[None, Mapping[str, Any], Iterable[str]]) -> List[str]:
     if set is None:
         return []
     if isinstance(set, Mapping):
-        return [f"{k}={_toml(v)}" for k, v in set.items()]
+        out = []
+        for k, v in set.items():
+            try:
+                out.append(f"{k}={_toml(v)}")
+            except SceneError as e:
+                # name the key the value was given for
+                raise SceneError(
+                    f"set: `{k}`: {e}", field=str(k), value=e.value, allowed=e.allowed
+                ) from None
+        return out
     if isinstance(set, str):
         return [set]
     return [str(s) for s in set]
@@ -350,6 +388,7 @@ def sweep(
     batch: Optional[int] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
+    yes: bool = False,
 ) -> Table:
     """Sweep one or two scene values or dimensionless axes (`taut sweep`).
 
@@ -371,6 +410,9 @@ def sweep(
             finished, and the same call resumes from them. Without `out`
             the work happens in a temporary folder, removed afterwards.
         progress: see the module doc (points done, points).
+        yes: start even when the estimated cost is above 1e11 DOF-steps
+            (unknowns × steps over the runs); without it such a study raises
+            SceneError with the estimate, before any run.
 
     Returns:
         Table of sweep.csv's columns: the swept values, speed_ratio,
@@ -379,16 +421,16 @@ def sweep(
     """
     path, text = _scene(scene)
     args = (_axes(vary), log, _overrides(set))
-    n_threads, n_batch = _opt_count("threads", threads, 0), _opt_count("batch", batch, 0)
+    n_threads, n_batch = _opt_ranged("threads", threads), _opt_ranged("batch", batch)
     with _Sink(progress, "runs") as p:
         if out is not None:
             cols = _taut.sweep(
-                path, text, *args, os.fspath(out), True, n_threads, n_batch, check_refinement, p
+                path, text, *args, os.fspath(out), True, n_threads, n_batch, check_refinement, p, yes
             )
         else:
             with tempfile.TemporaryDirectory(prefix="taut-sweep-") as tmp:
                 cols = _taut.sweep(
-                    path, text, *args, tmp, False, n_threads, n_batch, check_refinement, p
+                    path, text, *args, tmp, False, n_threads, n_batch, check_refinement, p, yes
                 )
     return table(cols)
 
@@ -405,6 +447,7 @@ def compare(
     batch: Optional[int] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
+    yes: bool = False,
 ) -> Table:
     """Compare contact formulations, time integrators and space
     discretizations on one scene (`taut compare`).
@@ -417,7 +460,7 @@ def compare(
         discretizations: hermite, "galerkin:J", "modal:J" (default: the scene's own).
         reference: the formulation differences are measured against.
         reference_method: the method they are measured against (one of methods).
-        set, batch, out, progress: as for sweep().
+        set, batch, out, progress, yes: as for sweep().
 
     Returns:
         Table of compare.csv's columns, one row per run; `.failed` lists
@@ -435,9 +478,10 @@ def compare(
             _names(discretizations),
             reference,
             reference_method,
-            _opt_count("batch", batch, 0),
+            _opt_ranged("batch", batch),
             _out(out),
             p,
+            yes,
         )
     t = table(cols)
     t.failed = _not_run(failed)
@@ -456,6 +500,7 @@ def converge(
     set: Union[None, Mapping[str, Any], Iterable[str]] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
+    yes: bool = False,
 ) -> Table:
     """Refine mesh, step or both and measure errors, observed orders and GCI
     (`taut converge`).
@@ -466,7 +511,7 @@ def converge(
         ratio: refinement ratio between levels.
         methods, discretizations: study each side by side (default: the
             scene's own); a modal discretization refines its J.
-        set, out, progress: as for sweep().
+        set, out, progress, yes: as for sweep().
 
     Returns:
         Table of converge.csv's columns (method, discretization, level, h,
@@ -488,6 +533,7 @@ def converge(
             _names(discretizations),
             _out(out),
             p,
+            yes,
         )
     t = table(cols)
     t.skipped = _not_run(skipped)
@@ -506,9 +552,11 @@ def precision(
     batch: Optional[int] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
+    yes: bool = False,
 ) -> Table:
     """Work against precision over a (mesh, Δt) grid, per formulation,
-    method and discretization (`taut precision`).
+    method and discretization (`taut precision`). Arguments as for
+    compare(); levels and ratio as the CLI's --levels and --ratio.
 
     Returns:
         Table of precision.csv's columns, with the Pareto flag; `.skipped`
@@ -525,9 +573,10 @@ def precision(
             _names(discretizations),
             _count("levels", levels, 0),
             _count("ratio", ratio, 0),
-            _opt_count("batch", batch, 0),
+            _opt_ranged("batch", batch),
             _out(out),
             p,
+            yes,
         )
     t = table(cols)
     t.skipped = _not_run(skipped)

@@ -11,7 +11,7 @@ from typing import Callable, List, Optional, Tuple, Union
 __version__: str
 taut_version: str
 
-__all__ = ["__version__", "compare", "converge", "precision", "run", "sweep", "taut_version"]
+__all__ = ["__version__", "compare", "converge", "limits", "precision", "run", "sweep", "taut_version"]
 
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
@@ -26,6 +26,7 @@ def run(
     quantity: Optional[str],
     progress: _Progress,
 ) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]]]: ...
+def limits() -> Tuple[int, int]: ...
 def sweep(
     path: Optional[str],
     text: Optional[str],
@@ -38,6 +39,7 @@ def sweep(
     batch: Optional[int],
     check_refinement: bool,
     progress: _Progress,
+    yes: bool,
 ) -> List[_Column]: ...
 def compare(
     path: Optional[str],
@@ -51,6 +53,7 @@ def compare(
     batch: Optional[int],
     out: Optional[str],
     progress: _Progress,
+    yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun], List[_NotRun]]: ...
 def converge(
     path: Optional[str],
@@ -63,6 +66,7 @@ def converge(
     discretizations: Optional[str],
     out: Optional[str],
     progress: _Progress,
+    yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
 def precision(
     path: Optional[str],
@@ -76,4 +80,5 @@ def precision(
     batch: Optional[int],
     out: Optional[str],
     progress: _Progress,
+    yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun]]: ...

@@ -65,7 +65,8 @@ def test_study_arguments_are_named_as_python_arguments():
     assert e.value.field == "vary.speed_ratio"
     with pytest.raises(taut.SceneError) as e:
         taut.run(REFERENCE, set={"beam.tension": object()}, progress=False)
-    assert e.value.field == "set"
+    # the key the value was given for (issue 25: was "set")
+    assert e.value.field == "beam.tension"
 
 
 def test_tolerance_arguments_are_checked_by_name():

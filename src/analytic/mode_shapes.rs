@@ -104,6 +104,14 @@ use std::f64::consts::PI;
 /// and finer than any mesh it is compared with).
 pub const MAX_MODES: usize = 4000;
 
+/// Largest `T L²/EI` (the square of the clamped ends' boundary-layer
+/// parameter μL) the basis takes with a clamped end: curvatures carry
+/// α² ≈ T/EI times O(1) coefficients, and products of α² with the modal
+/// coordinates must stay far from f64's 1.8e308. Below it every root is
+/// found to round-off (`ClampedPinnedModes::phase`: tested down to
+/// EI = 10⁻¹⁰⁰ N·m² on the reference span, T L²/EI ≈ 10¹⁰⁸).
+pub const MAX_MU_L_SQUARED: f64 = 1e200;
+
 /// Which supported end pair the basis is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Ends {
@@ -247,6 +255,23 @@ impl ModeShapes {
                 ));
             }
         };
+        // the boundary layers of clamped ends are 1/α ≈ sqrt(EI/T) wide:
+        // curvatures carry α² = T/EI, which must stay finite
+        let mu_l_sq = t / ei * l * l;
+        if ends != Ends::PinnedPinned && (mu_l_sq.is_nan() || mu_l_sq > MAX_MU_L_SQUARED) {
+            return Err(Error::invalid(
+                "beam.youngs_modulus",
+                format!(
+                    "EI = {} N·m² with T = {} N",
+                    crate::error::compact_number(ei),
+                    crate::error::compact_number(t)
+                ),
+                format!(
+                    "the galerkin basis with a clamped end needs T L²/EI ≤ {MAX_MU_L_SQUARED:e} (here {}): its boundary layer, sqrt(EI/T) wide, enters the curvatures as T/EI, which overflows; use kind = \"hermite\", or pinned ends",
+                    crate::error::compact_number(mu_l_sq)
+                ),
+            ));
+        }
         let mut modes = Vec::with_capacity(count);
         let mut omega = Vec::with_capacity(count);
         match ends {
@@ -289,16 +314,23 @@ impl ModeShapes {
                 let odd = ClampedPinnedModes::new(ei, t, ra, half)?;
                 for n in 1..=count {
                     let k = n / 2;
-                    let beta = if n % 2 == 0 {
-                        odd.beta(k)
+                    // βℓ = kπ + δ (odd) or kπ + π/2 + δ (even), δ ∈ [0, π/2):
+                    // sin βℓ and cos βℓ from δ, not from the rounded βℓ (its
+                    // rounding, ε kπ, is as large as sin βℓ ≈ β/α itself
+                    // when αℓ ≳ 1/ε: modes.rs, ClampedPinnedModes::phase)
+                    let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+                    let (beta, sh, ch) = if n % 2 == 0 {
+                        let d = odd.phase(k);
+                        let (s, c) = d.sin_cos();
+                        ((k as f64 * PI + d) / half, sign * s, sign * c)
                     } else {
-                        let lo = (k as f64 * PI + 0.5 * PI) / half;
-                        let hi = (k as f64 * PI + PI) / half;
-                        bisect(|b| clamped_clamped_even(b, t / ei, half), lo, hi)
+                        let d = clamped_clamped_even_phase(k, t / ei, half);
+                        let (s, c) = d.sin_cos();
+                        // sin(π/2 + δ) = cos δ, cos(π/2 + δ) = −sin δ
+                        ((k as f64 * PI + 0.5 * PI + d) / half, sign * c, -sign * s)
                     };
                     let alpha = alpha_of(beta, t / ei);
                     let e = (-alpha * l).exp();
-                    let (sh, ch) = (beta * half).sin_cos();
                     omega.push(odd.omega_of_beta(beta));
                     modes.push(if n % 2 == 0 {
                         // sin β(x − ℓ) + sin βℓ (e^{−αx} − e^{−α(L−x)})/(1 − E)
@@ -507,36 +539,29 @@ fn alpha_of(beta: f64, mu2: f64) -> f64 {
     (beta * beta + mu2).sqrt()
 }
 
+/// The phase δ ∈ [0, π/2) of the even clamped–clamped mode of index k past
+/// `kπ + π/2` (`βℓ = kπ + π/2 + δ`), half span `half`, `mu2 = T/EI`: the
+/// root of `β cos δ − α tanh(αℓ) sin δ` (the module docs' `g(β)` times
+/// `(−1)^k hypot(α, β)`), positive at 0 and negative at π/2, bisected in δ
+/// so that no rounded `cos βℓ` enters (see `ClampedPinnedModes::phase`).
+fn clamped_clamped_even_phase(k: usize, mu2: f64, half: f64) -> f64 {
+    let base = k as f64 * PI + 0.5 * PI;
+    let g = |d: f64| {
+        let beta = (base + d) / half;
+        let alpha = alpha_of(beta, mu2);
+        let (s, c) = d.sin_cos();
+        beta * c - alpha * (alpha * half).tanh() * s
+    };
+    super::modes::bisect_phase(g, true)
+}
+
 /// The scaled characteristic function of the even clamped–clamped modes
-/// (module docs), half span `half`, `mu2 = T/EI`.
+/// (module docs), half span `half`, `mu2 = T/EI`; for tests.
+#[cfg(test)]
 fn clamped_clamped_even(beta: f64, mu2: f64, half: f64) -> f64 {
     let alpha = alpha_of(beta, mu2);
     let (s, c) = (beta * half).sin_cos();
     (beta * s + alpha * (alpha * half).tanh() * c) / alpha.hypot(beta)
-}
-
-/// The root of `f` in `[lo, hi]` (a sign change), bisected until the bracket
-/// cannot shrink; the endpoint with the smaller residual.
-fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let mut f_lo = f(lo);
-    debug_assert!((f_lo > 0.0) != (f(hi) > 0.0), "no sign change");
-    loop {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        let f_mid = f(mid);
-        if f_mid == 0.0 {
-            return mid;
-        }
-        if (f_mid > 0.0) == (f_lo > 0.0) {
-            lo = mid;
-            f_lo = f_mid;
-        } else {
-            hi = mid;
-        }
-    }
-    if f(lo).abs() <= f(hi).abs() { lo } else { hi }
 }
 
 #[cfg(test)]
@@ -1085,5 +1110,73 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Issue 25: with clamped ends and a boundary layer thinner than ε L
+    /// (μL ≳ 4.5·10¹⁵, EI ≲ 10⁻²⁴ N·m² on the reference span) the roots
+    /// were bisected on the rounded sin βL and landed a quarter period off.
+    /// Now every root and clamp holds to round-off down to the refusal at
+    /// T L²/EI = MAX_MU_L_SQUARED, on both sides of the old break.
+    #[test]
+    fn clamped_ends_hold_for_boundary_layers_thinner_than_round_off() {
+        let (t, ra, l) = (3.0e4, 1.335, 50.0);
+        for ei in [1e-20, 1e-24, 1e-25, 1e-26, 1e-40, 1e-100, 1e-190] {
+            for ends in [
+                (Support::Clamped, Support::Clamped),
+                (Support::Clamped, Support::Pinned),
+            ] {
+                let m = shapes((ei, t, ra, l), ends, 40);
+                let n = m.count();
+                let (mut v0, mut d0, mut vl) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+                let mut dl = vec![0.0; n];
+                m.values_into(0.0, &mut v0);
+                m.slopes_into(0.0, &mut d0);
+                m.values_into(l, &mut vl);
+                m.slopes_into(l, &mut dl);
+                let amp = (2.0 / (ra * l)).sqrt();
+                for j in 0..n {
+                    let beta = m.modes[j].beta;
+                    // the string limit: β_j L → (j + 1)π from above by O(1/(μL))
+                    let phase = beta * l - (j + 1) as f64 * PI;
+                    assert!(
+                        (0.0..1e-3).contains(&phase),
+                        "EI {ei:e} {ends:?} mode {j}: βL − (j+1)π = {phase:e}"
+                    );
+                    assert!(v0[j].abs() <= BOUNDARY * amp, "EI {ei:e} φ(0) = {}", v0[j]);
+                    assert!(
+                        d0[j].abs() <= BOUNDARY * amp * beta,
+                        "EI {ei:e} {ends:?} mode {j}: φ'(0) = {:e}, β = {beta:e}",
+                        d0[j]
+                    );
+                    assert!(vl[j].abs() <= BOUNDARY * amp, "EI {ei:e} φ(L) = {}", vl[j]);
+                    if ends.1 == Support::Clamped {
+                        assert!(
+                            dl[j].abs() <= BOUNDARY * amp * beta,
+                            "EI {ei:e} mode {j}: φ'(L) = {:e}",
+                            dl[j]
+                        );
+                    }
+                }
+            }
+        }
+        // past the bound: refused with the reason, naming EI
+        let e = ModeShapes::new(
+            &props((1e-194, t, ra, l), Support::Clamped, Support::Clamped),
+            10,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("beam.youngs_modulus") && e.contains("T L²/EI ≤ 1e200"),
+            "{e}"
+        );
+        // pinned ends have no boundary layer: any EI
+        assert!(
+            ModeShapes::new(
+                &props((1e-300, 1e10, ra, l), Support::Pinned, Support::Pinned),
+                10
+            )
+            .is_ok()
+        );
     }
 }

@@ -72,7 +72,17 @@ pub(crate) fn check(sys: &System, st: &State, s: &CarrierSample, carrier: usize)
             .then(|| weak_constraint_damping(sys))
             .flatten()
             .filter(|_| c.contact.is_some());
-        let cause = if sys.placement == Placement::Alpha && moving {
+        let cause = if st.step == 0 {
+            // nothing has been integrated yet: no step or contact law is to blame
+            format!(
+                "the initial state at t = 0 is already {}, before any step: the model built from the scene (its mass, stiffness and basis, the carriers' static equilibrium) does not hold at these magnitudes; check the scene's values (beam.youngs_modulus × beam.second_moment, beam.tension, carrier masses and stiffnesses) for extremes",
+                if value.is_finite() {
+                    "out of range"
+                } else {
+                    "not finite"
+                }
+            )
+        } else if sys.placement == Placement::Alpha && moving {
             "the gap is imposed at the α-level (contact.placement = \"alpha\"), which leaves an undamped step-to-step oscillation that a moving contact point drives unstable (MODEL §5); use contact.placement = \"end\"".to_string()
         } else if supersonic_mass {
             format!(

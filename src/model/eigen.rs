@@ -36,17 +36,36 @@
 //!
 //! | N elements | n unknowns | reduction (steps 1–2) | eigen (step 3) | `lowest_eigenpairs(·, ·, 20)` | [`eigenvalues`] (values only) |
 //! |---|---|---|---|---|---|
-//! | 800 | 1599 | 0.08 s | 1.07 s | 0.86 s | 0.39 s |
-//! | 1600 | 3199 | 0.33 s | 9.1 s | 10.6 s | 7.2 s |
+//! | 800 | 1599 | 0.08 s | 0.94 s | 1.05 s | 0.45 s |
+//! | 1600 | 3199 | 0.22 s | 7.6 s | 7.7 s | 4.3 s |
 //!
-//! faer parallelizes the eigen solve on rayon's global pool (its `rayon`
-//! feature), the pool a study's parallel runs share. The n³ eigen solve
-//! dominates (×8.5 for ×2 in n); the O(n² p) reduction is a few per cent of
-//! it. Memory: the reduction holds two dense n×n matrices
-//! (W and C), the eigensolver C, the eigenvectors and its workspace: a peak of
-//! ≈ 3–4 n² · 8 bytes (≈ 250–330 MB at n = 3199).
+//! The n³ eigen solve dominates (×8 for ×2 in n); the O(n² p) reduction
+//! is a few per cent of it. (Sequential, see *Determinism*; measured
+//! 2026-11-25 on the shared machine. The parallel solve it replaced was
+//! measured at 0.86 s and 10.6 s for the same two rows under load.)
+//!
+//! # Determinism
+//!
+//! faer's parallel eigensolver splits its work by the size of the pool it
+//! runs on, and so rounds differently on 1, 2 or 4 threads: a modal run gave
+//! different bytes under `--threads 1|2|4` or `taskset` (issue 25). The solve
+//! is therefore always sequential ([`faer::Par::Seq`]), whatever the pool or
+//! the machine's core count; a study's parallelism is across its runs.
+//! `tests/determinism.rs` compares a modal sweep's bytes on 1, 2 and 4
+//! threads.
+//!
+//! # Memory
+//!
+//! The reduction forms C in the storage of W (W is transposed in place and
+//! its columns solved), so the solve holds C, the eigenvectors and faer's
+//! workspace: [`eigen_bytes`] gives the exact figure from faer's own
+//! workspace requirement (≈ 3 n² · 8 bytes, ≈ 250 MB at n = 3199). Every
+//! dense allocation is fallible: memory the machine cannot give is an error
+//! naming the eigenproblem, never an abort.
 
-use faer::{Mat, Side};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::evd::{self, ComputeEigenvectors};
+use faer::{Mat, Par};
 
 use super::banded::SymBand;
 use crate::error::{Error, Result};
@@ -94,12 +113,11 @@ pub fn lowest_eigenpairs(mass: &SymBand, stiffness: &SymBand, count: usize) -> R
         ));
     }
     let l = BandCholesky::factor(mass)?;
-    let c = l.reduce(stiffness);
-    let evd = c
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| eigen_failed(n, e))?;
-    let (s, u) = (evd.S().column_vector(), evd.U());
-    let omega_sq: Vec<f64> = (0..count).map(|j| s[j]).collect();
+    let c = l.reduce(stiffness)?;
+    let (s, u) = solve(&c, ComputeEigenvectors::Yes)?;
+    drop(c);
+    let u = u.expect("vectors were asked for");
+    let omega_sq: Vec<f64> = s[..count].to_vec();
     let mut shapes = vec![0.0; n * count];
     for (j, phi) in shapes.chunks_exact_mut(n).enumerate() {
         for (i, v) in phi.iter_mut().enumerate() {
@@ -125,10 +143,70 @@ pub fn lowest_eigenpairs(mass: &SymBand, stiffness: &SymBand, count: usize) -> R
 /// All n eigenvalues ω² of `K φ = ω² M φ`, ascending, without the vectors
 /// (faer's values-only path, about half the time of [`lowest_eigenpairs`]).
 pub fn eigenvalues(mass: &SymBand, stiffness: &SymBand) -> Result<Vec<f64>> {
-    let n = check(mass, stiffness)?;
-    let c = BandCholesky::factor(mass)?.reduce(stiffness);
-    c.self_adjoint_eigenvalues(Side::Lower)
-        .map_err(|e| eigen_failed(n, e))
+    check(mass, stiffness)?;
+    let c = BandCholesky::factor(mass)?.reduce(stiffness)?;
+    Ok(solve(&c, ComputeEigenvectors::No)?.0)
+}
+
+/// faer's workspace for the n×n solve: a sequential solve's requirement,
+/// the same on every machine.
+fn workspace(n: usize, vectors: ComputeEigenvectors) -> StackReq {
+    evd::self_adjoint_evd_scratch::<f64>(n, vectors, Par::Seq, Default::default())
+}
+
+/// Bytes one n×n eigenproblem holds at its peak: C, the eigenvectors and
+/// faer's workspace (the banded factor and the kept shapes are O(n p), O(n J)
+/// and counted by the run). What the memory budget reserves for the solve
+/// ([`crate::budget`]).
+pub fn eigen_bytes(n: usize) -> u64 {
+    let dense = (n as u64).saturating_mul(n as u64).saturating_mul(8);
+    dense
+        .saturating_mul(2)
+        .saturating_add(workspace(n, ComputeEigenvectors::Yes).unaligned_bytes_required() as u64)
+}
+
+/// An n×m matrix of zeros, or an error naming the eigenproblem when the
+/// machine cannot give the memory (an allocation failure would abort).
+fn zeros(n: usize, m: usize) -> Result<Mat<f64>> {
+    let mut a = Mat::<f64>::new();
+    a.try_reserve(n, m).map_err(|_| out_of_memory(n))?;
+    a.resize_with(n, m, |_, _| 0.0);
+    Ok(a)
+}
+
+fn out_of_memory(n: usize) -> Error {
+    Error::invalid(
+        "mesh.elements",
+        format!("{n} FE unknowns"),
+        format!(
+            "the modal eigenproblem needs about {:.2} GiB, which the machine could not give: \
+             use fewer elements, or fewer runs at once (--threads)",
+            eigen_bytes(n) as f64 / (1u64 << 30) as f64
+        ),
+    )
+}
+
+/// The eigenvalues (ascending) of the symmetric C (lower triangle read), and
+/// its eigenvectors when asked: faer's solver, sequential ([`Par::Seq`]: the
+/// same bytes whatever the thread pool), every allocation fallible.
+fn solve(c: &Mat<f64>, vectors: ComputeEigenvectors) -> Result<(Vec<f64>, Option<Mat<f64>>)> {
+    let n = c.nrows();
+    let mut s = faer::diag::Diag::<f64>::zeros(n);
+    let mut u = match vectors {
+        ComputeEigenvectors::Yes => Some(zeros(n, n)?),
+        ComputeEigenvectors::No => None,
+    };
+    let mut buf = MemBuffer::try_new(workspace(n, vectors)).map_err(|_| out_of_memory(n))?;
+    evd::self_adjoint_evd(
+        c.as_ref(),
+        s.as_mut(),
+        u.as_mut().map(|u| u.as_mut()),
+        Par::Seq,
+        MemStack::new(&mut buf),
+        Default::default(),
+    )
+    .map_err(|e| eigen_failed(n, e))?;
+    Ok((s.column_vector().iter().copied().collect(), u))
 }
 
 /// n, once the sizes are consistent and within [`MAX_MODAL_DOFS`].
@@ -228,12 +306,13 @@ impl BandCholesky {
         }
     }
 
-    /// C = L⁻¹ K L⁻ᵀ, dense (both triangles filled; symmetric to round-off).
-    fn reduce(&self, k: &SymBand) -> Mat<f64> {
+    /// C = L⁻¹ K L⁻ᵀ, dense (both triangles filled; symmetric to round-off),
+    /// in one n×n allocation.
+    fn reduce(&self, k: &SymBand) -> Result<Mat<f64>> {
         let (n, q) = (self.n, k.bandwidth());
         // W = L⁻¹ K column by column: K[:, j] is zero above row j − q, and so
         // is L⁻¹ K[:, j] (L lower triangular)
-        let mut w = Mat::<f64>::zeros(n, n);
+        let mut w = zeros(n, n)?;
         for j in 0..n {
             let first = j.saturating_sub(q);
             let col = w.col_as_slice_mut(j);
@@ -242,16 +321,18 @@ impl BandCholesky {
             }
             self.solve_lower_from(col, first);
         }
-        // C = L⁻¹ Wᵀ, column j of Wᵀ is row j of W
-        let mut c = Mat::<f64>::zeros(n, n);
+        // C = L⁻¹ Wᵀ: transpose W in place, then solve each column
         for j in 0..n {
-            let col = c.col_as_slice_mut(j);
-            for (i, v) in col.iter_mut().enumerate() {
-                *v = w[(j, i)];
+            for i in j + 1..n {
+                let (a, b) = (w[(i, j)], w[(j, i)]);
+                w[(i, j)] = b;
+                w[(j, i)] = a;
             }
-            self.solve_lower_from(col, 0);
         }
-        c
+        for j in 0..n {
+            self.solve_lower_from(w.col_as_slice_mut(j), 0);
+        }
+        Ok(w)
     }
 }
 
@@ -436,9 +517,10 @@ mod tests {
             let t0 = Instant::now();
             let c = BandCholesky::factor(&beam.mass)
                 .unwrap()
-                .reduce(&beam.stiffness);
+                .reduce(&beam.stiffness)
+                .unwrap();
             let t1 = Instant::now();
-            let evd = c.self_adjoint_eigen(Side::Lower).unwrap();
+            let evd = solve(&c, ComputeEigenvectors::Yes).unwrap();
             let t2 = Instant::now();
             drop(evd);
             let e = lowest_eigenpairs(&beam.mass, &beam.stiffness, 20).unwrap();
@@ -458,5 +540,60 @@ mod tests {
             );
             assert_eq!(e.count, 20);
         }
+    }
+}
+
+#[cfg(test)]
+mod determinism {
+    //! The same eigenpairs, bit for bit, on any pool size (issue 25): faer's
+    //! parallel solver rounded differently on 1, 2 and 4 threads from 50
+    //! elements up (measured before the fix: 50, 200 and 400 elements all
+    //! differed), so a 200-element beam in pools of 1, 2 and 4 threads fails
+    //! if the solve follows the pool again.
+    use super::*;
+    use crate::model::beam::BeamModel;
+    use crate::scene::{BeamProps, Support};
+
+    fn pairs_on(threads: usize, elements: usize) -> EigenPairs {
+        let p = BeamProps {
+            length: 50.0,
+            rho_a: 1.335,
+            ei: 129.2,
+            ea: None,
+            tension: 2.0e4,
+            left: Support::Clamped,
+            right: Support::Pinned,
+            distributed_load: 0.0,
+        };
+        let beam = BeamModel::new(&p, elements);
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| lowest_eigenpairs(&beam.mass, &beam.stiffness, 50).unwrap())
+    }
+
+    fn bits(e: &EigenPairs) -> Vec<u64> {
+        e.omega_sq
+            .iter()
+            .chain(&e.shapes)
+            .map(|v| v.to_bits())
+            .collect()
+    }
+
+    #[test]
+    fn eigenpairs_are_the_same_bits_on_1_2_and_4_threads() {
+        let one = bits(&pairs_on(1, 200));
+        for threads in [2, 4] {
+            assert!(one == bits(&pairs_on(threads, 200)), "{threads} threads");
+        }
+    }
+
+    #[test]
+    fn the_workspace_estimate_is_what_faer_asks_for() {
+        let n = 401;
+        let ws = workspace(n, ComputeEigenvectors::Yes).unaligned_bytes_required() as u64;
+        assert_eq!(eigen_bytes(n), 2 * 8 * (n * n) as u64 + ws);
+        assert!(ws > 0);
     }
 }

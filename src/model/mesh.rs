@@ -242,6 +242,39 @@ pub fn check_elements(grading: Grading, elements: usize) -> Result<()> {
     Ok(())
 }
 
+/// Shortest element a graded mesh may have, as a fraction of L: the finest
+/// mesh taut allows (10⁶ elements graded 1000 : 1) has h_min ≈ 7·10⁻⁹ L, so
+/// a shorter element comes only from a `point` grading at the very end of
+/// the span, where the element matrices (∝ h⁻³) lose their precision and
+/// then overflow (`grading_at = 1e-300` gave a NaN pivot, issue 25).
+pub const MIN_ELEMENT_FRACTION: f64 = 1e-10;
+
+/// The shortest element of `Mesh::new(length, elements, grading)`, m,
+/// without building the mesh (O(1)).
+pub fn shortest_element(length: f64, elements: usize, grading: Grading) -> f64 {
+    // the first (smallest) size of graded_sizes(s, m, ratio)
+    let first = |s: f64, m: usize, ratio: f64| {
+        if m <= 1 || ratio == 1.0 {
+            s / m.max(1) as f64
+        } else {
+            let q = ratio.powf(1.0 / (m - 1) as f64);
+            s * (q - 1.0) / (q.powi(m as i32) - 1.0)
+        }
+    };
+    match grading {
+        Grading::Uniform => length / elements as f64,
+        Grading::Supports { ratio } => {
+            let left = elements.div_ceil(2);
+            first(length / 2.0, left, ratio).min(first(length / 2.0, elements - left, ratio))
+        }
+        Grading::Left { ratio } | Grading::Right { ratio } => first(length, elements, ratio),
+        Grading::Point { ratio, at } => {
+            let left = ((elements as f64 * at / length).round() as usize).clamp(1, elements - 1);
+            first(at, left, ratio).min(first(length - at, elements - left, ratio))
+        }
+    }
+}
+
 /// m element sizes on a segment of length `s`, graded toward its start
 /// with h_max/h_min = ratio (module docs). One element takes the whole
 /// segment.

@@ -320,6 +320,21 @@ fn log_log(
     }
     let (x0, x1) = (x0 / 1.5, x1 * 1.5);
     let (y0, y1) = (y0 / 10.0, y1 * 10.0);
+    let ranges = super::axis_range::drawable("horizontal", x0, x1, true)
+        .and_then(|x| super::axis_range::drawable("vertical", y0, y1, true).map(|y| (x, y)));
+    let ((x0, x1), (y0, y1)) = match ranges {
+        Ok(r) => r,
+        Err(reason) => {
+            super::axis_range::write_note(
+                path,
+                (900, 600),
+                caption,
+                &reason,
+                "converge.csv and converge.json",
+            )?;
+            return Ok(());
+        }
+    };
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)

@@ -1,10 +1,12 @@
 //! Plain-file outputs of a run: `history.csv`, `summary.json`, `force.svg`
 //! (formats documented in `docs/output.md`).
 
+mod axis_range;
 mod compare;
 mod converge;
 mod csv;
 mod gate;
+mod outputs;
 mod plot;
 mod precision;
 mod summary;
@@ -21,6 +23,7 @@ pub use converge::{
 };
 pub use csv::{history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
+pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
 pub use plot::write_force_plot;
 pub use precision::{PRECISION_COLUMNS, precision_rows, precision_table, write_precision};
 pub use summary::{Derived, Summary, mesh_label, write_summary};

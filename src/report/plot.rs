@@ -47,12 +47,19 @@ pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<
     let nc = out.history.carriers.len();
     (0..nc)
         .map(|c| {
-            let (xs, _) = abscissa(sc, out, c);
-            let points = xs
-                .into_iter()
-                .zip(out.history.carriers[c].force.iter().copied())
-                .skip(1)
-                .collect();
+            // rows 1 … n, reduced as they are read (no copy of the history)
+            let h = &out.history;
+            let force = &h.carriers[c].force;
+            let l = sc.beam.length;
+            let at = |i: usize| {
+                let x = if in_time {
+                    h.t[i + 1]
+                } else {
+                    h.carriers[c].x[i + 1] / l
+                };
+                (x, force[i + 1])
+            };
+            let points = decimate_with(force.len().saturating_sub(1), at);
             let stats = &out.stats[c];
             let label = match (prefix.is_empty(), nc) {
                 (true, 1) => "λ".to_string(),
@@ -107,6 +114,62 @@ pub(crate) fn line_plot(
     })
 }
 
+/// Pixel size of a line plot.
+const SIZE: (u32, u32) = (960, 480);
+
+/// Index buckets a series is reduced to before drawing: each keeps its
+/// first, lowest, highest and last point, so the drawn envelope is the
+/// data's at any length (a 4·10⁷-step run drew a 347 MB `force.svg`; now at
+/// most 4 × 2000 points a series, about two buckets a pixel column).
+pub(crate) const PLOT_BUCKETS: usize = 2000;
+
+/// `points` reduced to at most 4 × [`PLOT_BUCKETS`], in order: per bucket
+/// of consecutive points, the first, the lowest, the highest and the last
+/// (each once). Points with a non-finite coordinate are dropped (nothing to
+/// draw).
+pub(crate) fn decimate(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    decimate_with(points.len(), |i| points[i])
+}
+
+/// [`decimate`] of the `n` points `at(0) … at(n − 1)`, read once each in
+/// order and never gathered (a run's history is not copied to be drawn).
+pub(crate) fn decimate_with(n: usize, at: impl Fn(usize) -> (f64, f64)) -> Vec<(f64, f64)> {
+    let finite = |p: (f64, f64)| p.0.is_finite() && p.1.is_finite();
+    if n <= 4 * PLOT_BUCKETS {
+        return (0..n).map(&at).filter(|&p| finite(p)).collect();
+    }
+    let per = n.div_ceil(PLOT_BUCKETS);
+    let mut out = Vec::with_capacity(4 * PLOT_BUCKETS);
+    let mut start = 0;
+    while start < n {
+        let end = (start + per).min(n);
+        // (index, point) of the first, lowest, highest and last finite points
+        let mut picks: [Option<(usize, (f64, f64))>; 4] = [None; 4];
+        for i in start..end {
+            let p = at(i);
+            if !finite(p) {
+                continue;
+            }
+            if picks[0].is_none() {
+                picks[0] = Some((i, p));
+            }
+            if picks[1].is_none_or(|(_, q)| p.1 < q.1) {
+                picks[1] = Some((i, p));
+            }
+            if picks[2].is_none_or(|(_, q)| p.1 > q.1) {
+                picks[2] = Some((i, p));
+            }
+            picks[3] = Some((i, p));
+        }
+        let mut kept: Vec<(usize, (f64, f64))> = picks.into_iter().flatten().collect();
+        kept.sort_by_key(|k| k.0);
+        kept.dedup_by_key(|k| k.0);
+        out.extend(kept.into_iter().map(|k| k.1));
+        start = end;
+    }
+    out
+}
+
 fn draw(
     path: &Path,
     title: &str,
@@ -115,10 +178,23 @@ fn draw(
     series: &[Series],
     shading: &str,
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let series: Vec<Series> = series
+        .iter()
+        .map(|s| Series {
+            label: s.label.clone(),
+            points: decimate(&s.points),
+            shaded: s
+                .shaded
+                .iter()
+                .copied()
+                .filter(|iv| iv[0].is_finite() && iv[1].is_finite())
+                .collect(),
+        })
+        .collect();
     let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut ys: Vec<f64> = Vec::new();
-    for s in series {
+    for s in &series {
         for &(x, y) in &s.points {
             x0 = x0.min(x);
             x1 = x1.max(x);
@@ -129,9 +205,6 @@ fn draw(
     }
     if !x0.is_finite() {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    if x1 <= x0 {
-        x1 = x0 + 1.0;
     }
     ys.sort_by(f64::total_cmp);
     let p995 = ys
@@ -147,10 +220,27 @@ fn draw(
     let (y0, y1) = (y0 - pad, y1 + pad);
     let mut caption = title.to_string();
     if clipped {
-        caption.push_str(&format!(" (axis clipped; peak {true_max:.0})"));
+        caption.push_str(&format!(
+            " (axis clipped; peak {})",
+            crate::error::compact_number(true_max.round())
+        ));
     }
+    let ranges = super::axis_range::drawable("horizontal", x0, x1, false)
+        .and_then(|x| super::axis_range::drawable("vertical", y0, y1, false).map(|y| (x, y)));
+    let ((x0, x1), (y0, y1)) = match ranges {
+        Ok(r) => r,
+        Err(reason) => {
+            let table = if path.file_name().is_some_and(|n| n == "force.svg") {
+                "history.csv and summary.json"
+            } else {
+                "the CSV and JSON tables beside it"
+            };
+            super::axis_range::write_note(path, SIZE, &caption, &reason, table)?;
+            return Ok(());
+        }
+    };
 
-    let root = SVGBackend::new(path, (960, 480)).into_drawing_area();
+    let root = SVGBackend::new(path, SIZE).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(caption, ("sans-serif", 18))
@@ -197,4 +287,37 @@ fn draw(
         .draw()?;
     root.present()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimation_keeps_the_envelope_and_drops_non_finite_points() {
+        // short series: as they are, less the non-finite points
+        let short = vec![(0.0, 1.0), (1.0, f64::NAN), (2.0, 3.0)];
+        assert_eq!(decimate(&short), vec![(0.0, 1.0), (2.0, 3.0)]);
+        // a long series: bounded, in order, with its extremes and ends
+        let n = 1_000_003;
+        let pts: Vec<(f64, f64)> = (0..n)
+            .map(|i| {
+                (
+                    i as f64,
+                    ((i * 7919) % 1013) as f64 - if i == 500_000 { 1e6 } else { 0.0 },
+                )
+            })
+            .collect();
+        let d = decimate(&pts);
+        assert!(d.len() <= 4 * PLOT_BUCKETS, "{}", d.len());
+        assert!(d.windows(2).all(|w| w[0].0 < w[1].0));
+        assert_eq!(d.first(), pts.first());
+        assert_eq!(d.last(), pts.last());
+        let lowest = d.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let highest = d.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+        let extreme = |f: fn(f64, f64) -> f64, from: f64| pts.iter().map(|p| p.1).fold(from, f);
+        assert_eq!(lowest, extreme(f64::min, f64::INFINITY));
+        assert!(lowest < -9e5);
+        assert_eq!(highest, extreme(f64::max, f64::NEG_INFINITY));
+    }
 }

@@ -137,20 +137,25 @@ fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::erro
     if pts.is_empty() {
         (x0, x1, y0, y1) = (1e-3, 1.0, 1e-6, 1.0);
     }
+    let title = "work–precision: contact force error against wall time";
+    let ranges = super::axis_range::drawable("wall time", x0 / 1.5, x1 * 1.5, true).and_then(|x| {
+        super::axis_range::drawable("force error", y0 / 2.0, y1 * 2.0, true).map(|y| (x, y))
+    });
+    let ((x0, x1), (y0, y1)) = match ranges {
+        Ok(r) => r,
+        Err(reason) => {
+            super::axis_range::write_note(path, (900, 600), title, &reason, "precision.csv")?;
+            return Ok(());
+        }
+    };
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "work–precision: contact force error against wall time",
-            ("sans-serif", 18),
-        )
+        .caption(title, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(80)
-        .build_cartesian_2d(
-            (x0 / 1.5..x1 * 1.5).log_scale(),
-            (y0 / 2.0..y1 * 2.0).log_scale(),
-        )?;
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     chart
         .configure_mesh()
         .x_desc("wall time per run (s)")

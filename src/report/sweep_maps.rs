@@ -283,6 +283,35 @@ fn span(e: &[f64]) -> (f64, f64) {
 }
 
 fn draw_map(path: &Path, map: &Map) -> Result<()> {
+    // every axis drawable first (axis_range), else a note in the map's place
+    let (x0, x1) = span(&map.x_edges);
+    let (y0, y1) = span(&map.y_edges);
+    let mut checked = super::axis_range::drawable(&map.x_desc, x0, x1, map.x_log)
+        .and_then(|_| super::axis_range::drawable(&map.y_desc, y0, y1, map.y_log))
+        .map(|_| ());
+    if let (
+        Ok(()),
+        Paint::Scale {
+            lo,
+            hi,
+            log,
+            bar_label,
+            ..
+        },
+    ) = (&checked, &map.paint)
+    {
+        let hi = if hi > lo { *hi } else { lo + 1.0 };
+        checked = super::axis_range::drawable(bar_label, *lo, hi, *log).map(|_| ());
+    }
+    if let Err(reason) = checked {
+        return super::axis_range::write_note(
+            path,
+            SIZE,
+            &map.title,
+            &reason,
+            "sweep.csv, sweep_force.csv and sweep_loss.csv",
+        );
+    }
     render(path, map).map_err(|e| Error::Output {
         path: path.into(),
         reason: e.to_string(),

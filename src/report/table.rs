@@ -153,9 +153,23 @@ impl Table {
     /// Hand the header and then each row, as a CSV line with its line
     /// break, to `sink`.
     fn rows_into(&self, sink: &mut dyn FnMut(&str) -> std::io::Result<()>) -> std::io::Result<()> {
-        let mut line = self.names().join(",");
-        line.push('\n');
-        sink(&line)?;
+        self.lines_into(true, sink)
+    }
+
+    /// The CSV lines (with the header line first when `header`) into
+    /// `sink`, one at a time: a table written in parts (`history.csv`, a
+    /// block of rows at a time) gives the same bytes as written whole.
+    pub(crate) fn lines_into(
+        &self,
+        header: bool,
+        sink: &mut dyn FnMut(&str) -> std::io::Result<()>,
+    ) -> std::io::Result<()> {
+        let mut line = String::new();
+        if header {
+            line = self.names().join(",");
+            line.push('\n');
+            sink(&line)?;
+        }
         for i in 0..self.rows() {
             line.clear();
             for (k, (_, c)) in self.columns.iter().enumerate() {

@@ -246,5 +246,31 @@ fn resolve_grading(mesh: &MeshSpec, beam: &BeamProps) -> Result<Grading> {
     };
     // the mesh builder's own check: one element per graded segment
     crate::model::mesh::check_elements(grading, mesh.elements)?;
+    // no element too short for its matrices (a point at the very end)
+    use crate::model::mesh::{MIN_ELEMENT_FRACTION, shortest_element};
+    let h_min = shortest_element(beam.length, mesh.elements, grading);
+    if h_min.is_nan() || h_min < MIN_ELEMENT_FRACTION * beam.length {
+        let (field, value, what): (&str, String, &str) = match grading {
+            Grading::Point { at, .. } => (
+                "mesh.grading_at",
+                crate::error::compact_number(at),
+                "move the point away from the end",
+            ),
+            _ => (
+                "mesh.elements",
+                mesh.elements.to_string(),
+                "use fewer elements or a smaller mesh.grading_ratio",
+            ),
+        };
+        return Err(Error::invalid(
+            field,
+            value,
+            format!(
+                "gives a shortest element of {} m, below {MIN_ELEMENT_FRACTION:e} of the span L = {} m, where the element matrices (∝ 1/h³) lose their precision: {what}",
+                crate::error::compact_number(h_min),
+                crate::error::compact_number(beam.length)
+            ),
+        ));
+    }
     Ok(grading)
 }

@@ -221,9 +221,11 @@ pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Resolved> {
     resolve_scene(&text, overrides).map_err(|e| in_file(e, path))
 }
 
-/// A scene file's text (an unreadable file is an I/O error naming it).
+/// A scene file's text (an unreadable file is an I/O error naming it; one
+/// larger than [`crate::input::MAX_INPUT_BYTES`], or not UTF-8 text, is
+/// refused as soon as that shows).
 pub fn read_scene(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|e| Error::io(path, e))
+    crate::input::read_text(path, "a scene file", crate::input::MAX_INPUT_BYTES)
 }
 
 /// Name the scene file in a parse error of its text (made by a function

@@ -19,6 +19,18 @@ use crate::integrate::rhs_columns;
 /// below) fits it with room for its history.
 pub const MEMORY_BUDGET_BYTES: u64 = 2 << 30;
 
+/// Largest `history.csv` a run may plan to write, bytes (4 GiB), by the
+/// estimate [`CSV_BYTES_PER_VALUE`] × values per row × rows: like the memory
+/// budget a fixed number, so a scene is accepted the same way everywhere.
+/// A 4.35·10⁷-row run wrote a 4.15 GB file before it (issue 25).
+pub const OUTPUT_BUDGET_BYTES: u64 = 4 << 30;
+
+/// Bytes of one value of `history.csv`, counted generously: a value is at
+/// most 24 characters in shortest round-trip form and a comma; measured
+/// 95 bytes a row for 7 values (13.6 a value) on a 4.35·10⁷-row
+/// `t2_stationary_mass` run, so 16 is an upper estimate for typical rows.
+pub const CSV_BYTES_PER_VALUE: u64 = 16;
+
 /// Bytes of one history row for the time column (`t`, f64).
 pub const ROW_TIME_BYTES: u64 = 8;
 
@@ -69,6 +81,10 @@ pub struct MemoryEstimate {
     pub rows: u64,
     /// The model and the integrator's work arrays.
     pub model: u64,
+    /// The estimated size of `history.csv`, bytes (on disk, not in memory).
+    pub csv: u64,
+    /// Values in one row of `history.csv`.
+    pub csv_values: u64,
 }
 
 impl MemoryEstimate {
@@ -120,11 +136,17 @@ pub fn estimate(
                 .saturating_mul(u(carriers))
                 .saturating_mul(8 * DENSE_CONTACT_MATRICES),
         );
+    // t, then x, w, q, gap, λ and the contact flag per carrier, then probes
+    let csv_values = 1 + 6 * u(carriers) + u(probes);
     MemoryEstimate {
         history: rows.saturating_mul(row),
         row,
         rows,
         model,
+        csv: rows
+            .saturating_mul(csv_values)
+            .saturating_mul(CSV_BYTES_PER_VALUE),
+        csv_values,
     }
 }
 
@@ -149,7 +171,8 @@ pub fn check_budget(
     probes: usize,
 ) -> Result<()> {
     let budget = MEMORY_BUDGET_BYTES;
-    if e.total() <= budget {
+    let memory_over = e.total() > budget;
+    if !memory_over && e.csv <= OUTPUT_BUDGET_BYTES {
         return Ok(());
     }
     let need = format!(
@@ -160,7 +183,7 @@ pub fn check_budget(
         gib(e.model),
         gib(budget)
     );
-    if e.model.saturating_add(2 * e.row) > budget {
+    if memory_over && e.model.saturating_add(2 * e.row) > budget {
         // even a two-row history does not fit: the model or a row is too big
         return Err(if e.model > budget / 2 {
             Error::invalid(
@@ -176,14 +199,33 @@ pub fn check_budget(
             )
         });
     }
-    // the fewest rows that fit, and the record_every that gives them
-    let rows_fit = (budget - e.model) / e.row; // ≥ 2 here
+    // the fewest rows that fit both budgets, and the record_every that gives them
+    let row_csv = e.csv_values.saturating_mul(CSV_BYTES_PER_VALUE).max(1);
+    let rows_fit_csv = (OUTPUT_BUDGET_BYTES / row_csv).max(2);
+    let rows_fit_memory = if memory_over {
+        (budget - e.model) / e.row.max(1) // ≥ 2 here
+    } else {
+        u64::MAX
+    };
+    let rows_fit = rows_fit_csv.min(rows_fit_memory).max(2);
     let min_every = (steps as u64).div_ceil(rows_fit - 1).max(every as u64 + 1);
+    let csv = format!(
+        "history.csv would hold an estimated {} ({} rows × {} values × {CSV_BYTES_PER_VALUE} bytes), above the output budget of {}",
+        gib(e.csv),
+        e.rows,
+        e.csv_values,
+        gib(OUTPUT_BUDGET_BYTES)
+    );
+    let why = match (memory_over, e.csv > OUTPUT_BUDGET_BYTES) {
+        (true, true) => format!("{need}; {csv}"),
+        (true, false) => need,
+        _ => csv,
+    };
     Err(Error::invalid(
         "output.record_every",
         every,
         format!(
-            "{need}: record fewer rows with [output] record_every ≥ {min_every} (statistics still use every step), or give fewer steps or probes"
+            "{why}: record fewer rows with [output] record_every ≥ {min_every} (statistics still use every step), or give fewer steps or probes"
         ),
     ))
 }

@@ -165,6 +165,40 @@ impl Resolved {
         super::discretization::fe_unknowns(&self.beam, self.elements)
     }
 
+    /// The memory the run is estimated to need (history, model, a modal
+    /// basis's eigenproblem) and the size of its `history.csv`: what
+    /// validation checks against the budgets and what a run reserves from
+    /// the process's budget while it runs ([`crate::budget`]).
+    pub fn memory_estimate(&self) -> super::memory::MemoryEstimate {
+        let (per_node, half_band) = if self.beam.is_string() {
+            (1, 1)
+        } else {
+            (2, 3)
+        };
+        let masses = self
+            .carriers
+            .iter()
+            .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
+            .count();
+        let mut need = super::memory::estimate(
+            self.steps,
+            self.record_every,
+            self.elements,
+            per_node,
+            half_band,
+            self.carriers.len(),
+            masses,
+            self.probes.len(),
+        );
+        if let Discretization::Modal { modes } = self.discretization {
+            need.model = need.model.saturating_add(super::memory::modal_bytes(
+                super::discretization::fe_unknowns(&self.beam, self.elements),
+                modes,
+            ));
+        }
+        need
+    }
+
     /// Rows the run's history will hold.
     pub fn history_rows(&self) -> usize {
         super::memory::history_rows(self.steps, self.record_every)
@@ -376,36 +410,6 @@ impl Scene {
         }
         let record_every = usize::try_from(self.output.record_every).unwrap_or(usize::MAX);
         let steps = steps_f as usize;
-        let (per_node, half_band) = if beam.is_string() { (1, 1) } else { (2, 3) };
-        let masses = carriers
-            .iter()
-            .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
-            .count();
-        let mut need = super::memory::estimate(
-            steps,
-            record_every,
-            elements,
-            per_node,
-            half_band,
-            carriers.len(),
-            masses,
-            probes.len(),
-        );
-        if let Discretization::Modal { modes } = discretization {
-            need.model = need.model.saturating_add(super::memory::modal_bytes(
-                super::discretization::fe_unknowns(&beam, elements),
-                modes,
-            ));
-        }
-        super::memory::check_budget(
-            &need,
-            steps,
-            record_every,
-            elements,
-            carriers.len(),
-            probes.len(),
-        )?;
-
         let manufactured = match &self.manufactured {
             None => None,
             Some(spec) => Some(crate::manufactured::Manufactured::new(
@@ -422,7 +426,7 @@ impl Scene {
         };
         let reference = self.declared_reference(&beam, &carriers)?;
 
-        Ok(Resolved {
+        let resolved = Resolved {
             manufactured,
             reference,
             scene: self.clone(),
@@ -440,7 +444,16 @@ impl Scene {
             t_end,
             probes,
             record_every,
-        })
+        };
+        super::memory::check_budget(
+            &resolved.memory_estimate(),
+            steps,
+            record_every,
+            elements,
+            resolved.carriers.len(),
+            resolved.probes.len(),
+        )?;
+        Ok(resolved)
     }
 
     /// The reference the scene declares, its assumptions checked (MODEL §8;

@@ -174,7 +174,7 @@ pub fn case_files(suite: &Path) -> Result<Vec<PathBuf>> {
 /// quantity names, finite non-negative tolerances with their reasons, and a
 /// scene file (`*.toml`).
 pub fn read_case(path: &Path) -> Result<GateCase> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = crate::input::read_text(path, "a gate case", crate::input::MAX_INPUT_BYTES)?;
     crate::json_keys::reject_duplicate_keys(&text, path)?;
     let case: GateCase = serde_json::from_str(&text)
         .map_err(|e| Error::parse(format!("{}: {e}", path.display())))?;

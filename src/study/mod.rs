@@ -7,6 +7,7 @@
 
 pub mod compare;
 pub mod converge;
+pub mod cost;
 pub mod gate;
 pub mod grid;
 pub mod precision;

@@ -83,6 +83,24 @@ pub struct Precision {
     pub skipped: Vec<NotRun>,
 }
 
+/// The reference run's mesh, N₀ × ratio^levels (one level beyond the
+/// grid's finest), checked: a ratio so large it overflows would wrap to a
+/// meaningless mesh in a release build. Also what the study's cost
+/// estimate checks first ([`super::request::PrecisionRequest::estimate`]).
+pub fn reference_elements(n0: usize, ratio: usize, levels: usize) -> Result<usize> {
+    u32::try_from(levels)
+        .ok()
+        .and_then(|l| ratio.checked_pow(l))
+        .and_then(|p| n0.checked_mul(p))
+        .ok_or_else(|| {
+            Error::invalid(
+                "--ratio",
+                ratio,
+                format!("too large: the reference mesh, N₀ = {n0} × ratio^{levels}, overflows"),
+            )
+        })
+}
+
 /// Run the study under the scene's own method. `progress(done, total)`
 /// after each run.
 pub fn precision(
@@ -147,18 +165,7 @@ pub fn precision_variants(
     let (n0, dt0) = (base.elements, base.dt);
     let r = ratio as f64;
     let fine = levels as i32; // one beyond the grid's finest
-    // the finest mesh of the reference run, checked: a ratio so large it
-    // overflows would wrap to a meaningless mesh in a release build
-    let ref_n = ratio
-        .checked_pow(fine as u32)
-        .and_then(|p| n0.checked_mul(p))
-        .ok_or_else(|| {
-            Error::invalid(
-                "--ratio",
-                ratio,
-                format!("too large: the reference mesh, N₀ = {n0} × ratio^{fine}, overflows"),
-            )
-        })?;
+    let ref_n = reference_elements(n0, ratio, levels)?;
     let ref_dt = dt0 / r.powi(fine);
     let spaces: Vec<Option<SpaceChoice>> = if spaces.is_empty() {
         vec![None]

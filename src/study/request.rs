@@ -9,6 +9,7 @@ use crate::scene::{Method, parse_methods};
 
 use super::compare::{CompareSpec, Comparison, NotRun, compare_methods, parse_formulations};
 use super::converge::{ConvergeRow, Convergence, MethodStudy, Refine, converge, converge_variants};
+use super::cost::{Estimate, run_dof_steps};
 use super::precision::{Precision, precision_variants};
 use super::space::SpaceChoice;
 use super::sweep::BatchWidth;
@@ -50,6 +51,13 @@ fn factories(methods: &Option<Vec<Method>>) -> Vec<&dyn MethodFactory> {
         .collect()
 }
 
+/// The scene a study starts from (its own resolution), for its estimate.
+fn base_dof_steps(text: &str, overrides: &[String]) -> Result<f64> {
+    Ok(run_dof_steps(&crate::scene::resolve_scene(
+        text, overrides,
+    )?))
+}
+
 /// A comma list of discretizations (empty: the scene's own).
 fn spaces(list: Option<&str>) -> Result<Vec<SpaceChoice>> {
     Ok(list
@@ -73,9 +81,18 @@ pub struct CompareRequest {
     pub reference_method: Option<String>,
     /// Runs stepped together (`--batch`).
     pub batch: Option<usize>,
+    /// Start even above the cost bound (`--yes`, [`super::cost`]).
+    pub yes: bool,
 }
 
 impl CompareRequest {
+    /// The study's estimated work: every run at the scene's resolution.
+    pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
+        let mut e = Estimate::new("taut compare");
+        e.add(self.runs()?, base_dof_steps(text, overrides)?);
+        Ok(e)
+    }
+
     /// Number of runs, for a progress bar (an estimate: the reference
     /// formulation is run too when not listed).
     pub fn runs(&self) -> Result<usize> {
@@ -91,6 +108,7 @@ impl CompareRequest {
         overrides: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Comparison> {
+        self.estimate(text, overrides)?.check(self.yes)?;
         let formulations = parse_formulations(&self.formulations)?;
         let reference = parse_formulations(&self.reference)?
             .first()
@@ -139,6 +157,8 @@ pub struct ConvergeRequest {
     pub methods: Option<String>,
     /// Space discretizations (`--discretizations`); the scene's own when absent.
     pub discretizations: Option<String>,
+    /// Start even above the cost bound (`--yes`, [`super::cost`]).
+    pub yes: bool,
 }
 
 /// What a convergence study gives: one ladder (the scene's own method and
@@ -176,6 +196,26 @@ impl ConvergeOutcome {
 }
 
 impl ConvergeRequest {
+    /// The study's estimated work: level l refines the scene's mesh and/or
+    /// step by ratio^l, for every method and discretization.
+    pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
+        let refine: Refine = self.refine.parse()?;
+        let base = base_dof_steps(text, overrides)?;
+        let variants = self.runs()? / self.levels.max(1);
+        let per_level = match refine {
+            Refine::Mesh | Refine::Step => self.ratio,
+            Refine::Both => self.ratio * self.ratio,
+        };
+        let mut e = Estimate::new("taut converge");
+        for l in 0..self.levels {
+            e.add(
+                variants,
+                base * per_level.powi(l.min(i32::MAX as usize) as i32),
+            );
+        }
+        Ok(e)
+    }
+
     /// Number of runs, for a progress bar.
     pub fn runs(&self) -> Result<usize> {
         let m = methods(self.methods.as_deref())?.map_or(1, |m| m.len());
@@ -192,6 +232,7 @@ impl ConvergeRequest {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<ConvergeOutcome> {
         let refine: Refine = self.refine.parse()?;
+        self.estimate(text, overrides)?.check(self.yes)?;
         let list = methods(self.methods.as_deref())?;
         let spaces = spaces(self.discretizations.as_deref())?;
         let analytic = &super::reference::analytic_w;
@@ -237,9 +278,32 @@ pub struct PrecisionRequest {
     pub ratio: usize,
     /// Runs stepped together (`--batch`).
     pub batch: Option<usize>,
+    /// Start even above the cost bound (`--yes`, [`super::cost`]).
+    pub yes: bool,
 }
 
 impl PrecisionRequest {
+    /// The study's estimated work: grid point (i, j) at N₀·rⁱ elements and
+    /// Δt₀/rʲ for every formulation, method and discretization, and the
+    /// reference one level beyond the finest on both.
+    pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
+        let sc = crate::scene::resolve_scene(text, overrides)?;
+        // the study's own refusal of an overflowing ratio comes first
+        super::precision::reference_elements(sc.elements, self.ratio, self.levels)?;
+        let base = run_dof_steps(&sc);
+        let variants = (self.runs()? - 1) / (self.levels * self.levels).max(1);
+        let r = self.ratio as f64;
+        let level = |k: usize| r.powi(k.min(i32::MAX as usize) as i32);
+        let mut e = Estimate::new("taut precision");
+        e.add(1, base * level(self.levels) * level(self.levels));
+        for i in 0..self.levels {
+            for j in 0..self.levels {
+                e.add(variants, base * level(i) * level(j));
+            }
+        }
+        Ok(e)
+    }
+
     /// Number of runs (with the reference run), for a progress bar.
     pub fn runs(&self) -> Result<usize> {
         let f = parse_formulations(&self.formulations)?.len();
@@ -255,6 +319,9 @@ impl PrecisionRequest {
         overrides: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Precision> {
+        if (1..=5).contains(&self.levels) {
+            self.estimate(text, overrides)?.check(self.yes)?;
+        }
         let formulations = parse_formulations(&self.formulations)?;
         let list = methods(self.methods.as_deref())?;
         let spaces = spaces(self.discretizations.as_deref())?;

@@ -62,11 +62,10 @@ use crate::scene::{
 };
 
 /// Largest run (unknowns × steps) an accuracy-targeted run will start, pilots
-/// included: 10¹¹ DOF-steps is about 9 minutes at the 1.9·10⁸ DOF-steps/s one
-/// core reaches at N ≤ 800, and 15 minutes or more on finer meshes
-/// (docs/performance.md). Beyond it the tool says what the tolerance would
-/// take instead of starting a run nobody waits for.
-pub const MAX_DOF_STEPS: f64 = 1e11;
+/// included: the bound every study shares ([`super::cost::MAX_DOF_STEPS`]).
+/// Beyond it the tool says what the tolerance would take instead of starting
+/// a run nobody waits for.
+pub use super::cost::MAX_DOF_STEPS;
 
 /// What the tolerance is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -437,7 +436,24 @@ pub fn tolerance_run(
     ];
     let mut pilots: Vec<PilotRun> = Vec::with_capacity(5);
     for (k, &(role, n, dt)) in ladder.iter().enumerate() {
-        let sc = with(n, dt)?;
+        // a pilot the scene's own run is not refused for: say which, and why
+        // it is run at all (a central-difference step stable on N elements
+        // is not on 4N)
+        let pilot = |e: Error| match e {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } if k > 0 => Error::invalid(
+                field,
+                value,
+                format!(
+                    "{allowed} (for the pilot run `{role}`, N = {n}, Δt = {dt:e} s, which --tolerance makes to measure convergence: the scene's own run is accepted; every pilot must be too, so give values that hold for 2× and 4× mesh.elements and Δt/2, Δt/4)"
+                ),
+            ),
+            other => other,
+        };
+        let sc = with(n, dt).map_err(pilot)?;
         if let Some(first) = pilots.first() {
             nest((first.steps, first.dt), (sc.steps, sc.dt), Reach::SameEnd)?;
             // all five pilots cost 13 base runs: refuse before running them
@@ -452,7 +468,7 @@ pub fn tolerance_run(
                 ));
             }
         }
-        let out = run(&sc, &mut |_, _| {}).map_err(|e| {
+        let out = run(&sc, &mut |_, _| {}).map_err(pilot).map_err(|e| {
             e.in_run(&format!(
                 "pilot `{role}` ({} = {n}, Δt = {:e} s)",
                 level.symbol(),

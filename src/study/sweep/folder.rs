@@ -74,7 +74,8 @@ pub fn claim(dir: &Path) -> Result<FolderLock> {
     match attempt {
         Ok(()) => {}
         Err(TryLockError::WouldBlock) => {
-            let holder = std::fs::read_to_string(&path).unwrap_or_default();
+            // a line or two ("process N"): read no more than a line's worth
+            let holder = crate::input::read_text(&path, "a lock file", 256).unwrap_or_default();
             return Err(Error::invalid(
                 "--out",
                 dir.display(),
@@ -117,16 +118,21 @@ pub fn sweep_id(spec: &SweepSpec) -> String {
 /// already in the folder have been checked).
 pub fn check_spec(dir: &Path, spec: &SweepSpec) -> Result<bool> {
     let path = dir.join("sweep.json");
-    match std::fs::read_to_string(&path) {
+    match read_json(&path, "a sweep's sweep.json") {
         Ok(existing) if existing == spec_text(spec) => Ok(true),
         Ok(_) => Err(Error::invalid(
             "--out",
             dir.display(),
             "holds a different sweep (sweep.json differs): use another folder or remove it",
         )),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(false),
-        Err(e) => Err(Error::io(&path, e)),
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => Ok(false),
+        Err(e) => Err(e),
     }
+}
+
+/// A sweep folder's JSON file (spec or record), read with the input cap.
+fn read_json(path: &Path, what: &str) -> Result<String> {
+    crate::input::read_text(path, what, crate::input::MAX_INPUT_BYTES)
 }
 
 /// Write the folder's `sweep.json`.
@@ -159,10 +165,16 @@ pub fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
 /// sweep's point `index`.
 pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Option<SweepRecord>> {
     let path = run_file(dir, index);
-    let text = match std::fs::read_to_string(&path) {
+    let text = match read_json(&path, "a sweep's run record") {
         Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-        Err(e) => return Err(Error::io(&path, e)),
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
+            return Ok(None);
+        }
+        // a record of binary junk (what a crash can leave) proves nothing: run again
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::InvalidData => {
+            return Ok(None);
+        }
+        Err(e) => return Err(e),
     };
     let Ok(record) = serde_json::from_str::<SweepRecord>(&text) else {
         return Ok(None);
@@ -206,6 +218,62 @@ pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Opti
     Ok(Some(record))
 }
 
+/// Refuse a folder whose `runs/` holds a record file (`<digits>.json`)
+/// outside the sweep's grid, naming it: it is another sweep's, or a grid's
+/// that has since changed, and silently leaving it out would hide that (a
+/// `000008.json` among a 7-point grid's records). Other files are not
+/// records and are left alone.
+pub fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
+    let runs = dir.join("runs");
+    let entries = match std::fs::read_dir(&runs) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(Error::io(&runs, e)),
+    };
+    let mut strays: Vec<(usize, PathBuf)> = Vec::new();
+    for entry in entries {
+        let path = entry.map_err(|e| Error::io(&runs, e))?.path();
+        let Some(stem) = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .and_then(|n| n.strip_suffix(".json"))
+        else {
+            continue;
+        };
+        if stem.is_empty() || !stem.bytes().all(|b| b.is_ascii_digit()) {
+            continue;
+        }
+        let index = stem.parse::<usize>().unwrap_or(usize::MAX);
+        if index >= spec.len() {
+            strays.push((index, path));
+        }
+    }
+    strays.sort();
+    match strays.first() {
+        None => Ok(()),
+        Some((index, path)) => Err(Error::invalid(
+            "runs",
+            path.display(),
+            format!(
+                "is the record of point {}, outside this sweep's grid of {} points (0 ..= {}){}: \
+                 it is not this sweep's (remove it, or use another folder)",
+                if *index == usize::MAX {
+                    "(an index too large to read)".to_string()
+                } else {
+                    index.to_string()
+                },
+                spec.len(),
+                spec.len().saturating_sub(1),
+                if strays.len() > 1 {
+                    format!(", as are {} more", strays.len() - 1)
+                } else {
+                    String::new()
+                }
+            ),
+        )),
+    }
+}
+
 /// Read the records of the given indices, every one present and checked.
 pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
     let id = sweep_id(spec);
@@ -227,7 +295,7 @@ pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<Sw
 /// Read a sweep folder's spec.
 pub fn read_spec(dir: &Path) -> Result<SweepSpec> {
     let p = dir.join("sweep.json");
-    let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
+    let text = read_json(&p, "a sweep's sweep.json")?;
     serde_json::from_str(&text).map_err(|e| Error::parse(format!("{}: {e}", p.display())))
 }
 
@@ -258,7 +326,11 @@ pub fn merge_into(out: &FolderLock, shards: &[PathBuf]) -> Result<(SweepSpec, Ve
             ));
         }
     }
+    for s in shards {
+        check_no_strays(s, &spec)?;
+    }
     let had_spec = check_spec(out, &spec)?;
+    check_no_strays(out, &spec)?;
     let id = sweep_id(&spec);
     let mut missing = Vec::new();
     for i in 0..spec.len() {

@@ -377,6 +377,23 @@ impl SweepSpec {
     }
 }
 
+impl SweepSpec {
+    /// The sweep's estimated work ([`crate::study::cost`]): the points of
+    /// `shard` (all without one) at their own resolution, and their refined
+    /// runs with `--check-refinement`. Call after [`SweepSpec::validate`].
+    pub fn estimate(&self, shard: Option<Shard>) -> Result<crate::study::cost::Estimate> {
+        use crate::study::cost::{Estimate, run_dof_steps};
+        let mut e = Estimate::new("taut sweep");
+        for i in (0..self.len()).filter(|&i| shard.is_none_or(|s| s.owns(i))) {
+            e.add(1, run_dof_steps(&self.resolve(i)?));
+            if self.check_refinement {
+                e.add(1, run_dof_steps(&self.resolve_refined(i)?));
+            }
+        }
+        Ok(e)
+    }
+}
+
 /// The most points a sweep may have: 100 000 runs is days of work at the
 /// reference resolution and ~0.4 GB of records; a larger grid is several sweeps.
 pub const MAX_POINTS: usize = 100_000;
@@ -715,6 +732,7 @@ pub fn sweep_batched(
 ) -> Result<Vec<SweepRecord>> {
     let dir = claimed.dir();
     let had_spec = folder::check_spec(dir, spec)?;
+    folder::check_no_strays(dir, spec)?;
     let id = folder::sweep_id(spec);
     let mine: Vec<usize> = (0..spec.len())
         .filter(|&i| shard.is_none_or(|s| s.owns(i)))

@@ -1,0 +1,175 @@
+//! Reading an input file's text with a size cap.
+//!
+//! Every file taut reads (a scene, a gate case and the scene it names, a
+//! saved contact problem for `replay`, a sweep's `sweep.json` and run
+//! records, a folder's lock) goes through [`read_text`]. A path can name
+//! anything: `/dev/zero`, `/dev/urandom`, a pipe, a 30 GB log. Reading such
+//! a file whole grew the process until the kernel killed it (issue 25), and
+//! the UTF-8 check came only after the whole read. Here the file is read in
+//! chunks through a reader that stops at the cap, each chunk is checked as
+//! it arrives (UTF-8, no NUL byte: no scene, JSON or TOML holds one), and
+//! the first bad byte or the first byte past the cap ends the read with an
+//! error naming the file, the cap and what to do.
+
+use std::io::Read;
+use std::path::Path;
+
+use crate::error::{Error, Result};
+
+/// Most bytes a scene file, a gate case, a sweep's spec or a run record may
+/// hold (16 MiB). The largest real inputs are far below it: the bundled
+/// scenes are under 2 KiB, a scene with 10⁵ probes about 3 MiB, a sweep
+/// record (a point's force and loss profiles) a few KiB.
+pub const MAX_INPUT_BYTES: u64 = 16 << 20;
+
+/// Most bytes a saved contact problem may hold (64 MiB): its Delassus
+/// matrix W has up to [`crate::contact::replay::MAX_REPLAY_CONTACTS`]² =
+/// 1024² entries, ≈ 25 bytes each as JSON text.
+pub const MAX_REPLAY_BYTES: u64 = 64 << 20;
+
+/// Bytes read at a time: the unit in which a bad byte or an overlong file is
+/// noticed.
+const CHUNK: usize = 64 << 10;
+
+/// `n` bytes as MiB (or bytes below 1 MiB), for messages.
+fn size(n: u64) -> String {
+    if n >= 1 << 20 {
+        format!("{} MiB", n >> 20)
+    } else {
+        format!("{n} bytes")
+    }
+}
+
+fn refused(path: &Path, reason: String) -> Error {
+    Error::io(
+        path,
+        std::io::Error::new(std::io::ErrorKind::InvalidData, reason),
+    )
+}
+
+/// The text of the file at `path` (`what` names it in errors: "a scene
+/// file", "a gate case"), read at most `limit` bytes: a longer file, a
+/// non-UTF-8 byte or a NUL byte is refused as soon as it is read, naming the
+/// file; nothing past `limit + CHUNK` bytes is ever read.
+pub fn read_text(path: &Path, what: &str, limit: u64) -> Result<String> {
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let mut reader = file.take(limit.saturating_add(1));
+    let mut bytes: Vec<u8> = Vec::new();
+    let mut chunk = vec![0u8; CHUNK];
+    // bytes[..valid] are known to be whole UTF-8 characters
+    let mut valid = 0;
+    loop {
+        let got = match reader.read(&mut chunk) {
+            Ok(0) => break,
+            Ok(k) => k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(Error::io(path, e)),
+        };
+        if bytes.len() as u64 + got as u64 > limit {
+            return Err(refused(
+                path,
+                format!(
+                    "larger than {}, the most {what} may be: it is not one (reading stopped there)",
+                    size(limit)
+                ),
+            ));
+        }
+        if let Some(at) = chunk[..got].iter().position(|&b| b == 0) {
+            return Err(refused(
+                path,
+                format!(
+                    "holds a NUL byte at byte {}: not a text file, so not {what}",
+                    bytes.len() + at
+                ),
+            ));
+        }
+        bytes.extend_from_slice(&chunk[..got]);
+        match std::str::from_utf8(&bytes[valid..]) {
+            Ok(_) => valid = bytes.len(),
+            // a character split across chunks: the rest comes next
+            Err(e) if e.error_len().is_none() => valid += e.valid_up_to(),
+            Err(e) => {
+                return Err(refused(
+                    path,
+                    format!(
+                        "is not UTF-8 text (byte {}), so not {what}",
+                        valid + e.valid_up_to()
+                    ),
+                ));
+            }
+        }
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        refused(
+            path,
+            format!(
+                "ends inside a UTF-8 character (byte {}), so is not {what}",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn file(bytes: &[u8]) -> tempfile::NamedTempFile {
+        use std::io::Write;
+        let mut f = tempfile::NamedTempFile::new().unwrap();
+        f.write_all(bytes).unwrap();
+        f
+    }
+
+    #[test]
+    fn text_within_the_cap_is_read_whole() {
+        // a character split across the chunk boundary is read whole
+        let mut text = "a".repeat(CHUNK - 1);
+        text.push('é');
+        text.push_str(&"b".repeat(CHUNK));
+        let f = file(text.as_bytes());
+        assert_eq!(read_text(f.path(), "a scene file", 1 << 20).unwrap(), text);
+    }
+
+    #[test]
+    fn a_file_past_the_cap_is_refused_naming_it_and_the_cap() {
+        let f = file(&vec![b'x'; 3 * CHUNK]);
+        let e = read_text(f.path(), "a scene file", (2 * CHUNK) as u64)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(&f.path().display().to_string()), "{e}");
+        assert!(e.contains("the most a scene file may be"), "{e}");
+        // exactly the cap is fine
+        assert!(read_text(f.path(), "a scene file", (3 * CHUNK) as u64).is_ok());
+    }
+
+    #[test]
+    fn binary_bytes_are_refused_where_they_are() {
+        let f = file(b"[beam]\nlength = \xff\n");
+        let e = read_text(f.path(), "a scene file", 1 << 20)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("not UTF-8 text (byte 16)"), "{e}");
+        let f = file(b"[beam]\0");
+        let e = read_text(f.path(), "a scene file", 1 << 20)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("NUL byte at byte 6"), "{e}");
+        let f = file("ab\u{e9}".as_bytes().split_last().unwrap().1);
+        let e = read_text(f.path(), "a gate case", 1 << 20)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("ends inside a UTF-8 character"), "{e}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn endless_devices_stop_at_the_cap_or_the_first_bad_byte() {
+        for dev in ["/dev/zero", "/dev/urandom"] {
+            let e = read_text(Path::new(dev), "a scene file", MAX_INPUT_BYTES)
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with(dev), "{e}");
+        }
+    }
+}

@@ -1,0 +1,696 @@
+//! Regression tests of issue 25 (reliability, round two), one section per
+//! failure class: each reproduces the class at a size the default suite can
+//! afford and checks the fix, through the `taut` binary where the class was
+//! seen there.
+
+mod common;
+
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_taut");
+
+fn scene(name: &str) -> String {
+    common::crate_root()
+        .join("scenes")
+        .join(name)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+/// Run taut with `args`, returning (exit code, stdout, stderr).
+fn taut(args: &[&str]) -> (i32, String, String) {
+    let o = Command::new(BIN)
+        .current_dir(common::crate_root())
+        .args(args)
+        .output()
+        .expect("taut runs");
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+fn ok(args: &[&str]) -> String {
+    let (code, out, err) = taut(args);
+    assert_eq!(code, 0, "{args:?}\n{out}\n{err}");
+    out
+}
+
+// ---------------------------------------------------------------------------
+// Class 3: the modal path gives the same bytes on any thread count.
+// (Before the fix, faer's eigensolver followed the pool: this sweep's
+// sweep.csv differed between 1 and 2 threads at 200 elements, 100 modes.)
+
+#[test]
+fn a_modal_sweep_is_the_same_bytes_on_1_2_and_4_threads() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let csv = |threads: &str| {
+        let out = tmp.path().join(format!("t{threads}"));
+        ok(&[
+            "sweep",
+            &reference,
+            "--vary",
+            "carrier.speed.cruise=100:140:3",
+            "--set",
+            "mesh.elements=200",
+            "--set",
+            "mesh.kind=modal",
+            "--set",
+            "mesh.modes=100",
+            "--set",
+            "time.end=0.05",
+            "--threads",
+            threads,
+            "--batch",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        std::fs::read(out.join("sweep.csv")).unwrap()
+    };
+    let one = csv("1");
+    assert_eq!(one, csv("2"), "2 threads");
+    assert_eq!(one, csv("4"), "4 threads");
+}
+
+/// Longest a hostile case may take before it counts as a hang, s: each
+/// takes well under a second here; a hang is endless.
+const HANG_SECONDS: u64 = 120;
+
+/// Run taut under a virtual-memory cap of `kib` KiB (`ulimit -v`) and a
+/// time limit ([`HANG_SECONDS`], then SIGKILL: exit code 137), so that a
+/// regression to unbounded reading or allocation, or a hang, fails the test
+/// (an abort, a refused allocation, a kill) instead of taking the machine.
+fn taut_capped(kib: u64, args: &[&str]) -> (i32, String, String) {
+    let o = Command::new("bash")
+        .current_dir(common::crate_root())
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v {kib}; exec timeout -s KILL {HANG_SECONDS} \"$0\" \"$@\""
+        ))
+        .arg(BIN)
+        .args(args)
+        .output()
+        .expect("bash runs");
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// Address space for one small run of taut: 1 GiB (a run of the reference
+/// case at 400 elements maps ≈ 100 MiB; the 16 MiB input cap is far below).
+const SMALL_RUN_KIB: u64 = 1 << 20;
+
+// ---------------------------------------------------------------------------
+// Class 2: every input file is read with a size cap, refused naming it.
+
+#[cfg(unix)]
+#[test]
+fn endless_or_binary_inputs_are_refused_naming_the_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let zero_toml = tmp.path().join("zero.toml");
+    std::os::unix::fs::symlink("/dev/zero", &zero_toml).unwrap();
+    let random_toml = tmp.path().join("random.toml");
+    std::os::unix::fs::symlink("/dev/urandom", &random_toml).unwrap();
+    let out = tmp.path().join("o");
+    let out = out.to_str().unwrap();
+    // a scene
+    for (dev, link) in [("/dev/zero", &zero_toml), ("/dev/urandom", &random_toml)] {
+        for args in [
+            vec!["run", link.to_str().unwrap(), "--out", out, "--quiet"],
+            vec!["run", dev, "--out", out, "--quiet"],
+            vec![
+                "sweep",
+                dev,
+                "--vary",
+                "speed_ratio=0.5:1:2",
+                "--out",
+                out,
+                "--quiet",
+            ],
+            vec!["converge", dev, "--out", out, "--quiet"],
+            vec!["replay", dev],
+        ] {
+            let (code, _, err) = taut_capped(SMALL_RUN_KIB, &args);
+            assert_eq!(code, 1, "{args:?}: {err}");
+            assert!(err.starts_with("error: "), "{args:?}: {err}");
+            assert!(
+                err.contains("zero.toml") || err.contains("random.toml") || err.contains(dev),
+                "{args:?} names the file: {err}"
+            );
+        }
+    }
+    // text, but past the cap: refused naming the cap
+    let big = tmp.path().join("big.toml");
+    let mut text = std::fs::read_to_string(scene("reference.toml")).unwrap();
+    text.push_str(&"# padding\n".repeat((17 << 20) / 10));
+    std::fs::write(&big, text).unwrap();
+    let (code, _, err) = taut_capped(
+        SMALL_RUN_KIB,
+        &["run", big.to_str().unwrap(), "--out", out, "--quiet"],
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("big.toml: larger than 16 MiB, the most a scene file may be"),
+        "{err}"
+    );
+    // a gate case whose scene is endless
+    let suite = tmp.path().join("suite");
+    std::fs::create_dir(&suite).unwrap();
+    std::fs::write(
+        suite.join("case.json"),
+        r#"{"description": "d", "scene": "../zero.toml", "set": [],
+            "quantities": {"dofs": {"value": 1.0, "abs": 0.0, "rel": 0.0, "reason": "r"}}}"#,
+    )
+    .unwrap();
+    // (a case that cannot run is a row of the gate's table, on stdout)
+    let (code, table, err) = taut_capped(
+        SMALL_RUN_KIB,
+        &["gate", suite.to_str().unwrap(), "--out", out, "--quiet"],
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        table.contains("zero.toml: holds a NUL byte at byte 0"),
+        "{table}"
+    );
+    // a gate case that is itself endless
+    std::os::unix::fs::symlink("/dev/zero", suite.join("endless.json")).unwrap();
+    let (code, table, err) = taut_capped(
+        SMALL_RUN_KIB,
+        &["gate", suite.to_str().unwrap(), "--out", out, "--quiet"],
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        format!("{table}{err}").contains("endless.json"),
+        "{table}{err}"
+    );
+}
+
+// ---------------------------------------------------------------------------
+// Class 1: a sweep whose axis or values a plot cannot draw still exits, with
+// its tables, its status and its folder released; the map is a note.
+
+#[test]
+fn sweeps_over_overflowing_axes_exit_with_their_tables_and_notes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    for (k, (vary, log)) in [
+        ("carrier.stiffness=1e100:1e300:2", true),
+        ("carrier.damping=0:1.7e308:2", false),
+        ("carrier.mass=1e-300:1e300:8", true),
+        ("beam.tension=1e300:1.7e308:2", false),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let out = tmp.path().join(format!("s{k}"));
+        let mut args = vec![
+            "sweep",
+            &reference,
+            "--vary",
+            vary,
+            "--set",
+            "mesh.elements=40",
+            "--set",
+            "time.end=0.02",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ];
+        if log {
+            args.push("--log");
+        }
+        let (code, stdout, err) = taut_capped(4 << 20, &args);
+        assert!(code == 0 || code == 1, "{vary}: exit {code}\n{err}");
+        assert!(stdout.contains("force_map.svg"), "{vary}: {stdout}");
+        for f in [
+            "sweep.csv",
+            "sweep_force.csv",
+            "force_map.svg",
+            "loss_map.svg",
+        ] {
+            assert!(out.join(f).exists(), "{vary}: {f}");
+        }
+        // the folder is free again: the same sweep resumes at once
+        let (code2, _, err2) = taut_capped(4 << 20, &args);
+        assert_eq!(code, code2, "{vary}: {err2}");
+    }
+    // an axis beyond what plotters draws gets a note naming the axis
+    let note = std::fs::read_to_string(tmp.path().join("s0/force_map.svg")).unwrap();
+    assert!(
+        note.contains("This plot is not drawn") && note.contains("carrier.stiffness"),
+        "{note}"
+    );
+}
+
+// ---------------------------------------------------------------------------
+// Class 8: a record outside the grid is refused with its path, on merge and
+// on resume.
+
+#[test]
+fn a_record_outside_the_grid_is_refused_with_its_path() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let shard = |i: &str| {
+        let out = tmp.path().join(format!("shard{}", &i[..1]));
+        let (code, _, err) = taut(&[
+            "sweep",
+            &reference,
+            "--vary",
+            "speed_ratio=0.5:0.8:7",
+            "--set",
+            "mesh.elements=20",
+            "--set",
+            "time.end=0.01",
+            "--shard",
+            i,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        out
+    };
+    let (a, b) = (shard("0/2"), shard("1/2"));
+    // a copy of a real record under an index the 7-point grid does not have
+    let stray = b.join("runs/000008.json");
+    std::fs::copy(b.join("runs/000001.json"), &stray).unwrap();
+    let merged = tmp.path().join("merged");
+    let (code, _, err) = taut(&[
+        "merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("000008.json") && err.contains("outside this sweep's grid of 7 points"),
+        "{err}"
+    );
+    // resuming the shard is refused the same way
+    let (code, _, err) = taut(&[
+        "sweep",
+        &reference,
+        "--vary",
+        "speed_ratio=0.5:0.8:7",
+        "--set",
+        "mesh.elements=20",
+        "--set",
+        "time.end=0.01",
+        "--shard",
+        "1/2",
+        "--out",
+        b.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("000008.json"), "{err}");
+    // without it the merge goes through
+    std::fs::remove_file(&stray).unwrap();
+    ok(&[
+        "merge",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+}
+
+// ---------------------------------------------------------------------------
+// Class 7: a failed command leaves no earlier outputs of its kind behind.
+
+#[test]
+fn a_failed_command_leaves_no_outputs_of_an_earlier_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let dir = tmp.path().join("o");
+    let out = dir.to_str().unwrap();
+    let small = ["--set", "mesh.elements=20", "--set", "time.end=0.02"];
+    // (command, the files it writes, a failing variant's extra arguments)
+    let cases: [(&str, &[&str], &[&str]); 3] = [
+        (
+            "run",
+            &["history.csv", "summary.json", "force.svg"],
+            &["--set", "beam.length=-1"],
+        ),
+        (
+            "compare",
+            &["compare.csv", "compare.json", "compare.svg"],
+            &["--set", "time.step=1e9"],
+        ),
+        (
+            "converge",
+            &["converge.csv", "converge.json", "converge.svg"],
+            &["--levels", "1"],
+        ),
+    ];
+    for (command, files, failing) in cases {
+        let mut args = vec![command, reference.as_str(), "--out", out, "--quiet"];
+        args.extend_from_slice(&small);
+        if command == "converge" {
+            args.extend_from_slice(&["--levels", "3", "--refine", "step"]);
+        }
+        ok(&args);
+        std::fs::write(dir.join("mine.txt"), "a user's file").unwrap();
+        for f in files {
+            assert!(dir.join(f).exists(), "{command}: {f}");
+        }
+        let mut bad = vec![command, reference.as_str(), "--out", out, "--quiet"];
+        bad.extend_from_slice(&small);
+        bad.extend_from_slice(failing);
+        let (code, _, err) = taut(&bad);
+        assert_eq!(code, 1, "{command}: {err}");
+        assert!(
+            err.contains("note: removed the outputs of an earlier run"),
+            "{command}: {err}"
+        );
+        for f in files {
+            assert!(!dir.join(f).exists(), "{command}: a stale {f} was left");
+        }
+        assert!(dir.join("mine.txt").exists(), "{command}: other files stay");
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Class 6: every study estimates its cost first and refuses above the bound
+// unless --yes, printing the estimate.
+
+#[test]
+fn costly_studies_are_refused_before_any_run_with_the_estimate() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let out = tmp.path().join("o");
+    let out = out.to_str().unwrap();
+    for (args, says) in [
+        (
+            vec![
+                "converge",
+                &reference,
+                "--set",
+                "mesh.elements=50",
+                "--set",
+                "time.end=0.05",
+                "--ratio",
+                "20",
+                "--levels",
+                "4",
+            ],
+            "taut converge would make 4 runs of 3.30e12 DOF-steps",
+        ),
+        (
+            vec!["precision", &reference, "--ratio", "100", "--levels", "2"],
+            "taut precision would make 17 runs",
+        ),
+        (
+            vec![
+                "compare",
+                &reference,
+                "--set",
+                "time.step=2e-8",
+                "--set",
+                "mesh.elements=1000",
+            ],
+            "taut compare would make 4 runs",
+        ),
+        (
+            vec![
+                "sweep",
+                &reference,
+                "--vary",
+                "speed_ratio=0.5:1:3",
+                "--set",
+                "time.step=2e-8",
+                "--set",
+                "mesh.elements=1000",
+                "--set",
+                "output.record_every=10",
+            ],
+            "taut sweep would make 3 runs",
+        ),
+    ] {
+        let mut a = args.clone();
+        a.extend_from_slice(&["--out", out, "--quiet"]);
+        let start = std::time::Instant::now();
+        let (code, _, err) = taut_capped(SMALL_RUN_KIB, &a);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(
+            err.contains(says)
+                && err.contains("above the bound of 1e11 DOF-steps")
+                && err.contains("--yes"),
+            "{args:?}: {err}"
+        );
+        // refused before any run: at once
+        assert!(start.elapsed().as_secs() < HANG_SECONDS, "{args:?}");
+    }
+    // below the bound --yes changes nothing
+    ok(&[
+        "converge",
+        &reference,
+        "--set",
+        "mesh.elements=20",
+        "--set",
+        "time.end=0.02",
+        "--levels",
+        "3",
+        "--refine",
+        "step",
+        "--yes",
+        "--out",
+        out,
+        "--quiet",
+    ]);
+}
+
+// ---------------------------------------------------------------------------
+// Class 5: Galerkin with clamped ends at tiny EI agrees with larger EI on
+// both sides of the old break, and is refused past its bound.
+
+#[test]
+fn galerkin_clamped_clamped_holds_at_tiny_ei_and_refuses_past_its_bound() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let out = tmp.path().join("g");
+    let run = |ei: &str| {
+        taut(&[
+            "run",
+            &reference,
+            "--set",
+            "mesh.kind=galerkin",
+            "--set",
+            "mesh.modes=100",
+            "--set",
+            &format!("beam.youngs_modulus={ei}"),
+            "--set",
+            "beam.second_moment=1",
+            "--set",
+            "beam.left=clamped",
+            "--set",
+            "beam.right=clamped",
+            "--set",
+            "time.end=0.05",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
+    };
+    let mean = |ei: &str| {
+        let (code, stdout, err) = run(ei);
+        assert_eq!(code, 0, "EI {ei}: {err}");
+        let line = stdout
+            .lines()
+            .find(|l| l.contains("force mean"))
+            .unwrap()
+            .to_string();
+        line.split("force mean ")
+            .nth(1)
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse::<f64>()
+            .unwrap()
+    };
+    // before the fix: 58.89 N at 1e-24, 53.7 N from 1e-25 down
+    let at = mean("1e-24");
+    for ei in ["1e-25", "1e-26", "1e-100"] {
+        assert_eq!(mean(ei), at, "EI {ei}");
+    }
+    let (code, _, err) = run("1e-194");
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("`beam.youngs_modulus`") && err.contains("T L²/EI ≤ 1e200"),
+        "{err}"
+    );
+}
+
+// ---------------------------------------------------------------------------
+// Class 9: messages name the field, print numbers compactly, clip huge
+// values, and blame the right thing.
+
+#[test]
+fn messages_name_the_field_and_stay_short() {
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    let out = tmp.path().join("m");
+    let out = out.to_str().unwrap();
+    let fails = |extra: &[&str]| {
+        let mut a = vec!["run", reference.as_str(), "--out", out, "--quiet"];
+        a.extend_from_slice(extra);
+        let (code, _, err) = taut(&a);
+        assert_eq!(code, 1, "{extra:?}: {err}");
+        err
+    };
+    // a point at the very end of the span: refused naming grading_at
+    let e = fails(&[
+        "--set",
+        "mesh.grading=point",
+        "--set",
+        "mesh.grading_at=1e-300",
+    ]);
+    assert!(
+        e.contains("`mesh.grading_at` = 1e-300") && e.contains("shortest element"),
+        "{e}"
+    );
+    // just inside the bound it runs (2e-10 of L)
+    ok(&[
+        "run",
+        &reference,
+        "--set",
+        "mesh.grading=point",
+        "--set",
+        "mesh.grading_at=1e-8",
+        "--set",
+        "time.end=0.01",
+        "--out",
+        out,
+        "--quiet",
+    ]);
+    // numbers compact
+    let e = fails(&["--set", "beam.length=-1e-300"]);
+    assert!(e.contains("`beam.length` = -1e-300: must be > 0"), "{e}");
+    let e = fails(&["--set", "beam.length=1e308"]);
+    assert!(e.len() < 400, "{e}");
+    // a 10 MB value (in a scene file: an argument cannot be that long) is clipped
+    let text = std::fs::read_to_string(&reference).unwrap().replace(
+        "left = \"clamped\"",
+        &format!("left = \"{}\"", "x".repeat(10 << 20)),
+    );
+    let huge = tmp.path().join("huge.toml");
+    std::fs::write(&huge, text).unwrap();
+    let (code, _, e) = taut(&["run", huge.to_str().unwrap(), "--out", out, "--quiet"]);
+    assert_eq!(code, 1);
+    assert!(
+        e.len() < 5000 && e.contains("bytes in all") && e.contains("beam.left"),
+        "{}",
+        &e[..e.len().min(3000)]
+    );
+    // negative counts: the range, not "unexpected argument"
+    for flag in ["--threads", "--batch"] {
+        let (code, _, err) = taut(&[
+            "sweep",
+            &reference,
+            "--vary",
+            "speed_ratio=0.5:1:2",
+            flag,
+            "-1",
+        ]);
+        assert_eq!(code, 1, "{err}");
+        assert!(
+            err.starts_with(&format!(
+                "error: invalid scene: `{flag}` = -1: must be in 1 ..= "
+            )),
+            "{flag}: {err}"
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Class 4: the memory and output budgets are the whole process's and the
+// files'.
+
+#[test]
+fn a_run_whose_history_csv_would_not_fit_is_refused_with_the_numbers() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (code, _, err) = taut_capped(
+        SMALL_RUN_KIB,
+        &[
+            "run",
+            &scene("t2_stationary_mass.toml"),
+            "--set",
+            "mesh.elements=10",
+            "--set",
+            "time.step=2.3e-8",
+            "--set",
+            "time.end=1",
+            "--out",
+            tmp.path().join("o").to_str().unwrap(),
+            "--quiet",
+        ],
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("`output.record_every` = 1: history.csv would hold an estimated 4.535 GiB")
+            && err.contains("above the output budget of 4.000 GiB")
+            && err.contains("record_every ≥ 2"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_long_run_draws_a_small_force_plot() {
+    // 2·10⁵ rows: the plot keeps at most 4 × 2000 points of them
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("o");
+    ok(&[
+        "run",
+        &scene("t2_stationary_mass.toml"),
+        "--set",
+        "mesh.elements=4",
+        "--set",
+        "time.step=1e-6",
+        "--set",
+        "time.end=0.2",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let svg = std::fs::metadata(out.join("force.svg")).unwrap().len();
+    let csv = std::fs::metadata(out.join("history.csv")).unwrap().len();
+    assert!(
+        svg < 600_000 && csv > 10_000_000,
+        "force.svg {svg} B, history.csv {csv} B"
+    );
+}
+
+#[test]
+fn a_tolerance_pilot_refused_says_it_is_a_pilot() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (code, _, err) = taut(&[
+        "run",
+        &scene("reference.toml"),
+        "--tolerance",
+        "1e-3",
+        "--set",
+        "integrator={ method = \"central_difference\" }",
+        "--set",
+        "time.step=1e-5",
+        "--set",
+        "time.end=0.05",
+        "--out",
+        tmp.path().join("o").to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("`time.step` = 1e-5 s")
+            && err.contains("for the pilot run `mesh x4`, N = 1600"),
+        "{err}"
+    );
+}
