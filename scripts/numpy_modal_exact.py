@@ -41,9 +41,12 @@ The algorithm (the same as src/integrate/modal_exact.rs)
   ``η̇_{n+1} = −ω sin(ωh) η + cos(ωh) η̇ + b0 f_n + b1 f_{n+1}``
   (``oscillator_coefficients``). The mass dof ``m q̈ + c q̇ + k q = f0 − λ``
   likewise, exactly, through the exponential of its augmented 4 × 4 matrix.
-- The contact force is the unknown sample λ_{n+1}: the gap at the step's
-  end is ``g = g_free + W λ`` with ``W = Σ_j a1_j φ_j(x_{n+1})² + a1_q``;
-  Lagrange: ``λ = max(0, −g_free/W)`` (bilateral: ``−g_free/W``).
+- The contact force λ is held over the step along the carrier's path; the
+  gap at the step's end is ``g = g_free + W λ`` with
+  ``W = Σ_j φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1})) + g_q``;
+  Lagrange: ``λ = max(0, −g_free/W)`` (bilateral: ``−g_free/W``). The
+  reported force at t_{n−1} is the mean of the held forces on either side
+  (lag 1), as taut reports it.
 - Initial state: beam at rest, mass touching, λ_0 from the acceleration
   balance (as src/integrate/system.rs ``System::initial``).
 
@@ -288,6 +291,7 @@ def simulate_batch(scenes, modes):
     w_acc = (phi * phi).sum(1) + 1.0 / m
     closed = np.full(R, True) if sc.bilateral else g_acc < 0.0
     lam = np.where(closed, -g_acc / w_acc, 0.0)
+    lam_prev = lam.copy()
     eta = np.zeros((R, modes))
     etad = np.zeros((R, modes))
     q, qd = np.zeros(R), np.zeros(R)
@@ -302,7 +306,8 @@ def simulate_batch(scenes, modes):
         if steps[nb - 1] < step:
             nb = int(np.count_nonzero(steps >= step))
             eta, etad, phi = eta[:nb], etad[:nb], phi[:nb]
-            q, qd, lam, f0, e_q, gq = (x[:nb] for x in (q, qd, lam, f0, e_q, gq))
+            q, qd, lam, lam_prev, f0, e_q, gq = (
+                x[:nb] for x in (q, qd, lam, lam_prev, f0, e_q, gq))
         phi_next = basis.values(x_all[step, :nb])
         # the free step: E [η, η̇] and the uniform load (held)
         eta_free = c * eta + sw * etad + ap
@@ -315,6 +320,7 @@ def simulate_batch(scenes, modes):
         g_free = s * (phi_next * eta_free).sum(1) - q_free
         w = (phi_next * zq).sum(1) + gq[:, 0]
         closed = np.full(nb, True) if sc.bilateral else g_free < 0.0
+        lam_prev = lam
         lam = np.where(closed, -g_free / w, 0.0)
         sl = (s * lam)[:, None]
         eta = eta_free + sl * zq
@@ -324,7 +330,10 @@ def simulate_batch(scenes, modes):
         phi = phi_next
         hist["beam_w"][step, :nb] = s * (phi * eta).sum(1)
         hist["mass_q"][step, :nb] = q
-        hist["force"][step, :nb] = lam
+        # the reported force (System::reported_force, Multipliers::Held): at
+        # t_{n-1}, the mean of the held forces on either side; after the
+        # first step, the initial force
+        hist["force"][step, :nb] = lam_prev if step == 1 else 0.5 * (lam + lam_prev)
         hist["in_contact"][step, :nb] = closed
     t_end = time.perf_counter()
     c_end = time.process_time()

@@ -352,13 +352,7 @@ pub(crate) fn sample_of(
             in_contact: true,
         },
         (_, Some(j)) => {
-            let force = match sys.multiplier_kind() {
-                Multipliers::Forces => sys.lambda[j],
-                // the impulse of the step over its length; at t = 0 the
-                // recorded value is the initial force itself
-                Multipliers::Impulses if st.step > 0 => sys.lambda[j] / sys.dt,
-                Multipliers::Impulses => sys.lambda[j],
-            };
+            let force = sys.reported_force(j, st.step);
             CarrierSample {
                 x,
                 w,

@@ -27,12 +27,21 @@
 //!   measured ×(−3.73) a step on the reference scene (`python3
 //!   scripts/numpy_modal_exact.py --linear-force-demo --speeds 100:100:1
 //!   --modes 200 --dt 1e-4`). Held, the
-//!   multiplier recurrence has no λ_n term. Measured on the reference scene
-//!   with a bilateral contact (tests/modal_exact.rs): the displacement
-//!   under the carrier and the step-mean force both converge at **second
-//!   order** in Δt (the mean force differs from the force at t_{n+1} by
-//!   O(Δt): compare it as the step's mean, as generalized-α's force is the
-//!   one at t_{n+1/2}).
+//!   multiplier recurrence has no λ_n term, but it keeps a neutral (−1)ⁿ
+//!   mode: each held force is off the step's mean by a zigzag of
+//!   amplitude O(Δt) that the start and every closing excite and nothing
+//!   damps (measured on `scenes/verify/mms_beam_time.toml`: 3.4e-3 N of
+//!   15 N at Δt = 1.25e-4 s, halving with Δt). The **reported force** at
+//!   t_n is the mean of the two held forces around it, where the zigzag
+//!   cancels (`Multipliers::Held`, recorded one step late): second order.
+//!   Measured on the reference scene with a bilateral contact
+//!   (tests/modal_exact.rs) the displacement under the carrier and the
+//!   reported force both converge at **second order** in Δt (force ratios
+//!   3.92, 4.04, 4.19 per halving), and on the manufactured cases of
+//!   `taut verify` (orders 1.88–2.12).
+//! * **A manufactured source** (MODEL §11; verification only): the smooth
+//!   source and the carriers' point loads sampled at t_n and t_{n+1} with
+//!   the same first-order hold, the mass source held at t_{n+1/2}.
 //! * **The mass dof** `m q̈ + c q̇ + k q = k δ0 − s m g − λ` is propagated
 //!   exactly under the held force ([`MassStep`]), dashpot included.
 //!
@@ -71,7 +80,7 @@ use crate::model::lanes::{self, LANES};
 use crate::scene::CarrierKind;
 
 use super::oscillator::{MassStep, ModeSteps};
-use super::{State, Stepper, System};
+use super::{Multipliers, State, Stepper, System};
 
 /// What every run on one basis at one Δt shares (module docs): the modes'
 /// step maps, the fixed load's share of them, and the fast shapes.
@@ -145,6 +154,18 @@ pub struct ModalExact {
     /// Free gaps and Delassus matrix of the step (scratch).
     g: Vec<f64>,
     w: Vec<f64>,
+    /// A manufactured scene's source samples (`None` without one).
+    source: Option<SourceLoads>,
+}
+
+/// A manufactured source's modal load sampled at t_n and t_{n+1} (MODEL
+/// §11): the smooth part plus each carrier's point load at its position,
+/// applied with the first-order hold of a moving force (second order in
+/// Δt, exact for a load linear in time). Scratch, J each.
+#[derive(Debug, Clone)]
+struct SourceLoads {
+    at_n: Vec<f64>,
+    at_n1: Vec<f64>,
 }
 
 impl ModalExact {
@@ -167,17 +188,24 @@ impl ModalExact {
             .map(|m| MassStep::new(m.m, m.k, m.c, dt))
             .collect();
         let nc = sys.contacts();
+        sys.set_multipliers(Multipliers::Held);
         let beam = &sys.beam;
         for c in sys.carriers.iter_mut() {
             let x0 = c.props.motion.position(0.0);
             coefs.place(beam, x0, &mut c.pv_f);
             coefs.place(beam, x0, &mut c.pv_g);
         }
+        let j = coefs.modes();
+        let source = sys.has_source().then(|| SourceLoads {
+            at_n: vec![0.0; j],
+            at_n1: vec![0.0; j],
+        });
         ModalExact {
             coefs,
             mass_steps,
             g: vec![0.0; nc],
             w: vec![0.0; nc * nc],
+            source,
         }
     }
 }
@@ -188,6 +216,7 @@ impl Stepper for ModalExact {
             &self.coefs,
             &self.mass_steps,
             (&mut self.g, &mut self.w),
+            self.source.as_mut(),
             sys,
             st,
         )
@@ -295,6 +324,7 @@ fn contact(
             }
         }
     }
+    sys.hold_multipliers();
     sys.solve_formed(g, w, st)?;
     for c in &sys.carriers {
         let Some(j) = c.contact else { continue };
@@ -303,6 +333,23 @@ fn contact(
         st.q_dot[j] -= mass_steps[j].g[1] * lambda;
     }
     Ok(())
+}
+
+/// A manufactured source's loads over the step (MODEL §11; scalar, a
+/// verification path): the modal load sampled at t_n and t_{n+1} with the
+/// first-order hold `η += a0 L_n + a1 L_{n+1}`, `η̇ += b0 L_n + b1 L_{n+1}`
+/// (second order), and the mass dofs' source held at the step's midpoint
+/// (the midpoint hold of a smooth force is second order too).
+fn add_source(m: &ModeSteps, src: &mut SourceLoads, sys: &mut System, st: &mut State) {
+    let (t0, t1) = (st.t, st.next_time(sys.dt));
+    sys.source_load_into(t0, &mut src.at_n);
+    sys.source_load_into(t1, &mut src.at_n1);
+    for i in 0..m.len() {
+        let (p, q) = (src.at_n[i], src.at_n1[i]);
+        st.d[i] += path(m.a0[i], p, m.a1[i], q);
+        st.v[i] += path(m.b0[i], p, m.b1[i], q);
+    }
+    sys.set_mass_source(0.5 * (t0 + t1));
 }
 
 /// Phase 4 over modes `lo .. hi`: each contact force, held over the step
@@ -330,19 +377,20 @@ fn update_range(
 /// whole step is compiled for them, so the scalar parts (a last partial
 /// vector, the general path of several carriers) use the FMA instruction
 /// rather than its software emulation; the bits are the same either way.
-pub(crate) fn step(
+fn step(
     coefs: &ModalCoefs,
     mass_steps: &[MassStep],
     gw: (&mut [f64], &mut [f64]),
+    source: Option<&mut SourceLoads>,
     sys: &mut System,
     st: &mut State,
 ) -> Result<()> {
     #[cfg(target_arch = "x86_64")]
     if lanes::avx2_fma() {
         // SAFETY: the CPU supports AVX2 and FMA (checked just above).
-        return unsafe { step_fma(coefs, mass_steps, gw, sys, st) };
+        return unsafe { step_fma(coefs, mass_steps, gw, source, sys, st) };
     }
-    step_kernel(coefs, mass_steps, gw, sys, st, false)
+    step_kernel(coefs, mass_steps, gw, source, sys, st, false)
 }
 
 /// # Safety
@@ -353,10 +401,11 @@ unsafe fn step_fma(
     coefs: &ModalCoefs,
     mass_steps: &[MassStep],
     gw: (&mut [f64], &mut [f64]),
+    source: Option<&mut SourceLoads>,
     sys: &mut System,
     st: &mut State,
 ) -> Result<()> {
-    step_kernel(coefs, mass_steps, gw, sys, st, true)
+    step_kernel(coefs, mass_steps, gw, source, sys, st, true)
 }
 
 #[inline(always)]
@@ -364,6 +413,7 @@ fn step_kernel(
     coefs: &ModalCoefs,
     mass_steps: &[MassStep],
     gw: (&mut [f64], &mut [f64]),
+    source: Option<&mut SourceLoads>,
     sys: &mut System,
     st: &mut State,
     vector: bool,
@@ -371,7 +421,7 @@ fn step_kernel(
     place(coefs, sys, st);
     let m = &coefs.steps;
     let all = (0, m.len());
-    let pair = if is_single(sys) {
+    let pair = if is_single(sys) && source.is_none() {
         let mut sums = PairSums::default();
         free_pair_range(coefs, sys, st, all, &mut sums, vector);
         Some(sums.total())
@@ -385,6 +435,9 @@ fn step_kernel(
         }
         None
     };
+    if let Some(src) = source {
+        add_source(m, src, sys, st);
+    }
     contact(coefs, mass_steps, gw, pair, sys, st)?;
     update_range(coefs, sys, st, all, vector);
     Ok(())

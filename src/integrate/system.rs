@@ -176,6 +176,16 @@ pub enum Multipliers {
     /// Impulses over the step, N·s (Moreau–Jean): the law works at
     /// velocity level and the reported force is P/Δt.
     Impulses,
+    /// Forces held over each step with the gap imposed at its end
+    /// (`modal_exact`, MODEL §9.3). Such a sequence carries a neutral
+    /// (−1)ⁿ mode: a held force is the step's mean only up to a zigzag of
+    /// amplitude O(Δt) that the start (and every closing of the contact)
+    /// excites and nothing damps (for a rigid follower of a path X(t),
+    /// `(λ_{n−1/2} + λ_{n+1/2})/2 = m δ²X/Δt²` exactly, while each λ alone
+    /// is off by `±m Δt X‴/6`). The reported force at t_n is the mean of
+    /// the two held forces on either side, second order, recorded one step
+    /// late (lag 1).
+    Held,
 }
 
 /// One carrier during a run.
@@ -239,6 +249,8 @@ pub struct System {
     /// 1/A_q of each mass dof (scratch).
     inv_a: Vec<f64>,
     pub(crate) lambda: Vec<f64>,
+    /// The previous step's multipliers ([`Multipliers::Held`] only).
+    held_prev: Vec<f64>,
     pub(crate) active: Vec<bool>,
     /// Gap rates ġ_n (velocity level).
     gap_rate: Vec<f64>,
@@ -349,6 +361,7 @@ impl System {
             w: vec![0.0; nc * nc],
             inv_a: vec![0.0; nc],
             lambda: vec![0.0; nc],
+            held_prev: vec![0.0; nc],
             active: vec![false; nc],
             gap_rate: vec![0.0; nc],
             red_idx: Vec::with_capacity(nc),
@@ -381,6 +394,66 @@ impl System {
     /// [`rhs_columns`] of the number of contacts.
     pub fn columns(&self) -> usize {
         rhs_columns(self.masses.len())
+    }
+
+    /// Keep the multipliers of the step just taken before the next solve
+    /// replaces them ([`Multipliers::Held`]: the reported force is the
+    /// mean of the two held forces around a time step).
+    pub(crate) fn hold_multipliers(&mut self) {
+        self.held_prev.copy_from_slice(&self.lambda);
+    }
+
+    /// The contact force of contact `j` reported after step `step`, N
+    /// ([`Multipliers`]).
+    pub(crate) fn reported_force(&self, j: usize, step: usize) -> f64 {
+        match self.multipliers {
+            Multipliers::Forces => self.lambda[j],
+            // the impulse of the step over its length; at t = 0 the
+            // recorded value is the initial force itself
+            Multipliers::Impulses if step > 0 => self.lambda[j] / self.dt,
+            Multipliers::Impulses => self.lambda[j],
+            // at t_{n−1}: the mean of the forces held over the steps on
+            // either side; after the first step, the initial force
+            Multipliers::Held if step > 1 => 0.5 * (self.lambda[j] + self.held_prev[j]),
+            Multipliers::Held if step == 1 => self.held_prev[j],
+            Multipliers::Held => self.lambda[j],
+        }
+    }
+
+    /// True when the scene has a manufactured source (MODEL §11).
+    pub(crate) fn has_source(&self) -> bool {
+        self.source.is_some()
+    }
+
+    /// A manufactured source's whole load on the beam at `t` (MODEL §11),
+    /// in the basis, into `out` (overwritten): the smooth part plus each
+    /// carrier's point load at x_m(t). For a method that samples the load
+    /// itself (`modal_exact`'s first-order hold); zero without a source.
+    pub(crate) fn source_load_into(&mut self, t: f64, out: &mut [f64]) {
+        out.fill(0.0);
+        let Some(src) = &self.source else { return };
+        src.source.add_into(t, 1.0, out, 1, 0);
+        let m = src.source.solution();
+        for (i, c) in self.carriers.iter_mut().enumerate() {
+            let p = m.point_load(i, t);
+            self.beam
+                .point_vector_into(c.props.motion.position(t), false, &mut c.pv_l);
+            c.pv_l.scatter(p, out, 1, 0);
+        }
+    }
+
+    /// Each mass dof's constant force plus a manufactured mass source at
+    /// `t` (MODEL §11), for a method that holds the mass's force over the
+    /// step itself (`modal_exact`, at the step's midpoint). No-op without
+    /// a source.
+    pub(crate) fn set_mass_source(&mut self, t: f64) {
+        let Some(src) = &self.source else { return };
+        let m = src.source.solution();
+        for (i, c) in self.carriers.iter().enumerate() {
+            if let Some(j) = c.contact {
+                self.masses[j].f0 = src.f0[j] + m.mass_source(i, t);
+            }
+        }
     }
 
     /// The mass dofs, one per contact.
@@ -421,6 +494,7 @@ impl System {
     pub fn force_lag(&self, t: f64) -> f64 {
         match self.multipliers {
             Multipliers::Impulses => 0.5,
+            Multipliers::Held => 1.0,
             Multipliers::Forces => (t - self.t_force) / self.dt,
         }
     }
