@@ -587,10 +587,13 @@ fn central_difference_omega_max_is_the_assembled_model_s() {
 /// what the check prevents.
 struct Unchecked;
 
-impl MethodFactory for Unchecked {
+impl taut::scene::MethodInfo for Unchecked {
     fn name(&self) -> String {
         "central_difference (unchecked)".into()
     }
+}
+
+impl MethodFactory for Unchecked {
     fn build(
         &self,
         sc: &Resolved,
@@ -709,7 +712,7 @@ fn the_study_s_t1_and_t2_hold_under_every_method() {
         Method::CentralDifference,
         Method::MoreauJean,
     ] {
-        let mut o = m.overrides(&taut::scene::IntegratorSpec::default());
+        let mut o = vec![format!("integrator={{ method = \"{}\" }}", m.name())];
         o.push("time.end=1.0".into());
         if m == Method::CentralDifference {
             o.push("time.step=5e-5".into());
@@ -728,7 +731,7 @@ fn the_study_s_t1_and_t2_hold_under_every_method() {
             m.name()
         );
 
-        let mut o = m.overrides(&taut::scene::IntegratorSpec::default());
+        let mut o = vec![format!("integrator={{ method = \"{}\" }}", m.name())];
         o.extend(["mesh.elements=40".into(), "time.step=1e-5".into()]);
         if m == Method::CentralDifference {
             // the stiff cantilever's ω_max = 7.5e5 rad/s: Δt ≤ 2.67e-6 s
@@ -862,4 +865,46 @@ fn every_method_agrees_at_the_finest_step_of_the_ladder() {
             "{label}: {pl} vs {pl_ref}"
         );
     }
+}
+
+/// A built-in method value builds the method it is (issue 23):
+/// `run_with(&scene, &Method::Newmark)` on the reference scene, whose own
+/// method is generalized-α, steps Newmark — bit-identical to the scene
+/// that names newmark, and not the scene's generalized-α (their forces
+/// differ by about 6e-3 N on this case).
+#[test]
+fn a_built_in_method_value_runs_that_method_whatever_the_scene_names() {
+    let short = "time.end=0.02".to_string();
+    let own = resolve_scene(REFERENCE, std::slice::from_ref(&short)).unwrap();
+    assert_eq!(own.integrator.method, "generalized_alpha");
+    let named = resolve_scene(
+        REFERENCE,
+        &[short, "integrator={ method = \"newmark\" }".to_string()],
+    )
+    .unwrap();
+    let quiet = &mut |_: usize, _: usize| {};
+    let via_value = taut::run_with(&own, &Method::Newmark, quiet).unwrap();
+    let newmark = run(&named, quiet).unwrap();
+    let alpha = run(&own, quiet).unwrap();
+    // Debug prints each f64 exactly (shortest round trip): equal text is
+    // equal bits
+    let bits = |o: &taut::RunOutput| format!("{:?} {:?}", o.history, o.stats);
+    assert_eq!(bits(&via_value), bits(&newmark));
+    assert_ne!(bits(&via_value), bits(&alpha));
+    // and a method refuses a scene it does not go with, as validation does
+    let alpha_level = resolve_scene(
+        REFERENCE,
+        &[
+            "time.end=0.02".to_string(),
+            "contact.placement=\"alpha\"".to_string(),
+        ],
+    )
+    .unwrap();
+    let e = taut::run_with(&alpha_level, &Method::Bathe, quiet)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("contact.placement") && e.contains("integrator.method = bathe"),
+        "{e}"
+    );
 }

@@ -30,7 +30,7 @@ use super::scalars::Scalar;
 use super::space::SpaceChoice;
 use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
-use crate::integrate::MethodFactory;
+use crate::integrate::{MethodFactory, scene_method};
 use crate::run::{RunOutput, run, run_with};
 use crate::scene::{Declared, Discretization, Resolved, resolve_scene};
 
@@ -174,7 +174,7 @@ pub struct MethodStudy {
 }
 
 /// Run the refinement sequence once per method (`taut converge --methods`):
-/// the same levels, each method selected by its [`MethodFactory::overrides`].
+/// the same levels, each method selected by its [`MethodFactory::integrator`].
 /// A method that cannot run the ladder (a scene error naming both keys, an
 /// explicit method above its stability limit at the coarse levels, a run
 /// that stops) is listed in the second vector with its reason; it is an
@@ -344,7 +344,7 @@ fn converge_with(
     let base = resolve_scene(text, overrides)?;
     let base = match method {
         None => base,
-        Some(m) => base_scene(text, overrides, Some((m, &base.integrator)))?.validate()?,
+        Some(m) => base_scene(text, overrides, Some(m))?.validate()?,
     };
     base.require_every_step("taut converge")?;
     let mut scenes = Vec::with_capacity(levels);
@@ -398,10 +398,10 @@ fn converge_with(
         }
         _ => None,
     };
-    let name = method.map_or_else(|| base.integrator.method.name().to_string(), |m| m.name());
+    let name = method.map_or_else(|| base.integrator.method.clone(), |m| m.name());
     let time_order = match method {
         Some(m) => m.time_order(base),
-        None => MethodFactory::time_order(&base.integrator.method, base),
+        None => scene_method(base)?.time_order(base),
     };
     let space_order = match base.discretization {
         Discretization::Hermite if base.beam.is_string() => Some(2.0),
