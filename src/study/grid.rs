@@ -59,6 +59,10 @@ pub fn resample(fine: &[f64], stride: usize, rows: Range<usize>) -> Vec<f64> {
     rows.map(|k| fine[k * stride]).collect()
 }
 
+/// Roache's safety factor for a three-grid study (the grid convergence
+/// index, GCI).
+pub const GCI_SAFETY_FACTOR: f64 = 1.25;
+
 /// Observed order p = ln(e_c/e_f)/ln r from two successive differences
 /// (coarse, fine) of a ladder refined by r; NaN unless both are > 0 (a
 /// zero, negative or NaN difference has no order).
