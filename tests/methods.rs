@@ -473,21 +473,6 @@ g = 9.81
     .expect("the bouncing-mass scene resolves")
 }
 
-/// The least-squares slope of log2(error) against the level of a ladder
-/// that halves Δt: the observed order over the whole ladder.
-fn ladder_slope(errors: &[f64]) -> f64 {
-    let n = errors.len() as f64;
-    let xm = (n - 1.0) / 2.0;
-    let ym = errors.iter().map(|e| e.log2()).sum::<f64>() / n;
-    let (mut sxy, mut sxx) = (0.0, 0.0);
-    for (i, e) in errors.iter().enumerate() {
-        let x = i as f64 - xm;
-        sxy += x * (e.log2() - ym);
-        sxx += x * x;
-    }
-    -sxy / sxx
-}
-
 /// Observed order of Moreau–Jean through impacts, over the whole ladder:
 /// measured 1.03 with θ = ½ (single halvings scatter from 0.77 to 1.29, as
 /// the impact instants fall at different places within the steps);
@@ -532,7 +517,7 @@ fn moreau_jean_is_first_order_through_impacts() {
             .fold(0.0, f64::max);
         errors.push(e / peak);
     }
-    let order = ladder_slope(&errors);
+    let order = taut::study::grid::fitted_order(&errors, 2.0);
     println!(
         "moreau_jean θ = ½ through impacts: q errors {errors:?}, order over the ladder {order:.2}"
     );

@@ -37,11 +37,12 @@ mod modal_batch;
 mod modal_exact;
 mod moreau_jean;
 mod oscillator;
+mod run_batch;
 mod state;
 mod system;
 
 pub use batch::{Batch, Lane, MAX_LANES, max_lanes, scene_columns};
-pub use batch_run::{NewBatch, RunBatch, batch_key, lanes_cap, new_batch};
+pub use batch_run::{NewBatch, batch_key, lanes_cap, new_batch};
 pub use bathe::Bathe;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
@@ -53,6 +54,7 @@ pub use modal_batch::{ModalBatch, modal_key};
 pub use modal_exact::{ModalCoefs, ModalExact};
 pub use moreau_jean::MoreauJean;
 pub use oscillator::{MassStep, ModeSteps};
+pub use run_batch::RunBatch;
 pub use state::State;
 pub use system::{
     Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, combine,

@@ -34,8 +34,8 @@ use crate::integrate::{MethodFactory, scene_method};
 use crate::run::{RunOutput, run, run_with};
 use crate::scene::{Declared, Discretization, Resolved, resolve_scene};
 
-/// Roache's safety factor for a three-grid study.
-pub const GCI_SAFETY_FACTOR: f64 = 1.25;
+pub use super::grid::GCI_SAFETY_FACTOR;
+pub use super::reference::AnalyticW;
 
 /// What is refined.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -64,10 +64,6 @@ impl std::str::FromStr for Refine {
         }
     }
 }
-
-/// A reference solution for the displacement under the carrier,
-/// w(x_m(t), t) as a function of t (m), when the scene has one.
-pub type AnalyticW = Box<dyn Fn(f64) -> f64 + Sync>;
 
 /// One row of `converge.csv`.
 #[derive(Debug, Clone, Serialize, PartialEq)]

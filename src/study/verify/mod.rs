@@ -22,8 +22,8 @@
 //!    not be the refined variable's;
 //! 4. passes when the ladder's order is within the expectation's tolerance.
 //!
-//! `known` rows (a measured deviation from the formal order, documented and
-//! being fixed elsewhere), `cannot` rows (why the combination shows no
+//! `known` rows (a measured deviation from the formal order, documented
+//! with its measurement), `cannot` rows (why the combination shows no
 //! order in this variable) and `reported` rows (a method that declares no
 //! formal order) do not fail; `fail` rows do, and `taut verify` exits with
 //! status 1.
