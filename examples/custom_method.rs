@@ -252,11 +252,12 @@ fn main() -> Result<()> {
     }
     taut::report::write_converge_methods(&out.join("converge"), &studies, &skipped)?;
 
-    // a scene that names it: `integrator.method = "backward_euler"`, run as
+    // a scene that names it (the reference scene sets rho_inf, so its whole
+    // `[integrator]` is replaced): `integrator.method = "backward_euler"`, run as
     // `taut run` runs a scene (its own method, found by name)
     let reference = include_str!("../scenes/reference.toml");
     let set = [
-        "integrator.method=\"backward_euler\"".to_string(),
+        "integrator={ method = \"backward_euler\" }".to_string(),
         "time.end=0.05".to_string(),
     ];
     let sc = taut::resolve_scene(reference, &set)?;

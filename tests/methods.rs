@@ -893,3 +893,41 @@ fn a_built_in_method_value_runs_that_method_whatever_the_scene_names() {
         "{e}"
     );
 }
+
+/// A method of one's own registered by name is reached as a built-in one
+/// is (issue 23): a scene naming it runs it (bit-identical to `run_with`
+/// its factory), `--methods` parses it, and a key it does not read is
+/// refused naming both methods.
+#[test]
+fn a_registered_method_is_reached_by_name() {
+    custom_method::register().unwrap();
+    let named = resolve_scene(
+        OSCILLATOR,
+        &[
+            "integrator={ method = \"backward_euler\" }".to_string(),
+            "time.end=0.05".to_string(),
+        ],
+    )
+    .unwrap();
+    let own = resolve_scene(OSCILLATOR, &["time.end=0.05".to_string()]).unwrap();
+    let quiet = &mut |_: usize, _: usize| {};
+    let by_name = run(&named, quiet).unwrap();
+    let by_value = taut::run_with(&own, &custom_method::BACKWARD_EULER, quiet).unwrap();
+    let bits = |o: &taut::RunOutput| format!("{:?} {:?}", o.history, o.stats);
+    assert_eq!(bits(&by_name), bits(&by_value));
+    assert_ne!(bits(&by_name), bits(&run(&own, quiet).unwrap()));
+    let listed = taut::integrate::parse_methods("newmark,backward_euler")
+        .map(|l| l.iter().map(|m| m.name()).collect::<Vec<_>>())
+        .unwrap();
+    assert_eq!(listed, ["newmark", "backward_euler"]);
+    let e = resolve_scene(
+        OSCILLATOR,
+        &["integrator={ method = \"backward_euler\", theta = 0.7 }".to_string()],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("integrator.theta") && e.contains("moreau_jean") && e.contains("backward_euler"),
+        "{e}"
+    );
+}
