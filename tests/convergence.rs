@@ -4,7 +4,7 @@
 //! on TARGETS T1.
 //!
 //! The default suite runs cut-down studies (a few levels, a second or so);
-//! the full ones are `#[ignore]`d: `cargo test --release --test convergence -- --ignored`.
+//! the full ones are `#[ignore]`d: `cargo test --release --test numerics convergence:: -- --ignored`.
 //! Expected orders and why:
 //! * time, generalized-α: 2, in an asymptotic range that starts at a Δt
 //!   shrinking fast with h (N = 100: Δt ≤ 2.5e-5 s; N = 200: ≤ 1.6e-6 s);

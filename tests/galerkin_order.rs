@@ -22,7 +22,7 @@
 //! `galerkin` runs against it at both ends (J = 10 → 20 → 40, and 300 →
 //! 600), with the time step small enough that the time error is a tenth
 //! of the truncation error or less. The table of the docs is an `#[ignore]`d
-//! study: `cargo test --release --test galerkin_order -- --ignored --nocapture`.
+//! study: `cargo test --release --test numerics galerkin_order:: -- --ignored --nocapture`.
 
 mod common;
 
@@ -216,7 +216,7 @@ const FIELD_MODES: usize = 20_000;
 const FIELD_SAMPLE: f64 = 0.01;
 
 #[test]
-#[ignore = "the table of docs/discretizations.md, about a minute in release: cargo test --release --test galerkin_order -- --ignored --nocapture"]
+#[ignore = "the table of docs/discretizations.md, about a minute in release: cargo test --release --test numerics galerkin_order:: -- --ignored --nocapture"]
 fn galerkin_order_in_j_table() {
     let sc = scene(MOVING_FORCE, &[]);
     let b = &sc.beam;

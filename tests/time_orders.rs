@@ -14,7 +14,7 @@
 //! The full tables of docs/methods.md (every method; the resolved problem,
 //! a fine Hermite mesh with the full point load, the study's 50-element
 //! mesh; the modes that set the order) are `#[ignore]`d studies:
-//! `cargo test --release --test time_orders -- --ignored --nocapture`.
+//! `cargo test --release --test numerics time_orders:: -- --ignored --nocapture`.
 
 mod common;
 
@@ -329,7 +329,7 @@ fn free_amplitude(modes: &PinnedPinnedModes, j: usize) -> f64 {
 const AMPLITUDE_MODES: usize = 100_000;
 
 #[test]
-#[ignore = "the tables of docs/methods.md, about 3 minutes in release: cargo test --release --test time_orders -- --ignored --nocapture"]
+#[ignore = "the tables of docs/methods.md, about 3 minutes in release: cargo test --release --test numerics time_orders:: -- --ignored --nocapture"]
 fn time_order_tables() {
     let sc = scene(MOVING_FORCE, &[]);
     let end = sc.steps as f64 * sc.dt;
@@ -468,7 +468,7 @@ fn time_order_tables() {
 const RIDING_MASS_DTS: [f64; 7] = [2e-4, 1e-4, 5e-5, 2.5e-5, 1.25e-5, 6.25e-6, 3.125e-6];
 
 #[test]
-#[ignore = "the riding-mass table of docs/methods.md, about a minute in release: cargo test --release --test time_orders -- --ignored --nocapture"]
+#[ignore = "the riding-mass table of docs/methods.md, about a minute in release: cargo test --release --test numerics time_orders:: -- --ignored --nocapture"]
 fn riding_mass_order_table() {
     let dts = RIDING_MASS_DTS;
     for (mass, elements) in [(30.0, 50), (50.0, 50), (30.0, 200)] {

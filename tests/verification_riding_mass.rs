@@ -20,7 +20,7 @@
 //!   to the Galerkin force on the same ladder.
 //!
 //! The longer ladder (N = 400, J = 1600) is `#[ignore]`d: run it with
-//! `cargo test --release --test verification_riding_mass -- --ignored --nocapture`.
+//! `cargo test --release --test numerics verification_riding_mass:: -- --ignored --nocapture`.
 
 mod common;
 use common::{out_dir, run, scene, taut_bin};

@@ -1,0 +1,62 @@
+//! The front ends' tests in one binary (issue 23): the CLI, bad and hostile
+//! input, sweeps and their faults, the gate, studies driven from the
+//! binary, and the README's commands. Each file below is a module, run with
+//! its name as a filter, e.g. `cargo test --release --test front cli::`.
+//! `no_alloc.rs` (a counting global allocator) and `interrupt.rs` (the
+//! process-wide interrupt flag) stay binaries of their own: they would
+//! disturb the tests beside them.
+
+#[path = "bad_input.rs"]
+mod bad_input;
+#[path = "cli.rs"]
+mod cli;
+#[path = "gate.rs"]
+mod gate;
+#[path = "hostile_input.rs"]
+mod hostile_input;
+#[path = "precision.rs"]
+mod precision;
+#[path = "readme.rs"]
+mod readme;
+#[path = "reliability.rs"]
+mod reliability;
+#[path = "sweep.rs"]
+mod sweep;
+#[path = "sweep_faults.rs"]
+mod sweep_faults;
+#[path = "tolerance.rs"]
+mod tolerance;
+
+/// Every test file in tests/ is a group's root, a module of a group, or a
+/// binary of its own: a file in no group would never run (`autotests =
+/// false` in Cargo.toml).
+#[test]
+fn every_test_file_runs_in_some_binary() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let roots = ["numerics.rs", "front.rs", "no_alloc.rs", "interrupt.rs"];
+    let mut included = String::new();
+    for r in &roots[..2] {
+        included += &std::fs::read_to_string(dir.join(r)).expect("a group file reads");
+    }
+    let manifest = std::fs::read_to_string(dir.join("../Cargo.toml")).expect("Cargo.toml reads");
+    for r in roots {
+        assert!(
+            manifest.contains(&format!("path = \"tests/{r}\"")),
+            "{r} is not a [[test]] target in Cargo.toml"
+        );
+    }
+    for entry in std::fs::read_dir(&dir).expect("tests/ lists") {
+        let name = entry
+            .expect("an entry")
+            .file_name()
+            .into_string()
+            .expect("UTF-8");
+        if !name.ends_with(".rs") || roots.contains(&name.as_str()) {
+            continue;
+        }
+        assert!(
+            included.contains(&format!("#[path = \"{name}\"]")),
+            "tests/{name} is in no test binary: add it to tests/numerics.rs or tests/front.rs"
+        );
+    }
+}

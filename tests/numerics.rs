@@ -1,0 +1,46 @@
+//! The library's numerical tests in one binary (issue 23: one link, not
+//! nineteen): verification against analytic and manufactured references,
+//! methods, discretizations, contact laws, batches and properties. Each
+//! file below is a module, run with its name as a filter, e.g.
+//! `cargo test --release --test numerics modal_exact::`. A new test file
+//! joins a group here or in `front.rs`, whose
+//! `every_test_file_runs_in_some_binary` fails on a file in no group.
+
+#[path = "banded_faer.rs"]
+mod banded_faer;
+#[path = "batch.rs"]
+mod batch;
+#[path = "carriers.rs"]
+mod carriers;
+#[path = "contact_loss.rs"]
+mod contact_loss;
+#[path = "convergence.rs"]
+mod convergence;
+#[path = "discretizations.rs"]
+mod discretizations;
+#[path = "formulations.rs"]
+mod formulations;
+#[path = "galerkin_order.rs"]
+mod galerkin_order;
+#[path = "invariants.rs"]
+mod invariants;
+#[path = "manufactured.rs"]
+mod manufactured;
+#[path = "methods.rs"]
+mod methods;
+#[path = "modal_exact.rs"]
+mod modal_exact;
+#[path = "properties.rs"]
+mod properties;
+#[path = "subnormal.rs"]
+mod subnormal;
+#[path = "time_orders.rs"]
+mod time_orders;
+#[path = "verification_contact.rs"]
+mod verification_contact;
+#[path = "verification_riding_mass.rs"]
+mod verification_riding_mass;
+#[path = "verification_t1_cantilever.rs"]
+mod verification_t1_cantilever;
+#[path = "verification_t2_wave_travel.rs"]
+mod verification_t2_wave_travel;
