@@ -6,7 +6,7 @@
 //! with its carrier replaced by a force, and the reference case with a second
 //! mass–spring 10 m behind the first.
 
-mod common;
+use crate::common;
 use common::run;
 use taut::analytic::StaticPointLoad;
 

@@ -1,7 +1,7 @@
 //! End-to-end through the `taut` binary: outputs on disk, `--set`, and how a
 //! bad scene is reported.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Output;

@@ -6,7 +6,7 @@
 //! contact is lost in the span. Cut-down ladders here; the full study is
 //! `cargo run --release --example contact_loss_report`.
 
-mod common;
+use crate::common;
 
 use common::{run, scene, taut_bin};
 use taut::record::LossClass;

@@ -18,7 +18,7 @@
 //! * the velocity-level impact law respects its own conditions and changes
 //!   the re-contact forces.
 
-mod common;
+use crate::common;
 use common::{run, scene};
 use taut::RunOutput;
 use taut::study::compare::compare;

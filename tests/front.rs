@@ -6,6 +6,9 @@
 //! process-wide interrupt flag) stay binaries of their own: they would
 //! disturb the tests beside them.
 
+/// Shared helpers (one copy for the whole binary).
+mod common;
+
 #[path = "bad_input.rs"]
 mod bad_input;
 #[path = "cli.rs"]

@@ -24,7 +24,7 @@
 //! of the truncation error or less. The table of the docs is an `#[ignore]`d
 //! study: `cargo test --release --test numerics galerkin_order:: -- --ignored --nocapture`.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

@@ -314,8 +314,7 @@ impl MethodFactory for Declares {
     }
 }
 
-#[path = "../examples/custom_method.rs"]
-mod custom_method;
+use crate::custom_method;
 
 #[test]
 fn the_harness_fails_a_method_that_declares_the_wrong_order() {

@@ -22,7 +22,7 @@
 //! * **The study's T1 and T2** under every method; the reference case's
 //!   convergence across methods behind `--ignored` (cut-down by default).
 
-mod common;
+use crate::common;
 
 use nalgebra::DMatrix;
 use taut::error::Error;
@@ -748,8 +748,7 @@ fn the_study_s_t1_and_t2_hold_under_every_method() {
 /// The method added outside the crate (`examples/custom_method.rs`):
 /// backward Euler, through the public trait, is first order on the exact
 /// one-dof case where generalized-α is second (measured 0.94 and 2.00).
-#[path = "../examples/custom_method.rs"]
-mod custom_method;
+use crate::custom_method;
 
 #[test]
 fn a_method_added_outside_the_crate_runs_with_its_own_order() {

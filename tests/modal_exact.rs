@@ -21,7 +21,7 @@
 //!
 //! Configuration: the bundled scenes with `--set`s named in each test.
 
-mod common;
+use crate::common;
 use common::{run, scene};
 
 const EXACT: &str = "integrator={ method = \"modal_exact\" }";

@@ -6,6 +6,14 @@
 //! joins a group here or in `front.rs`, whose
 //! `every_test_file_runs_in_some_binary` fails on a file in no group.
 
+/// Shared helpers (one copy for the whole binary).
+mod common;
+
+/// The backward-Euler example (examples/custom_method.rs), used by the
+/// manufactured and methods tests.
+#[path = "../examples/custom_method.rs"]
+mod custom_method;
+
 #[path = "banded_faer.rs"]
 mod banded_faer;
 #[path = "batch.rs"]

@@ -3,7 +3,7 @@
 //! afford and checks the fix, through the `taut` binary where the class was
 //! seen there.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

@@ -16,7 +16,7 @@
 //! mesh; the modes that set the order) are `#[ignore]`d studies:
 //! `cargo test --release --test numerics time_orders:: -- --ignored --nocapture`.
 
-mod common;
+use crate::common;
 
 use std::sync::OnceLock;
 

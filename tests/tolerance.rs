@@ -3,7 +3,7 @@
 //! never coarsen, bad flags and non-converging quantities are refused with
 //! errors that say why (docs/accuracy.md).
 
-mod common;
+use crate::common;
 
 use common::{out_dir, run_fails, taut_bin};
 

@@ -9,7 +9,7 @@
 //! never silently reported; a stationary carrier gives the same answer with
 //! both placements (MODEL §5); the rounded statistics are pinned in `golden/`.
 
-mod common;
+use crate::common;
 use common::{run, scene};
 
 /// Relative agreement of the two placements for a stationary carrier. They

@@ -22,7 +22,7 @@
 //! The longer ladder (N = 400, J = 1600) is `#[ignore]`d: run it with
 //! `cargo test --release --test numerics verification_riding_mass:: -- --ignored --nocapture`.
 
-mod common;
+use crate::common;
 use common::{out_dir, run, scene, taut_bin};
 use taut::analytic::RidingMassHistory;
 use taut::study::grid::observed_order;

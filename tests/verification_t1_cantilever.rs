@@ -10,7 +10,7 @@
 //! deflection at 0.15 s lies inside the published band, and the bilateral gap
 //! stays at round-off.
 
-mod common;
+use crate::common;
 use common::{run, scene};
 
 /// Published tip deflection at t = 0.15 s, m (read from the study's Fig. 5).

@@ -14,7 +14,7 @@
 //!   (kδ0 + m g)/(1 + k C), with the beam compliance C at x0 from an
 //!   independent continuum solve (`analytic::StaticPointLoad`).
 
-mod common;
+use crate::common;
 use common::{run, scene, t2_return_time};
 use taut::analytic::StaticPointLoad;
 
