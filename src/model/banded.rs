@@ -73,8 +73,9 @@ impl SymBand {
         self.data[i * (2 * self.p + 1) + (j + self.p - i)]
     }
 
-    /// A[i, j] += v and A[j, i] += v when i ≠ j (symmetric assembly helper:
-    /// call it once per unordered pair, or use [`SymBand::add_entry`]).
+    /// A[i, j] += v, that entry alone (the band stores both triangles: a
+    /// symmetric assembly calls it for (i, j) and for (j, i), as the element
+    /// loops do over full element matrices).
     pub fn add_entry(&mut self, i: usize, j: usize, v: f64) {
         assert!(
             i.abs_diff(j) <= self.p,
