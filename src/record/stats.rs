@@ -414,6 +414,12 @@ impl ContactAccumulator {
     pub fn finish(mut self) -> ContactStats {
         self.close_interval();
         self.close_window();
+        // give back the room reserved for events that did not happen (a
+        // study may keep many runs' statistics)
+        self.intervals.shrink_to_fit();
+        self.intervals_t.shrink_to_fit();
+        self.classes.shrink_to_fit();
+        self.recontacts.shrink_to_fit();
         let steps = self.rows.saturating_sub(1);
         let per_step = 1.0 / steps.max(1) as f64;
         let min_gap = if self.min_gap.is_finite() {
