@@ -77,6 +77,118 @@ fn a_modal_sweep_is_the_same_bytes_on_1_2_and_4_threads() {
     assert_eq!(one, csv("4"), "4 threads");
 }
 
+/// `taskset -c 0` before `args` (one CPU: rayon's global pool, and anything
+/// sized from the cores the process may use, then has one thread), or
+/// `None` where taskset is missing or cannot pin this process.
+fn on_one_cpu() -> Option<Command> {
+    let works = Command::new("taskset")
+        .args(["-c", "0", "true"])
+        .status()
+        .is_ok_and(|s| s.success());
+    if !works {
+        return None;
+    }
+    let mut c = Command::new("taskset");
+    c.args(["-c", "0", BIN]);
+    Some(c)
+}
+
+/// Run `cmd` (taut, pinned or not) from the crate root, which must succeed.
+fn ok_cmd(mut cmd: Command, args: &[&str]) {
+    let o = cmd
+        .current_dir(common::crate_root())
+        .args(args)
+        .output()
+        .expect("taut runs");
+    assert!(
+        o.status.success(),
+        "{args:?}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn a_modal_run_and_sweep_are_the_same_bytes_pinned_to_one_cpu() {
+    // the pool follows the CPUs the process may use: a run under
+    // `taskset -c 0` has a pool of one thread, unpinned one of every core
+    let Some(_) = on_one_cpu() else {
+        println!("SKIPPED: taskset is missing or cannot pin a process to CPU 0 here");
+        return;
+    };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if cores < 2 {
+        println!("note: one CPU available, so pinned and unpinned pools are the same size here");
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = scene("reference.toml");
+    // 200 elements (n = 399): with faer's solve on the pool again, this
+    // run's history.csv differed pinned and unpinned (so did 400 elements;
+    // 120 did not: faer stays sequential that small)
+    let modal = [
+        "--set",
+        "mesh.kind=modal",
+        "--set",
+        "mesh.modes=60",
+        "--set",
+        "mesh.elements=200",
+    ];
+    // a run: history.csv (summary.json holds the wall time)
+    let history = |pinned: bool| {
+        let out = tmp.path().join(format!("run_pinned_{pinned}"));
+        let mut args = vec!["run", &reference, "--set", "time.end=0.05"];
+        args.extend(modal);
+        args.extend(["--out", out.to_str().unwrap(), "--quiet"]);
+        let cmd = if pinned {
+            on_one_cpu().unwrap()
+        } else {
+            Command::new(BIN)
+        };
+        ok_cmd(cmd, &args);
+        std::fs::read(out.join("history.csv")).unwrap()
+    };
+    let free = history(false);
+    assert!(
+        free == history(true),
+        "a modal run's history.csv differs under taskset -c 0"
+    );
+    // a sweep: sweep.csv on 2 threads pinned to one CPU, and 1 and 2 unpinned
+    let sweep = |pinned: bool, threads: &str| {
+        let out = tmp.path().join(format!("sweep_pinned_{pinned}_{threads}"));
+        let mut args = vec![
+            "sweep",
+            &reference,
+            "--vary",
+            "carrier.speed.cruise=100:140:3",
+            "--set",
+            "time.end=0.03",
+        ];
+        args.extend(modal);
+        args.extend([
+            "--threads",
+            threads,
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ]);
+        let cmd = if pinned {
+            on_one_cpu().unwrap()
+        } else {
+            Command::new(BIN)
+        };
+        ok_cmd(cmd, &args);
+        std::fs::read(out.join("sweep.csv")).unwrap()
+    };
+    let one = sweep(false, "1");
+    assert!(
+        one == sweep(false, "2"),
+        "a modal sweep's sweep.csv differs on 1 and 2 threads"
+    );
+    assert!(
+        one == sweep(true, "2"),
+        "a modal sweep's sweep.csv differs under taskset -c 0"
+    );
+}
+
 /// Longest a hostile case may take before it counts as a hang, s: each
 /// takes well under a second here; a hang is endless.
 const HANG_SECONDS: u64 = 120;
