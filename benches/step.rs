@@ -126,10 +126,11 @@ fn bench_methods(c: &mut Criterion) {
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(Duration::from_secs(4));
     // modal_exact needs a modal basis: the `modal` group below
-    for m in taut::scene::Method::ALL
-        .into_iter()
-        .filter(|m| !m.needs_modal_basis())
-    {
+    for m in taut::scene::Method::ALL.into_iter().filter(|m| {
+        let hermite = taut::scene::Discretization::Hermite;
+        m.accepts(&taut::scene::ContactSpec::default(), hermite)
+            .is_ok()
+    }) {
         let mut o = vec![
             "mesh.elements=800".to_string(),
             format!("integrator={{ method = \"{}\" }}", m.name()),

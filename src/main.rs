@@ -60,9 +60,7 @@ enum Command {
         /// Refinement ratio between levels (> 1).
         #[arg(long, default_value = "2", allow_hyphen_values = true)]
         ratio: String,
-        /// Comma-separated time integrators to study side by side (default:
-        /// the scene's own).
-        #[arg(long)]
+        #[arg(long, help = methods_help("to study side by side", "the scene's own"))]
         methods: Option<String>,
         /// Comma-separated space discretizations to study side by side:
         /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
@@ -162,8 +160,7 @@ enum Command {
         /// Comma-separated formulations.
         #[arg(long, default_value = "lagrange,penalty,complementarity,impact")]
         formulations: String,
-        /// Comma-separated time integrators (default: the scene's own).
-        #[arg(long)]
+        #[arg(long, help = methods_help("", "the scene's own"))]
         methods: Option<String>,
         /// Comma-separated space discretizations to study side by side:
         /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
@@ -200,8 +197,7 @@ enum Command {
     /// exact), each observed order beside the expected one (verify.csv,
     /// verify.json); exit code 1 when any row fails.
     Verify {
-        /// Comma-separated time integrators (default: all seven).
-        #[arg(long)]
+        #[arg(long, help = methods_help("", "every built-in one"))]
         methods: Option<String>,
         /// Comma-separated discretizations: hermite, graded, galerkin,
         /// modal (default: all; string elements run on the string cases).
@@ -243,9 +239,7 @@ enum Command {
         /// Comma-separated formulations: lagrange, penalty, complementarity, impact.
         #[arg(long, default_value = "lagrange,penalty,complementarity,impact")]
         formulations: String,
-        /// Comma-separated time integrators (default: the scene's own):
-        /// generalized_alpha, newmark, hht, wbz, bathe, central_difference, moreau_jean.
-        #[arg(long)]
+        #[arg(long, help = methods_help("", "the scene's own"))]
         methods: Option<String>,
         /// Comma-separated space discretizations to study side by side:
         /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
@@ -278,6 +272,20 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+}
+
+/// The help of `--methods`: the names come from the method registry
+/// (`taut::scene::method_names`), so a new method needs no edit here.
+fn methods_help(what: &str, default: &str) -> String {
+    let what = if what.is_empty() {
+        String::new()
+    } else {
+        format!(" {what}")
+    };
+    format!(
+        "Comma-separated time integrators{what} (default: {default}): {}",
+        taut::scene::method_names().join(", ")
+    )
 }
 
 fn main() -> ExitCode {

@@ -6,6 +6,7 @@ use crate::error::Error;
 use crate::error::Result;
 use crate::integrate::{
     CarrierSample, Integrator, MAX_LANES, MethodFactory, RunBatch, batch_key, lanes_cap, new_batch,
+    scene_method,
 };
 use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry};
 use crate::scene::Resolved;
@@ -102,6 +103,7 @@ fn drive(
             dofs: it.dofs(),
             steps: it.steps_taken(),
             force_bound: it.force_bound(),
+            method: it.method().to_string(),
             damping_note: it.constraint_damping_note(),
             force_lag: if it.steps_taken() > 0 {
                 it.force_lag()
@@ -118,6 +120,8 @@ struct Finish {
     dofs: usize,
     steps: usize,
     force_bound: f64,
+    /// The method's name ([`crate::scene::MethodInfo::name`]).
+    method: String,
     damping_note: Option<String>,
     force_lag: f64,
 }
@@ -211,7 +215,7 @@ impl Recorder {
                     "carrier {i}: contact switched {} times in {} steps: step-to-step chatter, a numerical oscillation (integrator.method = {}, contact.placement = {:?}; MODEL §5); these contact statistics are not a converged answer{cause}",
                     st.contact_switches,
                     sc.steps,
-                    sc.integrator.method.name(),
+                    f.method,
                     sc.contact.placement
                 )
             })
@@ -296,7 +300,7 @@ pub fn run_many(
 ) -> Vec<Result<RunOutput>> {
     let mut out: Vec<Option<Result<RunOutput>>> = (0..jobs.len()).map(|_| None).collect();
     let own: Vec<usize> = (0..jobs.len())
-        .filter(|&i| jobs[i].1.is_scene_method())
+        .filter(|&i| jobs[i].1.is_scene_method(&jobs[i].0))
         .collect();
     let scenes: Vec<Resolved> = own.iter().map(|&i| jobs[i].0.clone()).collect();
     for (j, r) in run_batch(&scenes, batch, &mut |j| done(own[j]))
@@ -340,6 +344,12 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
         return results;
     }
     let runs = b.lanes().len() as f64;
+    // each run's own method's cause of an instability, for its diagnoses
+    let mut notes: Vec<Option<String>> = vec![None; scenes.len()];
+    for &i in members {
+        let sc = &scenes[i];
+        notes[i] = scene_method(sc).ok().and_then(|m| m.constraint_note(sc));
+    }
     let mut recs: Vec<Option<Recorder>> = b
         .lanes()
         .iter()
@@ -366,7 +376,15 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                         first || rec.keeps(n, sc.steps),
                         first,
                         |c| b.sample(l, c),
-                        |s, c| crate::integrate::check_lane(&lane.sys, &lane.st, s, c),
+                        |s, c| {
+                            crate::integrate::check_lane(
+                                &lane.sys,
+                                &lane.st,
+                                s,
+                                c,
+                                notes[lane.id].as_deref(),
+                            )
+                        },
                         |x| crate::integrate::near_support_lane(&lane.sys, x),
                         |pv| b.displacement_at(l, pv),
                     )
@@ -399,7 +417,11 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                             dofs: lane.sys.beam().n + lane.sys.contacts(),
                             steps: lane.st.step,
                             force_bound: lane.sys.force_bound,
-                            damping_note: crate::integrate::damping_note_of(&lane.sys),
+                            method: sc.integrator.method.clone(),
+                            damping_note: crate::integrate::damping_note_of(
+                                &lane.sys,
+                                notes[lane.id].as_deref(),
+                            ),
                             force_lag: lane.sys.force_lag(lane.st.t),
                         },
                     )),

@@ -12,7 +12,7 @@
 //!   refine, and reports ω_max·Δt.
 
 use taut::integrate::{Initial, MethodFactory, State, Stepper, System};
-use taut::scene::Method;
+use taut::scene::{Method, MethodInfo};
 use taut::study::converge::{Refine, converge};
 use taut::study::verify::cases::CASES;
 use taut::study::verify::{Selection, Status, any_failed, selection, verify};
@@ -293,10 +293,13 @@ fn a_prescribed_loss_is_found_and_left() {
 /// Backward Euler declaring whatever order it is told (the test's lie).
 struct Declares(f64);
 
-impl MethodFactory for Declares {
+impl MethodInfo for Declares {
     fn name(&self) -> String {
         format!("backward_euler_declaring_{}", self.0)
     }
+}
+
+impl MethodFactory for Declares {
     fn build(
         &self,
         sc: &Resolved,

@@ -473,21 +473,6 @@ g = 9.81
     .expect("the bouncing-mass scene resolves")
 }
 
-/// The least-squares slope of log2(error) against the level of a ladder
-/// that halves Δt: the observed order over the whole ladder.
-fn ladder_slope(errors: &[f64]) -> f64 {
-    let n = errors.len() as f64;
-    let xm = (n - 1.0) / 2.0;
-    let ym = errors.iter().map(|e| e.log2()).sum::<f64>() / n;
-    let (mut sxy, mut sxx) = (0.0, 0.0);
-    for (i, e) in errors.iter().enumerate() {
-        let x = i as f64 - xm;
-        sxy += x * (e.log2() - ym);
-        sxx += x * x;
-    }
-    -sxy / sxx
-}
-
 /// Observed order of Moreau–Jean through impacts, over the whole ladder:
 /// measured 1.03 with θ = ½ (single halvings scatter from 0.77 to 1.29, as
 /// the impact instants fall at different places within the steps);
@@ -532,7 +517,7 @@ fn moreau_jean_is_first_order_through_impacts() {
             .fold(0.0, f64::max);
         errors.push(e / peak);
     }
-    let order = ladder_slope(&errors);
+    let order = taut::study::grid::fitted_order(&errors, 2.0);
     println!(
         "moreau_jean θ = ½ through impacts: q errors {errors:?}, order over the ladder {order:.2}"
     );
@@ -587,10 +572,13 @@ fn central_difference_omega_max_is_the_assembled_model_s() {
 /// what the check prevents.
 struct Unchecked;
 
-impl MethodFactory for Unchecked {
+impl taut::scene::MethodInfo for Unchecked {
     fn name(&self) -> String {
         "central_difference (unchecked)".into()
     }
+}
+
+impl MethodFactory for Unchecked {
     fn build(
         &self,
         sc: &Resolved,
@@ -709,7 +697,7 @@ fn the_study_s_t1_and_t2_hold_under_every_method() {
         Method::CentralDifference,
         Method::MoreauJean,
     ] {
-        let mut o = m.overrides(&taut::scene::IntegratorSpec::default());
+        let mut o = vec![format!("integrator={{ method = \"{}\" }}", m.name())];
         o.push("time.end=1.0".into());
         if m == Method::CentralDifference {
             o.push("time.step=5e-5".into());
@@ -728,7 +716,7 @@ fn the_study_s_t1_and_t2_hold_under_every_method() {
             m.name()
         );
 
-        let mut o = m.overrides(&taut::scene::IntegratorSpec::default());
+        let mut o = vec![format!("integrator={{ method = \"{}\" }}", m.name())];
         o.extend(["mesh.elements=40".into(), "time.step=1e-5".into()]);
         if m == Method::CentralDifference {
             // the stiff cantilever's ω_max = 7.5e5 rad/s: Δt ≤ 2.67e-6 s
@@ -862,4 +850,84 @@ fn every_method_agrees_at_the_finest_step_of_the_ladder() {
             "{label}: {pl} vs {pl_ref}"
         );
     }
+}
+
+/// A built-in method value builds the method it is (issue 23):
+/// `run_with(&scene, &Method::Newmark)` on the reference scene, whose own
+/// method is generalized-α, steps Newmark — bit-identical to the scene
+/// that names newmark, and not the scene's generalized-α (their forces
+/// differ by about 6e-3 N on this case).
+#[test]
+fn a_built_in_method_value_runs_that_method_whatever_the_scene_names() {
+    let short = "time.end=0.02".to_string();
+    let own = resolve_scene(REFERENCE, std::slice::from_ref(&short)).unwrap();
+    assert_eq!(own.integrator.method, "generalized_alpha");
+    let named = resolve_scene(
+        REFERENCE,
+        &[short, "integrator={ method = \"newmark\" }".to_string()],
+    )
+    .unwrap();
+    let quiet = &mut |_: usize, _: usize| {};
+    let via_value = taut::run_with(&own, &Method::Newmark, quiet).unwrap();
+    let newmark = run(&named, quiet).unwrap();
+    let alpha = run(&own, quiet).unwrap();
+    // Debug prints each f64 exactly (shortest round trip): equal text is
+    // equal bits
+    let bits = |o: &taut::RunOutput| format!("{:?} {:?}", o.history, o.stats);
+    assert_eq!(bits(&via_value), bits(&newmark));
+    assert_ne!(bits(&via_value), bits(&alpha));
+    // and a method refuses a scene it does not go with, as validation does
+    let alpha_level = resolve_scene(
+        REFERENCE,
+        &[
+            "time.end=0.02".to_string(),
+            "contact.placement=\"alpha\"".to_string(),
+        ],
+    )
+    .unwrap();
+    let e = taut::run_with(&alpha_level, &Method::Bathe, quiet)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("contact.placement") && e.contains("integrator.method = bathe"),
+        "{e}"
+    );
+}
+
+/// A method of one's own registered by name is reached as a built-in one
+/// is (issue 23): a scene naming it runs it (bit-identical to `run_with`
+/// its factory), `--methods` parses it, and a key it does not read is
+/// refused naming both methods.
+#[test]
+fn a_registered_method_is_reached_by_name() {
+    custom_method::register().unwrap();
+    let named = resolve_scene(
+        OSCILLATOR,
+        &[
+            "integrator={ method = \"backward_euler\" }".to_string(),
+            "time.end=0.05".to_string(),
+        ],
+    )
+    .unwrap();
+    let own = resolve_scene(OSCILLATOR, &["time.end=0.05".to_string()]).unwrap();
+    let quiet = &mut |_: usize, _: usize| {};
+    let by_name = run(&named, quiet).unwrap();
+    let by_value = taut::run_with(&own, &custom_method::BACKWARD_EULER, quiet).unwrap();
+    let bits = |o: &taut::RunOutput| format!("{:?} {:?}", o.history, o.stats);
+    assert_eq!(bits(&by_name), bits(&by_value));
+    assert_ne!(bits(&by_name), bits(&run(&own, quiet).unwrap()));
+    let listed = taut::integrate::parse_methods("newmark,backward_euler")
+        .map(|l| l.iter().map(|m| m.name()).collect::<Vec<_>>())
+        .unwrap();
+    assert_eq!(listed, ["newmark", "backward_euler"]);
+    let e = resolve_scene(
+        OSCILLATOR,
+        &["integrator={ method = \"backward_euler\", theta = 0.7 }".to_string()],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("integrator.theta") && e.contains("moreau_jean") && e.contains("backward_euler"),
+        "{e}"
+    );
 }

@@ -22,8 +22,7 @@ use std::sync::OnceLock;
 
 use common::{run, scene};
 use taut::analytic::{MovingForceBeam, PinnedPinnedModes};
-use taut::integrate::MethodFactory;
-use taut::scene::{IntegratorSpec, Method};
+use taut::scene::Method;
 use taut::study::grid::observed_order;
 
 const MOVING_FORCE: &str = "moving_force_beam.toml";
@@ -64,7 +63,7 @@ const MIN_BATHE_RATIO: f64 = 3.0;
 
 /// `--set` overrides selecting `m` with its default parameters.
 fn method(m: Method) -> Vec<String> {
-    m.overrides(&IntegratorSpec::default())
+    vec![format!("integrator={{ method = \"{}\" }}", m.name())]
 }
 
 /// `integrator = { method = "moreau_jean", theta = θ }`.

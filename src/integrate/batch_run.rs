@@ -1,57 +1,17 @@
-//! Runs stepped together, as the driver of a batch (`run::run_batch`) sees
-//! them: which runs may share a batch ([`batch_key`]), how many at most
-//! ([`lanes_cap`]), and one interface ([`RunBatch`]) over the two kinds —
-//! generalized-α runs sharing one factorization as SIMD lanes
+//! Choosing a batch, as the driver of a batch (`run::run_batch`) sees it:
+//! which runs may share one ([`batch_key`]), how many at most
+//! ([`lanes_cap`]), and building it ([`new_batch`]) of the kind the key
+//! names — generalized-α runs sharing one factorization as SIMD lanes
 //! ([`super::Batch`]), `modal_exact` runs sharing one basis
-//! ([`super::ModalBatch`]).
+//! ([`super::ModalBatch`]); both step behind [`RunBatch`].
 
 use crate::error::Error;
-use crate::model::beam::PointVector;
 use crate::scene::{Resolved, Scheme};
 
 use super::batch::{MAX_LANES, gen_alpha_key, max_lanes, scene_columns};
 use super::modal_batch::modal_key;
-use super::{Batch, CarrierSample, Lane, ModalBatch};
-
-/// Several runs stepped in lockstep, each bit-identical to the run alone.
-pub trait RunBatch: Send {
-    /// The runs still in the batch, in lane order.
-    fn lanes(&self) -> &[Lane];
-    /// True when the batch can step its current number of runs (else the
-    /// caller steps them alone).
-    fn supported(&self) -> bool;
-    /// Advance every run one step; a run that stops keeps its error in
-    /// [`Lane::failed`].
-    fn step(&mut self);
-    /// The values of carrier `i` of lane `l` now.
-    fn sample(&self, l: usize, i: usize) -> CarrierSample;
-    /// rᵀd of lane `l` (a probe's displacement).
-    fn displacement_at(&self, l: usize, pv: &PointVector) -> f64;
-    /// Remove the runs at `gone` (lane indices, ascending); returns them in
-    /// that order.
-    fn retire(&mut self, gone: &[usize]) -> Vec<Lane>;
-}
-
-impl RunBatch for Batch {
-    fn lanes(&self) -> &[Lane] {
-        Batch::lanes(self)
-    }
-    fn supported(&self) -> bool {
-        Batch::supported(self)
-    }
-    fn step(&mut self) {
-        Batch::step(self)
-    }
-    fn sample(&self, l: usize, i: usize) -> CarrierSample {
-        Batch::sample(self, l, i)
-    }
-    fn displacement_at(&self, l: usize, pv: &PointVector) -> f64 {
-        Batch::displacement_at(self, l, pv)
-    }
-    fn retire(&mut self, gone: &[usize]) -> Vec<Lane> {
-        Batch::retire(self, gone)
-    }
-}
+use super::run_batch::RunBatch;
+use super::{Batch, ModalBatch};
 
 /// The key of the runs that may step together: `None` when `sc` cannot
 /// batch. Generalized-α runs with equal keys share their effective matrix

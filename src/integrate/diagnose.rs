@@ -1,36 +1,17 @@
 //! Divergence diagnosis: a run whose recorded values leave their sane range
 //! stops with the step, the time, the quantity and a likely cause, whatever
-//! the method.
+//! the method. The method's own cause (an undamped constraint mode of a
+//! generalized-α member) comes from the method
+//! ([`super::MethodFactory::constraint_note`]).
 
 use crate::error::{Error, Result};
-use crate::scene::{Placement, Scheme, Support};
+use crate::scene::{Placement, Support};
 
 use super::{CarrierSample, State, System};
 
 /// Displacements beyond this many beam lengths are not a small-deflection
 /// answer: a linear model that gets there has blown up.
 const DISPLACEMENT_BOUND_IN_LENGTHS: f64 = 1.0;
-
-/// A generalized-α-family method imposes the gap at t_{n+1} but balances
-/// forces at t_{n+1−α_f}: the constraint direction keeps a step-to-step
-/// (Nyquist) mode that only some parameter sets damp, and a moving contact
-/// point drives it (MODEL §5, as `contact.placement = "alpha"` does).
-/// Measured on the reference case at Δt = 1e-4 s (`examples/methods_report.rs`,
-/// docs/methods.md): with a bilateral mass Newmark, HHT α ≤ 0.1, WBZ ρ∞ = 0.8
-/// and generalized-α ρ∞ = 0.9 diverge, while ρ∞ = 1 or 0.5, HHT α ≥ 0.2,
-/// WBZ ρ∞ ≤ 0.5 and Bathe run. The cause to name when such a run goes
-/// unstable or chatters.
-pub(crate) fn weak_constraint_damping(sys: &System) -> Option<String> {
-    let Scheme::GenAlpha(p) = sys.scheme else {
-        return None;
-    };
-    Some(format!(
-        "the contact constraint's step-to-step mode, which integrator.method = {} (α_m = {:.3}, α_f = {:.3}) may leave undamped: a moving contact point drives it (MODEL §5; measured on the reference case, newmark, hht with alpha ≤ 0.1, wbz with rho_inf = 0.8 and generalized_alpha with rho_inf = 0.9 go unstable, while rho_inf = 1 or 0.5, hht with alpha ≥ 0.2, wbz with rho_inf ≤ 0.5 and bathe run: docs/methods.md)",
-        sys.method.name(),
-        p.alpha_m,
-        p.alpha_f
-    ))
-}
 
 /// True when x lies in the last element before a supported end (v = 0
 /// there): a carrier arriving at a support meets the beam's support corner,
@@ -46,8 +27,15 @@ pub(crate) fn near_support(sys: &System, x: f64) -> bool {
 /// The force bound is not applied in the last element before a support:
 /// there a mass that arrives with the beam under it still deflected is
 /// forced to w = 0 within one element, a genuine (refinement-dependent)
-/// impact of the model; `run` reports it as a warning instead.
-pub(crate) fn check(sys: &System, st: &State, s: &CarrierSample, carrier: usize) -> Result<()> {
+/// impact of the model; `run` reports it as a warning instead. `note` is
+/// the method's likely cause with a moving contact, if it has one.
+pub(crate) fn check(
+    sys: &System,
+    st: &State,
+    s: &CarrierSample,
+    carrier: usize,
+    note: Option<&str>,
+) -> Result<()> {
     let bound = DISPLACEMENT_BOUND_IN_LENGTHS * sys.length;
     let force_limit = if near_support(sys, s.x) {
         f64::INFINITY
@@ -68,10 +56,7 @@ pub(crate) fn check(sys: &System, st: &State, s: &CarrierSample, carrier: usize)
         let speed = c.props.motion.speed(st.t);
         let supersonic_mass =
             sys.bilateral && c.contact.is_some() && sys.wave_speed > 0.0 && speed > sys.wave_speed;
-        let weak = moving
-            .then(|| weak_constraint_damping(sys))
-            .flatten()
-            .filter(|_| c.contact.is_some());
+        let weak = note.filter(|_| moving && c.contact.is_some());
         let cause = if st.step == 0 {
             // nothing has been integrated yet: no step or contact law is to blame
             format!(

@@ -10,11 +10,15 @@
 //! * [`Stepper`]: one method's step. A method is one file:
 //!   `gen_alpha.rs` (generalized-α, Newmark, HHT, WBZ), `bathe.rs`,
 //!   `central_difference.rs`, `moreau_jean.rs`, `modal_exact.rs` (with
-//!   `oscillator.rs`, the exact step of one mode). [`stepper_for`] picks the
-//!   one a scene asks for (`[integrator] method`, [`crate::scene::Method`]);
-//!   a method written outside the crate implements [`Stepper`] and
-//!   [`MethodFactory`] and runs through [`Integrator::with_method`],
-//!   [`crate::run_with`] and the studies (`examples/custom_method.rs`).
+//!   `oscillator.rs`, the exact step of one mode). [`stepper_for`] builds a
+//!   built-in method's ([`crate::scene::Method`], described in
+//!   `scene/method.rs`) from its scheme.
+//! * `method.rs`: the seam — [`MethodFactory`] (a method's description and
+//!   the stepper it builds) and the registry by name ([`register`],
+//!   [`method_named`]). A method written outside the crate implements
+//!   [`Stepper`] and [`MethodFactory`], registers itself, and runs from a
+//!   scene, `--methods`, [`crate::run_with`] and the studies alike
+//!   (`examples/custom_method.rs`).
 //! * `diagnose.rs`: a run that goes unstable stops with a diagnosis;
 //!   `energy.rs`: the discrete energy, for the checks.
 //!
@@ -28,25 +32,29 @@ mod central_difference;
 mod diagnose;
 mod energy;
 mod gen_alpha;
+mod method;
 mod modal_batch;
 mod modal_exact;
 mod moreau_jean;
 mod oscillator;
+mod run_batch;
 mod state;
 mod system;
 
 pub use batch::{Batch, Lane, MAX_LANES, max_lanes, scene_columns};
-pub use batch_run::{NewBatch, RunBatch, batch_key, lanes_cap, new_batch};
+pub use batch_run::{NewBatch, batch_key, lanes_cap, new_batch};
 pub use bathe::Bathe;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
+pub use method::{MethodFactory, method_named, parse_methods, register, scene_method, stepper_for};
 pub use modal_batch::{ModalBatch, modal_key};
 pub use modal_exact::{ModalCoefs, ModalExact};
 pub use moreau_jean::MoreauJean;
 pub use oscillator::{MassStep, ModeSteps};
+pub use run_batch::RunBatch;
 pub use state::State;
 pub use system::{
     Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, combine,
@@ -55,7 +63,7 @@ pub use system::{
 
 use crate::error::Result;
 use crate::model::beam::{BeamModel, PointVector};
-use crate::scene::{CarrierKind, IntegratorSpec, Method, Resolved, Scheme};
+use crate::scene::{CarrierKind, Resolved};
 
 /// One time integrator's step. Implement it (with a [`MethodFactory`]) to
 /// add a method: `examples/custom_method.rs` does, outside the crate.
@@ -70,116 +78,6 @@ use crate::scene::{CarrierKind, IntegratorSpec, Method, Resolved, Scheme};
 pub trait Stepper: Send {
     /// Advance one step.
     fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()>;
-}
-
-/// Builds a [`Stepper`] for a run: the built-in methods ([`Method`]) from
-/// the scene's `[integrator]`, or a method of one's own.
-pub trait MethodFactory: Sync {
-    /// The name in tables and plots (`method` column of `compare.csv`).
-    fn name(&self) -> String;
-
-    /// `--set` overrides that select this method in a scene whose
-    /// `[integrator]` is `base` (a built-in method sets `[integrator]`; a
-    /// custom method needs none).
-    fn overrides(&self, _base: &IntegratorSpec) -> Vec<String> {
-        Vec::new()
-    }
-
-    /// Build the stepper for a validated scene, given its system and the
-    /// consistent initial state (the accelerations in `init`; a method may
-    /// adjust `st`, e.g. to a half-step velocity). A method that works with
-    /// impulses says so with [`System::set_multipliers`].
-    fn build(
-        &self,
-        sc: &Resolved,
-        sys: &mut System,
-        st: &mut State,
-        init: Initial,
-    ) -> Result<Box<dyn Stepper>>;
-
-    /// True when this factory builds what the scene's own `[integrator]`
-    /// builds (the built-in methods), so its runs may step in batches
-    /// (`integrate::batch`); a method of one's own steps alone.
-    fn is_scene_method(&self) -> bool {
-        false
-    }
-
-    /// The method's formal order in Δt for the scene `sc` (the order of its
-    /// local truncation error minus one, for smooth solutions), which
-    /// `taut converge` and `taut verify` hold observed orders against;
-    /// `None` when not declared.
-    fn time_order(&self, _sc: &Resolved) -> Option<f64> {
-        None
-    }
-}
-
-impl MethodFactory for Method {
-    fn name(&self) -> String {
-        Method::name(*self).to_string()
-    }
-
-    /// `integrator = { method = "…" }` with the base scene's parameters that
-    /// this method reads (a `rho_inf` of generalized-α is dropped for Bathe).
-    fn overrides(&self, base: &IntegratorSpec) -> Vec<String> {
-        let mut table = format!("integrator={{ method = \"{}\"", Method::name(*self));
-        for (key, value) in [
-            ("rho_inf", base.rho_inf),
-            ("alpha", base.alpha),
-            ("gamma", base.gamma),
-            ("theta", base.theta),
-        ] {
-            if let Some(v) = value
-                && self.parameters().contains(&key)
-            {
-                table.push_str(&format!(", {key} = {v:?}"));
-            }
-        }
-        table.push_str(" }");
-        vec![table]
-    }
-
-    fn build(
-        &self,
-        sc: &Resolved,
-        sys: &mut System,
-        st: &mut State,
-        init: Initial,
-    ) -> Result<Box<dyn Stepper>> {
-        stepper_for(sc, sys, st, init)
-    }
-
-    fn is_scene_method(&self) -> bool {
-        true
-    }
-
-    /// 2 for the generalized-α family, Bathe and central difference; for
-    /// Moreau–Jean 2 at θ = ½ (the trapezoidal rule) and 1 otherwise
-    /// (MODEL §9.1). `sc` is a scene of this method (its `scheme`).
-    fn time_order(&self, sc: &Resolved) -> Option<f64> {
-        Some(match sc.scheme {
-            Scheme::MoreauJean { theta } if theta != 0.5 => 1.0,
-            _ => 2.0,
-        })
-    }
-}
-
-/// The stepper of the scene's own method (`sc.scheme`).
-pub fn stepper_for(
-    sc: &Resolved,
-    sys: &mut System,
-    st: &mut State,
-    init: Initial,
-) -> Result<Box<dyn Stepper>> {
-    Ok(match sc.scheme {
-        Scheme::GenAlpha(p) => Box::new(GenAlpha::new(p, sys, st, init)?),
-        Scheme::Bathe { gamma } => Box::new(Bathe::new(gamma, sys, st, init)?),
-        Scheme::CentralDifference => Box::new(CentralDifference::new(sc, sys, st, init)?),
-        Scheme::MoreauJean { theta } => {
-            sys.set_multipliers(Multipliers::Impulses);
-            Box::new(MoreauJean::new(theta, sys, st)?)
-        }
-        Scheme::ModalExact => Box::new(ModalExact::new(sys)?),
-    })
 }
 
 /// The per-carrier values recorded after each step.
@@ -205,6 +103,11 @@ pub struct Integrator {
     sys: System,
     state: State,
     stepper: Box<dyn Stepper>,
+    /// The method's name, for warnings.
+    method: String,
+    /// The method's likely cause of an instability with a moving contact
+    /// ([`MethodFactory::constraint_note`]), for diagnoses.
+    note: Option<String>,
 }
 
 impl Integrator {
@@ -213,27 +116,24 @@ impl Integrator {
     /// masses touching, loads switched on at t = 0, accelerations consistent
     /// with contact).
     pub fn new(sc: &Resolved) -> Result<Self> {
-        Self::build(sc, &|sc, sys, st, init| stepper_for(sc, sys, st, init))
+        Self::with_method(sc, scene_method(sc)?)
     }
 
-    /// As [`Integrator::new`], with the method `factory` builds.
+    /// As [`Integrator::new`], with the method `factory` builds (whatever
+    /// method the scene names; its contact settings and basis checked
+    /// against this one, [`crate::scene::MethodInfo::accepts`]).
     pub fn with_method(sc: &Resolved, factory: &dyn MethodFactory) -> Result<Self> {
-        Self::build(sc, &|sc, sys, st, init| factory.build(sc, sys, st, init))
-    }
-
-    #[allow(clippy::type_complexity)]
-    fn build(
-        sc: &Resolved,
-        make: &dyn Fn(&Resolved, &mut System, &mut State, Initial) -> Result<Box<dyn Stepper>>,
-    ) -> Result<Self> {
+        factory.accepts(&sc.contact, sc.discretization)?;
         let mut sys = System::new(sc)?;
         let mut state = State::at_rest(sys.beam().n, sys.contacts());
         let init = sys.initial()?;
-        let stepper = make(sc, &mut sys, &mut state, init)?;
+        let stepper = factory.build(sc, &mut sys, &mut state, init)?;
         Ok(Integrator {
             sys,
             state,
             stepper,
+            method: factory.name(),
+            note: factory.constraint_note(sc),
         })
     }
 
@@ -312,10 +212,15 @@ impl Integrator {
         self.sys.force_bound
     }
 
+    /// The method's name ([`crate::scene::MethodInfo::name`]).
+    pub fn method(&self) -> &str {
+        &self.method
+    }
+
     /// Why this method may leave a moving contact's constraint undamped
     /// (Newmark, WBZ, HHT with small α), for warnings; `None` otherwise.
     pub fn constraint_damping_note(&self) -> Option<String> {
-        damping_note_of(&self.sys)
+        damping_note_of(&self.sys, self.note.as_deref())
     }
 
     /// True when x lies in the last element before a supported end.
@@ -325,7 +230,7 @@ impl Integrator {
 
     /// Stop with a diagnosis if a recorded value is non-finite or absurd.
     pub fn check(&self, s: &CarrierSample, carrier: usize) -> Result<()> {
-        check_lane(&self.sys, &self.state, s, carrier)
+        check_lane(&self.sys, &self.state, s, carrier, self.note.as_deref())
     }
 }
 
@@ -367,15 +272,13 @@ pub(crate) fn sample_of(
 }
 
 /// [`Integrator::constraint_damping_note`] of a run's system (alone or in
-/// a batch).
-pub(crate) fn damping_note_of(sys: &System) -> Option<String> {
+/// a batch) whose method notes `note` ([`MethodFactory::constraint_note`]).
+pub(crate) fn damping_note_of(sys: &System, note: Option<&str>) -> Option<String> {
     let moving = sys
         .carriers
         .iter()
         .any(|c| c.contact.is_some() && !c.props.motion.is_stationary());
-    moving
-        .then(|| diagnose::weak_constraint_damping(sys))
-        .flatten()
+    moving.then(|| note.map(str::to_string)).flatten()
 }
 
 /// [`Integrator::near_support`] of a run's system.
@@ -383,12 +286,14 @@ pub(crate) fn near_support_lane(sys: &System, x: f64) -> bool {
     diagnose::near_support(sys, x)
 }
 
-/// [`Integrator::check`] of a run (alone or in a batch).
+/// [`Integrator::check`] of a run (alone or in a batch) whose method
+/// notes `note` ([`MethodFactory::constraint_note`]).
 pub(crate) fn check_lane(
     sys: &System,
     st: &State,
     s: &CarrierSample,
     carrier: usize,
+    note: Option<&str>,
 ) -> Result<()> {
-    diagnose::check(sys, st, s, carrier)
+    diagnose::check(sys, st, s, carrier, note)
 }

@@ -25,8 +25,8 @@ use crate::error::{Error, Result};
 use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::{Discretization, Resolved, Scheme};
 
-use super::batch_run::RunBatch;
 use super::modal_exact::{ModalCoefs, ModalExact};
+use super::run_batch::RunBatch;
 use super::{CarrierSample, Lane, State, Stepper, System};
 
 /// The key of `modal_exact` runs that may step together (module docs):

@@ -21,8 +21,7 @@ use crate::model::banded::BandedLdlt;
 use crate::model::beam::{BeamModel, PointVector};
 use crate::model::source::Source;
 use crate::scene::{
-    CarrierKind, CarrierProps, ContactKind, ContactSpec, Method, Placement, Resolved, Scheme,
-    Support,
+    CarrierKind, CarrierProps, ContactKind, ContactSpec, Placement, Resolved, Support,
 };
 
 use super::State;
@@ -235,9 +234,6 @@ pub struct System {
     /// String wave speed c = sqrt(T/ρA), m/s.
     pub(crate) wave_speed: f64,
     pub(crate) force_bound: f64,
-    /// The scene's method, for diagnoses.
-    pub(crate) method: Method,
-    pub(crate) scheme: Scheme,
     law: Box<dyn ContactLaw>,
     contact: ContactSpec,
     /// The level the law works at during the run.
@@ -350,8 +346,6 @@ impl System {
             supports: (sc.beam.left, sc.beam.right),
             wave_speed: sc.beam.wave_speed(),
             force_bound: FORCE_BOUND_FACTOR * force_scale.max(f64::MIN_POSITIVE),
-            method: sc.integrator.method,
-            scheme: sc.scheme,
             law,
             contact: sc.contact.clone(),
             level,

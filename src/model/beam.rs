@@ -457,7 +457,9 @@ impl BeamModel {
     /// exact ω_J in a modal basis (K and M diagonal).
     pub fn omega_bound(&self, props: &BeamProps) -> f64 {
         match self.basis {
-            Basis::Elements => super::spectrum::element_bound(props, self.h),
+            Basis::Elements => {
+                super::element::omega_max(props.rho_a, props.ei, props.tension, self.h)
+            }
             _ => (0..self.n)
                 .map(|j| (self.stiffness.get(j, j) / self.mass.get(j, j)).sqrt())
                 .fold(0.0, f64::max),

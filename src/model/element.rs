@@ -1,7 +1,7 @@
 //! Element matrices: Hermite beam elements with tension (MODEL §4) and C0
 //! string elements (MODEL §6). Dof order (v_e, θ_e, v_{e+1}, θ_{e+1}).
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::{Cholesky, DMatrix, SMatrix, SVector};
 
 /// 4×4 element matrix of a Hermite beam element.
 pub type Mat4 = SMatrix<f64, 4, 4>;
@@ -93,6 +93,46 @@ pub fn string_uniform_load(p: f64, h: f64) -> SVector<f64, 2> {
 /// Linear shape functions at s ∈ [0, 1].
 pub fn string_shape(s: f64) -> [f64; 2] {
     [1.0 - s, s]
+}
+
+/// The largest ω (rad/s) of one element's (K_e, M_e): Hermite with tension
+/// (ρA kg/m, EI N·m², T N, length h m), or a string element when EI = 0.
+/// For consistent masses its square bounds the assembled model's ω_max²
+/// (Irons 1970; `model::spectrum`).
+pub fn omega_max(rho_a: f64, ei: f64, tension: f64, h: f64) -> f64 {
+    let (k, m) = if ei == 0.0 {
+        let k = string_stiffness(tension, h);
+        let m = string_mass(rho_a, h);
+        (
+            DMatrix::from_column_slice(2, 2, k.as_slice()),
+            DMatrix::from_column_slice(2, 2, m.as_slice()),
+        )
+    } else {
+        let k = hermite_bending(ei, h) + hermite_tension(tension, h);
+        let m = hermite_mass(rho_a, h);
+        (
+            DMatrix::from_column_slice(4, 4, k.as_slice()),
+            DMatrix::from_column_slice(4, 4, m.as_slice()),
+        )
+    };
+    largest_generalized(&k, &m).sqrt()
+}
+
+/// λ_max of K x = λ M x for a small SPD M: L⁻¹ K L⁻ᵀ with M = LLᵀ.
+fn largest_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> f64 {
+    let l = Cholesky::new(m.clone())
+        .expect("an element mass matrix is positive definite")
+        .l();
+    let li = l
+        .clone()
+        .try_inverse()
+        .expect("a Cholesky factor is invertible");
+    let c = &li * k * li.transpose();
+    let c = 0.5 * (&c + c.transpose());
+    c.symmetric_eigenvalues()
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
 }
 
 #[cfg(test)]

@@ -20,50 +20,18 @@
 //!   string elements it is within 1e-4 of ω_max, tighter than θ + r. The
 //!   limit uses the smaller of the two upper figures.
 
-use nalgebra::{Cholesky, DMatrix};
+use nalgebra::DMatrix;
 
 use super::banded::BandedLdlt;
 use super::beam::BeamModel;
 use super::element;
 use crate::scene::BeamProps;
 
-/// The largest ω (rad/s) of one element's (K_e, M_e): Hermite with tension,
-/// or a string element when EI = 0. Its square bounds the assembled
-/// model's ω_max² (module docs).
+/// The largest ω (rad/s) of one element's (K_e, M_e) for `props`
+/// ([`element::omega_max`]); its square bounds the assembled model's
+/// ω_max² (module docs).
 pub fn element_bound(props: &BeamProps, h: f64) -> f64 {
-    let (k, m) = if props.is_string() {
-        let k = element::string_stiffness(props.tension, h);
-        let m = element::string_mass(props.rho_a, h);
-        (
-            DMatrix::from_column_slice(2, 2, k.as_slice()),
-            DMatrix::from_column_slice(2, 2, m.as_slice()),
-        )
-    } else {
-        let k = element::hermite_bending(props.ei, h) + element::hermite_tension(props.tension, h);
-        let m = element::hermite_mass(props.rho_a, h);
-        (
-            DMatrix::from_column_slice(4, 4, k.as_slice()),
-            DMatrix::from_column_slice(4, 4, m.as_slice()),
-        )
-    };
-    largest_generalized(&k, &m).sqrt()
-}
-
-/// λ_max of K x = λ M x for a small SPD M: L⁻¹ K L⁻ᵀ with M = LLᵀ.
-fn largest_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> f64 {
-    let l = Cholesky::new(m.clone())
-        .expect("an element mass matrix is positive definite")
-        .l();
-    let li = l
-        .clone()
-        .try_inverse()
-        .expect("a Cholesky factor is invertible");
-    let c = &li * k * li.transpose();
-    let c = 0.5 * (&c + c.transpose());
-    c.symmetric_eigenvalues()
-        .iter()
-        .copied()
-        .fold(0.0, f64::max)
+    element::omega_max(props.rho_a, props.ei, props.tension, h)
 }
 
 /// Largest eigenvalue ω_max² of K x = ω² M x by `steps` Lanczos steps:

@@ -8,11 +8,18 @@
 //! `theta` to `moreau_jean`); a key given for a method that does not use it
 //! is an error naming both keys, not silently ignored.
 
+use std::sync::RwLock;
+
 use serde::{Deserialize, Serialize};
 
+use super::{ContactSpec, Discretization, Formulation, Placement};
 use crate::error::{Error, Result};
 
-/// The time integrator (`integrator.method`, MODEL §9.1).
+/// The built-in time integrators (`integrator.method`, MODEL §9.1): the
+/// one place each is described (name, parameters with their ranges, formal
+/// order in Δt, which contact settings and bases it accepts, its scheme and
+/// its diagnosis). Its stepper is built from its [`Scheme`] by
+/// `integrate::stepper_for`.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq, Default, Hash)]
 #[serde(rename_all = "snake_case")]
 pub enum Method {
@@ -37,8 +44,40 @@ pub enum Method {
     ModalExact,
 }
 
+/// ρ∞ ∈ [0, 1] of `generalized_alpha` and `wbz` (default 1: no dissipation).
+const RHO_INF: Parameter = Parameter {
+    key: "rho_inf",
+    default: 1.0,
+    range: "[0, 1]",
+    contains: |v| (0.0..=1.0).contains(&v),
+};
+
+/// HHT α ∈ [0, 1/3].
+const HHT_ALPHA: Parameter = Parameter {
+    key: "alpha",
+    default: DEFAULT_HHT_ALPHA,
+    range: "[0, 1/3] (HHT is unconditionally stable and second order there)",
+    contains: |v| (0.0..=1.0 / 3.0).contains(&v),
+};
+
+/// Bathe's splitting γ_B ∈ (0, 1).
+const BATHE_GAMMA: Parameter = Parameter {
+    key: "gamma",
+    default: DEFAULT_BATHE_GAMMA,
+    range: "(0, 1) (the first sub-step ends inside the step)",
+    contains: |v| v > 0.0 && v < 1.0,
+};
+
+/// Moreau–Jean θ ∈ [½, 1].
+const THETA: Parameter = Parameter {
+    key: "theta",
+    default: DEFAULT_THETA,
+    range: "[0.5, 1] (below 1/2 the θ-scheme is unstable)",
+    contains: |v| (0.5..=1.0).contains(&v),
+};
+
 impl Method {
-    /// Every method, in the order `taut compare --methods` lists them.
+    /// Every built-in method, in the order `taut compare --methods` lists them.
     pub const ALL: [Method; 8] = [
         Method::GeneralizedAlpha,
         Method::Newmark,
@@ -64,27 +103,277 @@ impl Method {
         }
     }
 
-    /// True when the method needs a diagonal basis (`mesh.kind =
-    /// "galerkin"` or `"modal"`): it propagates each mode on its own.
-    pub fn needs_modal_basis(self) -> bool {
-        self == Method::ModalExact
-    }
-
-    /// The method named `name`, if any.
+    /// The built-in method named `name`, if any.
     pub fn from_name(name: &str) -> Option<Method> {
         Method::ALL.into_iter().find(|m| m.name() == name)
     }
 
-    /// The parameter keys of `[integrator]` this method reads.
-    pub fn parameters(self) -> &'static [&'static str] {
+    /// The parameters of `[integrator]` this method reads, with their
+    /// defaults and ranges.
+    pub fn parameters(self) -> &'static [Parameter] {
         match self {
-            Method::GeneralizedAlpha | Method::Wbz => &["rho_inf"],
-            Method::Hht => &["alpha"],
-            Method::Bathe => &["gamma"],
-            Method::MoreauJean => &["theta"],
+            Method::GeneralizedAlpha | Method::Wbz => &[RHO_INF],
+            Method::Hht => &[HHT_ALPHA],
+            Method::Bathe => &[BATHE_GAMMA],
+            Method::MoreauJean => &[THETA],
             Method::Newmark | Method::CentralDifference | Method::ModalExact => &[],
         }
     }
+
+    /// The scheme with the parameter values `v` (in the order of
+    /// [`Method::parameters`], each in its range).
+    fn scheme_of(self, v: &[f64]) -> Scheme {
+        match self {
+            Method::GeneralizedAlpha => Scheme::GenAlpha(GenAlphaParams::from_rho_inf(v[0])),
+            Method::Wbz => Scheme::GenAlpha(GenAlphaParams::wbz(v[0])),
+            Method::Newmark => Scheme::GenAlpha(GenAlphaParams::newmark()),
+            Method::Hht => Scheme::GenAlpha(GenAlphaParams::hht(v[0])),
+            Method::Bathe => Scheme::Bathe { gamma: v[0] },
+            Method::CentralDifference => Scheme::CentralDifference,
+            Method::MoreauJean => Scheme::MoreauJean { theta: v[0] },
+            Method::ModalExact => Scheme::ModalExact,
+        }
+    }
+
+    /// The formal order in Δt of this method's `scheme` (the order of its
+    /// local truncation error minus one, for smooth solutions): 2 for the
+    /// generalized-α family, Bathe, central difference and modal_exact; for
+    /// Moreau–Jean 2 at θ = ½ (the trapezoidal rule) and 1 otherwise
+    /// (MODEL §9.1).
+    pub fn time_order(self, scheme: &Scheme) -> f64 {
+        match scheme {
+            Scheme::MoreauJean { theta } if *theta != 0.5 => 1.0,
+            _ => 2.0,
+        }
+    }
+
+    /// Refuse a contact setting or basis this method does not go with (the
+    /// table in `docs/methods.md`), naming both keys.
+    pub fn accepts(self, c: &ContactSpec, d: Discretization) -> Result<()> {
+        let alpha_level = matches!(
+            self,
+            Method::GeneralizedAlpha | Method::Newmark | Method::Hht | Method::Wbz
+        );
+        if c.placement == Placement::Alpha && !alpha_level {
+            return Err(Error::invalid(
+                "contact.placement",
+                "\"alpha\"",
+                format!(
+                    "imposes the gap at the generalized-α level t_{{n+1−α_f}}, which integrator.method = {} does not have: use contact.placement = \"end\" (or a generalized-α method)",
+                    self.name()
+                ),
+            ));
+        }
+        if self == Method::ModalExact && c.formulation == Formulation::Impact {
+            return Err(Error::invalid(
+                "contact.formulation",
+                "\"impact\"",
+                "integrator.method = modal_exact holds the contact force over each step and imposes the gap itself at the step's end (MODEL §9.3); an impact law acts by impulses on the gap rate, which that representation has no place for, and a velocity-level condition would replace the position gap it propagates exactly: use lagrange, penalty or complementarity (or integrator.method = moreau_jean for an impact law)",
+            ));
+        }
+        if self == Method::MoreauJean {
+            let why = match c.formulation {
+                Formulation::Penalty => Some(
+                    "penalty regularizes a position gap with a stiffness, while integrator.method = moreau_jean solves for impulses on gap rates: use lagrange or complementarity",
+                ),
+                Formulation::Impact => Some(
+                    "integrator.method = moreau_jean is itself the velocity-level impact scheme (restitution from contact.impact.restitution): use lagrange (exact active set) or complementarity (clarabel) to solve its impulse problem",
+                ),
+                _ => None,
+            };
+            if let Some(why) = why {
+                return Err(Error::invalid(
+                    "contact.formulation",
+                    format!("\"{}\"", c.formulation.name()),
+                    why,
+                ));
+            }
+        }
+        // modal_exact propagates each mode on its own (MODEL §9.3)
+        if self == Method::ModalExact && d == Discretization::Hermite {
+            return Err(Error::invalid(
+                "integrator.method",
+                format!("\"{}\"", self.name()),
+                "propagates each mode of a diagonal basis exactly, and mesh.kind = \"hermite\" (or string elements) couples its unknowns through banded M and K: use mesh.kind = \"galerkin\" (the exact modes of the continuous beam) or mesh.kind = \"modal\" (the lowest FE modes), with mesh.modes = J",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Why this method, with `scheme`, may leave a moving contact's
+    /// constraint undamped — the cause a diagnosis names when such a run
+    /// goes unstable or chatters; `None` for a method without that mode.
+    ///
+    /// A generalized-α-family method imposes the gap at t_{n+1} but
+    /// balances forces at t_{n+1−α_f}: the constraint direction keeps a
+    /// step-to-step (Nyquist) mode that only some parameter sets damp, and
+    /// a moving contact point drives it (MODEL §5, as `contact.placement =
+    /// "alpha"` does). Measured on the reference case at Δt = 1e-4 s
+    /// (`examples/methods_report.rs`, docs/methods.md): with a bilateral
+    /// mass Newmark, HHT α ≤ 0.1, WBZ ρ∞ = 0.8 and generalized-α ρ∞ = 0.9
+    /// diverge, while ρ∞ = 1 or 0.5, HHT α ≥ 0.2, WBZ ρ∞ ≤ 0.5 and Bathe run.
+    pub fn constraint_note(self, scheme: &Scheme) -> Option<String> {
+        let Scheme::GenAlpha(p) = scheme else {
+            return None;
+        };
+        Some(format!(
+            "the contact constraint's step-to-step mode, which integrator.method = {} (α_m = {:.3}, α_f = {:.3}) may leave undamped: a moving contact point drives it (MODEL §5; measured on the reference case, newmark, hht with alpha ≤ 0.1, wbz with rho_inf = 0.8 and generalized_alpha with rho_inf = 0.9 go unstable, while rho_inf = 1 or 0.5, hht with alpha ≥ 0.2, wbz with rho_inf ≤ 0.5 and bathe run: docs/methods.md)",
+            self.name(),
+            p.alpha_m,
+            p.alpha_f
+        ))
+    }
+
+    /// The `[integrator]` that selects this method in a scene whose own is
+    /// `base`: this method's name with the parameters of `base` it reads (a
+    /// `rho_inf` of generalized-α is dropped for Bathe), as typed data.
+    pub fn integrator(self, base: &IntegratorSpec) -> IntegratorSpec {
+        let mut spec = IntegratorSpec {
+            method: self.name().to_string(),
+            ..IntegratorSpec::default()
+        };
+        for p in self.parameters() {
+            spec.set(p.key, base.get(p.key));
+        }
+        spec
+    }
+
+    /// This method's scheme for a scene whose `[integrator]` is `base` (its
+    /// parameters read from `base`, keys of other methods ignored) and whose
+    /// contact and basis are `c`, `d`: what a run of this method steps with.
+    pub fn scheme(
+        self,
+        base: &IntegratorSpec,
+        c: &ContactSpec,
+        d: Discretization,
+    ) -> Result<Scheme> {
+        let scheme = self.integrator(base).scheme()?;
+        self.accepts(c, d)?;
+        Ok(scheme)
+    }
+}
+
+/// One parameter of `[integrator]` a method reads.
+#[derive(Debug, Clone, Copy)]
+pub struct Parameter {
+    /// The key in `[integrator]` (one of [`IntegratorSpec::KEYS`]).
+    pub key: &'static str,
+    /// Its value when the scene gives none.
+    pub default: f64,
+    /// The allowed range as the error message states it.
+    pub range: &'static str,
+    /// True when a value lies in the range (false for NaN).
+    pub contains: fn(f64) -> bool,
+}
+
+/// A method's description as scene validation reads it: the built-in
+/// [`Method`]s, and every method registered by name
+/// (`integrate::register`), whose `MethodFactory` builds on it.
+pub trait MethodInfo: Sync {
+    /// The name in `integrator.method`, `--methods`, tables and plots.
+    fn name(&self) -> String;
+
+    /// The parameters of `[integrator]` it reads (none by default): a key
+    /// given for a method that does not read it is refused.
+    fn parameters(&self) -> &[Parameter] {
+        &[]
+    }
+
+    /// Refuse a contact setting or basis the method does not go with, with
+    /// an error naming both keys (everything by default: a method stepping
+    /// through `integrate::System` works with every contact law).
+    fn accepts(&self, _contact: &ContactSpec, _d: Discretization) -> Result<()> {
+        Ok(())
+    }
+}
+
+impl MethodInfo for Method {
+    fn name(&self) -> String {
+        Method::name(*self).to_string()
+    }
+
+    fn parameters(&self) -> &[Parameter] {
+        Method::parameters(*self)
+    }
+
+    fn accepts(&self, c: &ContactSpec, d: Discretization) -> Result<()> {
+        Method::accepts(*self, c, d)
+    }
+}
+
+/// The methods registered by name besides the built-in ones, in the order
+/// of registration (`integrate::register` adds to it).
+static REGISTERED: RwLock<Vec<&'static dyn MethodInfo>> = RwLock::new(Vec::new());
+
+/// The method named `name`: a built-in one, or one registered.
+pub fn method_info(name: &str) -> Option<&'static dyn MethodInfo> {
+    static BUILT_IN: [Method; Method::ALL.len()] = Method::ALL;
+    if let Some(m) = BUILT_IN.iter().find(|m| m.name() == name) {
+        return Some(m);
+    }
+    registered().into_iter().find(|m| m.name() == name)
+}
+
+/// The methods registered besides the built-in ones.
+fn registered() -> Vec<&'static dyn MethodInfo> {
+    REGISTERED
+        .read()
+        .map_or_else(|e| e.into_inner().clone(), |r| r.clone())
+}
+
+/// Every method's name: the built-in ones, then those registered.
+pub fn method_names() -> Vec<String> {
+    let mut names: Vec<String> = Method::ALL.iter().map(|m| m.name().to_string()).collect();
+    names.extend(registered().iter().map(|m| m.name()));
+    names
+}
+
+/// Add `method` to the names a scene may use (`integrate::register` calls
+/// this with its factory). Refused when the name is empty or taken.
+pub(crate) fn register_info(method: &'static dyn MethodInfo) -> Result<()> {
+    let name = method.name();
+    let well_formed = !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+    if !well_formed {
+        return Err(Error::invalid(
+            "method name",
+            format!("\"{name}\""),
+            "must be non-empty lowercase ASCII letters, digits and '_' (it is written in integrator.method and --methods)",
+        ));
+    }
+    let mut list = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
+    if Method::from_name(&name).is_some() || list.iter().any(|m| m.name() == name) {
+        return Err(Error::invalid(
+            "method name",
+            format!("\"{name}\""),
+            "is taken by another method (each name selects one method)",
+        ));
+    }
+    list.push(method);
+    Ok(())
+}
+
+/// The values of `params` in `spec`, defaults filled, each checked against
+/// its range (a range check is false for NaN, so each also rejects
+/// non-finite values).
+fn values(params: &[Parameter], spec: &IntegratorSpec) -> Result<Vec<f64>> {
+    params
+        .iter()
+        .map(|p| {
+            let v = spec.get(p.key).unwrap_or(p.default);
+            if (p.contains)(v) {
+                Ok(v)
+            } else {
+                Err(Error::invalid(
+                    format!("integrator.{}", p.key),
+                    v,
+                    format!("must be in {}", p.range),
+                ))
+            }
+        })
+        .collect()
 }
 
 /// Default HHT α: the damping most often quoted for HHT (Hilber, Hughes &
@@ -181,15 +470,19 @@ pub enum Scheme {
     },
     /// Exact modal propagation (MODEL §9.3); no parameters.
     ModalExact,
+    /// A method registered by name (`integrate::register`): its stepper is
+    /// its own factory's, reading `[integrator]` itself.
+    Registered,
 }
 
 /// `[integrator]` as the scene gives it.
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq, Default)]
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct IntegratorSpec {
-    /// The method (default `generalized_alpha`).
-    #[serde(default)]
-    pub method: Method,
+    /// The method's name (default `generalized_alpha`): a built-in
+    /// [`Method`] or one registered by name (`integrate::register`).
+    #[serde(default = "default_method")]
+    pub method: String,
     /// Spectral radius at infinite frequency ρ∞ ∈ [0, 1] for
     /// `generalized_alpha` and `wbz` (default 1: no dissipation).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -205,123 +498,99 @@ pub struct IntegratorSpec {
     pub theta: Option<f64>,
 }
 
-impl IntegratorSpec {
-    /// Check the keys against the method and resolve its parameters.
-    pub fn resolve(&self) -> Result<Scheme> {
-        let m = self.method;
-        for (key, given) in [
-            ("rho_inf", self.rho_inf.is_some()),
-            ("alpha", self.alpha.is_some()),
-            ("gamma", self.gamma.is_some()),
-            ("theta", self.theta.is_some()),
-        ] {
-            if given && !m.parameters().contains(&key) {
-                let users: Vec<&str> = Method::ALL
-                    .iter()
-                    .filter(|x| x.parameters().contains(&key))
-                    .map(|x| x.name())
-                    .collect();
-                let value = match key {
-                    "rho_inf" => self.rho_inf,
-                    "alpha" => self.alpha,
-                    "gamma" => self.gamma,
-                    _ => self.theta,
-                };
-                return Err(Error::invalid(
-                    format!("integrator.{key}"),
-                    value.map_or(String::new(), |v| v.to_string()),
-                    format!(
-                        "is a parameter of integrator.method = {}; integrator.method = {} does not use it (remove it or change the method)",
-                        users.join(" or "),
-                        m.name()
-                    ),
-                ));
-            }
+/// `integrator.method` when the scene gives none.
+fn default_method() -> String {
+    Method::default().name().to_string()
+}
+
+impl Default for IntegratorSpec {
+    fn default() -> Self {
+        IntegratorSpec {
+            method: default_method(),
+            rho_inf: None,
+            alpha: None,
+            gamma: None,
+            theta: None,
         }
-        // a range check is false for NaN, so each also rejects non-finite values
-        let in_range = |key: &str, v: f64, ok: bool, range: &str| -> Result<f64> {
-            if ok {
-                Ok(v)
-            } else {
-                Err(Error::invalid(
-                    format!("integrator.{key}"),
-                    v,
-                    format!("must be in {range}"),
-                ))
-            }
-        };
-        Ok(match m {
-            Method::GeneralizedAlpha | Method::Wbz => {
-                let rho = self.rho_inf.unwrap_or(1.0);
-                let rho = in_range("rho_inf", rho, (0.0..=1.0).contains(&rho), "[0, 1]")?;
-                Scheme::GenAlpha(if m == Method::Wbz {
-                    GenAlphaParams::wbz(rho)
-                } else {
-                    GenAlphaParams::from_rho_inf(rho)
-                })
-            }
-            Method::Newmark => Scheme::GenAlpha(GenAlphaParams::newmark()),
-            Method::Hht => {
-                let a = self.alpha.unwrap_or(DEFAULT_HHT_ALPHA);
-                let a = in_range(
-                    "alpha",
-                    a,
-                    (0.0..=1.0 / 3.0).contains(&a),
-                    "[0, 1/3] (HHT is unconditionally stable and second order there)",
-                )?;
-                Scheme::GenAlpha(GenAlphaParams::hht(a))
-            }
-            Method::Bathe => {
-                let g = self.gamma.unwrap_or(DEFAULT_BATHE_GAMMA);
-                let g = in_range(
-                    "gamma",
-                    g,
-                    g > 0.0 && g < 1.0,
-                    "(0, 1) (the first sub-step ends inside the step)",
-                )?;
-                Scheme::Bathe { gamma: g }
-            }
-            Method::CentralDifference => Scheme::CentralDifference,
-            Method::MoreauJean => {
-                let t = self.theta.unwrap_or(DEFAULT_THETA);
-                let t = in_range(
-                    "theta",
-                    t,
-                    (0.5..=1.0).contains(&t),
-                    "[0.5, 1] (below 1/2 the θ-scheme is unstable)",
-                )?;
-                Scheme::MoreauJean { theta: t }
-            }
-            Method::ModalExact => Scheme::ModalExact,
-        })
     }
 }
 
-/// Parse a comma-separated list of method names (`--methods`).
-pub fn parse_methods(list: &str) -> Result<Vec<Method>> {
-    let mut out = Vec::new();
-    for name in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        let m = Method::from_name(name).ok_or_else(|| {
-            let all: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
-            Error::invalid(
-                "--methods",
-                name,
-                format!("must be among {}", all.join(", ")),
-            )
-        })?;
-        if out.contains(&m) {
-            return Err(Error::invalid("--methods", name, "is listed twice"));
+impl IntegratorSpec {
+    /// The parameter keys of `[integrator]`, in the order of the table.
+    pub const KEYS: [&'static str; 4] = ["rho_inf", "alpha", "gamma", "theta"];
+
+    /// The value given for parameter `key` (one of [`IntegratorSpec::KEYS`]).
+    pub fn get(&self, key: &str) -> Option<f64> {
+        match key {
+            "rho_inf" => self.rho_inf,
+            "alpha" => self.alpha,
+            "gamma" => self.gamma,
+            "theta" => self.theta,
+            _ => None,
         }
-        out.push(m);
     }
-    if out.is_empty() {
-        return Err(Error::invalid(
-            "--methods",
-            list,
-            "name at least one method",
-        ));
+
+    /// Set parameter `key` (one of [`IntegratorSpec::KEYS`]; others are ignored).
+    pub fn set(&mut self, key: &str, value: Option<f64>) {
+        match key {
+            "rho_inf" => self.rho_inf = value,
+            "alpha" => self.alpha = value,
+            "gamma" => self.gamma = value,
+            "theta" => self.theta = value,
+            _ => {}
+        }
     }
-    Ok(out)
+
+    /// The method this `[integrator]` names: a built-in one or one
+    /// registered by name; an error naming the known ones otherwise.
+    pub fn method_info(&self) -> Result<&'static dyn MethodInfo> {
+        method_info(&self.method).ok_or_else(|| {
+            Error::invalid(
+                "integrator.method",
+                format!("\"{}\"", self.method),
+                format!(
+                    "must be among {} (a method of one's own is named after integrate::register)",
+                    method_names().join(", ")
+                ),
+            )
+        })
+    }
+
+    /// Check the method's name, its keys (a key of another method is an
+    /// error naming both) and their ranges, and resolve its parameters.
+    /// The contact settings and basis are checked apart
+    /// ([`MethodInfo::accepts`]).
+    pub fn scheme(&self) -> Result<Scheme> {
+        let m = self.method_info()?;
+        for key in IntegratorSpec::KEYS {
+            let Some(value) = self.get(key) else {
+                continue;
+            };
+            if m.parameters().iter().any(|p| p.key == key) {
+                continue;
+            }
+            let users: Vec<String> = method_names()
+                .into_iter()
+                .filter(|n| {
+                    method_info(n).is_some_and(|x| x.parameters().iter().any(|p| p.key == key))
+                })
+                .collect();
+            return Err(Error::invalid(
+                format!("integrator.{key}"),
+                value.to_string(),
+                format!(
+                    "is a parameter of integrator.method = {}; integrator.method = {} does not use it (remove it or change the method)",
+                    users.join(" or "),
+                    m.name()
+                ),
+            ));
+        }
+        let v = values(m.parameters(), self)?;
+        Ok(match Method::from_name(&self.method) {
+            Some(builtin) => builtin.scheme_of(&v),
+            None => Scheme::Registered,
+        })
+    }
 }
 
 #[cfg(test)]
@@ -363,11 +632,11 @@ mod tests {
     #[test]
     fn a_key_of_another_method_is_refused_naming_both() {
         let spec = IntegratorSpec {
-            method: Method::Bathe,
+            method: "bathe".into(),
             theta: Some(0.6),
             ..IntegratorSpec::default()
         };
-        let e = spec.resolve().unwrap_err().to_string();
+        let e = spec.scheme().unwrap_err().to_string();
         assert!(
             e.contains("integrator.theta") && e.contains("moreau_jean") && e.contains("bathe"),
             "{e}"
@@ -405,26 +674,42 @@ mod tests {
         ];
         for (method, rho_inf, alpha, gamma, theta, field) in bad {
             let spec = IntegratorSpec {
-                method,
+                method: method.name().to_string(),
                 rho_inf,
                 alpha,
                 gamma,
                 theta,
             };
-            let e = spec.resolve().unwrap_err().to_string();
+            let e = spec.scheme().unwrap_err().to_string();
             assert!(e.contains(field), "{e}");
         }
     }
 
     #[test]
-    fn method_lists_are_checked() {
-        assert_eq!(
-            parse_methods("bathe, newmark").unwrap(),
-            vec![Method::Bathe, Method::Newmark]
+    fn an_unknown_method_is_refused_naming_the_known_ones() {
+        let spec = IntegratorSpec {
+            method: "magic".into(),
+            ..IntegratorSpec::default()
+        };
+        let e = spec.scheme().unwrap_err().to_string();
+        assert!(
+            e.contains("integrator.method") && e.contains("magic") && e.contains("moreau_jean"),
+            "{e}"
         );
-        let e = parse_methods("bathe,magic").unwrap_err().to_string();
-        assert!(e.contains("magic") && e.contains("moreau_jean"), "{e}");
-        assert!(parse_methods("hht,hht").is_err());
-        assert!(parse_methods(",").is_err());
+    }
+
+    #[test]
+    fn a_method_selected_keeps_the_parameters_it_reads() {
+        let base = IntegratorSpec {
+            method: "generalized_alpha".into(),
+            rho_inf: Some(0.8),
+            ..IntegratorSpec::default()
+        };
+        assert_eq!(Method::Wbz.integrator(&base).rho_inf, Some(0.8));
+        assert_eq!(Method::Bathe.integrator(&base).rho_inf, None);
+        assert_eq!(
+            Method::Wbz.integrator(&base).scheme().unwrap(),
+            Scheme::GenAlpha(GenAlphaParams::wbz(0.8))
+        );
     }
 }

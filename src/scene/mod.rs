@@ -23,9 +23,10 @@ pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec}
 pub use memory::{
     MEMORY_BUDGET_BYTES, MemoryEstimate, check_budget, estimate as estimate_memory, history_rows,
 };
+pub(crate) use method::register_info;
 pub use method::{
     DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, IntegratorSpec, Method,
-    Scheme, parse_methods,
+    MethodInfo, Parameter, Scheme, method_info, method_names,
 };
 pub use speed::SpeedProfile;
 pub(crate) use validate::validate_contact;

@@ -1,10 +1,7 @@
 //! Scene validation: every value checked against its allowed range, and the
 //! physical parameters resolved (ρA, EI, EA) as MODEL §1–§3 define them.
 
-use super::{
-    ContactSpec, EndTime, Formulation, IntegratorSpec, Method, Placement, Scene, Scheme, Side,
-    SpeedProfile, Support,
-};
+use super::{ContactSpec, EndTime, IntegratorSpec, Scene, Scheme, Side, SpeedProfile, Support};
 use std::collections::HashMap;
 
 use super::Discretization;
@@ -279,11 +276,13 @@ impl Scene {
             .map(|(i, c)| resolve_carrier(i, c, l))
             .collect::<Result<Vec<_>>>()?;
 
-        let scheme = self.integrator.resolve()?;
+        let scheme = self.integrator.scheme()?;
         let g = non_negative("gravity.g", self.gravity.g, "m/s²")?;
         validate_contact(&self.contact)?;
-        check_combination(self.integrator.method, &self.contact)?;
-        check_basis(self.integrator.method, discretization)?;
+        // the method's own check of the contact settings and basis
+        self.integrator
+            .method_info()?
+            .accepts(&self.contact, discretization)?;
 
         let dt = positive("time.step", self.time.step, "s")?;
         let t_end = match self.time.end {
@@ -834,64 +833,6 @@ pub(crate) fn validate_contact(c: &super::ContactSpec) -> Result<()> {
             e,
             "must be in [0, 1]",
         ));
-    }
-    Ok(())
-}
-
-/// Refuse a time integrator that needs a diagonal basis on any other
-/// (`modal_exact` propagates each mode on its own; MODEL §9.3).
-fn check_basis(method: Method, d: Discretization) -> Result<()> {
-    if method.needs_modal_basis() && d == Discretization::Hermite {
-        return Err(Error::invalid(
-            "integrator.method",
-            format!("\"{}\"", method.name()),
-            "propagates each mode of a diagonal basis exactly, and mesh.kind = \"hermite\" (or string elements) couples its unknowns through banded M and K: use mesh.kind = \"galerkin\" (the exact modes of the continuous beam) or mesh.kind = \"modal\" (the lowest FE modes), with mesh.modes = J",
-        ));
-    }
-    Ok(())
-}
-
-/// Refuse a time integrator and contact setting that do not go together
-/// (the table in `docs/methods.md`), naming both keys.
-fn check_combination(method: Method, c: &ContactSpec) -> Result<()> {
-    let alpha_level = matches!(
-        method,
-        Method::GeneralizedAlpha | Method::Newmark | Method::Hht | Method::Wbz
-    );
-    if c.placement == Placement::Alpha && !alpha_level {
-        return Err(Error::invalid(
-            "contact.placement",
-            "\"alpha\"",
-            format!(
-                "imposes the gap at the generalized-α level t_{{n+1−α_f}}, which integrator.method = {} does not have: use contact.placement = \"end\" (or a generalized-α method)",
-                method.name()
-            ),
-        ));
-    }
-    if method == Method::ModalExact && c.formulation == Formulation::Impact {
-        return Err(Error::invalid(
-            "contact.formulation",
-            "\"impact\"",
-            "integrator.method = modal_exact holds the contact force over each step and imposes the gap itself at the step's end (MODEL §9.3); an impact law acts by impulses on the gap rate, which that representation has no place for, and a velocity-level condition would replace the position gap it propagates exactly: use lagrange, penalty or complementarity (or integrator.method = moreau_jean for an impact law)",
-        ));
-    }
-    if method == Method::MoreauJean {
-        let why = match c.formulation {
-            Formulation::Penalty => Some(
-                "penalty regularizes a position gap with a stiffness, while integrator.method = moreau_jean solves for impulses on gap rates: use lagrange or complementarity",
-            ),
-            Formulation::Impact => Some(
-                "integrator.method = moreau_jean is itself the velocity-level impact scheme (restitution from contact.impact.restitution): use lagrange (exact active set) or complementarity (clarabel) to solve its impulse problem",
-            ),
-            _ => None,
-        };
-        if let Some(why) = why {
-            return Err(Error::invalid(
-                "contact.formulation",
-                format!("\"{}\"", c.formulation.name()),
-                why,
-            ));
-        }
     }
     Ok(())
 }

@@ -3,7 +3,7 @@
 //! (issues: formulations side by side, methods side by side).
 //!
 //! Every combination runs on the same scene text with the same overrides
-//! plus the method's `[integrator]` ([`MethodFactory::overrides`]), with
+//! plus the method's `[integrator]` ([`MethodFactory::integrator`]), with
 //! its formulation and discretization set as a typed
 //! [`RunVariant`], so meshes, steps and settings are identical
 //! and histories can be compared step by step. A combination that means
@@ -214,9 +214,9 @@ pub fn compare_methods(
 ) -> Result<Comparison> {
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut compare")?;
-    let own = base.integrator.method;
+    let own = crate::integrate::scene_method(&base)?;
     let methods: Vec<&dyn MethodFactory> = if spec.methods.is_empty() {
-        vec![&own]
+        vec![own]
     } else {
         spec.methods.clone()
     };
@@ -271,7 +271,7 @@ pub fn compare_methods(
     // each method's scene, parsed once
     let method_scenes: Vec<Result<Scene>> = methods
         .iter()
-        .map(|&m| base_scene(text, overrides, Some((m, &base.integrator))))
+        .map(|&m| base_scene(text, overrides, Some(m)))
         .collect();
     // every combination's scene first, then the runs together: those that
     // share a matrix step in batches (`--batch`), each bit-identical alone
@@ -286,7 +286,7 @@ pub fn compare_methods(
             match &method_scenes[m] {
                 Ok(scene) => variant.apply_to(scene),
                 // parsed again only to hand this combination its own error
-                Err(_) => base_scene(text, overrides, Some((methods[m], &base.integrator)))
+                Err(_) => base_scene(text, overrides, Some(methods[m]))
                     .and_then(|scene| variant.apply_to(&scene)),
             }
         })

@@ -30,12 +30,12 @@ use super::scalars::Scalar;
 use super::space::SpaceChoice;
 use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
-use crate::integrate::MethodFactory;
+use crate::integrate::{MethodFactory, scene_method};
 use crate::run::{RunOutput, run, run_with};
 use crate::scene::{Declared, Discretization, Resolved, resolve_scene};
 
-/// Roache's safety factor for a three-grid study.
-pub const GCI_SAFETY_FACTOR: f64 = 1.25;
+pub use super::grid::GCI_SAFETY_FACTOR;
+pub use super::reference::AnalyticW;
 
 /// What is refined.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -64,10 +64,6 @@ impl std::str::FromStr for Refine {
         }
     }
 }
-
-/// A reference solution for the displacement under the carrier,
-/// w(x_m(t), t) as a function of t (m), when the scene has one.
-pub type AnalyticW = Box<dyn Fn(f64) -> f64 + Sync>;
 
 /// One row of `converge.csv`.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -174,7 +170,7 @@ pub struct MethodStudy {
 }
 
 /// Run the refinement sequence once per method (`taut converge --methods`):
-/// the same levels, each method selected by its [`MethodFactory::overrides`].
+/// the same levels, each method selected by its [`MethodFactory::integrator`].
 /// A method that cannot run the ladder (a scene error naming both keys, an
 /// explicit method above its stability limit at the coarse levels, a run
 /// that stops) is listed in the second vector with its reason; it is an
@@ -368,7 +364,7 @@ fn converge_with(
     let base = resolve_scene(text, overrides)?;
     let base = match method {
         None => base,
-        Some(m) => base_scene(text, overrides, Some((m, &base.integrator)))?.validate()?,
+        Some(m) => base_scene(text, overrides, Some(m))?.validate()?,
     };
     base.require_every_step("taut converge")?;
     let mut scenes = Vec::with_capacity(levels);
@@ -422,10 +418,10 @@ fn converge_with(
         }
         _ => None,
     };
-    let name = method.map_or_else(|| base.integrator.method.name().to_string(), |m| m.name());
+    let name = method.map_or_else(|| base.integrator.method.clone(), |m| m.name());
     let time_order = match method {
         Some(m) => m.time_order(base),
-        None => MethodFactory::time_order(&base.integrator.method, base),
+        None => scene_method(base)?.time_order(base),
     };
     let space_order = match base.discretization {
         Discretization::Hermite if base.beam.is_string() => Some(2.0),

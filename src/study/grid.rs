@@ -59,6 +59,10 @@ pub fn resample(fine: &[f64], stride: usize, rows: Range<usize>) -> Vec<f64> {
     rows.map(|k| fine[k * stride]).collect()
 }
 
+/// Roache's safety factor for a three-grid study (the grid convergence
+/// index, GCI).
+pub const GCI_SAFETY_FACTOR: f64 = 1.25;
+
 /// Observed order p = ln(e_c/e_f)/ln r from two successive differences
 /// (coarse, fine) of a ladder refined by r; NaN unless both are > 0 (a
 /// zero, negative or NaN difference has no order).
@@ -68,6 +72,27 @@ pub fn observed_order(e_coarse: f64, e_fine: f64, r: f64) -> f64 {
     } else {
         f64::NAN
     }
+}
+
+/// The observed order over a whole ladder refined by `r` at each level:
+/// the least-squares slope of ln(error) against the level, over ln r (the
+/// two-level [`observed_order`] for two errors). For a ladder whose single
+/// halvings scatter (impacts that fall at different places within the
+/// steps); NaN unless every error is > 0 and there are at least two.
+pub fn fitted_order(errors: &[f64], r: f64) -> f64 {
+    if errors.len() < 2 || !errors.iter().all(|e| *e > 0.0) {
+        return f64::NAN;
+    }
+    let n = errors.len() as f64;
+    let xm = (n - 1.0) / 2.0;
+    let ym = errors.iter().map(|e| e.ln()).sum::<f64>() / n;
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for (i, e) in errors.iter().enumerate() {
+        let x = i as f64 - xm;
+        sxy += x * (e.ln() - ym);
+        sxx += x * x;
+    }
+    -sxy / sxx / r.ln()
 }
 
 #[cfg(test)]
@@ -81,6 +106,13 @@ mod tests {
         assert!(observed_order(0.0, 1.0, 2.0).is_nan());
         assert!(observed_order(1.0, 0.0, 2.0).is_nan());
         assert!(observed_order(f64::NAN, 1.0, 2.0).is_nan());
+        // a fit through an exact sequence is its order; two errors give
+        // the two-level order
+        let e: Vec<f64> = (0..5).map(|l| 3.0 * 0.5f64.powi(3 * l)).collect();
+        assert!((fitted_order(&e, 2.0) - 3.0).abs() < 1e-12);
+        assert!((fitted_order(&[0.3, 0.075], 2.0) - 2.0).abs() < 1e-12);
+        assert!(fitted_order(&[0.3], 2.0).is_nan());
+        assert!(fitted_order(&[0.3, 0.0], 2.0).is_nan());
     }
 
     #[test]

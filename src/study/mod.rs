@@ -8,6 +8,7 @@
 pub mod compare;
 pub mod converge;
 pub mod cost;
+pub mod filter;
 pub mod gate;
 pub mod grid;
 pub mod precision;

@@ -182,9 +182,9 @@ pub fn precision_variants(
     check_ratio(ratio)?;
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut precision")?;
-    let own = base.integrator.method;
+    let own = crate::integrate::scene_method(&base)?;
     let methods: Vec<&dyn MethodFactory> = if methods.is_empty() {
-        vec![&own]
+        vec![own]
     } else {
         methods.to_vec()
     };
@@ -231,8 +231,7 @@ pub fn precision_variants(
     let mut points: Vec<Point> = Vec::new();
     for &m in &methods {
         // the method's scene, parsed once (an error is each point's reason)
-        let method_scene =
-            base_scene(text, overrides, Some((m, &base.integrator))).map_err(|e| e.to_string());
+        let method_scene = base_scene(text, overrides, Some(m)).map_err(|e| e.to_string());
         for &space in &spaces {
             let modal = space.is_some_and(|s| s.is_modal());
             for &f in formulations {
@@ -313,7 +312,7 @@ pub fn precision_variants(
     Ok(Precision {
         reference: (ref_n, ref_dt),
         reference_wall: reference.wall_seconds,
-        reference_method: own.name().to_string(),
+        reference_method: own.name(),
         rows,
         skipped,
     })

@@ -17,11 +17,14 @@
 //! * `richardson` (no `[reference]`) — none here: a study extrapolates its
 //!   own finest levels.
 
-use super::converge::AnalyticW;
 use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam, StandingForce};
 use crate::error::{Error, Result};
 use crate::manufactured::Manufactured;
 use crate::scene::{CarrierKind, Declared, Resolved, SpeedProfile};
+
+/// A reference solution for the displacement under the carrier,
+/// w(x_m(t), t) as a function of t (m), when the scene has one.
+pub type AnalyticW = Box<dyn Fn(f64) -> f64 + Sync>;
 
 /// v(x, t) of a reference that has it everywhere, m (positive up).
 pub type ExactField = Box<dyn Fn(f64, f64) -> f64 + Send + Sync>;

@@ -4,8 +4,7 @@
 //! module alike, so that both make the same runs from the same words.
 
 use crate::error::{Error, Result};
-use crate::integrate::MethodFactory;
-use crate::scene::{Method, parse_methods};
+use crate::integrate::{MethodFactory, parse_methods};
 
 use super::compare::{CompareSpec, Comparison, NotRun, compare_methods, parse_formulations};
 use super::converge::{ConvergeRow, Convergence, MethodStudy, Refine, converge, converge_variants};
@@ -37,18 +36,15 @@ pub fn batch_lanes(b: Option<usize>) -> Result<usize> {
     })
 }
 
-/// A comma list of methods, or the scene's own when absent.
-fn methods(list: Option<&str>) -> Result<Option<Vec<Method>>> {
+/// A comma list of methods (built-in or registered by name), or the
+/// scene's own when absent.
+fn methods(list: Option<&str>) -> Result<Option<Vec<&'static dyn MethodFactory>>> {
     list.map(parse_methods).transpose()
 }
 
 /// The methods as the studies take them (empty: the scene's own).
-fn factories(methods: &Option<Vec<Method>>) -> Vec<&dyn MethodFactory> {
-    methods
-        .iter()
-        .flatten()
-        .map(|m| m as &dyn MethodFactory)
-        .collect()
+fn factories(methods: &Option<Vec<&'static dyn MethodFactory>>) -> Vec<&'static dyn MethodFactory> {
+    methods.iter().flatten().copied().collect()
 }
 
 /// The scene a study starts from (its own resolution), for its estimate.
@@ -118,8 +114,8 @@ impl CompareRequest {
         let reference_method = match (self.reference_method.as_deref(), &list) {
             (None, _) => 0,
             (Some(name), Some(list)) => {
-                let m = parse_methods(name)?[0];
-                list.iter().position(|x| *x == m).ok_or_else(|| {
+                let m = parse_methods(name)?[0].name();
+                list.iter().position(|x| x.name() == m).ok_or_else(|| {
                     Error::invalid("--reference-method", name, "must be one of --methods")
                 })?
             }

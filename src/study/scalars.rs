@@ -9,7 +9,7 @@
 //! JSON `null`, never as a stand-in number; a gate check on it fails
 //! (docs/gating.md).
 
-use super::tolerance::{FORCE_BAND_HZ, lowpass_zero_phase};
+use super::filter::{FORCE_BAND_HZ, lowpass_zero_phase};
 use crate::record::ContactStats;
 use crate::run::RunOutput;
 

@@ -40,13 +40,12 @@
 //! reference case.
 
 mod error_model;
-mod filter;
 
+pub use super::filter::{FORCE_BAND_HZ, design_cutoff_hz, lowpass_zero_phase};
 pub use error_model::{
     ErrorModel, Estimate, LADDER_RATIO, LadderFit, LadderStatus, MAX_MESH_ORDER,
     MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, MIN_ORDER, ROUND_OFF,
 };
-pub use filter::{FORCE_BAND_HZ, design_cutoff_hz, lowpass_zero_phase};
 
 use serde::Serialize;
 

@@ -12,15 +12,15 @@
 //! it replaces (`time.step={:e}` parsed as TOML) gave the same value, since
 //! `{:e}` prints the shortest representation that reads back exactly.
 //!
-//! Methods stay strings, applied once per method to the base scene's text:
-//! a method is a [`MethodFactory`], which may be a custom one outside this
-//! crate (`examples/custom_method.rs`) that selects itself only through its
-//! [`MethodFactory::overrides`]; the trait gives no typed `[integrator]`.
+//! A method is a typed value too: a [`MethodFactory`] sets the base
+//! scene's `[integrator]` to its own ([`MethodFactory::integrator`]: a
+//! built-in method's name with the parameters it reads), or leaves it
+//! (a method of one's own, run on the scene as it is by `run_with`).
 
 use super::space::SpaceChoice;
 use crate::error::Result;
 use crate::integrate::MethodFactory;
-use crate::scene::{Formulation, IntegratorSpec, Resolved, Scene, scene_with_overrides};
+use crate::scene::{Formulation, Resolved, Scene, scene_with_overrides};
 
 /// One run of a study, as typed changes to a base scene (`None`: the base
 /// scene's own).
@@ -64,21 +64,18 @@ impl RunVariant {
 }
 
 /// The scene text with its `--set`s and, when given, the method's
-/// overrides for a scene whose `[integrator]` is `integrator`; not
-/// validated (its runs' variants are).
+/// `[integrator]` ([`MethodFactory::integrator`]) in place of the scene's;
+/// not validated (its runs' variants are).
 pub fn base_scene(
     text: &str,
     overrides: &[String],
-    method: Option<(&dyn MethodFactory, &IntegratorSpec)>,
+    method: Option<&dyn MethodFactory>,
 ) -> Result<Scene> {
-    match method {
-        None => scene_with_overrides(text, overrides),
-        Some((m, integrator)) => {
-            let mut o = overrides.to_vec();
-            o.extend(m.overrides(integrator));
-            scene_with_overrides(text, &o)
-        }
+    let mut scene = scene_with_overrides(text, overrides)?;
+    if let Some(spec) = method.and_then(|m| m.integrator(&scene.integrator)) {
+        scene.integrator = spec;
     }
+    Ok(scene)
 }
 
 #[cfg(test)]

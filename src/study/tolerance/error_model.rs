@@ -22,7 +22,7 @@
 
 use serde::Serialize;
 
-use crate::study::converge::GCI_SAFETY_FACTOR;
+use crate::study::grid::GCI_SAFETY_FACTOR;
 use crate::study::grid::observed_order;
 
 /// Refinement ratio of each pilot ladder: 2, so every coarser time is a

@@ -125,8 +125,8 @@ pub enum Expect {
         tol: f64,
     },
     /// A known deviation from the formal order, reported but not failed:
-    /// `order` is the formal one, `why` the measured finding and where it
-    /// is being fixed or documented.
+    /// `order` is the formal one, `why` the measured finding and what is
+    /// known of its cause.
     Known {
         /// The formal order.
         order: f64,

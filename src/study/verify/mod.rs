@@ -22,8 +22,8 @@
 //!    not be the refined variable's;
 //! 4. passes when the ladder's order is within the expectation's tolerance.
 //!
-//! `known` rows (a measured deviation from the formal order, documented and
-//! being fixed elsewhere), `cannot` rows (why the combination shows no
+//! `known` rows (a measured deviation from the formal order, documented
+//! with its measurement), `cannot` rows (why the combination shows no
 //! order in this variable) and `reported` rows (a method that declares no
 //! formal order) do not fail; `fail` rows do, and `taut verify` exits with
 //! status 1.
@@ -172,9 +172,10 @@ pub fn parse_spaces(list: &str) -> Result<Vec<Space>> {
     Ok(out)
 }
 
-/// The built-in methods, discretizations and formulations of a `taut
-/// verify` request (`None`: all of them), and whether to run the cut-down
-/// matrix.
+/// The methods, discretizations and formulations of a `taut verify`
+/// request (`None`: every built-in method, every discretization and
+/// formulation), and whether to run the cut-down matrix. Listed built-in
+/// methods run in their own order, then listed registered ones.
 pub fn selection(
     methods: Option<&str>,
     spaces: Option<&str>,
@@ -185,10 +186,16 @@ pub fn selection(
     let methods: Vec<&'static dyn MethodFactory> = match methods {
         None => ALL.iter().map(|m| m as &dyn MethodFactory).collect(),
         Some(list) => {
-            let chosen = crate::scene::parse_methods(list)?;
-            ALL.iter()
-                .filter(|m| chosen.contains(m))
+            let chosen = crate::integrate::parse_methods(list)?;
+            let named = |n: &str| chosen.iter().any(|m| m.name() == n);
+            let builtin = ALL.iter().filter(|m| named(m.name()));
+            let registered = chosen
+                .iter()
+                .copied()
+                .filter(|m| crate::scene::Method::from_name(&m.name()).is_none());
+            builtin
                 .map(|m| m as &dyn MethodFactory)
+                .chain(registered)
                 .collect()
         }
     };
@@ -286,9 +293,11 @@ fn base_scene(j: &Job) -> Result<Scene> {
     if let Some(f) = j.formulation {
         o.push(format!("contact.formulation={}", f.name()));
     }
-    let plain = scene_with_overrides(j.case.text, &o)?;
-    o.extend(j.factory.overrides(&plain.integrator));
-    scene_with_overrides(j.case.text, &o)
+    let mut scene = scene_with_overrides(j.case.text, &o)?;
+    if let Some(spec) = j.factory.integrator(&scene.integrator) {
+        scene.integrator = spec;
+    }
+    Ok(scene)
 }
 
 /// `scene` at one level: N, Δt and J set, the discretization's keys.
