@@ -460,7 +460,7 @@ fn a_failed_command_leaves_no_outputs_of_an_earlier_one() {
         (
             "converge",
             &["converge.csv", "converge.json", "converge.svg"],
-            &["--levels", "1"],
+            &["--set", "time.step=1e9"],
         ),
     ];
     for (command, files, failing) in cases {
@@ -488,6 +488,19 @@ fn a_failed_command_leaves_no_outputs_of_an_earlier_one() {
         }
         assert!(dir.join("mine.txt").exists(), "{command}: other files stay");
     }
+    // a command line refused before the command starts (a count out of
+    // range, as the parser's refusals) touches nothing: the earlier
+    // converge's outputs stay whole
+    let mut args = vec!["converge", reference.as_str(), "--out", out, "--quiet"];
+    args.extend_from_slice(&small);
+    args.extend_from_slice(&["--levels", "3", "--refine", "step"]);
+    ok(&args);
+    let (code, _, err) = taut(&[
+        "converge", &reference, "--out", out, "--quiet", "--levels", "1",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(!err.contains("removed the outputs"), "{err}");
+    assert!(dir.join("converge.csv").exists());
 }
 
 // ---------------------------------------------------------------------------
