@@ -26,7 +26,7 @@ use std::process::{Command, Stdio};
 
 /// The binary's resident size before a run allocates anything of its own:
 /// code and data pages, the C library, the main thread's stack and the
-/// allocator's arenas. Measured 6.5–6.7 MiB for a 100-step run (the test
+/// allocator's arenas. Measured 6.4–6.7 MiB for a 100-step run (the test
 /// checks it stays under this); 12 MiB leaves
 /// room for another C library or allocator without hiding any term of the
 /// cases below (each at least 16 MiB).
