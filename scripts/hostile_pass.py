@@ -25,10 +25,15 @@ Families (the classes of issue 25 and a fuzz):
              replay file; a run record outside the grid;
   axes       sweeps over axes a plot cannot draw;
   studies    costly converge/precision/compare/sweep (refused at once);
-  threads    sweeps on 1 and 2 threads compared byte for byte.
+  options    every integer option of every subcommand given text that is
+             not in its range (-1, 0, x, 1.5, "", 2^32, 10^23, ...);
+  threads    sweeps on 1 and 2 threads compared byte for byte, and a modal
+             run pinned to one CPU (`taskset -c 0`) against the same run
+             unpinned (skipped, saying so, without taskset).
 
 Usage: python3 scripts/hostile_pass.py [--taut target/release/taut]
-       [--jobs 2] [--limit-s 120] [--seed 25] [--quick]
+       [--jobs 2] [--limit-s 120] [--seed 25] [--quick | --sample N]
+       [--count]
 Prints one line per finding and a summary `N passed, M failed`; exits 1 on
 any finding.
 """
@@ -66,8 +71,10 @@ class Runner:
         self.taut, self.limit_s, self.work = taut, limit_s, work
         self.count = 0
 
-    def run(self, name: str, args: list[str], cwd: Path | None = None) -> list[str]:
-        """Run one case; return its findings (empty: passed)."""
+    def run(self, name: str, args: list[str], cwd: Path | None = None,
+            must: str | None = None) -> list[str]:
+        """Run one case; return its findings (empty: passed). With `must`,
+        the case must exit 1 with `must` in its error."""
         cmd = ["bash", "-c", f"ulimit -v {ADDRESS_KIB}; exec \"$0\" \"$@\"", self.taut, *args]
         try:
             p = subprocess.run(cmd, capture_output=True, timeout=self.limit_s,
@@ -88,6 +95,8 @@ class Runner:
             found.append(f"{name}: exit 1 without an error line: {err[:200]!r}")
         if len(err) > MAX_MESSAGE:
             found.append(f"{name}: unbounded message ({len(err)} characters)")
+        if must is not None and (p.returncode != 1 or must not in err):
+            found.append(f"{name}: exit {p.returncode} without {must!r}: {err[:200]!r}")
         return found
 
 
@@ -138,12 +147,19 @@ def main() -> int:
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--limit-s", type=int, default=120)
     ap.add_argument("--seed", type=int, default=25)
-    ap.add_argument("--quick", action="store_true", help="a sample of each family")
+    ap.add_argument("--quick", action="store_true", help="a sample of 200 cases")
+    ap.add_argument("--sample", type=int, default=0,
+                    help="a seeded sample of N cases (the byte comparisons always run)")
+    ap.add_argument("--count", action="store_true",
+                    help="print the number of cases of each family and exit")
     a = ap.parse_args()
     work = Path(tempfile.mkdtemp(prefix="taut-hostile-"))
     r = Runner(os.path.abspath(a.taut), a.limit_s, work)
     rng = random.Random(a.seed)
     cases: list[tuple[str, list[str]]] = []
+    # what a case's error must say (by case name), where more than any
+    # error will not do
+    must: dict[str, str] = {}
     out = lambda tag: ["--out", str(work / tag), "--quiet"]  # noqa: E731
 
     # kinds: every bundled scene x kind x method
@@ -192,12 +208,53 @@ def main() -> int:
         ("study sweep", ["sweep", ref, "--vary", "speed_ratio=0.5:1:3", "--set", "time.step=2e-8", "--set", "output.record_every=10",
                          "--set", "mesh.elements=1000", *out("c2")]),
     ]
+    # options: every integer option of every subcommand, out of range
+    integer_options = [
+        (["sweep", ref, "--vary", "speed_ratio=0.5:1:2"], "--threads"),
+        (["sweep", ref, "--vary", "speed_ratio=0.5:1:2"], "--batch"),
+        (["gate", str(ROOT / "golden")], "--batch"),
+        (["compare", ref], "--batch"),
+        (["precision", ref], "--batch"),
+        (["precision", ref], "--levels"),
+        (["precision", ref], "--ratio"),
+        (["converge", ref], "--levels"),
+        (["converge", ref], "--ratio"),
+        (["verify", "--quick"], "--threads"),
+        (["replay", str(work / "none.json")], "--max-iter"),
+    ]
+    for command, flag in integer_options:
+        for v in ["-1", "0", "x", "1.5", "", "-1e300", "4294967296",
+                  "99999999999", "99999999999999999999999", "-99999999999999999999999"]:
+            tail = [] if command[0] == "replay" else out(f"o{len(cases)}")
+            name = f"option {command[0]} {flag}={v}"
+            cases.append((name, [*command, flag, v, *tail]))
+            # taut's own message naming the flag (or, for a ratio that is a
+            # number > 1, the study's cost), never the parser's
+            must[name] = f"`{flag}` = " if not (command[0] == "converge" and flag == "--ratio"
+                                              and v in ["4294967296", "99999999999",
+                                                        "99999999999999999999999"]) else "`--yes`"
+
+    def per_family(cases: list[tuple[str, list[str]]]) -> dict[str, int]:
+        n: dict[str, int] = {}
+        for name, _ in cases:
+            n[name.split()[0]] = n.get(name.split()[0], 0) + 1
+        return n
+
+    families = per_family(cases)
+    if a.count:
+        for fam, n in families.items():
+            print(f"{fam}: {n}")
+        print(f"threads: 3 comparisons; total {len(cases) + 3}")
+        return 0
     if a.quick:
         cases = rng.sample(cases, min(len(cases), 200))
+    elif a.sample:
+        cases = rng.sample(cases, min(len(cases), a.sample))
+    families = per_family(cases)
 
     findings: list[str] = []
     with cf.ThreadPoolExecutor(a.jobs) as ex:
-        for f in ex.map(lambda c: r.run(*c), cases):
+        for f in ex.map(lambda c: r.run(*c, must=must.get(c[0])), cases):
             findings += f
     passed = len(cases) - len({f.split(":")[0] for f in findings})
 
@@ -216,11 +273,32 @@ def main() -> int:
             findings.append(f"threads {k}: sweep.csv differs between 1 and 2 threads")
         else:
             passed += 1
-    total = len(cases) + len(thread_cases)
+    # a modal run pinned to one CPU (a pool of one thread) and unpinned
+    total = len(cases) + len(thread_cases) + 1
+    if shutil.which("taskset") and subprocess.run(["taskset", "-c", "0", "true"]).returncode == 0:
+        modal = ["run", ref, "--set", "mesh.kind=modal", "--set", "mesh.modes=60",
+                 "--set", "mesh.elements=200", "--set", "time.end=0.05", "--quiet"]
+        hist = []
+        for pinned in [False, True]:
+            d = work / f"pinned_{pinned}"
+            taut = ["taskset", "-c", "0", r.taut] if pinned else [r.taut]
+            p = subprocess.run([*taut, *modal, "--out", str(d)], capture_output=True,
+                               timeout=a.limit_s)
+            h = d / "history.csv"
+            hist.append(h.read_bytes() if p.returncode == 0 and h.exists() else b"")
+        if hist[0] != hist[1] or not hist[0]:
+            findings.append("threads taskset: a modal run's history.csv differs under taskset -c 0")
+        else:
+            passed += 1
+    else:
+        total -= 1
+        print("threads taskset: SKIPPED (taskset missing or cannot pin to CPU 0)")
 
     for f in findings:
         print(f)
     shutil.rmtree(work, ignore_errors=True)
+    print("cases per family: " + ", ".join(f"{k} {v}" for k, v in families.items())
+          + f", threads {total - len(cases)}")
     print(f"hostile pass: {total} cases; {len(findings)} findings")
     print(f"{passed} passed, {total - passed} failed")
     return 1 if findings else 0

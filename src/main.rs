@@ -54,12 +54,12 @@ enum Command {
         /// What to refine: mesh, step or both.
         #[arg(long, default_value = "both")]
         refine: String,
-        /// Number of levels (≥ 3 for observed orders).
-        #[arg(long, default_value_t = 4, allow_negative_numbers = true)]
-        levels: usize,
-        /// Refinement ratio between levels.
-        #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
-        ratio: f64,
+        /// Number of levels (2 ..= 12; ≥ 3 for observed orders).
+        #[arg(long, default_value = "4", allow_hyphen_values = true)]
+        levels: String,
+        /// Refinement ratio between levels (> 1).
+        #[arg(long, default_value = "2", allow_hyphen_values = true)]
+        ratio: String,
         #[arg(long, help = methods_help("to study side by side", "the scene's own"))]
         methods: Option<String>,
         /// Comma-separated space discretizations to study side by side:
@@ -167,12 +167,12 @@ enum Command {
         /// the scene's mesh.modes). Default: the scene's own.
         #[arg(long, value_name = "LIST")]
         discretizations: Option<String>,
-        /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels).
-        #[arg(long, default_value_t = 3, allow_negative_numbers = true)]
-        levels: usize,
-        /// Refinement ratio (integer).
-        #[arg(long, default_value_t = 2, allow_negative_numbers = true)]
-        ratio: usize,
+        /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels; 1 ..= 5).
+        #[arg(long, default_value = "3", allow_hyphen_values = true)]
+        levels: String,
+        /// Refinement ratio (an integer ≥ 2).
+        #[arg(long, default_value = "2", allow_hyphen_values = true)]
+        ratio: String,
         /// Runs stepped together when they share their effective matrix
         /// (the formulations of a grid point; 1 ..= 8, 1: every run alone;
         /// default 4). The table is the same whatever it is.
@@ -209,9 +209,9 @@ enum Command {
         /// The cut-down matrix of the default test suite (two support pairs).
         #[arg(long)]
         quick: bool,
-        /// Worker threads (default: all cores).
-        #[arg(long)]
-        threads: Option<usize>,
+        /// Worker threads (default: all cores; at most 4 per core, 1024).
+        #[arg(long, value_name = "N", allow_hyphen_values = true)]
+        threads: Option<String>,
         /// Output folder (default: out/verify).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -224,9 +224,9 @@ enum Command {
     Replay {
         /// The saved problem (JSON).
         problem: PathBuf,
-        /// Override the saved iteration limit.
-        #[arg(long, allow_negative_numbers = true)]
-        max_iter: Option<u32>,
+        /// Override the saved iteration limit (1 ..= 4294967295).
+        #[arg(long, value_name = "N", allow_hyphen_values = true)]
+        max_iter: Option<String>,
         /// Override the saved complementarity solver: `direct` or `clarabel`.
         #[arg(long)]
         solver: Option<String>,
@@ -311,7 +311,8 @@ fn main() -> ExitCode {
             problem,
             max_iter,
             solver,
-        } => cmd_replay(&problem, max_iter, solver.as_deref()),
+        } => max_iter_arg(max_iter)
+            .and_then(|max_iter| cmd_replay(&problem, max_iter, solver.as_deref())),
         Command::Sweep {
             scene,
             vary,
@@ -345,17 +346,19 @@ fn main() -> ExitCode {
             threads,
             out,
             quiet,
-        } => match cmd_verify(
-            (
-                methods.as_deref(),
-                discretizations.as_deref(),
-                formulations.as_deref(),
-            ),
-            quick,
-            threads,
-            out,
-            quiet,
-        ) {
+        } => match threads_arg(threads).and_then(|threads| {
+            cmd_verify(
+                (
+                    methods.as_deref(),
+                    discretizations.as_deref(),
+                    formulations.as_deref(),
+                ),
+                quick,
+                threads,
+                out,
+                quiet,
+            )
+        }) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
             Err(e) => Err(e),
@@ -377,18 +380,20 @@ fn main() -> ExitCode {
             out,
             quiet,
             yes,
-        } => cmd_precision(
-            scene,
-            (
-                &formulations,
-                methods.as_deref(),
-                discretizations.as_deref(),
-            ),
-            (levels, ratio, batch),
-            set,
-            out,
-            (quiet, yes),
-        ),
+        } => precision_levels_arg(levels, ratio).and_then(|(levels, ratio)| {
+            cmd_precision(
+                scene,
+                (
+                    &formulations,
+                    methods.as_deref(),
+                    discretizations.as_deref(),
+                ),
+                (levels, ratio, batch),
+                set,
+                out,
+                (quiet, yes),
+            )
+        }),
         Command::Gate {
             suite,
             out,
@@ -411,15 +416,17 @@ fn main() -> ExitCode {
             out,
             quiet,
             yes,
-        } => cmd_converge(
-            scene,
-            &refine,
-            (levels, ratio),
-            (methods.as_deref(), discretizations.as_deref()),
-            set,
-            out,
-            (quiet, yes),
-        ),
+        } => converge_levels_arg(levels, ratio).and_then(|(levels, ratio)| {
+            cmd_converge(
+                scene,
+                &refine,
+                (levels, ratio),
+                (methods.as_deref(), discretizations.as_deref()),
+                set,
+                out,
+                (quiet, yes),
+            )
+        }),
         Command::Compare {
             scene,
             formulations,
@@ -455,10 +462,13 @@ fn main() -> ExitCode {
     }
 }
 
-/// A count given on the command line (`--threads`, `--batch`), checked by
-/// the library's `check`: text that is not a whole number (`-1`, `x`) gets
-/// the same error, naming the flag, the text and the range, as a number out
-/// of range (not the parser's "unexpected argument").
+/// A count given on the command line (`--threads`, `--batch`, `--levels`,
+/// `--ratio` of precision, `--max-iter`), checked by the library's `check`:
+/// text that is not a whole number (`-1`, `x`, `1.5`, a number past
+/// `usize`) gets the same error, naming the flag, the text and the range, as
+/// a number out of range (not the parser's "unexpected argument" or
+/// "invalid digit"). Every integer option of every subcommand goes through
+/// here (`tests/cli.rs` tries each with `-1`).
 fn count(
     text: Option<String>,
     check: impl Fn(usize) -> taut::Result<usize>,
@@ -484,6 +494,56 @@ fn batch_arg(text: Option<String>) -> taut::Result<Option<usize>> {
     count(text, |n| {
         taut::study::request::batch_width(Some(n)).map(|_| n)
     })
+}
+
+/// A count with a default (clap gives the default's text when absent).
+fn required_count(
+    text: String,
+    check: impl Fn(usize) -> taut::Result<usize>,
+) -> taut::Result<usize> {
+    Ok(count(Some(text), check)?.expect("a count was given"))
+}
+
+/// `taut replay --max-iter N`: 1 ..= u32::MAX, the solver's iteration limit.
+fn max_iter_arg(text: Option<String>) -> taut::Result<Option<u32>> {
+    let n = count(text, |n| {
+        if n >= 1 && u32::try_from(n).is_ok() {
+            Ok(n)
+        } else {
+            Err(taut::Error::invalid(
+                "--max-iter",
+                n,
+                format!("must be in 1 ..= {}", u32::MAX),
+            ))
+        }
+    })?;
+    Ok(n.map(|n| u32::try_from(n).expect("checked")))
+}
+
+/// `taut converge --levels L --ratio R`: L by the study's own range, R a
+/// number > 1 (text that is not a number gets the same error).
+fn converge_levels_arg(levels: String, ratio: String) -> taut::Result<(usize, f64)> {
+    use taut::study::converge::{check_levels, check_ratio};
+    let levels = required_count(levels, check_levels)?;
+    let ratio = match ratio.trim().parse::<f64>() {
+        Ok(r) => check_ratio(r)?,
+        Err(_) => match check_ratio(f64::NAN) {
+            Err(taut::Error::Invalid { field, allowed, .. }) => {
+                return Err(taut::Error::invalid(field, ratio, allowed));
+            }
+            other => other?,
+        },
+    };
+    Ok((levels, ratio))
+}
+
+/// `taut precision --levels L --ratio R`, by the study's own ranges.
+fn precision_levels_arg(levels: String, ratio: String) -> taut::Result<(usize, usize)> {
+    use taut::study::precision::{check_levels, check_ratio};
+    Ok((
+        required_count(levels, check_levels)?,
+        required_count(ratio, check_ratio)?,
+    ))
 }
 
 /// Default output folder: out/<scene stem><suffix>.
@@ -883,14 +943,12 @@ fn cmd_precision(
     let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
     fresh(&dir, taut::report::Outputs::Precision)?;
     let text = taut::scene::read_scene(&scene)?;
-    if (1..=5).contains(&levels) {
-        started(
-            &request
-                .estimate(&text, &set)
-                .map_err(|e| taut::scene::in_file(e, &scene))?,
-            yes,
-        )?;
-    }
+    started(
+        &request
+            .estimate(&text, &set)
+            .map_err(|e| taut::scene::in_file(e, &scene))?,
+        yes,
+    )?;
     let bar = progress_bar(request.runs()?, "runs", quiet);
     let result = request.run(&text, &set, &mut |d, _| bar.set_position(d as u64));
     bar.finish_and_clear();

@@ -144,7 +144,7 @@ impl Recorder {
             // statistics over every step, whatever rows the history keeps;
             // the near-support force peak (below) likewise
             acc: (0..nc)
-                .map(|c| ContactAccumulator::new(LossGeometry::of(sc, c)))
+                .map(|c| ContactAccumulator::for_steps(LossGeometry::of(sc, c), sc.steps))
                 .collect(),
             support_peak: vec![0.0f64; nc],
             probes: sc

@@ -63,8 +63,9 @@
 //! different bytes under `--threads 1|2|4` or `taskset` (issue 25). The solve
 //! is therefore always sequential ([`faer::Par::Seq`]), whatever the pool or
 //! the machine's core count; a study's parallelism is across its runs.
-//! `tests/determinism.rs` compares a modal sweep's bytes on 1, 2 and 4
-//! threads.
+//! `tests/reliability.rs` compares a modal sweep's bytes on 1, 2 and 4
+//! threads, and a modal run's and sweep's under `taskset -c 0` (a pool of
+//! one thread) with those unpinned.
 //!
 //! # Memory
 //!

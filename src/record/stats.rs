@@ -263,8 +263,24 @@ impl ContactAccumulator {
         }
     }
 
+    /// Empty statistics with room for the events a run of `steps` steps can
+    /// store ([`crate::scene::memory::event_capacity`]), reserved now: the
+    /// run allocates nothing for them while it steps, and holds no more
+    /// than the memory estimate counts (a list grown by doubling holds up
+    /// to twice its events).
+    pub fn for_steps(geometry: LossGeometry, steps: usize) -> Self {
+        let n = crate::scene::memory::event_capacity(steps);
+        let mut acc = Self::new(geometry);
+        acc.intervals.reserve_exact(n);
+        acc.intervals_t.reserve_exact(n);
+        acc.classes.reserve_exact(n);
+        acc.recontacts.reserve_exact(n);
+        acc
+    }
+
     /// Add the sample of the next row (row 0 first) at time `t`. Allocates
-    /// only when a loss interval closes beyond the intervals' capacity.
+    /// only when a loss interval closes beyond the intervals' capacity
+    /// (never for one made by [`Self::for_steps`] and fed that many steps).
     pub fn push(&mut self, t: f64, s: &CarrierSample) {
         self.max_abs_w = self.max_abs_w.max(s.w.abs());
         if self.rows == 0 {
@@ -398,6 +414,12 @@ impl ContactAccumulator {
     pub fn finish(mut self) -> ContactStats {
         self.close_interval();
         self.close_window();
+        // give back the room reserved for events that did not happen (a
+        // study may keep many runs' statistics)
+        self.intervals.shrink_to_fit();
+        self.intervals_t.shrink_to_fit();
+        self.classes.shrink_to_fit();
+        self.recontacts.shrink_to_fit();
         let steps = self.rows.saturating_sub(1);
         let per_step = 1.0 / steps.max(1) as f64;
         let min_gap = if self.min_gap.is_finite() {
@@ -486,6 +508,56 @@ mod tests {
         assert_eq!(s.first_loss_position, Some(0.25));
         assert_eq!(s.force.min, 0.0);
         assert_eq!(s.force.max, 2.0);
+    }
+
+    #[test]
+    fn the_reserved_events_hold_the_most_a_run_can_store() {
+        // contact lost on every other step (row 0 in contact, or not): the
+        // most intervals and re-contacts `steps` steps can hold, which the
+        // room reserved up front (and the memory estimate) must take without
+        // growing; past MAX_STORED_EVENTS the lists stop growing
+        for steps in (1..=9).chain([2 * MAX_STORED_EVENTS + 7]) {
+            for lost_first in [true, false] {
+                let mut acc = ContactAccumulator::for_steps(LossGeometry::span_only(1.0), steps);
+                let room = [
+                    acc.intervals.capacity(),
+                    acc.intervals_t.capacity(),
+                    acc.classes.capacity(),
+                    acc.recontacts.capacity(),
+                ];
+                assert!(
+                    room.iter()
+                        .all(|&r| r == crate::scene::memory::event_capacity(steps))
+                );
+                for row in 0..=steps {
+                    let c = (row % 2 == 1) != lost_first;
+                    let sample = CarrierSample {
+                        x: row as f64 / steps as f64,
+                        w: 0.0,
+                        q: 0.0,
+                        gap: 0.0,
+                        force: if c { 1.0 } else { 0.0 },
+                        in_contact: c,
+                    };
+                    // far apart: every re-contact its own (no bounces)
+                    acc.push(row as f64, &sample);
+                }
+                let [i, it, c, r] = room;
+                assert_eq!(acc.intervals.capacity(), i, "{steps} steps");
+                assert_eq!(acc.intervals_t.capacity(), it);
+                assert_eq!(acc.classes.capacity(), c);
+                assert_eq!(acc.recontacts.capacity(), r);
+                let s = acc.finish();
+                if lost_first {
+                    // steps 1, 3, 5, …: ⌈steps/2⌉ intervals, the bound met
+                    assert_eq!(s.loss_interval_count, steps.div_ceil(2), "{steps} steps");
+                    assert_eq!(
+                        s.loss_intervals.len(),
+                        steps.div_ceil(2).min(MAX_STORED_EVENTS)
+                    );
+                }
+            }
+        }
     }
 
     #[test]

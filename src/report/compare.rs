@@ -4,7 +4,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::plot::{abscissa, force_series, line_plot};
+use super::plot::{abscissa_label, force_series, line_plot};
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::{CompareRow, Comparison, NotRun};
@@ -95,7 +95,7 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
     let Some(first) = c.runs.first() else {
         return Ok(());
     };
-    let (_, x_desc) = abscissa(&first.scene, &first.output, 0);
+    let x_desc = abscissa_label(&first.scene);
     let several_methods = c.runs.iter().any(|r| r.method != first.method);
     let space = c.several_discretizations;
     let series: Vec<_> = c

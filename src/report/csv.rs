@@ -49,8 +49,9 @@ fn history_rows(out: &RunOutput, rows: std::ops::Range<usize>) -> Table {
 
 /// Rows of the history formatted at a time by [`write_history`]: a few MB
 /// of columns, however long the history (building the whole table copied
-/// the history once more: 1 GB more at 2·10⁷ rows, issue 25).
-const ROWS_AT_A_TIME: usize = 1 << 16;
+/// the history once more: 1 GB more at 2·10⁷ rows, issue 25). Counted in
+/// a run's memory estimate ([`crate::scene::memory::csv_block_rows`]).
+pub const HISTORY_ROWS_AT_A_TIME: usize = 1 << 16;
 
 /// Write the history ([`history_table`]) to `path`, a block of rows at a
 /// time: the same bytes as the whole table's CSV.
@@ -62,7 +63,7 @@ pub fn write_history(path: &Path, out: &RunOutput) -> Result<()> {
     let n = out.history.t.len();
     let mut start = 0;
     loop {
-        let end = (start + ROWS_AT_A_TIME).min(n);
+        let end = (start + HISTORY_ROWS_AT_A_TIME).min(n);
         history_rows(out, start..end)
             .lines_into(start == 0, &mut |line| w.write_all(line.as_bytes()))
             .map_err(io)?;
@@ -85,13 +86,13 @@ mod tests {
             include_str!("../../scenes/t2_stationary_mass.toml"),
             &[
                 "mesh.elements=4".to_string(),
-                format!("time.end={}", (ROWS_AT_A_TIME + 1234) as f64 * 1e-6),
+                format!("time.end={}", (HISTORY_ROWS_AT_A_TIME + 1234) as f64 * 1e-6),
                 "time.step=1e-6".to_string(),
             ],
         )
         .unwrap();
         let out = crate::run(&sc, &mut |_, _| {}).unwrap();
-        assert!(out.history.t.len() > ROWS_AT_A_TIME + 1000);
+        assert!(out.history.t.len() > HISTORY_ROWS_AT_A_TIME + 1000);
         let tmp = tempfile::tempdir().unwrap();
         let path = tmp.path().join("history.csv");
         write_history(&path, &out).unwrap();

@@ -21,10 +21,10 @@ pub use converge::{
     CONVERGE_COLUMNS, converge_methods_table, converge_rows, converge_table, write_converge,
     write_converge_methods,
 };
-pub use csv::{history_table, write_history};
+pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
 pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
-pub use plot::write_force_plot;
+pub use plot::{PLOT_BUCKETS, write_force_plot};
 pub use precision::{PRECISION_COLUMNS, precision_rows, precision_table, write_precision};
 pub use summary::{Derived, Summary, mesh_label, write_summary};
 pub use sweep::{sweep_table, write_sweep};
@@ -91,11 +91,17 @@ pub(crate) const PALETTE: [plotters::style::RGBColor; 10] = {
 
 /// Write a value as pretty-printed JSON with a final newline.
 pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
-    let text = serde_json::to_string_pretty(value).map_err(|e| Error::Output {
+    // streamed: a summary of 10⁴ events per carrier is megabytes of text
+    // that need not be held (the memory estimate counts no JSON text)
+    use std::io::Write;
+    let io = |e| Error::io(path, e);
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(io)?);
+    serde_json::to_writer_pretty(&mut w, value).map_err(|e| Error::Output {
         path: path.into(),
         reason: e.to_string(),
     })?;
-    std::fs::write(path, text + "\n").map_err(|e| Error::io(path, e))
+    w.write_all(b"\n").map_err(io)?;
+    w.flush().map_err(io)
 }
 
 /// Format a float compactly and exactly (shortest round-trip form).

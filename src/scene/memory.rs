@@ -10,6 +10,8 @@
 
 use crate::error::{Error, Result};
 use crate::integrate::rhs_columns;
+use crate::record::stats::MAX_STORED_EVENTS;
+use crate::record::{LossClass, Recontact};
 
 /// Largest memory one run may plan to use, bytes (2 GiB). A fixed number,
 /// not the machine's free memory, so that a scene is accepted or refused the
@@ -56,21 +58,98 @@ pub const RHS_BLOCKS: u64 = 4;
 /// copies, the active block), counted generously.
 pub const DENSE_CONTACT_MATRICES: u64 = 6;
 
-/// Dense n_fe × n_fe matrices the `modal` basis's eigenproblem holds at
-/// once (the reduced matrix, its eigenvectors and the solver's workspace),
-/// counted generously.
-pub const MODAL_DENSE_MATRICES: u64 = 4;
-
 /// The extra memory of a `modal` basis of J modes over n_fe FE unknowns:
-/// the dense eigenproblem and the n_fe × J mode shapes kept for the run.
+/// the dense eigenproblem at its peak ([`crate::model::eigen::eigen_bytes`]:
+/// C, the eigenvectors and faer's workspace, from faer's own requirement,
+/// ≈ 5 n² · 8 bytes; counted as 4 n² · 8 before, which a run at n = 1999
+/// exceeded by 32 MiB) and the n_fe × J mode shapes kept for the run.
 pub fn modal_bytes(n_fe: usize, modes: usize) -> u64 {
     let n = n_fe as u64;
-    n.saturating_mul(n)
-        .saturating_mul(8 * MODAL_DENSE_MATRICES)
-        .saturating_add(n.saturating_mul(modes as u64).saturating_mul(8))
+    let eigen = if n_fe <= crate::model::eigen::MAX_MODAL_DOFS {
+        crate::model::eigen::eigen_bytes(n_fe)
+    } else {
+        // refused by validation; an over-estimate that cannot overflow
+        n.saturating_mul(n).saturating_mul(8 * 6)
+    };
+    eigen.saturating_add(n.saturating_mul(modes as u64).saturating_mul(8))
 }
 
-/// The memory a run is estimated to need, bytes.
+/// Bytes of one stored contact event of a carrier: its loss interval in
+/// x/L and in t (two `[f64; 2]`), the interval's class and a re-contact
+/// ([`crate::record::ContactStats`]); a run reserves room for
+/// [`event_capacity`] of them per carrier before its first step.
+pub const EVENT_BYTES: u64 = (2 * std::mem::size_of::<[f64; 2]>()
+    + std::mem::size_of::<LossClass>()
+    + std::mem::size_of::<Recontact>()) as u64;
+
+/// The most loss intervals (and re-contacts) a run of `steps` steps can
+/// store per carrier: an interval needs a lost step, and two intervals a
+/// closed step between them, so at most ⌈steps/2⌉; and at most
+/// [`MAX_STORED_EVENTS`] are stored.
+pub fn event_capacity(steps: usize) -> usize {
+    steps.div_ceil(2).min(MAX_STORED_EVENTS)
+}
+
+/// Characters of one `history.csv` cell at most: a value in shortest
+/// round-trip form (`-1.2345678901234567e-308`, 24) and its comma.
+pub const CSV_CELL_CHARS: u64 = 25;
+
+/// `force.svg` text per point of a force line: `x,y ` in pixels of a
+/// 960 × 480 plot, at most 3 + 1 + 3 + 1.
+pub const SVG_POINT_BYTES: u64 = 8;
+
+/// `force.svg` text per shaded loss interval: a `<rect …/>` line, measured
+/// 88–90 bytes (reference scene, `contact.placement=alpha`), rounded up.
+pub const SVG_RECT_BYTES: u64 = 96;
+
+/// `force.svg` text that does not grow with the data (axes, ticks, labels,
+/// legend): measured ≈ 22 KB, counted as 64 KiB.
+pub const SVG_FIXED_BYTES: u64 = 64 << 10;
+
+/// A text grown by doubling holds at most 3× its length at once (the old
+/// buffer and the new one, twice the old, while it is copied).
+pub const GROWN_TEXT_FACTOR: u64 = 3;
+
+/// The working memory of writing a run's outputs, bytes, beyond the
+/// history, the statistics and the block of `history.csv` formatted at a
+/// time ([`csv_block_rows`]): a line of `history.csv`'s text, `summary.json`'s copy of every carrier's
+/// `events` (carrier 0 twice: `contact` and `carriers[0]`; the JSON text
+/// itself is streamed to the file), and per carrier of `force.svg`: the
+/// decimated points (at most 4 × [`crate::report::PLOT_BUCKETS`]; four
+/// copies of 16 bytes and two of 8 on their way to the drawing), the
+/// shaded intervals (two copies) and the SVG text, which the plotting
+/// library holds whole until it writes the file.
+pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
+    let (nc, ev) = (carriers as u64, events as u64);
+    let line = csv_values
+        .saturating_mul(CSV_CELL_CHARS)
+        .saturating_mul(2)
+        .saturating_add(8 << 10); // the line's String and the file's buffer
+    let summary = nc
+        .saturating_add(1)
+        .saturating_mul(ev)
+        .saturating_mul(EVENT_BYTES);
+    let points = 4 * crate::report::PLOT_BUCKETS as u64;
+    let svg_text = (points * SVG_POINT_BYTES)
+        .saturating_add(ev.saturating_mul(SVG_RECT_BYTES))
+        .saturating_mul(GROWN_TEXT_FACTOR);
+    let per_carrier = (points * (4 * 16 + 2 * 8))
+        .saturating_add(ev.saturating_mul(2 * 16))
+        .saturating_add(svg_text);
+    line.saturating_add(summary)
+        .saturating_add(nc.saturating_mul(per_carrier))
+        .saturating_add(SVG_FIXED_BYTES * GROWN_TEXT_FACTOR)
+}
+
+/// Rows of the block of `history.csv` formatted at a time (its columns
+/// copied from the history: a second copy of that many rows).
+pub fn csv_block_rows(rows: u64) -> u64 {
+    rows.min(crate::report::HISTORY_ROWS_AT_A_TIME as u64)
+}
+
+/// The memory a run is estimated to need, bytes: an upper bound of what it
+/// holds at its peak, writing its outputs included (checked against the
+/// binary's peak resident size by `tests/memory_peak.rs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MemoryEstimate {
     /// The recorded history: rows × (t + carriers + probes).
@@ -81,6 +160,15 @@ pub struct MemoryEstimate {
     pub rows: u64,
     /// The model and the integrator's work arrays.
     pub model: u64,
+    /// The statistics' stored events (loss intervals and re-contacts,
+    /// [`event_capacity`] per carrier, reserved before the first step).
+    pub events: u64,
+    /// The block of `history.csv` formatted at a time: [`csv_block_rows`]
+    /// rows × [`Self::row`].
+    pub csv_block: u64,
+    /// The rest of the working memory of writing the outputs
+    /// ([`output_bytes`]).
+    pub outputs: u64,
     /// The estimated size of `history.csv`, bytes (on disk, not in memory).
     pub csv: u64,
     /// Values in one row of `history.csv`.
@@ -90,7 +178,16 @@ pub struct MemoryEstimate {
 impl MemoryEstimate {
     /// Everything, bytes.
     pub fn total(&self) -> u64 {
-        self.history.saturating_add(self.model)
+        self.history
+            .saturating_add(self.csv_block)
+            .saturating_add(self.model)
+            .saturating_add(self.other())
+    }
+
+    /// The statistics' events and the output buffers but the history's
+    /// block: what does not grow with the rows.
+    pub fn other(&self) -> u64 {
+        self.events.saturating_add(self.outputs)
     }
 }
 
@@ -138,11 +235,17 @@ pub fn estimate(
         );
     // t, then x, w, q, gap, λ and the contact flag per carrier, then probes
     let csv_values = 1 + 6 * u(carriers) + u(probes);
+    let events = event_capacity(steps);
     MemoryEstimate {
         history: rows.saturating_mul(row),
         row,
         rows,
         model,
+        events: u(carriers)
+            .saturating_mul(u(events))
+            .saturating_mul(EVENT_BYTES),
+        csv_block: csv_block_rows(rows).saturating_mul(row),
+        outputs: output_bytes(csv_values, carriers, events),
         csv: rows
             .saturating_mul(csv_values)
             .saturating_mul(CSV_BYTES_PER_VALUE),
@@ -176,16 +279,21 @@ pub fn check_budget(
         return Ok(());
     }
     let need = format!(
-        "the run needs an estimated {} ({} rows × {} bytes of history + {} of model), above the memory budget of {}",
+        "the run needs an estimated {} ({} rows × {} bytes of history, {} of them again while history.csv is written, + {} of model + {} of contact events and output buffers), above the memory budget of {}",
         gib(e.total()),
         e.rows,
         e.row,
+        csv_block_rows(e.rows),
         gib(e.model),
+        gib(e.other()),
         gib(budget)
     );
-    if memory_over && e.model.saturating_add(2 * e.row) > budget {
-        // even a two-row history does not fit: the model or a row is too big
-        return Err(if e.model > budget / 2 {
+    // what does not shrink with fewer rows
+    let fixed = e.model.saturating_add(e.other());
+    if memory_over && fixed.saturating_add(4 * e.row) > budget {
+        // even a two-row history does not fit: the model, the carriers'
+        // events or a row is too big
+        return Err(if fixed > budget / 2 {
             Error::invalid(
                 "mesh.elements",
                 elements,
@@ -203,7 +311,14 @@ pub fn check_budget(
     let row_csv = e.csv_values.saturating_mul(CSV_BYTES_PER_VALUE).max(1);
     let rows_fit_csv = (OUTPUT_BUDGET_BYTES / row_csv).max(2);
     let rows_fit_memory = if memory_over {
-        (budget - e.model) / e.row.max(1) // ≥ 2 here
+        // rows r that fit: fixed + r·row + min(r, block)·row ≤ budget
+        let (avail, row) = (budget - fixed, e.row.max(1));
+        let block = crate::report::HISTORY_ROWS_AT_A_TIME as u64;
+        if avail >= 2 * block * row {
+            (avail - block * row) / row
+        } else {
+            avail / (2 * row) // ≥ 2 here
+        }
     } else {
         u64::MAX
     };

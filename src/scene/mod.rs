@@ -9,7 +9,7 @@
 mod discretization;
 mod load;
 pub mod manufactured;
-mod memory;
+pub mod memory;
 mod method;
 mod speed;
 mod validate;

@@ -289,6 +289,34 @@ pub fn converge_variants(
     Ok((done, skipped))
 }
 
+/// Levels a convergence study takes (`--levels`, Python `levels=`): at
+/// least 2 (one difference), 3 for an observed order; at most 12 (a ratio of
+/// 2 refines 2¹¹ = 2048 times on the finest level).
+pub const LEVELS: std::ops::RangeInclusive<usize> = 2..=12;
+
+/// `levels` if within [`LEVELS`], else the error naming `--levels`. Checked
+/// before the study's cost is estimated (which loops over the levels).
+pub fn check_levels(levels: usize) -> Result<usize> {
+    if LEVELS.contains(&levels) {
+        Ok(levels)
+    } else {
+        Err(Error::invalid(
+            "--levels",
+            levels,
+            format!("must be in {} ..= {}", LEVELS.start(), LEVELS.end()),
+        ))
+    }
+}
+
+/// `ratio` if finite and > 1, else the error naming `--ratio`.
+pub fn check_ratio(ratio: f64) -> Result<f64> {
+    if ratio > 1.0 && ratio.is_finite() {
+        Ok(ratio)
+    } else {
+        Err(Error::invalid("--ratio", ratio, "must be > 1"))
+    }
+}
+
 /// Run the refinement sequence.
 ///
 /// * `text`, `overrides`: the scene and its `--set`s (level 0);
@@ -323,12 +351,8 @@ fn converge_with(
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Convergence> {
-    if !(2..=12).contains(&levels) {
-        return Err(Error::invalid("--levels", levels, "must be in 2 ..= 12"));
-    }
-    if !(ratio > 1.0 && ratio.is_finite()) {
-        return Err(Error::invalid("--ratio", ratio, "must be > 1"));
-    }
+    check_levels(levels)?;
+    check_ratio(ratio)?;
     let refines_step = refine != Refine::Mesh;
     if refines_step && (ratio.fract() != 0.0) {
         return Err(Error::invalid(

@@ -116,14 +116,25 @@ fn duration(s: f64) -> String {
         format!("{:.0} min", s / 60.0)
     } else if s < 2.0 * 86400.0 {
         format!("{:.1} h", s / 3600.0)
-    } else {
+    } else if s < 1e4 * 86400.0 {
         format!("{:.0} days", s / 86400.0)
+    } else {
+        // a ratio of 1e23 gives 1e131 days: 132 digits in {:.0}
+        format!("{:.1e} days", s / 86400.0)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn durations_read_short_at_any_size() {
+        assert_eq!(duration(30.0), "30 s");
+        assert_eq!(duration(3.0 * 86400.0), "3 days");
+        assert_eq!(duration(2.5e135), "2.9e130 days");
+        assert_eq!(duration(f64::INFINITY), "forever");
+    }
 
     #[test]
     fn a_study_above_the_bound_is_refused_unless_yes() {

@@ -83,6 +83,36 @@ pub struct Precision {
     pub skipped: Vec<NotRun>,
 }
 
+/// Grid levels per axis a precision study takes (`--levels`, Python
+/// `levels=`): levels² grid points per formulation, method and
+/// discretization.
+pub const LEVELS: std::ops::RangeInclusive<usize> = 1..=5;
+
+/// `levels` if within [`LEVELS`], else the error naming `--levels`.
+/// Checked before the study's cost is estimated.
+pub fn check_levels(levels: usize) -> Result<usize> {
+    if LEVELS.contains(&levels) {
+        Ok(levels)
+    } else {
+        Err(Error::invalid(
+            "--levels",
+            levels,
+            format!("must be in {} ..= {}", LEVELS.start(), LEVELS.end()),
+        ))
+    }
+}
+
+/// `ratio` if an integer ≥ 2, else the error naming `--ratio` (a ratio so
+/// large that the reference mesh overflows is refused by
+/// [`reference_elements`]).
+pub fn check_ratio(ratio: usize) -> Result<usize> {
+    if ratio >= 2 {
+        Ok(ratio)
+    } else {
+        Err(Error::invalid("--ratio", ratio, "must be an integer ≥ 2"))
+    }
+}
+
 /// The reference run's mesh, N₀ × ratio^levels (one level beyond the
 /// grid's finest), checked: a ratio so large it overflows would wrap to a
 /// meaningless mesh in a release build. Also what the study's cost
@@ -148,12 +178,8 @@ pub fn precision_variants(
     (levels, ratio, batch): (usize, usize, usize),
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Precision> {
-    if !(1..=5).contains(&levels) {
-        return Err(Error::invalid("--levels", levels, "must be in 1 ..= 5"));
-    }
-    if ratio < 2 {
-        return Err(Error::invalid("--ratio", ratio, "must be an integer ≥ 2"));
-    }
+    check_levels(levels)?;
+    check_ratio(ratio)?;
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut precision")?;
     let own = crate::integrate::scene_method(&base)?;

@@ -196,8 +196,11 @@ impl ConvergeRequest {
     /// step by ratio^l, for every method and discretization.
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
         let refine: Refine = self.refine.parse()?;
+        // in range first: the estimate loops over the levels
+        super::converge::check_levels(self.levels)?;
+        super::converge::check_ratio(self.ratio)?;
         let base = base_dof_steps(text, overrides)?;
-        let variants = self.runs()? / self.levels.max(1);
+        let variants = self.runs()? / self.levels;
         let per_level = match refine {
             Refine::Mesh | Refine::Step => self.ratio,
             Refine::Both => self.ratio * self.ratio,
@@ -214,6 +217,7 @@ impl ConvergeRequest {
 
     /// Number of runs, for a progress bar.
     pub fn runs(&self) -> Result<usize> {
+        super::converge::check_levels(self.levels)?;
         let m = methods(self.methods.as_deref())?.map_or(1, |m| m.len());
         Ok(self.levels * m * spaces(self.discretizations.as_deref())?.len().max(1))
     }
@@ -283,11 +287,14 @@ impl PrecisionRequest {
     /// Δt₀/rʲ for every formulation, method and discretization, and the
     /// reference one level beyond the finest on both.
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
+        // in range first, then the scene
+        super::precision::check_levels(self.levels)?;
+        super::precision::check_ratio(self.ratio)?;
         let sc = crate::scene::resolve_scene(text, overrides)?;
         // the study's own refusal of an overflowing ratio comes first
         super::precision::reference_elements(sc.elements, self.ratio, self.levels)?;
         let base = run_dof_steps(&sc);
-        let variants = (self.runs()? - 1) / (self.levels * self.levels).max(1);
+        let variants = (self.runs()? - 1) / (self.levels * self.levels);
         let r = self.ratio as f64;
         let level = |k: usize| r.powi(k.min(i32::MAX as usize) as i32);
         let mut e = Estimate::new("taut precision");
@@ -302,6 +309,7 @@ impl PrecisionRequest {
 
     /// Number of runs (with the reference run), for a progress bar.
     pub fn runs(&self) -> Result<usize> {
+        super::precision::check_levels(self.levels)?;
         let f = parse_formulations(&self.formulations)?.len();
         let m = methods(self.methods.as_deref())?.map_or(1, |m| m.len());
         let s = spaces(self.discretizations.as_deref())?.len().max(1);
@@ -315,9 +323,7 @@ impl PrecisionRequest {
         overrides: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Precision> {
-        if (1..=5).contains(&self.levels) {
-            self.estimate(text, overrides)?.check(self.yes)?;
-        }
+        self.estimate(text, overrides)?.check(self.yes)?;
         let formulations = parse_formulations(&self.formulations)?;
         let list = methods(self.methods.as_deref())?;
         let spaces = spaces(self.discretizations.as_deref())?;
