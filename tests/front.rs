@@ -2,9 +2,10 @@
 //! input, sweeps and their faults, the gate, studies driven from the
 //! binary, and the README's commands. Each file below is a module, run with
 //! its name as a filter, e.g. `cargo test --release --test front cli::`.
-//! `no_alloc.rs` (a counting global allocator) and `interrupt.rs` (the
-//! process-wide interrupt flag) stay binaries of their own: they would
-//! disturb the tests beside them.
+//! `no_alloc.rs` (a counting global allocator), `interrupt.rs` (the
+//! process-wide interrupt flag) and `memory_peak.rs` (a child's peak
+//! memory includes its parent's: the parent must stay small) stay binaries
+//! of their own: tests beside them would disturb them or be disturbed.
 
 /// Shared helpers (one copy for the whole binary).
 mod common;
@@ -36,7 +37,13 @@ mod tolerance;
 #[test]
 fn every_test_file_runs_in_some_binary() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
-    let roots = ["numerics.rs", "front.rs", "no_alloc.rs", "interrupt.rs"];
+    let roots = [
+        "numerics.rs",
+        "front.rs",
+        "no_alloc.rs",
+        "interrupt.rs",
+        "memory_peak.rs",
+    ];
     let mut included = String::new();
     for r in &roots[..2] {
         included += &std::fs::read_to_string(dir.join(r)).expect("a group file reads");
