@@ -111,7 +111,11 @@ impl ModalCoefs {
             }
         };
         let omega: Vec<f64> = (0..beam.n)
-            .map(|j| (beam.stiffness.get(j, j) / beam.mass.get(j, j)).sqrt())
+            .map(|j| {
+                (beam.stiffness.get(j, j) / beam.mass.get(j, j))
+                    .max(0.0)
+                    .sqrt()
+            })
             .collect();
         let steps = ModeSteps::new(&omega, dt);
         let held = beam.load.iter().any(|p| *p != 0.0).then(|| {

@@ -321,7 +321,15 @@ impl BeamModel {
             n: j,
             h,
             mass: diagonal(&vec![1.0; j]),
-            stiffness: diagonal(&pairs.omega_sq),
+            // a free end's rigid modes have ω² = 0; the solve returns them
+            // as ±round-off (≈ n·ε·ω_max²): a negative one is that round-off
+            stiffness: diagonal(
+                &pairs
+                    .omega_sq
+                    .iter()
+                    .map(|w| w.max(0.0))
+                    .collect::<Vec<_>>(),
+            ),
             load,
             basis: Basis::Modal { shapes, modes: j },
             ..fe
