@@ -34,6 +34,22 @@ pub const RECONTACT_WINDOW: f64 = 2e-3;
 /// rigid-impact spike sits in the first step or two.
 pub const PEAK_STEPS: usize = 3;
 
+/// Bytes of one stored contact event of a carrier: its loss interval in
+/// x/L and in t (two `[f64; 2]`), the interval's class and a re-contact
+/// ([`super::ContactStats`]); a run reserves room for
+/// [`event_capacity`] of them per carrier before its first step.
+pub const EVENT_BYTES: u64 = (2 * std::mem::size_of::<[f64; 2]>()
+    + std::mem::size_of::<super::LossClass>()
+    + std::mem::size_of::<Recontact>()) as u64;
+
+/// The most loss intervals (and re-contacts) a run of `steps` steps can
+/// store per carrier: an interval needs a lost step, and two intervals a
+/// closed step between them, so at most ⌈steps/2⌉; and at most
+/// [`MAX_STORED_EVENTS`] are stored.
+pub fn event_capacity(steps: usize) -> usize {
+    steps.div_ceil(2).min(MAX_STORED_EVENTS)
+}
+
 /// A re-contact after a loss at least this long starts a new event; a
 /// shorter loss inside an event's window is a bounce of that event (the
 /// number of bounces grows as Δt falls). 0.2 ms = 2 steps at Δt = 1e-4 s.
@@ -264,12 +280,12 @@ impl ContactAccumulator {
     }
 
     /// Empty statistics with room for the events a run of `steps` steps can
-    /// store ([`crate::scene::memory::event_capacity`]), reserved now: the
+    /// store ([`event_capacity`]), reserved now: the
     /// run allocates nothing for them while it steps, and holds no more
     /// than the memory estimate counts (a list grown by doubling holds up
     /// to twice its events).
     pub fn for_steps(geometry: LossGeometry, steps: usize) -> Self {
-        let n = crate::scene::memory::event_capacity(steps);
+        let n = event_capacity(steps);
         let mut acc = Self::new(geometry);
         acc.intervals.reserve_exact(n);
         acc.intervals_t.reserve_exact(n);
@@ -525,10 +541,7 @@ mod tests {
                     acc.classes.capacity(),
                     acc.recontacts.capacity(),
                 ];
-                assert!(
-                    room.iter()
-                        .all(|&r| r == crate::scene::memory::event_capacity(steps))
-                );
+                assert!(room.iter().all(|&r| r == event_capacity(steps)));
                 for row in 0..=steps {
                     let c = (row % 2 == 1) != lost_first;
                     let sample = CarrierSample {

@@ -47,11 +47,7 @@ fn history_rows(out: &RunOutput, rows: std::ops::Range<usize>) -> Table {
     t
 }
 
-/// Rows of the history formatted at a time by [`write_history`]: a few MB
-/// of columns, however long the history (building the whole table copied
-/// the history once more: 1 GB more at 2·10⁷ rows, issue 25). Counted in
-/// a run's memory estimate ([`crate::scene::memory::csv_block_rows`]).
-pub const HISTORY_ROWS_AT_A_TIME: usize = 1 << 16;
+pub use crate::scene::memory::HISTORY_ROWS_AT_A_TIME;
 
 /// Write the history ([`history_table`]) to `path`, a block of rows at a
 /// time: the same bytes as the whole table's CSV.

@@ -114,11 +114,7 @@ pub(crate) fn line_plot(
 /// Pixel size of a line plot.
 const SIZE: (u32, u32) = (960, 480);
 
-/// Index buckets a series is reduced to before drawing: each keeps its
-/// first, lowest, highest and last point, so the drawn envelope is the
-/// data's at any length (a 4·10⁷-step run drew a 347 MB `force.svg`; now at
-/// most 4 × 2000 points a series, about two buckets a pixel column).
-pub const PLOT_BUCKETS: usize = 2000;
+pub use crate::scene::memory::PLOT_BUCKETS;
 
 /// `points` reduced to at most 4 × [`PLOT_BUCKETS`], in order: per bucket
 /// of consecutive points, the first, the lowest, the highest and the last

@@ -10,8 +10,7 @@
 
 use crate::error::{Error, Result};
 use crate::integrate::rhs_columns;
-use crate::record::stats::MAX_STORED_EVENTS;
-use crate::record::{LossClass, Recontact};
+use crate::record::stats::{EVENT_BYTES, event_capacity};
 
 /// Largest memory one run may plan to use, bytes (2 GiB). A fixed number,
 /// not the machine's free memory, so that a scene is accepted or refused the
@@ -74,21 +73,18 @@ pub fn modal_bytes(n_fe: usize, modes: usize) -> u64 {
     eigen.saturating_add(n.saturating_mul(modes as u64).saturating_mul(8))
 }
 
-/// Bytes of one stored contact event of a carrier: its loss interval in
-/// x/L and in t (two `[f64; 2]`), the interval's class and a re-contact
-/// ([`crate::record::ContactStats`]); a run reserves room for
-/// [`event_capacity`] of them per carrier before its first step.
-pub const EVENT_BYTES: u64 = (2 * std::mem::size_of::<[f64; 2]>()
-    + std::mem::size_of::<LossClass>()
-    + std::mem::size_of::<Recontact>()) as u64;
+/// Index buckets a series is reduced to before drawing (`report::plot`):
+/// each keeps its first, lowest, highest and last point, so the drawn
+/// envelope is the data's at any length (a 4·10⁷-step run drew a 347 MB
+/// `force.svg`; now at most 4 × 2000 points a series, about two buckets a
+/// pixel column). Defined here, with the memory plan that counts it.
+pub const PLOT_BUCKETS: usize = 2000;
 
-/// The most loss intervals (and re-contacts) a run of `steps` steps can
-/// store per carrier: an interval needs a lost step, and two intervals a
-/// closed step between them, so at most ⌈steps/2⌉; and at most
-/// [`MAX_STORED_EVENTS`] are stored.
-pub fn event_capacity(steps: usize) -> usize {
-    steps.div_ceil(2).min(MAX_STORED_EVENTS)
-}
+/// Rows of the history formatted at a time by `report::write_history`: a
+/// few MB of columns, however long the history (building the whole table
+/// copied the history once more: 1 GB more at 2·10⁷ rows, issue 25).
+/// Defined here, with the memory plan that counts it ([`csv_block_rows`]).
+pub const HISTORY_ROWS_AT_A_TIME: usize = 1 << 16;
 
 /// Characters of one `history.csv` cell at most: a value in shortest
 /// round-trip form (`-1.2345678901234567e-308`, 24) and its comma.
@@ -115,7 +111,7 @@ pub const GROWN_TEXT_FACTOR: u64 = 3;
 /// time ([`csv_block_rows`]): a line of `history.csv`'s text, `summary.json`'s copy of every carrier's
 /// `events` (carrier 0 twice: `contact` and `carriers[0]`; the JSON text
 /// itself is streamed to the file), and per carrier of `force.svg`: the
-/// decimated points (at most 4 × [`crate::report::PLOT_BUCKETS`]; four
+/// decimated points (at most 4 × [`PLOT_BUCKETS`]; four
 /// copies of 16 bytes and two of 8 on their way to the drawing), the
 /// shaded intervals (two copies) and the SVG text, which the plotting
 /// library holds whole until it writes the file.
@@ -129,7 +125,7 @@ pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
         .saturating_add(1)
         .saturating_mul(ev)
         .saturating_mul(EVENT_BYTES);
-    let points = 4 * crate::report::PLOT_BUCKETS as u64;
+    let points = 4 * PLOT_BUCKETS as u64;
     let svg_text = (points * SVG_POINT_BYTES)
         .saturating_add(ev.saturating_mul(SVG_RECT_BYTES))
         .saturating_mul(GROWN_TEXT_FACTOR);
@@ -144,7 +140,7 @@ pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
 /// Rows of the block of `history.csv` formatted at a time (its columns
 /// copied from the history: a second copy of that many rows).
 pub fn csv_block_rows(rows: u64) -> u64 {
-    rows.min(crate::report::HISTORY_ROWS_AT_A_TIME as u64)
+    rows.min(HISTORY_ROWS_AT_A_TIME as u64)
 }
 
 /// The memory a run is estimated to need, bytes: an upper bound of what it
@@ -313,7 +309,7 @@ pub fn check_budget(
     let rows_fit_memory = if memory_over {
         // rows r that fit: fixed + r·row + min(r, block)·row ≤ budget
         let (avail, row) = (budget - fixed, e.row.max(1));
-        let block = crate::report::HISTORY_ROWS_AT_A_TIME as u64;
+        let block = HISTORY_ROWS_AT_A_TIME as u64;
         if avail >= 2 * block * row {
             (avail - block * row) / row
         } else {
