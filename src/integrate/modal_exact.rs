@@ -165,11 +165,14 @@ pub struct ModalExact {
 /// A manufactured source's modal load sampled at t_n and t_{n+1} (MODEL
 /// §11): the smooth part plus each carrier's point load at its position,
 /// applied with the first-order hold of a moving force (second order in
-/// Δt, exact for a load linear in time). Scratch, J each.
+/// Δt, exact for a load linear in time). J each; a step's sample at
+/// t_{n+1} is the next step's at t_n, so each step evaluates one.
 #[derive(Debug, Clone)]
 struct SourceLoads {
     at_n: Vec<f64>,
     at_n1: Vec<f64>,
+    /// The time `at_n1` was sampled at, s (NaN before the first step).
+    t_n1: f64,
 }
 
 impl ModalExact {
@@ -203,6 +206,7 @@ impl ModalExact {
         let source = sys.has_source().then(|| SourceLoads {
             at_n: vec![0.0; j],
             at_n1: vec![0.0; j],
+            t_n1: f64::NAN,
         });
         ModalExact {
             coefs,
@@ -346,8 +350,13 @@ fn contact(
 /// (the midpoint hold of a smooth force is second order too).
 fn add_source(m: &ModeSteps, src: &mut SourceLoads, sys: &mut System, st: &mut State) {
     let (t0, t1) = (st.t, st.next_time(sys.dt));
-    sys.source_load_into(t0, &mut src.at_n);
+    if src.t_n1 == t0 {
+        std::mem::swap(&mut src.at_n, &mut src.at_n1);
+    } else {
+        sys.source_load_into(t0, &mut src.at_n);
+    }
     sys.source_load_into(t1, &mut src.at_n1);
+    src.t_n1 = t1;
     for i in 0..m.len() {
         let (p, q) = (src.at_n[i], src.at_n1[i]);
         st.d[i] += path(m.a0[i], p, m.a1[i], q);

@@ -504,16 +504,16 @@ impl System {
             let m = src.source.solution();
             for (i, c) in self.carriers.iter_mut().enumerate() {
                 c.point = m.point_load(i, t_load);
-                if let Some(j) = c.contact {
+                if c.contact.is_some() {
                     self.beam.point_vector_into(
                         c.props.motion.position(t_load),
                         false,
                         &mut c.pv_l,
                     );
-                    self.masses[j].f0 = src.f0[j] + m.mass_source(i, t_load);
                 }
             }
         }
+        self.set_mass_source(t_load);
         for c in self.carriers.iter_mut() {
             let tf = if c.contact.is_some() { t_force } else { t_load };
             self.beam

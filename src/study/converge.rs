@@ -297,15 +297,7 @@ pub const LEVELS: std::ops::RangeInclusive<usize> = 2..=12;
 /// `levels` if within [`LEVELS`], else the error naming `--levels`. Checked
 /// before the study's cost is estimated (which loops over the levels).
 pub fn check_levels(levels: usize) -> Result<usize> {
-    if LEVELS.contains(&levels) {
-        Ok(levels)
-    } else {
-        Err(Error::invalid(
-            "--levels",
-            levels,
-            format!("must be in {} ..= {}", LEVELS.start(), LEVELS.end()),
-        ))
-    }
+    super::grid::in_range("--levels", levels, &LEVELS)
 }
 
 /// `ratio` if finite and > 1, else the error naming `--ratio`.

@@ -3,7 +3,7 @@
 //! fine run's, the one resampling of a fine history onto the coarse grid,
 //! and the one observed order from successive differences.
 
-use std::ops::Range;
+use std::ops::{Range, RangeInclusive};
 
 use crate::error::{Error, Result};
 
@@ -57,6 +57,20 @@ pub fn nest(coarse: (usize, f64), fine: (usize, f64), reach: Reach) -> Result<us
 /// coarse row k in `rows` (`0..n` with the initial row, `1..n` without).
 pub fn resample(fine: &[f64], stride: usize, rows: Range<usize>) -> Vec<f64> {
     rows.map(|k| fine[k * stride]).collect()
+}
+
+/// `value` of option `key` if within `range`, else the error naming the
+/// option, the value and the range (a study's `--levels`).
+pub fn in_range(key: &str, value: usize, range: &RangeInclusive<usize>) -> Result<usize> {
+    if range.contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::invalid(
+            key,
+            value,
+            format!("must be in {} ..= {}", range.start(), range.end()),
+        ))
+    }
 }
 
 /// Roache's safety factor for a three-grid study (the grid convergence

@@ -91,15 +91,7 @@ pub const LEVELS: std::ops::RangeInclusive<usize> = 1..=5;
 /// `levels` if within [`LEVELS`], else the error naming `--levels`.
 /// Checked before the study's cost is estimated.
 pub fn check_levels(levels: usize) -> Result<usize> {
-    if LEVELS.contains(&levels) {
-        Ok(levels)
-    } else {
-        Err(Error::invalid(
-            "--levels",
-            levels,
-            format!("must be in {} ..= {}", LEVELS.start(), LEVELS.end()),
-        ))
-    }
+    super::grid::in_range("--levels", levels, &LEVELS)
 }
 
 /// `ratio` if an integer ≥ 2, else the error naming `--ratio` (a ratio so

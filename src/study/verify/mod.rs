@@ -392,19 +392,12 @@ fn run_job(j: &Job) -> Result<Vec<VerifyRow>> {
         .collect();
     // a scene this combination cannot make (a formulation the method
     // refuses, a basis without free ends) is a `cannot` in every variable
-    let scene = match scene {
-        Ok(s) => s,
-        Err(e) => {
-            return Ok(variables
-                .iter()
-                .flat_map(|&v| j.case.quantities.iter().map(move |&q| (v, q)))
-                .map(|(v, q)| blank(v, q, Status::Cannot, e.to_string()))
-                .collect());
-        }
-    };
-    let probe = level(&scene, j.space, scene.mesh.elements, scene.time.step, 8);
-    let resolved = match probe {
-        Ok(s) => s,
+    let probe = scene.and_then(|scene| {
+        let resolved = level(&scene, j.space, scene.mesh.elements, scene.time.step, 8)?;
+        Ok((scene, resolved))
+    });
+    let (scene, resolved) = match probe {
+        Ok(p) => p,
         Err(e) => {
             return Ok(variables
                 .iter()
