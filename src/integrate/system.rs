@@ -15,7 +15,7 @@
 //! contact formulation works with every method through this one seam, and a
 //! law never reaches into a method.
 
-use crate::contact::{ContactFailure, ContactLaw, ContactProblem, Level, law_for};
+use crate::contact::{ContactFailed, ContactFailure, ContactLaw, ContactProblem, Level, law_for};
 use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;
 use crate::model::beam::{BeamModel, PointVector};
@@ -849,12 +849,14 @@ impl System {
             step,
             time,
             run: String::new(),
-            failure,
-            problem: Box::new(ContactProblem {
-                level,
-                g_free,
-                w,
-                contact: self.contact.clone(),
+            failure: Box::new(ContactFailed {
+                failure,
+                problem: ContactProblem {
+                    level,
+                    g_free,
+                    w,
+                    contact: self.contact.clone(),
+                },
             }),
         }
     }

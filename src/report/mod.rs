@@ -52,11 +52,12 @@ use crate::scene::Resolved;
 /// returns the file, or None for another error or a folder that cannot be
 /// written (the error itself is what the caller reports).
 pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> {
-    let Error::Contact { step, problem, .. } = e else {
+    let Error::Contact { step, .. } = e else {
         return None;
     };
+    let failed = e.payload::<crate::contact::ContactFailed>()?;
     let path = dir.join(format!("failed_contact_step_{step}.json"));
-    let json = serde_json::to_string_pretty(problem).ok()?;
+    let json = serde_json::to_string_pretty(&failed.problem).ok()?;
     std::fs::create_dir_all(dir).ok()?;
     std::fs::write(&path, json).ok()?;
     Some(path)
