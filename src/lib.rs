@@ -31,6 +31,7 @@ pub mod interrupt;
 pub mod json_keys;
 pub mod manufactured;
 pub mod model;
+pub mod numeric;
 pub mod record;
 pub mod report;
 pub mod run;

@@ -66,7 +66,7 @@ impl PointVector {
                 + self.val[2] * x[self.idx[2]]
                 + self.val[3] * x[self.idx[3]]
         } else {
-            super::lanes::dot(&self.dense, x)
+            crate::numeric::lanes::dot(&self.dense, x)
         }
     }
 
@@ -82,19 +82,19 @@ impl PointVector {
                 + self.val[2] * at(self.idx[2])
                 + self.val[3] * at(self.idx[3])
         } else {
-            // super::lanes::dot's partial sums, in its order
+            // crate::numeric::lanes::dot's partial sums, in its order
             let n = self.dense.len();
-            let full = n / super::lanes::LANES * super::lanes::LANES;
-            let mut acc = [0.0; super::lanes::LANES];
+            let full = n / crate::numeric::lanes::LANES * crate::numeric::lanes::LANES;
+            let mut acc = [0.0; crate::numeric::lanes::LANES];
             for (i, r) in self.dense.iter().enumerate() {
                 let l = if i < full {
-                    i % super::lanes::LANES
+                    i % crate::numeric::lanes::LANES
                 } else {
                     i - full
                 };
                 acc[l] = r.mul_add(at(i), acc[l]);
             }
-            super::lanes::reduce(&acc)
+            crate::numeric::lanes::reduce(&acc)
         }
     }
 

@@ -17,8 +17,8 @@
 
 use super::beam::{Basis, BeamModel, Family};
 use super::element;
-use super::quadrature::{composite, gauss_legendre};
 use crate::manufactured::Manufactured;
+use crate::numeric::quadrature::{composite, gauss_legendre};
 
 /// Gauss points per panel (exact for degree 15).
 pub const POINTS: usize = 8;

@@ -11,10 +11,13 @@ mod load;
 pub mod manufactured;
 pub mod memory;
 mod method;
+mod motion;
 mod speed;
 mod validate;
 
-pub use discretization::{DEFAULT_GRADING_RATIO, Discretization, MAX_GALERKIN_MODES};
+pub use discretization::{
+    DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GALERKIN_MODES, MAX_GRADING_RATIO,
+};
 pub use load::{
     apply_override, in_file, load_scene, parse_scene, read_scene, resolve_scene,
     scene_with_overrides,
@@ -28,6 +31,7 @@ pub use method::{
     DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, IntegratorSpec, Method,
     MethodInfo, Parameter, Scheme, method_info, method_names,
 };
+pub use motion::Motion;
 pub use speed::SpeedProfile;
 pub(crate) use validate::validate_contact;
 pub use validate::{

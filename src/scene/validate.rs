@@ -5,10 +5,10 @@ use super::{ContactSpec, EndTime, IntegratorSpec, Scene, Scheme, Side, SpeedProf
 use std::collections::HashMap;
 
 use super::Discretization;
+use super::Grading;
+use super::Motion;
 use super::manufactured::{Declared, ReferenceKind};
 use crate::error::{Error, Result};
-use crate::model::mesh::Grading;
-use crate::model::motion::Motion;
 
 /// Largest mesh accepted: beyond this the run would not fit a sane budget
 /// (10⁶ elements is 2·10⁶ unknowns; banded storage ≈ 0.2 GB).

@@ -17,7 +17,8 @@
 //! * `richardson` (no `[reference]`) — none here: a study extrapolates its
 //!   own finest levels.
 
-use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam, StandingForce};
+use super::standing_force::StandingForce;
+use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam};
 use crate::error::{Error, Result};
 use crate::manufactured::Manufactured;
 use crate::scene::{CarrierKind, Declared, Resolved, SpeedProfile};
