@@ -34,6 +34,7 @@ pub mod model;
 pub mod numeric;
 pub mod record;
 pub mod report;
+pub mod resolve;
 pub mod run;
 pub mod scene;
 pub mod study;
@@ -43,5 +44,6 @@ pub mod warnings;
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 pub use error::{Error, Result};
+pub use resolve::{Resolved, load_scene, resolve_scene};
 pub use run::{RunOutput, run, run_batch, run_with};
-pub use scene::{Resolved, Scene, load_scene, resolve_scene};
+pub use scene::Scene;

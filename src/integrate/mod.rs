@@ -65,7 +65,8 @@ pub use system::{
 
 use crate::error::Result;
 use crate::model::beam::{BeamModel, PointVector};
-use crate::scene::{CarrierKind, Resolved};
+use crate::resolve::Resolved;
+use crate::scene::CarrierKind;
 
 /// One time integrator's step. Implement it (with a [`MethodFactory`]) to
 /// add a method: `examples/custom_method.rs` does, outside the crate.

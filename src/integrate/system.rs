@@ -20,9 +20,8 @@ use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;
 use crate::model::beam::{BeamModel, PointVector};
 use crate::model::source::Source;
-use crate::scene::{
-    CarrierKind, CarrierProps, ContactKind, ContactSpec, Placement, Resolved, Support,
-};
+use crate::resolve::Resolved;
+use crate::scene::{CarrierKind, CarrierProps, ContactKind, ContactSpec, Placement, Support};
 
 use super::State;
 use crate::model::banded::rhs_columns;
@@ -263,10 +262,10 @@ pub struct Initial {
 impl System {
     /// Assemble the beam and the carriers of a validated scene.
     pub fn new(sc: &Resolved) -> Result<Self> {
-        Self::with_beam(sc, BeamModel::from_scene(sc)?)
+        Self::with_beam(sc, BeamModel::build(&sc.beam, &sc.mesh_plan())?)
     }
 
-    /// [`System::new`] with the beam already built (`BeamModel::from_scene`
+    /// [`System::new`] with the beam already built (`BeamModel::build`
     /// of `sc`, or of a scene with the same beam and discretization: a
     /// batch builds a basis once for all its runs).
     pub fn with_beam(sc: &Resolved, beam: BeamModel) -> Result<Self> {

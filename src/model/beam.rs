@@ -18,7 +18,7 @@ use super::element;
 use super::mesh::Mesh;
 use crate::analytic::ModeShapes;
 use crate::error::Result;
-use crate::scene::{BeamProps, Discretization, Resolved, Support};
+use crate::scene::{BeamProps, Discretization, MeshPlan, Support};
 
 /// Which element family the beam uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -185,20 +185,16 @@ impl BeamModel {
         Self::on_mesh(props, Mesh::uniform(props.length, elements))
     }
 
-    /// The scene's discretization (`[mesh]`, MODEL §9.2). The modal bases
-    /// are computed here, once per run.
-    pub fn from_scene(sc: &Resolved) -> Result<Self> {
-        match sc.discretization {
-            Discretization::Hermite => Ok(Self::on_mesh(&sc.beam, Self::scene_mesh(sc)?)),
-            Discretization::Modal { modes } => {
-                Self::modal(Self::on_mesh(&sc.beam, Self::scene_mesh(sc)?), modes)
-            }
-            Discretization::Galerkin { modes } => Self::galerkin(&sc.beam, modes),
+    /// The beam `props` discretized as `plan` says (`[mesh]`, MODEL §9.2):
+    /// Hermite elements on a uniform or graded mesh, or a modal or Galerkin
+    /// basis. The modal bases are computed here, once per run.
+    pub fn build(props: &BeamProps, plan: &MeshPlan) -> Result<Self> {
+        let mesh = || Mesh::new(props.length, plan.elements, plan.grading);
+        match plan.discretization {
+            Discretization::Hermite => Ok(Self::on_mesh(props, mesh()?)),
+            Discretization::Modal { modes } => Self::modal(Self::on_mesh(props, mesh()?), modes),
+            Discretization::Galerkin { modes } => Self::galerkin(props, modes),
         }
-    }
-
-    fn scene_mesh(sc: &Resolved) -> Result<Mesh> {
-        Mesh::new(sc.beam.length, sc.elements, sc.grading)
     }
 
     /// Assemble the finite elements on a mesh.

@@ -44,8 +44,8 @@ pub use verify::{
 use std::path::Path;
 
 use crate::error::{Error, Result};
+use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::scene::Resolved;
 
 /// Save the contact problem of a failed contact solve ([`Error::Contact`])
 /// as `dir/failed_contact_step_N.json`, which `taut replay` solves again;
