@@ -50,7 +50,7 @@
 //! `W = s² Σ_j φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1})) + g_q`: sums
 //! over modes, the pair every force-level law takes (Lagrange, penalty,
 //! complementarity; MODEL §5, §6). The impact law is refused
-//! (scene/validate.rs): an impulse on the gap rate has no place in a force
+//! (by its method description, `scene/method.rs`): an impulse on the gap rate has no place in a force
 //! held over the step.
 //!
 //! ## One step, O(J) in three passes

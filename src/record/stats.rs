@@ -8,7 +8,7 @@ use serde::Serialize;
 use super::CarrierTrace;
 use super::zone::LossGeometry;
 use crate::integrate::CarrierSample;
-pub use crate::resolve::memory::{EVENT_BYTES, MAX_STORED_EVENTS, event_capacity};
+use crate::resolve::memory::{EVENT_BYTES, MAX_STORED_EVENTS, event_capacity};
 
 /// Mean, standard deviation, min and max of the contact force, N.
 #[derive(Debug, Clone, Copy, Serialize, PartialEq)]
