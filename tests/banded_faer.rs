@@ -300,6 +300,7 @@ fn props(ei: f64, left: Support, right: Support) -> BeamProps {
         left,
         right,
         distributed_load: 0.0,
+        attachments: Vec::new(),
     }
 }
 

@@ -611,6 +611,7 @@ mod tests {
             left: ends.0,
             right: ends.1,
             distributed_load: 0.0,
+            attachments: Vec::new(),
         };
         ModeShapes::new(&props, j).unwrap()
     }

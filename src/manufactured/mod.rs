@@ -560,6 +560,7 @@ mod tests {
             left,
             right,
             distributed_load: 0.0,
+            attachments: Vec::new(),
         }
     }
 

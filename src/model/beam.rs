@@ -18,7 +18,7 @@ use super::element;
 use super::mesh::Mesh;
 use crate::analytic::ModeShapes;
 use crate::error::Result;
-use crate::scene::{BeamProps, Discretization, MeshPlan, Support};
+use crate::scene::{Attachment, BeamProps, Discretization, MeshPlan, Support};
 
 /// Which element family the beam uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -279,7 +279,7 @@ impl BeamModel {
                 }
             }
         }
-        BeamModel {
+        let mut model = BeamModel {
             family,
             elements,
             length: props.length,
@@ -291,6 +291,30 @@ impl BeamModel {
             stiffness,
             load,
             basis: Basis::Elements,
+        };
+        model.attach(&props.attachments);
+        model
+    }
+
+    /// Add the point attachments (MODEL §10): `k_a r_a r_aᵀ` to K and
+    /// `m_a r_a r_aᵀ` to M, r_a = r_b(x_a) the interpolation vector at x_a
+    /// (MODEL §4). Between nodes r_a is the cubic Hermite shape functions of
+    /// the element holding x_a on its four dofs (w, θ at both ends; the
+    /// linear ones on its two w dofs for a string), so the attachment
+    /// couples only dofs one element already couples and the band is
+    /// unchanged; at a node it is that node's w dof alone (the other shape
+    /// functions vanish there). Supported dofs carry weight 0.
+    fn attach(&mut self, attachments: &[Attachment]) {
+        for a in attachments {
+            let (idx, val) = self.element_vector(a.x, false);
+            for (i, vi) in idx.iter().zip(&val) {
+                for (j, vj) in idx.iter().zip(&val) {
+                    if *vi != 0.0 && *vj != 0.0 {
+                        self.stiffness.add_entry(*i, *j, a.stiffness * vi * vj);
+                        self.mass.add_entry(*i, *j, a.mass * vi * vj);
+                    }
+                }
+            }
         }
     }
 
@@ -462,12 +486,38 @@ impl BeamModel {
     pub fn omega_bound(&self, props: &BeamProps) -> f64 {
         match self.basis {
             Basis::Elements => {
-                super::element::omega_max(props.rho_a, props.ei, props.tension, self.h)
+                let bare = super::element::omega_max(props.rho_a, props.ei, props.tension, self.h);
+                self.attached_bound(props).max(bare)
             }
             _ => (0..self.n)
                 .map(|j| (self.stiffness.get(j, j) / self.mass.get(j, j)).sqrt())
                 .fold(0.0, f64::max),
         }
+    }
+}
+
+impl BeamModel {
+    /// The element bound of the elements that hold attachments
+    /// ([`super::element::omega_max_attached`], each attachment counted in
+    /// the element [`BeamModel::attach`] put it in), rad/s; 0 without
+    /// attachments. The other elements are bounded by the shortest one's.
+    fn attached_bound(&self, props: &BeamProps) -> f64 {
+        let mut held: Vec<(usize, (f64, f64, f64))> = props
+            .attachments
+            .iter()
+            .map(|a| {
+                let (e, s) = self.locate(a.x);
+                (e, (s, a.stiffness, a.mass))
+            })
+            .collect();
+        held.sort_by_key(|(e, _)| *e);
+        held.chunk_by(|a, b| a.0 == b.0)
+            .map(|group| {
+                let at: Vec<(f64, f64, f64)> = group.iter().map(|(_, v)| *v).collect();
+                let h = self.mesh.element_length(group[0].0);
+                super::element::omega_max_attached(props.rho_a, props.ei, props.tension, h, &at)
+            })
+            .fold(0.0, f64::max)
     }
 }
 
@@ -516,6 +566,7 @@ mod tests {
             left,
             right,
             distributed_load: 0.0,
+            attachments: Vec::new(),
         }
     }
 

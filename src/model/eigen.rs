@@ -634,6 +634,7 @@ mod tests {
             left,
             right,
             distributed_load: 0.0,
+            attachments: Vec::new(),
         }
     }
 
@@ -780,6 +781,7 @@ mod tests {
             left: Support::Pinned,
             right: Support::Pinned,
             distributed_load: 0.0,
+            attachments: Vec::new(),
         };
         BeamModel::new(&p, elements)
     }
@@ -1008,6 +1010,7 @@ mod determinism {
             left: Support::Clamped,
             right: Support::Pinned,
             distributed_load: 0.0,
+            attachments: Vec::new(),
         };
         let beam = BeamModel::new(&p, elements);
         rayon::ThreadPoolBuilder::new()

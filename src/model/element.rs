@@ -118,6 +118,52 @@ pub fn omega_max(rho_a: f64, ei: f64, tension: f64, h: f64) -> f64 {
     largest_generalized(&k, &m).sqrt()
 }
 
+/// [`omega_max`] of one element of length `h` carrying point attachments
+/// (MODEL §10): each `(s, k_a, m_a)` adds `k_a n nᵀ` to K_e and `m_a n nᵀ`
+/// to M_e, n the element's shape functions at local coordinate s ∈ [0, 1].
+/// Splitting the assembled K and M into such element sums
+/// keeps Irons' bound: the assembled ω_max² is at most the largest of
+/// these element ω² (a spring raises it, a mass lowers it).
+pub fn omega_max_attached(
+    rho_a: f64,
+    ei: f64,
+    tension: f64,
+    h: f64,
+    attached: &[(f64, f64, f64)],
+) -> f64 {
+    let (mut k, mut m, d) = if ei == 0.0 {
+        let k = string_stiffness(tension, h);
+        let m = string_mass(rho_a, h);
+        (
+            DMatrix::from_column_slice(2, 2, k.as_slice()),
+            DMatrix::from_column_slice(2, 2, m.as_slice()),
+            2,
+        )
+    } else {
+        let k = hermite_bending(ei, h) + hermite_tension(tension, h);
+        let m = hermite_mass(rho_a, h);
+        (
+            DMatrix::from_column_slice(4, 4, k.as_slice()),
+            DMatrix::from_column_slice(4, 4, m.as_slice()),
+            4,
+        )
+    };
+    for &(s, ka, ma) in attached {
+        let n: Vec<f64> = if d == 2 {
+            string_shape(s).to_vec()
+        } else {
+            hermite_shape(s, h).to_vec()
+        };
+        for a in 0..d {
+            for b in 0..d {
+                k[(a, b)] += ka * n[a] * n[b];
+                m[(a, b)] += ma * n[a] * n[b];
+            }
+        }
+    }
+    largest_generalized(&k, &m).sqrt()
+}
+
 /// λ_max of K x = λ M x for a small SPD M: L⁻¹ K L⁻ᵀ with M = LLᵀ.
 fn largest_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> f64 {
     let l = Cholesky::new(m.clone())

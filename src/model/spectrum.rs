@@ -137,6 +137,7 @@ mod tests {
             left: Support::Pinned,
             right: Support::Pinned,
             distributed_load: 0.0,
+            attachments: Vec::new(),
         }
     }
 

@@ -1,7 +1,8 @@
 //! The resolve layer: a parsed [`Scene`] (plain data, its own range checks
 //! in `crate::scene`) turned into what a run needs, a [`Resolved`] set of
 //! physical parameters, with the checks of combinations that need more than
-//! the scene: the mesh against the model's bounds ([`mesh`]), the
+//! the scene: the mesh against the model's bounds ([`mesh`]), the point
+//! attachments against the basis and references ([`attachment`]), the
 //! manufactured solution's and the declared reference's assumptions
 //! ([`reference`], `crate::manufactured`), the method's own check of the
 //! contact settings and basis (its `MethodInfo`), and the memory plan
@@ -11,6 +12,7 @@
 //! below the integrators, which run a `Resolved`. [`Scene::validate`] is
 //! defined here, so that the scene's own module imports nothing above it.
 
+pub mod attachment;
 pub mod memory;
 pub mod mesh;
 pub mod reference;
@@ -18,6 +20,7 @@ mod resolved;
 
 use std::path::Path;
 
+pub use attachment::check_attachments;
 pub use memory::{
     EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
     PLOT_BUCKETS, check_budget, estimate as estimate_memory, event_capacity, history_rows,
@@ -40,6 +43,7 @@ impl Scene {
         let l = beam.length;
         let elements = self.elements()?;
         let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
+        check_attachments(self, &beam, discretization)?;
         let carriers = self.resolve_carriers(l)?;
 
         let scheme = self.integrator.scheme()?;

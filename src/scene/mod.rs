@@ -14,6 +14,7 @@
 //! [`Motion`]), and the methods' descriptions (`method.rs`); checks that
 //! need the model, a reference or the memory plan are the resolve layer's.
 
+mod attachment;
 mod discretization;
 mod load;
 pub mod manufactured;
@@ -22,6 +23,7 @@ mod motion;
 mod speed;
 mod validate;
 
+pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
 pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
@@ -66,6 +68,10 @@ pub struct Scene {
     /// Points whose beam displacement is recorded (`[[probe]]`).
     #[serde(default, rename = "probe", skip_serializing_if = "Vec::is_empty")]
     pub probes: Vec<ProbeSpec>,
+    /// Point attachments along the beam (`[[attachment]]`, MODEL §10):
+    /// springs to a fixed anchor and lumped masses.
+    #[serde(default, rename = "attachment", skip_serializing_if = "Vec::is_empty")]
+    pub attachments: Vec<AttachmentSpec>,
     /// What the history records (`[output]`).
     #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
     pub output: OutputSpec,

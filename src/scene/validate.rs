@@ -8,6 +8,7 @@ use super::{EndTime, Scene, Side, SpeedProfile, Support};
 use std::collections::HashMap;
 
 use super::Motion;
+use super::{Attachment, resolve_attachments};
 use crate::error::{Error, Result};
 
 /// Largest mesh accepted: beyond this the run would not fit a sane budget
@@ -43,6 +44,9 @@ pub struct BeamProps {
     pub right: Support,
     /// Distributed load p, N/m (self-weight −ρA g when asked for, else 0).
     pub distributed_load: f64,
+    /// Point attachments (`[[attachment]]`, MODEL §10): springs and lumped
+    /// masses at points of the span, assembled into K and M (empty: none).
+    pub attachments: Vec<Attachment>,
 }
 
 impl BeamProps {
@@ -422,6 +426,7 @@ impl Scene {
             } else {
                 0.0
             },
+            attachments: resolve_attachments(&self.attachments, length)?,
         })
     }
 }

@@ -1,0 +1,78 @@
+//! `[[attachment]]`: point attachments along the beam (MODEL §10): a
+//! spring k_a to a fixed anchor and a lumped mass m_a at x_a, which add
+//! `k_a r_a r_aᵀ` to K and `m_a r_a r_aᵀ` to M (r_a the interpolation
+//! vector at x_a, MODEL §4; assembled in `model::beam`). Plain data: the
+//! scene's spelling ([`AttachmentSpec`]), each value's own range check, and
+//! the property struct the model is built from ([`Attachment`], carried by
+//! [`super::BeamProps`]).
+//!
+//! Dashpots (`c_a r_a r_aᵀ` in a damping matrix C) are not available yet:
+//! taut has no damping matrix (issue 27's damping item), so no key for
+//! them exists and `damping` is refused as an unknown key.
+
+use serde::{Deserialize, Serialize};
+
+use super::validate::non_negative;
+use crate::error::{Error, Result};
+
+/// `[[attachment]]` as written in the scene.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AttachmentSpec {
+    /// Position x_a, m (0 ≤ x_a ≤ L).
+    pub x: f64,
+    /// Spring stiffness k_a to a fixed anchor, N/m (≥ 0, default 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub stiffness: f64,
+    /// Lumped mass m_a, kg (≥ 0, default 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub mass: f64,
+    /// An optional label (for messages and the reader), any text.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// A point attachment, resolved (SI units): what the model assembles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Attachment {
+    /// Position x_a, m.
+    pub x: f64,
+    /// Spring stiffness k_a, N/m (≥ 0).
+    pub stiffness: f64,
+    /// Lumped mass m_a, kg (≥ 0).
+    pub mass: f64,
+}
+
+/// Check each `[[attachment]]` on a beam of span `l`, m: x in [0, L],
+/// stiffness and mass finite and ≥ 0, at least one of them > 0.
+pub fn resolve_attachments(specs: &[AttachmentSpec], l: f64) -> Result<Vec<Attachment>> {
+    let mut out = Vec::with_capacity(specs.len());
+    for (i, a) in specs.iter().enumerate() {
+        if !(0.0..=l).contains(&a.x) {
+            return Err(Error::invalid(
+                format!("attachment.{i}.x"),
+                a.x,
+                format!("must be on the beam, in [0, {l}] m"),
+            ));
+        }
+        let stiffness = non_negative(&format!("attachment.{i}.stiffness"), a.stiffness, "N/m")?;
+        let mass = non_negative(&format!("attachment.{i}.mass"), a.mass, "kg")?;
+        if stiffness == 0.0 && mass == 0.0 {
+            return Err(Error::invalid(
+                format!("attachment.{i}.stiffness"),
+                0.0,
+                "an attachment needs stiffness > 0 (N/m) or mass > 0 (kg), or both (dashpots are not available yet)",
+            ));
+        }
+        out.push(Attachment {
+            x: a.x,
+            stiffness,
+            mass,
+        });
+    }
+    Ok(out)
+}
