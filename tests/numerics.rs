@@ -14,6 +14,8 @@ mod common;
 #[path = "../examples/custom_method.rs"]
 mod custom_method;
 
+#[path = "attachments.rs"]
+mod attachments;
 #[path = "banded_faer.rs"]
 mod banded_faer;
 #[path = "batch.rs"]
