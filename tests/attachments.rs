@@ -423,6 +423,18 @@ fn bad_attachments_are_refused_naming_the_field() {
         &["unknown field `damping`", "`stiffness`", "`mass`"],
     );
     refused(
+        &format!("{STEADY_ARM}[reference]\nkind = \"moving_force_series\"\n"),
+        &[],
+        &["reference.kind", "moving_force_series", "bare beam"],
+    );
+    let mms = include_str!("../scenes/verify/mms_beam_time.toml");
+    let e = resolve_scene(
+        &format!("{mms}\n[[attachment]]\nx = 1.0\nmass = 0.1\n"),
+        &[],
+    )
+    .expect_err("manufactured");
+    assert!(e.to_string().contains("`manufactured`"), "{e}");
+    refused(
         STEADY_ARM,
         &["mesh.kind=galerkin", "mesh.modes=20"],
         &["mesh.kind", "galerkin", "\"hermite\" or \"modal\""],

@@ -40,19 +40,19 @@ pub fn check_attachments(scene: &Scene, beam: &BeamProps, d: Discretization) -> 
             ),
         ));
     }
-    if let Some(r) = &scene.reference {
-        if matches!(
+    if let Some(r) = &scene.reference
+        && matches!(
             r.kind,
             ReferenceKind::MovingForceSeries | ReferenceKind::RidingMassGalerkin
-        ) {
-            return Err(Error::invalid(
-                "reference.kind",
-                format!("\"{}\"", r.kind.name()),
-                format!(
-                    "is a closed form of the bare beam and does not include the scene's {n} [[attachment]]: use \"standing_force_modes\" or \"richardson\""
-                ),
-            ));
-        }
+        )
+    {
+        return Err(Error::invalid(
+            "reference.kind",
+            format!("\"{}\"", r.kind.name()),
+            format!(
+                "is a closed form of the bare beam and does not include the scene's {n} [[attachment]]: use \"standing_force_modes\" or \"richardson\""
+            ),
+        ));
     }
     Ok(())
 }
