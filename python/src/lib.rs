@@ -317,7 +317,7 @@ fn not_run(n: &taut::study::compare::NotRun) -> NotRunTuple {
         n.method.clone(),
         n.discretization.clone(),
         n.formulation.clone(),
-        n.reason.clone(),
+        n.reason.to_string(),
     )
 }
 

@@ -252,7 +252,7 @@ pub fn converge_variants(
                     method: m.map_or_else(String::new, |m| m.name()),
                     discretization: s.map_or_else(String::new, |s| s.name().to_string()),
                     formulation: String::new(),
-                    reason: e.in_run(&label).to_string(),
+                    reason: super::compare::Reason::new(e.in_run(&label)),
                 }),
             }
             i += 1;
@@ -260,7 +260,7 @@ pub fn converge_variants(
         }
     }
     if done.is_empty() {
-        let why: Vec<String> = skipped.iter().map(|n| n.reason.clone()).collect();
+        let why: Vec<String> = skipped.iter().map(|n| n.reason.to_string()).collect();
         let (field, list) = if spaces.is_empty() {
             (
                 "--methods",
