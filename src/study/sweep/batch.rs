@@ -1,7 +1,7 @@
 //! Sweep points stepped together (`--batch`): the batch width, and the
 //! work items of points that share their effective matrix.
 
-use super::record::{SweepRecord, record_guarded, record_of};
+use super::record::{SweepRecord, ended, record_guarded, record_of};
 use super::spec::SweepSpec;
 use crate::error::Result;
 use crate::scene::Resolved;
@@ -88,14 +88,10 @@ pub(super) fn records_guarded(spec: &SweepSpec, id: &str, item: &[usize]) -> Vec
         item.iter()
             .zip(&scenes)
             .map(|(&i, sc)| {
-                let out = match sc {
-                    Ok(_) => outs
-                        .next()
-                        .expect("one output per scene")
-                        .map_err(|e| e.to_string()),
-                    Err(e) => Err(e.to_string()),
-                };
-                record_of(spec, id, i, sc.as_ref().ok(), out)
+                let ran = sc
+                    .as_ref()
+                    .map(|_| outs.next().expect("one output per scene"));
+                record_of(spec, id, i, sc.as_ref().ok(), ended(&ran))
             })
             .collect::<Vec<_>>()
     };

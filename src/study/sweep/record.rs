@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 use super::nan_as_null;
 use super::refine::{Refined, refined};
 use super::spec::SweepSpec;
+use crate::error::{Error, Result};
 use crate::run::{RunOutput, run};
 use crate::scene::Resolved;
 /// Number of x_m/L bins of the per-run force and loss profiles.
@@ -99,11 +100,21 @@ impl SweepRecord {
 /// Run point `index` and reduce it to its record.
 fn record(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
     let sc = spec.resolve(index);
-    let out = sc
-        .as_ref()
-        .map_err(|e| e.to_string())
-        .and_then(|sc| run(sc, &mut |_, _| {}).map_err(|e| e.to_string()));
-    record_of(spec, id, index, sc.as_ref().ok(), out)
+    let ran = sc.as_ref().map(|sc| run(sc, &mut |_, _| {}));
+    record_of(spec, id, index, sc.as_ref().ok(), ended(&ran))
+}
+
+/// What a point's run gave, its scene's refusal or its run's: the typed
+/// error, made the record's text only by [`record_of`] (the record is
+/// what `runs/` holds and a resumed sweep reads back).
+pub(super) fn ended<'a>(
+    ran: &'a std::result::Result<Result<RunOutput>, &'a Error>,
+) -> std::result::Result<&'a RunOutput, &'a Error> {
+    match ran {
+        Ok(Ok(out)) => Ok(out),
+        Ok(Err(e)) => Err(e),
+        Err(e) => Err(*e),
+    }
 }
 
 /// Point `index`'s record from its scene and what its run gave.
@@ -112,7 +123,7 @@ pub(super) fn record_of(
     id: &str,
     index: usize,
     sc: Option<&Resolved>,
-    out: std::result::Result<RunOutput, String>,
+    out: std::result::Result<&RunOutput, &Error>,
 ) -> SweepRecord {
     let values = spec.point(index);
     let nan = SweepRecord::stopped(id, index, values.clone());
@@ -120,7 +131,7 @@ pub(super) fn record_of(
         (Some(sc), Ok(o)) => (sc, o),
         (_, Err(e)) => {
             return SweepRecord {
-                error: Some(e),
+                error: Some(e.to_string()),
                 ..nan
             };
         }
