@@ -67,8 +67,8 @@ pub fn run(req: &RunRequest, fe: &dyn Frontend) -> Result<RunOutcome> {
             accuracy: Some(r.accuracy),
         });
     }
-    let sc = crate::resolve_scene(&text, &req.set).map_err(|e| req.scene.name(e))?;
-    let output = crate::run(&sc, progress).map_err(|e| save_failure(dir, e, fe))?;
+    let sc = crate::resolve::resolve_scene(&text, &req.set).map_err(|e| req.scene.name(e))?;
+    let output = crate::run::run(&sc, progress).map_err(|e| save_failure(dir, e, fe))?;
     let summary = match dir {
         Some(d) => crate::report::write_run(d, &sc, &output)?,
         None => Summary::new(&sc, &output),

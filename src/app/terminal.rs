@@ -14,7 +14,11 @@ pub const STOPPED_SHOWN: usize = 5;
 
 /// Header, table and written files of a study command.
 pub fn study(kind: &str, scene: &Path, table: &str, dir: &Path, files: &str) -> String {
-    let mut s = format!("taut {} — {kind} {}\n", crate::VERSION, scene.display());
+    let mut s = format!(
+        "taut {} — {kind} {}\n",
+        env!("CARGO_PKG_VERSION"),
+        scene.display()
+    );
     s.push_str(table);
     let _ = writeln!(s, "  wrote    {}/{{{files}}}", dir.display());
     s
