@@ -39,13 +39,11 @@
 use crate::error::Error;
 use crate::model::banded::{Affine, BandedLdlt, SymBand};
 use crate::model::beam::{BeamModel, PointVector};
-use crate::scene::{Discretization, Formulation, GenAlphaParams, Placement, Resolved, Scheme};
+use crate::scene::{GenAlphaParams, Resolved, Scheme};
 
 use super::gen_alpha::{RowState, UpdateCoefs};
 use super::system::Lanes;
-use super::{
-    CarrierSample, MassPrediction, State, StepMap, System, VelocityPrediction, rhs_columns,
-};
+use super::{CarrierSample, MassPrediction, State, StepMap, System, VelocityPrediction};
 
 /// Most runs a batch steps together (the widest kernel compiled).
 pub const MAX_LANES: usize = 8;
@@ -55,56 +53,6 @@ pub const MAX_LANES: usize = 8;
 /// two columns, 2 ..= 4 of four).
 pub fn max_lanes(k: usize) -> usize {
     if k <= 2 { MAX_LANES } else { 4 }
-}
-
-/// Right-hand-side columns of a scene's runs: the free step and one per
-/// contact (mass–spring carrier), [`rhs_columns`].
-pub fn scene_columns(sc: &Resolved) -> usize {
-    rhs_columns(
-        sc.carriers
-            .iter()
-            .filter(|c| matches!(c.kind, crate::scene::CarrierKind::MassSpring { .. }))
-            .count(),
-    )
-}
-
-/// The key of the generalized-α runs that may step together: `None` when
-/// `sc` cannot batch this way (module docs); runs with equal keys share
-/// their effective matrix and their number of right-hand-side columns.
-pub(crate) fn gen_alpha_key(sc: &Resolved) -> Option<String> {
-    let Scheme::GenAlpha(p) = sc.scheme else {
-        return None;
-    };
-    if sc.contact.placement != Placement::End
-        || sc.contact.formulation == Formulation::Impact
-        || sc.discretization != Discretization::Hermite
-        // a manufactured source is a time-dependent load: alone
-        || sc.manufactured.is_some()
-    {
-        return None;
-    }
-    let k = scene_columns(sc);
-    if k > 4 {
-        return None;
-    }
-    // what A, K and the load are made of (bits of every float), and k
-    let b = &sc.beam;
-    Some(format!(
-        "{:?}|{:x}|{:x}|{:x}|{:x}|{:?}|{:?}|{}|{:?}|{:x}|{:x}|{:x}|{:x}|{k}",
-        (b.left, b.right),
-        b.length.to_bits(),
-        b.rho_a.to_bits(),
-        b.ei.to_bits(),
-        b.tension.to_bits(),
-        b.distributed_load.to_bits(),
-        sc.grading,
-        sc.elements,
-        sc.dt.to_bits(),
-        p.alpha_m.to_bits(),
-        p.alpha_f.to_bits(),
-        p.beta.to_bits(),
-        p.gamma.to_bits(),
-    ))
 }
 
 /// One run in a batch: its own system (carriers, contact law, multipliers)
@@ -160,7 +108,7 @@ pub struct Batch {
 }
 
 impl Batch {
-    /// Build the runs `scenes` (equal [`batch_key`]s, 2 ..= [`MAX_LANES`]
+    /// Build the runs `scenes` (equal [`super::batch_key`]s, 2 ..= [`MAX_LANES`]
     /// of them; `ids` are the caller's indices), factor A once, and set
     /// each run's initial state as [`super::Integrator::new`] would. A run
     /// that fails to build is returned in the error list with its id.

@@ -26,6 +26,7 @@
 //! initial state and the stepper, and advances time.
 
 mod batch;
+mod batch_key;
 mod batch_run;
 mod bathe;
 mod central_difference;
@@ -41,8 +42,11 @@ mod run_batch;
 mod state;
 mod system;
 
-pub use batch::{Batch, Lane, MAX_LANES, max_lanes, scene_columns};
-pub use batch_run::{NewBatch, batch_key, lanes_cap, new_batch};
+pub use batch::{Batch, Lane, MAX_LANES, max_lanes};
+pub use batch_key::{
+    BatchKey, GenAlphaKey, ModalKey, batch_key, gen_alpha_key, modal_key, scene_columns,
+};
+pub use batch_run::{NewBatch, lanes_cap, new_batch};
 pub use bathe::Bathe;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
@@ -50,7 +54,7 @@ pub use central_difference::{
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
 pub use method::{MethodFactory, method_named, parse_methods, register, scene_method, stepper_for};
-pub use modal_batch::{ModalBatch, modal_key};
+pub use modal_batch::ModalBatch;
 pub use modal_exact::{ModalCoefs, ModalExact};
 pub use moreau_jean::MoreauJean;
 pub use oscillator::{MassStep, ModeSteps};
