@@ -42,7 +42,7 @@ use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::{GenAlphaParams, Resolved, Scheme};
 
 use super::gen_alpha::{RowState, UpdateCoefs};
-use super::system::Lanes;
+use super::step_map::Lanes;
 use super::{CarrierSample, MassPrediction, State, StepMap, System, VelocityPrediction};
 
 /// Most runs a batch steps together (the widest kernel compiled).

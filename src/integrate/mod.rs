@@ -2,9 +2,12 @@
 //! compare, side by side behind one seam.
 //!
 //! * [`System`] (`system.rs`): what every method shares — the beam, the
-//!   carriers and their contact kinematics, the mass dofs, and the contact
-//!   problem of a step (free gaps, Delassus matrix, the law, at force or
-//!   velocity level).
+//!   carriers (`carrier.rs`: their contact kinematics and mass dofs), a
+//!   manufactured source's loads, and the run's contact law, which it calls
+//!   with each step's problem.
+//! * [`StepMap`] (`step_map.rs`): how a method hands its step to the
+//!   contact problem; `contact_problem.rs` forms the pair (g_free, W) from
+//!   it at the acceleration, position or velocity level (MODEL §5, §6).
 //! * [`State`] (`state.rs`): time, beam displacements and velocities, the
 //!   mass dofs.
 //! * [`Stepper`]: one method's step. A method is one file:
@@ -29,7 +32,9 @@ mod batch;
 mod batch_key;
 mod batch_run;
 mod bathe;
+mod carrier;
 mod central_difference;
+mod contact_problem;
 mod diagnose;
 mod energy;
 mod gen_alpha;
@@ -40,6 +45,7 @@ mod moreau_jean;
 mod oscillator;
 mod run_batch;
 mod state;
+mod step_map;
 mod system;
 
 pub use batch::{Batch, Lane, MAX_LANES, max_lanes};
@@ -48,6 +54,7 @@ pub use batch_key::{
 };
 pub use batch_run::{NewBatch, lanes_cap, new_batch};
 pub use bathe::Bathe;
+pub use carrier::MassDof;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
@@ -60,10 +67,10 @@ pub use moreau_jean::MoreauJean;
 pub use oscillator::{MassStep, ModeSteps};
 pub use run_batch::RunBatch;
 pub use state::State;
-pub use system::{
-    Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, combine,
-    rhs_columns,
+pub use step_map::{
+    Lanes, MassPrediction, Multipliers, StepMap, VelocityPrediction, combine, rhs_columns,
 };
+pub use system::{Initial, System};
 
 use crate::error::Result;
 use crate::model::beam::{BeamModel, PointVector};
