@@ -38,6 +38,8 @@ mod contact_problem;
 mod diagnose;
 mod energy;
 mod gen_alpha;
+mod gen_alpha_kernel;
+mod gen_alpha_update;
 mod method;
 mod modal_batch;
 mod modal_exact;
