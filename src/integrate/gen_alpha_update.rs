@@ -147,6 +147,12 @@ impl Pass<'_> {
             load,
             ..
         } = self;
+        // sliced to their known lengths, so that the row loop's indices
+        // need no bounds checks beyond these
+        let rhs = &rhs[..n * KL];
+        let (d, v, a) = (&mut d[..n * L], &mut v[..n * L], &mut a[..n * L]);
+        let (dp, u) = (&mut dp[..n * L], &mut u[..n * L]);
+        let (h, b0, load) = (&mut h[..n * L], &b0[..n * L], &load[..n]);
         for i in 0..n {
             let row = &rhs[i * KL..(i + 1) * KL];
             let f = s(load[i]);
