@@ -33,7 +33,8 @@
 
 use crate::error::Error;
 use crate::model::beam::PointVector;
-use crate::scene::{Resolved, Scheme};
+use crate::resolve::Resolved;
+use crate::scene::Scheme;
 
 use super::gen_alpha_kernel::Kernel;
 pub use super::gen_alpha_kernel::MAX_LANES;

@@ -10,9 +10,9 @@
 //! The key derives `Eq`, `Hash` and `Ord`, so a caller may group runs with
 //! a map or a sort as well as by comparison.
 
-use crate::model::mesh::Grading;
+use crate::resolve::Resolved;
 use crate::scene::{
-    BeamProps, CarrierKind, Discretization, Formulation, Placement, Resolved, Scheme, Support,
+    BeamProps, CarrierKind, Discretization, Formulation, Grading, Placement, Scheme, Support,
 };
 
 use super::rhs_columns;

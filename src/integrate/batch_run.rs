@@ -6,7 +6,8 @@
 //! ([`super::ModalBatch`]); both step behind [`RunBatch`].
 
 use crate::error::Error;
-use crate::scene::{Resolved, Scheme};
+use crate::resolve::Resolved;
+use crate::scene::Scheme;
 
 use super::batch::{MAX_LANES, max_lanes};
 use super::batch_key::scene_columns;

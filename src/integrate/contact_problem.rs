@@ -24,7 +24,8 @@ use crate::scene::Placement;
 
 use super::State;
 use super::carrier::{Carrier, MassDof};
-use super::step_map::{Lanes, StepMap, VelocityPrediction, rhs_columns};
+use super::rhs_columns;
+use super::step_map::{Lanes, StepMap, VelocityPrediction};
 
 /// The pair (g_free, W) of a step, formed in place (no step allocates).
 #[derive(Debug, Clone)]

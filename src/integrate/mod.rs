@@ -50,6 +50,9 @@ mod state;
 mod step_map;
 mod system;
 
+/// Columns of a step's right-hand side (the model's banded solves carry them
+/// side by side): defined with the model, where the memory plan reads it too.
+pub use crate::model::banded::rhs_columns;
 pub use batch::{Batch, Lane, MAX_LANES, max_lanes};
 pub use batch_key::{
     BatchKey, GenAlphaKey, ModalKey, batch_key, gen_alpha_key, modal_key, scene_columns,
@@ -69,14 +72,13 @@ pub use moreau_jean::MoreauJean;
 pub use oscillator::{MassStep, ModeSteps};
 pub use run_batch::RunBatch;
 pub use state::State;
-pub use step_map::{
-    Lanes, MassPrediction, Multipliers, StepMap, VelocityPrediction, combine, rhs_columns,
-};
+pub use step_map::{Lanes, MassPrediction, Multipliers, StepMap, VelocityPrediction, combine};
 pub use system::{Initial, System};
 
 use crate::error::Result;
 use crate::model::beam::{BeamModel, PointVector};
-use crate::scene::{CarrierKind, Resolved};
+use crate::resolve::Resolved;
+use crate::scene::CarrierKind;
 
 /// One time integrator's step. Implement it (with a [`MethodFactory`]) to
 /// add a method: `examples/custom_method.rs` does, outside the crate.

@@ -13,17 +13,19 @@
 //! never reaches into a method. A law that fails stops the run with the
 //! problem it was given ([`crate::Error::Contact`]).
 
-use crate::contact::{ContactFailure, ContactProblem, Level, RunLaw};
+use crate::contact::{ContactFailed, ContactFailure, ContactProblem, Level, RunLaw};
 use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;
 use crate::model::beam::BeamModel;
 use crate::model::source::Source;
-use crate::scene::{CarrierKind, ContactKind, ContactSpec, Placement, Resolved, Support};
+use crate::resolve::Resolved;
+use crate::scene::{CarrierKind, ContactKind, ContactSpec, Placement, Support};
 
 use super::State;
 use super::carrier::{Carrier, MassDof};
 use super::contact_problem::ProblemBuilder;
-use super::step_map::{Lanes, Multipliers, StepMap, rhs_columns};
+use super::step_map::{Lanes, Multipliers, StepMap};
+use crate::model::banded::rhs_columns;
 
 /// Contact forces beyond this multiple of the carriers' force scale
 /// (k(δ0 + L) + m g + F) are taken as a blow-up: no physical run of this model
@@ -88,10 +90,10 @@ pub struct Initial {
 impl System {
     /// Assemble the beam and the carriers of a validated scene.
     pub fn new(sc: &Resolved) -> Result<Self> {
-        Self::with_beam(sc, BeamModel::from_scene(sc)?)
+        Self::with_beam(sc, BeamModel::build(&sc.beam, &sc.mesh_plan())?)
     }
 
-    /// [`System::new`] with the beam already built (`BeamModel::from_scene`
+    /// [`System::new`] with the beam already built (`BeamModel::build`
     /// of `sc`, or of a scene with the same beam and discretization: a
     /// batch builds a basis once for all its runs).
     pub fn with_beam(sc: &Resolved, beam: BeamModel) -> Result<Self> {
@@ -500,12 +502,14 @@ impl System {
             step,
             time,
             run: String::new(),
-            failure,
-            problem: Box::new(ContactProblem {
-                level,
-                g_free: g_free.to_vec(),
-                w: w.to_vec(),
-                contact: self.contact.clone(),
+            failure: Box::new(ContactFailed {
+                failure,
+                problem: ContactProblem {
+                    level,
+                    g_free: g_free.to_vec(),
+                    w: w.to_vec(),
+                    contact: self.contact.clone(),
+                },
             }),
         }
     }
