@@ -43,7 +43,7 @@ pub(super) fn batches(spec: &SweepSpec, todo: &[usize], width: BatchWidth) -> Ve
     if width == BatchWidth::Fixed(1) {
         return todo.iter().map(|&i| vec![i]).collect();
     }
-    let mut open: Vec<(String, usize, Vec<usize>)> = Vec::new();
+    let mut open: Vec<(crate::integrate::BatchKey, usize, Vec<usize>)> = Vec::new();
     let mut items: Vec<Vec<usize>> = Vec::new();
     for &i in todo {
         let key = spec.resolve(i).ok().and_then(|sc| {
