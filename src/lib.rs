@@ -15,7 +15,8 @@
 //! * §7 measured quantities ([`record`]).
 //!
 //! The flow of a run: [`scene`] (validated) → [`integrate::Integrator`] →
-//! [`record::History`] → [`report`] (CSV / JSON / SVG).
+//! [`record::History`] → [`report`] (CSV / JSON / SVG). Above them all,
+//! [`pipelines`]: the programs that generate the measured pages of `docs/`.
 
 // Numerical kernels index several arrays in lockstep (A[i][k], x[i − k], …);
 // index loops say that more plainly than zipped iterators.
@@ -31,6 +32,7 @@ pub mod interrupt;
 pub mod json_keys;
 pub mod manufactured;
 pub mod model;
+pub mod pipelines;
 pub mod record;
 pub mod report;
 pub mod run;
