@@ -2,7 +2,9 @@
 //! run through the library (`taut::study::converge`, `taut::run`, the
 //! analytic references of `taut::analytic` and `taut::model::modal`).
 //!
-//!     cargo run --release --example convergence_report
+//! ```text
+//! cargo run --release --example convergence_report
+//! ```
 //!
 //! Runs are sequential. The page holds only numbers that do not depend on
 //! the machine; wall times go to the terminal (stderr) only.

@@ -2,9 +2,11 @@
 //! & Chung 2012, Figs 8–12) through the library and writes
 //! `docs/reproduction.md` and its maps in `docs/reproduction/`, in full:
 //!
-//!     cargo run --release --example reproduction_report
-//!     cargo run --release --example reproduction_report -- --full     # T7 at 41 × 41 refined too
-//!     cargo run --release --example reproduction_report -- --resume   # keep finished runs
+//! ```text
+//! cargo run --release --example reproduction_report
+//! cargo run --release --example reproduction_report -- --full     # T7 at 41 × 41 refined too
+//! cargo run --release --example reproduction_report -- --resume   # keep finished runs
+//! ```
 //!
 //! Every target is run twice: at a resolution like the study's (N = 400,
 //! Δt = 1e-4 s) and at a refined one (N = 1600, Δt = 2.5e-5 s), each on a

@@ -2,7 +2,9 @@
 //! scenes where more apt) at extreme parameters and resolutions, for each
 //! contact formulation where it makes sense, and writes `docs/stability.md`.
 //!
-//!     cargo run --release --example stability_report
+//! ```text
+//! cargo run --release --example stability_report
+//! ```
 //!
 //! Every row is one `taut run` (its command is written next to it). Its
 //! outcome is one of: ran, ran with warnings, stopped with a diagnosis, or
