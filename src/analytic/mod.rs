@@ -6,7 +6,6 @@ pub mod mode_shapes;
 pub mod modes;
 pub mod moving_load;
 pub mod riding_mass;
-pub mod standing_force;
 pub mod static_load;
 
 pub use fast_shapes::FastShapes;
@@ -14,5 +13,4 @@ pub use mode_shapes::{MAX_MODES, ModeShapes};
 pub use modes::{ClampedPinnedModes, Dispersion, PinnedPinnedModes};
 pub use moving_load::{MovingForceBeam, MovingForceString};
 pub use riding_mass::{RidingMassBeam, RidingMassHistory};
-pub use standing_force::StandingForce;
 pub use static_load::StaticPointLoad;

@@ -15,8 +15,9 @@
 //! it prints markdown tables. Wall times are this machine's; all other
 //! figures are deterministic.
 
+use crate::resolve::{Resolved, resolve_scene};
+use crate::run::{RunOutput, run};
 use crate::study::tolerance::{FORCE_BAND_HZ, lowpass_zero_phase};
-use crate::{Resolved, RunOutput, resolve_scene, run};
 
 const REFERENCE: &str = include_str!("../../scenes/reference.toml");
 

@@ -3,8 +3,9 @@
 
 pub(super) use std::time::Instant;
 
+pub(super) use crate::resolve::{Resolved, resolve_scene};
+pub(super) use crate::run::{RunOutput, run};
 pub(super) use crate::scene::CarrierKind;
-pub(super) use crate::{Resolved, RunOutput, resolve_scene, run};
 pub(super) use rayon::prelude::*;
 
 pub(super) const REFERENCE: &str = include_str!("../../../scenes/reference.toml");

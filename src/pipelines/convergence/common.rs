@@ -9,10 +9,11 @@ pub(super) use crate::analytic::{
 };
 pub(super) use crate::model::modal::fe_frequencies;
 pub(super) use crate::record::CarrierTrace;
+pub(super) use crate::resolve::{Resolved, resolve_scene};
+pub(super) use crate::run::{RunOutput, run};
 pub(super) use crate::scene::{BeamProps, CarrierKind, SpeedProfile, Support};
 pub(super) use crate::study::converge::{ConvergeRow, Convergence, Refine, converge};
 pub(super) use crate::study::reference::analytic_w;
-pub(super) use crate::{Resolved, RunOutput, resolve_scene, run};
 
 /// Refinement ratio of every study here (the CLI default).
 pub(super) const RATIO: f64 = 2.0;

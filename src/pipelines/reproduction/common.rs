@@ -9,8 +9,9 @@ pub(super) use std::time::Instant;
 pub(super) use crate::report::{
     SPEED_RATIO_LEVELS, write_force_map, write_loss_fraction_map, write_loss_map,
 };
+pub(super) use crate::resolve::{Resolved, resolve_scene};
+pub(super) use crate::run::run;
 pub(super) use crate::study::sweep::{Axis, PROFILE_BINS, SweepRecord, SweepSpec, sweep};
-pub(super) use crate::{Resolved, resolve_scene, run};
 pub(super) use rayon::prelude::*;
 
 /// A resolution: mesh and step.

@@ -5,9 +5,11 @@ pub(super) use std::collections::HashMap;
 pub(super) use std::fmt::Write as _;
 pub(super) use std::time::Instant;
 
+pub(super) use crate::error::Error;
+pub(super) use crate::resolve::{Resolved, resolve_scene};
+pub(super) use crate::run::{RunOutput, run};
 pub(super) use crate::scene::CarrierKind;
 pub(super) use crate::study::reference::analytic_w;
-pub(super) use crate::{Error, Resolved, RunOutput, resolve_scene, run};
 
 pub(super) const FORMULATIONS: [&str; 4] = ["lagrange", "penalty", "complementarity", "impact"];
 

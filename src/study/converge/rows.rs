@@ -4,8 +4,8 @@
 use serde::Serialize;
 
 use super::regime::{Context, ratio_change, regime};
+use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::scene::Resolved;
 use crate::study::grid::{GCI_SAFETY_FACTOR, observed_order, resample};
 use crate::study::scalars::Scalar;
 /// One row of `converge.csv`.

@@ -4,7 +4,7 @@
 use super::record::{SweepRecord, record_guarded, record_of};
 use super::spec::SweepSpec;
 use crate::error::Result;
-use crate::scene::Resolved;
+use crate::resolve::Resolved;
 /// How many runs a sweep steps together (`--batch`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BatchWidth {

@@ -6,8 +6,8 @@ use serde::{Deserialize, Serialize};
 use super::nan_as_null;
 use super::refine::{Refined, refined};
 use super::spec::SweepSpec;
+use crate::resolve::Resolved;
 use crate::run::{RunOutput, run};
-use crate::scene::Resolved;
 /// Number of x_m/L bins of the per-run force and loss profiles.
 pub const PROFILE_BINS: usize = 200;
 

@@ -4,7 +4,8 @@
 
 use super::spec::SweepSpec;
 use crate::error::{Error, Result};
-use crate::scene::{CarrierKind, Discretization, Resolved, resolve_scene};
+use crate::resolve::{Resolved, resolve_scene};
+use crate::scene::{CarrierKind, Discretization};
 /// The study's dimensionless axes.
 pub const DIMENSIONLESS: [&str; 4] = [
     "speed_ratio",

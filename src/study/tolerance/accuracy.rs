@@ -6,8 +6,8 @@ use serde::Serialize;
 
 use super::error_model::{ErrorModel, Estimate, LadderFit};
 use super::quantity::Quantity;
+use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::scene::Resolved;
 /// One pilot run (a row of `accuracy.csv`).
 #[derive(Debug, Clone, Serialize)]
 pub struct PilotRun {

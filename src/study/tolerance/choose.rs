@@ -9,8 +9,9 @@ use super::pilots::Start;
 use super::quantity::Quantity;
 use super::refusal::too_costly;
 use crate::error::Result;
+use crate::resolve::Resolved;
 use crate::run::{RunOutput, run};
-use crate::scene::{Resolved, STEP_COUNT_SLACK};
+use crate::scene::STEP_COUNT_SLACK;
 
 /// The run whose results are reported.
 pub(super) struct Chosen {

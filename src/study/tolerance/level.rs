@@ -2,7 +2,8 @@
 //! a modal basis.
 
 use super::accuracy::PilotRun;
-use crate::scene::{Discretization, MeshKind, Resolved};
+use crate::resolve::Resolved;
+use crate::scene::{Discretization, MeshKind};
 use crate::study::space::SpaceChoice;
 use crate::study::variant::RunVariant;
 /// The level parameter the mesh ladder refines (module docs): the elements

@@ -9,8 +9,9 @@ use super::level::Level;
 use super::quantity::Quantity;
 use super::refusal::too_costly;
 use crate::error::{Error, Result};
+use crate::resolve::{Resolved, resolve_scene};
 use crate::run::run;
-use crate::scene::{Resolved, STEP_COUNT_SLACK, resolve_scene};
+use crate::scene::STEP_COUNT_SLACK;
 use crate::study::grid::{Reach, nest};
 
 /// Runs an accuracy-targeted run reports to `progress`: the five pilots and

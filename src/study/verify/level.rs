@@ -3,7 +3,8 @@
 
 use super::case::Space;
 use crate::error::Result;
-use crate::scene::{GradingKind, MeshKind, Resolved, Scene};
+use crate::resolve::Resolved;
+use crate::scene::{GradingKind, MeshKind, Scene};
 /// `scene` at one level: N, Δt and J set, the discretization's keys.
 pub(super) fn level(scene: &Scene, space: Space, n: usize, dt: f64, j: usize) -> Result<Resolved> {
     let mut s = scene.clone();

@@ -7,8 +7,9 @@ use super::job::Job;
 use super::level::level;
 use crate::error::Result;
 use crate::integrate::central_difference_limit;
+use crate::resolve::Resolved;
 use crate::run::{RunOutput, run_with};
-use crate::scene::{CarrierKind, Resolved, Scene};
+use crate::scene::{CarrierKind, Scene};
 use crate::study::grid::{Reach, nest};
 use crate::study::reference::{Exact, exact};
 /// A ladder's measurements.
