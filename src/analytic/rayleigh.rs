@@ -186,9 +186,9 @@ mod tests {
     /// whose fast exponent 4.8ω is the stiffest).
     const RK4: f64 = 5e-10;
     /// ζ from the logarithmic decrement of RK4 peaks located by a parabola
-    /// through three samples: the parabola's peak-time error, O(Δt²), moves
-    /// each peak's value by ≈ 1e-9 (measured ≤ 2e-10 of ζ at ζ ≥ 0.01).
-    const LOG_DECREMENT: f64 = 1e-7;
+    /// through three samples (ωΔt = 2π/2000): the parabola's vertex error and
+    /// RK4's, measured ≤ 3.2e-12 of ζ at ζ ≥ 0.01.
+    const LOG_DECREMENT: f64 = 1e-9;
 
     /// RK4 of q̈ = −2ζωq̇ − ω²q, n steps of dt: every (q, q̇).
     fn rk4(osc: &DampedOscillator, q0: f64, v0: f64, dt: f64, n: usize) -> Vec<(f64, f64)> {
