@@ -24,14 +24,14 @@ adds start-up and writing history.csv/summary.json/force.svg).
 
 How it maps onto taut
 ---------------------
-- ``load_scene``: the subset of src/scene (mod.rs, validate.rs) the
+- ``load_scene``: the subset of src/scene (mod.rs, validate.rs) and src/resolve the
   comparison needs: beam props (ρA, EI, T), supports, one mass–spring
   carrier (f0 = k δ0 − s m g, MODEL §2), unilateral or bilateral contact,
   Δt, the number of steps (floor(t_end/Δt·(1 + 4ε)), t_end the time the
   carrier leaves, as validate.rs), ρ∞, gravity. Other formulations, the
   `alpha` placement, moving forces and several carriers are refused, not
   ignored; probes (extra history columns only) are ignored.
-- ``Motion``: src/model/motion.rs, the smooth ramp of MODEL §3
+- ``Motion``: src/scene/motion.rs, the smooth ramp of MODEL §3
   (x_m(t) = ∫V, t0 = 2L/(5V0)) or constant speed.
 - ``gen_alpha``: ``GenAlpha::from_rho_inf`` in src/integrate.rs (MODEL §5).
 - ``element_matrices`` / ``Beam``: src/model/element.rs and
@@ -179,7 +179,7 @@ class Scene:
 
 
 def load_scene(path, elements, overrides=None):
-    """Read a scene file and resolve it as src/scene/validate.rs does.
+    """Read a scene file and resolve it as src/scene/validate.rs and src/resolve/mod.rs do.
 
     Only the features the comparison needs are accepted: one mass–spring
     carrier, the Lagrange formulation and the `end` placement (probes only
@@ -241,7 +241,7 @@ def load_scene(path, elements, overrides=None):
 
 
 class Motion:
-    """Carrier kinematics x_m(t) (src/model/motion.rs, MODEL §3)."""
+    """Carrier kinematics x_m(t) (src/scene/motion.rs, MODEL §3)."""
 
     def __init__(self, start, speed, length):
         self.start = start

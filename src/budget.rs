@@ -1,7 +1,7 @@
 //! The process's memory budget: runs in flight together stay within it.
 //!
 //! Validation refuses a run whose own estimate is above
-//! [`crate::scene::MEMORY_BUDGET_BYTES`], but a study runs several at once:
+//! [`crate::resolve::MEMORY_BUDGET_BYTES`], but a study runs several at once:
 //! a modal sweep at N = 3200 on `--threads 4` put four 1.3 GB eigenproblems
 //! in flight and aborted on a failed allocation (issue 25). So every run
 //! ([`crate::run`], [`crate::run_batch`]) reserves its estimate
@@ -20,7 +20,7 @@ use std::sync::{Condvar, Mutex};
 /// Memory all runs in flight in one process may plan to use together,
 /// bytes: the per-run budget (2 GiB), so that a study never plans more than
 /// one largest run, whatever its thread count.
-pub const PROCESS_BUDGET_BYTES: u64 = crate::scene::MEMORY_BUDGET_BYTES;
+pub const PROCESS_BUDGET_BYTES: u64 = crate::resolve::MEMORY_BUDGET_BYTES;
 
 /// Bytes reserved by the runs in flight.
 static HELD: Mutex<u64> = Mutex::new(0);

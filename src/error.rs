@@ -6,8 +6,12 @@
 
 use std::path::PathBuf;
 
-use crate::contact::failure::ContactFailure;
-use crate::contact::problem::ContactProblem;
+/// A typed failure of a layer above this one, carried whole by an [`Error`]
+/// variant: boxed behind std's error trait so that the ground floor depends
+/// on no higher floor (a contact law's failure with the problem it was
+/// given is `contact::ContactFailed`). Its message is the variant's;
+/// [`Error::payload`] gets the typed value back.
+pub type Payload = Box<dyn std::error::Error + Send + Sync>;
 
 /// Everything that can go wrong in taut.
 #[derive(Debug, thiserror::Error)]
@@ -75,10 +79,10 @@ pub enum Error {
         time: f64,
         /// Which run of a study it was (`"formulation penalty: "`), or empty.
         run: String,
-        /// Why the law failed.
-        failure: ContactFailure,
-        /// The problem the law was given, to save and replay.
-        problem: Box<ContactProblem>,
+        /// Why the law failed, with the problem it was given (to save and
+        /// replay): a `contact::ContactFailed`, read back by
+        /// [`Error::payload`].
+        failure: Payload,
     },
 
     /// A replayed contact problem (`taut replay`) that its law cannot solve,
@@ -149,13 +153,11 @@ impl Error {
                 time,
                 run: inner,
                 failure,
-                problem,
             } => Error::Contact {
                 step,
                 time,
                 run: format!("{run}: {inner}"),
                 failure,
-                problem,
             },
             other => other,
         }
@@ -181,6 +183,16 @@ impl Error {
             field: clip(&field.into(), MAX_FIELD_CHARS),
             value: for_message(&value.to_string(), MAX_VALUE_CHARS),
             allowed: for_message(&allowed.into(), MAX_MESSAGE_CHARS),
+        }
+    }
+
+    /// The typed failure a variant carries from a higher layer
+    /// ([`Payload`]), when it is a `T`: `e.payload::<contact::ContactFailed>()`
+    /// gives a failed contact solve's problem back.
+    pub fn payload<T: std::error::Error + 'static>(&self) -> Option<&T> {
+        match self {
+            Error::Contact { failure, .. } => failure.downcast_ref::<T>(),
+            _ => None,
         }
     }
 
@@ -344,17 +356,15 @@ mod tests {
             diverged.to_string().contains("pilot `base`: λ = 1e9"),
             "{diverged}"
         );
+        /// A higher layer's failure, as [`Payload`] carries one.
+        #[derive(Debug, thiserror::Error)]
+        #[error("the active set did not settle")]
+        struct Cycling;
         let contact = Error::Contact {
             step: 3,
             time: 0.3,
             run: String::new(),
-            failure: ContactFailure::Cycling { passes: 64 },
-            problem: Box::new(ContactProblem {
-                level: crate::contact::Level::Position,
-                g_free: vec![-1.0],
-                w: vec![1.0],
-                contact: crate::scene::ContactSpec::default(),
-            }),
+            failure: Box::new(Cycling),
         }
         .in_run("formulation penalty");
         assert!(
@@ -363,6 +373,7 @@ mod tests {
                 .contains("formulation penalty: the active set did not settle"),
             "{contact}"
         );
+        assert!(contact.payload::<Cycling>().is_some());
         let invalid = Error::invalid("mesh.elements", 0, "≥ 1");
         assert_eq!(
             invalid.in_run("pilot `base`").to_string(),

@@ -9,7 +9,7 @@ use crate::integrate::{
     scene_method,
 };
 use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry};
-use crate::scene::Resolved;
+use crate::resolve::Resolved;
 
 /// What a run produces.
 #[derive(Debug, Clone)]

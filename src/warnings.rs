@@ -5,7 +5,8 @@
 //! plain coarse mesh: use `taut converge`).
 
 use crate::record::ContactStats;
-use crate::scene::{CarrierKind, ContactKind, Formulation, Resolved};
+use crate::resolve::Resolved;
+use crate::scene::{CarrierKind, ContactKind, Formulation};
 
 /// A time step longer than a wave's crossing time of one element (Courant
 /// number c·Δt/h above this) cannot follow the waves the mesh carries; the

@@ -18,6 +18,8 @@ mod cli;
 mod gate;
 #[path = "hostile_input.rs"]
 mod hostile_input;
+#[path = "layers.rs"]
+mod layers;
 #[path = "precision.rs"]
 mod precision;
 #[path = "readme.rs"]

@@ -84,7 +84,7 @@ fn own_peak() -> u64 {
 }
 
 /// The estimate of `scene` with `sets`, from the library the binary uses.
-fn estimate(scene: &str, sets: &[&str]) -> taut::scene::MemoryEstimate {
+fn estimate(scene: &str, sets: &[&str]) -> taut::resolve::MemoryEstimate {
     let path = common::crate_root().join(scene);
     let text = std::fs::read_to_string(&path).unwrap();
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();

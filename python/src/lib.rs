@@ -139,9 +139,12 @@ fn failed(py: Python<'_>, e: taut::Error, out: Option<&Path>) -> PyErr {
             time,
             run,
             failure,
-            problem,
         } => {
-            let problem = serde_json::to_string(&problem).unwrap_or_default();
+            // the law's failure with its problem (`taut::contact::ContactFailed`)
+            let problem = failure
+                .downcast_ref::<taut::contact::ContactFailed>()
+                .and_then(|f| serde_json::to_string(&f.problem).ok())
+                .unwrap_or_default();
             let run = run.trim_end_matches(": ").to_string();
             let saved = saved.map(|p| p.to_string_lossy().into_owned());
             raise(

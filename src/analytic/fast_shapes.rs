@@ -57,7 +57,7 @@
 //!
 //! The kernels round `a·b + c` once (AVX2 + FMA vectors, or
 //! [`f64::mul_add`] lane by lane on a CPU without them: the same bits,
-//! `crate::model::lanes`), which saves about a third of the operations.
+//! `crate::numeric::lanes`), which saves about a third of the operations.
 //!
 //! ## Accuracy
 //!
@@ -67,7 +67,7 @@
 //! for every support pair and J up to [`super::MAX_MODES`] (`tests`).
 
 use super::mode_shapes::{Ends, ModeShapes};
-use crate::model::lanes;
+use crate::numeric::lanes;
 use std::f64::consts::PI;
 
 /// Modes advanced together by the rotation recurrence (module docs): four
@@ -170,7 +170,7 @@ impl Layer {
 
     /// Add `coef_j e^{−α_j d}` into `out` for the modes that count at `d`
     /// (AVX2 + FMA where the CPU has them: the same fused operations, the
-    /// same bits; `crate::model::lanes`).
+    /// same bits; `crate::numeric::lanes`).
     #[inline(always)]
     fn add_into(&self, d: f64, out: &mut [f64], vector: bool) {
         let k = (d / self.spacing).round() as usize;

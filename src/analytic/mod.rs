@@ -10,7 +10,6 @@ pub mod periodic_supports;
 pub mod rayleigh;
 pub mod riding_mass;
 pub mod spring_supported;
-pub mod standing_force;
 pub mod static_load;
 
 pub use fast_shapes::FastShapes;
@@ -22,5 +21,4 @@ pub use periodic_supports::{PeriodicLine, PeriodicSupport};
 pub use rayleigh::{DampedOscillator, Rayleigh};
 pub use riding_mass::{RidingMassBeam, RidingMassHistory};
 pub use spring_supported::{DiscreteSpring, SpringSupportedLine};
-pub use standing_force::StandingForce;
 pub use static_load::StaticPointLoad;

@@ -530,7 +530,10 @@ impl ModeShapes {
                 cuts.extend((1..=n).map(|i| a + (b - a) * i as f64 / n as f64));
             }
         }
-        crate::model::quadrature::composite(&crate::model::quadrature::gauss_legendre(10), &cuts)
+        crate::numeric::quadrature::composite(
+            &crate::numeric::quadrature::gauss_legendre(10),
+            &cuts,
+        )
     }
 }
 

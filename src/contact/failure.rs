@@ -1,5 +1,21 @@
-//! Why a contact law failed, as data (carried by [`crate::Error::Contact`]
-//! together with the problem that failed).
+//! Why a contact law failed, as data, and the failure with the problem it
+//! was given ([`ContactFailed`], carried by [`crate::Error::Contact`]).
+
+use super::problem::ContactProblem;
+
+/// A failed contact solve: why, and the problem the law was given (saved
+/// next to the run's outputs and solved again by `taut replay`). Carried
+/// boxed by [`crate::Error::Contact`] (the crate's error does not depend
+/// on this layer); [`crate::Error::payload`] gets it back. Its message is
+/// the failure's.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{failure}")]
+pub struct ContactFailed {
+    /// Why the law failed.
+    pub failure: ContactFailure,
+    /// The problem the law was given.
+    pub problem: ContactProblem,
+}
 
 /// A contact law's failure.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

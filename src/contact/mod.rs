@@ -20,7 +20,7 @@ mod penalty;
 pub mod problem;
 mod replay;
 
-pub use failure::ContactFailure;
+pub use failure::{ContactFailed, ContactFailure};
 pub use problem::{ContactProblem, Level};
 pub use replay::{MAX_REPLAY_CONTACTS, ReplayOutcome, SIGNORINI_TOLERANCE, replay, validate};
 

@@ -39,7 +39,8 @@
 use crate::error::Error;
 use crate::model::banded::{Affine, BandedLdlt, SymBand};
 use crate::model::beam::{BeamModel, PointVector};
-use crate::scene::{Discretization, Formulation, GenAlphaParams, Placement, Resolved, Scheme};
+use crate::resolve::Resolved;
+use crate::scene::{Discretization, Formulation, GenAlphaParams, Placement, Scheme};
 
 use super::gen_alpha::{RowState, UpdateCoefs};
 use super::system::Lanes;

@@ -6,7 +6,8 @@
 //! ([`super::ModalBatch`]); both step behind [`RunBatch`].
 
 use crate::error::Error;
-use crate::scene::{Resolved, Scheme};
+use crate::resolve::Resolved;
+use crate::scene::Scheme;
 
 use super::batch::{MAX_LANES, gen_alpha_key, max_lanes, scene_columns};
 use super::modal_batch::modal_key;

@@ -26,7 +26,7 @@
 use crate::error::{Error, Result};
 use crate::model::banded::{Affine, BandedLdlt};
 use crate::model::spectrum;
-use crate::scene::Resolved;
+use crate::resolve::Resolved;
 
 use super::{
     Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,

@@ -18,7 +18,8 @@ use super::{
     Stepper, System,
 };
 use crate::error::{Error, Result};
-use crate::scene::{IntegratorSpec, Method, MethodInfo, Resolved, Scheme, method_names};
+use crate::resolve::Resolved;
+use crate::scene::{IntegratorSpec, Method, MethodInfo, Scheme, method_names};
 
 /// Builds a [`Stepper`] for a run: a built-in [`Method`], or a method of
 /// one's own (describe it with [`MethodInfo`], build it here, and

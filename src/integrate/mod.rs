@@ -41,6 +41,9 @@ mod run_batch;
 mod state;
 mod system;
 
+/// Columns of a step's right-hand side (the model's banded solves carry them
+/// side by side): defined with the model, where the memory plan reads it too.
+pub use crate::model::banded::rhs_columns;
 pub use batch::{Batch, Lane, MAX_LANES, max_lanes, scene_columns};
 pub use batch_run::{NewBatch, batch_key, lanes_cap, new_batch};
 pub use bathe::Bathe;
@@ -58,12 +61,12 @@ pub use run_batch::RunBatch;
 pub use state::State;
 pub use system::{
     Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, combine,
-    rhs_columns,
 };
 
 use crate::error::Result;
 use crate::model::beam::{BeamModel, PointVector};
-use crate::scene::{CarrierKind, Resolved};
+use crate::resolve::Resolved;
+use crate::scene::CarrierKind;
 
 /// One time integrator's step. Implement it (with a [`MethodFactory`]) to
 /// add a method: `examples/custom_method.rs` does, outside the crate.

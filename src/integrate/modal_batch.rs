@@ -23,7 +23,8 @@ use std::sync::Arc;
 
 use crate::error::{Error, Result};
 use crate::model::beam::{BeamModel, PointVector};
-use crate::scene::{Discretization, Resolved, Scheme};
+use crate::resolve::Resolved;
+use crate::scene::{Discretization, Scheme};
 
 use super::modal_exact::{ModalCoefs, ModalExact};
 use super::run_batch::RunBatch;
@@ -69,7 +70,7 @@ impl ModalBatch {
         let Some(&(_, first)) = scenes.first() else {
             return (None, errors);
         };
-        let shared = BeamModel::from_scene(first)
+        let shared = BeamModel::build(&first.beam, &first.mesh_plan())
             .and_then(|beam| Ok((Arc::new(ModalCoefs::new(&beam, first.dt)?), beam)));
         let (coefs, beam) = match shared {
             Ok(s) => s,

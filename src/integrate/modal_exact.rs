@@ -50,7 +50,7 @@
 //! `W = s² Σ_j φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1})) + g_q`: sums
 //! over modes, the pair every force-level law takes (Lagrange, penalty,
 //! complementarity; MODEL §5, §6). The impact law is refused
-//! (scene/validate.rs): an impulse on the gap rate has no place in a force
+//! (by its method description, `scene/method.rs`): an impulse on the gap rate has no place in a force
 //! held over the step.
 //!
 //! ## One step, O(J) in three passes
@@ -67,7 +67,7 @@
 //! The kernels round `a·b + c` once and take sums over modes in eight
 //! partial sums (mode j into lane j mod 8) added in a fixed order: AVX2 +
 //! FMA where the CPU has both, `f64::mul_add` lane by lane otherwise, the
-//! same bits either way (`crate::model::lanes`). A run in a batch
+//! same bits either way (`crate::numeric::lanes`). A run in a batch
 //! (`modal_batch.rs`) calls the same functions and gets the same bits.
 //! Nothing is allocated after [`ModalExact::new`].
 
@@ -76,7 +76,7 @@ use std::sync::Arc;
 use crate::analytic::FastShapes;
 use crate::error::{Error, Result};
 use crate::model::beam::{Basis, BeamModel, PointVector};
-use crate::model::lanes::{self, LANES};
+use crate::numeric::lanes::{self, LANES};
 use crate::scene::CarrierKind;
 
 use super::oscillator::{MassStep, ModeSteps};
@@ -458,7 +458,7 @@ fn step_kernel(
 
 // The kernels below round `a·b + c` once (AVX2 + FMA vectors where the
 // CPU has both, `f64::mul_add` lane by lane otherwise: the same bits,
-// `crate::model::lanes`), and take sums over modes in its eight lanes.
+// `crate::numeric::lanes`), and take sums over modes in its eight lanes.
 
 /// The free step of mode i: `(cos·η + sin/ω·η̇, −ω sin·η + cos·η̇)`, fused.
 #[inline(always)]

@@ -15,34 +15,21 @@
 //! contact formulation works with every method through this one seam, and a
 //! law never reaches into a method.
 
-use crate::contact::{ContactFailure, ContactLaw, ContactProblem, Level, law_for};
+use crate::contact::{ContactFailed, ContactFailure, ContactLaw, ContactProblem, Level, law_for};
 use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;
 use crate::model::beam::{BeamModel, PointVector};
 use crate::model::source::Source;
-use crate::scene::{
-    CarrierKind, CarrierProps, ContactKind, ContactSpec, Placement, Resolved, Support,
-};
+use crate::resolve::Resolved;
+use crate::scene::{CarrierKind, CarrierProps, ContactKind, ContactSpec, Placement, Support};
 
 use super::State;
+use crate::model::banded::rhs_columns;
 
 /// Contact forces beyond this multiple of the carriers' force scale
 /// (k(δ0 + L) + m g + F) are taken as a blow-up: no physical run of this model
 /// comes within orders of magnitude of it.
 const FORCE_BOUND_FACTOR: f64 = 1e3;
-
-/// Columns of a right-hand side for `nc` contacts: the free step and one
-/// per contact, rounded up to an even number (at least two). The banded
-/// sweeps carry the columns side by side in two-wide SIMD lanes: with one
-/// column the compiler packs the sweep's window into vectors through general
-/// registers, three extra moves on the dependency chain (measured: one-column
-/// sweeps took 2.7× as long as two-column ones, `examples/step_profile.rs`);
-/// with three, a half-empty lane and register spills (two carriers at
-/// N = 800: 1.16 × 10⁸ DOF-steps/s with three columns, 1.55 × 10⁸ with four).
-/// A padding column stays zero (A⁻¹0 = 0) and enters the update with weight 0.
-pub fn rhs_columns(nc: usize) -> usize {
-    (1 + nc).max(2).next_multiple_of(2)
-}
 
 /// A mass–spring carrier's mass dof: `m q̈ + c q̇ + k q = f0 − λ` (MODEL §2).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -275,10 +262,10 @@ pub struct Initial {
 impl System {
     /// Assemble the beam and the carriers of a validated scene.
     pub fn new(sc: &Resolved) -> Result<Self> {
-        Self::with_beam(sc, BeamModel::from_scene(sc)?)
+        Self::with_beam(sc, BeamModel::build(&sc.beam, &sc.mesh_plan())?)
     }
 
-    /// [`System::new`] with the beam already built (`BeamModel::from_scene`
+    /// [`System::new`] with the beam already built (`BeamModel::build`
     /// of `sc`, or of a scene with the same beam and discretization: a
     /// batch builds a basis once for all its runs).
     pub fn with_beam(sc: &Resolved, beam: BeamModel) -> Result<Self> {
@@ -849,12 +836,14 @@ impl System {
             step,
             time,
             run: String::new(),
-            failure,
-            problem: Box::new(ContactProblem {
-                level,
-                g_free,
-                w,
-                contact: self.contact.clone(),
+            failure: Box::new(ContactFailed {
+                failure,
+                problem: ContactProblem {
+                    level,
+                    g_free,
+                    w,
+                    contact: self.contact.clone(),
+                },
             }),
         }
     }

@@ -44,9 +44,8 @@ use jet::Jet;
 use supports::{Ends, Shape};
 
 use crate::error::{Error, Result};
-use crate::model::motion::Motion;
 use crate::scene::manufactured::{LossSpec, ManufacturedSpec, TFactor, XFactor};
-use crate::scene::{BeamProps, CarrierKind, CarrierProps, ContactKind};
+use crate::scene::{BeamProps, CarrierKind, CarrierProps, ContactKind, Motion};
 
 /// Time samples of the consistency checks per step of the run (at least
 /// [`MIN_CHECK_SAMPLES`], at most [`MAX_CHECK_SAMPLES`]): λ* of a smooth

@@ -18,7 +18,7 @@ use super::element;
 use super::mesh::Mesh;
 use crate::analytic::ModeShapes;
 use crate::error::Result;
-use crate::scene::{BeamProps, Discretization, Resolved, Support};
+use crate::scene::{BeamProps, Discretization, MeshPlan, Support};
 
 /// Which element family the beam uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -66,7 +66,7 @@ impl PointVector {
                 + self.val[2] * x[self.idx[2]]
                 + self.val[3] * x[self.idx[3]]
         } else {
-            super::lanes::dot(&self.dense, x)
+            crate::numeric::lanes::dot(&self.dense, x)
         }
     }
 
@@ -82,19 +82,19 @@ impl PointVector {
                 + self.val[2] * at(self.idx[2])
                 + self.val[3] * at(self.idx[3])
         } else {
-            // super::lanes::dot's partial sums, in its order
+            // crate::numeric::lanes::dot's partial sums, in its order
             let n = self.dense.len();
-            let full = n / super::lanes::LANES * super::lanes::LANES;
-            let mut acc = [0.0; super::lanes::LANES];
+            let full = n / crate::numeric::lanes::LANES * crate::numeric::lanes::LANES;
+            let mut acc = [0.0; crate::numeric::lanes::LANES];
             for (i, r) in self.dense.iter().enumerate() {
                 let l = if i < full {
-                    i % super::lanes::LANES
+                    i % crate::numeric::lanes::LANES
                 } else {
                     i - full
                 };
                 acc[l] = r.mul_add(at(i), acc[l]);
             }
-            super::lanes::reduce(&acc)
+            crate::numeric::lanes::reduce(&acc)
         }
     }
 
@@ -185,20 +185,16 @@ impl BeamModel {
         Self::on_mesh(props, Mesh::uniform(props.length, elements))
     }
 
-    /// The scene's discretization (`[mesh]`, MODEL §9.2). The modal bases
-    /// are computed here, once per run.
-    pub fn from_scene(sc: &Resolved) -> Result<Self> {
-        match sc.discretization {
-            Discretization::Hermite => Ok(Self::on_mesh(&sc.beam, Self::scene_mesh(sc)?)),
-            Discretization::Modal { modes } => {
-                Self::modal(Self::on_mesh(&sc.beam, Self::scene_mesh(sc)?), modes)
-            }
-            Discretization::Galerkin { modes } => Self::galerkin(&sc.beam, modes),
+    /// The beam `props` discretized as `plan` says (`[mesh]`, MODEL §9.2):
+    /// Hermite elements on a uniform or graded mesh, or a modal or Galerkin
+    /// basis. The modal bases are computed here, once per run.
+    pub fn build(props: &BeamProps, plan: &MeshPlan) -> Result<Self> {
+        let mesh = || Mesh::new(props.length, plan.elements, plan.grading);
+        match plan.discretization {
+            Discretization::Hermite => Ok(Self::on_mesh(props, mesh()?)),
+            Discretization::Modal { modes } => Self::modal(Self::on_mesh(props, mesh()?), modes),
+            Discretization::Galerkin { modes } => Self::galerkin(props, modes),
         }
-    }
-
-    fn scene_mesh(sc: &Resolved) -> Result<Mesh> {
-        Mesh::new(sc.beam.length, sc.elements, sc.grading)
     }
 
     /// Assemble the finite elements on a mesh.

@@ -23,73 +23,7 @@
 //! element length), so its runs are bit-identical to the code before grading.
 
 use crate::error::{Error, Result};
-
-/// Largest size ratio h_max/h_min accepted: beyond this the smallest
-/// elements are so short that the time step would have to follow them
-/// (and the mass matrix's conditioning, ∝ ratio⁴ for Hermite, degrades).
-pub const MAX_GRADING_RATIO: f64 = 1000.0;
-
-/// Where a mesh is graded toward (MODEL §9.2), with its size ratio
-/// R = h_max/h_min (≥ 1).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Grading {
-    /// Equal elements.
-    Uniform,
-    /// Toward both supports.
-    Supports {
-        /// h_max/h_min.
-        ratio: f64,
-    },
-    /// Toward x = 0.
-    Left {
-        /// h_max/h_min.
-        ratio: f64,
-    },
-    /// Toward x = L.
-    Right {
-        /// h_max/h_min.
-        ratio: f64,
-    },
-    /// Toward a point x_p, m.
-    Point {
-        /// h_max/h_min.
-        ratio: f64,
-        /// x_p, m (0 < x_p < L).
-        at: f64,
-    },
-}
-
-impl Grading {
-    /// The scene's name of this grading.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Grading::Uniform => "uniform",
-            Grading::Supports { .. } => "supports",
-            Grading::Left { .. } => "left",
-            Grading::Right { .. } => "right",
-            Grading::Point { .. } => "point",
-        }
-    }
-
-    /// h_max/h_min of a graded mesh (None when uniform).
-    pub fn ratio(&self) -> Option<f64> {
-        match *self {
-            Grading::Uniform => None,
-            Grading::Supports { ratio }
-            | Grading::Left { ratio }
-            | Grading::Right { ratio }
-            | Grading::Point { ratio, .. } => Some(ratio),
-        }
-    }
-
-    /// Fewest elements the grading needs (one per graded segment).
-    pub fn min_elements(&self) -> usize {
-        match self {
-            Grading::Supports { .. } | Grading::Point { .. } => 2,
-            _ => 1,
-        }
-    }
-}
+use crate::scene::Grading;
 
 /// The mesh: N elements between N + 1 nodes on [0, L].
 #[derive(Debug, Clone, PartialEq)]

@@ -1,14 +1,12 @@
-//! What a scene turns into: the discretized beam, its banded matrices, and
-//! the carriers' kinematics.
+//! What a scene turns into: the discretized beam (Hermite, modal, Galerkin)
+//! and its banded matrices, built from plain properties ([`crate::scene`]'s
+//! `BeamProps` and `MeshPlan`), never from a scene.
 
 pub mod banded;
 pub mod beam;
 pub mod eigen;
 pub mod element;
-pub mod lanes;
 pub mod mesh;
 pub mod modal;
-pub mod motion;
-pub mod quadrature;
 pub mod source;
 pub mod spectrum;

@@ -17,8 +17,8 @@
 
 use super::beam::{Basis, BeamModel, Family};
 use super::element;
-use super::quadrature::{composite, gauss_legendre};
 use crate::manufactured::Manufactured;
+use crate::numeric::quadrature::{composite, gauss_legendre};
 
 /// Gauss points per panel (exact for degree 15).
 pub const POINTS: usize = 8;
@@ -153,7 +153,7 @@ fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::resolve_scene;
+    use crate::resolve::resolve_scene;
 
     /// A pinned–pinned beam with a one-term sine source: the Hermite load
     /// vector against the exact ∫N sin, and the galerkin one against the
@@ -190,7 +190,7 @@ t = [{ kind = "polynomial", coefficients = [0, 0, 1] }]
         use std::f64::consts::PI;
         let sc = resolve_scene(SCENE, &[]).unwrap();
         let m = sc.manufactured.as_ref().unwrap();
-        let beam = BeamModel::from_scene(&sc).unwrap();
+        let beam = BeamModel::build(&sc.beam, &sc.mesh_plan()).unwrap();
         let src = Source::new(&beam, m);
         // at t: c = [a T̂'' = 2, a T̂ = t²]; check the ρA part alone (t = 0)
         let mut rhs = vec![0.0; beam.n];
@@ -214,7 +214,7 @@ t = [{ kind = "polynomial", coefficients = [0, 0, 1] }]
         // galerkin: F_1 of ρA·2·sin against φ_1 = sqrt(2/(ρA L)) sin: 2ρA·sqrt(2/(ρA L))·L/2
         let g =
             resolve_scene(SCENE, &["mesh.kind=galerkin".into(), "mesh.modes=3".into()]).unwrap();
-        let gb = BeamModel::from_scene(&g).unwrap();
+        let gb = BeamModel::build(&g.beam, &g.mesh_plan()).unwrap();
         let gs = Source::new(&gb, g.manufactured.as_ref().unwrap());
         let mut rhs = vec![0.0; 3];
         gs.add_into(0.0, 1.0, &mut rhs, 1, 0);

@@ -8,6 +8,7 @@ use serde::Serialize;
 use super::CarrierTrace;
 use super::zone::LossGeometry;
 use crate::integrate::CarrierSample;
+use crate::resolve::memory::{EVENT_BYTES, MAX_STORED_EVENTS, event_capacity};
 
 /// Mean, standard deviation, min and max of the contact force, N.
 #[derive(Debug, Clone, Copy, Serialize, PartialEq)]
@@ -34,31 +35,21 @@ pub const RECONTACT_WINDOW: f64 = 2e-3;
 /// rigid-impact spike sits in the first step or two.
 pub const PEAK_STEPS: usize = 3;
 
-/// Bytes of one stored contact event of a carrier: its loss interval in
-/// x/L and in t (two `[f64; 2]`), the interval's class and a re-contact
-/// ([`super::ContactStats`]); a run reserves room for
-/// [`event_capacity`] of them per carrier before its first step.
-pub const EVENT_BYTES: u64 = (2 * std::mem::size_of::<[f64; 2]>()
-    + std::mem::size_of::<super::LossClass>()
-    + std::mem::size_of::<Recontact>()) as u64;
-
-/// The most loss intervals (and re-contacts) a run of `steps` steps can
-/// store per carrier: an interval needs a lost step, and two intervals a
-/// closed step between them, so at most ⌈steps/2⌉; and at most
-/// [`MAX_STORED_EVENTS`] are stored.
-pub fn event_capacity(steps: usize) -> usize {
-    steps.div_ceil(2).min(MAX_STORED_EVENTS)
-}
+/// The memory plan's count of one stored event ([`EVENT_BYTES`]: a loss
+/// interval in x/L and in t, its class and a re-contact) is what these
+/// types take: a change to them that the plan does not follow fails to
+/// compile here.
+const _: () = assert!(
+    EVENT_BYTES
+        == (2 * std::mem::size_of::<[f64; 2]>()
+            + std::mem::size_of::<LossClass>()
+            + std::mem::size_of::<Recontact>()) as u64
+);
 
 /// A re-contact after a loss at least this long starts a new event; a
 /// shorter loss inside an event's window is a bounce of that event (the
 /// number of bounces grows as Δt falls). 0.2 ms = 2 steps at Δt = 1e-4 s.
 pub const MIN_LOSS_TIME: f64 = 2e-4;
-
-/// Most loss intervals and re-contacts a run stores one by one (they are
-/// all counted): a contact that chatters every step over 10⁹ steps would
-/// otherwise hold gigabytes of intervals.
-pub const MAX_STORED_EVENTS: usize = 10_000;
 
 /// Relative slack on the window's end, so that round-off in summed steps
 /// does not drop the step that ends exactly at the window.

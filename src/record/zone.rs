@@ -26,7 +26,8 @@
 
 use serde::Serialize;
 
-use crate::scene::{Resolved, Support};
+use crate::resolve::Resolved;
+use crate::scene::Support;
 
 /// Bending lengths ℓ_b = sqrt(EI/T) in the support zone: the boundary layer
 /// decays like e^(−x/ℓ_b), to 2 % at 4 ℓ_b; measured on the reference case at

@@ -47,7 +47,7 @@ fn history_rows(out: &RunOutput, rows: std::ops::Range<usize>) -> Table {
     t
 }
 
-pub use crate::scene::memory::HISTORY_ROWS_AT_A_TIME;
+pub use crate::resolve::memory::HISTORY_ROWS_AT_A_TIME;
 
 /// Write the history ([`history_table`]) to `path`, a block of rows at a
 /// time: the same bytes as the whole table's CSV.

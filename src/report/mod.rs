@@ -44,19 +44,20 @@ pub use verify::{
 use std::path::Path;
 
 use crate::error::{Error, Result};
+use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::scene::Resolved;
 
 /// Save the contact problem of a failed contact solve ([`Error::Contact`])
 /// as `dir/failed_contact_step_N.json`, which `taut replay` solves again;
 /// returns the file, or None for another error or a folder that cannot be
 /// written (the error itself is what the caller reports).
 pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> {
-    let Error::Contact { step, problem, .. } = e else {
+    let Error::Contact { step, .. } = e else {
         return None;
     };
+    let failed = e.payload::<crate::contact::ContactFailed>()?;
     let path = dir.join(format!("failed_contact_step_{step}.json"));
-    let json = serde_json::to_string_pretty(problem).ok()?;
+    let json = serde_json::to_string_pretty(&failed.problem).ok()?;
     std::fs::create_dir_all(dir).ok()?;
     std::fs::write(&path, json).ok()?;
     Some(path)

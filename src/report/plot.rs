@@ -8,8 +8,8 @@ use plotters::prelude::*;
 
 use super::PALETTE;
 use crate::error::{Error, Result};
+use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::scene::Resolved;
 
 /// The force axis is clipped at this multiple of the 99.5th percentile:
 /// re-contact spikes (no impact law, TARGETS "What the study does not
@@ -114,7 +114,7 @@ pub(crate) fn line_plot(
 /// Pixel size of a line plot.
 const SIZE: (u32, u32) = (960, 480);
 
-pub use crate::scene::memory::PLOT_BUCKETS;
+pub use crate::resolve::memory::PLOT_BUCKETS;
 
 /// `points` reduced to at most 4 × [`PLOT_BUCKETS`], in order: per bucket
 /// of consecutive points, the first, the lowest, the highest and the last

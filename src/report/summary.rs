@@ -6,8 +6,9 @@ use serde::Serialize;
 
 use crate::error::Result;
 use crate::record::ContactStats;
+use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::scene::{Discretization, Resolved, Scene};
+use crate::scene::{Discretization, Scene};
 
 /// Figures derived from the scene and the run.
 #[derive(Debug, Clone, Serialize, PartialEq)]

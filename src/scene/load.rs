@@ -8,7 +8,7 @@ use std::path::Path;
 
 use toml::{Table, Value};
 
-use super::{Resolved, Scene};
+use super::Scene;
 use crate::error::{Error, Result, one_line};
 
 /// The top-level tables of a scene ([`Scene`]'s fields, as spelled in a
@@ -210,17 +210,6 @@ pub fn scene_with_overrides(text: &str, overrides: &[String]) -> Result<Scene> {
     scene_from_tree(tree)
 }
 
-/// Parse scene text, apply overrides in order, deserialize and validate.
-pub fn resolve_scene(text: &str, overrides: &[String]) -> Result<Resolved> {
-    scene_with_overrides(text, overrides)?.validate()
-}
-
-/// Read a scene file, apply overrides, deserialize and validate.
-pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Resolved> {
-    let text = read_scene(path)?;
-    resolve_scene(&text, overrides).map_err(|e| in_file(e, path))
-}
-
 /// A scene file's text (an unreadable file is an I/O error naming it; one
 /// larger than [`crate::input::MAX_INPUT_BYTES`], or not UTF-8 text, is
 /// refused as soon as that shows).
@@ -277,13 +266,13 @@ mod tests {
 
     #[test]
     fn a_file_with_no_scene_table_is_not_a_scene_and_its_keys_are_not_named() {
-        let e = resolve_scene("SECRET_TOKEN = \"abc\"\n[package]\nname = \"x\"\n", &[])
+        let e = scene_with_overrides("SECRET_TOKEN = \"abc\"\n[package]\nname = \"x\"\n", &[])
             .unwrap_err()
             .to_string();
         assert!(e.contains("not a scene") && e.contains("[beam]"), "{e}");
         assert!(!e.contains("SECRET") && !e.contains("package"), "{e}");
         // a scene with a typo still has its unknown key named
-        let e = resolve_scene("[beam]\nlenght = 3\n", &[])
+        let e = scene_with_overrides("[beam]\nlenght = 3\n", &[])
             .unwrap_err()
             .to_string();
         assert!(e.contains("lenght") && e.contains("length"), "{e}");

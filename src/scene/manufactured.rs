@@ -342,7 +342,7 @@ impl ManufacturedSpec {
     }
 }
 
-/// The reference a validated scene declares ([`crate::scene::Resolved::reference`]),
+/// The reference a validated scene declares ([`crate::resolve::Resolved::reference`]),
 /// its assumptions checked against the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Declared {

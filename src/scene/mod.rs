@@ -2,36 +2,41 @@
 //!
 //! A scene is TOML. Every table rejects unknown keys. Loading is three steps:
 //! parse the text into a TOML tree, apply `--set` overrides on the tree
-//! ([`load`]), then deserialize and [`Scene::validate`] into a [`Resolved`]
-//! set of physical parameters that the model is built from. Every key, its
-//! unit, default and allowed range is documented in `docs/scene.md`.
+//! ([`load`]), then deserialize and `Scene::validate` (the resolve layer,
+//! `crate::resolve`) into a `Resolved` set of physical parameters that the
+//! model is built from. Every key, its unit, default and allowed range is
+//! documented in `docs/scene.md`.
+//!
+//! The bottom of the house: this module imports only the crate's error and
+//! input reading. It holds the scene's own checks (each value in its
+//! range, `validate.rs`), the plain property structs the model is built
+//! from ([`BeamProps`], [`MeshPlan`], [`CarrierProps`] with its
+//! [`Motion`]), and the methods' descriptions (`method.rs`); checks that
+//! need the model, a reference or the memory plan are the resolve layer's.
 
 mod discretization;
 mod load;
 pub mod manufactured;
-pub mod memory;
 mod method;
+mod motion;
 mod speed;
 mod validate;
 
-pub use discretization::{DEFAULT_GRADING_RATIO, Discretization, MAX_GALERKIN_MODES};
-pub use load::{
-    apply_override, in_file, load_scene, parse_scene, read_scene, resolve_scene,
-    scene_with_overrides,
+pub use discretization::{
+    DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
+pub use load::{apply_override, in_file, parse_scene, read_scene, scene_with_overrides};
 pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
-pub use memory::{
-    MEMORY_BUDGET_BYTES, MemoryEstimate, check_budget, estimate as estimate_memory, history_rows,
-};
 pub(crate) use method::register_info;
 pub use method::{
     DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, IntegratorSpec, Method,
     MethodInfo, Parameter, Scheme, method_info, method_names,
 };
+pub use motion::Motion;
 pub use speed::SpeedProfile;
-pub(crate) use validate::validate_contact;
 pub use validate::{
-    BeamProps, CarrierKind, CarrierProps, DEFAULT_PENALTY_RELATIVE, Resolved, STEP_COUNT_SLACK,
+    BeamProps, CarrierKind, CarrierProps, DEFAULT_PENALTY_RELATIVE, MAX_ELEMENTS, MAX_STEPS,
+    STEP_COUNT_SLACK, TimeProps, validate_contact,
 };
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};

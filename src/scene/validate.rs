@@ -1,14 +1,14 @@
-//! Scene validation: every value checked against its allowed range, and the
-//! physical parameters resolved (ρA, EI, EA) as MODEL §1–§3 define them.
+//! The scene's own checks: every value against its allowed range, and the
+//! physical parameters resolved (ρA, EI, EA) as MODEL §1–§3 define them,
+//! as plain property structs. Checks that need the model, a reference or
+//! the memory plan are the resolve layer's (`crate::resolve`), which calls
+//! these in order.
 
-use super::{ContactSpec, EndTime, IntegratorSpec, Scene, Scheme, Side, SpeedProfile, Support};
+use super::{EndTime, Scene, Side, SpeedProfile, Support};
 use std::collections::HashMap;
 
-use super::Discretization;
-use super::manufactured::{Declared, ReferenceKind};
+use super::Motion;
 use crate::error::{Error, Result};
-use crate::model::mesh::Grading;
-use crate::model::motion::Motion;
 
 /// Largest mesh accepted: beyond this the run would not fit a sane budget
 /// (10⁶ elements is 2·10⁶ unknowns; banded storage ≈ 0.2 GB).
@@ -94,131 +94,19 @@ pub struct CarrierProps {
     pub motion: Motion,
 }
 
-/// A validated scene: physical parameters ready to build a model from.
-#[derive(Debug, Clone)]
-pub struct Resolved {
-    /// The scene as given (after overrides).
-    pub scene: Scene,
-    /// Beam properties.
-    pub beam: BeamProps,
-    /// Carriers, in scene order.
-    pub carriers: Vec<CarrierProps>,
-    /// Number of elements N (`mesh.elements`).
-    pub elements: usize,
-    /// The space discretization (`mesh.kind`, MODEL §9.2).
-    pub discretization: Discretization,
-    /// The mesh grading (`mesh.grading`).
-    pub grading: Grading,
-    /// Contact settings.
-    pub contact: ContactSpec,
-    /// `[integrator]` as given.
-    pub integrator: IntegratorSpec,
-    /// The time integrator with its parameters resolved (MODEL §9.1).
-    pub scheme: Scheme,
-    /// Gravity on carrier masses, m/s².
-    pub g: f64,
+/// `[time]` resolved (MODEL §5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeProps {
     /// Time step Δt, s.
     pub dt: f64,
-    /// Number of steps.
-    pub steps: usize,
-    /// The run's end time `time.end`, s: as given, or when the first moving
-    /// carrier leaves the beam (the run stops at the last whole step before it).
+    /// The run's end time, s: as given, or when the first moving carrier
+    /// leaves the beam.
     pub t_end: f64,
-    /// Probes: (name, x in m).
-    pub probes: Vec<(String, f64)>,
-    /// The history records row 0, every `record_every`-th step and the last
-    /// step (`output.record_every`, ≥ 1); statistics use every step.
-    pub record_every: usize,
-    /// The manufactured solution of a scene with `[manufactured]` (MODEL §11).
-    pub manufactured: Option<crate::manufactured::Manufactured>,
-    /// The reference the scene declares (`[reference]`, or the manufactured
-    /// solution), its assumptions checked.
-    pub reference: Declared,
+    /// Number of steps: floor(t_end/Δt · (1 + [`STEP_COUNT_SLACK`])).
+    pub steps: usize,
 }
 
-impl Resolved {
-    /// The length the space discretization resolves, m: h = L/N on a
-    /// uniform mesh, the longest element of a graded one (the coarsest
-    /// place), L/J for a `galerkin` basis of J modes (the half-wavelength
-    /// of its last mode), and the larger of the mesh's and L/J for `modal`.
-    /// Resolution checks and the contact-loss support zone use it.
-    pub fn resolution(&self) -> f64 {
-        let l = self.beam.length;
-        let mesh = || match self.grading {
-            Grading::Uniform => l / self.elements as f64,
-            g => crate::model::mesh::Mesh::new(l, self.elements, g)
-                .map_or(l / self.elements as f64, |m| m.h_max()),
-        };
-        match self.discretization {
-            Discretization::Hermite => mesh(),
-            Discretization::Galerkin { modes } => l / modes as f64,
-            Discretization::Modal { modes } => mesh().max(l / modes as f64),
-        }
-    }
-
-    /// The unknowns of the space discretization's FE mesh (before a modal
-    /// truncation): the most modes a `modal` basis can take.
-    pub fn beam_unknowns(&self) -> usize {
-        super::discretization::fe_unknowns(&self.beam, self.elements)
-    }
-
-    /// The memory the run is estimated to need (history, model, a modal
-    /// basis's eigenproblem) and the size of its `history.csv`: what
-    /// validation checks against the budgets and what a run reserves from
-    /// the process's budget while it runs ([`crate::budget`]).
-    pub fn memory_estimate(&self) -> super::memory::MemoryEstimate {
-        let (per_node, half_band) = if self.beam.is_string() {
-            (1, 1)
-        } else {
-            (2, 3)
-        };
-        let masses = self
-            .carriers
-            .iter()
-            .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
-            .count();
-        let mut need = super::memory::estimate(
-            self.steps,
-            self.record_every,
-            self.elements,
-            per_node,
-            half_band,
-            self.carriers.len(),
-            masses,
-            self.probes.len(),
-        );
-        if let Discretization::Modal { modes } = self.discretization {
-            need.model = need.model.saturating_add(super::memory::modal_bytes(
-                super::discretization::fe_unknowns(&self.beam, self.elements),
-                modes,
-            ));
-        }
-        need
-    }
-
-    /// Rows the run's history will hold.
-    pub fn history_rows(&self) -> usize {
-        super::memory::history_rows(self.steps, self.record_every)
-    }
-
-    /// Refuse a scene that records only every K-th step (K > 1), for a study
-    /// (`what`) that reads the history step by step.
-    pub fn require_every_step(&self, what: &str) -> Result<()> {
-        if self.record_every == 1 {
-            Ok(())
-        } else {
-            Err(Error::invalid(
-                "output.record_every",
-                self.record_every,
-                format!(
-                    "{what} reads the history at every step: must be 1 (leave out [output] record_every)"
-                ),
-            ))
-        }
-    }
-}
-
-fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
+pub(crate) fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
     if !v.is_finite() {
         Err(Error::invalid(
             field,
@@ -232,7 +120,7 @@ fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
     }
 }
 
-fn non_negative(field: &str, v: f64, unit: &str) -> Result<f64> {
+pub(crate) fn non_negative(field: &str, v: f64, unit: &str) -> Result<f64> {
     if !v.is_finite() {
         Err(Error::invalid(
             field,
@@ -247,11 +135,8 @@ fn non_negative(field: &str, v: f64, unit: &str) -> Result<f64> {
 }
 
 impl Scene {
-    /// Check every value and resolve the physical parameters.
-    pub fn validate(&self) -> Result<Resolved> {
-        let beam = self.resolve_beam()?;
-        let l = beam.length;
-
+    /// `mesh.elements` in its range (1 ..= [`MAX_ELEMENTS`]).
+    pub fn elements(&self) -> Result<usize> {
         let elements = self.mesh.elements;
         if elements == 0 || elements > MAX_ELEMENTS {
             return Err(Error::invalid(
@@ -260,8 +145,12 @@ impl Scene {
                 format!("must be in 1 ..= {MAX_ELEMENTS}"),
             ));
         }
-        let (discretization, grading) = super::discretization::resolve(&self.mesh, &beam)?;
+        Ok(elements)
+    }
 
+    /// The carriers, checked and resolved (at least one; each on the beam
+    /// of span `l`, m).
+    pub fn resolve_carriers(&self, l: f64) -> Result<Vec<CarrierProps>> {
         if self.carriers.is_empty() {
             return Err(Error::invalid(
                 "carrier",
@@ -269,21 +158,22 @@ impl Scene {
                 "at least one [[carrier]] is required",
             ));
         }
-        let carriers = self
-            .carriers
+        self.carriers
             .iter()
             .enumerate()
             .map(|(i, c)| resolve_carrier(i, c, l))
-            .collect::<Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>>>()
+    }
 
-        let scheme = self.integrator.scheme()?;
-        let g = non_negative("gravity.g", self.gravity.g, "m/s²")?;
-        validate_contact(&self.contact)?;
-        // the method's own check of the contact settings and basis
-        self.integrator
-            .method_info()?
-            .accepts(&self.contact, discretization)?;
+    /// `gravity.g`, m/s² (≥ 0).
+    pub fn gravity_g(&self) -> Result<f64> {
+        non_negative("gravity.g", self.gravity.g, "m/s²")
+    }
 
+    /// `[time]` checked against the `carriers` on the beam of span `l`, m:
+    /// the step, the end time (`"carrier_leaves"` resolved) and the number
+    /// of steps.
+    pub fn resolve_time(&self, carriers: &[CarrierProps], l: f64) -> Result<TimeProps> {
         let dt = positive("time.step", self.time.step, "s")?;
         let t_end = match self.time.end {
             EndTime::Seconds(t) => positive("time.end", t, "s")?,
@@ -348,6 +238,16 @@ impl Scene {
             ));
         }
 
+        Ok(TimeProps {
+            dt,
+            t_end,
+            steps: steps_f as usize,
+        })
+    }
+
+    /// `[[probe]]`: (name, x in m) on the beam of span `l`, m, each name
+    /// unique and apart from the history's own columns.
+    pub fn resolve_probes(&self, l: f64) -> Result<Vec<(String, f64)>> {
         let mut probes = Vec::with_capacity(self.probes.len());
         let mut seen: HashMap<&str, usize> = HashMap::with_capacity(self.probes.len());
         for (i, p) in self.probes.iter().enumerate() {
@@ -400,6 +300,11 @@ impl Scene {
             probes.push((p.name.clone(), x));
         }
 
+        Ok(probes)
+    }
+
+    /// `output.record_every` (≥ 1).
+    pub fn record_every(&self) -> Result<usize> {
         if self.output.record_every == 0 {
             return Err(Error::invalid(
                 "output.record_every",
@@ -407,196 +312,12 @@ impl Scene {
                 "must be an integer ≥ 1 (record every K-th step; 1 = every step)",
             ));
         }
-        let record_every = usize::try_from(self.output.record_every).unwrap_or(usize::MAX);
-        let steps = steps_f as usize;
-        let manufactured = match &self.manufactured {
-            None => None,
-            Some(spec) => Some(crate::manufactured::Manufactured::new(
-                spec,
-                crate::manufactured::Setting {
-                    beam: &beam,
-                    carriers: &carriers,
-                    contact: self.contact.kind,
-                    g,
-                    t_end,
-                    steps,
-                },
-            )?),
-        };
-        let reference = self.declared_reference(&beam, &carriers)?;
-
-        let resolved = Resolved {
-            manufactured,
-            reference,
-            scene: self.clone(),
-            beam,
-            carriers,
-            elements,
-            discretization,
-            grading,
-            contact: self.contact.clone(),
-            integrator: self.integrator.clone(),
-            scheme,
-            g,
-            dt,
-            steps,
-            t_end,
-            probes,
-            record_every,
-        };
-        super::memory::check_budget(
-            &resolved.memory_estimate(),
-            steps,
-            record_every,
-            elements,
-            resolved.carriers.len(),
-            resolved.probes.len(),
-        )?;
-        Ok(resolved)
+        Ok(usize::try_from(self.output.record_every).unwrap_or(usize::MAX))
     }
 
-    /// The reference the scene declares, its assumptions checked (MODEL §8;
-    /// `docs/scene.md`, `[reference]`): a declaration that does not fit the
-    /// scene is refused naming `reference.kind` and the key that breaks it.
-    fn declared_reference(&self, beam: &BeamProps, carriers: &[CarrierProps]) -> Result<Declared> {
-        if self.manufactured.is_some() {
-            if let Some(r) = &self.reference {
-                return Err(Error::invalid(
-                    "reference.kind",
-                    format!("\"{}\"", r.kind.name()),
-                    "must be left out with [manufactured]: the manufactured solution is the scene's reference",
-                ));
-            }
-            return Ok(Declared::Manufactured);
-        }
-        let Some(spec) = &self.reference else {
-            return Ok(Declared::Richardson);
-        };
-        let kind = spec.kind;
-        let refuse = |key: &str, value: String, why: &str| {
-            Err(Error::invalid(
-                "reference.kind",
-                format!("\"{}\"", kind.name()),
-                format!("needs {why}, but {key} = {value}"),
-            ))
-        };
-        if spec.modes.is_some() && kind != ReferenceKind::RidingMassGalerkin {
-            return Err(Error::invalid(
-                "reference.modes",
-                spec.modes.unwrap_or(0),
-                "is read only by kind = \"riding_mass_galerkin\": leave it out",
-            ));
-        }
-        let pinned = beam.left == Support::Pinned && beam.right == Support::Pinned;
-        let supports = || format!("{:?}–{:?}", beam.left, beam.right).to_lowercase();
-        match kind {
-            ReferenceKind::Richardson => Ok(Declared::Richardson),
-            ReferenceKind::MovingForceSeries | ReferenceKind::RidingMassGalerkin => {
-                if carriers.len() != 1 {
-                    return refuse(
-                        "carrier",
-                        format!("{} carriers", carriers.len()),
-                        "exactly one carrier",
-                    );
-                }
-                let c = &carriers[0];
-                let SpeedProfile::Constant { value: speed } = c.motion.profile else {
-                    return refuse(
-                        "carrier.speed.profile",
-                        "\"smooth_ramp\"".into(),
-                        "a constant speed",
-                    );
-                };
-                if !pinned {
-                    return refuse("beam.left/right", supports(), "pinned–pinned supports");
-                }
-                if beam.distributed_load != 0.0 {
-                    return refuse(
-                        "gravity.beam_self_weight",
-                        "true".into(),
-                        "no distributed load",
-                    );
-                }
-                if kind == ReferenceKind::MovingForceSeries {
-                    if !matches!(c.kind, CarrierKind::Force { .. }) {
-                        return refuse(
-                            "carrier.mass",
-                            "given".into(),
-                            "a moving force (carrier.force)",
-                        );
-                    }
-                    if speed <= 0.0 {
-                        return refuse("carrier.speed.value", speed.to_string(), "a speed > 0");
-                    }
-                    if c.motion.start != 0.0 {
-                        return refuse("carrier.start", c.motion.start.to_string(), "start = 0");
-                    }
-                    return Ok(Declared::MovingForceSeries);
-                }
-                let CarrierKind::MassSpring {
-                    stiffness, damping, ..
-                } = c.kind
-                else {
-                    return refuse("carrier.force", "given".into(), "a mass carrier");
-                };
-                if stiffness != 0.0 {
-                    return refuse(
-                        "carrier.stiffness",
-                        stiffness.to_string(),
-                        "a riding mass (stiffness = 0)",
-                    );
-                }
-                if damping != 0.0 {
-                    return refuse("carrier.damping", damping.to_string(), "no dashpot");
-                }
-                if self.contact.kind != super::ContactKind::Bilateral {
-                    return refuse(
-                        "contact.kind",
-                        "\"unilateral\"".into(),
-                        "a bilateral contact",
-                    );
-                }
-                if beam.is_string() {
-                    return refuse(
-                        "beam.bending_stiffness",
-                        "0".into(),
-                        "EI > 0 (a string's curvature under a mass has no limit)",
-                    );
-                }
-                if let Some(j) = spec.modes
-                    && !(1..=crate::analytic::MAX_MODES * 4).contains(&j)
-                {
-                    return Err(Error::invalid(
-                        "reference.modes",
-                        j,
-                        format!("must be in 1 ..= {}", crate::analytic::MAX_MODES * 4),
-                    ));
-                }
-                Ok(Declared::RidingMassGalerkin { modes: spec.modes })
-            }
-            ReferenceKind::StandingForceModes => {
-                for (i, c) in carriers.iter().enumerate() {
-                    if !matches!(c.kind, CarrierKind::Force { .. }) {
-                        return refuse(
-                            &format!("carrier.{i}.mass"),
-                            "given".into(),
-                            "standing forces only (carrier.force)",
-                        );
-                    }
-                    if !c.motion.is_stationary() {
-                        return refuse(
-                            &format!("carrier.{i}.speed"),
-                            c.motion.profile.cruise_speed().to_string(),
-                            "standing forces (speed 0)",
-                        );
-                    }
-                }
-                Ok(Declared::StandingForceModes)
-            }
-        }
-    }
-
-    fn resolve_beam(&self) -> Result<BeamProps> {
+    /// `[beam]` checked and resolved: ρA, EI, EA from whichever keys are
+    /// given (MODEL §1), supports allowed for a string, the self-weight load.
+    pub fn resolve_beam(&self) -> Result<BeamProps> {
         let b = &self.beam;
         let length = positive("beam.length", b.length, "m")?;
         let tension = non_negative("beam.tension", b.tension, "N")?;
@@ -788,7 +509,7 @@ fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierPr
 pub const DEFAULT_PENALTY_RELATIVE: f64 = 1e3;
 
 /// Check `[contact]`: penalty stiffness, QP tolerances, restitution.
-pub(crate) fn validate_contact(c: &super::ContactSpec) -> Result<()> {
+pub fn validate_contact(c: &super::ContactSpec) -> Result<()> {
     let p = &c.penalty;
     if let (Some(k), Some(_)) = (p.stiffness, p.relative) {
         return Err(Error::invalid(

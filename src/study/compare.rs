@@ -18,8 +18,9 @@ use super::space::SpaceChoice;
 use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
+use crate::resolve::{Resolved, resolve_scene};
 use crate::run::RunOutput;
-use crate::scene::{Formulation, Resolved, Scene, resolve_scene};
+use crate::scene::{Formulation, Scene};
 
 /// One combination's row of the comparison (columns of `compare.csv`).
 #[derive(Debug, Clone, Serialize, PartialEq)]

@@ -31,8 +31,9 @@ use super::space::SpaceChoice;
 use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::{MethodFactory, scene_method};
+use crate::resolve::{Resolved, resolve_scene};
 use crate::run::{RunOutput, run, run_with};
-use crate::scene::{Declared, Discretization, Resolved, resolve_scene};
+use crate::scene::{Declared, Discretization};
 
 pub use super::grid::GCI_SAFETY_FACTOR;
 pub use super::reference::AnalyticW;

@@ -12,7 +12,7 @@
 //! (its resolution is chosen, not given, so there is nothing to say yes to).
 
 use crate::error::{Error, Result};
-use crate::scene::Resolved;
+use crate::resolve::Resolved;
 
 /// Largest study (or `run --tolerance`), in unknowns × steps summed over its
 /// runs, started without `--yes`: 10¹¹ DOF-steps is about 9 minutes at the

@@ -27,8 +27,8 @@ use serde::{Deserialize, Serialize};
 
 use super::scalars::Scalar;
 use crate::error::{Error, Result};
+use crate::resolve::load_scene;
 use crate::run::{RunOutput, run};
-use crate::scene::load_scene;
 
 /// One gated quantity: reference value, tolerances and why.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -298,7 +298,7 @@ pub fn gate_batched(
     let mut errors = Vec::new();
     let mut wall = BTreeMap::new();
     // every case's scene first, then the runs together
-    let prepared: Vec<Result<(GateCase, crate::scene::Resolved)>> = files
+    let prepared: Vec<Result<(GateCase, crate::resolve::Resolved)>> = files
         .iter()
         .map(|path| {
             read_case(path).and_then(|case| {
@@ -307,7 +307,7 @@ pub fn gate_batched(
             })
         })
         .collect();
-    let scenes: Vec<crate::scene::Resolved> = prepared
+    let scenes: Vec<crate::resolve::Resolved> = prepared
         .iter()
         .filter_map(|p| p.as_ref().ok().map(|(_, sc)| sc.clone()))
         .collect();

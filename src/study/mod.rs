@@ -16,6 +16,7 @@ pub mod reference;
 pub mod request;
 pub mod scalars;
 pub mod space;
+pub mod standing_force;
 pub mod sweep;
 pub mod threads;
 pub mod tolerance;

@@ -29,8 +29,9 @@ use super::space::SpaceChoice;
 use super::variant::{RunVariant, base_scene};
 use crate::error::{Error, Result};
 use crate::integrate::MethodFactory;
+use crate::resolve::{Resolved, resolve_scene};
 use crate::run::{RunOutput, run};
-use crate::scene::{Formulation, MeshKind, Resolved, resolve_scene};
+use crate::scene::{Formulation, MeshKind};
 
 /// One run of the study (a row of `precision.csv`).
 #[derive(Debug, Clone, Serialize, PartialEq)]

@@ -17,10 +17,12 @@
 //! * `richardson` (no `[reference]`) — none here: a study extrapolates its
 //!   own finest levels.
 
-use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam, StandingForce};
+use super::standing_force::StandingForce;
+use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam};
 use crate::error::{Error, Result};
 use crate::manufactured::Manufactured;
-use crate::scene::{CarrierKind, Declared, Resolved, SpeedProfile};
+use crate::resolve::Resolved;
+use crate::scene::{CarrierKind, Declared, SpeedProfile};
 
 /// A reference solution for the displacement under the carrier,
 /// w(x_m(t), t) as a function of t (m), when the scene has one.

@@ -49,7 +49,7 @@ fn factories(methods: &Option<Vec<&'static dyn MethodFactory>>) -> Vec<&'static 
 
 /// The scene a study starts from (its own resolution), for its estimate.
 fn base_dof_steps(text: &str, overrides: &[String]) -> Result<f64> {
-    Ok(run_dof_steps(&crate::scene::resolve_scene(
+    Ok(run_dof_steps(&crate::resolve::resolve_scene(
         text, overrides,
     )?))
 }
@@ -290,7 +290,7 @@ impl PrecisionRequest {
         // in range first, then the scene
         super::precision::check_levels(self.levels)?;
         super::precision::check_ratio(self.ratio)?;
-        let sc = crate::scene::resolve_scene(text, overrides)?;
+        let sc = crate::resolve::resolve_scene(text, overrides)?;
         // the study's own refusal of an overflowing ratio comes first
         super::precision::reference_elements(sc.elements, self.ratio, self.levels)?;
         let base = run_dof_steps(&sc);

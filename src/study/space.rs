@@ -10,7 +10,8 @@
 //! modes J for `galerkin` and `modal` (whose FE mesh stays the scene's).
 
 use crate::error::{Error, Result};
-use crate::scene::{GradingKind, MeshKind, Resolved, Scene};
+use crate::resolve::Resolved;
+use crate::scene::{GradingKind, MeshKind, Scene};
 
 /// A space discretization of a study (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -55,10 +55,9 @@ use super::scalars::{self, Scalar};
 use super::space::SpaceChoice;
 use super::variant::RunVariant;
 use crate::error::{Error, Result};
+use crate::resolve::{Resolved, resolve_scene};
 use crate::run::{RunOutput, run};
-use crate::scene::{
-    CarrierKind, Discretization, MeshKind, Resolved, STEP_COUNT_SLACK, resolve_scene,
-};
+use crate::scene::{CarrierKind, Discretization, MeshKind, STEP_COUNT_SLACK};
 
 /// Largest run (unknowns × steps) an accuracy-targeted run will start, pilots
 /// included: the bound every study shares ([`super::cost::MAX_DOF_STEPS`]).

@@ -20,7 +20,8 @@
 use super::space::SpaceChoice;
 use crate::error::Result;
 use crate::integrate::MethodFactory;
-use crate::scene::{Formulation, Resolved, Scene, scene_with_overrides};
+use crate::resolve::Resolved;
+use crate::scene::{Formulation, Scene, scene_with_overrides};
 
 /// One run of a study, as typed changes to a base scene (`None`: the base
 /// scene's own).
@@ -81,7 +82,7 @@ pub fn base_scene(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::resolve_scene;
+    use crate::resolve::resolve_scene;
 
     const REFERENCE: &str = include_str!("../../scenes/reference.toml");
 

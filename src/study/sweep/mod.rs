@@ -34,8 +34,9 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::resolve::{Resolved, resolve_scene};
 use crate::run::{RunOutput, run};
-use crate::scene::{CarrierKind, Discretization, Resolved, resolve_scene};
+use crate::scene::{CarrierKind, Discretization};
 
 pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
 

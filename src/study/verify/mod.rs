@@ -40,10 +40,10 @@ use super::grid::{Reach, nest, observed_order};
 use super::reference::{Exact, exact};
 use crate::error::{Error, Result};
 use crate::integrate::{MethodFactory, central_difference_limit};
+use crate::resolve::Resolved;
 use crate::run::{RunOutput, run_with};
 use crate::scene::{
-    CarrierKind, Formulation, GradingKind, MeshKind, Resolved, Scene, Scheme, Support,
-    scene_with_overrides,
+    CarrierKind, Formulation, GradingKind, MeshKind, Scene, Scheme, Support, scene_with_overrides,
 };
 
 /// Largest share of the finest error the fixed variables may make (step 3

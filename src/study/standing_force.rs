@@ -15,7 +15,8 @@
 use crate::error::{Error, Result};
 use crate::model::beam::{Basis, BeamModel};
 use crate::model::eigen::{MAX_MODAL_DOFS, lowest_eigenpairs};
-use crate::scene::{CarrierKind, Resolved};
+use crate::resolve::Resolved;
+use crate::scene::CarrierKind;
 
 /// The modal solution of one scene's model.
 #[derive(Debug, Clone)]
@@ -31,7 +32,7 @@ impl StandingForce {
     /// Build the model of `sc` and its eigenpairs (dense: at most
     /// [`MAX_MODAL_DOFS`] unknowns).
     pub fn new(sc: &Resolved) -> Result<Self> {
-        let beam = BeamModel::from_scene(sc)?;
+        let beam = BeamModel::build(&sc.beam, &sc.mesh_plan())?;
         let n = beam.n;
         if n > MAX_MODAL_DOFS {
             return Err(Error::invalid(

@@ -9,8 +9,29 @@
 //! carriers) — never started.
 
 use crate::error::{Error, Result};
-use crate::integrate::rhs_columns;
-use crate::record::stats::{EVENT_BYTES, event_capacity};
+use crate::model::banded::rhs_columns;
+
+/// Bytes of one stored contact event of a carrier: its loss interval in
+/// x/L and in t (two `[f64; 2]`, 32), the interval's class (1) and a
+/// re-contact (80: seven f64 or usize, an `Option<f64>` and a flag, padded
+/// to 8) of the record layer's statistics (`record::stats`); a run reserves
+/// room for [`event_capacity`] of them per carrier before its first step.
+/// `record/stats.rs` asserts at compile time that its types take exactly
+/// this, so the plan cannot drift from them.
+pub const EVENT_BYTES: u64 = 113;
+
+/// Most loss intervals and re-contacts a run stores one by one (they are
+/// all counted): a contact that chatters every step over 10⁹ steps would
+/// otherwise hold gigabytes of intervals.
+pub const MAX_STORED_EVENTS: usize = 10_000;
+
+/// The most loss intervals (and re-contacts) a run of `steps` steps can
+/// store per carrier: an interval needs a lost step, and two intervals a
+/// closed step between them, so at most ⌈steps/2⌉; and at most
+/// [`MAX_STORED_EVENTS`] are stored.
+pub fn event_capacity(steps: usize) -> usize {
+    steps.div_ceil(2).min(MAX_STORED_EVENTS)
+}
 
 /// Largest memory one run may plan to use, bytes (2 GiB). A fixed number,
 /// not the machine's free memory, so that a scene is accepted or refused the

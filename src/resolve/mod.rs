@@ -1,0 +1,113 @@
+//! The resolve layer: a parsed [`Scene`] (plain data, its own range checks
+//! in `crate::scene`) turned into what a run needs, a [`Resolved`] set of
+//! physical parameters, with the checks of combinations that need more than
+//! the scene: the mesh against the model's bounds ([`mesh`]), the
+//! manufactured solution's and the declared reference's assumptions
+//! ([`reference`], `crate::manufactured`), the method's own check of the
+//! contact settings and basis (its `MethodInfo`), and the memory plan
+//! ([`memory`]).
+//!
+//! It stands above the model, the references and the contact laws, and
+//! below the integrators, which run a `Resolved`. [`Scene::validate`] is
+//! defined here, so that the scene's own module imports nothing above it.
+
+pub mod memory;
+pub mod mesh;
+pub mod reference;
+mod resolved;
+
+use std::path::Path;
+
+pub use memory::{
+    EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
+    PLOT_BUCKETS, check_budget, estimate as estimate_memory, event_capacity, history_rows,
+};
+pub use mesh::{MAX_GALERKIN_MODES, resolve_mesh};
+pub use reference::declared_reference;
+pub use resolved::Resolved;
+
+use crate::error::Result;
+use crate::manufactured::{Manufactured, Setting};
+use crate::scene::{Scene, in_file, read_scene, scene_with_overrides, validate_contact};
+
+impl Scene {
+    /// Check every value and resolve the physical parameters: the scene's
+    /// own checks (`crate::scene`) and the combinations that need the
+    /// model, the references or the memory plan, in one fixed order (the
+    /// first fault found is the one reported).
+    pub fn validate(&self) -> Result<Resolved> {
+        let beam = self.resolve_beam()?;
+        let l = beam.length;
+        let elements = self.elements()?;
+        let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
+        let carriers = self.resolve_carriers(l)?;
+
+        let scheme = self.integrator.scheme()?;
+        let g = self.gravity_g()?;
+        validate_contact(&self.contact)?;
+        // the method's own check of the contact settings and basis
+        self.integrator
+            .method_info()?
+            .accepts(&self.contact, discretization)?;
+
+        let time = self.resolve_time(&carriers, l)?;
+        let (dt, t_end, steps) = (time.dt, time.t_end, time.steps);
+        let probes = self.resolve_probes(l)?;
+        let record_every = self.record_every()?;
+        let manufactured = match &self.manufactured {
+            None => None,
+            Some(spec) => Some(Manufactured::new(
+                spec,
+                Setting {
+                    beam: &beam,
+                    carriers: &carriers,
+                    contact: self.contact.kind,
+                    g,
+                    t_end,
+                    steps,
+                },
+            )?),
+        };
+        let reference = declared_reference(self, &beam, &carriers)?;
+
+        let resolved = Resolved {
+            manufactured,
+            reference,
+            scene: self.clone(),
+            beam,
+            carriers,
+            elements,
+            discretization,
+            grading,
+            contact: self.contact.clone(),
+            integrator: self.integrator.clone(),
+            scheme,
+            g,
+            dt,
+            steps,
+            t_end,
+            probes,
+            record_every,
+        };
+        check_budget(
+            &resolved.memory_estimate(),
+            steps,
+            record_every,
+            elements,
+            resolved.carriers.len(),
+            resolved.probes.len(),
+        )?;
+        Ok(resolved)
+    }
+}
+
+/// Parse scene text, apply overrides in order, deserialize and validate.
+pub fn resolve_scene(text: &str, overrides: &[String]) -> Result<Resolved> {
+    scene_with_overrides(text, overrides)?.validate()
+}
+
+/// Read a scene file, apply overrides, deserialize and validate.
+pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Resolved> {
+    let text = read_scene(path)?;
+    resolve_scene(&text, overrides).map_err(|e| in_file(e, path))
+}

@@ -1,0 +1,145 @@
+//! A resolved scene: the physical parameters and plans a run is built from
+//! (what [`Scene::validate`] returns), with the quantities derived from
+//! them: the resolved length, the memory estimate, the history's rows.
+
+use super::memory;
+use crate::error::{Error, Result};
+use crate::manufactured::Manufactured;
+use crate::model::mesh::Mesh;
+use crate::scene::{
+    BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Grading,
+    IntegratorSpec, MeshPlan, Scene, Scheme, fe_unknowns,
+};
+
+/// A validated scene: physical parameters ready to build a model from.
+#[derive(Debug, Clone)]
+pub struct Resolved {
+    /// The scene as given (after overrides).
+    pub scene: Scene,
+    /// Beam properties.
+    pub beam: BeamProps,
+    /// Carriers, in scene order.
+    pub carriers: Vec<CarrierProps>,
+    /// Number of elements N (`mesh.elements`).
+    pub elements: usize,
+    /// The space discretization (`mesh.kind`, MODEL §9.2).
+    pub discretization: Discretization,
+    /// The mesh grading (`mesh.grading`).
+    pub grading: Grading,
+    /// Contact settings.
+    pub contact: ContactSpec,
+    /// `[integrator]` as given.
+    pub integrator: IntegratorSpec,
+    /// The time integrator with its parameters resolved (MODEL §9.1).
+    pub scheme: Scheme,
+    /// Gravity on carrier masses, m/s².
+    pub g: f64,
+    /// Time step Δt, s.
+    pub dt: f64,
+    /// Number of steps.
+    pub steps: usize,
+    /// The run's end time `time.end`, s: as given, or when the first moving
+    /// carrier leaves the beam (the run stops at the last whole step before it).
+    pub t_end: f64,
+    /// Probes: (name, x in m).
+    pub probes: Vec<(String, f64)>,
+    /// The history records row 0, every `record_every`-th step and the last
+    /// step (`output.record_every`, ≥ 1); statistics use every step.
+    pub record_every: usize,
+    /// The manufactured solution of a scene with `[manufactured]` (MODEL §11).
+    pub manufactured: Option<Manufactured>,
+    /// The reference the scene declares (`[reference]`, or the manufactured
+    /// solution), its assumptions checked.
+    pub reference: Declared,
+}
+
+impl Resolved {
+    /// The length the space discretization resolves, m: h = L/N on a
+    /// uniform mesh, the longest element of a graded one (the coarsest
+    /// place), L/J for a `galerkin` basis of J modes (the half-wavelength
+    /// of its last mode), and the larger of the mesh's and L/J for `modal`.
+    /// Resolution checks and the contact-loss support zone use it.
+    pub fn resolution(&self) -> f64 {
+        let l = self.beam.length;
+        let mesh = || match self.grading {
+            Grading::Uniform => l / self.elements as f64,
+            g => Mesh::new(l, self.elements, g).map_or(l / self.elements as f64, |m| m.h_max()),
+        };
+        match self.discretization {
+            Discretization::Hermite => mesh(),
+            Discretization::Galerkin { modes } => l / modes as f64,
+            Discretization::Modal { modes } => mesh().max(l / modes as f64),
+        }
+    }
+
+    /// The mesh plan the model is built from
+    /// (`model::beam::BeamModel::build`).
+    pub fn mesh_plan(&self) -> MeshPlan {
+        MeshPlan {
+            elements: self.elements,
+            discretization: self.discretization,
+            grading: self.grading,
+        }
+    }
+
+    /// The unknowns of the space discretization's FE mesh (before a modal
+    /// truncation): the most modes a `modal` basis can take.
+    pub fn beam_unknowns(&self) -> usize {
+        fe_unknowns(&self.beam, self.elements)
+    }
+
+    /// The memory the run is estimated to need (history, model, a modal
+    /// basis's eigenproblem) and the size of its `history.csv`: what
+    /// validation checks against the budgets and what a run reserves from
+    /// the process's budget while it runs ([`crate::budget`]).
+    pub fn memory_estimate(&self) -> memory::MemoryEstimate {
+        let (per_node, half_band) = if self.beam.is_string() {
+            (1, 1)
+        } else {
+            (2, 3)
+        };
+        let masses = self
+            .carriers
+            .iter()
+            .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
+            .count();
+        let mut need = memory::estimate(
+            self.steps,
+            self.record_every,
+            self.elements,
+            per_node,
+            half_band,
+            self.carriers.len(),
+            masses,
+            self.probes.len(),
+        );
+        if let Discretization::Modal { modes } = self.discretization {
+            need.model = need.model.saturating_add(memory::modal_bytes(
+                fe_unknowns(&self.beam, self.elements),
+                modes,
+            ));
+        }
+        need
+    }
+
+    /// Rows the run's history will hold.
+    pub fn history_rows(&self) -> usize {
+        memory::history_rows(self.steps, self.record_every)
+    }
+
+    /// Refuse a scene that records only every K-th step (K > 1), for a study
+    /// (`what`) that reads the history step by step.
+    pub fn require_every_step(&self, what: &str) -> Result<()> {
+        if self.record_every == 1 {
+            Ok(())
+        } else {
+            Err(Error::invalid(
+                "output.record_every",
+                self.record_every,
+                format!(
+                    "{what} reads the history at every step: must be 1 (leave out [output] record_every)"
+                ),
+            ))
+        }
+    }
+}
