@@ -3,9 +3,9 @@
 //! reference for multi-mass carriers (MODEL §10), built before them.
 //!
 //! The model is the lumped-mass pantograph used in this field (the
-//! "three-mass model" of EN 50318's reference pantograph and of e.g. Pombo &
-//! Ambrósio 2012; two masses for head and frame when the upper arm is
-//! lumped): masses in series, numbered as in MODEL §10 from the head m₁
+//! "three-mass model" as used for EN 50318's reference pantograph and by
+//! e.g. Pombo & Ambrósio 2012 — cited from memory, the standard's text not
+//! checked; two masses for head and frame when the upper arm is lumped): masses in series, numbered as in MODEL §10 from the head m₁
 //! (in contact) down to m_n (the frame); spring k_i and dashpot c_i between
 //! m_i and m_{i+1}, and k_n, c_n from m_n to the roof; the static uplift F₀
 //! acts on m_n. Displacements z_i are positive up, from the unloaded

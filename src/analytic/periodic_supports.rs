@@ -63,6 +63,11 @@
 //!               M_n = sin(njπ/N) solve the three-moment recurrence with
 //!               M_0 = M_N = 0): N frequencies per band.
 //! ```
+//!
+//! The rigid-beam roots are bisected between the band's edges, which
+//! assumes L5 monotone within a band (true of the bands checked against
+//! Hermite elements in the tests; a non-monotone band would return one root
+//! per target, not all).
 
 use nalgebra::SMatrix;
 
