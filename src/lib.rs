@@ -24,6 +24,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod analytic;
+pub mod app;
 pub mod budget;
 pub mod contact;
 pub mod error;
