@@ -269,16 +269,15 @@ fn main() -> Result<()> {
 
     // side by side on the study's reference case, as `taut compare
     // --methods backward_euler,generalized_alpha --formulations lagrange
-    // --batch 1` asks for it: the same request, parsed from the same words
-    let request = taut::study::request::CompareRequest {
-        formulations: "lagrange".into(),
-        methods: Some("backward_euler,generalized_alpha".into()),
-        discretizations: None,
-        reference: "lagrange".into(),
-        reference_method: Some("generalized_alpha".into()),
-        batch: Some(1),
-        yes: false,
-    };
+    // --batch 1` asks for it: the same typed request, made from the same
+    // words by the same edge (`taut::app::words`)
+    let request = taut::app::words::compare(
+        "lagrange",
+        (Some("backward_euler,generalized_alpha"), None),
+        ("lagrange", Some("generalized_alpha")),
+        Some(1),
+        false,
+    )?;
     let c = request.run(reference, &[], &mut |_, _| {})?;
     print!("{}", taut::report::compare_table(&c));
     taut::report::write_compare(&out.join("compare"), &c)?;

@@ -1,4 +1,8 @@
-//! The `taut` command line: a thin layer over the library.
+//! The `taut` command line: a thin layer over the library's application
+//! layer ([`taut::app`]). Each subcommand reads its arguments (the clap
+//! structs below; counts and lists checked at this edge, with the library's
+//! messages), makes the typed request, calls `taut::app::<command>` and
+//! prints the outcome ([`taut::app::terminal`]).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -6,12 +10,9 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use taut::report::{
-    Summary, compare_table, converge_table, gate_table, write_compare, write_converge, write_gate,
-    write_run, write_sweep,
-};
-use taut::study::converge::Refine;
-use taut::{load_scene, run};
+use taut::app::{self, Frontend, Note, SceneSource, terminal};
+use taut::report::{compare_table, converge_table, gate_table};
+use taut::study::request::ConvergeOutcome;
 
 /// taut: dynamic contact of a tensioned beam and a moving mass–spring.
 #[derive(Parser)]
@@ -296,23 +297,14 @@ fn main() -> ExitCode {
             set,
             out,
             quiet,
-            tolerance: Some(tol),
+            tolerance,
             quantity,
-        } => cmd_run_tolerance(scene, set, out, quiet, &tol, quantity.as_deref()),
-        Command::Run {
-            scene,
-            set,
-            out,
-            quiet,
-            tolerance: None,
-            ..
-        } => cmd_run(scene, set, out, quiet),
+        } => cmd_run(scene, set, out, quiet, tolerance, quantity).map(|()| true),
         Command::Replay {
             problem,
             max_iter,
             solver,
-        } => max_iter_arg(max_iter)
-            .and_then(|max_iter| cmd_replay(&problem, max_iter, solver.as_deref())),
+        } => cmd_replay(problem, max_iter, solver).map(|()| true),
         Command::Sweep {
             scene,
             vary,
@@ -325,7 +317,7 @@ fn main() -> ExitCode {
             batch,
             quiet,
             yes,
-        } => match cmd_sweep(
+        } => cmd_sweep(
             scene,
             (&vary, log, check_refinement),
             set,
@@ -333,11 +325,7 @@ fn main() -> ExitCode {
             shard.as_deref(),
             (threads, batch),
             (quiet, yes),
-        ) {
-            Ok(true) => Ok(()),
-            Ok(false) => return ExitCode::from(1),
-            Err(e) => Err(e),
-        },
+        ),
         Command::Verify {
             methods,
             discretizations,
@@ -346,28 +334,18 @@ fn main() -> ExitCode {
             threads,
             out,
             quiet,
-        } => match threads_arg(threads).and_then(|threads| {
-            cmd_verify(
-                (
-                    methods.as_deref(),
-                    discretizations.as_deref(),
-                    formulations.as_deref(),
-                ),
-                quick,
-                threads,
-                out,
-                quiet,
-            )
-        }) {
-            Ok(true) => Ok(()),
-            Ok(false) => return ExitCode::from(1),
-            Err(e) => Err(e),
-        },
-        Command::Merge { shards, out } => match cmd_merge(&shards, &out) {
-            Ok(true) => Ok(()),
-            Ok(false) => return ExitCode::from(1),
-            Err(e) => Err(e),
-        },
+        } => cmd_verify(
+            (
+                methods.as_deref(),
+                discretizations.as_deref(),
+                formulations.as_deref(),
+            ),
+            quick,
+            threads,
+            out,
+            quiet,
+        ),
+        Command::Merge { shards, out } => cmd_merge(&shards, &out),
         Command::Precision {
             scene,
             formulations,
@@ -380,31 +358,26 @@ fn main() -> ExitCode {
             out,
             quiet,
             yes,
-        } => precision_levels_arg(levels, ratio).and_then(|(levels, ratio)| {
-            cmd_precision(
-                scene,
-                (
-                    &formulations,
-                    methods.as_deref(),
-                    discretizations.as_deref(),
-                ),
-                (levels, ratio, batch),
-                set,
-                out,
-                (quiet, yes),
-            )
-        }),
+        } => cmd_precision(
+            scene,
+            (
+                &formulations,
+                methods.as_deref(),
+                discretizations.as_deref(),
+            ),
+            (levels, ratio, batch),
+            set,
+            out,
+            (quiet, yes),
+        )
+        .map(|()| true),
         Command::Gate {
             suite,
             out,
             update,
             batch,
             quiet,
-        } => match cmd_gate(&suite, out, (update, batch), quiet) {
-            Ok(true) => Ok(()),
-            Ok(false) => return ExitCode::from(1),
-            Err(e) => Err(e),
-        },
+        } => cmd_gate(suite, out, (update, batch), quiet),
         Command::Converge {
             scene,
             refine,
@@ -416,17 +389,16 @@ fn main() -> ExitCode {
             out,
             quiet,
             yes,
-        } => converge_levels_arg(levels, ratio).and_then(|(levels, ratio)| {
-            cmd_converge(
-                scene,
-                &refine,
-                (levels, ratio),
-                (methods.as_deref(), discretizations.as_deref()),
-                set,
-                out,
-                (quiet, yes),
-            )
-        }),
+        } => cmd_converge(
+            scene,
+            &refine,
+            (levels, ratio),
+            (methods.as_deref(), discretizations.as_deref()),
+            set,
+            out,
+            (quiet, yes),
+        )
+        .map(|()| true),
         Command::Compare {
             scene,
             formulations,
@@ -439,7 +411,7 @@ fn main() -> ExitCode {
             out,
             quiet,
             yes,
-        } => match cmd_compare(
+        } => cmd_compare(
             scene,
             &formulations,
             (methods.as_deref(), discretizations.as_deref()),
@@ -447,14 +419,12 @@ fn main() -> ExitCode {
             set,
             out,
             (quiet, yes),
-        ) {
-            Ok(true) => Ok(()),
-            Ok(false) => return ExitCode::from(1),
-            Err(e) => Err(e),
-        },
+        ),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(true) => ExitCode::SUCCESS,
+        // tables were written, but a run, point, row or check failed
+        Ok(false) => ExitCode::from(1),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE
@@ -552,47 +522,72 @@ fn default_dir(scene: &Path, suffix: &str) -> PathBuf {
     PathBuf::from("out").join(format!("{}{suffix}", stem.unwrap_or_else(|| "run".into())))
 }
 
-fn progress_bar(len: usize, unit: &str, quiet: bool) -> ProgressBar {
-    if quiet {
-        return ProgressBar::hidden();
-    }
-    let b = ProgressBar::new(len as u64);
-    let template = format!(
-        "{{spinner}} [{{elapsed_precise}}] {{bar:40}} {{pos}}/{{len}} {unit} ({{eta}} left)"
-    );
-    b.set_style(ProgressStyle::with_template(&template).expect("valid template"));
-    b
+/// The terminal as the application layer's front end: a progress bar
+/// (hidden with `--quiet`) and notes on stderr.
+struct Terminal {
+    bar: ProgressBar,
 }
 
-/// Remove the outputs an earlier command of this kind left in `dir`, saying
-/// so on stderr: a folder holds one run's outputs (report::outputs).
-fn fresh(dir: &Path, kind: taut::report::Outputs) -> taut::Result<()> {
-    let removed = taut::report::clear_earlier(dir, kind)?;
-    if let Some(note) = taut::report::cleared_note(dir, &removed) {
-        eprintln!("{note}");
-    }
-    Ok(())
-}
-
-/// Refuse a study above the cost bound unless `yes` (study::cost); with
-/// `yes`, say on stderr what is being started.
-fn started(estimate: &taut::study::cost::Estimate, yes: bool) -> taut::Result<()> {
-    estimate.check(yes)?;
-    if estimate.over() {
-        eprintln!(
-            "note: {} (above the bound; --yes given)",
-            estimate.describe()
+impl Terminal {
+    fn new(unit: &str, quiet: bool) -> Terminal {
+        if quiet {
+            return Terminal {
+                bar: ProgressBar::hidden(),
+            };
+        }
+        let bar = ProgressBar::new(0);
+        let template = format!(
+            "{{spinner}} [{{elapsed_precise}}] {{bar:40}} {{pos}}/{{len}} {unit} ({{eta}} left)"
         );
+        bar.set_style(ProgressStyle::with_template(&template).expect("valid template"));
+        Terminal { bar }
     }
-    Ok(())
+
+    /// Run `command` with this front end, the bar cleared after it.
+    fn run<R>(&self, command: impl FnOnce(&dyn Frontend) -> R) -> R {
+        let r = command(self);
+        self.bar.finish_and_clear();
+        r
+    }
 }
 
-/// Save a failing contact problem next to the outputs so it can be replayed.
-fn save_failure(dir: &Path, e: taut::Error) -> taut::Error {
-    if let Some(path) = taut::report::save_failed_contact(dir, &e) {
-        eprintln!("saved the failing contact problem to {}", path.display());
+impl Frontend for Terminal {
+    fn progress(&self, done: usize, total: usize) {
+        self.bar.set_length(total as u64);
+        self.bar.set_position(done as u64);
     }
-    e
+
+    fn note(&self, note: Note<'_>) {
+        self.bar.suspend(|| match note {
+            Note::Cleared(text) => eprintln!("{text}"),
+            Note::AboveBound(e) => {
+                eprintln!("note: {} (above the bound; --yes given)", e.describe())
+            }
+            Note::FailureSaved(path) => {
+                eprintln!("saved the failing contact problem to {}", path.display())
+            }
+        });
+    }
+}
+
+/// A study of the scene file `scene` with overrides `set`, its outputs in
+/// `out` (default: out/<scene stem><suffix>), run by `command` with a
+/// progress bar of runs; returns its outcome and output folder.
+fn on_scene<S, R>(
+    (scene, set, out, suffix): (&Path, Vec<String>, Option<PathBuf>, &str),
+    study: S,
+    quiet: bool,
+    command: fn(&app::StudyRequest<S>, &dyn Frontend) -> taut::Result<R>,
+) -> taut::Result<(R, PathBuf)> {
+    let dir = out.unwrap_or_else(|| default_dir(scene, suffix));
+    let request = app::StudyRequest {
+        scene: SceneSource::File(scene.to_path_buf()),
+        set,
+        study,
+        out: Some(dir),
+    };
+    let outcome = Terminal::new("runs", quiet).run(|fe| command(&request, fe))?;
+    Ok((outcome, request.out.expect("given")))
 }
 
 fn cmd_run(
@@ -600,99 +595,50 @@ fn cmd_run(
     set: Vec<String>,
     out: Option<PathBuf>,
     quiet: bool,
+    tolerance: Option<String>,
+    quantity: Option<String>,
 ) -> taut::Result<()> {
+    let tolerance = tolerance
+        .map(|t| app::words::tolerance(&t, quantity.as_deref()))
+        .transpose()?;
     let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
-    fresh(&dir, taut::report::Outputs::Run)?;
-    let sc = load_scene(&scene, &set)?;
-    let bar = progress_bar(sc.steps, "steps", quiet);
-    let output = run(&sc, &mut |done, _| bar.set_position(done as u64));
-    bar.finish_and_clear();
-    let output = output.map_err(|e| save_failure(&dir, e))?;
-    let summary = write_run(&dir, &sc, &output)?;
-    print_summary(&scene, &dir, &summary, None);
-    Ok(())
-}
-
-/// `taut run --tolerance`: pilots, model, the chosen run, estimates.
-fn cmd_run_tolerance(
-    scene: PathBuf,
-    set: Vec<String>,
-    out: Option<PathBuf>,
-    quiet: bool,
-    tolerance: &str,
-    quantity: Option<&str>,
-) -> taut::Result<()> {
-    use taut::study::tolerance::{Quantity, parse_tolerance, tolerance_run};
-    let quantity: Quantity = quantity.unwrap_or("force").parse()?;
-    let tol = parse_tolerance(tolerance)?;
-    let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
-    fresh(&dir, taut::report::Outputs::Run)?;
-    let text = taut::scene::read_scene(&scene)?;
-    let bar = progress_bar(6, "runs", quiet);
-    let result = tolerance_run(&text, &set, quantity, tol, &mut |done, _| {
-        bar.set_position(done as u64)
-    });
-    bar.finish_and_clear();
-    let r = result
-        .map_err(|e| taut::scene::in_file(e, &scene))
-        .map_err(|e| save_failure(&dir, e))?;
-    let summary = taut::report::write_tolerant_run(&dir, &r)?;
-    print_summary(&scene, &dir, &summary, Some(&r.accuracy));
+    let request = app::RunRequest {
+        scene: SceneSource::File(scene.clone()),
+        set,
+        out: Some(dir.clone()),
+        tolerance,
+    };
+    let unit = if tolerance.is_some() { "runs" } else { "steps" };
+    let outcome = Terminal::new(unit, quiet).run(|fe| app::run(&request, fe))?;
+    print!(
+        "{}",
+        terminal::summary(&scene, &dir, &outcome.summary, outcome.accuracy.as_ref())
+    );
     Ok(())
 }
 
 fn cmd_converge(
     scene: PathBuf,
     refine: &str,
-    (levels, ratio): (usize, f64),
-    (methods, discretizations): (Option<&str>, Option<&str>),
+    (levels, ratio): (String, String),
+    words: (Option<&str>, Option<&str>),
     set: Vec<String>,
     out: Option<PathBuf>,
     (quiet, yes): (bool, bool),
 ) -> taut::Result<()> {
-    use taut::study::request::{ConvergeOutcome, ConvergeRequest};
-    let request = ConvergeRequest {
-        refine: refine.to_string(),
-        levels,
-        ratio,
-        methods: methods.map(str::to_string),
-        discretizations: discretizations.map(str::to_string),
-        yes,
-    };
-    let refine: Refine = refine.parse()?;
-    let dir = out.unwrap_or_else(|| default_dir(&scene, "-converge"));
-    fresh(&dir, taut::report::Outputs::Converge)?;
-    let text = taut::scene::read_scene(&scene)?;
-    started(
-        &request
-            .estimate(&text, &set)
-            .map_err(|e| taut::scene::in_file(e, &scene))?,
-        yes,
-    )?;
-    let bar = progress_bar(request.runs()?, "runs", quiet);
-    let result = request.run(&text, &set, &mut |done, _| bar.set_position(done as u64));
-    bar.finish_and_clear();
-    let kind = format!("converge ({refine:?}, r = {ratio})");
-    let outcome = result
-        .map_err(|e| taut::scene::in_file(e, &scene))
-        .map_err(|e| save_failure(&dir, e))?;
-    let table = match outcome {
-        ConvergeOutcome::One(c) => {
-            write_converge(&dir, &c)?;
-            converge_table(&c)
-        }
+    let (levels, ratio) = converge_levels_arg(levels, ratio)?;
+    let study = app::words::converge(refine, (levels, ratio), words, yes)?;
+    let kind = format!("converge ({:?}, r = {ratio})", study.refine);
+    let place = (scene.as_path(), set, out, "-converge");
+    let (outcome, dir) = on_scene(place, study, quiet, app::converge)?;
+    let table = match &outcome {
+        ConvergeOutcome::One(c) => converge_table(c),
         ConvergeOutcome::Variants { studies, skipped } => {
-            taut::report::write_converge_methods(&dir, &studies, &skipped)?;
-            taut::report::converge_methods_table(&studies, &skipped)
+            taut::report::converge_methods_table(studies, skipped)
         }
     };
-    print_study(
-        &kind,
-        &scene,
-        &table,
-        &dir,
-        "converge.csv, converge.json, converge.svg",
-    );
+    let files = "converge.csv, converge.json, converge.svg";
+    print!("{}", terminal::study(&kind, &scene, &table, &dir, files));
     Ok(())
 }
 
@@ -700,72 +646,60 @@ fn cmd_converge(
 fn cmd_verify(
     (methods, spaces, formulations): (Option<&str>, Option<&str>, Option<&str>),
     quick: bool,
-    threads: Option<usize>,
+    threads: Option<String>,
     out: Option<PathBuf>,
     quiet: bool,
 ) -> taut::Result<bool> {
-    use taut::study::verify::{any_failed, cases::CASES, selection, verify};
-    let sel = selection(methods, spaces, formulations, quick)?;
-    taut::study::threads::start_pool(threads)?;
-    let bar = progress_bar(0, "combinations", quiet);
-    let start = std::time::Instant::now();
-    let rows = verify(&CASES, &sel, &|done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64)
-    });
-    bar.finish_and_clear();
-    let rows = rows?;
-    let wall = start.elapsed().as_secs_f64();
-    let dir = out.unwrap_or_else(|| PathBuf::from("out").join("verify"));
-    taut::report::write_verify(&dir, &rows, wall)?;
+    let threads = threads_arg(threads)?;
+    let request = app::VerifyRequest {
+        selection: taut::study::verify::selection(methods, spaces, formulations, quick)?,
+        threads,
+        out: out.unwrap_or_else(|| PathBuf::from("out").join("verify")),
+    };
+    let v = Terminal::new("combinations", quiet).run(|fe| app::verify(&request, fe))?;
     println!(
-        "taut {} — verify ({} rows, {wall:.1} s on {} threads)",
+        "taut {} — verify ({} rows, {:.1} s on {} threads)",
         env!("CARGO_PKG_VERSION"),
-        rows.len(),
-        rayon::current_num_threads()
+        v.rows.len(),
+        v.wall_seconds,
+        v.threads
     );
-    print!("{}", taut::report::verify_table(&rows));
+    print!("{}", taut::report::verify_table(&v.rows));
     println!(
         "  wrote    {}/{{verify.csv, verify.json, verify.md}}",
-        dir.display()
+        request.out.display()
     );
-    Ok(!any_failed(&rows))
+    Ok(v.passed)
 }
 
 /// Returns whether the gate passed.
 fn cmd_gate(
-    suite: &Path,
+    suite: PathBuf,
     out: Option<PathBuf>,
     (update, batch): (bool, Option<String>),
     quiet: bool,
 ) -> taut::Result<bool> {
-    let batch = taut::study::request::batch_lanes(batch_arg(batch)?)?;
-    let dir = out.unwrap_or_else(|| PathBuf::from("out").join("gate"));
-    fresh(&dir, taut::report::Outputs::Gate)?;
-    let n = taut::study::gate::case_files(suite)?.len();
-    let bar = progress_bar(n, "cases", quiet);
-    let report = taut::study::gate::gate_batched(suite, update, batch, &mut |done, _, _| {
-        bar.set_position(done as u64)
-    });
-    bar.finish_and_clear();
-    let report = report?;
-    write_gate(&dir, &report)?;
+    let request = app::GateRequest {
+        batch: taut::study::request::batch_lanes(batch_arg(batch)?)?,
+        suite,
+        out: out.unwrap_or_else(|| PathBuf::from("out").join("gate")),
+        update,
+    };
+    let g = Terminal::new("cases", quiet).run(|fe| app::gate(&request, fe))?;
     println!(
         "taut {} — gate {}",
         env!("CARGO_PKG_VERSION"),
-        suite.display()
+        request.suite.display()
     );
-    print!("{}", gate_table(&report, update));
-    println!("  wrote    {}/{{gate.json, junit.xml}}", dir.display());
-    // an update accepts the new values: it passes unless a case could not run
-    Ok(if update {
-        report.errors.is_empty() && !report.checks.is_empty()
-    } else {
-        report.passed()
-    })
+    print!("{}", gate_table(&g.report, update));
+    println!(
+        "  wrote    {}/{{gate.json, junit.xml}}",
+        request.out.display()
+    );
+    Ok(g.passed)
 }
 
-#[allow(clippy::too_many_arguments)]
+/// Returns whether every point ran (the tables are written either way).
 fn cmd_sweep(
     scene: PathBuf,
     (vary, log, check_refinement): (&[String], bool, bool),
@@ -775,263 +709,142 @@ fn cmd_sweep(
     (threads, batch): (Option<String>, Option<String>),
     (quiet, yes): (bool, bool),
 ) -> taut::Result<bool> {
-    use taut::study::sweep::{Axis, Shard, SweepSpec, claim, sweep_batched};
     let threads = threads_arg(threads)?;
     let batch = taut::study::request::batch_width(batch_arg(batch)?)?;
-    let axes = vary
-        .iter()
-        .map(|v| Axis::parse(v, log))
-        .collect::<taut::Result<Vec<_>>>()?;
-    let shard = shard.map(Shard::parse).transpose()?;
-    let scene_text = taut::scene::read_scene(&scene)?;
-    let spec = SweepSpec {
-        scene_text,
+    let axes = app::words::axes(vary, log)?;
+    let shard = shard.map(taut::study::sweep::Shard::parse).transpose()?;
+    let request = app::SweepRequest {
+        scene: SceneSource::File(scene.clone()),
         set,
         axes,
         check_refinement,
+        out: out.unwrap_or_else(|| default_dir(&scene, "-sweep")),
+        files: true,
+        shard,
+        threads,
+        batch,
+        yes,
     };
-    let dir = out.unwrap_or_else(|| default_dir(&scene, "-sweep"));
-    // bounded, and a pool that cannot start is an error, not a panic
-    taut::study::threads::start_pool(threads)?;
-    let bar = progress_bar(spec.len(), "runs", quiet);
-    let start = std::time::Instant::now();
-    spec.validate()
-        .map_err(|e| taut::scene::in_file(e, &scene))?;
-    started(&spec.estimate(shard)?, yes)?;
-    let claimed = claim(&dir)?;
-    // tables and maps of this sweep only: a folder holding another sweep is
-    // refused (by check_spec) with its tables left as they are
-    taut::study::sweep::folder::check_spec(&dir, &spec)?;
-    fresh(&dir, taut::report::Outputs::Sweep)?;
-    // the first report says how many points an earlier start had finished
-    let resumed = std::sync::OnceLock::new();
-    let records = sweep_batched(&claimed, &spec, shard, batch, &|done, total| {
-        resumed.get_or_init(|| done);
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
-    bar.finish_and_clear();
-    let records = records?;
-    write_sweep(&dir, &spec, &records)?;
-    let maps = taut::report::write_sweep_maps(&dir, &spec, &records)?;
-    let wall = start.elapsed().as_secs_f64();
-    let failed = stopped_points(&records);
+    let s = Terminal::new("runs", quiet).run(|fe| app::sweep(&request, fe))?;
     println!(
         "taut {} — sweep {}",
         env!("CARGO_PKG_VERSION"),
         scene.display()
     );
-    let resumed = resumed.get().copied().unwrap_or(0);
-    let ran = records.len() - resumed.min(records.len());
+    let ran = s.records.len() - s.resumed.min(s.records.len());
     println!(
-        "  {} runs{}{} in {wall:.2} s wall ({:.2} runs/s, {} threads); {failed} stopped with an error",
-        records.len(),
+        "  {} runs{}{} in {:.2} s wall ({:.2} runs/s, {} threads); {} stopped with an error",
+        s.records.len(),
         shard.map_or(String::new(), |s| format!(
             " (shard {}/{})",
             s.index, s.count
         )),
-        if resumed > 0 {
-            format!(" ({ran} run now, {resumed} kept from an earlier start)")
+        if s.resumed > 0 {
+            format!(" ({ran} run now, {} kept from an earlier start)", s.resumed)
         } else {
             String::new()
         },
-        ran as f64 / wall.max(1e-9),
-        rayon::current_num_threads()
+        s.wall_seconds,
+        ran as f64 / s.wall_seconds.max(1e-9),
+        s.threads,
+        s.stopped()
     );
     println!(
         "  wrote    {}/{{sweep.csv, sweep_force.csv, sweep_loss.csv, timing.csv, runs/}}",
-        dir.display()
+        request.out.display()
     );
-    print_maps(&maps, shard.is_some());
-    report_stopped(&records);
-    Ok(failed == 0)
+    print!("{}", terminal::maps(&s.maps, shard.is_some()));
+    eprint!("{}", terminal::stopped(&s.records));
+    Ok(s.stopped() == 0)
 }
 
-/// Number of sweep points whose run stopped with an error.
-fn stopped_points(records: &[taut::study::sweep::SweepRecord]) -> usize {
-    records.iter().filter(|r| r.error.is_some()).count()
-}
-
-/// Most stopped points a sweep names on the terminal (all are in sweep.csv).
-const STOPPED_SHOWN: usize = 5;
-
-/// Name the points of a sweep whose run stopped, on stderr: the tables and
-/// maps are written, and the exit status (1) says some points failed.
-fn report_stopped(records: &[taut::study::sweep::SweepRecord]) {
-    let stopped: Vec<_> = records.iter().filter(|r| r.error.is_some()).collect();
-    if stopped.is_empty() {
-        return;
-    }
-    eprintln!(
-        "{} of {} points stopped with an error; their rows in sweep.csv carry it (column \
-         `error`), the maps show them grey, and a resumed sweep keeps them:",
-        stopped.len(),
-        records.len()
-    );
-    for r in stopped.iter().take(STOPPED_SHOWN) {
-        eprintln!(
-            "  point {} {:?}: {}",
-            r.index,
-            r.values,
-            r.error.as_deref().unwrap_or_default()
-        );
-    }
-    if stopped.len() > STOPPED_SHOWN {
-        eprintln!("  … and {} more", stopped.len() - STOPPED_SHOWN);
-    }
-}
-
-/// Name the maps a sweep or merge drew (a shard draws none: merge does).
-fn print_maps(maps: &[PathBuf], shard: bool) {
-    if let Some((first, rest)) = maps.split_first() {
-        let names: Vec<String> = rest
-            .iter()
-            .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
-            .collect();
-        if names.is_empty() {
-            println!("  map      {}", first.display());
-        } else {
-            println!("  maps     {}, {}", first.display(), names.join(", "));
-        }
-    } else if shard {
-        println!("  maps     none for a shard: `taut merge` draws them for the whole grid");
-    }
-}
-
+/// Returns whether every point of the merged sweep ran.
 fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
-    let claimed = taut::study::sweep::claim(out)?;
-    // clear the tables only of a folder that holds this sweep (or none):
-    // merge_into refuses any other, which then keeps its tables
-    if let Some(first) = shards.first()
-        && let Ok(spec) = taut::study::sweep::read_spec(first)
-        && taut::study::sweep::folder::check_spec(out, &spec).is_ok()
-    {
-        fresh(out, taut::report::Outputs::Sweep)?;
-    }
-    let (spec, records) = taut::study::sweep::merge_into(&claimed, shards)?;
-    write_sweep(out, &spec, &records)?;
-    let maps = taut::report::write_sweep_maps(out, &spec, &records)?;
+    let m = app::merge(shards, out, &Terminal::new("", true))?;
     println!(
         "taut {} — merged {} shards: {} runs into {}",
         env!("CARGO_PKG_VERSION"),
         shards.len(),
-        records.len(),
+        m.records.len(),
         out.display()
     );
-    print_maps(&maps, false);
-    report_stopped(&records);
-    Ok(stopped_points(&records) == 0)
+    print!("{}", terminal::maps(&m.maps, false));
+    eprint!("{}", terminal::stopped(&m.records));
+    Ok(m.stopped() == 0)
 }
 
 fn cmd_precision(
     scene: PathBuf,
     (formulations, methods, discretizations): (&str, Option<&str>, Option<&str>),
-    (levels, ratio, batch): (usize, usize, Option<String>),
+    (levels, ratio, batch): (String, String, Option<String>),
     set: Vec<String>,
     out: Option<PathBuf>,
     (quiet, yes): (bool, bool),
 ) -> taut::Result<()> {
-    let request = taut::study::request::PrecisionRequest {
-        formulations: formulations.to_string(),
-        methods: methods.map(str::to_string),
-        discretizations: discretizations.map(str::to_string),
-        levels,
-        ratio,
-        batch: batch_arg(batch)?,
-        yes,
-    };
-    let dir = out.unwrap_or_else(|| default_dir(&scene, "-precision"));
-    fresh(&dir, taut::report::Outputs::Precision)?;
-    let text = taut::scene::read_scene(&scene)?;
-    started(
-        &request
-            .estimate(&text, &set)
-            .map_err(|e| taut::scene::in_file(e, &scene))?,
+    let (levels, ratio) = precision_levels_arg(levels, ratio)?;
+    let batch = batch_arg(batch)?;
+    let study = app::words::precision(
+        formulations,
+        (methods, discretizations),
+        (levels, ratio),
+        batch,
         yes,
     )?;
-    let bar = progress_bar(request.runs()?, "runs", quiet);
-    let result = request.run(&text, &set, &mut |d, _| bar.set_position(d as u64));
-    bar.finish_and_clear();
-    let p = result
-        .map_err(|e| taut::scene::in_file(e, &scene))
-        .map_err(|e| save_failure(&dir, e))?;
-    taut::report::write_precision(&dir, &p)?;
-    print_study(
-        "precision",
-        &scene,
-        &taut::report::precision_table(&p),
-        &dir,
-        "precision.csv, precision.svg",
+    let place = (scene.as_path(), set, out, "-precision");
+    let (p, dir) = on_scene(place, study, quiet, app::precision)?;
+    let table = taut::report::precision_table(&p);
+    print!(
+        "{}",
+        terminal::study(
+            "precision",
+            &scene,
+            &table,
+            &dir,
+            "precision.csv, precision.svg"
+        )
     );
     Ok(())
 }
 
-fn cmd_replay(path: &Path, max_iter: Option<u32>, solver: Option<&str>) -> taut::Result<()> {
-    use taut::contact::{Level, SIGNORINI_TOLERANCE, replay};
-    let text = taut::input::read_text(
-        path,
-        "a saved contact problem",
-        taut::input::MAX_REPLAY_BYTES,
-    )?;
-    taut::json_keys::reject_duplicate_keys(&text, path)?;
-    let mut problem: taut::contact::ContactProblem = serde_json::from_str(&text)
-        .map_err(|e| taut::Error::parse(format!("{}: {e}", path.display())))?;
-    if let Some(n) = max_iter {
-        problem.contact.complementarity.max_iter = n;
-    }
-    if let Some(name) = solver {
-        use taut::scene::ComplementaritySolver;
-        problem.contact.complementarity.solver = match name {
-            "direct" => ComplementaritySolver::Direct,
-            "clarabel" => ComplementaritySolver::Clarabel,
-            other => {
-                return Err(taut::Error::invalid(
-                    "--solver",
-                    other,
-                    "must be `direct` or `clarabel`",
-                ));
-            }
-        };
-    }
-    taut::contact::validate(&problem)?;
-    let (gap, force) = match problem.level {
+fn cmd_replay(
+    problem: PathBuf,
+    max_iter: Option<String>,
+    solver: Option<String>,
+) -> taut::Result<()> {
+    use taut::contact::Level;
+    let request = app::ReplayRequest {
+        max_iter: max_iter_arg(max_iter)?,
+        solver: solver
+            .as_deref()
+            .map(app::words::complementarity_solver)
+            .transpose()?,
+        problem,
+    };
+    let r = app::replay(&request)?;
+    let (gap, force) = match r.problem.level {
         Level::Acceleration => ("m/s²", "N"),
         Level::Position => ("m", "N"),
         Level::Velocity => ("m/s", "N (N·s for impulses)"),
     };
     println!(
         "{} contact problem, formulation {}",
-        match problem.level {
+        match r.problem.level {
             Level::Acceleration => "acceleration-level (t = 0)",
             Level::Position => "position-level",
             Level::Velocity => "velocity-level",
         },
-        problem.contact.formulation.name()
+        r.problem.contact.formulation.name()
     );
-    println!("g_free = {:?} ({gap})", problem.g_free);
-    println!("W      = {:?}", problem.w);
-    let out = replay(&problem).map_err(|f| taut::Error::Replay {
-        path: path.to_path_buf(),
-        reason: f.to_string(),
-    })?;
-    println!("λ      = {:?} {force}", out.lambda);
-    println!("g      = {:?} ({gap}) after the solve", out.gap);
-    match out.violation {
-        Some(v) if v > SIGNORINI_TOLERANCE => Err(taut::Error::Replay {
-            path: path.to_path_buf(),
-            reason: format!(
-                "the answer violates the contact conditions by {v:.3e} (relative; at most {SIGNORINI_TOLERANCE:e} is a solution)"
-            ),
-        }),
-        Some(v) => {
-            println!("contact conditions hold to {v:.3e} (relative)");
-            Ok(())
-        }
-        None => {
-            println!("penalty law: the gap closes only to λ/κ, by design");
-            Ok(())
-        }
+    println!("g_free = {:?} ({gap})", r.problem.g_free);
+    println!("W      = {:?}", r.problem.w);
+    let solved = r.answer?;
+    println!("λ      = {:?} {force}", solved.out.lambda);
+    println!("g      = {:?} ({gap}) after the solve", solved.out.gap);
+    match solved.verdict? {
+        Some(v) => println!("contact conditions hold to {v:.3e} (relative)"),
+        None => println!("penalty law: the gap closes only to λ/κ, by design"),
     }
+    Ok(())
 }
 
 /// Returns false when a run of the comparison stopped (tables are written
@@ -1039,156 +852,26 @@ fn cmd_replay(path: &Path, max_iter: Option<u32>, solver: Option<&str>) -> taut:
 fn cmd_compare(
     scene: PathBuf,
     formulations: &str,
-    (methods, discretizations): (Option<&str>, Option<&str>),
+    words: (Option<&str>, Option<&str>),
     (reference, reference_method, batch): (&str, Option<&str>, Option<String>),
     set: Vec<String>,
     out: Option<PathBuf>,
     (quiet, yes): (bool, bool),
 ) -> taut::Result<bool> {
-    let request = taut::study::request::CompareRequest {
-        formulations: formulations.to_string(),
-        methods: methods.map(str::to_string),
-        discretizations: discretizations.map(str::to_string),
-        reference: reference.to_string(),
-        reference_method: reference_method.map(str::to_string),
-        batch: batch_arg(batch)?,
-        yes,
-    };
-    let dir = out.unwrap_or_else(|| default_dir(&scene, "-compare"));
-    fresh(&dir, taut::report::Outputs::Compare)?;
-    let text = taut::scene::read_scene(&scene)?;
-    started(
-        &request
-            .estimate(&text, &set)
-            .map_err(|e| taut::scene::in_file(e, &scene))?,
+    let batch = batch_arg(batch)?;
+    let study = app::words::compare(
+        formulations,
+        words,
+        (reference, reference_method),
+        batch,
         yes,
     )?;
-    let bar = progress_bar(request.runs()?, "runs", quiet);
-    let result = request.run(&text, &set, &mut |done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64)
-    });
-    bar.finish_and_clear();
-    let c = result
-        .map_err(|e| taut::scene::in_file(e, &scene))
-        .map_err(|e| save_failure(&dir, e))?;
-    write_compare(&dir, &c)?;
-    print_study(
-        "compare",
-        &scene,
-        &compare_table(&c),
-        &dir,
-        "compare.csv, compare.json, compare.svg",
+    let place = (scene.as_path(), set, out, "-compare");
+    let (c, dir) = on_scene(place, study, quiet, app::compare)?;
+    let files = "compare.csv, compare.json, compare.svg";
+    print!(
+        "{}",
+        terminal::study("compare", &scene, &compare_table(&c), &dir, files)
     );
     Ok(c.failed.is_empty())
-}
-
-/// Header, table and written files of a study command.
-fn print_study(kind: &str, scene: &Path, table: &str, dir: &Path, files: &str) {
-    println!(
-        "taut {} — {kind} {}",
-        env!("CARGO_PKG_VERSION"),
-        scene.display()
-    );
-    print!("{table}");
-    println!("  wrote    {}/{{{files}}}", dir.display());
-}
-
-/// The run's one-screen summary; with `accuracy` (a `--tolerance` run) the
-/// choice of resolution first and an estimated error beside every result.
-/// The terminal's contact-loss lines of one carrier: P_l split into the
-/// in-span part (the number to quote) and the support part, the first loss
-/// flagged when the run does not resolve it, the re-contacts.
-fn contact_loss_lines(c: &taut::record::ContactStats) -> String {
-    use taut::record::LossClass;
-    let mut s = format!(
-        "             contact loss P_l = {:.4} = {:.4} in span + {:.4} at supports (zone {:.2} m); {} intervals, {} switches\n",
-        c.loss_fraction,
-        c.loss_fraction_span,
-        c.loss_fraction_support,
-        c.support_zone,
-        c.loss_interval_count,
-        c.contact_switches
-    );
-    if let Some(x) = c.first_loss_position {
-        let note = match c.loss_interval_class.first() {
-            Some(LossClass::Unresolved) => " (unresolved: see WARNING)",
-            Some(LossClass::Support) => " (in a support zone)",
-            _ => "",
-        };
-        s.push_str(&format!("             first loss at x/L = {x:.4}{note}\n"));
-    }
-    if c.recontact_count > 0 {
-        let peak = c.recontacts.iter().map(|r| r.peak).fold(0.0, f64::max);
-        let impulse = c.recontacts.iter().map(|r| r.impulse).fold(0.0, f64::max);
-        s.push_str(&format!(
-            "             {} re-contacts: peak λ up to {peak:.1} N (grows as Δt falls), impulse up to {impulse:.4} N·s\n",
-            c.recontact_count
-        ));
-    }
-    s
-}
-
-fn print_summary(
-    scene: &std::path::Path,
-    dir: &std::path::Path,
-    s: &Summary,
-    accuracy: Option<&taut::study::tolerance::Accuracy>,
-) {
-    let d = &s.derived;
-    println!("taut {} — {}", s.taut_version, scene.display());
-    if let Some(a) = accuracy {
-        print!("{}", taut::report::accuracy_header(a));
-    }
-    println!(
-        "  beam     L = {} m, ρA = {:.4} kg/m, EI = {:.4e} N·m², T = {:.4e} N, c = {:.2} m/s",
-        s.scene.beam.length,
-        d.mass_per_length,
-        d.bending_stiffness,
-        s.scene.beam.tension,
-        d.wave_speed
-    );
-    let ratio = d
-        .speed_ratio
-        .map_or_else(|| "n/a".to_string(), |r| format!("{r:.4}"));
-    println!(
-        "  mesh     {}, {} dofs; Δt = {} s, {} steps to t = {:.4} s; V0/c = {ratio}",
-        taut::report::mesh_label(s),
-        d.dofs,
-        d.dt,
-        d.steps,
-        d.end_time
-    );
-    for (i, c) in s.carriers.iter().enumerate() {
-        if let Some(a) = accuracy {
-            println!("  carrier {i} (± estimated error at this N and Δt):");
-            print!("{}", taut::report::result_lines(a, i));
-            continue;
-        }
-        let f = &c.force;
-        println!(
-            "  carrier {i}: force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
-            f.mean, f.std, f.min, f.max
-        );
-        print!("{}", contact_loss_lines(c));
-    }
-    for w in &s.warnings {
-        println!("  WARNING  {w}");
-    }
-    let rate = d.dofs as f64 * d.steps as f64 / s.wall_seconds.max(1e-12);
-    println!(
-        "  time     {:.3} s wall ({rate:.3e} dof-steps/s)",
-        s.wall_seconds
-    );
-    if accuracy.is_some() {
-        println!(
-            "  wrote    {}/{{history.csv, summary.json, force.svg, accuracy.csv}}",
-            dir.display()
-        );
-    } else {
-        println!(
-            "  wrote    {}/{{history.csv, summary.json, force.svg}}",
-            dir.display()
-        );
-    }
 }

@@ -2,6 +2,8 @@
 
 use std::time::Instant;
 
+use serde::Serialize;
+
 use crate::error::Error;
 use crate::error::Result;
 use crate::integrate::{
@@ -39,6 +41,49 @@ pub struct RunOutput {
 /// chattering: physical loss/reattachment events are separated by many steps,
 /// a step-to-step on/off pattern is a numerical oscillation (MODEL §5).
 pub const CHATTER_FRACTION: f64 = 0.05;
+
+/// How a run ended: the status a study keeps beside each run it lists
+/// (a row, or a combination that gave none), so that a table can say
+/// which runs stopped and why without reading an error's text.
+///
+/// A run's steps end at the scene's end time (`time.end`, by default when
+/// the carrier has left the beam): that is [`RunEnd::Completed`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunEnd {
+    /// Every step to the end time was taken.
+    Completed,
+    /// The scene or the method refused the run before its first step (a
+    /// combination that means nothing for this scene).
+    Refused,
+    /// The state grew without bound ([`Error::Diverged`]).
+    Diverged,
+    /// A contact solve failed ([`Error::Contact`]).
+    ContactFailed,
+    /// Stopped on request ([`Error::Interrupted`]).
+    Interrupted,
+    /// Any other error (reading or writing a file, a memory budget).
+    Failed,
+}
+
+impl RunEnd {
+    /// The end of a run that stopped with `e`.
+    pub fn of_error(e: &Error) -> RunEnd {
+        match e {
+            Error::Diverged { .. } => RunEnd::Diverged,
+            Error::Contact { .. } => RunEnd::ContactFailed,
+            Error::Interrupted => RunEnd::Interrupted,
+            Error::Invalid { .. } | Error::Parse { .. } | Error::Override { .. } => RunEnd::Refused,
+            _ => RunEnd::Failed,
+        }
+    }
+
+    /// The end of a run that gave `r`.
+    pub fn of<T>(r: &Result<T>) -> RunEnd {
+        r.as_ref()
+            .map_or_else(RunEnd::of_error, |_| RunEnd::Completed)
+    }
+}
 
 /// Run a validated scene with its own method (`[integrator]`).
 /// `progress(done, total)` is called about 200 times.
@@ -258,7 +303,7 @@ pub fn run_batch(
     let mut out: Vec<Option<Result<RunOutput>>> = (0..scenes.len()).map(|_| None).collect();
     let width = batch.clamp(1, MAX_LANES);
     // group by key, in order of first appearance
-    let mut groups: Vec<(Option<String>, Vec<usize>)> = Vec::new();
+    let mut groups: Vec<(Option<crate::integrate::BatchKey>, Vec<usize>)> = Vec::new();
     for (i, sc) in scenes.iter().enumerate() {
         let key = if width > 1 { batch_key(sc) } else { None };
         // no wider than the kernels compiled for this run's columns

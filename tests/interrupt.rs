@@ -47,25 +47,20 @@ fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results
 
     // a study stops as a whole: a stopped run is not one of its failures
     interrupt::request();
-    let compare = taut::study::request::CompareRequest {
-        formulations: "lagrange,penalty".into(),
-        methods: Some("generalized_alpha,bathe".into()),
-        discretizations: None,
-        reference: "lagrange".into(),
-        reference_method: None,
-        batch: None,
-        yes: false,
-    }
-    .run(REFERENCE, &short(), &mut |_, _| {});
-    let converge = taut::study::request::ConvergeRequest {
-        refine: "step".into(),
-        levels: 3,
-        ratio: 2.0,
-        methods: Some("newmark,bathe".into()),
-        discretizations: None,
-        yes: false,
-    }
-    .run(REFERENCE, &short(), &mut |_, _| {});
+    let words = taut::app::words::compare(
+        "lagrange,penalty",
+        (Some("generalized_alpha,bathe"), None),
+        ("lagrange", None),
+        None,
+        false,
+    );
+    let compare = words
+        .expect("known words")
+        .run(REFERENCE, &short(), &mut |_, _| {});
+    let words = taut::app::words::converge("step", (3, 2.0), (Some("newmark,bathe"), None), false);
+    let converge = words
+        .expect("known words")
+        .run(REFERENCE, &short(), &mut |_, _| {});
     interrupt::clear();
     assert!(
         matches!(compare, Err(Error::Interrupted)),

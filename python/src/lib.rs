@@ -1,12 +1,13 @@
 //! `taut._taut`: the native half of the `taut` Python package.
 //!
-//! A thin layer over the Rust library: every function here parses nothing
-//! and computes nothing of its own. It hands the caller's words to the same
-//! library calls the CLI makes (`taut::run`, `study::request`,
-//! `study::sweep`), and hands back the same tables the CLI writes as CSV
-//! (`taut::report::Table`), column by column, so that the numbers are the
-//! CLI's bit for bit. The Pythonic surface (keyword arguments, numpy
-//! arrays, exceptions with attributes, tqdm) is `python/taut/__init__.py`.
+//! A thin layer over the Rust library: every function here computes nothing
+//! of its own. It makes the caller's words the typed request of the
+//! application layer (`taut::app::words`, as the CLI does), calls the same
+//! `taut::app` function the CLI calls, and hands back the same tables the
+//! CLI writes as CSV (`taut::report::Table`), column by column, so that the
+//! numbers are the CLI's bit for bit. The Pythonic surface (keyword
+//! arguments, numpy arrays, exceptions with attributes, tqdm) is
+//! `python/taut/__init__.py`.
 //!
 //! Three things only a binding has to do are done here:
 //! * the GIL is released while runs execute: the work runs on a thread of
@@ -18,7 +19,8 @@
 //! * `taut::Error` becomes an exception of `taut._errors` with the error's
 //!   fields as attributes ([`to_py_err`]).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+use std::sync::Mutex;
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
@@ -26,37 +28,25 @@ use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyList};
 
+use taut::app::{self, Frontend, Note, SceneSource, words};
 use taut::report::{Column, Table};
-use taut::study::request::{CompareRequest, ConvergeRequest, PrecisionRequest};
-use taut::study::sweep::{Axis, SweepSpec};
 
 /// How often the waiting thread wakes to deliver progress and to look for
 /// Ctrl-C: a tenth of a second is below what a person notices and costs
 /// nothing against runs of milliseconds to hours.
 const POLL: Duration = Duration::from_millis(100);
 
-/// Where a scene comes from: a file (read here, so that a parse error names
-/// it as the CLI's does) or TOML text given directly.
-fn scene_text(path: Option<&str>, text: Option<String>) -> taut::Result<(String, Option<PathBuf>)> {
+/// Where a scene comes from: a file (read by the call, so that a parse
+/// error names it as the CLI's does) or TOML text given directly.
+fn scene(path: Option<&str>, text: Option<String>) -> taut::Result<SceneSource> {
     match (path, text) {
-        (Some(p), _) => {
-            let p = PathBuf::from(p);
-            Ok((taut::scene::read_scene(&p)?, Some(p)))
-        }
-        (None, Some(t)) => Ok((t, None)),
+        (Some(p), _) => Ok(SceneSource::File(PathBuf::from(p))),
+        (None, Some(t)) => Ok(SceneSource::Text(t)),
         (None, None) => Err(taut::Error::invalid(
             "scene",
             "none",
             "a path to a scene file or the scene's TOML text",
         )),
-    }
-}
-
-/// Name the scene file, if there is one, in a parse error of its text.
-fn named(e: taut::Error, path: Option<&Path>) -> taut::Error {
-    match path {
-        Some(p) => taut::scene::in_file(e, p),
-        None => e,
     }
 }
 
@@ -83,11 +73,10 @@ fn to_py_err(py: Python<'_>, e: taut::Error) -> PyErr {
     failed(py, e, None)
 }
 
-/// [`to_py_err`] for a call with an output folder: a failed contact solve
-/// saves its problem there first, as the CLI does, for `taut replay`.
-fn failed(py: Python<'_>, e: taut::Error, out: Option<&Path>) -> PyErr {
+/// [`to_py_err`] for an error of a call that saved the failed contact
+/// problem at `saved` (into its output folder, as the CLI does).
+fn failed(py: Python<'_>, e: taut::Error, saved: Option<PathBuf>) -> PyErr {
     use taut::Error as E;
-    let saved = out.and_then(|dir| taut::report::save_failed_contact(dir, &e));
     let message = e.to_string();
     match e {
         E::Invalid {
@@ -331,42 +320,52 @@ fn not_run(n: &taut::study::compare::NotRun) -> NotRunTuple {
         n.method.clone(),
         n.discretization.clone(),
         n.formulation.clone(),
-        n.reason.clone(),
+        n.reason.to_string(),
     )
 }
 
-/// The course every call takes: read the scene, run `job` on its text and
-/// overrides ([`work`]: without the GIL, with progress and Ctrl-C), name
-/// the scene file in a parse error, and save a failed contact problem into
-/// `out` as the CLI does.
-fn call<R: Send>(
-    py: Python<'_>,
-    (path, text): (Option<&str>, Option<String>),
-    set: &[String],
-    (out, kind): (Option<&Path>, taut::report::Outputs),
-    progress: Option<&Bound<'_, PyAny>>,
-    job: impl FnOnce(&str, &[String], &mut dyn FnMut(usize, usize)) -> taut::Result<R> + Send,
-) -> PyResult<R> {
-    if let Some(dir) = out {
-        fresh(dir, kind).map_err(|e| to_py_err(py, e))?;
-    }
-    let (text, path) = scene_text(path, text).map_err(|e| to_py_err(py, e))?;
-    work(py, progress, |report| {
-        job(&text, set, &mut |d, t| report(d, t))
-    })?
-    .map_err(|e| named(e, path.as_deref()))
-    .map_err(|e| failed(py, e, out))
+/// The binding as the application layer's front end: progress to the
+/// waiting thread ([`work`]); of the notes, the cleared outputs on stderr
+/// (as the CLI) and the saved contact problem kept for the exception.
+struct Binding<'a> {
+    report: &'a (dyn Fn(usize, usize) + Sync),
+    saved: Mutex<Option<PathBuf>>,
 }
 
-/// Remove the outputs an earlier call or command of this kind left in
-/// `dir`, saying so on stderr as the CLI does: a folder holds one run's
-/// outputs (`taut::report::clear_earlier`); an empty `dir` is refused.
-fn fresh(dir: &Path, kind: taut::report::Outputs) -> taut::Result<()> {
-    let removed = taut::report::clear_earlier(dir, kind)?;
-    if let Some(note) = taut::report::cleared_note(dir, &removed) {
-        eprintln!("{note}");
+impl Frontend for Binding<'_> {
+    fn progress(&self, done: usize, total: usize) {
+        (self.report)(done, total)
     }
-    Ok(())
+
+    fn note(&self, note: Note<'_>) {
+        match note {
+            Note::Cleared(text) => eprintln!("{text}"),
+            Note::AboveBound(_) => {}
+            Note::FailureSaved(path) => {
+                if let Ok(mut saved) = self.saved.lock() {
+                    *saved = Some(path.to_path_buf());
+                }
+            }
+        }
+    }
+}
+
+/// The course every call takes: run `command` ([`work`]: without the GIL,
+/// with progress and Ctrl-C) and make its error an exception.
+fn call<R: Send>(
+    py: Python<'_>,
+    progress: Option<&Bound<'_, PyAny>>,
+    command: impl FnOnce(&dyn Frontend) -> taut::Result<R> + Send,
+) -> PyResult<R> {
+    let (result, saved) = work(py, progress, |report| {
+        let binding = Binding {
+            report,
+            saved: Mutex::new(None),
+        };
+        let result = command(&binding);
+        (result, binding.saved.into_inner().ok().flatten())
+    })?;
+    result.map_err(|e| failed(py, e, saved))
 }
 
 /// What `run` hands back: `(summary_json, history_columns, warnings,
@@ -396,62 +395,38 @@ fn run<'py>(
     progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<RunTuple<'py>> {
     let err = |e| to_py_err(py, e);
-    let scene = (path, text);
-    if let Some(tol) = tolerance {
-        use taut::study::tolerance::{Quantity, parse_tolerance, tolerance_run};
-        let quantity: Quantity = quantity
-            .as_deref()
-            .unwrap_or("force")
-            .parse()
-            .map_err(err)?;
-        let tol = parse_tolerance(&tol).map_err(err)?;
-        let r = call(
-            py,
-            scene,
-            &set,
-            (out.as_deref(), taut::report::Outputs::Run),
-            progress.as_ref(),
-            |text, set, p| tolerance_run(text, set, quantity, tol, p),
-        )?;
-        let summary = match &out {
-            Some(dir) => taut::report::write_tolerant_run(dir, &r).map_err(err)?,
-            None => taut::report::Summary::new(&r.scene, &r.output),
-        };
-        let doc = taut::report::WithAccuracy {
-            summary: &summary,
-            accuracy: &r.accuracy,
-        };
-        return Ok((
-            pretty(&doc)?,
-            table_to_py(py, &taut::report::history_table(&r.output))?,
-            r.output.warnings.clone(),
-            Some(table_to_py(py, &taut::report::accuracy_table(&r.accuracy))?),
-        ));
-    }
-    if let Some(q) = quantity {
-        return Err(err(taut::Error::invalid(
-            "--quantity",
-            q,
-            "is what --tolerance is on: give tolerance too",
-        )));
-    }
-    let (sc, output) = call(
-        py,
-        scene,
-        &set,
-        (out.as_deref(), taut::report::Outputs::Run),
-        progress.as_ref(),
-        |text, set, p| {
-            let sc = taut::resolve_scene(text, set)?;
-            taut::run(&sc, p).map(|o| (sc, o))
-        },
-    )?;
-    let summary = match &out {
-        Some(dir) => taut::report::write_run(dir, &sc, &output).map_err(err)?,
-        None => taut::report::Summary::new(&sc, &output),
+    let tolerance = match (tolerance, quantity) {
+        (Some(t), q) => Some(words::tolerance(&t, q.as_deref()).map_err(err)?),
+        (None, Some(q)) => {
+            return Err(err(taut::Error::invalid(
+                "--quantity",
+                q,
+                "is what --tolerance is on: give tolerance too",
+            )));
+        }
+        (None, None) => None,
     };
-    let history = table_to_py(py, &taut::report::history_table(&output))?;
-    Ok((pretty(&summary)?, history, output.warnings, None))
+    let request = app::RunRequest {
+        scene: scene(path, text).map_err(err)?,
+        set,
+        out,
+        tolerance,
+    };
+    let r = call(py, progress.as_ref(), |fe| app::run(&request, fe))?;
+    let history = table_to_py(py, &taut::report::history_table(&r.output))?;
+    let Some(accuracy) = &r.accuracy else {
+        return Ok((pretty(&r.summary)?, history, r.output.warnings, None));
+    };
+    let doc = taut::report::WithAccuracy {
+        summary: &r.summary,
+        accuracy,
+    };
+    Ok((
+        pretty(&doc)?,
+        history,
+        r.output.warnings.clone(),
+        Some(table_to_py(py, &taut::report::accuracy_table(accuracy))?),
+    ))
 }
 
 /// A summary as `summary.json` holds it.
@@ -482,44 +457,20 @@ fn sweep<'py>(
     yes: bool,
 ) -> PyResult<Bound<'py, PyList>> {
     let err = |e| to_py_err(py, e);
-    let (scene_text, path) = scene_text(path, text).map_err(err)?;
-    let axes = vary
-        .iter()
-        .map(|v| Axis::parse(v, log))
-        .collect::<taut::Result<Vec<_>>>()
-        .map_err(err)?;
-    let batch = taut::study::request::batch_width(batch).map_err(err)?;
-    let spec = SweepSpec {
-        scene_text,
+    let request = app::SweepRequest {
+        scene: scene(path, text).map_err(err)?,
         set,
-        axes,
+        axes: words::axes(&vary, log).map_err(err)?,
         check_refinement,
+        out,
+        files,
+        shard: None,
+        threads,
+        batch: taut::study::request::batch_width(batch).map_err(err)?,
+        yes,
     };
-    spec.validate()
-        .map_err(|e| named(e, path.as_deref()))
-        .map_err(err)?;
-    spec.estimate(None)
-        .and_then(|e| e.check(yes))
-        .map_err(err)?;
-    taut::report::check_out_dir(&out).map_err(err)?;
-    let claimed = taut::study::sweep::claim(&out).map_err(err)?;
-    if files {
-        // only a folder holding this sweep (or none) has its tables cleared
-        taut::study::sweep::folder::check_spec(&out, &spec).map_err(err)?;
-        fresh(&out, taut::report::Outputs::Sweep).map_err(err)?;
-    }
-    let records = work(py, progress.as_ref(), |report| {
-        taut::study::threads::in_pool(threads, || {
-            taut::study::sweep::sweep_batched(&claimed, &spec, None, batch, report)
-        })
-    })?
-    .and_then(|r| r)
-    .map_err(err)?;
-    if files {
-        taut::report::write_sweep(&out, &spec, &records).map_err(err)?;
-        taut::report::write_sweep_maps(&out, &spec, &records).map_err(err)?;
-    }
-    table_to_py(py, &taut::report::sweep_table(&spec, &records))
+    let s = call(py, progress.as_ref(), |fe| app::sweep(&request, fe))?;
+    table_to_py(py, &taut::report::sweep_table(&s.spec, &s.records))
 }
 
 /// A comparison: `(compare.csv columns, failed, skipped)`: the runs that
@@ -544,26 +495,15 @@ fn compare<'py>(
     yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
-    let request = CompareRequest {
-        formulations,
-        methods,
-        discretizations,
-        reference,
-        reference_method,
-        batch,
-        yes,
+    let variants = (methods.as_deref(), discretizations.as_deref());
+    let against = (reference.as_str(), reference_method.as_deref());
+    let request = app::CompareRequest {
+        scene: scene(path, text).map_err(err)?,
+        set,
+        study: words::compare(&formulations, variants, against, batch, yes).map_err(err)?,
+        out,
     };
-    let c = call(
-        py,
-        (path, text),
-        &set,
-        (out.as_deref(), taut::report::Outputs::Compare),
-        progress.as_ref(),
-        |text, set, p| request.run(text, set, p),
-    )?;
-    if let Some(dir) = &out {
-        taut::report::write_compare(dir, &c).map_err(err)?;
-    }
+    let c = call(py, progress.as_ref(), |fe| app::compare(&request, fe))?;
     Ok((
         table_to_py(py, &taut::report::compare_rows(&c))?,
         c.failed.iter().map(not_run).collect(),
@@ -590,33 +530,15 @@ fn converge<'py>(
     progress: Option<Bound<'py, PyAny>>,
     yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
-    use taut::study::request::ConvergeOutcome;
     let err = |e| to_py_err(py, e);
-    let request = ConvergeRequest {
-        refine,
-        levels,
-        ratio,
-        methods,
-        discretizations,
-        yes,
+    let variants = (methods.as_deref(), discretizations.as_deref());
+    let request = app::ConvergeRequest {
+        scene: scene(path, text).map_err(err)?,
+        set,
+        study: words::converge(&refine, (levels, ratio), variants, yes).map_err(err)?,
+        out,
     };
-    let outcome = call(
-        py,
-        (path, text),
-        &set,
-        (out.as_deref(), taut::report::Outputs::Converge),
-        progress.as_ref(),
-        |text, set, p| request.run(text, set, p),
-    )?;
-    if let Some(dir) = &out {
-        match &outcome {
-            ConvergeOutcome::One(c) => taut::report::write_converge(dir, c),
-            ConvergeOutcome::Variants { studies, skipped } => {
-                taut::report::write_converge_methods(dir, studies, skipped)
-            }
-        }
-        .map_err(err)?;
-    }
+    let outcome = call(py, progress.as_ref(), |fe| app::converge(&request, fe))?;
     let skipped = outcome.skipped().iter().map(not_run).collect();
     let rows = taut::report::converge_rows(&outcome.rows());
     Ok((table_to_py(py, &rows)?, skipped))
@@ -643,26 +565,15 @@ fn precision<'py>(
     yes: bool,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
-    let request = PrecisionRequest {
-        formulations,
-        methods,
-        discretizations,
-        levels,
-        ratio,
-        batch,
-        yes,
+    let variants = (methods.as_deref(), discretizations.as_deref());
+    let grid = (levels, ratio);
+    let request = app::PrecisionRequest {
+        scene: scene(path, text).map_err(err)?,
+        set,
+        study: words::precision(&formulations, variants, grid, batch, yes).map_err(err)?,
+        out,
     };
-    let p = call(
-        py,
-        (path, text),
-        &set,
-        (out.as_deref(), taut::report::Outputs::Precision),
-        progress.as_ref(),
-        |text, set, p| request.run(text, set, p),
-    )?;
-    if let Some(dir) = &out {
-        taut::report::write_precision(dir, &p).map_err(err)?;
-    }
+    let p = call(py, progress.as_ref(), |fe| app::precision(&request, fe))?;
     Ok((
         table_to_py(py, &taut::report::precision_rows(&p))?,
         p.skipped.iter().map(not_run).collect(),

@@ -76,8 +76,57 @@ pub struct NotRun {
     pub discretization: String,
     /// Formulation.
     pub formulation: String,
-    /// The error, as the CLI would print it.
-    pub reason: String,
+    /// Why: the error, typed (written as the CLI prints it).
+    pub reason: Reason,
+}
+
+/// Why a combination gave no row: the error its run (or its scene) raised,
+/// and where on the study's grid, if the study has one. Shared, since one
+/// scene error is the reason of every grid point built on that scene.
+#[derive(Debug, Clone)]
+pub struct Reason {
+    /// The grid point: level i of the mesh and the step Δt, s (`taut precision`).
+    pub at: Option<(usize, f64)>,
+    /// The error.
+    pub error: std::sync::Arc<Error>,
+}
+
+impl Reason {
+    /// The error `e`, at no grid point.
+    pub fn new(e: Error) -> Reason {
+        Reason {
+            at: None,
+            error: std::sync::Arc::new(e),
+        }
+    }
+
+    /// How the run ended.
+    pub fn end(&self) -> crate::run::RunEnd {
+        crate::run::RunEnd::of_error(&self.error)
+    }
+}
+
+impl std::fmt::Display for Reason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.at {
+            Some((i, dt)) => write!(f, "level {i}, Δt = {dt:e} s: {}", self.error),
+            None => write!(f, "{}", self.error),
+        }
+    }
+}
+
+/// Written as the text the CLI prints (compare.json, converge.json).
+impl Serialize for Reason {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+/// Two reasons are the same when they say the same.
+impl PartialEq for Reason {
+    fn eq(&self, other: &Reason) -> bool {
+        self.to_string() == other.to_string()
+    }
 }
 
 /// One run of a comparison.
@@ -306,7 +355,7 @@ pub fn compare_methods(
     for (&(m, d, f, show), sc) in order.iter().zip(resolved) {
         let factory = methods[m];
         let name = factory.name();
-        let not_run = |e: &Error| NotRun {
+        let not_run = |e: Error| NotRun {
             method: name.clone(),
             discretization: if spaces.len() > 1 {
                 space_label(d, None)
@@ -314,7 +363,7 @@ pub fn compare_methods(
                 String::new()
             },
             formulation: f.name().to_string(),
-            reason: e.to_string(),
+            reason: Reason::new(e),
         };
         let outcome = sc.and_then(|sc| {
             let out = outputs.next().expect("one output per resolved scene");
@@ -337,9 +386,9 @@ pub fn compare_methods(
             // the combination means nothing for this scene: a scene error
             // (both keys named) or a step the method cannot take
             Err(e @ (Error::Invalid { .. } | Error::Parse { .. } | Error::Override { .. })) => {
-                skipped.push(not_run(&e))
+                skipped.push(not_run(e))
             }
-            Err(e) => failed.push(not_run(&e.in_run(&format!("{name}/{}", f.name())))),
+            Err(e) => failed.push(not_run(e.in_run(&format!("{name}/{}", f.name())))),
         }
     }
     progress(total, total);
@@ -464,5 +513,42 @@ mod tests {
         assert!(e.contains("magic") && e.contains("complementarity"), "{e}");
         assert!(parse_formulations("penalty,penalty").is_err());
         assert!(parse_formulations(" , ").is_err());
+    }
+}
+
+#[cfg(test)]
+mod reason_tests {
+    use super::*;
+    use crate::run::RunEnd;
+
+    #[test]
+    fn a_reason_keeps_the_typed_error_and_prints_the_old_text() {
+        let diverged = Error::Diverged {
+            step: 3,
+            time: 0.3,
+            quantity: "λ".into(),
+            value: 1e9,
+            cause: "too large a step".into(),
+        };
+        let text = diverged.to_string();
+        let r = Reason::new(diverged);
+        assert_eq!(r.end(), RunEnd::Diverged);
+        assert_eq!(r.to_string(), text, "printed as the error itself");
+        assert_eq!(
+            serde_json::to_string(&r).unwrap(),
+            serde_json::to_string(&text).unwrap(),
+            "written as the same text"
+        );
+        let at = Reason {
+            at: Some((2, 2.5e-5)),
+            error: std::sync::Arc::new(Error::invalid("time.step", 1, "too large")),
+        };
+        assert_eq!(at.end(), RunEnd::Refused);
+        assert!(
+            at.to_string().starts_with("level 2, Δt = 2.5e-5 s: "),
+            "{at}"
+        );
+        assert_eq!(RunEnd::of_error(&Error::Interrupted), RunEnd::Interrupted);
+        assert_eq!(RunEnd::of::<()>(&Ok(())), RunEnd::Completed);
     }
 }

@@ -20,9 +20,11 @@
 //! explicit method above its stability limit, a combination that means
 //! nothing) is skipped with its reason; a run that stops is an error.
 
+use std::sync::Arc;
+
 use serde::Serialize;
 
-use super::compare::NotRun;
+use super::compare::{NotRun, Reason};
 use super::grid::{Reach, nest, resample};
 use super::relative_rms;
 use super::space::SpaceChoice;
@@ -219,12 +221,12 @@ pub fn precision_variants(
         space: Option<SpaceChoice>,
         f: Formulation,
         at: (usize, usize, f64),
-        scene: std::result::Result<(Resolved, usize), String>,
+        scene: std::result::Result<(Resolved, usize), Arc<Error>>,
     }
     let mut points: Vec<Point> = Vec::new();
     for &m in &methods {
         // the method's scene, parsed once (an error is each point's reason)
-        let method_scene = base_scene(text, overrides, Some(m)).map_err(|e| e.to_string());
+        let method_scene = base_scene(text, overrides, Some(m)).map_err(Arc::new);
         for &space in &spaces {
             let modal = space.is_some_and(|s| s.is_modal());
             for &f in formulations {
@@ -240,7 +242,7 @@ pub fn precision_variants(
                             space: space.map(|s| (s, if modal { factor as f64 } else { 1.0 })),
                         };
                         let scene = match &method_scene {
-                            Ok(scene) => variant.apply_to(scene).map_err(|e| e.to_string()),
+                            Ok(scene) => variant.apply_to(scene).map_err(Arc::new),
                             Err(e) => Err(e.clone()),
                         };
                         let scene = match scene {
@@ -278,17 +280,20 @@ pub fn precision_variants(
     let mut first = 0;
     for (k, p) in points.iter().enumerate() {
         let (i, j, dt) = p.at;
-        let not_run = |e: &dyn std::fmt::Display| NotRun {
+        let not_run = |error: Arc<Error>| NotRun {
             method: p.m.name(),
             discretization: p.space.map_or_else(String::new, |s| s.name().to_string()),
             formulation: p.f.name().to_string(),
-            reason: format!("level {i}, Δt = {dt:e} s: {e}"),
+            reason: Reason {
+                at: Some((i, dt)),
+                error,
+            },
         };
         match &p.scene {
-            Err(e) => skipped.push(not_run(e)),
+            Err(e) => skipped.push(not_run(e.clone())),
             Ok((sc, stride)) => match outputs.next().expect("one output per scene") {
                 Ok(out) => rows.push(row(&p.m.name(), p.f, (i, j), &out, &reference, *stride, sc)),
-                Err(e @ Error::Invalid { .. }) => skipped.push(not_run(&e)),
+                Err(e @ Error::Invalid { .. }) => skipped.push(not_run(Arc::new(e))),
                 Err(e) => {
                     return Err(e.in_run(&format!("{}/{}", p.m.name(), p.f.name())));
                 }

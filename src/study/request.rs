@@ -1,12 +1,14 @@
-//! A study as its caller names it: method, formulation and discretization
-//! lists as text, a batch width that may be absent. Parsed and run here
-//! once, for the CLI (`taut compare | converge | precision`) and the Python
-//! module alike, so that both make the same runs from the same words.
+//! A study as the application layer ([`crate::app`]) hands it over: typed
+//! methods, formulations and discretizations, a batch width. The words of
+//! the front ends (`--methods newmark,bathe`, Python's `methods=`) become
+//! these values once, at the edge ([`crate::app::words`]); here they are
+//! estimated and run, for the CLI and the Python module alike.
 
 use crate::error::{Error, Result};
-use crate::integrate::{MethodFactory, parse_methods};
+use crate::integrate::MethodFactory;
+use crate::scene::Formulation;
 
-use super::compare::{CompareSpec, Comparison, NotRun, compare_methods, parse_formulations};
+use super::compare::{CompareSpec, Comparison, NotRun, compare_methods};
 use super::converge::{ConvergeRow, Convergence, MethodStudy, Refine, converge, converge_variants};
 use super::cost::{Estimate, run_dof_steps};
 use super::precision::{Precision, precision_variants};
@@ -28,23 +30,17 @@ pub fn batch_width(b: Option<usize>) -> Result<BatchWidth> {
     }
 }
 
-/// [`batch_width`] as a number of lanes.
-pub fn batch_lanes(b: Option<usize>) -> Result<usize> {
-    Ok(match batch_width(b)? {
+/// A batch width as a number of lanes.
+pub fn lanes(b: BatchWidth) -> usize {
+    match b {
         BatchWidth::Auto => super::sweep::AUTO_BATCH_LANES,
         BatchWidth::Fixed(b) => b,
-    })
+    }
 }
 
-/// A comma list of methods (built-in or registered by name), or the
-/// scene's own when absent.
-fn methods(list: Option<&str>) -> Result<Option<Vec<&'static dyn MethodFactory>>> {
-    list.map(parse_methods).transpose()
-}
-
-/// The methods as the studies take them (empty: the scene's own).
-fn factories(methods: &Option<Vec<&'static dyn MethodFactory>>) -> Vec<&'static dyn MethodFactory> {
-    methods.iter().flatten().copied().collect()
+/// [`batch_width`] as a number of lanes.
+pub fn batch_lanes(b: Option<usize>) -> Result<usize> {
+    Ok(lanes(batch_width(b)?))
 }
 
 /// The scene a study starts from (its own resolution), for its estimate.
@@ -54,29 +50,28 @@ fn base_dof_steps(text: &str, overrides: &[String]) -> Result<f64> {
     )?))
 }
 
-/// A comma list of discretizations (empty: the scene's own).
-fn spaces(list: Option<&str>) -> Result<Vec<SpaceChoice>> {
-    Ok(list
-        .map(SpaceChoice::parse_list)
-        .transpose()?
-        .unwrap_or_default())
+/// How many variants a study runs per grid point: every method (one: the
+/// scene's own when none is named) under every discretization (likewise).
+fn variants(methods: &[&'static dyn MethodFactory], spaces: &[SpaceChoice]) -> usize {
+    methods.len().max(1) * spaces.len().max(1)
 }
 
 /// `taut compare`: formulations × methods × discretizations of one scene.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct CompareRequest {
-    /// `lagrange,penalty,…`.
-    pub formulations: String,
-    /// Time integrators (`--methods`); the scene's own when absent.
-    pub methods: Option<String>,
-    /// Space discretizations (`--discretizations`); the scene's own when absent.
-    pub discretizations: Option<String>,
+    /// The formulations compared (at least one).
+    pub formulations: Vec<Formulation>,
+    /// Time integrators (`--methods`); empty: the scene's own.
+    pub methods: Vec<&'static dyn MethodFactory>,
+    /// Space discretizations (`--discretizations`); empty: the scene's own.
+    pub discretizations: Vec<SpaceChoice>,
     /// The formulation the differences are measured against.
-    pub reference: String,
-    /// The method they are measured against (one of `methods`; default its first).
-    pub reference_method: Option<String>,
+    pub reference: Formulation,
+    /// The method they are measured against: an index into `methods` (0
+    /// when `methods` is empty).
+    pub reference_method: usize,
     /// Runs stepped together (`--batch`).
-    pub batch: Option<usize>,
+    pub batch: BatchWidth,
     /// Start even above the cost bound (`--yes`, [`super::cost`]).
     pub yes: bool,
 }
@@ -85,19 +80,17 @@ impl CompareRequest {
     /// The study's estimated work: every run at the scene's resolution.
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
         let mut e = Estimate::new("taut compare");
-        e.add(self.runs()?, base_dof_steps(text, overrides)?);
+        e.add(self.runs(), base_dof_steps(text, overrides)?);
         Ok(e)
     }
 
     /// Number of runs, for a progress bar (an estimate: the reference
     /// formulation is run too when not listed).
-    pub fn runs(&self) -> Result<usize> {
-        let f = parse_formulations(&self.formulations)?.len();
-        let m = methods(self.methods.as_deref())?.map_or(1, |m| m.len());
-        Ok(f * m * spaces(self.discretizations.as_deref())?.len().max(1))
+    pub fn runs(&self) -> usize {
+        self.formulations.len() * variants(&self.methods, &self.discretizations)
     }
 
-    /// Parse and run the comparison on scene `text` with `overrides`.
+    /// Run the comparison on scene `text` with `overrides`.
     pub fn run(
         &self,
         text: &str,
@@ -105,54 +98,32 @@ impl CompareRequest {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Comparison> {
         self.estimate(text, overrides)?.check(self.yes)?;
-        let formulations = parse_formulations(&self.formulations)?;
-        let reference = parse_formulations(&self.reference)?
-            .first()
-            .copied()
-            .expect("parse_formulations returns at least one");
-        let list = methods(self.methods.as_deref())?;
-        let reference_method = match (self.reference_method.as_deref(), &list) {
-            (None, _) => 0,
-            (Some(name), Some(list)) => {
-                let m = parse_methods(name)?[0].name();
-                list.iter().position(|x| x.name() == m).ok_or_else(|| {
-                    Error::invalid("--reference-method", name, "must be one of --methods")
-                })?
-            }
-            (Some(name), None) => {
-                return Err(Error::invalid(
-                    "--reference-method",
-                    name,
-                    "needs --methods",
-                ));
-            }
-        };
         let spec = CompareSpec {
-            methods: factories(&list),
-            formulations,
-            discretizations: spaces(self.discretizations.as_deref())?,
-            reference_method,
+            methods: self.methods.clone(),
+            formulations: self.formulations.clone(),
+            discretizations: self.discretizations.clone(),
+            reference_method: self.reference_method,
             reference_discretization: 0,
-            reference,
-            batch: batch_lanes(self.batch)?,
+            reference: self.reference,
+            batch: lanes(self.batch),
         };
         compare_methods(text, overrides, &spec, progress)
     }
 }
 
 /// `taut converge`: a refinement ladder, per method and discretization.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct ConvergeRequest {
-    /// `mesh`, `step` or `both`.
-    pub refine: String,
+    /// Mesh, step or both.
+    pub refine: Refine,
     /// Levels (≥ 3 for observed orders).
     pub levels: usize,
     /// Refinement ratio between levels.
     pub ratio: f64,
-    /// Time integrators (`--methods`); the scene's own when absent.
-    pub methods: Option<String>,
-    /// Space discretizations (`--discretizations`); the scene's own when absent.
-    pub discretizations: Option<String>,
+    /// Time integrators (`--methods`); empty: the scene's own.
+    pub methods: Vec<&'static dyn MethodFactory>,
+    /// Space discretizations (`--discretizations`); empty: the scene's own.
+    pub discretizations: Vec<SpaceChoice>,
     /// Start even above the cost bound (`--yes`, [`super::cost`]).
     pub yes: bool,
 }
@@ -195,13 +166,12 @@ impl ConvergeRequest {
     /// The study's estimated work: level l refines the scene's mesh and/or
     /// step by ratio^l, for every method and discretization.
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
-        let refine: Refine = self.refine.parse()?;
         // in range first: the estimate loops over the levels
         super::converge::check_levels(self.levels)?;
         super::converge::check_ratio(self.ratio)?;
         let base = base_dof_steps(text, overrides)?;
         let variants = self.runs()? / self.levels;
-        let per_level = match refine {
+        let per_level = match self.refine {
             Refine::Mesh | Refine::Step => self.ratio,
             Refine::Both => self.ratio * self.ratio,
         };
@@ -218,29 +188,24 @@ impl ConvergeRequest {
     /// Number of runs, for a progress bar.
     pub fn runs(&self) -> Result<usize> {
         super::converge::check_levels(self.levels)?;
-        let m = methods(self.methods.as_deref())?.map_or(1, |m| m.len());
-        Ok(self.levels * m * spaces(self.discretizations.as_deref())?.len().max(1))
+        Ok(self.levels * variants(&self.methods, &self.discretizations))
     }
 
-    /// Parse and run the study on scene `text` with `overrides`, against
-    /// the analytic reference where the scene has one
-    /// ([`super::reference::analytic_w`]).
+    /// Run the study on scene `text` with `overrides`, against the analytic
+    /// reference where the scene has one ([`super::reference::analytic_w`]).
     pub fn run(
         &self,
         text: &str,
         overrides: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<ConvergeOutcome> {
-        let refine: Refine = self.refine.parse()?;
         self.estimate(text, overrides)?.check(self.yes)?;
-        let list = methods(self.methods.as_deref())?;
-        let spaces = spaces(self.discretizations.as_deref())?;
         let analytic = &super::reference::analytic_w;
-        if list.is_none() && self.discretizations.is_none() {
+        if self.methods.is_empty() && self.discretizations.is_empty() {
             return converge(
                 text,
                 overrides,
-                refine,
+                self.refine,
                 self.levels,
                 self.ratio,
                 analytic,
@@ -251,9 +216,9 @@ impl ConvergeRequest {
         let (studies, skipped) = converge_variants(
             text,
             overrides,
-            &factories(&list),
-            &spaces,
-            refine,
+            &self.methods,
+            &self.discretizations,
+            self.refine,
             self.levels,
             self.ratio,
             analytic,
@@ -264,20 +229,20 @@ impl ConvergeRequest {
 }
 
 /// `taut precision`: work against precision over a (mesh, Δt) grid.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct PrecisionRequest {
-    /// `lagrange,penalty,…`.
-    pub formulations: String,
-    /// Time integrators (`--methods`); the scene's own when absent.
-    pub methods: Option<String>,
-    /// Space discretizations (`--discretizations`); the scene's own when absent.
-    pub discretizations: Option<String>,
+    /// The formulations studied (at least one).
+    pub formulations: Vec<Formulation>,
+    /// Time integrators (`--methods`); empty: the scene's own.
+    pub methods: Vec<&'static dyn MethodFactory>,
+    /// Space discretizations (`--discretizations`); empty: the scene's own.
+    pub discretizations: Vec<SpaceChoice>,
     /// Grid levels per axis.
     pub levels: usize,
     /// Refinement ratio (integer).
     pub ratio: usize,
     /// Runs stepped together (`--batch`).
-    pub batch: Option<usize>,
+    pub batch: BatchWidth,
     /// Start even above the cost bound (`--yes`, [`super::cost`]).
     pub yes: bool,
 }
@@ -310,13 +275,12 @@ impl PrecisionRequest {
     /// Number of runs (with the reference run), for a progress bar.
     pub fn runs(&self) -> Result<usize> {
         super::precision::check_levels(self.levels)?;
-        let f = parse_formulations(&self.formulations)?.len();
-        let m = methods(self.methods.as_deref())?.map_or(1, |m| m.len());
-        let s = spaces(self.discretizations.as_deref())?.len().max(1);
-        Ok(1 + m * s * f * self.levels * self.levels)
+        let f = self.formulations.len();
+        let v = variants(&self.methods, &self.discretizations);
+        Ok(1 + v * f * self.levels * self.levels)
     }
 
-    /// Parse and run the study on scene `text` with `overrides`.
+    /// Run the study on scene `text` with `overrides`.
     pub fn run(
         &self,
         text: &str,
@@ -324,15 +288,12 @@ impl PrecisionRequest {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Precision> {
         self.estimate(text, overrides)?.check(self.yes)?;
-        let formulations = parse_formulations(&self.formulations)?;
-        let list = methods(self.methods.as_deref())?;
-        let spaces = spaces(self.discretizations.as_deref())?;
         precision_variants(
             text,
             overrides,
-            (&factories(&list), &spaces),
-            &formulations,
-            (self.levels, self.ratio, batch_lanes(self.batch)?),
+            (&self.methods, &self.discretizations),
+            &self.formulations,
+            (self.levels, self.ratio, lanes(self.batch)),
             progress,
         )
     }

@@ -1,0 +1,42 @@
+//! `taut precision` / `taut.precision`: error against cost for each
+//! formulation over a (mesh, Δt) grid (precision.csv, precision.svg).
+
+use std::path::Path;
+
+use crate::error::Result;
+use crate::report::Outputs;
+use crate::study::cost::Estimate;
+use crate::study::precision::Precision;
+use crate::study::request;
+
+use super::{Frontend, Study, StudyRequest, run_study};
+
+/// A work–precision study of one scene.
+pub type PrecisionRequest = StudyRequest<request::PrecisionRequest>;
+
+impl Study for request::PrecisionRequest {
+    type Outcome = Precision;
+    const OUTPUTS: Outputs = Outputs::Precision;
+    fn yes(&self) -> bool {
+        self.yes
+    }
+    fn estimate(&self, text: &str, set: &[String]) -> Result<Estimate> {
+        request::PrecisionRequest::estimate(self, text, set)
+    }
+    fn run(
+        &self,
+        text: &str,
+        set: &[String],
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<Precision> {
+        request::PrecisionRequest::run(self, text, set, progress)
+    }
+    fn write(dir: &Path, p: &Precision) -> Result<()> {
+        crate::report::write_precision(dir, p)
+    }
+}
+
+/// Run the study and write its outputs.
+pub fn precision(req: &PrecisionRequest, fe: &dyn Frontend) -> Result<Precision> {
+    run_study(req, fe)
+}

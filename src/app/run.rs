@@ -1,0 +1,81 @@
+//! `taut run` / `taut.run`: one scene, or with a tolerance an
+//! accuracy-targeted run (history.csv, summary.json, force.svg, and
+//! accuracy.csv for a tolerance run).
+
+use std::path::PathBuf;
+
+use crate::error::Result;
+use crate::report::{Outputs, Summary};
+use crate::run::RunOutput;
+use crate::study::tolerance::{Accuracy, Quantity, tolerance_run};
+
+use super::{Frontend, SceneSource, fresh, save_failure};
+
+/// An error target: choose mesh and Δt so that the error of `quantity` is
+/// at most `tol` (docs/accuracy.md).
+#[derive(Debug, Clone, Copy)]
+pub struct Tolerance {
+    /// What the tolerance is on.
+    pub quantity: Quantity,
+    /// The tolerance (relative; absolute for a loss fraction).
+    pub tol: f64,
+}
+
+/// One run of a scene.
+#[derive(Debug, Clone)]
+pub struct RunRequest {
+    /// The scene.
+    pub scene: SceneSource,
+    /// Scene overrides, `key.path=value` (`--set`).
+    pub set: Vec<String>,
+    /// Output folder (none: nothing written).
+    pub out: Option<PathBuf>,
+    /// An error target (`--tolerance`, `--quantity`), or the scene's own
+    /// mesh and Δt.
+    pub tolerance: Option<Tolerance>,
+}
+
+/// What a run gives.
+pub struct RunOutcome {
+    /// `summary.json` (without the accuracy).
+    pub summary: Summary,
+    /// The run itself (histories, statistics, warnings).
+    pub output: RunOutput,
+    /// How mesh and Δt were chosen and the estimated errors (a tolerance run).
+    pub accuracy: Option<Accuracy>,
+}
+
+/// Run the scene and write its outputs.
+pub fn run(req: &RunRequest, fe: &dyn Frontend) -> Result<RunOutcome> {
+    let dir = req.out.as_deref();
+    if let Some(d) = dir {
+        fresh(d, Outputs::Run, fe)?;
+    }
+    let text = req.scene.read()?;
+    let progress = &mut |d, t| fe.progress(d, t);
+    if let Some(Tolerance { quantity, tol }) = req.tolerance {
+        let r = tolerance_run(&text, &req.set, quantity, tol, progress)
+            .map_err(|e| req.scene.name(e))
+            .map_err(|e| save_failure(dir, e, fe))?;
+        let summary = match dir {
+            Some(d) => crate::report::write_tolerant_run(d, &r)?,
+            None => Summary::new(&r.scene, &r.output),
+        };
+        return Ok(RunOutcome {
+            summary,
+            output: r.output,
+            accuracy: Some(r.accuracy),
+        });
+    }
+    let sc = crate::resolve::resolve_scene(&text, &req.set).map_err(|e| req.scene.name(e))?;
+    let output = crate::run::run(&sc, progress).map_err(|e| save_failure(dir, e, fe))?;
+    let summary = match dir {
+        Some(d) => crate::report::write_run(d, &sc, &output)?,
+        None => Summary::new(&sc, &output),
+    };
+    Ok(RunOutcome {
+        summary,
+        output,
+        accuracy: None,
+    })
+}

@@ -1,0 +1,109 @@
+//! `taut sweep` / `taut.sweep`: scene values or dimensionless axes swept
+//! in parallel, resumable (sweep.csv, sweep_force.csv, sweep_loss.csv,
+//! timing.csv, runs/, and the maps of a 1-D or 2-D sweep).
+
+use std::path::PathBuf;
+use std::sync::OnceLock;
+use std::time::Instant;
+
+use crate::error::Result;
+use crate::report::Outputs;
+use crate::study::sweep::{
+    Axis, BatchWidth, Shard, SweepRecord, SweepSpec, claim, folder, sweep_batched,
+};
+
+use super::{Frontend, SceneSource, fresh, started};
+
+/// A sweep of one scene.
+pub struct SweepRequest {
+    /// The scene.
+    pub scene: SceneSource,
+    /// Fixed scene overrides, `key.path=value` (`--set`).
+    pub set: Vec<String>,
+    /// One or two axes; the last varies fastest.
+    pub axes: Vec<Axis>,
+    /// Run each point a second time, refined (`--check-refinement`).
+    pub check_refinement: bool,
+    /// The folder that holds the sweep's runs (resumable).
+    pub out: PathBuf,
+    /// Write the tables and maps into `out` too (the CLI always does).
+    pub files: bool,
+    /// Run only the points of one shard (`--shard i/n`).
+    pub shard: Option<Shard>,
+    /// Worker threads (none: one per core).
+    pub threads: Option<usize>,
+    /// Runs stepped together.
+    pub batch: BatchWidth,
+    /// Start even above the cost bound.
+    pub yes: bool,
+}
+
+/// What a sweep gives.
+pub struct SweepOutcome {
+    /// The sweep as run (its scene text, overrides and axes).
+    pub spec: SweepSpec,
+    /// One record a point (of the shard), in point order.
+    pub records: Vec<SweepRecord>,
+    /// The maps drawn (none for a shard or a partial grid).
+    pub maps: Vec<PathBuf>,
+    /// Points an earlier start had finished (kept, not run again).
+    pub resumed: usize,
+    /// Wall time, s.
+    pub wall_seconds: f64,
+    /// Worker threads the runs had.
+    pub threads: usize,
+}
+
+impl SweepOutcome {
+    /// Number of points whose run stopped with an error.
+    pub fn stopped(&self) -> usize {
+        self.records.iter().filter(|r| r.error.is_some()).count()
+    }
+}
+
+/// Run the sweep (the points not finished by an earlier start) and write
+/// its tables and maps.
+pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
+    let start = Instant::now();
+    let spec = SweepSpec {
+        scene_text: req.scene.read()?,
+        set: req.set.clone(),
+        axes: req.axes.clone(),
+        check_refinement: req.check_refinement,
+    };
+    spec.validate().map_err(|e| req.scene.name(e))?;
+    started(&spec.estimate(req.shard)?, req.yes, fe)?;
+    let dir = &req.out;
+    crate::report::check_out_dir(dir)?;
+    let claimed = claim(dir)?;
+    if req.files {
+        // tables and maps of this sweep only: a folder holding another
+        // sweep is refused (by check_spec) with its tables left as they are
+        folder::check_spec(dir, &spec)?;
+        fresh(dir, Outputs::Sweep, fe)?;
+    }
+    // the first report says how many points an earlier start had finished
+    let resumed = OnceLock::new();
+    let (records, threads) = crate::study::threads::in_pool(req.threads, || {
+        let records = sweep_batched(&claimed, &spec, req.shard, req.batch, &|d, t| {
+            resumed.get_or_init(|| d);
+            fe.progress(d, t);
+        });
+        (records, rayon::current_num_threads())
+    })?;
+    let records = records?;
+    let maps = if req.files {
+        crate::report::write_sweep(dir, &spec, &records)?;
+        crate::report::write_sweep_maps(dir, &spec, &records)?
+    } else {
+        Vec::new()
+    };
+    Ok(SweepOutcome {
+        spec,
+        records,
+        maps,
+        resumed: resumed.get().copied().unwrap_or(0),
+        wall_seconds: start.elapsed().as_secs_f64(),
+        threads,
+    })
+}

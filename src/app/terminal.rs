@@ -1,0 +1,171 @@
+//! What `taut` prints of an outcome: the text, so that the binary only
+//! writes it out (stdout for results, stderr for the stopped points).
+
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+use crate::record::{ContactStats, LossClass};
+use crate::report::Summary;
+use crate::study::sweep::SweepRecord;
+use crate::study::tolerance::Accuracy;
+
+/// Most stopped points a sweep names on the terminal (all are in sweep.csv).
+pub const STOPPED_SHOWN: usize = 5;
+
+/// Header, table and written files of a study command.
+pub fn study(kind: &str, scene: &Path, table: &str, dir: &Path, files: &str) -> String {
+    let mut s = format!(
+        "taut {} — {kind} {}\n",
+        env!("CARGO_PKG_VERSION"),
+        scene.display()
+    );
+    s.push_str(table);
+    let _ = writeln!(s, "  wrote    {}/{{{files}}}", dir.display());
+    s
+}
+
+/// The terminal's contact-loss lines of one carrier: P_l split into the
+/// in-span part (the number to quote) and the support part, the first loss
+/// flagged when the run does not resolve it, the re-contacts.
+pub fn contact_loss_lines(c: &ContactStats) -> String {
+    let mut s = format!(
+        "             contact loss P_l = {:.4} = {:.4} in span + {:.4} at supports (zone {:.2} m); {} intervals, {} switches\n",
+        c.loss_fraction,
+        c.loss_fraction_span,
+        c.loss_fraction_support,
+        c.support_zone,
+        c.loss_interval_count,
+        c.contact_switches
+    );
+    if let Some(x) = c.first_loss_position {
+        let note = match c.loss_interval_class.first() {
+            Some(LossClass::Unresolved) => " (unresolved: see WARNING)",
+            Some(LossClass::Support) => " (in a support zone)",
+            _ => "",
+        };
+        let _ = writeln!(s, "             first loss at x/L = {x:.4}{note}");
+    }
+    if c.recontact_count > 0 {
+        let peak = c.recontacts.iter().map(|r| r.peak).fold(0.0, f64::max);
+        let impulse = c.recontacts.iter().map(|r| r.impulse).fold(0.0, f64::max);
+        let _ = writeln!(
+            s,
+            "             {} re-contacts: peak λ up to {peak:.1} N (grows as Δt falls), impulse up to {impulse:.4} N·s",
+            c.recontact_count
+        );
+    }
+    s
+}
+
+/// The run's one-screen summary; with `accuracy` (a tolerance run) the
+/// choice of resolution first and an estimated error beside every result.
+pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy>) -> String {
+    let d = &s.derived;
+    let mut t = format!("taut {} — {}\n", s.taut_version, scene.display());
+    if let Some(a) = accuracy {
+        t.push_str(&crate::report::accuracy_header(a));
+    }
+    let _ = writeln!(
+        t,
+        "  beam     L = {} m, ρA = {:.4} kg/m, EI = {:.4e} N·m², T = {:.4e} N, c = {:.2} m/s",
+        s.scene.beam.length,
+        d.mass_per_length,
+        d.bending_stiffness,
+        s.scene.beam.tension,
+        d.wave_speed
+    );
+    let ratio = d
+        .speed_ratio
+        .map_or_else(|| "n/a".to_string(), |r| format!("{r:.4}"));
+    let _ = writeln!(
+        t,
+        "  mesh     {}, {} dofs; Δt = {} s, {} steps to t = {:.4} s; V0/c = {ratio}",
+        crate::report::mesh_label(s),
+        d.dofs,
+        d.dt,
+        d.steps,
+        d.end_time
+    );
+    for (i, c) in s.carriers.iter().enumerate() {
+        if let Some(a) = accuracy {
+            let _ = writeln!(t, "  carrier {i} (± estimated error at this N and Δt):");
+            t.push_str(&crate::report::result_lines(a, i));
+            continue;
+        }
+        let f = &c.force;
+        let _ = writeln!(
+            t,
+            "  carrier {i}: force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
+            f.mean, f.std, f.min, f.max
+        );
+        t.push_str(&contact_loss_lines(c));
+    }
+    for w in &s.warnings {
+        let _ = writeln!(t, "  WARNING  {w}");
+    }
+    let rate = d.dofs as f64 * d.steps as f64 / s.wall_seconds.max(1e-12);
+    let _ = writeln!(
+        t,
+        "  time     {:.3} s wall ({rate:.3e} dof-steps/s)",
+        s.wall_seconds
+    );
+    let accuracy_csv = if accuracy.is_some() {
+        ", accuracy.csv"
+    } else {
+        ""
+    };
+    let _ = writeln!(
+        t,
+        "  wrote    {}/{{history.csv, summary.json, force.svg{accuracy_csv}}}",
+        dir.display()
+    );
+    t
+}
+
+/// The maps a sweep or merge drew (a shard draws none: merge does).
+pub fn maps(maps: &[PathBuf], shard: bool) -> String {
+    if let Some((first, rest)) = maps.split_first() {
+        let names: Vec<String> = rest
+            .iter()
+            .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+            .collect();
+        if names.is_empty() {
+            format!("  map      {}\n", first.display())
+        } else {
+            format!("  maps     {}, {}\n", first.display(), names.join(", "))
+        }
+    } else if shard {
+        "  maps     none for a shard: `taut merge` draws them for the whole grid\n".to_string()
+    } else {
+        String::new()
+    }
+}
+
+/// The points of a sweep whose run stopped (for stderr; empty when none):
+/// the tables and maps are written, and the exit status (1) says some
+/// points failed.
+pub fn stopped(records: &[SweepRecord]) -> String {
+    let stopped: Vec<_> = records.iter().filter(|r| r.error.is_some()).collect();
+    if stopped.is_empty() {
+        return String::new();
+    }
+    let mut s = format!(
+        "{} of {} points stopped with an error; their rows in sweep.csv carry it (column \
+         `error`), the maps show them grey, and a resumed sweep keeps them:\n",
+        stopped.len(),
+        records.len()
+    );
+    for r in stopped.iter().take(STOPPED_SHOWN) {
+        let _ = writeln!(
+            s,
+            "  point {} {:?}: {}",
+            r.index,
+            r.values,
+            r.error.as_deref().unwrap_or_default()
+        );
+    }
+    if stopped.len() > STOPPED_SHOWN {
+        let _ = writeln!(s, "  … and {} more", stopped.len() - STOPPED_SHOWN);
+    }
+    s
+}

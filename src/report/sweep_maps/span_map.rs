@@ -1,0 +1,30 @@
+//! `loss_fraction_span_map.svg`: P_l in span (outside the support zones)
+//! over a 2-D sweep's grid, the part to quote (docs/contact_loss.md).
+
+use std::path::Path;
+
+use super::loss_fraction_map::{SPEED_RATIO_LEVELS, write_loss_fraction_map};
+use crate::error::Result;
+use crate::study::sweep::{SweepRecord, SweepSpec};
+
+/// The in-span P_l of a 2-D sweep as a heat map with the V0/c iso-lines.
+pub(super) fn write_loss_fraction_span_map(
+    path: &Path,
+    spec: &SweepSpec,
+    records: &[SweepRecord],
+) -> Result<()> {
+    let span: Vec<SweepRecord> = records
+        .iter()
+        .map(|r| SweepRecord {
+            loss_fraction: r.loss_fraction_span,
+            ..r.clone()
+        })
+        .collect();
+    write_loss_fraction_map(
+        path,
+        spec,
+        &span,
+        Some("P_l in span (outside the support zones)"),
+        &SPEED_RATIO_LEVELS,
+    )
+}

@@ -1,0 +1,97 @@
+//! What a level's errors say about its ladder: asymptotic, stalled by an
+//! unrefined variable, pre-asymptotic, at round-off (the `regime` column).
+
+/// What a study knows beyond its runs: the exact histories of its declared
+/// reference (if any), the orders the refined variable should show, and
+/// what stays fixed.
+pub(super) struct Context<'a> {
+    /// w(t) under carrier 0, exact.
+    pub(super) w: Option<&'a (dyn Fn(f64) -> f64 + Sync)>,
+    /// λ(t) of carrier 0, exact (compared at t − lag·Δt of each run).
+    pub(super) force: Option<&'a (dyn Fn(f64) -> f64 + Sync)>,
+    /// The declared reference's name, for the `reference` column.
+    pub(super) name: &'static str,
+    /// The displacement's formal order in the refined variable, if known.
+    pub(super) formal: Option<f64>,
+    /// What the ladder does not refine ("the mesh", "Δt", "J", …).
+    pub(super) unrefined: &'static str,
+    /// ω_max·Δt of each level.
+    pub(super) omega_dt: Vec<f64>,
+}
+
+/// An error falling by less than this factor per level (order < 0.32 at
+/// r = 2) is not falling with the refined variable: a ladder limited by
+/// what it does not refine. Chosen between a converging ladder's slowest
+/// useful rate (first order: ×2 per halving) and the ±10 % a stalled error
+/// wanders by.
+pub const STALL_RATIO: f64 = 1.25;
+
+/// Successive observed orders differing by more than this are not yet in
+/// the asymptotic range: the ratio of successive error ratios is outside
+/// r^(±0.3) (0.81 … 1.23 at r = 2), where the leading error term does not
+/// yet dominate the next one.
+pub const ORDER_DRIFT: f64 = 0.3;
+
+/// An observed order this far from the formal one is pre-asymptotic (or
+/// the formal order does not hold for this solution: the regime says which
+/// to suspect, the numbers show it). The same ±0.3 the verification
+/// harness allows a smooth case.
+pub const FORMAL_GAP: f64 = 0.3;
+
+/// The regime of a level from the errors of its ladder (`e`, against an
+/// exact reference, or successive differences when `exact` is false) and
+/// the orders between levels (module docs, `docs/convergence.md`).
+pub(super) fn regime(e: &[f64], orders: &[f64], l: usize, ctx: &Context, exact: bool) -> String {
+    // with differences, level ℓ's difference is index ℓ − 1
+    let (prev, cur) = if exact {
+        if l == 0 {
+            return String::new();
+        }
+        (e[l - 1], e[l])
+    } else {
+        if l < 2 {
+            return String::new();
+        }
+        (e[l - 2], e[l - 1])
+    };
+    if !(prev.is_finite() && cur.is_finite()) || prev == 0.0 {
+        return String::new();
+    }
+    if cur == 0.0 {
+        return "exact".into();
+    }
+    if prev / cur < 1.0 / STALL_RATIO {
+        return if exact {
+            "growing: round-off or an instability".into()
+        } else {
+            "not converging".into()
+        };
+    }
+    if prev / cur < STALL_RATIO {
+        return if exact {
+            format!("limited by {}", ctx.unrefined)
+        } else {
+            "not converging".into()
+        };
+    }
+    let p = orders[l];
+    let drift = l >= 2 && orders[l - 1].is_finite() && (p - orders[l - 1]).abs() > ORDER_DRIFT;
+    let off = ctx.formal.is_some_and(|f| (p - f).abs() > FORMAL_GAP);
+    if drift || off {
+        "pre-asymptotic".into()
+    } else if l >= 2 || ctx.formal.is_some() {
+        "asymptotic".into()
+    } else {
+        String::new()
+    }
+}
+
+/// Ratio of successive error ratios (e_{ℓ−2}/e_{ℓ−1})/(e_{ℓ−1}/e_ℓ): 1 in
+/// the asymptotic range ([`ORDER_DRIFT`]).
+pub(super) fn ratio_change(a: f64, b: f64, c: f64) -> f64 {
+    if a > 0.0 && b > 0.0 && c > 0.0 {
+        (a / b) / (b / c)
+    } else {
+        f64::NAN
+    }
+}

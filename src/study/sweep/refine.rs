@@ -1,0 +1,77 @@
+//! `--check-refinement`: a sweep point run again refined (N × 2, Δt / 2)
+//! and whether its P_l is converged.
+
+use serde::{Deserialize, Serialize};
+
+use super::nan_as_null;
+use super::spec::SweepSpec;
+use crate::error::Error;
+use crate::run::run;
+/// A sweep point run again refined (`--check-refinement`): twice the
+/// elements (modes on a modal basis), half the step.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Refined {
+    /// Elements of the refined run.
+    pub elements: usize,
+    /// Its modes J, on a `galerkin` or `modal` basis.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
+    /// Its time step, s.
+    pub dt: f64,
+    /// Its P_l (null when it stopped).
+    #[serde(with = "nan_as_null")]
+    pub loss_fraction: f64,
+    /// Its in-span P_l (null when it stopped).
+    #[serde(with = "nan_as_null")]
+    pub loss_fraction_span: f64,
+    /// Why it stopped, if it did.
+    pub error: Option<String>,
+}
+
+/// Whether a P_l is converged under one refinement: the change is at most
+/// [`REFINEMENT_REL`] of the refined value or [`REFINEMENT_ABS`] (None when
+/// either run stopped).
+pub fn refinement_converged(base: f64, refined: f64) -> Option<bool> {
+    let d = (refined - base).abs();
+    d.is_finite()
+        .then(|| d <= (REFINEMENT_REL * refined.abs()).max(REFINEMENT_ABS))
+}
+
+/// Relative change of P_l under one refinement (N × 2, Δt / 2) taken as
+/// converged: the in-span P_l of the reference case changes by 0.02–4 %
+/// between its finest levels (`docs/contact_loss.md`), a non-converged one
+/// by tens of per cent.
+pub const REFINEMENT_REL: f64 = 0.05;
+
+/// Absolute change of P_l taken as converged whatever its size: 5e-4 is
+/// three steps of loss in the reference run's 6000, below what a loss map
+/// resolves.
+pub const REFINEMENT_ABS: f64 = 5e-4;
+
+/// Run point `index` refined.
+pub(super) fn refined(spec: &SweepSpec, index: usize) -> Refined {
+    let stopped = |elements, modes, dt, e: Error| Refined {
+        elements,
+        modes,
+        dt,
+        loss_fraction: f64::NAN,
+        loss_fraction_span: f64::NAN,
+        error: Some(e.to_string()),
+    };
+    let sc = match spec.resolve_refined(index) {
+        Ok(sc) => sc,
+        Err(e) => return stopped(0, None, f64::NAN, e),
+    };
+    let modes = sc.discretization.modes();
+    match run(&sc, &mut |_, _| {}) {
+        Ok(o) => Refined {
+            elements: sc.elements,
+            modes,
+            dt: sc.dt,
+            loss_fraction: o.stats[0].loss_fraction,
+            loss_fraction_span: o.stats[0].loss_fraction_span,
+            error: None,
+        },
+        Err(e) => stopped(sc.elements, modes, sc.dt, e),
+    }
+}

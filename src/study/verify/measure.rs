@@ -1,0 +1,294 @@
+//! A ladder's measurements: each level's error against the exact solution
+//! on the coarsest level's time grid, the dominance run, and the exact
+//! solution's modal tail.
+
+use super::case::{Ladder, Space, Variable};
+use super::job::Job;
+use super::level::level;
+use crate::error::Result;
+use crate::integrate::central_difference_limit;
+use crate::resolve::Resolved;
+use crate::run::{RunOutput, run_with};
+use crate::scene::{CarrierKind, Scene};
+use crate::study::grid::{Reach, nest};
+use crate::study::reference::{Exact, exact};
+/// A ladder's measurements.
+pub(super) struct Measured {
+    /// The refined variable per level.
+    pub(super) levels: Vec<f64>,
+    /// Displacement and force errors per level.
+    pub(super) displacement: Vec<f64>,
+    pub(super) force: Vec<f64>,
+    /// The exact solution's largest displacement and force.
+    pub(super) scale: (f64, f64),
+    /// The dominance run's errors (NaN when it could not run).
+    pub(super) refined: (f64, f64),
+    pub(super) omega_max_dt: f64,
+    pub(super) runs: usize,
+    /// A run that failed, and why.
+    pub(super) failed: Option<String>,
+    /// The exact solution's modal tail per J level (J ladders).
+    pub(super) tail: Option<Vec<f64>>,
+}
+
+/// The per-level value of the refined variable, and the level's (N, Δt, J).
+pub(super) fn level_params(l: &Ladder, k: usize) -> (f64, usize, f64, usize) {
+    let f = 1usize << k;
+    match l.variable {
+        Variable::H => (f64::NAN, l.elements * f, l.dt, l.modes),
+        Variable::Dt => (l.dt / f as f64, l.elements, l.dt / f as f64, l.modes),
+        Variable::J => ((l.modes * f) as f64, l.elements, l.dt, l.modes * f),
+    }
+}
+
+/// Run a ladder and its dominance run; errors against the exact solution.
+pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
+    let mut m = Measured {
+        levels: Vec::new(),
+        displacement: Vec::new(),
+        force: Vec::new(),
+        scale: (0.0, 0.0),
+        refined: (f64::NAN, f64::NAN),
+        omega_max_dt: f64::NAN,
+        runs: 0,
+        failed: None,
+        tail: None,
+    };
+    let owned;
+    let scene = match ladder.end {
+        None => scene,
+        Some(t) => {
+            let mut s = scene.clone();
+            s.time.end = crate::scene::EndTime::Seconds(t);
+            owned = s;
+            &owned
+        }
+    };
+    let mut scenes = Vec::with_capacity(ladder.levels);
+    for k in 0..ladder.levels {
+        let (_, n, dt, jm) = level_params(ladder, k);
+        match level(scene, j.space, n, dt, jm) {
+            Ok(s) => scenes.push(s),
+            Err(e) => {
+                m.failed = Some(e.to_string());
+                return m;
+            }
+        }
+    }
+    let finest = scenes.last().expect("a ladder has levels");
+    let ex = match exact(finest) {
+        Ok(Some(e)) => e,
+        Ok(None) => {
+            m.failed = Some("the case's scene declares no exact reference".into());
+            return m;
+        }
+        Err(e) => {
+            m.failed = Some(e.to_string());
+            return m;
+        }
+    };
+    m.omega_max_dt = central_difference_limit(finest).map_or(f64::NAN, |l| l.omega_max * finest.dt);
+    let coarse = (scenes[0].steps, scenes[0].dt);
+    for (k, sc) in scenes.iter().enumerate() {
+        m.levels.push(match ladder.variable {
+            Variable::H => sc.resolution(),
+            Variable::Dt => sc.dt,
+            Variable::J => sc.discretization.modes().unwrap_or(0) as f64,
+        });
+        let out = match run_with(sc, j.factory, &mut |_, _| {}) {
+            Ok(o) => o,
+            Err(e) => {
+                m.failed = Some(format!("level {k}: {e}"));
+                return m;
+            }
+        };
+        m.runs += 1;
+        let Ok(stride) = nest(coarse, (sc.steps, sc.dt), Reach::SameEnd) else {
+            m.failed = Some("the levels' time grids do not nest".into());
+            return m;
+        };
+        let (d, f, scale) = errors(sc, &out, &ex, stride, coarse.0);
+        m.displacement.push(d);
+        m.force.push(f);
+        m.scale = scale;
+    }
+    if ladder.variable == Variable::J
+        && let Some(mf) = &finest.manufactured
+    {
+        m.tail = modal_tail(&scenes, mf, j.space).ok();
+    }
+    if ladder.fixed_exact {
+        m.refined = (
+            m.displacement[ladder.levels - 1],
+            m.force[ladder.levels - 1],
+        );
+        return m;
+    }
+    // the dominance run: the finest level with the fixed variables refined
+    // (a modal basis's FE mesh stays in a Δt ladder: its error is the
+    // hermite ladder's at that N, which that ladder shows)
+    let (_, n, dt, jm) = level_params(ladder, ladder.levels - 1);
+    let (n2, dt2, j2) = match ladder.variable {
+        Variable::Dt => match j.space {
+            Space::Galerkin => (n, dt, jm * 2),
+            Space::Modal => (n, dt, (jm * 2).min(finest.beam_unknowns())),
+            _ => (n * 2, dt, jm),
+        },
+        // a modal basis's FE mesh stays in its J ladder too: refining it
+        // makes the dense eigenvectors less accurate (ε·ω_max²/Δω²), which
+        // docs/verification.md shows on its own
+        Variable::H | Variable::J => (n, dt / 2.0, jm),
+    };
+    if let Ok(sc) = level(scene, j.space, n2, dt2, j2)
+        && let Ok(out) = run_with(&sc, j.factory, &mut |_, _| {})
+        && let Ok(stride) = nest(coarse, (sc.steps, sc.dt), Reach::SameEnd)
+    {
+        m.runs += 1;
+        let (d, f, _) = errors(&sc, &out, &ex, stride, coarse.0);
+        m.refined = (d, f);
+    }
+    m
+}
+
+/// Times at which a modal tail is sampled (evenly over the run, t > 0).
+pub const TAIL_TIMES: usize = 8;
+
+/// The exact solution's own modal tail at each J level of a ladder: the
+/// largest |v* − Σ_{j ≤ J} c_j φ_j| over the probes and the carrier's
+/// position at [`TAIL_TIMES`] times, with c_j = ∫ρA φ_j v* dx the exact
+/// modal coefficients (galerkin: the exact modes, by their own quadrature;
+/// modal: the FE modes of the level's mesh, applied to the nodal
+/// interpolant of v*, so the FE interpolation error is left out).
+pub(super) fn modal_tail(
+    scenes: &[Resolved],
+    mf: &crate::manufactured::Manufactured,
+    space: Space,
+) -> Result<Vec<f64>> {
+    let finest = scenes.last().expect("levels");
+    let js: Vec<usize> = scenes
+        .iter()
+        .map(|s| s.discretization.modes().unwrap_or(0))
+        .collect();
+    let jmax = *js.last().unwrap_or(&0);
+    let t_end = finest.steps as f64 * finest.dt;
+    let times: Vec<f64> = (1..=TAIL_TIMES)
+        .map(|k| t_end * k as f64 / TAIL_TIMES as f64)
+        .collect();
+    let points = |t: f64| -> Vec<f64> {
+        let mut p: Vec<f64> = finest.probes.iter().map(|(_, x)| *x).collect();
+        p.extend((0..mf.carriers()).map(|c| mf.position(c, t)));
+        p
+    };
+    let mut tail = vec![0.0f64; js.len()];
+    match space {
+        Space::Galerkin => {
+            let shapes = crate::analytic::ModeShapes::new(&finest.beam, jmax)?;
+            let quad = shapes.quadrature(finest.beam.length / 400.0);
+            let mut phi = vec![0.0; jmax];
+            for &t in &times {
+                let mut c = vec![0.0; jmax];
+                for &(x, w) in &quad {
+                    shapes.values_into(x, &mut phi);
+                    let v = finest.beam.rho_a * mf.v(x, t) * w;
+                    for (cj, p) in c.iter_mut().zip(&phi) {
+                        *cj += v * p;
+                    }
+                }
+                for x in points(t) {
+                    shapes.values_into(x, &mut phi);
+                    let exact = mf.v(x, t);
+                    for (k, &j) in js.iter().enumerate() {
+                        let sum: f64 = c[..j].iter().zip(&phi[..j]).map(|(a, b)| a * b).sum();
+                        tail[k] = tail[k].max((exact - sum).abs());
+                    }
+                }
+            }
+        }
+        Space::Modal => {
+            use crate::model::beam::BeamModel;
+            let mesh =
+                crate::model::mesh::Mesh::new(finest.beam.length, finest.elements, finest.grading)?;
+            let fe = BeamModel::on_mesh(&finest.beam, mesh);
+            let pairs = crate::model::eigen::lowest_eigenpairs(&fe.mass, &fe.stiffness, jmax)?;
+            let n = fe.n;
+            for &t in &times {
+                // the nodal interpolant d* of v*(·, t)
+                let mut d = vec![0.0; n];
+                let per_node = if finest.beam.is_string() { 1 } else { 2 };
+                for node in 0..=fe.mesh.elements() {
+                    let x = fe.mesh.node(node);
+                    let f = mf.fields(x, t);
+                    if let Some(i) = fe.dof_of[per_node * node] {
+                        d[i] = f.v;
+                    }
+                    if per_node == 2
+                        && let Some(i) = fe.dof_of[2 * node + 1]
+                    {
+                        d[i] = f.v_x;
+                    }
+                }
+                let mut md = vec![0.0; n];
+                fe.mass.mul_acc(&d, 1.0, &mut md);
+                let c: Vec<f64> = (0..jmax)
+                    .map(|j| pairs.shape(j).iter().zip(&md).map(|(a, b)| a * b).sum())
+                    .collect();
+                for x in points(t) {
+                    let r = fe.point_vector(x);
+                    let full = r.dot(&d);
+                    let modes: Vec<f64> = (0..jmax).map(|j| r.dot(pairs.shape(j))).collect();
+                    for (k, &j) in js.iter().enumerate() {
+                        let sum: f64 = c[..j].iter().zip(&modes[..j]).map(|(a, b)| a * b).sum();
+                        tail[k] = tail[k].max((full - sum).abs());
+                    }
+                }
+            }
+        }
+        _ => {}
+    }
+    Ok(tail)
+}
+
+/// Max errors over the coarse grid's rows 1 ..= `rows` of a run: the
+/// displacement (under carrier 0, at the probes, of its mass) and the force
+/// (at the time the multiplier acts); and the exact solution's largest
+/// values there.
+pub(super) fn errors(
+    sc: &Resolved,
+    out: &RunOutput,
+    ex: &Exact,
+    stride: usize,
+    rows: usize,
+) -> (f64, f64, (f64, f64)) {
+    let h = &out.history;
+    let c = &h.carriers[0];
+    let lag = out.force_lag * sc.dt;
+    let has_force =
+        ex.force.is_some() && matches!(sc.carriers[0].kind, CarrierKind::MassSpring { .. });
+    let (mut ed, mut ef, mut sd, mut sf) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for k in 1..=rows {
+        let i = k * stride;
+        let t = h.t[i];
+        let w = (ex.w)(t);
+        sd = sd.max(w.abs());
+        ed = ed.max((c.w[i] - w).abs());
+        if let Some(q) = &ex.mass {
+            ed = ed.max((c.q[i] - q(t)).abs());
+        }
+        if let Some(field) = &ex.field {
+            for ((_, x), (_, col)) in sc.probes.iter().zip(&h.probes) {
+                let v = field(*x, t);
+                sd = sd.max(v.abs());
+                ed = ed.max((col[i] - v).abs());
+            }
+        }
+        if has_force && let Some(f) = &ex.force {
+            let l = f(t - lag);
+            sf = sf.max(l.abs());
+            ef = ef.max((c.force[i] - l).abs());
+        }
+    }
+    if !has_force {
+        ef = f64::NAN;
+    }
+    (ed, ef, (sd, sf))
+}
