@@ -498,3 +498,24 @@ fn central_difference_bound_counts_a_stiff_attachment() {
         2.0 / w_true
     );
 }
+
+/// Runs with attachments step alone: a batch shares its first run's K and
+/// M, and the key has no place for the attachments (`integrate::batch_key`).
+#[test]
+fn runs_with_attachments_do_not_batch() {
+    let bare = with("", &[]).unwrap();
+    assert!(taut::integrate::batch_key(&bare).is_some());
+    let sc = with(STEADY_ARM, &[]).unwrap();
+    assert!(taut::integrate::batch_key(&sc).is_none());
+    let sc = with(
+        STEADY_ARM,
+        &[
+            "mesh.kind=modal",
+            "mesh.modes=10",
+            "mesh.elements=40",
+            "integrator={ method = \"modal_exact\" }",
+        ],
+    )
+    .unwrap();
+    assert!(taut::integrate::batch_key(&sc).is_none());
+}

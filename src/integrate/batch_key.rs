@@ -109,8 +109,8 @@ pub fn scene_columns(sc: &Resolved) -> usize {
 }
 
 /// The key of the generalized-α runs that may step together: `None` when
-/// `sc` cannot batch this way (`integrate::batch`'s module docs: the `end`
-/// placement, a force-level law, Hermite elements, no manufactured source,
+/// `sc` cannot batch this way (`integrate::batch`'s module docs: no point
+/// attachments, the `end` placement, a force-level law, Hermite elements, no manufactured source,
 /// at most four columns).
 pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
     let Scheme::GenAlpha(p) = sc.scheme else {
@@ -129,7 +129,7 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
         return None;
     }
     Some(GenAlphaKey {
-        beam: beam_key(&sc.beam),
+        beam: beam_key(&sc.beam)?,
         grading: grading_key(sc.grading),
         elements: sc.elements,
         dt: sc.dt.to_bits(),
@@ -139,7 +139,7 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
 }
 
 /// The key of `modal_exact` runs that may step together: `None` for any
-/// other method.
+/// other method and for a beam with point attachments.
 pub fn modal_key(sc: &Resolved) -> Option<ModalKey> {
     if sc.scheme != Scheme::ModalExact {
         return None;
@@ -152,27 +152,34 @@ pub fn modal_key(sc: &Resolved) -> Option<ModalKey> {
         }
     };
     Some(ModalKey {
-        beam: beam_key(&sc.beam),
+        beam: beam_key(&sc.beam)?,
         basis,
         mesh,
         dt: sc.dt.to_bits(),
     })
 }
 
-fn beam_key(b: &BeamProps) -> BeamKey {
+/// `None` for a beam with point attachments (`[[attachment]]`, MODEL §10):
+/// their springs and masses are part of K and M, and such runs step alone
+/// rather than have the key carry a list (a sweep over an attachment's
+/// stiffness must not share the first run's matrices).
+fn beam_key(b: &BeamProps) -> Option<BeamKey> {
+    if !b.attachments.is_empty() {
+        return None;
+    }
     let support = |s: Support| match s {
         Support::Clamped => 0,
         Support::Pinned => 1,
         Support::Free => 2,
     };
-    BeamKey {
+    Some(BeamKey {
         supports: (support(b.left), support(b.right)),
         length: b.length.to_bits(),
         rho_a: b.rho_a.to_bits(),
         ei: b.ei.to_bits(),
         tension: b.tension.to_bits(),
         distributed_load: b.distributed_load.to_bits(),
-    }
+    })
 }
 
 fn grading_key(g: Grading) -> GradingKey {
