@@ -59,8 +59,7 @@ use super::gen_alpha_update::{MAX_COLUMNS, Pass, UpdateCoefs};
 use super::step_map::Lanes;
 use super::{Initial, MassDof, MassPrediction, State, StepMap, System, VelocityPrediction};
 
-/// Most runs a batch steps together (the widest kernel compiled).
-pub const MAX_LANES: usize = 8;
+pub use super::gen_alpha_update::MAX_LANES;
 
 /// What generalized-α keeps per run for its mass dofs: accelerations q̈_n,
 /// effective masses A_q and this step's predictions.

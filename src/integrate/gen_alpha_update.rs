@@ -11,11 +11,13 @@
 //! count L are compile-time constants of the pass: each row's L lanes are
 //! one vector operation, and a run alone's rows vectorize.
 
-use super::gen_alpha_kernel::MAX_LANES;
-
 /// Most right-hand-side columns the update pass has a compiled kernel for
 /// (five contacts); a run alone with more takes the scalar pass.
 pub(crate) const MAX_COLUMNS: usize = 6;
+
+/// Most runs a batch steps together: the widest update pass compiled here
+/// (the kernel and the batch re-export it).
+pub const MAX_LANES: usize = 8;
 
 /// The constants of the update pass (MODEL §5, update and predictors).
 #[derive(Debug, Clone, Copy)]
