@@ -303,7 +303,7 @@ pub fn run_batch(
     let mut out: Vec<Option<Result<RunOutput>>> = (0..scenes.len()).map(|_| None).collect();
     let width = batch.clamp(1, MAX_LANES);
     // group by key, in order of first appearance
-    let mut groups: Vec<(Option<String>, Vec<usize>)> = Vec::new();
+    let mut groups: Vec<(Option<crate::integrate::BatchKey>, Vec<usize>)> = Vec::new();
     for (i, sc) in scenes.iter().enumerate() {
         let key = if width > 1 { batch_key(sc) } else { None };
         // no wider than the kernels compiled for this run's columns

@@ -291,7 +291,8 @@ fn modal_exact_runs_batch_bit_identically() {
             "time.end=0.1".into(),
         ]),
     ));
-    let keys: Vec<Option<String>> = scenes.iter().map(taut::integrate::batch_key).collect();
+    let keys: Vec<Option<taut::integrate::BatchKey>> =
+        scenes.iter().map(taut::integrate::batch_key).collect();
     assert!(keys.iter().all(Option::is_some));
     assert_eq!(keys[0], keys[7]);
     assert_ne!(keys[0], keys[9]);

@@ -4,11 +4,14 @@
 //!
 //! Users pick a formulation through the serde enum
 //! [`crate::scene::Formulation`]; the behaviour lives behind the crate-private
-//! [`ContactLaw`] trait, one file per law with its `impl`. The integrator's
-//! [`System`](crate::integrate::System) forms `(g_free, W)` at the level the
-//! law asks for ([`Level`]) and calls it; a law never reaches into an
-//! integrator. A law that fails returns a typed [`ContactFailure`], and the
-//! system saves the problem it was given as a [`ContactProblem`] that
+//! [`ContactLaw`] trait, one file per law with its `impl`. The velocity-level
+//! law ([`Impact`], `impact.rs`: Moreau's index set, restitution, the memory
+//! of gap rates) sits beside them and solves its rate problem with one of
+//! them. A run holds its law as a [`RunLaw`], which says the level it works
+//! at. The integrator forms `(g_free, W)` at that level
+//! (`integrate::contact_problem`) and calls the law; a law never reaches into
+//! an integrator. A law that fails returns a typed [`ContactFailure`], and
+//! the system saves the problem it was given as a [`ContactProblem`] that
 //! [`replay`] solves again.
 
 mod complementarity;
@@ -24,11 +27,11 @@ pub use failure::{ContactFailed, ContactFailure};
 pub use problem::{ContactProblem, Level};
 pub use replay::{MAX_REPLAY_CONTACTS, ReplayOutcome, SIGNORINI_TOLERANCE, replay, validate};
 
+pub(crate) use impact::Impact;
 pub(crate) use lagrange::Lagrange;
 
 use crate::scene::{ContactKind, ContactSpec, DEFAULT_PENALTY_RELATIVE, Formulation};
 use complementarity::Complementarity;
-use impact::Impact;
 use penalty::{Kappa, Penalty};
 
 /// A contact law: λ from (g_free, W).
@@ -63,18 +66,16 @@ pub(crate) trait ContactLaw: Send {
     ) -> Result<(), ContactFailure> {
         self.solve(g_free, w, lambda, active)
     }
-
-    /// The level of the problem the law solves during the run.
-    fn level(&self) -> Level {
-        Level::Position
-    }
 }
 
-/// Build the law a scene asks for, for `nc` contacts.
+/// The rule a scene's formulation solves a pair (g_free, W) with, for
+/// `nc` contacts: the law itself for a force-level formulation, and for
+/// `impact` the Lagrange active set its rate problems are solved with (a
+/// saved velocity-level problem is replayed by it, [`replay`]).
 pub(crate) fn law_for(spec: &ContactSpec, nc: usize) -> Box<dyn ContactLaw> {
     let bilateral = spec.kind == ContactKind::Bilateral;
     match spec.formulation {
-        Formulation::Lagrange => Box::new(Lagrange::new(bilateral, nc)),
+        Formulation::Lagrange | Formulation::Impact => Box::new(Lagrange::new(bilateral, nc)),
         Formulation::Penalty => {
             let kappa = match (spec.penalty.stiffness, spec.penalty.relative) {
                 (Some(k), _) => Kappa::Absolute(k),
@@ -86,6 +87,69 @@ pub(crate) fn law_for(spec: &ContactSpec, nc: usize) -> Box<dyn ContactLaw> {
         Formulation::Complementarity => {
             Box::new(Complementarity::new(&spec.complementarity, bilateral, nc))
         }
-        Formulation::Impact => Box::new(Impact::new(bilateral, nc)),
+    }
+}
+
+/// A run's contact law at the level it works at: a force-level law on
+/// position gaps, or the velocity-level [`Impact`] law.
+pub(crate) enum RunLaw {
+    /// Forces from gaps (m) and W (m/N).
+    Force(Box<dyn ContactLaw>),
+    /// Forces or impulses from gap rates (m/s) over Moreau's index set.
+    Velocity(Box<Impact>),
+}
+
+impl RunLaw {
+    /// The law a scene's `[contact]` asks for, for `nc` contacts: the
+    /// impact law for `formulation = "impact"`, else the force-level law.
+    pub(crate) fn new(spec: &ContactSpec, nc: usize) -> Self {
+        let law = law_for(spec, nc);
+        match spec.formulation {
+            Formulation::Impact => RunLaw::at_velocity(law, spec, nc),
+            _ => RunLaw::Force(law),
+        }
+    }
+
+    /// Make this law work at velocity level (a method that works with
+    /// impulses, Moreau–Jean; once, before the run): a force-level law
+    /// becomes the rule of an [`Impact`] law with the scene's restitution.
+    pub(crate) fn make_velocity(&mut self, spec: &ContactSpec, nc: usize) {
+        if let RunLaw::Force(rule) = self {
+            // a placeholder with no scratch takes the rule's place while it moves
+            let rule = std::mem::replace(rule, Box::new(Lagrange::new(false, 0)));
+            *self = RunLaw::at_velocity(rule, spec, nc);
+        }
+    }
+
+    fn at_velocity(rule: Box<dyn ContactLaw>, spec: &ContactSpec, nc: usize) -> Self {
+        let bilateral = spec.kind == ContactKind::Bilateral;
+        RunLaw::Velocity(Box::new(Impact::new(
+            rule,
+            spec.impact.restitution,
+            bilateral,
+            nc,
+        )))
+    }
+
+    /// The level of the problems the law solves during the run.
+    pub(crate) fn level(&self) -> Level {
+        match self {
+            RunLaw::Force(_) => Level::Position,
+            RunLaw::Velocity(_) => Level::Velocity,
+        }
+    }
+
+    /// The acceleration-level problem at t = 0 (MODEL §5).
+    pub(crate) fn initial(
+        &mut self,
+        g_free: &[f64],
+        w: &[f64],
+        lambda: &mut [f64],
+        active: &mut [bool],
+    ) -> Result<(), ContactFailure> {
+        match self {
+            RunLaw::Force(law) => law.initial(g_free, w, lambda, active),
+            RunLaw::Velocity(law) => law.initial(g_free, w, lambda, active),
+        }
     }
 }

@@ -1,5 +1,5 @@
 //! Choosing a batch, as the driver of a batch (`run::run_batch`) sees it:
-//! which runs may share one ([`batch_key`]), how many at most
+//! which runs may share one ([`super::batch_key`], `batch_key.rs`), how many at most
 //! ([`lanes_cap`]), and building it ([`new_batch`]) of the kind the key
 //! names — generalized-α runs sharing one factorization as SIMD lanes
 //! ([`super::Batch`]), `modal_exact` runs sharing one basis
@@ -9,18 +9,10 @@ use crate::error::Error;
 use crate::resolve::Resolved;
 use crate::scene::Scheme;
 
-use super::batch::{MAX_LANES, gen_alpha_key, max_lanes, scene_columns};
-use super::modal_batch::modal_key;
+use super::batch::{MAX_LANES, max_lanes};
+use super::batch_key::scene_columns;
 use super::run_batch::RunBatch;
 use super::{Batch, ModalBatch};
-
-/// The key of the runs that may step together: `None` when `sc` cannot
-/// batch. Generalized-α runs with equal keys share their effective matrix
-/// and right-hand-side columns (`integrate::batch`); `modal_exact` runs
-/// their basis and Δt (`integrate::modal_batch`).
-pub fn batch_key(sc: &Resolved) -> Option<String> {
-    gen_alpha_key(sc).or_else(|| modal_key(sc))
-}
 
 /// Most runs of scene `sc` one batch takes: the kernels compiled for its
 /// columns (generalized-α, [`max_lanes`]), or [`MAX_LANES`] (`modal_exact`).
@@ -35,7 +27,7 @@ pub fn lanes_cap(sc: &Resolved) -> usize {
 /// with the caller's ids.
 pub type NewBatch = (Option<Box<dyn RunBatch>>, Vec<(usize, Error)>);
 
-/// Build the batch for `scenes` (equal [`batch_key`]s; `ids` are the
+/// Build the batch for `scenes` (equal [`super::batch_key`]s; `ids` are the
 /// caller's indices), of the kind the key names. A run that fails to build
 /// is returned in the error list with its id.
 pub fn new_batch(scenes: &[(usize, &Resolved)]) -> NewBatch {

@@ -2,9 +2,12 @@
 //! compare, side by side behind one seam.
 //!
 //! * [`System`] (`system.rs`): what every method shares — the beam, the
-//!   carriers and their contact kinematics, the mass dofs, and the contact
-//!   problem of a step (free gaps, Delassus matrix, the law, at force or
-//!   velocity level).
+//!   carriers (`carrier.rs`: their contact kinematics and mass dofs), a
+//!   manufactured source's loads, and the run's contact law, which it calls
+//!   with each step's problem.
+//! * [`StepMap`] (`step_map.rs`): how a method hands its step to the
+//!   contact problem; `contact_problem.rs` forms the pair (g_free, W) from
+//!   it at the acceleration, position or velocity level (MODEL §5, §6).
 //! * [`State`] (`state.rs`): time, beam displacements and velocities, the
 //!   mass dofs.
 //! * [`Stepper`]: one method's step. A method is one file:
@@ -26,12 +29,17 @@
 //! initial state and the stepper, and advances time.
 
 mod batch;
+mod batch_key;
 mod batch_run;
 mod bathe;
+mod carrier;
 mod central_difference;
+mod contact_problem;
 mod diagnose;
 mod energy;
 mod gen_alpha;
+mod gen_alpha_kernel;
+mod gen_alpha_update;
 mod method;
 mod modal_batch;
 mod modal_exact;
@@ -39,29 +47,33 @@ mod moreau_jean;
 mod oscillator;
 mod run_batch;
 mod state;
+mod step_map;
 mod system;
 
 /// Columns of a step's right-hand side (the model's banded solves carry them
 /// side by side): defined with the model, where the memory plan reads it too.
 pub use crate::model::banded::rhs_columns;
-pub use batch::{Batch, Lane, MAX_LANES, max_lanes, scene_columns};
-pub use batch_run::{NewBatch, batch_key, lanes_cap, new_batch};
+pub use batch::{Batch, Lane, MAX_LANES, max_lanes};
+pub use batch_key::{
+    BatchKey, GenAlphaKey, ModalKey, batch_key, gen_alpha_key, modal_key, scene_columns,
+};
+pub use batch_run::{NewBatch, lanes_cap, new_batch};
 pub use bathe::Bathe;
+pub use carrier::MassDof;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
 pub use method::{MethodFactory, method_named, parse_methods, register, scene_method, stepper_for};
-pub use modal_batch::{ModalBatch, modal_key};
+pub use modal_batch::ModalBatch;
 pub use modal_exact::{ModalCoefs, ModalExact};
 pub use moreau_jean::MoreauJean;
 pub use oscillator::{MassStep, ModeSteps};
 pub use run_batch::RunBatch;
 pub use state::State;
-pub use system::{
-    Initial, MassDof, MassPrediction, Multipliers, StepMap, System, VelocityPrediction, combine,
-};
+pub use step_map::{Lanes, MassPrediction, Multipliers, StepMap, VelocityPrediction, combine};
+pub use system::{Initial, System};
 
 use crate::error::Result;
 use crate::model::beam::{BeamModel, PointVector};

@@ -17,42 +17,17 @@
 //!
 //! What batches: `integrator.method = "modal_exact"` on `galerkin` or
 //! `modal`, runs with the same beam, basis (kind, J, and the FE mesh of a
-//! `modal` basis) and Δt ([`modal_key`]); up to [`super::MAX_LANES`] runs.
+//! `modal` basis) and Δt ([`super::modal_key`]); up to [`super::MAX_LANES`] runs.
 
 use std::sync::Arc;
 
 use crate::error::{Error, Result};
 use crate::model::beam::{BeamModel, PointVector};
 use crate::resolve::Resolved;
-use crate::scene::{Discretization, Scheme};
 
 use super::modal_exact::{ModalCoefs, ModalExact};
 use super::run_batch::RunBatch;
 use super::{CarrierSample, Lane, State, Stepper, System};
-
-/// The key of `modal_exact` runs that may step together (module docs):
-/// `None` for any other method.
-pub fn modal_key(sc: &Resolved) -> Option<String> {
-    if sc.scheme != Scheme::ModalExact {
-        return None;
-    }
-    let b = &sc.beam;
-    let mesh = match sc.discretization {
-        Discretization::Modal { .. } => format!("{}|{:?}", sc.elements, sc.grading),
-        _ => String::new(),
-    };
-    Some(format!(
-        "modal_exact|{:?}|{:x}|{:x}|{:x}|{:x}|{:x}|{:?}|{mesh}|{:x}",
-        (b.left, b.right),
-        b.length.to_bits(),
-        b.rho_a.to_bits(),
-        b.ei.to_bits(),
-        b.tension.to_bits(),
-        b.distributed_load.to_bits(),
-        sc.discretization,
-        sc.dt.to_bits(),
-    ))
-}
 
 /// `modal_exact` runs on one basis at one Δt (module docs).
 pub struct ModalBatch {
@@ -61,7 +36,7 @@ pub struct ModalBatch {
 }
 
 impl ModalBatch {
-    /// Build the runs `scenes` (equal [`modal_key`]s): the basis and its
+    /// Build the runs `scenes` (equal [`super::modal_key`]s): the basis and its
     /// coefficients once, then each run's system, initial state and
     /// stepper as [`super::Integrator::new`] makes them. A run that fails
     /// to build is returned in the error list with its id.

@@ -50,7 +50,7 @@ pub(super) fn batches(
     if width == BatchWidth::Fixed(1) {
         return todo.iter().map(|&i| vec![i]).collect();
     }
-    let mut open: Vec<(String, usize, Vec<usize>)> = Vec::new();
+    let mut open: Vec<(crate::integrate::BatchKey, usize, Vec<usize>)> = Vec::new();
     let mut items: Vec<Vec<usize>> = Vec::new();
     for &i in todo {
         let key = spec.resolve_with(base, i).ok().and_then(|sc| {

@@ -1,0 +1,95 @@
+//! A carrier during a run (MODEL §2, §3): its side sign, its mass dof when
+//! it is a mass–spring carrier, and its contact kinematics — the point
+//! vectors at which its force acts and its gap is measured, placed anew
+//! each step at the times the method asks for.
+
+use crate::model::beam::{BeamModel, PointVector};
+use crate::scene::CarrierProps;
+
+/// A mass–spring carrier's mass dof: `m q̈ + c q̇ + k q = f0 − λ` (MODEL §2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassDof {
+    /// Mass m, kg.
+    pub m: f64,
+    /// Spring stiffness k, N/m.
+    pub k: f64,
+    /// Dashpot c_s, N·s/m.
+    pub c: f64,
+    /// Constant force on q: k δ0 − s m g, N (MODEL §2).
+    pub f0: f64,
+}
+
+/// One carrier during a run.
+#[derive(Debug, Clone)]
+pub(crate) struct Carrier {
+    pub(crate) props: CarrierProps,
+    /// Side sign s.
+    pub(crate) s: f64,
+    /// Index among the contacts (mass carriers), if any.
+    pub(crate) contact: Option<usize>,
+    /// r_b where the force acts (x_m at the method's force time), and the
+    /// gap row (x_m at t_{n+1}).
+    pub(crate) pv_f: PointVector,
+    pub(crate) pv_g: PointVector,
+    /// r_b' at the gap point, and V there (velocity level only).
+    pub(crate) pv_s: PointVector,
+    /// V = ẋ_m at the gap time, m/s (velocity level only).
+    pub(crate) speed: f64,
+    /// A manufactured source's point load at this carrier (MODEL §11): its
+    /// magnitude at the step's load time, N in +v, and, for a contact, r_b
+    /// there (a force's load point is `pv_f`). Unused without a source.
+    pub(crate) pv_l: PointVector,
+    pub(crate) point: f64,
+}
+
+impl Carrier {
+    /// A carrier of side sign `s` (contact index `contact` for a mass
+    /// carrier), its point vectors sized for the basis now (a modal basis's
+    /// are dense J-vectors), so that no step allocates.
+    pub(crate) fn new(props: CarrierProps, contact: Option<usize>, beam: &BeamModel) -> Self {
+        let x0 = props.motion.position(0.0);
+        Carrier {
+            props,
+            s: props.side.sign(),
+            contact,
+            pv_f: beam.point_vector(x0),
+            pv_g: beam.point_vector(x0),
+            pv_s: beam.slope_vector(x0),
+            speed: 0.0,
+            pv_l: beam.point_vector(x0),
+            point: 0.0,
+        }
+    }
+
+    /// Place the carrier for a step: its force at x_m(t_force) (a contact)
+    /// or x_m(t_load) (a moving force), its gap row r_g at x_m(t_gap), and,
+    /// for a velocity-level law, the slope row r_g' and V there.
+    #[inline]
+    pub(crate) fn place(
+        &mut self,
+        beam: &BeamModel,
+        (t_load, t_force, t_gap): (f64, f64, f64),
+        velocity: bool,
+    ) {
+        let tf = if self.contact.is_some() {
+            t_force
+        } else {
+            t_load
+        };
+        beam.point_vector_into(self.props.motion.position(tf), false, &mut self.pv_f);
+        let xg = self.props.motion.position(t_gap);
+        beam.point_vector_into(xg, false, &mut self.pv_g);
+        if velocity {
+            beam.point_vector_into(xg, true, &mut self.pv_s);
+            self.speed = self.props.motion.speed(t_gap);
+        }
+    }
+
+    /// The gap rate ġ = s(r_gᵀv + V r_g'ᵀd) − q̇ of a state (MODEL §6: the
+    /// convective part V r_g'ᵀd of a moving contact), with `q_dot` this
+    /// carrier's mass velocity.
+    #[inline]
+    pub(crate) fn gap_rate(&self, d: &[f64], v: &[f64], q_dot: f64) -> f64 {
+        self.s * (self.pv_g.dot(v) + self.speed * self.pv_s.dot(d)) - q_dot
+    }
+}
