@@ -97,12 +97,31 @@ pub fn apply_override(tree: &mut Table, spec: &str) -> Result<()> {
     if raw.is_empty() {
         return Err(bad("the value is empty".into()));
     }
+    set_typed(tree, path, parse_value(raw), || spec.to_string())
+}
+
+/// Store a typed `value` at the key path `path` of a TOML tree: a sweep
+/// axis's grid value or a value a study derives, with the walk and the
+/// errors of [`apply_override`] and no text made of the value. `spec`
+/// spells the change as a `--set` would, for an error only.
+pub fn set_typed(
+    tree: &mut Table,
+    path: &str,
+    value: Value,
+    spec: impl Fn() -> String,
+) -> Result<()> {
+    let bad = |reason: String| Error::Override {
+        spec: one_line(&spec()),
+        reason: one_line(&reason),
+    };
+    let path = path.trim();
+    if path.is_empty() {
+        return Err(bad("the key path is empty".into()));
+    }
     let segments: Vec<&str> = path.split('.').collect();
     if segments.iter().any(|s| s.is_empty()) {
         return Err(bad(format!("`{path}` has an empty segment")));
     }
-    let value = parse_value(raw);
-
     let mut root = Value::Table(std::mem::take(tree));
     let result = set_path(&mut root, &segments, value);
     if let Value::Table(t) = root {

@@ -24,7 +24,64 @@ pub struct Axis {
     pub log: bool,
 }
 
+/// One of the study's dimensionless axes ([`super::DIMENSIONLESS`]): a
+/// ratio that fixes scene values through the scene itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ratio {
+    /// v/c: every carrier's (cruise) speed, c = sqrt(T/ρA).
+    Speed,
+    /// T/EA: the beam's tension.
+    Tension,
+    /// m/(ρAL): every mass–spring carrier's mass.
+    Mass,
+    /// k/(T/L): every mass–spring carrier's stiffness.
+    Stiffness,
+}
+
+impl Ratio {
+    /// The ratio named `key` (its `--vary` spelling), if any.
+    pub fn from_key(key: &str) -> Option<Self> {
+        match key {
+            "speed_ratio" => Some(Ratio::Speed),
+            "tension_ratio" => Some(Ratio::Tension),
+            "mass_ratio" => Some(Ratio::Mass),
+            "stiffness_ratio" => Some(Ratio::Stiffness),
+            _ => None,
+        }
+    }
+
+    /// Its `--vary` spelling.
+    pub fn key(self) -> &'static str {
+        match self {
+            Ratio::Speed => "speed_ratio",
+            Ratio::Tension => "tension_ratio",
+            Ratio::Mass => "mass_ratio",
+            Ratio::Stiffness => "stiffness_ratio",
+        }
+    }
+}
+
+/// What an axis sets at each point: a scene key path (`beam.tension`,
+/// `carrier.0.mass`), or a dimensionless ratio.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisTarget<'a> {
+    /// A key path of the scene tree, as `--set` spells it.
+    Path(&'a str),
+    /// One of the study's ratios.
+    Ratio(Ratio),
+}
+
 impl Axis {
+    /// What the axis sets. The spec file stores the key as text (so a
+    /// sweep folder written by an earlier binary reads back); this is its
+    /// typed reading.
+    pub fn target(&self) -> AxisTarget<'_> {
+        match Ratio::from_key(&self.key) {
+            Some(r) => AxisTarget::Ratio(r),
+            None => AxisTarget::Path(&self.key),
+        }
+    }
+
     /// Parse `key=start:stop:count`.
     pub fn parse(spec: &str, log: bool) -> Result<Self> {
         let bad = |why: &str| Error::invalid("--vary", spec, why.to_string());

@@ -1,6 +1,8 @@
 //! Sweep points stepped together (`--batch`): the batch width, and the
 //! work items of points that share their effective matrix.
 
+use toml::Table;
+
 use super::record::{SweepRecord, ended, record_guarded, record_of};
 use super::spec::SweepSpec;
 use crate::error::Result;
@@ -39,14 +41,19 @@ pub fn auto_lanes(sc: &Resolved) -> usize {
 /// The sweep's work items: points that share their effective matrix
 /// ([`crate::integrate::batch_key`]), in grid order, grouped up to the
 /// batch width; every other point alone.
-pub(super) fn batches(spec: &SweepSpec, todo: &[usize], width: BatchWidth) -> Vec<Vec<usize>> {
+pub(super) fn batches(
+    spec: &SweepSpec,
+    base: Option<&Table>,
+    todo: &[usize],
+    width: BatchWidth,
+) -> Vec<Vec<usize>> {
     if width == BatchWidth::Fixed(1) {
         return todo.iter().map(|&i| vec![i]).collect();
     }
     let mut open: Vec<(crate::integrate::BatchKey, usize, Vec<usize>)> = Vec::new();
     let mut items: Vec<Vec<usize>> = Vec::new();
     for &i in todo {
-        let key = spec.resolve(i).ok().and_then(|sc| {
+        let key = spec.resolve_with(base, i).ok().and_then(|sc| {
             let key = crate::integrate::batch_key(&sc)?;
             let w = match width {
                 BatchWidth::Fixed(b) => b,
@@ -75,12 +82,18 @@ pub(super) fn batches(spec: &SweepSpec, todo: &[usize], width: BatchWidth) -> Ve
 /// The records of one work item, run together when it has several points
 /// ([`crate::run::run_batch`]); a panic inside makes every point of the
 /// item an error record (none of them is trusted), never the sweep's end.
-pub(super) fn records_guarded(spec: &SweepSpec, id: &str, item: &[usize]) -> Vec<SweepRecord> {
+pub(super) fn records_guarded(
+    spec: &SweepSpec,
+    base: Option<&Table>,
+    id: &str,
+    item: &[usize],
+) -> Vec<SweepRecord> {
     if let [i] = item {
-        return vec![record_guarded(spec, id, *i)];
+        return vec![record_guarded(spec, base, id, *i)];
     }
     let go = || {
-        let scenes: Vec<Result<Resolved>> = item.iter().map(|&i| spec.resolve(i)).collect();
+        let scenes: Vec<Result<Resolved>> =
+            item.iter().map(|&i| spec.resolve_with(base, i)).collect();
         let ok: Vec<Resolved> = scenes
             .iter()
             .filter_map(|s| s.as_ref().ok().cloned())
@@ -92,7 +105,7 @@ pub(super) fn records_guarded(spec: &SweepSpec, id: &str, item: &[usize]) -> Vec
                 let ran = sc
                     .as_ref()
                     .map(|_| outs.next().expect("one output per scene"));
-                record_of(spec, id, i, sc.as_ref().ok(), ended(&ran))
+                record_of(spec, base, id, i, sc.as_ref().ok(), ended(&ran))
             })
             .collect::<Vec<_>>()
     };

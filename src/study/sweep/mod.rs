@@ -10,6 +10,13 @@
 //!   `stiffness_ratio` = k/(T/L) (every mass carrier). Ratios are applied after
 //!   the plain keys and `tension_ratio` first, so `speed_ratio` and
 //!   `stiffness_ratio` use the swept tension.
+//! * A point's scene is typed values set on the scene tree: the text and
+//!   the fixed `--set`s are parsed once ([`SweepSpec::base_tree`]), each
+//!   axis is read as an [`AxisTarget`] (a key path or a [`Ratio`]) and its
+//!   grid value, an f64, stored on a copy of that tree, as are the values a
+//!   ratio fixes and the refined `mesh.elements` / `mesh.modes` /
+//!   `time.step`; no number is printed and parsed again. The spec file keeps
+//!   the axis key as text, so folders written by earlier binaries read back.
 //! * Runs are independent; rayon spreads them over the cores. Each finished
 //!   run is written at once to `runs/NNNNNN.json`; a sweep that is started
 //!   again skips the runs already there, so an interrupted sweep loses
@@ -48,7 +55,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
-pub use axis::{Axis, WHOLE_SNAP};
+pub use axis::{Axis, AxisTarget, Ratio, WHOLE_SNAP};
 pub use batch::{AUTO_BATCH_LANES, BatchWidth, auto_lanes};
 use batch::{batches, records_guarded};
 pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
@@ -115,9 +122,12 @@ pub fn sweep_batched(
     }
     let done = AtomicUsize::new(mine.len() - todo.len());
     progress(done.load(Ordering::Relaxed), mine.len());
-    let items = batches(spec, &todo, batch);
+    // the scene text and fixed overrides parsed once for every point (an
+    // error there is each point's own, as resolving it again gives)
+    let base = spec.base_tree().ok();
+    let items = batches(spec, base.as_ref(), &todo, batch);
     items.par_iter().try_for_each(|item| -> Result<()> {
-        let records = records_guarded(spec, &id, item);
+        let records = records_guarded(spec, base.as_ref(), &id, item);
         // a run stopped on request is no result: save none of the item's
         if crate::interrupt::requested() {
             return Err(Error::Interrupted);

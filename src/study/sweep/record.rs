@@ -2,6 +2,7 @@
 //! statistics and x_m/L profiles, or the error it stopped with.
 
 use serde::{Deserialize, Serialize};
+use toml::Table;
 
 use super::nan_as_null;
 use super::refine::{Refined, refined};
@@ -99,10 +100,11 @@ impl SweepRecord {
 }
 
 /// Run point `index` and reduce it to its record.
-fn record(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
-    let sc = spec.resolve(index);
+/// `base`: the spec's [`SweepSpec::base_tree`], when it could be made.
+fn record(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> SweepRecord {
+    let sc = spec.resolve_with(base, index);
     let ran = sc.as_ref().map(|sc| run(sc, &mut |_, _| {}));
-    record_of(spec, id, index, sc.as_ref().ok(), ended(&ran))
+    record_of(spec, base, id, index, sc.as_ref().ok(), ended(&ran))
 }
 
 /// What a point's run gave, its scene's refusal or its run's: the typed
@@ -121,6 +123,7 @@ pub(super) fn ended<'a>(
 /// Point `index`'s record from its scene and what its run gave.
 pub(super) fn record_of(
     spec: &SweepSpec,
+    base: Option<&Table>,
     id: &str,
     index: usize,
     sc: Option<&Resolved>,
@@ -174,7 +177,7 @@ pub(super) fn record_of(
             .map(|b| (n[b] > 0).then(|| lost[b] as f64 / n[b] as f64))
             .collect(),
         warnings: out.warnings.clone(),
-        refined: spec.check_refinement.then(|| refined(spec, index)),
+        refined: spec.check_refinement.then(|| refined(spec, base, index)),
         error: None,
         wall_seconds: Some(out.wall_seconds),
     }
@@ -182,19 +185,26 @@ pub(super) fn record_of(
 
 /// [`record`], with a panic inside the run turned into that point's error,
 /// so one bad point cannot take the sweep's other points down with it.
-pub(super) fn record_guarded(spec: &SweepSpec, id: &str, index: usize) -> SweepRecord {
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| record(spec, id, index)))
-        .unwrap_or_else(|payload| {
-            let what = payload
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "no message".into());
-            SweepRecord {
-                error: Some(format!(
-                    "internal error (a panic in taut, please report it): {what}"
-                )),
-                ..SweepRecord::stopped(id, index, spec.point(index))
-            }
-        })
+pub(super) fn record_guarded(
+    spec: &SweepSpec,
+    base: Option<&Table>,
+    id: &str,
+    index: usize,
+) -> SweepRecord {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        record(spec, base, id, index)
+    }))
+    .unwrap_or_else(|payload| {
+        let what = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "no message".into());
+        SweepRecord {
+            error: Some(format!(
+                "internal error (a panic in taut, please report it): {what}"
+            )),
+            ..SweepRecord::stopped(id, index, spec.point(index))
+        }
+    })
 }

@@ -2,6 +2,7 @@
 //! and whether its P_l is converged.
 
 use serde::{Deserialize, Serialize};
+use toml::Table;
 
 use super::nan_as_null;
 use super::spec::SweepSpec;
@@ -48,8 +49,8 @@ pub const REFINEMENT_REL: f64 = 0.05;
 /// resolves.
 pub const REFINEMENT_ABS: f64 = 5e-4;
 
-/// Run point `index` refined.
-pub(super) fn refined(spec: &SweepSpec, index: usize) -> Refined {
+/// Run point `index` refined (`base`: the spec's [`SweepSpec::base_tree`], when made).
+pub(super) fn refined(spec: &SweepSpec, base: Option<&Table>, index: usize) -> Refined {
     let stopped = |elements, modes, dt, e: Error| Refined {
         elements,
         modes,
@@ -58,7 +59,7 @@ pub(super) fn refined(spec: &SweepSpec, index: usize) -> Refined {
         loss_fraction_span: f64::NAN,
         error: Some(e.to_string()),
     };
-    let sc = match spec.resolve_refined(index) {
+    let sc = match spec.resolve_refined_with(base, index) {
         Ok(sc) => sc,
         Err(e) => return stopped(0, None, f64::NAN, e),
     };

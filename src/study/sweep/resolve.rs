@@ -1,12 +1,20 @@
-//! A sweep point's scene: the axis values as `--set` overrides of the scene
-//! text, the dimensionless axes turned into the scene values they fix, and
-//! the refined scene of `--check-refinement`.
+//! A sweep point's scene: the scene text parsed once into a TOML tree with
+//! the fixed `--set` overrides applied, then each point's typed axis values
+//! set on a copy of that tree ([`AxisTarget`]), the dimensionless axes
+//! turned into the scene values they fix, and the refined scene of
+//! `--check-refinement`. No number is written as text and read back.
 
+use toml::{Table, Value};
+
+use super::axis::{AxisTarget, Ratio};
 use super::spec::SweepSpec;
 use crate::error::{Error, Result};
-use crate::resolve::{Resolved, resolve_scene};
-use crate::scene::{CarrierKind, Discretization};
-/// The study's dimensionless axes.
+use crate::resolve::Resolved;
+use crate::scene::{
+    CarrierKind, Discretization, SpeedProfile, apply_override, check_is_scene, parse_scene,
+    scene_from_tree, set_typed,
+};
+/// The study's dimensionless axes ([`Ratio`]'s spellings).
 pub const DIMENSIONLESS: [&str; 4] = [
     "speed_ratio",
     "tension_ratio",
@@ -14,12 +22,23 @@ pub const DIMENSIONLESS: [&str; 4] = [
     "stiffness_ratio",
 ];
 
-/// A grid value as a `--set` value: whole numbers as TOML integers (so an
-/// integer key such as `mesh.elements` takes them, and a real key reads the
-/// same number), anything else in exponent notation (exact round trip).
-fn set_value(v: f64) -> String {
-    /// Whole numbers below 2^53 are exact as both i64 and f64.
-    const EXACT_WHOLE: f64 = 9_007_199_254_740_992.0;
+/// Whole numbers below 2^53 are exact as both i64 and f64.
+const EXACT_WHOLE: f64 = 9_007_199_254_740_992.0;
+
+/// A grid value as a TOML value: a whole number as an integer (so an
+/// integer key such as `mesh.elements` takes it, and a real key reads the
+/// same number), anything else as the float itself.
+fn grid_value(v: f64) -> Value {
+    if v.fract() == 0.0 && v.abs() < EXACT_WHOLE {
+        Value::Integer(v as i64)
+    } else {
+        Value::Float(v)
+    }
+}
+
+/// A grid value spelled as a `--set` would take it, for an error message
+/// only (the spelling earlier binaries used for the value itself).
+fn grid_text(v: f64) -> String {
     if v.fract() == 0.0 && v.abs() < EXACT_WHOLE {
         format!("{}", v as i64)
     } else {
@@ -27,127 +46,235 @@ fn set_value(v: f64) -> String {
     }
 }
 
+/// Set a derived real value (a ratio's scene value, a refined step) at `path`.
+fn set_real(tree: &mut Table, path: &str, v: f64) -> Result<()> {
+    set_typed(tree, path, Value::Float(v), || format!("{path}={v:e}"))
+}
+
+/// Deserialize and validate a point's tree (a copy: the tree goes on).
+fn resolve_tree(tree: &Table) -> Result<Resolved> {
+    scene_from_tree(tree.clone())?.validate()
+}
+
 impl SweepSpec {
+    /// The scene text parsed into a tree with the fixed `--set` overrides
+    /// applied: the common start of every point. Parse it once and give it
+    /// to [`SweepSpec::resolve_on`] for each point.
+    pub fn base_tree(&self) -> Result<Table> {
+        let mut tree = parse_scene(&self.scene_text)?;
+        check_is_scene(&tree)?;
+        for spec in &self.set {
+            apply_override(&mut tree, spec)?;
+        }
+        Ok(tree)
+    }
+
     /// The resolved scene of point `index`, refined (`--check-refinement`):
     /// half the time step, and twice the space discretization's level
     /// parameter — the elements N of a Hermite mesh, the modes J of a
     /// `galerkin` basis, both N and J of a `modal` one (J may not exceed the
     /// FE unknowns).
     pub fn resolve_refined(&self, index: usize) -> Result<Resolved> {
-        let (sc, mut o) = self.resolve_with_overrides(index)?;
-        let modes = sc.discretization.modes();
+        self.resolve_refined_on(&self.base_tree()?, index)
+    }
+
+    /// [`SweepSpec::resolve_refined`] from the [`SweepSpec::base_tree`].
+    pub fn resolve_refined_on(&self, base: &Table, index: usize) -> Result<Resolved> {
+        let (sc, mut tree) = self.point_tree(base, index)?;
         if !matches!(sc.discretization, Discretization::Galerkin { .. }) {
-            o.push(format!("mesh.elements={}", 2 * sc.elements));
+            let n = 2 * sc.elements;
+            set_typed(&mut tree, "mesh.elements", Value::Integer(n as i64), || {
+                format!("mesh.elements={n}")
+            })?;
         }
-        if let Some(j) = modes {
-            o.push(format!("mesh.modes={}", 2 * j));
+        if let Some(j) = sc.discretization.modes() {
+            set_typed(
+                &mut tree,
+                "mesh.modes",
+                Value::Integer(2 * j as i64),
+                || format!("mesh.modes={}", 2 * j),
+            )?;
         }
-        o.push(format!("time.step={:e}", sc.dt / 2.0));
-        resolve_scene(&self.scene_text, &o)
+        set_real(&mut tree, "time.step", sc.dt / 2.0)?;
+        resolve_tree(&tree)
     }
 
     /// The resolved scene of point `index`.
     pub fn resolve(&self, index: usize) -> Result<Resolved> {
-        self.resolve_with_overrides(index).map(|(sc, _)| sc)
+        self.resolve_on(&self.base_tree()?, index)
     }
 
-    /// The resolved scene of point `index` and the overrides that make it.
-    fn resolve_with_overrides(&self, index: usize) -> Result<(Resolved, Vec<String>)> {
+    /// [`SweepSpec::resolve`] from the [`SweepSpec::base_tree`].
+    pub fn resolve_on(&self, base: &Table, index: usize) -> Result<Resolved> {
+        self.point_tree(base, index).map(|(sc, _)| sc)
+    }
+
+    /// The resolved scene of point `index` and the tree that makes it: the
+    /// base with the path axes set, then the ratios (tension first: the
+    /// others depend on T), each read off the scene resolved so far.
+    fn point_tree(&self, base: &Table, index: usize) -> Result<(Resolved, Table)> {
         let values = self.point(index);
-        let mut o = self.set.clone();
-        let mut ratios: Vec<(&str, f64)> = Vec::new();
-        for (a, v) in self.axes.iter().zip(&values) {
-            if DIMENSIONLESS.contains(&a.key.as_str()) {
-                ratios.push((a.key.as_str(), *v));
-            } else {
-                o.push(format!("{}={}", a.key, set_value(*v)));
+        let mut tree = base.clone();
+        let mut ratios: Vec<(Ratio, f64)> = Vec::new();
+        for (a, &v) in self.axes.iter().zip(&values) {
+            match a.target() {
+                AxisTarget::Ratio(r) => ratios.push((r, v)),
+                AxisTarget::Path(path) => set_typed(&mut tree, path, grid_value(v), || {
+                    format!("{path}={}", grid_text(v))
+                })?,
             }
         }
-        // tension first: the others depend on T
-        ratios.sort_by_key(|(k, _)| *k != "tension_ratio");
-        for (key, v) in ratios {
-            let sc = resolve_scene(&self.scene_text, &o)?;
-            match key {
-                "tension_ratio" => {
-                    let ea = sc.beam.ea.ok_or_else(|| {
-                        Error::invalid(
-                            "--vary tension_ratio",
-                            v,
-                            "needs EA: give beam.youngs_modulus and beam.area",
-                        )
-                    })?;
-                    o.push(format!("beam.tension={:e}", v * ea));
-                }
-                "speed_ratio" => {
-                    let c = sc.beam.wave_speed();
-                    if c <= 0.0 {
-                        return Err(Error::invalid(
-                            "--vary speed_ratio",
-                            v,
-                            "needs a wave speed c = sqrt(T/ρA) > 0, and the scene has T = 0: \
-                             vary the carrier's speed itself",
-                        ));
-                    }
-                    for (i, car) in sc.carriers.iter().enumerate() {
-                        let path = match car.motion.profile {
-                            crate::scene::SpeedProfile::Constant { .. } => "value",
-                            crate::scene::SpeedProfile::SmoothRamp { .. } => "cruise",
-                        };
-                        o.push(format!("carrier.{i}.speed.{path}={:e}", v * c));
-                    }
-                }
-                "mass_ratio" | "stiffness_ratio" => {
-                    let scale = if key == "mass_ratio" {
-                        sc.beam.total_mass()
-                    } else {
-                        sc.beam.tension / sc.beam.length
-                    };
-                    let field = if key == "mass_ratio" {
-                        "mass"
-                    } else {
-                        "stiffness"
-                    };
-                    if !sc
-                        .carriers
-                        .iter()
-                        .any(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
-                    {
-                        return Err(Error::invalid(
-                            format!("--vary {key}"),
-                            v,
-                            format!(
-                                "sets the {field} of every mass–spring carrier, and the scene \
-                                 has none (only moving forces): the axis would change nothing"
-                            ),
-                        ));
-                    }
-                    if scale <= 0.0 {
-                        return Err(Error::invalid(
-                            format!("--vary {key}"),
-                            v,
-                            "is k/(T/L), and the scene has T = 0: the axis would set k = 0 at \
-                             every point; vary carrier.stiffness itself",
-                        ));
-                    }
-                    for (i, car) in sc.carriers.iter().enumerate() {
-                        if matches!(car.kind, CarrierKind::MassSpring { .. }) {
-                            o.push(format!("carrier.{i}.{field}={:e}", v * scale));
-                        }
-                    }
-                }
-                _ => unreachable!("DIMENSIONLESS"),
-            }
+        ratios.sort_by_key(|(r, _)| *r != Ratio::Tension);
+        for (ratio, v) in ratios {
+            let sc = resolve_tree(&tree)?;
+            set_ratio(&mut tree, &sc, ratio, v)?;
         }
-        let sc = resolve_scene(&self.scene_text, &o)?;
-        Ok((sc, o))
+        let sc = resolve_tree(&tree)?;
+        Ok((sc, tree))
+    }
+
+    /// [`SweepSpec::resolve_on`] when the base tree was made, else
+    /// [`SweepSpec::resolve`] (which gives the point the base's error).
+    pub(super) fn resolve_with(&self, base: Option<&Table>, index: usize) -> Result<Resolved> {
+        match base {
+            Some(b) => self.resolve_on(b, index),
+            None => self.resolve(index),
+        }
+    }
+
+    /// [`SweepSpec::resolve_with`], refined.
+    pub(super) fn resolve_refined_with(
+        &self,
+        base: Option<&Table>,
+        index: usize,
+    ) -> Result<Resolved> {
+        match base {
+            Some(b) => self.resolve_refined_on(b, index),
+            None => self.resolve_refined(index),
+        }
     }
 
     /// The resolved scene at per-axis indices `at`.
-    pub(super) fn resolve_at(&self, at: &[usize]) -> Result<Resolved> {
+    pub(super) fn resolve_at(&self, base: &Table, at: &[usize]) -> Result<Resolved> {
         let index = at
             .iter()
             .zip(&self.axes)
             .fold(0, |acc, (&i, a)| acc * a.count + i);
-        self.resolve(index)
+        self.resolve_on(base, index)
+    }
+}
+
+/// Set the scene values ratio `ratio` = `v` fixes, read off `sc` (the point
+/// resolved so far).
+fn set_ratio(tree: &mut Table, sc: &Resolved, ratio: Ratio, v: f64) -> Result<()> {
+    let key = ratio.key();
+    match ratio {
+        Ratio::Tension => {
+            let ea = sc.beam.ea.ok_or_else(|| {
+                Error::invalid(
+                    "--vary tension_ratio",
+                    v,
+                    "needs EA: give beam.youngs_modulus and beam.area",
+                )
+            })?;
+            set_real(tree, "beam.tension", v * ea)
+        }
+        Ratio::Speed => {
+            let c = sc.beam.wave_speed();
+            if c <= 0.0 {
+                return Err(Error::invalid(
+                    "--vary speed_ratio",
+                    v,
+                    "needs a wave speed c = sqrt(T/ρA) > 0, and the scene has T = 0: \
+                     vary the carrier's speed itself",
+                ));
+            }
+            for (i, car) in sc.carriers.iter().enumerate() {
+                let field = match car.motion.profile {
+                    SpeedProfile::Constant { .. } => "value",
+                    SpeedProfile::SmoothRamp { .. } => "cruise",
+                };
+                set_real(tree, &format!("carrier.{i}.speed.{field}"), v * c)?;
+            }
+            Ok(())
+        }
+        Ratio::Mass | Ratio::Stiffness => {
+            let (scale, field) = if ratio == Ratio::Mass {
+                (sc.beam.total_mass(), "mass")
+            } else {
+                (sc.beam.tension / sc.beam.length, "stiffness")
+            };
+            if !sc
+                .carriers
+                .iter()
+                .any(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
+            {
+                return Err(Error::invalid(
+                    format!("--vary {key}"),
+                    v,
+                    format!(
+                        "sets the {field} of every mass–spring carrier, and the scene \
+                         has none (only moving forces): the axis would change nothing"
+                    ),
+                ));
+            }
+            if scale <= 0.0 {
+                return Err(Error::invalid(
+                    format!("--vary {key}"),
+                    v,
+                    "is k/(T/L), and the scene has T = 0: the axis would set k = 0 at \
+                     every point; vary carrier.stiffness itself",
+                ));
+            }
+            for (i, car) in sc.carriers.iter().enumerate() {
+                if matches!(car.kind, CarrierKind::MassSpring { .. }) {
+                    set_real(tree, &format!("carrier.{i}.{field}"), v * scale)?;
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A typed grid value is the value the `--set` text of earlier
+    /// binaries read back to, bit for bit (the same-bytes promise of a
+    /// resumed sweep rests on it).
+    #[test]
+    fn typed_values_equal_the_text_round_trip() {
+        let read = |text: String| -> Value {
+            format!("v = {text}")
+                .parse::<Table>()
+                .unwrap()
+                .remove("v")
+                .unwrap()
+        };
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            200.0,
+            0.1,
+            1.0 / 3.0,
+            199.99999999999997,
+            -2.5e-300,
+            1.7976931348623157e308,
+            5e-324,
+            9_007_199_254_740_992.0,
+        ] {
+            let typed = grid_value(v);
+            let text = read(grid_text(v));
+            match (&typed, &text) {
+                (Value::Float(a), Value::Float(b)) => assert_eq!(a.to_bits(), b.to_bits(), "{v}"),
+                _ => assert_eq!(typed, text, "{v}"),
+            }
+            let (Value::Float(b), x) = (read(format!("{v:e}")), v) else {
+                panic!("{v}")
+            };
+            assert_eq!(b.to_bits(), x.to_bits(), "{v}");
+        }
     }
 }

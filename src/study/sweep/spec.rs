@@ -84,11 +84,16 @@ impl SweepSpec {
                 ),
             ));
         }
+        // the scene text and the fixed overrides, once (an error there is
+        // the first point's, as when each point parsed the text itself)
+        let base = self
+            .base_tree()
+            .map_err(|e| at_point(e, 0, &self.point(0)))?;
         for i in 0..self.len() {
-            self.resolve(i)
+            self.resolve_on(&base, i)
                 .map_err(|e| at_point(e, i, &self.point(i)))?;
             if self.check_refinement {
-                self.resolve_refined(i).map_err(|e| {
+                self.resolve_refined_on(&base, i).map_err(|e| {
                     at_point(e, i, &self.point(i)).in_run("the refined run of --check-refinement")
                 })?;
             }
@@ -100,7 +105,10 @@ impl SweepSpec {
             let first = vec![0; self.axes.len()];
             let mut last = first.clone();
             last[k] = a.count - 1;
-            let (x, y) = (self.resolve_at(&first)?, self.resolve_at(&last)?);
+            let (x, y) = (
+                self.resolve_at(&base, &first)?,
+                self.resolve_at(&base, &last)?,
+            );
             if a.value(0) == a.value(a.count - 1) || format!("{x:?}") == format!("{y:?}") {
                 return Err(Error::invalid(
                     "--vary",
@@ -122,10 +130,11 @@ impl SweepSpec {
     pub fn estimate(&self, shard: Option<Shard>) -> Result<crate::study::cost::Estimate> {
         use crate::study::cost::{Estimate, run_dof_steps};
         let mut e = Estimate::new("taut sweep");
+        let base = self.base_tree()?;
         for i in (0..self.len()).filter(|&i| shard.is_none_or(|s| s.owns(i))) {
-            e.add(1, run_dof_steps(&self.resolve(i)?));
+            e.add(1, run_dof_steps(&self.resolve_on(&base, i)?));
             if self.check_refinement {
-                e.add(1, run_dof_steps(&self.resolve_refined(i)?));
+                e.add(1, run_dof_steps(&self.resolve_refined_on(&base, i)?));
             }
         }
         Ok(e)
