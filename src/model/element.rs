@@ -100,22 +100,7 @@ pub fn string_shape(s: f64) -> [f64; 2] {
 /// For consistent masses its square bounds the assembled model's ω_max²
 /// (Irons 1970; `model::spectrum`).
 pub fn omega_max(rho_a: f64, ei: f64, tension: f64, h: f64) -> f64 {
-    let (k, m) = if ei == 0.0 {
-        let k = string_stiffness(tension, h);
-        let m = string_mass(rho_a, h);
-        (
-            DMatrix::from_column_slice(2, 2, k.as_slice()),
-            DMatrix::from_column_slice(2, 2, m.as_slice()),
-        )
-    } else {
-        let k = hermite_bending(ei, h) + hermite_tension(tension, h);
-        let m = hermite_mass(rho_a, h);
-        (
-            DMatrix::from_column_slice(4, 4, k.as_slice()),
-            DMatrix::from_column_slice(4, 4, m.as_slice()),
-        )
-    };
-    largest_generalized(&k, &m).sqrt()
+    omega_max_attached(rho_a, ei, tension, h, &[])
 }
 
 /// [`omega_max`] of one element of length `h` carrying point attachments

@@ -110,6 +110,9 @@ pub fn verify(
     let done = std::sync::atomic::AtomicUsize::new(0);
     let rows: Vec<Result<Vec<VerifyRow>>> = jobs
         .par_iter()
+        // one job a task: jobs differ in cost, and a leaf of several jobs
+        // is stepped by one thread alone (see study::sweep)
+        .with_max_len(1)
         .map(|j| {
             if crate::interrupt::requested() {
                 return Err(Error::Interrupted);
