@@ -1,6 +1,8 @@
 //! Closed-form and semi-analytic references (MODEL §8), each a small struct
 //! that validates its inputs and carries its own tests.
 
+#[cfg(test)]
+mod dense_fe;
 pub mod fast_shapes;
 pub mod mode_shapes;
 pub mod modes;

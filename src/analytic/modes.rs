@@ -267,7 +267,6 @@ pub(crate) fn bisect_phase(g: impl Fn(f64) -> f64, falling: bool) -> f64 {
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
-    use nalgebra::{DMatrix, SymmetricEigen};
     use std::f64::consts::PI;
 
     /// Closed forms evaluated two ways: a few ulps of arithmetic.
@@ -453,46 +452,11 @@ mod tests {
     ) -> Vec<f64> {
         let h = l / n as f64;
         let dofs = 2 * (n + 1);
-        let mut k = DMatrix::<f64>::zeros(dofs, dofs);
-        let mut m = DMatrix::<f64>::zeros(dofs, dofs);
-        let me = [
-            [156.0, 22.0 * h, 54.0, -13.0 * h],
-            [22.0 * h, 4.0 * h * h, 13.0 * h, -3.0 * h * h],
-            [54.0, 13.0 * h, 156.0, -22.0 * h],
-            [-13.0 * h, -3.0 * h * h, -22.0 * h, 4.0 * h * h],
-        ];
-        let kb = [
-            [12.0, 6.0 * h, -12.0, 6.0 * h],
-            [6.0 * h, 4.0 * h * h, -6.0 * h, 2.0 * h * h],
-            [-12.0, -6.0 * h, 12.0, -6.0 * h],
-            [6.0 * h, 2.0 * h * h, -6.0 * h, 4.0 * h * h],
-        ];
-        let kt = [
-            [36.0, 3.0 * h, -36.0, 3.0 * h],
-            [3.0 * h, 4.0 * h * h, -3.0 * h, -h * h],
-            [-36.0, -3.0 * h, 36.0, -3.0 * h],
-            [3.0 * h, -h * h, -3.0 * h, 4.0 * h * h],
-        ];
-        for e in 0..n {
-            for a in 0..4 {
-                for b in 0..4 {
-                    let (i, j) = (2 * e + a, 2 * e + b);
-                    m[(i, j)] += ra * h / 420.0 * me[a][b];
-                    k[(i, j)] += ei / h.powi(3) * kb[a][b] + t / (30.0 * h) * kt[a][b];
-                }
-            }
-        }
+        let (k, m) = crate::analytic::dense_fe::hermite_km(ei, t, ra, h, n);
         // clamped: v0, θ0; pinned: v_N
         let keep: Vec<usize> = (0..dofs).filter(|&i| i > 1 && i != 2 * n).collect();
-        let k = k.select_rows(&keep).select_columns(&keep);
-        let m = m.select_rows(&keep).select_columns(&keep);
-        let chol = m.cholesky().expect("M is SPD");
-        let linv = chol.l().try_inverse().expect("L is regular");
-        let a = &linv * k * linv.transpose();
-        let a = (&a + a.transpose()) * 0.5;
-        let mut ev: Vec<f64> = SymmetricEigen::new(a).eigenvalues.iter().copied().collect();
-        ev.sort_by(f64::total_cmp);
-        ev.iter().take(modes).map(|l2| l2.sqrt()).collect()
+        let ev = crate::analytic::dense_fe::frequencies(&k, &m, &keep);
+        ev.into_iter().take(modes).collect()
     }
 
     #[test]

@@ -662,35 +662,7 @@ mod tests {
         let n = n_spans * m;
         let h = line.spacing / m as f64;
         let dofs = 2 * (n + 1);
-        let mut k = DMatrix::<f64>::zeros(dofs, dofs);
-        let mut mm = DMatrix::<f64>::zeros(dofs, dofs);
-        let me = [
-            [156.0, 22.0 * h, 54.0, -13.0 * h],
-            [22.0 * h, 4.0 * h * h, 13.0 * h, -3.0 * h * h],
-            [54.0, 13.0 * h, 156.0, -22.0 * h],
-            [-13.0 * h, -3.0 * h * h, -22.0 * h, 4.0 * h * h],
-        ];
-        let kb = [
-            [12.0, 6.0 * h, -12.0, 6.0 * h],
-            [6.0 * h, 4.0 * h * h, -6.0 * h, 2.0 * h * h],
-            [-12.0, -6.0 * h, 12.0, -6.0 * h],
-            [6.0 * h, 2.0 * h * h, -6.0 * h, 4.0 * h * h],
-        ];
-        let kt = [
-            [36.0, 3.0 * h, -36.0, 3.0 * h],
-            [3.0 * h, 4.0 * h * h, -3.0 * h, -h * h],
-            [-36.0, -3.0 * h, 36.0, -3.0 * h],
-            [3.0 * h, -h * h, -3.0 * h, 4.0 * h * h],
-        ];
-        for e in 0..n {
-            for a in 0..4 {
-                for b in 0..4 {
-                    let (i, j) = (2 * e + a, 2 * e + b);
-                    mm[(i, j)] += ra * h / 420.0 * me[a][b];
-                    k[(i, j)] += ei / h.powi(3) * kb[a][b] + t / (30.0 * h) * kt[a][b];
-                }
-            }
-        }
+        let (mut k, mut mm) = crate::analytic::dense_fe::hermite_km(ei, t, ra, h, n);
         let mut removed = vec![0, 2 * n];
         for s in 1..n_spans {
             let v = 2 * s * m;
@@ -703,18 +675,8 @@ mod tests {
             }
         }
         let keep: Vec<usize> = (0..dofs).filter(|i| !removed.contains(i)).collect();
-        let k = k.select_rows(&keep).select_columns(&keep);
-        let mm = mm.select_rows(&keep).select_columns(&keep);
-        let linv = mm.cholesky().expect("M is SPD").l().try_inverse().unwrap();
-        let a = &linv * k * linv.transpose();
-        let a = (&a + a.transpose()) * 0.5;
-        let mut w: Vec<f64> = SymmetricEigen::new(a)
-            .eigenvalues
-            .iter()
-            .map(|l| l.max(0.0).sqrt())
-            .filter(|w| *w <= omega_max)
-            .collect();
-        w.sort_by(f64::total_cmp);
+        let mut w = crate::analytic::dense_fe::frequencies(&k, &mm, &keep);
+        w.retain(|w| *w <= omega_max);
         w
     }
 
