@@ -50,6 +50,7 @@ fn spring(x: f64, k: f64) -> Attachment {
         x,
         stiffness: k,
         mass: 0.0,
+        damping: 0.0,
     }
 }
 
@@ -225,6 +226,7 @@ fn fe_fundamental(a: f64, m_a: f64, k_a: f64, elements: usize) -> f64 {
             x: a,
             stiffness: k_a,
             mass: m_a,
+            damping: 0.0,
         }],
     );
     let beam = BeamModel::new(&p, elements);
@@ -354,7 +356,8 @@ fn the_keys_reach_the_beam_and_nothing_changes_without_them() {
         vec![Attachment {
             x: 12.3,
             stiffness: 2.0e5,
-            mass: 1.2
+            mass: 1.2,
+            damping: 0.0,
         }]
     );
     // defaults: a spring alone, a mass alone
@@ -413,14 +416,14 @@ fn bad_attachments_are_refused_naming_the_field() {
         &[],
         &[
             "attachment.0.stiffness",
-            "stiffness > 0 (N/m) or mass > 0 (kg)",
+            "stiffness > 0 (N/m), mass > 0 (kg) or damping > 0 (N·s/m)",
         ],
     );
-    // no dashpot key yet (no damping matrix C)
+    // an unknown key is refused naming the known ones
     refused(
-        "[[attachment]]\nx = 1.0\nstiffness = 1.0\ndamping = 3.0\n",
+        "[[attachment]]\nx = 1.0\nstiffness = 1.0\nspring = 3.0\n",
         &[],
-        &["unknown field `damping`", "`stiffness`", "`mass`"],
+        &["unknown field `spring`", "`stiffness`", "`damping`"],
     );
     refused(
         &format!("{STEADY_ARM}[reference]\nkind = \"moving_force_series\"\n"),

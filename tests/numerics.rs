@@ -26,6 +26,8 @@ mod carriers;
 mod contact_loss;
 #[path = "convergence.rs"]
 mod convergence;
+#[path = "damping.rs"]
+mod damping;
 #[path = "discretizations.rs"]
 mod discretizations;
 #[path = "formulations.rs"]

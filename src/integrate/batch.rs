@@ -101,7 +101,8 @@ impl Batch {
         };
         let sys0 = &built[0].1;
         let (n, k, lanes_n) = (sys0.beam().n, sys0.columns(), built.len());
-        let mut kernel = match Kernel::new(p, sys0.beam(), sys0.dt(), k, lanes_n) {
+        // batch_key admits undamped runs only: no damping matrix
+        let mut kernel = match Kernel::new(p, sys0.beam(), None, sys0.dt(), k, lanes_n) {
             Ok(kernel) => kernel,
             Err(_) => {
                 // each run alone reports its own error (the same factorization)

@@ -110,12 +110,17 @@ pub fn scene_columns(sc: &Resolved) -> usize {
 
 /// The key of the generalized-α runs that may step together: `None` when
 /// `sc` cannot batch this way (`integrate::batch`'s module docs: no point
-/// attachments, the `end` placement, a force-level law, Hermite elements, no manufactured source,
-/// at most four columns).
+/// attachments, no damping, the `end` placement, a force-level law, Hermite elements, no
+/// manufactured source, at most four columns).
 pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
     let Scheme::GenAlpha(p) = sc.scheme else {
         return None;
     };
+    if sc.is_damped() {
+        // a damped run steps alone (docs/lines.md §10.4): the batch kernel
+        // does not do the damping's product
+        return None;
+    }
     if sc.contact.placement != Placement::End
         || sc.contact.formulation == Formulation::Impact
         || sc.discretization != Discretization::Hermite
@@ -139,9 +144,11 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
 }
 
 /// The key of `modal_exact` runs that may step together: `None` for any
-/// other method and for a beam with point attachments.
+/// other method, for a beam with point attachments and for a damped run.
 pub fn modal_key(sc: &Resolved) -> Option<ModalKey> {
-    if sc.scheme != Scheme::ModalExact {
+    if sc.scheme != Scheme::ModalExact || sc.is_damped() {
+        // a damped run steps alone (docs/lines.md §10.4): the shared step
+        // maps are the undamped ones
         return None;
     }
     let (basis, mesh) = match sc.discretization {

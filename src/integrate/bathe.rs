@@ -83,6 +83,8 @@ pub struct Bathe {
     b0: Vec<f64>,
     mass_pred: Vec<MassPrediction>,
     rhs: Vec<f64>,
+    /// `f − C ṽ` of a sub-step with a damping matrix C (`None`: no damping).
+    damped_load: Option<Vec<f64>>,
 }
 
 impl Bathe {
@@ -97,8 +99,16 @@ impl Bathe {
         let c1 = (1.0 - gamma) / (gamma * dt);
         let c2 = -1.0 / ((1.0 - gamma) * gamma * dt);
         let c3 = (2.0 - gamma) / ((1.0 - gamma) * dt);
-        let ldlt1 = BandedLdlt::factor(&beam.stiffness.combine(1.0, &beam.mass, c0 * c0))?;
-        let ldlt2 = BandedLdlt::factor(&beam.stiffness.combine(1.0, &beam.mass, c3 * c3))?;
+        // with a damping matrix C (docs/lines.md §10.4): A₁ += c₀C, A₂ += c₃C
+        let effective = |c: f64| {
+            let a = beam.stiffness.combine(1.0, &beam.mass, c * c);
+            match sys.damping() {
+                Some(damping) => a.combine(1.0, damping, c),
+                None => a,
+            }
+        };
+        let ldlt1 = BandedLdlt::factor(&effective(c0))?;
+        let ldlt2 = BandedLdlt::factor(&effective(c3))?;
         let a_eff1 = sys
             .masses()
             .iter()
@@ -132,6 +142,7 @@ impl Bathe {
             b0: vec![0.0; n],
             mass_pred: vec![MassPrediction::default(); nc],
             rhs: vec![0.0; n * rhs_columns(nc)],
+            damped_load: sys.damping().map(|_| vec![0.0; n]),
         };
         // the first sub-step's predictors (later steps form them in the
         // previous update pass)
@@ -154,13 +165,32 @@ impl Bathe {
     /// Solve A X = B + (f − K d̃) e₀ᵀ with `ldlt`, B the moving forces and
     /// contact directions; the band product K d̃ is computed inside the
     /// forward sweep ([`BandedLdlt::solve_affine`]).
-    fn solve(rhs: &mut [f64], b0: &mut [f64], d_pred: &[f64], sys: &System, ldlt: &BandedLdlt) {
+    ///
+    /// With a damping matrix C the fixed load becomes `f − C ṽ` (formed in
+    /// `damped_load`): `C v = C ṽ + c C e` with c = c₀ or c₃, whose second
+    /// term is in A₁ or A₂.
+    fn solve(
+        rhs: &mut [f64],
+        b0: &mut [f64],
+        (d_pred, v_pred): (&[f64], &[f64]),
+        damped_load: &mut Option<Vec<f64>>,
+        sys: &System,
+        ldlt: &BandedLdlt,
+    ) {
         let beam = sys.beam();
         let k = sys.columns();
+        let load: &[f64] = match (damped_load.as_mut(), sys.damping()) {
+            (Some(h), Some(c)) => {
+                h.copy_from_slice(&beam.load);
+                c.mul_acc(v_pred, -1.0, h);
+                h
+            }
+            _ => &beam.load,
+        };
         rhs.fill(0.0);
         sys.scatter_loads(rhs, k, 1.0);
         let column = Affine {
-            h: &beam.load,
+            h: load,
             k: &beam.stiffness,
             u: d_pred,
         };
@@ -177,7 +207,14 @@ impl Stepper for Bathe {
         let ts = st.t + h1;
         sys.place(ts, ts, ts);
         // d̃ and ṽ were formed by the previous step's last pass
-        Self::solve(&mut self.rhs, &mut self.b0, &self.d_pred, sys, &self.ldlt1);
+        Self::solve(
+            &mut self.rhs,
+            &mut self.b0,
+            (&self.d_pred, &self.v_pred),
+            &mut self.damped_load,
+            sys,
+            &self.ldlt1,
+        );
         for (j, m) in sys.masses().iter().enumerate() {
             let (q, qd, aq) = (st.q[j], st.q_dot[j], self.aq[j]);
             let p = h1 * qd + 0.25 * h1 * h1 * aq;
@@ -224,7 +261,14 @@ impl Stepper for Bathe {
         // sub-step 2: three-point backward Euler to t_{n+1}
         let t1 = st.next_time(self.dt);
         sys.place(t1, t1, t1);
-        Self::solve(&mut self.rhs, &mut self.b0, &self.d_pred, sys, &self.ldlt2);
+        Self::solve(
+            &mut self.rhs,
+            &mut self.b0,
+            (&self.d_pred, &self.v_pred),
+            &mut self.damped_load,
+            sys,
+            &self.ldlt2,
+        );
         for (j, m) in sys.masses().iter().enumerate() {
             let (qd, dq1) = (st.q_dot[j], self.dq1[j]);
             let s = c1 * qd + c2 * self.qd1[j] - c3 * c1 * dq1;

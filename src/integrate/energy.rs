@@ -1,5 +1,7 @@
 //! The discrete energy of a state, J: the check that a method conserves or
-//! dissipates what it should (MODEL §9.1; `tests/methods.rs`).
+//! dissipates what it should (MODEL §9.1; `tests/methods.rs`). A damping
+//! matrix C (docs/lines.md §10.4) dissipates `∫ ḋᵀC ḋ dt`, which is not
+//! accumulated here: with C this energy decreases by it.
 
 use crate::scene::CarrierKind;
 

@@ -21,7 +21,7 @@ pub struct GenAlpha {
 impl GenAlpha {
     /// Factor A once and form the first predictors from the initial state.
     pub fn new(p: GenAlphaParams, sys: &System, st: &State, init: Initial) -> Result<Self> {
-        let mut kernel = Kernel::new(p, sys.beam(), sys.dt(), sys.columns(), 1)?;
+        let mut kernel = Kernel::new(p, sys.beam(), sys.damping(), sys.dt(), sys.columns(), 1)?;
         kernel.start(sys, &st.d, &st.v, init);
         Ok(GenAlpha { kernel })
     }
@@ -34,6 +34,7 @@ impl Stepper for GenAlpha {
         let kernel = &mut self.kernel;
         kernel.clear();
         kernel.load(0, sys, st);
+        kernel.damp(&st.v);
         kernel.solve(sys.beam());
         kernel.contact(0, sys, st)?;
         kernel.update(&sys.beam().load, &mut st.d, &mut st.v, &[sys.multipliers()]);

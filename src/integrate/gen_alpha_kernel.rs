@@ -8,10 +8,11 @@
 //! M and K do not couple the beam with the masses (only the contact does),
 //! so the effective matrix `A = (1 − α_m)M + (1 − α_f)γΔt C + (1 − α_f)βΔt²K`
 //! is the banded beam block, factored once, plus one scalar A_q per mass.
-//! The beam has no damping matrix (MODEL §1, eq. 1; only a carrier's
-//! dashpot c_s damps), so its block is `(1 − α_m)M + (1 − α_f)βΔt²K`; the
-//! one-product residual below relies on that and would need a C term if
-//! beam damping were added.
+//! Without damping (MODEL §1, eq. 1) the block is `(1 − α_m)M +
+//! (1 − α_f)βΔt²K` and the residual is the one band product below; with a
+//! damping matrix C (docs/lines.md §10.4) the block gains
+//! `c_c C`, c_c = (1 − α_f)γΔt, and the residual one more product,
+//! [`Kernel::damp`]. A damped run steps alone (its batch key is `None`).
 //!
 //! A step is four phases, each run's own where it is per run and all lanes
 //! at once where it is per row: [`Kernel::load`] (place the carriers,
@@ -47,11 +48,26 @@
 //! round-off already carries into the step. h and ũ are formed in the update
 //! pass; the banded kernel computes h − Kũ row by row inside its forward
 //! sweep ([`BandedLdlt::solve_affine`]).
+//!
+//! **Damping.** C enters at the α-weighted velocity
+//! `(1 − α_f)v_{n+1} + α_f v_n = (1 − α_f)γΔt a_{n+1} + w`,
+//! `w = v_n + (1 − α_f)(1 − γ)Δt a_n`: the first term goes into A, and
+//! `−C w` into F. With `A a_n` now holding `c_c C a_n` too, the same
+//! rearrangement gives
+//!
+//! ```text
+//!   F = h − K ũ − C w̃,   w̃ = w − α′ c_c a_n = v_n + κ a_n,
+//!   κ = (1 − α_f)(1 − γ)Δt − α′ c_c,
+//! ```
+//!
+//! and [`Kernel::damp`] subtracts `C w̃` from h before the solve (so the
+//! solve's b₀, hence the next A a_n, includes it). O(n·p) per step, no
+//! allocation; a run without C skips it.
 
 #![allow(non_snake_case)]
 
 use crate::error::Result;
-use crate::model::banded::{Affine, BandedLdlt};
+use crate::model::banded::{Affine, BandedLdlt, SymBand};
 use crate::model::beam::BeamModel;
 use crate::scene::{GenAlphaParams, Placement};
 
@@ -70,6 +86,18 @@ struct MassLane {
     mass_pred: Vec<MassPrediction>,
 }
 
+/// What a damped run's step adds (module docs, "Damping").
+struct Damping {
+    /// C, the run's damping matrix.
+    c: SymBand,
+    /// κ = (1 − α_f)(1 − γ)Δt − α′ c_c, s.
+    kappa: f64,
+    /// w̃ of one lane, m/s (scratch).
+    w: Vec<f64>,
+    /// C w̃ of one lane, N (scratch).
+    cw: Vec<f64>,
+}
+
 /// The generalized-α step of L runs sharing A (module docs).
 pub(crate) struct Kernel {
     p: GenAlphaParams,
@@ -86,6 +114,8 @@ pub(crate) struct Kernel {
     alpha_p: f64,
     /// c_k = (1 − α_f)βΔt², s².
     c_k: f64,
+    /// The damping matrix's share of the step (`None`: no damping).
+    damping: Option<Damping>,
     /// Per lane, in lane order.
     masses: Vec<MassLane>,
     // interleaved n × L
@@ -105,26 +135,40 @@ pub(crate) struct Kernel {
 }
 
 impl Kernel {
-    /// Factor A of `beam` once for `lanes` runs of `k` columns each.
+    /// Factor A of `beam` (with its damping matrix `damping`, if any) once
+    /// for `lanes` runs of `k` columns each.
     pub(crate) fn new(
         p: GenAlphaParams,
         beam: &BeamModel,
+        damping: Option<&SymBand>,
         dt: f64,
         k: usize,
         lanes: usize,
     ) -> Result<Self> {
         let n = beam.n;
         let c_k = (1.0 - p.alpha_f) * p.beta * dt * dt;
-        let A = beam.mass.combine(1.0 - p.alpha_m, &beam.stiffness, c_k);
+        let mut A = beam.mass.combine(1.0 - p.alpha_m, &beam.stiffness, c_k);
+        let alpha_p = p.alpha_m / (1.0 - p.alpha_m);
+        let damping = damping.map(|c| {
+            let c_c = (1.0 - p.alpha_f) * p.gamma * dt;
+            A = A.combine(1.0, c, c_c);
+            Damping {
+                c: c.clone(),
+                kappa: (1.0 - p.alpha_f) * (1.0 - p.gamma) * dt - alpha_p * c_c,
+                w: vec![0.0; n],
+                cw: vec![0.0; n],
+            }
+        });
         let ldlt = BandedLdlt::factor(&A)?;
         Ok(Kernel {
+            damping,
             p,
             dt,
             n,
             k,
             lanes,
             ldlt,
-            alpha_p: p.alpha_m / (1.0 - p.alpha_m),
+            alpha_p,
             c_k,
             masses: Vec::with_capacity(lanes),
             a: vec![0.0; n * lanes],
@@ -166,6 +210,9 @@ impl Kernel {
         let mut a_a = vec![0.0; self.n];
         beam.mass.mul_acc(&init.a, 1.0 - am, &mut a_a);
         beam.stiffness.mul_acc(&init.a, c_k, &mut a_a);
+        if let Some(dm) = &self.damping {
+            dm.c.mul_acc(&init.a, (1.0 - af) * gamma * dt, &mut a_a);
+        }
         for i in 0..self.n {
             let dp = d[i] + dt * v[i] + c_pred * init.a[i];
             let u = (1.0 - af) * dp + af * d[i];
@@ -206,6 +253,24 @@ impl Kernel {
         };
         let n = self.n * self.k * self.lanes;
         sys.scatter_loads_in(&mut self.rhs[..n], self.k, lanes, 1.0);
+    }
+
+    /// The damping's share of every lane's residual (module docs,
+    /// "Damping"): h −= C w̃, w̃ = v_n + κ a_n, before [`Kernel::solve`].
+    /// `v` is the lanes' beam velocities (interleaved). Nothing without C.
+    pub(crate) fn damp(&mut self, v: &[f64]) {
+        let Some(dm) = &mut self.damping else { return };
+        let (n, L) = (self.n, self.lanes);
+        for l in 0..L {
+            for i in 0..n {
+                dm.w[i] = v[i * L + l] + dm.kappa * self.a[i * L + l];
+            }
+            dm.cw.fill(0.0);
+            dm.c.mul_acc(&dm.w, 1.0, &mut dm.cw);
+            for i in 0..n {
+                self.h[i * L + l] -= dm.cw[i];
+            }
+        }
     }
 
     /// a★ = A⁻¹(F + moving forces) and z_c = A⁻¹(s_c r_f,c) of every lane

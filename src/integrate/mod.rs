@@ -35,6 +35,7 @@ mod bathe;
 mod carrier;
 mod central_difference;
 mod contact_problem;
+mod damped_modes;
 mod diagnose;
 mod energy;
 mod gen_alpha;

@@ -2,7 +2,9 @@
 //! the step (MODEL §9.3; issue 24), on `mesh.kind = "galerkin"` or `"modal"`.
 //!
 //! In a mass-normalized diagonal basis each coordinate is an undamped
-//! oscillator `η̈_j + ω_j² η_j = f_j(t)` (the beam has no damping, MODEL §1),
+//! oscillator `η̈_j + ω_j² η_j = f_j(t)` (MODEL §1; with Rayleigh damping,
+//! docs/lines.md §10.4, a damped one `η̈_j + c_j η̇_j + ω_j² η_j = f_j(t)`,
+//! propagated as exactly by `damped_modes.rs`),
 //! coupled to the others only through the contact force. Over a step its
 //! motion is closed form once the load's shape within the step is fixed
 //! ([`super::oscillator`]): the free vibration carries no time error and no
@@ -75,6 +77,7 @@ use std::sync::Arc;
 
 use crate::analytic::FastShapes;
 use crate::error::{Error, Result};
+use crate::model::banded::SymBand;
 use crate::model::beam::{Basis, BeamModel, PointVector};
 use crate::numeric::lanes::{self, LANES};
 use crate::scene::CarrierKind;
@@ -94,11 +97,22 @@ pub struct ModalCoefs {
     /// The fast evaluator on a galerkin basis; `None` on a modal basis
     /// (its point vectors are four rows of the FE modes already).
     shapes: Option<FastShapes>,
+    /// True when the modes are damped (`[beam] damping`): their velocity
+    /// row has its own diagonal, which only the scalar free step reads.
+    damped: bool,
 }
 
 impl ModalCoefs {
     /// Build the shared data for a diagonal basis (`beam`) at `dt`.
     pub fn new(beam: &BeamModel, dt: f64) -> Result<Self> {
+        Self::with_damping(beam, None, dt)
+    }
+
+    /// [`ModalCoefs::new`] with the basis's damping matrix C, diagonal
+    /// (Rayleigh damping, `c_j = α + βω_j²`; docs/lines.md §10.4): each
+    /// mode is then propagated as an exact damped oscillator
+    /// ([`ModeSteps::damped`]).
+    pub fn with_damping(beam: &BeamModel, damping: Option<&SymBand>, dt: f64) -> Result<Self> {
         let shapes = match &beam.basis {
             Basis::Galerkin(m) => Some(FastShapes::new(m)),
             Basis::Modal { .. } => None,
@@ -117,7 +131,14 @@ impl ModalCoefs {
                     .sqrt()
             })
             .collect();
-        let steps = ModeSteps::new(&omega, dt);
+        let steps = match damping {
+            None => ModeSteps::new(&omega, dt),
+            Some(c) => {
+                debug_assert_eq!(c.bandwidth(), 0, "C is diagonal in a modal basis");
+                let c: Vec<f64> = (0..beam.n).map(|j| c.get(j, j)).collect();
+                ModeSteps::damped(&omega, &c, dt)
+            }
+        };
         let held = beam.load.iter().any(|p| *p != 0.0).then(|| {
             let a = (0..beam.n)
                 .map(|j| (steps.a0[j] + steps.a1[j]) * beam.load[j])
@@ -131,6 +152,7 @@ impl ModalCoefs {
             steps,
             held,
             shapes,
+            damped: damping.is_some(),
         })
     }
 
@@ -179,7 +201,11 @@ impl ModalExact {
     /// The stepper for a run on a diagonal basis, its coefficients built
     /// here (a run alone).
     pub fn new(sys: &mut System) -> Result<Self> {
-        let coefs = Arc::new(ModalCoefs::new(sys.beam(), sys.dt())?);
+        let coefs = Arc::new(ModalCoefs::with_damping(
+            sys.beam(),
+            sys.damping(),
+            sys.dt(),
+        )?);
         Ok(Self::with_coefs(coefs, sys))
     }
 
@@ -434,12 +460,14 @@ fn step_kernel(
     place(coefs, sys, st);
     let m = &coefs.steps;
     let all = (0, m.len());
+    // the vector free steps are of undamped modes (cos_v = cos)
+    let vector_free = vector && !coefs.damped;
     let pair = if is_single(sys) && source.is_none() {
         let mut sums = PairSums::default();
-        free_pair_range(coefs, sys, st, all, &mut sums, vector);
+        free_pair_range(coefs, sys, st, all, &mut sums, vector_free);
         Some(sums.total())
     } else {
-        free(m, coefs.held.as_ref(), st, vector);
+        free(m, coefs.held.as_ref(), st, vector_free);
         for c in &sys.carriers {
             if let CarrierKind::Force { force } = c.props.kind {
                 let phi = (c.pv_f.dense(), c.pv_g.dense());
@@ -460,12 +488,14 @@ fn step_kernel(
 // CPU has both, `f64::mul_add` lane by lane otherwise: the same bits,
 // `crate::numeric::lanes`), and take sums over modes in its eight lanes.
 
-/// The free step of mode i: `(cos·η + sin/ω·η̇, −ω sin·η + cos·η̇)`, fused.
+/// The free step of mode i: `(cos·η + sin/ω·η̇, −ω sin·η + cos_v·η̇)`,
+/// fused (cos_v = cos for an undamped mode; the vector kernels below read
+/// `cos` for both and run undamped modes only).
 #[inline(always)]
 fn rotate_mode(m: &ModeSteps, i: usize, e: f64, ev: f64) -> (f64, f64) {
     (
         m.cos[i].mul_add(e, m.sin_over_omega[i] * ev),
-        m.minus_omega_sin[i].mul_add(e, m.cos[i] * ev),
+        m.minus_omega_sin[i].mul_add(e, m.cos_v[i] * ev),
     )
 }
 

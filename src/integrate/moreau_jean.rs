@@ -83,7 +83,12 @@ impl MoreauJean {
         let beam = sys.beam();
         let (n, nc) = (beam.n, sys.contacts());
         let c = theta * theta * dt * dt;
-        let ldlt = BandedLdlt::factor(&beam.mass.combine(1.0, &beam.stiffness, c))?;
+        let mut a = beam.mass.combine(1.0, &beam.stiffness, c);
+        if let Some(damping) = sys.damping() {
+            // C v_θ = C v_n + θ C Δv (docs/lines.md §10.4): θΔt C into the matrix
+            a = a.combine(1.0, damping, theta * dt);
+        }
+        let ldlt = BandedLdlt::factor(&a)?;
         let a_eff = sys
             .masses()
             .iter()
@@ -134,6 +139,10 @@ impl Stepper for MoreauJean {
             self.w[i] = dt * (st.d[i] + theta * dt * st.v[i]);
             self.d_pred[i] = st.d[i] + dt * st.v[i];
             self.h[i] = dt * beam.load[i];
+        }
+        if let Some(damping) = sys.damping() {
+            // and −Δt C v_n into the right-hand side
+            damping.mul_acc(&st.v, -dt, &mut self.h);
         }
         self.rhs.fill(0.0);
         sys.scatter_loads(&mut self.rhs, k, dt);

@@ -47,6 +47,9 @@ pub struct ModeSteps {
     pub sin_over_omega: Vec<f64>,
     /// −ω sin(ωΔt), 1/s.
     pub minus_omega_sin: Vec<f64>,
+    /// η̇_{n+1} per η̇_n: cos(ωΔt) here; its own value for a damped mode
+    /// (`damped_modes.rs`).
+    pub cos_v: Vec<f64>,
     /// a0, a1: η_{n+1} per unit load sample at t_n, t_{n+1}, s².
     pub a0: Vec<f64>,
     /// See `a0`.
@@ -92,6 +95,7 @@ impl ModeSteps {
             cos: Vec::with_capacity(n),
             sin_over_omega: Vec::with_capacity(n),
             minus_omega_sin: Vec::with_capacity(n),
+            cos_v: Vec::with_capacity(n),
             a0: Vec::with_capacity(n),
             a1: Vec::with_capacity(n),
             b0: Vec::with_capacity(n),
@@ -113,6 +117,7 @@ impl ModeSteps {
             m.cos.push(cu);
             m.sin_over_omega.push(dt * sinc);
             m.minus_omega_sin.push(-w * su);
+            m.cos_v.push(cu);
             m.a0.push(dt * dt * c2 - a1);
             m.a1.push(a1);
             m.b0.push(dt * sinc - b1);

@@ -15,7 +15,7 @@
 
 use crate::contact::{ContactFailed, ContactFailure, ContactProblem, Level, RunLaw};
 use crate::error::{Error, Result};
-use crate::model::banded::BandedLdlt;
+use crate::model::banded::{BandedLdlt, SymBand};
 use crate::model::beam::BeamModel;
 use crate::model::source::Source;
 use crate::resolve::Resolved;
@@ -71,6 +71,9 @@ pub struct System {
     /// The previous step's multipliers ([`Multipliers::Held`] only).
     held_prev: Vec<f64>,
     pub(crate) active: Vec<bool>,
+    /// The damping matrix C = αM + βK + Σ c_a r_a r_aᵀ (docs/lines.md
+    /// §10.4); `None` without damping, and then no method does C's work.
+    damping: Option<SymBand>,
     /// A manufactured scene's source; `None` costs a branch per step.
     source: Option<SourceState>,
     /// The time the last [`System::place`] put the contact forces at, s.
@@ -137,7 +140,9 @@ impl System {
             t_load: 0.0,
             f0: masses.iter().map(|m| m.f0).collect(),
         });
+        let damping = beam.damping_matrix(sc.damping, &sc.beam.attachments);
         Ok(System {
+            damping,
             source,
             t_force: 0.0,
             dt: sc.dt,
@@ -163,6 +168,11 @@ impl System {
     /// The discretized beam: M, K, the distributed load, point vectors.
     pub fn beam(&self) -> &BeamModel {
         &self.beam
+    }
+
+    /// The damping matrix C (docs/lines.md §10.4), `None` without damping.
+    pub fn damping(&self) -> Option<&SymBand> {
+        self.damping.as_ref()
     }
 
     /// Time step Δt, s.

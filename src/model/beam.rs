@@ -445,7 +445,7 @@ impl BeamModel {
     }
 
     /// The FE shape functions (or their slopes) of the element holding x.
-    fn element_vector(&self, x: f64, slope: bool) -> ([usize; 4], [f64; 4]) {
+    pub(super) fn element_vector(&self, x: f64, slope: bool) -> ([usize; 4], [f64; 4]) {
         let (e, s) = self.locate(x);
         let h = self.mesh.element_length(e);
         let (mut idx, mut val) = ([0usize; 4], [0.0; 4]);

@@ -4,6 +4,7 @@
 
 pub mod banded;
 pub mod beam;
+pub mod damping;
 pub mod eigen;
 pub mod element;
 pub mod mesh;

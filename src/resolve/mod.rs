@@ -13,6 +13,7 @@
 //! defined here, so that the scene's own module imports nothing above it.
 
 pub mod attachment;
+pub mod damping;
 pub mod memory;
 pub mod mesh;
 pub mod reference;
@@ -21,6 +22,7 @@ mod resolved;
 use std::path::Path;
 
 pub use attachment::check_attachments;
+pub use damping::check_damping;
 pub use memory::{
     EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
     PLOT_BUCKETS, check_budget, estimate as estimate_memory, event_capacity, history_rows,
@@ -31,7 +33,9 @@ pub use resolved::Resolved;
 
 use crate::error::Result;
 use crate::manufactured::{Manufactured, Setting};
-use crate::scene::{Scene, in_file, read_scene, scene_with_overrides, validate_contact};
+use crate::scene::{
+    Scene, in_file, read_scene, resolve_rayleigh, scene_with_overrides, validate_contact,
+};
 
 impl Scene {
     /// Check every value and resolve the physical parameters: the scene's
@@ -47,6 +51,8 @@ impl Scene {
         let carriers = self.resolve_carriers(l)?;
 
         let scheme = self.integrator.scheme()?;
+        let damping = resolve_rayleigh(self.beam.damping.as_ref())?;
+        check_damping(self, &beam, damping, discretization, scheme)?;
         let g = self.gravity_g()?;
         validate_contact(&self.contact)?;
         // the method's own check of the contact settings and basis
@@ -79,6 +85,7 @@ impl Scene {
             reference,
             scene: self.clone(),
             beam,
+            damping,
             carriers,
             elements,
             discretization,

@@ -8,7 +8,7 @@ use crate::manufactured::Manufactured;
 use crate::model::mesh::Mesh;
 use crate::scene::{
     BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Grading,
-    IntegratorSpec, MeshPlan, Scene, Scheme, fe_unknowns,
+    IntegratorSpec, MeshPlan, Rayleigh, Scene, Scheme, fe_unknowns,
 };
 
 /// A validated scene: physical parameters ready to build a model from.
@@ -18,6 +18,9 @@ pub struct Resolved {
     pub scene: Scene,
     /// Beam properties.
     pub beam: BeamProps,
+    /// Rayleigh damping of the wire, `C = α M + β K` (`[beam] damping`;
+    /// zero: none). The attachments' dashpots are in `beam.attachments`.
+    pub damping: Rayleigh,
     /// Carriers, in scene order.
     pub carriers: Vec<CarrierProps>,
     /// Number of elements N (`mesh.elements`).
@@ -70,6 +73,12 @@ impl Resolved {
             Discretization::Galerkin { modes } => l / modes as f64,
             Discretization::Modal { modes } => mesh().max(l / modes as f64),
         }
+    }
+
+    /// True when the run has a damping matrix C: Rayleigh damping of the
+    /// wire or a dashpot on an attachment (docs/lines.md §10.4).
+    pub fn is_damped(&self) -> bool {
+        !self.damping.is_zero() || self.beam.attachments.iter().any(|a| a.damping != 0.0)
     }
 
     /// The mesh plan the model is built from

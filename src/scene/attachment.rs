@@ -6,9 +6,9 @@
 //! the property struct the model is built from ([`Attachment`], carried by
 //! [`super::BeamProps`]).
 //!
-//! Dashpots (`c_a r_a r_aᵀ` in a damping matrix C) are not available yet:
-//! taut has no damping matrix (issue 27's damping item), so no key for
-//! them exists and `damping` is refused as an unknown key.
+//! A dashpot c_a to the anchor (`damping`, N·s/m) adds `c_a r_a r_aᵀ` to
+//! the damping matrix C (docs/lines.md §10.4), assembled with the wire's
+//! Rayleigh damping in `model::damping`.
 
 use serde::{Deserialize, Serialize};
 
@@ -27,6 +27,9 @@ pub struct AttachmentSpec {
     /// Lumped mass m_a, kg (≥ 0, default 0).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub mass: f64,
+    /// Dashpot c_a to the fixed anchor, N·s/m (≥ 0, default 0).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub damping: f64,
     /// An optional label (for messages and the reader), any text.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
@@ -45,10 +48,12 @@ pub struct Attachment {
     pub stiffness: f64,
     /// Lumped mass m_a, kg (≥ 0).
     pub mass: f64,
+    /// Dashpot c_a, N·s/m (≥ 0; 0: none).
+    pub damping: f64,
 }
 
 /// Check each `[[attachment]]` on a beam of span `l`, m: x in [0, L],
-/// stiffness and mass finite and ≥ 0, at least one of them > 0.
+/// stiffness, mass and damping finite and ≥ 0, at least one of them > 0.
 pub fn resolve_attachments(specs: &[AttachmentSpec], l: f64) -> Result<Vec<Attachment>> {
     let mut out = Vec::with_capacity(specs.len());
     for (i, a) in specs.iter().enumerate() {
@@ -61,17 +66,19 @@ pub fn resolve_attachments(specs: &[AttachmentSpec], l: f64) -> Result<Vec<Attac
         }
         let stiffness = non_negative(&format!("attachment.{i}.stiffness"), a.stiffness, "N/m")?;
         let mass = non_negative(&format!("attachment.{i}.mass"), a.mass, "kg")?;
-        if stiffness == 0.0 && mass == 0.0 {
+        let damping = non_negative(&format!("attachment.{i}.damping"), a.damping, "N·s/m")?;
+        if stiffness == 0.0 && mass == 0.0 && damping == 0.0 {
             return Err(Error::invalid(
                 format!("attachment.{i}.stiffness"),
                 0.0,
-                "an attachment needs stiffness > 0 (N/m) or mass > 0 (kg), or both (dashpots are not available yet)",
+                "an attachment needs stiffness > 0 (N/m), mass > 0 (kg) or damping > 0 (N·s/m)",
             ));
         }
         out.push(Attachment {
             x: a.x,
             stiffness,
             mass,
+            damping,
         });
     }
     Ok(out)

@@ -15,6 +15,7 @@
 //! need the model, a reference or the memory plan are the resolve layer's.
 
 mod attachment;
+mod damping;
 mod discretization;
 mod load;
 pub mod manufactured;
@@ -24,6 +25,7 @@ mod speed;
 mod validate;
 
 pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
+pub use damping::{Rayleigh, RayleighSpec, resolve_rayleigh};
 pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
@@ -133,6 +135,10 @@ pub struct BeamSpec {
     /// Bending stiffness EI, N·m² (instead of `youngs_modulus`·`second_moment`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bending_stiffness: Option<f64>,
+    /// Rayleigh damping `C = α M + β K` (`{ mass = α, stiffness = β }`,
+    /// 1/s and s, each ≥ 0; absent: no damping).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<RayleighSpec>,
 }
 
 /// `[mesh]`: the space discretization (MODEL §4, §9.2).

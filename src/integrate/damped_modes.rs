@@ -1,0 +1,156 @@
+//! The exact step of a damped mode (docs/lines.md §10.4; MODEL §9.3):
+//! what `modal_exact` advances each mode with when the wire has Rayleigh
+//! damping, `η̈ + c η̇ + ω² η = f(t)`, c = α + βω² = 2ζω (C is diagonal in
+//! a mass-normalized basis, L12).
+//!
+//! With the load linear in time over the step (first-order hold, as the
+//! undamped step in `oscillator.rs`), the step map is the exponential of
+//! the augmented system of `(η, η̇, f, ḟ)`:
+//!
+//! ```text
+//!   d/dt [η, η̇, f, ḟ] = [[0, 1, 0, 0], [−ω², −c, 1, 0], [0, 0, 0, 1], [0, 0, 0, 0]] [η, η̇, f, ḟ]
+//!   η_{n+1} = E₀₀ η_n + E₀₁ η̇_n + a0 f_n + a1 f_{n+1},  a1 = E₀₃/Δt,  a0 = E₀₂ − a1
+//!   η̇_{n+1} = E₁₀ η_n + E₁₁ η̇_n + b0 f_n + b1 f_{n+1},  b1 = E₁₃/Δt,  b0 = E₁₂ − b1
+//! ```
+//!
+//! (ḟ = (f_{n+1} − f_n)/Δt), one formula for under-, critically and
+//! over-damped modes alike: no case split at ζ = 1. The exponential is
+//! nalgebra's Padé scaling and squaring, on the balanced variables
+//! `(η, η̇/s, f/s², ḟ/s³)`, s = ω (1/Δt for a rigid mode), whose matrix
+//! entries are all O(ωΔt) or cΔt rather than up to (ωΔt)²: its error is a
+//! few ulps of the entries' scale (tested below against the closed form
+//! L13 of `analytic::rayleigh`).
+//!
+//! A damped mode's velocity row has its own diagonal E₁₁ ≠ E₀₀ ([`ModeSteps::cos_v`]).
+
+use nalgebra::Matrix4;
+
+use super::oscillator::ModeSteps;
+
+impl ModeSteps {
+    /// The step maps of modes with angular frequencies `omega` (rad/s,
+    /// ≥ 0) and modal damping coefficients `c` = 2ζ_jω_j (1/s, ≥ 0) at `dt`
+    /// (module docs).
+    pub fn damped(omega: &[f64], c: &[f64], dt: f64) -> Self {
+        let n = omega.len();
+        let mut m = ModeSteps::new(&[], dt);
+        for v in [
+            &mut m.cos,
+            &mut m.sin_over_omega,
+            &mut m.minus_omega_sin,
+            &mut m.cos_v,
+            &mut m.a0,
+            &mut m.a1,
+            &mut m.b0,
+            &mut m.b1,
+        ] {
+            v.reserve(n);
+        }
+        for (&w, &c) in omega.iter().zip(c) {
+            let s = if w > 0.0 { w } else { 1.0 / dt };
+            #[rustfmt::skip]
+            let a = Matrix4::new(
+                0.0, s, 0.0, 0.0,
+                -w * w / s, -c, s, 0.0,
+                0.0, 0.0, 0.0, s,
+                0.0, 0.0, 0.0, 0.0,
+            ) * dt;
+            let e = a.exp();
+            let (s2, s3) = (s * s, s * s * s);
+            let a1 = e[(0, 3)] / (s3 * dt);
+            let b1 = s * e[(1, 3)] / (s3 * dt);
+            m.cos.push(e[(0, 0)]);
+            m.sin_over_omega.push(e[(0, 1)] / s);
+            m.minus_omega_sin.push(s * e[(1, 0)]);
+            m.cos_v.push(e[(1, 1)]);
+            m.a0.push(e[(0, 2)] / s2 - a1);
+            m.a1.push(a1);
+            m.b0.push(s * e[(1, 2)] / s2 - b1);
+            m.b1.push(b1);
+        }
+        m
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::analytic::DampedOscillator;
+
+    use super::*;
+
+    /// The Padé exponential against the closed form L13, relative to the
+    /// motion's scale: measured ≤ 3e-15 over the cases below; a few ulps
+    /// times the squarings' growth.
+    const EXPM_ROUNDOFF: f64 = 1e-13;
+
+    /// Free vibration from (q₀, v₀) over one step, under-, critically
+    /// and over-damped, small and large ωΔt, against L13.
+    #[test]
+    fn the_free_step_is_the_closed_form_for_every_damping_ratio() {
+        let dt = 1e-3;
+        for w in [0.5, 60.0, 3.0e3, 1.0e5] {
+            for zeta in [0.0, 0.05, 0.7, 1.0, 1.3, 20.0] {
+                let m = ModeSteps::damped(&[w], &[2.0 * zeta * w], dt);
+                let osc = DampedOscillator::new(w, zeta).unwrap();
+                for (q0, v0) in [(1.0, 0.0), (0.0, w)] {
+                    let (q, v) = osc.free(q0, v0, dt);
+                    let eq = m.cos[0] * q0 + m.sin_over_omega[0] * v0;
+                    let ev = m.minus_omega_sin[0] * q0 + m.cos_v[0] * v0;
+                    let scale = q0.abs() + v0.abs() / w;
+                    assert!(
+                        (eq - q).abs() <= EXPM_ROUNDOFF * scale,
+                        "ω {w} ζ {zeta}: η {eq} vs {q}"
+                    );
+                    assert!(
+                        (ev - v).abs() <= EXPM_ROUNDOFF * scale * w,
+                        "ω {w} ζ {zeta}: η̇ {ev} vs {v}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// A held load's step is the step response `η_s + free(−η_s, 0)`,
+    /// η_s = f/ω², and with c = 0 the map is the undamped one.
+    #[test]
+    fn a_held_load_is_the_step_response_and_no_damping_is_the_undamped_map() {
+        let dt = 2e-3;
+        for w in [1.0, 80.0, 4.0e3] {
+            for zeta in [0.0, 0.3, 1.0, 4.0] {
+                let m = ModeSteps::damped(&[w], &[2.0 * zeta * w], dt);
+                let osc = DampedOscillator::new(w, zeta).unwrap();
+                let eta_s = 1.0 / (w * w);
+                let (q, v) = osc.free(-eta_s, 0.0, dt);
+                let (eq, ev) = (m.a0[0] + m.a1[0], m.b0[0] + m.b1[0]);
+                assert!(
+                    (eq - (eta_s + q)).abs() <= EXPM_ROUNDOFF * eta_s,
+                    "ω {w} ζ {zeta}"
+                );
+                assert!(
+                    (ev - v).abs() <= EXPM_ROUNDOFF * eta_s * w,
+                    "ω {w} ζ {zeta}"
+                );
+            }
+            let (d, u) = (
+                ModeSteps::damped(&[w], &[0.0], dt),
+                ModeSteps::new(&[w], dt),
+            );
+            for (x, y, what) in [
+                (&d.cos, &u.cos, "cos"),
+                (&d.cos_v, &u.cos_v, "cos_v"),
+                (&d.sin_over_omega, &u.sin_over_omega, "sin/ω"),
+                (&d.a0, &u.a0, "a0"),
+                (&d.a1, &u.a1, "a1"),
+                (&d.b0, &u.b0, "b0"),
+                (&d.b1, &u.b1, "b1"),
+            ] {
+                let scale = match what {
+                    "a0" | "a1" => dt * dt,
+                    "b0" | "b1" | "sin/ω" => dt,
+                    _ => 1.0,
+                };
+                assert!((x[0] - y[0]).abs() <= EXPM_ROUNDOFF * scale, "ω {w} {what}");
+            }
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! Damping (`[beam] damping`, `[[attachment]] damping`; docs/lines.md
+//! §10.4) against the rest of the scene: the methods and bases that carry
+//! a damping matrix C, and the references that assume none.
+//!
+//! * The implicit methods carry C in their effective matrix (generalized-α
+//!   family, Bathe's two sub-steps, Moreau–Jean's θ-step): still banded,
+//!   factored once. `modal_exact` propagates each mode of a diagonal basis
+//!   as an exact damped oscillator.
+//! * `central_difference` is refused: its step is explicit with v kept at
+//!   half steps, so a non-diagonal C needs a solve with `M + Δt/2 C` every
+//!   step and its stable step shrinks to `Δt ≤ (2/ω)(√(1+ζ²) − ζ)`, which
+//!   its ω_max-based step check does not know.
+//! * A dashpot on a modal basis (`mesh.kind = "modal"`) is refused: its
+//!   `c_a φ(x_a) φ(x_a)ᵀ` couples every mode, which a diagonal basis has
+//!   no place for (the Rayleigh part stays diagonal there).
+//! * A registered method is refused: it builds its own stepper, which
+//!   does not read C.
+//! * The manufactured solutions and the closed-form references are of the
+//!   undamped beam and are refused; `richardson` holds.
+
+use crate::error::{Error, Result};
+use crate::scene::{BeamProps, Discretization, Rayleigh, ReferenceKind, Scene, Scheme};
+
+/// Refuse the combinations damping breaks (module docs); nothing to check
+/// without damping.
+pub fn check_damping(
+    scene: &Scene,
+    beam: &BeamProps,
+    rayleigh: Rayleigh,
+    d: Discretization,
+    scheme: Scheme,
+) -> Result<()> {
+    let dashpot = beam.attachments.iter().position(|a| a.damping != 0.0);
+    if rayleigh.is_zero() && dashpot.is_none() {
+        return Ok(());
+    }
+    // the key that brought damping in, for the messages
+    let (key, value) = match dashpot {
+        Some(i) if rayleigh.is_zero() => (
+            format!("attachment.{i}.damping"),
+            beam.attachments[i].damping.to_string(),
+        ),
+        _ => (
+            "beam.damping".to_string(),
+            format!(
+                "{{ mass = {}, stiffness = {} }}",
+                rayleigh.alpha, rayleigh.beta
+            ),
+        ),
+    };
+    match scheme {
+        Scheme::CentralDifference => {
+            return Err(Error::invalid(
+                "integrator.method",
+                "\"central_difference\"",
+                format!(
+                    "does not carry the damping of {key} = {value}: the explicit step keeps v at half steps, so a damping matrix needs a solve with M + Δt/2·C each step and lowers the stable step to (2/ω)(√(1+ζ²) − ζ); use generalized_alpha, newmark, hht, wbz, bathe, moreau_jean or modal_exact"
+                ),
+            ));
+        }
+        Scheme::Registered => {
+            return Err(Error::invalid(
+                "integrator.method",
+                format!("\"{}\"", scene.integrator.method),
+                format!(
+                    "is a registered method, whose stepper does not read the damping of {key} = {value}: remove the damping or use a built-in implicit method"
+                ),
+            ));
+        }
+        _ => {}
+    }
+    if let Some(i) = dashpot
+        && matches!(
+            d,
+            Discretization::Modal { .. } | Discretization::Galerkin { .. }
+        )
+    {
+        return Err(Error::invalid(
+            format!("attachment.{i}.damping"),
+            beam.attachments[i].damping,
+            "a dashpot c_a φ(x_a)φ(x_a)ᵀ couples every mode of a diagonal basis (mesh.kind = \"modal\" or \"galerkin\"), which has no place for it: use mesh.kind = \"hermite\" (Rayleigh damping [beam] damping stays diagonal in a modal basis)",
+        ));
+    }
+    if scene.manufactured.is_some() {
+        return Err(Error::invalid(
+            "manufactured",
+            "(present)",
+            format!(
+                "a manufactured solution's source is that of the undamped beam and does not include {key} = {value}: remove one or the other"
+            ),
+        ));
+    }
+    if let Some(r) = &scene.reference
+        && r.kind != ReferenceKind::Richardson
+    {
+        return Err(Error::invalid(
+            "reference.kind",
+            format!("\"{}\"", r.kind.name()),
+            format!(
+                "is a closed form of the undamped beam and does not include {key} = {value}: use \"richardson\""
+            ),
+        ));
+    }
+    Ok(())
+}
