@@ -23,12 +23,19 @@
 //!   `m ẅ + c_a ẇ + K w = F`; each method converges to its step response
 //!   at its order. A dashpot between nodes (x = h/2) is `c_a r rᵀ` with
 //!   r = ½: the same run as c_a/4 at the node.
+//! * **The exact damped step** of `modal_exact` (`ModeSteps::damped`, the
+//!   exponential of the augmented system) against L13 over one step, for
+//!   ζ from 0 to 20 and ωΔt from 5e-4 to 100; and the assembled C against
+//!   its equation (10.4a) entry by entry.
 //! * The keys, their refusals (central difference, a dashpot on a modal
 //!   basis, the undamped references), and that an undamped scene is
 //!   untouched (no damping matrix, batches as before).
 
 use taut::analytic::DampedOscillator;
-use taut::integrate::{Integrator, batch_key};
+use taut::integrate::{Integrator, ModeSteps, batch_key};
+use taut::model::banded::SymBand;
+use taut::model::beam::BeamModel;
+use taut::scene::{Attachment, BeamProps, Rayleigh, Support};
 use taut::{Resolved, resolve_scene};
 
 const OSCILLATOR: &str = include_str!("../scenes/oscillator_one_dof.toml");
@@ -134,6 +141,29 @@ fn sci(v: &[f64]) -> String {
     format!("[{}]", s.join(", "))
 }
 
+/// A second-order method: every halving's order within [`ORDER_BAND`]
+/// of 2. A first-order one (Moreau–Jean θ = 1) approaches 1 from below
+/// (its error's next term, O(Δt²) against O(Δt), is large at ωΔt = 0.06:
+/// measured 0.81, 0.90, 0.95 on the oscillator, as docs/methods.md's
+/// undamped 0.94): the orders rise, and the last is within the band.
+fn assert_order(method: &str, order: f64, p: &[f64], errors: &[f64]) {
+    if order == 2.0 {
+        for q in p {
+            assert!(
+                (q - order).abs() <= ORDER_BAND,
+                "{method}: orders {p:?}, errors {errors:?}"
+            );
+        }
+    } else {
+        let last = p[p.len() - 1];
+        assert!(
+            (last - order).abs() <= ORDER_BAND,
+            "{method}: orders {p:?}, errors {errors:?}"
+        );
+        assert!(p.windows(2).all(|w| w[1] > w[0]), "{method}: orders {p:?}");
+    }
+}
+
 fn orders(errors: &[f64]) -> Vec<f64> {
     errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect()
 }
@@ -174,6 +204,7 @@ fn modal_exact_propagates_every_damped_mode_exactly() {
     assert!(zetas[0] < 0.3 && zetas[4] > 1.0, "{zetas:?}");
     for dt in ["time.step=1.0e-3", "time.step=7.0e-3"] {
         let e = modal_error(&string(&[exact, dt]));
+        eprintln!("modal_exact {dt}: {e:.2e}");
         assert!(e <= EXACT_ROUNDOFF, "{dt}: {e:e}");
     }
     // and the damping is there: the undamped run is far from it
@@ -196,12 +227,7 @@ fn each_method_converges_to_each_mode_s_damped_response_at_its_order() {
             .collect();
         let p = orders(&errors);
         eprintln!("{method}: errors {}, orders {p:.3?}", sci(&errors));
-        for q in &p {
-            assert!(
-                (q - order).abs() <= ORDER_BAND,
-                "{method}: orders {p:?}, errors {errors:?}"
-            );
-        }
+        assert_order(method, order, &p, &errors);
     }
 }
 
@@ -317,12 +343,7 @@ fn a_dashpot_on_an_attachment_is_the_damped_single_oscillator() {
             .collect();
         let p = orders(&errors);
         eprintln!("dashpot {method}: errors {}, orders {p:.3?}", sci(&errors));
-        for q in &p {
-            assert!(
-                (q - order).abs() <= ORDER_BAND,
-                "{method}: orders {p:?}, errors {errors:?}"
-            );
-        }
+        assert_order(method, order, &p, &errors);
     }
     // Rayleigh on the same oscillator adds αm + βK to its c
     let (alpha, beta) = (3.0, 1e-3);
@@ -452,4 +473,154 @@ fn bad_damping_is_refused_naming_the_field() {
     )
     .unwrap();
     reference("", &[RAYLEIGH, "mesh.kind=galerkin", "mesh.modes=10"]).unwrap();
+}
+
+// --- the exact damped step and the assembled C --------------------------------
+
+/// The Padé exponential against the closed form L13, relative to the
+/// motion's scale: measured ≤ 3e-15 over the cases below; a few ulps
+/// times the squarings' growth.
+const EXPM_ROUNDOFF: f64 = 1e-13;
+
+/// Free vibration from (q₀, v₀) over one step, under-, critically
+/// and over-damped, small and large ωΔt, against L13.
+#[test]
+fn the_free_step_is_the_closed_form_for_every_damping_ratio() {
+    let dt = 1e-3;
+    let mut worst: f64 = 0.0;
+    for w in [0.5, 60.0, 3.0e3, 1.0e5] {
+        for zeta in [0.0, 0.05, 0.7, 1.0, 1.3, 20.0] {
+            let m = ModeSteps::damped(&[w], &[2.0 * zeta * w], dt);
+            let osc = DampedOscillator::new(w, zeta).unwrap();
+            for (q0, v0) in [(1.0, 0.0), (0.0, w)] {
+                let (q, v) = osc.free(q0, v0, dt);
+                let eq = m.cos[0] * q0 + m.sin_over_omega[0] * v0;
+                let ev = m.minus_omega_sin[0] * q0 + m.cos_v[0] * v0;
+                let scale = q0.abs() + v0.abs() / w;
+                worst = worst
+                    .max((eq - q).abs() / scale)
+                    .max((ev - v).abs() / (scale * w));
+                assert!(
+                    (eq - q).abs() <= EXPM_ROUNDOFF * scale,
+                    "ω {w} ζ {zeta}: η {eq} vs {q}"
+                );
+                assert!(
+                    (ev - v).abs() <= EXPM_ROUNDOFF * scale * w,
+                    "ω {w} ζ {zeta}: η̇ {ev} vs {v}"
+                );
+            }
+        }
+    }
+    eprintln!("free step against L13: worst {worst:.2e}");
+}
+
+/// A held load's step is the step response `η_s + free(−η_s, 0)`,
+/// η_s = f/ω², and with c = 0 the map is the undamped one.
+#[test]
+fn a_held_load_is_the_step_response_and_no_damping_is_the_undamped_map() {
+    let dt = 2e-3;
+    let mut worst: f64 = 0.0;
+    for w in [1.0, 80.0, 4.0e3] {
+        for zeta in [0.0, 0.3, 1.0, 4.0] {
+            let m = ModeSteps::damped(&[w], &[2.0 * zeta * w], dt);
+            let osc = DampedOscillator::new(w, zeta).unwrap();
+            let eta_s = 1.0 / (w * w);
+            let (q, v) = osc.free(-eta_s, 0.0, dt);
+            let (eq, ev) = (m.a0[0] + m.a1[0], m.b0[0] + m.b1[0]);
+            worst = worst
+                .max((eq - (eta_s + q)).abs() / eta_s)
+                .max((ev - v).abs() / (eta_s * w));
+            assert!(
+                (eq - (eta_s + q)).abs() <= EXPM_ROUNDOFF * eta_s,
+                "ω {w} ζ {zeta}"
+            );
+            assert!(
+                (ev - v).abs() <= EXPM_ROUNDOFF * eta_s * w,
+                "ω {w} ζ {zeta}"
+            );
+        }
+        let (d, u) = (
+            ModeSteps::damped(&[w], &[0.0], dt),
+            ModeSteps::new(&[w], dt),
+        );
+        for (x, y, what) in [
+            (&d.cos, &u.cos, "cos"),
+            (&d.cos_v, &u.cos_v, "cos_v"),
+            (&d.sin_over_omega, &u.sin_over_omega, "sin/ω"),
+            (&d.a0, &u.a0, "a0"),
+            (&d.a1, &u.a1, "a1"),
+            (&d.b0, &u.b0, "b0"),
+            (&d.b1, &u.b1, "b1"),
+        ] {
+            let scale = match what {
+                "a0" | "a1" => dt * dt,
+                "b0" | "b1" | "sin/ω" => dt,
+                _ => 1.0,
+            };
+            worst = worst.max((x[0] - y[0]).abs() / scale);
+            assert!((x[0] - y[0]).abs() <= EXPM_ROUNDOFF * scale, "ω {w} {what}");
+        }
+    }
+    eprintln!("held load and c = 0 against the closed forms: worst {worst:.2e}");
+}
+
+fn small_beam(attachments: Vec<Attachment>) -> BeamProps {
+    BeamProps {
+        length: 2.0,
+        rho_a: 1.5,
+        ei: 3.0,
+        ea: None,
+        tension: 10.0,
+        left: Support::Pinned,
+        right: Support::Clamped,
+        distributed_load: 0.0,
+        attachments,
+    }
+}
+
+#[test]
+fn no_damping_is_no_matrix() {
+    let b = BeamModel::new(&small_beam(Vec::new()), 4);
+    assert!(b.damping_matrix(Rayleigh::default(), &[]).is_none());
+}
+
+/// C = αM + βK entry by entry, and a dashpot between nodes adds
+/// c r rᵀ (rᵀ C r over a vector grows by c (rᵀr)²) without widening
+/// the band.
+#[test]
+fn rayleigh_and_a_dashpot_are_where_the_equation_puts_them() {
+    let dash = Attachment {
+        x: 0.7,
+        stiffness: 0.0,
+        mass: 0.0,
+        damping: 5.0,
+    };
+    let b = BeamModel::new(&small_beam(vec![dash]), 4);
+    let r = Rayleigh {
+        alpha: 0.3,
+        beta: 2e-3,
+    };
+    let c0 = b.damping_matrix(r, &[]).unwrap();
+    for i in 0..b.n {
+        for j in 0..b.n {
+            let want = 0.3 * b.mass.get(i, j) + 2e-3 * b.stiffness.get(i, j);
+            assert_eq!(c0.get(i, j), want);
+        }
+    }
+    let c1 = b.damping_matrix(r, &[dash]).unwrap();
+    assert_eq!(c1.bandwidth(), b.mass.bandwidth());
+    let pv = b.point_vector(0.7);
+    let mut rv = vec![0.0; b.n];
+    pv.scatter(1.0, &mut rv, 1, 0);
+    let quad = |c: &SymBand| {
+        let mut y = vec![0.0; b.n];
+        c.mul_acc(&rv, 1.0, &mut y);
+        y.iter().zip(&rv).map(|(a, b)| a * b).sum::<f64>()
+    };
+    let rr: f64 = rv.iter().map(|x| x * x).sum();
+    let grown = quad(&c1) - quad(&c0);
+    assert!(
+        (grown - 5.0 * rr * rr).abs() < 1e-12 * 5.0 * rr * rr,
+        "{grown}"
+    );
 }

@@ -18,8 +18,8 @@
 //! nalgebra's Padé scaling and squaring, on the balanced variables
 //! `(η, η̇/s, f/s², ḟ/s³)`, s = ω (1/Δt for a rigid mode), whose matrix
 //! entries are all O(ωΔt) or cΔt rather than up to (ωΔt)²: its error is a
-//! few ulps of the entries' scale (tested below against the closed form
-//! L13 of `analytic::rayleigh`).
+//! few ulps of the entries' scale (checked against the closed form L13 of
+//! `analytic::rayleigh` in `tests/damping.rs`).
 //!
 //! A damped mode's velocity row has its own diagonal E₁₁ ≠ E₀₀ ([`ModeSteps::cos_v`]).
 
@@ -69,88 +69,5 @@ impl ModeSteps {
             m.b1.push(b1);
         }
         m
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::analytic::DampedOscillator;
-
-    use super::*;
-
-    /// The Padé exponential against the closed form L13, relative to the
-    /// motion's scale: measured ≤ 3e-15 over the cases below; a few ulps
-    /// times the squarings' growth.
-    const EXPM_ROUNDOFF: f64 = 1e-13;
-
-    /// Free vibration from (q₀, v₀) over one step, under-, critically
-    /// and over-damped, small and large ωΔt, against L13.
-    #[test]
-    fn the_free_step_is_the_closed_form_for_every_damping_ratio() {
-        let dt = 1e-3;
-        for w in [0.5, 60.0, 3.0e3, 1.0e5] {
-            for zeta in [0.0, 0.05, 0.7, 1.0, 1.3, 20.0] {
-                let m = ModeSteps::damped(&[w], &[2.0 * zeta * w], dt);
-                let osc = DampedOscillator::new(w, zeta).unwrap();
-                for (q0, v0) in [(1.0, 0.0), (0.0, w)] {
-                    let (q, v) = osc.free(q0, v0, dt);
-                    let eq = m.cos[0] * q0 + m.sin_over_omega[0] * v0;
-                    let ev = m.minus_omega_sin[0] * q0 + m.cos_v[0] * v0;
-                    let scale = q0.abs() + v0.abs() / w;
-                    assert!(
-                        (eq - q).abs() <= EXPM_ROUNDOFF * scale,
-                        "ω {w} ζ {zeta}: η {eq} vs {q}"
-                    );
-                    assert!(
-                        (ev - v).abs() <= EXPM_ROUNDOFF * scale * w,
-                        "ω {w} ζ {zeta}: η̇ {ev} vs {v}"
-                    );
-                }
-            }
-        }
-    }
-
-    /// A held load's step is the step response `η_s + free(−η_s, 0)`,
-    /// η_s = f/ω², and with c = 0 the map is the undamped one.
-    #[test]
-    fn a_held_load_is_the_step_response_and_no_damping_is_the_undamped_map() {
-        let dt = 2e-3;
-        for w in [1.0, 80.0, 4.0e3] {
-            for zeta in [0.0, 0.3, 1.0, 4.0] {
-                let m = ModeSteps::damped(&[w], &[2.0 * zeta * w], dt);
-                let osc = DampedOscillator::new(w, zeta).unwrap();
-                let eta_s = 1.0 / (w * w);
-                let (q, v) = osc.free(-eta_s, 0.0, dt);
-                let (eq, ev) = (m.a0[0] + m.a1[0], m.b0[0] + m.b1[0]);
-                assert!(
-                    (eq - (eta_s + q)).abs() <= EXPM_ROUNDOFF * eta_s,
-                    "ω {w} ζ {zeta}"
-                );
-                assert!(
-                    (ev - v).abs() <= EXPM_ROUNDOFF * eta_s * w,
-                    "ω {w} ζ {zeta}"
-                );
-            }
-            let (d, u) = (
-                ModeSteps::damped(&[w], &[0.0], dt),
-                ModeSteps::new(&[w], dt),
-            );
-            for (x, y, what) in [
-                (&d.cos, &u.cos, "cos"),
-                (&d.cos_v, &u.cos_v, "cos_v"),
-                (&d.sin_over_omega, &u.sin_over_omega, "sin/ω"),
-                (&d.a0, &u.a0, "a0"),
-                (&d.a1, &u.a1, "a1"),
-                (&d.b0, &u.b0, "b0"),
-                (&d.b1, &u.b1, "b1"),
-            ] {
-                let scale = match what {
-                    "a0" | "a1" => dt * dt,
-                    "b0" | "b1" | "sin/ω" => dt,
-                    _ => 1.0,
-                };
-                assert!((x[0] - y[0]).abs() <= EXPM_ROUNDOFF * scale, "ω {w} {what}");
-            }
-        }
     }
 }
