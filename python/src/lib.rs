@@ -461,6 +461,7 @@ fn sweep<'py>(
         scene: scene(path, text).map_err(err)?,
         set,
         axes: words::axes(&vary, log).map_err(err)?,
+        points: false,
         check_refinement,
         out,
         files,
