@@ -66,7 +66,7 @@ def axes(vary: Vary) -> Tuple[List[str], List[int]]:
         return texts, [-1] * len(texts)
     out, counts = [], []
     for key, axis in vary.items():
-        where = f"vary[{key!r}]"
+        where = f"vary.{key}"
         if isinstance(axis, str):
             out.append(f"{key}={axis}")
             counts.append(-1)
@@ -158,7 +158,10 @@ def span_profiles(dir: str, n: int) -> Dict[str, Any]:
         force.append([math.nan if v is None else v for v in r["force_profile"]])
         loss.append([math.nan if v is None else v for v in r["loss_profile"]])
         warnings.append(list(r["warnings"]))
-    bins = len(force[0]) if force else 0
+    # a stopped point's record has no profile: NaN in every bin
+    bins = max((len(f) for f in force), default=0)
+    force = [f + [math.nan] * (bins - len(f)) for f in force]
+    loss = [f + [math.nan] * (bins - len(f)) for f in loss]
     return {
         "span_force": np.array(force, dtype=np.float64).reshape(n, bins),
         "span_loss": np.array(loss, dtype=np.float64).reshape(n, bins),
