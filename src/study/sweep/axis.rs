@@ -125,9 +125,13 @@ impl Axis {
         })
     }
 
-    /// Whether the axis's values are strictly monotone (a range always
-    /// is, unless one point; a list may not be): maps need it.
+    /// Whether the axis can be drawn on a map: a range always (as before
+    /// lists existed), a list when its values are strictly increasing or
+    /// decreasing.
     pub fn monotone(&self) -> bool {
+        if self.values.is_none() {
+            return true;
+        }
         let v: Vec<f64> = (0..self.count).map(|i| self.value(i)).collect();
         v.windows(2).all(|w| w[0] < w[1]) || v.windows(2).all(|w| w[0] > w[1])
     }
