@@ -534,7 +534,7 @@ def sweep(
             allowed="vary= or points=",
         )
     path, text = _scene(scene)
-    axes = _sweeps.axes(vary)[0] if vary is not None else _sweeps.points(points)
+    axes = _sweeps.axes(vary) if vary is not None else _sweeps.points(points)
     paired = points is not None
     if paired and log:
         raise SceneError(

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from typing import Any, Dict, Iterable, List, Mapping, Sequence, Tuple, Union
+from typing import Any, Dict, Iterable, List, Mapping, Sequence, Union
 
 import numpy as np
 
@@ -55,21 +55,18 @@ def _listed(key: str, values: Iterable[Any], where: str) -> str:
     return f"{key}={','.join(cells)}"
 
 
-def axes(vary: Vary) -> Tuple[List[str], List[int]]:
-    """`vary` as the library's axis texts, and each axis's count (-1 when
-    the CLI text gives it). A tuple is (start, stop, count); a list or a
-    numpy array is the values themselves."""
+def axes(vary: Vary) -> List[str]:
+    """`vary` as the library's axis texts. A tuple is (start, stop, count);
+    a list or a numpy array is the values themselves."""
     if isinstance(vary, str):
-        return [vary], [-1]
+        return [vary]
     if not isinstance(vary, Mapping):
-        texts = [str(v) for v in vary]
-        return texts, [-1] * len(texts)
-    out, counts = [], []
+        return [str(v) for v in vary]
+    out = []
     for key, axis in vary.items():
         where = f"vary.{key}"
         if isinstance(axis, str):
             out.append(f"{key}={axis}")
-            counts.append(-1)
         elif isinstance(axis, tuple):
             try:
                 start, stop, count = axis
@@ -83,13 +80,11 @@ def axes(vary: Vary) -> Tuple[List[str], List[int]]:
             out.append(
                 f"{key}={toml_value(start, where)}:{toml_value(stop, where)}:{toml_value(count, where)}"
             )
-            counts.append(int(count) if isinstance(count, int) else -1)
         elif isinstance(axis, list) or hasattr(axis, "tolist"):
             values = axis.tolist() if hasattr(axis, "tolist") else axis
             if not isinstance(values, list):
                 values = [values]
             out.append(_listed(str(key), values, where))
-            counts.append(len(values))
         else:
             raise SceneError(
                 f"{where} = {axis!r}: must be (start, stop, count) or a list of values",
@@ -97,7 +92,7 @@ def axes(vary: Vary) -> Tuple[List[str], List[int]]:
                 value=repr(axis),
                 allowed="(start, stop, count), a list or a numpy array of values",
             )
-    return out, counts
+    return out
 
 
 def points(pts: Points) -> List[str]:
