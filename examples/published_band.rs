@@ -74,6 +74,7 @@ fn run_sweep(name: &str, set: &[&str], axes: &[&str]) -> Vec<SweepRecord> {
             .map(|a| Axis::parse(a, false).expect("axis"))
             .collect(),
         check_refinement: false,
+        paired: false,
     };
     let dir = root().join("target/published_band").join(name);
     // A fresh folder: the sweep is cheap, and a stale one may hold another spec.

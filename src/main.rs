@@ -31,6 +31,10 @@ enum Command {
         /// Override a scene value: --set beam.tension=2.01e4 (repeatable).
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key so that its default applies (repeatable; applied
+        /// before the --set overrides): --unset integrator.rho_inf.
+        #[arg(long = "unset", value_name = "KEY.PATH")]
+        unset: Vec<String>,
         /// Output folder (default: out/<scene name>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -71,6 +75,10 @@ enum Command {
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key so that its default applies (repeatable; applied
+        /// before the --set overrides): --unset integrator.rho_inf.
+        #[arg(long = "unset", value_name = "KEY.PATH")]
+        unset: Vec<String>,
         /// Output folder (default: out/<scene name>-converge).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -108,15 +116,28 @@ enum Command {
     Sweep {
         /// Scene file (TOML).
         scene: PathBuf,
-        /// An axis, key=start:stop:count (one or two).
-        #[arg(long = "vary", value_name = "KEY=START:STOP:COUNT", required = true)]
+        /// An axis, key=start:stop:count, or key=v1,v2,... (a list of
+        /// values); one or two.
+        #[arg(
+            long = "vary",
+            value_name = "KEY=START:STOP:COUNT",
+            required_unless_present = "points"
+        )]
         vary: Vec<String>,
+        /// A list of points instead of a grid: a CSV file whose header
+        /// names the keys and whose rows are the points (docs/sweeps.md).
+        #[arg(long, value_name = "FILE.csv", conflicts_with_all = ["vary", "log"])]
+        points: Option<PathBuf>,
         /// Logarithmic spacing on every axis.
         #[arg(long)]
         log: bool,
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key so that its default applies (repeatable; applied
+        /// before the --set overrides): --unset integrator.rho_inf.
+        #[arg(long = "unset", value_name = "KEY.PATH")]
+        unset: Vec<String>,
         /// Output folder (default: out/<scene name>-sweep).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -182,6 +203,10 @@ enum Command {
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key so that its default applies (repeatable; applied
+        /// before the --set overrides): --unset integrator.rho_inf.
+        #[arg(long = "unset", value_name = "KEY.PATH")]
+        unset: Vec<String>,
         /// Output folder (default: out/<scene name>-precision).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -262,6 +287,10 @@ enum Command {
         /// Override a scene value (repeatable), as for `run`.
         #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
         set: Vec<String>,
+        /// Remove a scene key so that its default applies (repeatable; applied
+        /// before the --set overrides): --unset integrator.rho_inf.
+        #[arg(long = "unset", value_name = "KEY.PATH")]
+        unset: Vec<String>,
         /// Output folder (default: out/<scene name>-compare).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -289,17 +318,37 @@ fn methods_help(what: &str, default: &str) -> String {
     )
 }
 
+/// The override list of `--unset` and `--set`: the removals first (so that
+/// `--unset integrator --set integrator.method=newmark` replaces a table),
+/// then the values, each in its order.
+fn overrides(unset: Vec<String>, set: Vec<String>) -> Vec<String> {
+    unset
+        .iter()
+        .map(|k| app::words::unset(k))
+        .chain(set)
+        .collect()
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Run {
             scene,
             set,
+            unset,
             out,
             quiet,
             tolerance,
             quantity,
-        } => cmd_run(scene, set, out, quiet, tolerance, quantity).map(|()| true),
+        } => cmd_run(
+            scene,
+            overrides(unset, set),
+            out,
+            quiet,
+            tolerance,
+            quantity,
+        )
+        .map(|()| true),
         Command::Replay {
             problem,
             max_iter,
@@ -308,8 +357,10 @@ fn main() -> ExitCode {
         Command::Sweep {
             scene,
             vary,
+            points,
             log,
             set,
+            unset,
             out,
             shard,
             check_refinement,
@@ -319,8 +370,8 @@ fn main() -> ExitCode {
             yes,
         } => cmd_sweep(
             scene,
-            (&vary, log, check_refinement),
-            set,
+            (&vary, points.as_deref(), log, check_refinement),
+            overrides(unset, set),
             out,
             shard.as_deref(),
             (threads, batch),
@@ -355,6 +406,7 @@ fn main() -> ExitCode {
             ratio,
             batch,
             set,
+            unset,
             out,
             quiet,
             yes,
@@ -366,7 +418,7 @@ fn main() -> ExitCode {
                 discretizations.as_deref(),
             ),
             (levels, ratio, batch),
-            set,
+            overrides(unset, set),
             out,
             (quiet, yes),
         )
@@ -386,6 +438,7 @@ fn main() -> ExitCode {
             methods,
             discretizations,
             set,
+            unset,
             out,
             quiet,
             yes,
@@ -394,7 +447,7 @@ fn main() -> ExitCode {
             &refine,
             (levels, ratio),
             (methods.as_deref(), discretizations.as_deref()),
-            set,
+            overrides(unset, set),
             out,
             (quiet, yes),
         )
@@ -408,6 +461,7 @@ fn main() -> ExitCode {
             reference_method,
             batch,
             set,
+            unset,
             out,
             quiet,
             yes,
@@ -416,7 +470,7 @@ fn main() -> ExitCode {
             &formulations,
             (methods.as_deref(), discretizations.as_deref()),
             (&reference, reference_method.as_deref(), batch),
-            set,
+            overrides(unset, set),
             out,
             (quiet, yes),
         ),
@@ -702,7 +756,7 @@ fn cmd_gate(
 /// Returns whether every point ran (the tables are written either way).
 fn cmd_sweep(
     scene: PathBuf,
-    (vary, log, check_refinement): (&[String], bool, bool),
+    (vary, points, log, check_refinement): (&[String], Option<&std::path::Path>, bool, bool),
     set: Vec<String>,
     out: Option<PathBuf>,
     shard: Option<&str>,
@@ -711,12 +765,16 @@ fn cmd_sweep(
 ) -> taut::Result<bool> {
     let threads = threads_arg(threads)?;
     let batch = taut::study::request::batch_width(batch_arg(batch)?)?;
-    let axes = app::words::axes(vary, log)?;
+    let axes = match points {
+        Some(file) => taut::study::sweep::read_points(file)?,
+        None => app::words::axes(vary, log)?,
+    };
     let shard = shard.map(taut::study::sweep::Shard::parse).transpose()?;
     let request = app::SweepRequest {
         scene: SceneSource::File(scene.clone()),
         set,
         axes,
+        points: points.is_some(),
         check_refinement,
         out: out.unwrap_or_else(|| default_dir(&scene, "-sweep")),
         files: true,

@@ -30,6 +30,8 @@ mod reliability;
 mod sweep;
 #[path = "sweep_faults.rs"]
 mod sweep_faults;
+#[path = "sweep_lists.rs"]
+mod sweep_lists;
 #[path = "tolerance.rs"]
 mod tolerance;
 

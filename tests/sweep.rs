@@ -21,6 +21,7 @@ fn spec(axes: Vec<Axis>) -> SweepSpec {
         ],
         axes,
         check_refinement: false,
+        paired: false,
     }
 }
 

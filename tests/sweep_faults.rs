@@ -38,6 +38,7 @@ fn spec(axes: &[&str]) -> SweepSpec {
             .map(|a| Axis::parse(a, false).unwrap())
             .collect(),
         check_refinement: false,
+        paired: false,
     }
 }
 

@@ -31,6 +31,8 @@ use pyo3::types::{PyBytes, PyList};
 use taut::app::{self, Frontend, Note, SceneSource, words};
 use taut::report::{Column, Table};
 
+mod scenes;
+
 /// How often the waiting thread wakes to deliver progress and to look for
 /// Ctrl-C: a tenth of a second is below what a person notices and costs
 /// nothing against runs of milliseconds to hours.
@@ -439,7 +441,7 @@ fn pretty(value: &impl serde::Serialize) -> PyResult<String> {
 /// returns the columns of `sweep.csv`. `files` writes the CLI's tables and
 /// maps into `out` as well.
 #[pyfunction]
-#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress, yes))]
+#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress, yes, points=false))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -455,12 +457,14 @@ fn sweep<'py>(
     check_refinement: bool,
     progress: Option<Bound<'py, PyAny>>,
     yes: bool,
+    points: bool,
 ) -> PyResult<Bound<'py, PyList>> {
     let err = |e| to_py_err(py, e);
     let request = app::SweepRequest {
         scene: scene(path, text).map_err(err)?,
         set,
         axes: words::axes(&vary, log).map_err(err)?,
+        points,
         check_refinement,
         out,
         files,
@@ -591,6 +595,43 @@ fn limits() -> (usize, usize) {
     )
 }
 
+/// The scene's TOML tree after `set` (`taut.load_scene`), as JSON text:
+/// integers stay integers and floats floats, so the dict made of it
+/// writes back to the same TOML values.
+#[pyfunction]
+#[pyo3(signature = (path, text, set))]
+fn scene_json(
+    py: Python<'_>,
+    path: Option<&str>,
+    text: Option<String>,
+    set: Vec<String>,
+) -> PyResult<String> {
+    let err = |e| to_py_err(py, e);
+    let tree = app::scene_tree(&scene(path, text).map_err(err)?, &set).map_err(err)?;
+    serde_json::to_string(&tree).map_err(|e| {
+        to_py_err(
+            py,
+            taut::Error::invalid(
+                "scene",
+                e,
+                "a scene whose values JSON can hold (finite numbers)",
+            ),
+        )
+    })
+}
+
+/// The ranges of `levels` the library takes: `((converge_least,
+/// converge_most), (precision_least, precision_most))`, so that the Python
+/// layer names them for a value no integer argument can hold (-1, 2**70).
+#[pyfunction]
+fn level_ranges() -> ((usize, usize), (usize, usize)) {
+    let (c, p) = (
+        taut::study::converge::LEVELS,
+        taut::study::precision::LEVELS,
+    );
+    ((*c.start(), *c.end()), (*p.start(), *p.end()))
+}
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -602,5 +643,8 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precision, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_json, m)?)?;
+    m.add_function(wrap_pyfunction!(level_ranges, m)?)?;
+    m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;
     Ok(())
 }

@@ -7,39 +7,65 @@ arrays, computed by the same Rust library.
     >>> t = taut.sweep("scenes/reference.toml", vary={"carrier.speed.cruise": (50, 230, 10)})
     >>> t["loss_fraction_span"]
 
-Every function takes a scene as a path (str or os.PathLike) or as TOML text,
-and `set`, a dict of dotted keys to values: the CLI's `--set`. The numbers
-are the CLI's for the same scene, bit for bit (the module calls the same
-library functions and reads the same tables the CLI writes as CSV).
+Every function takes a scene as a path (str or os.PathLike), a bundled
+scene's name (taut.scenes()), TOML text or a dict (taut.load_scene), and
+`set`, a dict of dotted keys to values: the CLI's `--set` (None removes a
+key: `--unset`). The numbers are the CLI's for the same scene, bit for bit
+(the module calls the same library functions and reads the same tables the
+CLI writes as CSV).
 
 While runs execute the GIL is released. Progress goes to `progress`: a
 callable `progress(done, total)`, False for none, or by default a tqdm bar
-when tqdm is installed. Ctrl-C stops the work at the next step of every run
+when tqdm is installed (taut.set_progress(False) turns the bars off). Ctrl-C stops the work at the next step of every run
 and raises KeyboardInterrupt; nothing half-written is left behind (a sweep
 into `out` keeps the points it finished, and resumes from them).
 
 Errors are exceptions with the fields of the error as attributes:
 SceneError (field, value, allowed), DivergedError (step, time, quantity,
 value, cause), ContactError, ToleranceError, OutputError; all derive from
-TautError. The API is documented in docs/python.md.
+TautError; a missing scene raises SceneNotFound, a FileNotFoundError too.
+The API is documented in docs/python.md.
 """
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import tempfile
-from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import (
+    Any,
+    Callable,
+    Dict,
+    Iterable,
+    List,
+    Mapping,
+    Optional,
+    Sequence,
+    Tuple,
+    TypeVar,
+    Union,
+    cast,
+)
 
+import numpy as np
+
+from . import _scene as _scenes
+from . import _show
+from . import _sweep as _sweeps
 from . import _taut
 from ._errors import (
     ContactError,
     DivergedError,
     OutputError,
     SceneError,
+    SceneNotFound,
     TautError,
     ToleranceError,
+    speak_python,
 )
+from ._progress import Progress, Sink, progress_enabled, set_progress
+from ._scene import load_scene, scene_text, scenes
 from ._table import Table, _not_run, table
 
 __all__ = [
@@ -48,10 +74,17 @@ __all__ = [
     "compare",
     "converge",
     "precision",
+    "load_scene",
+    "scenes",
+    "scene_text",
+    "set_progress",
+    "progress_enabled",
     "Run",
+    "CarrierStats",
     "Table",
     "TautError",
     "SceneError",
+    "SceneNotFound",
     "DivergedError",
     "ContactError",
     "ToleranceError",
@@ -61,13 +94,9 @@ __all__ = [
 
 __version__: str = _taut.__version__
 
-Scene = Union[str, "os.PathLike[str]"]
-"""A path to a scene file, or the scene's TOML text."""
-
-Progress = Union[None, bool, Callable[[int, int], Any]]
-"""None: a tqdm bar if tqdm is installed; False: none; True: tqdm (if
-installed); a callable: called as progress(done, total) on the calling
-thread."""
+Scene = _scenes.Scene
+"""A path to a scene file, a bundled scene's name, the scene's TOML text,
+or the scene as a dict (docs/python.md, "Scenes")."""
 
 ALL_FORMULATIONS = ("lagrange", "penalty", "complementarity", "impact")
 
@@ -104,19 +133,112 @@ class Run:
         loss = [c.get("loss_fraction") for c in self.summary.get("carriers", [])]
         return f"taut.Run({self.history.rows} rows, P_l = {loss}, {len(self.warnings)} warnings)"
 
+    @property
+    def scalars(self) -> Dict[str, Any]:
+        """The summary's numbers as flat names, those of sweep.csv's
+        columns: carrier 0's statistics (`loss_fraction`, `force_std` for
+        summary["carriers"][0]["force"]["std"], ...) and the derived
+        figures (`speed_ratio`, `wave_speed`, `dofs`, ...). Each is an
+        attribute too: `run.force_std`."""
+        carriers = self.summary.get("carriers") or [{}]
+        flat = _flat(carriers[0])
+        for k, v in _flat(self.summary.get("derived", {})).items():
+            flat.setdefault(k, v)
+        flat.setdefault("wall_seconds", self.summary.get("wall_seconds"))
+        return flat
+
+    @property
+    def carriers(self) -> List["CarrierStats"]:
+        """Each carrier's statistics with the same flat names:
+        run.carriers[1].force_std."""
+        return [CarrierStats(_flat(c)) for c in self.summary.get("carriers", [])]
+
+    def __getattr__(self, name: str) -> Any:
+        # only for names that are not attributes: the summary's scalars
+        if name.startswith("_") or name in ("summary", "history", "warnings", "accuracy"):
+            raise AttributeError(name)
+        flat = self.scalars
+        if name in flat:
+            return flat[name]
+        raise AttributeError(
+            f"taut.Run has no attribute {name!r}; its summary figures are {', '.join(flat)}"
+        )
+
+    def __dir__(self) -> List[str]:
+        return sorted(set(super().__dir__()) | set(self.scalars))
+
+    def _repr_html_(self) -> str:
+        return _show.run_html(
+            self.scalars, len(self.summary.get("carriers", [])), self.history.rows, self.warnings
+        )
+
+    def plot(self, ax: Any = None) -> Any:
+        """Draw what the CLI's force.svg draws (matplotlib, `taut[plot]`):
+        each carrier's contact force along x_m/L (along t when no carrier
+        moves), lost contact shaded. Returns the matplotlib Axes."""
+        length = float(self.summary["scene"]["beam"]["length"])
+        return _show.plot_run(self.history, len(self.summary.get("carriers", [])), length, ax)
+
+
+class CarrierStats:
+    """One carrier's statistics as attributes with sweep.csv's names
+    (`loss_fraction`, `force_std`, ...); `.scalars` is the dict."""
+
+    def __init__(self, scalars: Dict[str, Any]) -> None:
+        self.scalars: Dict[str, Any] = scalars
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("_") or name == "scalars":
+            raise AttributeError(name)
+        try:
+            return self.scalars[name]
+        except KeyError:
+            raise AttributeError(
+                f"no carrier figure {name!r}; there are {', '.join(self.scalars)}"
+            ) from None
+
+    def __dir__(self) -> List[str]:
+        return sorted(set(super().__dir__()) | set(self.scalars))
+
+    def __repr__(self) -> str:
+        return f"taut.CarrierStats(loss_fraction={self.scalars.get('loss_fraction')})"
+
+
+def _flat(d: Mapping[str, Any], prefix: str = "") -> Dict[str, Any]:
+    """The scalars of a nested dict under `_`-joined names (lists left out)."""
+    out: Dict[str, Any] = {}
+    for k, v in d.items():
+        name = f"{prefix}{k}"
+        if isinstance(v, Mapping):
+            out.update(_flat(v, name + "_"))
+        elif v is None or isinstance(v, (bool, int, float, str)):
+            out[name] = v
+    return out
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _speaks_python(f: _F) -> _F:
+    """A public function whose errors speak in its terms (`quantity=`,
+    `set=`, not the CLI's `--quantity`, `--set`: `_errors.speak_python`)."""
+
+    @functools.wraps(f)
+    def wrapped(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return f(*args, **kwargs)
+        except TautError as e:
+            speak_python(e)
+            raise
+
+    return cast(_F, wrapped)
+
 
 def _scene(scene: Scene) -> Tuple[Optional[str], Optional[str]]:
-    """(path, text): a PathLike or a one-line str is a path; a str with a
-    line break or starting with a TOML table is the scene's text."""
-    if isinstance(scene, os.PathLike):
-        return os.fspath(scene), None
-    if isinstance(scene, str):
-        if "\n" in scene or scene.lstrip().startswith("["):
-            return None, scene
-        return scene, None
-    raise TypeError(
-        f"scene: expected a path (str or os.PathLike) or TOML text, got {type(scene).__name__}"
-    )
+    """(path, text) of a scene: a file, a bundled scene's name, TOML text
+    or a dict (the rules of `taut._scene`); a missing file raises
+    SceneNotFound."""
+    return _scenes.source(scene)
 
 
 def _toml(value: Any) -> str:
@@ -198,6 +320,25 @@ def _count(name: str, value: int, least: int, most: int = _LARGEST) -> int:
     return n
 
 
+def _levels(levels: int, study: int) -> int:
+    """`levels` of converge (study 0) or precision (1): refused with the
+    library's range when no count can hold it (below 0, above 2**63 - 1);
+    the library refuses the rest with the same range."""
+    least, most = _taut.level_ranges()[study]
+    try:
+        return _count("levels", levels, 0)
+    except SceneError:
+        if isinstance(levels, bool) or not hasattr(levels, "__index__"):
+            raise
+        shown = _short(str(int(levels)))
+        raise SceneError(
+            f"invalid argument: `levels` = {shown}: must be in {least} ..= {most}",
+            field="levels",
+            value=shown,
+            allowed=f"must be in {least} ..= {most}",
+        ) from None
+
+
 def _short(text: str) -> str:
     """Text for a message: at most 200 characters (the library clips so too)."""
     return text if len(text) <= 200 else f"{text[:200]}… ({len(text)} characters in all)"
@@ -232,23 +373,12 @@ def _toml_quoted(value: Any) -> str:
 
 
 def _overrides(set: Union[None, Mapping[str, Any], Iterable[str]]) -> List[str]:
-    """`set` as the CLI's `--set key=value` list, in order."""
-    if set is None:
-        return []
-    if isinstance(set, Mapping):
-        out = []
-        for k, v in set.items():
-            try:
-                out.append(f"{k}={_toml(v)}")
-            except SceneError as e:
-                # name the key the value was given for
-                raise SceneError(
-                    f"set: `{k}`: {e}", field=str(k), value=e.value, allowed=e.allowed
-                ) from None
-        return out
-    if isinstance(set, str):
-        return [set]
-    return [str(s) for s in set]
+    """`set` as the library's override list, in order: a str value is a
+    TOML string, None removes the key (`taut._scene.overrides`)."""
+    try:
+        return _scenes.overrides(set)
+    except SceneError as e:
+        raise SceneError(f"set: {e}", field=e.field, value=e.value, allowed=e.allowed) from None
 
 
 def _list(value: Union[str, Sequence[str]]) -> str:
@@ -263,68 +393,32 @@ def _names(value: Union[None, str, Sequence[str]]) -> Optional[str]:
     return None if value is None else _list(value)
 
 
-def _axes(vary: Union[str, Mapping[str, Any], Iterable[str]]) -> List[str]:
-    """`vary` as the CLI's `--vary key=start:stop:count` list."""
-    if isinstance(vary, str):
-        return [vary]
-    if isinstance(vary, Mapping):
-        out = []
-        for key, axis in vary.items():
-            if isinstance(axis, str):
-                out.append(f"{key}={axis}")
-                continue
-            try:
-                start, stop, count = axis
-            except (TypeError, ValueError):
-                raise SceneError(
-                    f"vary: `{key}` = {axis!r}: must be (start, stop, count)",
-                    field=f"vary.{key}",
-                    value=repr(axis),
-                    allowed="(start, stop, count)",
-                ) from None
-            out.append(f"{key}={_toml(start)}:{_toml(stop)}:{_toml(count)}")
-        return out
-    return [str(v) for v in vary]
+def _grid_axes(t: Table, vary: List[str]) -> None:
+    """Give a grid sweep's table its axes (key, values): the axis columns,
+    in grid order (the last axis fastest), reshaped."""
+    keys, counts = [], []
+    for v in vary:
+        key, _, rng = v.partition("=")
+        keys.append(key.strip())
+        counts.append(int(rng.rsplit(":", 1)[1]) if ":" in rng else len(rng.split(",")))
+    if t.rows != int(np.prod(counts)) or any(k not in t for k in keys):
+        return
+    axes = []
+    for i, k in enumerate(keys):
+        g = t[k].reshape(counts)
+        axes.append((k, g[tuple(slice(None) if j == i else 0 for j in range(len(keys)))].copy()))
+    t.axes = axes
 
 
-class _Sink:
-    """Where progress goes: the caller's callable, a tqdm bar, or nowhere."""
-
-    def __init__(self, progress: Progress, unit: str) -> None:
-        self.bar: Any = None
-        self.unit = unit
-        self.call: Optional[Callable[[int, int], Any]] = None
-        if callable(progress):
-            self.call = progress
-        elif progress is None or progress is True:
-            try:
-                from tqdm.auto import tqdm
-            except ImportError:
-                return
-            self.tqdm = tqdm
-            self.call = self._tqdm
-
-    def _tqdm(self, done: int, total: int) -> None:
-        # made at the first report: a call that fails at once shows no bar
-        if self.bar is None:
-            self.bar = self.tqdm(total=total, unit=self.unit, leave=False)
-        if self.bar.total != total:
-            self.bar.total = total
-        self.bar.n = done
-        self.bar.refresh()
-
-    def __enter__(self) -> Optional[Callable[[int, int], Any]]:
-        return self.call
-
-    def __exit__(self, *exc: Any) -> None:
-        if self.bar is not None:
-            self.bar.close()
+_Sink = Sink
+"""Where a call's progress goes (`taut._progress.Sink`)."""
 
 
 def _out(out: Union[None, str, "os.PathLike[str]"]) -> Optional[str]:
     return None if out is None else os.fspath(out)
 
 
+@_speaks_python
 def run(
     scene: Scene,
     set: Union[None, Mapping[str, Any], Iterable[str]] = None,
@@ -377,12 +471,14 @@ def run(
     )
 
 
+@_speaks_python
 def sweep(
     scene: Scene,
-    vary: Union[str, Mapping[str, Any], Iterable[str]],
+    vary: Optional[_sweeps.Vary] = None,
     set: Union[None, Mapping[str, Any], Iterable[str]] = None,
-    threads: Optional[int] = None,
     *,
+    points: Optional[_sweeps.Points] = None,
+    threads: Optional[int] = None,
     log: bool = False,
     check_refinement: bool = False,
     batch: Optional[int] = None,
@@ -390,15 +486,22 @@ def sweep(
     progress: Progress = None,
     yes: bool = False,
 ) -> Table:
-    """Sweep one or two scene values or dimensionless axes (`taut sweep`).
+    """Sweep one or two scene values or dimensionless axes over their grid,
+    or run a list of points (`taut sweep`, `--vary` / `--points`), on the
+    sweep's engine (batched, parallel, resumable into `out`).
 
     Args:
-        scene: a path to a scene file, or its TOML text.
-        vary: {"carrier.speed.cruise": (50, 230, 41)} (start, stop, count;
-            one or two axes, the last varying fastest), or the CLI's
-            "key=start:stop:count" strings. Axes may be `speed_ratio`,
+        scene: a path, a bundled scene's name, TOML text or a dict.
+        vary: {"carrier.speed.cruise": (50, 230, 41)} (a tuple is start,
+            stop, count), {"beam.tension": [2e4, 2.5e4, 3e4]} (a list or a
+            numpy array is the values, in order); one or two axes, the last
+            varying fastest; or the CLI's "key=start:stop:count" /
+            "key=v1,v2" strings. Axes may be `speed_ratio`,
             `tension_ratio`, `mass_ratio`, `stiffness_ratio`.
         set: fixed overrides, as for run().
+        points: instead of `vary`, a list of points [{key: value, ...},
+            ...] (a Latin hypercube, an optimizer's proposals; a dict of
+            columns or a pandas DataFrame too): each is one run, in order.
         threads: worker threads (default: one per core).
         log: logarithmic spacing on every axis.
         check_refinement: run each point again with 2N elements and Δt/2 and
@@ -418,23 +521,53 @@ def sweep(
         Table of sweep.csv's columns: the swept values, speed_ratio,
         loss_fraction, loss_fraction_span, ..., error (the message of a
         point whose run stopped: its results are NaN; the sweep goes on).
+        Besides: `.axes` (a grid's [(key, values)]; `.grid(column)` is a
+        column in the grid's shape), `.span_force` and `.span_loss`
+        (points × bins along x/L at `.span_x`: the CLI's sweep_force.csv
+        and sweep_loss.csv), `.warnings` (each point's warning texts).
     """
+    if (vary is None) == (points is None):
+        raise SceneError(
+            "sweep: give `vary` (a grid) or `points` (a list of points), one of the two",
+            field="vary",
+            value=None if vary is None else repr(vary)[:200],
+            allowed="vary= or points=",
+        )
     path, text = _scene(scene)
-    args = (_axes(vary), log, _overrides(set))
+    axes = _sweeps.axes(vary) if vary is not None else _sweeps.points(points)
+    paired = points is not None
+    if paired and log:
+        raise SceneError(
+            "sweep: `log` spaces a grid's ranges; a list of points has none",
+            field="log",
+            value="True",
+            allowed="False with points=",
+        )
+    args = (axes, log, _overrides(set))
     n_threads, n_batch = _opt_ranged("threads", threads), _opt_ranged("batch", batch)
+
+    def call(folder: str, files: bool) -> Table:
+        cols = _taut.sweep(
+            path, text, *args, folder, files, n_threads, n_batch, check_refinement, p, yes, paired
+        )
+        t = table(cols)
+        t.paired = paired
+        for k, v in _sweeps.span_profiles(folder, t.rows).items():
+            setattr(t, k, v)
+        return t
+
     with _Sink(progress, "runs") as p:
         if out is not None:
-            cols = _taut.sweep(
-                path, text, *args, os.fspath(out), True, n_threads, n_batch, check_refinement, p, yes
-            )
+            t = call(os.fspath(out), True)
         else:
             with tempfile.TemporaryDirectory(prefix="taut-sweep-") as tmp:
-                cols = _taut.sweep(
-                    path, text, *args, tmp, False, n_threads, n_batch, check_refinement, p, yes
-                )
-    return table(cols)
+                t = call(tmp, False)
+    if not paired:
+        _grid_axes(t, axes)
+    return t
 
 
+@_speaks_python
 def compare(
     scene: Scene,
     formulations: Union[str, Sequence[str]] = ALL_FORMULATIONS,
@@ -489,6 +622,7 @@ def compare(
     return t
 
 
+@_speaks_python
 def converge(
     scene: Scene,
     refine: str = "both",
@@ -527,7 +661,7 @@ def converge(
             text,
             _overrides(set),
             refine,
-            _count("levels", levels, 0),
+            _levels(levels, 0),
             _real("ratio", ratio),
             _names(methods),
             _names(discretizations),
@@ -540,6 +674,7 @@ def converge(
     return t
 
 
+@_speaks_python
 def precision(
     scene: Scene,
     formulations: Union[str, Sequence[str]] = ALL_FORMULATIONS,
@@ -571,7 +706,7 @@ def precision(
             _list(formulations),
             _names(methods),
             _names(discretizations),
-            _count("levels", levels, 0),
+            _levels(levels, 1),
             _count("ratio", ratio, 0),
             _opt_ranged("batch", batch),
             _out(out),

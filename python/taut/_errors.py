@@ -13,7 +13,10 @@ A run stopped by Ctrl-C raises the built-in `KeyboardInterrupt`.
 
 from __future__ import annotations
 
+import errno
 import json
+import os
+import re
 from typing import Any, Optional
 
 
@@ -44,6 +47,75 @@ class SceneError(TautError, ValueError):
         self.field = field
         self.value = value
         self.allowed = allowed
+        if value is None and allowed is None:
+            # a parse error lists the choices in its message only
+            self.value, self.allowed = _choices(message)
+
+
+# serde's "unknown variant `x`, expected one of `a`, `b`" and "unknown
+# field `x`, expected `a` or `b`", as the library's parse errors quote them
+_CHOICES = re.compile(r"unknown (?:variant|field) `([^`]*)`, expected (?:one of )?(.+?)\s*$")
+
+
+def _choices(message: str) -> "tuple[Optional[str], Optional[str]]":
+    """(value, allowed) of a parse error whose message names the value and
+    lists the choices; (None, None) otherwise."""
+    m = _CHOICES.search(message)
+    if m is None:
+        return None, None
+    return m.group(1), m.group(2)
+
+
+class SceneNotFound(SceneError, FileNotFoundError):
+    """The scene file does not exist (and the text is not a scene's TOML,
+    nor a bundled scene's name). `except FileNotFoundError` catches it.
+
+    Attributes:
+        filename: the path as given; errno: errno.ENOENT; field: "scene".
+    """
+
+    def __init__(self, message: str, filename: Optional[str] = None) -> None:
+        SceneError.__init__(self, message, "scene", filename, "an existing scene file, a bundled scene's name (taut.scenes()) or a scene's TOML text")
+        self.errno = errno.ENOENT
+        self.strerror = os.strerror(errno.ENOENT)
+        self.filename = filename
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+    def __reduce__(self) -> Any:
+        return (type(self), (self.args[0], self.filename))
+
+
+# a CLI flag in a message (`--quantity`, `--reference-method`)
+_FLAG = re.compile(r"(`?)--([a-z][a-z0-9-]*)(`?)( (?=[^\s`]))?")
+
+
+def _keyword(m: "re.Match[str]") -> str:
+    name = m.group(2).replace("-", "_")
+    if m.group(1) and m.group(3):
+        return f"`{name}`{m.group(4) or ''}"
+    # `--quantity force` -> `quantity=force`; a bare `--methods` -> `methods=`
+    return f"{m.group(1)}{name}={m.group(3)}"
+
+
+def pythonic(text: str) -> str:
+    """A library message in the terms of the Python call: keyword
+    arguments (`quantity=`, `set=`) for the CLI's flags (`--quantity`,
+    `--set`)."""
+    return _FLAG.sub(_keyword, text)
+
+
+def speak_python(e: BaseException) -> None:
+    """Reword a taut exception raised from a Python call, in place: its
+    message and its `field`/`allowed` name keyword arguments, not flags."""
+    if not isinstance(e, TautError) or not e.args or not isinstance(e.args[0], str):
+        return
+    e.args = (pythonic(e.args[0]),) + tuple(e.args[1:])
+    for attr in ("field", "allowed", "quantity", "reason"):
+        v = getattr(e, attr, None)
+        if isinstance(v, str):
+            setattr(e, attr, pythonic(v))
 
 
 class DivergedError(TautError, ArithmeticError):

@@ -13,7 +13,7 @@ bytes into an array:
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -28,12 +28,26 @@ class Table(Dict[str, np.ndarray]):
             `discretization`, `formulation`, `reason`); empty when all ran.
         skipped: variants of a convergence study that could not run the
             ladder, likewise.
+        axes: of a grid sweep, [(key, values)] (the last axis fastest);
+            empty otherwise. grid(column) reshapes a column to them.
+        paired: a sweep over a list of points (no grid).
+        span_force, span_loss: of a sweep, each point's mean contact force
+            (N) and fraction of steps with contact lost along the span,
+            points × bins at x/L = span_x (sweep_force.csv,
+            sweep_loss.csv); NaN where no step fell. None otherwise.
+        warnings: of a sweep, each point's warning texts.
     """
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.failed: List[Dict[str, str]] = []
         self.skipped: List[Dict[str, str]] = []
+        self.axes: List[Tuple[str, np.ndarray]] = []
+        self.paired: bool = False
+        self.span_force: Optional[np.ndarray] = None
+        self.span_loss: Optional[np.ndarray] = None
+        self.span_x: Optional[np.ndarray] = None
+        self.warnings: List[List[str]] = []
 
     @property
     def rows(self) -> int:
@@ -46,11 +60,50 @@ class Table(Dict[str, np.ndarray]):
         try:
             import pandas as pd
         except ImportError as e:  # pragma: no cover - depends on the machine
-            raise ImportError("Table.to_pandas needs pandas: pip install pandas") from e
+            raise ImportError("Table.to_pandas needs pandas, taut's `pandas` extra: pip install 'taut[pandas]'") from e
         return pd.DataFrame({k: v for k, v in self.items()})
 
     def __repr__(self) -> str:
         return f"taut.Table({self.rows} rows: {', '.join(self.keys())})"
+
+    def grid(self, column: str) -> np.ndarray:
+        """A grid sweep's `column` shaped by its axes (`.axes`): g[i, j]
+        is the point at the first axis's i-th and the second's j-th value."""
+        if not self.axes:
+            raise ValueError(
+                "grid(): this table is not a grid sweep's (a list of points or another study has no grid)"
+            )
+        return self[column].reshape([len(v) for _, v in self.axes])
+
+    def to_xarray(self) -> Any:
+        """A grid sweep as an `xarray.Dataset` over its axes, one variable
+        a numeric column (xarray is not a dependency: this needs it)."""
+        try:
+            import xarray as xr
+        except ImportError as e:
+            raise ImportError("Table.to_xarray needs xarray: pip install xarray") from e
+        if not self.axes:
+            raise ValueError("to_xarray(): this table is not a grid sweep's")
+        dims = [k for k, _ in self.axes]
+        data = {
+            k: (dims, self.grid(k))
+            for k, v in self.items()
+            if k not in dims and v.dtype != object
+        }
+        return xr.Dataset(data, coords={k: v for k, v in self.axes})
+
+    def _repr_html_(self) -> str:
+        from ._show import table_html
+
+        return table_html(self)
+
+    def plot(self, column: str = "loss_fraction_span", ax: Any = None) -> Any:
+        """Draw `column` (matplotlib, `taut[plot]`): against a 1-D sweep's
+        axis, as a map over a 2-D sweep's axes (the CLI's maps), else
+        against the row. Returns the matplotlib Axes."""
+        from ._show import plot_table
+
+        return plot_table(self, column, ax)
 
 
 def _array(kind: str, data: Any) -> np.ndarray:

@@ -11,7 +11,19 @@ from typing import Callable, List, Optional, Tuple, Union
 __version__: str
 taut_version: str
 
-__all__ = ["__version__", "compare", "converge", "limits", "precision", "run", "sweep", "taut_version"]
+__all__ = [
+    "__version__",
+    "bundled_scenes",
+    "compare",
+    "converge",
+    "level_ranges",
+    "limits",
+    "precision",
+    "run",
+    "scene_json",
+    "sweep",
+    "taut_version",
+]
 
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
@@ -40,6 +52,7 @@ def sweep(
     check_refinement: bool,
     progress: _Progress,
     yes: bool,
+    points: bool = False,
 ) -> List[_Column]: ...
 def compare(
     path: Optional[str],
@@ -82,3 +95,6 @@ def precision(
     progress: _Progress,
     yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
+def scene_json(path: Optional[str], text: Optional[str], set: List[str]) -> str: ...
+def level_ranges() -> Tuple[Tuple[int, int], Tuple[int, int]]: ...
+def bundled_scenes() -> List[Tuple[str, str]]: ...

@@ -90,11 +90,13 @@ def test_a_non_finite_value_is_refused_by_name():
     assert e.value.field == "beam.tension"
 
 
-def test_a_missing_file_is_an_output_error_naming_it(tmp_path):
+def test_a_missing_file_is_a_scene_not_found_naming_it(tmp_path):
+    # an input, not an output: SceneNotFound, a SceneError and a
+    # FileNotFoundError (issue 26; test_python_terms.py has the rest)
     missing = tmp_path / "no_such_scene.toml"
-    with pytest.raises(taut.OutputError) as e:
+    with pytest.raises(taut.SceneNotFound) as e:
         taut.run(missing, progress=False)
-    assert e.value.path == str(missing)
+    assert e.value.filename == str(missing)
     assert isinstance(e.value, OSError)
 
 

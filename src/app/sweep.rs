@@ -20,8 +20,11 @@ pub struct SweepRequest {
     pub scene: SceneSource,
     /// Fixed scene overrides, `key.path=value` (`--set`).
     pub set: Vec<String>,
-    /// One or two axes; the last varies fastest.
+    /// One or two axes; the last varies fastest. With `points`, the listed
+    /// axes of a list of points (any number, one length).
     pub axes: Vec<Axis>,
+    /// The axes are a list of points (`--points`), walked together.
+    pub points: bool,
     /// Run each point a second time, refined (`--check-refinement`).
     pub check_refinement: bool,
     /// The folder that holds the sweep's runs (resumable).
@@ -70,6 +73,7 @@ pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
         set: req.set.clone(),
         axes: req.axes.clone(),
         check_refinement: req.check_refinement,
+        paired: req.points,
     };
     spec.validate().map_err(|e| req.scene.name(e))?;
     started(&spec.estimate(req.shard)?, req.yes, fe)?;

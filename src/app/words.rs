@@ -142,9 +142,16 @@ pub fn tolerance(tol: &str, quantity: Option<&str>) -> Result<super::Tolerance> 
     Ok(super::Tolerance { quantity, tol })
 }
 
-/// `--vary KEY=START:STOP:COUNT` (one or two), spaced logarithmically with `log`.
+/// `--vary KEY=START:STOP:COUNT` or `KEY=V1,V2,...` (one or two), spaced
+/// logarithmically with `log`.
 pub fn axes(vary: &[String], log: bool) -> Result<Vec<crate::study::sweep::Axis>> {
     vary.iter()
         .map(|v| crate::study::sweep::Axis::parse(v, log))
         .collect()
+}
+
+/// `--unset KEY` (Python: `set={KEY: None}`) as its entry of the override
+/// list ([`crate::scene::UNSET`]).
+pub fn unset(key: &str) -> String {
+    format!("{}{}", crate::scene::UNSET, key.trim())
 }

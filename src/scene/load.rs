@@ -81,11 +81,21 @@ pub fn check_is_scene(tree: &Table) -> Result<()> {
 /// (`carrier.mass`). The value is read as a TOML value (`3e4`, `true`,
 /// `"text"`, `{ profile = "constant", value = 10 }`); if it is not valid TOML
 /// it is taken as a bare string, so `contact.kind=bilateral` works.
+///
+/// `unset key.path` ([`UNSET`]: `--unset key.path`, Python `set={key: None}`)
+/// removes the key (a table's key, or an array's entry by index) instead,
+/// so that the scene's default applies; a key that is not there is refused
+/// (a misspelt key would otherwise remove nothing, silently).
 pub fn apply_override(tree: &mut Table, spec: &str) -> Result<()> {
     let bad = |reason: String| Error::Override {
         spec: one_line(spec),
         reason: one_line(&reason),
     };
+    if let Some(path) = spec.strip_prefix(UNSET)
+        && !spec.contains('=')
+    {
+        return unset(tree, path).map_err(bad);
+    }
     let (path, raw) = spec
         .split_once('=')
         .ok_or_else(|| bad("expected key.path=value".into()))?;
@@ -98,6 +108,60 @@ pub fn apply_override(tree: &mut Table, spec: &str) -> Result<()> {
         return Err(bad("the value is empty".into()));
     }
     set_typed(tree, path, parse_value(raw), || spec.to_string())
+}
+
+/// The override-list spelling of a removal: `unset key.path` (`--unset
+/// key.path`; Python `set={"key.path": None}`). A space cannot be in a key
+/// path, so no `key=value` override is read as one.
+pub const UNSET: &str = "unset ";
+
+/// Remove the key at `path` from a tree (walked as [`set_path`] walks:
+/// tables by key, arrays by index, a one-entry array without one).
+fn unset(tree: &mut Table, path: &str) -> std::result::Result<(), String> {
+    let path = path.trim();
+    if path.is_empty() {
+        return Err("the key path is empty".into());
+    }
+    let segments: Vec<&str> = path.split('.').collect();
+    if segments.iter().any(|s| s.is_empty()) {
+        return Err(format!("`{path}` has an empty segment"));
+    }
+    if remove_in_table(tree, &segments) {
+        Ok(())
+    } else {
+        Err(format!("`{path}` is not in the scene: nothing to remove"))
+    }
+}
+
+/// Remove `segs` from table `t`; whether something was removed.
+fn remove_in_table(t: &mut Table, segs: &[&str]) -> bool {
+    match segs {
+        [last] => t.remove(*last).is_some(),
+        [first, rest @ ..] => t.get_mut(*first).is_some_and(|v| remove_in_value(v, rest)),
+        [] => false,
+    }
+}
+
+/// Remove `segs` (at least one) below `v`; whether something was removed.
+fn remove_in_value(v: &mut Value, segs: &[&str]) -> bool {
+    match v {
+        Value::Table(t) => remove_in_table(t, segs),
+        Value::Array(a) => match segs[0].parse::<usize>() {
+            Ok(idx) if segs.len() == 1 => {
+                idx < a.len() && {
+                    a.remove(idx);
+                    true
+                }
+            }
+            Ok(idx) => a
+                .get_mut(idx)
+                .is_some_and(|x| remove_in_value(x, &segs[1..])),
+            // the only entry: apply the same segment to it
+            Err(_) if a.len() == 1 => remove_in_value(&mut a[0], segs),
+            Err(_) => false,
+        },
+        _ => false,
+    }
 }
 
 /// Store a typed `value` at the key path `path` of a TOML tree: a sweep
@@ -270,6 +334,25 @@ mod tests {
             assert!(SCENE_TABLES.contains(k), "{k}");
         }
         assert_eq!(keys.len(), SCENE_TABLES.len() - 4, "{keys:?}");
+    }
+
+    #[test]
+    fn unset_removes_a_key_so_the_default_applies() {
+        let text = include_str!("../../scenes/reference.toml");
+        let mut tree = parse_scene(text).unwrap();
+        assert!(tree["integrator"].get("rho_inf").is_some());
+        apply_override(&mut tree, "unset integrator.rho_inf").unwrap();
+        assert!(tree["integrator"].get("rho_inf").is_none());
+        // carrier has one entry: walked without an index, as --set walks it
+        apply_override(&mut tree, "unset carrier.preload").unwrap();
+        assert!(tree["carrier"][0].get("preload").is_none());
+        let e = apply_override(&mut tree, "unset integrator.rho_inf")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("not in the scene"), "{e}");
+        // a key=value override is never a removal
+        apply_override(&mut tree, "integrator.rho_inf=0.5").unwrap();
+        assert!(tree["integrator"].get("rho_inf").is_some());
     }
 
     #[test]

@@ -30,7 +30,7 @@ pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
 pub use load::{
-    apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
+    UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed,
 };
 pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};

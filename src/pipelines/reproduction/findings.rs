@@ -137,6 +137,7 @@ pub(super) fn findings(
         set: vec![],
         axes: vec![Axis::parse("tension_ratio=0.001:0.001:1", false).unwrap()],
         check_refinement: false,
+        paired: false,
     };
     let cw = spec.resolve(0).unwrap().beam.wave_speed();
 

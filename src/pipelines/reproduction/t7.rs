@@ -23,6 +23,7 @@ pub(super) fn run_t7(clock: &Clock, res: Res, n: usize, maps: &Path) -> Run2 {
         set: res_sets(res),
         axes: t7_axes(n),
         check_refinement: false,
+        paired: false,
     };
     let name = format!("t7_{}", res.tag);
     let recs = run_sweep(clock, &name, &spec);

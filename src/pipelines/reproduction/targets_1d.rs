@@ -109,6 +109,7 @@ pub(super) fn run_1d(clock: &Clock, t: &Target1, res: Res, maps: &Path) -> Run1 
         set: res_sets(res),
         axes: vec![Axis::parse(t.axis, false).expect("valid axis")],
         check_refinement: false,
+        paired: false,
     };
     let name = format!("{}_{}", t.id.to_lowercase(), res.tag);
     let recs = run_sweep(clock, &name, &spec);
@@ -322,6 +323,7 @@ pub(super) fn write_1d(md: &mut String, t: &Target1, s: &Run1, c: &Run1) {
             set: vec![],
             axes: vec![Axis::parse("tension_ratio=0.001:0.001:1", false).unwrap()],
             check_refinement: false,
+            paired: false,
         };
         let sc = spec.resolve(0).unwrap();
         let cw = sc.beam.wave_speed();

@@ -48,13 +48,15 @@ pub use refinement_map::write_refinement_map;
 pub use refinement_plot::write_refinement_plot;
 use span_map::write_loss_fraction_span_map;
 /// Draw the maps of a finished sweep into `dir` (none for a shard, which
-/// holds only part of the grid). Returns the files written.
+/// holds only part of the grid, for a list of points, and for an axis
+/// whose listed values are not in increasing or decreasing order). Returns the files written.
 pub fn write_sweep_maps(
     dir: &Path,
     spec: &SweepSpec,
     records: &[SweepRecord],
 ) -> Result<Vec<PathBuf>> {
-    if records.len() != spec.len() {
+    // a list of points has no grid, and a list out of order no cells
+    if records.len() != spec.len() || spec.paired || !spec.axes.iter().all(|a| a.monotone()) {
         return Ok(vec![]);
     }
     match spec.axes.len() {

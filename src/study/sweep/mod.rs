@@ -3,7 +3,9 @@
 //! and shardable.
 //!
 //! * A sweep is a 1-D or 2-D grid of `--vary key=start:stop:count` axes,
-//!   linear or (with `--log`) logarithmic. `key` is any dotted scene path
+//!   linear or (with `--log`) logarithmic, or of listed axes `--vary
+//!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, [`points`]),
+//!   whose keys are walked together rather than as a grid. `key` is any dotted scene path
 //!   (`beam.tension`, `carrier.0.mass`) or one of [`DIMENSIONLESS`]:
 //!   `speed_ratio` = V0/c (every carrier's cruise speed), `tension_ratio` =
 //!   T/EA, `mass_ratio` = m/M with M = ρAL (every mass carrier),
@@ -33,7 +35,7 @@
 //!   shard folders (same `sweep.json` spec) into one.
 //!
 //! One concept a file: [`axis`] (one swept axis), [`spec`] (the grid and its
-//! checks), [`resolve`] (a grid point's scene), [`record`] (what a run
+//! checks), [`points`] (a list of points), [`resolve`] (a grid point's scene), [`record`] (what a run
 //! contributes), [`refine`] (`--check-refinement`), [`shard`] (`--shard`),
 //! [`batch`] (points stepped together), [`folder`] (the sweep's folder);
 //! this file runs the sweep.
@@ -42,6 +44,7 @@ mod axis;
 mod batch;
 pub mod folder;
 mod nan_as_null;
+mod points;
 mod record;
 mod refine;
 mod resolve;
@@ -59,6 +62,7 @@ pub use axis::{Axis, AxisTarget, Ratio, WHOLE_SNAP};
 pub use batch::{AUTO_BATCH_LANES, BatchWidth, auto_lanes};
 use batch::{batches, records_guarded};
 pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
+pub use points::{parse_points, read_points};
 pub use record::{PROFILE_BINS, SweepRecord};
 pub use refine::{REFINEMENT_ABS, REFINEMENT_REL, Refined, refinement_converged};
 pub use resolve::DIMENSIONLESS;

@@ -19,12 +19,49 @@ pub struct SweepSpec {
     /// modal basis), to show where P_l is converged (`--check-refinement`).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub check_refinement: bool,
+    /// A list of points (`--points FILE.csv`, Python `points=[...]`): the
+    /// axes are listed axes of one length walked together, point i taking
+    /// value i of every axis, instead of their grid. False (and absent from
+    /// `sweep.json`) for a grid.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub paired: bool,
 }
 
 impl SweepSpec {
-    /// Number of grid points.
+    /// Number of points: of the grid, or of the list of points.
     pub fn len(&self) -> usize {
+        if self.paired {
+            return self.axes.first().map_or(0, |a| a.count);
+        }
         self.axes.iter().map(|a| a.count).product()
+    }
+
+    /// A list of points (`--points`) from its keys and rows (one value a
+    /// key in each row): one listed axis a key, walked together.
+    pub fn points_axes(keys: &[String], rows: &[Vec<f64>]) -> Result<Vec<Axis>> {
+        if let Some((i, r)) = rows.iter().enumerate().find(|(_, r)| r.len() != keys.len()) {
+            return Err(Error::invalid(
+                "--points",
+                format!("point {i}: {} values", r.len()),
+                format!(
+                    "every point gives one value for each of the {} keys",
+                    keys.len()
+                ),
+            ));
+        }
+        keys.iter()
+            .enumerate()
+            .map(|(k, key)| {
+                Axis::list(key, rows.iter().map(|r| r[k]).collect(), false).map_err(|e| match e {
+                    Error::Invalid { allowed, .. } => Error::invalid(
+                        "--points",
+                        key,
+                        format!("{allowed} (column `{key}` of the points)"),
+                    ),
+                    other => other,
+                })
+            })
+            .collect()
     }
 
     /// True for an empty grid (never, once validated).
@@ -32,8 +69,12 @@ impl SweepSpec {
         self.len() == 0
     }
 
-    /// Axis values of point `index` (last axis fastest).
+    /// Axis values of point `index` (last axis fastest; of a list of
+    /// points, its row).
     pub fn point(&self, index: usize) -> Vec<f64> {
+        if self.paired {
+            return self.axes.iter().map(|a| a.value(index)).collect();
+        }
         let mut rest = index;
         let mut idx = vec![0; self.axes.len()];
         for (k, a) in self.axes.iter().enumerate().rev() {
@@ -50,6 +91,9 @@ impl SweepSpec {
     /// the scene (an axis that changes nothing would fill a map with one
     /// answer and call it a study).
     pub fn validate(&self) -> Result<()> {
+        if self.paired {
+            return self.validate_points();
+        }
         if self.axes.is_empty() || self.axes.len() > 2 {
             return Err(Error::invalid(
                 "--vary",
@@ -105,18 +149,87 @@ impl SweepSpec {
             let first = vec![0; self.axes.len()];
             let mut last = first.clone();
             last[k] = a.count - 1;
-            let (x, y) = (
+            let (x, mut y) = (
                 self.resolve_at(&base, &first)?,
                 self.resolve_at(&base, &last)?,
             );
-            if a.value(0) == a.value(a.count - 1) || format!("{x:?}") == format!("{y:?}") {
+            // a list's ends may agree (1, 2, 1): compare its first value
+            // with the first that differs from it
+            let last_index = match &a.values {
+                Some(v) => v.iter().position(|&x| x != v[0]).unwrap_or(a.count - 1),
+                None => a.count - 1,
+            };
+            if last_index != a.count - 1 {
+                last[k] = last_index;
+                y = self.resolve_at(&base, &last)?;
+            }
+            if a.value(0) == a.value(last_index) || format!("{x:?}") == format!("{y:?}") {
+                let shown = match &a.values {
+                    Some(v) => {
+                        let v: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+                        crate::error::one_line(&format!("{}={}", a.key, v.join(",")))
+                    }
+                    None => format!("{}={}:{}:{}", a.key, a.start, a.stop, a.count),
+                };
                 return Err(Error::invalid(
                     "--vary",
-                    format!("{}={}:{}:{}", a.key, a.start, a.stop, a.count),
+                    shown,
                     "changes nothing in this scene (the first and last points resolve to the \
                      same scene: equal ends, or a value another axis or the scene overrides): \
                      drop the axis or give it a range",
                 ));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl SweepSpec {
+    /// [`SweepSpec::validate`] for a list of points: at least one key,
+    /// each once, every key a listed axis of the same length, at most
+    /// [`MAX_POINTS`] points, and every point resolves. (A key whose
+    /// column changes nothing is the list's own choice: not refused.)
+    fn validate_points(&self) -> Result<()> {
+        let Some(first) = self.axes.first() else {
+            return Err(Error::invalid(
+                "--points",
+                "no keys",
+                "give at least one key (a column of the points file)",
+            ));
+        };
+        for (k, a) in self.axes.iter().enumerate() {
+            if self.axes[..k].iter().any(|b| b.key == a.key) {
+                return Err(Error::invalid(
+                    "--points",
+                    &a.key,
+                    "is given twice: give each key once",
+                ));
+            }
+            if a.values.is_none() || a.count != first.count {
+                return Err(Error::invalid(
+                    "--points",
+                    &a.key,
+                    "every key of a list of points needs one value a point",
+                ));
+            }
+        }
+        if first.count > MAX_POINTS {
+            return Err(Error::invalid(
+                "--points",
+                first.count,
+                format!("a sweep has at most {MAX_POINTS} points: split the list"),
+            ));
+        }
+        let base = self
+            .base_tree()
+            .map_err(|e| at_point(e, 0, &self.point(0)))?;
+        for i in 0..self.len() {
+            self.resolve_on(&base, i)
+                .map_err(|e| at_point(e, i, &self.point(i)))?;
+            if self.check_refinement {
+                self.resolve_refined_on(&base, i).map_err(|e| {
+                    at_point(e, i, &self.point(i)).in_run("the refined run of --check-refinement")
+                })?;
             }
         }
         Ok(())

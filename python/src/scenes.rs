@@ -1,0 +1,49 @@
+//! The bundled scenes (`scenes/*.toml` of the repository), compiled into
+//! the extension so that every wheel carries them: `taut.run("reference")`
+//! works in a notebook outside the repository. `python/tests/test_scenes.py`
+//! checks that this list is the folder's, text for text.
+
+use pyo3::prelude::*;
+
+/// `(name, TOML text)` of every bundled scene, by name.
+pub const BUNDLED: [(&str, &str); 9] = [
+    (
+        "moving_force_beam",
+        include_str!("../../scenes/moving_force_beam.toml"),
+    ),
+    (
+        "moving_force_string",
+        include_str!("../../scenes/moving_force_string.toml"),
+    ),
+    (
+        "oscillator_one_dof",
+        include_str!("../../scenes/oscillator_one_dof.toml"),
+    ),
+    ("reference", include_str!("../../scenes/reference.toml")),
+    (
+        "riding_mass_pinned",
+        include_str!("../../scenes/riding_mass_pinned.toml"),
+    ),
+    (
+        "t1_cantilever_riding_mass",
+        include_str!("../../scenes/t1_cantilever_riding_mass.toml"),
+    ),
+    (
+        "t2_stationary_mass",
+        include_str!("../../scenes/t2_stationary_mass.toml"),
+    ),
+    (
+        "t2_stationary_mass_string",
+        include_str!("../../scenes/t2_stationary_mass_string.toml"),
+    ),
+    (
+        "two_pantographs",
+        include_str!("../../scenes/two_pantographs.toml"),
+    ),
+];
+
+/// The bundled scenes as `[(name, text)]`, by name.
+#[pyfunction]
+pub fn bundled_scenes() -> Vec<(&'static str, &'static str)> {
+    BUNDLED.to_vec()
+}

@@ -1,0 +1,86 @@
+"""Progress bars: where a call's progress goes, and the module-wide
+switch (`taut.set_progress`).
+
+A tqdm bar is shown only when tqdm is installed (`taut[progress]`) and
+progress is on. In Jupyter the widget bar (`tqdm.auto`) is used only when
+ipywidgets can be imported, so a kernel without it gets the text bar and
+no warning. A bar is made at the call's first report with that report's
+count as its start (`initial`): work an earlier start finished (a resumed
+sweep) or done before the first report does not count into the rate.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Optional, Union
+
+Progress = Union[None, bool, Callable[[int, int], Any]]
+"""None: the module-wide setting (taut.set_progress; on by default: a
+tqdm bar if tqdm is installed); False: none; True: tqdm (if installed); a
+callable: called as progress(done, total) on the calling thread."""
+
+_ON = True
+
+
+def set_progress(on: bool) -> None:
+    """Switch the default progress bars of every call on or off (a call's
+    own `progress=` argument still wins). Off: no bar in a loop of calls."""
+    global _ON
+    if not isinstance(on, bool):
+        raise TypeError(f"set_progress: expected True or False, got {on!r}")
+    _ON = on
+
+
+def progress_enabled() -> bool:
+    """Whether calls show a bar by default (see set_progress)."""
+    return _ON
+
+
+def _tqdm_class() -> Any:
+    """tqdm's bar for this front end, or None when tqdm is not installed."""
+    try:
+        import ipywidgets  # noqa: F401  (the widget bar needs it)
+    except ImportError:
+        try:
+            from tqdm.std import tqdm
+        except ImportError:
+            return None
+        return tqdm
+    try:
+        from tqdm.auto import tqdm as auto
+    except ImportError:
+        return None
+    return auto
+
+
+class Sink:
+    """Where one call's progress goes: the caller's callable, a tqdm bar,
+    or nowhere."""
+
+    def __init__(self, progress: Progress, unit: str) -> None:
+        self.bar: Any = None
+        self.unit = unit
+        self.tqdm: Any = None
+        self.call: Optional[Callable[[int, int], Any]] = None
+        if callable(progress):
+            self.call = progress
+        elif progress is True or (progress is None and _ON):
+            self.tqdm = _tqdm_class()
+            if self.tqdm is not None:
+                self.call = self._tqdm
+
+    def _tqdm(self, done: int, total: int) -> None:
+        # made at the first report, counting from it: a call that fails at
+        # once shows no bar, and the rate is the work seen while it shows
+        if self.bar is None:
+            self.bar = self.tqdm(total=total, initial=done, unit=self.unit, leave=False)
+            return
+        if self.bar.total != total:
+            self.bar.total = total
+        self.bar.update(done - self.bar.n)
+
+    def __enter__(self) -> Optional[Callable[[int, int], Any]]:
+        return self.call
+
+    def __exit__(self, *exc: Any) -> None:
+        if self.bar is not None:
+            self.bar.close()
