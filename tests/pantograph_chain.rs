@@ -77,7 +77,10 @@ fn max_force_difference(a: &RunOutput, b: &RunOutput) -> f64 {
 fn q_difference(a: &RunOutput, b: &RunOutput) -> f64 {
     let (qa, qb) = (&a.history.carriers[0].q, &b.history.carriers[0].q);
     assert_eq!(qa.len(), qb.len());
-    let d = qa.iter().zip(qb).fold(0.0, |m: f64, (x, y)| m.max((x - y).abs()));
+    let d = qa
+        .iter()
+        .zip(qb)
+        .fold(0.0, |m: f64, (x, y)| m.max((x - y).abs()));
     d / qb.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
 }
 
@@ -124,7 +127,10 @@ fn a_chain_with_stiff_upper_springs_is_the_single_carrier_of_its_mass() {
     // both start from the static force F₀ − g Σm, the chain's less the
     // roof spring's share k₃ζ₃ = O(F₀/R) (its frame is held up by the
     // stiff springs)
-    let (la, lb) = (a.history.carriers[0].force[0], b.history.carriers[0].force[0]);
+    let (la, lb) = (
+        a.history.carriers[0].force[0],
+        b.history.carriers[0].force[0],
+    );
     assert!((la - lb).abs() <= STIFF_CHAIN_AGREEMENT * lb, "{la} {lb}");
 }
 

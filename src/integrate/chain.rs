@@ -1,7 +1,9 @@
 //! A multi-mass pantograph during a run (MODEL §10, docs/lines.md P1–P4):
-//! the chain's matrices and static contact force ([`Chain`]), and its
-//! generalized-α step ([`ChainGenAlpha`]), condensed onto the head so the
-//! contact problem sees the head as it sees a single mass.
+//! the chain's matrices and static contact force ([`Chain`]), and its step
+//! by each method that carries it — [`ChainGenAlpha`] (the generalized-α
+//! family), [`ChainBathe`], [`ChainMoreauJean`], [`ChainCentral`] —
+//! condensed onto the head so the contact problem sees the head as it sees
+//! a single mass. `modal_exact` refuses a chain ([`refusal`]).
 //!
 //! **Coordinates.** z_i = s·ξ_i of mass i (positive into the beam, like q
 //! in MODEL §2), measured from the chain's static equilibrium against the
@@ -15,7 +17,7 @@
 //! C tridiagonal from the springs and dashpots, f₀ = λ₀ e₁ (the static
 //! forces relative to the equilibrium; an uplift step adds ΔF e_n).
 //!
-//! **Generalized-α** (MODEL §5 applied to the chain's dofs, as
+//! **Generalized-α** (P3; MODEL §5 applied to the chain's dofs, as
 //! `gen_alpha_kernel.rs` applies it to one mass): with the unknown ü_{n+1},
 //!
 //! ```text
@@ -26,7 +28,9 @@
 //! so ü = A⁻¹F − λ A⁻¹e₁ and the head's unknown is u₁ = u★₁ − λ/A_q with
 //! A_q = 1/(A⁻¹)₁₁ (P3): the chain's dynamic stiffness seen from the head.
 //! A is factored (inverted: at most 3 × 3) once per run; a step is O(n²)
-//! in the chain's n ≤ 3 masses and allocates nothing.
+//! in the chain's n ≤ 3 masses and allocates nothing. The other methods
+//! are the same with their own unknown and A = c_m M + c_c C + c_k K
+//! (each struct's docs; lines.md P3).
 
 use crate::scene::{ChainProps, GenAlphaParams, MAX_CHAIN};
 

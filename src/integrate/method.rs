@@ -207,6 +207,18 @@ pub fn parse_methods(list: &str) -> Result<Vec<&'static dyn MethodFactory>> {
     Ok(out)
 }
 
+/// The scene name of a built-in scheme, for messages.
+fn method_name(scheme: Scheme) -> &'static str {
+    match scheme {
+        Scheme::GenAlpha(_) => "generalized_alpha",
+        Scheme::Bathe { .. } => "bathe",
+        Scheme::CentralDifference => "central_difference",
+        Scheme::MoreauJean { .. } => "moreau_jean",
+        Scheme::ModalExact => "modal_exact",
+        Scheme::Registered => "registered",
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -262,17 +274,5 @@ mod tests {
             Some("unit_test_method".to_string())
         );
         assert!(crate::scene::method_names().contains(&"unit_test_method".to_string()));
-    }
-}
-
-/// The scene name of a built-in scheme, for messages.
-fn method_name(scheme: Scheme) -> &'static str {
-    match scheme {
-        Scheme::GenAlpha(_) => "generalized_alpha",
-        Scheme::Bathe { .. } => "bathe",
-        Scheme::CentralDifference => "central_difference",
-        Scheme::MoreauJean { .. } => "moreau_jean",
-        Scheme::ModalExact => "modal_exact",
-        Scheme::Registered => "registered",
     }
 }
