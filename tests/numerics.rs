@@ -42,6 +42,8 @@ mod manufactured;
 mod methods;
 #[path = "modal_exact.rs"]
 mod modal_exact;
+#[path = "pantograph_chain.rs"]
+mod pantograph_chain;
 #[path = "properties.rs"]
 mod properties;
 #[path = "subnormal.rs"]

@@ -90,8 +90,14 @@ pub struct ModalKey {
 /// The key of the runs that may step together: `None` when `sc` cannot
 /// batch. Generalized-α runs with equal keys share their effective matrix
 /// and right-hand-side columns (`integrate::batch`); `modal_exact` runs
-/// their basis and Δt (`integrate::modal_batch`).
+/// their basis and Δt (`integrate::modal_batch`). A scene with a
+/// multi-mass pantograph (`carrier.masses`, MODEL §10) does not batch: its
+/// runs step alone, where the method's own check refuses or carries the
+/// chain.
 pub fn batch_key(sc: &Resolved) -> Option<BatchKey> {
+    if sc.carriers.iter().any(|c| c.chain.is_some()) {
+        return None;
+    }
     gen_alpha_key(sc)
         .map(BatchKey::GenAlpha)
         .or_else(|| modal_key(sc).map(BatchKey::Modal))

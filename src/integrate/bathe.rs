@@ -46,6 +46,7 @@
 use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
 
+use super::chain::ChainBathe;
 use super::{
     Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,
     rhs_columns,
@@ -85,6 +86,8 @@ pub struct Bathe {
     rhs: Vec<f64>,
     /// `f − C ṽ` of a sub-step with a damping matrix C (`None`: no damping).
     damped_load: Option<Vec<f64>>,
+    /// The multi-mass pantograph of each contact, if any (`chain.rs`).
+    chains: Vec<Option<ChainBathe>>,
 }
 
 impl Bathe {
@@ -119,7 +122,14 @@ impl Bathe {
             .iter()
             .map(|m| c3 * c3 * m.m + c3 * m.c + m.k)
             .collect();
+        let chains = sys
+            .chains()
+            .iter()
+            .zip(&init.aq)
+            .map(|(ch, &aq)| ch.map(|ch| ChainBathe::new(ch, gamma, dt, aq)))
+            .collect();
         let mut bathe = Bathe {
+            chains,
             dt,
             c0,
             c1,
@@ -220,11 +230,14 @@ impl Stepper for Bathe {
             let p = h1 * qd + 0.25 * h1 * h1 * aq;
             let (q_pred, qd_pred) = (q + p, qd + 0.5 * h1 * aq);
             self.dq1[j] = p;
-            self.mass_pred[j] = MassPrediction {
-                q: q_pred,
-                q_dot: qd_pred,
-                u: (m.f0 - m.c * qd_pred - m.k * q_pred) / self.a_eff1[j],
-                a_eff: self.a_eff1[j],
+            self.mass_pred[j] = match &mut self.chains[j] {
+                Some(ch) => ch.first((q, qd, aq)),
+                None => MassPrediction {
+                    q: q_pred,
+                    q_dot: qd_pred,
+                    u: (m.f0 - m.c * qd_pred - m.k * q_pred) / self.a_eff1[j],
+                    a_eff: self.a_eff1[j],
+                },
             };
         }
         let map = StepMap {
@@ -255,6 +268,9 @@ impl Stepper for Bathe {
             self.q1[j] = m.q + e;
             self.qd1[j] = m.q_dot + c0 * e;
             self.dq1[j] += e;
+            if let Some(ch) = &mut self.chains[j] {
+                ch.end_first(lambda[j]);
+            }
         }
         sys.keep_gap_rates(&self.d1, &self.v1, &self.qd1);
 
@@ -273,11 +289,14 @@ impl Stepper for Bathe {
             let (qd, dq1) = (st.q_dot[j], self.dq1[j]);
             let s = c1 * qd + c2 * self.qd1[j] - c3 * c1 * dq1;
             let (q_pred, qd_pred) = (self.q1[j] - s * inv_c3_sq, -c1 * dq1 - s * inv_c3);
-            self.mass_pred[j] = MassPrediction {
-                q: q_pred,
-                q_dot: qd_pred,
-                u: (m.f0 - m.c * qd_pred - m.k * q_pred) / self.a_eff2[j],
-                a_eff: self.a_eff2[j],
+            self.mass_pred[j] = match &mut self.chains[j] {
+                Some(ch) => ch.second(),
+                None => MassPrediction {
+                    q: q_pred,
+                    q_dot: qd_pred,
+                    u: (m.f0 - m.c * qd_pred - m.k * q_pred) / self.a_eff2[j],
+                    a_eff: self.a_eff2[j],
+                },
             };
         }
         let map = StepMap {
@@ -305,7 +324,15 @@ impl Stepper for Bathe {
             st.q[j] = m.q + e;
             st.q_dot[j] = m.q_dot + c3 * e;
             self.aq[j] = c3_sq * e;
+            if let Some(ch) = &mut self.chains[j] {
+                ch.end_second(lambda[j]);
+            }
         }
         Ok(())
+    }
+
+    /// Each sub-step's effective matrix over the chain (`chain.rs`).
+    fn carries_chains(&self) -> bool {
+        true
     }
 }

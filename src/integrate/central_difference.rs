@@ -28,6 +28,7 @@ use crate::model::banded::{Affine, BandedLdlt};
 use crate::model::spectrum;
 use crate::resolve::Resolved;
 
+use super::chain::ChainCentral;
 use super::{
     Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,
     rhs_columns,
@@ -70,6 +71,9 @@ pub fn stability_limit(sc: &Resolved, sys: &System, mass_factor: &BandedLdlt) ->
     for m in sys.masses() {
         omega = omega.max((m.k / m.m).sqrt());
     }
+    for ch in sys.chains().iter().flatten() {
+        omega = omega.max(ch.omega_bound());
+    }
     StabilityLimit {
         omega_max: omega,
         omega_ritz: theta.sqrt(),
@@ -93,6 +97,8 @@ pub struct CentralDifference {
     b0: Vec<f64>,
     /// The stability limit checked at the start.
     pub limit: StabilityLimit,
+    /// The multi-mass pantograph of each contact, if any (`chain.rs`).
+    chains: Vec<Option<ChainCentral>>,
 }
 
 impl CentralDifference {
@@ -133,7 +139,13 @@ impl CentralDifference {
             st.q_dot[j] -= 0.5 * dt * init.aq[j];
         }
         let a_eff = sys.masses().iter().map(|m| m.m + 0.5 * dt * m.c).collect();
+        let chains = sys
+            .chains()
+            .iter()
+            .map(|ch| ch.map(|ch| ChainCentral::new(ch, dt)))
+            .collect();
         CentralDifference {
+            chains,
             dt,
             mass_factor: init.mass_factor,
             a_eff,
@@ -169,11 +181,14 @@ impl Stepper for CentralDifference {
         }
         for (j, m) in sys.masses().iter().enumerate() {
             let (q, v) = (st.q[j], st.q_dot[j]);
-            self.mass_pred[j] = MassPrediction {
-                q: q + dt * v,
-                q_dot: v,
-                u: (m.f0 - m.k * q - m.c * v) / self.a_eff[j],
-                a_eff: self.a_eff[j],
+            self.mass_pred[j] = match &mut self.chains[j] {
+                Some(ch) => ch.predict((q, v)),
+                None => MassPrediction {
+                    q: q + dt * v,
+                    q_dot: v,
+                    u: (m.f0 - m.k * q - m.c * v) / self.a_eff[j],
+                    a_eff: self.a_eff[j],
+                },
             };
         }
         let map = StepMap {
@@ -196,7 +211,15 @@ impl Stepper for CentralDifference {
             let a = m.unknown(lambda[j]);
             st.q_dot[j] += dt * a;
             st.q[j] = m.q + dt2 * a;
+            if let Some(ch) = &mut self.chains[j] {
+                ch.finish(lambda[j]);
+            }
         }
         Ok(())
+    }
+
+    /// The chain's explicit update (`chain.rs`).
+    fn carries_chains(&self) -> bool {
+        true
     }
 }

@@ -41,4 +41,9 @@ impl Stepper for GenAlpha {
         kernel.finish(0, sys, st);
         Ok(())
     }
+
+    /// The chain's dofs step with the same scheme (`chain.rs`).
+    fn carries_chains(&self) -> bool {
+        true
+    }
 }

@@ -71,6 +71,7 @@ use crate::model::banded::{Affine, BandedLdlt, SymBand};
 use crate::model::beam::BeamModel;
 use crate::scene::{GenAlphaParams, Placement};
 
+use super::chain::ChainGenAlpha;
 use super::gen_alpha_update::{MAX_COLUMNS, Pass, UpdateCoefs};
 use super::step_map::Lanes;
 use super::{Initial, MassDof, MassPrediction, State, StepMap, System, VelocityPrediction};
@@ -84,6 +85,9 @@ struct MassLane {
     /// A_q = (1 − α_m)m + (1 − α_f)γΔt c + (1 − α_f)βΔt² k per contact.
     a_eff: Vec<f64>,
     mass_pred: Vec<MassPrediction>,
+    /// The multi-mass pantograph of each contact (`chain.rs`), if any:
+    /// its A_q and predictions replace the single mass's.
+    chains: Vec<Option<ChainGenAlpha>>,
 }
 
 /// What a damped run's step adds (module docs, "Damping").
@@ -200,10 +204,20 @@ impl Kernel {
             gamma,
         } = self.p;
         let (dt, c_k, L) = (self.dt, self.c_k, self.lanes);
+        let chains: Vec<Option<ChainGenAlpha>> = sys
+            .chains()
+            .iter()
+            .zip(&init.aq)
+            .map(|(ch, &aq)| ch.map(|ch| ChainGenAlpha::new(ch, self.p, dt, aq)))
+            .collect();
         let a_eff = sys
             .masses()
             .iter()
-            .map(|m| (1.0 - am) * m.m + (1.0 - af) * gamma * dt * m.c + c_k * m.k)
+            .zip(&chains)
+            .map(|(m, ch)| match ch {
+                Some(ch) => ch.a_eff(),
+                None => (1.0 - am) * m.m + (1.0 - af) * gamma * dt * m.c + c_k * m.k,
+            })
             .collect();
         let beam = sys.beam();
         let c_pred = (0.5 - beta) * dt * dt;
@@ -226,6 +240,7 @@ impl Kernel {
             aq: init.aq,
             a_eff,
             mass_pred: vec![MassPrediction::default(); sys.contacts()],
+            chains,
         });
     }
 
@@ -308,7 +323,10 @@ impl Kernel {
         let ml = &mut self.masses[l];
         for (j, m) in sys.masses().iter().enumerate() {
             let now = (st.q[j], st.q_dot[j], ml.aq[j]);
-            ml.mass_pred[j] = mass_prediction(self.p, dt, m, now, ml.a_eff[j]);
+            ml.mass_pred[j] = match &mut ml.chains[j] {
+                Some(ch) => ch.predict(now),
+                None => mass_prediction(self.p, dt, m, now, ml.a_eff[j]),
+            };
         }
         let alpha_weight = match sys.placement {
             Placement::End => 0.0,
@@ -419,6 +437,9 @@ impl Kernel {
             st.q[j] += dt * st.q_dot[j] + c_pred * a + bdt2 * acc;
             st.q_dot[j] += dt * ((1.0 - gamma) * a + gamma * acc);
             ml.aq[j] = acc;
+            if let Some(ch) = &mut ml.chains[j] {
+                ch.finish(lambda);
+            }
         }
     }
 

@@ -121,6 +121,11 @@ pub fn stepper_for(
     st: &mut State,
     init: Initial,
 ) -> Result<Box<dyn Stepper>> {
+    // a multi-mass pantograph: modal_exact does not carry it (`chain.rs`)
+    // and refuses before any check of its own
+    if sys.has_chains() && scheme == Scheme::ModalExact {
+        return Err(super::chain::refusal(method_name(scheme)));
+    }
     Ok(match scheme {
         Scheme::GenAlpha(p) => Box::new(GenAlpha::new(p, sys, st, init)?),
         Scheme::Bathe { gamma } => Box::new(Bathe::new(gamma, sys, st, init)?),
@@ -200,6 +205,18 @@ pub fn parse_methods(list: &str) -> Result<Vec<&'static dyn MethodFactory>> {
         ));
     }
     Ok(out)
+}
+
+/// The scene name of a built-in scheme, for messages.
+fn method_name(scheme: Scheme) -> &'static str {
+    match scheme {
+        Scheme::GenAlpha(_) => "generalized_alpha",
+        Scheme::Bathe { .. } => "bathe",
+        Scheme::CentralDifference => "central_difference",
+        Scheme::MoreauJean { .. } => "moreau_jean",
+        Scheme::ModalExact => "modal_exact",
+        Scheme::Registered => "registered",
+    }
 }
 
 #[cfg(test)]

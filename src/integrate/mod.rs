@@ -34,6 +34,7 @@ mod batch_run;
 mod bathe;
 mod carrier;
 mod central_difference;
+mod chain;
 mod contact_problem;
 mod damped_modes;
 mod diagnose;
@@ -64,6 +65,7 @@ pub use carrier::MassDof;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
+pub use chain::{Chain, ChainGenAlpha};
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
 pub use method::{MethodFactory, method_named, parse_methods, register, scene_method, stepper_for};
@@ -94,6 +96,12 @@ use crate::scene::CarrierKind;
 pub trait Stepper: Send {
     /// Advance one step.
     fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()>;
+
+    /// True when the method steps multi-mass pantographs (`chain.rs`,
+    /// MODEL §10) whole; a run with one is refused by every other method.
+    fn carries_chains(&self) -> bool {
+        false
+    }
 }
 
 /// The per-carrier values recorded after each step.
@@ -144,6 +152,9 @@ impl Integrator {
         let mut state = State::at_rest(sys.beam().n, sys.contacts());
         let init = sys.initial()?;
         let stepper = factory.build(sc, &mut sys, &mut state, init)?;
+        if sys.has_chains() && !stepper.carries_chains() {
+            return Err(chain::refusal(&factory.name()));
+        }
         Ok(Integrator {
             sys,
             state,
@@ -162,9 +173,11 @@ impl Integrator {
         Ok(())
     }
 
-    /// Number of unknowns: free beam dofs plus one per mass carrier.
+    /// Number of unknowns: free beam dofs plus one per mass (a multi-mass
+    /// pantograph counts each of its masses).
     pub fn dofs(&self) -> usize {
-        self.sys.beam.n + self.sys.contacts()
+        let lower: usize = self.sys.chains.iter().flatten().map(|c| c.n - 1).sum();
+        self.sys.beam.n + self.sys.contacts() + lower
     }
 
     /// The beam model.

@@ -54,6 +54,7 @@
 use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
 
+use super::chain::ChainMoreauJean;
 use super::{
     MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine, rhs_columns,
 };
@@ -74,6 +75,8 @@ pub struct MoreauJean {
     w: Vec<f64>,
     b0: Vec<f64>,
     rhs: Vec<f64>,
+    /// The multi-mass pantograph of each contact, if any (`chain.rs`).
+    chains: Vec<Option<ChainMoreauJean>>,
 }
 
 impl MoreauJean {
@@ -94,7 +97,13 @@ impl MoreauJean {
             .iter()
             .map(|m| m.m + theta * dt * m.c + c * m.k)
             .collect();
+        let chains = sys
+            .chains()
+            .iter()
+            .map(|ch| ch.map(|ch| ChainMoreauJean::new(ch, theta, dt)))
+            .collect();
         Ok(MoreauJean {
+            chains,
             theta,
             dt,
             ldlt,
@@ -156,11 +165,14 @@ impl Stepper for MoreauJean {
         for (j, m) in sys.masses().iter().enumerate() {
             let (q, qd) = (st.q[j], st.q_dot[j]);
             let b = dt * (m.f0 - m.c * qd - m.k * (q + theta * dt * qd));
-            self.mass_pred[j] = MassPrediction {
-                q: q + dt * qd,
-                q_dot: qd,
-                u: b / self.a_eff[j],
-                a_eff: self.a_eff[j],
+            self.mass_pred[j] = match &mut self.chains[j] {
+                Some(ch) => ch.predict((q, qd)),
+                None => MassPrediction {
+                    q: q + dt * qd,
+                    q_dot: qd,
+                    u: b / self.a_eff[j],
+                    a_eff: self.a_eff[j],
+                },
             };
         }
         let map = StepMap {
@@ -183,7 +195,15 @@ impl Stepper for MoreauJean {
             let dqd = m.unknown(impulse[j]);
             st.q_dot[j] += dqd;
             st.q[j] = m.q + c_d * dqd;
+            if let Some(ch) = &mut self.chains[j] {
+                ch.finish(impulse[j]);
+            }
         }
         Ok(())
+    }
+
+    /// The chain's velocity-level block (`chain.rs`).
+    fn carries_chains(&self) -> bool {
+        true
     }
 }

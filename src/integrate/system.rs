@@ -23,6 +23,7 @@ use crate::scene::{CarrierKind, ContactKind, ContactSpec, Placement, Support};
 
 use super::State;
 use super::carrier::{Carrier, MassDof};
+use super::chain::Chain;
 use super::contact_problem::ProblemBuilder;
 use super::step_map::{Lanes, Multipliers, StepMap};
 use crate::model::banded::rhs_columns;
@@ -49,6 +50,9 @@ pub struct System {
     pub(crate) beam: BeamModel,
     pub(crate) carriers: Vec<Carrier>,
     pub(crate) masses: Vec<MassDof>,
+    /// The multi-mass pantograph of each contact (`chain.rs`; `None` for
+    /// a single mass): its head is the contact's mass dof in `masses`.
+    pub(crate) chains: Vec<Option<Chain>>,
     /// Time step Δt, s.
     pub(crate) dt: f64,
     pub(crate) placement: Placement,
@@ -102,6 +106,7 @@ impl System {
     pub fn with_beam(sc: &Resolved, beam: BeamModel) -> Result<Self> {
         let mut nc = 0;
         let mut masses = Vec::new();
+        let mut chains = Vec::new();
         let mut force_scale: f64 = 0.0;
         let carriers: Vec<Carrier> = sc
             .carriers
@@ -114,7 +119,35 @@ impl System {
                         stiffness,
                         damping,
                         preload,
+                    } if p.chain.is_some() => {
+                        // a multi-mass pantograph: its head as the mass
+                        // dof, with the static contact force as its f0
+                        // (chain.rs: the chain starts at rest in its static
+                        // state, so at t = 0 only the head's balance with λ
+                        // differs from it)
+                        let ch = Chain::new(&p.chain.expect("guarded"), s, sc.g);
+                        nc += 1;
+                        force_scale = force_scale.max(
+                            stiffness * (preload + sc.beam.length)
+                                + ch.static_force.abs()
+                                + p.chain.map_or(0.0, |c| c.uplift + c.total_mass() * sc.g),
+                        );
+                        masses.push(MassDof {
+                            m: mass,
+                            k: stiffness,
+                            c: damping,
+                            f0: ch.static_force,
+                        });
+                        chains.push(Some(ch));
+                        Some(nc - 1)
+                    }
+                    CarrierKind::MassSpring {
+                        mass,
+                        stiffness,
+                        damping,
+                        preload,
                     } => {
+                        chains.push(None);
                         nc += 1;
                         force_scale =
                             force_scale.max(stiffness * (preload + sc.beam.length) + mass * sc.g);
@@ -162,6 +195,7 @@ impl System {
             beam,
             carriers,
             masses,
+            chains,
         })
     }
 
@@ -249,6 +283,17 @@ impl System {
                 self.masses[j].f0 = src.f0[j] + m.mass_source(i, t);
             }
         }
+    }
+
+    /// The multi-mass pantograph of each contact (`None` for a single
+    /// mass), one per contact.
+    pub fn chains(&self) -> &[Option<Chain>] {
+        &self.chains
+    }
+
+    /// True when some carrier is a multi-mass pantograph.
+    pub fn has_chains(&self) -> bool {
+        self.chains.iter().any(Option::is_some)
     }
 
     /// The mass dofs, one per contact.

@@ -606,6 +606,7 @@ mod tests {
                 damping: 0.3,
                 preload: 0.05,
             },
+            chain: None,
             side: Side::Above,
             motion: Motion::new(0.2, speed, 2.0),
         }

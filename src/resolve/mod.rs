@@ -49,6 +49,7 @@ impl Scene {
         let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
         check_attachments(self, &beam, discretization)?;
         let carriers = self.resolve_carriers(l)?;
+        crate::scene::check_chain_scene(self, &carriers)?;
 
         let scheme = self.integrator.scheme()?;
         let damping = resolve_rayleigh(self.beam.damping.as_ref())?;

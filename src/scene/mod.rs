@@ -21,6 +21,7 @@ mod load;
 pub mod manufactured;
 mod method;
 mod motion;
+mod pantograph;
 mod speed;
 mod validate;
 
@@ -40,6 +41,8 @@ pub use method::{
     MethodInfo, Parameter, Scheme, method_info, method_names,
 };
 pub use motion::Motion;
+pub(crate) use pantograph::check_chain_scene;
+pub use pantograph::{ChainProps, MAX_CHAIN};
 pub use speed::SpeedProfile;
 pub use validate::{
     BeamProps, CarrierKind, CarrierProps, DEFAULT_PENALTY_RELATIVE, MAX_ELEMENTS, MAX_STEPS,
@@ -258,6 +261,19 @@ pub struct CarrierSpec {
     /// Moving constant force F, N (≥ 0, pressing into the beam from `side`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub force: Option<f64>,
+    /// A multi-mass pantograph's masses m₁ (head) … m_n, kg (2 or 3, each
+    /// > 0; `scene/pantograph.rs`). Replaces `mass`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub masses: Option<Vec<f64>>,
+    /// Its springs k₁ … k_n, N/m: k_i between m_i and m_{i+1}, k_n to the roof.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffnesses: Option<Vec<f64>>,
+    /// Its dashpots c₁ … c_n, N·s/m, placed like the springs (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dampings: Option<Vec<f64>>,
+    /// Its static uplift F₀ on m_n, N (≥ 0, default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uplift: Option<f64>,
     /// Side of the beam the carrier is on.
     pub side: Side,
     /// Initial position x_m(0), m (0 ≤ start ≤ L).

@@ -92,6 +92,10 @@ pub enum CarrierKind {
 pub struct CarrierProps {
     /// Mass–spring or force.
     pub kind: CarrierKind,
+    /// A multi-mass pantograph (MODEL §10, `scene/pantograph.rs`): `kind`
+    /// is then its head's mass, spring and dashpot (preload 0), and the
+    /// integrators step the whole chain; `None` for every other carrier.
+    pub chain: Option<super::ChainProps>,
     /// Side sign s (+1 below, −1 above).
     pub side: Side,
     /// Its motion along the beam.
@@ -461,7 +465,16 @@ fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierPr
             positive(&f("speed.cruise"), cruise, "m/s")?;
         }
     }
-    let kind = if let Some(force) = c.force {
+    let chain = super::pantograph::resolve_chain(i, c)?;
+    let kind = if let Some(ch) = chain {
+        // the head's mass, spring and dashpot; the chain is in `chain`
+        CarrierKind::MassSpring {
+            mass: ch.masses[0],
+            stiffness: ch.stiffnesses[0],
+            damping: ch.dampings[0],
+            preload: 0.0,
+        }
+    } else if let Some(force) = c.force {
         for (name, v) in [
             ("mass", c.mass),
             ("stiffness", c.stiffness),
@@ -504,6 +517,7 @@ fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierPr
     };
     Ok(CarrierProps {
         kind,
+        chain,
         side: c.side,
         motion: Motion::new(start, c.speed, l),
     })
