@@ -28,6 +28,8 @@ mod contact_loss;
 mod convergence;
 #[path = "discretizations.rs"]
 mod discretizations;
+#[path = "droppers.rs"]
+mod droppers;
 #[path = "formulations.rs"]
 mod formulations;
 #[path = "galerkin_order.rs"]

@@ -121,6 +121,8 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
         || sc.discretization != Discretization::Hermite
         // a manufactured source is a time-dependent load: alone
         || sc.manufactured.is_some()
+        // droppers: their responses are a run's own (`dropper.rs`): alone
+        || !sc.droppers.is_empty()
     {
         return None;
     }
@@ -141,7 +143,7 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
 /// The key of `modal_exact` runs that may step together: `None` for any
 /// other method and for a beam with point attachments.
 pub fn modal_key(sc: &Resolved) -> Option<ModalKey> {
-    if sc.scheme != Scheme::ModalExact {
+    if sc.scheme != Scheme::ModalExact || !sc.droppers.is_empty() {
         return None;
     }
     let (basis, mesh) = match sc.discretization {

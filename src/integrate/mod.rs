@@ -36,6 +36,7 @@ mod carrier;
 mod central_difference;
 mod contact_problem;
 mod diagnose;
+mod dropper;
 mod energy;
 mod gen_alpha;
 mod gen_alpha_kernel;
@@ -63,6 +64,7 @@ pub use carrier::MassDof;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
+pub use dropper::DropperSample;
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
 pub use method::{MethodFactory, method_named, parse_methods, register, scene_method, stepper_for};
@@ -75,7 +77,7 @@ pub use state::State;
 pub use step_map::{Lanes, MassPrediction, Multipliers, StepMap, VelocityPrediction, combine};
 pub use system::{Initial, System};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::beam::{BeamModel, PointVector};
 use crate::resolve::Resolved;
 use crate::scene::CarrierKind;
@@ -143,6 +145,13 @@ impl Integrator {
         let mut state = State::at_rest(sys.beam().n, sys.contacts());
         let init = sys.initial()?;
         let stepper = factory.build(sc, &mut sys, &mut state, init)?;
+        if !sys.droppers.ready() {
+            return Err(Error::invalid(
+                "integrator.method",
+                format!("\"{}\"", factory.name()),
+                "cannot carry tension-only droppers (their responses A⁻¹r_d are formed once by a method with a constant step matrix): use generalized_alpha, newmark, hht or wbz, or linear = true on every [[dropper]]",
+            ));
+        }
         Ok(Integrator {
             sys,
             state,
@@ -199,6 +208,12 @@ impl Integrator {
     /// Beam displacement v(x) (positive up), m, for a precomputed point vector.
     pub fn displacement_at(&self, pv: &PointVector) -> f64 {
         pv.dot(&self.state.d)
+    }
+
+    /// Each dropper's force and slack state now, in scene order
+    /// ([`System::dropper_samples_into`]).
+    pub fn dropper_samples_into(&self, out: &mut [DropperSample]) {
+        self.sys.dropper_samples_into(&self.state.d, out)
     }
 
     /// Number of carriers.

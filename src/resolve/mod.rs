@@ -13,6 +13,7 @@
 //! defined here, so that the scene's own module imports nothing above it.
 
 pub mod attachment;
+pub mod dropper;
 pub mod memory;
 pub mod mesh;
 pub mod reference;
@@ -21,6 +22,7 @@ mod resolved;
 use std::path::Path;
 
 pub use attachment::check_attachments;
+pub use dropper::check_droppers;
 pub use memory::{
     EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
     PLOT_BUCKETS, check_budget, estimate as estimate_memory, event_capacity, history_rows,
@@ -31,7 +33,9 @@ pub use resolved::Resolved;
 
 use crate::error::Result;
 use crate::manufactured::{Manufactured, Setting};
-use crate::scene::{Scene, in_file, read_scene, scene_with_overrides, validate_contact};
+use crate::scene::{
+    Scene, in_file, read_scene, resolve_droppers, scene_with_overrides, validate_contact,
+};
 
 impl Scene {
     /// Check every value and resolve the physical parameters: the scene's
@@ -39,11 +43,16 @@ impl Scene {
     /// model, the references or the memory plan, in one fixed order (the
     /// first fault found is the one reported).
     pub fn validate(&self) -> Result<Resolved> {
-        let beam = self.resolve_beam()?;
+        let mut beam = self.resolve_beam()?;
         let l = beam.length;
         let elements = self.elements()?;
+        let droppers = resolve_droppers(&self.droppers, l)?;
         let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
+        check_droppers(self, &droppers, discretization)?;
         check_attachments(self, &beam, discretization)?;
+        // a linear dropper's spring is an attachment (`dropper` module docs)
+        beam.attachments
+            .extend(dropper::linear_attachments(&droppers));
         let carriers = self.resolve_carriers(l)?;
 
         let scheme = self.integrator.scheme()?;
@@ -80,6 +89,7 @@ impl Scene {
             scene: self.clone(),
             beam,
             carriers,
+            droppers,
             elements,
             discretization,
             grading,
