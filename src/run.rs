@@ -10,7 +10,10 @@ use crate::integrate::{
     CarrierSample, Integrator, MAX_LANES, MethodFactory, RunBatch, batch_key, lanes_cap, new_batch,
     scene_method,
 };
-use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry};
+use crate::record::{
+    ContactAccumulator, ContactStats, DropperAccumulator, DropperSample, DropperStats, History,
+    LossGeometry,
+};
 use crate::resolve::Resolved;
 
 /// What a run produces.
@@ -20,6 +23,8 @@ pub struct RunOutput {
     pub history: History,
     /// Contact statistics per carrier, in scene order.
     pub stats: Vec<ContactStats>,
+    /// Statistics per dropper (`[[dropper]]`), in scene order; empty without.
+    pub droppers: Vec<DropperStats>,
     /// Number of unknowns (beam dofs + mass dofs).
     pub dofs: usize,
     /// Steps taken.
@@ -121,6 +126,7 @@ fn drive(
         |x| it.near_support(x),
         |pv| it.displacement_at(pv),
     )?;
+    rec.observe_droppers(it.time(), true, |out| it.dropper_samples_into(out));
     let report_every = (sc.steps / 200).max(1);
     for n in 1..=sc.steps {
         if crate::interrupt::requested() {
@@ -136,6 +142,9 @@ fn drive(
             |x| it.near_support(x),
             |pv| it.displacement_at(pv),
         )?;
+        rec.observe_droppers(it.time(), rec.keeps(n, sc.steps), |out| {
+            it.dropper_samples_into(out)
+        });
         if n % report_every == 0 || n == sc.steps {
             progress(n, sc.steps);
         }
@@ -179,13 +188,28 @@ struct Recorder {
     support_peak: Vec<f64>,
     probes: Vec<crate::model::beam::PointVector>,
     every: usize,
+    /// Per dropper: its statistics, and this step's samples (scratch).
+    droppers: Vec<DropperAccumulator>,
+    dropper_now: Vec<DropperSample>,
 }
 
 impl Recorder {
     fn new(sc: &Resolved, beam: &crate::model::beam::BeamModel, nc: usize) -> Self {
         let every = sc.record_every.max(1);
+        let mut h = History::with_capacity(sc.history_rows(), every, nc, &sc.probes);
+        h.droppers = sc
+            .droppers
+            .iter()
+            .map(|d| (d.name.clone(), Vec::with_capacity(sc.history_rows())))
+            .collect();
         Recorder {
-            h: History::with_capacity(sc.history_rows(), every, nc, &sc.probes),
+            droppers: sc
+                .droppers
+                .iter()
+                .map(|d| DropperAccumulator::new(&d.name, d.x, d.linear))
+                .collect(),
+            dropper_now: vec![DropperSample::default(); sc.droppers.len()],
+            h,
             // statistics over every step, whatever rows the history keeps;
             // the near-support force peak (below) likewise
             acc: (0..nc)
@@ -240,6 +264,27 @@ impl Recorder {
         Ok(())
     }
 
+    /// Record the droppers at time t (after [`Recorder::observe`] of the
+    /// same row): `samples` fills their forces and slack states. No-op
+    /// without droppers.
+    fn observe_droppers(&mut self, t: f64, keep: bool, samples: impl Fn(&mut [DropperSample])) {
+        if self.droppers.is_empty() {
+            return;
+        }
+        samples(&mut self.dropper_now);
+        for ((acc, s), (_, col)) in self
+            .droppers
+            .iter_mut()
+            .zip(&self.dropper_now)
+            .zip(self.h.droppers.iter_mut())
+        {
+            acc.push(t, *s);
+            if keep {
+                col.push(s.force);
+            }
+        }
+    }
+
     /// Statistics and warnings of the finished run.
     fn finish(self, sc: &Resolved, f: Finish) -> RunOutput {
         let max_abs_w: Vec<f64> = self.acc.iter().map(ContactAccumulator::max_abs_w).collect();
@@ -283,6 +328,11 @@ impl Recorder {
             dt: sc.dt,
             history: self.h,
             stats,
+            droppers: self
+                .droppers
+                .into_iter()
+                .map(DropperAccumulator::finish)
+                .collect(),
             wall_seconds: f.wall_seconds,
         }
     }

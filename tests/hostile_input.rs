@@ -383,6 +383,7 @@ fn scene_text() -> impl Strategy<Value = &'static str> {
             include_str!("../scenes/moving_force_beam.toml"),
             include_str!("../scenes/moving_force_string.toml"),
             include_str!("../scenes/oscillator_one_dof.toml"),
+            include_str!("../scenes/span_droppers.toml"),
         ][..],
     )
 }

@@ -30,6 +30,8 @@ mod convergence;
 mod damping;
 #[path = "discretizations.rs"]
 mod discretizations;
+#[path = "droppers.rs"]
+mod droppers;
 #[path = "formulations.rs"]
 mod formulations;
 #[path = "galerkin_order.rs"]

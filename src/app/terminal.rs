@@ -4,7 +4,7 @@
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-use crate::record::{ContactStats, LossClass};
+use crate::record::{ContactStats, DropperStats, LossClass};
 use crate::report::Summary;
 use crate::study::sweep::SweepRecord;
 use crate::study::tolerance::Accuracy;
@@ -57,6 +57,22 @@ pub fn contact_loss_lines(c: &ContactStats) -> String {
     s
 }
 
+/// The terminal's line of one dropper: its force range and slack.
+pub fn dropper_line(d: &DropperStats) -> String {
+    let kind = if d.linear { " (linear)" } else { "" };
+    let slack = match d.slack_intervals_time.first() {
+        Some([t0, _]) => format!(
+            "slack {:.4} of the steps ({:.4} s) in {} intervals, first at t = {t0:.4} s",
+            d.slack_fraction, d.slack_time, d.slack_interval_count
+        ),
+        None => "never slack".to_string(),
+    };
+    format!(
+        "  dropper {} at x = {} m{kind}: force min {:.2} N, max {:.2} N; {slack}\n",
+        d.name, d.x, d.force.min, d.force.max
+    )
+}
+
 /// The run's one-screen summary; with `accuracy` (a tolerance run) the
 /// choice of resolution first and an estimated error beside every result.
 pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy>) -> String {
@@ -99,6 +115,9 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
             f.mean, f.std, f.min, f.max
         );
         t.push_str(&contact_loss_lines(c));
+    }
+    for d in &s.droppers {
+        t.push_str(&dropper_line(d));
     }
     for w in &s.warnings {
         let _ = writeln!(t, "  WARNING  {w}");

@@ -90,6 +90,29 @@ pub(crate) fn law_for(spec: &ContactSpec, nc: usize) -> Box<dyn ContactLaw> {
     }
 }
 
+/// [`law_for`] of a problem with `nc` contacts followed by `nd`
+/// tension-only dropper rows (`integrate::dropper`): the same law on all
+/// nc + nd rows, except that penalty leaves the dropper rows as they are —
+/// a dropper's compliance 1/k_d is already on its diagonal, so the dropper
+/// is its own penalty spring (κ = k_d), and the law is then exact on it.
+pub(crate) fn law_with_droppers(spec: &ContactSpec, nc: usize, nd: usize) -> Box<dyn ContactLaw> {
+    if nd == 0 {
+        return law_for(spec, nc);
+    }
+    match spec.formulation {
+        Formulation::Penalty => {
+            let kappa = match (spec.penalty.stiffness, spec.penalty.relative) {
+                (Some(k), _) => Kappa::Absolute(k),
+                (None, Some(r)) => Kappa::Relative(r),
+                (None, None) => Kappa::Relative(DEFAULT_PENALTY_RELATIVE),
+            };
+            let bilateral = spec.kind == ContactKind::Bilateral;
+            Box::new(Penalty::new(kappa, bilateral, nc + nd).penalize_first(nc))
+        }
+        _ => law_for(spec, nc + nd),
+    }
+}
+
 /// A run's contact law at the level it works at: a force-level law on
 /// position gaps, or the velocity-level [`Impact`] law.
 pub(crate) enum RunLaw {
@@ -108,6 +131,16 @@ impl RunLaw {
             Formulation::Impact => RunLaw::at_velocity(law, spec, nc),
             _ => RunLaw::Force(law),
         }
+    }
+
+    /// [`RunLaw::new`] for `nc` contacts and `nd` tension-only droppers
+    /// ([`law_with_droppers`]; droppers are refused with the `impact`
+    /// formulation, `resolve::dropper`).
+    pub(crate) fn with_droppers(spec: &ContactSpec, nc: usize, nd: usize) -> Self {
+        if nd == 0 {
+            return RunLaw::new(spec, nc);
+        }
+        RunLaw::Force(law_with_droppers(spec, nc, nd))
     }
 
     /// Make this law work at velocity level (a method that works with

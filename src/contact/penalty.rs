@@ -19,6 +19,10 @@ pub(crate) enum Kappa {
 /// Penalty law: a Lagrange law on the modified Delassus matrix.
 pub(crate) struct Penalty {
     kappa: Kappa,
+    /// The rows that get the penalty 1/κ: the first `penalized` (the
+    /// contacts); rows after them are compliant already (droppers, whose
+    /// W carries 1/k_d: their own penalty spring).
+    penalized: usize,
     inner: Lagrange,
     w_mod: Vec<f64>,
 }
@@ -28,9 +32,18 @@ impl Penalty {
     pub(crate) fn new(kappa: Kappa, bilateral: bool, nc: usize) -> Self {
         Penalty {
             kappa,
+            penalized: nc,
             inner: Lagrange::new(bilateral, nc),
             w_mod: vec![0.0; nc * nc],
         }
+    }
+}
+
+impl Penalty {
+    /// Penalize the first `nc` rows only (the contacts; the struct's docs).
+    pub(crate) fn penalize_first(mut self, nc: usize) -> Self {
+        self.penalized = nc;
+        self
     }
 }
 
@@ -45,7 +58,7 @@ impl ContactLaw for Penalty {
         let nc = g_free.len();
         let wm = &mut self.w_mod[..nc * nc];
         wm.copy_from_slice(&w[..nc * nc]);
-        for c in 0..nc {
+        for c in 0..nc.min(self.penalized) {
             let kappa = match self.kappa {
                 Kappa::Absolute(k) => k,
                 Kappa::Relative(r) => r / w[c * nc + c],

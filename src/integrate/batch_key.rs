@@ -132,6 +132,8 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
         || sc.discretization != Discretization::Hermite
         // a manufactured source is a time-dependent load: alone
         || sc.manufactured.is_some()
+        // droppers: their responses are a run's own (`dropper.rs`): alone
+        || !sc.droppers.is_empty()
     {
         return None;
     }
@@ -152,7 +154,7 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
 /// The key of `modal_exact` runs that may step together: `None` for any
 /// other method, for a beam with point attachments and for a damped run.
 pub fn modal_key(sc: &Resolved) -> Option<ModalKey> {
-    if sc.scheme != Scheme::ModalExact || sc.is_damped() {
+    if sc.scheme != Scheme::ModalExact || sc.is_damped() || !sc.droppers.is_empty() {
         // a damped run steps alone (docs/lines.md §10.4): the shared step
         // maps are the undamped ones
         return None;

@@ -28,11 +28,18 @@ use super::rhs_columns;
 use super::step_map::{Lanes, StepMap, VelocityPrediction};
 
 /// The pair (g_free, W) of a step, formed in place (no step allocates).
+/// With tension-only droppers (`dropper.rs`) the problem has a row per
+/// dropper after the contacts' (nt = nc + droppers rows), which
+/// `dropper.rs` fills; the velocity level has contacts only.
 #[derive(Debug, Clone)]
 pub(crate) struct ProblemBuilder {
-    /// Free gaps, one per contact: m (m/s² at the acceleration level).
+    /// Contacts nc (mass–spring carriers).
+    nc: usize,
+    /// Free gaps, one per contact then one per dropper: m (m/s² at the
+    /// acceleration level, contacts only).
     pub(crate) g_free: Vec<f64>,
-    /// Delassus matrix, row-major nc × nc, `w[i·nc + j]` = ∂g_i/∂λ_j.
+    /// Delassus matrix, row-major nt × nt, `w[i·nt + j]` = ∂g_i/∂λ_j (at
+    /// the acceleration level the contacts' nc × nc block, stride nc).
     pub(crate) w: Vec<f64>,
     /// Free gap rates ġ_free, m/s (velocity level).
     pub(crate) rate_free: Vec<f64>,
@@ -43,11 +50,13 @@ pub(crate) struct ProblemBuilder {
 }
 
 impl ProblemBuilder {
-    /// Room for `nc` contacts.
-    pub(crate) fn new(nc: usize) -> Self {
+    /// Room for `nc` contacts and `nd` dropper rows.
+    pub(crate) fn new(nc: usize, nd: usize) -> Self {
+        let nt = nc + nd;
         ProblemBuilder {
-            g_free: vec![0.0; nc],
-            w: vec![0.0; nc * nc],
+            nc,
+            g_free: vec![0.0; nt],
+            w: vec![0.0; nt * nt],
             rate_free: vec![0.0; nc],
             w_v: vec![0.0; nc * nc],
             inv_a: vec![0.0; nc],
@@ -78,7 +87,7 @@ impl ProblemBuilder {
             carriers,
             placement,
             (solved, k, Lanes::ONE),
-            1.0,
+            (1.0, self.nc),
             &self.inv_a,
             &mut self.w,
         );
@@ -96,7 +105,7 @@ impl ProblemBuilder {
         lanes: Lanes,
         st: &State,
     ) {
-        let k = rhs_columns(self.g_free.len()) * lanes.count;
+        let k = rhs_columns(self.nc) * lanes.count;
         let col0 = lanes.col(0);
         let (c_d, w_a) = (map.c_d, map.alpha_weight);
         for c in carriers {
@@ -129,11 +138,8 @@ impl ProblemBuilder {
         map: &StepMap,
         lanes: Lanes,
     ) {
-        let k = rhs_columns(self.g_free.len()) * lanes.count;
-        let coef = match placement {
-            Placement::End => map.c_d,
-            Placement::Alpha => (1.0 - map.alpha_weight) * map.c_d,
-        };
+        let k = rhs_columns(self.nc) * lanes.count;
+        let coef = contact_coef(placement, map);
         for (j, m) in map.masses.iter().enumerate() {
             self.inv_a[j] = 1.0 / m.a_eff;
         }
@@ -141,7 +147,7 @@ impl ProblemBuilder {
             carriers,
             placement,
             (map.solved, k, lanes),
-            coef,
+            (coef, self.g_free.len()),
             &self.inv_a,
             &mut self.w,
         );
@@ -151,7 +157,7 @@ impl ProblemBuilder {
     /// and W_v of every contact, for a run alone; `st` is the state at t_n
     /// (its v_n for a shifted ṽ).
     pub(crate) fn velocity(&mut self, carriers: &[Carrier], map: &StepMap, st: &State) {
-        let nc = self.g_free.len();
+        let nc = self.nc;
         let k = rhs_columns(nc);
         let (c_d, c_v) = (map.c_d, map.c_v);
         for c in carriers {
@@ -184,20 +190,30 @@ impl ProblemBuilder {
     /// modes), at position level: `g_free` (one per contact, m) and `w`
     /// (row-major nc × nc, m/N).
     pub(crate) fn set(&mut self, g_free: &[f64], w: &[f64]) {
-        let nc = self.g_free.len();
+        let nc = self.nc;
         self.g_free.copy_from_slice(&g_free[..nc]);
         self.w.copy_from_slice(&w[..nc * nc]);
     }
 }
 
-/// W[i][j] = coef · (s_i r_iᵀ z_j + δ_ij · inv_a[i]), reading the solved
-/// directions z_j from column 1 + j of `solved` (k columns) and the gap rows
-/// r_i at the placement's point (r_g, or r_f for `alpha`).
+/// The coefficient of a contact's gap row in W: c_d at the `end`, (1 − α)
+/// c_d at the `alpha` placement (module docs).
+pub(crate) fn contact_coef(placement: Placement, map: &StepMap) -> f64 {
+    match placement {
+        Placement::End => map.c_d,
+        Placement::Alpha => (1.0 - map.alpha_weight) * map.c_d,
+    }
+}
+
+/// W[i][j] = coef · (s_i r_iᵀ z_j + δ_ij · inv_a[i]) for the contacts i, j,
+/// at `w[i·stride + j]`, reading the solved directions z_j from column
+/// 1 + j of `solved` (k columns) and the gap rows r_i at the placement's
+/// point (r_g, or r_f for `alpha`).
 fn fill_delassus(
     carriers: &[Carrier],
     placement: Placement,
     (solved, k, lanes): (&[f64], usize, Lanes),
-    coef: f64,
+    (coef, stride): (f64, usize),
     inv_a: &[f64],
     w: &mut [f64],
 ) {
@@ -213,7 +229,7 @@ fn fill_delassus(
             if i == j {
                 wij += inv_a[i];
             }
-            w[i * nc + j] = coef * wij;
+            w[i * stride + j] = coef * wij;
         }
     }
 }

@@ -20,9 +20,16 @@ pub struct GenAlpha {
 
 impl GenAlpha {
     /// Factor A once and form the first predictors from the initial state.
-    pub fn new(p: GenAlphaParams, sys: &System, st: &State, init: Initial) -> Result<Self> {
+    /// With tension-only droppers, form their responses A⁻¹r_d and W block
+    /// once (`dropper.rs`: the rows imposed at the force level t_{n+1−α_f}).
+    pub fn new(p: GenAlphaParams, sys: &mut System, st: &State, init: Initial) -> Result<Self> {
         let mut kernel = Kernel::new(p, sys.beam(), sys.damping(), sys.dt(), sys.columns(), 1)?;
         kernel.start(sys, &st.d, &st.v, init);
+        if sys.droppers.rows() > 0 {
+            let c_d = p.beta * sys.dt() * sys.dt();
+            sys.droppers
+                .prepare(|x| kernel.solve_one(x), c_d, p.alpha_f);
+        }
         Ok(GenAlpha { kernel })
     }
 }
@@ -37,6 +44,7 @@ impl Stepper for GenAlpha {
         kernel.damp(&st.v);
         kernel.solve(sys.beam());
         kernel.contact(0, sys, st)?;
+        kernel.add_dropper_responses(sys);
         kernel.update(&sys.beam().load, &mut st.d, &mut st.v, &[sys.multipliers()]);
         kernel.finish(0, sys, st);
         Ok(())

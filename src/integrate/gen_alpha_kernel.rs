@@ -309,6 +309,25 @@ impl Kernel {
         }
     }
 
+    /// x ← A⁻¹x for one vector (a run's one-off solves: the droppers'
+    /// responses, `dropper.rs`).
+    pub(crate) fn solve_one(&self, x: &mut [f64]) {
+        self.ldlt.solve(x);
+    }
+
+    /// After [`Kernel::contact`] of a run alone: the tension-only droppers'
+    /// forces N_d into the free solution, a★ += Σ N_d A⁻¹r_d (`dropper.rs`),
+    /// so the update pass takes them with the contacts'. No-op without them.
+    pub(crate) fn add_dropper_responses(&mut self, sys: &System) {
+        if sys.droppers.rows() == 0 {
+            return;
+        }
+        debug_assert_eq!(self.lanes, 1, "droppers step alone");
+        let (n, k, nc) = (self.n, self.k, sys.contacts());
+        sys.droppers
+            .add_responses(&sys.lambda[nc..], &mut self.rhs[..n * k], k);
+    }
+
     /// Lane `l`'s contact problem: its mass dofs' predictions, and the
     /// [`StepMap`] of the step handed to its system (MODEL §5: c_d = βΔt²,
     /// c_v = γΔt, ṽ = v_n + (1 − γ)Δt a_n), which sets its multipliers.

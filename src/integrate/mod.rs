@@ -38,6 +38,7 @@ mod chain;
 mod contact_problem;
 mod damped_modes;
 mod diagnose;
+mod dropper;
 mod energy;
 mod gen_alpha;
 mod gen_alpha_kernel;
@@ -66,6 +67,7 @@ pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
 pub use chain::{Chain, ChainGenAlpha};
+pub use dropper::DropperSample;
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
 pub use method::{MethodFactory, method_named, parse_methods, register, scene_method, stepper_for};
@@ -78,7 +80,7 @@ pub use state::State;
 pub use step_map::{Lanes, MassPrediction, Multipliers, StepMap, VelocityPrediction, combine};
 pub use system::{Initial, System};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::beam::{BeamModel, PointVector};
 use crate::resolve::Resolved;
 use crate::scene::CarrierKind;
@@ -155,6 +157,13 @@ impl Integrator {
         if sys.has_chains() && !stepper.carries_chains() {
             return Err(chain::refusal(&factory.name()));
         }
+        if !sys.droppers.ready() {
+            return Err(Error::invalid(
+                "integrator.method",
+                format!("\"{}\"", factory.name()),
+                "cannot carry tension-only droppers (their responses A⁻¹r_d are formed once by a method with a constant step matrix): use generalized_alpha, newmark, hht or wbz, or linear = true on every [[dropper]]",
+            ));
+        }
         Ok(Integrator {
             sys,
             state,
@@ -213,6 +222,12 @@ impl Integrator {
     /// Beam displacement v(x) (positive up), m, for a precomputed point vector.
     pub fn displacement_at(&self, pv: &PointVector) -> f64 {
         pv.dot(&self.state.d)
+    }
+
+    /// Each dropper's force and slack state now, in scene order
+    /// ([`System::dropper_samples_into`]).
+    pub fn dropper_samples_into(&self, out: &mut [DropperSample]) {
+        self.sys.dropper_samples_into(&self.state.d, out)
     }
 
     /// Number of carriers.

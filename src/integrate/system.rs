@@ -24,7 +24,8 @@ use crate::scene::{CarrierKind, ContactKind, ContactSpec, Placement, Support};
 use super::State;
 use super::carrier::{Carrier, MassDof};
 use super::chain::Chain;
-use super::contact_problem::ProblemBuilder;
+use super::contact_problem::{ProblemBuilder, contact_coef};
+use super::dropper::{DropperSample, Droppers};
 use super::step_map::{Lanes, Multipliers, StepMap};
 use crate::model::banded::rhs_columns;
 
@@ -80,6 +81,10 @@ pub struct System {
     damping: Option<SymBand>,
     /// A manufactured scene's source; `None` costs a branch per step.
     source: Option<SourceState>,
+    /// The droppers (`dropper.rs`): the tension-only ones are the rows of
+    /// the contact problem after the contacts', their forces in
+    /// `lambda[nc..]`; none costs a branch per step.
+    pub(crate) droppers: Droppers,
     /// The time the last [`System::place`] put the contact forces at, s.
     t_force: f64,
 }
@@ -103,7 +108,7 @@ impl System {
     /// [`System::new`] with the beam already built (`BeamModel::build`
     /// of `sc`, or of a scene with the same beam and discretization: a
     /// batch builds a basis once for all its runs).
-    pub fn with_beam(sc: &Resolved, beam: BeamModel) -> Result<Self> {
+    pub fn with_beam(sc: &Resolved, mut beam: BeamModel) -> Result<Self> {
         let mut nc = 0;
         let mut masses = Vec::new();
         let mut chains = Vec::new();
@@ -167,7 +172,10 @@ impl System {
                 Carrier::new(*p, contact, &beam)
             })
             .collect();
-        let law = RunLaw::new(&sc.contact, nc);
+        let droppers = Droppers::new(&sc.droppers, &beam);
+        droppers.add_preloads(&mut beam.load);
+        let nd = droppers.rows();
+        let law = RunLaw::with_droppers(&sc.contact, nc, nd);
         let source = sc.manufactured.as_ref().map(|m| SourceState {
             source: Source::new(&beam, m),
             t_load: 0.0,
@@ -188,10 +196,11 @@ impl System {
             law,
             contact: sc.contact.clone(),
             multipliers: Multipliers::Forces,
-            problem: ProblemBuilder::new(nc),
-            lambda: vec![0.0; nc],
-            held_prev: vec![0.0; nc],
-            active: vec![false; nc],
+            problem: ProblemBuilder::new(nc, nd),
+            lambda: vec![0.0; nc + nd],
+            held_prev: vec![0.0; nc + nd],
+            active: vec![false; nc + nd],
+            droppers,
             beam,
             carriers,
             masses,
@@ -304,7 +313,21 @@ impl System {
     /// The multipliers of the last contact solve (N, or N·s for impulses),
     /// one per contact.
     pub fn multipliers(&self) -> &[f64] {
-        &self.lambda
+        &self.lambda[..self.masses.len()]
+    }
+
+    /// Number of droppers (`[[dropper]]`, tension-only and linear).
+    pub fn droppers(&self) -> usize {
+        self.droppers.len()
+    }
+
+    /// Each dropper's force (N) and slack state, in scene order, for the
+    /// beam dofs `d` of the state the last step reached (`dropper.rs`):
+    /// the tension-only ones' multipliers, the linear ones' k_d e.
+    pub fn dropper_samples_into(&self, d: &[f64], out: &mut [DropperSample]) {
+        let nc = self.masses.len();
+        let rows = (&self.lambda[nc..], &self.active[nc..]);
+        self.droppers.samples_into(rows, d, out);
     }
 
     /// The level the contact law works at during the run.
@@ -417,6 +440,12 @@ impl System {
                     .scatter(coef * self.lambda[j] * c.s, y, lanes.count, lanes.lane);
             }
         }
+        let nc = self.masses.len();
+        if self.droppers.rows() > 0 {
+            let forces = &self.lambda[nc..];
+            self.droppers
+                .scatter_forces(forces, y, lanes.count, lanes.lane, coef);
+        }
     }
 
     /// Where the gap condition is imposed (MODEL §5).
@@ -439,20 +468,26 @@ impl System {
             rhs[i * k] = self.beam.load[i];
         }
         self.scatter_loads(&mut rhs, k, 1.0);
+        // the droppers' initial forces are known loads (`dropper.rs`)
+        let (contacts, dropper_forces) = self.lambda.split_at_mut(nc);
+        self.droppers.initial(dropper_forces, &mut rhs, k);
+        for (a, f) in self.active[nc..].iter_mut().zip(dropper_forces.iter()) {
+            *a = *f > 0.0;
+        }
         mass_factor.solve_many(&mut rhs, k);
         let problem = &mut self.problem;
         problem.acceleration(&self.carriers, &self.masses, self.placement, &rhs, k);
-        let (g_free, w) = (&problem.g_free, &problem.w);
+        let (g_free, w) = (&problem.g_free[..nc], &problem.w[..nc * nc]);
         if let Err(failure) = self
             .law
-            .initial(g_free, w, &mut self.lambda, &mut self.active)
+            .initial(g_free, w, contacts, &mut self.active[..nc])
         {
             return Err(self.failure(0, 0.0, Level::Acceleration, failure));
         }
         let mut a = vec![0.0; n];
         for i in 0..n {
             let mut acc = rhs[i * k];
-            for (j, l) in self.lambda.iter().enumerate() {
+            for (j, l) in self.lambda[..nc].iter().enumerate() {
                 acc += l * rhs[i * k + 1 + j];
             }
             a[i] = acc;
@@ -477,7 +512,8 @@ impl System {
     /// batches (`integrate::batch`), so `st` is read for its mass dofs and
     /// step count only.
     pub fn solve_contact_in(&mut self, map: &StepMap, lanes: Lanes, st: &State) -> Result<()> {
-        if self.masses.is_empty() {
+        let (nc, nd) = (self.masses.len(), self.droppers.rows());
+        if nc == 0 && nd == 0 {
             return Ok(());
         }
         let problem = &mut self.problem;
@@ -491,6 +527,23 @@ impl System {
             }
             RunLaw::Force(law) => {
                 problem.position(&self.carriers, self.placement, map, lanes);
+                if nd > 0 {
+                    // the dropper rows and columns (`dropper.rs`; a run with
+                    // droppers steps alone)
+                    debug_assert_eq!(lanes, Lanes::ONE, "droppers step alone");
+                    let k = rhs_columns(nc);
+                    let d = &self.droppers;
+                    let (g, w) = (&mut problem.g_free, &mut problem.w);
+                    d.fill_rows(nc, (map.solved, k), map.c_d, map.d_pred, &st.d, g, w);
+                    let rows = self.carriers.iter().filter_map(|c| {
+                        let pv = match self.placement {
+                            Placement::End => &c.pv_g,
+                            Placement::Alpha => &c.pv_f,
+                        };
+                        c.contact.map(|i| (i, c.s, pv))
+                    });
+                    d.fill_contact_columns(rows, contact_coef(self.placement, map), nc, w);
+                }
                 law.solve(
                     &problem.g_free,
                     &problem.w,
@@ -539,6 +592,11 @@ impl System {
     fn failure(&self, step: usize, time: f64, level: Level, mut failure: ContactFailure) -> Error {
         let (g_free, w) = match (&self.law, level) {
             (RunLaw::Velocity(law), Level::Velocity) => law.problem(),
+            (_, Level::Acceleration) => {
+                // the contacts' block alone (the droppers' forces are loads at t = 0)
+                let nc = self.masses.len();
+                (&self.problem.g_free[..nc], &self.problem.w[..nc * nc])
+            }
             _ => (&self.problem.g_free[..], &self.problem.w[..]),
         };
         if let ContactFailure::VelocityDelassus {

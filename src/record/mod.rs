@@ -6,9 +6,11 @@
 
 use crate::integrate::CarrierSample;
 
+pub mod dropper;
 pub mod stats;
 pub mod zone;
 
+pub use dropper::{DropperAccumulator, DropperSample, DropperStats};
 pub use stats::{ContactAccumulator, ContactStats, ForceStats, LossClass, Recontact};
 pub use zone::LossGeometry;
 
@@ -61,6 +63,9 @@ pub struct History {
     pub carriers: Vec<CarrierTrace>,
     /// Probe names and their beam displacement v (positive up), m.
     pub probes: Vec<(String, Vec<f64>)>,
+    /// Dropper names and their force N_d (tension positive), N; empty
+    /// without `[[dropper]]`.
+    pub droppers: Vec<(String, Vec<f64>)>,
     /// Rows are row 0 (t = 0), every `record_every`-th step and the last
     /// step (`output.record_every`; 0 in a default history means 1).
     pub record_every: usize,
@@ -85,6 +90,7 @@ impl History {
                 .iter()
                 .map(|(n, _)| (n.clone(), Vec::with_capacity(rows)))
                 .collect(),
+            droppers: Vec::new(),
         }
     }
 

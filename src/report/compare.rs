@@ -61,6 +61,19 @@ pub fn compare_rows(c: &Comparison) -> Table {
     for (name, column) in COMPARE_COLUMNS.into_iter().zip(columns) {
         t.push(name, column);
     }
+    // with droppers: each one's slack fraction (every run has the same droppers)
+    if let Some(first) = rows.first() {
+        for (i, d) in first.droppers.iter().enumerate() {
+            let col = rows
+                .iter()
+                .map(|r| r.droppers.get(i).map_or(f64::NAN, |x| x.slack_fraction))
+                .collect();
+            t.push(
+                format!("dropper_{}_slack_fraction", d.name),
+                Column::Real(col),
+            );
+        }
+    }
     t
 }
 
@@ -178,6 +191,30 @@ pub fn compare_table(c: &Comparison) -> String {
             r.contact_switches,
             r.wall_seconds
         ));
+    }
+    if c.rows.iter().any(|r| !r.droppers.is_empty()) {
+        s.push_str("dropper slack fractions (intervals; first slack at t s):\n");
+        for r in &c.rows {
+            let list: Vec<String> = r
+                .droppers
+                .iter()
+                .map(|d| {
+                    let first = d
+                        .first_slack_time
+                        .map_or_else(|| "-".to_string(), |t| format!("{t:.4}"));
+                    format!(
+                        "{} {:.4} ({}; {first})",
+                        d.name, d.slack_fraction, d.slack_interval_count
+                    )
+                })
+                .collect();
+            s.push_str(&format!(
+                "  {:<w$} {:<16} {}\n",
+                who(&r.method, &r.discretization),
+                r.formulation,
+                list.join(", ")
+            ));
+        }
     }
     s.push_str(&format!(
         "(differences against {}/{})\n",

@@ -7,7 +7,8 @@ use crate::error::Result;
 use crate::run::RunOutput;
 
 /// The history as a table: `t, x_m, beam_w, mass_q, gap, force,
-/// in_contact`, then one column per probe. With several carriers the
+/// in_contact`, then one column per probe, then `dropper_<name>_force` per
+/// dropper (N, tension positive). With several carriers the
 /// per-carrier columns are suffixed `_0`, `_1`, … (carrier by carrier).
 pub fn history_table(out: &RunOutput) -> Table {
     history_rows(out, 0..out.history.t.len())
@@ -43,6 +44,12 @@ fn history_rows(out: &RunOutput, rows: std::ops::Range<usize>) -> Table {
     }
     for (n, col) in &h.probes {
         t.push(n.clone(), Column::Real(col[rows.clone()].to_vec()));
+    }
+    for (n, col) in &h.droppers {
+        t.push(
+            format!("dropper_{n}_force"),
+            Column::Real(col[rows.clone()].to_vec()),
+        );
     }
     t
 }

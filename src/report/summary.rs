@@ -5,7 +5,7 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::error::Result;
-use crate::record::ContactStats;
+use crate::record::{ContactStats, DropperStats};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
 use crate::scene::{Discretization, Scene};
@@ -65,6 +65,10 @@ pub struct Summary {
     pub contact: ContactStats,
     /// Contact statistics of every carrier, in scene order.
     pub carriers: Vec<ContactStats>,
+    /// Statistics of every dropper (`[[dropper]]`), in scene order: force
+    /// range and slack intervals. Absent without droppers.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub droppers: Vec<DropperStats>,
     /// Wall-clock seconds of the run: model assembly, factorization, initial
     /// accelerations and the time loop with recording.
     pub wall_seconds: f64,
@@ -103,6 +107,7 @@ impl Summary {
             },
             contact: out.stats[0].clone(),
             carriers: out.stats.clone(),
+            droppers: out.droppers.clone(),
             wall_seconds: out.wall_seconds,
             warnings: out.warnings.clone(),
         }

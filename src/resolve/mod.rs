@@ -14,6 +14,7 @@
 
 pub mod attachment;
 pub mod damping;
+pub mod dropper;
 pub mod memory;
 pub mod mesh;
 pub mod reference;
@@ -23,6 +24,7 @@ use std::path::Path;
 
 pub use attachment::check_attachments;
 pub use damping::check_damping;
+pub use dropper::check_droppers;
 pub use memory::{
     EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
     PLOT_BUCKETS, check_budget, estimate as estimate_memory, event_capacity, history_rows,
@@ -34,7 +36,8 @@ pub use resolved::Resolved;
 use crate::error::Result;
 use crate::manufactured::{Manufactured, Setting};
 use crate::scene::{
-    Scene, in_file, read_scene, resolve_rayleigh, scene_with_overrides, validate_contact,
+    Scene, in_file, read_scene, resolve_droppers, resolve_rayleigh, scene_with_overrides,
+    validate_contact,
 };
 
 impl Scene {
@@ -43,11 +46,16 @@ impl Scene {
     /// model, the references or the memory plan, in one fixed order (the
     /// first fault found is the one reported).
     pub fn validate(&self) -> Result<Resolved> {
-        let beam = self.resolve_beam()?;
+        let mut beam = self.resolve_beam()?;
         let l = beam.length;
         let elements = self.elements()?;
+        let droppers = resolve_droppers(&self.droppers, l)?;
         let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
+        check_droppers(self, &droppers, discretization)?;
         check_attachments(self, &beam, discretization)?;
+        // a linear dropper's spring is an attachment (`dropper` module docs)
+        beam.attachments
+            .extend(dropper::linear_attachments(&droppers));
         let carriers = self.resolve_carriers(l)?;
         crate::scene::check_chain_scene(self, &carriers)?;
 
@@ -88,6 +96,7 @@ impl Scene {
             beam,
             damping,
             carriers,
+            droppers,
             elements,
             discretization,
             grading,

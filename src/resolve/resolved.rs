@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::manufactured::Manufactured;
 use crate::model::mesh::Mesh;
 use crate::scene::{
-    BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Grading,
+    BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Dropper, Grading,
     IntegratorSpec, MeshPlan, Rayleigh, Scene, Scheme, fe_unknowns,
 };
 
@@ -23,6 +23,9 @@ pub struct Resolved {
     pub damping: Rayleigh,
     /// Carriers, in scene order.
     pub carriers: Vec<CarrierProps>,
+    /// Droppers (`[[dropper]]`, MODEL §10), in scene order; the linear
+    /// ones' springs are also in `beam.attachments`.
+    pub droppers: Vec<Dropper>,
     /// Number of elements N (`mesh.elements`).
     pub elements: usize,
     /// The space discretization (`mesh.kind`, MODEL §9.2).

@@ -17,6 +17,7 @@
 mod attachment;
 mod damping;
 mod discretization;
+mod dropper;
 mod load;
 pub mod manufactured;
 mod method;
@@ -30,6 +31,7 @@ pub use damping::{Rayleigh, RayleighSpec, resolve_rayleigh};
 pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
+pub use dropper::{Anchor, Dropper, DropperSpec, resolve_droppers};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed,
@@ -80,6 +82,10 @@ pub struct Scene {
     /// springs to a fixed anchor and lumped masses.
     #[serde(default, rename = "attachment", skip_serializing_if = "Vec::is_empty")]
     pub attachments: Vec<AttachmentSpec>,
+    /// Droppers to fixed anchors (`[[dropper]]`, MODEL §10): tension-only
+    /// links that go slack, solved with the contacts (`docs/lines.md`).
+    #[serde(default, rename = "dropper", skip_serializing_if = "Vec::is_empty")]
+    pub droppers: Vec<DropperSpec>,
     /// What the history records (`[output]`).
     #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
     pub output: OutputSpec,

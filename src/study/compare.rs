@@ -64,6 +64,23 @@ pub struct CompareRow {
     pub wall_seconds: f64,
     /// The run's warnings (e.g. contact chatter); empty when none.
     pub warnings: Vec<String>,
+    /// Each dropper's slack (`[[dropper]]`, scene order); empty, and absent
+    /// from compare.json, without droppers.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub droppers: Vec<DropperSlack>,
+}
+
+/// A dropper's slack in one run of a comparison.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct DropperSlack {
+    /// The dropper's name.
+    pub name: String,
+    /// Steps slack over all steps.
+    pub slack_fraction: f64,
+    /// Slack intervals.
+    pub slack_interval_count: usize,
+    /// Start time of the first slack interval, s (null if never slack).
+    pub first_slack_time: Option<f64>,
 }
 
 /// A combination that did not give a row, and why.
@@ -494,6 +511,16 @@ fn row(r: &CompareRun, reference: &RunOutput) -> CompareRow {
         steps: out.steps,
         wall_seconds: out.wall_seconds,
         warnings: out.warnings.clone(),
+        droppers: out
+            .droppers
+            .iter()
+            .map(|d| DropperSlack {
+                name: d.name.clone(),
+                slack_fraction: d.slack_fraction,
+                slack_interval_count: d.slack_interval_count,
+                first_slack_time: d.slack_intervals_time.first().map(|i| i[0]),
+            })
+            .collect(),
     }
 }
 

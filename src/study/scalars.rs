@@ -224,6 +224,7 @@ mod tests {
                 &Default::default(),
                 crate::record::LossGeometry::span_only(1.0),
             )],
+            droppers: vec![],
             dofs: 1,
             steps: 1,
             dt: 1.0,

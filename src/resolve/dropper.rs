@@ -1,0 +1,109 @@
+//! `[[dropper]]` against the rest of the scene (MODEL §10,
+//! `docs/lines.md`): which bases, contact settings and references carry
+//! droppers.
+//!
+//! * A **linear** dropper is a spring k_d to its anchor plus the constant
+//!   preload k_d (z_a − ℓ_0): it is resolved into an `[[attachment]]`
+//!   spring (K gains k_d r_d r_dᵀ) and a point load (`integrate::dropper`),
+//!   so it goes wherever attachments go (`hermite`, `string`, `modal`,
+//!   every method).
+//! * A **tension-only** dropper is a unilateral constraint solved with the
+//!   contacts, in the same per-step problem (`integrate::dropper`). Its
+//!   response A⁻¹r_d is formed once per run by the method, which only the
+//!   generalized-α family does (checked when the run is built,
+//!   `Integrator::with_method`). It needs a force-level law on a
+//!   unilateral problem: `contact.kind = "bilateral"` would make every row
+//!   of the problem two-sided (a dropper that pushes) and the `impact`
+//!   formulation works with gap rates, so both are refused here.
+//! * Either kind is refused by `galerkin` (the exact modes of the bare
+//!   beam; a point spring couples them), by a manufactured solution and by
+//!   the closed-form references, which are of the bare beam
+//!   (as `[[attachment]]` is, `super::attachment`).
+
+use crate::error::{Error, Result};
+use crate::scene::{
+    Attachment, ContactKind, Discretization, Dropper, Formulation, ReferenceKind, Scene,
+};
+
+/// Refuse the combinations a dropper breaks (module docs); nothing to check
+/// without droppers.
+pub fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) -> Result<()> {
+    if droppers.is_empty() {
+        return Ok(());
+    }
+    let n = droppers.len();
+    if let Discretization::Galerkin { .. } = d {
+        return Err(Error::invalid(
+            "mesh.kind",
+            "\"galerkin\"",
+            format!(
+                "cannot carry the scene's {n} [[dropper]] (the exact modes of the bare beam are diagonal; a dropper couples them): use mesh.kind = \"hermite\" (or \"modal\" for linear droppers)"
+            ),
+        ));
+    }
+    if scene.manufactured.is_some() {
+        return Err(Error::invalid(
+            "manufactured",
+            "(present)",
+            format!(
+                "a manufactured solution's source is that of the bare beam and does not include the scene's {n} [[dropper]]: remove one or the other"
+            ),
+        ));
+    }
+    if let Some(r) = &scene.reference
+        && matches!(
+            r.kind,
+            ReferenceKind::MovingForceSeries | ReferenceKind::RidingMassGalerkin
+        )
+    {
+        return Err(Error::invalid(
+            "reference.kind",
+            format!("\"{}\"", r.kind.name()),
+            format!(
+                "is a closed form of the bare beam and does not include the scene's {n} [[dropper]]: use \"standing_force_modes\" or \"richardson\""
+            ),
+        ));
+    }
+    let Some(i) = droppers.iter().position(|d| !d.linear) else {
+        return Ok(());
+    };
+    if let Discretization::Modal { .. } = d {
+        return Err(Error::invalid(
+            "mesh.kind",
+            "\"modal\"",
+            format!(
+                "cannot carry dropper {i} (tension-only): use mesh.kind = \"hermite\", or make every dropper linear = true (a spring, which a modal basis carries)"
+            ),
+        ));
+    }
+    if scene.contact.kind == ContactKind::Bilateral {
+        return Err(Error::invalid(
+            "contact.kind",
+            "\"bilateral\"",
+            format!(
+                "would make dropper {i} two-sided too (the droppers are rows of the contact problem): use \"unilateral\", or linear = true on every dropper"
+            ),
+        ));
+    }
+    if scene.contact.formulation == Formulation::Impact {
+        return Err(Error::invalid(
+            "contact.formulation",
+            "\"impact\"",
+            format!(
+                "works with gap rates and has no law for dropper {i}'s compliant slack (a spring, not an impact): use \"lagrange\", \"complementarity\" or \"penalty\", or linear = true on every dropper"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The attachment springs of the linear droppers (module docs): k_d at x_d,
+/// no mass.
+pub fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = Attachment> + '_ {
+    droppers.iter().filter(|d| d.linear).map(|d| Attachment {
+        x: d.x,
+        stiffness: d.stiffness,
+        mass: 0.0,
+        damping: 0.0,
+    })
+}

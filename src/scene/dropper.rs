@@ -1,0 +1,176 @@
+//! `[[dropper]]`: tension-only links from the beam (the contact wire) to a
+//! fixed anchor above it (MODEL §10, `docs/lines.md` eq. D1–D4). Plain data:
+//! the scene's spelling ([`DropperSpec`]), each value's own range check,
+//! and the resolved link ([`Dropper`]) the run is built from.
+//!
+//! Sign convention (MODEL §1: v positive up). The anchor sits at height
+//! z_a (m, on the v axis: the undeformed beam line is z = 0) above the
+//! wire, and the dropper's unstretched length is ℓ_0 (m). With the wire at
+//! v(x_d) the dropper spans z_a − v(x_d), so its extension is
+//!
+//! ```text
+//!   e = (z_a − v(x_d)) − ℓ_0          (m; > 0 stretched, ≤ 0 slack)
+//! ```
+//!
+//! and it pulls the wire **up** (+v) with N_d = k_d·max(e, 0) ≥ 0. A wire
+//! lifted by a pantograph (v grows) shortens e: the dropper goes slack when
+//! v(x_d) ≥ z_a − ℓ_0. `linear = true` drops the max: N_d = k_d e, a
+//! two-sided spring k_d to the anchor with a preload k_d (z_a − ℓ_0) (the
+//! same as an `[[attachment]]` spring plus that constant force).
+//!
+//! The anchor is an enum so that a second line (the messenger wire) can be
+//! one later; today it is a fixed height.
+
+use serde::{Deserialize, Serialize};
+
+use super::validate::{non_negative, positive};
+use crate::error::{Error, Result};
+
+/// `[[dropper]]` as written in the scene.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DropperSpec {
+    /// Position x_d on the beam, m (0 ≤ x_d ≤ L).
+    pub x: f64,
+    /// Stiffness k_d in tension, N/m (> 0).
+    pub stiffness: f64,
+    /// Height z_a of the fixed anchor above the undeformed beam line, m
+    /// (finite; the v axis, positive up).
+    pub anchor_height: f64,
+    /// Unstretched length ℓ_0, m (≥ 0). The dropper is stretched at the
+    /// start (beam straight) by z_a − ℓ_0.
+    pub length: f64,
+    /// Dashpot c_d in parallel, N·s/m: only 0 is accepted (dropper
+    /// dashpots are not implemented yet; an `[[attachment]]` dashpot at x_d
+    /// damps the wire there).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<f64>,
+    /// Never slack: a two-sided spring (N_d = k_d e, may push).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub linear: bool,
+    /// A label for the outputs (`dropper_<name>_force`): letters, digits,
+    /// `_` and `-`; default the dropper's index.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+/// Where a dropper's upper end is held.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Anchor {
+    /// A fixed point at height z_a, m (v axis).
+    Fixed {
+        /// z_a, m.
+        height: f64,
+    },
+}
+
+/// A dropper, resolved (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dropper {
+    /// Label for the outputs.
+    pub name: String,
+    /// Position x_d, m.
+    pub x: f64,
+    /// Stiffness k_d, N/m.
+    pub stiffness: f64,
+    /// Upper end.
+    pub anchor: Anchor,
+    /// Unstretched length ℓ_0, m.
+    pub length: f64,
+    /// Two-sided (never slack).
+    pub linear: bool,
+}
+
+impl Dropper {
+    /// The extension with the beam straight, e₀ = z_a − ℓ_0, m: e = e₀ − v(x_d).
+    pub fn rest_extension(&self) -> f64 {
+        match self.anchor {
+            Anchor::Fixed { height } => height - self.length,
+        }
+    }
+
+    /// The dropper's force for a beam displacement v at x_d (m, up), N:
+    /// k_d max(e, 0), or k_d e when linear.
+    pub fn force_at(&self, v: f64) -> f64 {
+        let e = self.rest_extension() - v;
+        if self.linear {
+            self.stiffness * e
+        } else {
+            self.stiffness * e.max(0.0)
+        }
+    }
+}
+
+/// Check each `[[dropper]]` on a beam of span `l`, m: x in [0, L],
+/// stiffness > 0, anchor height finite, length ≥ 0, damping absent or 0,
+/// names valid and distinct.
+pub fn resolve_droppers(specs: &[DropperSpec], l: f64) -> Result<Vec<Dropper>> {
+    let mut out: Vec<Dropper> = Vec::with_capacity(specs.len());
+    for (i, d) in specs.iter().enumerate() {
+        let field = |k: &str| format!("dropper.{i}.{k}");
+        if !(0.0..=l).contains(&d.x) {
+            return Err(Error::invalid(
+                field("x"),
+                d.x,
+                format!("must be on the beam, in [0, {l}] m"),
+            ));
+        }
+        let stiffness = positive(&field("stiffness"), d.stiffness, "N/m")?;
+        if !d.anchor_height.is_finite() {
+            return Err(Error::invalid(
+                field("anchor_height"),
+                d.anchor_height,
+                "must be a finite height above the undeformed beam line (m, positive up)",
+            ));
+        }
+        let length = non_negative(&field("length"), d.length, "m")?;
+        if let Some(c) = d.damping
+            && c != 0.0
+        {
+            return Err(Error::invalid(
+                field("damping"),
+                c,
+                "must be 0 (N·s/m): dropper dashpots are not implemented yet (a tension-only dashpot acts only while the dropper is taut); leave it out, or put the dashpot on an [[attachment]] at the same x",
+            ));
+        }
+        let name = match &d.name {
+            Some(n) => {
+                let ok = !n.is_empty()
+                    && n.len() <= 32
+                    && n.chars()
+                        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+                if !ok {
+                    return Err(Error::invalid(
+                        field("name"),
+                        format!("{n:?}"),
+                        "must be 1 to 32 characters among letters, digits, '_' and '-' (it names the output column dropper_<name>_force)",
+                    ));
+                }
+                n.clone()
+            }
+            None => i.to_string(),
+        };
+        if let Some(j) = out.iter().position(|o| o.name == name) {
+            return Err(Error::invalid(
+                field("name"),
+                format!("{name:?}"),
+                format!("must differ from dropper {j}'s name"),
+            ));
+        }
+        out.push(Dropper {
+            name,
+            x: d.x,
+            stiffness,
+            anchor: Anchor::Fixed {
+                height: d.anchor_height,
+            },
+            length,
+            linear: d.linear,
+        });
+    }
+    Ok(out)
+}
