@@ -10,7 +10,7 @@ use crate::integrate::{
     CarrierSample, Integrator, MAX_LANES, MethodFactory, RunBatch, batch_key, lanes_cap, new_batch,
     scene_method,
 };
-use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry};
+use crate::record::{ContactAccumulator, ContactStats, History, LossGeometry, WireSeries};
 use crate::resolve::Resolved;
 
 /// What a run produces.
@@ -121,6 +121,7 @@ fn drive(
         |x| it.near_support(x),
         |pv| it.displacement_at(pv),
     )?;
+    rec.observe_wire(0, it.time(), |pv| it.displacement_at(pv));
     let report_every = (sc.steps / 200).max(1);
     for n in 1..=sc.steps {
         if crate::interrupt::requested() {
@@ -136,6 +137,7 @@ fn drive(
             |x| it.near_support(x),
             |pv| it.displacement_at(pv),
         )?;
+        rec.observe_wire(n, it.time(), |pv| it.displacement_at(pv));
         if n % report_every == 0 || n == sc.steps {
             progress(n, sc.steps);
         }
@@ -179,13 +181,88 @@ struct Recorder {
     support_peak: Vec<f64>,
     probes: Vec<crate::model::beam::PointVector>,
     every: usize,
+    /// The wire's snapshots and field: what to record when, and where.
+    wire: WireRecorder,
+}
+
+/// What [`Recorder`] records of the wire along the span
+/// ([`crate::resolve::wire`]): point vectors made once, rows stored into
+/// room reserved before the first step.
+struct WireRecorder {
+    /// (step, requested time) of each snapshot.
+    snapshots: Vec<(usize, f64)>,
+    snapshot_pvs: Vec<crate::model::beam::PointVector>,
+    field_every: usize,
+    field_pvs: Vec<crate::model::beam::PointVector>,
+}
+
+impl WireRecorder {
+    fn new(sc: &Resolved, beam: &crate::model::beam::BeamModel, h: &mut History) -> Self {
+        let w = &sc.wire;
+        if !w.snapshots.is_empty() {
+            h.snapshots = WireSeries::with_capacity(w.snapshot_x.clone(), w.snapshots.len());
+        }
+        if w.field_every > 0 {
+            h.field = WireSeries::with_capacity(w.field_x.clone(), w.field_rows(sc.steps));
+        }
+        let pvs = |x: &[f64]| x.iter().map(|&x| beam.point_vector(x)).collect();
+        WireRecorder {
+            snapshots: w.snapshots.clone(),
+            snapshot_pvs: pvs(&w.snapshot_x),
+            field_every: w.field_every,
+            field_pvs: pvs(&w.field_x),
+        }
+    }
+
+    /// Record step n (time t): the snapshots asked at it (in the scene's
+    /// order; several may share a step) and a field row every K-th step.
+    fn observe(
+        &self,
+        h: &mut History,
+        n: usize,
+        t: f64,
+        displacement: impl Fn(&crate::model::beam::PointVector) -> f64,
+    ) {
+        for &(step, requested) in &self.snapshots {
+            if step == n {
+                record_row(
+                    &mut h.snapshots,
+                    requested,
+                    t,
+                    &self.snapshot_pvs,
+                    &displacement,
+                );
+            }
+        }
+        if self.field_every > 0 && n.is_multiple_of(self.field_every) {
+            record_row(&mut h.field, t, t, &self.field_pvs, &displacement);
+        }
+    }
+}
+
+/// Append one row of v at the point vectors `pvs`.
+fn record_row(
+    s: &mut WireSeries,
+    requested: f64,
+    t: f64,
+    pvs: &[crate::model::beam::PointVector],
+    displacement: &impl Fn(&crate::model::beam::PointVector) -> f64,
+) {
+    s.requested.push(requested);
+    s.t.push(t);
+    for pv in pvs {
+        s.v.push(displacement(pv));
+    }
 }
 
 impl Recorder {
     fn new(sc: &Resolved, beam: &crate::model::beam::BeamModel, nc: usize) -> Self {
         let every = sc.record_every.max(1);
+        let mut h = History::with_capacity(sc.history_rows(), every, nc, &sc.probes);
+        let wire = WireRecorder::new(sc, beam, &mut h);
         Recorder {
-            h: History::with_capacity(sc.history_rows(), every, nc, &sc.probes),
+            h,
+            wire,
             // statistics over every step, whatever rows the history keeps;
             // the near-support force peak (below) likewise
             acc: (0..nc)
@@ -199,6 +276,16 @@ impl Recorder {
                 .collect(),
             every,
         }
+    }
+
+    /// Record the wire at step n (time t), as [`WireRecorder::observe`].
+    fn observe_wire(
+        &mut self,
+        n: usize,
+        t: f64,
+        displacement: impl Fn(&crate::model::beam::PointVector) -> f64,
+    ) {
+        self.wire.observe(&mut self.h, n, t, displacement);
     }
 
     /// True when step n's row is kept in the history.
@@ -433,6 +520,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                         |x| crate::integrate::near_support_lane(&lane.sys, x),
                         |pv| b.displacement_at(l, pv),
                     )
+                    .map(|()| rec.observe_wire(n, lane.st.t, |pv| b.displacement_at(l, pv)))
                     .map_err(Some),
             };
             match outcome {

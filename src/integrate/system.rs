@@ -128,7 +128,7 @@ impl System {
                         None
                     }
                 };
-                Carrier::new(*p, contact, &beam)
+                Carrier::new(p.clone(), contact, &beam)
             })
             .collect();
         let law = RunLaw::new(&sc.contact, nc);

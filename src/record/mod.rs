@@ -7,9 +7,13 @@
 use crate::integrate::CarrierSample;
 
 pub mod stats;
+pub mod wire;
 pub mod zone;
 
-pub use stats::{ContactAccumulator, ContactStats, ForceStats, LossClass, Recontact};
+pub use stats::{
+    ContactAccumulator, ContactStats, Filtered, FilteredForce, ForceStats, LossClass, Recontact,
+};
+pub use wire::WireSeries;
 pub use zone::LossGeometry;
 
 /// One carrier's recorded history, a column per quantity.
@@ -64,6 +68,10 @@ pub struct History {
     /// Rows are row 0 (t = 0), every `record_every`-th step and the last
     /// step (`output.record_every`; 0 in a default history means 1).
     pub record_every: usize,
+    /// Snapshots of v(x) (`output.snapshots`; empty when none asked for).
+    pub snapshots: WireSeries,
+    /// The space–time field v(x, t) (`output.field`; empty when none).
+    pub field: WireSeries,
 }
 
 impl History {
@@ -85,6 +93,8 @@ impl History {
                 .iter()
                 .map(|(n, _)| (n.clone(), Vec::with_capacity(rows)))
                 .collect(),
+            snapshots: WireSeries::default(),
+            field: WireSeries::default(),
         }
     }
 
