@@ -11,11 +11,12 @@ from typing import Callable, List, Optional, Tuple, Union
 __version__: str
 taut_version: str
 
-__all__ = ["__version__", "compare", "converge", "limits", "precision", "run", "sweep", "taut_version"]
+__all__ = ["__version__", "compare", "converge", "limits", "mesh", "modes", "precision", "run", "sweep", "taut_version"]
 
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
 _Progress = Optional[Callable[[int, int], object]]
+_Wire = Optional[Tuple[bytes, bytes, bytes, bytes]]
 
 def run(
     path: Optional[str],
@@ -25,7 +26,7 @@ def run(
     tolerance: Optional[str],
     quantity: Optional[str],
     progress: _Progress,
-) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]]]: ...
+) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]], Tuple[_Wire, _Wire]]: ...
 def limits() -> Tuple[int, int]: ...
 def sweep(
     path: Optional[str],
@@ -82,3 +83,11 @@ def precision(
     progress: _Progress,
     yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
+def modes(
+    path: Optional[str],
+    text: Optional[str],
+    set: List[str],
+    count: Optional[int],
+    out: Optional[str],
+) -> Tuple[List[_Column], List[_Column]]: ...
+def mesh(path: Optional[str], text: Optional[str], set: List[str]) -> bytes: ...
