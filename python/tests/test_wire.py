@@ -64,7 +64,9 @@ def test_modes_are_the_clis(cli, tmp_path):
     assert m.frequency_hz[0] == pytest.approx(m.string_hz[0], rel=1e-2)
     g = taut.modes(REFERENCE, 3, set={"mesh.kind": "galerkin", "mesh.modes": 10})
     assert g.source == "exact"
-    np.testing.assert_allclose(g.frequency_hz, m.frequency_hz[:3], rtol=1e-6)
+    # 100 elements (h = 0.5 m) do not resolve the clamped end's boundary
+    # layer sqrt(EI/T) = 0.066 m: measured 3.9e-4 above the exact modes
+    np.testing.assert_allclose(g.frequency_hz, m.frequency_hz[:3], rtol=1e-3)
 
 
 def test_bad_counts_name_the_argument():
@@ -73,7 +75,7 @@ def test_bad_counts_name_the_argument():
     assert e.value.field == "count"
     with pytest.raises(taut.SceneError) as e:
         taut.modes(REFERENCE, 10_000, set={"mesh.elements": 10})
-    assert e.value.field == "count" and "39" in str(e.value)
+    assert e.value.field == "count" and "1 ..= 19" in str(e.value)
 
 
 def test_every_summary_has_the_filtered_force():
