@@ -165,6 +165,21 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Natural frequencies and mode shapes of the scene's beam, attachments
+    /// included (modes.csv, mode_shapes.csv; docs/output.md#modes).
+    Modes {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Number of modes (default 10, or the mesh's unknowns if fewer).
+        #[arg(long, value_name = "K", allow_hyphen_values = true)]
+        count: Option<String>,
+        /// Override a scene value (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Output folder (default: out/<scene name>-modes).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Join shard folders of one sweep into a single result.
     Merge {
         /// Shard output folders.
@@ -397,6 +412,12 @@ fn main() -> ExitCode {
             quiet,
         ),
         Command::Merge { shards, out } => cmd_merge(&shards, &out),
+        Command::Modes {
+            scene,
+            count,
+            set,
+            out,
+        } => cmd_modes(scene, count, set, out).map(|()| true),
         Command::Precision {
             scene,
             formulations,
@@ -668,6 +689,32 @@ fn cmd_run(
         "{}",
         terminal::summary(&scene, &dir, &outcome.summary, outcome.accuracy.as_ref())
     );
+    Ok(())
+}
+
+fn cmd_modes(
+    scene: PathBuf,
+    count_text: Option<String>,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+) -> taut::Result<()> {
+    // ≥ 1 here; the scene's own upper bound is the library's
+    let count = count(count_text, |n| {
+        if n >= 1 {
+            Ok(n)
+        } else {
+            Err(taut::Error::invalid("--count", n, "must be ≥ 1"))
+        }
+    })?;
+    let dir = out.unwrap_or_else(|| default_dir(&scene, "-modes"));
+    let request = app::ModesRequest {
+        scene: SceneSource::File(scene.clone()),
+        set,
+        count,
+        out: Some(dir.clone()),
+    };
+    let m = Terminal::new("", true).run(|fe| app::modes(&request, fe))?;
+    print!("{}", terminal::modes(&scene, &dir, &m));
     Ok(())
 }
 

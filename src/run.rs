@@ -12,7 +12,7 @@ use crate::integrate::{
 };
 use crate::record::{
     ContactAccumulator, ContactStats, DropperAccumulator, DropperSample, DropperStats, History,
-    LossGeometry,
+    LossGeometry, WireSeries,
 };
 use crate::resolve::Resolved;
 
@@ -127,6 +127,7 @@ fn drive(
         |pv| it.displacement_at(pv),
     )?;
     rec.observe_droppers(it.time(), true, |out| it.dropper_samples_into(out));
+    rec.observe_wire(0, it.time(), |pv| it.displacement_at(pv));
     let report_every = (sc.steps / 200).max(1);
     for n in 1..=sc.steps {
         if crate::interrupt::requested() {
@@ -145,6 +146,7 @@ fn drive(
         rec.observe_droppers(it.time(), rec.keeps(n, sc.steps), |out| {
             it.dropper_samples_into(out)
         });
+        rec.observe_wire(n, it.time(), |pv| it.displacement_at(pv));
         if n % report_every == 0 || n == sc.steps {
             progress(n, sc.steps);
         }
@@ -191,6 +193,78 @@ struct Recorder {
     /// Per dropper: its statistics, and this step's samples (scratch).
     droppers: Vec<DropperAccumulator>,
     dropper_now: Vec<DropperSample>,
+    /// The wire's snapshots and field: what to record when, and where.
+    wire: WireRecorder,
+}
+
+/// What [`Recorder`] records of the wire along the span
+/// ([`crate::resolve::wire`]): point vectors made once, rows stored into
+/// room reserved before the first step.
+struct WireRecorder {
+    /// (step, requested time) of each snapshot.
+    snapshots: Vec<(usize, f64)>,
+    snapshot_pvs: Vec<crate::model::beam::PointVector>,
+    field_every: usize,
+    field_pvs: Vec<crate::model::beam::PointVector>,
+}
+
+impl WireRecorder {
+    fn new(sc: &Resolved, beam: &crate::model::beam::BeamModel, h: &mut History) -> Self {
+        let w = &sc.wire;
+        if !w.snapshots.is_empty() {
+            h.snapshots = WireSeries::with_capacity(w.snapshot_x.clone(), w.snapshots.len());
+        }
+        if w.field_every > 0 {
+            h.field = WireSeries::with_capacity(w.field_x.clone(), w.field_rows(sc.steps));
+        }
+        let pvs = |x: &[f64]| x.iter().map(|&x| beam.point_vector(x)).collect();
+        WireRecorder {
+            snapshots: w.snapshots.clone(),
+            snapshot_pvs: pvs(&w.snapshot_x),
+            field_every: w.field_every,
+            field_pvs: pvs(&w.field_x),
+        }
+    }
+
+    /// Record step n (time t): the snapshots asked at it (in the scene's
+    /// order; several may share a step) and a field row every K-th step.
+    fn observe(
+        &self,
+        h: &mut History,
+        n: usize,
+        t: f64,
+        displacement: impl Fn(&crate::model::beam::PointVector) -> f64,
+    ) {
+        for &(step, requested) in &self.snapshots {
+            if step == n {
+                record_row(
+                    &mut h.snapshots,
+                    requested,
+                    t,
+                    &self.snapshot_pvs,
+                    &displacement,
+                );
+            }
+        }
+        if self.field_every > 0 && n.is_multiple_of(self.field_every) {
+            record_row(&mut h.field, t, t, &self.field_pvs, &displacement);
+        }
+    }
+}
+
+/// Append one row of v at the point vectors `pvs`.
+fn record_row(
+    s: &mut WireSeries,
+    requested: f64,
+    t: f64,
+    pvs: &[crate::model::beam::PointVector],
+    displacement: &impl Fn(&crate::model::beam::PointVector) -> f64,
+) {
+    s.requested.push(requested);
+    s.t.push(t);
+    for pv in pvs {
+        s.v.push(displacement(pv));
+    }
 }
 
 impl Recorder {
@@ -202,6 +276,7 @@ impl Recorder {
             .iter()
             .map(|d| (d.name.clone(), Vec::with_capacity(sc.history_rows())))
             .collect();
+        let wire = WireRecorder::new(sc, beam, &mut h);
         Recorder {
             droppers: sc
                 .droppers
@@ -210,6 +285,7 @@ impl Recorder {
                 .collect(),
             dropper_now: vec![DropperSample::default(); sc.droppers.len()],
             h,
+            wire,
             // statistics over every step, whatever rows the history keeps;
             // the near-support force peak (below) likewise
             acc: (0..nc)
@@ -223,6 +299,16 @@ impl Recorder {
                 .collect(),
             every,
         }
+    }
+
+    /// Record the wire at step n (time t), as [`WireRecorder::observe`].
+    fn observe_wire(
+        &mut self,
+        n: usize,
+        t: f64,
+        displacement: impl Fn(&crate::model::beam::PointVector) -> f64,
+    ) {
+        self.wire.observe(&mut self.h, n, t, displacement);
     }
 
     /// True when step n's row is kept in the history.
@@ -483,6 +569,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                         |x| crate::integrate::near_support_lane(&lane.sys, x),
                         |pv| b.displacement_at(l, pv),
                     )
+                    .map(|()| rec.observe_wire(n, lane.st.t, |pv| b.displacement_at(l, pv)))
                     .map_err(Some),
             };
             match outcome {

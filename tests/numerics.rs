@@ -60,3 +60,5 @@ mod verification_riding_mass;
 mod verification_t1_cantilever;
 #[path = "verification_t2_wave_travel.rs"]
 mod verification_t2_wave_travel;
+#[path = "wire.rs"]
+mod wire;

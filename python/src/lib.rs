@@ -371,13 +371,42 @@ fn call<R: Send>(
 }
 
 /// What `run` hands back: `(summary_json, history_columns, warnings,
-/// accuracy_columns)`, the last for a `tolerance` run only.
+/// accuracy_columns, (snapshots, field))`, accuracy for a `tolerance` run
+/// only, snapshots and field when the scene asks for them ([`wire_to_py`]).
 type RunTuple<'py> = (
     String,
     Bound<'py, PyList>,
     Vec<String>,
     Option<Bound<'py, PyList>>,
+    (Option<WireTuple<'py>>, Option<WireTuple<'py>>),
 );
+
+/// A recorded wire series (`taut::record::WireSeries`) as f64 bytes:
+/// `(requested, t, x, v)`, v row-major (len(t) × len(x)).
+type WireTuple<'py> = (
+    Bound<'py, PyBytes>,
+    Bound<'py, PyBytes>,
+    Bound<'py, PyBytes>,
+    Bound<'py, PyBytes>,
+);
+
+/// A run's snapshots and field ([`WireTuple`]; `None` when not recorded).
+fn wire_to_py<'py>(
+    py: Python<'py>,
+    h: &taut::record::History,
+) -> (Option<WireTuple<'py>>, Option<WireTuple<'py>>) {
+    let one = |s: &taut::record::WireSeries| {
+        (!s.is_empty()).then(|| {
+            (
+                f64_bytes(py, s.requested.iter().copied()),
+                f64_bytes(py, s.t.iter().copied()),
+                f64_bytes(py, s.x.iter().copied()),
+                f64_bytes(py, s.v.iter().copied()),
+            )
+        })
+    };
+    (one(&h.snapshots), one(&h.field))
+}
 
 /// One run (`taut run`), or with `tolerance` an accuracy-targeted one
 /// (`taut run --tolerance TOL --quantity Q`); with `out` the CLI's files
@@ -416,8 +445,9 @@ fn run<'py>(
     };
     let r = call(py, progress.as_ref(), |fe| app::run(&request, fe))?;
     let history = table_to_py(py, &taut::report::history_table(&r.output))?;
+    let wire = wire_to_py(py, &r.output.history);
     let Some(accuracy) = &r.accuracy else {
-        return Ok((pretty(&r.summary)?, history, r.output.warnings, None));
+        return Ok((pretty(&r.summary)?, history, r.output.warnings, None, wire));
     };
     let doc = taut::report::WithAccuracy {
         summary: &r.summary,
@@ -428,6 +458,7 @@ fn run<'py>(
         history,
         r.output.warnings.clone(),
         Some(table_to_py(py, &taut::report::accuracy_table(accuracy))?),
+        wire,
     ))
 }
 
@@ -632,6 +663,49 @@ fn level_ranges() -> ((usize, usize), (usize, usize)) {
     ((*c.start(), *c.end()), (*p.start(), *p.end()))
 }
 
+/// The natural frequencies and mode shapes of a scene's beam (`taut
+/// modes`): `(modes_columns, mode_shapes_columns)`, the CLI's `modes.csv`
+/// and `mode_shapes.csv`; with `out` those files are written too.
+#[pyfunction]
+#[pyo3(signature = (path, text, set, count, out))]
+fn modes<'py>(
+    py: Python<'py>,
+    path: Option<&str>,
+    text: Option<String>,
+    set: Vec<String>,
+    count: Option<usize>,
+    out: Option<PathBuf>,
+) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
+    let err = |e| to_py_err(py, e);
+    let request = app::ModesRequest {
+        scene: scene(path, text).map_err(err)?,
+        set,
+        count,
+        out,
+    };
+    let m = call(py, None, |fe| app::modes(&request, fe))?;
+    Ok((
+        table_to_py(py, &taut::report::modes_table(&m))?,
+        table_to_py(py, &taut::report::mode_shapes_table(&m))?,
+    ))
+}
+
+/// The mesh nodes of a scene, m, as f64 bytes (`taut.mesh`; for
+/// `galerkin`, the nodes of the uniform mesh of `mesh.elements` elements,
+/// where its snapshots and mode shapes are sampled by default).
+#[pyfunction]
+#[pyo3(signature = (path, text, set))]
+fn mesh<'py>(
+    py: Python<'py>,
+    path: Option<&str>,
+    text: Option<String>,
+    set: Vec<String>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let err = |e| to_py_err(py, e);
+    let x = app::mesh_nodes(&scene(path, text).map_err(err)?, &set).map_err(err)?;
+    Ok(f64_bytes(py, x.into_iter()))
+}
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -646,5 +720,7 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene_json, m)?)?;
     m.add_function(wrap_pyfunction!(level_ranges, m)?)?;
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;
+    m.add_function(wrap_pyfunction!(modes, m)?)?;
+    m.add_function(wrap_pyfunction!(mesh, m)?)?;
     Ok(())
 }

@@ -38,6 +38,7 @@ from typing import (
     Callable,
     Dict,
     Iterable,
+    Iterator,
     List,
     Mapping,
     Optional,
@@ -47,6 +48,8 @@ from typing import (
     Union,
     cast,
 )
+
+import numpy as np
 
 import numpy as np
 
@@ -79,8 +82,12 @@ __all__ = [
     "scene_text",
     "set_progress",
     "progress_enabled",
+    "modes",
+    "mesh",
     "Run",
     "CarrierStats",
+    "Modes",
+    "WireSeries",
     "Table",
     "TautError",
     "SceneError",
@@ -105,6 +112,12 @@ class Run:
     """One run's results.
 
     Attributes:
+        snapshots: v(x) at the times `[output] snapshots` asks for
+            (WireSeries: `.t_requested`, `.t`, `.x`, `.v[time, point]`;
+            the CLI's snapshots.csv), None when the scene asks for none.
+        field: the space–time field v(x, t) of `[output] field`
+            (WireSeries), None when the scene asks for none.
+        x: the mesh nodes, m (a property: `taut.mesh` of the run's scene).
         summary: the dict of the CLI's `summary.json` (scene, derived
             quantities, per-carrier statistics, warnings, wall time).
         history: the columns of `history.csv` as a Table of arrays (`t`,
@@ -128,6 +141,20 @@ class Run:
         self.history: Table = history
         self.warnings: List[str] = warnings
         self.accuracy: Optional[Table] = accuracy
+        self.snapshots: Optional[WireSeries] = None
+        self.field: Optional[WireSeries] = None
+        self._scene: Optional[Tuple[Optional[str], Optional[str], List[str]]] = None
+        self._x: Optional[np.ndarray] = None
+
+    @property
+    def x(self) -> np.ndarray:
+        """The mesh nodes of the run's scene, m (`taut.mesh`; computed on
+        first use)."""
+        if self._x is None:
+            if self._scene is None:
+                raise ValueError("Run.x: this Run was not made by taut.run")
+            self._x = _f8(_taut.mesh(*self._scene))
+        return self._x
 
     def __repr__(self) -> str:
         loss = [c.get("loss_fraction") for c in self.summary.get("carriers", [])]
@@ -232,6 +259,83 @@ def _speaks_python(f: _F) -> _F:
             raise
 
     return cast(_F, wrapped)
+
+
+def _f8(data: bytes) -> np.ndarray:
+    """Little-endian f64 bytes of the native module as a writable array."""
+    return np.frombuffer(data, dtype="<f8").astype(np.float64, copy=True)
+
+
+class WireSeries:
+    """The wire's displacement v along the span at a series of times
+    (docs/output.md#snapshots): v is the beam displacement, positive up, m,
+    as the probes record it, evaluated with the discretization's own
+    interpolation.
+
+    Attributes:
+        t_requested: the times asked for, s (for the field, equal to `t`).
+        t: the time of the step recorded, s (the step nearest the time
+            asked for).
+        x: the points, m.
+        v: v[k, i] = v(x[i]) at t[k], m.
+    """
+
+    def __init__(self, t_requested: np.ndarray, t: np.ndarray, x: np.ndarray, v: np.ndarray) -> None:
+        self.t_requested: np.ndarray = t_requested
+        self.t: np.ndarray = t
+        self.x: np.ndarray = x
+        self.v: np.ndarray = v
+
+    def __iter__(self) -> Iterator[np.ndarray]:
+        """(t, x, v): `t, x, v = run.snapshots`."""
+        return iter((self.t, self.x, self.v))
+
+    def __repr__(self) -> str:
+        return f"taut.WireSeries({len(self.t)} times × {len(self.x)} points)"
+
+
+def _wire(data: Optional[Tuple[bytes, bytes, bytes, bytes]]) -> Optional[WireSeries]:
+    if data is None:
+        return None
+    req, t, x, v = (_f8(b) for b in data)
+    return WireSeries(req, t, x, v.reshape(len(t), len(x)))
+
+
+class Modes:
+    """A scene's natural frequencies and mode shapes (`taut modes`,
+    docs/output.md#modes).
+
+    Attributes:
+        frequency_hz: f_j, Hz, ascending.
+        source: "fe_eigen" (the FE eigenproblem of the scene's mesh,
+            attachments included) or "exact" (the continuous beam's modes,
+            for mesh.kind = "galerkin").
+        string_hz: the taut string's j c / (2L), Hz, NaN where it does not
+            apply (T = 0, a free end, or attachments).
+        x: the points the shapes are sampled at (the mesh nodes), m.
+        shapes: shapes[j, i] = φ_j(x[i]), mass-normalized (kg^-1/2), the
+            largest sample of each shape positive.
+        table: the columns of modes.csv; shapes_table: those of
+            mode_shapes.csv.
+    """
+
+    def __init__(self, table: Table, shapes_table: Table) -> None:
+        self.table: Table = table
+        self.shapes_table: Table = shapes_table
+        self.frequency_hz: np.ndarray = table["frequency_hz"]
+        self.string_hz: np.ndarray = table["string_hz"]
+        sources = table["source"]
+        self.source: str = str(sources[0]) if len(sources) else ""
+        self.x: np.ndarray = shapes_table["x"]
+        names = [k for k in shapes_table.keys() if k != "x"]
+        self.shapes: np.ndarray = (
+            np.stack([shapes_table[k] for k in names])
+            if names
+            else np.empty((0, len(self.x)))
+        )
+
+    def __repr__(self) -> str:
+        return f"taut.Modes({len(self.frequency_hz)} modes, {self.source}, {len(self.x)} points)"
 
 
 def _scene(scene: Scene) -> Tuple[Optional[str], Optional[str]]:
@@ -459,16 +563,21 @@ def run(
     """
     path, text = _scene(scene)
     tol = None if tolerance is None else _toml(_real("tolerance", tolerance))
+    sets = _overrides(set)
     with _Sink(progress, "steps" if tol is None else "runs") as p:
-        summary, history, warnings, accuracy = _taut.run(
-            path, text, _overrides(set), _out(out), tol, quantity, p
+        summary, history, warnings, accuracy, (snap, field) = _taut.run(
+            path, text, sets, _out(out), tol, quantity, p
         )
-    return Run(
+    r = Run(
         json.loads(summary),
         table(history),
         list(warnings),
         None if accuracy is None else table(accuracy),
     )
+    r.snapshots = _wire(snap)
+    r.field = _wire(field)
+    r._scene = (path, text, sets)
+    return r
 
 
 @_speaks_python
@@ -716,3 +825,47 @@ def precision(
     t = table(cols)
     t.skipped = _not_run(skipped)
     return t
+
+
+@_speaks_python
+def modes(
+    scene: Scene,
+    count: Optional[int] = None,
+    *,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+) -> Modes:
+    """The natural frequencies and mode shapes of the scene's beam (`taut
+    modes`): the FE eigenproblem of its mesh with the attachments, or the
+    exact continuous modes for mesh.kind = "galerkin".
+
+    Args:
+        scene: a path to a scene file, or its TOML text.
+        count: how many modes (default 10, or the mesh's unknowns if fewer).
+        set: overrides, as for `run`.
+        out: a folder to write modes.csv and mode_shapes.csv into as well.
+
+    Returns:
+        Modes with `.frequency_hz`, `.source`, `.string_hz`, `.x`,
+        `.shapes[mode, point]`.
+
+    Raises:
+        SceneError (a bad scene or count), OutputError.
+    """
+    path, text = _scene(scene)
+    n = None if count is None else _count("count", count, 1)
+    freq, shapes = _taut.modes(path, text, _overrides(set), n, _out(out))
+    return Modes(table(freq), table(shapes))
+
+
+@_speaks_python
+def mesh(
+    scene: Scene,
+    *,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+) -> np.ndarray:
+    """The mesh nodes of the scene, m (for mesh.kind = "galerkin", which has
+    no mesh, those of the uniform mesh of mesh.elements elements): where
+    snapshots, the field and mode shapes are sampled by default."""
+    path, text = _scene(scene)
+    return _f8(_taut.mesh(path, text, _overrides(set)))

@@ -18,6 +18,8 @@ __all__ = [
     "converge",
     "level_ranges",
     "limits",
+    "mesh",
+    "modes",
     "precision",
     "run",
     "scene_json",
@@ -28,6 +30,7 @@ __all__ = [
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
 _Progress = Optional[Callable[[int, int], object]]
+_Wire = Optional[Tuple[bytes, bytes, bytes, bytes]]
 
 def run(
     path: Optional[str],
@@ -37,7 +40,7 @@ def run(
     tolerance: Optional[str],
     quantity: Optional[str],
     progress: _Progress,
-) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]]]: ...
+) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]], Tuple[_Wire, _Wire]]: ...
 def limits() -> Tuple[int, int]: ...
 def sweep(
     path: Optional[str],
@@ -98,3 +101,11 @@ def precision(
 def scene_json(path: Optional[str], text: Optional[str], set: List[str]) -> str: ...
 def level_ranges() -> Tuple[Tuple[int, int], Tuple[int, int]]: ...
 def bundled_scenes() -> List[Tuple[str, str]]: ...
+def modes(
+    path: Optional[str],
+    text: Optional[str],
+    set: List[str],
+    count: Optional[int],
+    out: Optional[str],
+) -> Tuple[List[_Column], List[_Column]]: ...
+def mesh(path: Optional[str], text: Optional[str], set: List[str]) -> bytes: ...

@@ -114,6 +114,13 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
             "  carrier {i}: force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
             f.mean, f.std, f.min, f.max
         );
+        if let crate::record::Filtered::Stats(f) = &c.force_filtered {
+            let _ = writeln!(
+                t,
+                "             0–{} Hz force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
+                f.cutoff_hz, f.mean, f.std, f.min, f.max
+            );
+        }
         t.push_str(&contact_loss_lines(c));
     }
     for d in &s.droppers {
@@ -133,9 +140,16 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
     } else {
         ""
     };
+    let o = &s.scene.output;
+    let snapshots = if o.snapshots.is_empty() {
+        ""
+    } else {
+        ", snapshots.csv"
+    };
+    let field = if o.field.is_some() { ", field.csv" } else { "" };
     let _ = writeln!(
         t,
-        "  wrote    {}/{{history.csv, summary.json, force.svg{accuracy_csv}}}",
+        "  wrote    {}/{{history.csv, summary.json, force.svg{accuracy_csv}{snapshots}{field}}}",
         dir.display()
     );
     t
@@ -186,5 +200,30 @@ pub fn stopped(records: &[SweepRecord]) -> String {
     if stopped.len() > STOPPED_SHOWN {
         let _ = writeln!(s, "  … and {} more", stopped.len() - STOPPED_SHOWN);
     }
+    s
+}
+
+/// `taut modes`' lines: one per mode (frequency, and the taut string's
+/// where it applies), then the files written.
+pub fn modes(scene: &Path, dir: &Path, m: &crate::study::modes::Modes) -> String {
+    let mut s = format!(
+        "taut {} — modes of {} ({}, shapes at {} points)\n",
+        env!("CARGO_PKG_VERSION"),
+        scene.display(),
+        m.source.name(),
+        m.x.len()
+    );
+    for (j, f) in m.frequencies_hz.iter().enumerate() {
+        let string = m
+            .string_hz
+            .as_ref()
+            .map_or(String::new(), |sh| format!("   string {:.6} Hz", sh[j]));
+        let _ = writeln!(s, "  mode {:>3}  {f:.6} Hz{string}", j + 1);
+    }
+    let _ = writeln!(
+        s,
+        "  wrote    {}/{{modes.csv, mode_shapes.csv}}",
+        dir.display()
+    );
     s
 }

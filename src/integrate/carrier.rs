@@ -49,8 +49,8 @@ impl Carrier {
     pub(crate) fn new(props: CarrierProps, contact: Option<usize>, beam: &BeamModel) -> Self {
         let x0 = props.motion.position(0.0);
         Carrier {
-            props,
             s: props.side.sign(),
+            props,
             contact,
             pv_f: beam.point_vector(x0),
             pv_g: beam.point_vector(x0),

@@ -169,7 +169,7 @@ impl System {
                         None
                     }
                 };
-                Carrier::new(*p, contact, &beam)
+                Carrier::new(p.clone(), contact, &beam)
             })
             .collect();
         let droppers = Droppers::new(&sc.droppers, &beam);

@@ -103,7 +103,7 @@ pub enum CarrierRole {
 }
 
 /// One carrier's part.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 struct Carrier {
     s: f64,
     motion: Motion,
@@ -284,7 +284,7 @@ impl Manufactured {
                 let s = c.side.sign();
                 Carrier {
                     s,
-                    motion: c.motion,
+                    motion: c.motion.clone(),
                     role: match c.kind {
                         CarrierKind::Force { force } => CarrierRole::Force(force),
                         CarrierKind::MassSpring {

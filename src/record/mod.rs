@@ -8,10 +8,14 @@ use crate::integrate::CarrierSample;
 
 pub mod dropper;
 pub mod stats;
+pub mod wire;
 pub mod zone;
 
 pub use dropper::{DropperAccumulator, DropperSample, DropperStats};
-pub use stats::{ContactAccumulator, ContactStats, ForceStats, LossClass, Recontact};
+pub use stats::{
+    ContactAccumulator, ContactStats, Filtered, FilteredForce, ForceStats, LossClass, Recontact,
+};
+pub use wire::WireSeries;
 pub use zone::LossGeometry;
 
 /// One carrier's recorded history, a column per quantity.
@@ -69,6 +73,10 @@ pub struct History {
     /// Rows are row 0 (t = 0), every `record_every`-th step and the last
     /// step (`output.record_every`; 0 in a default history means 1).
     pub record_every: usize,
+    /// Snapshots of v(x) (`output.snapshots`; empty when none asked for).
+    pub snapshots: WireSeries,
+    /// The space–time field v(x, t) (`output.field`; empty when none).
+    pub field: WireSeries,
 }
 
 impl History {
@@ -91,6 +99,8 @@ impl History {
                 .map(|(n, _)| (n.clone(), Vec::with_capacity(rows)))
                 .collect(),
             droppers: Vec::new(),
+            snapshots: WireSeries::default(),
+            field: WireSeries::default(),
         }
     }
 

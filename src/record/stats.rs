@@ -23,6 +23,44 @@ pub struct ForceStats {
     pub max: f64,
 }
 
+/// The 0–20 Hz filtered contact force's statistics over the steps
+/// (docs/output.md#filtered-force): the filter's band and [`ForceStats`] of
+/// the filtered force.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct FilteredForce {
+    /// The band's upper edge, Hz (the filter is −3 dB there).
+    pub cutoff_hz: f64,
+    /// Mean, N.
+    pub mean: f64,
+    /// Standard deviation (population), N.
+    pub std: f64,
+    /// Maximum, N.
+    pub max: f64,
+    /// Minimum, N.
+    pub min: f64,
+}
+
+/// Whether a [`ContactStats`] carries the filtered force's statistics.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq, Default)]
+#[serde(untagged)]
+pub enum Filtered {
+    /// Not computed (not a run's summary): the key is left out.
+    #[default]
+    Absent,
+    /// Not computable: the history keeps only every K-th step, or has no
+    /// rows (`null`).
+    Unavailable,
+    /// The statistics.
+    Stats(FilteredForce),
+}
+
+impl Filtered {
+    /// True when the key is left out.
+    pub fn is_absent(&self) -> bool {
+        matches!(self, Filtered::Absent)
+    }
+}
+
 /// The window a re-contact's impulse ∫λ dt is summed over, s, from the
 /// re-contact step, bounces included. A rigid contact on the reference wire
 /// relaxes over m/Z ≈ 2.5 ms (Z = 2·sqrt(T·ρA) ≈ 400 N·s/m, the string's
@@ -135,6 +173,12 @@ pub struct ContactStats {
     pub contact_switches: usize,
     /// Force statistics over the steps, N (λ = 0 counts where contact is lost).
     pub force: ForceStats,
+    /// Statistics of the 0–20 Hz force (EN 50317/50318/50367 style), in a
+    /// run's summary only (the filter is a study's: `report::Summary` fills
+    /// it); absent elsewhere, and written `null` when the history does not
+    /// hold every step (`output.record_every` > 1).
+    #[serde(skip_serializing_if = "Filtered::is_absent")]
+    pub force_filtered: Filtered,
     /// Largest |gap| while in contact, m (round-off for the `end` placement).
     pub max_gap_in_contact: f64,
     /// Largest penetration max(0, −g), m (round-off for Lagrange; ≈ λ/κ for penalty).
@@ -476,6 +520,7 @@ impl ContactAccumulator {
             max_penetration: (-min_gap).max(0.0),
             min_gap,
             max_gap_force_product: self.max_gap_force,
+            force_filtered: Filtered::Absent,
         }
     }
 }

@@ -6,6 +6,7 @@ mod compare;
 mod converge;
 mod csv;
 mod gate;
+mod modes;
 mod outputs;
 mod plot;
 mod precision;
@@ -15,6 +16,7 @@ mod sweep_maps;
 mod table;
 mod tolerance;
 mod verify;
+mod wire;
 
 pub use compare::{COMPARE_COLUMNS, compare_rows, compare_table, write_compare};
 pub use converge::{
@@ -23,6 +25,7 @@ pub use converge::{
 };
 pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
+pub use modes::{mode_shapes_table, modes_table, write_modes};
 pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
 pub use plot::{PLOT_BUCKETS, write_force_plot};
 pub use precision::{PRECISION_COLUMNS, precision_rows, precision_table, write_precision};
@@ -40,6 +43,7 @@ pub use tolerance::{
 pub use verify::{
     Counts, VERIFY_COLUMNS, verify_markdown, verify_rows, verify_table, write_verify,
 };
+pub use wire::{field_table, snapshots_table, write_wire};
 
 use std::path::Path;
 
@@ -70,6 +74,7 @@ pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> 
     let summary = Summary::new(sc, out);
     write_summary(&dir.join("summary.json"), &summary)?;
     write_force_plot(&dir.join("force.svg"), sc, out)?;
+    write_wire(dir, &out.history)?;
     Ok(summary)
 }
 

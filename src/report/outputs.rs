@@ -31,6 +31,8 @@ pub enum Outputs {
     Gate,
     /// The tables and maps of `taut sweep` and `taut merge`.
     Sweep,
+    /// `taut modes`.
+    Modes,
 }
 
 /// Prefix of a saved failing contact problem (`failed_contact_step_N.json`).
@@ -40,11 +42,19 @@ impl Outputs {
     /// The files this kind of command writes into its folder.
     pub fn files(self) -> &'static [&'static str] {
         match self {
-            Outputs::Run => &["history.csv", "summary.json", "force.svg", "accuracy.csv"],
+            Outputs::Run => &[
+                "history.csv",
+                "summary.json",
+                "force.svg",
+                "accuracy.csv",
+                "snapshots.csv",
+                "field.csv",
+            ],
             Outputs::Compare => &["compare.csv", "compare.json", "compare.svg"],
             Outputs::Converge => &["converge.csv", "converge.json", "converge.svg"],
             Outputs::Precision => &["precision.csv", "precision.svg"],
             Outputs::Gate => &["gate.json", "junit.xml"],
+            Outputs::Modes => &["modes.csv", "mode_shapes.csv"],
             Outputs::Sweep => &[
                 "sweep.csv",
                 "sweep_force.csv",

@@ -5,7 +5,7 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::error::Result;
-use crate::record::{ContactStats, DropperStats};
+use crate::record::{ContactStats, DropperStats, Filtered};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
 use crate::scene::{Discretization, Scene};
@@ -82,6 +82,15 @@ impl Summary {
         let b = &sc.beam;
         let c = b.wave_speed();
         let v0 = sc.carriers[0].motion.profile.cruise_speed();
+        let carriers: Vec<ContactStats> = out
+            .stats
+            .iter()
+            .zip(&out.history.carriers)
+            .map(|(st, tr)| ContactStats {
+                force_filtered: filtered(out, &tr.force),
+                ..st.clone()
+            })
+            .collect();
         Summary {
             taut_version: env!("CARGO_PKG_VERSION"),
             scene: sc.scene.clone(),
@@ -105,12 +114,23 @@ impl Summary {
                 modes: sc.discretization.modes(),
                 grading: sc.grading.ratio().map(|r| (sc.grading.name(), r)),
             },
-            contact: out.stats[0].clone(),
-            carriers: out.stats.clone(),
+            contact: carriers[0].clone(),
+            carriers,
             droppers: out.droppers.clone(),
             wall_seconds: out.wall_seconds,
             warnings: out.warnings.clone(),
         }
+    }
+}
+
+/// The 0–20 Hz force's statistics of one carrier's `force` history
+/// ([`crate::study::filter::filtered_force_stats`]); `null` when the
+/// history does not hold every step.
+fn filtered(out: &RunOutput, force: &[f64]) -> Filtered {
+    if out.history.record_every > 1 || force.is_empty() {
+        Filtered::Unavailable
+    } else {
+        Filtered::Stats(crate::study::filter::filtered_force_stats(force, out.dt))
     }
 }
 

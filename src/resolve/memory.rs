@@ -208,6 +208,20 @@ impl MemoryEstimate {
     }
 }
 
+/// Bytes of one point vector r_b(x) of the recorder on a mesh: four
+/// indices and four weights (a modal basis adds J dense weights).
+const POINT_VECTOR_BYTES: u64 = 64;
+
+/// Memory of the wire's snapshots and field (`[output] snapshots`,
+/// `field`): `values` f64 and `points` point vectors of a basis of
+/// `modes` dense weights each (0 on a mesh).
+pub fn wire_bytes(values: u64, points: u64, modes: u64) -> u64 {
+    let per_point = POINT_VECTOR_BYTES.saturating_add(modes.saturating_mul(8));
+    values
+        .saturating_mul(8)
+        .saturating_add(points.saturating_mul(per_point))
+}
+
 /// Rows of a history that records row 0 (t = 0), every `every`-th step and
 /// always the last step.
 pub fn history_rows(steps: usize, every: usize) -> usize {

@@ -19,6 +19,7 @@ pub mod memory;
 pub mod mesh;
 pub mod reference;
 mod resolved;
+pub mod wire;
 
 use std::path::Path;
 
@@ -71,8 +72,21 @@ impl Scene {
 
         let time = self.resolve_time(&carriers, l)?;
         let (dt, t_end, steps) = (time.dt, time.t_end, time.steps);
+        crate::scene::check_speed_tables_cover(&carriers, t_end)?;
         let probes = self.resolve_probes(l)?;
         let record_every = self.record_every()?;
+        let wire = wire::resolve_wire(
+            &self.output,
+            &wire::Grid {
+                length: l,
+                elements,
+                grading,
+                discretization,
+                dt,
+                steps,
+                t_end,
+            },
+        )?;
         let manufactured = match &self.manufactured {
             None => None,
             Some(spec) => Some(Manufactured::new(
@@ -109,6 +123,7 @@ impl Scene {
             t_end,
             probes,
             record_every,
+            wire,
         };
         check_budget(
             &resolved.memory_estimate(),

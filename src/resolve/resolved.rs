@@ -52,6 +52,9 @@ pub struct Resolved {
     /// The history records row 0, every `record_every`-th step and the last
     /// step (`output.record_every`, ≥ 1); statistics use every step.
     pub record_every: usize,
+    /// The wire's snapshots and space–time field to record
+    /// (`[output] snapshots`, `field`; empty: none).
+    pub wire: super::wire::WirePlan,
     /// The manufactured solution of a scene with `[manufactured]` (MODEL §11).
     pub manufactured: Option<Manufactured>,
     /// The reference the scene declares (`[reference]`, or the manufactured
@@ -125,6 +128,13 @@ impl Resolved {
             masses,
             self.probes.len(),
         );
+        // snapshots and field: their values and one point vector a point
+        // (counted with the output buffers: they are recorded outputs)
+        need.outputs = need.outputs.saturating_add(memory::wire_bytes(
+            self.wire.values(self.steps),
+            self.wire.points(),
+            self.discretization.modes().unwrap_or(0) as u64,
+        ));
         if let Discretization::Modal { modes } = self.discretization {
             need.model = need.model.saturating_add(memory::modal_bytes(
                 fe_unknowns(&self.beam, self.elements),

@@ -48,7 +48,7 @@ pub use pantograph::{ChainProps, MAX_CHAIN};
 pub use speed::SpeedProfile;
 pub use validate::{
     BeamProps, CarrierKind, CarrierProps, DEFAULT_PENALTY_RELATIVE, MAX_ELEMENTS, MAX_STEPS,
-    STEP_COUNT_SLACK, TimeProps, validate_contact,
+    STEP_COUNT_SLACK, TimeProps, check_speed_tables_cover, validate_contact,
 };
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -550,6 +550,30 @@ pub struct OutputSpec {
     /// whatever K.
     #[serde(default = "every_step")]
     pub record_every: u64,
+    /// Times at which the wire's displacement v(x) along the span is
+    /// recorded (`snapshots.csv`), s; each at the step nearest to it
+    /// (0 ≤ t ≤ the run's end). Empty: none (and no cost).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub snapshots: Vec<f64>,
+    /// Points of a snapshot, equally spaced over [0, L] (≥ 2); default: the
+    /// mesh nodes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snapshot_points: Option<u64>,
+    /// The space–time field v(x, t) (`field.csv`); absent: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field: Option<FieldSpec>,
+}
+
+/// `[output] field = { every = K, points = n }`: v(x, t) at every K-th step
+/// (t = 0 included) on n points.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FieldSpec {
+    /// Record every K-th step (K ≥ 1).
+    pub every: u64,
+    /// Points, equally spaced over [0, L] (≥ 2); default: the mesh nodes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub points: Option<u64>,
 }
 
 fn every_step() -> u64 {
@@ -560,6 +584,9 @@ impl Default for OutputSpec {
     fn default() -> Self {
         OutputSpec {
             record_every: every_step(),
+            snapshots: Vec::new(),
+            snapshot_points: None,
+            field: None,
         }
     }
 }

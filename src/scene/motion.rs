@@ -4,7 +4,7 @@ use super::SpeedProfile;
 use std::f64::consts::PI;
 
 /// How a carrier moves along the beam.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Motion {
     /// x_m(0), m.
     pub start: f64,
@@ -12,6 +12,28 @@ pub struct Motion {
     pub profile: SpeedProfile,
     /// Ramp time t0 = 2L/(5 V0), s (smooth ramp only; 0 otherwise).
     pub ramp_time: f64,
+    /// A table's distance travelled at each knot, X_k = ∫₀^{t_k} V dt, m
+    /// (empty for the other profiles).
+    knots_travelled: Vec<f64>,
+}
+
+/// A tabulated profile's segment holding t: the knot k with t_k ≤ t (the
+/// last segment for t beyond the last knot, the first before 0).
+fn segment(time: &[f64], t: f64) -> usize {
+    time.partition_point(|&tk| tk <= t)
+        .saturating_sub(1)
+        .min(time.len().saturating_sub(2))
+}
+
+/// V on the segment from knot k at τ = t − t_k: V_k + a τ, with
+/// a = (V_{k+1} − V_k)/(t_{k+1} − t_k) (0 for a one-knot table or beyond the
+/// last knot, where the last speed is held).
+fn table_slope(time: &[f64], speed: &[f64], k: usize, t: f64) -> f64 {
+    if k + 1 >= time.len() || t > time[time.len() - 1] {
+        0.0
+    } else {
+        (speed[k + 1] - speed[k]) / (time[k + 1] - time[k])
+    }
 }
 
 impl Motion {
@@ -19,13 +41,43 @@ impl Motion {
     pub fn new(start: f64, profile: SpeedProfile, length: f64) -> Self {
         let ramp_time = match profile {
             SpeedProfile::SmoothRamp { cruise } => 2.0 * length / (5.0 * cruise),
-            SpeedProfile::Constant { .. } => 0.0,
+            SpeedProfile::Constant { .. } | SpeedProfile::Table { .. } => 0.0,
+        };
+        let knots_travelled = match &profile {
+            // X_{k+1} = X_k + (V_k + V_{k+1})/2 (t_{k+1} − t_k): exact for linear V
+            SpeedProfile::Table { time, speed } => {
+                let mut x = Vec::with_capacity(time.len());
+                let mut acc = 0.0;
+                for k in 0..time.len() {
+                    if k > 0 {
+                        acc += 0.5 * (speed[k - 1] + speed[k]) * (time[k] - time[k - 1]);
+                    }
+                    x.push(acc);
+                }
+                x
+            }
+            _ => Vec::new(),
         };
         Motion {
             start,
             profile,
             ramp_time,
+            knots_travelled,
         }
+    }
+
+    /// A table's (X_k, V_k, a, τ) at t: the segment's start, its speed
+    /// there, its acceleration and the time since its start.
+    fn table_at(&self, time: &[f64], speed: &[f64], t: f64) -> (f64, f64, f64, f64) {
+        let k = segment(time, t);
+        let a = table_slope(time, speed, k, t);
+        let (xk, vk, tau) = if t > time[time.len() - 1] {
+            let last = time.len() - 1;
+            (self.knots_travelled[last], speed[last], t - time[last])
+        } else {
+            (self.knots_travelled[k], speed[k], t - time[k])
+        };
+        (xk, vk, a, tau)
     }
 
     /// Distance travelled since t = 0, m.
@@ -42,6 +94,14 @@ impl Motion {
                 } else {
                     cruise * (0.5 * t0 + (t - t0))
                 }
+            }
+            SpeedProfile::Table {
+                ref time,
+                ref speed,
+            } => {
+                // X_k + V_k τ + a τ²/2 (the exact integral of the linear V)
+                let (xk, vk, a, tau) = self.table_at(time, speed, t);
+                xk + vk * tau + 0.5 * a * tau * tau
             }
         }
     }
@@ -63,6 +123,13 @@ impl Motion {
                     cruise
                 }
             }
+            SpeedProfile::Table {
+                ref time,
+                ref speed,
+            } => {
+                let (_, vk, a, tau) = self.table_at(time, speed, t);
+                vk + a * tau
+            }
         }
     }
 
@@ -80,6 +147,10 @@ impl Motion {
                     0.0
                 }
             }
+            SpeedProfile::Table {
+                ref time,
+                ref speed,
+            } => table_slope(time, speed, segment(time, t), t),
         }
     }
 
@@ -98,6 +169,32 @@ impl Motion {
             return Some(0.0);
         }
         match self.profile {
+            SpeedProfile::Table { ref time, .. } => {
+                // x_m is non-decreasing (V ≥ 0): bisect in the segment that
+                // reaches dist, or beyond the last knot at its held speed
+                let last = time.len() - 1;
+                let (mut lo, mut hi) = match self.knots_travelled.iter().position(|&x| x >= dist) {
+                    Some(0) => return Some(0.0),
+                    Some(k) => (time[k - 1], time[k]),
+                    None => {
+                        let v = self.speed(time[last]);
+                        if v <= 0.0 {
+                            return None;
+                        }
+                        let tl = time[last] + (dist - self.knots_travelled[last]) / v;
+                        (time[last], tl)
+                    }
+                };
+                for _ in 0..200 {
+                    let mid = 0.5 * (lo + hi);
+                    if self.travelled(mid) < dist {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                Some(hi)
+            }
             SpeedProfile::Constant { value } => Some(dist / value),
             SpeedProfile::SmoothRamp { cruise } => {
                 let t0 = self.ramp_time;

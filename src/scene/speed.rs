@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 /// A carrier's speed profile, `speed = { profile = "...", ... }`.
-#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(tag = "profile", rename_all = "snake_case", deny_unknown_fields)]
 pub enum SpeedProfile {
     /// Constant speed V, m/s (≥ 0; 0 = a stationary carrier).
@@ -17,14 +17,27 @@ pub enum SpeedProfile {
         /// Cruise speed V0, m/s (> 0).
         cruise: f64,
     },
+    /// A tabulated speed V(t), piecewise linear between the knots (so the
+    /// position x_m(t) is piecewise quadratic, integrated exactly;
+    /// [`super::Motion`]): `speed = { profile = "table", time = [...],
+    /// speed = [...] }`. Times start at 0, rise strictly and reach the
+    /// run's end; speeds are ≥ 0 (the carrier never backs up).
+    Table {
+        /// Knot times t_k, s.
+        time: Vec<f64>,
+        /// V(t_k), m/s.
+        speed: Vec<f64>,
+    },
 }
 
 impl SpeedProfile {
-    /// The speed the carrier cruises at, m/s.
+    /// The speed the carrier cruises at, m/s (for a table, its largest
+    /// speed: what V0/c and a stationary carrier are judged by).
     pub fn cruise_speed(&self) -> f64 {
-        match *self {
-            SpeedProfile::Constant { value } => value,
-            SpeedProfile::SmoothRamp { cruise } => cruise,
+        match self {
+            SpeedProfile::Constant { value } => *value,
+            SpeedProfile::SmoothRamp { cruise } => *cruise,
+            SpeedProfile::Table { speed, .. } => speed.iter().copied().fold(0.0, f64::max),
         }
     }
 }

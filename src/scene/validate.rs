@@ -88,7 +88,7 @@ pub enum CarrierKind {
 }
 
 /// A carrier's resolved properties.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct CarrierProps {
     /// Mass–spring or force.
     pub kind: CarrierKind,
@@ -447,6 +447,74 @@ fn unit_of(name: &str) -> &'static str {
     }
 }
 
+/// A tabulated speed profile's knots: at least two, as many speeds as
+/// times, times finite from 0 and strictly rising, speeds finite and ≥ 0.
+/// (That they reach the run's end is checked once the end is known,
+/// [`check_speed_tables_cover`].)
+fn check_speed_table(i: usize, time: &[f64], speed: &[f64]) -> Result<()> {
+    let f = |name: &str| format!("carrier.{i}.speed.{name}");
+    if time.len() < 2 {
+        return Err(Error::invalid(
+            f("time"),
+            format!("{} knots", time.len()),
+            "must hold at least 2 knot times (V is linear between knots)",
+        ));
+    }
+    if speed.len() != time.len() {
+        return Err(Error::invalid(
+            f("speed"),
+            format!("{} values", speed.len()),
+            format!(
+                "must hold one speed per knot time: {} (as speed.time)",
+                time.len()
+            ),
+        ));
+    }
+    if time[0] != 0.0 {
+        return Err(Error::invalid(
+            f("time.0"),
+            time[0],
+            "must be 0 s (the table starts with the run)",
+        ));
+    }
+    for k in 1..time.len() {
+        if !(time[k].is_finite() && time[k] > time[k - 1]) {
+            return Err(Error::invalid(
+                f(&format!("time.{k}")),
+                time[k],
+                format!(
+                    "must be finite and > the knot before it ({} s): times rise strictly",
+                    time[k - 1]
+                ),
+            ));
+        }
+    }
+    for (k, &v) in speed.iter().enumerate() {
+        non_negative(&f(&format!("speed.{k}")), v, "m/s")?;
+    }
+    Ok(())
+}
+
+/// Every tabulated speed profile reaches the run's end `t_end` (s): past its
+/// last knot a table says nothing.
+pub fn check_speed_tables_cover(carriers: &[CarrierProps], t_end: f64) -> Result<()> {
+    for (i, c) in carriers.iter().enumerate() {
+        if let SpeedProfile::Table { time, .. } = &c.motion.profile {
+            let last = time[time.len() - 1];
+            if last < t_end {
+                return Err(Error::invalid(
+                    format!("carrier.{i}.speed.time.{}", time.len() - 1),
+                    last,
+                    format!(
+                        "the table must reach the run's end, {t_end} s: add knots up to it (or end the run earlier with time.end)"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierProps> {
     let f = |name: &str| format!("carrier.{i}.{name}");
     let start = c.start;
@@ -457,13 +525,14 @@ fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierPr
             format!("must be on the beam, in [0, {l}] m"),
         ));
     }
-    match c.speed {
+    match &c.speed {
         SpeedProfile::Constant { value } => {
-            non_negative(&f("speed.value"), value, "m/s")?;
+            non_negative(&f("speed.value"), *value, "m/s")?;
         }
         SpeedProfile::SmoothRamp { cruise } => {
-            positive(&f("speed.cruise"), cruise, "m/s")?;
+            positive(&f("speed.cruise"), *cruise, "m/s")?;
         }
+        SpeedProfile::Table { time, speed } => check_speed_table(i, time, speed)?,
     }
     let chain = super::pantograph::resolve_chain(i, c)?;
     let kind = if let Some(ch) = chain {
@@ -519,7 +588,7 @@ fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierPr
         kind,
         chain,
         side: c.side,
-        motion: Motion::new(start, c.speed, l),
+        motion: Motion::new(start, c.speed.clone(), l),
     })
 }
 

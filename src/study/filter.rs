@@ -60,6 +60,27 @@ pub fn lowpass_zero_phase(x: &[f64], dt: f64, band_hz: f64) -> Vec<f64> {
     z
 }
 
+/// Statistics of the 0–20 Hz contact force of one carrier's history
+/// (`force`, row 0 the initial state, then one row per step of `dt`):
+/// the force filtered by [`lowpass_zero_phase`] over all rows, then its
+/// mean, population standard deviation, max and min over the steps (rows
+/// 1 …, as the raw force statistics and P_l, MODEL §5). λ = 0 where contact
+/// is lost enters the filter like any other sample.
+pub fn filtered_force_stats(force: &[f64], dt: f64) -> crate::record::FilteredForce {
+    let f = lowpass_zero_phase(force, dt, FORCE_BAND_HZ);
+    let f = if f.len() > 1 { &f[1..] } else { &f[..] };
+    let m = f.len().max(1) as f64;
+    let mean = f.iter().sum::<f64>() / m;
+    let std = (f.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / m).sqrt();
+    crate::record::FilteredForce {
+        cutoff_hz: FORCE_BAND_HZ,
+        mean,
+        std,
+        max: f.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        min: f.iter().copied().fold(f64::INFINITY, f64::min),
+    }
+}
+
 /// One pass: the trapezoidal update s₁ = P s₀ + Q (u₀ + u₁) of the state
 /// s = (y, y'), with P = (I − Δt/2 A)⁻¹(I + Δt/2 A), Q = (I − Δt/2 A)⁻¹ Δt/2 B.
 struct Pass {

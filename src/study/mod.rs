@@ -11,6 +11,7 @@ pub mod cost;
 pub mod filter;
 pub mod gate;
 pub mod grid;
+pub mod modes;
 pub mod precision;
 pub mod reference;
 pub mod request;

@@ -72,7 +72,7 @@ pub fn exact(sc: &Resolved) -> Result<Option<Exact>> {
         Declared::MovingForceSeries => {
             let c = &sc.carriers[0];
             let (CarrierKind::Force { force }, SpeedProfile::Constant { value: speed }) =
-                (c.kind, c.motion.profile)
+                (c.kind, c.motion.profile.clone())
             else {
                 unreachable!("validation checked a constant-speed force")
             };
@@ -117,7 +117,7 @@ pub fn exact(sc: &Resolved) -> Result<Option<Exact>> {
         }
         Declared::StandingForceModes => {
             let m = std::sync::Arc::new(StandingForce::new(sc)?);
-            let (c, u) = (sc.carriers[0], m.clone());
+            let (c, u) = (sc.carriers[0].clone(), m.clone());
             let (x, s) = (c.motion.position(0.0), c.side.sign());
             let force = match c.kind {
                 CarrierKind::Force { force } => force,
@@ -175,7 +175,7 @@ pub fn riding_mass_beam(sc: &Resolved) -> Option<RidingMassBeam> {
     }
     let c = &sc.carriers[0];
     let (CarrierKind::MassSpring { mass, .. }, SpeedProfile::Constant { value: speed }) =
-        (c.kind, c.motion.profile)
+        (c.kind, c.motion.profile.clone())
     else {
         return None;
     };

@@ -193,6 +193,15 @@ fn set_ratio(tree: &mut Table, sc: &Resolved, ratio: Ratio, v: f64) -> Result<()
                 let field = match car.motion.profile {
                     SpeedProfile::Constant { .. } => "value",
                     SpeedProfile::SmoothRamp { .. } => "cruise",
+                    SpeedProfile::Table { .. } => {
+                        return Err(Error::invalid(
+                            "--vary speed_ratio",
+                            v,
+                            format!(
+                                "carrier {i} follows a speed table (speed.profile = \"table\"), which has no one speed to set: give it a constant or smooth_ramp profile, or vary the table's knots with --set"
+                            ),
+                        ));
+                    }
                 };
                 set_real(tree, &format!("carrier.{i}.speed.{field}"), v * c)?;
             }
