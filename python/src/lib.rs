@@ -31,6 +31,8 @@ use pyo3::types::{PyBytes, PyList};
 use taut::app::{self, Frontend, Note, SceneSource, words};
 use taut::report::{Column, Table};
 
+mod simulation;
+
 /// How often the waiting thread wakes to deliver progress and to look for
 /// Ctrl-C: a tenth of a second is below what a person notices and costs
 /// nothing against runs of milliseconds to hours.
@@ -602,5 +604,6 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precision, m)?)?;
+    m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

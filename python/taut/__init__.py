@@ -40,6 +40,7 @@ from ._errors import (
     TautError,
     ToleranceError,
 )
+from ._simulation import CarrierState, ProbeState, Simulation, SimulationState
 from ._table import Table, _not_run, table
 
 __all__ = [
@@ -49,6 +50,10 @@ __all__ = [
     "converge",
     "precision",
     "Run",
+    "Simulation",
+    "SimulationState",
+    "CarrierState",
+    "ProbeState",
     "Table",
     "TautError",
     "SceneError",

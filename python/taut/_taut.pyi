@@ -11,7 +11,17 @@ from typing import Callable, List, Optional, Tuple, Union
 __version__: str
 taut_version: str
 
-__all__ = ["__version__", "compare", "converge", "limits", "precision", "run", "sweep", "taut_version"]
+__all__ = [
+    "Simulation",
+    "__version__",
+    "compare",
+    "converge",
+    "limits",
+    "precision",
+    "run",
+    "sweep",
+    "taut_version",
+]
 
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
@@ -82,3 +92,18 @@ def precision(
     progress: _Progress,
     yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
+
+_CarrierTuple = Tuple[float, float, float, Optional[float], float, float, bool, float]
+_ProbeTuple = Tuple[str, float, float, float]
+
+class Simulation:
+    def __new__(
+        cls, path: Optional[str], text: Optional[str], set: List[str], out: Optional[str]
+    ) -> "Simulation": ...
+    def step(self, k: int) -> int: ...
+    def done(self) -> bool: ...
+    def steps_dt(self) -> Tuple[int, float]: ...
+    def apply_force(self, carrier: int, newtons: float) -> None: ...
+    def state(self) -> Tuple[float, int, List[_CarrierTuple], List[_ProbeTuple]]: ...
+    def w_at(self, x: float) -> float: ...
+    def finish(self) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]]]: ...

@@ -23,6 +23,7 @@ pub mod merge;
 pub mod precision;
 pub mod replay;
 pub mod run;
+pub mod simulation;
 pub mod sweep;
 pub mod terminal;
 pub mod verify;
@@ -41,6 +42,7 @@ pub use merge::{MergeOutcome, merge};
 pub use precision::{PrecisionRequest, precision};
 pub use replay::{Replay, ReplayRequest, Solved, replay};
 pub use run::{RunOutcome, RunRequest, Tolerance, run};
+pub use simulation::{CarrierState, ProbeState, Simulation, SimulationState};
 pub use sweep::{SweepOutcome, SweepRequest, sweep};
 pub use verify::{VerifyOutcome, VerifyRequest, verify};
 

@@ -92,6 +92,10 @@ pub struct ModalKey {
 /// and right-hand-side columns (`integrate::batch`); `modal_exact` runs
 /// their basis and Δt (`integrate::modal_batch`).
 pub fn batch_key(sc: &Resolved) -> Option<BatchKey> {
+    // an external force series is a time-dependent load of its own: alone
+    if sc.external_forces.iter().any(Option::is_some) {
+        return None;
+    }
     gen_alpha_key(sc)
         .map(BatchKey::GenAlpha)
         .or_else(|| modal_key(sc).map(BatchKey::Modal))

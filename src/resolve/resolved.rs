@@ -7,8 +7,8 @@ use crate::error::{Error, Result};
 use crate::manufactured::Manufactured;
 use crate::model::mesh::Mesh;
 use crate::scene::{
-    BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Grading,
-    IntegratorSpec, MeshPlan, Scene, Scheme, fe_unknowns,
+    BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, ForceSeries,
+    Grading, IntegratorSpec, MeshPlan, Scene, Scheme, fe_unknowns,
 };
 
 /// A validated scene: physical parameters ready to build a model from.
@@ -20,6 +20,9 @@ pub struct Resolved {
     pub beam: BeamProps,
     /// Carriers, in scene order.
     pub carriers: Vec<CarrierProps>,
+    /// Each carrier's external force series (`external_force`, N in +v;
+    /// `None`: none), in scene order.
+    pub external_forces: Vec<Option<ForceSeries>>,
     /// Number of elements N (`mesh.elements`).
     pub elements: usize,
     /// The space discretization (`mesh.kind`, MODEL §9.2).

@@ -16,6 +16,7 @@
 
 mod attachment;
 mod discretization;
+mod external_force;
 mod load;
 pub mod manufactured;
 mod method;
@@ -27,6 +28,7 @@ pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
 pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
+pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
 pub use load::{
     apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed,
@@ -258,6 +260,10 @@ pub struct CarrierSpec {
     pub start: f64,
     /// Speed profile (MODEL §3).
     pub speed: SpeedProfile,
+    /// An external force on the mass, N in +v, piecewise linear in t
+    /// (`external_force.rs`; mass–spring carriers only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub external_force: Option<ExternalForceSpec>,
 }
 
 /// Unilateral (Signorini) or bilateral (always attached) contact.
