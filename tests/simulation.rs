@@ -93,13 +93,12 @@ fn stepping_k_at_a_time_gives_the_bytes_of_run() {
                 "mesh.elements=100",
                 "time.end=0.05",
                 "integrator={method=\"moreau_jean\"}",
-                "contact.formulation=\"impact\"",
             ],
         ),
         (
             "reference.toml",
             &[
-                "mesh={kind=\"galerkin\",modes=60}",
+                "mesh={kind=\"galerkin\",modes=60,elements=100}",
                 "time.end=0.05",
                 "integrator={method=\"modal_exact\"}",
             ],
@@ -126,9 +125,10 @@ fn forces(scene: &str, set: &[&str]) -> Vec<f64> {
 }
 
 /// Forces agree to round-off: f0 = kδ0 − s·m·g + s·F against
-/// k(δ0 + Δδ0) − s·m·g, one rounding apart in a force of about 60 N,
-/// carried through linear solves that amplify it by their condition
-/// (measured: largest difference 4e-14 N of 58 N).
+/// k(δ0 + Δδ0) − s·m·g, at most a few roundings apart in a force of about
+/// 60 N, carried through linear solves that may amplify them by their
+/// condition (measured: equal bits for every method here, as the two sums
+/// happen to round alike; the bound is for other values).
 const PRELOAD_ROUND_OFF: f64 = 1e-11;
 
 /// A constant external force is the same as a preload change k Δδ0 =
@@ -147,13 +147,10 @@ fn a_constant_series_is_a_preload_change() {
             "integrator={method=\"central_difference\"}",
             "time.step=2e-5",
         ][..],
-        &[
-            "integrator={method=\"moreau_jean\"}",
-            "contact.formulation=\"impact\"",
-        ][..],
+        &["integrator={method=\"moreau_jean\"}"][..],
         &["integrator={method=\"bathe\"}"][..],
         &[
-            "mesh={kind=\"galerkin\",modes=60}",
+            "mesh={kind=\"galerkin\",modes=60,elements=100}",
             "integrator={method=\"modal_exact\"}",
         ][..],
     ] {
@@ -179,45 +176,57 @@ fn a_constant_series_is_a_preload_change() {
     }
 }
 
-/// How far a stiff beam (tension 3·10⁸ N, 10⁴ times the reference's)
-/// leaves the ramp's quasi-static force law λ = f0 + s·F(t): its point
-/// compliance under the carrier makes λ = (f0 + s·F)/(1 + k/k_b) with
-/// k/k_b about 4·10⁻⁵, and the ramp's start excites the carrier on the
-/// beam's stiffness (measured: 3.6e-5 of the ramp's 100 N).
-const STIFF_BEAM_RELATIVE: f64 = 2e-4;
+/// How far the contact force's response to a ramp on a stiff beam
+/// (tension 3·10⁸ N, 10⁴ times the reference's) leaves the force law
+/// Δλ = s·F(t): the beam's point compliance under the carrier makes it
+/// Δλ = s·F/(1 + k/k_b), k/k_b about 10⁻⁴, and the ramp's kink at t = 0
+/// excites the carrier on the beam's stiffness (measured: 1.1e-2 N of the
+/// ramp's 100 N, with the recorded force's lag α_f·Δt accounted for).
+const STIFF_BEAM_RELATIVE: f64 = 3e-4;
 
-/// A ramp F(t) = r·t on the mass of a stationary carrier on a very stiff
-/// beam: the mass cannot move, so the contact force follows the force law
-/// λ(t) = k δ0 − s·m·g + s·r·t (MODEL §2 with q ≈ 0) at every step.
+/// A ramp F(t) = −r·t on the mass of a stationary carrier on a very stiff
+/// beam: the mass can hardly move, so the change the ramp makes to the
+/// contact force (against the same run without it: the model is linear
+/// while in contact) is the force law's Δλ(t) = s·F(t) = −s·r·t (MODEL §2
+/// with q ≈ 0) at every step. A sign error in the hook (−s·F) would leave
+/// it by 2·r·t.
 #[test]
 fn a_ramp_on_a_stiff_beam_follows_the_force_law() {
-    let (k, delta0, m, g, s) = (987.0, 0.05, 1.0, 9.81, -1.0);
+    let s = -1.0; // the t2 carrier is above the beam
+    // F(t) = −r·t: down, pressing the carrier above into the beam
     let (r, t_end) = (500.0, 0.2); // N/s, s: 100 N at the end
     let series = format!(
         "carrier.0.external_force={{time=[0.0,{t_end}],force=[0.0,{}]}}",
-        r * t_end
+        -r * t_end
     );
-    let set = [
+    let base = [
         "mesh.elements=100",
         "time.end=0.2",
         "beam.tension=3e8",
         "integrator.rho_inf=0.8",
-        &series,
     ];
+    let mut set = base.to_vec();
+    set.push(&series);
     let sc = common::scene("t2_stationary_mass.toml", &set);
     let out = common::run(&sc);
-    let h = &out.history;
+    let plain = common::run(&common::scene("t2_stationary_mass.toml", &base));
     let lag = out.force_lag;
     let mut worst = 0.0f64;
-    for (t, lambda) in h.t.iter().zip(&h.carriers[0].force) {
+    for ((t, lambda), lambda0) in out
+        .history
+        .t
+        .iter()
+        .zip(&out.history.carriers[0].force)
+        .zip(&plain.history.carriers[0].force)
+    {
         // the recorded force acts at t − lag·Δt
         let tf = (t - lag * sc.dt).max(0.0);
-        let law = k * delta0 - s * m * g + s * r * tf;
-        worst = worst.max((lambda - law).abs());
+        let law = s * (-r * tf);
+        worst = worst.max((lambda - lambda0 - law).abs());
     }
     assert!(
         worst <= STIFF_BEAM_RELATIVE * r * t_end,
-        "the contact force leaves the force law by {worst:e} N"
+        "the contact force's change leaves the force law by {worst:e} N"
     );
 }
 
@@ -259,7 +268,7 @@ fn apply_force_is_the_series_hook() {
         ),
         (
             &[
-                "mesh={kind=\"galerkin\",modes=60}",
+                "mesh={kind=\"galerkin\",modes=60,elements=100}",
                 "integrator={method=\"modal_exact\"}",
             ][..],
             0.5,
@@ -298,6 +307,15 @@ fn apply_force_is_the_series_hook() {
             "{method:?}: held forces differ from the series"
         );
         assert!(held.history.carriers[0].q == run.history.carriers[0].q);
+        // and the force acts (20 N at the end): not two runs without it
+        let mut plain: Vec<&str> = T2.to_vec();
+        plain.extend_from_slice(method);
+        let without = forces("t2_stationary_mass.toml", &plain);
+        let moved = (run.history.carriers[0].force.last().unwrap() - without.last().unwrap()).abs();
+        assert!(
+            moved > 10.0,
+            "{method:?}: the series moved the force by {moved} N only"
+        );
     }
 }
 
@@ -320,7 +338,7 @@ fn the_state_reads_what_the_history_records() {
     let c = st.carriers[0];
     assert_eq!(c.x, 1.0);
     assert_eq!(c.applied, -3.0);
-    assert!(c.q_dot.is_some() && c.in_contact && c.force > 50.0, "{c:?}");
+    assert!(c.q_dot.is_some() && c.in_contact && c.force > 0.0, "{c:?}");
     // the probe at the carrier: v = s·w = −w for a carrier above
     assert_eq!(st.probes[0].v, -c.w);
     assert_eq!(sim.w_at(1.0).unwrap(), st.probes[0].v);
