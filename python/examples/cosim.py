@@ -57,7 +57,7 @@ def passive_identity() -> bool:
         sim.step(groups[i % len(groups)])
         i += 1
     s = sim.result()
-    same = all(np.array_equal(r.history[c], s.history[c]) for c in r.history.columns)
+    same = all(np.array_equal(r.history[c], s.history[c]) for c in r.history)
     print(f"passive: Simulation == taut.run bit for bit: {same}")
     return same
 
