@@ -71,7 +71,7 @@ def test_state_and_w_at():
     s = sim.state
     assert s.step == 20 and s.t == 20 * sim.dt
     c = s.carriers[0]
-    assert c.x == 1.0 and c.in_contact and c.q_dot is not None and c.force > 50.0
+    assert c.x == 1.0 and c.in_contact and c.q_dot is not None and c.force > 0.0
     assert s.probes["p"].v == -c.w  # a carrier above: v = s·w = −w
     assert sim.w_at(1.0) == s.probes["p"].v
     step_to_end(sim)
