@@ -6,7 +6,7 @@ with the CLI's words and turn their `(name, kind, data)` columns into
 numpy arrays (python/taut/_table.py).
 """
 
-from typing import Callable, List, Optional, Tuple, Union
+from typing import Callable, List, Optional, Tuple, Union, final
 
 __version__: str
 taut_version: str
@@ -96,6 +96,7 @@ def precision(
 _CarrierTuple = Tuple[float, float, float, Optional[float], float, float, bool, float]
 _ProbeTuple = Tuple[str, float, float, float]
 
+@final
 class Simulation:
     def __new__(
         cls, path: Optional[str], text: Optional[str], set: List[str], out: Optional[str]
