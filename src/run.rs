@@ -115,59 +115,119 @@ fn drive(
     // this run's share of the process's memory budget, held to its end
     let _memory = crate::budget::reserve(sc.memory_estimate().total());
     let start = Instant::now();
-    let mut it = build(sc)?;
-    let mut rec = Recorder::new(sc, it.beam(), it.carriers());
-    rec.observe(
-        it.time(),
-        true,
-        true,
-        |c| it.sample(c),
-        |s, c| it.check(s, c),
-        |x| it.near_support(x),
-        |pv| it.displacement_at(pv),
-    )?;
-    rec.observe_droppers(it.time(), true, |out| it.dropper_samples_into(out));
-    rec.observe_wire(0, it.time(), |pv| it.displacement_at(pv));
+    let mut run = SteppedRun::new(sc, build(sc)?, start)?;
     let report_every = (sc.steps / 200).max(1);
     for n in 1..=sc.steps {
         if crate::interrupt::requested() {
             return Err(Error::Interrupted);
         }
-        it.step()?;
+        run.step(sc)?;
+        if n % report_every == 0 || n == sc.steps {
+            progress(n, sc.steps);
+        }
+    }
+    Ok(run.finish(sc))
+}
+
+/// One run stepped on request: its integrator and its recorder, with the
+/// row at t = 0 recorded. [`run`] steps it to the end in one go; a
+/// co-simulation (`app::Simulation`) a few steps at a time, reading the
+/// state and applying forces between them. Stepped to the end, it gives
+/// what [`run`] gives, bit for bit (the same steps, the same records).
+pub struct SteppedRun {
+    it: Integrator,
+    rec: Recorder,
+    start: Instant,
+}
+
+impl SteppedRun {
+    /// Start the run of `sc` with its built integrator `it` (at t = 0):
+    /// record row 0. `start` is when the run's wall time starts.
+    pub fn new(sc: &Resolved, it: Integrator, start: Instant) -> Result<Self> {
+        let mut rec = Recorder::new(sc, it.beam(), it.carriers());
         rec.observe(
             it.time(),
-            rec.keeps(n, sc.steps),
+            true,
+            true,
+            |c| it.sample(c),
+            |s, c| it.check(s, c),
+            |x| it.near_support(x),
+            |pv| it.displacement_at(pv),
+        )?;
+        rec.observe_droppers(it.time(), true, |out| it.dropper_samples_into(out));
+        rec.observe_wire(0, it.time(), |pv| it.displacement_at(pv));
+        Ok(SteppedRun { it, rec, start })
+    }
+
+    /// True once every step of `sc` (the scene it was started with) is taken.
+    pub fn done(&self, sc: &Resolved) -> bool {
+        self.it.steps_taken() >= sc.steps
+    }
+
+    /// Take one step and record it (no allocation beyond the history's
+    /// reserved rows). `sc` is the scene it was started with; a step past
+    /// its end is an error of the caller's (check [`SteppedRun::done`]).
+    pub fn step(&mut self, sc: &Resolved) -> Result<()> {
+        debug_assert!(!self.done(sc), "stepped past the run's end");
+        let it = &mut self.it;
+        it.step()?;
+        let n = it.steps_taken();
+        let it = &self.it;
+        let keep = self.rec.keeps(n, sc.steps);
+        self.rec.observe(
+            it.time(),
+            keep,
             false,
             |c| it.sample(c),
             |s, c| it.check(s, c),
             |x| it.near_support(x),
             |pv| it.displacement_at(pv),
         )?;
-        rec.observe_droppers(it.time(), rec.keeps(n, sc.steps), |out| {
-            it.dropper_samples_into(out)
-        });
-        rec.observe_wire(n, it.time(), |pv| it.displacement_at(pv));
-        if n % report_every == 0 || n == sc.steps {
-            progress(n, sc.steps);
-        }
+        self.rec
+            .observe_droppers(it.time(), keep, |out| it.dropper_samples_into(out));
+        self.rec
+            .observe_wire(n, it.time(), |pv| it.displacement_at(pv));
+        Ok(())
     }
-    let wall_seconds = start.elapsed().as_secs_f64();
-    Ok(rec.finish(
-        sc,
-        Finish {
-            wall_seconds,
-            dofs: it.dofs(),
-            steps: it.steps_taken(),
-            force_bound: it.force_bound(),
-            method: it.method().to_string(),
-            damping_note: it.constraint_damping_note(),
-            force_lag: if it.steps_taken() > 0 {
-                it.force_lag()
-            } else {
-                0.0
+
+    /// The integrator (its state, system and samples).
+    pub fn integrator(&self) -> &Integrator {
+        &self.it
+    }
+
+    /// The integrator, to apply forces between steps
+    /// ([`Integrator::hold_external_force`]).
+    pub fn integrator_mut(&mut self) -> &mut Integrator {
+        &mut self.it
+    }
+
+    /// The run's record so far: histories of the steps taken.
+    pub fn history(&self) -> &History {
+        &self.rec.h
+    }
+
+    /// Statistics and warnings of the run as stepped (all of `sc`'s steps
+    /// for [`run`]'s result).
+    pub fn finish(self, sc: &Resolved) -> RunOutput {
+        let it = self.it;
+        let wall_seconds = self.start.elapsed().as_secs_f64();
+        self.rec.finish(
+            sc,
+            Finish {
+                wall_seconds,
+                dofs: it.dofs(),
+                steps: it.steps_taken(),
+                force_bound: it.force_bound(),
+                method: it.method().to_string(),
+                damping_note: it.constraint_damping_note(),
+                force_lag: if it.steps_taken() > 0 {
+                    it.force_lag()
+                } else {
+                    0.0
+                },
             },
-        },
-    ))
+        )
+    }
 }
 
 /// What a run's end adds to its record.

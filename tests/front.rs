@@ -26,6 +26,8 @@ mod precision;
 mod readme;
 #[path = "reliability.rs"]
 mod reliability;
+#[path = "simulation.rs"]
+mod simulation;
 #[path = "sweep.rs"]
 mod sweep;
 #[path = "sweep_faults.rs"]

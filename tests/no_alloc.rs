@@ -232,6 +232,49 @@ fn step_loop_does_not_allocate() {
         );
     }
     modal_exact(&force);
+    external_forces();
+}
+
+/// External forces on the mass (`external_force` series, a force held
+/// between steps) and a run stepped on request (`run::SteppedRun`, what
+/// `app::Simulation` steps): the series is evaluated and the held force
+/// applied every step, through contact loss, with the run recorded.
+fn external_forces() {
+    let series = "carrier.0.external_force={time=[0.0,0.3,1.0],force=[0.0,-5.0,3.0]}";
+    for o in [
+        &[series][..],
+        &[
+            series,
+            "mesh.kind=galerkin",
+            "mesh.modes=60",
+            "integrator={ method = \"modal_exact\" }",
+        ],
+        &[
+            series,
+            "integrator={ method = \"central_difference\" }",
+            "time.step=5e-5",
+        ],
+    ] {
+        assert_eq!(allocations_in_steps(REFERENCE, o, 6000), 0, "series {o:?}");
+    }
+    MEASURING.with(|m| m.set(true));
+    let sc = taut::resolve_scene(REFERENCE, &[]).unwrap();
+    let mut it = taut::integrate::Integrator::new(&sc).unwrap();
+    // the first hold allocates the external forces' buffers, once
+    it.hold_external_force(0, 1.0).unwrap();
+    let mut run = taut::run::SteppedRun::new(&sc, it, std::time::Instant::now()).unwrap();
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for n in 0..6000 {
+        run.integrator_mut()
+            .hold_external_force(0, (n % 7) as f64)
+            .unwrap();
+        run.step(&sc).unwrap();
+    }
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::Relaxed) - before,
+        0,
+        "a held force, stepped and recorded"
+    );
 }
 
 /// `modal_exact` (MODEL §9.3): on each diagonal basis through contact loss,

@@ -32,6 +32,7 @@ use taut::app::{self, Frontend, Note, SceneSource, words};
 use taut::report::{Column, Table};
 
 mod scenes;
+mod simulation;
 
 /// How often the waiting thread wakes to deliver progress and to look for
 /// Ctrl-C: a tenth of a second is below what a person notices and costs
@@ -722,5 +723,6 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(mesh, m)?)?;
+    m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

@@ -69,6 +69,7 @@ from ._errors import (
 )
 from ._progress import Progress, Sink, progress_enabled, set_progress
 from ._scene import load_scene, scene_text, scenes
+from ._simulation import CarrierState, ProbeState, Simulation, SimulationState
 from ._table import Table, _not_run, table
 
 __all__ = [
@@ -88,6 +89,10 @@ __all__ = [
     "CarrierStats",
     "Modes",
     "WireSeries",
+    "Simulation",
+    "SimulationState",
+    "CarrierState",
+    "ProbeState",
     "Table",
     "TautError",
     "SceneError",

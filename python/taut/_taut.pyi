@@ -6,12 +6,13 @@ with the CLI's words and turn their `(name, kind, data)` columns into
 numpy arrays (python/taut/_table.py).
 """
 
-from typing import Callable, List, Optional, Tuple, Union
+from typing import Callable, List, Optional, Tuple, Union, final
 
 __version__: str
 taut_version: str
 
 __all__ = [
+    "Simulation",
     "__version__",
     "bundled_scenes",
     "compare",
@@ -109,3 +110,27 @@ def modes(
     out: Optional[str],
 ) -> Tuple[List[_Column], List[_Column]]: ...
 def mesh(path: Optional[str], text: Optional[str], set: List[str]) -> bytes: ...
+
+_CarrierTuple = Tuple[float, float, float, Optional[float], float, float, bool, float]
+_ProbeTuple = Tuple[str, float, float, float]
+
+@final
+class Simulation:
+    def __new__(
+        cls, path: Optional[str], text: Optional[str], set: List[str], out: Optional[str]
+    ) -> "Simulation": ...
+    def step(self, k: int) -> int: ...
+    def done(self) -> bool: ...
+    def steps_dt(self) -> Tuple[int, float]: ...
+    def apply_force(self, carrier: int, newtons: float) -> None: ...
+    def state(self) -> Tuple[float, int, List[_CarrierTuple], List[_ProbeTuple]]: ...
+    def w_at(self, x: float) -> float: ...
+    def finish(
+        self,
+    ) -> Tuple[
+        str,
+        List[_Column],
+        List[str],
+        Optional[List[_Column]],
+        Tuple[_Wire, _Wire],
+    ]: ...

@@ -25,6 +25,7 @@ pub mod precision;
 pub mod replay;
 pub mod run;
 pub mod scene;
+pub mod simulation;
 pub mod sweep;
 pub mod terminal;
 pub mod verify;
@@ -45,6 +46,7 @@ pub use precision::{PrecisionRequest, precision};
 pub use replay::{Replay, ReplayRequest, Solved, replay};
 pub use run::{RunOutcome, RunRequest, Tolerance, run};
 pub use scene::scene_tree;
+pub use simulation::{CarrierState, ProbeState, Simulation, SimulationState};
 pub use sweep::{SweepOutcome, SweepRequest, sweep};
 pub use verify::{VerifyOutcome, VerifyRequest, verify};
 

@@ -95,7 +95,11 @@ pub struct ModalKey {
 /// runs step alone, where the method's own check refuses or carries the
 /// chain.
 pub fn batch_key(sc: &Resolved) -> Option<BatchKey> {
-    if sc.carriers.iter().any(|c| c.chain.is_some()) {
+    // a multi-mass pantograph steps alone; an external force series is a
+    // time-dependent load of its own: alone too
+    if sc.carriers.iter().any(|c| c.chain.is_some())
+        || sc.external_forces.iter().any(Option::is_some)
+    {
         return None;
     }
     gen_alpha_key(sc)

@@ -40,6 +40,7 @@ mod damped_modes;
 mod diagnose;
 mod dropper;
 mod energy;
+mod external_force;
 mod gen_alpha;
 mod gen_alpha_kernel;
 mod gen_alpha_update;
@@ -270,6 +271,46 @@ impl Integrator {
     /// True when x lies in the last element before a supported end.
     pub fn near_support(&self, x: f64) -> bool {
         near_support_lane(&self.sys, x)
+    }
+
+    /// Hold `newtons` (N in +v, MODEL §2: up) on carrier `carrier`'s mass
+    /// from the next step on, until changed, on top of its scene series if
+    /// any (`external_force.rs`: the force enters the mass equation as
+    /// `s·F`; constant over each step, so whatever the method's load time).
+    /// Refused for a moving force (no mass) or a carrier that does not
+    /// exist, and for a non-finite force.
+    pub fn hold_external_force(&mut self, carrier: usize, newtons: f64) -> Result<()> {
+        let n = self.sys.carriers.len();
+        let Some(c) = self.sys.carriers.get(carrier) else {
+            return Err(crate::error::Error::invalid(
+                "carrier",
+                carrier,
+                format!("must name a carrier of the scene, 0 ..= {}", n - 1),
+            ));
+        };
+        let Some(j) = c.contact else {
+            return Err(crate::error::Error::invalid(
+                format!("carrier.{carrier}"),
+                "a moving force",
+                "takes no external force: it has no mass to act on (apply forces to mass–spring carriers)",
+            ));
+        };
+        if self.sys.chains[j].is_some() {
+            return Err(crate::error::Error::invalid(
+                format!("carrier.{carrier}"),
+                "a multi-mass pantograph (carrier.masses)",
+                "takes no external force yet: its chain is stepped by its own scheme (chain.rs), which does not read held forces (apply forces to single mass–spring carriers)",
+            ));
+        }
+        if !newtons.is_finite() {
+            return Err(crate::error::Error::invalid(
+                "newtons",
+                newtons,
+                "must be a finite force (N, + up)",
+            ));
+        }
+        self.sys.hold_external_force(j, newtons);
+        Ok(())
     }
 
     /// Stop with a diagnosis if a recorded value is non-finite or absurd.

@@ -478,6 +478,9 @@ fn step_kernel(
     };
     if let Some(src) = source {
         add_source(m, src, sys, st);
+    } else if sys.has_external_force() {
+        // external forces on the masses, held at the step's midpoint
+        sys.set_mass_source(0.5 * (st.t + st.next_time(sys.dt)));
     }
     contact(coefs, mass_steps, gw, pair, sys, st)?;
     update_range(coefs, sys, st, all, vector);

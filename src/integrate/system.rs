@@ -26,6 +26,7 @@ use super::carrier::{Carrier, MassDof};
 use super::chain::Chain;
 use super::contact_problem::{ProblemBuilder, contact_coef};
 use super::dropper::{DropperSample, Droppers};
+use super::external_force::ExternalForces;
 use super::step_map::{Lanes, Multipliers, StepMap};
 use crate::model::banded::rhs_columns;
 
@@ -87,6 +88,9 @@ pub struct System {
     pub(crate) droppers: Droppers,
     /// The time the last [`System::place`] put the contact forces at, s.
     t_force: f64,
+    /// External forces on the mass dofs (`external_force.rs`); `None`
+    /// costs a branch per step.
+    external: Option<ExternalForces>,
 }
 
 /// Consistent initial accelerations (MODEL §5), for the methods that need them.
@@ -182,9 +186,21 @@ impl System {
             f0: masses.iter().map(|m| m.f0).collect(),
         });
         let damping = beam.damping_matrix(sc.damping, &sc.beam.attachments);
+        let external = sc
+            .external_forces
+            .iter()
+            .any(Option::is_some)
+            .then(|| external_forces(sc, &carriers, &masses));
+        if let Some(ext) = &external {
+            // the initial state's accelerations see the force at t = 0
+            for (j, m) in masses.iter_mut().enumerate() {
+                m.f0 = ext.f0(j, 0.0);
+            }
+        }
         Ok(System {
             damping,
             source,
+            external,
             t_force: 0.0,
             dt: sc.dt,
             placement: sc.contact.placement,
@@ -285,6 +301,19 @@ impl System {
     /// step itself (`modal_exact`, at the step's midpoint). No-op without
     /// a source.
     pub(crate) fn set_mass_source(&mut self, t: f64) {
+        if let Some(ext) = &self.external {
+            // external forces (and a source, if any): base + s·F_ext(t) + source
+            for (i, c) in self.carriers.iter().enumerate() {
+                if let Some(j) = c.contact {
+                    let source = self
+                        .source
+                        .as_ref()
+                        .map_or(0.0, |s| s.source.solution().mass_source(i, t));
+                    self.masses[j].f0 = ext.f0(j, t) + source;
+                }
+            }
+            return;
+        }
         let Some(src) = &self.source else { return };
         let m = src.source.solution();
         for (i, c) in self.carriers.iter().enumerate() {
@@ -303,6 +332,46 @@ impl System {
     /// True when some carrier is a multi-mass pantograph.
     pub fn has_chains(&self) -> bool {
         self.chains.iter().any(Option::is_some)
+    }
+
+    /// True when the run has external forces on its mass dofs (a series,
+    /// or a force held with [`System::hold_external_force`]).
+    pub(crate) fn has_external_force(&self) -> bool {
+        self.external.is_some()
+    }
+
+    /// Hold `newtons` (in +v, MODEL §2) on contact `j`'s mass from the next
+    /// step on, until changed, on top of its series if any
+    /// (`external_force.rs`). Allocates the first time only.
+    pub fn hold_external_force(&mut self, j: usize, newtons: f64) {
+        if self.external.is_none() {
+            let base = match &self.source {
+                Some(src) => src.f0.clone(),
+                None => self.masses.iter().map(|m| m.f0).collect(),
+            };
+            let side = self
+                .carriers
+                .iter()
+                .filter(|c| c.contact.is_some())
+                .map(|c| c.s)
+                .collect();
+            let nc = self.masses.len();
+            self.external = Some(ExternalForces {
+                base,
+                side,
+                series: vec![None; nc],
+                held: vec![0.0; nc],
+            });
+        }
+        if let Some(ext) = &mut self.external {
+            ext.held[j] = newtons;
+        }
+    }
+
+    /// The force held on contact `j`'s mass ([`System::hold_external_force`]),
+    /// N in +v; 0 when none.
+    pub fn held_external_force(&self, j: usize) -> f64 {
+        self.external.as_ref().map_or(0.0, |e| e.held[j])
     }
 
     /// The mass dofs, one per contact.
@@ -645,5 +714,24 @@ impl System {
             let Some(j) = c.contact else { continue };
             rates[j] = c.gap_rate(d, v, q_dot[j]);
         }
+    }
+}
+
+/// The external forces of a run whose scene gives at least one series:
+/// each mass dof's base force (its `f0` before), side sign and series.
+fn external_forces(sc: &Resolved, carriers: &[Carrier], masses: &[MassDof]) -> ExternalForces {
+    let mut series = vec![None; masses.len()];
+    let mut side = vec![1.0; masses.len()];
+    for (c, s) in carriers.iter().zip(&sc.external_forces) {
+        if let Some(j) = c.contact {
+            series[j] = s.clone();
+            side[j] = c.s;
+        }
+    }
+    ExternalForces {
+        base: masses.iter().map(|m| m.f0).collect(),
+        side,
+        series,
+        held: vec![0.0; masses.len()],
     }
 }

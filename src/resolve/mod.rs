@@ -102,8 +102,10 @@ impl Scene {
             )?),
         };
         let reference = declared_reference(self, &beam, &carriers)?;
+        let external_forces = self.resolve_external_forces(&carriers, t_end)?;
 
         let resolved = Resolved {
+            external_forces,
             manufactured,
             reference,
             scene: self.clone(),

@@ -7,8 +7,8 @@ use crate::error::{Error, Result};
 use crate::manufactured::Manufactured;
 use crate::model::mesh::Mesh;
 use crate::scene::{
-    BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Dropper, Grading,
-    IntegratorSpec, MeshPlan, Rayleigh, Scene, Scheme, fe_unknowns,
+    BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Dropper,
+    ForceSeries, Grading, IntegratorSpec, MeshPlan, Rayleigh, Scene, Scheme, fe_unknowns,
 };
 
 /// A validated scene: physical parameters ready to build a model from.
@@ -26,6 +26,9 @@ pub struct Resolved {
     /// Droppers (`[[dropper]]`, MODEL §10), in scene order; the linear
     /// ones' springs are also in `beam.attachments`.
     pub droppers: Vec<Dropper>,
+    /// Each carrier's external force series (`external_force`, N in +v;
+    /// `None`: none), in scene order.
+    pub external_forces: Vec<Option<ForceSeries>>,
     /// Number of elements N (`mesh.elements`).
     pub elements: usize,
     /// The space discretization (`mesh.kind`, MODEL §9.2).

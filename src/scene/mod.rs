@@ -18,6 +18,7 @@ mod attachment;
 mod damping;
 mod discretization;
 mod dropper;
+mod external_force;
 mod load;
 pub mod manufactured;
 mod method;
@@ -32,6 +33,7 @@ pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
 pub use dropper::{Anchor, Dropper, DropperSpec, resolve_droppers};
+pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed,
@@ -286,6 +288,10 @@ pub struct CarrierSpec {
     pub start: f64,
     /// Speed profile (MODEL §3).
     pub speed: SpeedProfile,
+    /// An external force on the mass, N in +v, piecewise linear in t
+    /// (`external_force.rs`; mass–spring carriers only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub external_force: Option<ExternalForceSpec>,
 }
 
 /// Unilateral (Signorini) or bilateral (always attached) contact.
