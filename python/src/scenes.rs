@@ -6,7 +6,7 @@
 use pyo3::prelude::*;
 
 /// `(name, TOML text)` of every bundled scene, by name.
-pub const BUNDLED: [(&str, &str); 9] = [
+pub const BUNDLED: [(&str, &str); 12] = [
     (
         "moving_force_beam",
         include_str!("../../scenes/moving_force_beam.toml"),
@@ -19,10 +19,22 @@ pub const BUNDLED: [(&str, &str); 9] = [
         "oscillator_one_dof",
         include_str!("../../scenes/oscillator_one_dof.toml"),
     ),
+    (
+        "pantograph_3mass",
+        include_str!("../../scenes/pantograph_3mass.toml"),
+    ),
     ("reference", include_str!("../../scenes/reference.toml")),
     (
         "riding_mass_pinned",
         include_str!("../../scenes/riding_mass_pinned.toml"),
+    ),
+    (
+        "span_droppers",
+        include_str!("../../scenes/span_droppers.toml"),
+    ),
+    (
+        "span_droppers_linear",
+        include_str!("../../scenes/span_droppers_linear.toml"),
     ),
     (
         "t1_cantilever_riding_mass",

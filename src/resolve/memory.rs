@@ -186,6 +186,11 @@ pub struct MemoryEstimate {
     /// The rest of the working memory of writing the outputs
     /// ([`output_bytes`]).
     pub outputs: u64,
+    /// The summary's 0–20 Hz force filter: one copy of a carrier's force
+    /// history ([`FILTER_BYTES_PER_ROW`] a row; carriers one at a time),
+    /// when the history holds every step (else the summary has no filtered
+    /// statistics and this is 0). It shrinks with the rows, like the history.
+    pub filter: u64,
     /// The estimated size of `history.csv`, bytes (on disk, not in memory).
     pub csv: u64,
     /// Values in one row of `history.csv`.
@@ -199,6 +204,7 @@ impl MemoryEstimate {
             .saturating_add(self.csv_block)
             .saturating_add(self.model)
             .saturating_add(self.other())
+            .saturating_add(self.filter)
     }
 
     /// The statistics' events and the output buffers but the history's
@@ -207,6 +213,11 @@ impl MemoryEstimate {
         self.events.saturating_add(self.outputs)
     }
 }
+
+/// Bytes a history row adds to the summary's 0–20 Hz force filter
+/// (`study::filter::filtered_force_stats`: the forward pass's output, one
+/// f64 a row, filtered back in place).
+pub const FILTER_BYTES_PER_ROW: u64 = 8;
 
 /// Bytes of one point vector r_b(x) of the recorder on a mesh: four
 /// indices and four weights (a modal basis adds J dense weights).
@@ -277,6 +288,11 @@ pub fn estimate(
             .saturating_mul(EVENT_BYTES),
         csv_block: csv_block_rows(rows).saturating_mul(row),
         outputs: output_bytes(csv_values, carriers, events),
+        filter: if every <= 1 {
+            rows.saturating_mul(FILTER_BYTES_PER_ROW)
+        } else {
+            0
+        },
         csv: rows
             .saturating_mul(csv_values)
             .saturating_mul(CSV_BYTES_PER_VALUE),
@@ -309,8 +325,13 @@ pub fn check_budget(
     if !memory_over && e.csv <= OUTPUT_BUDGET_BYTES {
         return Ok(());
     }
+    let filter = if e.filter > 0 {
+        format!(" + {} of the summary's 0–20 Hz force filter", gib(e.filter))
+    } else {
+        String::new()
+    };
     let need = format!(
-        "the run needs an estimated {} ({} rows × {} bytes of history, {} of them again while history.csv is written, + {} of model + {} of contact events and output buffers), above the memory budget of {}",
+        "the run needs an estimated {} ({} rows × {} bytes of history, {} of them again while history.csv is written, + {} of model + {} of contact events and output buffers{filter}), above the memory budget of {}",
         gib(e.total()),
         e.rows,
         e.row,
@@ -319,7 +340,8 @@ pub fn check_budget(
         gib(e.other()),
         gib(budget)
     );
-    // what does not shrink with fewer rows
+    // what does not shrink with fewer rows (the filter does: it is gone
+    // at record_every ≥ 2, which every hint below asks for)
     let fixed = e.model.saturating_add(e.other());
     if memory_over && fixed.saturating_add(4 * e.row) > budget {
         // even a two-row history does not fit: the model, the carriers'

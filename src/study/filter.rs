@@ -54,10 +54,8 @@ pub fn lowpass_zero_phase(x: &[f64], dt: f64, band_hz: f64) -> Vec<f64> {
     }
     let pass = Pass::new(dt, fd);
     let mut y = pass.run(x.iter().copied());
-    y.reverse();
-    let mut z = pass.run(y.into_iter());
-    z.reverse();
-    z
+    pass.run_backward_in_place(&mut y);
+    y
 }
 
 /// Statistics of the 0–20 Hz contact force of one carrier's history
@@ -139,6 +137,28 @@ impl Pass {
         }
         out
     }
+
+    /// The same pass over `y` reversed, written back in place: the value
+    /// at index i is the pass's output for the input y[i] (the arithmetic
+    /// of `run` on the reversed sequence, reversed back, without a second
+    /// buffer: a run's summary filters its whole force history, so one
+    /// copy of it, not two, is the filter's memory).
+    fn run_backward_in_place(&self, y: &mut [f64]) {
+        let Some(&u0) = y.last() else {
+            return;
+        };
+        let (mut f, mut v, mut prev) = (u0, 0.0, u0);
+        for yi in y.iter_mut().rev().skip(1) {
+            let ui = *yi;
+            let s = prev + ui;
+            let f1 = self.p[0][0] * f + self.p[0][1] * v + self.q[0] * s;
+            let v1 = self.p[1][0] * f + self.p[1][1] * v + self.q[1] * s;
+            f = f1;
+            v = v1;
+            prev = ui;
+            *yi = f;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -174,6 +194,22 @@ mod tests {
         assert!((g - std::f64::consts::FRAC_1_SQRT_2).abs() < 2e-3, "{g}");
         assert!((gain(2.0, 1e-4) - 1.0).abs() < 1e-3);
         assert!(gain(200.0, 1e-4) < 1e-3);
+    }
+
+    #[test]
+    fn the_in_place_backward_pass_is_the_reversed_pass_bit_for_bit() {
+        let dt = 1e-4;
+        let x: Vec<f64> = (0..5000)
+            .map(|i| (i as f64 * 0.37).sin() * 40.0 + 50.0 + (i % 7) as f64)
+            .collect();
+        let pass = Pass::new(dt, design_cutoff_hz(FORCE_BAND_HZ));
+        let mut y = pass.run(x.iter().copied());
+        let mut two = y.clone();
+        two.reverse();
+        let mut z = pass.run(two.into_iter());
+        z.reverse();
+        pass.run_backward_in_place(&mut y);
+        assert_eq!(y, z);
     }
 
     #[test]
