@@ -429,3 +429,59 @@ fn runs_with_different_tables_batch_as_they_run_alone() {
         );
     }
 }
+
+/// A speed table and an external force series read from CSV files beside
+/// the scene (`file = ...`) are the inline tables they hold: the same run,
+/// bit for bit; a file without its column is refused naming the field.
+#[test]
+fn table_files_are_the_inline_tables_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("profile.csv"),
+        "# V(t), m/s\ntime,speed\n0.0,0.0\n0.1,20.0\n0.25,50.0\n0.6,120.0\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("uplift.csv"),
+        "time,force\n0.0,0.0\n0.3,-15.5\n0.6,4.0\n",
+    )
+    .unwrap();
+    let original = "speed = { profile = \"smooth_ramp\", cruise = 100.0 }   # m/s";
+    let inline = REFERENCE.replace(
+        original,
+        "speed = { profile = \"table\", time = [0.0, 0.1, 0.25, 0.6], speed = [0.0, 20.0, 50.0, 120.0] }\nexternal_force = { time = [0.0, 0.3, 0.6], force = [0.0, -15.5, 4.0] }",
+    );
+    let from_files = REFERENCE.replace(
+        original,
+        "speed = { file = \"profile.csv\" }\nexternal_force = { file = \"uplift.csv\" }",
+    );
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(&scene, &from_files).unwrap();
+    let set: Vec<String> = ["mesh.elements=100", "time.end=0.5"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    let a = run(&taut::resolve::load_scene(&scene, &set).unwrap_or_else(|e| panic!("{e}")));
+    let b = run(&resolve(&inline, &["mesh.elements=100", "time.end=0.5"]));
+    assert_eq!(a.history.t.len(), b.history.t.len());
+    for (ta, tb) in a.history.carriers.iter().zip(&b.history.carriers) {
+        for (x, y) in ta.x.iter().zip(&tb.x) {
+            assert_eq!(x.to_bits(), y.to_bits());
+        }
+        for (x, y) in ta.force.iter().zip(&tb.force) {
+            assert_eq!(x.to_bits(), y.to_bits());
+        }
+    }
+    // a file without the value column names the field and the column
+    std::fs::write(
+        dir.path().join("uplift.csv"),
+        "time,lift\n0.0,0.0\n0.6,1.0\n",
+    )
+    .unwrap();
+    let e = taut::resolve::load_scene(&scene, &set).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        msg.contains("carrier.0.external_force.file") && msg.contains("`force` column"),
+        "{msg}"
+    );
+}

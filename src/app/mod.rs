@@ -65,7 +65,8 @@ impl SceneSource {
     pub fn read(&self) -> Result<String> {
         match self {
             SceneSource::File(p) => crate::scene::read_scene(p),
-            SceneSource::Text(t) => Ok(t.clone()),
+            // a text's table files are relative to the working directory
+            SceneSource::Text(t) => crate::scene::with_table_files(t.clone(), Path::new(".")),
         }
     }
 

@@ -297,7 +297,32 @@ pub fn scene_with_overrides(text: &str, overrides: &[String]) -> Result<Scene> {
 /// larger than [`crate::input::MAX_INPUT_BYTES`], or not UTF-8 text, is
 /// refused as soon as that shows).
 pub fn read_scene(path: &Path) -> Result<String> {
-    crate::input::read_text(path, "a scene file", crate::input::MAX_INPUT_BYTES)
+    let text = crate::input::read_text(path, "a scene file", crate::input::MAX_INPUT_BYTES)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    with_table_files(text, base).map_err(|e| in_file(e, path))
+}
+
+/// The scene text with its carriers' table files read in
+/// ([`super::table_files`]; paths relative to `base`): the same text when
+/// it has no `file` key (or does not parse: its parse error is reported
+/// where it is deserialized, by line and column, as before).
+pub fn with_table_files(text: String, base: &Path) -> Result<String> {
+    if !text.contains("file") {
+        return Ok(text);
+    }
+    let Ok(mut tree) = parse_scene(&text) else {
+        return Ok(text);
+    };
+    if !super::table_files::inline_table_files(&mut tree, base)? {
+        return Ok(text);
+    }
+    toml::to_string(&tree).map_err(|e| {
+        Error::invalid(
+            "carrier",
+            one_line(&e.to_string()),
+            "tables TOML can hold (finite numbers)",
+        )
+    })
 }
 
 /// Name the scene file in a parse error of its text (made by a function

@@ -25,6 +25,7 @@ mod method;
 mod motion;
 mod pantograph;
 mod speed;
+mod table_files;
 mod validate;
 
 pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
@@ -36,7 +37,7 @@ pub use dropper::{Anchor, Dropper, DropperSpec, resolve_droppers};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
-    scene_with_overrides, set_typed,
+    scene_with_overrides, set_typed, with_table_files,
 };
 pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
 pub(crate) use method::register_info;
