@@ -31,12 +31,21 @@ pub fn check_attachments(scene: &Scene, beam: &BeamProps, d: Discretization) -> 
             ),
         ));
     }
+    bare_beam_references(scene, &format!("the scene's {n} [[attachment]]"))
+}
+
+/// Refuse a manufactured solution or a closed-form reference of the bare
+/// beam (`moving_force_series`, `riding_mass_galerkin`) beside something
+/// the bare beam does not have (`what`: "the scene's 2 [[dropper]]"), since
+/// neither includes it; `standing_force_modes` (the model's own eigenpairs)
+/// and Richardson extrapolation hold. Shared by attachments and droppers.
+pub(super) fn bare_beam_references(scene: &Scene, what: &str) -> Result<()> {
     if scene.manufactured.is_some() {
         return Err(Error::invalid(
             "manufactured",
             "(present)",
             format!(
-                "a manufactured solution's source is that of the bare beam and does not include the scene's {n} [[attachment]]: remove one or the other"
+                "a manufactured solution's source is that of the bare beam and does not include {what}: remove one or the other"
             ),
         ));
     }
@@ -50,7 +59,7 @@ pub fn check_attachments(scene: &Scene, beam: &BeamProps, d: Discretization) -> 
             "reference.kind",
             format!("\"{}\"", r.kind.name()),
             format!(
-                "is a closed form of the bare beam and does not include the scene's {n} [[attachment]]: use \"standing_force_modes\" or \"richardson\""
+                "is a closed form of the bare beam and does not include {what}: use \"standing_force_modes\" or \"richardson\""
             ),
         ));
     }

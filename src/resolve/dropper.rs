@@ -21,9 +21,7 @@
 //!   (as `[[attachment]]` is, `super::attachment`).
 
 use crate::error::{Error, Result};
-use crate::scene::{
-    Attachment, ContactKind, Discretization, Dropper, Formulation, ReferenceKind, Scene,
-};
+use crate::scene::{Attachment, ContactKind, Discretization, Dropper, Formulation, Scene};
 
 /// Refuse the combinations a dropper breaks (module docs); nothing to check
 /// without droppers.
@@ -41,29 +39,7 @@ pub fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) ->
             ),
         ));
     }
-    if scene.manufactured.is_some() {
-        return Err(Error::invalid(
-            "manufactured",
-            "(present)",
-            format!(
-                "a manufactured solution's source is that of the bare beam and does not include the scene's {n} [[dropper]]: remove one or the other"
-            ),
-        ));
-    }
-    if let Some(r) = &scene.reference
-        && matches!(
-            r.kind,
-            ReferenceKind::MovingForceSeries | ReferenceKind::RidingMassGalerkin
-        )
-    {
-        return Err(Error::invalid(
-            "reference.kind",
-            format!("\"{}\"", r.kind.name()),
-            format!(
-                "is a closed form of the bare beam and does not include the scene's {n} [[dropper]]: use \"standing_force_modes\" or \"richardson\""
-            ),
-        ));
-    }
+    super::attachment::bare_beam_references(scene, &format!("the scene's {n} [[dropper]]"))?;
     let Some(i) = droppers.iter().position(|d| !d.linear) else {
         return Ok(());
     };
