@@ -128,20 +128,7 @@ impl SweepSpec {
                 ),
             ));
         }
-        // the scene text and the fixed overrides, once (an error there is
-        // the first point's, as when each point parsed the text itself)
-        let base = self
-            .base_tree()
-            .map_err(|e| at_point(e, 0, &self.point(0)))?;
-        for i in 0..self.len() {
-            self.resolve_on(&base, i)
-                .map_err(|e| at_point(e, i, &self.point(i)))?;
-            if self.check_refinement {
-                self.resolve_refined_on(&base, i).map_err(|e| {
-                    at_point(e, i, &self.point(i)).in_run("the refined run of --check-refinement")
-                })?;
-            }
-        }
+        let base = self.resolve_every_point()?;
         for (k, a) in self.axes.iter().enumerate() {
             if a.count < 2 {
                 continue;
@@ -220,19 +207,7 @@ impl SweepSpec {
                 format!("a sweep has at most {MAX_POINTS} points: split the list"),
             ));
         }
-        let base = self
-            .base_tree()
-            .map_err(|e| at_point(e, 0, &self.point(0)))?;
-        for i in 0..self.len() {
-            self.resolve_on(&base, i)
-                .map_err(|e| at_point(e, i, &self.point(i)))?;
-            if self.check_refinement {
-                self.resolve_refined_on(&base, i).map_err(|e| {
-                    at_point(e, i, &self.point(i)).in_run("the refined run of --check-refinement")
-                })?;
-            }
-        }
-        Ok(())
+        self.resolve_every_point().map(drop)
     }
 }
 
@@ -257,6 +232,29 @@ impl SweepSpec {
 /// The most points a sweep may have: 100 000 runs is days of work at the
 /// reference resolution and ~0.4 GB of records; a larger grid is several sweeps.
 pub const MAX_POINTS: usize = 100_000;
+
+impl SweepSpec {
+    /// Resolve every point (and its refined run with `--check-refinement`)
+    /// before any runs, naming the first point that fails. The scene text
+    /// and the fixed overrides are parsed once (an error there is the first
+    /// point's, as when each point parsed the text itself); that parsed
+    /// base is returned for further checks.
+    fn resolve_every_point(&self) -> Result<toml::Table> {
+        let base = self
+            .base_tree()
+            .map_err(|e| at_point(e, 0, &self.point(0)))?;
+        for i in 0..self.len() {
+            self.resolve_on(&base, i)
+                .map_err(|e| at_point(e, i, &self.point(i)))?;
+            if self.check_refinement {
+                self.resolve_refined_on(&base, i).map_err(|e| {
+                    at_point(e, i, &self.point(i)).in_run("the refined run of --check-refinement")
+                })?;
+            }
+        }
+        Ok(base)
+    }
+}
 
 /// Name the sweep point a resolution error happened at.
 fn at_point(e: Error, i: usize, values: &[f64]) -> Error {
