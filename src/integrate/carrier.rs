@@ -40,6 +40,11 @@ pub(crate) struct Carrier {
     /// there (a force's load point is `pv_f`). Unused without a source.
     pub(crate) pv_l: PointVector,
     pub(crate) point: f64,
+    /// `r_gᵀd` after step n, when the step computed it in passing (the
+    /// `modal_exact` update, `modal_exact.rs` "The sample"), with that n:
+    /// the same bits as [`PointVector::dot`] on the state, so a sample
+    /// reads it instead of a pass over the modes. `None` otherwise.
+    pub(crate) gap_dot: Option<(usize, f64)>,
 }
 
 impl Carrier {
@@ -58,6 +63,7 @@ impl Carrier {
             speed: 0.0,
             pv_l: beam.point_vector(x0),
             point: 0.0,
+            gap_dot: None,
         }
     }
 

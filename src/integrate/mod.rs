@@ -331,7 +331,15 @@ pub(crate) fn sample_of(
     let c = &sys.carriers[i];
     let x = c.props.motion.position(st.t);
     let pv = if st.step == 0 { &c.pv_f } else { &c.pv_g };
-    let w = c.s * dot(pv);
+    // r_gᵀd as the step left it, when it computed it (the same bits)
+    let rd = match c.gap_dot {
+        Some((n, rd)) if n == st.step && n != 0 => {
+            debug_assert_eq!(rd.to_bits(), dot(pv).to_bits(), "the step's r_gᵀd");
+            rd
+        }
+        _ => dot(pv),
+    };
+    let w = c.s * rd;
     match (c.props.kind, c.contact) {
         (CarrierKind::Force { force }, _) => CarrierSample {
             x,

@@ -66,6 +66,16 @@
 //!    sums g_free and W when the scene has one contact and no moving force.
 //! 3. The law, then every mode's update with the multipliers.
 //!
+//! ## The sample
+//!
+//! A run records the displacement under each carrier after every step,
+//! `w = s r_gᵀd` with `r_g = φ(x_{n+1})`: a third pass over the modes. With
+//! one contact the step forms it in passing, in the same partial sums and
+//! fused operations as [`lanes::dot`] (the same bits): from the update's
+//! pass when λ ≠ 0, and when λ = 0 (no update) it is the free step's sum
+//! g_free already formed. It is kept with the step count it holds for
+//! (`Carrier::gap_dot`), and a sample of that step reads it.
+//!
 //! The kernels round `a·b + c` once and take sums over modes in eight
 //! partial sums (mode j into lane j mod 8) added in a fixed order: AVX2 +
 //! FMA where the CPU has both, `f64::mul_add` lane by lane otherwise, the
@@ -483,7 +493,22 @@ fn step_kernel(
         sys.set_mass_source(0.5 * (st.t + st.next_time(sys.dt)));
     }
     contact(coefs, mass_steps, gw, pair, sys, st)?;
-    update_range(coefs, sys, st, all, vector);
+    match pair {
+        Some((dg, _)) => {
+            // one contact: its update fused with the sample's r_gᵀd
+            let c = &sys.carriers[0];
+            let lambda = sys.lambda[0];
+            let rd = if lambda != 0.0 {
+                let phi = (c.pv_f.dense(), c.pv_g.dense());
+                add_path_load_dot(m, c.s * lambda, phi, st, vector)
+            } else {
+                // no update: d is the free step's, whose sum with r_g is dg
+                dg
+            };
+            sys.carriers[0].gap_dot = Some((st.step + 1, rd));
+        }
+        None => update_range(coefs, sys, st, all, vector),
+    }
     Ok(())
 }
 
@@ -719,6 +744,83 @@ unsafe fn add_path_load_avx2(
     full
 }
 
+/// [`add_path_load`] over every mode, returning `r_gᵀd` of the updated
+/// state with `r_g = φ(x_{n+1})` (`pn1`): the sample's displacement under
+/// the carrier, in the same [`LANES`] partial sums and fused operations as
+/// [`lanes::dot`] (mode i into lane i mod 8, the last J mod 8 into lanes
+/// 0, 1, …), so the same bits as that dot on the state after the step,
+/// without a third pass over the modes (module docs, "The sample").
+#[inline(always)]
+fn add_path_load_dot(
+    m: &ModeSteps,
+    f: f64,
+    (pn, pn1): (&[f64], &[f64]),
+    st: &mut State,
+    vector: bool,
+) -> f64 {
+    let j = m.len();
+    let full = j / LANES * LANES;
+    let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
+    let (pn, pn1) = (&pn[..j], &pn1[..j]);
+    let (a0, a1, b0, b1) = (&m.a0[..j], &m.a1[..j], &m.b0[..j], &m.b1[..j]);
+    let mut acc = [0.0; LANES];
+    let mut done = 0;
+    #[cfg(target_arch = "x86_64")]
+    if vector {
+        // SAFETY: the caller checked AVX2 and FMA; every slice holds J ≥ full.
+        unsafe { add_path_load_dot_avx2(f, (a0, a1, b0, b1), (pn, pn1), (d, v), full, &mut acc) };
+        done = full;
+    }
+    for i in done..j {
+        d[i] = f.mul_add(path(a0[i], pn[i], a1[i], pn1[i]), d[i]);
+        v[i] = f.mul_add(path(b0[i], pn[i], b1[i], pn1[i]), v[i]);
+        let l = if i < full { i % LANES } else { i - full };
+        acc[l] = pn1[i].mul_add(d[i], acc[l]);
+    }
+    lanes::reduce(&acc)
+}
+
+/// Modes `0 .. full` of [`add_path_load_dot`], eight at a time, into the
+/// partial sums `acc`.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; `full` is a multiple of [`LANES`] and
+/// every slice has at least `full` entries.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn add_path_load_dot_avx2(
+    f: f64,
+    (a0, a1, b0, b1): (&[f64], &[f64], &[f64], &[f64]),
+    (pn, pn1): (&[f64], &[f64]),
+    (d, v): (&mut [f64], &mut [f64]),
+    full: usize,
+    acc: &mut [f64; LANES],
+) {
+    use std::arch::x86_64::*;
+    // SAFETY (whole body): loads and stores at k .. k + 4 ≤ full.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let fv = _mm256_set1_pd(f);
+        let mut r = [_mm256_setzero_pd(), _mm256_setzero_pd()];
+        let mut i = 0;
+        while i < full {
+            for (h, r) in r.iter_mut().enumerate() {
+                let k = i + 4 * h;
+                let (p, q) = (ld(pn, k), ld(pn1, k));
+                let z = _mm256_fmadd_pd(ld(a0, k), p, _mm256_mul_pd(ld(a1, k), q));
+                let zv = _mm256_fmadd_pd(ld(b0, k), p, _mm256_mul_pd(ld(b1, k), q));
+                let e = _mm256_fmadd_pd(fv, z, ld(d, k));
+                _mm256_storeu_pd(d.as_mut_ptr().add(k), e);
+                _mm256_storeu_pd(v.as_mut_ptr().add(k), _mm256_fmadd_pd(fv, zv, ld(v, k)));
+                *r = _mm256_fmadd_pd(q, e, *r);
+            }
+            i += LANES;
+        }
+        _mm256_storeu_pd(acc.as_mut_ptr(), r[0]);
+        _mm256_storeu_pd(acc.as_mut_ptr().add(4), r[1]);
+    }
+}
+
 /// `Σ_j r_j (a0_j p_j + a1_j q_j)`: a contact row against a unit force
 /// held along a carrier's path (φ(x_n) = p, φ(x_{n+1}) = q), in [`LANES`]
 /// partial sums (scalar: the general path of several carriers).
@@ -791,6 +893,44 @@ mod tests {
                 }
                 assert_eq!(a, b, "J = {j}");
                 assert_eq!(a, c, "J = {j}");
+            }
+        }
+    }
+
+    /// The update fused with the sample's `r_gᵀd` leaves the state
+    /// [`add_path_load`] leaves, and returns [`lanes::dot`] of `φ(x_{n+1})`
+    /// with it, bit for bit, on the vector and scalar paths.
+    #[test]
+    fn the_fused_update_returns_the_samples_dot_bit_for_bit() {
+        for j in [3, 8, 13, 64, 803] {
+            let omega: Vec<f64> = (1..=j).map(|i| 9.4 * i as f64).collect();
+            let m = ModeSteps::new(&omega, 6.25e-5);
+            let wave =
+                |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
+            let (pn, pn1) = (wave(0.37), wave(0.371));
+            let st0 = State {
+                step: 3,
+                t: 0.0,
+                d: wave(1.3).iter().map(|x| 1e-3 * x).collect(),
+                v: wave(0.7),
+                q: vec![],
+                q_dot: vec![],
+            };
+            let paths: &[bool] = if lanes::avx2_fma() {
+                &[false, true]
+            } else {
+                &[false]
+            };
+            for &vector in paths {
+                let (mut a, mut b) = (st0.clone(), st0.clone());
+                add_path_load(&m, -37.5, (&pn, &pn1), &mut a, (0, j), vector);
+                let rd = add_path_load_dot(&m, -37.5, (&pn, &pn1), &mut b, vector);
+                assert_eq!(a, b, "J = {j}");
+                assert_eq!(
+                    rd.to_bits(),
+                    lanes::dot(&pn1, &a.d).to_bits(),
+                    "J = {j}, vector {vector}"
+                );
             }
         }
     }
