@@ -168,6 +168,14 @@ impl Layer {
         })
     }
 
+    /// True when [`Layer::add_into`] adds anything at `d` (a row of the
+    /// table applies there).
+    #[inline(always)]
+    fn reaches(&self, d: f64) -> bool {
+        let k = (d / self.spacing).round() as usize;
+        k + 1 < self.starts.len()
+    }
+
     /// Add `coef_j e^{−α_j d}` into `out` for the modes that count at `d`
     /// (AVX2 + FMA where the CPU has them: the same fused operations, the
     /// same bits; `crate::numeric::lanes`).
@@ -355,6 +363,49 @@ impl FastShapes {
         8 * (osc + layer(&self.left) + layer(&self.right))
     }
 
+    /// The values at `x` handed out [`BLOCK`] modes at a time, for a caller
+    /// that consumes each block as it is made (the fused `modal_exact` step,
+    /// `integrate/modal_exact.rs`): the same operations as
+    /// [`FastShapes::values_into`], so the same bits. `None` where a
+    /// boundary-layer row applies at `x` (within ≈ 40/α_1 of a clamped end:
+    /// take [`FastShapes::values_into`] there).
+    pub fn blocks_at(&self, x: f64) -> Option<Blocks<'_>> {
+        // as values_kernel
+        let x = x.clamp(0.0, self.length);
+        let s = if self.mirrored { self.length - x } else { x };
+        if self.left.as_ref().is_some_and(|l| l.reaches(s))
+            || self
+                .right
+                .as_ref()
+                .is_some_and(|r| r.reaches(self.length - s))
+        {
+            return None;
+        }
+        let xi = s / self.length;
+        let (rr, ri, rot) = first_block(PI * xi);
+        let j = self.count;
+        let rows = match &self.oscillating {
+            Oscillating::Sine { d } => BlockRows::Sine(&d[..j]),
+            Oscillating::Shifted { eps, rows, re, im } => {
+                let k = (xi * *rows as f64).round() as usize;
+                let delta = xi - k as f64 / *rows as f64;
+                BlockRows::Shifted {
+                    eps: &eps[..j],
+                    tre: &re[k * j..(k + 1) * j],
+                    tim: &im[k * j..(k + 1) * j],
+                    delta,
+                }
+            }
+        };
+        Some(Blocks {
+            rows,
+            rr,
+            ri,
+            rot,
+            full: j / BLOCK * BLOCK,
+        })
+    }
+
     /// `φ_j(x)`, kg^{−1/2}, for all j into `out` (length J), equal to
     /// [`ModeShapes::values_into`] within [`FAST_SHAPES_AGREEMENT`] of the
     /// amplitude. `x` is clamped to `[0, L]`. No allocation; one `sin_cos`.
@@ -458,6 +509,64 @@ impl FastShapes {
                 for i in full..j {
                     let l = i - full;
                     out[i] = shifted(eps[i], delta, (tre[i], tim[i]), (rr[l], ri[l]));
+                }
+            }
+        }
+    }
+}
+
+/// The mode shapes at one point, block by block ([`FastShapes::blocks_at`]):
+/// the table rows at that point and the rotation recurrence's state.
+#[derive(Debug, Clone)]
+pub struct Blocks<'a> {
+    rows: BlockRows<'a>,
+    rr: [f64; BLOCK],
+    ri: [f64; BLOCK],
+    rot: (f64, f64),
+    full: usize,
+}
+
+/// The oscillating part's rows at one point (J entries each).
+#[derive(Debug, Clone)]
+enum BlockRows<'a> {
+    Sine(&'a [f64]),
+    Shifted {
+        eps: &'a [f64],
+        tre: &'a [f64],
+        tim: &'a [f64],
+        delta: f64,
+    },
+}
+
+impl Blocks<'_> {
+    /// The modes in whole blocks, ⌊J/B⌋·B: the vector blocks
+    /// ([`BlocksAvx`]) cover `0 .. full()`, [`Blocks::tail_into`] the rest.
+    pub fn full(&self) -> usize {
+        self.full
+    }
+
+    /// The values of modes `full() .. J` into `out` (length J − full()),
+    /// after the whole blocks have advanced the recurrence
+    /// ([`BlocksAvx::finish`]): as the last partial block of
+    /// [`FastShapes::values_into`].
+    #[inline(always)]
+    pub fn tail_into(&self, out: &mut [f64]) {
+        let at = self.full;
+        match self.rows {
+            BlockRows::Sine(d) => {
+                for (l, o) in out.iter_mut().enumerate() {
+                    *o = d[at + l] * self.ri[l];
+                }
+            }
+            BlockRows::Shifted {
+                eps,
+                tre,
+                tim,
+                delta,
+            } => {
+                for (l, o) in out.iter_mut().enumerate() {
+                    let i = at + l;
+                    *o = shifted(eps[i], delta, (tre[i], tim[i]), (self.rr[l], self.ri[l]));
                 }
             }
         }
@@ -568,6 +677,118 @@ unsafe fn shifted_avx2(
         for v in 0..V {
             _mm256_storeu_pd(rr.as_mut_ptr().add(4 * v), vr[v]);
             _mm256_storeu_pd(ri.as_mut_ptr().add(4 * v), vi[v]);
+        }
+    }
+}
+
+/// [`Blocks`] in AVX2 registers: the recurrence's state and the
+/// constants of [`shifted_avx2`] / [`sine_avx2`], whose operations
+/// [`BlocksAvx::next`] repeats one block at a time (the same bits).
+#[cfg(target_arch = "x86_64")]
+pub struct BlocksAvx {
+    vr: [std::arch::x86_64::__m256d; BLOCK / 4],
+    vi: [std::arch::x86_64::__m256d; BLOCK / 4],
+    cr: std::arch::x86_64::__m256d,
+    ci: std::arch::x86_64::__m256d,
+    dl: std::arch::x86_64::__m256d,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl BlocksAvx {
+    /// The registers for `b`'s first block.
+    ///
+    /// # Safety
+    /// The CPU supports AVX2 and FMA.
+    #[target_feature(enable = "avx2,fma")]
+    #[inline]
+    pub unsafe fn new(b: &Blocks) -> Self {
+        use std::arch::x86_64::*;
+        let delta = match b.rows {
+            BlockRows::Shifted { delta, .. } => delta,
+            BlockRows::Sine(_) => 0.0,
+        };
+        // SAFETY: rr and ri hold BLOCK entries.
+        unsafe {
+            BlocksAvx {
+                vr: std::array::from_fn(|v| _mm256_loadu_pd(b.rr.as_ptr().add(4 * v))),
+                vi: std::array::from_fn(|v| _mm256_loadu_pd(b.ri.as_ptr().add(4 * v))),
+                cr: _mm256_set1_pd(b.rot.0),
+                ci: _mm256_set1_pd(b.rot.1),
+                dl: _mm256_set1_pd(delta),
+            }
+        }
+    }
+
+    /// The values of modes `at .. at + BLOCK` (`at` a multiple of
+    /// [`BLOCK`], `at + BLOCK ≤ b.full()`, the blocks taken in order), four
+    /// vectors of four, and the recurrence advanced to the next block.
+    ///
+    /// # Safety
+    /// The CPU supports AVX2 and FMA; `at + BLOCK ≤ b.full()`.
+    #[target_feature(enable = "avx2,fma")]
+    #[inline]
+    pub unsafe fn next(
+        &mut self,
+        b: &Blocks,
+        at: usize,
+    ) -> [std::arch::x86_64::__m256d; BLOCK / 4] {
+        use std::arch::x86_64::*;
+        const V: usize = BLOCK / 4;
+        // SAFETY (whole body): every load is within at .. at + BLOCK ≤ J.
+        unsafe {
+            let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+            let mut out = [_mm256_setzero_pd(); V];
+            for (v, o) in out.iter_mut().enumerate() {
+                let i = at + 4 * v;
+                let (a, bb) = (self.vr[v], self.vi[v]);
+                *o = match b.rows {
+                    // as sine_avx2
+                    BlockRows::Sine(d) => _mm256_mul_pd(ld(d, i), bb),
+                    // as shifted_avx2
+                    BlockRows::Shifted { eps, tre, tim, .. } => {
+                        let s = _mm256_set1_pd;
+                        let y = _mm256_mul_pd(ld(eps, i), self.dl);
+                        let y2 = _mm256_mul_pd(y, y);
+                        let cy = _mm256_fmadd_pd(
+                            y2,
+                            _mm256_fmadd_pd(
+                                y2,
+                                _mm256_fmadd_pd(y2, s(COS[2]), s(COS[1])),
+                                s(COS[0]),
+                            ),
+                            s(1.0),
+                        );
+                        let sy = _mm256_mul_pd(
+                            y,
+                            _mm256_fmadd_pd(y2, _mm256_fmadd_pd(y2, s(SIN[1]), s(SIN[0])), s(1.0)),
+                        );
+                        let (tr, ti) = (ld(tre, i), ld(tim, i));
+                        let zr = _mm256_fmsub_pd(tr, cy, _mm256_mul_pd(ti, sy));
+                        let zi = _mm256_fmadd_pd(tr, sy, _mm256_mul_pd(ti, cy));
+                        _mm256_fmsub_pd(zr, a, _mm256_mul_pd(zi, bb))
+                    }
+                };
+                self.vr[v] = _mm256_fmsub_pd(a, self.cr, _mm256_mul_pd(bb, self.ci));
+                self.vi[v] = _mm256_fmadd_pd(a, self.ci, _mm256_mul_pd(bb, self.cr));
+            }
+            out
+        }
+    }
+
+    /// Hand the recurrence's state back to `b` for [`Blocks::tail_into`].
+    ///
+    /// # Safety
+    /// The CPU supports AVX2 and FMA.
+    #[target_feature(enable = "avx2,fma")]
+    #[inline]
+    pub unsafe fn finish(&self, b: &mut Blocks) {
+        use std::arch::x86_64::*;
+        for v in 0..BLOCK / 4 {
+            // SAFETY: rr and ri hold BLOCK entries.
+            unsafe {
+                _mm256_storeu_pd(b.rr.as_mut_ptr().add(4 * v), self.vr[v]);
+                _mm256_storeu_pd(b.ri.as_mut_ptr().add(4 * v), self.vi[v]);
+            }
         }
     }
 }
@@ -746,6 +967,65 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The values handed out block by block ([`FastShapes::blocks_at`],
+    /// the fused modal step) are those of [`FastShapes::values_into`], bit
+    /// for bit, wherever no boundary-layer row applies; and it declines
+    /// exactly where one does (the clamped end of the reference span).
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn the_blocks_give_the_values_bit_for_bit() {
+        if !lanes::avx2_fma() {
+            return;
+        }
+        let mut declined = 0;
+        for (case, ends) in [
+            (REFERENCE, ENDS[1]),
+            (REFERENCE, ENDS[2]),
+            (SHORT, ENDS[0]),
+            (BARE, ENDS[3]),
+        ] {
+            for j in [5, 16, 61, 800] {
+                let s = shapes(case, ends, j);
+                let f = FastShapes::new(&s);
+                let (mut a, mut b) = (vec![0.0; j], vec![0.0; j]);
+                for i in 0..=400 {
+                    let x = case.3 * (i as f64 / 400.0).powi(3);
+                    f.values_into(x, &mut a);
+                    let Some(mut blocks) = f.blocks_at(x) else {
+                        declined += 1;
+                        let s = if f.mirrored { f.length - x } else { x };
+                        assert!(
+                            f.left.as_ref().is_some_and(|l| l.reaches(s))
+                                || f.right.as_ref().is_some_and(|r| r.reaches(f.length - s))
+                        );
+                        continue;
+                    };
+                    let full = blocks.full();
+                    // SAFETY: AVX2 and FMA checked above; b holds J ≥ full.
+                    unsafe {
+                        use std::arch::x86_64::_mm256_storeu_pd;
+                        let mut v = BlocksAvx::new(&blocks);
+                        for at in (0..full).step_by(BLOCK) {
+                            for (u, q) in v.next(&blocks, at).into_iter().enumerate() {
+                                _mm256_storeu_pd(b.as_mut_ptr().add(at + 4 * u), q);
+                            }
+                        }
+                        v.finish(&mut blocks);
+                    }
+                    blocks.tail_into(&mut b[full..]);
+                    for (u, v) in a.iter().zip(&b) {
+                        assert_eq!(
+                            u.to_bits(),
+                            v.to_bits(),
+                            "{case:?} {ends:?} J = {j} x = {x}"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(declined > 0, "the clamped ends' layers were met");
     }
 
     #[test]

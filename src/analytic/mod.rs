@@ -14,7 +14,9 @@ pub mod riding_mass;
 pub mod spring_supported;
 pub mod static_load;
 
-pub use fast_shapes::FastShapes;
+#[cfg(target_arch = "x86_64")]
+pub use fast_shapes::BlocksAvx;
+pub use fast_shapes::{BLOCK as SHAPE_BLOCK, Blocks, FastShapes};
 pub use mode_shapes::{MAX_MODES, ModeShapes};
 pub use modes::{ClampedPinnedModes, Dispersion, PinnedPinnedModes};
 pub use moving_load::{MovingForceBeam, MovingForceString};

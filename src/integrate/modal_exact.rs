@@ -86,6 +86,8 @@
 use std::sync::Arc;
 
 use crate::analytic::FastShapes;
+#[cfg(target_arch = "x86_64")]
+use crate::analytic::{Blocks, BlocksAvx, SHAPE_BLOCK};
 use crate::error::{Error, Result};
 use crate::model::banded::SymBand;
 use crate::model::beam::{Basis, BeamModel, PointVector};
@@ -328,6 +330,123 @@ fn free_pair_range(
     );
 }
 
+/// Phases 1 and 2 of a single-contact run: place the carrier and take the
+/// free step with its two sums. On a galerkin basis with AVX2 + FMA, away
+/// from a clamped end's boundary layer, in one pass: each block of
+/// [`crate::analytic::SHAPE_BLOCK`] shapes `φ(x_{n+1})` is stored and used
+/// by the free step of its modes while in registers (module docs, "One
+/// step"); the same operations as the two passes, so the same bits.
+#[inline(always)]
+fn place_free_pair(
+    coefs: &ModalCoefs,
+    sys: &mut System,
+    st: &mut State,
+    sums: &mut PairSums,
+    vector: bool,
+) {
+    let j = coefs.modes();
+    #[cfg(target_arch = "x86_64")]
+    if vector && let Some(shapes) = &coefs.shapes {
+        let t1 = st.next_time(sys.dt);
+        let c = &mut sys.carriers[0];
+        if let Some(mut blocks) = shapes.blocks_at(c.props.motion.position(t1)) {
+            std::mem::swap(&mut c.pv_f, &mut c.pv_g);
+            let full = blocks.full();
+            let pn1 = &mut c.pv_g.dense_mut()[..j];
+            let pn = &c.pv_f.dense()[..j];
+            let zeros: [f64; 0] = [];
+            let (hp, hv): (&[f64], &[f64]) = match coefs.held.as_ref() {
+                Some((hp, hv)) => (&hp[..j], &hv[..j]),
+                None => (&zeros, &zeros),
+            };
+            let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
+            // SAFETY: `vector` is true only where the CPU has AVX2 and FMA;
+            // every slice holds J ≥ full, a multiple of SHAPE_BLOCK.
+            unsafe {
+                shapes_free_pair_avx2(&mut blocks, &coefs.steps, (d, v), (pn, pn1), (hp, hv), sums)
+            };
+            blocks.tail_into(&mut pn1[full..]);
+            let c = &sys.carriers[0];
+            let phi = (c.pv_f.dense(), c.pv_g.dense());
+            free_with_pair(
+                &coefs.steps,
+                coefs.held.as_ref(),
+                st,
+                phi,
+                (full, j),
+                sums,
+                vector,
+            );
+            return;
+        }
+    }
+    place(coefs, sys, st);
+    free_pair_range(coefs, sys, st, (0, j), sums, vector);
+}
+
+/// Modes `0 .. blocks.full()` of [`place_free_pair`]: each block of shapes
+/// evaluated ([`BlocksAvx::next`]), stored into `pn1`, and taken by
+/// [`free_with_pair_avx2`]'s operations, four modes at a time, into the
+/// same partial sums (mode k into the lanes of vector ⌊k/4⌋ mod 2).
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; every slice holds at least
+/// `blocks.full()` entries, or `hp` and `hv` are both empty.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn shapes_free_pair_avx2(
+    blocks: &mut Blocks,
+    m: &ModeSteps,
+    (d, v): (&mut [f64], &mut [f64]),
+    (pn, pn1): (&[f64], &mut [f64]),
+    (hp, hv): (&[f64], &[f64]),
+    sums: &mut PairSums,
+) {
+    use std::arch::x86_64::*;
+    let held = !hp.is_empty();
+    let end = blocks.full();
+    // SAFETY (whole body): loads and stores at k .. k + 4 ≤ end.
+    unsafe {
+        let mut shapes = BlocksAvx::new(blocks);
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let (gs, ws) = (&mut sums.g, &mut sums.w);
+        let mut g = [
+            _mm256_loadu_pd(gs.as_ptr()),
+            _mm256_loadu_pd(gs.as_ptr().add(4)),
+        ];
+        let mut w = [
+            _mm256_loadu_pd(ws.as_ptr()),
+            _mm256_loadu_pd(ws.as_ptr().add(4)),
+        ];
+        let mut at = 0;
+        while at < end {
+            let q4 = shapes.next(blocks, at);
+            for (u, q) in q4.into_iter().enumerate() {
+                let (k, h) = (at + 4 * u, u % 2);
+                _mm256_storeu_pd(pn1.as_mut_ptr().add(k), q);
+                let (e, ev, c) = (ld(d, k), ld(v, k), ld(&m.cos, k));
+                let mut e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
+                let mut v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm256_mul_pd(c, ev));
+                if held {
+                    e1 = _mm256_add_pd(e1, ld(hp, k));
+                    v1 = _mm256_add_pd(v1, ld(hv, k));
+                }
+                _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
+                _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
+                g[h] = _mm256_fmadd_pd(q, e1, g[h]);
+                let z = _mm256_fmadd_pd(ld(&m.a0, k), ld(pn, k), _mm256_mul_pd(ld(&m.a1, k), q));
+                w[h] = _mm256_fmadd_pd(q, z, w[h]);
+            }
+            at += SHAPE_BLOCK;
+        }
+        shapes.finish(blocks);
+        _mm256_storeu_pd(gs.as_mut_ptr(), g[0]);
+        _mm256_storeu_pd(gs.as_mut_ptr().add(4), g[1]);
+        _mm256_storeu_pd(ws.as_mut_ptr(), w[0]);
+        _mm256_storeu_pd(ws.as_mut_ptr().add(4), w[1]);
+    }
+}
+
 /// Phase 3: the mass dofs' free step, the contact problem (g_free and W,
 /// MODEL §9.3), the law, and the mass dofs' update. `pair` carries the two
 /// sums of a single-contact run; the general path forms them here.
@@ -467,16 +586,16 @@ fn step_kernel(
     st: &mut State,
     vector: bool,
 ) -> Result<()> {
-    place(coefs, sys, st);
     let m = &coefs.steps;
     let all = (0, m.len());
     // the vector free steps are of undamped modes (cos_v = cos)
     let vector_free = vector && !coefs.damped;
     let pair = if is_single(sys) && source.is_none() {
         let mut sums = PairSums::default();
-        free_pair_range(coefs, sys, st, all, &mut sums, vector_free);
+        place_free_pair(coefs, sys, st, &mut sums, vector_free);
         Some(sums.total())
     } else {
+        place(coefs, sys, st);
         free(m, coefs.held.as_ref(), st, vector_free);
         for c in &sys.carriers {
             if let CarrierKind::Force { force } = c.props.kind {
