@@ -59,6 +59,15 @@
 //! [`f64::mul_add`] lane by lane on a CPU without them: the same bits,
 //! `crate::numeric::lanes`), which saves about a third of the operations.
 //!
+//! ## Block by block
+//!
+//! [`FastShapes::blocks_at`] hands the same values out a block of [`BLOCK`]
+//! modes at a time ([`BlocksAvx::next`], then [`Blocks::tail_into`]), with
+//! the very operations of the whole-vector kernels, for a caller that uses
+//! each block while it is in registers (the fused `modal_exact` step); it
+//! declines where a boundary-layer row applies (`tests` check both, bit for
+//! bit).
+//!
 //! ## Accuracy
 //!
 //! Against the direct evaluation [`super::ModeShapes::values_into`] (itself
