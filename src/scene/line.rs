@@ -359,7 +359,15 @@ impl Line {
                     ),
                 ));
             }
-            let vm = messenger_sag(&supports, messenger, &loads, xs[i]);
+            // the span's own supports and loads (G5: the supports are rigid)
+            let k = i / self.local.len();
+            let per = self.local.len();
+            let vm = messenger_sag(
+                &supports[k..=k + 1],
+                messenger,
+                &loads[k * per..(k + 1) * per],
+                xs[i],
+            );
             let length = self.messenger.height + vm - vc[i] - force / self.k_d;
             if length.is_nan() || length <= 0.0 {
                 return Err(Error::invalid(

@@ -29,7 +29,8 @@ pub struct PointSpring {
 /// The forces N_d (N, up on the contact wire) that hold a string on
 /// `[0, length]`, pinned at v = 0 at both ends, at heights `heights[d]` (m,
 /// v up) at the points `xs[d]` (strictly increasing, inside the span), with
-/// at most one of `springs` between two consecutive held points (eq. G3–G4).
+/// at most one of `springs` (rising in x) between two consecutive held
+/// points (eq. G3–G4).
 ///
 /// Each segment [a, b] (L = b − a, chord slope s = (v_b − v_a)/L) holding a
 /// spring k_s at x_s with the wire at v_s pushes on its two ends with
@@ -62,7 +63,10 @@ pub fn dropper_forces(
     let mut forces = vec![0.0; n];
     for seg in 0..=n {
         let ((a, va), (b, vb)) = (point(seg), point(seg + 1));
-        let (ra, rb) = segment_pushes(a, va, b, vb, wire, springs);
+        // the springs strictly inside (a, b) (`springs` rise in x)
+        let inside = &springs
+            [springs.partition_point(|sp| sp.x <= a)..springs.partition_point(|sp| sp.x < b)];
+        let (ra, rb) = segment_pushes(a, va, b, vb, wire, inside);
         if seg >= 1 {
             forces[seg - 1] += ra;
         }
