@@ -317,6 +317,31 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Multi-span lines generated from a scene's `[line]` table
+    /// (docs/lines.md#the-line-generator-g1g7).
+    Line {
+        #[command(subcommand)]
+        action: LineAction,
+    },
+}
+
+/// `taut line …`.
+#[derive(Subcommand)]
+enum LineAction {
+    /// Print the scene with its `[line]` expanded into the plain keys it
+    /// stands for (beam length, mesh, droppers, steady arms, messenger): TOML
+    /// that runs identically when given back.
+    Expand {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Override a scene value (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Remove a scene key so that its default applies (repeatable; applied
+        /// before the --set overrides).
+        #[arg(long = "unset", value_name = "KEY.PATH")]
+        unset: Vec<String>,
+    },
 }
 
 /// The help of `--methods`: the names come from the method registry
@@ -495,6 +520,12 @@ fn main() -> ExitCode {
             out,
             (quiet, yes),
         ),
+        Command::Line {
+            action: LineAction::Expand { scene, set, unset },
+        } => app::line::expand(&SceneSource::File(scene), &overrides(unset, set)).map(|text| {
+            print!("{text}");
+            true
+        }),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,

@@ -20,6 +20,8 @@ mod gate;
 mod hostile_input;
 #[path = "layers.rs"]
 mod layers;
+#[path = "line.rs"]
+mod line;
 #[path = "precision.rs"]
 mod precision;
 #[path = "readme.rs"]

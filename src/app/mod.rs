@@ -19,6 +19,7 @@
 pub mod compare;
 pub mod converge;
 pub mod gate;
+pub mod line;
 pub mod merge;
 pub mod modes;
 pub mod precision;

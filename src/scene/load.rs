@@ -265,8 +265,12 @@ fn parse_value(raw: &str) -> Value {
 /// The path is written the way `--set` takes it (`carrier.0.speed`, not
 /// `carrier[0].speed`), and the toml crate's own trailing "in `…`" line,
 /// which repeats the path without array indices, is dropped.
+///
+/// A `[line]` table is expanded into the plain keys it stands for first
+/// ([`super::expand_line`]): here, after every override, so that `--set
+/// line.spans=12` and sweeps over `line.*` regenerate the line.
 pub fn scene_from_tree(tree: Table) -> Result<Scene> {
-    let value = Value::Table(tree);
+    let value = Value::Table(super::expand_line(tree)?);
     serde_path_to_error::deserialize(value).map_err(|e| {
         let path = e.path().to_string().replace('[', ".").replace(']', "");
         let inner = e.into_inner().to_string();

@@ -19,6 +19,8 @@ mod damping;
 mod discretization;
 mod dropper;
 mod external_force;
+mod line;
+mod line_design;
 mod load;
 pub mod manufactured;
 mod method;
@@ -35,6 +37,7 @@ pub use discretization::{
 };
 pub use dropper::{Anchor, Dropper, DropperSpec, resolve_droppers};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
+pub use line::{DesignedDropper, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed, with_table_files,
