@@ -130,6 +130,17 @@ fn step_loop_does_not_allocate() {
         assert_eq!(allocations_in_steps(REFERENCE, &[&o], 6000), 0, "{f}");
     }
     complementarity();
+    // the line's outputs: span statistics and uplift at the supports from
+    // point vectors made once, the envelope at every node (issue 27)
+    assert_eq!(
+        allocations_in_steps(
+            REFERENCE,
+            &["output.supports=[0.0, 12.5, 30.0, 50.0]", "output.envelope=true"],
+            6000
+        ),
+        0,
+        "supports and envelope"
+    );
     // batched stepping: four runs as lanes of one sweep, through contact loss
     let (allocations, open) = batch_allocations(5500);
     assert_eq!(allocations, 0, "a batch of four runs");

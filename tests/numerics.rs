@@ -60,5 +60,7 @@ mod verification_riding_mass;
 mod verification_t1_cantilever;
 #[path = "verification_t2_wave_travel.rs"]
 mod verification_t2_wave_travel;
+#[path = "line_outputs.rs"]
+mod line_outputs;
 #[path = "wire.rs"]
 mod wire;
