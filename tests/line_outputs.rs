@@ -84,14 +84,33 @@ fn span_statistics_are_those_of_the_history_columns() {
         let min = rows.iter().map(|&i| f[i]).fold(f64::INFINITY, f64::min);
         let lost = rows.iter().filter(|&&i| c[i] == 0.0).count() as f64 / n;
         let fm = rows.iter().map(|&i| filtered[i]).sum::<f64>() / n;
-        let fs = (rows.iter().map(|&i| (filtered[i] - fm).powi(2)).sum::<f64>() / n).sqrt();
+        let fs = (rows
+            .iter()
+            .map(|&i| (filtered[i] - fm).powi(2))
+            .sum::<f64>()
+            / n)
+            .sqrt();
         assert_eq!((st.span, st.x_start, st.x_end), (k, a, b));
         assert_eq!(st.samples, rows.len(), "span {k}");
-        assert!(same(mean, st.force_mean), "span {k}: mean {mean} vs {:?}", st.force_mean);
+        assert!(
+            same(mean, st.force_mean),
+            "span {k}: mean {mean} vs {:?}",
+            st.force_mean
+        );
         let s = st.force_std.unwrap();
-        assert!((s - sigma).abs() <= SIGMA_ROUNDOFF * sigma, "span {k}: σ {s} vs {sigma}");
-        assert!(same(max, st.force_max) && same(min, st.force_min), "span {k}");
-        assert!(same(lost, st.loss_fraction), "span {k}: P_l {lost} vs {:?}", st.loss_fraction);
+        assert!(
+            (s - sigma).abs() <= SIGMA_ROUNDOFF * sigma,
+            "span {k}: σ {s} vs {sigma}"
+        );
+        assert!(
+            same(max, st.force_max) && same(min, st.force_min),
+            "span {k}"
+        );
+        assert!(
+            same(lost, st.loss_fraction),
+            "span {k}: P_l {lost} vs {:?}",
+            st.loss_fraction
+        );
         assert!(same(fm, st.filtered_mean), "span {k}: filtered mean");
         assert!(same(fs, st.filtered_std), "span {k}: filtered σ");
         // spans.csv holds the summary's numbers, bit for bit
@@ -108,18 +127,33 @@ fn span_statistics_are_those_of_the_history_columns() {
             assert!(same(spans[col][k], v), "spans.csv {col} row {k}");
         }
     }
-    let outside = (1..x.len()).filter(|&i| x[i] < SUPPORTS[0] || x[i] > SUPPORTS[3]).count();
-    assert_eq!(counted + outside, x.len() - 1, "every step in one span or none");
+    let outside = (1..x.len())
+        .filter(|&i| x[i] < SUPPORTS[0] || x[i] > SUPPORTS[3])
+        .count();
+    assert_eq!(
+        counted + outside,
+        x.len() - 1,
+        "every step in one span or none"
+    );
     // the reference run loses contact near x/L = 0.6512 (32.56 m, span 2): P_l counts there
     assert!(summary.spans.iter().any(|s| s.loss_fraction.unwrap() > 0.0));
     // the same statistics with the history kept every 7th step (the
     // accumulators read every step); the filtered force is then null
     let sparse = common::run(&resolve(&text, &["output.record_every=7"]));
     for (a, b) in sparse.spans.iter().zip(&out.spans) {
-        assert_eq!((a.samples, a.force_mean, a.force_std), (b.samples, b.force_mean, b.force_std));
+        assert_eq!(
+            (a.samples, a.force_mean, a.force_std),
+            (b.samples, b.force_mean, b.force_std)
+        );
     }
-    let sparse_summary = taut::report::Summary::new(&resolve(&text, &["output.record_every=7"]), &sparse);
-    assert!(sparse_summary.spans.iter().all(|s| s.filtered_mean.is_none()));
+    let sparse_summary =
+        taut::report::Summary::new(&resolve(&text, &["output.record_every=7"]), &sparse);
+    assert!(
+        sparse_summary
+            .spans
+            .iter()
+            .all(|s| s.filtered_mean.is_none())
+    );
 }
 
 #[test]
@@ -141,7 +175,10 @@ fn the_uplift_at_a_support_is_what_a_probe_there_records() {
         assert_eq!(s.v_max.to_bits(), max.to_bits(), "{name}: max");
         assert_eq!(s.v_min.to_bits(), min.to_bits(), "{name}: min");
         assert_eq!(s.t_max, h.t[first], "{name}: time of the max");
-        assert!(max - min > 1e-4, "{name}: the carrier moves the wire ({min} … {max} m)");
+        assert!(
+            max - min > 1e-4,
+            "{name}: the carrier moves the wire ({min} … {max} m)"
+        );
     }
 }
 
@@ -172,7 +209,10 @@ fn the_envelope_is_the_range_of_the_field() {
     assert_eq!(c["v_min"], e.v_min);
     let svg = std::fs::read_to_string(tmp.path().join("line.svg")).unwrap();
     assert!(svg.contains("uplift envelope") && svg.contains("carrier 0 travel"));
-    assert!(!tmp.path().join("spans.csv").exists(), "no supports, no spans.csv");
+    assert!(
+        !tmp.path().join("spans.csv").exists(),
+        "no supports, no spans.csv"
+    );
 }
 
 #[test]
@@ -186,19 +226,38 @@ fn line_svg_draws_the_droppers_and_supports() {
     let tmp = tempfile::tempdir().unwrap();
     taut::report::write_run(tmp.path(), &sc, &out).unwrap();
     let svg = std::fs::read_to_string(tmp.path().join("line.svg")).unwrap();
-    for label in ["droppers (to their anchors)", "supports", "uplift at the supports"] {
+    for label in [
+        "droppers (to their anchors)",
+        "supports",
+        "uplift at the supports",
+    ] {
         assert!(svg.contains(label), "line.svg has no `{label}`");
     }
-    assert_eq!(csv(&tmp.path().join("supports.csv"))["x"], [0.0, 27.0, 54.0]);
+    assert_eq!(
+        csv(&tmp.path().join("supports.csv"))["x"],
+        [0.0, 27.0, 54.0]
+    );
 }
 
 #[test]
 fn bad_supports_and_unknown_keys_are_refused() {
     for (keys, words) in [
-        ("supports = [0.0, 60.0]", &["output.supports.1", "60", "[0, 50] m"][..]),
-        ("supports = [-1.0]", &["output.supports.0", "-1", "[0, 50] m"]),
-        ("supports = [10.0, 10.0]", &["output.supports.1", "10", "strictly increasing"]),
-        ("supports = [20.0, 10.0]", &["output.supports.1", "greater than output.supports.0"]),
+        (
+            "supports = [0.0, 60.0]",
+            &["output.supports.1", "60", "[0, 50] m"][..],
+        ),
+        (
+            "supports = [-1.0]",
+            &["output.supports.0", "-1", "[0, 50] m"],
+        ),
+        (
+            "supports = [10.0, 10.0]",
+            &["output.supports.1", "10", "strictly increasing"],
+        ),
+        (
+            "supports = [20.0, 10.0]",
+            &["output.supports.1", "greater than output.supports.0"],
+        ),
         ("supports = [nan]", &["output.supports.0", "NaN"]),
         ("suports = [1.0]", &["suports"]),
         ("envelope = 1", &["envelope"]),
@@ -233,7 +292,10 @@ fn the_cli_prints_the_span_table_and_writes_the_files() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(stdout.contains("  spans    carrier span"), "{stdout}");
-    assert!(stdout.contains("support  x = 25.00 m: uplift max"), "{stdout}");
+    assert!(
+        stdout.contains("support  x = 25.00 m: uplift max"),
+        "{stdout}"
+    );
     for f in ["spans.csv", "supports.csv", "envelope.csv", "line.svg"] {
         assert!(dir.join(f).exists(), "{f}");
         assert!(stdout.contains(f), "the wrote line names {f}: {stdout}");

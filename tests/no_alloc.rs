@@ -135,7 +135,10 @@ fn step_loop_does_not_allocate() {
     assert_eq!(
         allocations_in_steps(
             REFERENCE,
-            &["output.supports=[0.0, 12.5, 30.0, 50.0]", "output.envelope=true"],
+            &[
+                "output.supports=[0.0, 12.5, 30.0, 50.0]",
+                "output.envelope=true"
+            ],
             6000
         ),
         0,

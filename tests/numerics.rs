@@ -38,6 +38,8 @@ mod formulations;
 mod galerkin_order;
 #[path = "invariants.rs"]
 mod invariants;
+#[path = "line_outputs.rs"]
+mod line_outputs;
 #[path = "manufactured.rs"]
 mod manufactured;
 #[path = "methods.rs"]
@@ -60,7 +62,5 @@ mod verification_riding_mass;
 mod verification_t1_cantilever;
 #[path = "verification_t2_wave_travel.rs"]
 mod verification_t2_wave_travel;
-#[path = "line_outputs.rs"]
-mod line_outputs;
 #[path = "wire.rs"]
 mod wire;
