@@ -11,8 +11,8 @@ use crate::integrate::{
     scene_method,
 };
 use crate::record::{
-    ContactAccumulator, ContactStats, DropperAccumulator, DropperSample, DropperStats, History,
-    LossGeometry, WireSeries,
+    ContactAccumulator, ContactStats, DropperAccumulator, DropperSample, DropperStats, Envelope,
+    History, LossGeometry, SpanAccumulator, SpanStats, SupportUplift, WireSeries, span_of,
 };
 use crate::resolve::Resolved;
 
@@ -25,6 +25,10 @@ pub struct RunOutput {
     pub stats: Vec<ContactStats>,
     /// Statistics per dropper (`[[dropper]]`), in scene order; empty without.
     pub droppers: Vec<DropperStats>,
+    /// Contact force statistics per carrier and span (`[output] supports`),
+    /// carrier by carrier, span by span; empty without supports. The
+    /// filtered force's are left `None` (the summary fills them).
+    pub spans: Vec<SpanStats>,
     /// Number of unknowns (beam dofs + mass dofs).
     pub dofs: usize,
     /// Steps taken.
@@ -255,6 +259,10 @@ struct Recorder {
     dropper_now: Vec<DropperSample>,
     /// The wire's snapshots and field: what to record when, and where.
     wire: WireRecorder,
+    /// The line's supports, m (`Resolved::wire.supports`), and per carrier
+    /// its statistics over each span between them (empty without).
+    supports: Vec<f64>,
+    spans: Vec<Vec<SpanAccumulator>>,
 }
 
 /// What [`Recorder`] records of the wire along the span
@@ -266,6 +274,10 @@ struct WireRecorder {
     snapshot_pvs: Vec<crate::model::beam::PointVector>,
     field_every: usize,
     field_pvs: Vec<crate::model::beam::PointVector>,
+    /// Point vectors at the supports and at the envelope's nodes (empty
+    /// when none asked for).
+    support_pvs: Vec<crate::model::beam::PointVector>,
+    envelope_pvs: Vec<crate::model::beam::PointVector>,
 }
 
 impl WireRecorder {
@@ -277,12 +289,18 @@ impl WireRecorder {
         if w.field_every > 0 {
             h.field = WireSeries::with_capacity(w.field_x.clone(), w.field_rows(sc.steps));
         }
+        h.supports = w.supports.iter().map(|&x| SupportUplift::new(x)).collect();
+        if !w.envelope_x.is_empty() {
+            h.envelope = Envelope::new(w.envelope_x.clone());
+        }
         let pvs = |x: &[f64]| x.iter().map(|&x| beam.point_vector(x)).collect();
         WireRecorder {
             snapshots: w.snapshots.clone(),
             snapshot_pvs: pvs(&w.snapshot_x),
             field_every: w.field_every,
             field_pvs: pvs(&w.field_x),
+            support_pvs: pvs(&w.supports),
+            envelope_pvs: pvs(&w.envelope_x),
         }
     }
 
@@ -308,6 +326,14 @@ impl WireRecorder {
         }
         if self.field_every > 0 && n.is_multiple_of(self.field_every) {
             record_row(&mut h.field, t, t, &self.field_pvs, &displacement);
+        }
+        // uplift at the supports: O(#supports), into values made up front
+        for (pv, s) in self.support_pvs.iter().zip(h.supports.iter_mut()) {
+            s.push(t, displacement(pv));
+        }
+        // the envelope: O(n), only when asked
+        for (i, pv) in self.envelope_pvs.iter().enumerate() {
+            h.envelope.push(i, displacement(pv));
         }
     }
 }
@@ -344,6 +370,10 @@ impl Recorder {
                 .map(|d| DropperAccumulator::new(&d.name, d.x, d.linear))
                 .collect(),
             dropper_now: vec![DropperSample::default(); sc.droppers.len()],
+            supports: sc.wire.supports.clone(),
+            spans: (0..nc)
+                .map(|c| SpanAccumulator::for_supports(c, &sc.wire.supports))
+                .collect(),
             h,
             wire,
             // statistics over every step, whatever rows the history keeps;
@@ -397,6 +427,9 @@ impl Recorder {
             self.acc[c].push(t, &s);
             if !first && near_support(s.x) {
                 self.support_peak[c] = self.support_peak[c].max(s.force.abs());
+            }
+            if !first && let Some(k) = span_of(&self.supports, s.x) {
+                self.spans[c][k].push(s.force, s.in_contact);
             }
             if keep {
                 self.h.carriers[c].push(&s);
@@ -467,6 +500,12 @@ impl Recorder {
             }
         }
         RunOutput {
+            spans: self
+                .spans
+                .iter()
+                .flatten()
+                .map(SpanAccumulator::finish)
+                .collect(),
             force_lag: f.force_lag,
             warnings,
             dofs: f.dofs,

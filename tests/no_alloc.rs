@@ -130,6 +130,7 @@ fn step_loop_does_not_allocate() {
         assert_eq!(allocations_in_steps(REFERENCE, &[&o], 6000), 0, "{f}");
     }
     complementarity();
+    line_outputs();
     // batched stepping: four runs as lanes of one sweep, through contact loss
     let (allocations, open) = batch_allocations(5500);
     assert_eq!(allocations, 0, "a batch of four runs");
@@ -275,6 +276,35 @@ fn external_forces() {
         0,
         "a held force, stepped and recorded"
     );
+}
+
+/// The line's outputs (issue 27) in a recorded run (`run::SteppedRun`, the
+/// recorder [`taut::run`] drives): the span statistics, the uplift at the
+/// supports from point vectors made once, and the envelope at every node,
+/// through contact loss.
+fn line_outputs() {
+    MEASURING.with(|m| m.set(true));
+    let o: Vec<String> = [
+        "output.supports=[0.0, 12.5, 30.0, 50.0]",
+        "output.envelope=true",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let sc = taut::resolve_scene(REFERENCE, &o).unwrap();
+    let it = taut::integrate::Integrator::new(&sc).unwrap();
+    let mut run = taut::run::SteppedRun::new(&sc, it, std::time::Instant::now()).unwrap();
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for _ in 0..6000 {
+        run.step(&sc).unwrap();
+    }
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::Relaxed) - before,
+        0,
+        "supports and envelope, stepped and recorded"
+    );
+    let h = run.history();
+    assert_eq!((h.supports.len(), h.envelope.x.len()), (4, sc.elements + 1));
 }
 
 /// `modal_exact` (MODEL §9.3): on each diagonal basis through contact loss,

@@ -38,6 +38,8 @@ mod formulations;
 mod galerkin_order;
 #[path = "invariants.rs"]
 mod invariants;
+#[path = "line_outputs.rs"]
+mod line_outputs;
 #[path = "manufactured.rs"]
 mod manufactured;
 #[path = "methods.rs"]

@@ -372,15 +372,49 @@ fn call<R: Send>(
 }
 
 /// What `run` hands back: `(summary_json, history_columns, warnings,
-/// accuracy_columns, (snapshots, field))`, accuracy for a `tolerance` run
-/// only, snapshots and field when the scene asks for them ([`wire_to_py`]).
+/// accuracy_columns, (snapshots, field), (spans, supports, envelope))`,
+/// accuracy for a `tolerance` run only, snapshots and field when the scene
+/// asks for them ([`wire_to_py`]), the line's tables likewise
+/// ([`line_to_py`]).
 type RunTuple<'py> = (
     String,
     Bound<'py, PyList>,
     Vec<String>,
     Option<Bound<'py, PyList>>,
     (Option<WireTuple<'py>>, Option<WireTuple<'py>>),
+    LineTuple<'py>,
 );
+
+/// The line's tables (`spans.csv`, `supports.csv`, `envelope.csv`), each
+/// `None` when the scene does not ask for it.
+pub(crate) type LineTuple<'py> = (
+    Option<Bound<'py, PyList>>,
+    Option<Bound<'py, PyList>>,
+    Option<Bound<'py, PyList>>,
+);
+
+/// A run's line tables ([`LineTuple`]): the summary's spans (the filtered
+/// force's included), the supports' uplift and the envelope, as the CLI
+/// writes them.
+pub(crate) fn line_to_py<'py>(
+    py: Python<'py>,
+    summary: &taut::report::Summary,
+    h: &taut::record::History,
+) -> PyResult<LineTuple<'py>> {
+    let spans = match summary.spans.is_empty() {
+        true => None,
+        false => Some(table_to_py(py, &taut::report::spans_table(&summary.spans))?),
+    };
+    let supports = match h.supports.is_empty() {
+        true => None,
+        false => Some(table_to_py(py, &taut::report::supports_table(&h.supports))?),
+    };
+    let envelope = match h.envelope.is_empty() {
+        true => None,
+        false => Some(table_to_py(py, &taut::report::envelope_table(&h.envelope))?),
+    };
+    Ok((spans, supports, envelope))
+}
 
 /// A recorded wire series (`taut::record::WireSeries`) as f64 bytes:
 /// `(requested, t, x, v)`, v row-major (len(t) × len(x)).
@@ -447,8 +481,16 @@ fn run<'py>(
     let r = call(py, progress.as_ref(), |fe| app::run(&request, fe))?;
     let history = table_to_py(py, &taut::report::history_table(&r.output))?;
     let wire = wire_to_py(py, &r.output.history);
+    let line = line_to_py(py, &r.summary, &r.output.history)?;
     let Some(accuracy) = &r.accuracy else {
-        return Ok((pretty(&r.summary)?, history, r.output.warnings, None, wire));
+        return Ok((
+            pretty(&r.summary)?,
+            history,
+            r.output.warnings,
+            None,
+            wire,
+            line,
+        ));
     };
     let doc = taut::report::WithAccuracy {
         summary: &r.summary,
@@ -460,6 +502,7 @@ fn run<'py>(
         r.output.warnings.clone(),
         Some(table_to_py(py, &taut::report::accuracy_table(accuracy))?),
         wire,
+        line,
     ))
 }
 

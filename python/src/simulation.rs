@@ -14,7 +14,7 @@ use pyo3::types::PyList;
 
 use taut::app::{self, Silent};
 
-use crate::{RunTuple, pretty, scene, table_to_py, to_py_err, wire_to_py};
+use crate::{RunTuple, line_to_py, pretty, scene, table_to_py, to_py_err, wire_to_py};
 
 /// Steps taken between two looks for Ctrl-C: a few milliseconds of a
 /// large scene's steps, a negligible share of a small scene's call.
@@ -178,6 +178,14 @@ impl Simulation {
         let history = table_to_py(py, &taut::report::history_table(&r.output))?;
         let empty: Option<Bound<'py, PyList>> = None;
         let wire = wire_to_py(py, &r.output.history);
-        Ok((pretty(&r.summary)?, history, r.output.warnings, empty, wire))
+        let line = line_to_py(py, &r.summary, &r.output.history)?;
+        Ok((
+            pretty(&r.summary)?,
+            history,
+            r.output.warnings,
+            empty,
+            wire,
+            line,
+        ))
     }
 }

@@ -122,6 +122,16 @@ class Run:
             the CLI's snapshots.csv), None when the scene asks for none.
         field: the space–time field v(x, t) of `[output] field`
             (WireSeries), None when the scene asks for none.
+        spans: the contact force's statistics per carrier and span between
+            `[output] supports` (Table of spans.csv's columns: carrier,
+            span, x_start, x_end, samples, force_mean, force_std, force_max,
+            force_min, filtered_mean, filtered_std, loss_fraction), None
+            without supports.
+        supports: the wire's uplift at each support (Table of
+            supports.csv's columns: x, v_max, v_min, t_max), None without.
+        envelope: the range of v over time at every mesh node with
+            `[output] envelope = true` (Table of envelope.csv's columns: x,
+            v_min, v_max), None otherwise.
         x: the mesh nodes, m (a property: `taut.mesh` of the run's scene).
         summary: the dict of the CLI's `summary.json` (scene, derived
             quantities, per-carrier statistics, warnings, wall time).
@@ -148,8 +158,24 @@ class Run:
         self.accuracy: Optional[Table] = accuracy
         self.snapshots: Optional[WireSeries] = None
         self.field: Optional[WireSeries] = None
+        self.spans: Optional[Table] = None
+        self.supports: Optional[Table] = None
+        self.envelope: Optional[Table] = None
         self._scene: Optional[Tuple[Optional[str], Optional[str], List[str]]] = None
         self._x: Optional[np.ndarray] = None
+
+    def _line(
+        self,
+        line: Tuple[
+            Optional[List[Tuple[str, str, Any]]],
+            Optional[List[Tuple[str, str, Any]]],
+            Optional[List[Tuple[str, str, Any]]],
+        ],
+    ) -> None:
+        spans, supports, envelope = line
+        self.spans = None if spans is None else table(spans)
+        self.supports = None if supports is None else table(supports)
+        self.envelope = None if envelope is None else table(envelope)
 
     @property
     def x(self) -> np.ndarray:
@@ -570,7 +596,7 @@ def run(
     tol = None if tolerance is None else _toml(_real("tolerance", tolerance))
     sets = _overrides(set)
     with _Sink(progress, "steps" if tol is None else "runs") as p:
-        summary, history, warnings, accuracy, (snap, field) = _taut.run(
+        summary, history, warnings, accuracy, (snap, field), line = _taut.run(
             path, text, sets, _out(out), tol, quantity, p
         )
     r = Run(
@@ -581,6 +607,7 @@ def run(
     )
     r.snapshots = _wire(snap)
     r.field = _wire(field)
+    r._line(line)
     r._scene = (path, text, sets)
     return r
 

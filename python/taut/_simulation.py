@@ -159,10 +159,11 @@ class Simulation:
         (SceneError) before the end."""
         from . import Run, _wire
 
-        summary, history, warnings, _, (snap, field) = self._sim.finish()
+        summary, history, warnings, _, (snap, field), line = self._sim.finish()
         r = Run(json.loads(summary), table(history), list(warnings), None)
         r.snapshots = _wire(snap)
         r.field = _wire(field)
+        r._line(line)
         r._scene = self._scene
         return r
 

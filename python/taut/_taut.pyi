@@ -32,6 +32,7 @@ _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
 _Progress = Optional[Callable[[int, int], object]]
 _Wire = Optional[Tuple[bytes, bytes, bytes, bytes]]
+_Line = Tuple[Optional[List[_Column]], Optional[List[_Column]], Optional[List[_Column]]]
 
 def run(
     path: Optional[str],
@@ -41,7 +42,9 @@ def run(
     tolerance: Optional[str],
     quantity: Optional[str],
     progress: _Progress,
-) -> Tuple[str, List[_Column], List[str], Optional[List[_Column]], Tuple[_Wire, _Wire]]: ...
+) -> Tuple[
+    str, List[_Column], List[str], Optional[List[_Column]], Tuple[_Wire, _Wire], _Line
+]: ...
 def limits() -> Tuple[int, int]: ...
 def sweep(
     path: Optional[str],
@@ -133,4 +136,5 @@ class Simulation:
         List[str],
         Optional[List[_Column]],
         Tuple[_Wire, _Wire],
+        _Line,
     ]: ...

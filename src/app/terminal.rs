@@ -126,6 +126,7 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
     for d in &s.droppers {
         t.push_str(&dropper_line(d));
     }
+    t.push_str(&span_lines(s));
     for w in &s.warnings {
         let _ = writeln!(t, "  WARNING  {w}");
     }
@@ -147,11 +148,65 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
         ", snapshots.csv"
     };
     let field = if o.field.is_some() { ", field.csv" } else { "" };
+    let spans = match (s.spans.is_empty(), s.supports.is_empty()) {
+        (false, _) => ", spans.csv, supports.csv",
+        (true, false) => ", supports.csv",
+        _ => "",
+    };
+    let envelope = if o.envelope {
+        ", envelope.csv, line.svg"
+    } else {
+        ""
+    };
     let _ = writeln!(
         t,
-        "  wrote    {}/{{history.csv, summary.json, force.svg{accuracy_csv}{snapshots}{field}}}",
+        "  wrote    {}/{{history.csv, summary.json, force.svg{accuracy_csv}{snapshots}{field}{spans}{envelope}}}",
         dir.display()
     );
+    t
+}
+
+/// The per-span contact force table and the uplift at the supports
+/// (`[output] supports`): a line per carrier and span, one per support;
+/// nothing without supports.
+fn span_lines(s: &crate::report::Summary) -> String {
+    let mut t = String::new();
+    if !s.spans.is_empty() {
+        let _ = writeln!(
+            t,
+            "  spans    carrier span      x (m)          steps  mean (N)   std (N)   max (N)   min (N)  0–20 Hz mean/std (N)   P_l"
+        );
+    }
+    let num = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2}"));
+    for p in &s.spans {
+        let _ = writeln!(
+            t,
+            "           {:>7} {:>4} {:>8.2}–{:<8.2} {:>7} {:>9} {:>9} {:>9} {:>9}  {:>9} / {:<9} {}",
+            p.carrier,
+            p.span,
+            p.x_start,
+            p.x_end,
+            p.samples,
+            num(p.force_mean),
+            num(p.force_std),
+            num(p.force_max),
+            num(p.force_min),
+            num(p.filtered_mean),
+            num(p.filtered_std),
+            p.loss_fraction
+                .map_or("-".to_string(), |v| format!("{v:.4}"))
+        );
+    }
+    for u in &s.supports {
+        let _ = writeln!(
+            t,
+            "  support  x = {:.2} m: uplift max {:.2} mm at t = {:.4} s, min {:.2} mm",
+            u.x,
+            u.v_max * 1e3,
+            u.t_max,
+            u.v_min * 1e3
+        );
+    }
     t
 }
 

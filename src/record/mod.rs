@@ -7,14 +7,20 @@
 use crate::integrate::CarrierSample;
 
 pub mod dropper;
+pub mod envelope;
+pub mod span;
 pub mod stats;
+pub mod support;
 pub mod wire;
 pub mod zone;
 
 pub use dropper::{DropperAccumulator, DropperSample, DropperStats};
+pub use envelope::Envelope;
+pub use span::{SpanAccumulator, SpanStats, span_of};
 pub use stats::{
     ContactAccumulator, ContactStats, Filtered, FilteredForce, ForceStats, LossClass, Recontact,
 };
+pub use support::SupportUplift;
 pub use wire::WireSeries;
 pub use zone::LossGeometry;
 
@@ -77,6 +83,10 @@ pub struct History {
     pub snapshots: WireSeries,
     /// The space–time field v(x, t) (`output.field`; empty when none).
     pub field: WireSeries,
+    /// v's range at each support (`output.supports`; empty when none).
+    pub supports: Vec<SupportUplift>,
+    /// v's range at every node (`output.envelope`; empty when not asked).
+    pub envelope: Envelope,
 }
 
 impl History {
@@ -101,6 +111,8 @@ impl History {
             droppers: Vec::new(),
             snapshots: WireSeries::default(),
             field: WireSeries::default(),
+            supports: Vec::new(),
+            envelope: Envelope::default(),
         }
     }
 

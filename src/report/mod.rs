@@ -6,6 +6,8 @@ mod compare;
 mod converge;
 mod csv;
 mod gate;
+mod line;
+mod line_svg;
 mod modes;
 mod outputs;
 mod plot;
@@ -25,6 +27,7 @@ pub use converge::{
 };
 pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
+pub use line::{envelope_table, spans_table, supports_table, write_line};
 pub use modes::{mode_shapes_table, modes_table, write_modes};
 pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
 pub use plot::{PLOT_BUCKETS, write_force_plot};
@@ -75,6 +78,7 @@ pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> 
     write_summary(&dir.join("summary.json"), &summary)?;
     write_force_plot(&dir.join("force.svg"), sc, out)?;
     write_wire(dir, &out.history)?;
+    write_line(dir, sc, out, &summary.spans)?;
     Ok(summary)
 }
 

@@ -5,7 +5,7 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::error::Result;
-use crate::record::{ContactStats, DropperStats, Filtered};
+use crate::record::{ContactStats, DropperStats, Filtered, SpanStats, SupportUplift, span_of};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
 use crate::scene::{Discretization, Scene};
@@ -69,6 +69,15 @@ pub struct Summary {
     /// range and slack intervals. Absent without droppers.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub droppers: Vec<DropperStats>,
+    /// Contact force statistics of every carrier in every span between
+    /// the line's supports (`[output] supports`; docs/output.md#spans),
+    /// carrier by carrier, span by span. Absent without supports.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub spans: Vec<SpanStats>,
+    /// The wire's displacement range at each support, with the time of its
+    /// largest value (docs/output.md#supports). Absent without supports.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub supports: Vec<SupportUplift>,
     /// Wall-clock seconds of the run: model assembly, factorization, initial
     /// accelerations and the time loop with recording.
     pub wall_seconds: f64,
@@ -117,6 +126,8 @@ impl Summary {
             contact: carriers[0].clone(),
             carriers,
             droppers: out.droppers.clone(),
+            spans: spans_filtered(sc, out),
+            supports: out.history.supports.clone(),
             wall_seconds: out.wall_seconds,
             warnings: out.warnings.clone(),
         }
@@ -132,6 +143,61 @@ fn filtered(out: &RunOutput, force: &[f64]) -> Filtered {
     } else {
         Filtered::Stats(crate::study::filter::filtered_force_stats(force, out.dt))
     }
+}
+
+/// The run's per-span statistics ([`RunOutput::spans`]) with the 0–20 Hz
+/// filtered force's mean and σ over each span's steps: the force history
+/// filtered as a whole ([`crate::study::filter::lowpass_zero_phase`], the
+/// filter of the whole-run `force_filtered`), then its mean and population
+/// σ (two passes) over the steps (rows 1…) whose x_m lies in the span
+/// ([`span_of`]). Left `null` when the history does not hold every step.
+fn spans_filtered(sc: &Resolved, out: &RunOutput) -> Vec<SpanStats> {
+    let mut spans = out.spans.clone();
+    let h = &out.history;
+    if spans.is_empty() || h.record_every > 1 {
+        return spans;
+    }
+    let supports = &sc.wire.supports;
+    let per_carrier = supports.len().saturating_sub(1);
+    for (c, tr) in h.carriers.iter().enumerate() {
+        if tr.force.is_empty() {
+            continue;
+        }
+        let f = crate::study::filter::lowpass_zero_phase(
+            &tr.force,
+            out.dt,
+            crate::study::filter::FORCE_BAND_HZ,
+        );
+        let Some(mine) = spans.get_mut(c * per_carrier..(c + 1) * per_carrier) else {
+            continue;
+        };
+        // two passes over the steps: the sums, then the squared deviations
+        let rows = 1..f.len().min(tr.x.len());
+        let (mut n, mut sum, mut dev) = (
+            vec![0usize; per_carrier],
+            vec![0.0; per_carrier],
+            vec![0.0; per_carrier],
+        );
+        for i in rows.clone() {
+            if let Some(k) = span_of(supports, tr.x[i]) {
+                n[k] += 1;
+                sum[k] += f[i];
+            }
+        }
+        let mean: Vec<f64> = sum.iter().zip(&n).map(|(s, &n)| s / n as f64).collect();
+        for i in rows {
+            if let Some(k) = span_of(supports, tr.x[i]) {
+                dev[k] += (f[i] - mean[k]) * (f[i] - mean[k]);
+            }
+        }
+        for (k, st) in mine.iter_mut().enumerate() {
+            if n[k] > 0 {
+                st.filtered_mean = Some(mean[k]);
+                st.filtered_std = Some((dev[k] / n[k] as f64).sqrt());
+            }
+        }
+    }
+    spans
 }
 
 /// The terminal's description of a run's discretization, e.g.

@@ -55,6 +55,7 @@ pub fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary> {
     )?;
     write_force_plot(&dir.join("force.svg"), &r.scene, &r.output)?;
     super::write_wire(dir, &r.output.history)?;
+    super::write_line(dir, &r.scene, &r.output, &summary.spans)?;
     let csv = dir.join("accuracy.csv");
     std::fs::write(&csv, accuracy_csv(&r.accuracy)).map_err(|e| Error::io(&csv, e))?;
     Ok(summary)

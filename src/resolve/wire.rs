@@ -27,6 +27,15 @@ pub struct WirePlan {
     pub field_every: usize,
     /// Field points, m (empty without a field).
     pub field_x: Vec<f64>,
+    /// The line's supports, m, strictly increasing in [0, L]: consecutive
+    /// pairs are spans (`spans.csv`), and the uplift is recorded at each
+    /// (`supports.csv`). `[output] supports`; empty: none. The one list
+    /// every source of supports fills (a messenger's supports may fill it
+    /// when the scene gives none here).
+    pub supports: Vec<f64>,
+    /// The envelope's points, m: the mesh nodes with `[output] envelope =
+    /// true`, else empty (none recorded).
+    pub envelope_x: Vec<f64>,
 }
 
 impl WirePlan {
@@ -37,16 +46,20 @@ impl WirePlan {
             .map_or(0, |rows| rows + 1)
     }
 
-    /// Values recorded over a run of `steps` steps (snapshots and field).
+    /// Values recorded over a run of `steps` steps (snapshots, field, and
+    /// the envelope's x, v_min, v_max and the supports' x, v_max, v_min,
+    /// t_max).
     pub fn values(&self, steps: usize) -> u64 {
         let snap = (self.snapshots.len() as u64).saturating_mul(self.snapshot_x.len() as u64);
         let field = (self.field_rows(steps) as u64).saturating_mul(self.field_x.len() as u64);
-        snap.saturating_add(field)
+        let envelope = 3 * self.envelope_x.len() as u64 + 4 * self.supports.len() as u64;
+        snap.saturating_add(field).saturating_add(envelope)
     }
 
     /// Points the recorder evaluates at (one point vector each).
     pub fn points(&self) -> u64 {
-        (self.snapshot_x.len() + self.field_x.len()) as u64
+        (self.snapshot_x.len() + self.field_x.len() + self.envelope_x.len() + self.supports.len())
+            as u64
     }
 }
 
@@ -139,5 +152,37 @@ pub fn resolve_wire(o: &OutputSpec, g: &Grid) -> Result<WirePlan> {
         plan.field_every = usize::try_from(f.every).unwrap_or(usize::MAX);
         plan.field_x = points("output.field.points", f.points, g)?;
     }
+    plan.supports = resolve_supports(&o.supports, g.length)?;
+    if o.envelope {
+        plan.envelope_x = nodes(g)?;
+    }
     Ok(plan)
+}
+
+/// Check `[output] supports` on a span of `length` m: each finite in
+/// [0, L], strictly increasing.
+pub fn resolve_supports(supports: &[f64], length: f64) -> Result<Vec<f64>> {
+    for (i, &x) in supports.iter().enumerate() {
+        let field = format!("output.supports.{i}");
+        if !(x.is_finite() && (0.0..=length).contains(&x)) {
+            return Err(Error::invalid(
+                field,
+                x,
+                format!("must be a position in [0, {length}] m (the beam's span)"),
+            ));
+        }
+        if let Some(&prev) = i.checked_sub(1).and_then(|j| supports.get(j))
+            && x <= prev
+        {
+            return Err(Error::invalid(
+                field,
+                x,
+                format!(
+                    "must be greater than output.supports.{} = {prev} m (supports strictly increasing)",
+                    i - 1
+                ),
+            ));
+        }
+    }
+    Ok(supports.to_vec())
 }

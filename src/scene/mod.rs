@@ -572,6 +572,21 @@ pub struct OutputSpec {
     /// The space–time field v(x, t) (`field.csv`); absent: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field: Option<FieldSpec>,
+    /// Positions of the line's supports (masts), m: strictly increasing in
+    /// [0, L]; consecutive pairs are spans. Gives the contact force's
+    /// statistics per span (`spans.csv`) and the uplift at each support
+    /// (`supports.csv`). Empty: none (and no cost).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub supports: Vec<f64>,
+    /// Record the range of v over time at every mesh node (`envelope.csv`,
+    /// `line.svg`; default false: not recorded, no cost).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub envelope: bool,
+}
+
+/// serde's test for a flag left out when false.
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 /// `[output] field = { every = K, points = n }`: v(x, t) at every K-th step
@@ -597,6 +612,8 @@ impl Default for OutputSpec {
             snapshots: Vec::new(),
             snapshot_points: None,
             field: None,
+            supports: Vec::new(),
+            envelope: false,
         }
     }
 }

@@ -225,6 +225,7 @@ mod tests {
                 crate::record::LossGeometry::span_only(1.0),
             )],
             droppers: vec![],
+            spans: vec![],
             dofs: 1,
             steps: 1,
             dt: 1.0,

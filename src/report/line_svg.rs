@@ -1,0 +1,241 @@
+//! `line.svg`: the picture of the line (`[output] envelope = true`;
+//! docs/output.md#line-svg). Two panels over x (m):
+//!
+//! - the line: the contact wire at rest (v = 0), the supports, each dropper
+//!   as a vertical segment from the wire up to its anchor's height, a
+//!   messenger wire when the scene has one ([`messenger_line`]), and each
+//!   carrier's travel (the x_m it covered) as a bar below the wire;
+//! - the uplift envelope: the largest and smallest v(x, t) over the run at
+//!   every node (`envelope.csv`), in mm, with the supports and their largest
+//!   uplift (`supports.csv`) marked.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::PALETTE;
+use super::axis_range::{drawable, write_note};
+use crate::error::{Error, Result};
+use crate::resolve::Resolved;
+use crate::run::RunOutput;
+use crate::scene::Anchor;
+
+/// Pixel size of `line.svg`.
+const SIZE: (u32, u32) = (1200, 720);
+
+/// Metres to the envelope panel's millimetres.
+const MM: f64 = 1e3;
+
+/// The height of a dropper's upper end above the wire at rest, m. A fixed
+/// anchor's own height; an anchor on a messenger wire (when the scene has
+/// one) would give the messenger's height at x_d here.
+fn anchor_height(a: &Anchor) -> f64 {
+    match *a {
+        Anchor::Fixed { height } => height,
+    }
+}
+
+/// The messenger wire as (x, height) points, m, when the resolved scene
+/// has one: none today. The hook for a second line: return its supports'
+/// heights and the points between them, and `line.svg` draws it.
+fn messenger_line(_sc: &Resolved) -> Option<Vec<(f64, f64)>> {
+    None
+}
+
+/// Each carrier's travel: the smallest and largest x_m in its history, m
+/// (`None` for a carrier with no finite position).
+fn travel(out: &RunOutput) -> Vec<Option<(f64, f64)>> {
+    out.history
+        .carriers
+        .iter()
+        .map(|tr| {
+            let xs = tr.x.iter().copied().filter(|x| x.is_finite());
+            let lo = xs.clone().fold(f64::INFINITY, f64::min);
+            let hi = xs.fold(f64::NEG_INFINITY, f64::max);
+            lo.is_finite().then_some((lo, hi))
+        })
+        .collect()
+}
+
+/// Draw `line.svg` for a run that recorded the envelope.
+pub fn write_line_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()> {
+    let fail = |e: Box<dyn std::error::Error>| Error::Output {
+        path: path.into(),
+        reason: e.to_string(),
+    };
+    let l = sc.beam.length;
+    let env = &out.history.envelope;
+    let (mut v0, mut v1) = (0.0f64, 0.0f64);
+    for (&lo, &hi) in env.v_min.iter().zip(&env.v_max) {
+        v0 = v0.min(lo * MM);
+        v1 = v1.max(hi * MM);
+    }
+    let heights: Vec<f64> = sc
+        .droppers
+        .iter()
+        .map(|d| anchor_height(&d.anchor))
+        .collect();
+    let messenger = messenger_line(sc);
+    let top = heights
+        .iter()
+        .copied()
+        .chain(messenger.iter().flatten().map(|p| p.1))
+        .fold(0.0f64, f64::max);
+    let bottom = heights.iter().copied().fold(0.0f64, f64::min);
+    // the carriers' bars sit below the wire, a twentieth of the height apart
+    let step = 0.05 * (top - bottom).max(1.0);
+    let nc = out.history.carriers.len();
+    let line_lo = bottom - step * (nc as f64 + 1.0);
+    let line_hi = top + step;
+    let title = format!(
+        "the line: {} supports, {} droppers; uplift envelope (max {:.2} mm, min {:.2} mm)",
+        out.history.supports.len(),
+        sc.droppers.len(),
+        v1,
+        v0
+    );
+    let ranges = drawable("x", 0.0, l, false).and_then(|x| {
+        drawable("height", line_lo, line_hi, false)
+            .and_then(|h| drawable("v", v0, v1, false).map(|v| (x, h, v)))
+    });
+    let (xr, hr, vr) = match ranges {
+        Ok(r) => r,
+        Err(reason) => {
+            return write_note(path, SIZE, &title, &reason, "envelope.csv and supports.csv");
+        }
+    };
+    let pad = |(lo, hi): (f64, f64)| {
+        let p = 0.05 * (hi - lo);
+        (lo - p, hi + p)
+    };
+    let vr = pad(vr);
+    let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
+        let root = SVGBackend::new(path, SIZE).into_drawing_area();
+        root.fill(&WHITE)?;
+        let root = root.titled(&title, ("sans-serif", 18))?;
+        let (upper, lower) = root.split_vertically(SIZE.1 / 2 - 20);
+
+        // the line
+        let mut chart = ChartBuilder::on(&upper)
+            .margin(12)
+            .x_label_area_size(35)
+            .y_label_area_size(70)
+            .build_cartesian_2d(xr.0..xr.1, hr.0..hr.1)?;
+        chart
+            .configure_mesh()
+            .x_desc("x (m)")
+            .y_desc("height (m)")
+            .draw()?;
+        chart
+            .draw_series(LineSeries::new(
+                [(0.0, 0.0), (l, 0.0)],
+                BLACK.stroke_width(2),
+            ))?
+            .label("contact wire at rest")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2)));
+        let support = RGBColor(90, 90, 90);
+        let masts = out
+            .history
+            .supports
+            .iter()
+            .map(|s| PathElement::new(vec![(s.x, hr.0), (s.x, hr.1)], support.stroke_width(2)));
+        if !out.history.supports.is_empty() {
+            chart
+                .draw_series(masts)?
+                .label("supports")
+                .legend(move |(x, y)| {
+                    PathElement::new(
+                        vec![(x + 9, y - 6), (x + 9, y + 6)],
+                        support.stroke_width(2),
+                    )
+                });
+        }
+        let dropper = PALETTE[2];
+        if !sc.droppers.is_empty() {
+            chart
+                .draw_series(sc.droppers.iter().zip(&heights).map(|(d, &z)| {
+                    PathElement::new(vec![(d.x, 0.0), (d.x, z)], dropper.stroke_width(1))
+                }))?
+                .label("droppers (to their anchors)")
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x + 9, y - 6), (x + 9, y + 6)], dropper)
+                });
+        }
+        if let Some(m) = messenger {
+            let col = PALETTE[4];
+            chart
+                .draw_series(LineSeries::new(m, col.stroke_width(2)))?
+                .label("messenger wire")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col));
+        }
+        for (c, span) in travel(out).into_iter().enumerate() {
+            let Some((a, b)) = span else { continue };
+            let y = bottom - step * (c as f64 + 1.0);
+            let col = PALETTE[c % PALETTE.len()];
+            chart
+                .draw_series(LineSeries::new([(a, y), (b, y)], col.stroke_width(4)))?
+                .label(format!("carrier {c} travel"))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(4))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()?;
+
+        // the uplift envelope
+        let mut chart = ChartBuilder::on(&lower)
+            .margin(12)
+            .x_label_area_size(35)
+            .y_label_area_size(70)
+            .build_cartesian_2d(xr.0..xr.1, vr.0..vr.1)?;
+        chart
+            .configure_mesh()
+            .x_desc("x (m)")
+            .y_desc("v (mm, up)")
+            .draw()?;
+        chart.draw_series(
+            out.history
+                .supports
+                .iter()
+                .map(|s| PathElement::new(vec![(s.x, vr.0), (s.x, vr.1)], support.mix(0.5))),
+        )?;
+        for (k, (name, col)) in [
+            ("max v(x, t) over t", PALETTE[0]),
+            ("min v(x, t) over t", PALETTE[1]),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let v = if k == 0 { &env.v_max } else { &env.v_min };
+            let pts: Vec<(f64, f64)> = env.x.iter().zip(v).map(|(&x, &v)| (x, v * MM)).collect();
+            chart
+                .draw_series(LineSeries::new(pts, col.stroke_width(2)))?
+                .label(name)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(2))
+                });
+        }
+        if !out.history.supports.is_empty() {
+            chart
+                .draw_series(
+                    out.history
+                        .supports
+                        .iter()
+                        .map(|s| TriangleMarker::new((s.x, s.v_max * MM), 6, BLACK.filled())),
+                )?
+                .label("uplift at the supports")
+                .legend(|(x, y)| TriangleMarker::new((x + 9, y), 5, BLACK.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()?;
+        root.present()?;
+        Ok(())
+    };
+    draw().map_err(fail)
+}
