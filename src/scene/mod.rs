@@ -21,6 +21,7 @@ mod dropper;
 mod external_force;
 mod load;
 pub mod manufactured;
+mod messenger;
 mod method;
 mod motion;
 mod pantograph;
@@ -33,7 +34,8 @@ pub use damping::{Rayleigh, RayleighSpec, resolve_rayleigh};
 pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
-pub use dropper::{Anchor, Dropper, DropperSpec, resolve_droppers};
+pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
+pub use messenger::{Messenger, MessengerSpec};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
@@ -89,6 +91,11 @@ pub struct Scene {
     /// links that go slack, solved with the contacts (`docs/lines.md`).
     #[serde(default, rename = "dropper", skip_serializing_if = "Vec::is_empty")]
     pub droppers: Vec<DropperSpec>,
+    /// A messenger wire above the contact wire (`[messenger]`,
+    /// `docs/lines.md` eq. W1–W6), coupled by droppers with
+    /// `anchor = "messenger"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub messenger: Option<MessengerSpec>,
     /// What the history records (`[output]`).
     #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
     pub output: OutputSpec,
@@ -464,6 +471,28 @@ pub struct TimeSpec {
     pub step: f64,
     /// End time, s, or `"carrier_leaves"`.
     pub end: EndTime,
+    /// The initial state: `"rest"` (default, MODEL §5: d₀ = 0, ḋ₀ = 0) or
+    /// `"static"` (d₀ solves K d₀ = f, `docs/lines.md` eq. W6).
+    #[serde(default, skip_serializing_if = "Initial::is_rest")]
+    pub initial: Initial,
+}
+
+/// `[time] initial`: where the wire starts.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Initial {
+    /// Straight and at rest (MODEL §5).
+    #[default]
+    Rest,
+    /// At its static equilibrium under the constant loads, at rest.
+    Static,
+}
+
+impl Initial {
+    /// True for the default.
+    pub fn is_rest(&self) -> bool {
+        *self == Initial::Rest
+    }
 }
 
 /// When a run stops.
