@@ -40,6 +40,8 @@ mod galerkin_order;
 mod invariants;
 #[path = "manufactured.rs"]
 mod manufactured;
+#[path = "messenger.rs"]
+mod messenger;
 #[path = "methods.rs"]
 mod methods;
 #[path = "modal_exact.rs"]

@@ -125,9 +125,7 @@ impl Droppers {
                 });
                 Link {
                     pv: beam.point_vector(d.x),
-                    pm: d
-                        .on_messenger()
-                        .then(|| beam.messenger_point_vector(d.x)),
+                    pm: d.on_messenger().then(|| beam.messenger_point_vector(d.x)),
                     k: d.stiffness,
                     e0: d.rest_extension(),
                     row,
@@ -170,13 +168,7 @@ impl Droppers {
     /// `n_out`, and each one's direction scaled by it into column 0 of
     /// `rhs` (k columns), a known load of the initial acceleration problem.
     /// `d0 = None` is the straight wire (N_d = k_d max(e₀, 0)).
-    pub(crate) fn initial(
-        &self,
-        d0: Option<&[f64]>,
-        n_out: &mut [f64],
-        rhs: &mut [f64],
-        k: usize,
-    ) {
+    pub(crate) fn initial(&self, d0: Option<&[f64]>, n_out: &mut [f64], rhs: &mut [f64], k: usize) {
         for l in &self.links {
             let Some(r) = l.row else { continue };
             let e = match d0 {

@@ -718,7 +718,16 @@ mod tests {
 
     #[test]
     fn fused_solves_match_dense_cholesky() {
-        for &(n, p) in &[(1, 1), (2, 3), (5, 3), (40, 3), (40, 1), (17, 2)] {
+        for &(n, p) in &[
+            (1, 1),
+            (2, 3),
+            (5, 3),
+            (40, 3),
+            (40, 1),
+            (17, 2),
+            (40, 7),
+            (9, 7),
+        ] {
             let a = sample(n, p);
             let f = BandedLdlt::factor(&a).unwrap();
             let ad = dense(&a);
@@ -744,7 +753,7 @@ mod tests {
 
     #[test]
     fn matvec_matches_dense() {
-        for &(n, p) in &[(3, 3), (9, 3), (30, 3), (30, 1), (12, 2)] {
+        for &(n, p) in &[(3, 3), (9, 3), (30, 3), (30, 1), (12, 2), (30, 7)] {
             let a = sample(n, p);
             let x: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
             let mut y = vec![1.0; n];
@@ -791,6 +800,9 @@ mod tests {
         // p = 2, k = 5 and k = 7 the generic path; n ≤ 2p has no interior rows, and
         // n < p (a one-element clamped–pinned beam) not even a full window
         for &(n, p) in &[
+            (40, 7),
+            (15, 7),
+            (5, 7),
             (1, 3),
             (2, 3),
             (1, 1),

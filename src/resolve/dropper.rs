@@ -80,9 +80,9 @@ pub fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = Attachme
         .iter()
         .filter(|d| d.linear && !d.on_messenger())
         .map(|d| Attachment {
-        x: d.x,
-        stiffness: d.stiffness,
-        mass: 0.0,
-        damping: 0.0,
-    })
+            x: d.x,
+            stiffness: d.stiffness,
+            mass: 0.0,
+            damping: 0.0,
+        })
 }

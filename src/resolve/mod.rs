@@ -51,7 +51,8 @@ impl Scene {
         let mut beam = self.resolve_beam()?;
         let l = beam.length;
         let elements = self.elements()?;
-        let droppers = resolve_droppers(&self.droppers, l, beam.messenger.as_ref().map(|m| m.height))?;
+        let droppers =
+            resolve_droppers(&self.droppers, l, beam.messenger.as_ref().map(|m| m.height))?;
         let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
         check_droppers(self, &droppers, discretization)?;
         check_attachments(self, &beam, discretization)?;
@@ -80,6 +81,18 @@ impl Scene {
         let (dt, t_end, steps) = (time.dt, time.t_end, time.steps);
         crate::scene::check_speed_tables_cover(&carriers, t_end)?;
         let probes = self.resolve_probes(l)?;
+        if let Some(i) = self
+            .probes
+            .iter()
+            .position(|p| p.wire == Some(crate::scene::Wire::Messenger))
+            && beam.messenger.is_none()
+        {
+            return Err(crate::error::Error::invalid(
+                format!("probe.{i}.wire"),
+                "\"messenger\"",
+                "needs a [messenger] section: use wire = \"contact\" (the default)",
+            ));
+        }
         let record_every = self.record_every()?;
         let wire = wire::resolve_wire(
             &self.output,

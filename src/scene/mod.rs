@@ -35,13 +35,13 @@ pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
 pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
-pub use messenger::{Messenger, MessengerSpec};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed, with_table_files,
 };
 pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
+pub use messenger::{Messenger, MessengerSpec};
 pub(crate) use method::register_info;
 pub use method::{
     DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, IntegratorSpec, Method,
@@ -575,6 +575,20 @@ pub struct ProbeSpec {
     pub name: String,
     /// Position, m (0 ≤ x ≤ L).
     pub x: f64,
+    /// The line it reads: `"contact"` (default) or `"messenger"` (v_m,
+    /// from the messenger's rest line, positive up; needs `[messenger]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wire: Option<Wire>,
+}
+
+/// `[[probe]] wire`: which line a probe reads.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Wire {
+    /// The contact wire (the beam).
+    Contact,
+    /// The messenger wire (`[messenger]`).
+    Messenger,
 }
 
 /// `[output]`: what the run's history (`history.csv`) keeps.
