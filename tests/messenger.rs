@@ -136,14 +136,17 @@ fn two_strings_tied_at_every_node_have_in_and_anti_phase_modes() {
 
 /// The continuum limit of the anti-phase mode j = 1 of two tensioned
 /// beams (EI = 10 N·m²) tied at every node: ω² = ω₁² + κ with ω₁² the
-/// pinned–pinned beam's (EI k⁴ + T k²)/ρA, k = π/L. Its relative error
-/// falls as N⁻²: the ties are nodal springs, a distributed spring's
-/// consistent "mass-like" term differs by O(h²) (for strings exactly
-/// 3/(2 + cos θ) − 1 ≈ θ²/6). Measured orders 2.00, 2.00 over N = 20, 40,
-/// 80; the band allows pre-asymptotic drift. The in-phase modes equal the
-/// single beam's FE modes (the messenger moves with the contact wire,
-/// the ties unstretched): measured 1e-12, band as the strings'.
-const TIE_ORDER: (f64, f64) = (1.9, 2.1);
+/// pinned–pinned beam's (EI k⁴ + T k²)/ρA, k = π/L. The nodal ties are the
+/// trapezoidal rule of the distributed spring's ∫κ v w dx, spectrally
+/// accurate on the sine modes, so what remains is the Hermite elements'
+/// eigenvalue error (O(h⁴) for bending, O(h⁶) for tension): measured
+/// relative errors 1.16e-5, 1.75e-7, 9.4e-10 at N = 20, 40, 80 (orders
+/// 6.1, 7.5). The test asks order ≥ 4 (the bending term's asymptotic
+/// rate) and the finest error below 1e-8. The in-phase modes equal the
+/// single beam's FE modes (the messenger moves with the contact wire, the
+/// ties unstretched): measured 1e-12, band as the strings'.
+const TIE_ORDER_MIN: f64 = 4.0;
+const TIE_FINEST: f64 = 1e-8;
 
 #[test]
 fn two_tensioned_beams_converge_to_the_continuum_anti_phase_shift() {
@@ -179,31 +182,23 @@ speed = { profile = "constant", value = 0.0 }
 step = 1e-3
 end = 0.01
 "#;
-        let one = omega_sq(&format!("{single}\n[mesh]\nelements = {n}\n"), 3);
+        let one = omega_sq(&format!("{single}\n[mesh]\nelements = {n}\n"), 6);
         // in-phase modes 1..3 are the single beam's
-        for w in &one {
-            let near = got
-                .iter()
-                .map(|g| (g - w).abs() / w)
-                .fold(f64::INFINITY, f64::min);
-            assert!(near < DISCRETE_STRINGS, "in-phase {w}: {near}");
+        let in_phase = |g: f64| one.iter().any(|w| (g - w).abs() / w < DISCRETE_STRINGS);
+        for w in &one[..3] {
+            assert!(
+                got.iter().any(|&g| (g - w).abs() / w < DISCRETE_STRINGS),
+                "in-phase {w}"
+            );
         }
-        // the anti-phase j = 1 is the lowest eigenvalue above ω₁² + κ/2
-        let anti = got
-            .iter()
-            .copied()
-            .find(|&g| g > one[0] + 0.5 * KAPPA)
-            .unwrap();
+        // the anti-phase j = 1: the lowest eigenvalue that is not in-phase
+        let anti = got.iter().copied().find(|&g| !in_phase(g)).unwrap();
         errs.push((anti - exact).abs() / exact);
     }
     let orders: Vec<f64> = errs.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
     println!("anti-phase j=1 errors {errs:?}, orders {orders:.3?}");
-    assert!(
-        orders
-            .iter()
-            .all(|p| (TIE_ORDER.0..TIE_ORDER.1).contains(p)),
-        "{orders:?}"
-    );
+    assert!(orders.iter().all(|&p| p >= TIE_ORDER_MIN), "{orders:?}");
+    assert!(errs[2] < TIE_FINEST, "{errs:?}");
 }
 
 /// Two strings under their weight (p_c = −9.81, p_m = −4.905 N/m) with one
@@ -268,7 +263,7 @@ const STATIC_EXACT: f64 = 1e-11;
 fn the_static_start_is_the_superposed_point_load_solution() {
     let out = go(&static_strings("end = 0.001"));
     let (xd, k, e0, g) = (4.0, 1.0e4, 0.002, 9.81);
-    let (pc, pm, tm) = (-1.0 * g, -0.5 * g, 800.0);
+    let (pc, pm, tm) = (-g, -0.5 * g, 800.0);
     let gc = StaticPointLoad::new(0.0, T, L, Support::Pinned, Support::Pinned).unwrap();
     let gm = StaticPointLoad::new(0.0, tm, L, Support::Pinned, Support::Pinned).unwrap();
     let uniform = |p: f64, t: f64, x: f64| p * x * (L - x) / (2.0 * t);
@@ -329,7 +324,7 @@ fn go(text: &str) -> RunOutput {
 
 /// The quasi-static lift with a messenger: two tensioned beams (EI = 1
 /// N·m²; contact T = 1000 N, ρA = 1; messenger T_m = 800 N, ρA_m = 0.5),
-/// no gravity, one messenger dropper at x_d = 6 m (k = 1e4 N/m, e₀ = 1
+/// no gravity, one messenger dropper at x_d = 6 m (k = 1e4 N/m, e₀ = 24
 /// mm), started static (so it carries N0 < k e₀, the lines' compliance in
 /// series), and a 20 N force pushing the contact wire up, moving in from
 /// x = 0 at 0.2 m/s (smooth start). `extra` is added to the dropper.
@@ -347,7 +342,7 @@ g = 0.0
 x = 6.0
 stiffness = 1.0e4
 anchor = "messenger"
-length = 0.999
+length = 0.976
 {extra}
 
 [[probe]]
@@ -380,7 +375,7 @@ const XD: f64 = 6.0;
 /// G_m,dd) = −F G_c(x_d, x_m) (both lines' compliance in series with the
 /// dropper's), so N = 0 where F G_c(x_d, x_m) = N0 (1/k + G_c,dd + G_m,dd).
 fn onset_by_hand() -> (f64, f64) {
-    let (k, e0, f) = (1.0e4, 1.0e-3, 20.0);
+    let (k, e0, f) = (1.0e4, 2.4e-2, 20.0);
     let gc = StaticPointLoad::new(1.0, T, L, Support::Pinned, Support::Pinned).unwrap();
     let gm = StaticPointLoad::new(1.0, 800.0, L, Support::Pinned, Support::Pinned).unwrap();
     let series = 1.0 / k + gc.compliance(XD) + gm.compliance(XD);
@@ -403,11 +398,11 @@ fn onset_by_hand() -> (f64, f64) {
 /// As tests/droppers.rs: the onset is read at the end of the first slack
 /// step, known to one step of travel V0 Δt = 4e-4 m (6.7e-5 of x_d); the
 /// band is three steps of travel. The static force N0 is exact up to the
-/// Hermite discretization of the two beams' compliances (N = 100,
-/// bending length sqrt(EI/T) = 3.2 cm against h = 10 cm): measured
-/// 2e-6 relative; the band 1e-4.
+/// Hermite discretization of the two beams' compliances (N = 100, the
+/// bending length sqrt(EI/T) = 3.2 cm unresolved by h = 10 cm): measured
+/// 2.0e-4 relative; the band 1e-3.
 const ONSET: f64 = 3.0 * 0.2 * 2e-3 / XD;
-const STATIC_FORCE: f64 = 1e-4;
+const STATIC_FORCE: f64 = 1e-3;
 
 #[test]
 fn a_messenger_dropper_goes_slack_at_the_uplift_by_hand() {

@@ -56,7 +56,7 @@ pub(crate) fn static_start(sys: &System, droppers: &[Dropper], st: &mut State) -
     })?;
     factor.solve(&mut d);
     for (i, force) in sys.droppers.taut_forces(&d) {
-        if !(force > 0.0) {
+        if force.is_nan() || force <= 0.0 {
             return Err(Error::invalid(
                 format!("dropper.{i}"),
                 format!("{:?} with force {force:e} N", droppers[i].name),
