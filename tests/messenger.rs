@@ -132,6 +132,17 @@ fn two_strings_tied_at_every_node_have_in_and_anti_phase_modes() {
         / top;
     println!("coupled strings: worst eigenvalue error {worst:.2e} of ω²_max");
     assert!(worst < DISCRETE_STRINGS, "{worst}");
+    // which family is which (the eigenvalue sets alone cannot tell a tie
+    // on w_c − w_m from one on w_c + w_m): the lowest mode is in phase,
+    // the messenger moving with the contact wire at mid-span
+    let sc = resolve_scene(&text, &[]).unwrap();
+    let beam = BeamModel::build(&sc.beam, &sc.mesh_plan()).unwrap();
+    let pairs = lowest_eigenpairs(&beam.mass, &beam.stiffness, 1).unwrap();
+    let (c, m) = (
+        beam.point_vector(0.5 * L).dot(pairs.shape(0)),
+        beam.messenger_point_vector(0.5 * L).dot(pairs.shape(0)),
+    );
+    assert!((c - m).abs() < DISCRETE_STRINGS * c.abs(), "{c} {m}");
 }
 
 /// The continuum limit of the anti-phase mode j = 1 of two tensioned
