@@ -382,10 +382,8 @@ impl Recorder {
                 .map(|c| ContactAccumulator::for_steps(LossGeometry::of(sc, c), sc.steps))
                 .collect(),
             support_peak: vec![0.0f64; nc],
-            probes: sc
-                .probes
-                .iter()
-                .map(|(_, x)| beam.point_vector(*x))
+            probes: (0..sc.probes.len())
+                .map(|i| sc.probe_vector(beam, i))
                 .collect(),
             every,
         }

@@ -42,6 +42,7 @@ fn props(ei: f64, tension: f64, attachments: &[Attachment]) -> BeamProps {
         right: Support::Pinned,
         distributed_load: 0.0,
         attachments: attachments.to_vec(),
+        messenger: None,
     }
 }
 

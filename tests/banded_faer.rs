@@ -301,6 +301,7 @@ fn props(ei: f64, left: Support, right: Support) -> BeamProps {
         right,
         distributed_load: 0.0,
         attachments: Vec::new(),
+        messenger: None,
     }
 }
 

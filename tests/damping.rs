@@ -576,6 +576,7 @@ fn small_beam(attachments: Vec<Attachment>) -> BeamProps {
         right: Support::Clamped,
         distributed_load: 0.0,
         attachments,
+        messenger: None,
     }
 }
 

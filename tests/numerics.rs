@@ -42,6 +42,8 @@ mod invariants;
 mod line_outputs;
 #[path = "manufactured.rs"]
 mod manufactured;
+#[path = "messenger.rs"]
+mod messenger;
 #[path = "methods.rs"]
 mod methods;
 #[path = "modal_exact.rs"]

@@ -74,6 +74,13 @@ fn no_subnormals_in_any_method_or_discretization() {
                 "mesh.elements=3200",
             ],
         ),
+        // two lines interleaved (band 7, docs/lines.md W5)
+        (
+            "messenger",
+            vec![
+                "messenger={ tension = 1.6e4, mass_per_length = 1.0, bending_stiffness = 100.0, height = 1.0, supports = [0.0, 50.0] }",
+            ],
+        ),
         // formed none without the flush either (module docs)
         ("galerkin", vec!["mesh.kind=\"galerkin\"", "mesh.modes=400"]),
     ];

@@ -6,7 +6,7 @@
 use pyo3::prelude::*;
 
 /// `(name, TOML text)` of every bundled scene, by name.
-pub const BUNDLED: [(&str, &str); 12] = [
+pub const BUNDLED: [(&str, &str); 13] = [
     (
         "moving_force_beam",
         include_str!("../../scenes/moving_force_beam.toml"),
@@ -35,6 +35,10 @@ pub const BUNDLED: [(&str, &str); 12] = [
     (
         "span_droppers_linear",
         include_str!("../../scenes/span_droppers_linear.toml"),
+    ),
+    (
+        "span_messenger",
+        include_str!("../../scenes/span_messenger.toml"),
     ),
     (
         "t1_cantilever_riding_mass",

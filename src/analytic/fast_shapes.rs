@@ -842,6 +842,7 @@ mod tests {
             right: ends.1,
             distributed_load: 0.0,
             attachments: Vec::new(),
+            messenger: None,
         };
         ModeShapes::new(&props, j).unwrap()
     }

@@ -634,6 +634,7 @@ mod tests {
             right,
             distributed_load: 0.0,
             attachments: Vec::new(),
+            messenger: None,
         }
     }
 

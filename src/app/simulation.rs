@@ -113,10 +113,8 @@ impl Simulation {
         let sc = crate::resolve::resolve_scene(&text, &req.set).map_err(|e| req.scene.name(e))?;
         let start = Instant::now();
         let it = Integrator::new(&sc)?;
-        let probes = sc
-            .probes
-            .iter()
-            .map(|(_, x)| it.beam().point_vector(*x))
+        let probes = (0..sc.probes.len())
+            .map(|i| sc.probe_vector(it.beam(), i))
             .collect();
         let run = SteppedRun::new(&sc, it, start)?;
         Ok(Simulation {

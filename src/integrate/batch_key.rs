@@ -138,6 +138,9 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
         || sc.manufactured.is_some()
         // droppers: their responses are a run's own (`dropper.rs`): alone
         || !sc.droppers.is_empty()
+        // a messenger: its own band (7 or 3) and static start: alone
+        || sc.beam.messenger.is_some()
+        || !sc.scene.time.initial.is_rest()
     {
         return None;
     }

@@ -4,7 +4,10 @@
 //! `resolve::dropper`).
 //!
 //! A tension-only dropper d at x_d pulls the beam up with N_d ≥ 0 along
-//! r_d = r_b(x_d) (MODEL §4). Its compliant unilateral law (D3) is the
+//! r_d = r_b(x_d) (MODEL §4); one hanging from the messenger wire pulls
+//! the contact wire up and the messenger down along r_d = r_b(x_d) −
+//! r_m(x_d) (`docs/lines.md` eq. W2), and everything below holds with
+//! that r_d. Its compliant unilateral law (D3) is the
 //! complementarity problem
 //!
 //! ```text
@@ -47,14 +50,46 @@ pub struct DropperSample {
 /// One dropper during a run.
 #[derive(Debug, Clone)]
 struct Link {
-    /// r_d = r_b(x_d), fixed for the run.
+    /// r_b(x_d) on the contact wire, fixed for the run.
     pv: PointVector,
+    /// r_m(x_d) on the messenger wire for a messenger dropper (eq. W2:
+    /// r_d = r_b(x_d) − r_m(x_d)); `None` for a fixed anchor (r_d = r_b).
+    pm: Option<PointVector>,
     /// k_d, N/m.
     k: f64,
     /// e₀ = z_a − ℓ_0, m: the extension with the beam straight.
     e0: f64,
     /// The dropper's row among the tension-only ones (`None`: linear).
     row: Option<usize>,
+}
+
+impl Link {
+    /// r_dᵀx.
+    #[inline]
+    fn dot(&self, x: &[f64]) -> f64 {
+        match &self.pm {
+            None => self.pv.dot(x),
+            Some(pm) => self.pv.dot(x) - pm.dot(x),
+        }
+    }
+
+    /// r_dᵀx on column `col` of `stride` interleaved columns.
+    #[inline]
+    fn dot_strided(&self, x: &[f64], stride: usize, col: usize) -> f64 {
+        match &self.pm {
+            None => self.pv.dot_strided(x, stride, col),
+            Some(pm) => self.pv.dot_strided(x, stride, col) - pm.dot_strided(x, stride, col),
+        }
+    }
+
+    /// y += a·r_d on column `col` of `stride`.
+    #[inline]
+    fn scatter(&self, a: f64, y: &mut [f64], stride: usize, col: usize) {
+        self.pv.scatter(a, y, stride, col);
+        if let Some(pm) = &self.pm {
+            pm.scatter(-a, y, stride, col);
+        }
+    }
 }
 
 /// The run's droppers, in scene order (module docs).
@@ -90,6 +125,7 @@ impl Droppers {
                 });
                 Link {
                     pv: beam.point_vector(d.x),
+                    pm: d.on_messenger().then(|| beam.messenger_point_vector(d.x)),
                     k: d.stiffness,
                     e0: d.rest_extension(),
                     row,
@@ -123,20 +159,65 @@ impl Droppers {
     /// constant load `load` (D2).
     pub(crate) fn add_preloads(&self, load: &mut [f64]) {
         for l in self.links.iter().filter(|l| l.row.is_none()) {
-            l.pv.scatter(l.k * l.e0, load, 1, 0);
+            l.scatter(l.k * l.e0, load, 1, 0);
         }
     }
 
-    /// The initial forces (t = 0, beam straight): N_d = k_d max(e₀, 0) of
-    /// each row into `n_out`, and each one's direction scaled by it into
-    /// column 0 of `rhs` (k columns), a known load of the initial
-    /// acceleration problem.
-    pub(crate) fn initial(&self, n_out: &mut [f64], rhs: &mut [f64], k: usize) {
+    /// The initial forces (t = 0, wire at `d0`: straight at rest, or the
+    /// static start): N_d = k_d max(e₀ − r_dᵀd₀, 0) of each row into
+    /// `n_out`, and each one's direction scaled by it into column 0 of
+    /// `rhs` (k columns), a known load of the initial acceleration problem.
+    /// `d0 = None` is the straight wire (N_d = k_d max(e₀, 0)).
+    pub(crate) fn initial(&self, d0: Option<&[f64]>, n_out: &mut [f64], rhs: &mut [f64], k: usize) {
         for l in &self.links {
             let Some(r) = l.row else { continue };
-            n_out[r] = l.k * l.e0.max(0.0);
-            l.pv.scatter(n_out[r], rhs, k, 0);
+            let e = match d0 {
+                None => l.e0,
+                Some(d) => l.e0 - l.dot(d),
+            };
+            n_out[r] = l.k * e.max(0.0);
+            l.scatter(n_out[r], rhs, k, 0);
         }
+    }
+
+    /// The static start's operator and load (`docs/lines.md` eq. W6): every
+    /// tension-only dropper taken taut, k_d r_d r_dᵀ into `k` and its
+    /// k_d e₀ r_d into `f` (a linear dropper's are already in K and the
+    /// load).
+    pub(crate) fn add_taut(&self, k: &mut crate::model::banded::SymBand, f: &mut [f64]) {
+        for l in self.links.iter().filter(|l| l.row.is_some()) {
+            let mut entries: Vec<(usize, f64)> = Vec::with_capacity(8);
+            for (i, v) in l.pv.idx.iter().zip(l.pv.val) {
+                entries.push((*i, v));
+            }
+            if let Some(pm) = &l.pm {
+                for (i, v) in pm.idx.iter().zip(pm.val) {
+                    entries.push((*i, -v));
+                }
+            }
+            for &(i, vi) in &entries {
+                for &(j, vj) in &entries {
+                    if vi != 0.0 && vj != 0.0 {
+                        k.add_entry(i, j, l.k * vi * vj);
+                    }
+                }
+            }
+            l.scatter(l.k * l.e0, f, 1, 0);
+        }
+    }
+
+    /// The force k_d (e₀ − r_dᵀd) of each tension-only dropper at `d`, in
+    /// scene order with its index (the static start's check that each is
+    /// taut).
+    pub(crate) fn taut_forces<'a>(
+        &'a self,
+        d: &'a [f64],
+    ) -> impl Iterator<Item = (usize, f64)> + 'a {
+        self.links
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| l.row.is_some())
+            .map(move |(i, l)| (i, l.k * (l.e0 - l.dot(d))))
     }
 
     /// Form z_d = A⁻¹ r_d and the dropper block of W once (module docs),
@@ -148,7 +229,7 @@ impl Droppers {
         for l in &self.links {
             let Some(r) = l.row else { continue };
             let z = &mut self.z[r * n..(r + 1) * n];
-            l.pv.scatter(1.0, z, 1, 0);
+            l.scatter(1.0, z, 1, 0);
             solve(z);
         }
         self.weight = weight;
@@ -158,7 +239,7 @@ impl Droppers {
             let Some(i) = a.row else { continue };
             for b in &self.links {
                 let Some(j) = b.row else { continue };
-                let mut w = self.coef * a.pv.dot(&self.z[j * n..(j + 1) * n]);
+                let mut w = self.coef * a.dot(&self.z[j * n..(j + 1) * n]);
                 if i == j {
                     w += 1.0 / a.k;
                 }
@@ -193,10 +274,10 @@ impl Droppers {
         for l in &self.links {
             let Some(r) = l.row else { continue };
             let i = nc + r;
-            let end = l.pv.dot(d_pred) + c_d * l.pv.dot_strided(solved, k, 0);
-            g_free[i] = (1.0 - a) * end + a * l.pv.dot(d_n) - l.e0;
+            let end = l.dot(d_pred) + c_d * l.dot_strided(solved, k, 0);
+            g_free[i] = (1.0 - a) * end + a * l.dot(d_n) - l.e0;
             for j in 0..nc {
-                w[i * nt + j] = self.coef * l.pv.dot_strided(solved, k, 1 + j);
+                w[i * nt + j] = self.coef * l.dot_strided(solved, k, 1 + j);
             }
             w[i * nt + nc..i * nt + nt].copy_from_slice(&self.w_dd[r * m..(r + 1) * m]);
         }
@@ -229,7 +310,7 @@ impl Droppers {
     ) {
         for l in &self.links {
             let Some(r) = l.row else { continue };
-            l.pv.scatter(coef * forces[r], y, lanes, lane);
+            l.scatter(coef * forces[r], y, lanes, lane);
         }
     }
 
@@ -249,7 +330,7 @@ impl Droppers {
                     slack: !active[r],
                 },
                 None => DropperSample {
-                    force: l.k * (l.e0 - l.pv.dot(d)),
+                    force: l.k * (l.e0 - l.dot(d)),
                     slack: false,
                 },
             };

@@ -51,6 +51,7 @@ mod moreau_jean;
 mod oscillator;
 mod run_batch;
 mod state;
+mod static_start;
 mod step_map;
 mod system;
 
@@ -153,7 +154,13 @@ impl Integrator {
         factory.accepts(&sc.contact, sc.discretization)?;
         let mut sys = System::new(sc)?;
         let mut state = State::at_rest(sys.beam().n, sys.contacts());
-        let init = sys.initial()?;
+        let init = if sc.scene.time.initial.is_rest() {
+            sys.initial()?
+        } else {
+            // `[time] initial = "static"` (static_start.rs)
+            static_start::static_start(&sys, &sc.droppers, &mut state)?;
+            sys.initial_at(Some((&state.d, &state.q)))?
+        };
         let stepper = factory.build(sc, &mut sys, &mut state, init)?;
         if sys.has_chains() && !stepper.carries_chains() {
             return Err(chain::refusal(&factory.name()));

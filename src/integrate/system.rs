@@ -527,6 +527,14 @@ impl System {
     /// rest, so g̈ = rᵀa − q̈). The contact law solves this
     /// acceleration-level problem; its λ is the force recorded at t = 0.
     pub fn initial(&mut self) -> Result<Initial> {
+        self.initial_at(None)
+    }
+
+    /// [`System::initial`] from a displaced start at rest (`[time] initial
+    /// = "static"`, `static_start.rs`): the wire at d₀ and the masses at
+    /// q₀, so M a₀ = f(0) − K d₀ + Σ λ r and each mass's spring acts at
+    /// its q₀. `None` is the straight wire with the masses at 0.
+    pub(crate) fn initial_at(&mut self, start: Option<(&[f64], &[f64])>) -> Result<Initial> {
         let n = self.beam.n;
         let nc = self.masses.len();
         let k = rhs_columns(nc);
@@ -536,10 +544,23 @@ impl System {
         for i in 0..n {
             rhs[i * k] = self.beam.load[i];
         }
+        let saved_masses = self.masses.clone();
+        if let Some((d0, q0)) = start {
+            let mut kd = vec![0.0; n];
+            self.beam.stiffness.mul_acc(d0, 1.0, &mut kd);
+            for i in 0..n {
+                rhs[i * k] -= kd[i];
+            }
+            // a mass's spring at q₀: its free force f₀ − k q₀
+            for (m, q) in self.masses.iter_mut().zip(q0) {
+                m.f0 -= m.k * q;
+            }
+        }
         self.scatter_loads(&mut rhs, k, 1.0);
         // the droppers' initial forces are known loads (`dropper.rs`)
         let (contacts, dropper_forces) = self.lambda.split_at_mut(nc);
-        self.droppers.initial(dropper_forces, &mut rhs, k);
+        self.droppers
+            .initial(start.map(|s| s.0), dropper_forces, &mut rhs, k);
         for (a, f) in self.active[nc..].iter_mut().zip(dropper_forces.iter()) {
             *a = *f > 0.0;
         }
@@ -551,6 +572,7 @@ impl System {
             .law
             .initial(g_free, w, contacts, &mut self.active[..nc])
         {
+            self.masses = saved_masses;
             return Err(self.failure(0, 0.0, Level::Acceleration, failure));
         }
         let mut a = vec![0.0; n];
@@ -564,6 +586,7 @@ impl System {
         let aq = (0..nc)
             .map(|j| (self.masses[j].f0 - self.lambda[j]) / self.masses[j].m)
             .collect();
+        self.masses = saved_masses;
         Ok(Initial { a, aq, mass_factor })
     }
 

@@ -8,7 +8,9 @@
 //! sides at once (the free step and A⁻¹r of each contact, MODEL §5): their
 //! chains are independent and overlap in the CPU, for nearly the price of one.
 //! The half-bandwidth p and the number of right-hand sides are compile-time
-//! constants in the kernels (p = 3 Hermite, p = 1 string), so the inner loops
+//! constants in the kernels (p = 3 Hermite, p = 1 string, p = 7 the
+//! Hermite contact and messenger wires interleaved, `docs/lines.md` eq. W5;
+//! the two-line string's p = 3 is the Hermite kernel), so the inner loops
 //! unroll fully, the window of the last p solved rows stays in registers (no
 //! store-to-load forwarding on the chain), and an affine column h − K u (the
 //! generalized-α residual, `integrate::gen_alpha`) can be computed inside the
@@ -119,6 +121,7 @@ impl SymBand {
         match self.p {
             1 => self.mul_acc_p::<1>(x, alpha, y),
             3 => self.mul_acc_p::<3>(x, alpha, y),
+            7 => self.mul_acc_p::<7>(x, alpha, y),
             _ => self.mul_acc_any(x, alpha, y),
         }
     }
@@ -256,6 +259,7 @@ impl Affine<'_> {
         match self.k.p {
             1 if interior(1) => self.row_interior::<1>(i),
             3 if interior(3) => self.row_interior::<3>(i),
+            7 if interior(7) => self.row_interior::<7>(i),
             _ => self.row_any(i),
         }
     }
@@ -465,7 +469,8 @@ impl BandedLdlt {
                 }
             };
         }
-        dispatch!(3, 1; 3, 2; 3, 3; 3, 4; 3, 6; 1, 1; 1, 2; 1, 3; 1, 4; 1, 6)
+        dispatch!(3, 1; 3, 2; 3, 3; 3, 4; 3, 6; 1, 1; 1, 2; 1, 3; 1, 4; 1, 6;
+                  7, 1; 7, 2; 7, 4; 7, 6)
     }
 
     /// One elimination row: `acc − Σ_k row[k] win[k]`, oldest row first so the
@@ -713,7 +718,16 @@ mod tests {
 
     #[test]
     fn fused_solves_match_dense_cholesky() {
-        for &(n, p) in &[(1, 1), (2, 3), (5, 3), (40, 3), (40, 1), (17, 2)] {
+        for &(n, p) in &[
+            (1, 1),
+            (2, 3),
+            (5, 3),
+            (40, 3),
+            (40, 1),
+            (17, 2),
+            (40, 7),
+            (9, 7),
+        ] {
             let a = sample(n, p);
             let f = BandedLdlt::factor(&a).unwrap();
             let ad = dense(&a);
@@ -739,7 +753,7 @@ mod tests {
 
     #[test]
     fn matvec_matches_dense() {
-        for &(n, p) in &[(3, 3), (9, 3), (30, 3), (30, 1), (12, 2)] {
+        for &(n, p) in &[(3, 3), (9, 3), (30, 3), (30, 1), (12, 2), (30, 7)] {
             let a = sample(n, p);
             let x: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
             let mut y = vec![1.0; n];
@@ -786,6 +800,9 @@ mod tests {
         // p = 2, k = 5 and k = 7 the generic path; n ≤ 2p has no interior rows, and
         // n < p (a one-element clamped–pinned beam) not even a full window
         for &(n, p) in &[
+            (40, 7),
+            (15, 7),
+            (5, 7),
             (1, 3),
             (2, 3),
             (1, 1),

@@ -163,9 +163,15 @@ pub struct BeamModel {
     pub h: f64,
     /// The FE mesh (a one-element placeholder for `galerkin`).
     pub mesh: Mesh,
-    /// For each node-local dof (node·dofs_per_node + local), its global index
-    /// or `None` when a support removes it (the FE dofs).
+    /// For each node-local dof of the contact wire (node·dofs_per_node +
+    /// local), its global index or `None` when a support removes it (the FE
+    /// dofs).
     pub dof_of: Vec<Option<usize>>,
+    /// The same for the messenger wire (`[messenger]`; empty without it).
+    /// With a messenger the global unknowns are interleaved node by node:
+    /// contact w, θ, messenger w, θ (Hermite), or contact w, messenger w
+    /// (string), supported dofs skipped (`docs/lines.md` eq. W1).
+    pub messenger_dof_of: Vec<Option<usize>>,
     /// Number of unknowns n (FE dofs, or J modes).
     pub n: usize,
     /// Global mass matrix M, kg (and kg·m² on rotations; the identity in a
@@ -197,7 +203,9 @@ impl BeamModel {
         }
     }
 
-    /// Assemble the finite elements on a mesh.
+    /// Assemble the finite elements on a mesh: the contact wire, and with a
+    /// `[messenger]` both lines interleaved node by node
+    /// ([`BeamModel::on_mesh`]'s layout, `docs/lines.md` eq. W1).
     pub fn on_mesh(props: &BeamProps, mesh: Mesh) -> Self {
         let elements = mesh.elements();
         let family = if props.is_string() {
@@ -209,22 +217,31 @@ impl BeamModel {
             Family::Hermite => 2,
             Family::String => 1,
         };
+        // lines per node: the contact wire's dofs first, then the messenger's
+        let lines = if props.messenger.is_some() { 2 } else { 1 };
         let nodes = elements + 1;
-        let mut removed = vec![false; nodes * per_node];
+        let stride = lines * per_node;
+        let mut removed = vec![false; nodes * stride];
         for (node, support) in [(0, props.left), (elements, props.right)] {
             match support {
                 Support::Clamped => {
-                    removed[node * per_node] = true;
+                    removed[node * stride] = true;
                     if per_node == 2 {
-                        removed[node * per_node + 1] = true;
+                        removed[node * stride + 1] = true;
                     }
                 }
-                Support::Pinned => removed[node * per_node] = true,
+                Support::Pinned => removed[node * stride] = true,
                 Support::Free => {}
             }
         }
+        if let Some(m) = &props.messenger {
+            // pinned: the messenger's w at each support's node (W3)
+            for &x in &m.supports {
+                removed[nearest_node(&mesh, x) * stride + per_node] = true;
+            }
+        }
         let mut n = 0;
-        let dof_of: Vec<Option<usize>> = removed
+        let global: Vec<Option<usize>> = removed
             .iter()
             .map(|&r| {
                 if r {
@@ -235,49 +252,82 @@ impl BeamModel {
                 }
             })
             .collect();
-        let p = match family {
-            Family::Hermite => 3,
-            Family::String => 1,
+        // the contact wire's node-local dofs (node·per_node + local), and
+        // the messenger's, each to its global index
+        let line_of = |line: usize| -> Vec<Option<usize>> {
+            (0..nodes * per_node)
+                .map(|k| global[(k / per_node) * stride + line * per_node + k % per_node])
+                .collect()
+        };
+        let dof_of = line_of(0);
+        let messenger_dof_of = if lines == 2 { line_of(1) } else { Vec::new() };
+        // half-bandwidth: an element couples its nodes' dofs (3 Hermite, 1
+        // string); with two lines a tie between nodes couples a node's
+        // contact w with the next node's last messenger dof (7 Hermite, 3
+        // string, eq. W5)
+        let p = match (family, lines) {
+            (Family::Hermite, 1) => 3,
+            (Family::String, 1) => 1,
+            (Family::Hermite, _) => 7,
+            (Family::String, _) => 3,
         };
         let mut mass = SymBand::zeros(n, p);
         let mut stiffness = SymBand::zeros(n, p);
         let mut load = vec![0.0; n];
-        let w = props.distributed_load;
-        for e in 0..elements {
-            let h = mesh.element_length(e);
-            match family {
-                Family::Hermite => {
-                    let me = element::hermite_mass(props.rho_a, h);
-                    let ke = element::hermite_bending(props.ei, h)
-                        + element::hermite_tension(props.tension, h);
-                    let fe = element::hermite_uniform_load(w, h);
-                    let dofs: [Option<usize>; 4] = std::array::from_fn(|k| dof_of[2 * e + k]);
-                    scatter(
-                        &mut mass,
-                        &mut stiffness,
-                        &mut load,
-                        &dofs,
-                        &me,
-                        &ke,
-                        fe.as_slice(),
-                    );
-                }
-                Family::String => {
-                    let me = element::string_mass(props.rho_a, h);
-                    let ke = element::string_stiffness(props.tension, h);
-                    let fe = element::string_uniform_load(w, h);
-                    let dofs: [Option<usize>; 2] = [dof_of[e], dof_of[e + 1]];
-                    scatter(
-                        &mut mass,
-                        &mut stiffness,
-                        &mut load,
-                        &dofs,
-                        &me,
-                        &ke,
-                        fe.as_slice(),
-                    );
+        let contact = LineProps {
+            rho_a: props.rho_a,
+            ei: props.ei,
+            tension: props.tension,
+            load: props.distributed_load,
+        };
+        let mut assemble = |line: &LineProps, map: &[Option<usize>]| {
+            for e in 0..elements {
+                let h = mesh.element_length(e);
+                let w = line.load;
+                match family {
+                    Family::Hermite => {
+                        let me = element::hermite_mass(line.rho_a, h);
+                        let ke = element::hermite_bending(line.ei, h)
+                            + element::hermite_tension(line.tension, h);
+                        let fe = element::hermite_uniform_load(w, h);
+                        let dofs: [Option<usize>; 4] = std::array::from_fn(|k| map[2 * e + k]);
+                        scatter(
+                            &mut mass,
+                            &mut stiffness,
+                            &mut load,
+                            &dofs,
+                            &me,
+                            &ke,
+                            fe.as_slice(),
+                        );
+                    }
+                    Family::String => {
+                        let me = element::string_mass(line.rho_a, h);
+                        let ke = element::string_stiffness(line.tension, h);
+                        let fe = element::string_uniform_load(w, h);
+                        let dofs: [Option<usize>; 2] = [map[e], map[e + 1]];
+                        scatter(
+                            &mut mass,
+                            &mut stiffness,
+                            &mut load,
+                            &dofs,
+                            &me,
+                            &ke,
+                            fe.as_slice(),
+                        );
+                    }
                 }
             }
+        };
+        assemble(&contact, &dof_of);
+        if let Some(m) = &props.messenger {
+            let line = LineProps {
+                rho_a: m.rho_a,
+                ei: m.ei,
+                tension: m.tension,
+                load: m.distributed_load,
+            };
+            assemble(&line, &messenger_dof_of);
         }
         let mut model = BeamModel {
             family,
@@ -286,6 +336,7 @@ impl BeamModel {
             h: mesh.h_min(),
             mesh,
             dof_of,
+            messenger_dof_of,
             n,
             mass,
             stiffness,
@@ -293,7 +344,31 @@ impl BeamModel {
             basis: Basis::Elements,
         };
         model.attach(&props.attachments);
+        if let Some(m) = &props.messenger {
+            model.tie(&m.ties);
+        }
         model
+    }
+
+    /// Add the linear messenger droppers' springs (eq. W4): k_d r_d r_dᵀ to
+    /// K with r_d = r_c(x_d) − r_m(x_d), the contact wire's point vector
+    /// minus the messenger's. At a node r_d is that node's contact w minus
+    /// its messenger w (two entries two apart); between nodes, both
+    /// elements' shape functions (eight entries, within the band 7).
+    fn tie(&mut self, ties: &[(f64, f64)]) {
+        for &(x, k) in ties {
+            let (ci, cv) = self.element_vector(x, false);
+            let (mi, mv) = self.messenger_element_vector(x, false);
+            let idx: Vec<usize> = ci.iter().chain(&mi).copied().collect();
+            let val: Vec<f64> = cv.iter().copied().chain(mv.iter().map(|v| -v)).collect();
+            for (i, vi) in idx.iter().zip(&val) {
+                for (j, vj) in idx.iter().zip(&val) {
+                    if *vi != 0.0 && *vj != 0.0 {
+                        self.stiffness.add_entry(*i, *j, k * vi * vj);
+                    }
+                }
+            }
+        }
     }
 
     /// Add the point attachments (MODEL §10): `k_a r_a r_aᵀ` to K and
@@ -373,6 +448,7 @@ impl BeamModel {
             h: props.length / modes as f64,
             mesh: Mesh::uniform(props.length, 1),
             dof_of: Vec::new(),
+            messenger_dof_of: Vec::new(),
             n: modes,
             mass: diagonal(&vec![1.0; modes]),
             stiffness: diagonal(&omega_sq),
@@ -444,8 +520,43 @@ impl BeamModel {
         }
     }
 
-    /// The FE shape functions (or their slopes) of the element holding x.
+    /// The FE shape functions (or their slopes) of the element holding x,
+    /// on the contact wire's dofs.
     pub(super) fn element_vector(&self, x: f64, slope: bool) -> ([usize; 4], [f64; 4]) {
+        self.element_vector_on(&self.dof_of, x, slope)
+    }
+
+    /// As [`BeamModel::element_vector`], on the messenger's dofs.
+    fn messenger_element_vector(&self, x: f64, slope: bool) -> ([usize; 4], [f64; 4]) {
+        self.element_vector_on(&self.messenger_dof_of, x, slope)
+    }
+
+    /// True when the model carries a messenger wire (`[messenger]`).
+    pub fn has_messenger(&self) -> bool {
+        !self.messenger_dof_of.is_empty()
+    }
+
+    /// r_m(x): the messenger's displacement v_m(x) = r_m(x)ᵀ d (eq. W1),
+    /// on a mesh with a messenger (panics otherwise: a caller asks only when
+    /// [`BeamModel::has_messenger`]).
+    pub fn messenger_point_vector(&self, x: f64) -> PointVector {
+        assert!(self.has_messenger(), "the model has no messenger wire");
+        let (idx, val) = self.messenger_element_vector(x, false);
+        PointVector {
+            idx,
+            val,
+            dense: Vec::new(),
+        }
+    }
+
+    /// The shape functions (or slopes) of the element holding x on the
+    /// line whose node-local dofs map through `map`.
+    fn element_vector_on(
+        &self,
+        map: &[Option<usize>],
+        x: f64,
+        slope: bool,
+    ) -> ([usize; 4], [f64; 4]) {
         let (e, s) = self.locate(x);
         let h = self.mesh.element_length(e);
         let (mut idx, mut val) = ([0usize; 4], [0.0; 4]);
@@ -457,7 +568,7 @@ impl BeamModel {
                     element::hermite_shape(s, h)
                 };
                 for k in 0..4 {
-                    if let Some(i) = self.dof_of[2 * e + k] {
+                    if let Some(i) = map[2 * e + k] {
                         idx[k] = i;
                         val[k] = n[k];
                     }
@@ -470,7 +581,7 @@ impl BeamModel {
                     element::string_shape(s)
                 };
                 for k in 0..2 {
-                    if let Some(i) = self.dof_of[e + k] {
+                    if let Some(i) = map[e + k] {
                         idx[k] = i;
                         val[k] = n[k];
                     }
@@ -521,6 +632,25 @@ impl BeamModel {
     }
 }
 
+/// One line's section properties for the element assembly.
+struct LineProps {
+    /// ρA, kg/m.
+    rho_a: f64,
+    /// EI, N·m².
+    ei: f64,
+    /// T, N.
+    tension: f64,
+    /// Distributed load p, N/m.
+    load: f64,
+}
+
+/// The node nearest x (a messenger support, checked on a node by
+/// `resolve::messenger`).
+fn nearest_node(mesh: &Mesh, x: f64) -> usize {
+    let (e, s) = mesh.locate(x);
+    if s < 0.5 { e } else { e + 1 }
+}
+
 /// A diagonal matrix as a band of half-bandwidth 0.
 fn diagonal(d: &[f64]) -> SymBand {
     let mut m = SymBand::zeros(d.len(), 0);
@@ -567,6 +697,7 @@ mod tests {
             right,
             distributed_load: 0.0,
             attachments: Vec::new(),
+            messenger: None,
         }
     }
 

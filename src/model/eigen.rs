@@ -635,6 +635,7 @@ mod tests {
             right,
             distributed_load: 0.0,
             attachments: Vec::new(),
+            messenger: None,
         }
     }
 
@@ -782,6 +783,7 @@ mod tests {
             right: Support::Pinned,
             distributed_load: 0.0,
             attachments: Vec::new(),
+            messenger: None,
         };
         BeamModel::new(&p, elements)
     }
@@ -1011,6 +1013,7 @@ mod determinism {
             right: Support::Pinned,
             distributed_load: 0.0,
             attachments: Vec::new(),
+            messenger: None,
         };
         let beam = BeamModel::new(&p, elements);
         rayon::ThreadPoolBuilder::new()

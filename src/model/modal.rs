@@ -68,6 +68,7 @@ mod tests {
             right,
             distributed_load: 0.0,
             attachments: Vec::new(),
+            messenger: None,
         }
     }
 

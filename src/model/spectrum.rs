@@ -138,6 +138,7 @@ mod tests {
             right: Support::Pinned,
             distributed_load: 0.0,
             attachments: Vec::new(),
+            messenger: None,
         }
     }
 

@@ -76,10 +76,13 @@ pub fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) ->
 /// The attachment springs of the linear droppers (module docs): k_d at x_d,
 /// no mass.
 pub fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = Attachment> + '_ {
-    droppers.iter().filter(|d| d.linear).map(|d| Attachment {
-        x: d.x,
-        stiffness: d.stiffness,
-        mass: 0.0,
-        damping: 0.0,
-    })
+    droppers
+        .iter()
+        .filter(|d| d.linear && !d.on_messenger())
+        .map(|d| Attachment {
+            x: d.x,
+            stiffness: d.stiffness,
+            mass: 0.0,
+            damping: 0.0,
+        })
 }

@@ -17,6 +17,7 @@ pub mod damping;
 pub mod dropper;
 pub mod memory;
 pub mod mesh;
+pub mod messenger;
 pub mod reference;
 mod resolved;
 pub mod wire;
@@ -50,19 +51,25 @@ impl Scene {
         let mut beam = self.resolve_beam()?;
         let l = beam.length;
         let elements = self.elements()?;
-        let droppers = resolve_droppers(&self.droppers, l)?;
+        let droppers =
+            resolve_droppers(&self.droppers, l, beam.messenger.as_ref().map(|m| m.height))?;
         let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
         check_droppers(self, &droppers, discretization)?;
         check_attachments(self, &beam, discretization)?;
-        // a linear dropper's spring is an attachment (`dropper` module docs)
+        // a linear dropper's spring is an attachment (`dropper` module docs),
+        // a linear messenger dropper's a tie between the lines
         beam.attachments
             .extend(dropper::linear_attachments(&droppers));
+        if let Some(m) = &mut beam.messenger {
+            m.ties = messenger::ties(&droppers);
+        }
         let carriers = self.resolve_carriers(l)?;
         crate::scene::check_chain_scene(self, &carriers)?;
 
         let scheme = self.integrator.scheme()?;
         let damping = resolve_rayleigh(self.beam.damping.as_ref())?;
         check_damping(self, &beam, damping, discretization, scheme)?;
+        messenger::check_messenger(self, &beam, elements, grading, discretization, &scheme)?;
         let g = self.gravity_g()?;
         validate_contact(&self.contact)?;
         // the method's own check of the contact settings and basis
@@ -74,6 +81,18 @@ impl Scene {
         let (dt, t_end, steps) = (time.dt, time.t_end, time.steps);
         crate::scene::check_speed_tables_cover(&carriers, t_end)?;
         let probes = self.resolve_probes(l)?;
+        if let Some(i) = self
+            .probes
+            .iter()
+            .position(|p| p.wire == Some(crate::scene::Wire::Messenger))
+            && beam.messenger.is_none()
+        {
+            return Err(crate::error::Error::invalid(
+                format!("probe.{i}.wire"),
+                "\"messenger\"",
+                "needs a [messenger] section: use wire = \"contact\" (the default)",
+            ));
+        }
         let record_every = self.record_every()?;
         let wire = wire::resolve_wire(
             &self.output,

@@ -66,6 +66,23 @@ pub struct Resolved {
 }
 
 impl Resolved {
+    /// The point vector of probe `i` on `beam`: r_b(x) on the contact wire,
+    /// or r_m(x) on the messenger for `wire = "messenger"` (`docs/lines.md`
+    /// eq. W1).
+    pub fn probe_vector(
+        &self,
+        beam: &crate::model::beam::BeamModel,
+        i: usize,
+    ) -> crate::model::beam::PointVector {
+        let x = self.probes[i].1;
+        match self.scene.probes.get(i).and_then(|p| p.wire) {
+            Some(crate::scene::Wire::Messenger) => beam.messenger_point_vector(x),
+            _ => beam.point_vector(x),
+        }
+    }
+}
+
+impl Resolved {
     /// The length the space discretization resolves, m: h = L/N on a
     /// uniform mesh, the longest element of a graded one (the coarsest
     /// place), L/J for a `galerkin` basis of J modes (the half-wavelength

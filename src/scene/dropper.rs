@@ -18,8 +18,9 @@
 //! two-sided spring k_d to the anchor with a preload k_d (z_a − ℓ_0) (the
 //! same as an `[[attachment]]` spring plus that constant force).
 //!
-//! The anchor is an enum so that a second line (the messenger wire) can be
-//! one later; today it is a fixed height.
+//! The anchor is a fixed height or the messenger wire (`[messenger]`,
+//! `docs/lines.md` eq. W2): e = (h_m + v_m(x_d) − v_c(x_d)) − ℓ_0, the force
+//! pulling the contact wire up and the messenger down.
 
 use serde::{Deserialize, Serialize};
 
@@ -35,8 +36,13 @@ pub struct DropperSpec {
     /// Stiffness k_d in tension, N/m (> 0).
     pub stiffness: f64,
     /// Height z_a of the fixed anchor above the undeformed beam line, m
-    /// (finite; the v axis, positive up).
-    pub anchor_height: f64,
+    /// (finite; the v axis, positive up). Exactly one of this and `anchor`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anchor_height: Option<f64>,
+    /// `"messenger"`: the upper end is on the messenger wire
+    /// (`[messenger]`, eq. W2) instead of a fixed height.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anchor: Option<AnchorSpec>,
     /// Unstretched length ℓ_0, m (≥ 0). The dropper is stretched at the
     /// start (beam straight) by z_a − ℓ_0.
     pub length: f64,
@@ -58,12 +64,26 @@ fn is_false(b: &bool) -> bool {
     !*b
 }
 
+/// `anchor = "..."` as written: the line a dropper hangs from.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum AnchorSpec {
+    /// The messenger wire (`[messenger]`).
+    Messenger,
+}
+
 /// Where a dropper's upper end is held.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Anchor {
     /// A fixed point at height z_a, m (v axis).
     Fixed {
         /// z_a, m.
+        height: f64,
+    },
+    /// The messenger wire at x_d, whose rest line is at h_m (m, v axis):
+    /// e = (h_m + v_m(x_d) − v_c(x_d)) − ℓ_0 (`docs/lines.md` eq. W2).
+    Messenger {
+        /// h_m, m.
         height: f64,
     },
 }
@@ -86,11 +106,17 @@ pub struct Dropper {
 }
 
 impl Dropper {
-    /// The extension with the beam straight, e₀ = z_a − ℓ_0, m: e = e₀ − v(x_d).
+    /// The extension with both lines straight, e₀ = z_a − ℓ_0 (or
+    /// h_m − ℓ_0 on the messenger), m: e = e₀ − r_dᵀd.
     pub fn rest_extension(&self) -> f64 {
         match self.anchor {
-            Anchor::Fixed { height } => height - self.length,
+            Anchor::Fixed { height } | Anchor::Messenger { height } => height - self.length,
         }
+    }
+
+    /// True when the upper end is on the messenger wire.
+    pub fn on_messenger(&self) -> bool {
+        matches!(self.anchor, Anchor::Messenger { .. })
     }
 
     /// The dropper's force for a beam displacement v at x_d (m, up), N:
@@ -106,9 +132,14 @@ impl Dropper {
 }
 
 /// Check each `[[dropper]]` on a beam of span `l`, m: x in [0, L],
-/// stiffness > 0, anchor height finite, length ≥ 0, damping absent or 0,
-/// names valid and distinct.
-pub fn resolve_droppers(specs: &[DropperSpec], l: f64) -> Result<Vec<Dropper>> {
+/// stiffness > 0, exactly one of `anchor_height` (finite) and `anchor =
+/// "messenger"` (with a `[messenger]`, whose rest height is `messenger`),
+/// length ≥ 0, damping absent or 0, names valid and distinct.
+pub fn resolve_droppers(
+    specs: &[DropperSpec],
+    l: f64,
+    messenger: Option<f64>,
+) -> Result<Vec<Dropper>> {
     let mut out: Vec<Dropper> = Vec::with_capacity(specs.len());
     for (i, d) in specs.iter().enumerate() {
         let field = |k: &str| format!("dropper.{i}.{k}");
@@ -120,13 +151,42 @@ pub fn resolve_droppers(specs: &[DropperSpec], l: f64) -> Result<Vec<Dropper>> {
             ));
         }
         let stiffness = positive(&field("stiffness"), d.stiffness, "N/m")?;
-        if !d.anchor_height.is_finite() {
-            return Err(Error::invalid(
-                field("anchor_height"),
-                d.anchor_height,
-                "must be a finite height above the undeformed beam line (m, positive up)",
-            ));
-        }
+        let anchor = match (d.anchor_height, d.anchor) {
+            (Some(h), None) => {
+                if !h.is_finite() {
+                    return Err(Error::invalid(
+                        field("anchor_height"),
+                        h,
+                        "must be a finite height above the undeformed beam line (m, positive up)",
+                    ));
+                }
+                Anchor::Fixed { height: h }
+            }
+            (None, Some(AnchorSpec::Messenger)) => match messenger {
+                Some(height) => Anchor::Messenger { height },
+                None => {
+                    return Err(Error::invalid(
+                        field("anchor"),
+                        "\"messenger\"",
+                        "needs a [messenger] section (the line the dropper hangs from), or give anchor_height (m) for a fixed anchor",
+                    ));
+                }
+            },
+            (Some(h), Some(_)) => {
+                return Err(Error::invalid(
+                    field("anchor_height"),
+                    h,
+                    "must be left out when anchor = \"messenger\" (exactly one of anchor_height and anchor)",
+                ));
+            }
+            (None, None) => {
+                return Err(Error::invalid(
+                    field("anchor_height"),
+                    "missing",
+                    "exactly one of anchor_height (m, a fixed anchor) and anchor = \"messenger\" is required",
+                ));
+            }
+        };
         let length = non_negative(&field("length"), d.length, "m")?;
         if let Some(c) = d.damping
             && c != 0.0
@@ -165,9 +225,7 @@ pub fn resolve_droppers(specs: &[DropperSpec], l: f64) -> Result<Vec<Dropper>> {
             name,
             x: d.x,
             stiffness,
-            anchor: Anchor::Fixed {
-                height: d.anchor_height,
-            },
+            anchor,
             length,
             linear: d.linear,
         });

@@ -23,6 +23,7 @@ mod line;
 mod line_design;
 mod load;
 pub mod manufactured;
+mod messenger;
 mod method;
 mod motion;
 mod pantograph;
@@ -35,7 +36,7 @@ pub use damping::{Rayleigh, RayleighSpec, resolve_rayleigh};
 pub use discretization::{
     DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
 };
-pub use dropper::{Anchor, Dropper, DropperSpec, resolve_droppers};
+pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
 pub use line::{DesignedDropper, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line};
 pub use load::{
@@ -43,6 +44,7 @@ pub use load::{
     scene_with_overrides, set_typed, with_table_files,
 };
 pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
+pub use messenger::{Messenger, MessengerSpec};
 pub(crate) use method::register_info;
 pub use method::{
     DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, IntegratorSpec, Method,
@@ -92,6 +94,11 @@ pub struct Scene {
     /// links that go slack, solved with the contacts (`docs/lines.md`).
     #[serde(default, rename = "dropper", skip_serializing_if = "Vec::is_empty")]
     pub droppers: Vec<DropperSpec>,
+    /// A messenger wire above the contact wire (`[messenger]`,
+    /// `docs/lines.md` eq. W1–W6), coupled by droppers with
+    /// `anchor = "messenger"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub messenger: Option<MessengerSpec>,
     /// What the history records (`[output]`).
     #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
     pub output: OutputSpec,
@@ -467,6 +474,28 @@ pub struct TimeSpec {
     pub step: f64,
     /// End time, s, or `"carrier_leaves"`.
     pub end: EndTime,
+    /// The initial state: `"rest"` (default, MODEL §5: d₀ = 0, ḋ₀ = 0) or
+    /// `"static"` (d₀ solves K d₀ = f, `docs/lines.md` eq. W6).
+    #[serde(default, skip_serializing_if = "Initial::is_rest")]
+    pub initial: Initial,
+}
+
+/// `[time] initial`: where the wire starts.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Initial {
+    /// Straight and at rest (MODEL §5).
+    #[default]
+    Rest,
+    /// At its static equilibrium under the constant loads, at rest.
+    Static,
+}
+
+impl Initial {
+    /// True for the default.
+    pub fn is_rest(&self) -> bool {
+        *self == Initial::Rest
+    }
 }
 
 /// When a run stops.
@@ -549,6 +578,20 @@ pub struct ProbeSpec {
     pub name: String,
     /// Position, m (0 ≤ x ≤ L).
     pub x: f64,
+    /// The line it reads: `"contact"` (default) or `"messenger"` (v_m,
+    /// from the messenger's rest line, positive up; needs `[messenger]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wire: Option<Wire>,
+}
+
+/// `[[probe]] wire`: which line a probe reads.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Wire {
+    /// The contact wire (the beam).
+    Contact,
+    /// The messenger wire (`[messenger]`).
+    Messenger,
 }
 
 /// `[output]`: what the run's history (`history.csv`) keeps.

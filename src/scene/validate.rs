@@ -8,7 +8,7 @@ use super::{EndTime, Scene, Side, SpeedProfile, Support};
 use std::collections::HashMap;
 
 use super::Motion;
-use super::{Attachment, resolve_attachments};
+use super::{Attachment, Messenger, resolve_attachments};
 use crate::error::{Error, Result};
 
 /// Largest mesh accepted: beyond this the run would not fit a sane budget
@@ -47,6 +47,10 @@ pub struct BeamProps {
     /// Point attachments (`[[attachment]]`, MODEL §10): springs and lumped
     /// masses at points of the span, assembled into K and M (empty: none).
     pub attachments: Vec<Attachment>,
+    /// The messenger wire (`[messenger]`, `docs/lines.md` eq. W1–W6):
+    /// a second line in the same model, coupled by droppers (`None`: the
+    /// contact wire alone).
+    pub messenger: Option<Messenger>,
 }
 
 impl BeamProps {
@@ -431,6 +435,11 @@ impl Scene {
                 0.0
             },
             attachments: resolve_attachments(&self.attachments, length)?,
+            messenger: self
+                .messenger
+                .as_ref()
+                .map(|m| m.resolve(ei == 0.0, length, g, self.gravity.beam_self_weight))
+                .transpose()?,
         })
     }
 }

@@ -143,7 +143,8 @@ pub fn modes(sc: &Resolved, count: Option<usize>) -> Result<Modes> {
     let string_hz = (props.tension > 0.0
         && held(props.left)
         && held(props.right)
-        && props.attachments.is_empty())
+        && props.attachments.is_empty()
+        && props.messenger.is_none())
     .then(|| {
         let c = props.wave_speed();
         (1..=omega.len())

@@ -1,0 +1,99 @@
+//! `[messenger]` against the rest of the scene (`docs/lines.md` eq.
+//! W1–W6): its supports on the mesh's nodes, the bases that carry it, and
+//! the linear messenger droppers' springs it gains.
+//!
+//! * Each support must fall on a node of the mesh (the support removes
+//!   that node's messenger w, as an end support removes the contact
+//!   wire's); a support between nodes would need a constraint, not a
+//!   removed unknown. The error names the support and the nearest node.
+//! * Only the generalized-α family (`generalized_alpha`, `newmark`, `hht`,
+//!   `wbz`) steps it; the other methods are refused (not verified with two
+//!   lines; central difference's stable-step bound is of one line).
+//! * Only `mesh.kind = "hermite"` (the element model, uniform or graded):
+//!   a `galerkin` basis is the bare contact wire's exact modes and a
+//!   `modal` basis is not built from the two-line model (refused rather
+//!   than half-supported).
+//! * Manufactured solutions and the closed-form references are of the bare
+//!   contact wire, and `standing_force_modes` reads the one-line model:
+//!   refused.
+//! * A linear messenger dropper's spring k_d r_d r_dᵀ (r_d = r_c − r_m,
+//!   eq. W4) couples the two lines, so it goes into the messenger's `ties`,
+//!   not into the contact wire's attachments.
+
+use crate::error::{Error, Result};
+use crate::model::mesh::Mesh;
+use crate::scene::{Discretization, Dropper, Grading, ReferenceKind, Scene, Scheme};
+
+/// The largest distance between a support and its node that counts as
+/// "on the node", relative to the span: round-off in the node positions
+/// (x_i = L·i/N or a graded mesh's sums, a few ε·L), far below any
+/// element.
+const ON_NODE_RELATIVE: f64 = 1e-9;
+
+/// Check the messenger's supports against the mesh and the scene's other
+/// choices (module docs); nothing to check without `[messenger]`.
+pub fn check_messenger(
+    scene: &Scene,
+    beam: &crate::scene::BeamProps,
+    elements: usize,
+    grading: Grading,
+    d: Discretization,
+    scheme: &Scheme,
+) -> Result<()> {
+    let Some(m) = &beam.messenger else {
+        return Ok(());
+    };
+    if !matches!(scheme, Scheme::GenAlpha(_)) {
+        return Err(Error::invalid(
+            "integrator.method",
+            format!("\"{}\"", scene.integrator.method),
+            "cannot carry a [messenger] yet (built and verified for the generalized-α family only): use generalized_alpha, newmark, hht or wbz",
+        ));
+    }
+    if d != Discretization::Hermite {
+        let kind = match d {
+            Discretization::Modal { .. } => "modal",
+            _ => "galerkin",
+        };
+        return Err(Error::invalid(
+            "mesh.kind",
+            format!("\"{kind}\""),
+            "cannot carry a [messenger] (its bases are of the contact wire alone): use mesh.kind = \"hermite\" (string elements when EI = 0)",
+        ));
+    }
+    super::attachment::bare_beam_references(scene, "a [messenger]")?;
+    if let Some(r) = &scene.reference
+        && r.kind == ReferenceKind::StandingForceModes
+    {
+        return Err(Error::invalid(
+            "reference.kind",
+            "\"standing_force_modes\"",
+            "reads the contact wire's own eigenpairs and does not include a [messenger]: use \"richardson\"",
+        ));
+    }
+    let mesh = Mesh::new(beam.length, elements, grading)?;
+    for (i, &x) in m.supports.iter().enumerate() {
+        let (e, s) = mesh.locate(x);
+        let node = if s < 0.5 { e } else { e + 1 };
+        let xn = mesh.node(node);
+        if (x - xn).abs() > ON_NODE_RELATIVE * beam.length {
+            return Err(Error::invalid(
+                format!("messenger.supports.{i}"),
+                x,
+                format!(
+                    "must fall on a mesh node (the nearest is node {node} at x = {xn} m): move the support there, or choose mesh.elements so that a node falls on it"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The springs (x_d, k_d) of the linear messenger droppers (module docs).
+pub fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
+    droppers
+        .iter()
+        .filter(|d| d.linear && d.on_messenger())
+        .map(|d| (d.x, d.stiffness))
+        .collect()
+}

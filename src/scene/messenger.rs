@@ -1,0 +1,128 @@
+//! `[messenger]`: a second tensioned line above the contact wire, held at
+//! supports and coupled to the wire by droppers with `anchor = "messenger"`
+//! (`docs/lines.md` eq. W1–W6). Plain data: the scene's spelling
+//! ([`MessengerSpec`]), each value's own range check, and the resolved line
+//! ([`Messenger`]) the model is built from. That each support falls on a
+//! mesh node is checked where the mesh is known (`resolve::messenger`).
+//!
+//! Sign convention (MODEL §1: v positive up). The messenger's rest line is
+//! the straight line at height h_m above the contact wire's undeformed
+//! line; its displacement v_m(x) is measured from that line, positive up.
+//! It is held vertically (v_m = 0, pinned) at each support x_s and free to
+//! rotate there; beyond the outermost supports it is free.
+//!
+//! Both lines use one element family (the contact wire's): Hermite
+//! (EI_m > 0) when the contact wire has EI > 0, linear string elements
+//! (EI_m = 0) when it is a string. The model interleaves the two lines'
+//! unknowns node by node in one band (`model::beam`), which needs the same
+//! dofs per node on both lines.
+
+use serde::{Deserialize, Serialize};
+
+use super::validate::positive;
+use crate::error::{Error, Result};
+
+/// `[messenger]` as written in the scene.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MessengerSpec {
+    /// Tension T_m, N (> 0).
+    pub tension: f64,
+    /// Mass per length ρA_m, kg/m (> 0).
+    pub mass_per_length: f64,
+    /// Bending stiffness EI_m, N·m² (> 0 when the contact wire has EI > 0,
+    /// 0 when it is a string: one element family for both lines).
+    pub bending_stiffness: f64,
+    /// Height h_m of the messenger's rest line above the contact wire's
+    /// undeformed line, m (> 0; v axis).
+    pub height: f64,
+    /// Where the messenger is held vertically (pinned), x in [0, L], m:
+    /// strictly increasing, at least two, each on a mesh node.
+    pub supports: Vec<f64>,
+}
+
+/// The messenger wire, resolved (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Messenger {
+    /// Tension T_m, N.
+    pub tension: f64,
+    /// Mass per length ρA_m, kg/m.
+    pub rho_a: f64,
+    /// Bending stiffness EI_m, N·m².
+    pub ei: f64,
+    /// Height h_m of its rest line above the contact wire's, m.
+    pub height: f64,
+    /// Pinned supports x_s, m (strictly increasing).
+    pub supports: Vec<f64>,
+    /// Distributed load p_m, N/m (self-weight −ρA_m g when
+    /// `[gravity] beam_self_weight`, else 0).
+    pub distributed_load: f64,
+    /// The linear messenger droppers' springs (x_d, k_d): k_d r_d r_dᵀ with
+    /// r_d = r_c(x_d) − r_m(x_d) enters K (eq. W4); filled by the resolve
+    /// layer from the `[[dropper]]` list.
+    pub ties: Vec<(f64, f64)>,
+}
+
+impl MessengerSpec {
+    /// Check each value: `is_string` says whether the contact wire is a
+    /// string (EI = 0); `l` is the span, m; `g` gravity, m/s²;
+    /// `self_weight` whether the lines carry their weight.
+    pub fn resolve(&self, is_string: bool, l: f64, g: f64, self_weight: bool) -> Result<Messenger> {
+        let tension = positive("messenger.tension", self.tension, "N")?;
+        let rho_a = positive("messenger.mass_per_length", self.mass_per_length, "kg/m")?;
+        let ei = self.bending_stiffness;
+        if is_string {
+            if ei != 0.0 {
+                return Err(Error::invalid(
+                    "messenger.bending_stiffness",
+                    ei,
+                    "must be 0 (N·m²) when the contact wire is a string (EI = 0): both lines use one element family, interleaved node by node in one band",
+                ));
+            }
+        } else if !(ei.is_finite() && ei > 0.0) {
+            return Err(Error::invalid(
+                "messenger.bending_stiffness",
+                ei,
+                "must be > 0 (N·m²) when the contact wire has EI > 0: both lines use one element family (Hermite), interleaved node by node in one band",
+            ));
+        }
+        let height = positive("messenger.height", self.height, "m")?;
+        if self.supports.len() < 2 {
+            return Err(Error::invalid(
+                "messenger.supports",
+                format!("{:?}", self.supports),
+                "must list at least two x (m) where the messenger is held",
+            ));
+        }
+        for (i, &x) in self.supports.iter().enumerate() {
+            let field = format!("messenger.supports.{i}");
+            if !(0.0..=l).contains(&x) {
+                return Err(Error::invalid(
+                    field,
+                    x,
+                    format!("must be on the span, in [0, {l}] m"),
+                ));
+            }
+            if i > 0 && x <= self.supports[i - 1] {
+                return Err(Error::invalid(
+                    field,
+                    x,
+                    format!(
+                        "must be greater than support {} ({} m): supports are strictly increasing",
+                        i - 1,
+                        self.supports[i - 1]
+                    ),
+                ));
+            }
+        }
+        Ok(Messenger {
+            tension,
+            rho_a,
+            ei,
+            height,
+            supports: self.supports.clone(),
+            distributed_load: if self_weight { -rho_a * g } else { 0.0 },
+            ties: Vec::new(),
+        })
+    }
+}
