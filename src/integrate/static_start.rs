@@ -24,8 +24,10 @@
 //! moving forces, external force series or a manufactured source; the
 //! initial accelerations (MODEL §5) take them up from the static shape,
 //! without the convective gap acceleration V² v₀''(x_m) of the sagged
-//! shape. Multi-mass pantographs (their chain starts in its own static
-//! state against a straight wire) are refused with a static start.
+//! shape. A multi-mass pantograph's lower masses start in their own static
+//! state against a straight wire (`chain.rs`), so it is accepted only where
+//! d₀ leaves its head at q₀ = 0 exactly (a held point: a pinned end or
+//! support), and refused elsewhere.
 
 use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;
@@ -36,13 +38,6 @@ use super::{State, System};
 /// Move `st` (at rest, straight) to the static start (module docs): d₀
 /// into `st.d`, q₀ into `st.q`. `droppers` are the scene's, for names.
 pub(crate) fn static_start(sys: &System, droppers: &[Dropper], st: &mut State) -> Result<()> {
-    if sys.has_chains() {
-        return Err(Error::invalid(
-            "time.initial",
-            "\"static\"",
-            "is not built for multi-mass pantographs (`masses = [...]`: the chain starts in its own static state against a straight wire): use initial = \"rest\", or single mass–spring carriers",
-        ));
-    }
     let beam = sys.beam();
     let mut k = beam.stiffness.clone();
     let mut d = beam.load.clone();
@@ -67,7 +62,22 @@ pub(crate) fn static_start(sys: &System, droppers: &[Dropper], st: &mut State) -
     for c in &sys.carriers {
         if let Some(j) = c.contact {
             let pv = beam.point_vector(c.props.motion.position(0.0));
-            st.q[j] = c.s * pv.dot(&d);
+            let q0 = c.s * pv.dot(&d);
+            // a chain's lower masses start in their own static state against
+            // the straight wire (chain.rs); that is the static state against
+            // d₀ only where d₀ does not move the head (a held point: q₀ = 0)
+            if q0 != 0.0 && sys.chains.get(j).is_some_and(Option::is_some) {
+                return Err(Error::invalid(
+                    "time.initial",
+                    "\"static\"",
+                    format!(
+                        "starts a multi-mass pantograph (carrier {j}) only where the static wire does not move its head, at a held point such as a pinned end (here v₀ = {:e} m at its start x = {} m): start it at a support, use initial = \"rest\", or a single mass–spring carrier",
+                        q0 * c.s,
+                        c.props.motion.position(0.0)
+                    ),
+                ));
+            }
+            st.q[j] = q0;
         }
     }
     st.d = d;

@@ -26,20 +26,21 @@ const SIZE: (u32, u32) = (1200, 720);
 /// Metres to the envelope panel's millimetres.
 const MM: f64 = 1e3;
 
-/// The height of a dropper's upper end above the wire at rest, m. A fixed
-/// anchor's own height; an anchor on a messenger wire (when the scene has
-/// one) would give the messenger's height at x_d here.
+/// The height of a dropper's upper end above the wire at rest, m: a fixed
+/// anchor's own height, or a messenger dropper's messenger rest line h_m.
 fn anchor_height(a: &Anchor) -> f64 {
     match *a {
-        Anchor::Fixed { height } => height,
+        Anchor::Fixed { height } | Anchor::Messenger { height } => height,
     }
 }
 
 /// The messenger wire as (x, height) points, m, when the resolved scene
-/// has one: none today. The hook for a second line: return its supports'
-/// heights and the points between them, and `line.svg` draws it.
-fn messenger_line(_sc: &Resolved) -> Option<Vec<(f64, f64)>> {
-    None
+/// has one: its rest line at h_m through its supports (the picture's top
+/// panel is the line at rest, v = 0 on both wires; the static sag of a
+/// `[time] initial = "static"` run is in the envelope panel's v, not here).
+fn messenger_line(sc: &Resolved) -> Option<Vec<(f64, f64)>> {
+    let m = sc.beam.messenger.as_ref()?;
+    Some(m.supports.iter().map(|&x| (x, m.height)).collect())
 }
 
 /// Each carrier's travel: the smallest and largest x_m in its history, m

@@ -94,7 +94,7 @@ impl Scene {
             ));
         }
         let record_every = self.record_every()?;
-        let wire = wire::resolve_wire(
+        let mut wire = wire::resolve_wire(
             &self.output,
             &wire::Grid {
                 length: l,
@@ -106,6 +106,13 @@ impl Scene {
                 t_end,
             },
         )?;
+        // a line's supports are its messenger's when `[output] supports`
+        // does not name them (docs/lines.md#outputs)
+        if wire.supports.is_empty()
+            && let Some(m) = &beam.messenger
+        {
+            wire.supports = m.supports.clone();
+        }
         let manufactured = match &self.manufactured {
             None => None,
             Some(spec) => Some(Manufactured::new(
