@@ -22,6 +22,8 @@ mod hostile_input;
 mod layers;
 #[path = "line.rs"]
 mod line;
+#[path = "line_scenes.rs"]
+mod line_scenes;
 #[path = "precision.rs"]
 mod precision;
 #[path = "readme.rs"]

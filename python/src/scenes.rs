@@ -6,7 +6,15 @@
 use pyo3::prelude::*;
 
 /// `(name, TOML text)` of every bundled scene, by name.
-pub const BUNDLED: [(&str, &str); 13] = [
+pub const BUNDLED: [(&str, &str); 15] = [
+    (
+        "line_10_spans",
+        include_str!("../../scenes/line_10_spans.toml"),
+    ),
+    (
+        "line_10_spans_linear",
+        include_str!("../../scenes/line_10_spans_linear.toml"),
+    ),
     (
         "moving_force_beam",
         include_str!("../../scenes/moving_force_beam.toml"),
