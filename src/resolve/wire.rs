@@ -30,8 +30,8 @@ pub struct WirePlan {
     /// The line's supports, m, strictly increasing in [0, L]: consecutive
     /// pairs are spans (`spans.csv`), and the uplift is recorded at each
     /// (`supports.csv`). `[output] supports`; empty: none. The one list
-    /// every source of supports fills (a messenger's supports may fill it
-    /// when the scene gives none here).
+    /// every source of supports fills: the `[messenger]` supports when the
+    /// scene gives none here (`Scene::validate`).
     pub supports: Vec<f64>,
     /// The envelope's points, m: the mesh nodes with `[output] envelope =
     /// true`, else empty (none recorded).
