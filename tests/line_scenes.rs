@@ -38,9 +38,9 @@ fn with_cut<'a>(head: &[&'a str], out: &'a str) -> Vec<&'a str> {
 }
 
 /// Both bundled scenes run; the messenger's supports are the line's
-/// supports (spans.csv, supports.csv), the run starts at its static
-/// equilibrium, and the tension-only line differs from its linear twin only
-/// once a dropper goes slack.
+/// supports (spans.csv, supports.csv), and the tension-only line's droppers
+/// slacken where the twin's never do. (That a static start stays still is
+/// `messenger::a_static_start_stays_still`.)
 #[test]
 fn the_line_and_its_twin_run_with_spans_and_supports() {
     let tmp = tempfile::tempdir().unwrap();
@@ -150,4 +150,34 @@ fn gate_checks_a_line_case_and_catches_a_change() {
         !o.status.success(),
         "a stiffer dropper must fail the line's force_mean check"
     );
+}
+
+/// A static start accepts the three-mass pantograph at the contact wire's
+/// pinned end (above) and refuses it where the static wire would move its
+/// head (its lower masses start in their own static state against a
+/// straight wire), naming the carrier and the way out.
+#[test]
+fn a_static_start_refuses_a_chain_away_from_the_wire_ends() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = common::out_dir(&tmp, "refused");
+    let err = common::run_fails(
+        LINE,
+        &out,
+        &[
+            "--set",
+            "line.spans=2",
+            "--set",
+            "carrier.0.start=57.5",
+            "--set",
+            "time.end=0.2",
+        ],
+    );
+    for needle in [
+        "time.initial",
+        "carrier 0",
+        "x = 0 or L",
+        "initial = \"rest\"",
+    ] {
+        assert!(err.contains(needle), "{needle:?} missing from:\n{err}");
+    }
 }

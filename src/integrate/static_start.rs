@@ -26,8 +26,9 @@
 //! without the convective gap acceleration V² v₀''(x_m) of the sagged
 //! shape. A multi-mass pantograph's lower masses start in their own static
 //! state against a straight wire (`chain.rs`), so it is accepted only where
-//! d₀ leaves its head at q₀ = 0 exactly (a held point: a pinned end or
-//! support), and refused elsewhere.
+//! d₀ leaves its head at q₀ = 0 exactly (a pinned or clamped end of the
+//! contact wire, x = 0 or L: interior supports hold the messenger, not the
+//! contact wire), and refused elsewhere.
 
 use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;
@@ -59,19 +60,19 @@ pub(crate) fn static_start(sys: &System, droppers: &[Dropper], st: &mut State) -
             ));
         }
     }
-    for c in &sys.carriers {
+    for (i, c) in sys.carriers.iter().enumerate() {
         if let Some(j) = c.contact {
             let pv = beam.point_vector(c.props.motion.position(0.0));
             let q0 = c.s * pv.dot(&d);
             // a chain's lower masses start in their own static state against
             // the straight wire (chain.rs); that is the static state against
-            // d₀ only where d₀ does not move the head (a held point: q₀ = 0)
+            // d₀ only where d₀ does not move the head (a wire end: q₀ = 0)
             if q0 != 0.0 && sys.chains.get(j).is_some_and(Option::is_some) {
                 return Err(Error::invalid(
                     "time.initial",
                     "\"static\"",
                     format!(
-                        "starts a multi-mass pantograph (carrier {j}) only where the static wire does not move its head, at a held point such as a pinned end (here v₀ = {:e} m at its start x = {} m): start it at a support, use initial = \"rest\", or a single mass–spring carrier",
+                        "starts a multi-mass pantograph (carrier {i}) only where the static wire does not move its head, at a pinned or clamped end of the contact wire (x = 0 or L; here v₀ = {:e} m at its start x = {} m): start it there, use initial = \"rest\", or a single mass–spring carrier",
                         q0 * c.s,
                         c.props.motion.position(0.0)
                     ),

@@ -1,9 +1,10 @@
-//! What a line engineer reads of a run with `[output] supports` or
-//! `envelope` (docs/output.md#spans): `spans.csv` (contact force
-//! statistics per carrier and span), `supports.csv` (the wire's uplift at
-//! each support) and `envelope.csv` (v's range over time at every node),
-//! with `line.svg` (`line_svg.rs`). Each file is written only when the
-//! scene asks for it; a scene without these keys writes none of them.
+//! What a line engineer reads of a run with supports (`[output] supports`,
+//! or a `[messenger]`'s) or `[output] envelope` (docs/output.md#spans):
+//! `spans.csv` (contact force statistics per carrier and span),
+//! `supports.csv` (the wire's uplift at each support) and `envelope.csv`
+//! (v's range over time at every node), with `line.svg` (`line_svg.rs`).
+//! Each file is written only when the scene has what it needs; a scene with
+//! neither supports nor the envelope writes none of them.
 
 use std::path::Path;
 

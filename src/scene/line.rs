@@ -402,8 +402,19 @@ impl Line {
     /// Elements per span m: the smallest with S/m ≤ h and every dropper on
     /// a node (p m / S an integer, to [`ON_NODE`]).
     fn elements_per_span(&self) -> Result<usize> {
-        let first = ((self.span / self.h) * (1.0 - ON_NODE)).ceil().max(1.0) as usize;
-        let most = (MAX_ELEMENTS / self.spans).min(MAX_REFINEMENT * first);
+        let first = ((self.span / self.h) * (1.0 - ON_NODE)).ceil().max(1.0);
+        if first * self.spans as f64 > MAX_ELEMENTS as f64 {
+            return Err(Error::invalid(
+                "line.element_length",
+                self.h,
+                format!(
+                    "is too small: {} spans of {} m would need more than {MAX_ELEMENTS} elements in all (m; raise it)",
+                    self.spans, self.span
+                ),
+            ));
+        }
+        let first = first as usize;
+        let most = (MAX_ELEMENTS / self.spans).min(MAX_REFINEMENT.saturating_mul(first));
         for m in first..=most.max(first) {
             if m * self.spans > MAX_ELEMENTS {
                 break;
@@ -623,10 +634,12 @@ fn dropper_positions(v: &Value, span: f64) -> Result<Vec<f64>> {
                         field: Some("line.droppers".into()),
                     })?;
             match even.count {
-                0 => {
+                n if n == 0 || n > MAX_DROPPERS_PER_SPAN => {
+                    // refused before any list is built: a huge count must
+                    // not allocate (or overflow) on its way to this error
                     return Err(Error::invalid(
                         "line.droppers.count",
-                        0,
+                        n,
                         format!("must be in 1 ..= {MAX_DROPPERS_PER_SPAN}"),
                     ));
                 }
@@ -925,8 +938,16 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
 
     #[test]
     fn bad_keys_name_the_field_the_value_and_the_range() {
-        let cases: [(&[&str], &[&str]); 16] = [
+        let cases: [(&[&str], &[&str]); 18] = [
             (&["line.spanz=3"], &["line", "spanz", "unknown"]),
+            (
+                &["line.droppers={ count = 2305843009213693952, end_distance = 3 }"],
+                &["line.droppers.count", "2305843009213693952", "1 ..= 100"],
+            ),
+            (
+                &["line.element_length=1e-300"],
+                &["line.element_length", "too small", "elements in all"],
+            ),
             (&["line.spans=0"], &["line.spans", "0", "1 ..= 1000"]),
             (&["line.span_length=-5"], &["line.span_length", "-5", "> 0"]),
             (&["line.presag=-0.1"], &["line.presag", "-0.1", "≥ 0"]),
