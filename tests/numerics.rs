@@ -52,6 +52,8 @@ mod modal_exact;
 mod pantograph_chain;
 #[path = "properties.rs"]
 mod properties;
+#[path = "static_start.rs"]
+mod static_start;
 #[path = "subnormal.rs"]
 mod subnormal;
 #[path = "time_orders.rs"]

@@ -54,6 +54,10 @@ pub struct Chain {
     pub f0: [f64; MAX_CHAIN],
     /// λ₀, N: the static contact force against the undeformed wire (P2).
     pub static_force: f64,
+    /// z of every mass at t = 0, m: zero (the static state against the
+    /// undeformed wire, P2) unless a static start holds the head at the
+    /// static wire's height ([`Chain::hold_head`], `static_start.rs`).
+    pub z_start: [f64; MAX_CHAIN],
 }
 
 /// A tridiagonal chain matrix from its links: link i joins mass i and
@@ -153,7 +157,52 @@ impl Chain {
             c,
             f0,
             static_force,
+            z_start: [0.0; MAX_CHAIN],
         }
+    }
+
+    /// The chain's static stiffness seen from the head, N/m: with the
+    /// lower masses in equilibrium, a head displaced by z₁ changes the
+    /// contact force by −S z₁, S = K₁₁ − K₁ₗ K'⁻¹ Kₗ₁ (the Schur complement
+    /// of the lower block K' of K; `docs/lines.md` eq. W7).
+    pub fn head_stiffness(&self) -> f64 {
+        let (_, s) = self.held_lower(1.0);
+        s
+    }
+
+    /// The lower masses' static positions with the head held at z₁ (K'
+    /// z' = −Kₗ₁ z₁) and S z₁ (module docs of [`Chain::head_stiffness`]).
+    fn held_lower(&self, z1: f64) -> ([f64; MAX_CHAIN], f64) {
+        let n = self.n;
+        let mut kr = [[0.0; MAX_CHAIN]; MAX_CHAIN];
+        let mut fr = [0.0; MAX_CHAIN];
+        for i in 1..n {
+            for j in 1..n {
+                kr[i - 1][j - 1] = self.k[i][j];
+            }
+            fr[i - 1] = -self.k[i][0] * z1;
+        }
+        let zl = solve(n - 1, &kr, &fr);
+        let mut z = [0.0; MAX_CHAIN];
+        z[0] = z1;
+        z[1..n].copy_from_slice(&zl[..n - 1]);
+        let force = (0..n).map(|j| self.k[0][j] * z[j]).sum::<f64>();
+        (z, force)
+    }
+
+    /// (K z)₁ at [`Chain::z_start`], N: the head's spring force at t = 0.
+    pub fn head_spring_force(&self) -> f64 {
+        (0..self.n).map(|j| self.k[0][j] * self.z_start[j]).sum()
+    }
+
+    /// Start the chain at rest in its static state with the head at z₁
+    /// (the static wire's height, `static_start.rs`): the lower masses at
+    /// their equilibrium against the held head. Returns the contact force
+    /// there, λ₀ − S z₁, N.
+    pub fn hold_head(&mut self, z1: f64) -> f64 {
+        let (z, force) = self.held_lower(z1);
+        self.z_start = z;
+        self.static_force - force
     }
 
     /// An upper bound on the chain's highest natural frequency with the
@@ -214,7 +263,7 @@ impl ChainGenAlpha {
             p,
             dt,
             a_inv,
-            z: [0.0; MAX_CHAIN],
+            z: chain.z_start,
             zd: [0.0; MAX_CHAIN],
             za,
             u_star: [0.0; MAX_CHAIN],
@@ -357,7 +406,7 @@ impl ChainBathe {
             c1: (1.0 - gamma) / (gamma * dt),
             c2: -1.0 / ((1.0 - gamma) * gamma * dt),
             c3,
-            z: [0.0; MAX_CHAIN],
+            z: chain.z_start,
             zd: [0.0; MAX_CHAIN],
             za,
             zp: [0.0; MAX_CHAIN],
@@ -455,7 +504,7 @@ impl ChainMoreauJean {
             chain,
             theta,
             dt,
-            z: [0.0; MAX_CHAIN],
+            z: chain.z_start,
             zd: [0.0; MAX_CHAIN],
             u_star: [0.0; MAX_CHAIN],
         }
@@ -519,7 +568,7 @@ impl ChainCentral {
             inv: inverse(&chain, 1.0, 0.5 * dt, 0.0),
             chain,
             dt,
-            z: [0.0; MAX_CHAIN],
+            z: chain.z_start,
             zd: [0.0; MAX_CHAIN],
             u_star: [0.0; MAX_CHAIN],
         }

@@ -158,7 +158,7 @@ impl Integrator {
             sys.initial()?
         } else {
             // `[time] initial = "static"` (static_start.rs)
-            static_start::static_start(&sys, &sc.droppers, &mut state)?;
+            static_start::static_start(&mut sys, sc, &mut state)?;
             sys.initial_at(Some((&state.d, &state.q)))?
         };
         let stepper = factory.build(sc, &mut sys, &mut state, init)?;

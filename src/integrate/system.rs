@@ -19,7 +19,7 @@ use crate::model::banded::{BandedLdlt, SymBand};
 use crate::model::beam::BeamModel;
 use crate::model::source::Source;
 use crate::resolve::Resolved;
-use crate::scene::{CarrierKind, ContactKind, ContactSpec, Placement, Support};
+use crate::scene::{CarrierKind, ContactKind, ContactSpec, Formulation, Placement, Support};
 
 use super::State;
 use super::carrier::{Carrier, MassDof};
@@ -551,9 +551,13 @@ impl System {
             for i in 0..n {
                 rhs[i * k] -= kd[i];
             }
-            // a mass's spring at q₀: its free force f₀ − k q₀
-            for (m, q) in self.masses.iter_mut().zip(q0) {
-                m.f0 -= m.k * q;
+            // a mass's spring at q₀: its free force f₀ − k q₀ (a chain's
+            // head: f₀ − (K z₀)₁ with its lower masses at z₀, chain.rs)
+            for ((m, q), ch) in self.masses.iter_mut().zip(q0).zip(&self.chains) {
+                m.f0 -= match ch {
+                    Some(ch) => ch.head_spring_force(),
+                    None => m.k * q,
+                };
             }
         }
         self.scatter_loads(&mut rhs, k, 1.0);
@@ -574,6 +578,25 @@ impl System {
         {
             self.masses = saved_masses;
             return Err(self.failure(0, 0.0, Level::Acceleration, failure));
+        }
+        // a penalty with an absolute κ started static (static_start.rs,
+        // W7): the head starts at its static penetration, so its force at
+        // t = 0 is κ times it, not the rest start's 0
+        if let (Some((d0, q0)), Formulation::Penalty, Some(kappa)) = (
+            start,
+            self.contact.formulation,
+            self.contact.penalty.stiffness,
+        ) {
+            for c in &self.carriers {
+                if let Some(j) = c.contact {
+                    let penetration = q0[j] - c.s * c.pv_g.dot(d0);
+                    self.lambda[j] = if self.bilateral {
+                        kappa * penetration
+                    } else {
+                        kappa * penetration.max(0.0)
+                    };
+                }
+            }
         }
         let mut a = vec![0.0; n];
         for i in 0..n {
