@@ -40,10 +40,9 @@ use super::{State, System};
 /// into `st.d`, q₀ into `st.q`. `droppers` are the scene's, for names.
 pub(crate) fn static_start(sys: &System, droppers: &[Dropper], st: &mut State) -> Result<()> {
     let beam = sys.beam();
-    let mut k = beam.stiffness.clone();
+    // K and f hold every dropper's spring and preload (`dropper.rs`, D7)
     let mut d = beam.load.clone();
-    sys.droppers.add_taut(&mut k, &mut d);
-    let factor = BandedLdlt::factor(&k).map_err(|_| {
+    let factor = BandedLdlt::factor(&beam.stiffness).map_err(|_| {
         Error::invalid(
             "time.initial",
             "\"static\"",
