@@ -29,7 +29,8 @@ use super::step_map::{Lanes, StepMap, VelocityPrediction};
 
 /// The pair (g_free, W) of a step, formed in place (no step allocates).
 /// With tension-only droppers (`dropper.rs`) the problem has a row per
-/// dropper after the contacts' (nt = nc + droppers rows), which
+/// slack dropper after the contacts' (room for nt = nc + every
+/// tension-only dropper; `size` rows in use, packed at that stride), which
 /// `dropper.rs` fills; the velocity level has contacts only.
 #[derive(Debug, Clone)]
 pub(crate) struct ProblemBuilder {

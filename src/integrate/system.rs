@@ -82,9 +82,10 @@ pub struct System {
     damping: Option<SymBand>,
     /// A manufactured scene's source; `None` costs a branch per step.
     source: Option<SourceState>,
-    /// The droppers (`dropper.rs`): the tension-only ones are the rows of
-    /// the contact problem after the contacts', their forces in
-    /// `lambda[nc..]`; none costs a branch per step.
+    /// The droppers (`dropper.rs`): the slack tension-only ones are rows
+    /// of the contact problem after the contacts' (their multipliers in
+    /// `lambda[nc..]` during the solve), every one's force and state kept
+    /// there; none costs a branch per step.
     pub(crate) droppers: Droppers,
     /// The time the last [`System::place`] put the contact forces at, s.
     t_force: f64,
