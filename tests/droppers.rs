@@ -1,6 +1,6 @@
-//! Droppers (issue 27, MODEL §10; docs/lines.md "Droppers", D1–D6):
+//! Droppers (issue 27, MODEL §10; docs/lines.md "Droppers", D1–D10):
 //! tension-only links to fixed anchors, solved as rows of the step's
-//! contact problem, checked against
+//! contact problem while slack, checked against
 //!
 //! * the static uplift at which a dropper goes slack, by hand: a
 //!   pinned–pinned tensioned beam with one pre-tensioned dropper and a
