@@ -49,6 +49,8 @@ const REFERENCE: &str = include_str!("../scenes/reference.toml");
 const T2_STRING: &str = include_str!("../scenes/t2_stationary_mass_string.toml");
 const TWO_PANTOGRAPHS: &str = include_str!("../scenes/two_pantographs.toml");
 const MMS_LOSS: &str = include_str!("../scenes/verify/mms_loss.toml");
+const SPAN_DROPPERS: &str = include_str!("../scenes/span_droppers.toml");
+const SPAN_MESSENGER: &str = include_str!("../scenes/span_messenger.toml");
 
 /// What a measured stretch of steps did.
 struct Stretch {
@@ -131,6 +133,7 @@ fn step_loop_does_not_allocate() {
     }
     complementarity();
     line_outputs();
+    droppers();
     // batched stepping: four runs as lanes of one sweep, through contact loss
     let (allocations, open) = batch_allocations(5500);
     assert_eq!(allocations, 0, "a batch of four runs");
@@ -276,6 +279,52 @@ fn external_forces() {
         0,
         "a held force, stepped and recorded"
     );
+}
+
+/// Tension-only droppers (`integrate::dropper`, docs/lines.md D7–D10):
+/// the rows of the slack droppers packed per step, the set grown and the
+/// small problem solved again, the corrections added to the free
+/// solution, under each law that carries them, on fixed anchors and on a
+/// messenger, through slackening and re-tension.
+fn droppers() {
+    MEASURING.with(|m| m.set(true));
+    // the messenger span's droppers slacken under a pantograph pushing with
+    // 530 N (preload 0.15 m) instead of 100 N
+    for (text, what, preload) in [
+        (SPAN_DROPPERS, "fixed anchors", "0.0357"),
+        (SPAN_MESSENGER, "messenger", "0.15"),
+    ] {
+        for f in ["lagrange", "complementarity", "penalty"] {
+            let o = vec![
+                format!("contact.formulation={f}"),
+                format!("carrier.0.preload={preload}"),
+            ];
+            let sc = taut::resolve_scene(text, &o).unwrap();
+            let mut it = taut::integrate::Integrator::new(&sc).unwrap();
+            let mut samples = vec![taut::integrate::DropperSample::default(); sc.droppers.len()];
+            let mut was_slack = vec![false; samples.len()];
+            let before = ALLOCATIONS.load(Ordering::Relaxed);
+            let (mut slack, mut taut_after_slack) = (0, 0);
+            for _ in 0..3000 {
+                it.step().unwrap();
+                it.dropper_samples_into(&mut samples);
+                for (s, w) in samples.iter().zip(was_slack.iter_mut()) {
+                    slack += usize::from(s.slack);
+                    taut_after_slack += usize::from(*w && !s.slack);
+                    *w = s.slack;
+                }
+            }
+            assert_eq!(
+                ALLOCATIONS.load(Ordering::Relaxed) - before,
+                0,
+                "droppers on {what}, {f}"
+            );
+            assert!(
+                slack > 0 && taut_after_slack > 0,
+                "through slack and re-tension on {what}, {f}: {slack} {taut_after_slack}"
+            );
+        }
+    }
 }
 
 /// The line's outputs (issue 27) in a recorded run (`run::SteppedRun`, the

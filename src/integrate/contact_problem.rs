@@ -29,7 +29,8 @@ use super::step_map::{Lanes, StepMap, VelocityPrediction};
 
 /// The pair (g_free, W) of a step, formed in place (no step allocates).
 /// With tension-only droppers (`dropper.rs`) the problem has a row per
-/// dropper after the contacts' (nt = nc + droppers rows), which
+/// slack dropper after the contacts' (room for nt = nc + every
+/// tension-only dropper; `size` rows in use, packed at that stride), which
 /// `dropper.rs` fills; the velocity level has contacts only.
 #[derive(Debug, Clone)]
 pub(crate) struct ProblemBuilder {
@@ -43,6 +44,9 @@ pub(crate) struct ProblemBuilder {
     pub(crate) w: Vec<f64>,
     /// Free gap rates ġ_free, m/s (velocity level).
     pub(crate) rate_free: Vec<f64>,
+    /// The rows of the last pair formed: nt, or nc + the slack droppers'
+    /// rows of a step with droppers (`dropper.rs`, packed at that stride).
+    pub(crate) size: usize,
     /// Velocity-level Delassus matrix W_v, row-major nc × nc.
     pub(crate) w_v: Vec<f64>,
     /// 1/A_q of each mass dof (scratch).
@@ -57,6 +61,7 @@ impl ProblemBuilder {
             nc,
             g_free: vec![0.0; nt],
             w: vec![0.0; nt * nt],
+            size: nt,
             rate_free: vec![0.0; nc],
             w_v: vec![0.0; nc * nc],
             inv_a: vec![0.0; nc],

@@ -1,42 +1,66 @@
-//! Droppers during a run (MODEL §10, `docs/lines.md` eq. D1–D6): the
-//! tension-only ones as rows of the step's contact problem, the linear
-//! ones as their constant preload (their spring is an attachment in K,
-//! `resolve::dropper`).
+//! Droppers during a run (MODEL §10, `docs/lines.md` eq. D1–D10): every
+//! dropper's spring is in the step matrix, and a tension-only dropper
+//! gets a row of the step's contact problem only while it is slack.
 //!
-//! A tension-only dropper d at x_d pulls the beam up with N_d ≥ 0 along
-//! r_d = r_b(x_d) (MODEL §4); one hanging from the messenger wire pulls
-//! the contact wire up and the messenger down along r_d = r_b(x_d) −
-//! r_m(x_d) (`docs/lines.md` eq. W2), and everything below holds with
-//! that r_d. Its compliant unilateral law (D3) is the
-//! complementarity problem
+//! A dropper d at x_d pulls the beam up with N_d along r_d = r_b(x_d)
+//! (MODEL §4); one hanging from the messenger wire pulls the contact wire
+//! up and the messenger down along r_d = r_b(x_d) − r_m(x_d)
+//! (`docs/lines.md` eq. W2), and everything below holds with that r_d.
+//! A tension-only dropper obeys the compliant unilateral law (D3)
+//! `0 ≤ N_d ⊥ N_d/k_d − e_d ≥ 0`, e_d = e₀,d − r_dᵀd, imposed at the
+//! generalized-α force level d_{n+1−α_f} = (1 − α_f) d_{n+1} + α_f d_n,
+//! where the method's K acts (MODEL §5).
+//!
+//! **Springs in K (D7).** Every dropper's spring k_d r_d r_dᵀ is in K and
+//! its preload k_d e₀,d r_d in the constant load (a linear one's by
+//! `resolve::dropper`, a tension-only one's by [`Droppers::add_springs`]
+//! and [`Droppers::add_preloads`]), so the step matrix is the linear
+//! twin's, A' = A + κ Σ_d k_d r_d r_dᵀ with κ = (1 − α_f) c_d, factored
+//! once. A tension-only dropper that would push gets a correction
+//! μ_d ≥ 0 along r_d that cancels its spring: N_d = k_d e_d + μ_d with
+//! `0 ≤ μ_d ⊥ N_d ≥ 0` (D8); μ_d = 0 for a taut one, which is then
+//! exactly the linear dropper.
+//!
+//! **The rows of a step (D9).** z'_d = A'⁻¹r_d and Q_ab = r_aᵀz'_b are
+//! formed once ([`Droppers::prepare`]). A step's set S holds the droppers
+//! slack at the previous step and those whose free extension e_free,d
+//! (no μ, no contact force) is negative. With the contacts' forces λ and
+//! μ_S, e_d = e_free,d − κ(Σ_c P_dc λ_c + Σ_{b∈S} Q_db μ_b), P_dc =
+//! r_dᵀz'_c (z'_c the contact columns of the step). Written in the
+//! droppers' forces N_S (the law's multipliers, as before) the problem
+//! over the contacts and S is
 //!
 //! ```text
-//!   0 ≤ N_d  ⊥  g_d = N_d/k_d − e_d ≥ 0,     e_d = e₀,d − r_dᵀ d
+//!   H = diag(k_S) − κ diag(k_S) Q_SS diag(k_S),   G = H⁻¹   (S × S, SPD)
+//!   g_S = G(−k∘e_free + κ diag(k) P λ + N_S)        [= μ_S / k_S]
+//!   g_c = g'_c + W'_cc λ + Ê G(−k∘e_free + κ diag(k) P λ + N_S)
 //! ```
 //!
-//! (tension N_d = k_d e_d when stretched, N_d = 0 with e_d ≤ 0 when slack),
-//! the same shape as a contact's (MODEL §6) with the compliance 1/k_d on
-//! W's diagonal. It is imposed at the generalized-α force level,
-//! d_{n+1−α_f} = (1 − α_f) d_{n+1} + α_f d_n, where the method's K acts
-//! (MODEL §5): a dropper that stays stretched is then exactly the spring
-//! k_d r_d r_dᵀ of K with its preload (a linear dropper), whatever the
-//! contacts' `placement`. With d_{n+1} = d̃ + c_d (u★ + Σ λ_j z_j), the
-//! row is affine in the multipliers (D5):
+//! (Ê_cd = coef_c s_c r_cᵀz'_d k_d, the contact row's coefficient coef_c
+//! at its placement): the same pair as the problem with every dropper a
+//! row over A (the taut ones condensed exactly), so every law gives the
+//! same forces. The law's slack rows give μ_d = k_d g_d, its taut rows
+//! μ_d = 0.
 //!
-//! ```text
-//!   g_d = g_free,d + Σ_j W_dj λ_j,
-//!   g_free,d = r_dᵀ[(1 − α_f)(d̃ + c_d u★) + α_f d_n] − e₀,d
-//!   W_dj = (1 − α_f) c_d r_dᵀ z_j  (+ 1/k_d when j = d)
-//! ```
-//!
-//! Droppers do not move, so z_d = A⁻¹ r_d and the dropper block of W are
-//! formed once per run ([`Droppers::prepare`], by the method that owns A);
-//! a step adds Σ N_d z_d of the stretched droppers to the free solution
-//! (O(n) per dropper, no solve) and reads the contacts' rows against z_d
-//! through their four-entry point vectors. Nothing here allocates in a step.
+//! **Check (D10).** After the solve, each dropper outside S has
+//! N_d = k_d e_d; one below −[`FORCE_ROUNDOFF`] of the step's force scale
+//! joins S and the small problem is solved again (S only grows, so at
+//! most m + 1 passes). The free solution then gains Σ_S μ_d z'_d
+//! ([`Droppers::add_responses`]): a step costs O(n·(1 + |S|)) beyond the
+//! linear twin's, and the dense problem has nc + |S| rows. Nothing here
+//! allocates in a step.
 
+use crate::contact::ContactFailure;
+use crate::model::banded::SymBand;
 use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::Dropper;
+
+/// Relative round-off of a taut dropper's force k_d e_d evaluated from the
+/// affine relation (D10): below −this × the step's force scale
+/// (max_d k_d |e_free,d|) it is a push, and the dropper gets a row. The
+/// same meaning as the Lagrange law's gap round-off (1e-12 of the free
+/// gaps' scale).
+pub(crate) const FORCE_ROUNDOFF: f64 = 1e-12;
 
 /// One dropper's state after a step.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -96,32 +120,68 @@ impl Link {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Droppers {
     links: Vec<Link>,
-    /// Tension-only droppers (rows of the problem after the contacts).
-    rows: usize,
+    /// The link of each tension-only row, in scene order.
+    tension: Vec<usize>,
     /// Beam unknowns n.
     n: usize,
-    /// z_d = A⁻¹ r_d of each row, row d at `z[d·n..(d+1)·n]`.
+    /// Contacts nc of the run (the problem's rows before the droppers').
+    nc: usize,
+    /// z'_d = A'⁻¹ r_d of each row, row d at `z[d·n..(d+1)·n]`.
     z: Vec<f64>,
-    /// The constant dropper block of W, rows × rows, row-major.
-    w_dd: Vec<f64>,
+    /// Q_ab = r_aᵀ z'_b, m × m row-major.
+    q: Vec<f64>,
     /// α: the weight of d_n in the dropper rows (α_f).
     weight: f64,
-    /// (1 − α) c_d.
+    /// κ = (1 − α) c_d.
     coef: f64,
-    /// True once a method formed z and the block ([`Droppers::prepare`]).
+    /// True once a method formed z and Q ([`Droppers::prepare`]).
     ready: bool,
+    /// Each row's force N_d after the last step, N.
+    force: Vec<f64>,
+    /// Each row's correction μ_d after the last step, N (0 when taut).
+    mu: Vec<f64>,
+    /// Each row slack after the last step.
+    slack: Vec<bool>,
+    /// The step's scratch (module docs).
+    scratch: Scratch,
+}
+
+/// A step's dense quantities (module docs, D9), sized once for the run.
+#[derive(Debug, Clone, Default)]
+struct Scratch {
+    /// e_free,d of each row, m.
+    e_free: Vec<f64>,
+    /// P_dc = r_dᵀz'_c, m × nc row-major, m/N·(1/c_d).
+    p: Vec<f64>,
+    /// coef_c s_c r_cᵀ z'_d, nc × m row-major.
+    e_c: Vec<f64>,
+    /// The contacts' own free gaps g'_c and block W'_cc (nc × nc).
+    g_c: Vec<f64>,
+    w_c: Vec<f64>,
+    /// The rows S of the step, ascending.
+    set: Vec<usize>,
+    in_set: Vec<bool>,
+    /// H's Cholesky factor, then G = H⁻¹ (|S| × |S|).
+    chol: Vec<f64>,
+    g_inv: Vec<f64>,
+    /// Ê G, nc × |S|.
+    y: Vec<f64>,
+    /// max_d k_d |e_free,d|, N.
+    scale: f64,
 }
 
 impl Droppers {
-    /// The droppers of a scene on `beam` (their point vectors formed once).
-    pub(crate) fn new(droppers: &[Dropper], beam: &BeamModel) -> Self {
-        let mut rows = 0;
+    /// The droppers of a scene on `beam` (their point vectors formed once),
+    /// for a run of `nc` contacts.
+    pub(crate) fn new(droppers: &[Dropper], beam: &BeamModel, nc: usize) -> Self {
+        let mut tension = Vec::new();
         let links = droppers
             .iter()
-            .map(|d| {
+            .enumerate()
+            .map(|(i, d)| {
                 let row = (!d.linear).then(|| {
-                    rows += 1;
-                    rows - 1
+                    tension.push(i);
+                    tension.len() - 1
                 });
                 Link {
                     pv: beam.point_vector(d.x),
@@ -132,17 +192,35 @@ impl Droppers {
                 }
             })
             .collect();
+        let m = tension.len();
         Droppers {
             links,
-            rows,
+            tension,
             n: beam.n,
+            nc,
+            force: vec![0.0; m],
+            mu: vec![0.0; m],
+            slack: vec![false; m],
+            scratch: Scratch {
+                e_free: vec![0.0; m],
+                p: vec![0.0; m * nc],
+                e_c: vec![0.0; nc * m],
+                g_c: vec![0.0; nc],
+                w_c: vec![0.0; nc * nc],
+                set: Vec::with_capacity(m),
+                in_set: vec![false; m],
+                chol: vec![0.0; m * m],
+                g_inv: vec![0.0; m * m],
+                y: vec![0.0; nc * m],
+                scale: 0.0,
+            },
             ..Droppers::default()
         }
     }
 
-    /// Tension-only droppers: the problem's rows after the contacts.
+    /// Tension-only droppers: the problem's rows after the contacts, at most.
     pub(crate) fn rows(&self) -> usize {
-        self.rows
+        self.tension.len()
     }
 
     /// All droppers.
@@ -152,47 +230,28 @@ impl Droppers {
 
     /// True when the method formed what the rows need (always, without them).
     pub(crate) fn ready(&self) -> bool {
-        self.rows == 0 || self.ready
+        self.tension.is_empty() || self.ready
     }
 
-    /// Add the linear droppers' preloads k_d e₀ r_d (up) to the beam's
-    /// constant load `load` (D2).
+    /// Add every dropper's preload k_d e₀ r_d (up) to the beam's constant
+    /// load `load` (D2, D7).
     pub(crate) fn add_preloads(&self, load: &mut [f64]) {
-        for l in self.links.iter().filter(|l| l.row.is_none()) {
+        for l in &self.links {
             l.scatter(l.k * l.e0, load, 1, 0);
         }
     }
 
-    /// The initial forces (t = 0, wire at `d0`: straight at rest, or the
-    /// static start): N_d = k_d max(e₀ − r_dᵀd₀, 0) of each row into
-    /// `n_out`, and each one's direction scaled by it into column 0 of
-    /// `rhs` (k columns), a known load of the initial acceleration problem.
-    /// `d0 = None` is the straight wire (N_d = k_d max(e₀, 0)).
-    pub(crate) fn initial(&self, d0: Option<&[f64]>, n_out: &mut [f64], rhs: &mut [f64], k: usize) {
-        for l in &self.links {
-            let Some(r) = l.row else { continue };
-            let e = match d0 {
-                None => l.e0,
-                Some(d) => l.e0 - l.dot(d),
-            };
-            n_out[r] = l.k * e.max(0.0);
-            l.scatter(n_out[r], rhs, k, 0);
-        }
-    }
-
-    /// The static start's operator and load (`docs/lines.md` eq. W6): every
-    /// tension-only dropper taken taut, k_d r_d r_dᵀ into `k` and its
-    /// k_d e₀ r_d into `f` (a linear dropper's are already in K and the
-    /// load).
-    pub(crate) fn add_taut(&self, k: &mut crate::model::banded::SymBand, f: &mut [f64]) {
-        for l in self.links.iter().filter(|l| l.row.is_some()) {
-            let mut entries: Vec<(usize, f64)> = Vec::with_capacity(8);
-            for (i, v) in l.pv.idx.iter().zip(l.pv.val) {
-                entries.push((*i, v));
+    /// Add every tension-only dropper's spring k_d r_d r_dᵀ to `k` (D7: a
+    /// linear dropper's is there already, from `resolve::dropper`).
+    pub(crate) fn add_springs(&self, k: &mut SymBand) {
+        for l in self.tension.iter().map(|&i| &self.links[i]) {
+            let mut entries = [(0usize, 0.0f64); 8];
+            for (e, (i, v)) in entries.iter_mut().zip(l.pv.idx.iter().zip(l.pv.val)) {
+                *e = (*i, v);
             }
             if let Some(pm) = &l.pm {
-                for (i, v) in pm.idx.iter().zip(pm.val) {
-                    entries.push((*i, -v));
+                for (e, (i, v)) in entries[4..].iter_mut().zip(pm.idx.iter().zip(pm.val)) {
+                    *e = (*i, -v);
                 }
             }
             for &(i, vi) in &entries {
@@ -202,7 +261,28 @@ impl Droppers {
                     }
                 }
             }
-            l.scatter(l.k * l.e0, f, 1, 0);
+        }
+    }
+
+    /// The initial state (t = 0, wire at `d0`: straight at rest, or the
+    /// static start; `None` is the straight wire): each row's force
+    /// N_d = k_d max(e_d, 0) and correction μ_d = k_d max(−e_d, 0) (D8),
+    /// and μ_d r_d into column 0 of `rhs` (k columns), a known load of the
+    /// initial acceleration problem (the springs and preloads are in K and
+    /// the load).
+    pub(crate) fn initial(&mut self, d0: Option<&[f64]>, rhs: &mut [f64], k: usize) {
+        for (r, &li) in self.tension.iter().enumerate() {
+            let l = &self.links[li];
+            let e = match d0 {
+                None => l.e0,
+                Some(d) => l.e0 - l.dot(d),
+            };
+            self.force[r] = l.k * e.max(0.0);
+            self.mu[r] = l.k * (-e).max(0.0);
+            self.slack[r] = self.force[r] <= 0.0;
+            if self.mu[r] != 0.0 {
+                l.scatter(self.mu[r], rhs, k, 0);
+            }
         }
     }
 
@@ -213,148 +293,288 @@ impl Droppers {
         &'a self,
         d: &'a [f64],
     ) -> impl Iterator<Item = (usize, f64)> + 'a {
-        self.links
-            .iter()
-            .enumerate()
-            .filter(|(_, l)| l.row.is_some())
-            .map(move |(i, l)| (i, l.k * (l.e0 - l.dot(d))))
+        self.tension.iter().map(move |&i| {
+            (
+                i,
+                self.links[i].k * (self.links[i].e0 - self.links[i].dot(d)),
+            )
+        })
     }
 
-    /// Form z_d = A⁻¹ r_d and the dropper block of W once (module docs),
-    /// for a method with constant A: `solve` overwrites a right-hand side
-    /// with A⁻¹ of it; `c_d` as in d_{n+1} = d̃ + c_d u; `weight` = α_f.
+    /// Form z'_d = A'⁻¹ r_d and Q once (module docs), for a method with
+    /// constant A' (the droppers' springs in it): `solve` overwrites a
+    /// right-hand side with A'⁻¹ of it; `c_d` as in d_{n+1} = d̃ + c_d u;
+    /// `weight` = α_f.
     pub(crate) fn prepare(&mut self, solve: impl Fn(&mut [f64]), c_d: f64, weight: f64) {
-        let (n, m) = (self.n, self.rows);
+        let (n, m) = (self.n, self.rows());
         self.z = vec![0.0; n * m];
-        for l in &self.links {
-            let Some(r) = l.row else { continue };
+        for (r, &li) in self.tension.iter().enumerate() {
             let z = &mut self.z[r * n..(r + 1) * n];
-            l.scatter(1.0, z, 1, 0);
+            self.links[li].scatter(1.0, z, 1, 0);
             solve(z);
         }
         self.weight = weight;
         self.coef = (1.0 - weight) * c_d;
-        self.w_dd = vec![0.0; m * m];
-        for a in &self.links {
-            let Some(i) = a.row else { continue };
-            for b in &self.links {
-                let Some(j) = b.row else { continue };
-                let mut w = self.coef * a.dot(&self.z[j * n..(j + 1) * n]);
-                if i == j {
-                    w += 1.0 / a.k;
-                }
-                self.w_dd[i * m + j] = w;
+        self.q = vec![0.0; m * m];
+        for (a, &la) in self.tension.iter().enumerate() {
+            for b in 0..m {
+                self.q[a * m + b] = self.links[la].dot(&self.z[b * n..(b + 1) * n]);
             }
         }
         self.ready = true;
     }
 
-    /// z_d of row `r`.
-    pub(crate) fn response(&self, r: usize) -> &[f64] {
+    /// z'_d of row `r`.
+    fn response(&self, r: usize) -> &[f64] {
         &self.z[r * self.n..(r + 1) * self.n]
     }
 
-    /// The dropper rows of a step's problem (module docs, D5), into `g_free`
-    /// and `w` (stride `nt` = contacts + rows, rows after the `nc`
-    /// contacts): the free extension's row from d̃, the free solution
-    /// (column 0 of `solved`, k columns) and d_n; the columns against the
-    /// contacts from their responses (columns 1 + j).
+    /// Begin a step's dropper problem (module docs, D9): the free
+    /// extensions from d̃ (`d_pred`), the free solution (column 0 of
+    /// `solved`, k columns) and d_n; P from the contact columns 1 + c; the
+    /// contacts' couplings Ê from their gap rows `(i, s_i, r_i)` at the
+    /// placement with coefficient `coef_c`; the contacts' own pair from
+    /// `g`, `w` (stride `stride`); and the step's first set S.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn fill_rows(
-        &self,
-        nc: usize,
+    pub(crate) fn begin<'a>(
+        &mut self,
         (solved, k): (&[f64], usize),
         c_d: f64,
         d_pred: &[f64],
         d_n: &[f64],
-        g_free: &mut [f64],
-        w: &mut [f64],
+        contacts: impl Iterator<Item = (usize, f64, &'a PointVector)>,
+        coef_c: f64,
+        (g, w, stride): (&[f64], &[f64], usize),
     ) {
-        let (nt, m, a) = (nc + self.rows, self.rows, self.weight);
-        for l in &self.links {
-            let Some(r) = l.row else { continue };
-            let i = nc + r;
+        let (nc, m, a) = (self.nc, self.rows(), self.weight);
+        let s = &mut self.scratch;
+        s.scale = 0.0;
+        for (r, &li) in self.tension.iter().enumerate() {
+            let l = &self.links[li];
             let end = l.dot(d_pred) + c_d * l.dot_strided(solved, k, 0);
-            g_free[i] = (1.0 - a) * end + a * l.dot(d_n) - l.e0;
-            for j in 0..nc {
-                w[i * nt + j] = self.coef * l.dot_strided(solved, k, 1 + j);
+            s.e_free[r] = l.e0 - ((1.0 - a) * end + a * l.dot(d_n));
+            s.scale = s.scale.max(l.k * s.e_free[r].abs());
+            for c in 0..nc {
+                s.p[r * nc + c] = l.dot_strided(solved, k, 1 + c);
             }
-            w[i * nt + nc..i * nt + nt].copy_from_slice(&self.w_dd[r * m..(r + 1) * m]);
+        }
+        for (i, sign, pv) in contacts {
+            for r in 0..m {
+                s.e_c[i * m + r] = coef_c * sign * pv.dot(&self.z[r * self.n..(r + 1) * self.n]);
+            }
+        }
+        for i in 0..nc {
+            s.g_c[i] = g[i];
+            s.w_c[i * nc..(i + 1) * nc].copy_from_slice(&w[i * stride..i * stride + nc]);
+        }
+        s.set.clear();
+        for r in 0..m {
+            s.in_set[r] = self.slack[r] || s.e_free[r] < 0.0;
+            if s.in_set[r] {
+                s.set.push(r);
+            }
         }
     }
 
-    /// Add Σ N_d z_d of the stretched droppers (`forces`, one per row, N)
-    /// to column 0 of `solved` (k columns): the free solution becomes the
-    /// solution with the dropper forces, as the contacts' columns are
-    /// added by the method's update.
-    pub(crate) fn add_responses(&self, forces: &[f64], solved: &mut [f64], k: usize) {
-        for (r, &f) in forces.iter().enumerate() {
-            if f == 0.0 {
+    /// The pair (g, W) over the contacts and the set S (module docs, D9)
+    /// into `g`, `w` (row-major, stride nc + |S|, the set's rows after the
+    /// contacts); returns nc + |S|. A non-positive pivot of H (round-off
+    /// destroying its definiteness) is [`ContactFailure::Singular`].
+    pub(crate) fn assemble(
+        &mut self,
+        g: &mut [f64],
+        w: &mut [f64],
+    ) -> Result<usize, ContactFailure> {
+        let (nc, m, kappa) = (self.nc, self.rows(), self.coef);
+        let s = &mut self.scratch;
+        let ms = s.set.len();
+        let ns = nc + ms;
+        let k_of = |r: usize| self.links[self.tension[r]].k;
+        // H = diag(k) − κ diag(k) Q diag(k) over S, its Cholesky factor L
+        let h = &mut s.chol[..ms * ms];
+        for (i, &a) in s.set.iter().enumerate() {
+            for (j, &b) in s.set.iter().enumerate() {
+                let mut v = -kappa * k_of(a) * self.q[a * m + b] * k_of(b);
+                if i == j {
+                    v += k_of(a);
+                }
+                h[i * ms + j] = v;
+            }
+        }
+        for j in 0..ms {
+            let mut d = h[j * ms + j];
+            for p in 0..j {
+                d -= h[j * ms + p] * h[j * ms + p];
+            }
+            if !(d > 0.0 && d.is_finite()) {
+                return Err(ContactFailure::Singular);
+            }
+            let d = d.sqrt();
+            h[j * ms + j] = d;
+            for i in j + 1..ms {
+                let mut v = h[i * ms + j];
+                for p in 0..j {
+                    v -= h[i * ms + p] * h[j * ms + p];
+                }
+                h[i * ms + j] = v / d;
+            }
+        }
+        // G = H⁻¹, column by column (L Lᵀ x = e_j)
+        let gi = &mut s.g_inv[..ms * ms];
+        for j in 0..ms {
+            for i in 0..ms {
+                let mut v = if i == j { 1.0 } else { 0.0 };
+                for p in 0..i {
+                    v -= h[i * ms + p] * gi[p * ms + j];
+                }
+                gi[i * ms + j] = v / h[i * ms + i];
+            }
+            for i in (0..ms).rev() {
+                let mut v = gi[i * ms + j];
+                for p in i + 1..ms {
+                    v -= h[p * ms + i] * gi[p * ms + j];
+                }
+                gi[i * ms + j] = v / h[i * ms + i];
+            }
+        }
+        // the droppers' rows: g_S = −G k∘e_free, W_SS = G, W_Sc = κ G diag(k) P
+        for (i, _) in s.set.iter().enumerate() {
+            let row = nc + i;
+            let mut gf = 0.0;
+            for (j, &b) in s.set.iter().enumerate() {
+                gf -= gi[i * ms + j] * k_of(b) * s.e_free[b];
+                w[row * ns + nc + j] = gi[i * ms + j];
+            }
+            g[row] = gf;
+            for c in 0..nc {
+                let mut v = 0.0;
+                for (j, &b) in s.set.iter().enumerate() {
+                    v += gi[i * ms + j] * k_of(b) * s.p[b * nc + c];
+                }
+                w[row * ns + c] = kappa * v;
+            }
+        }
+        // the contacts' rows: Y = Ê G; g_c = g'_c − Y k∘e_free,
+        // W_cS = Y, W_cc = W'_cc + κ Y diag(k) P
+        for c in 0..nc {
+            for j in 0..ms {
+                let mut v = 0.0;
+                for (i, &a) in s.set.iter().enumerate() {
+                    v += s.e_c[c * m + a] * k_of(a) * gi[i * ms + j];
+                }
+                s.y[c * ms + j] = v;
+                w[c * ns + nc + j] = v;
+            }
+            let mut gf = s.g_c[c];
+            for (j, &b) in s.set.iter().enumerate() {
+                gf -= s.y[c * ms + j] * k_of(b) * s.e_free[b];
+            }
+            g[c] = gf;
+            for c2 in 0..nc {
+                let mut v = 0.0;
+                for (j, &b) in s.set.iter().enumerate() {
+                    v += s.y[c * ms + j] * k_of(b) * s.p[b * nc + c2];
+                }
+                w[c * ns + c2] = s.w_c[c * nc + c2] + kappa * v;
+            }
+        }
+        Ok(ns)
+    }
+
+    /// After the law solved the pair of [`Droppers::assemble`] (`g`, `w`,
+    /// stride `ns`) into `lambda`, `active` (ns each): the set's
+    /// corrections μ_d = k_d g_d (0 for a taut row), then the check of the
+    /// droppers outside S (module docs, D10). Returns false when some of
+    /// them pushed and joined S (assemble and solve again), true when the
+    /// step settled: the forces, corrections and slack states are then the
+    /// step's.
+    pub(crate) fn settle(&mut self, g: &[f64], w: &[f64], lambda: &[f64], active: &[bool]) -> bool {
+        let (nc, m, kappa) = (self.nc, self.rows(), self.coef);
+        let ns = lambda.len();
+        let s = &mut self.scratch;
+        self.mu.fill(0.0);
+        for (i, &a) in s.set.iter().enumerate() {
+            let row = nc + i;
+            if !active[row] {
+                let gap: f64 = g[row] + (0..ns).map(|j| w[row * ns + j] * lambda[j]).sum::<f64>();
+                self.mu[a] = self.links[self.tension[a]].k * gap;
+            }
+        }
+        let tol = FORCE_ROUNDOFF * s.scale;
+        let mut settled = true;
+        for r in 0..m {
+            if s.in_set[r] {
+                continue;
+            }
+            let mut shift = 0.0;
+            for c in 0..nc {
+                shift += s.p[r * nc + c] * lambda[c];
+            }
+            for &a in &s.set {
+                shift += self.q[r * m + a] * self.mu[a];
+            }
+            let force = self.links[self.tension[r]].k * (s.e_free[r] - kappa * shift);
+            if force < -tol {
+                settled = false;
+                s.in_set[r] = true;
+            } else {
+                self.force[r] = force;
+                self.slack[r] = false;
+            }
+        }
+        if !settled {
+            s.set.clear();
+            s.set.extend((0..m).filter(|&r| s.in_set[r]));
+            return false;
+        }
+        for (i, &a) in s.set.iter().enumerate() {
+            self.force[a] = lambda[nc + i];
+            self.slack[a] = !active[nc + i];
+        }
+        true
+    }
+
+    /// Add Σ μ_d z'_d of the slack droppers to column 0 of `solved` (k
+    /// columns): the free solution becomes the solution with the dropper
+    /// corrections, as the contacts' columns are added by the method's
+    /// update.
+    pub(crate) fn add_responses(&self, solved: &mut [f64], k: usize) {
+        for (r, &mu) in self.mu.iter().enumerate() {
+            if mu == 0.0 {
                 continue;
             }
             for (row, z) in solved.chunks_exact_mut(k).zip(self.response(r)) {
-                row[0] += f * z;
+                row[0] += mu * z;
             }
         }
     }
 
-    /// Add coef·N_d r_d of every row (`forces`) into lane `lane` of `y`
-    /// (`lanes` interleaved runs).
-    pub(crate) fn scatter_forces(
-        &self,
-        forces: &[f64],
-        y: &mut [f64],
-        lanes: usize,
-        lane: usize,
-        coef: f64,
-    ) {
-        for l in &self.links {
-            let Some(r) = l.row else { continue };
-            l.scatter(coef * forces[r], y, lanes, lane);
+    /// Add coef·μ_d r_d of every slack dropper into lane `lane` of `y`
+    /// (`lanes` interleaved runs): the corrections' part of a right-hand
+    /// side.
+    pub(crate) fn scatter_forces(&self, y: &mut [f64], lanes: usize, lane: usize, coef: f64) {
+        for (r, &mu) in self.mu.iter().enumerate() {
+            if mu != 0.0 {
+                self.links[self.tension[r]].scatter(coef * mu, y, lanes, lane);
+            }
         }
     }
 
     /// Each dropper's force and slack state, in scene order, into `out`:
-    /// a tension-only one's multiplier (`forces`, one per row) and open
-    /// row (`active` false), a linear one's k_d (e₀ − r_dᵀd), never slack.
-    pub(crate) fn samples_into(
-        &self,
-        (forces, active): (&[f64], &[bool]),
-        d: &[f64],
-        out: &mut [DropperSample],
-    ) {
+    /// a tension-only one's from the last step, a linear one's
+    /// k_d (e₀ − r_dᵀd), never slack.
+    pub(crate) fn samples_into(&self, d: &[f64], out: &mut [DropperSample]) {
         for (o, l) in out.iter_mut().zip(&self.links) {
             *o = match l.row {
                 Some(r) => DropperSample {
-                    force: forces[r],
-                    slack: !active[r],
+                    force: self.force[r],
+                    slack: self.slack[r],
                 },
                 None => DropperSample {
                     force: l.k * (l.e0 - l.dot(d)),
                     slack: false,
                 },
             };
-        }
-    }
-}
-
-impl Droppers {
-    /// The contacts' columns against the droppers (module docs):
-    /// W_{i,nc+d} = coef·s_i r_iᵀ z_d for each contact row `(i, s_i, r_i)`
-    /// (the gap row at the contacts' placement, `coef` its coefficient),
-    /// stride nt = nc + rows.
-    pub(crate) fn fill_contact_columns<'a>(
-        &self,
-        contacts: impl Iterator<Item = (usize, f64, &'a PointVector)>,
-        coef: f64,
-        nc: usize,
-        w: &mut [f64],
-    ) {
-        let nt = nc + self.rows;
-        for (i, s, pv) in contacts {
-            for r in 0..self.rows {
-                w[i * nt + nc + r] = coef * s * pv.dot(self.response(r));
-            }
         }
     }
 }

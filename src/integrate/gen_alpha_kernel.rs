@@ -316,16 +316,16 @@ impl Kernel {
     }
 
     /// After [`Kernel::contact`] of a run alone: the tension-only droppers'
-    /// forces N_d into the free solution, a★ += Σ N_d A⁻¹r_d (`dropper.rs`),
+    /// slack corrections μ_d into the free solution, a★ += Σ μ_d A'⁻¹r_d
+    /// (`dropper.rs`),
     /// so the update pass takes them with the contacts'. No-op without them.
     pub(crate) fn add_dropper_responses(&mut self, sys: &System) {
         if sys.droppers.rows() == 0 {
             return;
         }
         debug_assert_eq!(self.lanes, 1, "droppers step alone");
-        let (n, k, nc) = (self.n, self.k, sys.contacts());
-        sys.droppers
-            .add_responses(&sys.lambda[nc..], &mut self.rhs[..n * k], k);
+        let (n, k) = (self.n, self.k);
+        sys.droppers.add_responses(&mut self.rhs[..n * k], k);
     }
 
     /// Lane `l`'s contact problem: its mass dofs' predictions, and the

@@ -9,8 +9,9 @@
 //!                                    + Σ_c s λ_c r_b(x_c)                    (W6)
 //! ```
 //!
-//! where K holds both lines, the attachments and the linear droppers'
-//! springs (and ties), f the constant loads of the model (self-weight of
+//! (the Σ_taut terms are already in K and f: every dropper's spring and
+//! preload is, D7), where K holds both lines, the attachments and the
+//! droppers' springs (and ties), f the constant loads of the model (self-weight of
 //! both lines, the linear droppers' preloads), every tension-only dropper
 //! is taken taut (a spring with its preload), a moving force F presses at
 //! its start point x_F, and each mass–spring carrier c presses with its
@@ -61,10 +62,9 @@ use super::{State, System};
 pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> Result<()> {
     let beam = sys.beam();
     let n = beam.n;
-    let mut k = beam.stiffness.clone();
+    // K and f hold every dropper's spring and preload (`dropper.rs`, D7)
     let mut d = beam.load.clone();
-    sys.droppers.add_taut(&mut k, &mut d);
-    let factor = BandedLdlt::factor(&k).map_err(|_| {
+    let factor = BandedLdlt::factor(&beam.stiffness).map_err(|_| {
         Error::invalid(
             "time.initial",
             "\"static\"",

@@ -82,9 +82,10 @@ pub struct System {
     damping: Option<SymBand>,
     /// A manufactured scene's source; `None` costs a branch per step.
     source: Option<SourceState>,
-    /// The droppers (`dropper.rs`): the tension-only ones are the rows of
-    /// the contact problem after the contacts', their forces in
-    /// `lambda[nc..]`; none costs a branch per step.
+    /// The droppers (`dropper.rs`): the slack tension-only ones are rows
+    /// of the contact problem after the contacts' (their multipliers in
+    /// `lambda[nc..]` during the solve), every one's force and state kept
+    /// there; none costs a branch per step.
     pub(crate) droppers: Droppers,
     /// The time the last [`System::place`] put the contact forces at, s.
     t_force: f64,
@@ -176,7 +177,9 @@ impl System {
                 Carrier::new(p.clone(), contact, &beam)
             })
             .collect();
-        let droppers = Droppers::new(&sc.droppers, &beam);
+        let droppers = Droppers::new(&sc.droppers, &beam, nc);
+        // every dropper's spring in K and preload in the load (`dropper.rs`, D7)
+        droppers.add_springs(&mut beam.stiffness);
         droppers.add_preloads(&mut beam.load);
         let nd = droppers.rows();
         let law = RunLaw::with_droppers(&sc.contact, nc, nd);
@@ -394,9 +397,7 @@ impl System {
     /// beam dofs `d` of the state the last step reached (`dropper.rs`):
     /// the tension-only ones' multipliers, the linear ones' k_d e.
     pub fn dropper_samples_into(&self, d: &[f64], out: &mut [DropperSample]) {
-        let nc = self.masses.len();
-        let rows = (&self.lambda[nc..], &self.active[nc..]);
-        self.droppers.samples_into(rows, d, out);
+        self.droppers.samples_into(d, out);
     }
 
     /// The level the contact law works at during the run.
@@ -509,11 +510,9 @@ impl System {
                     .scatter(coef * self.lambda[j] * c.s, y, lanes.count, lanes.lane);
             }
         }
-        let nc = self.masses.len();
         if self.droppers.rows() > 0 {
-            let forces = &self.lambda[nc..];
             self.droppers
-                .scatter_forces(forces, y, lanes.count, lanes.lane, coef);
+                .scatter_forces(y, lanes.count, lanes.lane, coef);
         }
     }
 
@@ -561,13 +560,9 @@ impl System {
             }
         }
         self.scatter_loads(&mut rhs, k, 1.0);
-        // the droppers' initial forces are known loads (`dropper.rs`)
-        let (contacts, dropper_forces) = self.lambda.split_at_mut(nc);
-        self.droppers
-            .initial(start.map(|s| s.0), dropper_forces, &mut rhs, k);
-        for (a, f) in self.active[nc..].iter_mut().zip(dropper_forces.iter()) {
-            *a = *f > 0.0;
-        }
+        // the slack droppers' initial corrections are known loads (`dropper.rs`)
+        self.droppers.initial(start.map(|s| s.0), &mut rhs, k);
+        let contacts = &mut self.lambda[..nc];
         mass_factor.solve_many(&mut rhs, k);
         let problem = &mut self.problem;
         problem.acceleration(&self.carriers, &self.masses, self.placement, &rhs, k);
@@ -642,14 +637,18 @@ impl System {
             }
             RunLaw::Force(law) => {
                 problem.position(&self.carriers, self.placement, map, lanes);
-                if nd > 0 {
-                    // the dropper rows and columns (`dropper.rs`; a run with
-                    // droppers steps alone)
+                if nd == 0 {
+                    law.solve(
+                        &problem.g_free,
+                        &problem.w,
+                        &mut self.lambda,
+                        &mut self.active,
+                    )
+                } else {
+                    // the contacts and the slack droppers' rows (`dropper.rs`,
+                    // D9–D10; a run with droppers steps alone)
                     debug_assert_eq!(lanes, Lanes::ONE, "droppers step alone");
                     let k = rhs_columns(nc);
-                    let d = &self.droppers;
-                    let (g, w) = (&mut problem.g_free, &mut problem.w);
-                    d.fill_rows(nc, (map.solved, k), map.c_d, map.d_pred, &st.d, g, w);
                     let rows = self.carriers.iter().filter_map(|c| {
                         let pv = match self.placement {
                             Placement::End => &c.pv_g,
@@ -657,14 +656,26 @@ impl System {
                         };
                         c.contact.map(|i| (i, c.s, pv))
                     });
-                    d.fill_contact_columns(rows, contact_coef(self.placement, map), nc, w);
+                    let coef_c = contact_coef(self.placement, map);
+                    let pair = (&problem.g_free[..], &problem.w[..], nc + nd);
+                    let d = &mut self.droppers;
+                    d.begin(
+                        (map.solved, k),
+                        map.c_d,
+                        map.d_pred,
+                        &st.d,
+                        rows,
+                        coef_c,
+                        pair,
+                    );
+                    solve_with_droppers(
+                        law.as_mut(),
+                        d,
+                        problem,
+                        &mut self.lambda,
+                        &mut self.active,
+                    )
                 }
-                law.solve(
-                    &problem.g_free,
-                    &problem.w,
-                    &mut self.lambda,
-                    &mut self.active,
-                )
             }
         };
         solved.map_err(|failure| {
@@ -712,7 +723,10 @@ impl System {
                 let nc = self.masses.len();
                 (&self.problem.g_free[..nc], &self.problem.w[..nc * nc])
             }
-            _ => (&self.problem.g_free[..], &self.problem.w[..]),
+            _ => {
+                let ns = self.problem.size;
+                (&self.problem.g_free[..ns], &self.problem.w[..ns * ns])
+            }
         };
         if let ContactFailure::VelocityDelassus {
             contact, travel, h, ..
@@ -780,4 +794,32 @@ fn external_forces(sc: &Resolved, carriers: &[Carrier], masses: &[MassDof]) -> E
         series,
         held: vec![0.0; masses.len()],
     }
+}
+
+/// The contact problem of a step with tension-only droppers
+/// (`dropper.rs`, D9–D10): the pair over the contacts and the set of slack
+/// droppers, solved by the law, again while a dropper outside the set
+/// pushes (the set only grows: at most m + 1 passes). The packed pair
+/// stays in `problem` (its size too) for a failure's record.
+fn solve_with_droppers(
+    law: &mut dyn crate::contact::ContactLaw,
+    d: &mut Droppers,
+    problem: &mut ProblemBuilder,
+    lambda: &mut [f64],
+    active: &mut [bool],
+) -> std::result::Result<(), ContactFailure> {
+    let passes = d.rows() + 1;
+    for _ in 0..passes {
+        let ns = d.assemble(&mut problem.g_free, &mut problem.w)?;
+        problem.size = ns;
+        let (g, w) = (&problem.g_free[..ns], &problem.w[..ns * ns]);
+        let (lam, act) = (&mut lambda[..ns], &mut active[..ns]);
+        if ns > 0 {
+            law.solve(g, w, lam, act)?;
+        }
+        if d.settle(g, w, lam, act) {
+            return Ok(());
+        }
+    }
+    Err(ContactFailure::Cycling { passes })
 }
