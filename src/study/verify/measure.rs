@@ -249,7 +249,7 @@ pub(super) fn modal_tail(
 }
 
 /// Max errors over the coarse grid's rows 1 ..= `rows` of a run: the
-/// displacement (under carrier 0, at the probes, of its mass) and the force
+/// displacement (under carrier 0, at the probes on their own wire, of its mass) and the force
 /// (at the time the multiplier acts); and the exact solution's largest
 /// values there.
 pub(super) fn errors(
