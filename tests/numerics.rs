@@ -46,6 +46,8 @@ mod manufactured;
 mod messenger;
 #[path = "methods.rs"]
 mod methods;
+#[path = "mms_two_wires.rs"]
+mod mms_two_wires;
 #[path = "modal_exact.rs"]
 mod modal_exact;
 #[path = "pantograph_chain.rs"]

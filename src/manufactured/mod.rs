@@ -34,6 +34,25 @@
 //! while λ* > 0. A unilateral contact must keep λ* > 0 outside the loss:
 //! [`Manufactured::new`] checks it on a fine time grid and refuses the scene
 //! otherwise, naming the time and the value.
+//!
+//! **Two coupled wires** (`docs/lines.md` W1–W6, D1–D2). With a
+//! `[messenger]`, the messenger has its own motion
+//! `v_m*(x, t) = Σⱼ bⱼ X_m,j(x) T̂ⱼ(t)` (`[manufactured.messenger]`; absent:
+//! v_m* = 0), each shape `X_m = (S − c)·P`, `P(ξ) = Π (ξ − ξ_s)` over the
+//! messenger's interior supports (so X_m = 0 there whatever c is) and c the
+//! correction of its ends (pinned where a support sits at x = 0 or L, free
+//! otherwise, [`supports::Shape::weighted`]); its smooth source is
+//! `ρA_m v_m,tt + EI_m v_m,xxxx − T_m v_m,xx`. Each dropper d carries in the
+//! manufactured motion the force `N_d*(t) = k_d(e₀ + v_m*(x_d) − v_c*(x_d))`
+//! (W2; `e₀ − v_c*(x_d)` on a fixed anchor, D1), and the source gets the
+//! point load `−N_d*(t) r_d`, `r_d = r_c(x_d) − r_m(x_d)` (−N_d* on the
+//! contact wire, +N_d* on the messenger): the model's own dropper spring
+//! adds `k_d(e₀ − r_dᵀd) r_d`, which cancels it only when the run delivers
+//! N_d = N_d* — the coupling is verified, not bypassed. Separable again:
+//! `−N_d* = Σ_k c_k(t) w_k` over the source's parts plus a constant part
+//! `−k_d e₀` ([`Manufactured::dropper_weights`]). A tension-only dropper
+//! must stay taut (N_d* > 0) on the check grid, else the scene is refused
+//! naming the dropper and the time.
 
 pub mod factor;
 pub mod jet;
@@ -44,8 +63,8 @@ use jet::Jet;
 use supports::{Ends, Shape};
 
 use crate::error::{Error, Result};
-use crate::scene::manufactured::{LossSpec, ManufacturedSpec, TFactor, XFactor};
-use crate::scene::{BeamProps, CarrierKind, CarrierProps, ContactKind, Motion};
+use crate::scene::manufactured::{LossSpec, ManufacturedSpec, TFactor, TermSpec, XFactor};
+use crate::scene::{BeamProps, CarrierKind, CarrierProps, ContactKind, Dropper, Motion, Support};
 
 /// Time samples of the consistency checks per step of the run (at least
 /// [`MIN_CHECK_SAMPLES`], at most [`MAX_CHECK_SAMPLES`]): λ* of a smooth
@@ -63,6 +82,11 @@ pub const MAX_CHECK_SAMPLES: usize = 400_001;
 /// polynomial of the correction's own powers).
 const VANISHED: f64 = 1e-10;
 const SHAPE_SAMPLES: usize = 257;
+
+/// A messenger support within this fraction of L of a line end is that
+/// end's support (the same round-off bound as `resolve::messenger`'s
+/// support-on-a-node check).
+const SUPPORT_AT_END: f64 = 1e-9;
 
 /// One term a·X(x)·T̂(t).
 #[derive(Debug, Clone, PartialEq)]
@@ -184,6 +208,45 @@ pub struct Manufactured {
     tension: f64,
     carriers: Vec<Carrier>,
     loss: Option<Loss>,
+    /// The messenger's motion v_m* (`None`: no `[messenger]`, or v_m* = 0).
+    messenger: Option<LineMotion>,
+    /// The droppers, whose forces N_d* of the manufactured motion the
+    /// source cancels (module docs, two coupled wires).
+    droppers: Vec<DropperLoad>,
+}
+
+/// A line's manufactured motion: its terms and section (the messenger's).
+#[derive(Debug, Clone, PartialEq)]
+struct LineMotion {
+    terms: Vec<Term>,
+    rho_a: f64,
+    ei: f64,
+    tension: f64,
+}
+
+/// A dropper as the source sees it (`docs/lines.md` D1, W2).
+#[derive(Debug, Clone, PartialEq)]
+struct DropperLoad {
+    name: String,
+    /// x_d, m.
+    x: f64,
+    /// k_d, N/m.
+    k: f64,
+    /// e₀ = z_a − ℓ_0 (or h_m − ℓ_0), m.
+    e0: f64,
+    /// Hangs from the messenger (r_d = r_c − r_m) rather than a fixed anchor.
+    on_messenger: bool,
+    /// Tension-only (must stay taut: N_d* > 0).
+    tension_only: bool,
+}
+
+/// Which line a source shape is projected on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Line {
+    /// The contact wire (the beam).
+    Contact,
+    /// The messenger wire (`[messenger]`).
+    Messenger,
 }
 
 fn x_factor(f: &XFactor) -> Factor {
@@ -224,6 +287,70 @@ pub struct Setting<'a> {
     pub t_end: f64,
     /// Its steps.
     pub steps: usize,
+    /// The scene's droppers (`[[dropper]]`, resolved).
+    pub droppers: &'a [Dropper],
+}
+
+/// Build one line's terms from `specs` (`prefix`: the scene key of the
+/// terms, `manufactured` or `manufactured.messenger`), each shape corrected
+/// to meet `ends` and, with a `weight`, to vanish where it does.
+fn line_terms(
+    specs: &[TermSpec],
+    ends: &Ends,
+    weight: Option<&Product>,
+    prefix: &str,
+    t_end: f64,
+) -> Result<Vec<Term>> {
+    let mut terms = Vec::with_capacity(specs.len());
+    for (i, t) in specs.iter().enumerate() {
+        let field = format!("{prefix}.term.{i}.x");
+        let raw = Product(t.x.iter().map(x_factor).collect());
+        let shape = match weight {
+            None => Shape::new(raw.clone(), ends, &field)?,
+            Some(w) => Shape::weighted(raw.clone(), ends, w.clone(), &field)?,
+        };
+        let (mut big, mut raw_big) = (0.0f64, 0.0f64);
+        for k in 0..SHAPE_SAMPLES {
+            let x = ends.length * k as f64 / (SHAPE_SAMPLES - 1) as f64;
+            let xi = x / ends.length;
+            big = big.max(shape.jet(x).d(0).abs());
+            let r = raw.jet(xi).d(0) * weight.map_or(1.0, |w| w.jet(xi).d(0));
+            raw_big = raw_big.max(r.abs());
+        }
+        if big.is_nan() || big <= VANISHED * raw_big {
+            return Err(Error::invalid(
+                field,
+                "a polynomial of degree ≤ 3",
+                "is removed entirely by the correction that makes a shape meet the supports (X = 0): multiply it by another factor or raise its degree",
+            ));
+        }
+        let time = Product(t.t.iter().map(t_factor).collect());
+        let j0 = time.jet(0.0);
+        let term = Term {
+            amplitude: t.amplitude,
+            shape,
+            time,
+            start: (j0.d(0), j0.d(1)),
+        };
+        let moves = (0..=64).any(|k| term.time_jet(t_end * k as f64 / 64.0).d(2) != 0.0);
+        if !moves {
+            return Err(Error::invalid(
+                format!("{prefix}.term.{i}.t"),
+                "a time part linear in t",
+                "leaves nothing once its value and rate at t = 0 are removed (T̂ = T − T(0) − T'(0)t = 0): use a factor curved in t",
+            ));
+        }
+        terms.push(term);
+    }
+    Ok(terms)
+}
+
+/// Σ aᵢ Xᵢ(x) T̂ᵢ(t) of one line's terms.
+fn line_v(terms: &[Term], x: f64, t: f64) -> f64 {
+    terms
+        .iter()
+        .map(|term| term.amplitude * term.shape.jet(x).d(0) * term.time_jet(t).d(0))
+        .sum()
 }
 
 impl Manufactured {
@@ -241,42 +368,9 @@ impl Manufactured {
             ei: b.ei,
             tension: b.tension,
         };
-        let mut terms = Vec::with_capacity(spec.terms.len());
-        for (i, t) in spec.terms.iter().enumerate() {
-            let field = format!("manufactured.term.{i}.x");
-            let raw = Product(t.x.iter().map(x_factor).collect());
-            let shape = Shape::new(raw.clone(), &ends, &field)?;
-            let (mut big, mut raw_big) = (0.0f64, 0.0f64);
-            for k in 0..SHAPE_SAMPLES {
-                let x = b.length * k as f64 / (SHAPE_SAMPLES - 1) as f64;
-                big = big.max(shape.jet(x).d(0).abs());
-                raw_big = raw_big.max(raw.jet(x / b.length).d(0).abs());
-            }
-            if big.is_nan() || big <= VANISHED * raw_big {
-                return Err(Error::invalid(
-                    field,
-                    "a polynomial of degree ≤ 3",
-                    "is removed entirely by the correction that makes a shape meet the supports (X = 0): multiply it by another factor or raise its degree",
-                ));
-            }
-            let time = Product(t.t.iter().map(t_factor).collect());
-            let j0 = time.jet(0.0);
-            let term = Term {
-                amplitude: t.amplitude,
-                shape,
-                time,
-                start: (j0.d(0), j0.d(1)),
-            };
-            let moves = (0..=64).any(|k| term.time_jet(at.t_end * k as f64 / 64.0).d(2) != 0.0);
-            if !moves {
-                return Err(Error::invalid(
-                    format!("manufactured.term.{i}.t"),
-                    "a time part linear in t",
-                    "leaves nothing once its value and rate at t = 0 are removed (T̂ = T − T(0) − T'(0)t = 0): use a factor curved in t",
-                ));
-            }
-            terms.push(term);
-        }
+        let terms = line_terms(&spec.terms, &ends, None, "manufactured", at.t_end)?;
+        let messenger = Self::messenger_motion(spec, at)?;
+        let droppers = Self::dropper_loads(at)?;
         let carriers: Vec<Carrier> = at
             .carriers
             .iter()
@@ -336,11 +430,191 @@ impl Manufactured {
             tension: b.tension,
             carriers,
             loss,
+            messenger,
+            droppers,
         };
         if at.contact == ContactKind::Unilateral {
             m.check_contact_kept(at.t_end, at.steps)?;
         }
+        m.check_droppers_taut(at.t_end, at.steps)?;
         Ok(m)
+    }
+
+    /// The messenger's motion (module docs): its shapes meet the
+    /// messenger's ends (pinned where a support sits at x = 0 or L, free
+    /// beyond the outermost supports otherwise) and vanish at every
+    /// interior support through the weight P(ξ) = Π (ξ − ξ_s).
+    fn messenger_motion(spec: &ManufacturedSpec, at: Setting) -> Result<Option<LineMotion>> {
+        let b = at.beam;
+        let Some(ms) = &spec.messenger else {
+            return Ok(None);
+        };
+        let Some(m) = &b.messenger else {
+            return Err(Error::invalid(
+                "manufactured.messenger",
+                "(present)",
+                "is the messenger wire's motion and needs a [messenger] section: add one or remove [manufactured.messenger]",
+            ));
+        };
+        let l = b.length;
+        let at_end = |x: f64, end: f64| (x - end).abs() <= SUPPORT_AT_END * l;
+        let first = m.supports.first().copied().unwrap_or(f64::NAN);
+        let last = m.supports.last().copied().unwrap_or(f64::NAN);
+        let ends = Ends {
+            left: if at_end(first, 0.0) {
+                Support::Pinned
+            } else {
+                Support::Free
+            },
+            right: if at_end(last, l) {
+                Support::Pinned
+            } else {
+                Support::Free
+            },
+            length: l,
+            ei: m.ei,
+            tension: m.tension,
+        };
+        let weight = Product(
+            m.supports
+                .iter()
+                .filter(|&&x| !at_end(x, 0.0) && !at_end(x, l))
+                .map(|&x| Factor::Polynomial(vec![-x / l, 1.0]))
+                .collect(),
+        );
+        let terms = line_terms(
+            &ms.terms,
+            &ends,
+            Some(&weight),
+            "manufactured.messenger",
+            at.t_end,
+        )?;
+        Ok(Some(LineMotion {
+            terms,
+            rho_a: m.rho_a,
+            ei: m.ei,
+            tension: m.tension,
+        }))
+    }
+
+    /// The droppers the source cancels (module docs). A scene whose lines
+    /// carry their weight is refused here: the source is of the weightless
+    /// lines.
+    fn dropper_loads(at: Setting) -> Result<Vec<DropperLoad>> {
+        let b = at.beam;
+        let weighted = b.distributed_load != 0.0
+            || b.messenger
+                .as_ref()
+                .is_some_and(|m| m.distributed_load != 0.0);
+        if weighted && (b.messenger.is_some() || !at.droppers.is_empty()) {
+            return Err(Error::invalid(
+                "gravity.beam_self_weight",
+                "true",
+                "a manufactured solution of lines with droppers or a messenger is of the weightless lines (its source does not include their self-weight): set it false",
+            ));
+        }
+        Ok(at
+            .droppers
+            .iter()
+            .map(|d| DropperLoad {
+                name: d.name.clone(),
+                x: d.x,
+                k: d.stiffness,
+                e0: d.rest_extension(),
+                on_messenger: d.on_messenger(),
+                tension_only: !d.linear,
+            })
+            .collect())
+    }
+
+    /// A tension-only dropper must stay taut (N_d* > 0) over the run, or
+    /// it would go slack where the manufactured solution keeps it pulling.
+    fn check_droppers_taut(&self, t_end: f64, steps: usize) -> Result<()> {
+        let n = (CHECK_SAMPLES_PER_STEP * steps).clamp(MIN_CHECK_SAMPLES, MAX_CHECK_SAMPLES);
+        for (i, d) in self.droppers.iter().enumerate() {
+            if !d.tension_only {
+                continue;
+            }
+            for k in 0..=n {
+                let t = t_end * k as f64 / n as f64;
+                let force = self.dropper_force(i, t);
+                if force.is_nan() || force <= 0.0 {
+                    return Err(Error::invalid(
+                        format!("dropper.{i}.linear"),
+                        format!(
+                            "false (dropper {}: manufactured force N_d* = {force:.6e} N at t = {t:.6e} s)",
+                            d.name
+                        ),
+                        "a tension-only dropper must stay taut (N_d* > 0) over a manufactured run, else it goes slack where the manufactured solution keeps it pulling: lower the amplitudes, shorten the dropper (a larger preload k_d(e₀)), or declare it linear = true",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The force N_d*(t) = k_d e_d* of dropper d in the manufactured
+    /// motion, N (tension positive): e_d* = e₀ + v_m*(x_d) − v_c*(x_d) on
+    /// the messenger (`docs/lines.md` W2), e₀ − v_c*(x_d) on a fixed
+    /// anchor (D1).
+    pub fn dropper_force(&self, d: usize, t: f64) -> f64 {
+        let dr = &self.droppers[d];
+        let vm = if dr.on_messenger {
+            self.v_m(dr.x, t)
+        } else {
+            0.0
+        };
+        dr.k * (dr.e0 + vm - self.v(dr.x, t))
+    }
+
+    /// v_m*(x, t) of the messenger, m (0 without `[manufactured.messenger]`).
+    pub fn v_m(&self, x: f64, t: f64) -> f64 {
+        self.messenger
+            .as_ref()
+            .map_or(0.0, |m| line_v(&m.terms, x, t))
+    }
+
+    /// v* of `line` at (x, t), m.
+    pub fn v_on(&self, line: Line, x: f64, t: f64) -> f64 {
+        match line {
+            Line::Contact => self.v(x, t),
+            Line::Messenger => self.v_m(x, t),
+        }
+    }
+
+    /// The droppers the source carries.
+    pub fn droppers(&self) -> usize {
+        self.droppers.len()
+    }
+
+    /// Dropper d's position x_d (m) and whether it hangs from the messenger.
+    pub fn dropper_at(&self, d: usize) -> (f64, bool) {
+        (self.droppers[d].x, self.droppers[d].on_messenger)
+    }
+
+    /// The weights w_k of dropper d's point load −N_d*(t) = Σ_k c_k(t) w_k
+    /// over the source's parts (c_k of [`Manufactured::source_coefficients`]),
+    /// into `out` (overwritten): with N_d* = k_d(e₀ + v_m* − v_c*) at x_d,
+    /// w = k_d X_c,i(x_d) on contact term i's T̂ part, −k_d X_m,j(x_d) on
+    /// messenger term j's, −k_d e₀ on the constant part. The load acts
+    /// along r_d (r_c − r_m, or r_c): the model's own spring adds +N_d r_d,
+    /// so the two cancel only when the run delivers N_d = N_d*.
+    pub fn dropper_weights(&self, d: usize, out: &mut [f64]) {
+        out.fill(0.0);
+        let dr = &self.droppers[d];
+        let nc = self.terms.len();
+        for (i, term) in self.terms.iter().enumerate() {
+            out[2 * i + 1] = dr.k * term.shape.jet(dr.x).d(0);
+        }
+        if dr.on_messenger
+            && let Some(m) = &self.messenger
+        {
+            for (j, term) in m.terms.iter().enumerate() {
+                out[2 * nc + 2 * j + 1] = -dr.k * term.shape.jet(dr.x).d(0);
+            }
+        }
+        let last = out.len() - 1;
+        out[last] = -dr.k * dr.e0;
     }
 
     /// A unilateral contact must press (λ* > 0) wherever it is closed.
@@ -372,10 +646,7 @@ impl Manufactured {
 
     /// v*(x, t), m.
     pub fn v(&self, x: f64, t: f64) -> f64 {
-        self.terms
-            .iter()
-            .map(|term| term.amplitude * term.shape.jet(x).d(0) * term.time_jet(t).d(0))
-            .sum()
+        line_v(&self.terms, x, t)
     }
 
     /// v* and its derivatives at (x, t).
@@ -415,6 +686,7 @@ impl Manufactured {
         let per_xi = self
             .terms
             .iter()
+            .chain(self.messenger.iter().flat_map(|m| m.terms.iter()))
             .flat_map(|t| t.shape.raw().0.iter())
             .map(|f| match f {
                 Factor::Polynomial(c) => c.len().saturating_sub(1) as f64,
@@ -424,29 +696,62 @@ impl Manufactured {
         per_xi / self.length
     }
 
-    /// Number of separable parts of the smooth source (two per term).
+    /// Number of separable parts of the source: two per term of each
+    /// line, and one constant part when there are droppers (their
+    /// preloads' share of N_d*).
     pub fn source_count(&self) -> usize {
         2 * self.terms.len()
+            + self.messenger.as_ref().map_or(0, |m| 2 * m.terms.len())
+            + usize::from(!self.droppers.is_empty())
     }
 
-    /// The x-parts of the smooth source at x into `out`
+    /// The x-parts of the contact wire's smooth source at x into `out`
     /// ([`Manufactured::source_count`] long): ρA Xᵢ (N·s²/m² per m of
-    /// amplitude·T̂'') and EI Xᵢ'''' − T Xᵢ'' (N/m²), term by term.
+    /// amplitude·T̂'') and EI Xᵢ'''' − T Xᵢ'' (N/m²), term by term; the
+    /// other parts 0.
     pub fn source_shapes(&self, x: f64, out: &mut [f64]) {
-        for (i, term) in self.terms.iter().enumerate() {
+        self.source_shapes_on(Line::Contact, x, out)
+    }
+
+    /// As [`Manufactured::source_shapes`], on `line`: that line's parts
+    /// from its own ρA, EI, T, the other line's parts and the constant
+    /// part 0.
+    pub fn source_shapes_on(&self, line: Line, x: f64, out: &mut [f64]) {
+        out.fill(0.0);
+        let nc = self.terms.len();
+        let (terms, rho_a, ei, tension, first) = match (line, &self.messenger) {
+            (Line::Contact, _) => (&self.terms, self.rho_a, self.ei, self.tension, 0),
+            (Line::Messenger, Some(m)) => (&m.terms, m.rho_a, m.ei, m.tension, 2 * nc),
+            (Line::Messenger, None) => return,
+        };
+        for (i, term) in terms.iter().enumerate() {
             let xs = term.shape.jet(x);
-            out[2 * i] = self.rho_a * xs.d(0);
-            out[2 * i + 1] = self.ei * xs.d(4) - self.tension * xs.d(2);
+            out[first + 2 * i] = rho_a * xs.d(0);
+            out[first + 2 * i + 1] = ei * xs.d(4) - tension * xs.d(2);
         }
     }
 
-    /// The time parts of the smooth source at t into `out`: aᵢ T̂ᵢ''(t)
-    /// and aᵢ T̂ᵢ(t), so that p_s = Σ out[k]·shape[k].
+    /// True when the messenger has a manufactured motion of its own.
+    pub fn moves_messenger(&self) -> bool {
+        self.messenger.is_some()
+    }
+
+    /// The time parts of the source at t into `out`: aᵢ T̂ᵢ''(t) and
+    /// aᵢ T̂ᵢ(t) of each term (contact wire's, then the messenger's), and
+    /// 1 for the constant part, so that p = Σ out[k]·shape[k].
     pub fn source_coefficients(&self, t: f64, out: &mut [f64]) {
-        for (i, term) in self.terms.iter().enumerate() {
+        let all = self
+            .terms
+            .iter()
+            .chain(self.messenger.iter().flat_map(|m| m.terms.iter()));
+        for (i, term) in all.enumerate() {
             let ts = term.time_jet(t);
             out[2 * i] = term.amplitude * ts.d(2);
             out[2 * i + 1] = term.amplitude * ts.d(0);
+        }
+        if !self.droppers.is_empty() {
+            let last = self.source_count() - 1;
+            out[last] = 1.0;
         }
     }
 
@@ -596,6 +901,7 @@ mod tests {
                 },
             ],
             loss,
+            messenger: None,
         }
     }
 
@@ -631,6 +937,7 @@ mod tests {
                 g: 9.81,
                 t_end: 0.4,
                 steps: 100,
+                droppers: &[],
             },
         )
         .unwrap();
@@ -666,6 +973,7 @@ mod tests {
                 g: 0.0,
                 t_end: 0.4,
                 steps: 100,
+                droppers: &[],
             },
         )
         .unwrap();
@@ -707,6 +1015,7 @@ mod tests {
                 g: 9.81,
                 t_end: 0.4,
                 steps: 400,
+                droppers: &[],
             },
         )
         .unwrap();
@@ -762,10 +1071,64 @@ mod tests {
                 g: 9.81,
                 t_end: 0.4,
                 steps: 100,
+                droppers: &[],
             },
         )
         .unwrap_err()
         .to_string();
         assert!(e.contains("manufactured.term") && e.contains("λ*"), "{e}");
+    }
+
+    /// The bundled two-wire scene (`scenes/verify/mms_two_wires.toml`).
+    const TWO_WIRES: &str = include_str!("../../scenes/verify/mms_two_wires.toml");
+
+    /// Round-off of O(1) shapes times a correction solved to 1e-11.
+    const ZERO: f64 = 1e-12;
+
+    #[test]
+    fn the_messenger_motion_meets_its_supports_and_the_droppers_weights_give_their_force() {
+        let sc = crate::resolve::resolve_scene(TWO_WIRES, &[]).unwrap();
+        let m = sc.manufactured.as_ref().unwrap();
+        assert!(m.moves_messenger() && m.droppers() == 4);
+        let d = 1e-4;
+        for t in [0.03, 0.11, 0.2] {
+            // pinned at 0, 1, 2 m; moment-free at the two ends (W3)
+            for x in [0.0, 1.0, 2.0] {
+                assert!(m.v_m(x, t).abs() < ZERO, "v_m({x}, {t}) = {}", m.v_m(x, t));
+            }
+            for (c, x) in [(0.0, d), (2.0, 2.0 - d)] {
+                let vxx = (m.v_m(x, t) - 2.0 * m.v_m(c, t) + m.v_m(2.0 * c - x, t)) / (d * d);
+                // v is odd about a pinned, moment-free end: the central
+                // second difference there is round-off
+                assert!(vxx.abs() < 1e-3, "v_m'' at {c}: {vxx}");
+            }
+            assert!(m.v_m(0.5, t).abs() > 1e-5, "the messenger moves");
+            // Σ c_k(t) w_k = −N_d*(t), each dropper
+            let k = m.source_count();
+            let (mut c, mut w) = (vec![0.0; k], vec![0.0; k]);
+            m.source_coefficients(t, &mut c);
+            for dr in 0..m.droppers() {
+                m.dropper_weights(dr, &mut w);
+                let load: f64 = c.iter().zip(&w).map(|(a, b)| a * b).sum();
+                let n = m.dropper_force(dr, t);
+                assert!((load + n).abs() < 1e-12 * n.abs(), "{load} {n}");
+            }
+            // the messenger's parts are its own operator on v_m*
+            let x = 0.63;
+            let mut shapes = vec![0.0; k];
+            m.source_shapes_on(Line::Messenger, x, &mut shapes);
+            let p: f64 = shapes.iter().zip(&c).map(|(a, b)| a * b).sum();
+            let v = |x: f64, t: f64| m.v_m(x, t);
+            let h = 1e-3;
+            let vtt = (v(x, t + h) - 2.0 * v(x, t) + v(x, t - h)) / (h * h);
+            let vxx = (v(x + h, t) - 2.0 * v(x, t) + v(x - h, t)) / (h * h);
+            let vxxxx = (v(x + 2.0 * h, t) - 4.0 * v(x + h, t) + 6.0 * v(x, t) - 4.0 * v(x - h, t)
+                + v(x - 2.0 * h, t))
+                / h.powi(4);
+            // ρA_m = 1, EI_m = 2, T_m = 50 (the scene's)
+            let fd = vtt + 2.0 * vxxxx - 50.0 * vxx;
+            // the fourth difference loses ε|v|/h⁴ ≈ 1e-5 and truncation h²
+            assert!((fd - p).abs() < 1e-3 * p.abs().max(1.0), "{p} {fd}");
+        }
     }
 }

@@ -26,13 +26,17 @@ pub const CANDIDATES: [[usize; 4]; 4] = [[0, 1, 2, 3], [1, 2, 3, 4], [0, 1, 2, 4
 /// four conditions on O(1) polynomials sits near 1e-2.
 const INDEPENDENT: f64 = 1e-9;
 
-/// An x-shape meeting the supports: `X(ξ) = S(ξ) − Σ cₖ ξ^{pₖ}`.
+/// An x-shape meeting the supports: `X(ξ) = S(ξ) − Σ cₖ ξ^{pₖ}`, or on a
+/// line with interior supports `X(ξ) = (S(ξ) − Σ cₖ ξ^{pₖ}) P(ξ)`, P a
+/// polynomial vanishing at each of them ([`Shape::weighted`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shape {
     raw: Product,
     /// (power, coefficient) of the correction.
     correction: Vec<(usize, f64)>,
     length: f64,
+    /// P(ξ) (`None`: 1).
+    weight: Option<Product>,
 }
 
 /// The span's supports and section, as the conditions need them.
@@ -55,7 +59,11 @@ impl Ends {
     /// the free-end shear `EI w''' − T w'` divided by EI/L³).
     fn conditions(&self, support: Support, j: &Jet) -> Vec<f64> {
         if self.ei == 0.0 {
-            return vec![j.d(0)];
+            // a string: v = 0 held, T v' = 0 free
+            return match support {
+                Support::Free => vec![j.d(1)],
+                _ => vec![j.d(0)],
+            };
         }
         let tau = self.tension * self.length * self.length / self.ei;
         match support {
@@ -90,9 +98,26 @@ fn monomial(p: usize, xi: f64) -> Jet {
 impl Shape {
     /// Correct `raw` so that it meets `ends` (module docs).
     pub fn new(raw: Product, ends: &Ends, field: &str) -> Result<Self> {
-        let target = ends.all(&raw.jet(0.0), &raw.jet(1.0));
+        Self::build(raw, ends, None, field)
+    }
+
+    /// Correct `raw` so that `(raw − c)·weight` meets `ends` (c a
+    /// polynomial of the same powers as [`Shape::new`]'s): a line held at
+    /// interior points ξ_s (the messenger's supports) takes the weight
+    /// P(ξ) = Π (ξ − ξ_s), so X vanishes there whatever c is, and c makes
+    /// the ends' conditions hold.
+    pub fn weighted(raw: Product, ends: &Ends, weight: Product, field: &str) -> Result<Self> {
+        Self::build(raw, ends, Some(weight), field)
+    }
+
+    fn build(raw: Product, ends: &Ends, weight: Option<Product>, field: &str) -> Result<Self> {
+        let times = |j: Jet, xi: f64| match &weight {
+            Some(w) => j * w.jet(xi),
+            None => j,
+        };
+        let target = ends.all(&times(raw.jet(0.0), 0.0), &times(raw.jet(1.0), 1.0));
         let sets: Vec<Vec<usize>> = if ends.ei == 0.0 {
-            vec![vec![0, 1]]
+            vec![vec![0, 1], vec![0, 2], vec![1, 2]]
         } else {
             CANDIDATES.iter().map(|s| s.to_vec()).collect()
         };
@@ -100,7 +125,7 @@ impl Shape {
             let n = powers.len();
             let columns: Vec<Vec<f64>> = powers
                 .iter()
-                .map(|&p| ends.all(&monomial(p, 0.0), &monomial(p, 1.0)))
+                .map(|&p| ends.all(&times(monomial(p, 0.0), 0.0), &times(monomial(p, 1.0), 1.0)))
                 .collect();
             let a = DMatrix::from_fn(n, n, |i, j| columns[j][i]);
             let hadamard: f64 = a.row_iter().map(|r| r.norm()).product();
@@ -116,6 +141,7 @@ impl Shape {
                 raw,
                 correction: powers.into_iter().zip(c.iter().copied()).collect(),
                 length: ends.length,
+                weight,
             });
         }
         Err(Error::invalid(
@@ -131,6 +157,9 @@ impl Shape {
         let mut j = self.raw.jet(xi);
         for &(p, c) in &self.correction {
             j = j + monomial(p, xi).scale(-c);
+        }
+        if let Some(w) = &self.weight {
+            j = j * w.jet(xi);
         }
         j.rescaled(self.length)
     }

@@ -17,7 +17,7 @@
 
 use super::beam::{Basis, BeamModel, Family};
 use super::element;
-use crate::manufactured::Manufactured;
+use crate::manufactured::{Line, Manufactured};
 use crate::numeric::quadrature::{composite, gauss_legendre};
 
 /// Gauss points per panel (exact for degree 15).
@@ -27,9 +27,10 @@ pub const POINTS: usize = 8;
 pub const PANEL_TURN: f64 = 0.5;
 
 /// Most separable parts a source has (two per term of
-/// [`crate::scene::manufactured::MAX_TERMS`]): the per-step coefficients
-/// live on the stack.
-pub const MAX_PARTS: usize = 2 * crate::scene::manufactured::MAX_TERMS;
+/// [`crate::scene::manufactured::MAX_TERMS`] on each of the two lines, and
+/// the droppers' constant part): the per-step coefficients live on the
+/// stack.
+pub const MAX_PARTS: usize = 4 * crate::scene::manufactured::MAX_TERMS + 1;
 
 /// The projected source of one run.
 #[derive(Debug, Clone)]
@@ -46,7 +47,7 @@ impl Source {
         let k = m.source_count();
         assert!(k <= MAX_PARTS, "at most {MAX_PARTS} source parts");
         let max_panel = PANEL_TURN / m.x_rate().max(f64::MIN_POSITIVE);
-        let shapes = match &beam.basis {
+        let mut shapes = match &beam.basis {
             Basis::Elements => elements(beam, m, max_panel),
             Basis::Modal { shapes, modes } => {
                 let fe = elements(beam, m, max_panel);
@@ -80,6 +81,7 @@ impl Source {
                 out
             }
         };
+        droppers(beam, m, &mut shapes);
         Source {
             shapes,
             parts: k,
@@ -111,7 +113,28 @@ impl Source {
     }
 }
 
-/// F_k = ∫ N S_k dx on the FE mesh, n_fe × K row-major (module docs).
+/// Each dropper's point load −N_d*(t) r_d in the basis (module docs of
+/// [`crate::manufactured`]): its weights over the parts times r_d = r_c(x_d)
+/// − r_m(x_d) on the messenger, r_c(x_d) on a fixed anchor, added to F.
+fn droppers(beam: &BeamModel, m: &Manufactured, shapes: &mut [f64]) {
+    let k = m.source_count();
+    let mut w = vec![0.0; k];
+    for d in 0..m.droppers() {
+        let (x, on_messenger) = m.dropper_at(d);
+        m.dropper_weights(d, &mut w);
+        let rc = beam.point_vector(x);
+        let rm = on_messenger.then(|| beam.messenger_point_vector(x));
+        for (part, &wk) in w.iter().enumerate() {
+            rc.scatter(wk, shapes, k, part);
+            if let Some(rm) = &rm {
+                rm.scatter(-wk, shapes, k, part);
+            }
+        }
+    }
+}
+
+/// F_k = ∫ N S_k dx on the FE mesh, n_fe × K row-major (module docs): each
+/// line's parts on its own dofs.
 fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
     let k = m.source_count();
     let n = match beam.basis {
@@ -119,6 +142,26 @@ fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
         _ => beam.dof_of.iter().flatten().count(),
     };
     let mut out = vec![0.0; n * k];
+    let mut lines = vec![(Line::Contact, &beam.dof_of)];
+    if m.moves_messenger() && beam.has_messenger() {
+        lines.push((Line::Messenger, &beam.messenger_dof_of));
+    }
+    for (line, dof_of) in lines {
+        line_elements(beam, m, max_panel, line, dof_of, &mut out);
+    }
+    out
+}
+
+/// [`elements`] for one line.
+fn line_elements(
+    beam: &BeamModel,
+    m: &Manufactured,
+    max_panel: f64,
+    line: Line,
+    dof_of: &[Option<usize>],
+    out: &mut [f64],
+) {
+    let k = m.source_count();
     let gl = gauss_legendre(POINTS);
     let mut s = vec![0.0; k];
     for e in 0..beam.mesh.elements() {
@@ -127,7 +170,7 @@ fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
         let panels = (h / max_panel).ceil().max(1.0) as usize;
         let cuts: Vec<f64> = (0..=panels).map(|i| i as f64 / panels as f64).collect();
         for (u, w) in composite(&gl, &cuts) {
-            m.source_shapes(x0 + u * h, &mut s);
+            m.source_shapes_on(line, x0 + u * h, &mut s);
             let wh = w * h;
             let (shape, dofs): ([f64; 4], usize) = match beam.family {
                 Family::Hermite => (element::hermite_shape(u, h), 4),
@@ -138,7 +181,7 @@ fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
             };
             let per_node = dofs / 2;
             for (a, na) in shape.iter().enumerate().take(dofs) {
-                let Some(i) = beam.dof_of[per_node * e + a] else {
+                let Some(i) = dof_of[per_node * e + a] else {
                     continue;
                 };
                 for c in 0..k {
@@ -147,7 +190,6 @@ fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
             }
         }
     }
-    out
 }
 
 #[cfg(test)]

@@ -40,7 +40,18 @@ pub fn check_attachments(scene: &Scene, beam: &BeamProps, d: Discretization) -> 
 /// neither includes it; `standing_force_modes` (the model's own eigenpairs)
 /// and Richardson extrapolation hold. Shared by attachments and droppers.
 pub(super) fn bare_beam_references(scene: &Scene, what: &str) -> Result<()> {
-    if scene.manufactured.is_some() {
+    closed_form_references(scene, what, true)
+}
+
+/// [`bare_beam_references`], with the manufactured solution refused only
+/// when `refuse_manufactured` (droppers and a messenger are in its source,
+/// `crate::manufactured`; attachments are not).
+pub(super) fn closed_form_references(
+    scene: &Scene,
+    what: &str,
+    refuse_manufactured: bool,
+) -> Result<()> {
+    if refuse_manufactured && scene.manufactured.is_some() {
         return Err(Error::invalid(
             "manufactured",
             "(present)",

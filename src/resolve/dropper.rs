@@ -16,9 +16,11 @@
 //!   of the problem two-sided (a dropper that pushes) and the `impact`
 //!   formulation works with gap rates, so both are refused here.
 //! * Either kind is refused by `galerkin` (the exact modes of the bare
-//!   beam; a point spring couples them), by a manufactured solution and by
-//!   the closed-form references, which are of the bare beam
-//!   (as `[[attachment]]` is, `super::attachment`).
+//!   beam; a point spring couples them) and by the closed-form references,
+//!   which are of the bare beam (as `[[attachment]]` is,
+//!   `super::attachment`). A manufactured solution carries them: its source
+//!   has each dropper's force of the manufactured motion
+//!   (`crate::manufactured`).
 
 use crate::error::{Error, Result};
 use crate::scene::{Attachment, ContactKind, Discretization, Dropper, Formulation, Scene};
@@ -39,7 +41,12 @@ pub fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) ->
             ),
         ));
     }
-    super::attachment::bare_beam_references(scene, &format!("the scene's {n} [[dropper]]"))?;
+    // a manufactured solution's source carries the droppers' forces
+    super::attachment::closed_form_references(
+        scene,
+        &format!("the scene's {n} [[dropper]]"),
+        false,
+    )?;
     let Some(i) = droppers.iter().position(|d| !d.linear) else {
         return Ok(());
     };

@@ -13,9 +13,9 @@
 //!   a `galerkin` basis is the bare contact wire's exact modes and a
 //!   `modal` basis is not built from the two-line model (refused rather
 //!   than half-supported).
-//! * Manufactured solutions and the closed-form references are of the bare
-//!   contact wire, and `standing_force_modes` reads the one-line model:
-//!   refused.
+//! * The closed-form references are of the bare contact wire, and
+//!   `standing_force_modes` reads the one-line model: refused. A
+//!   manufactured solution covers both lines (`crate::manufactured`).
 //! * A linear messenger dropper's spring k_d r_d r_dᵀ (r_d = r_c − r_m,
 //!   eq. W4) couples the two lines, so it goes into the messenger's `ties`,
 //!   not into the contact wire's attachments.
@@ -61,7 +61,8 @@ pub fn check_messenger(
             "cannot carry a [messenger] (its bases are of the contact wire alone): use mesh.kind = \"hermite\" (string elements when EI = 0)",
         ));
     }
-    super::attachment::bare_beam_references(scene, "a [messenger]")?;
+    // a manufactured solution's source carries the messenger's motion
+    super::attachment::closed_form_references(scene, "a [messenger]", false)?;
     if let Some(r) = &scene.reference
         && r.kind == ReferenceKind::StandingForceModes
     {

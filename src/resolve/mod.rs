@@ -113,6 +113,18 @@ impl Scene {
         {
             wire.supports = m.supports.clone();
         }
+        if self.manufactured.is_some()
+            && (beam.messenger.is_some() || !droppers.is_empty())
+            && !self.time.initial.is_rest()
+        {
+            // the droppers' preloads would sag the static start, while the
+            // manufactured lines start straight (crate::manufactured)
+            return Err(crate::error::Error::invalid(
+                "time.initial",
+                "\"static\"",
+                "a manufactured solution of lines with droppers or a messenger starts straight and at rest (its source cancels the droppers' preloads): use \"rest\"",
+            ));
+        }
         let manufactured = match &self.manufactured {
             None => None,
             Some(spec) => Some(Manufactured::new(
@@ -124,6 +136,7 @@ impl Scene {
                     g,
                     t_end,
                     steps,
+                    droppers: &droppers,
                 },
             )?),
         };

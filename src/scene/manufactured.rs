@@ -52,6 +52,23 @@ pub struct ManufacturedSpec {
     /// A prescribed loss of contact of every mass carrier (`[manufactured.loss]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub loss: Option<LossSpec>,
+    /// The messenger wire's motion v_m*(x, t) (`[manufactured.messenger]`,
+    /// needs a `[messenger]`); absent: v_m* = 0, the messenger held still
+    /// by its source (`docs/verification.md`, two coupled wires).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub messenger: Option<MessengerMotionSpec>,
+}
+
+/// `[manufactured.messenger]`: the messenger's manufactured motion
+/// v_m*(x, t) = Σ amplitude · X(x) · T̂(t), the same factor syntax as the
+/// contact wire's terms; each x-shape is made to vanish at every messenger
+/// support (`crate::manufactured`).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MessengerMotionSpec {
+    /// The terms of v_m* (`[[manufactured.messenger.term]]`), 1 ..= 8.
+    #[serde(rename = "term")]
+    pub terms: Vec<TermSpec>,
 }
 
 /// One term `amplitude · X(x) · T̂(t)` of v* (positive up, MODEL §1).
@@ -216,86 +233,100 @@ fn coefficients(field: &str, c: &[f64], unit: &str) -> Result<()> {
     Ok(())
 }
 
+/// The range checks of one line's terms (`prefix`: `manufactured` or
+/// `manufactured.messenger`).
+fn check_terms(terms: &[TermSpec], prefix: &str, t_end: f64) -> Result<()> {
+    if terms.is_empty() || terms.len() > MAX_TERMS {
+        return Err(Error::invalid(
+            format!("{prefix}.term"),
+            format!("{} terms", terms.len()),
+            format!("must have 1 ..= {MAX_TERMS} [[{prefix}.term]] tables"),
+        ));
+    }
+    for (i, term) in terms.iter().enumerate() {
+        let f = |k: &str| format!("{prefix}.term.{i}.{k}");
+        finite(&f("amplitude"), term.amplitude, "m")?;
+        if term.amplitude == 0.0 {
+            return Err(Error::invalid(
+                f("amplitude"),
+                0,
+                "must be ≠ 0 (m): a zero term adds nothing",
+            ));
+        }
+        for (k, x) in term.x.iter().enumerate() {
+            let g = |key: &str| f(&format!("x.{k}.{key}"));
+            match x {
+                XFactor::Polynomial { coefficients: c } => {
+                    coefficients(&g("coefficients"), c, "dimensionless")?
+                }
+                XFactor::Sine { half_waves, phase } => {
+                    within(
+                        &g("half_waves"),
+                        *half_waves,
+                        MAX_HALF_WAVES,
+                        "half-waves over L",
+                    )?;
+                    finite(&g("phase"), *phase, "rad")?;
+                }
+                XFactor::Exponential { rate } => {
+                    within(&g("rate"), *rate, MAX_X_RATE, "e^{rate·x/L}")?;
+                }
+            }
+        }
+        if term.t.is_empty() {
+            return Err(Error::invalid(
+                f("t"),
+                "[]",
+                "needs at least one factor: a constant time part is removed with its value at t = 0, leaving nothing",
+            ));
+        }
+        for (k, t) in term.t.iter().enumerate() {
+            let g = |key: &str| f(&format!("t.{k}.{key}"));
+            match t {
+                TFactor::Polynomial { coefficients: c } => {
+                    coefficients(&g("coefficients"), c, "s⁻ᵏ")?
+                }
+                TFactor::Sine { frequency, phase } => {
+                    finite(&g("frequency"), *frequency, "Hz")?;
+                    if !(0.0..=MAX_FREQUENCY).contains(frequency) {
+                        return Err(Error::invalid(
+                            g("frequency"),
+                            frequency,
+                            format!("must be in [0, {MAX_FREQUENCY}] Hz"),
+                        ));
+                    }
+                    finite(&g("phase"), *phase, "rad")?;
+                }
+                TFactor::Exponential { rate } => {
+                    finite(&g("rate"), *rate, "1/s")?;
+                    if rate.abs() * t_end > MAX_T_EXPONENT {
+                        return Err(Error::invalid(
+                            g("rate"),
+                            rate,
+                            format!(
+                                "must have |rate|·time.end ≤ {MAX_T_EXPONENT} (here time.end = {t_end} s): |rate| ≤ {:.4e} 1/s",
+                                MAX_T_EXPONENT / t_end
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 impl ManufacturedSpec {
     /// The range checks of the table alone (`t_end`: the run's end, s).
     pub fn check(&self, t_end: f64) -> Result<()> {
-        if self.terms.is_empty() || self.terms.len() > MAX_TERMS {
-            return Err(Error::invalid(
-                "manufactured.term",
-                format!("{} terms", self.terms.len()),
-                format!("must have 1 ..= {MAX_TERMS} [[manufactured.term]] tables"),
-            ));
+        check_terms(&self.terms, "manufactured", t_end)?;
+        if let Some(m) = &self.messenger {
+            check_terms(&m.terms, "manufactured.messenger", t_end)?;
         }
-        for (i, term) in self.terms.iter().enumerate() {
-            let f = |k: &str| format!("manufactured.term.{i}.{k}");
-            finite(&f("amplitude"), term.amplitude, "m")?;
-            if term.amplitude == 0.0 {
-                return Err(Error::invalid(
-                    f("amplitude"),
-                    0,
-                    "must be ≠ 0 (m): a zero term adds nothing",
-                ));
-            }
-            for (k, x) in term.x.iter().enumerate() {
-                let g = |key: &str| f(&format!("x.{k}.{key}"));
-                match x {
-                    XFactor::Polynomial { coefficients: c } => {
-                        coefficients(&g("coefficients"), c, "dimensionless")?
-                    }
-                    XFactor::Sine { half_waves, phase } => {
-                        within(
-                            &g("half_waves"),
-                            *half_waves,
-                            MAX_HALF_WAVES,
-                            "half-waves over L",
-                        )?;
-                        finite(&g("phase"), *phase, "rad")?;
-                    }
-                    XFactor::Exponential { rate } => {
-                        within(&g("rate"), *rate, MAX_X_RATE, "e^{rate·x/L}")?;
-                    }
-                }
-            }
-            if term.t.is_empty() {
-                return Err(Error::invalid(
-                    f("t"),
-                    "[]",
-                    "needs at least one factor: a constant time part is removed with its value at t = 0, leaving nothing",
-                ));
-            }
-            for (k, t) in term.t.iter().enumerate() {
-                let g = |key: &str| f(&format!("t.{k}.{key}"));
-                match t {
-                    TFactor::Polynomial { coefficients: c } => {
-                        coefficients(&g("coefficients"), c, "s⁻ᵏ")?
-                    }
-                    TFactor::Sine { frequency, phase } => {
-                        finite(&g("frequency"), *frequency, "Hz")?;
-                        if !(0.0..=MAX_FREQUENCY).contains(frequency) {
-                            return Err(Error::invalid(
-                                g("frequency"),
-                                frequency,
-                                format!("must be in [0, {MAX_FREQUENCY}] Hz"),
-                            ));
-                        }
-                        finite(&g("phase"), *phase, "rad")?;
-                    }
-                    TFactor::Exponential { rate } => {
-                        finite(&g("rate"), *rate, "1/s")?;
-                        if rate.abs() * t_end > MAX_T_EXPONENT {
-                            return Err(Error::invalid(
-                                g("rate"),
-                                rate,
-                                format!(
-                                    "must have |rate|·time.end ≤ {MAX_T_EXPONENT} (here time.end = {t_end} s): |rate| ≤ {:.4e} 1/s",
-                                    MAX_T_EXPONENT / t_end
-                                ),
-                            ));
-                        }
-                    }
-                }
-            }
-        }
+        self.check_loss(t_end)
+    }
+
+    fn check_loss(&self, t_end: f64) -> Result<()> {
         if let Some(l) = &self.loss {
             for (k, v, unit) in [
                 ("start", l.start, "s"),

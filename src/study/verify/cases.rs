@@ -193,6 +193,51 @@ fn string_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
     vec![time, space_ladder]
 }
 
+/// The two-wire case's expected orders: those of the moving-mass beam
+/// cases, but the contact force's h order is reported, not judged: it
+/// converged at 2.84 over N = 8 → 64 (every law, generalized-α and HHT),
+/// above the formal 2 that the node kicks set as a bound, so neither
+/// `MOVING_CONTACT_TOL` around 2 nor a claim of 3 would be honest.
+fn expect_two_wires(c: &Combo, v: Variable, q: Quantity) -> Expect {
+    match (v, q) {
+        (Variable::H, Quantity::Force) if c.formulation != Formulation::Penalty => Expect::Report(
+            "the contact force in h: measured 2.84 over N = 8 → 64 on mms_two_wires (the formal 2 is the bound of the node kicks under a moving contact; the displacement's 4 is the judged order)".into(),
+        ),
+        _ => expect_moving_mass(c, v, q),
+    }
+}
+
+/// The two-wire case (`mms_two_wires`): a Δt ladder at N = 64 and an h
+/// ladder N = 8 → 64 at Δt = 5e-6 s, Hermite only (the messenger is
+/// carried on `hermite` alone, `resolve::messenger`); N stays even, so the
+/// messenger's interior support at L/2 is a node on every level. At
+/// Δt = 2.5e-5 s (the beam cases' step) the time error (≈ 2e-9 m) was most
+/// of the N = 64 level's (measured: orders 4.7, 3.5, 2.9 per halving); at
+/// 5e-6 s 4.7, 3.4, 4.0 (8 → 64: 4.0).
+fn two_wire_ladders(_: Space, _: &Combo) -> Vec<Ladder> {
+    vec![
+        // at N = 32 the mesh made 29–32 % of the finest force error
+        Ladder {
+            variable: Variable::Dt,
+            levels: 4,
+            elements: 64,
+            dt: 1e-3,
+            modes: 0,
+            end: None,
+            fixed_exact: false,
+        },
+        Ladder {
+            variable: Variable::H,
+            levels: 4,
+            elements: 8,
+            dt: 5e-6,
+            modes: 0,
+            end: None,
+            fixed_exact: false,
+        },
+    ]
+}
+
 /// The loss case: a Δt ladder at N = 64 and an h ladder at Δt = 2.5e-5 s.
 fn loss_ladders(space: Space, c: &Combo) -> Vec<Ladder> {
     let mut l = beam_time_ladders(space, c);
@@ -374,7 +419,7 @@ fn moving_force_string_ladders(_: Space, _: &Combo) -> Vec<Ladder> {
 const IMPLICIT: [&str; 1] = ["central_difference"];
 
 /// The declared cases, in table order.
-pub const CASES: [Case; 7] = [
+pub const CASES: [Case; 8] = [
     Case {
         name: "oscillator",
         file: "scenes/oscillator_one_dof.toml",
@@ -478,6 +523,21 @@ pub const CASES: [Case; 7] = [
         quantities: &[Quantity::Displacement, Quantity::Force],
         quick: false,
         only: &[],
+        skip: &[],
+    },
+    Case {
+        name: "mms_two_wires",
+        file: "scenes/verify/mms_two_wires.toml",
+        text: include_str!("../../../scenes/verify/mms_two_wires.toml"),
+        about: "manufactured motions of a contact wire and a messenger on an interior support coupled by four linear droppers, a mass–spring moving under the contact wire: Δt and h orders on both wires",
+        supports: &[],
+        spaces: &[Space::Hermite],
+        contact: true,
+        ladders: two_wire_ladders,
+        expect: expect_two_wires,
+        quantities: &[Quantity::Displacement, Quantity::Force],
+        quick: false,
+        only: &["generalized_alpha", "newmark", "hht", "wbz"],
         skip: &[],
     },
 ];

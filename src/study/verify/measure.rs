@@ -249,7 +249,7 @@ pub(super) fn modal_tail(
 }
 
 /// Max errors over the coarse grid's rows 1 ..= `rows` of a run: the
-/// displacement (under carrier 0, at the probes, of its mass) and the force
+/// displacement (under carrier 0, at the probes on their own wire, of its mass) and the force
 /// (at the time the multiplier acts); and the exact solution's largest
 /// values there.
 pub(super) fn errors(
@@ -265,6 +265,9 @@ pub(super) fn errors(
     let has_force =
         ex.force.is_some() && matches!(sc.carriers[0].kind, CarrierKind::MassSpring { .. });
     let (mut ed, mut ef, mut sd, mut sf) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let on_messenger = |p: usize| {
+        sc.scene.probes.get(p).and_then(|p| p.wire) == Some(crate::scene::Wire::Messenger)
+    };
     for k in 1..=rows {
         let i = k * stride;
         let t = h.t[i];
@@ -275,8 +278,12 @@ pub(super) fn errors(
             ed = ed.max((c.q[i] - q(t)).abs());
         }
         if let Some(field) = &ex.field {
-            for ((_, x), (_, col)) in sc.probes.iter().zip(&h.probes) {
-                let v = field(*x, t);
+            for (p, ((_, x), (_, col))) in sc.probes.iter().zip(&h.probes).enumerate() {
+                // a messenger probe reads v_m* (`docs/lines.md` W1)
+                let v = match (on_messenger(p), &ex.manufactured) {
+                    (true, Some(m)) => m.v_m(*x, t),
+                    _ => field(*x, t),
+                };
                 sd = sd.max(v.abs());
                 ed = ed.max((col[i] - v).abs());
             }
