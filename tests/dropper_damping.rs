@@ -183,15 +183,16 @@ linear = true
 /// c_d, N·s/m: σ₁ = c_d φ₁(½)²/(2M₁) = 0.5 1/s, ζ₁ = 0.016.
 const MODAL_C: f64 = 0.5;
 
-/// The decay rate of mode 1 against the first-order σ₁ = c_d φ₁²/(2M₁):
-/// the neglected terms are the dashpot's coupling of mode 1 to modes 3, 5,
-/// … (even modes vanish at the middle). Its second order shifts only the
-/// frequency; the coupled modes' forced motion in η₁ has relative size
-/// ~ ζ₁ ω₁ω₃/(ω₃² − ω₁²)·(η₃/η₁) ≈ 0.08 ζ₁ ≈ 1.3e-3 of the peaks, which
-/// over the 4.5 periods fitted moves σ₁ by about 2·1.3e-3/(2π·4.5·ζ₁) ≈
-/// 6e-3 relative at most; trapezoidal Newmark adds O((ω₁Δt)²) = 1e-5.
-/// Measured: see the test's output.
-const MODAL_FIRST_ORDER: f64 = 1.0e-2;
+/// The decay rate of mode 1 against the first-order σ₁ = c_d φ₁²/(2M₁)
+/// (φ₁, M₁ the model's own discrete sine mode, so no mesh error): the
+/// neglected terms are the dashpot's coupling of mode 1 to modes 3, 5, …
+/// (even modes vanish at the middle). Its second order shifts only the
+/// frequency; the coupled modes' forced motion in η̇₁ has relative size
+/// ~ ζ₁ω₁ω₃/(ω₃² − ω₁²)·(η₃/η₁)·(ω₃/ω₁) ≈ 0.25 ζ₁ ≈ 4e-3 of a peak, which
+/// in the slope over the 0.95 s fitted (σ₁·0.95 ≈ 0.48 of decay) is up to
+/// ~1e-2 relative; trapezoidal Newmark adds O((ω₁Δt)²) = 1e-5. Measured
+/// 7.9e-3 (9 peaks of |η̇₁|); the band is the estimate with 1.5× margin.
+const MODAL_FIRST_ORDER: f64 = 1.5e-2;
 
 #[test]
 fn one_damped_dropper_damps_a_string_mode_at_the_first_order_rate() {
