@@ -30,6 +30,8 @@ mod convergence;
 mod damping;
 #[path = "discretizations.rs"]
 mod discretizations;
+#[path = "dropper_damping.rs"]
+mod dropper_damping;
 #[path = "droppers.rs"]
 mod droppers;
 #[path = "formulations.rs"]

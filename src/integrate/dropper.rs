@@ -81,6 +81,8 @@ struct Link {
     pm: Option<PointVector>,
     /// k_d, N/m.
     k: f64,
+    /// c_d, N·s/m (0 unless linear; eq. D11).
+    c: f64,
     /// e₀ = z_a − ℓ_0, m: the extension with the beam straight.
     e0: f64,
     /// The dropper's row among the tension-only ones (`None`: linear).
@@ -187,6 +189,7 @@ impl Droppers {
                     pv: beam.point_vector(d.x),
                     pm: d.on_messenger().then(|| beam.messenger_point_vector(d.x)),
                     k: d.stiffness,
+                    c: d.damping,
                     e0: d.rest_extension(),
                     row,
                 }
@@ -562,18 +565,25 @@ impl Droppers {
 
     /// Each dropper's force and slack state, in scene order, into `out`:
     /// a tension-only one's from the last step, a linear one's
-    /// k_d (e₀ − r_dᵀd), never slack.
-    pub(crate) fn samples_into(&self, d: &[f64], out: &mut [DropperSample]) {
+    /// k_d (e₀ − r_dᵀd) − c_d r_dᵀv (its dashpot's part, eq. D11, only when
+    /// c_d ≠ 0), never slack.
+    pub(crate) fn samples_into(&self, d: &[f64], v: &[f64], out: &mut [DropperSample]) {
         for (o, l) in out.iter_mut().zip(&self.links) {
             *o = match l.row {
                 Some(r) => DropperSample {
                     force: self.force[r],
                     slack: self.slack[r],
                 },
-                None => DropperSample {
-                    force: l.k * (l.e0 - l.dot(d)),
-                    slack: false,
-                },
+                None => {
+                    let mut force = l.k * (l.e0 - l.dot(d));
+                    if l.c != 0.0 {
+                        force -= l.c * l.dot(v);
+                    }
+                    DropperSample {
+                        force,
+                        slack: false,
+                    }
+                }
             };
         }
     }

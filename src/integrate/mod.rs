@@ -235,7 +235,8 @@ impl Integrator {
     /// Each dropper's force and slack state now, in scene order
     /// ([`System::dropper_samples_into`]).
     pub fn dropper_samples_into(&self, out: &mut [DropperSample]) {
-        self.sys.dropper_samples_into(&self.state.d, out)
+        self.sys
+            .dropper_samples_into(&self.state.d, &self.state.v, out)
     }
 
     /// Number of carriers.

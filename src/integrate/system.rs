@@ -188,7 +188,12 @@ impl System {
             t_load: 0.0,
             f0: masses.iter().map(|m| m.f0).collect(),
         });
-        let damping = beam.damping_matrix(sc.damping, &sc.beam.attachments);
+        let tie_dashpots = sc
+            .beam
+            .messenger
+            .as_ref()
+            .map_or(&[][..], |m| &m.tie_dashpots[..]);
+        let damping = beam.damping_matrix_with_ties(sc.damping, &sc.beam.attachments, tie_dashpots);
         let external = sc
             .external_forces
             .iter()
@@ -394,10 +399,11 @@ impl System {
     }
 
     /// Each dropper's force (N) and slack state, in scene order, for the
-    /// beam dofs `d` of the state the last step reached (`dropper.rs`):
-    /// the tension-only ones' multipliers, the linear ones' k_d e.
-    pub fn dropper_samples_into(&self, d: &[f64], out: &mut [DropperSample]) {
-        self.droppers.samples_into(d, out);
+    /// beam dofs `d` and velocities `v` of the state the last step reached
+    /// (`dropper.rs`): the tension-only ones' multipliers, the linear ones'
+    /// k_d e + c_d ė.
+    pub fn dropper_samples_into(&self, d: &[f64], v: &[f64], out: &mut [DropperSample]) {
+        self.droppers.samples_into(d, v, out);
     }
 
     /// The level the contact law works at during the run.

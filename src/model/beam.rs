@@ -527,7 +527,7 @@ impl BeamModel {
     }
 
     /// As [`BeamModel::element_vector`], on the messenger's dofs.
-    fn messenger_element_vector(&self, x: f64, slope: bool) -> ([usize; 4], [f64; 4]) {
+    pub(crate) fn messenger_element_vector(&self, x: f64, slope: bool) -> ([usize; 4], [f64; 4]) {
         self.element_vector_on(&self.messenger_dof_of, x, slope)
     }
 

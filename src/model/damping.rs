@@ -2,7 +2,7 @@
 //! eq. 10.4a):
 //!
 //! ```text
-//!   C = α M + β K + Σ_a c_a r_a r_aᵀ
+//!   C = α M + β K + Σ_a c_a r_a r_aᵀ + Σ_d c_d r_d r_dᵀ
 //! ```
 //!
 //! Rayleigh damping of the assembled M and K (attachments' masses and
@@ -12,7 +12,10 @@
 //! interpolation vector at x_a (MODEL §4), so C has the band of M and K.
 //! In a modal basis (M = I, K = diag ω_j²) the Rayleigh part is diagonal,
 //! `α + β ω_j²`; a dashpot there is refused by the resolve layer (it
-//! couples the modes). No damping gives no matrix: a run without it does
+//! couples the modes). A linear dropper's dashpot c_d (docs/lines.md
+//! eq. D11) is an attachment's for a fixed anchor; on the messenger its
+//! r_d = r_c(x_d) − r_m(x_d) couples the lines (`tie_dashpots`, assembled
+//! as [`BeamModel`]'s ties are). No damping gives no matrix: a run without it does
 //! no extra work.
 
 use super::banded::SymBand;
@@ -28,7 +31,19 @@ impl BeamModel {
         rayleigh: Rayleigh,
         attachments: &[Attachment],
     ) -> Option<SymBand> {
-        let dashpots = attachments.iter().any(|a| a.damping != 0.0);
+        self.damping_matrix_with_ties(rayleigh, attachments, &[])
+    }
+
+    /// [`BeamModel::damping_matrix`] with the linear messenger droppers'
+    /// dashpots `tie_dashpots` (x_d, c_d): c_d r_d r_dᵀ, r_d = r_c(x_d) −
+    /// r_m(x_d) (eq. D11).
+    pub fn damping_matrix_with_ties(
+        &self,
+        rayleigh: Rayleigh,
+        attachments: &[Attachment],
+        tie_dashpots: &[(f64, f64)],
+    ) -> Option<SymBand> {
+        let dashpots = attachments.iter().any(|a| a.damping != 0.0) || !tie_dashpots.is_empty();
         if rayleigh.is_zero() && !dashpots {
             return None;
         }
@@ -46,6 +61,19 @@ impl BeamModel {
                     for (j, vj) in idx.iter().zip(&val) {
                         if *vi != 0.0 && *vj != 0.0 {
                             c.add_entry(*i, *j, a.damping * vi * vj);
+                        }
+                    }
+                }
+            }
+            for &(x, cd) in tie_dashpots {
+                let (ci, cv) = self.element_vector(x, false);
+                let (mi, mv) = self.messenger_element_vector(x, false);
+                let idx = ci.iter().chain(&mi);
+                let val: Vec<f64> = cv.iter().copied().chain(mv.iter().map(|v| -v)).collect();
+                for (i, vi) in idx.clone().zip(&val) {
+                    for (j, vj) in idx.clone().zip(&val) {
+                        if *vi != 0.0 && *vj != 0.0 {
+                            c.add_entry(*i, *j, cd * vi * vj);
                         }
                     }
                 }

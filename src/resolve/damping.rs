@@ -10,6 +10,9 @@
 //!   half steps, so a non-diagonal C needs a solve with `M + Δt/2 C` every
 //!   step and its stable step shrinks to `Δt ≤ (2/ω)(√(1+ζ²) − ζ)`, which
 //!   its ω_max-based step check does not know.
+//! * A linear dropper's dashpot (`[[dropper]] damping`, docs/lines.md
+//!   eq. D11) is an attachment's (fixed anchor) or couples the two lines
+//!   (messenger): the same checks, the key named `dropper.<i>.damping`.
 //! * A dashpot on a modal basis (`mesh.kind = "modal"`) is refused: its
 //!   `c_a φ(x_a) φ(x_a)ᵀ` couples every mode, which a diagonal basis has
 //!   no place for (the Rayleigh part stays diagonal there).
@@ -19,27 +22,42 @@
 //!   undamped beam and are refused; `richardson` holds.
 
 use crate::error::{Error, Result};
-use crate::scene::{BeamProps, Discretization, Rayleigh, ReferenceKind, Scene, Scheme};
+use crate::scene::{BeamProps, Discretization, Dropper, Rayleigh, ReferenceKind, Scene, Scheme};
 
 /// Refuse the combinations damping breaks (module docs); nothing to check
 /// without damping.
 pub fn check_damping(
     scene: &Scene,
     beam: &BeamProps,
+    droppers: &[Dropper],
     rayleigh: Rayleigh,
     d: Discretization,
     scheme: Scheme,
 ) -> Result<()> {
-    let dashpot = beam.attachments.iter().position(|a| a.damping != 0.0);
+    // the first dashpot: an attachment's (a linear dropper's to a fixed
+    // anchor among them), else a linear messenger dropper's; (key, c)
+    let dashpot = beam
+        .attachments
+        .iter()
+        .position(|a| a.damping != 0.0)
+        .map(|i| {
+            (
+                super::dropper::dashpot_key(i, scene.attachments.len(), droppers),
+                beam.attachments[i].damping,
+            )
+        })
+        .or_else(|| {
+            droppers
+                .iter()
+                .position(|x| x.linear && x.on_messenger() && x.damping != 0.0)
+                .map(|j| (format!("dropper.{j}.damping"), droppers[j].damping))
+        });
     if rayleigh.is_zero() && dashpot.is_none() {
         return Ok(());
     }
     // the key that brought damping in, for the messages
-    let (key, value) = match dashpot {
-        Some(i) if rayleigh.is_zero() => (
-            format!("attachment.{i}.damping"),
-            beam.attachments[i].damping.to_string(),
-        ),
+    let (key, value) = match &dashpot {
+        Some((k, c)) if rayleigh.is_zero() => (k.clone(), c.to_string()),
         _ => (
             "beam.damping".to_string(),
             format!(
@@ -69,15 +87,15 @@ pub fn check_damping(
         }
         _ => {}
     }
-    if let Some(i) = dashpot
+    if let Some((k, c)) = dashpot
         && matches!(
             d,
             Discretization::Modal { .. } | Discretization::Galerkin { .. }
         )
     {
         return Err(Error::invalid(
-            format!("attachment.{i}.damping"),
-            beam.attachments[i].damping,
+            k,
+            c,
             "a dashpot c_a φ(x_a)φ(x_a)ᵀ couples every mode of a diagonal basis (mesh.kind = \"modal\" or \"galerkin\"), which has no place for it: use mesh.kind = \"hermite\" (Rayleigh damping [beam] damping stays diagonal in a modal basis)",
         ));
     }

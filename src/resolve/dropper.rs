@@ -6,7 +6,9 @@
 //!   preload k_d (z_a − ℓ_0): it is resolved into an `[[attachment]]`
 //!   spring (K gains k_d r_d r_dᵀ) and a point load (`integrate::dropper`),
 //!   so it goes wherever attachments go (`hermite`, `string`, `modal`,
-//!   every method).
+//!   every method). Its dashpot c_d (`damping`) is the attachment's
+//!   dashpot (eq. D11), carried and refused where those are
+//!   (`super::damping`, which names the key `dropper.<i>.damping`).
 //! * A **tension-only** dropper is a unilateral constraint solved with the
 //!   contacts, in the same per-step problem (`integrate::dropper`). Its
 //!   response A⁻¹r_d is formed once per run by the method, which only the
@@ -80,8 +82,8 @@ pub fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) ->
     Ok(())
 }
 
-/// The attachment springs of the linear droppers (module docs): k_d at x_d,
-/// no mass.
+/// The attachment springs of the linear droppers to a fixed anchor (module
+/// docs): k_d and the dashpot c_d at x_d, no mass.
 pub fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = Attachment> + '_ {
     droppers
         .iter()
@@ -90,6 +92,23 @@ pub fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = Attachme
             x: d.x,
             stiffness: d.stiffness,
             mass: 0.0,
-            damping: 0.0,
+            damping: d.damping,
         })
+}
+
+/// The scene key of `beam.attachments[i]`'s dashpot (`attachment.<i>.damping`,
+/// or `dropper.<j>.damping` for the attachment a linear dropper resolved
+/// into, [`linear_attachments`]): `scene_attachments` is the count of the
+/// scene's own `[[attachment]]`, which come first.
+pub fn dashpot_key(i: usize, scene_attachments: usize, droppers: &[Dropper]) -> String {
+    if i < scene_attachments {
+        return format!("attachment.{i}.damping");
+    }
+    let j = droppers
+        .iter()
+        .enumerate()
+        .filter(|(_, d)| d.linear && !d.on_messenger())
+        .nth(i - scene_attachments)
+        .map_or(i, |(j, _)| j);
+    format!("dropper.{j}.damping")
 }

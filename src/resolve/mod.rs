@@ -62,13 +62,14 @@ impl Scene {
             .extend(dropper::linear_attachments(&droppers));
         if let Some(m) = &mut beam.messenger {
             m.ties = messenger::ties(&droppers);
+            m.tie_dashpots = messenger::tie_dashpots(&droppers);
         }
         let carriers = self.resolve_carriers(l)?;
         crate::scene::check_chain_scene(self, &carriers)?;
 
         let scheme = self.integrator.scheme()?;
         let damping = resolve_rayleigh(self.beam.damping.as_ref())?;
-        check_damping(self, &beam, damping, discretization, scheme)?;
+        check_damping(self, &beam, &droppers, damping, discretization, scheme)?;
         messenger::check_messenger(self, &beam, elements, grading, discretization, &scheme)?;
         let g = self.gravity_g()?;
         validate_contact(&self.contact)?;

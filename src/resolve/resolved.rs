@@ -102,9 +102,16 @@ impl Resolved {
     }
 
     /// True when the run has a damping matrix C: Rayleigh damping of the
-    /// wire or a dashpot on an attachment (docs/lines.md §10.4).
+    /// wire or a dashpot on an attachment or a linear messenger dropper
+    /// (docs/lines.md §10.4, eq. D11).
     pub fn is_damped(&self) -> bool {
-        !self.damping.is_zero() || self.beam.attachments.iter().any(|a| a.damping != 0.0)
+        !self.damping.is_zero()
+            || self.beam.attachments.iter().any(|a| a.damping != 0.0)
+            || self
+                .beam
+                .messenger
+                .as_ref()
+                .is_some_and(|m| !m.tie_dashpots.is_empty())
     }
 
     /// The mesh plan the model is built from

@@ -46,9 +46,10 @@ pub struct DropperSpec {
     /// Unstretched length ℓ_0, m (≥ 0). The dropper is stretched at the
     /// start (beam straight) by z_a − ℓ_0.
     pub length: f64,
-    /// Dashpot c_d in parallel, N·s/m: only 0 is accepted (dropper
-    /// dashpots are not implemented yet; an `[[attachment]]` dashpot at x_d
-    /// damps the wire there).
+    /// Dashpot c_d in parallel, N·s/m (finite, ≥ 0; default 0): c_d r_d r_dᵀ
+    /// in the damping matrix C (`docs/lines.md` eq. D11), as an
+    /// `[[attachment]]` dashpot. Only a linear dropper carries one (a
+    /// tension-only dropper's dashpot is not built).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damping: Option<f64>,
     /// Never slack: a two-sided spring (N_d = k_d e, may push).
@@ -103,6 +104,8 @@ pub struct Dropper {
     pub length: f64,
     /// Two-sided (never slack).
     pub linear: bool,
+    /// Dashpot c_d in parallel, N·s/m (0: none; > 0 only when linear).
+    pub damping: f64,
 }
 
 impl Dropper {
@@ -134,7 +137,7 @@ impl Dropper {
 /// Check each `[[dropper]]` on a beam of span `l`, m: x in [0, L],
 /// stiffness > 0, exactly one of `anchor_height` (finite) and `anchor =
 /// "messenger"` (with a `[messenger]`, whose rest height is `messenger`),
-/// length ≥ 0, damping absent or 0, names valid and distinct.
+/// length ≥ 0, damping finite and ≥ 0 (0 unless linear), names valid and distinct.
 pub fn resolve_droppers(
     specs: &[DropperSpec],
     l: f64,
@@ -188,13 +191,12 @@ pub fn resolve_droppers(
             }
         };
         let length = non_negative(&field("length"), d.length, "m")?;
-        if let Some(c) = d.damping
-            && c != 0.0
-        {
+        let damping = non_negative(&field("damping"), d.damping.unwrap_or(0.0), "N·s/m")?;
+        if damping != 0.0 && !d.linear {
             return Err(Error::invalid(
                 field("damping"),
-                c,
-                "must be 0 (N·s/m): dropper dashpots are not implemented yet (a tension-only dashpot acts only while the dropper is taut); leave it out, or put the dashpot on an [[attachment]] at the same x",
+                damping,
+                "a tension-only dropper's dashpot is not built: linear = true, or an [[attachment]] dashpot at x_d",
             ));
         }
         let name = match &d.name {
@@ -228,6 +230,7 @@ pub fn resolve_droppers(
             anchor,
             length,
             linear: d.linear,
+            damping,
         });
     }
     Ok(out)

@@ -72,6 +72,10 @@ struct LineSpec {
     /// Droppers that never slack (`linear = true` on each).
     #[serde(default)]
     linear_droppers: bool,
+    /// Each dropper's dashpot c_d, N·s/m (≥ 0, default 0; > 0 needs
+    /// `linear_droppers`): `damping` on each (`docs/lines.md` D11).
+    #[serde(default)]
+    dropper_damping: f64,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
@@ -171,6 +175,8 @@ struct Line {
     messenger: MessengerDesign,
     steady_arm: Option<SteadyArm>,
     linear: bool,
+    /// c_d, N·s/m (0: no `damping` key emitted).
+    c_d: f64,
 }
 
 fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
@@ -224,6 +230,15 @@ impl Line {
             ));
         }
         let k_d = positive("line.dropper_stiffness", s.dropper_stiffness, "N/m")?;
+        let c_d =
+            super::validate::non_negative("line.dropper_damping", s.dropper_damping, "N·s/m")?;
+        if c_d != 0.0 && !s.linear_droppers {
+            return Err(Error::invalid(
+                "line.dropper_damping",
+                c_d,
+                "a tension-only dropper's dashpot is not built: linear_droppers = true, or an [[attachment]] dashpot at x_d",
+            ));
+        }
         let h = positive("line.element_length", s.element_length, "m")?;
         if h > span {
             return Err(Error::invalid(
@@ -275,6 +290,7 @@ impl Line {
             messenger: m.clone(),
             steady_arm: s.steady_arm,
             linear: s.linear_droppers,
+            c_d,
         })
     }
 
@@ -548,6 +564,9 @@ impl Line {
                 t.insert("length".into(), Value::Float(d.length));
                 if self.linear {
                     t.insert("linear".into(), Value::Boolean(true));
+                }
+                if self.c_d != 0.0 {
+                    t.insert("damping".into(), Value::Float(self.c_d));
                 }
                 Value::Table(t)
             })

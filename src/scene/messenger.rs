@@ -61,6 +61,10 @@ pub struct Messenger {
     /// r_d = r_c(x_d) − r_m(x_d) enters K (eq. W4); filled by the resolve
     /// layer from the `[[dropper]]` list.
     pub ties: Vec<(f64, f64)>,
+    /// The damped linear messenger droppers' dashpots (x_d, c_d), N·s/m:
+    /// c_d r_d r_dᵀ enters C (`docs/lines.md` eq. D11); filled by the
+    /// resolve layer, empty without dropper damping.
+    pub tie_dashpots: Vec<(f64, f64)>,
 }
 
 impl MessengerSpec {
@@ -123,6 +127,7 @@ impl MessengerSpec {
             supports: self.supports.clone(),
             distributed_load: if self_weight { -rho_a * g } else { 0.0 },
             ties: Vec::new(),
+            tie_dashpots: Vec::new(),
         })
     }
 }
