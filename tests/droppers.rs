@@ -488,3 +488,70 @@ fn dropper_keys_are_checked() {
     .unwrap();
     assert!(taut::run(&sc, &mut |_, _| {}).is_ok());
 }
+
+/// A tension-only dropper that hangs slack for the whole run carries no
+/// force, so with stiffness-proportional Rayleigh damping (βK) the run
+/// equals the run without it to round-off: the dropper's spring sits in
+/// the step matrix (D7) but not in C = αM + βK (its slack correction
+/// cancels only the spring; a β k_d r_d r_dᵀ dashpot in C would act on a
+/// slack dropper). Round-off of the correction over 1000 steps, relative
+/// to the largest displacement.
+const SLACK_IS_ABSENT: f64 = 1e-9;
+
+#[test]
+fn a_slack_dropper_adds_no_rayleigh_dashpot() {
+    let scene = |dropper: &str| {
+        format!(
+            r#"
+[beam]
+length = 10.0
+mass_per_length = 1.0
+bending_stiffness = 1.0
+tension = 1000.0
+left = "pinned"
+right = "pinned"
+damping = {{ stiffness = 1.0e-3 }}
+
+[mesh]
+elements = 100
+
+[[carrier]]
+force = 20.0
+side = "below"
+start = 1.0
+speed = {{ profile = "constant", value = 5.0 }}
+
+[[probe]]
+name = "p"
+x = 4.0
+
+[time]
+step = 1e-3
+end = 1.0
+
+{dropper}
+"#
+        )
+    };
+    // anchored 0.5 m above, 0.6 m long: slack by 0.1 m, far beyond the
+    // run's displacements (a few mm)
+    let with = go(&scene(
+        "[[dropper]]\nx = 4.0\nstiffness = 1.0e5\nanchor_height = 0.5\nlength = 0.6\n",
+    ));
+    let without = go(&scene(""));
+    let col = |o: &RunOutput| o.history.probes[0].1.clone();
+    let (a, b) = (col(&with), col(&without));
+    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = a
+        .iter()
+        .zip(&b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale;
+    let force = with.history.droppers[0]
+        .1
+        .iter()
+        .fold(0.0f64, |m, f| m.max(f.abs()));
+    println!("slack dropper under βK: {diff:.2e} of the largest displacement, force {force:e} N");
+    assert_eq!(force, 0.0, "the dropper must stay slack");
+    assert!(diff < SLACK_IS_ABSENT, "{diff}");
+}

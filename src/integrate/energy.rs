@@ -32,7 +32,10 @@ impl Energy {
 
 /// ½vᵀMv + ½dᵀKd of the beam, ½m q̇² + ½k q² of each mass, minus the
 /// potential of the constant loads (distributed load, preload and gravity on
-/// the masses, standing forces).
+/// the masses, standing forces). K and the load hold every tension-only
+/// dropper's spring and preload (`dropper.rs`, D7), so a slack dropper's
+/// strain and preload energy are counted too: the balance is the linear
+/// twin's, for checks on runs whose droppers stay taut.
 ///
 /// With ρ∞ = 1 generalized-α is the trapezoidal rule, for which
 /// E_{n+1} − E_n = Δdᵀ f̄ exactly (linear system); a contact force whose

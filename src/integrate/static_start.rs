@@ -29,7 +29,9 @@
 //! chain's Schur complement S = K₁₁ − K₁ₗK'⁻¹Kₗ₁) and κ the contact's
 //! stiffness (`contact.penalty.stiffness`; rigid, 1/κ = 0, for every other
 //! law and for a penalty given `relative` to the step, whose penetration
-//! λ W/ρ is not a static quantity). Eliminating q_c, λ_c = a_c − b_c w_c with
+//! λW/ρ is a property of the step, not of the statics: its head starts at
+//! the rigid equilibrium with its static force, and that penetration builds
+//! over the first steps). Eliminating q_c, λ_c = a_c − b_c w_c with
 //! b_c = S κ/(S + κ), a_c = λ₀ κ/(S + κ). The carriers couple through the
 //! wire, so with z_c = K'⁻¹ s r_b(x_c) (one banded solve per carrier) and
 //! d₀ = d_f + Σ λ_c z_c, the contact forces solve the small system
@@ -80,11 +82,11 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
     }
     factor.solve(&mut d);
     // the contacts' static forces (W7–W8)
+    let nc = sys.contacts();
     let kappa = match (sc.contact.formulation, sc.contact.penalty.stiffness) {
         (Formulation::Penalty, Some(kappa)) => kappa,
         _ => f64::INFINITY,
     };
-    let nc = sys.contacts();
     // (scene carrier index, r_b(x_c), s, a_c, b_c) of each contact, in contact order
     let mut rows = Vec::with_capacity(nc);
     for (i, c) in sys.carriers.iter().enumerate() {
@@ -150,6 +152,7 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
             }
             st.q[j] = q0;
         }
+        sys.static_forces = lambda.iter().copied().collect();
     }
     for (i, force) in sys.droppers.taut_forces(&d) {
         if force.is_nan() || force <= 0.0 {

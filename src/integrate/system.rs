@@ -74,6 +74,9 @@ pub struct System {
     /// The pair (g_free, W) of the current step.
     problem: ProblemBuilder,
     pub(crate) lambda: Vec<f64>,
+    /// The contacts' static forces of a static start (`static_start.rs`,
+    /// W7–W8), N; empty otherwise.
+    pub(crate) static_forces: Vec<f64>,
     /// The previous step's multipliers ([`Multipliers::Held`] only).
     held_prev: Vec<f64>,
     pub(crate) active: Vec<bool>,
@@ -178,6 +181,16 @@ impl System {
             })
             .collect();
         let droppers = Droppers::new(&sc.droppers, &beam, nc);
+        // C = αM + βK + dashpots from K *before* the tension-only droppers'
+        // springs join it: a slack dropper carries no force, so its spring
+        // must not put a dashpot β k_d r_d r_dᵀ in C (the linear droppers'
+        // springs are in K already, and in βK as before)
+        let tie_dashpots = sc
+            .beam
+            .messenger
+            .as_ref()
+            .map_or(&[][..], |m| &m.tie_dashpots[..]);
+        let damping = beam.damping_matrix_with_ties(sc.damping, &sc.beam.attachments, tie_dashpots);
         // every dropper's spring in K and preload in the load (`dropper.rs`, D7)
         droppers.add_springs(&mut beam.stiffness);
         droppers.add_preloads(&mut beam.load);
@@ -188,12 +201,6 @@ impl System {
             t_load: 0.0,
             f0: masses.iter().map(|m| m.f0).collect(),
         });
-        let tie_dashpots = sc
-            .beam
-            .messenger
-            .as_ref()
-            .map_or(&[][..], |m| &m.tie_dashpots[..]);
-        let damping = beam.damping_matrix_with_ties(sc.damping, &sc.beam.attachments, tie_dashpots);
         let external = sc
             .external_forces
             .iter()
@@ -222,6 +229,7 @@ impl System {
             multipliers: Multipliers::Forces,
             problem: ProblemBuilder::new(nc, nd),
             lambda: vec![0.0; nc + nd],
+            static_forces: Vec::new(),
             held_prev: vec![0.0; nc + nd],
             active: vec![false; nc + nd],
             droppers,
@@ -580,21 +588,25 @@ impl System {
             self.masses = saved_masses;
             return Err(self.failure(0, 0.0, Level::Acceleration, failure));
         }
-        // a penalty with an absolute κ started static (static_start.rs,
-        // W7): the head starts at its static penetration, so its force at
-        // t = 0 is κ times it, not the rest start's 0
-        if let (Some((d0, q0)), Formulation::Penalty, Some(kappa)) = (
-            start,
-            self.contact.formulation,
-            self.contact.penalty.stiffness,
-        ) {
+        // a penalty started static (static_start.rs, W7): with an absolute
+        // κ the head starts at its static penetration, so its force at
+        // t = 0 is κ times it; with a κ relative to the step the head
+        // starts at the rigid equilibrium and the force is its static one
+        // (the penetration λW/ρ builds over the first steps); not the
+        // rest start's 0 either way
+        if let (Some((d0, q0)), Formulation::Penalty) = (start, self.contact.formulation) {
             for c in &self.carriers {
                 if let Some(j) = c.contact {
-                    let penetration = q0[j] - c.s * c.pv_g.dot(d0);
-                    self.lambda[j] = if self.bilateral {
-                        kappa * penetration
-                    } else {
-                        kappa * penetration.max(0.0)
+                    self.lambda[j] = match self.contact.penalty.stiffness {
+                        Some(kappa) => {
+                            let penetration = q0[j] - c.s * c.pv_g.dot(d0);
+                            if self.bilateral {
+                                kappa * penetration
+                            } else {
+                                kappa * penetration.max(0.0)
+                            }
+                        }
+                        None => self.static_forces.get(j).copied().unwrap_or(0.0),
                     };
                 }
             }
