@@ -75,6 +75,18 @@ fn chain_matrix(n: usize, links: &[f64]) -> Mat {
     a
 }
 
+/// K' = K without the head's row and column (masses 2 … n): positive
+/// definite since k₁ … k_{n−1} > 0.
+fn lower_block(n: usize, k: &Mat) -> Mat {
+    let mut kr = [[0.0; MAX_CHAIN]; MAX_CHAIN];
+    for i in 1..n {
+        for j in 1..n {
+            kr[i - 1][j - 1] = k[i][j];
+        }
+    }
+    kr
+}
+
 /// x = A⁻¹b of an n × n symmetric positive definite A (n ≤ 3), by Gaussian
 /// elimination without pivoting (SPD: the pivots are positive).
 fn solve(n: usize, a: &Mat, b: &[f64; MAX_CHAIN]) -> [f64; MAX_CHAIN] {
@@ -137,12 +149,9 @@ impl Chain {
         let mut m = [0.0; MAX_CHAIN];
         m[..n].copy_from_slice(p.masses());
         // the held head's statics over the lower masses
-        let mut kr = [[0.0; MAX_CHAIN]; MAX_CHAIN];
+        let kr = lower_block(n, &k);
         let mut fr = [0.0; MAX_CHAIN];
         for i in 1..n {
-            for j in 1..n {
-                kr[i - 1][j - 1] = k[i][j];
-            }
             fr[i - 1] = -s * g * m[i];
         }
         fr[n - 2] += p.uplift;
@@ -174,12 +183,9 @@ impl Chain {
     /// z' = −Kₗ₁ z₁) and S z₁ (module docs of [`Chain::head_stiffness`]).
     fn held_lower(&self, z1: f64) -> ([f64; MAX_CHAIN], f64) {
         let n = self.n;
-        let mut kr = [[0.0; MAX_CHAIN]; MAX_CHAIN];
+        let kr = lower_block(n, &self.k);
         let mut fr = [0.0; MAX_CHAIN];
         for i in 1..n {
-            for j in 1..n {
-                kr[i - 1][j - 1] = self.k[i][j];
-            }
             fr[i - 1] = -self.k[i][0] * z1;
         }
         let zl = solve(n - 1, &kr, &fr);
@@ -197,12 +203,10 @@ impl Chain {
 
     /// Start the chain at rest in its static state with the head at z₁
     /// (the static wire's height, `static_start.rs`): the lower masses at
-    /// their equilibrium against the held head. Returns the contact force
-    /// there, λ₀ − S z₁, N.
-    pub fn hold_head(&mut self, z1: f64) -> f64 {
-        let (z, force) = self.held_lower(z1);
-        self.z_start = z;
-        self.static_force - force
+    /// their equilibrium against the held head (its contact force there is
+    /// λ₀ − S z₁, which `static_start.rs` has solved for already).
+    pub fn hold_head(&mut self, z1: f64) {
+        self.z_start = self.held_lower(z1).0;
     }
 
     /// An upper bound on the chain's highest natural frequency with the
