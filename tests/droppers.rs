@@ -445,7 +445,7 @@ fn dropper_keys_are_checked() {
             .to_string();
         assert!(e.contains(field), "{extra}: {e}");
     };
-    refused("damping = 3.0", "dropper.0.damping");
+    refused("damping = nan", "dropper.0.damping");
     refused("damping = -3.0", "dropper.0.damping");
     refused("colour = 3.0", "colour");
     refused("name = \"a b\"", "dropper.0.name");

@@ -285,7 +285,8 @@ fn external_forces() {
 /// the rows of the slack droppers packed per step, the set grown and the
 /// small problem solved again, the corrections added to the free
 /// solution, under each law that carries them, on fixed anchors and on a
-/// messenger, through slackening and re-tension.
+/// messenger, through slackening and re-tension; with Kelvin–Voigt
+/// dashpots on every dropper too (D12: the free rates in each row).
 fn droppers() {
     MEASURING.with(|m| m.set(true));
     // the messenger span's droppers slacken under a pantograph pushing with
@@ -294,11 +295,19 @@ fn droppers() {
         (SPAN_DROPPERS, "fixed anchors", "0.0357"),
         (SPAN_MESSENGER, "messenger", "0.15"),
     ] {
-        for f in ["lagrange", "complementarity", "penalty"] {
-            let o = vec![
+        for (f, c_d) in [
+            ("lagrange", 0.0),
+            ("complementarity", 0.0),
+            ("penalty", 0.0),
+            ("lagrange", 200.0),
+        ] {
+            let mut o = vec![
                 format!("contact.formulation={f}"),
                 format!("carrier.0.preload={preload}"),
             ];
+            if c_d > 0.0 {
+                o.extend((0..7).map(|i| format!("dropper.{i}.damping={c_d}")));
+            }
             let sc = taut::resolve_scene(text, &o).unwrap();
             let mut it = taut::integrate::Integrator::new(&sc).unwrap();
             let mut samples = vec![taut::integrate::DropperSample::default(); sc.droppers.len()];
@@ -317,7 +326,7 @@ fn droppers() {
             assert_eq!(
                 ALLOCATIONS.load(Ordering::Relaxed) - before,
                 0,
-                "droppers on {what}, {f}"
+                "droppers on {what}, {f}, c_d = {c_d}"
             );
             assert!(
                 slack > 0 && taut_after_slack > 0,

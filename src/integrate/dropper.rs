@@ -49,7 +49,20 @@
 //! ([`Droppers::add_responses`]): a step costs O(n·(1 + |S|)) beyond the
 //! linear twin's, and the dense problem has nc + |S| rows. Nothing here
 //! allocates in a step.
+//!
+//! **Dashpots (D12).** A tension-only dropper with a dashpot c_d is a
+//! Kelvin–Voigt link, N_d = max(0, k_d e_d + c_d ė_d), ė_d = −r_dᵀv: its
+//! dashpot c_d r_d r_dᵀ is in C ([`Droppers::add_dashpots`]) as its spring
+//! is in K, and the slack correction μ_d cancels both together, N_d =
+//! k_d e_d + c_d ė_d + μ_d with `0 ≤ μ_d ⊥ N_d ≥ 0`. At the force level
+//! e_d and ė_d respond to μ (and λ) through the same z'_d, with κ and
+//! κ_v = (1 − α_f) c_v (v_{n+1} = ṽ + c_v u), so the spring and dashpot
+//! answer as one spring of stiffness k_eff,d = k_d + c_d c_v/c_d
+//! (= k_d + c_d γ/(βΔt)): every formula above holds with k_d → k_eff,d
+//! and k_d e_free,d → N_free,d = k_d e_free,d + c_d ė_free,d (the force of
+//! the free step). Without a dashpot k_eff,d = k_d and nothing changes.
 
+use super::VelocityPrediction;
 use crate::contact::ContactFailure;
 use crate::model::banded::SymBand;
 use crate::model::beam::{BeamModel, PointVector};
@@ -81,7 +94,7 @@ struct Link {
     pm: Option<PointVector>,
     /// k_d, N/m.
     k: f64,
-    /// c_d, N·s/m (0 unless linear; eq. D11).
+    /// c_d, N·s/m (eq. D11 linear, D12 tension-only; 0: none).
     c: f64,
     /// e₀ = z_a − ℓ_0, m: the extension with the beam straight.
     e0: f64,
@@ -136,6 +149,9 @@ pub(crate) struct Droppers {
     weight: f64,
     /// κ = (1 − α) c_d.
     coef: f64,
+    /// k_eff,d = k_d + c_d c_v/c_d of each row, N/m (module docs, D12;
+    /// k_d without a dashpot).
+    keff: Vec<f64>,
     /// True once a method formed z and Q ([`Droppers::prepare`]).
     ready: bool,
     /// Each row's force N_d after the last step, N.
@@ -151,7 +167,9 @@ pub(crate) struct Droppers {
 /// A step's dense quantities (module docs, D9), sized once for the run.
 #[derive(Debug, Clone, Default)]
 struct Scratch {
-    /// e_free,d of each row, m.
+    /// ê_d = N_free,d / k_eff,d of each row, m: the free extension e_free,d
+    /// without a dashpot (D9), the free force in k_eff's units with one
+    /// (D12).
     e_free: Vec<f64>,
     /// P_dc = r_dᵀz'_c, m × nc row-major, m/N·(1/c_d).
     p: Vec<f64>,
@@ -168,7 +186,7 @@ struct Scratch {
     g_inv: Vec<f64>,
     /// Ê G, nc × |S|.
     y: Vec<f64>,
-    /// max_d k_d |e_free,d|, N.
+    /// max_d |N_free,d|, N.
     scale: f64,
 }
 
@@ -247,7 +265,27 @@ impl Droppers {
     /// Add every tension-only dropper's spring k_d r_d r_dᵀ to `k` (D7: a
     /// linear dropper's is there already, from `resolve::dropper`).
     pub(crate) fn add_springs(&self, k: &mut SymBand) {
+        self.add_outer(k, |l| l.k);
+    }
+
+    /// True when a tension-only dropper has a dashpot (D12).
+    pub(crate) fn has_dashpots(&self) -> bool {
+        self.tension.iter().any(|&i| self.links[i].c != 0.0)
+    }
+
+    /// Add every tension-only dropper's dashpot c_d r_d r_dᵀ to `c` (D12; a
+    /// linear dropper's is there already, D11).
+    pub(crate) fn add_dashpots(&self, c: &mut SymBand) {
+        self.add_outer(c, |l| l.c);
+    }
+
+    /// Add coef(l) r_d r_dᵀ of every tension-only dropper to `a`.
+    fn add_outer(&self, a: &mut SymBand, coef: impl Fn(&Link) -> f64) {
         for l in self.tension.iter().map(|&i| &self.links[i]) {
+            let c = coef(l);
+            if c == 0.0 {
+                continue;
+            }
             let mut entries = [(0usize, 0.0f64); 8];
             for (e, (i, v)) in entries.iter_mut().zip(l.pv.idx.iter().zip(l.pv.val)) {
                 *e = (*i, v);
@@ -260,7 +298,7 @@ impl Droppers {
             for &(i, vi) in &entries {
                 for &(j, vj) in &entries {
                     if vi != 0.0 && vj != 0.0 {
-                        k.add_entry(i, j, l.k * vi * vj);
+                        a.add_entry(i, j, c * vi * vj);
                     }
                 }
             }
@@ -305,10 +343,15 @@ impl Droppers {
     }
 
     /// Form z'_d = A'⁻¹ r_d and Q once (module docs), for a method with
-    /// constant A' (the droppers' springs in it): `solve` overwrites a
-    /// right-hand side with A'⁻¹ of it; `c_d` as in d_{n+1} = d̃ + c_d u;
-    /// `weight` = α_f.
-    pub(crate) fn prepare(&mut self, solve: impl Fn(&mut [f64]), c_d: f64, weight: f64) {
+    /// constant A' (the droppers' springs and dashpots in it): `solve`
+    /// overwrites a right-hand side with A'⁻¹ of it; `c_d`, `c_v` as in
+    /// d_{n+1} = d̃ + c_d u, v_{n+1} = ṽ + c_v u; `weight` = α_f.
+    pub(crate) fn prepare(
+        &mut self,
+        solve: impl Fn(&mut [f64]),
+        (c_d, c_v): (f64, f64),
+        weight: f64,
+    ) {
         let (n, m) = (self.n, self.rows());
         self.z = vec![0.0; n * m];
         for (r, &li) in self.tension.iter().enumerate() {
@@ -318,6 +361,18 @@ impl Droppers {
         }
         self.weight = weight;
         self.coef = (1.0 - weight) * c_d;
+        self.keff = self
+            .tension
+            .iter()
+            .map(|&i| {
+                let l = &self.links[i];
+                if l.c == 0.0 {
+                    l.k
+                } else {
+                    l.k + l.c * c_v / c_d
+                }
+            })
+            .collect();
         self.q = vec![0.0; m * m];
         for (a, &la) in self.tension.iter().enumerate() {
             for b in 0..m {
@@ -334,7 +389,9 @@ impl Droppers {
 
     /// Begin a step's dropper problem (module docs, D9): the free
     /// extensions from d̃ (`d_pred`), the free solution (column 0 of
-    /// `solved`, k columns) and d_n; P from the contact columns 1 + c; the
+    /// `solved`, k columns) and d_n, and with a dashpot (D12) the free
+    /// rates from ṽ, the same column and v_n (`rates`: ṽ, v_n, c_v);
+    /// P from the contact columns 1 + c; the
     /// contacts' couplings Ê from their gap rows `(i, s_i, r_i)` at the
     /// placement with coefficient `coef_c`; the contacts' own pair from
     /// `g`, `w` (stride `stride`); and the step's first set S.
@@ -345,6 +402,7 @@ impl Droppers {
         c_d: f64,
         d_pred: &[f64],
         d_n: &[f64],
+        rates: (VelocityPrediction, &[f64], f64),
         contacts: impl Iterator<Item = (usize, f64, &'a PointVector)>,
         coef_c: f64,
         (g, w, stride): (&[f64], &[f64], usize),
@@ -354,9 +412,21 @@ impl Droppers {
         s.scale = 0.0;
         for (r, &li) in self.tension.iter().enumerate() {
             let l = &self.links[li];
-            let end = l.dot(d_pred) + c_d * l.dot_strided(solved, k, 0);
+            let u_free = l.dot_strided(solved, k, 0);
+            let end = l.dot(d_pred) + c_d * u_free;
             s.e_free[r] = l.e0 - ((1.0 - a) * end + a * l.dot(d_n));
-            s.scale = s.scale.max(l.k * s.e_free[r].abs());
+            if l.c != 0.0 {
+                // ê = (k e_free + c ė_free)/k_eff, ė_free = −r_dᵀv_free at
+                // the force level (D12)
+                let (v_pred, v_n, c_v) = rates;
+                let v_end = match v_pred {
+                    VelocityPrediction::Vector(v) => l.dot(v),
+                    VelocityPrediction::Shifted { shift, coef } => l.dot(v_n) + coef * l.dot(shift),
+                } + c_v * u_free;
+                let rate = -((1.0 - a) * v_end + a * l.dot(v_n));
+                s.e_free[r] = (l.k * s.e_free[r] + l.c * rate) / self.keff[r];
+            }
+            s.scale = s.scale.max(self.keff[r] * s.e_free[r].abs());
             for c in 0..nc {
                 s.p[r * nc + c] = l.dot_strided(solved, k, 1 + c);
             }
@@ -392,7 +462,7 @@ impl Droppers {
         let s = &mut self.scratch;
         let ms = s.set.len();
         let ns = nc + ms;
-        let k_of = |r: usize| self.links[self.tension[r]].k;
+        let k_of = |r: usize| self.keff[r];
         // H = diag(k) − κ diag(k) Q diag(k) over S, its Cholesky factor L
         let h = &mut s.chol[..ms * ms];
         for (i, &a) in s.set.iter().enumerate() {
@@ -486,7 +556,7 @@ impl Droppers {
 
     /// After the law solved the pair of [`Droppers::assemble`] (`g`, `w`,
     /// stride `ns`) into `lambda`, `active` (ns each): the set's
-    /// corrections μ_d = k_d g_d (0 for a taut row), then the check of the
+    /// corrections μ_d = k_eff,d g_d (0 for a taut row), then the check of the
     /// droppers outside S (module docs, D10). Returns false when some of
     /// them pushed and joined S (assemble and solve again), true when the
     /// step settled: the forces, corrections and slack states are then the
@@ -500,7 +570,7 @@ impl Droppers {
             let row = nc + i;
             if !active[row] {
                 let gap: f64 = g[row] + (0..ns).map(|j| w[row * ns + j] * lambda[j]).sum::<f64>();
-                self.mu[a] = self.links[self.tension[a]].k * gap;
+                self.mu[a] = self.keff[a] * gap;
             }
         }
         let tol = FORCE_ROUNDOFF * s.scale;
@@ -516,7 +586,7 @@ impl Droppers {
             for &a in &s.set {
                 shift += self.q[r * m + a] * self.mu[a];
             }
-            let force = self.links[self.tension[r]].k * (s.e_free[r] - kappa * shift);
+            let force = self.keff[r] * (s.e_free[r] - kappa * shift);
             if force < -tol {
                 settled = false;
                 s.in_set[r] = true;

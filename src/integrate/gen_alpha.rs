@@ -27,8 +27,9 @@ impl GenAlpha {
         kernel.start(sys, &st.d, &st.v, init);
         if sys.droppers.rows() > 0 {
             let c_d = p.beta * sys.dt() * sys.dt();
+            let c_v = p.gamma * sys.dt();
             sys.droppers
-                .prepare(|x| kernel.solve_one(x), c_d, p.alpha_f);
+                .prepare(|x| kernel.solve_one(x), (c_d, c_v), p.alpha_f);
         }
         Ok(GenAlpha { kernel })
     }

@@ -190,7 +190,14 @@ impl System {
             .messenger
             .as_ref()
             .map_or(&[][..], |m| &m.tie_dashpots[..]);
-        let damping = beam.damping_matrix_with_ties(sc.damping, &sc.beam.attachments, tie_dashpots);
+        let mut damping =
+            beam.damping_matrix_with_ties(sc.damping, &sc.beam.attachments, tie_dashpots);
+        // the tension-only droppers' dashpots in C (`dropper.rs`, D12), into
+        // a zero C of K's band when nothing else damps
+        if droppers.has_dashpots() {
+            let c = damping.get_or_insert_with(|| beam.stiffness.combine(0.0, &beam.mass, 0.0));
+            droppers.add_dashpots(c);
+        }
         // every dropper's spring in K and preload in the load (`dropper.rs`, D7)
         droppers.add_springs(&mut beam.stiffness);
         droppers.add_preloads(&mut beam.load);
@@ -682,6 +689,7 @@ impl System {
                         map.c_d,
                         map.d_pred,
                         &st.d,
+                        (map.v_pred, &st.v, map.c_v),
                         rows,
                         coef_c,
                         pair,

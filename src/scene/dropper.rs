@@ -48,8 +48,8 @@ pub struct DropperSpec {
     pub length: f64,
     /// Dashpot c_d in parallel, N·s/m (finite, ≥ 0; default 0): c_d r_d r_dᵀ
     /// in the damping matrix C (`docs/lines.md` eq. D11), as an
-    /// `[[attachment]]` dashpot. Only a linear dropper carries one (a
-    /// tension-only dropper's dashpot is not built).
+    /// `[[attachment]]` dashpot; on a tension-only dropper a Kelvin–Voigt
+    /// link N_d = max(0, k_d e + c_d ė) that slackens with its spring (D12).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damping: Option<f64>,
     /// Never slack: a two-sided spring (N_d = k_d e, may push).
@@ -104,7 +104,7 @@ pub struct Dropper {
     pub length: f64,
     /// Two-sided (never slack).
     pub linear: bool,
-    /// Dashpot c_d in parallel, N·s/m (0: none; > 0 only when linear).
+    /// Dashpot c_d in parallel, N·s/m (0: none; D11 linear, D12 tension-only).
     pub damping: f64,
 }
 
@@ -137,7 +137,7 @@ impl Dropper {
 /// Check each `[[dropper]]` on a beam of span `l`, m: x in [0, L],
 /// stiffness > 0, exactly one of `anchor_height` (finite) and `anchor =
 /// "messenger"` (with a `[messenger]`, whose rest height is `messenger`),
-/// length ≥ 0, damping finite and ≥ 0 (0 unless linear), names valid and distinct.
+/// length ≥ 0, damping finite and ≥ 0, names valid and distinct.
 pub fn resolve_droppers(
     specs: &[DropperSpec],
     l: f64,
@@ -192,13 +192,6 @@ pub fn resolve_droppers(
         };
         let length = non_negative(&field("length"), d.length, "m")?;
         let damping = non_negative(&field("damping"), d.damping.unwrap_or(0.0), "N·s/m")?;
-        if damping != 0.0 && !d.linear {
-            return Err(Error::invalid(
-                field("damping"),
-                damping,
-                "a tension-only dropper's dashpot is not built: linear = true, or an [[attachment]] dashpot at x_d",
-            ));
-        }
         let name = match &d.name {
             Some(n) => {
                 let ok = !n.is_empty()

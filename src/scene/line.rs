@@ -72,8 +72,8 @@ struct LineSpec {
     /// Droppers that never slack (`linear = true` on each).
     #[serde(default)]
     linear_droppers: bool,
-    /// Each dropper's dashpot c_d, N·s/m (≥ 0, default 0; > 0 needs
-    /// `linear_droppers`): `damping` on each (`docs/lines.md` D11).
+    /// Each dropper's dashpot c_d, N·s/m (≥ 0, default 0): `damping` on
+    /// each (`docs/lines.md` D11 linear, D12 tension-only).
     #[serde(default)]
     dropper_damping: f64,
 }
@@ -232,13 +232,6 @@ impl Line {
         let k_d = positive("line.dropper_stiffness", s.dropper_stiffness, "N/m")?;
         let c_d =
             super::validate::non_negative("line.dropper_damping", s.dropper_damping, "N·s/m")?;
-        if c_d != 0.0 && !s.linear_droppers {
-            return Err(Error::invalid(
-                "line.dropper_damping",
-                c_d,
-                "a tension-only dropper's dashpot is not built: linear_droppers = true, or an [[attachment]] dashpot at x_d",
-            ));
-        }
         let h = positive("line.element_length", s.element_length, "m")?;
         if h > span {
             return Err(Error::invalid(
