@@ -6,9 +6,14 @@
 //!   that node's messenger w, as an end support removes the contact
 //!   wire's); a support between nodes would need a constraint, not a
 //!   removed unknown. The error names the support and the nearest node.
-//! * Only the generalized-α family (`generalized_alpha`, `newmark`, `hht`,
-//!   `wbz`) steps it; the other methods are refused (not verified with two
-//!   lines; central difference's stable-step bound is of one line).
+//! * Every implicit method steps it: the generalized-α family
+//!   (`generalized_alpha`, `newmark`, `hht`, `wbz`), `bathe` and
+//!   `moreau_jean` use the assembled two-line M, K (and C) like any
+//!   other (verified on the two-wire manufactured solution, second order
+//!   in Δt on both wires). `central_difference` is refused: its
+//!   stable-step bound (the element-eigenvalue bound beside Lanczos) is
+//!   built from the contact wire's elements alone. Tension-only messenger
+//!   droppers still need the generalized-α family (`integrate::dropper`).
 //! * Only `mesh.kind = "hermite"` (the element model, uniform or graded):
 //!   a `galerkin` basis is the bare contact wire's exact modes and a
 //!   `modal` basis is not built from the two-line model (refused rather
@@ -43,11 +48,21 @@ pub fn check_messenger(
     let Some(m) = &beam.messenger else {
         return Ok(());
     };
-    if !matches!(scheme, Scheme::GenAlpha(_)) {
+    let why = match scheme {
+        Scheme::GenAlpha(_) | Scheme::Bathe { .. } | Scheme::MoreauJean { .. } => None,
+        Scheme::CentralDifference => Some(
+            "its stable-step bound (the element-eigenvalue bound beside Lanczos) is built from the contact wire's elements alone",
+        ),
+        Scheme::ModalExact => Some("it steps a diagonal basis of the contact wire alone"),
+        Scheme::Registered => Some("a registered method is not verified with two lines"),
+    };
+    if let Some(why) = why {
         return Err(Error::invalid(
             "integrator.method",
             format!("\"{}\"", scene.integrator.method),
-            "cannot carry a [messenger] yet (built and verified for the generalized-α family only): use generalized_alpha, newmark, hht or wbz",
+            format!(
+                "cannot carry a [messenger] ({why}): use an implicit method verified with two lines, generalized_alpha, newmark, hht, wbz, bathe or moreau_jean"
+            ),
         ));
     }
     if d != Discretization::Hermite {

@@ -537,7 +537,14 @@ pub const CASES: [Case; 8] = [
         expect: expect_two_wires,
         quantities: &[Quantity::Displacement, Quantity::Force],
         quick: false,
-        only: &["generalized_alpha", "newmark", "hht", "wbz"],
+        only: &[
+            "generalized_alpha",
+            "newmark",
+            "hht",
+            "wbz",
+            "bathe",
+            "moreau_jean",
+        ],
         skip: &[],
     },
 ];
