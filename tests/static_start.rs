@@ -290,3 +290,44 @@ fn a_relative_penalty_starts_near_static() {
         "{probes} {forces}"
     );
 }
+
+/// A mass–spring's external force series (`external_force`) is in the
+/// static start at its value at t = 0: the mass's free force is
+/// kδ0 − s m g + s F_ext(0) (`System::new` sets it before the static
+/// start reads it), so a constant 15 N series is the same start as the
+/// preload raised by F_ext/k — the same d₀ and the same static force to
+/// round-off ([`STATIC_EXACT`]) — and the run stays still; without the
+/// series in the start the force would be 15 N (of 45) off.
+#[test]
+fn an_external_force_series_is_in_the_static_start_at_its_first_value() {
+    let one = |preload: f64, series: &str| {
+        format!(
+            "[[carrier]]\nmass = 2.0\nstiffness = 500.0\npreload = {preload:e}\nside = \"below\"\nstart = 3.0\nspeed = {{ profile = \"constant\", value = 0.0 }}\n{series}\n"
+        )
+    };
+    let series = "external_force = { time = [0.0, 1.0], force = [15.0, 15.0] }";
+    let with = go(&string(&one(0.3, series), "end = 0.2", ""));
+    let raised = go(&string(&one(0.3 + 15.0 / 500.0, ""), "end = 0.2", ""));
+    let (fw, fr) = (
+        with.history.carriers[0].force[0],
+        raised.history.carriers[0].force[0],
+    );
+    let dp = with
+        .history
+        .probes
+        .iter()
+        .zip(&raised.history.probes)
+        .map(|((_, a), (_, b))| (a[0] - b[0]).abs() / b[0].abs())
+        .fold(0.0, f64::max);
+    println!(
+        "static force {fw:.9} N with the series, {fr:.9} N with the raised preload; probes {dp:.2e}"
+    );
+    assert!((fw - fr).abs() <= STATIC_EXACT * fr.abs(), "{fw} {fr}");
+    assert!(dp <= STATIC_EXACT, "{dp}");
+    let plain = go(&string(&one(0.3, ""), "end = 0.2", ""));
+    assert!((fw - plain.history.carriers[0].force[0]).abs() > 1.0);
+    stays_still(
+        "external force series",
+        &string(&one(0.3, series), "end = 0.2", ""),
+    );
+}

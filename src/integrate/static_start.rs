@@ -46,8 +46,10 @@
 //! carrier that would not press at rest is an error naming it (the
 //! equilibrium with it slack or lifted is a different problem). The wire
 //! and the carriers start at rest (ḋ₀ = 0, q̇₀ = 0), a chain's lower masses
-//! at their equilibrium against the held head. **Not in d₀**: external
-//! force series and a manufactured source; at a speed V > 0 the initial
+//! at their equilibrium against the held head. A mass–spring's external
+//! force series is in its free force f₀ at its value at t = 0
+//! (`System::new`), so d₀ is static under it. **Not in d₀**: a
+//! manufactured source; at a speed V > 0 the initial
 //! accelerations (MODEL §5) take up the convective gap acceleration
 //! V² v₀''(x_c) of the sagged shape.
 
