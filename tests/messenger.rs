@@ -516,8 +516,20 @@ fn messenger_keys_are_checked() {
     );
     fails(
         &ok,
-        &["mesh.kind=\"modal\"", "mesh.modes=5"],
+        &["mesh.kind=\"galerkin\"", "mesh.modes=5"],
         &["mesh.kind", "messenger"],
+    );
+    // a modal basis is taken from the two-line model: its unknowns bound J
+    let n = resolve_scene(&ok, &[]).unwrap().beam_unknowns();
+    resolve_scene(
+        &ok,
+        &["mesh.kind=\"modal\"".into(), format!("mesh.modes={n}")],
+    )
+    .unwrap();
+    fails(
+        &ok,
+        &["mesh.kind=\"modal\"", &format!("mesh.modes={}", n + 1)],
+        &["mesh.modes", &format!("1 ..= {n}")],
     );
     let dropper =
         "[[dropper]]\nx = 5.0\nstiffness = 1.0e4\nanchor = \"messenger\"\nlength = 0.999\n";

@@ -494,18 +494,7 @@ impl BeamModel {
             }
             Basis::Modal { shapes, modes } => {
                 let (idx, val) = self.element_vector(x, slope);
-                pv.idx = [0; 4];
-                pv.val = [0.0; 4];
-                pv.dense.clear();
-                pv.dense.resize(*modes, 0.0);
-                for (i, w) in idx.into_iter().zip(val) {
-                    if w != 0.0 {
-                        let row = &shapes[i * modes..(i + 1) * modes];
-                        for (r, phi) in pv.dense.iter_mut().zip(row) {
-                            *r += w * phi;
-                        }
-                    }
-                }
+                modal_rows(shapes, *modes, idx, val, pv);
             }
             Basis::Galerkin(modes) => {
                 pv.idx = [0; 4];
@@ -542,10 +531,22 @@ impl BeamModel {
     pub fn messenger_point_vector(&self, x: f64) -> PointVector {
         assert!(self.has_messenger(), "the model has no messenger wire");
         let (idx, val) = self.messenger_element_vector(x, false);
-        PointVector {
-            idx,
-            val,
-            dense: Vec::new(),
+        match &self.basis {
+            Basis::Elements => PointVector {
+                idx,
+                val,
+                dense: Vec::new(),
+            },
+            // the modes of the two-line model (`BeamModel::modal`): Φᵀ of
+            // the messenger's FE point vector, as on the contact wire
+            Basis::Modal { shapes, modes } => {
+                let mut pv = PointVector::default();
+                modal_rows(shapes, *modes, idx, val, &mut pv);
+                pv
+            }
+            Basis::Galerkin(_) => {
+                unreachable!("a Galerkin basis with a messenger is refused by resolve::messenger")
+            }
         }
     }
 
@@ -629,6 +630,24 @@ impl BeamModel {
                 super::element::omega_max_attached(props.rho_a, props.ei, props.tension, h, &at)
             })
             .fold(0.0, f64::max)
+    }
+}
+
+/// A modal basis's point vector Φᵀr of the FE point vector (`idx`, `val`)
+/// into `pv`'s dense weights: the sum of Φ's rows (`shapes`, row-major,
+/// `modes` columns) weighted by the element's shape functions.
+fn modal_rows(shapes: &[f64], modes: usize, idx: [usize; 4], val: [f64; 4], pv: &mut PointVector) {
+    pv.idx = [0; 4];
+    pv.val = [0.0; 4];
+    pv.dense.clear();
+    pv.dense.resize(modes, 0.0);
+    for (i, w) in idx.into_iter().zip(val) {
+        if w != 0.0 {
+            let row = &shapes[i * modes..(i + 1) * modes];
+            for (r, phi) in pv.dense.iter_mut().zip(row) {
+                *r += w * phi;
+            }
+        }
     }
 }
 

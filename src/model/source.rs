@@ -139,7 +139,13 @@ fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
     let k = m.source_count();
     let n = match beam.basis {
         Basis::Elements => beam.n,
-        _ => beam.dof_of.iter().flatten().count(),
+        // the FE model a modal basis was taken from: both lines' dofs
+        _ => beam
+            .dof_of
+            .iter()
+            .chain(&beam.messenger_dof_of)
+            .flatten()
+            .count(),
     };
     let mut out = vec![0.0; n * k];
     let mut lines = vec![(Line::Contact, &beam.dof_of)];

@@ -14,10 +14,11 @@
 //!   stable-step bound (the element-eigenvalue bound beside Lanczos) is
 //!   built from the contact wire's elements alone. Tension-only messenger
 //!   droppers still need the generalized-α family (`integrate::dropper`).
-//! * Only `mesh.kind = "hermite"` (the element model, uniform or graded):
-//!   a `galerkin` basis is the bare contact wire's exact modes and a
-//!   `modal` basis is not built from the two-line model (refused rather
-//!   than half-supported).
+//! * `mesh.kind = "hermite"` (the element model, uniform or graded) or
+//!   `"modal"`: the J lowest modes of that two-line model (ties and
+//!   attachments in it before the eigen-solve, so M = I, K = diag ω²; a
+//!   point on either line is Φᵀ of its FE point vector). A `galerkin`
+//!   basis is the bare contact wire's exact modes: refused.
 //! * The closed-form references are of the bare contact wire, and
 //!   `standing_force_modes` reads the one-line model: refused. A
 //!   manufactured solution covers both lines (`crate::manufactured`).
@@ -65,15 +66,11 @@ pub fn check_messenger(
             ),
         ));
     }
-    if d != Discretization::Hermite {
-        let kind = match d {
-            Discretization::Modal { .. } => "modal",
-            _ => "galerkin",
-        };
+    if let Discretization::Galerkin { .. } = d {
         return Err(Error::invalid(
             "mesh.kind",
-            format!("\"{kind}\""),
-            "cannot carry a [messenger] (its bases are of the contact wire alone): use mesh.kind = \"hermite\" (string elements when EI = 0)",
+            "\"galerkin\"",
+            "cannot carry a [messenger] (its exact modes are of the bare contact wire): use mesh.kind = \"hermite\" (string elements when EI = 0), or \"modal\" (the modes of the two-line model)",
         ));
     }
     // a manufactured solution's source carries the messenger's motion

@@ -141,7 +141,9 @@ pub struct MeshPlan {
     pub grading: Grading,
 }
 
-/// The FE unknowns of `elements` elements on `beam` (supported dofs removed).
+/// The FE unknowns of `elements` elements on `beam` (supported dofs
+/// removed): the contact wire's, and a messenger's (one element family,
+/// each pinned support on a node removing its w, `docs/lines.md` W1).
 pub fn fe_unknowns(beam: &BeamProps, elements: usize) -> usize {
     let per_node = if beam.is_string() { 1 } else { 2 };
     let removed = |s: Support| match s {
@@ -149,5 +151,9 @@ pub fn fe_unknowns(beam: &BeamProps, elements: usize) -> usize {
         Support::Pinned => 1,
         Support::Free => 0,
     };
-    (per_node * (elements + 1)).saturating_sub(removed(beam.left) + removed(beam.right))
+    let wire = (per_node * (elements + 1)).saturating_sub(removed(beam.left) + removed(beam.right));
+    let messenger = beam.messenger.as_ref().map_or(0, |m| {
+        (per_node * (elements + 1)).saturating_sub(m.supports.len())
+    });
+    wire + messenger
 }
