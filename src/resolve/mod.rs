@@ -138,6 +138,9 @@ impl Scene {
                     t_end,
                     steps,
                     droppers: &droppers,
+                    // the scene's own, first; the linear droppers' springs
+                    // after them are in `droppers`
+                    attachments: &beam.attachments[..self.attachments.len()],
                 },
             )?),
         };
