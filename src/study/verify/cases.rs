@@ -238,6 +238,20 @@ fn two_wire_ladders(_: Space, _: &Combo) -> Vec<Ladder> {
     ]
 }
 
+/// The attachment case's expected orders: those of the moving-mass beam
+/// cases, but the contact force's h order is reported, not judged, as on
+/// the two wires: it converged at 2.62–2.65 over N = 8 → 64 (every method
+/// and law the case runs), above the formal 2 that the node kicks set as
+/// a bound.
+fn expect_attachments(c: &Combo, v: Variable, q: Quantity) -> Expect {
+    match (v, q) {
+        (Variable::H, Quantity::Force) if c.formulation != Formulation::Penalty => Expect::Report(
+            "the contact force in h: measured 2.62–2.65 over N = 8 → 64 on mms_attachments (the formal 2 is the bound of the node kicks under a moving contact; the displacement's 4 is the judged order)".into(),
+        ),
+        _ => expect_moving_mass(c, v, q),
+    }
+}
+
 /// The attachment case (`mms_attachments`): a Δt ladder of 3 levels at
 /// N = 128 and an h ladder N = 8 → 64 at Δt = 5e-6 s, Hermite only. At
 /// N = 64 the contact force's space error (1.8e-5 N, order 2 in h) was
@@ -577,7 +591,7 @@ pub const CASES: [Case; 9] = [
         spaces: &[Space::Hermite],
         contact: true,
         ladders: attachment_ladders,
-        expect: expect_moving_mass,
+        expect: expect_attachments,
         quantities: &[Quantity::Displacement, Quantity::Force],
         quick: false,
         // the methods that carry a damping matrix (`resolve::damping`):
