@@ -220,6 +220,11 @@ pub struct Manufactured {
     attachments: Vec<AttachmentLoad>,
     /// The source has rate parts aᵢT̂ᵢ'(t) (a dashpot c_a or c_d > 0).
     rates: bool,
+    /// The lines' self-weight the source gives back, N/m (+ρA g on the
+    /// contact wire, +ρA_m g on the messenger; 0 without
+    /// `gravity.beam_self_weight`): a constant distributed load that
+    /// cancels the model's, so v* stays the solution (M7).
+    weight: [f64; 2],
 }
 
 /// A line's manufactured motion: its terms and section (the messenger's).
@@ -404,7 +409,7 @@ impl Manufactured {
         };
         let terms = line_terms(&spec.terms, &ends, None, "manufactured", at.t_end)?;
         let messenger = Self::messenger_motion(spec, at)?;
-        let droppers = Self::dropper_loads(at)?;
+        let droppers = Self::dropper_loads(at);
         let attachments: Vec<AttachmentLoad> = at
             .attachments
             .iter()
@@ -479,6 +484,10 @@ impl Manufactured {
             droppers,
             attachments,
             rates,
+            weight: [
+                -b.distributed_load,
+                b.messenger.as_ref().map_or(0.0, |m| -m.distributed_load),
+            ],
         };
         if at.contact == ContactKind::Unilateral {
             m.check_contact_kept(at.t_end, at.steps)?;
@@ -544,24 +553,9 @@ impl Manufactured {
         }))
     }
 
-    /// The droppers the source cancels (module docs). A scene whose lines
-    /// carry their weight is refused here: the source is of the weightless
-    /// lines.
-    fn dropper_loads(at: Setting) -> Result<Vec<DropperLoad>> {
-        let b = at.beam;
-        let weighted = b.distributed_load != 0.0
-            || b.messenger
-                .as_ref()
-                .is_some_and(|m| m.distributed_load != 0.0);
-        if weighted && (b.messenger.is_some() || !at.droppers.is_empty()) {
-            return Err(Error::invalid(
-                "gravity.beam_self_weight",
-                "true",
-                "a manufactured solution of lines with droppers or a messenger is of the weightless lines (its source does not include their self-weight): set it false",
-            ));
-        }
-        Ok(at
-            .droppers
+    /// The droppers the source cancels (module docs).
+    fn dropper_loads(at: Setting) -> Vec<DropperLoad> {
+        at.droppers
             .iter()
             .map(|d| DropperLoad {
                 name: d.name.clone(),
@@ -572,7 +566,7 @@ impl Manufactured {
                 tension_only: !d.linear,
                 c: d.damping,
             })
-            .collect())
+            .collect()
     }
 
     /// A tension-only dropper must stay taut (N_d* > 0) over the run, or
@@ -723,16 +717,28 @@ impl Manufactured {
         }
     }
 
-    /// The index of the constant part (the droppers' preloads), if any.
+    /// True when the source has a constant part: the droppers' preloads,
+    /// the lines' self-weight.
+    fn has_constant(&self) -> bool {
+        !self.droppers.is_empty() || self.weight != [0.0; 2]
+    }
+
+    /// The index of the constant part, if any.
     fn constant_part(&self) -> Option<usize> {
-        (!self.droppers.is_empty()).then(|| 2 * self.term_count())
+        self.has_constant().then(|| 2 * self.term_count())
+    }
+
+    /// True when the source has parts on the messenger wire: its own
+    /// motion, or its self-weight.
+    pub fn loads_messenger(&self) -> bool {
+        self.messenger.is_some() || self.weight[1] != 0.0
     }
 
     /// The index of the rate part aᵢT̂ᵢ'(t) of term i (the contact wire's
     /// terms, then the messenger's); only with dashpots.
     fn rate_part(&self, i: usize) -> usize {
         debug_assert!(self.rates, "rate parts exist only with dashpots");
-        2 * self.term_count() + usize::from(!self.droppers.is_empty()) + i
+        2 * self.term_count() + usize::from(self.has_constant()) + i
     }
 
     /// Terms of both lines.
@@ -821,11 +827,12 @@ impl Manufactured {
 
     /// Number of separable parts of the source: two per term of each
     /// line (its T̂'' and T̂ parts), one constant part when there are
-    /// droppers (their preloads' share of N_d*), and one rate part (T̂')
+    /// droppers (their preloads' share of N_d*) or self-weight (given back,
+    /// M7), and one rate part (T̂')
     /// per term of each line when a dashpot (c_a or c_d > 0) is carried.
     pub fn source_count(&self) -> usize {
         let terms = self.term_count();
-        2 * terms + usize::from(!self.droppers.is_empty()) + if self.rates { terms } else { 0 }
+        2 * terms + usize::from(self.has_constant()) + if self.rates { terms } else { 0 }
     }
 
     /// The x-parts of the contact wire's smooth source at x into `out`
@@ -837,11 +844,18 @@ impl Manufactured {
     }
 
     /// As [`Manufactured::source_shapes`], on `line`: that line's parts
-    /// from its own ρA, EI, T, the other line's parts, the constant part
-    /// and the rate parts 0 (the lines themselves are undamped: only the
-    /// dashpots' point loads weigh the rate parts).
+    /// from its own ρA, EI, T, the constant part its self-weight given back
+    /// (+ρA g, N/m; 0 without), the other line's parts and the rate parts 0
+    /// (the lines themselves are undamped: only the dashpots' point loads
+    /// weigh the rate parts).
     pub fn source_shapes_on(&self, line: Line, x: f64, out: &mut [f64]) {
         out.fill(0.0);
+        if let Some(k) = self.constant_part() {
+            out[k] = match line {
+                Line::Contact => self.weight[0],
+                Line::Messenger => self.weight[1],
+            };
+        }
         let nc = self.terms.len();
         let (terms, rho_a, ei, tension, first) = match (line, &self.messenger) {
             (Line::Contact, _) => (&self.terms, self.rho_a, self.ei, self.tension, 0),

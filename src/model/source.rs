@@ -162,7 +162,7 @@ fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
     };
     let mut out = vec![0.0; n * k];
     let mut lines = vec![(Line::Contact, &beam.dof_of)];
-    if m.moves_messenger() && beam.has_messenger() {
+    if m.loads_messenger() && beam.has_messenger() {
         lines.push((Line::Messenger, &beam.messenger_dof_of));
     }
     for (line, dof_of) in lines {
