@@ -696,8 +696,8 @@ impl Manufactured {
         -(at.m * f.v_tt + at.c * f.v_t + at.k * f.v)
     }
 
-    /// The weights w_k of attachment a's point load +(m_a v*_tt + c_a v*_t
-    /// + k_a v*)(x_a, t) = Σ_k c_k(t) w_k over the source's parts, into
+    /// The weights w_k of attachment a's point load
+    /// `(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t) = Σ_k c_k(t) w_k` over the source's parts, into
     /// `out` (overwritten): m_a Xᵢ(x_a) on term i's T̂'' part, k_a Xᵢ(x_a)
     /// on its T̂ part, c_a Xᵢ(x_a) on its T̂' part (M5). The load acts along
     /// r_a, the model's interpolation vector at x_a (MODEL §4): the
