@@ -50,9 +50,28 @@
 //! adds `k_d(e₀ − r_dᵀd) r_d`, which cancels it only when the run delivers
 //! N_d = N_d* — the coupling is verified, not bypassed. Separable again:
 //! `−N_d* = Σ_k c_k(t) w_k` over the source's parts plus a constant part
-//! `−k_d e₀` ([`Manufactured::dropper_weights`]). A tension-only dropper
-//! must stay taut (N_d* > 0) on the check grid, else the scene is refused
-//! naming the dropper and the time.
+//! `−k_d e₀` ([`Manufactured::dropper_weights`]). A dropper's dashpot c_d
+//! (D11) is in its force, `N_d* = k_d e_d* + c_d ė_d*` with
+//! `ė_d* = v̇_m*(x_d) − v̇_c*(x_d)` (`docs/verification.md` M6). A
+//! tension-only dropper must stay taut (N_d* > 0, dashpot included: the
+//! Kelvin–Voigt link's max(0, k_d e_d + c_d ė_d)) on the check grid, else
+//! the scene is refused naming the dropper and the time.
+//!
+//! **Point attachments, dashpots, self-weight** (`docs/verification.md`
+//! M4–M7). Each `[[attachment]]` a (spring k_a, dashpot c_a, mass m_a at
+//! x_a to a fixed anchor, no preload) exerts in the manufactured motion the
+//! force `−(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t)`; the source gets the
+//! point load `+(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t) r_a`, r_a the
+//! interpolation vector the model's attachment is assembled with
+//! (`BeamModel::attach`), so only the model's own `m_a r_a r_aᵀ`,
+//! `c_a r_a r_aᵀ` and `k_a r_a r_aᵀ` cancel it — between nodes to the
+//! interpolation error of r_aᵀd against v*(x_a), order 4 in h for Hermite
+//! ([`Manufactured::attachment_weights`]). A dashpot (c_a or c_d > 0) adds
+//! a **rate part** `aᵢ T̂ᵢ'(t)` per term of each line to the separable
+//! source (none otherwise: a scene without dashpots keeps its parts). With
+//! `gravity.beam_self_weight` the constant part gives each line's weight
+//! back (+ρA g, N/m), so v* stays the solution. Rayleigh damping is not in
+//! the source and is refused (`resolve::damping`).
 
 pub mod factor;
 pub mod jet;
