@@ -48,6 +48,8 @@ mod manufactured;
 mod messenger;
 #[path = "methods.rs"]
 mod methods;
+#[path = "mms_attachments.rs"]
+mod mms_attachments;
 #[path = "mms_two_wires.rs"]
 mod mms_two_wires;
 #[path = "modal_exact.rs"]

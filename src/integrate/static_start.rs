@@ -48,8 +48,9 @@
 //! and the carriers start at rest (ḋ₀ = 0, q̇₀ = 0), a chain's lower masses
 //! at their equilibrium against the held head. A mass–spring's external
 //! force series is in its free force f₀ at its value at t = 0
-//! (`System::new`), so d₀ is static under it. **Not in d₀**: a
-//! manufactured source; at a speed V > 0 the initial
+//! (`System::new`), so d₀ is static under it. A manufactured scene is
+//! refused (`resolve`: its lines start straight and at rest). At a speed
+//! V > 0 the initial
 //! accelerations (MODEL §5) take up the convective gap acceleration
 //! V² v₀''(x_c) of the sagged shape.
 

@@ -50,9 +50,28 @@
 //! adds `k_d(e₀ − r_dᵀd) r_d`, which cancels it only when the run delivers
 //! N_d = N_d* — the coupling is verified, not bypassed. Separable again:
 //! `−N_d* = Σ_k c_k(t) w_k` over the source's parts plus a constant part
-//! `−k_d e₀` ([`Manufactured::dropper_weights`]). A tension-only dropper
-//! must stay taut (N_d* > 0) on the check grid, else the scene is refused
-//! naming the dropper and the time.
+//! `−k_d e₀` ([`Manufactured::dropper_weights`]). A dropper's dashpot c_d
+//! (D11) is in its force, `N_d* = k_d e_d* + c_d ė_d*` with
+//! `ė_d* = v̇_m*(x_d) − v̇_c*(x_d)` (`docs/verification.md` M6). A
+//! tension-only dropper must stay taut (N_d* > 0, dashpot included: the
+//! Kelvin–Voigt link's max(0, k_d e_d + c_d ė_d)) on the check grid, else
+//! the scene is refused naming the dropper and the time.
+//!
+//! **Point attachments, dashpots, self-weight** (`docs/verification.md`
+//! M4–M7). Each `[[attachment]]` a (spring k_a, dashpot c_a, mass m_a at
+//! x_a to a fixed anchor, no preload) exerts in the manufactured motion the
+//! force `−(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t)`; the source gets the
+//! point load `+(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t) r_a`, r_a the
+//! interpolation vector the model's attachment is assembled with
+//! (`BeamModel::attach`), so only the model's own `m_a r_a r_aᵀ`,
+//! `c_a r_a r_aᵀ` and `k_a r_a r_aᵀ` cancel it — between nodes to the
+//! interpolation error of r_aᵀd against v*(x_a), order 4 in h for Hermite
+//! ([`Manufactured::attachment_weights`]). A dashpot (c_a or c_d > 0) adds
+//! a **rate part** `aᵢ T̂ᵢ'(t)` per term of each line to the separable
+//! source (none otherwise: a scene without dashpots keeps its parts). With
+//! `gravity.beam_self_weight` the constant part gives each line's weight
+//! back (+ρA g, N/m), so v* stays the solution. Rayleigh damping is not in
+//! the source and is refused (`resolve::damping`).
 
 pub mod factor;
 pub mod jet;
@@ -64,7 +83,9 @@ use supports::{Ends, Shape};
 
 use crate::error::{Error, Result};
 use crate::scene::manufactured::{LossSpec, ManufacturedSpec, TFactor, TermSpec, XFactor};
-use crate::scene::{BeamProps, CarrierKind, CarrierProps, ContactKind, Dropper, Motion, Support};
+use crate::scene::{
+    Attachment, BeamProps, CarrierKind, CarrierProps, ContactKind, Dropper, Motion, Support,
+};
 
 /// Time samples of the consistency checks per step of the run (at least
 /// [`MIN_CHECK_SAMPLES`], at most [`MAX_CHECK_SAMPLES`]): λ* of a smooth
@@ -213,6 +234,16 @@ pub struct Manufactured {
     /// The droppers, whose forces N_d* of the manufactured motion the
     /// source cancels (module docs, two coupled wires).
     droppers: Vec<DropperLoad>,
+    /// The scene's own point attachments (`[[attachment]]`), whose forces
+    /// of the manufactured motion the source cancels (module docs).
+    attachments: Vec<AttachmentLoad>,
+    /// The source has rate parts aᵢT̂ᵢ'(t) (a dashpot c_a or c_d > 0).
+    rates: bool,
+    /// The lines' self-weight the source gives back, N/m (+ρA g on the
+    /// contact wire, +ρA_m g on the messenger; 0 without
+    /// `gravity.beam_self_weight`): a constant distributed load that
+    /// cancels the model's, so v* stays the solution (M7).
+    weight: [f64; 2],
 }
 
 /// A line's manufactured motion: its terms and section (the messenger's).
@@ -238,6 +269,22 @@ struct DropperLoad {
     on_messenger: bool,
     /// Tension-only (must stay taut: N_d* > 0).
     tension_only: bool,
+    /// c_d, N·s/m (`docs/lines.md` D11; 0: none).
+    c: f64,
+}
+
+/// A point attachment as the source sees it (`docs/lines.md` A0, §10.4):
+/// on the contact wire at x_a, anchored at v = 0, no preload.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct AttachmentLoad {
+    /// x_a, m.
+    x: f64,
+    /// m_a, kg.
+    m: f64,
+    /// c_a, N·s/m.
+    c: f64,
+    /// k_a, N/m.
+    k: f64,
 }
 
 /// Which line a source shape is projected on.
@@ -289,6 +336,9 @@ pub struct Setting<'a> {
     pub steps: usize,
     /// The scene's droppers (`[[dropper]]`, resolved).
     pub droppers: &'a [Dropper],
+    /// The scene's own point attachments (`[[attachment]]`, resolved; not
+    /// the linear droppers' springs, which `droppers` carries).
+    pub attachments: &'a [Attachment],
 }
 
 /// Build one line's terms from `specs` (`prefix`: the scene key of the
@@ -353,6 +403,14 @@ fn line_v(terms: &[Term], x: f64, t: f64) -> f64 {
         .sum()
 }
 
+/// Σ aᵢ Xᵢ(x) T̂ᵢ'(t) of one line's terms: the rate v_t, m/s.
+fn line_v_t(terms: &[Term], x: f64, t: f64) -> f64 {
+    terms
+        .iter()
+        .map(|term| term.amplitude * term.shape.jet(x).d(0) * term.time_jet(t).d(1))
+        .sum()
+}
+
 impl Manufactured {
     /// Build the solution of `spec` for `at` and check that it is one: every
     /// shape meets the supports and is not removed by the correction, every
@@ -370,7 +428,18 @@ impl Manufactured {
         };
         let terms = line_terms(&spec.terms, &ends, None, "manufactured", at.t_end)?;
         let messenger = Self::messenger_motion(spec, at)?;
-        let droppers = Self::dropper_loads(at)?;
+        let droppers = Self::dropper_loads(at);
+        let attachments: Vec<AttachmentLoad> = at
+            .attachments
+            .iter()
+            .map(|a| AttachmentLoad {
+                x: a.x,
+                m: a.mass,
+                c: a.damping,
+                k: a.stiffness,
+            })
+            .collect();
+        let rates = droppers.iter().any(|d| d.c != 0.0) || attachments.iter().any(|a| a.c != 0.0);
         let carriers: Vec<Carrier> = at
             .carriers
             .iter()
@@ -432,6 +501,12 @@ impl Manufactured {
             loss,
             messenger,
             droppers,
+            attachments,
+            rates,
+            weight: [
+                -b.distributed_load,
+                b.messenger.as_ref().map_or(0.0, |m| -m.distributed_load),
+            ],
         };
         if at.contact == ContactKind::Unilateral {
             m.check_contact_kept(at.t_end, at.steps)?;
@@ -497,24 +572,9 @@ impl Manufactured {
         }))
     }
 
-    /// The droppers the source cancels (module docs). A scene whose lines
-    /// carry their weight is refused here: the source is of the weightless
-    /// lines.
-    fn dropper_loads(at: Setting) -> Result<Vec<DropperLoad>> {
-        let b = at.beam;
-        let weighted = b.distributed_load != 0.0
-            || b.messenger
-                .as_ref()
-                .is_some_and(|m| m.distributed_load != 0.0);
-        if weighted && (b.messenger.is_some() || !at.droppers.is_empty()) {
-            return Err(Error::invalid(
-                "gravity.beam_self_weight",
-                "true",
-                "a manufactured solution of lines with droppers or a messenger is of the weightless lines (its source does not include their self-weight): set it false",
-            ));
-        }
-        Ok(at
-            .droppers
+    /// The droppers the source cancels (module docs).
+    fn dropper_loads(at: Setting) -> Vec<DropperLoad> {
+        at.droppers
             .iter()
             .map(|d| DropperLoad {
                 name: d.name.clone(),
@@ -523,8 +583,9 @@ impl Manufactured {
                 e0: d.rest_extension(),
                 on_messenger: d.on_messenger(),
                 tension_only: !d.linear,
+                c: d.damping,
             })
-            .collect())
+            .collect()
     }
 
     /// A tension-only dropper must stay taut (N_d* > 0) over the run, or
@@ -553,10 +614,11 @@ impl Manufactured {
         Ok(())
     }
 
-    /// The force N_d*(t) = k_d e_d* of dropper d in the manufactured
-    /// motion, N (tension positive): e_d* = e₀ + v_m*(x_d) − v_c*(x_d) on
-    /// the messenger (`docs/lines.md` W2), e₀ − v_c*(x_d) on a fixed
-    /// anchor (D1).
+    /// The force N_d*(t) = k_d e_d* + c_d ė_d* of dropper d in the
+    /// manufactured motion, N (tension positive): e_d* = e₀ + v_m*(x_d) −
+    /// v_c*(x_d) on the messenger (`docs/lines.md` W2), e₀ − v_c*(x_d) on a
+    /// fixed anchor (D1), and its dashpot's ė_d* = v̇_m*(x_d) − v̇_c*(x_d)
+    /// (D11; −v̇_c*(x_d) on a fixed anchor).
     pub fn dropper_force(&self, d: usize, t: f64) -> f64 {
         let dr = &self.droppers[d];
         let vm = if dr.on_messenger {
@@ -564,7 +626,15 @@ impl Manufactured {
         } else {
             0.0
         };
-        dr.k * (dr.e0 + vm - self.v(dr.x, t))
+        let spring = dr.k * (dr.e0 + vm - self.v(dr.x, t));
+        if dr.c == 0.0 {
+            return spring;
+        }
+        let vm_t = match (&self.messenger, dr.on_messenger) {
+            (Some(m), true) => line_v_t(&m.terms, dr.x, t),
+            _ => 0.0,
+        };
+        spring + dr.c * (vm_t - line_v_t(&self.terms, dr.x, t))
     }
 
     /// v_m*(x, t) of the messenger, m (0 without `[manufactured.messenger]`).
@@ -594,27 +664,105 @@ impl Manufactured {
 
     /// The weights w_k of dropper d's point load −N_d*(t) = Σ_k c_k(t) w_k
     /// over the source's parts (c_k of [`Manufactured::source_coefficients`]),
-    /// into `out` (overwritten): with N_d* = k_d(e₀ + v_m* − v_c*) at x_d,
-    /// w = k_d X_c,i(x_d) on contact term i's T̂ part, −k_d X_m,j(x_d) on
+    /// into `out` (overwritten): with N_d* = k_d(e₀ + v_m* − v_c*) + c_d(v̇_m*
+    /// − v̇_c*) at x_d, w = k_d X_c,i(x_d) on contact term i's T̂ part and
+    /// c_d X_c,i(x_d) on its T̂' part, −k_d X_m,j(x_d) and −c_d X_m,j(x_d) on
     /// messenger term j's, −k_d e₀ on the constant part. The load acts
-    /// along r_d (r_c − r_m, or r_c): the model's own spring adds +N_d r_d,
-    /// so the two cancel only when the run delivers N_d = N_d*.
+    /// along r_d (r_c − r_m, or r_c): the model's own spring and dashpot add
+    /// +N_d r_d, so the two cancel only when the run delivers N_d = N_d*.
     pub fn dropper_weights(&self, d: usize, out: &mut [f64]) {
         out.fill(0.0);
         let dr = &self.droppers[d];
         let nc = self.terms.len();
         for (i, term) in self.terms.iter().enumerate() {
-            out[2 * i + 1] = dr.k * term.shape.jet(dr.x).d(0);
+            let x = term.shape.jet(dr.x).d(0);
+            out[2 * i + 1] = dr.k * x;
+            if dr.c != 0.0 {
+                out[self.rate_part(i)] = dr.c * x;
+            }
         }
         if dr.on_messenger
             && let Some(m) = &self.messenger
         {
             for (j, term) in m.terms.iter().enumerate() {
-                out[2 * nc + 2 * j + 1] = -dr.k * term.shape.jet(dr.x).d(0);
+                let x = term.shape.jet(dr.x).d(0);
+                out[2 * nc + 2 * j + 1] = -dr.k * x;
+                if dr.c != 0.0 {
+                    out[self.rate_part(nc + j)] = -dr.c * x;
+                }
             }
         }
-        let last = out.len() - 1;
-        out[last] = -dr.k * dr.e0;
+        let constant = self.constant_part().expect("droppers have a constant part");
+        out[constant] = -dr.k * dr.e0;
+    }
+
+    /// The point attachments the source carries (the scene's own).
+    pub fn attachments(&self) -> usize {
+        self.attachments.len()
+    }
+
+    /// Attachment a's position x_a, m (on the contact wire).
+    pub fn attachment_at(&self, a: usize) -> f64 {
+        self.attachments[a].x
+    }
+
+    /// The force attachment a exerts on the contact wire in the
+    /// manufactured motion, N in +v: −(m_a v*_tt + c_a v*_t + k_a v*) at
+    /// x_a (`docs/verification.md` M4).
+    pub fn attachment_force(&self, a: usize, t: f64) -> f64 {
+        let at = &self.attachments[a];
+        let f = self.fields(at.x, t);
+        -(at.m * f.v_tt + at.c * f.v_t + at.k * f.v)
+    }
+
+    /// The weights w_k of attachment a's point load
+    /// `(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t) = Σ_k c_k(t) w_k` over the source's parts, into
+    /// `out` (overwritten): m_a Xᵢ(x_a) on term i's T̂'' part, k_a Xᵢ(x_a)
+    /// on its T̂ part, c_a Xᵢ(x_a) on its T̂' part (M5). The load acts along
+    /// r_a, the model's interpolation vector at x_a (MODEL §4): the
+    /// model's own m_a r_a r_aᵀ, c_a r_a r_aᵀ, k_a r_a r_aᵀ cancel it only
+    /// when r_aᵀd follows v*(x_a), to the interpolation error between
+    /// nodes.
+    pub fn attachment_weights(&self, a: usize, out: &mut [f64]) {
+        out.fill(0.0);
+        let at = &self.attachments[a];
+        for (i, term) in self.terms.iter().enumerate() {
+            let x = term.shape.jet(at.x).d(0);
+            out[2 * i] = at.m * x;
+            out[2 * i + 1] = at.k * x;
+            if at.c != 0.0 {
+                out[self.rate_part(i)] = at.c * x;
+            }
+        }
+    }
+
+    /// True when the source has a constant part: the droppers' preloads,
+    /// the lines' self-weight.
+    fn has_constant(&self) -> bool {
+        !self.droppers.is_empty() || self.weight != [0.0; 2]
+    }
+
+    /// The index of the constant part, if any.
+    fn constant_part(&self) -> Option<usize> {
+        self.has_constant().then(|| 2 * self.term_count())
+    }
+
+    /// True when the source has parts on the messenger wire: its own
+    /// motion, or its self-weight.
+    pub fn loads_messenger(&self) -> bool {
+        self.messenger.is_some() || self.weight[1] != 0.0
+    }
+
+    /// The index of the rate part aᵢT̂ᵢ'(t) of term i (the contact wire's
+    /// terms, then the messenger's); only with dashpots.
+    fn rate_part(&self, i: usize) -> usize {
+        debug_assert!(self.rates, "rate parts exist only with dashpots");
+        2 * self.term_count() + usize::from(self.has_constant()) + i
+    }
+
+    /// Terms of both lines.
+    fn term_count(&self) -> usize {
+        self.terms.len() + self.messenger.as_ref().map_or(0, |m| m.terms.len())
     }
 
     /// A unilateral contact must press (λ* > 0) wherever it is closed.
@@ -697,12 +845,13 @@ impl Manufactured {
     }
 
     /// Number of separable parts of the source: two per term of each
-    /// line, and one constant part when there are droppers (their
-    /// preloads' share of N_d*).
+    /// line (its T̂'' and T̂ parts), one constant part when there are
+    /// droppers (their preloads' share of N_d*) or self-weight (given back,
+    /// M7), and one rate part (T̂')
+    /// per term of each line when a dashpot (c_a or c_d > 0) is carried.
     pub fn source_count(&self) -> usize {
-        2 * self.terms.len()
-            + self.messenger.as_ref().map_or(0, |m| 2 * m.terms.len())
-            + usize::from(!self.droppers.is_empty())
+        let terms = self.term_count();
+        2 * terms + usize::from(self.has_constant()) + if self.rates { terms } else { 0 }
     }
 
     /// The x-parts of the contact wire's smooth source at x into `out`
@@ -714,10 +863,18 @@ impl Manufactured {
     }
 
     /// As [`Manufactured::source_shapes`], on `line`: that line's parts
-    /// from its own ρA, EI, T, the other line's parts and the constant
-    /// part 0.
+    /// from its own ρA, EI, T, the constant part its self-weight given back
+    /// (+ρA g, N/m; 0 without), the other line's parts and the rate parts 0
+    /// (the lines themselves are undamped: only the dashpots' point loads
+    /// weigh the rate parts).
     pub fn source_shapes_on(&self, line: Line, x: f64, out: &mut [f64]) {
         out.fill(0.0);
+        if let Some(k) = self.constant_part() {
+            out[k] = match line {
+                Line::Contact => self.weight[0],
+                Line::Messenger => self.weight[1],
+            };
+        }
         let nc = self.terms.len();
         let (terms, rho_a, ei, tension, first) = match (line, &self.messenger) {
             (Line::Contact, _) => (&self.terms, self.rho_a, self.ei, self.tension, 0),
@@ -737,8 +894,9 @@ impl Manufactured {
     }
 
     /// The time parts of the source at t into `out`: aᵢ T̂ᵢ''(t) and
-    /// aᵢ T̂ᵢ(t) of each term (contact wire's, then the messenger's), and
-    /// 1 for the constant part, so that p = Σ out[k]·shape[k].
+    /// aᵢ T̂ᵢ(t) of each term (contact wire's, then the messenger's), 1 for
+    /// the constant part, and aᵢ T̂ᵢ'(t) for the rate parts, so that
+    /// p = Σ out[k]·shape[k].
     pub fn source_coefficients(&self, t: f64, out: &mut [f64]) {
         let all = self
             .terms
@@ -748,10 +906,12 @@ impl Manufactured {
             let ts = term.time_jet(t);
             out[2 * i] = term.amplitude * ts.d(2);
             out[2 * i + 1] = term.amplitude * ts.d(0);
+            if self.rates {
+                out[self.rate_part(i)] = term.amplitude * ts.d(1);
+            }
         }
-        if !self.droppers.is_empty() {
-            let last = self.source_count() - 1;
-            out[last] = 1.0;
+        if let Some(k) = self.constant_part() {
+            out[k] = 1.0;
         }
     }
 
@@ -938,6 +1098,7 @@ mod tests {
                 t_end: 0.4,
                 steps: 100,
                 droppers: &[],
+                attachments: &[],
             },
         )
         .unwrap();
@@ -974,6 +1135,7 @@ mod tests {
                 t_end: 0.4,
                 steps: 100,
                 droppers: &[],
+                attachments: &[],
             },
         )
         .unwrap();
@@ -1016,6 +1178,7 @@ mod tests {
                 t_end: 0.4,
                 steps: 400,
                 droppers: &[],
+                attachments: &[],
             },
         )
         .unwrap();
@@ -1072,6 +1235,7 @@ mod tests {
                 t_end: 0.4,
                 steps: 100,
                 droppers: &[],
+                attachments: &[],
             },
         )
         .unwrap_err()
@@ -1130,5 +1294,130 @@ mod tests {
             // the fourth difference loses ε|v|/h⁴ ≈ 1e-5 and truncation h²
             assert!((fd - p).abs() < 1e-3 * p.abs().max(1.0), "{p} {fd}");
         }
+    }
+
+    /// Central differences of the attachment's v* in time (δ = 1e-4 s):
+    /// truncation δ²·(third/fourth derivative) ≈ 1e-8·(2π·8)⁴ ≈ 6e-3 of
+    /// |v| for the 8 Hz term at most, so 1e-2 relative separates a right
+    /// weight from a missing term (each is ≥ 10 % of the force here).
+    const ATTACHMENT_FD_REL: f64 = 1e-2;
+
+    /// The bundled attachment scene (`scenes/verify/mms_attachments.toml`).
+    const ATTACHMENTS: &str = include_str!("../../scenes/verify/mms_attachments.toml");
+
+    #[test]
+    fn the_attachments_weights_give_their_force_and_the_rate_parts_are_v_t() {
+        let sc = crate::resolve::resolve_scene(ATTACHMENTS, &[]).unwrap();
+        let m = sc.manufactured.as_ref().unwrap();
+        assert_eq!(m.attachments(), 2);
+        // two terms: T̂'', T̂ and T̂' parts each, no constant part
+        assert_eq!(m.source_count(), 6);
+        let k = m.source_count();
+        let (mut c, mut w) = (vec![0.0; k], vec![0.0; k]);
+        let d = 1e-4;
+        for t in [0.03, 0.11, 0.2] {
+            m.source_coefficients(t, &mut c);
+            for (a, (xa, ma, ca, ka)) in [(0.7, 0.2, 3.0, 300.0), (1.5, 0.3, 2.0, 200.0)]
+                .into_iter()
+                .enumerate()
+            {
+                assert_eq!(m.attachment_at(a), xa);
+                m.attachment_weights(a, &mut w);
+                let load: f64 = c.iter().zip(&w).map(|(a, b)| a * b).sum();
+                let v = |t: f64| m.v(xa, t);
+                let vt = (v(t + d) - v(t - d)) / (2.0 * d);
+                let vtt = (v(t + d) - 2.0 * v(t) + v(t - d)) / (d * d);
+                let fd = ma * vtt + ca * vt + ka * v(t);
+                assert!(
+                    (load - fd).abs() < ATTACHMENT_FD_REL * fd.abs(),
+                    "attachment {a} at {t}: {load} {fd}"
+                );
+                assert!((load + m.attachment_force(a, t)).abs() < 1e-12 * load.abs());
+            }
+        }
+    }
+
+    /// The two-wire scene with dashpots on its droppers: −N_d* from the
+    /// weights is k_d e_d* + c_d ė_d*, ė_d* by central differences.
+    #[test]
+    fn a_damped_dropper_s_weights_carry_its_dashpot() {
+        let damped = TWO_WIRES.replace("linear = true", "linear = true\ndamping = 5.0");
+        let sc = crate::resolve::resolve_scene(&damped, &[]).unwrap();
+        let m = sc.manufactured.as_ref().unwrap();
+        let k = m.source_count();
+        // two contact terms and one messenger term: 3 × (T̂'', T̂, T̂') + 1
+        assert_eq!(k, 10);
+        let (mut c, mut w) = (vec![0.0; k], vec![0.0; k]);
+        let d = 1e-4;
+        let mut dashpot_max = 0.0f64;
+        for t in [0.03, 0.11, 0.2] {
+            m.source_coefficients(t, &mut c);
+            for dr in 0..m.droppers() {
+                m.dropper_weights(dr, &mut w);
+                let load: f64 = c.iter().zip(&w).map(|(a, b)| a * b).sum();
+                let (x, _) = m.dropper_at(dr);
+                let e = |t: f64| m.v_m(x, t) - m.v(x, t);
+                let spring = 500.0 * (0.05 + e(t));
+                let dashpot = 5.0 * (e(t + d) - e(t - d)) / (2.0 * d);
+                dashpot_max = dashpot_max.max(dashpot.abs());
+                let n = m.dropper_force(dr, t);
+                assert!((load + n).abs() < 1e-12 * n.abs(), "{load} {n}");
+                assert!(
+                    (n - spring - dashpot).abs() < DASHPOT_FD * n.abs(),
+                    "{n} {spring} {dashpot}"
+                );
+            }
+        }
+        // the dashpot is a visible share of the 25 N preload
+        assert!(dashpot_max > 0.5, "{dashpot_max}");
+    }
+
+    /// A central difference of ė (δ = 1e-4 s) is off by c_d δ²/6·|e'''| ≈
+    /// 5·1.7e-9·(2π·8)³·1.3e-2 ≈ 1.4e-5 N, 6e-7 of N_d* ≈ 25 N.
+    const DASHPOT_FD: f64 = 1e-5;
+
+    /// A tension-only dropper's taut check uses N_d* with the dashpot
+    /// (the Kelvin–Voigt link N_d = max(0, k_d e_d + c_d ė_d)): built here
+    /// from a resolved dropper with its dashpot set directly.
+    #[test]
+    fn the_taut_check_of_a_tension_only_dropper_counts_its_dashpot() {
+        let sc = crate::resolve::resolve_scene(TWO_WIRES, &[]).unwrap();
+        let spec = sc.scene.manufactured.as_ref().unwrap();
+        let setting = |droppers: &[Dropper]| {
+            Manufactured::new(
+                spec,
+                Setting {
+                    beam: &sc.beam,
+                    carriers: &sc.carriers,
+                    contact: ContactKind::Unilateral,
+                    g: 9.81,
+                    t_end: 0.25,
+                    steps: 2500,
+                    droppers,
+                    attachments: &[],
+                },
+            )
+        };
+        // every dropper tension-only with a 25 N preload: taut with springs
+        // alone (12.7 N at the least, tests/mms_two_wires.rs)
+        let mut droppers = sc.droppers.clone();
+        for d in &mut droppers {
+            d.linear = false;
+        }
+        setting(&droppers).unwrap();
+        // with the 5 N·s/m dashpots of tests/mms_attachments.rs still taut
+        for d in &mut droppers {
+            d.damping = 5.0;
+        }
+        setting(&droppers).unwrap();
+        // a dashpot whose c_d ė_d* exceeds that margin slackens one
+        for d in &mut droppers {
+            d.damping = 100.0;
+        }
+        let e = setting(&droppers).unwrap_err().to_string();
+        assert!(
+            e.contains(".linear`") && e.contains("N_d*") && e.contains("t = "),
+            "{e}"
+        );
     }
 }

@@ -26,11 +26,11 @@ pub const POINTS: usize = 8;
 /// Largest turn, rad, of the source's fastest factor over one panel.
 pub const PANEL_TURN: f64 = 0.5;
 
-/// Most separable parts a source has (two per term of
-/// [`crate::scene::manufactured::MAX_TERMS`] on each of the two lines, and
-/// the droppers' constant part): the per-step coefficients live on the
-/// stack.
-pub const MAX_PARTS: usize = 4 * crate::scene::manufactured::MAX_TERMS + 1;
+/// Most separable parts a source has (three per term of
+/// [`crate::scene::manufactured::MAX_TERMS`] on each of the two lines: T̂'',
+/// T̂ and, with dashpots, T̂'; and the droppers' constant part): the
+/// per-step coefficients live on the stack.
+pub const MAX_PARTS: usize = 6 * crate::scene::manufactured::MAX_TERMS + 1;
 
 /// The projected source of one run.
 #[derive(Debug, Clone)]
@@ -82,6 +82,7 @@ impl Source {
             }
         };
         droppers(beam, m, &mut shapes);
+        attachments(beam, m, &mut shapes);
         Source {
             shapes,
             parts: k,
@@ -133,6 +134,24 @@ fn droppers(beam: &BeamModel, m: &Manufactured, shapes: &mut [f64]) {
     }
 }
 
+/// Each point attachment's load +(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t) r_a
+/// in the basis (`docs/verification.md` M4–M5): its weights over the parts
+/// times r_a = r_b(x_a), the interpolation vector the model's attachment is
+/// assembled with (`BeamModel::attach`), added to F. The load is exact at
+/// x_a; the model's attachment acts on the interpolant r_aᵀd, so between
+/// nodes the two differ by the elements' interpolation error.
+fn attachments(beam: &BeamModel, m: &Manufactured, shapes: &mut [f64]) {
+    let k = m.source_count();
+    let mut w = vec![0.0; k];
+    for a in 0..m.attachments() {
+        m.attachment_weights(a, &mut w);
+        let ra = beam.point_vector(m.attachment_at(a));
+        for (part, &wk) in w.iter().enumerate() {
+            ra.scatter(wk, shapes, k, part);
+        }
+    }
+}
+
 /// F_k = ∫ N S_k dx on the FE mesh, n_fe × K row-major (module docs): each
 /// line's parts on its own dofs.
 fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
@@ -149,7 +168,7 @@ fn elements(beam: &BeamModel, m: &Manufactured, max_panel: f64) -> Vec<f64> {
     };
     let mut out = vec![0.0; n * k];
     let mut lines = vec![(Line::Contact, &beam.dof_of)];
-    if m.moves_messenger() && beam.has_messenger() {
+    if m.loads_messenger() && beam.has_messenger() {
         lines.push((Line::Messenger, &beam.messenger_dof_of));
     }
     for (line, dof_of) in lines {

@@ -8,9 +8,11 @@
 //! it. A `galerkin` basis is the exact modes of the bare continuous beam: an
 //! attachment couples those modes (`k_a φ(x_a) φ(x_a)ᵀ` is dense), which
 //! the diagonal basis has no place for, so it is refused. The closed-form
-//! references and the manufactured solutions are of the bare beam and are
-//! refused too; `standing_force_modes` (the model's own eigenpairs) and
-//! Richardson extrapolation hold.
+//! references are of the bare beam and are refused too;
+//! `standing_force_modes` (the model's own eigenpairs) and Richardson
+//! extrapolation hold. A manufactured solution carries attachments: its
+//! source has each attachment's force of the manufactured motion
+//! (`crate::manufactured`, `docs/verification.md` M4–M5).
 
 use crate::error::{Error, Result};
 use crate::scene::{BeamProps, Discretization, ReferenceKind, Scene};
@@ -31,35 +33,17 @@ pub fn check_attachments(scene: &Scene, beam: &BeamProps, d: Discretization) -> 
             ),
         ));
     }
-    bare_beam_references(scene, &format!("the scene's {n} [[attachment]]"))
+    // a manufactured solution's source carries the attachments' forces
+    closed_form_references(scene, &format!("the scene's {n} [[attachment]]"))
 }
 
-/// Refuse a manufactured solution or a closed-form reference of the bare
-/// beam (`moving_force_series`, `riding_mass_galerkin`) beside something
-/// the bare beam does not have (`what`: "the scene's 2 [[dropper]]"), since
-/// neither includes it; `standing_force_modes` (the model's own eigenpairs)
-/// and Richardson extrapolation hold. Shared by attachments and droppers.
-pub(super) fn bare_beam_references(scene: &Scene, what: &str) -> Result<()> {
-    closed_form_references(scene, what, true)
-}
-
-/// [`bare_beam_references`], with the manufactured solution refused only
-/// when `refuse_manufactured` (droppers and a messenger are in its source,
-/// `crate::manufactured`; attachments are not).
-pub(super) fn closed_form_references(
-    scene: &Scene,
-    what: &str,
-    refuse_manufactured: bool,
-) -> Result<()> {
-    if refuse_manufactured && scene.manufactured.is_some() {
-        return Err(Error::invalid(
-            "manufactured",
-            "(present)",
-            format!(
-                "a manufactured solution's source is that of the bare beam and does not include {what}: remove one or the other"
-            ),
-        ));
-    }
+/// Refuse a closed-form reference of the bare beam (`moving_force_series`,
+/// `riding_mass_galerkin`) beside something the bare beam does not have
+/// (`what`: "the scene's 2 [[dropper]]"), since it does not include it;
+/// `standing_force_modes` (the model's own eigenpairs) and Richardson
+/// extrapolation hold. A manufactured solution holds too: attachments,
+/// droppers and a messenger are in its source (`crate::manufactured`).
+pub(super) fn closed_form_references(scene: &Scene, what: &str) -> Result<()> {
     if let Some(r) = &scene.reference
         && matches!(
             r.kind,

@@ -18,8 +18,11 @@
 //!   no place for (the Rayleigh part stays diagonal there).
 //! * A registered method is refused: it builds its own stepper, which
 //!   does not read C.
-//! * The manufactured solutions and the closed-form references are of the
-//!   undamped beam and are refused; `richardson` holds.
+//! * The closed-form references are of the undamped beam and are refused;
+//!   `richardson` holds. A manufactured solution carries the point
+//!   dashpots (an attachment's c_a, a dropper's c_d: its source has their
+//!   forces of the manufactured motion, `crate::manufactured`) and refuses
+//!   Rayleigh damping (its source is of the undamped lines).
 
 use crate::error::{Error, Result};
 use crate::scene::{BeamProps, Discretization, Dropper, Rayleigh, ReferenceKind, Scene, Scheme};
@@ -99,12 +102,15 @@ pub fn check_damping(
             "a dashpot c_a φ(x_a)φ(x_a)ᵀ couples every mode of a diagonal basis (mesh.kind = \"modal\" or \"galerkin\"), which has no place for it: use mesh.kind = \"hermite\" (Rayleigh damping [beam] damping stays diagonal in a modal basis)",
         ));
     }
-    if scene.manufactured.is_some() {
+    // a manufactured source carries the dashpots' forces (an attachment's
+    // c_a, a dropper's c_d: `crate::manufactured`), not Rayleigh damping
+    if scene.manufactured.is_some() && !rayleigh.is_zero() {
         return Err(Error::invalid(
             "manufactured",
             "(present)",
             format!(
-                "a manufactured solution's source is that of the undamped beam and does not include {key} = {value}: remove one or the other"
+                "a manufactured solution's source is that of the undamped lines and does not include beam.damping = {{ mass = {}, stiffness = {} }} (its point dashpots are carried): remove one or the other",
+                rayleigh.alpha, rayleigh.beta
             ),
         ));
     }

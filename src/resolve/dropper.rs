@@ -44,11 +44,7 @@ pub fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) ->
         ));
     }
     // a manufactured solution's source carries the droppers' forces
-    super::attachment::closed_form_references(
-        scene,
-        &format!("the scene's {n} [[dropper]]"),
-        false,
-    )?;
+    super::attachment::closed_form_references(scene, &format!("the scene's {n} [[dropper]]"))?;
     let Some(i) = droppers.iter().position(|d| !d.linear) else {
         return Ok(());
     };

@@ -74,7 +74,7 @@ pub fn check_messenger(
         ));
     }
     // a manufactured solution's source carries the messenger's motion
-    super::attachment::closed_form_references(scene, "a [messenger]", false)?;
+    super::attachment::closed_form_references(scene, "a [messenger]")?;
     if let Some(r) = &scene.reference
         && r.kind == ReferenceKind::StandingForceModes
     {

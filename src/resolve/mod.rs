@@ -114,16 +114,15 @@ impl Scene {
         {
             wire.supports = m.supports.clone();
         }
-        if self.manufactured.is_some()
-            && (beam.messenger.is_some() || !droppers.is_empty())
-            && !self.time.initial.is_rest()
-        {
-            // the droppers' preloads would sag the static start, while the
-            // manufactured lines start straight (crate::manufactured)
+        if self.manufactured.is_some() && !self.time.initial.is_rest() {
+            // the carriers' and droppers' preloads and the self-weight would
+            // sag the static start, while the manufactured lines start
+            // straight (crate::manufactured; the static start leaves the
+            // source out of d₀)
             return Err(crate::error::Error::invalid(
                 "time.initial",
                 "\"static\"",
-                "a manufactured solution of lines with droppers or a messenger starts straight and at rest (its source cancels the droppers' preloads): use \"rest\"",
+                "a manufactured solution starts straight and at rest (v* = 0 at t = 0; its source cancels the preloads and the self-weight): use \"rest\"",
             ));
         }
         let manufactured = match &self.manufactured {
@@ -138,6 +137,9 @@ impl Scene {
                     t_end,
                     steps,
                     droppers: &droppers,
+                    // the scene's own, first; the linear droppers' springs
+                    // after them are in `droppers`
+                    attachments: &beam.attachments[..self.attachments.len()],
                 },
             )?),
         };
