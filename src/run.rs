@@ -278,6 +278,9 @@ struct WireRecorder {
     /// when none asked for).
     support_pvs: Vec<crate::model::beam::PointVector>,
     envelope_pvs: Vec<crate::model::beam::PointVector>,
+    /// The messenger's point vectors at the envelope's nodes (empty without
+    /// an envelope or a messenger): its start shape for `line.svg`.
+    messenger_envelope_pvs: Vec<crate::model::beam::PointVector>,
 }
 
 impl WireRecorder {
@@ -301,6 +304,14 @@ impl WireRecorder {
             field_pvs: pvs(&w.field_x),
             support_pvs: pvs(&w.supports),
             envelope_pvs: pvs(&w.envelope_x),
+            messenger_envelope_pvs: if beam.has_messenger() {
+                w.envelope_x
+                    .iter()
+                    .map(|&x| beam.messenger_point_vector(x))
+                    .collect()
+            } else {
+                Vec::new()
+            },
         }
     }
 
@@ -331,7 +342,16 @@ impl WireRecorder {
         for (pv, s) in self.support_pvs.iter().zip(h.supports.iter_mut()) {
             s.push(t, displacement(pv));
         }
-        // the envelope: O(n), only when asked
+        // the envelope: O(n), only when asked; both wires' start shapes
+        // once, at step 0 (before the step loop)
+        if n == 0 && !self.envelope_pvs.is_empty() {
+            h.envelope.start = self.envelope_pvs.iter().map(&displacement).collect();
+            h.envelope.messenger_start = self
+                .messenger_envelope_pvs
+                .iter()
+                .map(&displacement)
+                .collect();
+        }
         for (i, pv) in self.envelope_pvs.iter().enumerate() {
             h.envelope.push(i, displacement(pv));
         }

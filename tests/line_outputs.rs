@@ -215,6 +215,54 @@ fn the_envelope_is_the_range_of_the_field() {
     );
 }
 
+/// After a static start `line.svg` draws both wires where the run started
+/// (the contact wire's sag, the messenger at h_m + v_m(x, 0), the droppers
+/// between them): the envelope keeps both start shapes, which are the
+/// field's row 0 and a messenger probe's first value, bit for bit.
+#[test]
+fn line_svg_draws_both_wires_where_a_static_start_put_them() {
+    let text = format!(
+        "{}\n[[probe]]\nname = \"m_mid\"\nx = 27.0\nwire = \"messenger\"\n\n[output]\nenvelope = true\nfield = {{ every = 1 }}\n",
+        include_str!("../scenes/span_messenger.toml")
+    );
+    let sc = resolve(&text, &["time.end=0.002"]);
+    let out = common::run(&sc);
+    let e = &out.history.envelope;
+    let row0 = out.history.field.row(0);
+    assert_eq!(e.start.len(), e.x.len());
+    for (a, b) in e.start.iter().zip(row0) {
+        assert_eq!(
+            a.to_bits(),
+            b.to_bits(),
+            "the contact wire's start is row 0"
+        );
+    }
+    let mid = e.x.iter().position(|&x| x == 27.0).expect("a node at 27 m");
+    let probe = &out
+        .history
+        .probes
+        .iter()
+        .find(|(n, _)| n == "m_mid")
+        .unwrap()
+        .1;
+    assert_eq!(e.messenger_start[mid].to_bits(), probe[0].to_bits());
+    // the static start sags both wires (the messenger carries the weight)
+    let sag = e.messenger_start.iter().fold(0.0f64, |m, v| m.min(*v));
+    println!(
+        "messenger start sag {sag:.4} m, contact wire {:.4} m",
+        e.start.iter().fold(0.0f64, |m, v| m.min(*v))
+    );
+    assert!(sag < -0.1, "{sag}");
+    let tmp = tempfile::tempdir().unwrap();
+    taut::report::write_run(tmp.path(), &sc, &out).unwrap();
+    let svg = std::fs::read_to_string(tmp.path().join("line.svg")).unwrap();
+    assert!(
+        svg.contains("contact wire at t = 0 (static start)"),
+        "static label"
+    );
+    assert!(!svg.contains("contact wire at rest"));
+}
+
 #[test]
 fn line_svg_draws_the_droppers_and_supports() {
     let text = format!(
@@ -230,6 +278,7 @@ fn line_svg_draws_the_droppers_and_supports() {
         "droppers (to their anchors)",
         "supports",
         "uplift at the supports",
+        "contact wire at rest",
     ] {
         assert!(svg.contains(label), "line.svg has no `{label}`");
     }

@@ -12,6 +12,13 @@ pub struct Envelope {
     pub v_min: Vec<f64>,
     /// Largest v(x_i, t) over the steps, m.
     pub v_max: Vec<f64>,
+    /// v(x_i, 0): the contact wire where the run started (0 at rest, the
+    /// static sag with `[time] initial = "static"`), m; drawn in
+    /// `line.svg`, not written to `envelope.csv`.
+    pub start: Vec<f64>,
+    /// v_m(x_i, 0) of the messenger wire at the same points, m (empty
+    /// without a messenger).
+    pub messenger_start: Vec<f64>,
 }
 
 impl Envelope {
@@ -21,6 +28,8 @@ impl Envelope {
             v_min: vec![f64::INFINITY; x.len()],
             v_max: vec![f64::NEG_INFINITY; x.len()],
             x,
+            start: Vec::new(),
+            messenger_start: Vec::new(),
         }
     }
 

@@ -1,10 +1,13 @@
 //! `line.svg`: the picture of the line (`[output] envelope = true`;
 //! docs/output.md#line-svg). Two panels over x (m):
 //!
-//! - the line: the contact wire at rest (v = 0), the supports, each dropper
-//!   as a vertical segment from the wire up to its anchor's height, a
-//!   messenger wire when the scene has one ([`messenger_line`]), and each
-//!   carrier's travel (the x_m it covered) as a bar below the wire;
+//! - the line where the run started: the contact wire (at rest v = 0, or
+//!   its static sag with `[time] initial = "static"`), the supports, each
+//!   dropper as a vertical segment from the wire up to its anchor (a fixed
+//!   height, or the messenger where it hangs), a messenger wire when the
+//!   scene has one ([`messenger_line`]: its rest line h_m, or h_m + v_m(x, 0)
+//!   after a static start), and each carrier's travel (the x_m it covered)
+//!   as a bar below the wire;
 //! - the uplift envelope: the largest and smallest v(x, t) over the run at
 //!   every node (`envelope.csv`), in mm, with the supports and their largest
 //!   uplift (`supports.csv`) marked.
@@ -35,12 +38,38 @@ fn anchor_height(a: &Anchor) -> f64 {
 }
 
 /// The messenger wire as (x, height) points, m, when the resolved scene
-/// has one: its rest line at h_m through its supports (the picture's top
-/// panel is the line at rest, v = 0 on both wires; the static sag of a
-/// `[time] initial = "static"` run is in the envelope panel's v, not here).
-fn messenger_line(sc: &Resolved) -> Option<Vec<(f64, f64)>> {
+/// has one, between its outermost supports: its rest line at h_m, or
+/// h_m + v_m(x, 0) at the envelope's nodes when the run started displaced
+/// (`sag`: the envelope's `messenger_start`).
+fn messenger_line(sc: &Resolved, x: &[f64], sag: &[f64]) -> Option<Vec<(f64, f64)>> {
     let m = sc.beam.messenger.as_ref()?;
-    Some(m.supports.iter().map(|&x| (x, m.height)).collect())
+    let (a, b) = (m.supports[0], m.supports[m.supports.len() - 1]);
+    if sag.iter().all(|v| *v == 0.0) {
+        return Some(m.supports.iter().map(|&x| (x, m.height)).collect());
+    }
+    Some(
+        x.iter()
+            .zip(sag)
+            .filter(|(x, _)| (a..=b).contains(*x))
+            .map(|(&x, &v)| (x, m.height + v))
+            .collect(),
+    )
+}
+
+/// Linear interpolation of `v` on the increasing points `x` at `at` (0
+/// without points): a picture's reading of a recorded shape between nodes.
+fn interpolate(x: &[f64], v: &[f64], at: f64) -> f64 {
+    match x.len() {
+        0 => 0.0,
+        _ if v.len() != x.len() => 0.0,
+        1 => v[0],
+        n => {
+            let i = x.partition_point(|&p| p <= at).clamp(1, n - 1);
+            let (x0, x1) = (x[i - 1], x[i]);
+            let s = ((at - x0) / (x1 - x0)).clamp(0.0, 1.0);
+            v[i - 1] + s * (v[i] - v[i - 1])
+        }
+    }
 }
 
 /// Each carrier's travel: the smallest and largest x_m in its history, m
@@ -71,18 +100,37 @@ pub fn write_line_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()
         v0 = v0.min(lo * MM);
         v1 = v1.max(hi * MM);
     }
-    let heights: Vec<f64> = sc
+    // where the run started: both wires' shapes at t = 0 (zero at rest)
+    let start = &env.start;
+    let displaced = start.iter().any(|v| *v != 0.0);
+    let wire_at = |x: f64| interpolate(&env.x, start, x);
+    let messenger_at = |x: f64| interpolate(&env.x, &env.messenger_start, x);
+    // each dropper from the wire to its anchor (a messenger's at its start)
+    let ends: Vec<(f64, f64)> = sc
         .droppers
         .iter()
-        .map(|d| anchor_height(&d.anchor))
+        .map(|d| {
+            let top = anchor_height(&d.anchor)
+                + if d.on_messenger() {
+                    messenger_at(d.x)
+                } else {
+                    0.0
+                };
+            (wire_at(d.x), top)
+        })
         .collect();
-    let messenger = messenger_line(sc);
+    let heights: Vec<f64> = ends.iter().map(|e| e.1).collect();
+    let messenger = messenger_line(sc, &env.x, &env.messenger_start);
     let top = heights
         .iter()
         .copied()
         .chain(messenger.iter().flatten().map(|p| p.1))
         .fold(0.0f64, f64::max);
-    let bottom = heights.iter().copied().fold(0.0f64, f64::min);
+    let bottom = heights
+        .iter()
+        .copied()
+        .chain(start.iter().copied())
+        .fold(0.0f64, f64::min);
     // the carriers' bars sit below the wire, a twentieth of the height apart
     let step = 0.05 * (top - bottom).max(1.0);
     let nc = out.history.carriers.len();
@@ -127,12 +175,17 @@ pub fn write_line_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()
             .x_desc("x (m)")
             .y_desc("height (m)")
             .draw()?;
+        let (wire, wire_label): (Vec<(f64, f64)>, _) = if displaced {
+            (
+                env.x.iter().copied().zip(start.iter().copied()).collect(),
+                "contact wire at t = 0 (static start)",
+            )
+        } else {
+            (vec![(0.0, 0.0), (l, 0.0)], "contact wire at rest")
+        };
         chart
-            .draw_series(LineSeries::new(
-                [(0.0, 0.0), (l, 0.0)],
-                BLACK.stroke_width(2),
-            ))?
-            .label("contact wire at rest")
+            .draw_series(LineSeries::new(wire, BLACK.stroke_width(2)))?
+            .label(wire_label)
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(2)));
         let support = RGBColor(90, 90, 90);
         let masts = out
@@ -154,8 +207,8 @@ pub fn write_line_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()
         let dropper = PALETTE[2];
         if !sc.droppers.is_empty() {
             chart
-                .draw_series(sc.droppers.iter().zip(&heights).map(|(d, &z)| {
-                    PathElement::new(vec![(d.x, 0.0), (d.x, z)], dropper.stroke_width(1))
+                .draw_series(sc.droppers.iter().zip(&ends).map(|(d, &(z0, z1))| {
+                    PathElement::new(vec![(d.x, z0), (d.x, z1)], dropper.stroke_width(1))
                 }))?
                 .label("droppers (to their anchors)")
                 .legend(move |(x, y)| {
