@@ -199,11 +199,14 @@ fn string_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
 /// above the formal 2 that the node kicks set as a bound, so neither
 /// `MOVING_CONTACT_TOL` around 2 nor a claim of 3 would be honest.
 fn expect_two_wires(c: &Combo, v: Variable, q: Quantity) -> Expect {
-    match (v, q) {
-        (Variable::H, Quantity::Force) if c.formulation != Formulation::Penalty => Expect::Report(
+    // a combination that cannot converge (penalty's floor, α_f = 0 with a
+    // force-level law) keeps its `cannot`: only a judged order is reported
+    let base = expect_moving_mass(c, v, q);
+    match (v, q, &base) {
+        (Variable::H, Quantity::Force, Expect::Order { .. }) => Expect::Report(
             "the contact force in h: measured 2.84 over N = 8 → 64 on mms_two_wires (the formal 2 is the bound of the node kicks under a moving contact; the displacement's 4 is the judged order)".into(),
         ),
-        _ => expect_moving_mass(c, v, q),
+        _ => base,
     }
 }
 
