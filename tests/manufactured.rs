@@ -18,19 +18,13 @@ use taut::study::verify::cases::CASES;
 use taut::study::verify::{Selection, Status, any_failed, selection, verify};
 use taut::{Resolved, resolve_scene};
 
+use crate::common;
+
 const MMS_TIME: &str = include_str!("../scenes/verify/mms_beam_time.toml");
 const MMS_LOSS: &str = include_str!("../scenes/verify/mms_loss.toml");
 const REFERENCE: &str = include_str!("../scenes/reference.toml");
 const MOVING_FORCE: &str = include_str!("../scenes/moving_force_beam.toml");
 const RIDING_MASS: &str = include_str!("../scenes/riding_mass_pinned.toml");
-
-fn rejected(text: &str, overrides: &[&str]) -> String {
-    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    match resolve_scene(text, &o) {
-        Ok(_) => panic!("expected {overrides:?} to be rejected"),
-        Err(e) => e.to_string(),
-    }
-}
 
 fn assert_names(e: &str, field: &str, value: &str, allowed: &str) {
     assert!(
@@ -110,18 +104,18 @@ fn bad_manufactured_terms_are_refused_by_name() {
             "1 ..= 8",
         ),
     ] {
-        let e = rejected(MMS_TIME, &[&set]);
+        let e = common::rejected(MMS_TIME, &[&set]);
         assert_names(&e, &field, value, allowed);
     }
     // an unknown key is named as in any table
-    let e = rejected(MMS_TIME, &["manufactured.term.0.amplitud=1"]);
+    let e = common::rejected(MMS_TIME, &["manufactured.term.0.amplitud=1"]);
     assert!(e.contains("amplitud"), "{e}");
 }
 
 #[test]
 fn a_manufactured_contact_that_would_open_is_refused_naming_the_time() {
     // a 1 mm, 60 Hz motion: m ẅ ≈ 71 N against kδ0 + mg ≈ 15 N
-    let e = rejected(MMS_TIME, &["manufactured.term.0.amplitude=1e-3"]);
+    let e = common::rejected(MMS_TIME, &["manufactured.term.0.amplitude=1e-3"]);
     assert!(
         e.contains("`manufactured.term`")
             && e.contains("λ*")
@@ -173,7 +167,7 @@ fn bad_loss_intervals_are_refused_by_name() {
             "never opens",
         ),
     ] {
-        let e = rejected(MMS_LOSS, &[&set]);
+        let e = common::rejected(MMS_LOSS, &[&set]);
         assert_names(&e, &field, value, allowed);
     }
 }
@@ -181,44 +175,44 @@ fn bad_loss_intervals_are_refused_by_name() {
 #[test]
 fn a_declared_reference_that_does_not_fit_is_refused_naming_the_key() {
     let with = |kind: &str| format!("{REFERENCE}\n[reference]\nkind = \"{kind}\"\n");
-    let e = rejected(&with("moving_force_series"), &[]);
+    let e = common::rejected(&with("moving_force_series"), &[]);
     assert_names(
         &e,
         "reference.kind",
         "moving_force_series",
         "carrier.speed.profile",
     );
-    let e = rejected(&with("riding_mass_galerkin"), &[]);
+    let e = common::rejected(&with("riding_mass_galerkin"), &[]);
     assert_names(
         &e,
         "reference.kind",
         "riding_mass_galerkin",
         "carrier.speed.profile",
     );
-    let e = rejected(RIDING_MASS, &["carrier.0.stiffness=5"]);
+    let e = common::rejected(RIDING_MASS, &["carrier.0.stiffness=5"]);
     assert_names(
         &e,
         "reference.kind",
         "riding_mass_galerkin",
         "carrier.stiffness = 5",
     );
-    let e = rejected(MOVING_FORCE, &["beam.left=clamped"]);
+    let e = common::rejected(MOVING_FORCE, &["beam.left=clamped"]);
     assert_names(&e, "reference.kind", "moving_force_series", "pinned–pinned");
-    let e = rejected(&with("standing_force_modes"), &[]);
+    let e = common::rejected(&with("standing_force_modes"), &[]);
     assert_names(
         &e,
         "reference.kind",
         "standing_force_modes",
         "carrier.0.mass",
     );
-    let e = rejected(MOVING_FORCE, &["reference.modes=100"]);
+    let e = common::rejected(MOVING_FORCE, &["reference.modes=100"]);
     assert_names(&e, "reference.modes", "100", "riding_mass_galerkin");
-    let e = rejected(RIDING_MASS, &["reference.modes=0"]);
+    let e = common::rejected(RIDING_MASS, &["reference.modes=0"]);
     let allowed = format!("1 ..= {}", taut::analytic::MAX_MODES * 4);
     assert_names(&e, "reference.modes", "0", &allowed);
-    let e = rejected(MMS_TIME, &["reference.kind=richardson"]);
+    let e = common::rejected(MMS_TIME, &["reference.kind=richardson"]);
     assert_names(&e, "reference.kind", "richardson", "[manufactured]");
-    let e = rejected(MOVING_FORCE, &["reference.kind=analytic"]);
+    let e = common::rejected(MOVING_FORCE, &["reference.kind=analytic"]);
     assert!(
         e.contains("reference.kind") && e.contains("analytic"),
         "{e}"

@@ -31,6 +31,8 @@ use taut::study::grid::observed_order;
 use taut::study::verify::cases::CASES;
 use taut::study::verify::{Status, any_failed, selection, verify};
 
+use crate::common;
+
 const SCENE: &str = include_str!("../scenes/verify/mms_attachments.toml");
 const TWO_WIRES: &str = include_str!("../scenes/verify/mms_two_wires.toml");
 
@@ -53,44 +55,6 @@ linear = true
 /// against the springs' k_d |e_d* − e₀| ≈ 4 N, so leaving it out of N_d*
 /// is far above the discretization error.
 const MESSENGER_DROPPER_DAMPING: f64 = 5.0;
-
-fn rejected(text: &str, overrides: &[&str]) -> String {
-    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    match resolve_scene(text, &o) {
-        Ok(_) => panic!("expected {overrides:?} to be rejected"),
-        Err(e) => e.to_string(),
-    }
-}
-
-/// The largest |v_h − v*| on the contact wire (its probes and under the
-/// carrier) and on the messenger (its probes; 0 without), m, over the
-/// recorded t > 0.
-fn wire_errors(text: &str, overrides: &[String]) -> (f64, f64) {
-    let sc = resolve_scene(text, overrides).unwrap();
-    let out = taut::run(&sc, &mut |_, _| {}).unwrap();
-    let m = sc.manufactured.as_ref().unwrap();
-    let h = &out.history;
-    let (mut ec, mut em) = (0.0f64, 0.0f64);
-    for (i, &t) in h.t.iter().enumerate().skip(1) {
-        ec = ec.max((h.carriers[0].w[i] - m.w(0, t)[0]).abs());
-        for (p, (_, col)) in h.probes.iter().enumerate() {
-            let x = sc.probes[p].1;
-            if sc.scene.probes[p].wire == Some(taut::scene::Wire::Messenger) {
-                em = em.max((col[i] - m.v_m(x, t)).abs());
-            } else {
-                ec = ec.max((col[i] - m.v(x, t)).abs());
-            }
-        }
-    }
-    (ec, em)
-}
-
-fn set(elements: usize, dt: f64) -> Vec<String> {
-    vec![
-        format!("mesh.elements={elements}"),
-        format!("time.step={dt:e}"),
-    ]
-}
 
 /// The two-wire scene with every dropper damped (module docs).
 fn damped_two_wires() -> String {
@@ -117,8 +81,8 @@ const DT_ORDER_TOL: f64 = 0.3;
 #[test]
 fn attachments_between_and_at_nodes_converge_at_order_4_in_h() {
     // Δt = 1e-5 s: the time error (≈ 2e-10 m) is about 1 % of the finer level's
-    let (e1, _) = wire_errors(SCENE, &set(8, 1e-5));
-    let (e2, _) = wire_errors(SCENE, &set(32, 1e-5));
+    let (e1, _) = common::manufactured_wire_errors(SCENE, &common::mesh_and_step(8, 1e-5));
+    let (e2, _) = common::manufactured_wire_errors(SCENE, &common::mesh_and_step(32, 1e-5));
     let o = observed_order(e1, e2, 4.0);
     println!("attachments, h: {e1:.3e} → {e2:.3e} m (order {o:.2})");
     assert!((o - 4.0).abs() < H_ORDER_TOL, "h order {o}");
@@ -126,8 +90,8 @@ fn attachments_between_and_at_nodes_converge_at_order_4_in_h() {
 
 #[test]
 fn attachments_with_dashpots_and_masses_converge_at_order_2_in_dt() {
-    let (e1, _) = wire_errors(SCENE, &set(32, 1e-3));
-    let (e2, _) = wire_errors(SCENE, &set(32, 5e-4));
+    let (e1, _) = common::manufactured_wire_errors(SCENE, &common::mesh_and_step(32, 1e-3));
+    let (e2, _) = common::manufactured_wire_errors(SCENE, &common::mesh_and_step(32, 5e-4));
     let o = observed_order(e1, e2, 2.0);
     println!("attachments, Δt: {e1:.3e} → {e2:.3e} m (order {o:.2})");
     assert!((o - 2.0).abs() < DT_ORDER_TOL, "Δt order {o}");
@@ -136,16 +100,16 @@ fn attachments_with_dashpots_and_masses_converge_at_order_2_in_dt() {
 #[test]
 fn damped_droppers_converge_at_orders_4_in_h_and_2_in_dt_on_both_wires() {
     let text = damped_two_wires();
-    let (c1, m1) = wire_errors(&text, &set(8, 1e-5));
-    let (c2, m2) = wire_errors(&text, &set(32, 1e-5));
+    let (c1, m1) = common::manufactured_wire_errors(&text, &common::mesh_and_step(8, 1e-5));
+    let (c2, m2) = common::manufactured_wire_errors(&text, &common::mesh_and_step(32, 1e-5));
     let (oc, om) = (observed_order(c1, c2, 4.0), observed_order(m1, m2, 4.0));
     println!(
         "damped droppers, h: contact {c1:.3e} → {c2:.3e} m (order {oc:.2}), messenger {m1:.3e} → {m2:.3e} m (order {om:.2})"
     );
     assert!((oc - 4.0).abs() < H_ORDER_TOL, "contact wire h order {oc}");
     assert!((om - 4.0).abs() < H_ORDER_TOL, "messenger h order {om}");
-    let (c1, m1) = wire_errors(&text, &set(32, 1e-3));
-    let (c2, m2) = wire_errors(&text, &set(32, 5e-4));
+    let (c1, m1) = common::manufactured_wire_errors(&text, &common::mesh_and_step(32, 1e-3));
+    let (c2, m2) = common::manufactured_wire_errors(&text, &common::mesh_and_step(32, 5e-4));
     let (oc, om) = (observed_order(c1, c2, 2.0), observed_order(m1, m2, 2.0));
     println!(
         "damped droppers, Δt: contact {c1:.3e} → {c2:.3e} m (order {oc:.2}), messenger {m1:.3e} → {m2:.3e} m (order {om:.2})"
@@ -171,11 +135,11 @@ fn the_lines_self_weight_is_given_back_by_the_source() {
         ("attachments", SCENE.to_string()),
         ("damped two wires", damped_two_wires()),
     ] {
-        let o = set(16, 5e-4);
-        let (c0, m0) = wire_errors(&text, &o);
+        let o = common::mesh_and_step(16, 5e-4);
+        let (c0, m0) = common::manufactured_wire_errors(&text, &o);
         let mut ow = o.clone();
         ow.push(weight.clone());
-        let (c1, m1) = wire_errors(&text, &ow);
+        let (c1, m1) = common::manufactured_wire_errors(&text, &ow);
         println!(
             "{name}, self-weight: contact {c1:.6e} / {c0:.6e} m, messenger {m1:.6e} / {m0:.6e} m"
         );
@@ -197,12 +161,12 @@ const SAME_RUN: f64 = 1e-3;
 #[test]
 fn damped_tension_only_droppers_kept_taut_converge_like_the_linear_ones() {
     let text = damped_two_wires();
-    let mut o = set(16, 2.5e-5);
-    let (c_lin, m_lin) = wire_errors(&text, &o);
+    let mut o = common::mesh_and_step(16, 2.5e-5);
+    let (c_lin, m_lin) = common::manufactured_wire_errors(&text, &o);
     for d in 0..4 {
         o.push(format!("dropper.{d}.linear=false"));
     }
-    let (c_to, m_to) = wire_errors(&text, &o);
+    let (c_to, m_to) = common::manufactured_wire_errors(&text, &o);
     println!(
         "damped tension-only vs linear: contact {c_to:.3e} / {c_lin:.3e}, messenger {m_to:.3e} / {m_lin:.3e}"
     );
@@ -213,22 +177,22 @@ fn damped_tension_only_droppers_kept_taut_converge_like_the_linear_ones() {
 #[test]
 fn what_the_source_cannot_carry_is_refused_by_name() {
     // Rayleigh damping: the source is of the undamped lines
-    let e = rejected(SCENE, &["beam.damping={ mass = 0.5, stiffness = 0.0 }"]);
+    let e = common::rejected(SCENE, &["beam.damping={ mass = 0.5, stiffness = 0.0 }"]);
     assert!(
         e.contains("`manufactured`") && e.contains("beam.damping") && e.contains("undamped"),
         "{e}"
     );
     // attachments on the bare beam's exact modes
-    let e = rejected(SCENE, &["mesh.kind=galerkin", "mesh.modes=16"]);
+    let e = common::rejected(SCENE, &["mesh.kind=galerkin", "mesh.modes=16"]);
     assert!(e.contains("`mesh.kind`") && e.contains("attachment"), "{e}");
     // a dashpot on a modal basis couples every mode
-    let e = rejected(SCENE, &["mesh.kind=modal", "mesh.modes=16"]);
+    let e = common::rejected(SCENE, &["mesh.kind=modal", "mesh.modes=16"]);
     assert!(
         e.contains("`attachment.0.damping`") && e.contains("couples every mode"),
         "{e}"
     );
     // central difference keeps v at half steps: no damping matrix
-    let e = rejected(SCENE, &["integrator={ method = \"central_difference\" }"]);
+    let e = common::rejected(SCENE, &["integrator={ method = \"central_difference\" }"]);
     assert!(
         e.contains("`integrator.method`") && e.contains("attachment.0.damping"),
         "{e}"
@@ -236,7 +200,7 @@ fn what_the_source_cannot_carry_is_refused_by_name() {
     // a static start sags under the carrier's preload (and the weight)
     // while v* starts straight: before, it ran 2.35e-2 m off on
     // mms_beam_space
-    let e = rejected(SCENE, &["time.initial=static"]);
+    let e = common::rejected(SCENE, &["time.initial=static"]);
     assert!(e.contains("`time.initial`") && e.contains("rest"), "{e}");
     // and the damped droppers' scene is accepted (its dashpots are carried)
     resolve_scene(&damped_two_wires(), &[]).unwrap();

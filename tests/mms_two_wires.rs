@@ -23,44 +23,9 @@ use taut::study::grid::observed_order;
 use taut::study::verify::cases::CASES;
 use taut::study::verify::{Status, any_failed, selection, verify};
 
+use crate::common;
+
 const SCENE: &str = include_str!("../scenes/verify/mms_two_wires.toml");
-
-fn rejected(text: &str, overrides: &[&str]) -> String {
-    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    match resolve_scene(text, &o) {
-        Ok(_) => panic!("expected {overrides:?} to be rejected"),
-        Err(e) => e.to_string(),
-    }
-}
-
-/// The largest |v_h − v*| on the contact wire (its probes and under the
-/// carrier) and on the messenger (its probes), m, over the recorded t > 0.
-fn wire_errors(overrides: &[String]) -> (f64, f64) {
-    let sc = resolve_scene(SCENE, overrides).unwrap();
-    let out = taut::run(&sc, &mut |_, _| {}).unwrap();
-    let m = sc.manufactured.as_ref().unwrap();
-    let h = &out.history;
-    let (mut ec, mut em) = (0.0f64, 0.0f64);
-    for (i, &t) in h.t.iter().enumerate().skip(1) {
-        ec = ec.max((h.carriers[0].w[i] - m.w(0, t)[0]).abs());
-        for (p, (_, col)) in h.probes.iter().enumerate() {
-            let x = sc.probes[p].1;
-            if sc.scene.probes[p].wire == Some(taut::scene::Wire::Messenger) {
-                em = em.max((col[i] - m.v_m(x, t)).abs());
-            } else {
-                ec = ec.max((col[i] - m.v(x, t)).abs());
-            }
-        }
-    }
-    (ec, em)
-}
-
-fn set(elements: usize, dt: f64) -> Vec<String> {
-    vec![
-        format!("mesh.elements={elements}"),
-        format!("time.step={dt:e}"),
-    ]
-}
 
 /// Allowed |observed − 4| of the h order from N = 8 → 32 (ratio 4): the
 /// moving contact's node kicks scatter successive orders by ±0.6 (the
@@ -75,8 +40,8 @@ const DT_ORDER_TOL: f64 = 0.3;
 #[test]
 fn two_coupled_wires_converge_at_order_4_in_h_on_both_wires() {
     // Δt = 1e-5 s: the time error (≈ 3e-10 m) is below 2 % of the finer level's
-    let (c1, m1) = wire_errors(&set(8, 1e-5));
-    let (c2, m2) = wire_errors(&set(32, 1e-5));
+    let (c1, m1) = common::manufactured_wire_errors(SCENE, &common::mesh_and_step(8, 1e-5));
+    let (c2, m2) = common::manufactured_wire_errors(SCENE, &common::mesh_and_step(32, 1e-5));
     let (oc, om) = (observed_order(c1, c2, 4.0), observed_order(m1, m2, 4.0));
     println!(
         "two wires, h: contact {c1:.3e} → {c2:.3e} m (order {oc:.2}), messenger {m1:.3e} → {m2:.3e} m (order {om:.2})"
@@ -97,9 +62,9 @@ fn two_coupled_wires_converge_at_order_2_in_dt_on_both_wires() {
         Some("integrator={ method = \"moreau_jean\" }"),
     ] {
         let with = |dt: f64| {
-            let mut o = set(32, dt);
+            let mut o = common::mesh_and_step(32, dt);
             o.extend(method.map(str::to_string));
-            wire_errors(&o)
+            common::manufactured_wire_errors(SCENE, &o)
         };
         let (c1, m1) = with(1e-3);
         let (c2, m2) = with(5e-4);
@@ -118,7 +83,7 @@ fn two_coupled_wires_converge_at_order_2_in_dt_on_both_wires() {
         );
     }
     // central difference's stable step is bounded from one line's elements
-    let e = rejected(SCENE, &["integrator={ method = \"central_difference\" }"]);
+    let e = common::rejected(SCENE, &["integrator={ method = \"central_difference\" }"]);
     assert!(
         e.contains("integrator.method") && e.contains("messenger") && e.contains("bathe"),
         "{e}"
@@ -132,18 +97,18 @@ fn bad_two_wire_manufactured_scenes_are_refused_by_name() {
         + "[mesh]\nelements = 8\n"
         + &SCENE[SCENE.find("\n[[carrier]]").unwrap()..SCENE.find("\n[[probe]]").unwrap()]
         + &SCENE[SCENE.find("\n[[manufactured.term]]").unwrap()..];
-    let e = rejected(&no_messenger, &[]);
+    let e = common::rejected(&no_messenger, &[]);
     assert!(
         e.contains("`manufactured.messenger`") && e.contains("[messenger]"),
         "{e}"
     );
     // unknown keys
-    let e = rejected(
+    let e = common::rejected(
         &SCENE.replace("amplitude = 8.0e-3", "amplitude = 8.0e-3\nwave = 1"),
         &[],
     );
     assert!(e.contains("wave"), "{e}");
-    let e = rejected(
+    let e = common::rejected(
         &SCENE.replace(
             "\n[[manufactured.messenger.term]]",
             "\n[manufactured.messenger]\nshape = 1\n[[manufactured.messenger.term]]",
@@ -153,7 +118,7 @@ fn bad_two_wire_manufactured_scenes_are_refused_by_name() {
     assert!(e.contains("shape"), "{e}");
     // a tension-only dropper that the motion would slacken: d3 with a 5 N
     // preload (e₀ = 1 cm) against the 12 N its linear twin loses
-    let e = rejected(SCENE, &["dropper.2.linear=false", "dropper.2.length=0.49"]);
+    let e = common::rejected(SCENE, &["dropper.2.linear=false", "dropper.2.length=0.49"]);
     assert!(
         e.contains("`dropper.2.linear`") && e.contains("d3") && e.contains("t = "),
         "{e}"
@@ -161,7 +126,7 @@ fn bad_two_wire_manufactured_scenes_are_refused_by_name() {
     // the source gives the lines' self-weight back (tests/mms_attachments.rs)
     resolve_scene(SCENE, &["gravity.beam_self_weight=true".into()]).unwrap();
     // the lines start straight: no static start under the preloads
-    let e = rejected(SCENE, &["time.initial=static"]);
+    let e = common::rejected(SCENE, &["time.initial=static"]);
     assert!(e.contains("`time.initial`"), "{e}");
     // attachments are in the source now (tests/mms_attachments.rs)
     resolve_scene(
@@ -176,12 +141,12 @@ fn a_taut_tension_only_dropper_is_accepted_and_converges_like_the_linear_one() {
     // with a 25 N preload every dropper stays taut (12.7 N at the least): tension-only droppers
     // are the linear ones (docs/lines.md D6), the same errors to the
     // contact problem's tolerance
-    let mut o = set(16, 2.5e-5);
-    let (c_lin, m_lin) = wire_errors(&o);
+    let mut o = common::mesh_and_step(16, 2.5e-5);
+    let (c_lin, m_lin) = common::manufactured_wire_errors(SCENE, &o);
     for d in 0..4 {
         o.push(format!("dropper.{d}.linear=false"));
     }
-    let (c_to, m_to) = wire_errors(&o);
+    let (c_to, m_to) = common::manufactured_wire_errors(SCENE, &o);
     println!(
         "tension-only vs linear: contact {c_to:.3e} / {c_lin:.3e}, messenger {m_to:.3e} / {m_lin:.3e}"
     );
@@ -232,11 +197,11 @@ const COMPLETE_BASIS: f64 = 1e-8;
 /// manufactured error falls as J grows.
 #[test]
 fn a_modal_basis_of_the_two_line_model_carries_the_messenger() {
-    let n = resolve_scene(SCENE, &set(16, 1e-4))
+    let n = resolve_scene(SCENE, &common::mesh_and_step(16, 1e-4))
         .unwrap()
         .beam_unknowns();
     let run = |extra: &[String]| {
-        let mut o = set(16, 1e-4);
+        let mut o = common::mesh_and_step(16, 1e-4);
         o.extend(extra.iter().cloned());
         let sc = resolve_scene(SCENE, &o).unwrap();
         taut::run(&sc, &mut |_, _| {}).unwrap()
@@ -268,7 +233,10 @@ fn a_modal_basis_of_the_two_line_model_carries_the_messenger() {
     // truncated: the manufactured error on both wires falls with J
     let mut last = (f64::INFINITY, f64::INFINITY);
     for j in [n / 4, n / 2, n] {
-        let (c, me) = wire_errors(&[set(16, 1e-4), modal(j)].concat());
+        let (c, me) = common::manufactured_wire_errors(
+            SCENE,
+            &[common::mesh_and_step(16, 1e-4), modal(j)].concat(),
+        );
         println!("J = {j}: contact wire {c:.3e} m, messenger {me:.3e} m");
         assert!(
             c < last.0 && me < last.1,

@@ -111,3 +111,45 @@ pub fn t2_return_time(out: &RunOutput, dt: f64) -> f64 {
         .map(|i| t[i])
         .expect("a returning pulse")
 }
+
+/// The error text of a scene `text` with `overrides` that must be
+/// rejected when resolved (panics if it resolves).
+pub fn rejected(text: &str, overrides: &[&str]) -> String {
+    let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    match taut::resolve_scene(text, &o) {
+        Ok(_) => panic!("expected {overrides:?} to be rejected"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// `mesh.elements` and `time.step` overrides of a ladder level.
+pub fn mesh_and_step(elements: usize, dt: f64) -> Vec<String> {
+    vec![
+        format!("mesh.elements={elements}"),
+        format!("time.step={dt:e}"),
+    ]
+}
+
+/// The largest |v_h − v*| of a manufactured run of `text` with
+/// `overrides`, m, over the recorded t > 0: on the contact wire (its
+/// probes and under carrier 0) and on the messenger (its probes; 0
+/// without one).
+pub fn manufactured_wire_errors(text: &str, overrides: &[String]) -> (f64, f64) {
+    let sc = taut::resolve_scene(text, overrides).unwrap();
+    let out = taut::run(&sc, &mut |_, _| {}).unwrap();
+    let m = sc.manufactured.as_ref().unwrap();
+    let h = &out.history;
+    let (mut ec, mut em) = (0.0f64, 0.0f64);
+    for (i, &t) in h.t.iter().enumerate().skip(1) {
+        ec = ec.max((h.carriers[0].w[i] - m.w(0, t)[0]).abs());
+        for (p, (_, col)) in h.probes.iter().enumerate() {
+            let x = sc.probes[p].1;
+            if sc.scene.probes[p].wire == Some(taut::scene::Wire::Messenger) {
+                em = em.max((col[i] - m.v_m(x, t)).abs());
+            } else {
+                ec = ec.max((col[i] - m.v(x, t)).abs());
+            }
+        }
+    }
+    (ec, em)
+}
