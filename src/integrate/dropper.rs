@@ -295,13 +295,7 @@ impl Droppers {
                     *e = (*i, -v);
                 }
             }
-            for &(i, vi) in &entries {
-                for &(j, vj) in &entries {
-                    if vi != 0.0 && vj != 0.0 {
-                        a.add_entry(i, j, c * vi * vj);
-                    }
-                }
-            }
+            a.add_outer(&entries, c);
         }
     }
 
@@ -419,11 +413,12 @@ impl Droppers {
                 // ê = (k e_free + c ė_free)/k_eff, ė_free = −r_dᵀv_free at
                 // the force level (D12)
                 let (v_pred, v_n, c_v) = rates;
+                let r_vn = l.dot(v_n);
                 let v_end = match v_pred {
                     VelocityPrediction::Vector(v) => l.dot(v),
-                    VelocityPrediction::Shifted { shift, coef } => l.dot(v_n) + coef * l.dot(shift),
+                    VelocityPrediction::Shifted { shift, coef } => r_vn + coef * l.dot(shift),
                 } + c_v * u_free;
-                let rate = -((1.0 - a) * v_end + a * l.dot(v_n));
+                let rate = -((1.0 - a) * v_end + a * r_vn);
                 s.e_free[r] = (l.k * s.e_free[r] + l.c * rate) / self.keff[r];
             }
             s.scale = s.scale.max(self.keff[r] * s.e_free[r].abs());

@@ -101,6 +101,20 @@ impl SymBand {
         self.data[i * w + (j + self.p - i)] += v;
     }
 
+    /// A += coef · r rᵀ for a sparse r given as (index, value) pairs, zero
+    /// values skipped: a point spring, dashpot or mass (rank one). Its
+    /// entries must fall within the band (one element's dofs, or a tie's
+    /// two elements side by side).
+    pub fn add_outer(&mut self, r: &[(usize, f64)], coef: f64) {
+        for &(i, vi) in r {
+            for &(j, vj) in r {
+                if vi != 0.0 && vj != 0.0 {
+                    self.add_entry(i, j, coef * vi * vj);
+                }
+            }
+        }
+    }
+
     /// Linear combination a·self + b·other (same shape).
     pub fn combine(&self, a: f64, other: &SymBand, b: f64) -> SymBand {
         assert_eq!((self.n, self.p), (other.n, other.p));

@@ -357,18 +357,32 @@ impl BeamModel {
     /// elements' shape functions (eight entries, within the band 7).
     fn tie(&mut self, ties: &[(f64, f64)]) {
         for &(x, k) in ties {
-            let (ci, cv) = self.element_vector(x, false);
-            let (mi, mv) = self.messenger_element_vector(x, false);
-            let idx: Vec<usize> = ci.iter().chain(&mi).copied().collect();
-            let val: Vec<f64> = cv.iter().copied().chain(mv.iter().map(|v| -v)).collect();
-            for (i, vi) in idx.iter().zip(&val) {
-                for (j, vj) in idx.iter().zip(&val) {
-                    if *vi != 0.0 && *vj != 0.0 {
-                        self.stiffness.add_entry(*i, *j, k * vi * vj);
-                    }
-                }
-            }
+            let r = self.tie_vector(x);
+            self.stiffness.add_outer(&r, k);
         }
+    }
+
+    /// r_d = r_c(x) − r_m(x) of a link between the two lines at x (eq. W4)
+    /// as (index, value) pairs: the contact wire's element vector, then
+    /// the messenger's negated.
+    pub(super) fn tie_vector(&self, x: f64) -> [(usize, f64); 8] {
+        let (ci, cv) = self.element_vector(x, false);
+        let (mi, mv) = self.messenger_element_vector(x, false);
+        let mut r = [(0usize, 0.0f64); 8];
+        for (k, e) in r.iter_mut().enumerate() {
+            *e = if k < 4 {
+                (ci[k], cv[k])
+            } else {
+                (mi[k - 4], -mv[k - 4])
+            };
+        }
+        r
+    }
+
+    /// The element vector r_b(x) as (index, value) pairs.
+    pub(super) fn element_pairs(&self, x: f64) -> [(usize, f64); 4] {
+        let (idx, val) = self.element_vector(x, false);
+        [0, 1, 2, 3].map(|k| (idx[k], val[k]))
     }
 
     /// Add the point attachments (MODEL §10): `k_a r_a r_aᵀ` to K and
@@ -381,15 +395,9 @@ impl BeamModel {
     /// functions vanish there). Supported dofs carry weight 0.
     fn attach(&mut self, attachments: &[Attachment]) {
         for a in attachments {
-            let (idx, val) = self.element_vector(a.x, false);
-            for (i, vi) in idx.iter().zip(&val) {
-                for (j, vj) in idx.iter().zip(&val) {
-                    if *vi != 0.0 && *vj != 0.0 {
-                        self.stiffness.add_entry(*i, *j, a.stiffness * vi * vj);
-                        self.mass.add_entry(*i, *j, a.mass * vi * vj);
-                    }
-                }
-            }
+            let r = self.element_pairs(a.x);
+            self.stiffness.add_outer(&r, a.stiffness);
+            self.mass.add_outer(&r, a.mass);
         }
     }
 

@@ -56,27 +56,10 @@ impl BeamModel {
                 "a dashpot on a modal basis is refused by resolve::check_damping"
             );
             for a in attachments.iter().filter(|a| a.damping != 0.0) {
-                let (idx, val) = self.element_vector(a.x, false);
-                for (i, vi) in idx.iter().zip(&val) {
-                    for (j, vj) in idx.iter().zip(&val) {
-                        if *vi != 0.0 && *vj != 0.0 {
-                            c.add_entry(*i, *j, a.damping * vi * vj);
-                        }
-                    }
-                }
+                c.add_outer(&self.element_pairs(a.x), a.damping);
             }
             for &(x, cd) in tie_dashpots {
-                let (ci, cv) = self.element_vector(x, false);
-                let (mi, mv) = self.messenger_element_vector(x, false);
-                let idx = ci.iter().chain(&mi);
-                let val: Vec<f64> = cv.iter().copied().chain(mv.iter().map(|v| -v)).collect();
-                for (i, vi) in idx.clone().zip(&val) {
-                    for (j, vj) in idx.clone().zip(&val) {
-                        if *vi != 0.0 && *vj != 0.0 {
-                            c.add_entry(*i, *j, cd * vi * vj);
-                        }
-                    }
-                }
+                c.add_outer(&self.tie_vector(x), cd);
             }
         }
         Some(c)

@@ -199,13 +199,23 @@ fn string_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
 /// above the formal 2 that the node kicks set as a bound, so neither
 /// `MOVING_CONTACT_TOL` around 2 nor a claim of 3 would be honest.
 fn expect_two_wires(c: &Combo, v: Variable, q: Quantity) -> Expect {
-    // a combination that cannot converge (penalty's floor, α_f = 0 with a
-    // force-level law) keeps its `cannot`: only a judged order is reported
-    let base = expect_moving_mass(c, v, q);
+    force_in_h_reported(
+        expect_moving_mass(c, v, q),
+        (v, q),
+        "2.84 over N = 8 → 64 on mms_two_wires",
+    )
+}
+
+/// `base` (a moving-mass case's expectation), except that a judged order
+/// of the contact force in h becomes a report of the `measured` one: the
+/// node kicks under a moving contact set the formal 2 only as a bound. A
+/// combination that cannot converge (penalty's floor, α_f = 0 with a
+/// force-level law) keeps its `cannot`.
+fn force_in_h_reported(base: Expect, (v, q): (Variable, Quantity), measured: &str) -> Expect {
     match (v, q, &base) {
-        (Variable::H, Quantity::Force, Expect::Order { .. }) => Expect::Report(
-            "the contact force in h: measured 2.84 over N = 8 → 64 on mms_two_wires (the formal 2 is the bound of the node kicks under a moving contact; the displacement's 4 is the judged order)".into(),
-        ),
+        (Variable::H, Quantity::Force, Expect::Order { .. }) => Expect::Report(format!(
+            "the contact force in h: measured {measured} (the formal 2 is the bound of the node kicks under a moving contact; the displacement's 4 is the judged order)"
+        )),
         _ => base,
     }
 }
@@ -247,13 +257,11 @@ fn two_wire_ladders(_: Space, _: &Combo) -> Vec<Ladder> {
 /// N = 8 → 64 (every method and law whose force converges here), above the
 /// formal 2 that the node kicks set as a bound.
 fn expect_attachments(c: &Combo, v: Variable, q: Quantity) -> Expect {
-    let base = expect_moving_mass(c, v, q);
-    match (v, q, &base) {
-        (Variable::H, Quantity::Force, Expect::Order { .. }) => Expect::Report(
-            "the contact force in h: measured 2.62–2.65 over N = 8 → 64 on mms_attachments (the formal 2 is the bound of the node kicks under a moving contact; the displacement's 4 is the judged order)".into(),
-        ),
-        _ => base,
-    }
+    force_in_h_reported(
+        expect_moving_mass(c, v, q),
+        (v, q),
+        "2.62–2.65 over N = 8 → 64 on mms_attachments",
+    )
 }
 
 /// The attachment case (`mms_attachments`): a Δt ladder of 3 levels at
