@@ -177,12 +177,16 @@ impl Layer {
         })
     }
 
-    /// True when [`Layer::add_into`] adds anything at `d` (a row of the
-    /// table applies there).
+    /// How many modes [`Layer::add_into`] adds to at `d` (the length of
+    /// the row that applies there; 0 beyond the last row).
     #[inline(always)]
-    fn reaches(&self, d: f64) -> bool {
+    fn modes_at(&self, d: f64) -> usize {
         let k = (d / self.spacing).round() as usize;
-        k + 1 < self.starts.len()
+        if k + 1 < self.starts.len() {
+            self.starts[k + 1] - self.starts[k]
+        } else {
+            0
+        }
     }
 
     /// Add `coef_j e^{−α_j d}` into `out` for the modes that count at `d`
@@ -375,24 +379,36 @@ impl FastShapes {
     /// The values at `x` handed out [`BLOCK`] modes at a time, for a caller
     /// that consumes each block as it is made (the fused `modal_exact` step,
     /// `integrate/modal_exact.rs`): the same operations as
-    /// [`FastShapes::values_into`], so the same bits. `None` where a
-    /// boundary-layer row applies at `x` (within ≈ 40/α_1 of a clamped end:
-    /// take [`FastShapes::values_into`] there).
+    /// [`FastShapes::values_into`], so the same bits. Within a clamped
+    /// end's boundary layer the first blocks, those a layer row reaches,
+    /// are evaluated whole first ([`Blocks::layered_into`]); `None` where a
+    /// row reaches past the whole blocks (take [`FastShapes::values_into`]
+    /// there). Inlined into its caller, so that in the fused step (compiled
+    /// for AVX2 + FMA) the first block's products use the FMA instruction,
+    /// not the library's `fma` call (the same bits, ~75 ns a step less).
+    #[inline(always)]
     pub fn blocks_at(&self, x: f64) -> Option<Blocks<'_>> {
         // as values_kernel
         let x = x.clamp(0.0, self.length);
         let s = if self.mirrored { self.length - x } else { x };
-        if self.left.as_ref().is_some_and(|l| l.reaches(s))
-            || self
-                .right
-                .as_ref()
-                .is_some_and(|r| r.reaches(self.length - s))
-        {
+        let j = self.count;
+        let full = j / BLOCK * BLOCK;
+        // the left end's terms first, then the right's: as values_kernel
+        let layers = [
+            self.left.as_ref().map(|l| (l, s)),
+            self.right.as_ref().map(|r| (r, self.length - s)),
+        ];
+        let reach = layers
+            .iter()
+            .flatten()
+            .map(|(l, d)| l.modes_at(*d))
+            .max()
+            .unwrap_or(0);
+        if reach > full {
             return None;
         }
         let xi = s / self.length;
         let (rr, ri, rot) = first_block(PI * xi);
-        let j = self.count;
         let rows = match &self.oscillating {
             Oscillating::Sine { d } => BlockRows::Sine(&d[..j]),
             Oscillating::Shifted { eps, rows, re, im } => {
@@ -408,10 +424,12 @@ impl FastShapes {
         };
         Some(Blocks {
             rows,
+            layers,
+            layered: reach.next_multiple_of(BLOCK),
             rr,
             ri,
             rot,
-            full: j / BLOCK * BLOCK,
+            full,
         })
     }
 
@@ -529,6 +547,12 @@ impl FastShapes {
 #[derive(Debug, Clone)]
 pub struct Blocks<'a> {
     rows: BlockRows<'a>,
+    /// Each end's boundary-layer table (left, right) and the distance to
+    /// that end.
+    layers: [Option<(&'a Layer, f64)>; 2],
+    /// The whole blocks a layer row reaches at the point (0 outside the
+    /// layers): [`Blocks::layered_into`]'s.
+    layered: usize,
     rr: [f64; BLOCK],
     ri: [f64; BLOCK],
     rot: (f64, f64),
@@ -548,6 +572,40 @@ enum BlockRows<'a> {
 }
 
 impl Blocks<'_> {
+    /// The values of the first modes, those in the blocks a boundary-layer
+    /// row reaches at the point, into `out[..end]`, and `end` (a multiple
+    /// of [`BLOCK`], ≤ [`Blocks::full`]; 0 outside the layers): the
+    /// oscillating parts block by block ([`BlocksAvx::next`]), then each
+    /// layer row's terms over those modes ([`Layer::add_into`]), the
+    /// operations of [`FastShapes::values_into`]. The blocks from `end` on
+    /// are then handed out as usual.
+    ///
+    /// # Safety
+    /// The CPU supports AVX2 and FMA; `out` holds at least `end` entries.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    pub unsafe fn layered_into(&mut self, out: &mut [f64]) -> usize {
+        use std::arch::x86_64::_mm256_storeu_pd;
+        let end = self.layered;
+        if end == 0 {
+            return 0;
+        }
+        // SAFETY: AVX2 and FMA (the caller's contract); out holds ≥ end.
+        unsafe {
+            let mut v = BlocksAvx::new(self);
+            for at in (0..end).step_by(BLOCK) {
+                for (u, q) in v.next(self, at).into_iter().enumerate() {
+                    _mm256_storeu_pd(out.as_mut_ptr().add(at + 4 * u), q);
+                }
+            }
+            v.finish(self);
+        }
+        for (layer, d) in self.layers.iter().flatten() {
+            layer.add_into(*d, &mut out[..end], true);
+        }
+        end
+    }
+
     /// The modes in whole blocks, ⌊J/B⌋·B: the vector blocks
     /// ([`BlocksAvx`]) cover `0 .. full()`, [`Blocks::tail_into`] the rest.
     pub fn full(&self) -> usize {
@@ -981,15 +1039,16 @@ mod tests {
 
     /// The values handed out block by block ([`FastShapes::blocks_at`],
     /// the fused modal step) are those of [`FastShapes::values_into`], bit
-    /// for bit, wherever no boundary-layer row applies; and it declines
-    /// exactly where one does (the clamped end of the reference span).
+    /// for bit, within the clamped ends' boundary layers too (the first
+    /// blocks by [`Blocks::layered_into`]); it declines only where a layer
+    /// row reaches past the whole blocks.
     #[test]
     #[cfg(target_arch = "x86_64")]
     fn the_blocks_give_the_values_bit_for_bit() {
         if !lanes::avx2_fma() {
             return;
         }
-        let mut declined = 0;
+        let (mut declined, mut layered) = (0, 0);
         for (case, ends) in [
             (REFERENCE, ENDS[1]),
             (REFERENCE, ENDS[2]),
@@ -1006,18 +1065,22 @@ mod tests {
                     let Some(mut blocks) = f.blocks_at(x) else {
                         declined += 1;
                         let s = if f.mirrored { f.length - x } else { x };
-                        assert!(
-                            f.left.as_ref().is_some_and(|l| l.reaches(s))
-                                || f.right.as_ref().is_some_and(|r| r.reaches(f.length - s))
-                        );
+                        let reach = [
+                            f.left.as_ref().map_or(0, |l| l.modes_at(s)),
+                            f.right.as_ref().map_or(0, |r| r.modes_at(f.length - s)),
+                        ];
+                        assert!(reach.iter().any(|m| *m > j / BLOCK * BLOCK));
                         continue;
                     };
                     let full = blocks.full();
+                    b.fill(f64::NAN);
                     // SAFETY: AVX2 and FMA checked above; b holds J ≥ full.
                     unsafe {
                         use std::arch::x86_64::_mm256_storeu_pd;
+                        let lo = blocks.layered_into(&mut b);
+                        layered += usize::from(lo > 0);
                         let mut v = BlocksAvx::new(&blocks);
-                        for at in (0..full).step_by(BLOCK) {
+                        for at in (lo..full).step_by(BLOCK) {
                             for (u, q) in v.next(&blocks, at).into_iter().enumerate() {
                                 _mm256_storeu_pd(b.as_mut_ptr().add(at + 4 * u), q);
                             }
@@ -1035,7 +1098,9 @@ mod tests {
                 }
             }
         }
-        assert!(declined > 0, "the clamped ends' layers were met");
+        println!("points within a layer: {layered} by blocks, {declined} declined");
+        assert!(layered > 100, "the clamped ends' layers were met");
+        assert!(declined > 0, "a layer row past the whole blocks was met");
     }
 
     #[test]

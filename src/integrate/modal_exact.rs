@@ -336,11 +336,13 @@ fn free_pair_range(
 }
 
 /// Phases 1 and 2 of a single-contact run: place the carrier and take the
-/// free step with its two sums. On a galerkin basis with AVX2 + FMA, away
-/// from a clamped end's boundary layer, in one pass: each block of
-/// [`crate::analytic::SHAPE_BLOCK`] shapes `φ(x_{n+1})` is stored and used
-/// by the free step of its modes while in registers (module docs, "One
-/// step"); the same operations as the two passes, so the same bits.
+/// free step with its two sums. On a galerkin basis with AVX2 + FMA in one
+/// pass: each block of [`crate::analytic::SHAPE_BLOCK`] shapes `φ(x_{n+1})`
+/// is stored and used by the free step of its modes while in registers
+/// (module docs, "One step"); within a clamped end's boundary layer, the
+/// blocks a layer row reaches in two passes first (shapes, then their free
+/// step), the others fused. The same operations as the two passes, so the
+/// same bits.
 #[inline(always)]
 fn place_free_pair(
     coefs: &ModalCoefs,
@@ -364,11 +366,35 @@ fn place_free_pair(
                 Some((hp, hv)) => (&hp[..j], &hv[..j]),
                 None => (&zeros, &zeros),
             };
-            let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
+            // within a clamped end's boundary layer, the blocks a layer row
+            // reaches first: their shapes whole, then their free step
             // SAFETY: `vector` is true only where the CPU has AVX2 and FMA;
-            // every slice holds J ≥ full, a multiple of SHAPE_BLOCK.
+            // pn1 holds J ≥ the blocks' end.
+            let lo = unsafe { blocks.layered_into(pn1) };
+            if lo > 0 {
+                free_with_pair(
+                    &coefs.steps,
+                    coefs.held.as_ref(),
+                    st,
+                    (pn, pn1),
+                    (0, lo),
+                    sums,
+                    vector,
+                );
+            }
+            let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
+            // SAFETY: as above; every slice holds J ≥ full, lo and full are
+            // multiples of SHAPE_BLOCK.
             unsafe {
-                shapes_free_pair_avx2(&mut blocks, &coefs.steps, (d, v), (pn, pn1), (hp, hv), sums)
+                shapes_free_pair_avx2(
+                    &mut blocks,
+                    lo,
+                    &coefs.steps,
+                    (d, v),
+                    (pn, pn1),
+                    (hp, hv),
+                    sums,
+                )
             };
             blocks.tail_into(&mut pn1[full..]);
             let c = &sys.carriers[0];
@@ -389,7 +415,7 @@ fn place_free_pair(
     free_pair_range(coefs, sys, st, (0, j), sums, vector);
 }
 
-/// Modes `0 .. blocks.full()` of [`place_free_pair`]: each block of shapes
+/// Modes `from .. blocks.full()` of [`place_free_pair`]: each block of shapes
 /// evaluated ([`BlocksAvx::next`]), stored into `pn1`, and taken by
 /// [`free_with_pair_avx2`]'s operations, four modes at a time, into the
 /// same partial sums (mode k into the lanes of vector ⌊k/4⌋ mod 2).
@@ -401,6 +427,7 @@ fn place_free_pair(
 #[target_feature(enable = "avx2,fma")]
 unsafe fn shapes_free_pair_avx2(
     blocks: &mut Blocks,
+    from: usize,
     m: &ModeSteps,
     (d, v): (&mut [f64], &mut [f64]),
     (pn, pn1): (&[f64], &mut [f64]),
@@ -423,7 +450,7 @@ unsafe fn shapes_free_pair_avx2(
             _mm256_loadu_pd(ws.as_ptr()),
             _mm256_loadu_pd(ws.as_ptr().add(4)),
         ];
-        let mut at = 0;
+        let mut at = from;
         while at < end {
             let q4 = shapes.next(blocks, at);
             for (u, q) in q4.into_iter().enumerate() {
