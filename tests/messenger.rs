@@ -511,11 +511,6 @@ fn messenger_keys_are_checked() {
     fails(&ok, &["messenger.colour=1"], &["colour"]);
     fails(
         &ok,
-        &["integrator.method=\"central_difference\""],
-        &["integrator.method", "generalized"],
-    );
-    fails(
-        &ok,
         &["mesh.kind=\"galerkin\"", "mesh.modes=5"],
         &["mesh.kind", "messenger"],
     );
@@ -601,4 +596,42 @@ length = 0.999
         e.contains("probe.0.wire") && e.contains("[messenger]"),
         "{e}"
     );
+}
+
+/// Central difference on two lines is held to 2/ω_max of the assembled
+/// two-line model: with stiff messenger droppers (ties) and a light, taut
+/// messenger, the model's ω_max is far above the contact wire's element
+/// bound, and the element bound the run is held to
+/// (`BeamModel::omega_bound`: each line's elements with every tie as a
+/// grounded spring of 2k_d on both lines) must stay above it.
+#[test]
+fn central_difference_bound_covers_the_messenger_and_its_ties() {
+    for (ties, tm, rm) in [
+        (ties_everywhere(20, 1.0e7), 800.0, 0.5),
+        (ties_everywhere(20, 10.0), 4.0e5, 0.05),
+    ] {
+        let text = two_wires(1.0, 20, (tm, rm), &format!("{ties}{TIME}"));
+        let sc = resolve_scene(&text, &["integrator.method=\"central_difference\"".into()])
+            .unwrap_or_else(|e| panic!("{e}"));
+        let beam = BeamModel::build(&sc.beam, &sc.mesh_plan()).unwrap();
+        let all = lowest_eigenpairs(&beam.mass, &beam.stiffness, beam.n).unwrap();
+        let w_true = all.omega_sq.last().unwrap().sqrt();
+        let wire =
+            taut::model::element::omega_max(sc.beam.rho_a, sc.beam.ei, sc.beam.tension, beam.h);
+        let limit = taut::integrate::central_difference_limit(&sc).unwrap();
+        println!(
+            "two lines: ω_max {w_true:.4e} rad/s, the contact wire's element bound {wire:.4e}, the two-line element bound {:.4e}, held to {:.4e}",
+            limit.omega_element_bound, limit.omega_max
+        );
+        assert!(
+            w_true > 1.5 * wire,
+            "the ties or the messenger should dominate"
+        );
+        assert!(
+            limit.omega_element_bound >= w_true * (1.0 - 1e-12),
+            "element bound {} below ω_max {w_true}",
+            limit.omega_element_bound
+        );
+        assert!(limit.dt_max <= 2.0 / w_true * (1.0 + 1e-9));
+    }
 }

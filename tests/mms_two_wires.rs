@@ -52,26 +52,27 @@ fn two_coupled_wires_converge_at_order_4_in_h_on_both_wires() {
 
 /// Second order in Δt on both wires under the scene's generalized-α and
 /// under the other implicit methods that carry a messenger (Bathe, and
-/// Moreau–Jean with θ = ½; central difference is refused,
-/// `resolve::messenger`).
+/// Moreau–Jean with θ = ½; central difference below, its stable steps are
+/// too short for the time error to show over the mesh's).
 #[test]
 fn two_coupled_wires_converge_at_order_2_in_dt_on_both_wires() {
-    for method in [
-        None,
-        Some("integrator={ method = \"bathe\" }"),
-        Some("integrator={ method = \"moreau_jean\" }"),
+    for (method, coarse) in [
+        (None, 1e-3),
+        (Some("integrator={ method = \"bathe\" }"), 1e-3),
+        (Some("integrator={ method = \"moreau_jean\" }"), 1e-3),
     ] {
         let with = |dt: f64| {
             let mut o = common::mesh_and_step(32, dt);
             o.extend(method.map(str::to_string));
             common::manufactured_wire_errors(SCENE, &o)
         };
-        let (c1, m1) = with(1e-3);
-        let (c2, m2) = with(5e-4);
+        let (c1, m1) = with(coarse);
+        let (c2, m2) = with(coarse / 2.0);
         let (oc, om) = (observed_order(c1, c2, 2.0), observed_order(m1, m2, 2.0));
         let name = method.unwrap_or("the scene's method");
         println!(
-            "two wires, Δt, {name}: contact {c1:.3e} → {c2:.3e} m (order {oc:.2}), messenger {m1:.3e} → {m2:.3e} m (order {om:.2})"
+            "two wires, Δt {coarse:e} → {:e} s, {name}: contact {c1:.3e} → {c2:.3e} m (order {oc:.2}), messenger {m1:.3e} → {m2:.3e} m (order {om:.2})",
+            coarse / 2.0
         );
         assert!(
             (oc - 2.0).abs() < DT_ORDER_TOL,
@@ -82,12 +83,91 @@ fn two_coupled_wires_converge_at_order_2_in_dt_on_both_wires() {
             "{name}: messenger Δt order {om}"
         );
     }
-    // central difference's stable step is bounded from one line's elements
-    let e = common::rejected(SCENE, &["integrator={ method = \"central_difference\" }"]);
-    assert!(
-        e.contains("integrator.method") && e.contains("messenger") && e.contains("bathe"),
-        "{e}"
+}
+
+/// Allowed |observed − 2| of central difference's Δt order from the
+/// differences of three runs at one mesh (a smooth case: `DT_ORDER_TOL`).
+const CD_ORDER_TOL: f64 = DT_ORDER_TOL;
+
+/// Central difference's error against the manufactured solution may exceed
+/// the mesh's own (the generalized-α run at Δt = 1e-5 s, time error
+/// ≈ 3e-10 m) by this many times its time error's Richardson estimate
+/// (the difference of the Δt and Δt/2 runs over 3): the two max norms are
+/// taken at different points and times, so they do not simply add
+/// (measured 1.0 and 1.4 times it on the contact wire and the messenger).
+const CD_TIME_ERROR_FACTOR: f64 = 2.0;
+
+/// Central difference on the two-wire model: within its stable step (2/ω_max
+/// of the assembled two-line model, 9.5e-5 s at N = 32: ties and the
+/// messenger's elements in the bound, `BeamModel::omega_bound`) it reaches
+/// the manufactured solution to the mesh's error, and its time error, the
+/// difference of runs at Δt and Δt/2 on the same mesh (the semi-discrete
+/// solution cancels), falls at second order on both wires.
+#[test]
+fn central_difference_steps_two_coupled_wires_at_order_2_in_dt() {
+    let cd = "integrator={ method = \"central_difference\" }".to_string();
+    let run = |dt: f64| {
+        let mut o = common::mesh_and_step(32, dt);
+        o.push(cd.clone());
+        let sc = resolve_scene(SCENE, &o).unwrap();
+        let out = taut::run(&sc, &mut |_, _| {}).unwrap();
+        let wires: Vec<bool> = sc
+            .scene
+            .probes
+            .iter()
+            .map(|p| p.wire == Some(taut::scene::Wire::Messenger))
+            .collect();
+        (out.history, wires)
+    };
+    // the largest difference on each wire at the coarser run's times
+    let apart = |(a, wires): &(taut::record::History, Vec<bool>), b: &taut::record::History| {
+        let (mut c, mut m) = (0.0f64, 0.0f64);
+        for (p, (_, col)) in a.probes.iter().enumerate() {
+            for (i, &t) in a.t.iter().enumerate() {
+                assert!((b.t[2 * i] - t).abs() <= 1e-12, "the finer run's samples");
+                let e = (col[i] - b.probes[p].1[2 * i]).abs();
+                if wires[p] {
+                    m = m.max(e);
+                } else {
+                    c = c.max(e);
+                }
+            }
+        }
+        (c, m)
+    };
+    let (r1, r2, r3) = (run(8e-5), run(4e-5), run(2e-5));
+    let (c1, m1) = apart(&r1, &r2.0);
+    let (c2, m2) = apart(&r2, &r3.0);
+    let (oc, om) = (observed_order(c1, c2, 2.0), observed_order(m1, m2, 2.0));
+    println!(
+        "central difference, two wires, N = 32, Δt 8e-5 → 4e-5 → 2e-5 s: contact {c1:.3e} → {c2:.3e} m (order {oc:.2}), messenger {m1:.3e} → {m2:.3e} m (order {om:.2})"
     );
+    assert!(
+        (oc - 2.0).abs() < CD_ORDER_TOL,
+        "contact wire Δt order {oc}"
+    );
+    assert!((om - 2.0).abs() < CD_ORDER_TOL, "messenger Δt order {om}");
+    let (ec, em) = common::manufactured_wire_errors(
+        SCENE,
+        &[common::mesh_and_step(32, 2e-5), vec![cd.clone()]].concat(),
+    );
+    let (hc, hm) = common::manufactured_wire_errors(SCENE, &common::mesh_and_step(32, 1e-5));
+    let (tc, tm) = (c2 / 3.0, m2 / 3.0);
+    println!(
+        "against the manufactured solution at Δt = 2e-5 s: contact {ec:.3e} m (mesh {hc:.3e}, time ≈ {tc:.1e}), messenger {em:.3e} m (mesh {hm:.3e}, time ≈ {tm:.1e})"
+    );
+    assert!(ec <= hc + CD_TIME_ERROR_FACTOR * tc, "contact wire {ec}");
+    assert!(em <= hm + CD_TIME_ERROR_FACTOR * tm, "messenger {em}");
+    // above the bound: refused, naming it
+    let o = [common::mesh_and_step(32, 1e-4), vec![cd]].concat();
+    let e = match resolve_scene(SCENE, &o) {
+        Err(e) => e.to_string(),
+        Ok(sc) => match taut::run(&sc, &mut |_, _| {}) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("Δt = 1e-4 s above the stable step ran"),
+        },
+    };
+    assert!(e.contains("time.step") && e.contains("2/ω_max"), "{e}");
 }
 
 #[test]

@@ -603,11 +603,38 @@ impl BeamModel {
     /// An upper bound of the model's highest natural frequency ω_max, rad/s:
     /// the element-eigenvalue bound at the shortest element on a mesh, the
     /// exact ω_J in a modal basis (K and M diagonal).
+    ///
+    /// With a `[messenger]` each line is bounded on its own elements and
+    /// the larger taken: a tie `k r rᵀ`, `r = r_c − r_m` (a linear
+    /// messenger dropper, `docs/lines.md` eq. W4), is at most
+    /// `2k (r_c r_cᵀ + r_m r_mᵀ)` in the Loewner order (`(a − b)(a − b)ᵀ ≤
+    /// 2(aaᵀ + bbᵀ)`), i.e. a grounded spring of 2k on each line at the
+    /// dropper, so the two-line K is below a block-diagonal one whose
+    /// lines Irons' bound covers, and the messenger's pinned supports only
+    /// lower ω_max (a constraint).
     pub fn omega_bound(&self, props: &BeamProps) -> f64 {
         match self.basis {
             Basis::Elements => {
-                let bare = super::element::omega_max(props.rho_a, props.ei, props.tension, self.h);
-                self.attached_bound(props).max(bare)
+                let doubled: Vec<(f64, f64, f64)> = props
+                    .messenger
+                    .iter()
+                    .flat_map(|m| m.ties.iter().map(|&(x, k)| (x, 2.0 * k, 0.0)))
+                    .collect();
+                let contact: Vec<(f64, f64, f64)> = props
+                    .attachments
+                    .iter()
+                    .map(|a| (a.x, a.stiffness, a.mass))
+                    .chain(doubled.iter().copied())
+                    .collect();
+                let line = |rho_a: f64, ei: f64, tension: f64, held: &[(f64, f64, f64)]| {
+                    let bare = super::element::omega_max(rho_a, ei, tension, self.h);
+                    self.attached_bound((rho_a, ei, tension), held).max(bare)
+                };
+                let wire = line(props.rho_a, props.ei, props.tension, &contact);
+                match &props.messenger {
+                    Some(m) => wire.max(line(m.rho_a, m.ei, m.tension, &doubled)),
+                    None => wire,
+                }
             }
             _ => (0..self.n)
                 .map(|j| (self.stiffness.get(j, j) / self.mass.get(j, j)).sqrt())
@@ -617,17 +644,20 @@ impl BeamModel {
 }
 
 impl BeamModel {
-    /// The element bound of the elements that hold attachments
-    /// ([`super::element::omega_max_attached`], each attachment counted in
-    /// the element [`BeamModel::attach`] put it in), rad/s; 0 without
-    /// attachments. The other elements are bounded by the shortest one's.
-    fn attached_bound(&self, props: &BeamProps) -> f64 {
-        let mut held: Vec<(usize, (f64, f64, f64))> = props
-            .attachments
+    /// The element bound of the elements of one line (ρA, EI, T) that hold
+    /// point attachments `(x, k, m)` ([`super::element::omega_max_attached`],
+    /// each counted in the element [`BeamModel::locate`] puts it in), rad/s;
+    /// 0 without any. The other elements are bounded by the shortest one's.
+    fn attached_bound(
+        &self,
+        (rho_a, ei, tension): (f64, f64, f64),
+        held: &[(f64, f64, f64)],
+    ) -> f64 {
+        let mut held: Vec<(usize, (f64, f64, f64))> = held
             .iter()
-            .map(|a| {
-                let (e, s) = self.locate(a.x);
-                (e, (s, a.stiffness, a.mass))
+            .map(|&(x, k, m)| {
+                let (e, s) = self.locate(x);
+                (e, (s, k, m))
             })
             .collect();
         held.sort_by_key(|(e, _)| *e);
@@ -635,7 +665,7 @@ impl BeamModel {
             .map(|group| {
                 let at: Vec<(f64, f64, f64)> = group.iter().map(|(_, v)| *v).collect();
                 let h = self.mesh.element_length(group[0].0);
-                super::element::omega_max_attached(props.rho_a, props.ei, props.tension, h, &at)
+                super::element::omega_max_attached(rho_a, ei, tension, h, &at)
             })
             .fold(0.0, f64::max)
     }

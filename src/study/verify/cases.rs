@@ -199,6 +199,11 @@ fn string_ladders(space: Space, _: &Combo) -> Vec<Ladder> {
 /// above the formal 2 that the node kicks set as a bound, so neither
 /// `MOVING_CONTACT_TOL` around 2 nor a claim of 3 would be honest.
 fn expect_two_wires(c: &Combo, v: Variable, q: Quantity) -> Expect {
+    if c.method == "central_difference" && v == Variable::Dt && q == Quantity::Displacement {
+        return Expect::Cannot(
+            "central difference on mms_two_wires: at its stable steps Δt² ∝ h⁴, and this smooth motion's time error stays about the mesh's (2.3e-9 against 4.2e-8 m at N = 32, Δt = 2e-5 s), so a Δt ladder against the exact solution measures the mesh; its order is measured by differences of runs on one mesh instead, 2.00 on both wires (`cargo test --release --test numerics mms_two_wires::central_difference`)".into(),
+        );
+    }
     force_in_h_reported(
         expect_moving_mass(c, v, q),
         (v, q),
@@ -598,6 +603,7 @@ pub const CASES: [Case; 9] = [
             "wbz",
             "bathe",
             "moreau_jean",
+            "central_difference",
         ],
         skip: &[],
     },
