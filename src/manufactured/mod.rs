@@ -644,6 +644,17 @@ impl Manufactured {
             .map_or(0.0, |m| line_v(&m.terms, x, t))
     }
 
+    /// ∂v_m*/∂x (x, t) of the messenger (0 without
+    /// `[manufactured.messenger]`): the slope its Hermite nodes carry.
+    pub fn v_m_x(&self, x: f64, t: f64) -> f64 {
+        self.messenger.as_ref().map_or(0.0, |m| {
+            m.terms
+                .iter()
+                .map(|term| term.amplitude * term.shape.jet(x).d(1) * term.time_jet(t).d(0))
+                .sum()
+        })
+    }
+
     /// v* of `line` at (x, t), m.
     pub fn v_on(&self, line: Line, x: f64, t: f64) -> f64 {
         match line {

@@ -158,7 +158,9 @@ pub const TAIL_TIMES: usize = 8;
 /// position at [`TAIL_TIMES`] times, with c_j = ∫ρA φ_j v* dx the exact
 /// modal coefficients (galerkin: the exact modes, by their own quadrature;
 /// modal: the FE modes of the level's mesh, applied to the nodal
-/// interpolant of v*, so the FE interpolation error is left out).
+/// interpolant of v*, so the FE interpolation error is left out; with a
+/// `[messenger]` the modes of the two-line model, applied to both lines'
+/// interpolants, at the probes of each line).
 pub(super) fn modal_tail(
     scenes: &[Resolved],
     mf: &crate::manufactured::Manufactured,
@@ -177,6 +179,20 @@ pub(super) fn modal_tail(
     let points = |t: f64| -> Vec<f64> {
         let mut p: Vec<f64> = finest.probes.iter().map(|(_, x)| *x).collect();
         p.extend((0..mf.carriers()).map(|c| mf.position(c, t)));
+        p
+    };
+    // the same points, each with whether it lies on the messenger
+    let lined_points = |t: f64| -> Vec<(f64, bool)> {
+        let mut p: Vec<(f64, bool)> = finest
+            .probes
+            .iter()
+            .enumerate()
+            .map(|(k, (_, x))| {
+                let wire = finest.scene.probes.get(k).and_then(|p| p.wire);
+                (*x, wire == Some(crate::scene::Wire::Messenger))
+            })
+            .collect();
+        p.extend((0..mf.carriers()).map(|c| (mf.position(c, t), false)));
         p
     };
     let mut tail = vec![0.0f64; js.len()];
@@ -226,14 +242,27 @@ pub(super) fn modal_tail(
                     {
                         d[i] = f.v_x;
                     }
+                    // the messenger's nodes (eq. W1), v_m* and its slope
+                    if let Some(&Some(i)) = fe.messenger_dof_of.get(per_node * node) {
+                        d[i] = mf.v_m(x, t);
+                    }
+                    if per_node == 2
+                        && let Some(&Some(i)) = fe.messenger_dof_of.get(2 * node + 1)
+                    {
+                        d[i] = mf.v_m_x(x, t);
+                    }
                 }
                 let mut md = vec![0.0; n];
                 fe.mass.mul_acc(&d, 1.0, &mut md);
                 let c: Vec<f64> = (0..jmax)
                     .map(|j| pairs.shape(j).iter().zip(&md).map(|(a, b)| a * b).sum())
                     .collect();
-                for x in points(t) {
-                    let r = fe.point_vector(x);
+                for (x, on_messenger) in lined_points(t) {
+                    let r = if on_messenger {
+                        fe.messenger_point_vector(x)
+                    } else {
+                        fe.point_vector(x)
+                    };
                     let full = r.dot(&d);
                     let modes: Vec<f64> = (0..jmax).map(|j| r.dot(pairs.shape(j))).collect();
                     for (k, &j) in js.iter().enumerate() {
