@@ -245,7 +245,7 @@ const SAME_RUN: f64 = 1e-3;
 /// Δt = 5e-6 s) and on `modal` (J = 8 → 64 on N = 32; Δt at N = 64 with
 /// all 255 modes).
 #[test]
-#[ignore = "the mms_two_wires ladders: about two minutes in release (cargo test --release -- --ignored)"]
+#[ignore = "the mms_two_wires ladders: about a minute in release (cargo test --release -- --ignored)"]
 fn the_two_wire_verification_case_passes() {
     let case: Vec<_> = CASES
         .iter()
