@@ -28,7 +28,6 @@
 
 use taut::resolve_scene;
 use taut::study::grid::observed_order;
-use taut::study::verify::cases::CASES;
 use taut::study::verify::{Status, any_failed, selection, verify};
 
 use crate::common;
@@ -213,12 +212,7 @@ fn what_the_source_cannot_carry_is_refused_by_name() {
 #[test]
 #[ignore = "the mms_attachments ladders: about a minute in release (cargo test --release -- --ignored)"]
 fn the_attachment_verification_case_passes() {
-    let case: Vec<_> = CASES
-        .iter()
-        .filter(|c| c.name == "mms_attachments")
-        .copied()
-        .collect();
-    assert_eq!(case.len(), 1);
+    let case = common::verify_case("mms_attachments");
     let sel = selection(None, Some("hermite"), None, false).unwrap();
     let rows = verify(&case, &sel, &|_, _| {}).unwrap();
     for r in &rows {

@@ -20,7 +20,6 @@
 
 use taut::resolve_scene;
 use taut::study::grid::observed_order;
-use taut::study::verify::cases::CASES;
 use taut::study::verify::{Status, any_failed, selection, verify};
 
 use crate::common;
@@ -247,12 +246,7 @@ const SAME_RUN: f64 = 1e-3;
 #[test]
 #[ignore = "the mms_two_wires ladders: about a minute in release (cargo test --release -- --ignored)"]
 fn the_two_wire_verification_case_passes() {
-    let case: Vec<_> = CASES
-        .iter()
-        .filter(|c| c.name == "mms_two_wires")
-        .copied()
-        .collect();
-    assert_eq!(case.len(), 1);
+    let case = common::verify_case("mms_two_wires");
     let sel = selection(None, Some("hermite,modal"), None, false).unwrap();
     let rows = verify(&case, &sel, &|_, _| {}).unwrap();
     for r in &rows {
@@ -336,11 +330,7 @@ fn a_modal_basis_of_the_two_line_model_carries_the_messenger() {
 /// 3.6; the full matrix: `taut verify --discretizations modal`).
 #[test]
 fn the_two_line_modal_j_ladder_follows_its_modal_tail() {
-    let case: Vec<_> = CASES
-        .iter()
-        .filter(|c| c.name == "mms_two_wires")
-        .copied()
-        .collect();
+    let case = common::verify_case("mms_two_wires");
     let sel = selection(
         Some("generalized_alpha"),
         Some("modal"),

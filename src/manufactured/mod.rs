@@ -395,20 +395,23 @@ fn line_terms(
     Ok(terms)
 }
 
-/// Σ aᵢ Xᵢ(x) T̂ᵢ(t) of one line's terms.
-fn line_v(terms: &[Term], x: f64, t: f64) -> f64 {
+/// Σ aᵢ Xᵢ⁽ᵖ⁾(x) T̂ᵢ⁽ᵏ⁾(t) of one line's terms: the `(p, k)` derivative
+/// in x and t of its v*.
+fn line_d(terms: &[Term], x: f64, t: f64, (p, k): (usize, usize)) -> f64 {
     terms
         .iter()
-        .map(|term| term.amplitude * term.shape.jet(x).d(0) * term.time_jet(t).d(0))
+        .map(|term| term.amplitude * term.shape.jet(x).d(p) * term.time_jet(t).d(k))
         .sum()
+}
+
+/// Σ aᵢ Xᵢ(x) T̂ᵢ(t) of one line's terms.
+fn line_v(terms: &[Term], x: f64, t: f64) -> f64 {
+    line_d(terms, x, t, (0, 0))
 }
 
 /// Σ aᵢ Xᵢ(x) T̂ᵢ'(t) of one line's terms: the rate v_t, m/s.
 fn line_v_t(terms: &[Term], x: f64, t: f64) -> f64 {
-    terms
-        .iter()
-        .map(|term| term.amplitude * term.shape.jet(x).d(0) * term.time_jet(t).d(1))
-        .sum()
+    line_d(terms, x, t, (0, 1))
 }
 
 impl Manufactured {
@@ -647,12 +650,9 @@ impl Manufactured {
     /// ∂v_m*/∂x (x, t) of the messenger (0 without
     /// `[manufactured.messenger]`): the slope its Hermite nodes carry.
     pub fn v_m_x(&self, x: f64, t: f64) -> f64 {
-        self.messenger.as_ref().map_or(0.0, |m| {
-            m.terms
-                .iter()
-                .map(|term| term.amplitude * term.shape.jet(x).d(1) * term.time_jet(t).d(0))
-                .sum()
-        })
+        self.messenger
+            .as_ref()
+            .map_or(0.0, |m| line_d(&m.terms, x, t, (1, 0)))
     }
 
     /// v* of `line` at (x, t), m.

@@ -153,3 +153,15 @@ pub fn manufactured_wire_errors(text: &str, overrides: &[String]) -> (f64, f64) 
     }
     (ec, em)
 }
+
+/// The one case of `taut verify`'s matrix named `name`, as the slice
+/// `verify` takes.
+pub fn verify_case(name: &str) -> Vec<taut::study::verify::case::Case> {
+    let case: Vec<_> = taut::study::verify::cases::CASES
+        .iter()
+        .filter(|c| c.name == name)
+        .copied()
+        .collect();
+    assert_eq!(case.len(), 1, "one case named {name}");
+    case
+}

@@ -176,13 +176,9 @@ pub(super) fn modal_tail(
     let times: Vec<f64> = (1..=TAIL_TIMES)
         .map(|k| t_end * k as f64 / TAIL_TIMES as f64)
         .collect();
-    let points = |t: f64| -> Vec<f64> {
-        let mut p: Vec<f64> = finest.probes.iter().map(|(_, x)| *x).collect();
-        p.extend((0..mf.carriers()).map(|c| mf.position(c, t)));
-        p
-    };
-    // the same points, each with whether it lies on the messenger
-    let lined_points = |t: f64| -> Vec<(f64, bool)> {
+    // the probes and the carriers' positions, each with whether it lies on
+    // the messenger
+    let points = |t: f64| -> Vec<(f64, bool)> {
         let mut p: Vec<(f64, bool)> = finest
             .probes
             .iter()
@@ -210,7 +206,7 @@ pub(super) fn modal_tail(
                         *cj += v * p;
                     }
                 }
-                for x in points(t) {
+                for (x, _) in points(t) {
                     shapes.values_into(x, &mut phi);
                     let exact = mf.v(x, t);
                     for (k, &j) in js.iter().enumerate() {
@@ -257,7 +253,7 @@ pub(super) fn modal_tail(
                 let c: Vec<f64> = (0..jmax)
                     .map(|j| pairs.shape(j).iter().zip(&md).map(|(a, b)| a * b).sum())
                     .collect();
-                for (x, on_messenger) in lined_points(t) {
+                for (x, on_messenger) in points(t) {
                     let r = if on_messenger {
                         fe.messenger_point_vector(x)
                     } else {
