@@ -376,6 +376,78 @@ impl FastShapes {
         8 * (osc + layer(&self.left) + layer(&self.right))
     }
 
+    /// True when a boundary-layer term counts at `x` (some layer row
+    /// applies there), or `x` is off the span: there `φ_j(x)` is not the
+    /// real part of the phasor alone ([`FastShapes::phasor_im_into`]).
+    pub fn in_layer(&self, x: f64) -> bool {
+        if !(0.0..=self.length).contains(&x) {
+            return true;
+        }
+        let s = if self.mirrored { self.length - x } else { x };
+        let left = self.left.as_ref().is_some_and(|l| l.modes_at(s) > 0);
+        let right = self
+            .right
+            .as_ref()
+            .is_some_and(|r| r.modes_at(self.length - s) > 0);
+        left || right
+    }
+
+    /// The imaginary parts of the phasors `F_j(x) = (C_j − iD_j) e^{iβ_j s}`
+    /// (kg^{−1/2}), whose real parts are the oscillating parts of
+    /// `φ_j(x)` (module docs), into `im` (length J): the same table row,
+    /// slow-phase polynomial and rotation recurrence as
+    /// [`FastShapes::values_into`] (scalar), taking `Im[z R]` where it takes
+    /// `Re[z R]`. Outside the boundary layers `φ_j = Re F_j`, and a carrier
+    /// moving at constant speed advances `F_j` by the fixed rotation
+    /// [`FastShapes::rotations_into`] each step (`modal_exact`'s cruise).
+    pub fn phasor_im_into(&self, x: f64, im: &mut [f64]) {
+        assert_eq!(im.len(), self.count, "one slot per mode");
+        let x = x.clamp(0.0, self.length);
+        let s = if self.mirrored { self.length - x } else { x };
+        let xi = s / self.length;
+        let (mut rr, mut ri, rot) = first_block(PI * xi);
+        let j = self.count;
+        // z_j = T_j e^{iε_j δ}: (0, −d_j) pinned–pinned
+        let z = |i: usize| -> (f64, f64) {
+            match &self.oscillating {
+                Oscillating::Sine { d } => (0.0, -d[i]),
+                Oscillating::Shifted { eps, rows, re, im } => {
+                    let k = (xi * *rows as f64).round() as usize;
+                    let delta = xi - k as f64 / *rows as f64;
+                    let (sy, cy) = small_sin_cos(eps[i] * delta);
+                    let (tr, ti) = (re[k * j + i], im[k * j + i]);
+                    (tr.mul_add(cy, -(ti * sy)), tr.mul_add(sy, ti * cy))
+                }
+            }
+        };
+        for at in (0..j).step_by(BLOCK) {
+            for l in 0..BLOCK.min(j - at) {
+                let (zr, zi) = z(at + l);
+                im[at + l] = zr.mul_add(ri[l], zi * rr[l]);
+            }
+            advance(&mut rr, &mut ri, rot);
+        }
+    }
+
+    /// `e^{iβ_j Δs}` for every mode (real parts into `re`, imaginary into
+    /// `im`, length J), where `Δs` is the step in the basis's coordinate
+    /// of a carrier moving by `dx` (m) along x (`−dx` on a mirrored basis):
+    /// the rotation that takes the phasors at x to those at x + dx
+    /// ([`FastShapes::phasor_im_into`]). One `sin_cos` per mode, of
+    /// `β_j Δs = (jπ + ε_j) Δs / L`.
+    pub fn rotations_into(&self, dx: f64, re: &mut [f64], im: &mut [f64]) {
+        let ds = if self.mirrored { -dx } else { dx };
+        let dxi = ds / self.length;
+        for i in 0..self.count {
+            let eps = match &self.oscillating {
+                Oscillating::Sine { .. } => 0.0,
+                Oscillating::Shifted { eps, .. } => eps[i],
+            };
+            let (s, c) = (((i + 1) as f64).mul_add(PI, eps) * dxi).sin_cos();
+            (re[i], im[i]) = (c, s);
+        }
+    }
+
     /// The values at `x` handed out [`BLOCK`] modes at a time, for a caller
     /// that consumes each block as it is made (the fused `modal_exact` step,
     /// `integrate/modal_exact.rs`): the same operations as

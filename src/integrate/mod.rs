@@ -46,6 +46,7 @@ mod gen_alpha_kernel;
 mod gen_alpha_update;
 mod method;
 mod modal_batch;
+mod modal_cruise;
 mod modal_exact;
 mod moreau_jean;
 mod oscillator;

@@ -154,6 +154,33 @@ impl Motion {
         }
     }
 
+    /// The speed V, m/s, when the carrier moves at that one speed over the
+    /// whole of `[t0, t1]` (s), so that `x_m(t1) − x_m(t0) = V (t1 − t0)`
+    /// exactly in real arithmetic; `None` while it accelerates (a smooth
+    /// ramp up to its end, a table's sloped segments) or when the interval
+    /// crosses a knot. A `modal_exact` step advances the mode shapes at
+    /// the carrier by a fixed rotation on such steps
+    /// (`integrate/modal_exact.rs`, "Cruise").
+    pub fn uniform_speed(&self, t0: f64, t1: f64) -> Option<f64> {
+        match self.profile {
+            SpeedProfile::Constant { value } => Some(value),
+            SpeedProfile::SmoothRamp { cruise } => (t0 > self.ramp_time).then_some(cruise),
+            SpeedProfile::Table {
+                ref time,
+                ref speed,
+            } => {
+                let last = time.len() - 1;
+                if t0 > time[last] {
+                    return Some(speed[last]);
+                }
+                let k = segment(time, t0);
+                let flat = k < last && speed[k] == speed[k + 1];
+                let inside = t0 >= time[k] && t1 <= time[k + 1];
+                (flat && inside).then_some(speed[k])
+            }
+        }
+    }
+
     /// True when the carrier never moves.
     pub fn is_stationary(&self) -> bool {
         self.profile.cruise_speed() == 0.0
@@ -236,6 +263,44 @@ mod tests {
         assert_relative_eq!(m.position(m.ramp_time), 10.0, max_relative = 1e-14);
         assert_relative_eq!(m.speed(m.ramp_time), 100.0, max_relative = 1e-14);
         assert_eq!(m.speed(0.0), 0.0);
+    }
+
+    /// `uniform_speed` names V exactly where x_m advances by V·Δt: never
+    /// on the ramp or a sloped table segment, always at cruise, on a flat
+    /// segment and beyond the last knot; and there the positions agree.
+    #[test]
+    fn uniform_speed_holds_only_where_the_speed_is_constant() {
+        let m = ramp();
+        assert_eq!(m.uniform_speed(0.1, 0.1001), None);
+        assert_eq!(m.uniform_speed(0.2, 0.2001), None, "t0 at the ramp's end");
+        assert_eq!(m.uniform_speed(0.25, 0.2501), Some(100.0));
+        let (t0, t1) = (0.3, 0.3 + 6.25e-5);
+        assert_relative_eq!(
+            m.position(t1) - m.position(t0),
+            100.0 * (t1 - t0),
+            max_relative = 1e-9
+        );
+        let c = Motion::new(1.0, SpeedProfile::Constant { value: 30.0 }, 50.0);
+        assert_eq!(c.uniform_speed(0.0, 1e-4), Some(30.0));
+        let table = SpeedProfile::Table {
+            time: vec![0.0, 1.0, 2.0, 3.0],
+            speed: vec![0.0, 20.0, 20.0, 10.0],
+        };
+        let t = Motion::new(0.0, table, 100.0);
+        assert_eq!(t.uniform_speed(0.5, 0.6), None, "sloped");
+        assert_eq!(t.uniform_speed(1.2, 1.3), Some(20.0), "flat");
+        assert_eq!(t.uniform_speed(1.95, 2.05), None, "crosses a knot");
+        assert_eq!(t.uniform_speed(2.5, 2.6), None, "sloped");
+        assert_eq!(
+            t.uniform_speed(3.5, 3.6),
+            Some(10.0),
+            "beyond the last knot"
+        );
+        assert_relative_eq!(
+            t.position(1.3) - t.position(1.2),
+            20.0 * 0.1,
+            max_relative = 1e-12
+        );
     }
 
     #[test]
