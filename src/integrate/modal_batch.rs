@@ -8,8 +8,10 @@
 //! one basis share is its data: the batch builds the basis (root finding
 //! and normalization of J modes), the step maps and the shape tables once,
 //! and steps each run with the very function a run alone calls, on its own
-//! state — bit-identical to the run alone by construction (`tests/batch.rs`
-//! compares the bytes). Interleaving the runs by blocks of modes, so that
+//! state, with its contact update deferred to the next step's pass
+//! (`modal_exact.rs`, "Deferred update": one pass over the modes a step
+//! instead of two; a run alone settles after every step): bit-identical
+//! to the run alone (`tests/batch.rs` compares the bytes). Interleaving the runs by blocks of modes, so that
 //! a block's coefficients are read once for all of them, was measured and
 //! gave nothing (0.9–1.07× on 8 runs at J = 800, within the noise of this
 //! shared machine: the passes stream from L2 as fast alone), so it was
@@ -27,7 +29,7 @@ use crate::resolve::Resolved;
 
 use super::modal_exact::{ModalCoefs, ModalExact};
 use super::run_batch::RunBatch;
-use super::{CarrierSample, Lane, State, Stepper, System};
+use super::{CarrierSample, Lane, State, System};
 
 /// `modal_exact` runs on one basis at one Δt (module docs).
 pub struct ModalBatch {
@@ -99,13 +101,17 @@ impl RunBatch for ModalBatch {
         true
     }
 
-    /// Each run's step as [`super::Integrator::step`] takes it.
+    /// Each run's step as [`super::Integrator::step`] takes it, its
+    /// contact update left to the next step's pass
+    /// ([`ModalExact::step_deferred`]): the lanes' `st.d` and `st.v` are
+    /// settled only when a run retires; [`RunBatch::sample`] and
+    /// [`RunBatch::displacement_at`] account for a pending update.
     fn step(&mut self) {
         for (lane, stepper) in self.lanes.iter_mut().zip(&mut self.steppers) {
             if lane.failed.is_some() {
                 continue;
             }
-            match stepper.step(&mut lane.sys, &mut lane.st) {
+            match stepper.step_deferred(&mut lane.sys, &mut lane.st) {
                 Ok(()) => {
                     lane.st.step += 1;
                     lane.st.t = lane.st.step as f64 * lane.sys.dt;
@@ -118,18 +124,24 @@ impl RunBatch for ModalBatch {
 
     fn sample(&self, l: usize, i: usize) -> CarrierSample {
         let lane = &self.lanes[l];
-        super::sample_of(&lane.sys, &lane.st, i, |pv| pv.dot(&lane.st.d))
+        let stepper = &self.steppers[l];
+        super::sample_of(&lane.sys, &lane.st, i, |pv| {
+            stepper.displacement_at(&lane.sys, &lane.st, pv)
+        })
     }
 
     fn displacement_at(&self, l: usize, pv: &PointVector) -> f64 {
-        pv.dot(&self.lanes[l].st.d)
+        let lane = &self.lanes[l];
+        self.steppers[l].displacement_at(&lane.sys, &lane.st, pv)
     }
 
     fn retire(&mut self, gone: &[usize]) -> Vec<Lane> {
         let mut out = Vec::with_capacity(gone.len());
         for &l in gone.iter().rev() {
-            out.push(self.lanes.remove(l));
-            self.steppers.remove(l);
+            let mut lane = self.lanes.remove(l);
+            let mut stepper = self.steppers.remove(l);
+            stepper.settle(&lane.sys, &mut lane.st);
+            out.push(lane);
         }
         out.reverse();
         out

@@ -75,7 +75,15 @@ impl PointVector {
     /// [`PointVector::dot`] on that run's own vector, so the bits agree.
     #[inline]
     pub fn dot_lane(&self, x: &[f64], lanes: usize, lane: usize) -> f64 {
-        let at = |i: usize| x[i * lanes + lane];
+        self.dot_by(|i| x[i * lanes + lane])
+    }
+
+    /// rᵀx with `x_i = at(i)`: the operations and order of
+    /// [`PointVector::dot`] (so the same bits as that dot on a vector
+    /// holding those values), for a caller whose x is not stored as one
+    /// (a batch's interleaved runs, a state with an update pending).
+    #[inline]
+    pub fn dot_by(&self, at: impl Fn(usize) -> f64) -> f64 {
         if self.dense.is_empty() {
             self.val[0] * at(self.idx[0])
                 + self.val[1] * at(self.idx[1])
