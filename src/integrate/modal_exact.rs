@@ -1197,74 +1197,116 @@ fn path_dot(m: &ModeSteps, r: &[f64], p: &[f64], q: &[f64]) -> f64 {
 mod tests {
     use super::*;
 
-    /// A whole run agrees with its shapes taken from the tables at every
-    /// step: on the reference scene at V0 = 80 m/s (contact held through
-    /// the span; 2/3 of the steps at cruise) the final displacements
-    /// differ by a measured 2.8·10⁻¹⁴ of their largest value (the shapes'
-    /// own difference is ≤ 5.4·10⁻¹³ of the amplitude, `modal_cruise.rs`);
-    /// 10⁻¹² leaves a factor of 35.
-    const CRUISE_RUN_DISPLACEMENT: f64 = 1e-12;
+    /// A run agrees with its shapes taken from the tables at every step,
+    /// step by step up to its first re-contact after a loss (the cases of
+    /// the test below, 1/4 to 9/10 of their steps rotated): the
+    /// displacements within a measured 1.4·10⁻¹⁴ of their largest value
+    /// (the shapes' own difference is ≤ 5.4·10⁻¹³ of the amplitude,
+    /// `modal_cruise.rs`); 10⁻¹³ leaves a factor of 7.
+    const CRUISE_RUN_DISPLACEMENT: f64 = 1e-13;
 
-    /// The same runs' multipliers: measured 2.0·10⁻⁹ of max |λ|. λ solves
-    /// `g_free + W λ = 0` with `g_free` the small difference of the beam
-    /// under the carrier and the mass (each ≈ 0.03 m; W λ, what one step's
-    /// force adds, is far smaller), which amplifies the shapes' round-off
-    /// by about 4·10³; 10⁻⁸ leaves a factor of 5.
+    /// The same runs' multipliers: measured within 4.0·10⁻⁹ of max |λ|. λ
+    /// solves `g_free + W λ = 0` with `g_free` the small difference of the
+    /// beam under the carrier and the mass (each ≈ 0.03 m; W λ, what one
+    /// step's force adds, is far smaller), which amplifies the shapes'
+    /// round-off by about 10⁴; 10⁻⁸ leaves a factor of 2.5. (A re-contact
+    /// after a loss is worse conditioned still: its force, which grows as
+    /// Δt falls, differs by 2·10⁻⁵ of itself on the clamped–clamped case,
+    /// and the bounces after it part; the comparison stops there.)
     const CRUISE_RUN_MULTIPLIER: f64 = 1e-8;
 
     #[test]
     fn a_cruise_gives_the_run_of_the_tables_to_round_off() {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/reference.toml");
-        let o: Vec<String> = [
-            "mesh.kind=galerkin",
-            "mesh.modes=400",
-            "time.step=6.25e-5",
-            "integrator={ method = \"modal_exact\" }",
-            "carrier.speed.cruise=80",
-        ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-        let sc = crate::load_scene(&path, &o).unwrap();
-        let run = |cruise: bool| {
-            let mut sys = System::new(&sc).unwrap();
-            let mut st = State::at_rest(sys.beam().n, sys.contacts());
-            sys.initial().unwrap();
-            let mut stepper = ModalExact::new(&mut sys).unwrap();
-            if !cruise {
-                stepper.cruise = None;
+        // every support pair (a mirrored basis among them), a constant and
+        // a tabulated profile (flat, sloped, flat), Rayleigh damping (the
+        // scalar free step) and J not a multiple of 8
+        let cases: [&[&str]; 6] = [
+            &[],
+            &["beam.left=\"pinned\""],
+            &["beam.left=\"pinned\"", "beam.right=\"clamped\""],
+            &[
+                "beam.right=\"clamped\"",
+                "carrier.speed={ profile = \"constant\", value = 80.0 }",
+            ],
+            &[
+                "carrier.speed={ profile = \"table\", time = [0.0, 0.2, 0.4, 2.0], speed = [60.0, 60.0, 90.0, 90.0] }",
+            ],
+            &[
+                "beam.damping={ mass = 0.5, stiffness = 1e-5 }",
+                "mesh.modes=203",
+            ],
+        ];
+        for case in cases {
+            let mut o: Vec<String> = [
+                "mesh.kind=galerkin",
+                "mesh.modes=400",
+                "time.step=6.25e-5",
+                "integrator={ method = \"modal_exact\" }",
+                "carrier.speed.cruise=80",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+            if case.iter().any(|c| c.starts_with("carrier.speed=")) {
+                o.pop();
             }
-            let (mut lambda, mut rotated) = (Vec::new(), 0);
-            while sys.carriers[0].props.motion.position(st.next_time(sys.dt)) < 50.0 {
-                let before = stepper.cruise.as_ref().map(|c| c.rotations());
-                stepper.step(&mut sys, &mut st).unwrap();
-                if let (Some(b), Some(c)) = (before, &stepper.cruise) {
-                    rotated += usize::from(c.rotations() > b);
+            o.extend(case.iter().map(|s| s.to_string()));
+            let sc = crate::load_scene(&path, &o).unwrap();
+            let start = |cruise: bool| {
+                let mut sys = System::new(&sc).unwrap();
+                let st = State::at_rest(sys.beam().n, sys.contacts());
+                sys.initial().unwrap();
+                let mut stepper = ModalExact::new(&mut sys).unwrap();
+                if !cruise {
+                    stepper.cruise = None;
                 }
-                st.step += 1;
-                st.t = st.step as f64 * sys.dt;
-                sys.end_step(&st);
-                lambda.push(sys.lambda[0]);
+                (sys, st, stepper)
+            };
+            // both in lockstep, compared up to the first re-contact after a
+            // loss: its force is ill-conditioned (it grows as Δt falls,
+            // contact_loss.md), and bounces after it part at round-off
+            let (mut sa, mut a, mut tables) = start(false);
+            let (mut sb, mut b, mut rotating) = start(true);
+            let (mut rotated, mut lost) = (0, false);
+            let (mut dd, mut dmax, mut dl, mut lmax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+            while sa.carriers[0].props.motion.position(a.next_time(sa.dt)) < 50.0 {
+                let before = rotating.cruise.as_ref().map(|c| c.rotations());
+                tables.step(&mut sa, &mut a).unwrap();
+                rotating.step(&mut sb, &mut b).unwrap();
+                if let (Some(r), Some(c)) = (before, &rotating.cruise) {
+                    rotated += usize::from(c.rotations() > r);
+                }
+                for (s, st) in [(&mut sa, &mut a), (&mut sb, &mut b)] {
+                    st.step += 1;
+                    st.t = st.step as f64 * s.dt;
+                    s.end_step(st);
+                }
+                let (la, lb) = (sa.lambda[0], sb.lambda[0]);
+                if lost && la != 0.0 {
+                    break;
+                }
+                lost |= la == 0.0;
+                dl = dl.max((la - lb).abs());
+                lmax = lmax.max(la.abs());
+                for (x, y) in a.d.iter().zip(&b.d) {
+                    dd = dd.max((x - y).abs());
+                    dmax = dmax.max(x.abs());
+                }
             }
-            (st.d.clone(), lambda, rotated, st.step)
-        };
-        let (d_t, l_t, none, steps) = run(false);
-        let (d_c, l_c, rotated, _) = run(true);
-        assert_eq!(none, 0);
-        assert!(rotated > steps / 2, "{rotated} of {steps} steps rotated");
-        let rel = |a: &[f64], b: &[f64]| {
-            let m = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            a.iter()
-                .zip(b)
-                .fold(0.0f64, |w, (x, y)| w.max((x - y).abs()))
-                / m
-        };
-        let (ed, el) = (rel(&d_t, &d_c), rel(&l_t, &l_c));
-        println!(
-            "{rotated} of {steps} steps rotated; max |Δd|/max|d| {ed:.1e}, max |Δλ|/max|λ| {el:.1e}"
-        );
-        assert!(ed <= CRUISE_RUN_DISPLACEMENT, "{ed:e}");
-        assert!(el <= CRUISE_RUN_MULTIPLIER, "{el:e}");
+            assert_eq!(tables.cruise.as_ref().map(Cruise::rotations), None);
+            let steps = a.step;
+            assert!(
+                rotated > steps / 4,
+                "{case:?}: {rotated} of {steps} steps rotated"
+            );
+            let (ed, el) = (dd / dmax, dl / lmax);
+            println!(
+                "{case:?}: {rotated} of {steps} steps rotated; max |Δd|/max|d| {ed:.1e}, max |Δλ|/max|λ| {el:.1e}"
+            );
+            assert!(ed <= CRUISE_RUN_DISPLACEMENT, "{case:?}: {ed:e}");
+            assert!(el <= CRUISE_RUN_MULTIPLIER, "{case:?}: {el:e}");
+        }
     }
 
     /// The vector and scalar paths of each kernel give the same bits.
