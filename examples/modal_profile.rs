@@ -138,6 +138,12 @@ fn main() {
         x = if x > 40.0 { 10.0 } else { x + 0.0084 };
         shapes.values_into(black_box(x), &mut out);
     });
+    // a cruise's restart (every RESYNC_STEPS rotated steps): the phasors'
+    // imaginary parts from the tables, scalar
+    let t_restart = fastest(&mut || {
+        x = if x > 40.0 { 10.0 } else { x + 0.0084 };
+        fast.phasor_im_into(black_box(x), &mut out);
+    });
     println!(
         "modal_exact step, galerkin J = {j}:   {:8.3} µs",
         1e6 * t_modal
@@ -158,6 +164,11 @@ fn main() {
     println!(
         "direct shapes (ModeShapes):         {:8.3} µs",
         1e6 * t_direct
+    );
+    println!(
+        "a cruise's phasor restart:          {:8.3} µs (once every {} rotated steps)",
+        1e6 * t_restart,
+        taut::integrate::CRUISE_RESYNC_STEPS
     );
     println!(
         "8 runs (speeds 100…135 m/s), per run-step: alone {:.3} µs, as one batch {:.3} µs (×{:.2})",

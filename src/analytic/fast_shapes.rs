@@ -401,31 +401,65 @@ impl FastShapes {
     /// moving at constant speed advances `F_j` by the fixed rotation
     /// [`FastShapes::rotations_into`] each step (`modal_exact`'s cruise).
     pub fn phasor_im_into(&self, x: f64, im: &mut [f64]) {
+        #[cfg(target_arch = "x86_64")]
+        if lanes::avx2_fma() {
+            // SAFETY: the CPU has AVX2 and FMA (checked just above).
+            unsafe { self.phasor_im_fma(x, im) };
+            return;
+        }
+        self.phasor_im_kernel(x, im)
+    }
+
+    /// [`FastShapes::phasor_im_into`] compiled for FMA, so that
+    /// `f64::mul_add` is the instruction, not its software emulation (the
+    /// same bits).
+    ///
+    /// # Safety
+    /// The CPU supports AVX2 and FMA.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn phasor_im_fma(&self, x: f64, im: &mut [f64]) {
+        self.phasor_im_kernel(x, im)
+    }
+
+    #[inline(always)]
+    fn phasor_im_kernel(&self, x: f64, im: &mut [f64]) {
         assert_eq!(im.len(), self.count, "one slot per mode");
         let x = x.clamp(0.0, self.length);
         let s = if self.mirrored { self.length - x } else { x };
         let xi = s / self.length;
         let (mut rr, mut ri, rot) = first_block(PI * xi);
         let j = self.count;
-        // z_j = T_j e^{iε_j δ}: (0, −d_j) pinned–pinned
-        let z = |i: usize| -> (f64, f64) {
-            match &self.oscillating {
-                Oscillating::Sine { d } => (0.0, -d[i]),
-                Oscillating::Shifted { eps, rows, re, im } => {
-                    let k = (xi * *rows as f64).round() as usize;
-                    let delta = xi - k as f64 / *rows as f64;
-                    let (sy, cy) = small_sin_cos(eps[i] * delta);
-                    let (tr, ti) = (re[k * j + i], im[k * j + i]);
-                    (tr.mul_add(cy, -(ti * sy)), tr.mul_add(sy, ti * cy))
+        // Im[z_j R_j] with z_j = T_j e^{iε_j δ} (= −i d_j pinned–pinned)
+        match &self.oscillating {
+            Oscillating::Sine { d } => {
+                for at in (0..j).step_by(BLOCK) {
+                    for l in 0..BLOCK.min(j - at) {
+                        im[at + l] = -d[at + l] * rr[l];
+                    }
+                    advance(&mut rr, &mut ri, rot);
                 }
             }
-        };
-        for at in (0..j).step_by(BLOCK) {
-            for l in 0..BLOCK.min(j - at) {
-                let (zr, zi) = z(at + l);
-                im[at + l] = zr.mul_add(ri[l], zi * rr[l]);
+            Oscillating::Shifted {
+                eps,
+                rows,
+                re,
+                im: tim,
+            } => {
+                let k = (xi * *rows as f64).round() as usize;
+                let delta = xi - k as f64 / *rows as f64;
+                let (tre, tim) = (&re[k * j..(k + 1) * j], &tim[k * j..(k + 1) * j]);
+                for at in (0..j).step_by(BLOCK) {
+                    for l in 0..BLOCK.min(j - at) {
+                        let i = at + l;
+                        let (sy, cy) = small_sin_cos(eps[i] * delta);
+                        let zr = tre[i].mul_add(cy, -(tim[i] * sy));
+                        let zi = tre[i].mul_add(sy, tim[i] * cy);
+                        im[i] = zr.mul_add(ri[l], zi * rr[l]);
+                    }
+                    advance(&mut rr, &mut ri, rot);
+                }
             }
-            advance(&mut rr, &mut ri, rot);
         }
     }
 

@@ -75,6 +75,7 @@ pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
 pub use method::{MethodFactory, method_named, parse_methods, register, scene_method, stepper_for};
 pub use modal_batch::ModalBatch;
+pub use modal_cruise::RESYNC_STEPS as CRUISE_RESYNC_STEPS;
 pub use modal_exact::{ModalCoefs, ModalExact};
 pub use moreau_jean::MoreauJean;
 pub use oscillator::{MassStep, ModeSteps};

@@ -33,8 +33,9 @@ use crate::analytic::FastShapes;
 /// Steps a carrier's phasors are advanced by rotation before they restart
 /// from the tables: bounds the rotation's accumulated round-off to about
 /// `4 · 1024` ulps ≈ 4.5·10⁻¹³ of the amplitude (module docs), while a
-/// restart (the J phasors from the tables, scalar: a few µs at J = 800)
-/// costs under 1 % of the 1024 steps it serves.
+/// restart (the J phasors from the tables, scalar: 1.1 µs at J = 800,
+/// `cargo run --release --example modal_profile`) costs about 0.05 % of
+/// the 1024 steps it serves.
 pub const RESYNC_STEPS: usize = 1024;
 
 /// One carrier's phasors and rotations (J each), for the run's single
@@ -93,6 +94,9 @@ impl Cruise {
     /// `φ(x_{n+1}) = Re[F(x_n) e^{iβΔs}]` into `pn1` from `pn = φ(x_n)`,
     /// the imaginary parts advanced in place (scalar, fused: the
     /// operations of the vector kernel in `modal_exact.rs`, the same bits).
+    /// Inlined into the step, which is compiled for FMA where the CPU has
+    /// it, so that `f64::mul_add` is the instruction.
+    #[inline(always)]
     pub fn rotate_range(&mut self, pn: &[f64], pn1: &mut [f64], (lo, hi): (usize, usize)) {
         for i in lo..hi {
             (pn1[i], self.im[i]) = product((pn[i], self.im[i]), (self.rot_re[i], self.rot_im[i]));
