@@ -712,12 +712,6 @@ impl Blocks<'_> {
         end
     }
 
-    /// The modes whose shapes [`Blocks::layered_into`] stores (the blocks a
-    /// boundary-layer row reaches at the point; 0 outside the layers).
-    pub fn layered(&self) -> usize {
-        self.layered
-    }
-
     /// The modes in whole blocks, ⌊J/B⌋·B: the vector blocks
     /// ([`BlocksAvx`]) cover `0 .. full()`, [`Blocks::tail_into`] the rest.
     pub fn full(&self) -> usize {

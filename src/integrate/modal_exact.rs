@@ -70,7 +70,8 @@
 //!    each block of 16 shapes (or each rotated phasor) is stored and taken
 //!    by the free step while in registers ([`crate::analytic::Blocks`], the
 //!    same operations, so the same bits). Within a boundary layer the
-//!    blocks a layer row reaches take their shapes first, then their free
+//!    blocks a layer row reaches take their shapes first (into a scratch
+//!    vector), then the same fused pass stores them and takes their free
 //!    step.
 //! 3. The law, then every mode's update with the multipliers: with one
 //!    contact, deferred ("Deferred update" below).
@@ -224,6 +225,9 @@ pub struct ModalExact {
     /// The phasors of a single contact's carrier at constant speed (fast
     /// shapes only; `modal_cruise.rs`).
     cruise: Option<Cruise>,
+    /// A boundary layer's shapes `φ(x_{n+1})` before its fused pass
+    /// stores them (J; scratch, fast shapes only).
+    layered: Vec<f64>,
     /// The last step's contact force f = sλ (N), held along the carrier's
     /// path from `pv_f` to `pv_g`, not yet added into `d` and `v` (a step
     /// taken by [`ModalExact::step_deferred`]; module docs, "Deferred
@@ -290,6 +294,7 @@ impl ModalExact {
             g: vec![0.0; nc],
             w: vec![0.0; nc * nc],
             cruise,
+            layered: vec![0.0; j],
             pending: None,
             source,
         }
@@ -414,21 +419,27 @@ fn free_pair_range(
 /// pass: each block of [`crate::analytic::SHAPE_BLOCK`] shapes `φ(x_{n+1})`
 /// is stored and used by the free step of its modes while in registers
 /// (module docs, "One step"); within a clamped end's boundary layer, the
-/// blocks a layer row reaches in two passes first (shapes, then their free
-/// step), the others fused. The same operations as the two passes, so the
-/// same bits.
+/// blocks a layer row reaches take their shapes whole first, then their
+/// fused pass; at constant speed the shapes are rotated phasors
+/// ([`rotate_free_pair`]). A deferred update (`pass.deferred`) is added by
+/// the same passes. The same operations as separate passes, so the same
+/// bits.
 #[inline(always)]
 fn place_free_pair(
     coefs: &ModalCoefs,
-    cruise: Option<&mut Cruise>,
-    deferred: Option<f64>,
+    pass: Pass,
     sys: &mut System,
     st: &mut State,
     sums: &mut PairSums,
     vector: bool,
 ) {
+    let Pass {
+        cruise,
+        layered,
+        deferred,
+    } = pass;
     let (Some(shapes), Some(cruise)) = (&coefs.shapes, cruise) else {
-        place_free_pair_tables(coefs, deferred, sys, st, sums, vector);
+        place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
         return;
     };
     let t1 = st.next_time(sys.dt);
@@ -439,13 +450,13 @@ fn place_free_pair(
             if cruise.can_rotate(st.step, speed) {
                 rotate_free_pair(coefs, cruise, deferred, sys, st, sums, vector);
             } else {
-                place_free_pair_tables(coefs, deferred, sys, st, sums, vector);
+                place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
                 cruise.restart(shapes, x1, st.step, speed, sys.dt);
             }
         }
         _ => {
             cruise.invalidate();
-            place_free_pair_tables(coefs, deferred, sys, st, sums, vector);
+            place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
         }
     }
 }
@@ -491,8 +502,8 @@ fn rotate_free_pair(
         // every slice holds J ≥ full, a multiple of LANES.
         unsafe {
             match deferred {
-                Some(f) => rotate_free_pair_avx2::<true>(args, f),
-                None => rotate_free_pair_avx2::<false>(args, 0.0),
+                Some(f) => fused_free_pair_avx2::<true, true>(args, f),
+                None => fused_free_pair_avx2::<true, false>(args, 0.0),
             }
         };
         done = full;
@@ -508,18 +519,24 @@ fn rotate_free_pair(
     free_pair_range(coefs, sys, st, (done, j), sums, vector);
 }
 
-/// Modes `0 .. end` of [`rotate_free_pair`]: the shape
-/// `q = Re[(pn + i·fi)(rr + i·ri)]` (its imaginary part back into `fi`),
-/// stored into `pn1`, then [`free_with_pair_avx2`]'s operations on it,
-/// eight modes at a time into the same partial sums.
+/// Modes `0 .. end` of one fused pass: each mode's shape `q` — with
+/// `ROTATE`, `Re[(pn + i·fi)(rr + i·ri)]` (its imaginary part back into
+/// `fi`; [`rotate_free_pair`]), else `fi` itself, shapes the caller stored
+/// there (a boundary layer's blocks, [`place_free_pair_tables`]) — stored
+/// into `pn1`; with `DEFERRED` the last step's update added first (from
+/// `pn1` before that store, φ(x_{n−1}), to `pn`, φ(x_n)); then
+/// [`free_with_pair_avx2`]'s operations, eight modes at a time into the
+/// same partial sums. The same operations as the separate passes, so the
+/// same bits.
 ///
 /// # Safety
 /// The CPU supports AVX2 and FMA; `end` is a multiple of [`LANES`];
-/// every slice has at least `end` entries, or `hp` and `hv` are both empty.
+/// every slice has at least `end` entries (`rr` and `ri` only with
+/// `ROTATE`), or `hp` and `hv` are both empty.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 #[allow(clippy::type_complexity)]
-unsafe fn rotate_free_pair_avx2<const DEFERRED: bool>(
+unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bool>(
     (m, (d, v), (pn, pn1), (fi, rr, ri), (hp, hv), end, sums): (
         &ModeSteps,
         (&mut [f64], &mut [f64]),
@@ -551,7 +568,6 @@ unsafe fn rotate_free_pair_avx2<const DEFERRED: bool>(
                 let k = i + 4 * h;
                 // the shape: one complex product (Cruise::rotate_range)
                 let (p, b) = (ld(pn, k), ld(fi, k));
-                let (cr, ci) = (ld(rr, k), ld(ri, k));
                 let (mut e, mut ev) = (ld(d, k), ld(v, k));
                 if DEFERRED {
                     // the last step's update, as add_path_load_avx2: from
@@ -563,11 +579,18 @@ unsafe fn rotate_free_pair_avx2<const DEFERRED: bool>(
                     e = _mm256_fmadd_pd(fv, z, e);
                     ev = _mm256_fmadd_pd(fv, zv, ev);
                 }
-                let q = _mm256_fmsub_pd(p, cr, _mm256_mul_pd(b, ci));
-                _mm256_storeu_pd(
-                    fi.as_mut_ptr().add(k),
-                    _mm256_fmadd_pd(p, ci, _mm256_mul_pd(b, cr)),
-                );
+                let q = if ROTATE {
+                    let (cr, ci) = (ld(rr, k), ld(ri, k));
+                    let q = _mm256_fmsub_pd(p, cr, _mm256_mul_pd(b, ci));
+                    _mm256_storeu_pd(
+                        fi.as_mut_ptr().add(k),
+                        _mm256_fmadd_pd(p, ci, _mm256_mul_pd(b, cr)),
+                    );
+                    q
+                } else {
+                    // the shapes stored by the caller
+                    b
+                };
                 _mm256_storeu_pd(pn1.as_mut_ptr().add(k), q);
                 // as free_with_pair_avx2
                 let c = ld(&m.cos, k);
@@ -592,11 +615,20 @@ unsafe fn rotate_free_pair_avx2<const DEFERRED: bool>(
     }
 }
 
+/// What a single-contact step's first pass carries besides the state: the
+/// carrier's cruise, room for a boundary layer's shapes, and the last
+/// step's deferred update.
+struct Pass<'a> {
+    cruise: Option<&'a mut Cruise>,
+    layered: &'a mut [f64],
+    deferred: Option<f64>,
+}
+
 /// [`place_free_pair`] with the shapes from the tables.
 #[inline(always)]
 fn place_free_pair_tables(
     coefs: &ModalCoefs,
-    deferred: Option<f64>,
+    (deferred, layered): (Option<f64>, &mut [f64]),
     sys: &mut System,
     st: &mut State,
     sums: &mut PairSums,
@@ -611,12 +643,10 @@ fn place_free_pair_tables(
             std::mem::swap(&mut c.pv_f, &mut c.pv_g);
             let full = blocks.full();
             if let Some(f) = deferred {
-                // the deferred update of the modes whose shapes are stored
-                // before their free step (the layered blocks, the tail),
-                // from φ(x_{n−1}) (now pv_g) to φ(x_n) (now pv_f); the
-                // fused blocks add theirs in the pass
+                // the deferred update of the tail, whose shapes are stored
+                // before its free step: from φ(x_{n−1}) (now pv_g) to
+                // φ(x_n) (now pv_f); the blocks add theirs in their pass
                 let phi = (c.pv_g.dense(), c.pv_f.dense());
-                add_path_load(&coefs.steps, f, phi, st, (0, blocks.layered()), vector);
                 add_path_load(&coefs.steps, f, phi, st, (full, j), vector);
             }
             let pn1 = &mut c.pv_g.dense_mut()[..j];
@@ -627,22 +657,32 @@ fn place_free_pair_tables(
                 None => (&zeros, &zeros),
             };
             // within a clamped end's boundary layer, the blocks a layer row
-            // reaches first: their shapes whole, then their free step
+            // reaches first: their shapes whole (into `layered`), then one
+            // fused pass (the deferred update, the free step, the sums,
+            // the shapes stored)
             // SAFETY: `vector` is true only where the CPU has AVX2 and FMA;
-            // pn1 holds J ≥ the blocks' end.
-            let lo = unsafe { blocks.layered_into(pn1) };
-            if lo > 0 {
-                free_with_pair(
-                    &coefs.steps,
-                    coefs.held.as_ref(),
-                    st,
-                    (pn, pn1),
-                    (0, lo),
-                    sums,
-                    vector,
-                );
-            }
+            // `layered` holds J ≥ the blocks' end.
+            let lo = unsafe { blocks.layered_into(&mut layered[..j]) };
             let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
+            if lo > 0 {
+                let args = (
+                    &coefs.steps,
+                    (&mut *d, &mut *v),
+                    (pn, &mut *pn1),
+                    (&mut layered[..j], &zeros[..], &zeros[..]),
+                    (hp, hv),
+                    lo,
+                    &mut *sums,
+                );
+                // SAFETY: as above; lo is a multiple of SHAPE_BLOCK (so of
+                // LANES) and every slice holds J ≥ lo.
+                unsafe {
+                    match deferred {
+                        Some(f) => fused_free_pair_avx2::<false, true>(args, f),
+                        None => fused_free_pair_avx2::<false, false>(args, 0.0),
+                    }
+                };
+            }
             let args = (&coefs.steps, (d, v), (pn, &mut *pn1), (hp, hv), &mut *sums);
             // SAFETY: as above; every slice holds J ≥ full, lo and full are
             // multiples of SHAPE_BLOCK.
@@ -880,6 +920,7 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         g,
         w,
         cruise,
+        layered,
         pending,
         source,
     } = me;
@@ -891,15 +932,12 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
     let vector_free = vector && !coefs.damped;
     let pair = if is_single(sys) && source.is_none() {
         let mut sums = PairSums::default();
-        place_free_pair(
-            coefs,
-            cruise.as_mut(),
+        let pass = Pass {
+            cruise: cruise.as_mut(),
+            layered,
             deferred,
-            sys,
-            st,
-            &mut sums,
-            vector_free,
-        );
+        };
+        place_free_pair(coefs, pass, sys, st, &mut sums, vector_free);
         Some(sums.total())
     } else {
         if let Some(f) = deferred {
