@@ -289,11 +289,17 @@ fn small_sin_cos(y: f64) -> (f64, f64) {
 /// One mode's shifted oscillating part: `Re[T e^{iy} R]` with
 /// `T = tr + i·ti`, `R = rr + i·ri`, `y = ε δ` (module docs), fused.
 #[inline(always)]
-fn shifted(e: f64, delta: f64, (tr, ti): (f64, f64), (rr, ri): (f64, f64)) -> f64 {
-    let (sy, cy) = small_sin_cos(e * delta);
-    let zr = tr.mul_add(cy, -(ti * sy));
-    let zi = tr.mul_add(sy, ti * cy);
+fn shifted(e: f64, delta: f64, t: (f64, f64), (rr, ri): (f64, f64)) -> f64 {
+    let (zr, zi) = shifted_row(e, delta, t);
     zr.mul_add(rr, -(zi * ri))
+}
+
+/// `z = T e^{iy}`, `y = ε δ`: a table entry carried to the point (the
+/// first half of [`shifted`]), fused.
+#[inline(always)]
+fn shifted_row(e: f64, delta: f64, (tr, ti): (f64, f64)) -> (f64, f64) {
+    let (sy, cy) = small_sin_cos(e * delta);
+    (tr.mul_add(cy, -(ti * sy)), tr.mul_add(sy, ti * cy))
 }
 
 /// `e^{ijθ}` for j = 1 … B (the first block) and `e^{iBθ}`, from `e^{iθ}`
@@ -452,9 +458,7 @@ impl FastShapes {
                 for at in (0..j).step_by(BLOCK) {
                     for l in 0..BLOCK.min(j - at) {
                         let i = at + l;
-                        let (sy, cy) = small_sin_cos(eps[i] * delta);
-                        let zr = tre[i].mul_add(cy, -(tim[i] * sy));
-                        let zi = tre[i].mul_add(sy, tim[i] * cy);
+                        let (zr, zi) = shifted_row(eps[i], delta, (tre[i], tim[i]));
                         im[i] = zr.mul_add(ri[l], zi * rr[l]);
                     }
                     advance(&mut rr, &mut ri, rot);
@@ -746,9 +750,10 @@ impl Blocks<'_> {
     }
 }
 
-/// `a·b` for complex a, b, fused: `(a_r b_r − a_i b_i, a_r b_i + a_i b_r)`.
+/// `a·b` for complex a, b, fused: `(a_r b_r − a_i b_i, a_r b_i + a_i b_r)`
+/// (also a cruise's phasor step, `integrate/modal_cruise.rs`).
 #[inline(always)]
-fn rotate((a, b): (f64, f64), (cr, ci): (f64, f64)) -> (f64, f64) {
+pub(crate) fn rotate((a, b): (f64, f64), (cr, ci): (f64, f64)) -> (f64, f64) {
     (a.mul_add(cr, -(b * ci)), a.mul_add(ci, b * cr))
 }
 
@@ -975,13 +980,14 @@ fn advance(re: &mut [f64; BLOCK], im: &mut [f64; BLOCK], rot: (f64, f64)) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::analytic::MAX_MODES;
     use crate::scene::{BeamProps, Support};
 
     /// (EI, T, ρA, L): as mode_shapes.rs's cases.
-    const REFERENCE: (f64, f64, f64, f64) = (1.34e11 * 9.64e-10, 3.0e4, 8900.0 * 1.5e-4, 50.0);
+    pub(crate) const REFERENCE: (f64, f64, f64, f64) =
+        (1.34e11 * 9.64e-10, 3.0e4, 8900.0 * 1.5e-4, 50.0);
     const SHORT: (f64, f64, f64, f64) = (195.0, 2.0e4, 1.35, 20.0);
     const BALANCED: (f64, f64, f64, f64) = (4.0, 100.0, 1.35, 1.0);
     const BARE: (f64, f64, f64, f64) = (3.0, 0.0, 2.0, 1.7);
@@ -994,7 +1000,12 @@ mod tests {
         (Support::Clamped, Support::Clamped),
     ];
 
-    fn shapes(case: (f64, f64, f64, f64), ends: (Support, Support), j: usize) -> ModeShapes {
+    /// The basis of `case` = (EI, T, ρA, L) between `ends`, J modes.
+    pub(crate) fn shapes(
+        case: (f64, f64, f64, f64),
+        ends: (Support, Support),
+        j: usize,
+    ) -> ModeShapes {
         let (ei, tension, rho_a, length) = case;
         let props = BeamProps {
             length,

@@ -29,6 +29,7 @@
 //! [`crate::analytic::FAST_SHAPES_AGREEMENT`].
 
 use crate::analytic::FastShapes;
+use crate::analytic::fast_shapes::rotate;
 
 /// Steps a carrier's phasors are advanced by rotation before they restart
 /// from the tables: bounds the rotation's accumulated round-off to about
@@ -99,7 +100,7 @@ impl Cruise {
     #[inline(always)]
     pub fn rotate_range(&mut self, pn: &[f64], pn1: &mut [f64], (lo, hi): (usize, usize)) {
         for i in lo..hi {
-            (pn1[i], self.im[i]) = product((pn[i], self.im[i]), (self.rot_re[i], self.rot_im[i]));
+            (pn1[i], self.im[i]) = rotate((pn[i], self.im[i]), (self.rot_re[i], self.rot_im[i]));
         }
     }
 
@@ -128,17 +129,11 @@ impl Cruise {
     }
 }
 
-/// `a·b` for complex a, b, fused: `(a_r b_r − a_i b_i, a_r b_i + a_i b_r)`.
-#[inline(always)]
-fn product((ar, ai): (f64, f64), (br, bi): (f64, f64)) -> (f64, f64) {
-    (ar.mul_add(br, -(ai * bi)), ar.mul_add(bi, ai * br))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analytic::ModeShapes;
-    use crate::scene::{BeamProps, Support};
+    use crate::analytic::fast_shapes::tests::{REFERENCE, shapes};
+    use crate::scene::Support;
 
     /// The shapes a cruise rotates agree with the tables' at every step up
     /// to a restart: measured worst 5.4·10⁻¹³ of the amplitude over the
@@ -147,22 +142,6 @@ mod tests {
     /// still 10 times inside the fast shapes' own agreement with the
     /// direct evaluation.
     const CRUISE_AGREEMENT: f64 = 1e-12;
-
-    fn basis(ends: (Support, Support), length: f64, j: usize) -> ModeShapes {
-        let props = BeamProps {
-            length,
-            rho_a: 8900.0 * 1.5e-4,
-            ei: 1.34e11 * 9.64e-10,
-            ea: None,
-            tension: 3.0e4,
-            left: ends.0,
-            right: ends.1,
-            distributed_load: 0.0,
-            attachments: Vec::new(),
-            messenger: None,
-        };
-        ModeShapes::new(&props, j).unwrap()
-    }
 
     /// Rotate the phasors [`RESYNC_STEPS`] steps from x0 at speed V and
     /// compare each step's shapes with [`FastShapes::values_into`] there.
@@ -179,7 +158,8 @@ mod tests {
         for e in ends {
             for (length, x0, speed) in [(50.0, 10.0, 230.0), (50.0, 30.0, 50.0), (20.0, 5.0, 100.0)]
             {
-                let modes = basis(e, length, 800);
+                let (ei, tension, rho_a, _) = REFERENCE;
+                let modes = shapes((ei, tension, rho_a, length), e, 800);
                 let shapes = FastShapes::new(&modes);
                 let j = shapes.count();
                 let amp = (2.0 / (8900.0 * 1.5e-4 * length)).sqrt();

@@ -368,6 +368,52 @@ impl PairSums {
     fn total(&self) -> (f64, f64) {
         (lanes::reduce(&self.g), lanes::reduce(&self.w))
     }
+
+    /// The partial sums as two AVX2 vectors each (lanes 0–3, 4–7).
+    ///
+    /// # Safety
+    /// The CPU supports AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    unsafe fn load_avx2(
+        &self,
+    ) -> (
+        [std::arch::x86_64::__m256d; 2],
+        [std::arch::x86_64::__m256d; 2],
+    ) {
+        use std::arch::x86_64::_mm256_loadu_pd;
+        // SAFETY: g and w hold LANES = 8 entries.
+        unsafe {
+            let ld = |x: &[f64; LANES], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+            (
+                [ld(&self.g, 0), ld(&self.g, 4)],
+                [ld(&self.w, 0), ld(&self.w, 4)],
+            )
+        }
+    }
+
+    /// Back from [`PairSums::load_avx2`]'s vectors.
+    ///
+    /// # Safety
+    /// The CPU supports AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    unsafe fn store_avx2(
+        &mut self,
+        g: [std::arch::x86_64::__m256d; 2],
+        w: [std::arch::x86_64::__m256d; 2],
+    ) {
+        use std::arch::x86_64::_mm256_storeu_pd;
+        // SAFETY: g and w hold LANES = 8 entries.
+        unsafe {
+            _mm256_storeu_pd(self.g.as_mut_ptr(), g[0]);
+            _mm256_storeu_pd(self.g.as_mut_ptr().add(4), g[1]);
+            _mm256_storeu_pd(self.w.as_mut_ptr(), w[0]);
+            _mm256_storeu_pd(self.w.as_mut_ptr().add(4), w[1]);
+        }
+    }
 }
 
 /// True when a run's step takes the fused single-contact path (one
@@ -549,19 +595,10 @@ unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bool>(
     f: f64,
 ) {
     use std::arch::x86_64::*;
-    let held = !hp.is_empty();
     // SAFETY (whole body): loads and stores at k .. k + 4 ≤ end.
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let (gs, ws) = (&mut sums.g, &mut sums.w);
-        let mut g = [
-            _mm256_loadu_pd(gs.as_ptr()),
-            _mm256_loadu_pd(gs.as_ptr().add(4)),
-        ];
-        let mut w = [
-            _mm256_loadu_pd(ws.as_ptr()),
-            _mm256_loadu_pd(ws.as_ptr().add(4)),
-        ];
+        let (mut g, mut w) = sums.load_avx2();
         let mut i = 0;
         while i < end {
             for h in 0..2 {
@@ -570,14 +607,10 @@ unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bool>(
                 let (p, b) = (ld(pn, k), ld(fi, k));
                 let (mut e, mut ev) = (ld(d, k), ld(v, k));
                 if DEFERRED {
-                    // the last step's update, as add_path_load_avx2: from
-                    // φ(x_{n−1}) (pn1 before this store) to φ(x_n) (pn)
+                    // the last step's update: from φ(x_{n−1}) (pn1 before
+                    // this pass stores into it) to φ(x_n) (pn)
                     let fv = _mm256_set1_pd(f);
-                    let pp = ld(pn1, k);
-                    let z = _mm256_fmadd_pd(ld(&m.a0, k), pp, _mm256_mul_pd(ld(&m.a1, k), p));
-                    let zv = _mm256_fmadd_pd(ld(&m.b0, k), pp, _mm256_mul_pd(ld(&m.b1, k), p));
-                    e = _mm256_fmadd_pd(fv, z, e);
-                    ev = _mm256_fmadd_pd(fv, zv, ev);
+                    (e, ev) = path_load4(path_coefs(m), k, fv, (ld(pn1, k), p), (e, ev));
                 }
                 let q = if ROTATE {
                     let (cr, ci) = (ld(rr, k), ld(ri, k));
@@ -592,26 +625,19 @@ unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bool>(
                     b
                 };
                 _mm256_storeu_pd(pn1.as_mut_ptr().add(k), q);
-                // as free_with_pair_avx2
-                let c = ld(&m.cos, k);
-                let mut e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
-                let mut v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm256_mul_pd(c, ev));
-                if held {
-                    e1 = _mm256_add_pd(e1, ld(hp, k));
-                    v1 = _mm256_add_pd(v1, ld(hv, k));
-                }
-                _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
-                _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
-                g[h] = _mm256_fmadd_pd(q, e1, g[h]);
-                let z = _mm256_fmadd_pd(ld(&m.a0, k), p, _mm256_mul_pd(ld(&m.a1, k), q));
-                w[h] = _mm256_fmadd_pd(q, z, w[h]);
+                free_pair4(
+                    m,
+                    k,
+                    (e, ev),
+                    (p, q),
+                    (hp, hv),
+                    (d, v),
+                    (&mut g[h], &mut w[h]),
+                );
             }
             i += LANES;
         }
-        _mm256_storeu_pd(gs.as_mut_ptr(), g[0]);
-        _mm256_storeu_pd(gs.as_mut_ptr().add(4), g[1]);
-        _mm256_storeu_pd(ws.as_mut_ptr(), w[0]);
-        _mm256_storeu_pd(ws.as_mut_ptr().add(4), w[1]);
+        sums.store_avx2(g, w);
     }
 }
 
@@ -741,21 +767,12 @@ unsafe fn shapes_free_pair_avx2<const DEFERRED: bool>(
     f: f64,
 ) {
     use std::arch::x86_64::*;
-    let held = !hp.is_empty();
     let end = blocks.full();
     // SAFETY (whole body): loads and stores at k .. k + 4 ≤ end.
     unsafe {
         let mut shapes = BlocksAvx::new(blocks);
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let (gs, ws) = (&mut sums.g, &mut sums.w);
-        let mut g = [
-            _mm256_loadu_pd(gs.as_ptr()),
-            _mm256_loadu_pd(gs.as_ptr().add(4)),
-        ];
-        let mut w = [
-            _mm256_loadu_pd(ws.as_ptr()),
-            _mm256_loadu_pd(ws.as_ptr().add(4)),
-        ];
+        let (mut g, mut w) = sums.load_avx2();
         let mut at = from;
         while at < end {
             let q4 = shapes.next(blocks, at);
@@ -764,36 +781,26 @@ unsafe fn shapes_free_pair_avx2<const DEFERRED: bool>(
                 let p = ld(pn, k);
                 let (mut e, mut ev) = (ld(d, k), ld(v, k));
                 if DEFERRED {
-                    // the last step's update, as add_path_load_avx2: from
-                    // φ(x_{n−1}) (pn1 before this store) to φ(x_n) (pn)
+                    // the last step's update: from φ(x_{n−1}) (pn1 before
+                    // this pass stores into it) to φ(x_n) (pn)
                     let fv = _mm256_set1_pd(f);
-                    let pp = ld(pn1, k);
-                    let z = _mm256_fmadd_pd(ld(&m.a0, k), pp, _mm256_mul_pd(ld(&m.a1, k), p));
-                    let zv = _mm256_fmadd_pd(ld(&m.b0, k), pp, _mm256_mul_pd(ld(&m.b1, k), p));
-                    e = _mm256_fmadd_pd(fv, z, e);
-                    ev = _mm256_fmadd_pd(fv, zv, ev);
+                    (e, ev) = path_load4(path_coefs(m), k, fv, (ld(pn1, k), p), (e, ev));
                 }
                 _mm256_storeu_pd(pn1.as_mut_ptr().add(k), q);
-                let c = ld(&m.cos, k);
-                let mut e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
-                let mut v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm256_mul_pd(c, ev));
-                if held {
-                    e1 = _mm256_add_pd(e1, ld(hp, k));
-                    v1 = _mm256_add_pd(v1, ld(hv, k));
-                }
-                _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
-                _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
-                g[h] = _mm256_fmadd_pd(q, e1, g[h]);
-                let z = _mm256_fmadd_pd(ld(&m.a0, k), p, _mm256_mul_pd(ld(&m.a1, k), q));
-                w[h] = _mm256_fmadd_pd(q, z, w[h]);
+                free_pair4(
+                    m,
+                    k,
+                    (e, ev),
+                    (p, q),
+                    (hp, hv),
+                    (d, v),
+                    (&mut g[h], &mut w[h]),
+                );
             }
             at += SHAPE_BLOCK;
         }
         shapes.finish(blocks);
-        _mm256_storeu_pd(gs.as_mut_ptr(), g[0]);
-        _mm256_storeu_pd(gs.as_mut_ptr().add(4), g[1]);
-        _mm256_storeu_pd(ws.as_mut_ptr(), w[0]);
-        _mm256_storeu_pd(ws.as_mut_ptr().add(4), w[1]);
+        sums.store_avx2(g, w);
     }
 }
 
@@ -1117,43 +1124,97 @@ unsafe fn free_with_pair_avx2(
     sums: &mut PairSums,
 ) {
     use std::arch::x86_64::*;
-    let held = !hp.is_empty();
     // SAFETY (whole body): loads and stores at i .. i + 4 ≤ end.
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let (gs, ws) = (&mut sums.g, &mut sums.w);
-        let mut g = [
-            _mm256_loadu_pd(gs.as_ptr()),
-            _mm256_loadu_pd(gs.as_ptr().add(4)),
-        ];
-        let mut w = [
-            _mm256_loadu_pd(ws.as_ptr()),
-            _mm256_loadu_pd(ws.as_ptr().add(4)),
-        ];
+        let (mut g, mut w) = sums.load_avx2();
         let mut i = lo;
         while i < end {
             for h in 0..2 {
                 let k = i + 4 * h;
-                let (e, ev, c) = (ld(d, k), ld(v, k), ld(&m.cos, k));
-                let mut e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
-                let mut v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm256_mul_pd(c, ev));
-                if held {
-                    e1 = _mm256_add_pd(e1, ld(hp, k));
-                    v1 = _mm256_add_pd(v1, ld(hv, k));
-                }
-                _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
-                _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
-                let q = ld(pn1, k);
-                g[h] = _mm256_fmadd_pd(q, e1, g[h]);
-                let z = _mm256_fmadd_pd(ld(&m.a0, k), ld(pn, k), _mm256_mul_pd(ld(&m.a1, k), q));
-                w[h] = _mm256_fmadd_pd(q, z, w[h]);
+                let (e, ev) = (ld(d, k), ld(v, k));
+                let pq = (ld(pn, k), ld(pn1, k));
+                free_pair4(m, k, (e, ev), pq, (hp, hv), (d, v), (&mut g[h], &mut w[h]));
             }
             i += LANES;
         }
-        _mm256_storeu_pd(gs.as_mut_ptr(), g[0]);
-        _mm256_storeu_pd(gs.as_mut_ptr().add(4), g[1]);
-        _mm256_storeu_pd(ws.as_mut_ptr(), w[0]);
-        _mm256_storeu_pd(ws.as_mut_ptr().add(4), w[1]);
+        sums.store_avx2(g, w);
+    }
+}
+
+/// Modes `k .. k + 4` of a fused pass (`free_with_pair_avx2` and the
+/// fused kernels): the free step from `(e, ev)` plus the held load (when
+/// `hp`, `hv` are not empty), stored into `d` and `v`, and the two sums
+/// with `p = φ(x_n)`, `q = φ(x_{n+1})` into `g` and `w`: the operations of
+/// [`free_with_pair`]'s scalar loop (the same bits).
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; every slice holds `k + 4` entries, or
+/// `hp` and `hv` are both empty.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+unsafe fn free_pair4(
+    m: &ModeSteps,
+    k: usize,
+    (e, ev): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
+    (p, q): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
+    (hp, hv): (&[f64], &[f64]),
+    (d, v): (&mut [f64], &mut [f64]),
+    (g, w): (
+        &mut std::arch::x86_64::__m256d,
+        &mut std::arch::x86_64::__m256d,
+    ),
+) {
+    use std::arch::x86_64::*;
+    // SAFETY: loads and stores at k .. k + 4 (the caller's contract).
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let c = ld(&m.cos, k);
+        let mut e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
+        let mut v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm256_mul_pd(c, ev));
+        if !hp.is_empty() {
+            e1 = _mm256_add_pd(e1, ld(hp, k));
+            v1 = _mm256_add_pd(v1, ld(hv, k));
+        }
+        _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
+        _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
+        *g = _mm256_fmadd_pd(q, e1, *g);
+        let z = _mm256_fmadd_pd(ld(&m.a0, k), p, _mm256_mul_pd(ld(&m.a1, k), q));
+        *w = _mm256_fmadd_pd(q, z, *w);
+    }
+}
+
+/// The four path-load coefficient arrays `(a0, a1, b0, b1)` of `m`.
+#[inline(always)]
+fn path_coefs(m: &ModeSteps) -> (&[f64], &[f64], &[f64], &[f64]) {
+    (&m.a0, &m.a1, &m.b0, &m.b1)
+}
+
+/// Modes `k .. k + 4` of `(e, ev)` plus a force `fv` held along the path
+/// from shapes `p` to `q`: `(e + f (a0 p + a1 q), ev + f (b0 p + b1 q))`,
+/// the operations of [`add_path_load`]'s scalar loop (the same bits).
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; the four slices hold `k + 4` entries.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+#[allow(clippy::type_complexity)]
+unsafe fn path_load4(
+    (a0, a1, b0, b1): (&[f64], &[f64], &[f64], &[f64]),
+    k: usize,
+    fv: std::arch::x86_64::__m256d,
+    (p, q): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
+    (e, ev): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
+) -> (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d) {
+    use std::arch::x86_64::*;
+    // SAFETY: loads at k .. k + 4 (the caller's contract).
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
+        let z = _mm256_fmadd_pd(ld(a0, k), p, _mm256_mul_pd(ld(a1, k), q));
+        let zv = _mm256_fmadd_pd(ld(b0, k), p, _mm256_mul_pd(ld(b1, k), q));
+        (_mm256_fmadd_pd(fv, z, e), _mm256_fmadd_pd(fv, zv, ev))
     }
 }
 
@@ -1205,11 +1266,10 @@ unsafe fn add_path_load_avx2(
         let fv = _mm256_set1_pd(f);
         let mut i = 0;
         while i < full {
-            let (p, q) = (ld(pn, i), ld(pn1, i));
-            let z = _mm256_fmadd_pd(ld(a0, i), p, _mm256_mul_pd(ld(a1, i), q));
-            let zv = _mm256_fmadd_pd(ld(b0, i), p, _mm256_mul_pd(ld(b1, i), q));
-            _mm256_storeu_pd(d.as_mut_ptr().add(i), _mm256_fmadd_pd(fv, z, ld(d, i)));
-            _mm256_storeu_pd(v.as_mut_ptr().add(i), _mm256_fmadd_pd(fv, zv, ld(v, i)));
+            let pq = (ld(pn, i), ld(pn1, i));
+            let (e, ev) = path_load4((a0, a1, b0, b1), i, fv, pq, (ld(d, i), ld(v, i)));
+            _mm256_storeu_pd(d.as_mut_ptr().add(i), e);
+            _mm256_storeu_pd(v.as_mut_ptr().add(i), ev);
             i += 4;
         }
     }
