@@ -17,8 +17,9 @@
 //! The flow of a run: [`scene`] (parsed, plain data) → [`resolve`]
 //! (checked against the model: a [`Resolved`]) → [`integrate::Integrator`]
 //! → [`record::History`] → [`report`] (CSV / JSON / SVG). The layers and
-//! what each may import: `docs/architecture.md`. Above them all,
-//! [`pipelines`]: the programs that generate the measured pages of `docs/`.
+//! what each may import: `docs/architecture.md`. The `taut` command line
+//! (crate `taut-cli`), the Python module (`taut-python`) and the programs
+//! that regenerate `docs/` (`xtask`) are crates of their own over this one.
 
 // Numerical kernels index several arrays in lockstep (A[i][k], x[i − k], …);
 // index loops say that more plainly than zipped iterators.
@@ -36,7 +37,7 @@ pub mod json_keys;
 pub mod manufactured;
 pub mod model;
 pub mod numeric;
-pub mod pipelines;
+
 pub mod record;
 pub mod report;
 pub mod resolve;

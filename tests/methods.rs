@@ -765,7 +765,7 @@ fn a_method_added_outside_the_crate_runs_with_its_own_order() {
 
 // The reference case's measures (in-span P_l, the 0–20 Hz force error in
 // span, the force's step-to-step component), shared with the report.
-use taut::pipelines::methods as methods_report;
+use xtask::methods as methods_report;
 
 /// The reference case under every method converges to the same in-span
 /// 0–20 Hz contact force as Δt falls: the error against generalized-α at a

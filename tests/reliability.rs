@@ -869,7 +869,7 @@ fn every_integer_option_refuses_what_is_not_in_its_range_naming_it() {
 fn no_subcommand_takes_an_integer_through_the_parser() {
     // a new integer option declared as a number would get clap's message
     // for -1 again: every one is text, checked by main.rs's `count`
-    let main = std::fs::read_to_string(common::crate_root().join("src/main.rs")).unwrap();
+    let main = std::fs::read_to_string(common::crate_root().join("cli/src/main.rs")).unwrap();
     let start = main.find("enum Command {").expect("the subcommands");
     let end = start + main[start..].find("\n}\n").expect("their end");
     for line in main[start..end].lines() {
@@ -880,7 +880,7 @@ fn no_subcommand_takes_an_integer_through_the_parser() {
             assert!(
                 !field.ends_with(&format!(": {ty},"))
                     && !field.ends_with(&format!(": Option<{ty}>,")),
-                "src/main.rs declares `{field}`: take it as String and check it with `count`"
+                "cli/src/main.rs declares `{field}`: take it as String and check it with `count`"
             );
         }
     }

@@ -18,7 +18,7 @@ const REFERENCE: &str = include_str!("../scenes/reference.toml");
 const PATIENCE: Duration = Duration::from_secs(120);
 
 fn scene_path() -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .join("scenes/reference.toml")
         .to_string_lossy()
         .into_owned()

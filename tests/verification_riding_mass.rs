@@ -172,7 +172,7 @@ fn converge_uses_the_galerkin_reference_for_this_scene() {
         ("carrier.0.stiffness=1000", "carrier.stiffness"),
         ("contact.kind=unilateral", "contact.kind"),
     ] {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
             .join("scenes")
             .join(SCENE);
         let e = taut::load_scene(&path, &[o.to_string()])

@@ -28,7 +28,6 @@ pub mod run;
 pub mod scene;
 pub mod simulation;
 pub mod sweep;
-pub mod terminal;
 pub mod verify;
 pub mod words;
 

@@ -8,7 +8,7 @@ use taut::{Resolved, RunOutput};
 
 /// The repository root (scenes/ and docs/ are relative to it).
 pub fn crate_root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
 }
 
 /// Run the `taut` binary from the repository root.
@@ -50,7 +50,7 @@ pub fn run_fails(scene: &str, out: &Path, extra: &[&str]) -> String {
 
 /// Load a bundled scene with overrides.
 pub fn scene(name: &str, overrides: &[&str]) -> Resolved {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .join("scenes")
         .join(name);
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();

@@ -5,11 +5,11 @@ pub(super) use std::collections::HashMap;
 pub(super) use std::fmt::Write as _;
 pub(super) use std::time::Instant;
 
-pub(super) use crate::error::Error;
-pub(super) use crate::resolve::{Resolved, resolve_scene};
-pub(super) use crate::run::{RunOutput, run};
-pub(super) use crate::scene::CarrierKind;
-pub(super) use crate::study::reference::analytic_w;
+pub(super) use taut::error::Error;
+pub(super) use taut::resolve::{Resolved, resolve_scene};
+pub(super) use taut::run::{RunOutput, run};
+pub(super) use taut::scene::CarrierKind;
+pub(super) use taut::study::reference::analytic_w;
 
 pub(super) const FORMULATIONS: [&str; 4] = ["lagrange", "penalty", "complementarity", "impact"];
 
@@ -145,7 +145,7 @@ pub(super) enum Outcome {
 }
 
 pub(super) fn scene_text(scene: &str) -> String {
-    let path = format!("{}/scenes/{scene}.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/scenes/{scene}.toml", crate::ROOT);
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 

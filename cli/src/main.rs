@@ -2,7 +2,7 @@
 //! layer ([`taut::app`]). Each subcommand reads its arguments (the clap
 //! structs below; counts and lists checked at this edge, with the library's
 //! messages), makes the typed request, calls `taut::app::<command>` and
-//! prints the outcome ([`taut::app::terminal`]).
+//! prints the outcome ([`terminal`]).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -10,7 +10,9 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use taut::app::{self, Frontend, Note, SceneSource, terminal};
+mod terminal;
+
+use taut::app::{self, Frontend, Note, SceneSource};
 use taut::report::{compare_table, converge_table, gate_table};
 use taut::study::request::ConvergeOutcome;
 

@@ -3,7 +3,7 @@
 //! contact formulation where it makes sense, and writes `docs/stability.md`.
 //!
 //! ```text
-//! cargo run --release --example stability_report
+//! cargo xtask stability
 //! ```
 //!
 //! Every row is one `taut run` (its command is written next to it). Its
@@ -26,7 +26,7 @@ mod score;
 use cases::*;
 use page::*;
 use score::*;
-/// The report: what `cargo run --release --example stability_report` runs (its
+/// The report: what `cargo xtask stability` runs (its
 /// command-line arguments, if any, are read here).
 pub fn main() {
     let started = Instant::now();
@@ -54,7 +54,7 @@ pub fn main() {
     }
     let elapsed = started.elapsed().as_secs_f64();
     let page = render(&sections, &results, cache.len());
-    let path = format!("{}/docs/stability.md", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/docs/stability.md", crate::ROOT);
     std::fs::write(&path, page).unwrap_or_else(|e| panic!("{path}: {e}"));
     eprintln!(
         "wrote {path}: {total} rows and {} reference runs in {elapsed:.1} s",

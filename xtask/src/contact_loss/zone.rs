@@ -7,7 +7,7 @@
 // checks that this split at 4 ℓ_b is the library's loss_fraction_span.
 // ---------------------------------------------------------------------------
 
-use crate::record::zone::{SUPPORT_BENDING_LENGTHS, SUPPORT_ELEMENTS, SUPPORT_STEPS};
+use taut::record::zone::{SUPPORT_BENDING_LENGTHS, SUPPORT_ELEMENTS, SUPPORT_STEPS};
 
 /// Width z (m) of the support zone at each end support, with `bending`
 /// bending lengths: z = max(bending·ℓ_b, 4h, 4VΔt). ℓ_b = 0 for a string.

@@ -4,16 +4,16 @@ pub(super) use std::collections::HashMap;
 pub(super) use std::fmt::Write as _;
 pub(super) use std::time::Instant;
 
-pub(super) use crate::analytic::{
+pub(super) use taut::analytic::{
     ClampedPinnedModes, MovingForceBeam, MovingForceString, PinnedPinnedModes, StaticPointLoad,
 };
-pub(super) use crate::model::modal::fe_frequencies;
-pub(super) use crate::record::CarrierTrace;
-pub(super) use crate::resolve::{Resolved, resolve_scene};
-pub(super) use crate::run::{RunOutput, run};
-pub(super) use crate::scene::{BeamProps, CarrierKind, SpeedProfile, Support};
-pub(super) use crate::study::converge::{ConvergeRow, Convergence, Refine, converge};
-pub(super) use crate::study::reference::analytic_w;
+pub(super) use taut::model::modal::fe_frequencies;
+pub(super) use taut::record::CarrierTrace;
+pub(super) use taut::resolve::{Resolved, resolve_scene};
+pub(super) use taut::run::{RunOutput, run};
+pub(super) use taut::scene::{BeamProps, CarrierKind, SpeedProfile, Support};
+pub(super) use taut::study::converge::{ConvergeRow, Convergence, Refine, converge};
+pub(super) use taut::study::reference::analytic_w;
 
 /// Refinement ratio of every study here (the CLI default).
 pub(super) const RATIO: f64 = 2.0;
@@ -36,7 +36,7 @@ pub(super) const TARGET: f64 = 0.01;
 // ---------------------------------------------------------------- helpers
 
 pub(super) fn scene_text(name: &str) -> String {
-    let path = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/scenes/{name}.toml", crate::ROOT);
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
@@ -127,7 +127,7 @@ pub(super) fn sub(a: &[f64], b: &[f64]) -> Vec<f64> {
 }
 
 pub(super) fn order(coarse: f64, fine: f64) -> f64 {
-    crate::study::grid::observed_order(coarse, fine, RATIO)
+    taut::study::grid::observed_order(coarse, fine, RATIO)
 }
 
 /// Carrier 0's history of level `l` on the coarsest level's times (as the

@@ -3,7 +3,7 @@
 //! analytic references of `taut::analytic` and `taut::model::modal`).
 //!
 //! ```text
-//! cargo run --release --example convergence_report
+//! cargo xtask convergence
 //! ```
 //!
 //! Runs are sequential. The page holds only numbers that do not depend on
@@ -82,7 +82,7 @@ from 4e-5 s down, the force error grows (7.3e-7, 2.1e-7, 4.3e-7, 1.4e-6 N):
 
 "#;
 
-/// The report: what `cargo run --release --example convergence_report` runs (its
+/// The report: what `cargo xtask convergence` runs (its
 /// command-line arguments, if any, are read here).
 pub fn main() {
     let mut clock = Clock::new();
@@ -108,13 +108,13 @@ pub fn main() {
     w!(d, "# Convergence: what refinement shows\n");
     w!(
         d,
-        "*This page is generated, in full, by `cargo run --release --example \
-         convergence_report` (`examples/convergence_report.rs`), taut {}. Do not edit it by \
+        "*This page is generated, in full, by `cargo xtask convergence` \
+         (`xtask/src/convergence/`), taut {}. Do not edit it by \
          hand: run that command again. Every number on it is computed by that run through \
          the library (`taut::study::converge`, `taut::run`, `taut::analytic`, \
          `taut::model::modal`), and none depends on the machine: wall times go to the \
          terminal only. Each table names the CLI command that reproduces its runs.*\n",
-        env!("CARGO_PKG_VERSION")
+        taut::VERSION
     );
     w!(
         d,
@@ -132,7 +132,7 @@ pub fn main() {
     w!(d, "");
     d.push_str(&body);
 
-    let path = format!("{}/docs/convergence.md", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/docs/convergence.md", crate::ROOT);
     std::fs::write(&path, doc).unwrap_or_else(|e| panic!("{path}: {e}"));
     eprintln!(
         "wrote {path} in {:.1} s",

@@ -3,10 +3,10 @@
 
 pub(super) use std::time::Instant;
 
-pub(super) use crate::resolve::{Resolved, resolve_scene};
-pub(super) use crate::run::{RunOutput, run};
-pub(super) use crate::scene::CarrierKind;
 pub(super) use rayon::prelude::*;
+pub(super) use taut::resolve::{Resolved, resolve_scene};
+pub(super) use taut::run::{RunOutput, run};
+pub(super) use taut::scene::CarrierKind;
 
 pub(super) const REFERENCE: &str = include_str!("../../../scenes/reference.toml");
 
@@ -185,7 +185,7 @@ pub(super) fn successive_slopes(x: &[f64], y: &[f64]) -> Vec<Option<f64>> {
     (1..x.len())
         .map(|i| {
             // the slope is the observed order of y "refined" by x_i/x_{i−1}
-            let p = crate::study::grid::observed_order(y[i], y[i - 1], x[i] / x[i - 1]);
+            let p = taut::study::grid::observed_order(y[i], y[i - 1], x[i] / x[i - 1]);
             p.is_finite().then_some(p)
         })
         .collect()

@@ -3,9 +3,9 @@
 //! `docs/reproduction.md` and its maps in `docs/reproduction/`, in full:
 //!
 //! ```text
-//! cargo run --release --example reproduction_report
-//! cargo run --release --example reproduction_report -- --full     # T7 at 41 × 41 refined too
-//! cargo run --release --example reproduction_report -- --resume   # keep finished runs
+//! cargo xtask reproduction
+//! cargo xtask reproduction --full     # T7 at 41 × 41 refined too
+//! cargo xtask reproduction --resume   # keep finished runs
 //! ```
 //!
 //! Every target is run twice: at a resolution like the study's (N = 400,
@@ -38,7 +38,7 @@ use t7::*;
 use targets_1d::*;
 // ------------------------------------------------------------ main
 
-/// The report: what `cargo run --release --example reproduction_report` runs (its
+/// The report: what `cargo xtask reproduction` runs (its
 /// command-line arguments, if any, are read here).
 pub fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -95,7 +95,7 @@ pub fn main() {
     );
     let _ = writeln!(
         md,
-        "*Generated in full by `cargo run --release --example reproduction_report`{} (examples/reproduction_report.rs), with the maps in `docs/reproduction/`. Do not edit by hand: change the example and run it again.*\n",
+        "*Generated in full by `cargo xtask reproduction`{} (xtask/src/reproduction/), with the maps in `docs/reproduction/`. Do not edit by hand: change the pipeline and run it again.*\n",
         if full { " -- --full" } else { "" }
     );
     let _ = writeln!(

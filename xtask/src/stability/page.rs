@@ -83,10 +83,10 @@ pub(super) fn render(sections: &[Section], results: &[Vec<Row>], references: usi
     let _ = writeln!(
         w,
         "*This page is generated, in full, by*\n\n\
-         ```sh\ncargo run --release --example stability_report\n```\n\n\
-         *(`examples/stability_report.rs`; {rows_total} runs plus {references} reference runs, \
+         ```sh\ncargo xtask stability\n```\n\n\
+         *(`xtask/src/stability/`; {rows_total} runs plus {references} reference runs, \
          one after another, a little over a minute on two cores). \
-         Do not edit it by hand: change the example and run the command again.*\n"
+         Do not edit it by hand: change the pipeline and run the command again.*\n"
     );
     let _ = writeln!(
         w,

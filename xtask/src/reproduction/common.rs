@@ -6,13 +6,13 @@ pub(super) use std::path::{Path, PathBuf};
 pub(super) use std::sync::Mutex;
 pub(super) use std::time::Instant;
 
-pub(super) use crate::report::{
+pub(super) use rayon::prelude::*;
+pub(super) use taut::report::{
     SPEED_RATIO_LEVELS, write_force_map, write_loss_fraction_map, write_loss_map,
 };
-pub(super) use crate::resolve::{Resolved, resolve_scene};
-pub(super) use crate::run::run;
-pub(super) use crate::study::sweep::{Axis, PROFILE_BINS, SweepRecord, SweepSpec, sweep};
-pub(super) use rayon::prelude::*;
+pub(super) use taut::resolve::{Resolved, resolve_scene};
+pub(super) use taut::run::run;
+pub(super) use taut::study::sweep::{Axis, PROFILE_BINS, SweepRecord, SweepSpec, sweep};
 
 /// A resolution: mesh and step.
 #[derive(Clone, Copy)]
@@ -93,7 +93,7 @@ pub(super) const CHECK_LEVELS: [(usize, f64); 4] =
     [(400, 1e-4), (800, 5e-5), (1600, 2.5e-5), (3200, 1.25e-5)];
 
 pub(super) fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    PathBuf::from(crate::ROOT)
 }
 
 pub(super) fn reference_text() -> String {
@@ -138,7 +138,7 @@ pub(super) fn run_sweep(clock: &Clock, name: &str, spec: &SweepSpec) -> Vec<Swee
         }
     })
     .unwrap_or_else(|e| panic!("sweep {name}: {e}"));
-    crate::report::write_sweep(&dir, spec, &recs).expect("sweep tables");
+    taut::report::write_sweep(&dir, spec, &recs).expect("sweep tables");
     let failed = recs.iter().filter(|r| r.error.is_some()).count();
     clock.say(&format!(
         "{name}: done in {:.1} s ({failed} runs stopped with an error)",

@@ -4,10 +4,10 @@
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-use crate::record::{ContactStats, DropperStats, LossClass};
-use crate::report::Summary;
-use crate::study::sweep::SweepRecord;
-use crate::study::tolerance::Accuracy;
+use taut::record::{ContactStats, DropperStats, LossClass};
+use taut::report::Summary;
+use taut::study::sweep::SweepRecord;
+use taut::study::tolerance::Accuracy;
 
 /// Most stopped points a sweep names on the terminal (all are in sweep.csv).
 pub const STOPPED_SHOWN: usize = 5;
@@ -79,7 +79,7 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
     let d = &s.derived;
     let mut t = format!("taut {} — {}\n", s.taut_version, scene.display());
     if let Some(a) = accuracy {
-        t.push_str(&crate::report::accuracy_header(a));
+        t.push_str(&taut::report::accuracy_header(a));
     }
     let _ = writeln!(
         t,
@@ -96,7 +96,7 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
     let _ = writeln!(
         t,
         "  mesh     {}, {} dofs; Δt = {} s, {} steps to t = {:.4} s; V0/c = {ratio}",
-        crate::report::mesh_label(s),
+        taut::report::mesh_label(s),
         d.dofs,
         d.dt,
         d.steps,
@@ -105,7 +105,7 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
     for (i, c) in s.carriers.iter().enumerate() {
         if let Some(a) = accuracy {
             let _ = writeln!(t, "  carrier {i} (± estimated error at this N and Δt):");
-            t.push_str(&crate::report::result_lines(a, i));
+            t.push_str(&taut::report::result_lines(a, i));
             continue;
         }
         let f = &c.force;
@@ -114,7 +114,7 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
             "  carrier {i}: force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
             f.mean, f.std, f.min, f.max
         );
-        if let crate::record::Filtered::Stats(f) = &c.force_filtered {
+        if let taut::record::Filtered::Stats(f) = &c.force_filtered {
             let _ = writeln!(
                 t,
                 "             0–{} Hz force mean {:.4} N, std {:.4} N, min {:.4} N, max {:.4} N",
@@ -169,7 +169,7 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
 /// The per-span contact force table and the uplift at the supports
 /// (`[output] supports`): a line per carrier and span, one per support;
 /// nothing without supports.
-fn span_lines(s: &crate::report::Summary) -> String {
+fn span_lines(s: &taut::report::Summary) -> String {
     let mut t = String::new();
     if !s.spans.is_empty() {
         let _ = writeln!(
@@ -260,7 +260,7 @@ pub fn stopped(records: &[SweepRecord]) -> String {
 
 /// `taut modes`' lines: one per mode (frequency, and the taut string's
 /// where it applies), then the files written.
-pub fn modes(scene: &Path, dir: &Path, m: &crate::study::modes::Modes) -> String {
+pub fn modes(scene: &Path, dir: &Path, m: &taut::study::modes::Modes) -> String {
     let mut s = format!(
         "taut {} — modes of {} ({}, shapes at {} points)\n",
         env!("CARGO_PKG_VERSION"),

@@ -11,13 +11,13 @@
 //!    sets keep the reference case's contact (unilateral and bilateral)
 //!    stable.
 //!
-//! Run: `cargo run --release --example methods_report` (about a minute);
+//! Run: `cargo xtask methods` (about a minute);
 //! it prints markdown tables. Wall times are this machine's; all other
 //! figures are deterministic.
 
-use crate::resolve::{Resolved, resolve_scene};
-use crate::run::{RunOutput, run};
-use crate::study::tolerance::{FORCE_BAND_HZ, lowpass_zero_phase};
+use taut::resolve::{Resolved, resolve_scene};
+use taut::run::{RunOutput, run};
+use taut::study::tolerance::{FORCE_BAND_HZ, lowpass_zero_phase};
 
 const REFERENCE: &str = include_str!("../../scenes/reference.toml");
 
@@ -110,7 +110,7 @@ pub fn force_error(out: &RunOutput, reference: &RunOutput, length: f64) -> f64 {
     let n = (1..f.len().min(r.len()))
         .find(|&i| x[i] / length >= FORCE_SPAN_END)
         .unwrap_or(f.len().min(r.len()));
-    crate::study::relative_rms(&f[1..n], &r[1..n])
+    taut::study::relative_rms(&f[1..n], &r[1..n])
 }
 
 fn measure(label: &str, sc: &Resolved, reference: &RunOutput) -> Row {
@@ -180,7 +180,7 @@ pub const METHODS: [(&str, &str); 7] = [
     ("moreau_jean (θ = ½)", "method = \"moreau_jean\""),
 ];
 
-/// The report: what `cargo run --release --example methods_report` runs (its
+/// The report: what `cargo xtask methods` runs (its
 /// command-line arguments, if any, are read here).
 pub fn main() {
     let methods = METHODS;
@@ -232,7 +232,7 @@ pub fn main() {
         let sc = scene(m, dt, FAST);
         match run(&sc, &mut |_, _| {}) {
             Ok(o) => format!("{:.4}", in_span_loss(&o, sc.beam.length)),
-            Err(e @ crate::Error::Invalid { .. }) => format!("refused ({})", short(&e.to_string())),
+            Err(e @ taut::Error::Invalid { .. }) => format!("refused ({})", short(&e.to_string())),
             Err(e) => format!("stopped: {}", short(&e.to_string())),
         }
     };
@@ -251,7 +251,7 @@ pub fn main() {
     let cd = "method = \"central_difference\"";
     let limit = {
         let sc = scene(cd, 1e-6, FAST);
-        crate::integrate::central_difference_limit(&sc)
+        taut::integrate::central_difference_limit(&sc)
             .expect("M factors")
             .dt_max
     };
@@ -295,7 +295,7 @@ pub fn main() {
     ];
     for (label, m) in family {
         let sc = scene(m, 1e-4, &[]);
-        let crate::scene::Scheme::GenAlpha(p) = sc.scheme else {
+        let taut::scene::Scheme::GenAlpha(p) = sc.scheme else {
             unreachable!("the generalized-α family")
         };
         let uni = match run(&sc, &mut |_, _| {}) {

@@ -12,8 +12,8 @@
 //!    power law in Δt, the impulse's convergence, the closing speed Δv and
 //!    the string impedance Z·Δv.
 //!
-//! Run: `cargo run --release --example contact_loss_report` (full), or
-//! `cargo run --release --example contact_loss_report -- quick` (a cut-down
+//! Run: `cargo xtask contact-loss` (full), or
+//! `cargo xtask contact-loss quick` (a cut-down
 //! ladder). It prints markdown tables to stdout; wall times go to stderr.
 //! All printed figures are deterministic.
 
@@ -27,14 +27,14 @@ mod recontact;
 mod split;
 mod zone;
 
-use crate::record::zone::{SUPPORT_BENDING_LENGTHS, SUPPORT_ELEMENTS, SUPPORT_STEPS};
 use common::*;
 use recontact::*;
 use split::*;
+use taut::record::zone::{SUPPORT_BENDING_LENGTHS, SUPPORT_ELEMENTS, SUPPORT_STEPS};
 pub use zone::{LossSplit, split_loss, support_zone, support_zone_with};
 // ---------------------------------------------------------------------------
 
-/// The report: what `cargo run --release --example contact_loss_report` runs (its
+/// The report: what `cargo xtask contact-loss` runs (its
 /// command-line arguments, if any, are read here).
 pub fn main() {
     let quick = std::env::args().any(|a| a == "quick");
