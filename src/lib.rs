@@ -27,16 +27,16 @@
 
 pub mod analytic;
 pub mod app;
-pub mod budget;
+pub(crate) mod budget;
 pub mod contact;
 pub mod error;
-pub mod input;
+pub(crate) mod input;
 pub mod integrate;
 pub mod interrupt;
-pub mod json_keys;
-pub mod manufactured;
+pub(crate) mod json_keys;
+pub(crate) mod manufactured;
 pub mod model;
-pub mod numeric;
+pub(crate) mod numeric;
 
 pub mod record;
 pub mod report;
@@ -44,7 +44,7 @@ pub mod resolve;
 pub mod run;
 pub mod scene;
 pub mod study;
-pub mod warnings;
+pub(crate) mod warnings;
 
 /// The library's version (`taut --version`).
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
