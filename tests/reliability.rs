@@ -865,22 +865,44 @@ fn every_integer_option_refuses_what_is_not_in_its_range_naming_it() {
     }
 }
 
+/// The fields of every struct in `text` that a parser fills: those after a
+/// `derive(clap::Args)` or `#[derive(Args)]`, up to the struct's end.
+fn parsed_fields(text: &str) -> Vec<String> {
+    let mut fields = Vec::new();
+    let mut rest = text;
+    while let Some(at) = rest
+        .find("derive(clap::Args)")
+        .or_else(|| rest.find("derive(Args)"))
+    {
+        let body = &rest[at..];
+        let end = body.find("\n}\n").expect("the struct's end");
+        fields.extend(body[..end].lines().map(|l| l.trim().to_string()));
+        rest = &body[end..];
+    }
+    fields
+}
+
 #[test]
 fn no_subcommand_takes_an_integer_through_the_parser() {
-    // a new integer option declared as a number would get clap's message
-    // for -1 again: every one is text, checked by main.rs's `count`
-    let main = std::fs::read_to_string(common::crate_root().join("cli/src/main.rs")).unwrap();
-    let start = main.find("enum Command {").expect("the subcommands");
-    let end = start + main[start..].find("\n}\n").expect("their end");
-    for line in main[start..end].lines() {
-        let field = line.trim();
+    // a new integer option declared as a number would get clap's (or
+    // serde's) message for -1 again: every one is a `Word`, checked by the
+    // library (taut::app::args) for the CLI and Python alike
+    let root = common::crate_root();
+    let args = std::fs::read_to_string(root.join("src/app/args.rs")).unwrap();
+    let main = std::fs::read_to_string(root.join("cli/src/main.rs")).unwrap();
+    let fields = [parsed_fields(&args), parsed_fields(&main)].concat();
+    assert!(
+        fields.iter().any(|f| f == "pub batch: Option<Word>,"),
+        "the check reads the options' structs"
+    );
+    for field in fields {
         for ty in [
             "usize", "u64", "u32", "u16", "u8", "i64", "i32", "isize", "f64",
         ] {
             assert!(
                 !field.ends_with(&format!(": {ty},"))
                     && !field.ends_with(&format!(": Option<{ty}>,")),
-                "cli/src/main.rs declares `{field}`: take it as String and check it with `count`"
+                "`{field}` is parsed as a number: take it as a Word and check it with Word::count"
             );
         }
     }

@@ -1,18 +1,23 @@
 //! The `taut` command line: a thin layer over the library's application
-//! layer ([`taut::app`]). Each subcommand reads its arguments (the clap
-//! structs below; counts and lists checked at this edge, with the library's
-//! messages), makes the typed request, calls `taut::app::<command>` and
-//! prints the outcome ([`terminal`]).
+//! layer ([`taut::app`]). Each subcommand takes its command's options as
+//! the library declares them (`taut::app::args`: the same struct Python's
+//! keyword arguments fill), adds what only a command line has (the scene
+//! file, `--set`/`--unset`, the output folder, `--quiet`), makes the typed
+//! request, calls `taut::app::<command>` and prints the outcome
+//! ([`terminal`]).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 mod terminal;
 
-use taut::app::{self, Frontend, Note, SceneSource};
+use taut::app::{
+    self, CompareArgs, ConvergeArgs, Frontend, GateArgs, ModesArgs, Note, PrecisionArgs,
+    ReplayArgs, RunArgs, SceneSource, SweepArgs, VerifyArgs,
+};
 use taut::report::{compare_table, converge_table, gate_table};
 use taut::study::request::ConvergeOutcome;
 
@@ -24,163 +29,108 @@ struct Cli {
     command: Command,
 }
 
+/// What every command on one scene takes besides its own options.
+#[derive(Args)]
+struct OnScene {
+    /// Scene file (TOML).
+    scene: PathBuf,
+    /// Override a scene value: --set beam.tension=2.01e4 (repeatable).
+    #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+    set: Vec<String>,
+    /// Remove a scene key so that its default applies (repeatable; applied
+    /// before the --set overrides): --unset integrator.rho_inf.
+    #[arg(long = "unset", value_name = "KEY.PATH")]
+    unset: Vec<String>,
+    /// Output folder (default: out/<scene name>, with the command's suffix).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+impl OnScene {
+    /// The override list of `--unset` and `--set`: the removals first (so
+    /// that `--unset integrator --set integrator.method=newmark` replaces a
+    /// table), then the values, each in its order.
+    fn overrides(&self) -> Vec<String> {
+        self.unset
+            .iter()
+            .map(|k| app::words::unset(k))
+            .chain(self.set.iter().cloned())
+            .collect()
+    }
+
+    /// The output folder: `--out`, or out/<scene stem><suffix>.
+    fn dir(&self, suffix: &str) -> PathBuf {
+        self.out.clone().unwrap_or_else(|| {
+            let stem = self
+                .scene
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned());
+            PathBuf::from("out").join(format!("{}{suffix}", stem.unwrap_or_else(|| "run".into())))
+        })
+    }
+
+    fn source(&self) -> SceneSource {
+        SceneSource::File(self.scene.clone())
+    }
+}
+
+/// No progress bar.
+#[derive(Args)]
+struct Quiet {
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Run one scene and write history.csv, summary.json and force.svg.
     Run {
-        /// Scene file (TOML).
-        scene: PathBuf,
-        /// Override a scene value: --set beam.tension=2.01e4 (repeatable).
-        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
-        set: Vec<String>,
-        /// Remove a scene key so that its default applies (repeatable; applied
-        /// before the --set overrides): --unset integrator.rho_inf.
-        #[arg(long = "unset", value_name = "KEY.PATH")]
-        unset: Vec<String>,
-        /// Output folder (default: out/<scene name>).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
-        /// Choose mesh and Δt from measured convergence so the error of
-        /// --quantity is at most TOL (relative; absolute for loss_fraction),
-        /// and print an estimated error next to every result (docs/accuracy.md).
-        #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
-        tolerance: Option<String>,
-        /// What --tolerance is on: force (0–20 Hz contact force), force_raw,
-        /// loss_fraction or displacement.
-        #[arg(long, value_name = "Q", requires = "tolerance")]
-        quantity: Option<String>,
+        #[command(flatten)]
+        on: OnScene,
+        #[command(flatten)]
+        args: RunArgs,
+        #[command(flatten)]
+        q: Quiet,
     },
     /// Refine mesh, step or both and report errors, observed orders and GCI
     /// (converge.csv, converge.json, converge.svg).
     Converge {
-        /// Scene file (TOML).
-        scene: PathBuf,
-        /// What to refine: mesh, step or both.
-        #[arg(long, default_value = "both")]
-        refine: String,
-        /// Number of levels (2 ..= 12; ≥ 3 for observed orders).
-        #[arg(long, default_value = "4", allow_hyphen_values = true)]
-        levels: String,
-        /// Refinement ratio between levels (> 1).
-        #[arg(long, default_value = "2", allow_hyphen_values = true)]
-        ratio: String,
-        #[arg(long, help = methods_help("to study side by side", "the scene's own"))]
-        methods: Option<String>,
-        /// Comma-separated space discretizations to study side by side:
-        /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
-        /// the scene's mesh.modes). Default: the scene's own.
-        #[arg(long, value_name = "LIST")]
-        discretizations: Option<String>,
-        /// Override a scene value (repeatable), as for `run`.
-        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
-        set: Vec<String>,
-        /// Remove a scene key so that its default applies (repeatable; applied
-        /// before the --set overrides): --unset integrator.rho_inf.
-        #[arg(long = "unset", value_name = "KEY.PATH")]
-        unset: Vec<String>,
-        /// Output folder (default: out/<scene name>-converge).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Start even when the study's estimated cost is above 1e11
-        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-        #[arg(long)]
-        yes: bool,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
+        #[command(flatten)]
+        on: OnScene,
+        #[command(flatten)]
+        args: ConvergeArgs,
+        #[command(flatten)]
+        q: Quiet,
     },
     /// Re-run a golden suite and compare each quantity with its reference
     /// (gate.json, junit.xml); exit code 1 when any check fails.
     Gate {
-        /// Suite folder of case files (*.json).
-        #[arg(default_value = "golden")]
-        suite: PathBuf,
+        #[command(flatten)]
+        args: GateArgs,
         /// Output folder for gate.json and junit.xml (default: out/gate).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
-        /// Accept this run's values as the new references and show what changed.
-        #[arg(long)]
-        update: bool,
-        /// Cases stepped together when their runs share the effective
-        /// matrix (1 ..= 8, 1: every case alone; default 4). The checks are
-        /// the same whatever it is.
-        #[arg(long, value_name = "B", allow_hyphen_values = true)]
-        batch: Option<String>,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
+        #[command(flatten)]
+        q: Quiet,
     },
     /// Sweep scene values or the study's dimensionless axes (speed_ratio,
     /// tension_ratio, mass_ratio, stiffness_ratio) in parallel; resumable.
     Sweep {
-        /// Scene file (TOML).
-        scene: PathBuf,
-        /// An axis, key=start:stop:count, or key=v1,v2,... (a list of
-        /// values); one or two.
-        #[arg(
-            long = "vary",
-            value_name = "KEY=START:STOP:COUNT",
-            required_unless_present = "points"
-        )]
-        vary: Vec<String>,
-        /// A list of points instead of a grid: a CSV file whose header
-        /// names the keys and whose rows are the points (docs/sweeps.md).
-        #[arg(long, value_name = "FILE.csv", conflicts_with_all = ["vary", "log"])]
-        points: Option<PathBuf>,
-        /// Logarithmic spacing on every axis.
-        #[arg(long)]
-        log: bool,
-        /// Override a scene value (repeatable), as for `run`.
-        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
-        set: Vec<String>,
-        /// Remove a scene key so that its default applies (repeatable; applied
-        /// before the --set overrides): --unset integrator.rho_inf.
-        #[arg(long = "unset", value_name = "KEY.PATH")]
-        unset: Vec<String>,
-        /// Output folder (default: out/<scene name>-sweep).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Start even when the study's estimated cost is above 1e11
-        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-        #[arg(long)]
-        yes: bool,
-        /// Run only the points with index ≡ i (mod n): i/n.
-        #[arg(long, value_name = "I/N")]
-        shard: Option<String>,
-        /// Run each point a second time with twice the elements and half the
-        /// step, and add the change of P_l and of its in-span part as columns
-        /// (and, for a 2-D sweep, a map of where the loss map is converged).
-        #[arg(long)]
-        check_refinement: bool,
-        /// Worker threads (default: all cores; at most 4 per core, 1024).
-        #[arg(long, value_name = "N", allow_hyphen_values = true)]
-        threads: Option<String>,
-        /// Runs stepped together when they share their effective matrix
-        /// (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of
-        /// lanes). The records are the same bytes whatever the width.
-        #[arg(long, value_name = "B", allow_hyphen_values = true)]
-        batch: Option<String>,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
+        #[command(flatten)]
+        on: OnScene,
+        #[command(flatten)]
+        args: SweepArgs,
+        #[command(flatten)]
+        q: Quiet,
     },
     /// Natural frequencies and mode shapes of the scene's beam, attachments
     /// included (modes.csv, mode_shapes.csv; docs/output.md#modes).
     Modes {
-        /// Scene file (TOML).
-        scene: PathBuf,
-        /// Number of modes (default 10, or the mesh's unknowns if fewer).
-        #[arg(long, value_name = "K", allow_hyphen_values = true)]
-        count: Option<String>,
-        /// Override a scene value (repeatable), as for `run`.
-        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
-        set: Vec<String>,
-        /// Output folder (default: out/<scene name>-modes).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
+        #[command(flatten)]
+        on: OnScene,
+        #[command(flatten)]
+        args: ModesArgs,
     },
     /// Join shard folders of one sweep into a single result.
     Merge {
@@ -194,130 +144,41 @@ enum Command {
     /// Work–precision: error against cost for each formulation over a
     /// (mesh, Δt) grid, with the Pareto front (precision.csv, precision.svg).
     Precision {
-        /// Scene file (TOML).
-        scene: PathBuf,
-        /// Comma-separated formulations.
-        #[arg(long, default_value = "lagrange,penalty,complementarity,impact")]
-        formulations: String,
-        #[arg(long, help = methods_help("", "the scene's own"))]
-        methods: Option<String>,
-        /// Comma-separated space discretizations to study side by side:
-        /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
-        /// the scene's mesh.modes). Default: the scene's own.
-        #[arg(long, value_name = "LIST")]
-        discretizations: Option<String>,
-        /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels; 1 ..= 5).
-        #[arg(long, default_value = "3", allow_hyphen_values = true)]
-        levels: String,
-        /// Refinement ratio (an integer ≥ 2).
-        #[arg(long, default_value = "2", allow_hyphen_values = true)]
-        ratio: String,
-        /// Runs stepped together when they share their effective matrix
-        /// (the formulations of a grid point; 1 ..= 8, 1: every run alone;
-        /// default 4). The table is the same whatever it is.
-        #[arg(long, value_name = "B", allow_hyphen_values = true)]
-        batch: Option<String>,
-        /// Override a scene value (repeatable), as for `run`.
-        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
-        set: Vec<String>,
-        /// Remove a scene key so that its default applies (repeatable; applied
-        /// before the --set overrides): --unset integrator.rho_inf.
-        #[arg(long = "unset", value_name = "KEY.PATH")]
-        unset: Vec<String>,
-        /// Output folder (default: out/<scene name>-precision).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Start even when the study's estimated cost is above 1e11
-        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-        #[arg(long)]
-        yes: bool,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
+        #[command(flatten)]
+        on: OnScene,
+        #[command(flatten)]
+        args: PrecisionArgs,
+        #[command(flatten)]
+        q: Quiet,
     },
     /// Run the verification matrix: every method × discretization ×
     /// formulation × support pair on the declared cases (manufactured and
     /// exact), each observed order beside the expected one (verify.csv,
     /// verify.json); exit code 1 when any row fails.
     Verify {
-        #[arg(long, help = methods_help("", "every built-in one"))]
-        methods: Option<String>,
-        /// Comma-separated discretizations: hermite, graded, galerkin,
-        /// modal (default: all; string elements run on the string cases).
-        #[arg(long, value_name = "LIST")]
-        discretizations: Option<String>,
-        /// Comma-separated contact formulations (default: all four).
-        #[arg(long)]
-        formulations: Option<String>,
-        /// The cut-down matrix of the default test suite (two support pairs).
-        #[arg(long)]
-        quick: bool,
-        /// Worker threads (default: all cores; at most 4 per core, 1024).
-        #[arg(long, value_name = "N", allow_hyphen_values = true)]
-        threads: Option<String>,
+        #[command(flatten)]
+        args: VerifyArgs,
         /// Output folder (default: out/verify).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
+        #[command(flatten)]
+        q: Quiet,
     },
     /// Solve a saved contact problem again (a `failed_contact_step_N.json`
     /// written by a failed run) and print the forces or the failure.
     Replay {
-        /// The saved problem (JSON).
-        problem: PathBuf,
-        /// Override the saved iteration limit (1 ..= 4294967295).
-        #[arg(long, value_name = "N", allow_hyphen_values = true)]
-        max_iter: Option<String>,
-        /// Override the saved complementarity solver: `direct` or `clarabel`.
-        #[arg(long)]
-        solver: Option<String>,
+        #[command(flatten)]
+        args: ReplayArgs,
     },
     /// Run one scene under several contact formulations and time integrators
     /// and compare them (compare.csv, compare.json, compare.svg).
     Compare {
-        /// Scene file (TOML).
-        scene: PathBuf,
-        /// Comma-separated formulations: lagrange, penalty, complementarity, impact.
-        #[arg(long, default_value = "lagrange,penalty,complementarity,impact")]
-        formulations: String,
-        #[arg(long, help = methods_help("", "the scene's own"))]
-        methods: Option<String>,
-        /// Comma-separated space discretizations to study side by side:
-        /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
-        /// the scene's mesh.modes). Default: the scene's own.
-        #[arg(long, value_name = "LIST")]
-        discretizations: Option<String>,
-        /// The formulation the differences are measured against.
-        #[arg(long, default_value = "lagrange")]
-        reference: String,
-        /// The method the differences are measured against (default: the
-        /// first of --methods).
-        #[arg(long, value_name = "METHOD")]
-        reference_method: Option<String>,
-        /// Runs stepped together when they share their effective matrix
-        /// (formulations under one method and discretization; 1 ..= 8,
-        /// 1: every run alone; default 4). The table is the same whatever it is.
-        #[arg(long, value_name = "B", allow_hyphen_values = true)]
-        batch: Option<String>,
-        /// Override a scene value (repeatable), as for `run`.
-        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
-        set: Vec<String>,
-        /// Remove a scene key so that its default applies (repeatable; applied
-        /// before the --set overrides): --unset integrator.rho_inf.
-        #[arg(long = "unset", value_name = "KEY.PATH")]
-        unset: Vec<String>,
-        /// Output folder (default: out/<scene name>-compare).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        /// Start even when the study's estimated cost is above 1e11
-        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-        #[arg(long)]
-        yes: bool,
-        /// No progress bar.
-        #[arg(long)]
-        quiet: bool,
+        #[command(flatten)]
+        on: OnScene,
+        #[command(flatten)]
+        args: CompareArgs,
+        #[command(flatten)]
+        q: Quiet,
     },
     /// Multi-span lines generated from a scene's `[line]` table
     /// (docs/lines.md#the-line-generator-g1g7).
@@ -346,188 +207,33 @@ enum LineAction {
     },
 }
 
-/// The help of `--methods`: the names come from the method registry
-/// (`taut::scene::method_names`), so a new method needs no edit here.
-fn methods_help(what: &str, default: &str) -> String {
-    let what = if what.is_empty() {
-        String::new()
-    } else {
-        format!(" {what}")
-    };
-    format!(
-        "Comma-separated time integrators{what} (default: {default}): {}",
-        taut::scene::method_names().join(", ")
-    )
-}
-
-/// The override list of `--unset` and `--set`: the removals first (so that
-/// `--unset integrator --set integrator.method=newmark` replaces a table),
-/// then the values, each in its order.
-fn overrides(unset: Vec<String>, set: Vec<String>) -> Vec<String> {
-    unset
-        .iter()
-        .map(|k| app::words::unset(k))
-        .chain(set)
-        .collect()
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Run {
-            scene,
-            set,
-            unset,
-            out,
-            quiet,
-            tolerance,
-            quantity,
-        } => cmd_run(
-            scene,
-            overrides(unset, set),
-            out,
-            quiet,
-            tolerance,
-            quantity,
-        )
-        .map(|()| true),
-        Command::Replay {
-            problem,
-            max_iter,
-            solver,
-        } => cmd_replay(problem, max_iter, solver).map(|()| true),
-        Command::Sweep {
-            scene,
-            vary,
-            points,
-            log,
-            set,
-            unset,
-            out,
-            shard,
-            check_refinement,
-            threads,
-            batch,
-            quiet,
-            yes,
-        } => cmd_sweep(
-            scene,
-            (&vary, points.as_deref(), log, check_refinement),
-            overrides(unset, set),
-            out,
-            shard.as_deref(),
-            (threads, batch),
-            (quiet, yes),
-        ),
-        Command::Verify {
-            methods,
-            discretizations,
-            formulations,
-            quick,
-            threads,
-            out,
-            quiet,
-        } => cmd_verify(
-            (
-                methods.as_deref(),
-                discretizations.as_deref(),
-                formulations.as_deref(),
-            ),
-            quick,
-            threads,
-            out,
-            quiet,
-        ),
+        Command::Run { on, args, q } => cmd_run(&on, &args, q.quiet).map(|()| true),
+        Command::Replay { args } => cmd_replay(&args).map(|()| true),
+        Command::Sweep { on, args, q } => cmd_sweep(&on, &args, q.quiet),
+        Command::Verify { args, out, q } => cmd_verify(&args, out, q.quiet),
         Command::Merge { shards, out } => cmd_merge(&shards, &out),
-        Command::Modes {
-            scene,
-            count,
-            set,
-            out,
-        } => cmd_modes(scene, count, set, out).map(|()| true),
-        Command::Precision {
-            scene,
-            formulations,
-            methods,
-            discretizations,
-            levels,
-            ratio,
-            batch,
-            set,
-            unset,
-            out,
-            quiet,
-            yes,
-        } => cmd_precision(
-            scene,
-            (
-                &formulations,
-                methods.as_deref(),
-                discretizations.as_deref(),
-            ),
-            (levels, ratio, batch),
-            overrides(unset, set),
-            out,
-            (quiet, yes),
-        )
-        .map(|()| true),
-        Command::Gate {
-            suite,
-            out,
-            update,
-            batch,
-            quiet,
-        } => cmd_gate(suite, out, (update, batch), quiet),
-        Command::Converge {
-            scene,
-            refine,
-            levels,
-            ratio,
-            methods,
-            discretizations,
-            set,
-            unset,
-            out,
-            quiet,
-            yes,
-        } => cmd_converge(
-            scene,
-            &refine,
-            (levels, ratio),
-            (methods.as_deref(), discretizations.as_deref()),
-            overrides(unset, set),
-            out,
-            (quiet, yes),
-        )
-        .map(|()| true),
-        Command::Compare {
-            scene,
-            formulations,
-            methods,
-            discretizations,
-            reference,
-            reference_method,
-            batch,
-            set,
-            unset,
-            out,
-            quiet,
-            yes,
-        } => cmd_compare(
-            scene,
-            &formulations,
-            (methods.as_deref(), discretizations.as_deref()),
-            (&reference, reference_method.as_deref(), batch),
-            overrides(unset, set),
-            out,
-            (quiet, yes),
-        ),
+        Command::Modes { on, args } => cmd_modes(&on, &args).map(|()| true),
+        Command::Precision { on, args, q } => cmd_precision(&on, &args, q.quiet).map(|()| true),
+        Command::Gate { args, out, q } => cmd_gate(&args, out, q.quiet),
+        Command::Converge { on, args, q } => cmd_converge(&on, &args, q.quiet).map(|()| true),
+        Command::Compare { on, args, q } => cmd_compare(&on, &args, q.quiet),
         Command::Line {
             action: LineAction::Expand { scene, set, unset },
-        } => app::line::expand(&SceneSource::File(scene), &overrides(unset, set)).map(|text| {
-            print!("{text}");
-            true
-        }),
+        } => {
+            let on = OnScene {
+                scene,
+                set,
+                unset,
+                out: None,
+            };
+            app::line::expand(&on.source(), &on.overrides()).map(|text| {
+                print!("{text}");
+                true
+            })
+        }
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,
@@ -538,96 +244,6 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
-}
-
-/// A count given on the command line (`--threads`, `--batch`, `--levels`,
-/// `--ratio` of precision, `--max-iter`), checked by the library's `check`:
-/// text that is not a whole number (`-1`, `x`, `1.5`, a number past
-/// `usize`) gets the same error, naming the flag, the text and the range, as
-/// a number out of range (not the parser's "unexpected argument" or
-/// "invalid digit"). Every integer option of every subcommand goes through
-/// here (`tests/cli.rs` tries each with `-1`).
-fn count(
-    text: Option<String>,
-    check: impl Fn(usize) -> taut::Result<usize>,
-) -> taut::Result<Option<usize>> {
-    let Some(text) = text else { return Ok(None) };
-    match text.trim().parse::<usize>() {
-        Ok(n) => check(n).map(Some),
-        // 0 is outside every count's range: its error, with the text given
-        Err(_) => match check(0) {
-            Err(taut::Error::Invalid { field, allowed, .. }) => {
-                Err(taut::Error::invalid(field, text, allowed))
-            }
-            other => other.map(Some),
-        },
-    }
-}
-
-fn threads_arg(text: Option<String>) -> taut::Result<Option<usize>> {
-    count(text, taut::study::threads::check_threads)
-}
-
-fn batch_arg(text: Option<String>) -> taut::Result<Option<usize>> {
-    count(text, |n| {
-        taut::study::request::batch_width(Some(n)).map(|_| n)
-    })
-}
-
-/// A count with a default (clap gives the default's text when absent).
-fn required_count(
-    text: String,
-    check: impl Fn(usize) -> taut::Result<usize>,
-) -> taut::Result<usize> {
-    Ok(count(Some(text), check)?.expect("a count was given"))
-}
-
-/// `taut replay --max-iter N`: 1 ..= u32::MAX, the solver's iteration limit.
-fn max_iter_arg(text: Option<String>) -> taut::Result<Option<u32>> {
-    let n = count(text, |n| {
-        if n >= 1 && u32::try_from(n).is_ok() {
-            Ok(n)
-        } else {
-            Err(taut::Error::invalid(
-                "--max-iter",
-                n,
-                format!("must be in 1 ..= {}", u32::MAX),
-            ))
-        }
-    })?;
-    Ok(n.map(|n| u32::try_from(n).expect("checked")))
-}
-
-/// `taut converge --levels L --ratio R`: L by the study's own range, R a
-/// number > 1 (text that is not a number gets the same error).
-fn converge_levels_arg(levels: String, ratio: String) -> taut::Result<(usize, f64)> {
-    use taut::study::converge::{check_levels, check_ratio};
-    let levels = required_count(levels, check_levels)?;
-    let ratio = match ratio.trim().parse::<f64>() {
-        Ok(r) => check_ratio(r)?,
-        Err(_) => match check_ratio(f64::NAN) {
-            Err(taut::Error::Invalid { field, allowed, .. }) => {
-                return Err(taut::Error::invalid(field, ratio, allowed));
-            }
-            other => other?,
-        },
-    };
-    Ok((levels, ratio))
-}
-
-/// `taut precision --levels L --ratio R`, by the study's own ranges.
-fn precision_levels_arg(levels: String, ratio: String) -> taut::Result<(usize, usize)> {
-    use taut::study::precision::{check_levels, check_ratio};
-    Ok((
-        required_count(levels, check_levels)?,
-        required_count(ratio, check_ratio)?,
-    ))
-}
-
-/// Default output folder: out/<scene stem><suffix>.
-fn default_dir(scene: &Path, suffix: &str) -> PathBuf {
-    let stem = scene.file_stem().map(|s| s.to_string_lossy().into_owned());
-    PathBuf::from("out").join(format!("{}{suffix}", stem.unwrap_or_else(|| "run".into())))
 }
 
 /// The terminal as the application layer's front end: a progress bar
@@ -678,41 +294,32 @@ impl Frontend for Terminal {
     }
 }
 
-/// A study of the scene file `scene` with overrides `set`, its outputs in
-/// `out` (default: out/<scene stem><suffix>), run by `command` with a
+/// A study of one scene (`compare`, `converge`, `precision`), its outputs
+/// in `--out` (default: out/<scene stem><suffix>), run by `command` with a
 /// progress bar of runs; returns its outcome and output folder.
 fn on_scene<S, R>(
-    (scene, set, out, suffix): (&Path, Vec<String>, Option<PathBuf>, &str),
+    on: &OnScene,
+    suffix: &str,
     study: S,
     quiet: bool,
     command: fn(&app::StudyRequest<S>, &dyn Frontend) -> taut::Result<R>,
 ) -> taut::Result<(R, PathBuf)> {
-    let dir = out.unwrap_or_else(|| default_dir(scene, suffix));
     let request = app::StudyRequest {
-        scene: SceneSource::File(scene.to_path_buf()),
-        set,
+        scene: on.source(),
+        set: on.overrides(),
         study,
-        out: Some(dir),
+        out: Some(on.dir(suffix)),
     };
     let outcome = Terminal::new("runs", quiet).run(|fe| command(&request, fe))?;
     Ok((outcome, request.out.expect("given")))
 }
 
-fn cmd_run(
-    scene: PathBuf,
-    set: Vec<String>,
-    out: Option<PathBuf>,
-    quiet: bool,
-    tolerance: Option<String>,
-    quantity: Option<String>,
-) -> taut::Result<()> {
-    let tolerance = tolerance
-        .map(|t| app::words::tolerance(&t, quantity.as_deref()))
-        .transpose()?;
-    let dir = out.unwrap_or_else(|| default_dir(&scene, ""));
+fn cmd_run(on: &OnScene, args: &RunArgs, quiet: bool) -> taut::Result<()> {
+    let tolerance = args.tolerance()?;
+    let dir = on.dir("");
     let request = app::RunRequest {
-        scene: SceneSource::File(scene.clone()),
-        set,
+        scene: on.source(),
+        set: on.overrides(),
         out: Some(dir.clone()),
         tolerance,
     };
@@ -720,51 +327,28 @@ fn cmd_run(
     let outcome = Terminal::new(unit, quiet).run(|fe| app::run(&request, fe))?;
     print!(
         "{}",
-        terminal::summary(&scene, &dir, &outcome.summary, outcome.accuracy.as_ref())
+        terminal::summary(&on.scene, &dir, &outcome.summary, outcome.accuracy.as_ref())
     );
     Ok(())
 }
 
-fn cmd_modes(
-    scene: PathBuf,
-    count_text: Option<String>,
-    set: Vec<String>,
-    out: Option<PathBuf>,
-) -> taut::Result<()> {
-    // ≥ 1 here; the scene's own upper bound is the library's
-    let count = count(count_text, |n| {
-        if n >= 1 {
-            Ok(n)
-        } else {
-            Err(taut::Error::invalid("--count", n, "must be ≥ 1"))
-        }
-    })?;
-    let dir = out.unwrap_or_else(|| default_dir(&scene, "-modes"));
+fn cmd_modes(on: &OnScene, args: &ModesArgs) -> taut::Result<()> {
+    let dir = on.dir("-modes");
     let request = app::ModesRequest {
-        scene: SceneSource::File(scene.clone()),
-        set,
-        count,
+        scene: on.source(),
+        set: on.overrides(),
+        count: args.count()?,
         out: Some(dir.clone()),
     };
     let m = Terminal::new("", true).run(|fe| app::modes(&request, fe))?;
-    print!("{}", terminal::modes(&scene, &dir, &m));
+    print!("{}", terminal::modes(&on.scene, &dir, &m));
     Ok(())
 }
 
-fn cmd_converge(
-    scene: PathBuf,
-    refine: &str,
-    (levels, ratio): (String, String),
-    words: (Option<&str>, Option<&str>),
-    set: Vec<String>,
-    out: Option<PathBuf>,
-    (quiet, yes): (bool, bool),
-) -> taut::Result<()> {
-    let (levels, ratio) = converge_levels_arg(levels, ratio)?;
-    let study = app::words::converge(refine, (levels, ratio), words, yes)?;
-    let kind = format!("converge ({:?}, r = {ratio})", study.refine);
-    let place = (scene.as_path(), set, out, "-converge");
-    let (outcome, dir) = on_scene(place, study, quiet, app::converge)?;
+fn cmd_converge(on: &OnScene, args: &ConvergeArgs, quiet: bool) -> taut::Result<()> {
+    let study = args.study()?;
+    let kind = format!("converge ({:?}, r = {})", study.refine, study.ratio);
+    let (outcome, dir) = on_scene(on, "-converge", study, quiet, app::converge)?;
     let table = match &outcome {
         ConvergeOutcome::One(c) => converge_table(c),
         ConvergeOutcome::Variants { studies, skipped } => {
@@ -772,28 +356,17 @@ fn cmd_converge(
         }
     };
     let files = "converge.csv, converge.json, converge.svg";
-    print!("{}", terminal::study(&kind, &scene, &table, &dir, files));
+    print!("{}", terminal::study(&kind, &on.scene, &table, &dir, files));
     Ok(())
 }
 
 /// Returns whether every row passed (or is known, cannot, reported).
-fn cmd_verify(
-    (methods, spaces, formulations): (Option<&str>, Option<&str>, Option<&str>),
-    quick: bool,
-    threads: Option<String>,
-    out: Option<PathBuf>,
-    quiet: bool,
-) -> taut::Result<bool> {
-    let threads = threads_arg(threads)?;
-    let request = app::VerifyRequest {
-        selection: taut::study::verify::selection(methods, spaces, formulations, quick)?,
-        threads,
-        out: out.unwrap_or_else(|| PathBuf::from("out").join("verify")),
-    };
+fn cmd_verify(args: &VerifyArgs, out: Option<PathBuf>, quiet: bool) -> taut::Result<bool> {
+    let request = args.request(out.unwrap_or_else(|| PathBuf::from("out").join("verify")))?;
     let v = Terminal::new("combinations", quiet).run(|fe| app::verify(&request, fe))?;
     println!(
         "taut {} — verify ({} rows, {:.1} s on {} threads)",
-        env!("CARGO_PKG_VERSION"),
+        taut::VERSION,
         v.rows.len(),
         v.wall_seconds,
         v.threads
@@ -807,25 +380,11 @@ fn cmd_verify(
 }
 
 /// Returns whether the gate passed.
-fn cmd_gate(
-    suite: PathBuf,
-    out: Option<PathBuf>,
-    (update, batch): (bool, Option<String>),
-    quiet: bool,
-) -> taut::Result<bool> {
-    let request = app::GateRequest {
-        batch: taut::study::request::batch_lanes(batch_arg(batch)?)?,
-        suite,
-        out: out.unwrap_or_else(|| PathBuf::from("out").join("gate")),
-        update,
-    };
+fn cmd_gate(args: &GateArgs, out: Option<PathBuf>, quiet: bool) -> taut::Result<bool> {
+    let request = args.request(out.unwrap_or_else(|| PathBuf::from("out").join("gate")))?;
     let g = Terminal::new("cases", quiet).run(|fe| app::gate(&request, fe))?;
-    println!(
-        "taut {} — gate {}",
-        env!("CARGO_PKG_VERSION"),
-        request.suite.display()
-    );
-    print!("{}", gate_table(&g.report, update));
+    println!("taut {} — gate {}", taut::VERSION, request.suite.display());
+    print!("{}", gate_table(&g.report, request.update));
     println!(
         "  wrote    {}/{{gate.json, junit.xml}}",
         request.out.display()
@@ -834,41 +393,12 @@ fn cmd_gate(
 }
 
 /// Returns whether every point ran (the tables are written either way).
-fn cmd_sweep(
-    scene: PathBuf,
-    (vary, points, log, check_refinement): (&[String], Option<&std::path::Path>, bool, bool),
-    set: Vec<String>,
-    out: Option<PathBuf>,
-    shard: Option<&str>,
-    (threads, batch): (Option<String>, Option<String>),
-    (quiet, yes): (bool, bool),
-) -> taut::Result<bool> {
-    let threads = threads_arg(threads)?;
-    let batch = taut::study::request::batch_width(batch_arg(batch)?)?;
-    let axes = match points {
-        Some(file) => taut::study::sweep::read_points(file)?,
-        None => app::words::axes(vary, log)?,
-    };
-    let shard = shard.map(taut::study::sweep::Shard::parse).transpose()?;
-    let request = app::SweepRequest {
-        scene: SceneSource::File(scene.clone()),
-        set,
-        axes,
-        points: points.is_some(),
-        check_refinement,
-        out: out.unwrap_or_else(|| default_dir(&scene, "-sweep")),
-        files: true,
-        shard,
-        threads,
-        batch,
-        yes,
-    };
+fn cmd_sweep(on: &OnScene, args: &SweepArgs, quiet: bool) -> taut::Result<bool> {
+    let study = args.study()?;
+    let shard = study.shard;
+    let request = app::SweepRequest::new(on.source(), on.overrides(), study, on.dir("-sweep"));
     let s = Terminal::new("runs", quiet).run(|fe| app::sweep(&request, fe))?;
-    println!(
-        "taut {} — sweep {}",
-        env!("CARGO_PKG_VERSION"),
-        scene.display()
-    );
+    println!("taut {} — sweep {}", taut::VERSION, on.scene.display());
     let ran = s.records.len() - s.resumed.min(s.records.len());
     println!(
         "  {} runs{}{} in {:.2} s wall ({:.2} runs/s, {} threads); {} stopped with an error",
@@ -901,7 +431,7 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
     let m = app::merge(shards, out, &Terminal::new("", true))?;
     println!(
         "taut {} — merged {} shards: {} runs into {}",
-        env!("CARGO_PKG_VERSION"),
+        taut::VERSION,
         shards.len(),
         m.records.len(),
         out.display()
@@ -911,54 +441,20 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
     Ok(m.stopped() == 0)
 }
 
-fn cmd_precision(
-    scene: PathBuf,
-    (formulations, methods, discretizations): (&str, Option<&str>, Option<&str>),
-    (levels, ratio, batch): (String, String, Option<String>),
-    set: Vec<String>,
-    out: Option<PathBuf>,
-    (quiet, yes): (bool, bool),
-) -> taut::Result<()> {
-    let (levels, ratio) = precision_levels_arg(levels, ratio)?;
-    let batch = batch_arg(batch)?;
-    let study = app::words::precision(
-        formulations,
-        (methods, discretizations),
-        (levels, ratio),
-        batch,
-        yes,
-    )?;
-    let place = (scene.as_path(), set, out, "-precision");
-    let (p, dir) = on_scene(place, study, quiet, app::precision)?;
+fn cmd_precision(on: &OnScene, args: &PrecisionArgs, quiet: bool) -> taut::Result<()> {
+    let (p, dir) = on_scene(on, "-precision", args.study()?, quiet, app::precision)?;
     let table = taut::report::precision_table(&p);
+    let files = "precision.csv, precision.svg";
     print!(
         "{}",
-        terminal::study(
-            "precision",
-            &scene,
-            &table,
-            &dir,
-            "precision.csv, precision.svg"
-        )
+        terminal::study("precision", &on.scene, &table, &dir, files)
     );
     Ok(())
 }
 
-fn cmd_replay(
-    problem: PathBuf,
-    max_iter: Option<String>,
-    solver: Option<String>,
-) -> taut::Result<()> {
+fn cmd_replay(args: &ReplayArgs) -> taut::Result<()> {
     use taut::contact::Level;
-    let request = app::ReplayRequest {
-        max_iter: max_iter_arg(max_iter)?,
-        solver: solver
-            .as_deref()
-            .map(app::words::complementarity_solver)
-            .transpose()?,
-        problem,
-    };
-    let r = app::replay(&request)?;
+    let r = app::replay(&args.request()?)?;
     let (gap, force) = match r.problem.level {
         Level::Acceleration => ("m/s²", "N"),
         Level::Position => ("m", "N"),
@@ -987,29 +483,12 @@ fn cmd_replay(
 
 /// Returns false when a run of the comparison stopped (tables are written
 /// for the others).
-fn cmd_compare(
-    scene: PathBuf,
-    formulations: &str,
-    words: (Option<&str>, Option<&str>),
-    (reference, reference_method, batch): (&str, Option<&str>, Option<String>),
-    set: Vec<String>,
-    out: Option<PathBuf>,
-    (quiet, yes): (bool, bool),
-) -> taut::Result<bool> {
-    let batch = batch_arg(batch)?;
-    let study = app::words::compare(
-        formulations,
-        words,
-        (reference, reference_method),
-        batch,
-        yes,
-    )?;
-    let place = (scene.as_path(), set, out, "-compare");
-    let (c, dir) = on_scene(place, study, quiet, app::compare)?;
+fn cmd_compare(on: &OnScene, args: &CompareArgs, quiet: bool) -> taut::Result<bool> {
+    let (c, dir) = on_scene(on, "-compare", args.study()?, quiet, app::compare)?;
     let files = "compare.csv, compare.json, compare.svg";
     print!(
         "{}",
-        terminal::study("compare", &scene, &compare_table(&c), &dir, files)
+        terminal::study("compare", &on.scene, &compare_table(&c), &dir, files)
     );
     Ok(c.failed.is_empty())
 }

@@ -423,15 +423,6 @@ def _key(key: str) -> str:
 _LARGEST = 2**63 - 1
 
 
-def _opt_ranged(name: str, value: Optional[int]) -> Optional[int]:
-    """`threads` or `batch`: None (the default) or an int in the range the
-    library allows (1 ..= its limit), refused with that range."""
-    if value is None:
-        return None
-    threads, batch = _taut.limits()
-    return _count(name, value, 1, threads if name == "threads" else batch)
-
-
 def _count(name: str, value: int, least: int, most: int = _LARGEST) -> int:
     """An integer argument: refused by name unless an int in `least ..=
     most` (the library checks the upper bounds it knows and names them the
@@ -455,23 +446,25 @@ def _count(name: str, value: int, least: int, most: int = _LARGEST) -> int:
     return n
 
 
-def _levels(levels: int, study: int) -> int:
-    """`levels` of converge (study 0) or precision (1): refused with the
-    library's range when no count can hold it (below 0, above 2**63 - 1);
-    the library refuses the rest with the same range."""
-    least, most = _taut.level_ranges()[study]
-    try:
-        return _count("levels", levels, 0)
-    except SceneError:
-        if isinstance(levels, bool) or not hasattr(levels, "__index__"):
-            raise
-        shown = _short(str(int(levels)))
-        raise SceneError(
-            f"invalid argument: `levels` = {shown}: must be in {least} ..= {most}",
-            field="levels",
-            value=shown,
-            allowed=f"must be in {least} ..= {most}",
-        ) from None
+def _word(value: Any) -> Any:
+    """A command option's value as the library reads it (`taut._taut`
+    `args`, JSON): numbers as their text, so that every int Python has and
+    every float reach the library's range check exactly (its errors name
+    the keyword, the value and the range); None and strings as they are."""
+    if value is None or isinstance(value, str):
+        return value
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, bool) or not hasattr(value, "__index__"):
+        return repr(value)
+    return str(int(value))
+
+
+def _options(**words: Any) -> str:
+    """A command's options as JSON for `taut._taut` (its `args`): the
+    library's struct of the same command, the CLI's flags (`taut.app.args`),
+    declared once there; the keys given are the Python keywords."""
+    return json.dumps({k: _word(v) for k, v in words.items()})
 
 
 def _short(text: str) -> str:
@@ -593,11 +586,11 @@ def run(
         KeyboardInterrupt.
     """
     path, text = _scene(scene)
-    tol = None if tolerance is None else _toml(_real("tolerance", tolerance))
     sets = _overrides(set)
-    with _Sink(progress, "steps" if tol is None else "runs") as p:
+    args = _options(tolerance=tolerance, quantity=quantity)
+    with _Sink(progress, "steps" if tolerance is None else "runs") as p:
         summary, history, warnings, accuracy, (snap, field), line = _taut.run(
-            path, text, sets, _out(out), tol, quantity, p
+            (path, text, sets), _out(out), p, args
         )
     r = Run(
         json.loads(summary),
@@ -619,6 +612,7 @@ def sweep(
     set: Union[None, Mapping[str, Any], Iterable[str]] = None,
     *,
     points: Optional[_sweeps.Points] = None,
+    shard: Optional[str] = None,
     threads: Optional[int] = None,
     log: bool = False,
     check_refinement: bool = False,
@@ -643,6 +637,8 @@ def sweep(
         points: instead of `vary`, a list of points [{key: value, ...},
             ...] (a Latin hypercube, an optimizer's proposals; a dict of
             columns or a pandas DataFrame too): each is one run, in order.
+        shard: "i/n": run only the points with index ≡ i (mod n), into
+            `out` (the CLI's `--shard`; join the folders with `taut merge`).
         threads: worker threads (default: one per core).
         log: logarithmic spacing on every axis.
         check_refinement: run each point again with 2N elements and Δt/2 and
@@ -677,20 +673,20 @@ def sweep(
     path, text = _scene(scene)
     axes = _sweeps.axes(vary) if vary is not None else _sweeps.points(points)
     paired = points is not None
-    if paired and log:
-        raise SceneError(
-            "sweep: `log` spaces a grid's ranges; a list of points has none",
-            field="log",
-            value="True",
-            allowed="False with points=",
-        )
-    args = (axes, log, _overrides(set))
-    n_threads, n_batch = _opt_ranged("threads", threads), _opt_ranged("batch", batch)
+    on = (path, text, _overrides(set))
+    args = _options(
+        vary=axes,
+        paired=paired,
+        log=log,
+        shard=shard,
+        check_refinement=check_refinement,
+        threads=threads,
+        batch=batch,
+        yes=yes,
+    )
 
     def call(folder: str, files: bool) -> Table:
-        cols = _taut.sweep(
-            path, text, *args, folder, files, n_threads, n_batch, check_refinement, p, yes, paired
-        )
+        cols = _taut.sweep(on, folder, files, p, args)
         t = table(cols)
         t.paired = paired
         for k, v in _sweeps.span_profiles(folder, t.rows).items():
@@ -744,18 +740,18 @@ def compare(
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
         cols, failed, skipped = _taut.compare(
-            path,
-            text,
-            _overrides(set),
-            _list(formulations),
-            _names(methods),
-            _names(discretizations),
-            reference,
-            reference_method,
-            _opt_ranged("batch", batch),
+            (path, text, _overrides(set)),
             _out(out),
             p,
-            yes,
+            _options(
+                formulations=_list(formulations),
+                methods=_names(methods),
+                discretizations=_names(discretizations),
+                reference=reference,
+                reference_method=reference_method,
+                batch=batch,
+                yes=yes,
+            ),
         )
     t = table(cols)
     t.failed = _not_run(failed)
@@ -798,17 +794,17 @@ def converge(
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
         cols, skipped = _taut.converge(
-            path,
-            text,
-            _overrides(set),
-            refine,
-            _levels(levels, 0),
-            _real("ratio", ratio),
-            _names(methods),
-            _names(discretizations),
+            (path, text, _overrides(set)),
             _out(out),
             p,
-            yes,
+            _options(
+                refine=refine,
+                levels=levels,
+                ratio=ratio,
+                methods=_names(methods),
+                discretizations=_names(discretizations),
+                yes=yes,
+            ),
         )
     t = table(cols)
     t.skipped = _not_run(skipped)
@@ -841,18 +837,18 @@ def precision(
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
         cols, skipped = _taut.precision(
-            path,
-            text,
-            _overrides(set),
-            _list(formulations),
-            _names(methods),
-            _names(discretizations),
-            _levels(levels, 1),
-            _count("ratio", ratio, 0),
-            _opt_ranged("batch", batch),
+            (path, text, _overrides(set)),
             _out(out),
             p,
-            yes,
+            _options(
+                formulations=_list(formulations),
+                methods=_names(methods),
+                discretizations=_names(discretizations),
+                levels=levels,
+                ratio=ratio,
+                batch=batch,
+                yes=yes,
+            ),
         )
     t = table(cols)
     t.skipped = _not_run(skipped)
@@ -885,8 +881,7 @@ def modes(
         SceneError (a bad scene or count), OutputError.
     """
     path, text = _scene(scene)
-    n = None if count is None else _count("count", count, 1)
-    freq, shapes = _taut.modes(path, text, _overrides(set), n, _out(out))
+    freq, shapes = _taut.modes((path, text, _overrides(set)), _out(out), _options(count=count))
     return Modes(table(freq), table(shapes))
 
 

@@ -16,6 +16,7 @@
 //! on stderr; Python prints the cleared-outputs note and keeps the saved
 //! contact problem's path for its exception).
 
+pub mod args;
 pub mod compare;
 pub mod converge;
 pub mod gate;
@@ -37,6 +38,10 @@ use crate::error::{Error, Result};
 use crate::report::Outputs;
 use crate::study::cost::Estimate;
 
+pub use args::{
+    CompareArgs, ConvergeArgs, GateArgs, ModesArgs, PrecisionArgs, ReplayArgs, RunArgs, SweepArgs,
+    VerifyArgs, Word,
+};
 pub use compare::{CompareRequest, compare};
 pub use converge::{ConvergeRequest, converge};
 pub use gate::{GateOutcome, GateRequest, gate};

@@ -41,6 +41,32 @@ pub struct SweepRequest {
     pub yes: bool,
 }
 
+impl SweepRequest {
+    /// A sweep of `scene` with overrides `set` as `study` gives it (the
+    /// words of [`super::SweepArgs`]), resumable in `out`, its tables and
+    /// maps written there.
+    pub fn new(
+        scene: SceneSource,
+        set: Vec<String>,
+        study: super::args::SweepStudy,
+        out: PathBuf,
+    ) -> SweepRequest {
+        SweepRequest {
+            scene,
+            set,
+            axes: study.axes,
+            points: study.points,
+            check_refinement: study.check_refinement,
+            out,
+            files: true,
+            shard: study.shard,
+            threads: study.threads,
+            batch: study.batch,
+            yes: study.yes,
+        }
+    }
+}
+
 /// What a sweep gives.
 pub struct SweepOutcome {
     /// The sweep as run (its scene text, overrides and axes).
