@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import functools
 import json
+import operator
 import os
 import tempfile
 from typing import (
@@ -450,14 +451,17 @@ def _word(value: Any) -> Any:
     """A command option's value as the library reads it (`taut._taut`
     `args`, JSON): numbers as their text, so that every int Python has and
     every float reach the library's range check exactly (its errors name
-    the keyword, the value and the range); None and strings as they are."""
-    if value is None or isinstance(value, str):
+    the keyword, the value and the range); None, strings and switches as
+    they are, lists item by item."""
+    if value is None or isinstance(value, (str, bool)):
         return value
+    if isinstance(value, (list, tuple)):
+        return [_word(v) for v in value]
     if isinstance(value, float):
         return repr(value)
-    if isinstance(value, bool) or not hasattr(value, "__index__"):
-        return repr(value)
-    return str(int(value))
+    if hasattr(value, "__index__"):
+        return str(operator.index(value))
+    return repr(value)
 
 
 def _options(**words: Any) -> str:
