@@ -14,12 +14,16 @@
 //! | [`convergence`] | `docs/convergence.md` (written in full) | `cargo xtask convergence` |
 //! | [`stability`] | `docs/stability.md` (written in full) | `cargo xtask stability` |
 //! | [`reproduction`] | `docs/reproduction.md` and `docs/reproduction/` | `cargo xtask reproduction [--full] [--resume]` |
+//! | [`published_band`] | the tables of `docs/reproduction.md`'s last section (printed) | `cargo xtask published-band` |
+//! | [`accuracy_check`] | the tables of `docs/accuracy.md` (printed) | `cargo xtask accuracy-check grid\|check …` |
 
 /// The repository's top folder (scenes/, docs/): this crate sits one below it.
 pub const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
 
+pub mod accuracy_check;
 pub mod contact_loss;
 pub mod convergence;
 pub mod methods;
+pub mod published_band;
 pub mod reproduction;
 pub mod stability;

@@ -4,7 +4,7 @@
 use std::process::ExitCode;
 
 /// Each page's command, its entry point, and what it writes.
-const PAGES: [(&str, fn(), &str); 5] = [
+const PAGES: [(&str, fn(), &str); 7] = [
     (
         "methods",
         xtask::methods::main,
@@ -29,6 +29,16 @@ const PAGES: [(&str, fn(), &str); 5] = [
         "reproduction",
         xtask::reproduction::main,
         "docs/reproduction.md and docs/reproduction/ (`--full`: T7 refined at 41 x 41; `--resume`: keep finished runs)",
+    ),
+    (
+        "published-band",
+        xtask::published_band::main,
+        "the tables of docs/reproduction.md's last section, printed (about a minute)",
+    ),
+    (
+        "accuracy-check",
+        xtask::accuracy_check::main,
+        "the tables of docs/accuracy.md, printed (`grid SCENE Q N1,N2,.. DT1,DT2,..` or `check SCENE Q TOL K`)",
     ),
 ];
 

@@ -158,7 +158,7 @@ The published statements are the study's words and numbers as TARGETS.md records
 
     let path = root().join("docs/reproduction.md");
     // the findings on the published band and T2's period are written by hand
-    // from examples/published_band.rs: kept as they are
+    // from xtask/src/published_band.rs: kept as they are
     const KEPT_SECTION: &str = "\n## Findings: the published loss band";
     if let Ok(old) = std::fs::read_to_string(&path)
         && let Some(i) = old.find(KEPT_SECTION)

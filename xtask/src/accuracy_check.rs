@@ -4,10 +4,10 @@
 //! ```sh
 //! # the quantity's difference over an (N, Δt) grid: to the finest cell, and
 //! # successive differences along each axis (on the first cell's time grid)
-//! cargo run --release --example accuracy_check -- grid scenes/reference.toml force 400,800,1600,3200 1e-4,5e-5,2.5e-5,1.25e-5,6.25e-6
+//! cargo xtask accuracy-check grid scenes/reference.toml force 400,800,1600,3200 1e-4,5e-5,2.5e-5,1.25e-5,6.25e-6
 //! # `taut run --tolerance TOL --quantity Q`, then a run K× finer in h and Δt,
 //! # and the chosen run's actual difference to it beside the estimate
-//! cargo run --release --example accuracy_check -- check scenes/reference.toml force 1e-3 4 [key=value ...]
+//! cargo xtask accuracy-check check scenes/reference.toml force 1e-3 4 [key=value ...]
 //! ```
 //!
 //! Trailing `key=value` arguments are `--set` overrides. Wall times go to the
@@ -17,13 +17,14 @@ use taut::study::tolerance::{Quantity, quantity_difference, result_values, toler
 
 fn usage() -> ! {
     eprintln!(
-        "usage: accuracy_check grid SCENE QUANTITY N1,N2,.. DT1,DT2,.. [key=value ...]\n       accuracy_check check SCENE QUANTITY TOL K [key=value ...]"
+        "usage: cargo xtask accuracy-check grid SCENE QUANTITY N1,N2,.. DT1,DT2,.. [key=value ...]\n       cargo xtask accuracy-check check SCENE QUANTITY TOL K [key=value ...]"
     );
     std::process::exit(2)
 }
 
-fn main() {
-    let a: Vec<String> = std::env::args().skip(1).collect();
+/// The command: `cargo xtask accuracy-check grid|check …`.
+pub fn main() {
+    let a: Vec<String> = std::env::args().skip(2).collect();
     if a.len() < 5 {
         usage();
     }

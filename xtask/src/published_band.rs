@@ -1,7 +1,7 @@
 //! The published loss band above V0/c ≈ 0.96 (TARGETS T7, Fig. 12) and T2's
 //! period: the tables behind the findings at the end of docs/reproduction.md.
 //!
-//!     cargo run --release --example published_band
+//!     cargo xtask published-band
 //!
 //! Prints four tables (about a minute on two cores; sweep folders go to
 //! `target/published_band/`):
@@ -482,7 +482,8 @@ fn t2_period() {
     println!();
 }
 
-fn main() {
+/// The command: `cargo xtask published-band`.
+pub fn main() {
     speed_sweeps();
     phase_speed_caps();
     precursor();
