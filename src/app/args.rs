@@ -727,7 +727,7 @@ mod tests {
                 Err(Error::invalid("--batch", n, "must be in 1 ..= 8"))
             }
         };
-        for bad in ["-1", "x", "1.5", "99999999999999999999999", "0"] {
+        for bad in ["-1", "x", "1.5", "99999999999999999999", "0"] {
             let e = Word(bad.into()).count(check).unwrap_err().to_string();
             assert!(
                 e.contains("--batch") && e.contains(bad) && e.contains("1 ..= 8"),
