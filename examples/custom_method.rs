@@ -264,7 +264,9 @@ fn main() -> Result<()> {
     let run = taut::run(&sc, &mut |_, _| {})?;
     println!(
         "{:18} reference case to t = {} s: largest contact force {:.2} N (the scene names it)",
-        sc.integrator.method, sc.t_end, run.stats[0].force.max
+        sc.method.name(),
+        sc.t_end,
+        run.stats[0].force.max
     );
 
     // side by side on the study's reference case, as `taut compare

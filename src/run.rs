@@ -646,7 +646,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
     let mut notes: Vec<Option<String>> = vec![None; scenes.len()];
     for &i in members {
         let sc = &scenes[i];
-        notes[i] = scene_method(sc).ok().and_then(|m| m.constraint_note(sc));
+        notes[i] = scene_method(sc).constraint_note(sc);
     }
     let mut recs: Vec<Option<Recorder>> = b
         .lanes()
@@ -716,7 +716,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                             dofs: lane.sys.beam().n + lane.sys.contacts(),
                             steps: lane.st.step,
                             force_bound: lane.sys.force_bound,
-                            method: sc.integrator.method.clone(),
+                            method: sc.method.name().to_string(),
                             damping_note: crate::integrate::damping_note_of(
                                 &lane.sys,
                                 notes[lane.id].as_deref(),

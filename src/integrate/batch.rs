@@ -96,7 +96,7 @@ impl Batch {
         if built.is_empty() {
             return (None, errors);
         }
-        let Scheme::GenAlpha(p) = scenes[0].1.scheme else {
+        let Scheme::GenAlpha(p) = scenes[0].1.method.scheme else {
             unreachable!("batch_key admits generalized-α only")
         };
         let sys0 = &built[0].1;

@@ -73,7 +73,9 @@ pub use chain::{Chain, ChainGenAlpha};
 pub use dropper::DropperSample;
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
-pub use method::{MethodFactory, method_named, parse_methods, register, scene_method, stepper_for};
+pub use method::{
+    MethodFactory, factory_of, method_named, parse_methods, register, scene_method, stepper_for,
+};
 pub use modal_batch::ModalBatch;
 pub use modal_cruise::RESYNC_STEPS as CRUISE_RESYNC_STEPS;
 pub use modal_exact::{ModalCoefs, ModalExact};
@@ -146,7 +148,7 @@ impl Integrator {
     /// masses touching, loads switched on at t = 0, accelerations consistent
     /// with contact).
     pub fn new(sc: &Resolved) -> Result<Self> {
-        Self::with_method(sc, scene_method(sc)?)
+        Self::with_method(sc, scene_method(sc))
     }
 
     /// As [`Integrator::new`], with the method `factory` builds (whatever

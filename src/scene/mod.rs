@@ -19,14 +19,18 @@ mod damping;
 mod discretization;
 mod dropper;
 mod external_force;
+mod integrator;
 mod line;
 mod line_design;
 mod load;
 pub mod manufactured;
 mod messenger;
 mod method;
+mod method_choice;
+mod method_registry;
 mod motion;
 mod pantograph;
+mod scheme;
 mod speed;
 mod table_files;
 mod validate;
@@ -38,6 +42,7 @@ pub use discretization::{
 };
 pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
+pub use integrator::{DEFAULT_METHOD, IntegratorSpec, Key};
 pub use line::{DesignedDropper, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
@@ -45,14 +50,16 @@ pub use load::{
 };
 pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
 pub use messenger::{Messenger, MessengerSpec};
-pub(crate) use method::register_info;
-pub use method::{
-    DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, IntegratorSpec, Method,
-    MethodInfo, Parameter, Scheme, method_info, method_names,
-};
+pub use method::{Method, MethodInfo, Parameter};
+pub use method_choice::ResolvedMethod;
+pub(crate) use method_registry::register_method;
+pub use method_registry::{MethodRef, method_names, method_ref};
 pub use motion::Motion;
 pub(crate) use pantograph::check_chain_scene;
 pub use pantograph::{ChainProps, MAX_CHAIN};
+pub use scheme::{
+    DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, ParameterValues, Scheme,
+};
 pub use speed::SpeedProfile;
 pub use validate::{
     BeamProps, CarrierKind, CarrierProps, DEFAULT_PENALTY_RELATIVE, MAX_ELEMENTS, MAX_STEPS,

@@ -343,10 +343,10 @@ fn converge_with(
         }
         _ => None,
     };
-    let name = method.map_or_else(|| base.integrator.method.clone(), |m| m.name());
+    let name = method.map_or_else(|| base.method.name().to_string(), |m| m.name());
     let time_order = match method {
         Some(m) => m.time_order(base),
-        None => scene_method(base)?.time_order(base),
+        None => scene_method(base).time_order(base),
     };
     let space_order = match base.discretization {
         Discretization::Hermite if base.beam.is_string() => Some(2.0),
