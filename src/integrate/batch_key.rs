@@ -15,7 +15,7 @@ use crate::scene::{
     BeamProps, CarrierKind, Discretization, Formulation, Grading, Placement, Scheme, Support,
 };
 
-use super::rhs_columns;
+use crate::model::banded::rhs_columns;
 
 /// The key of the runs that may step together; `None` from [`batch_key`]
 /// when a run steps alone.

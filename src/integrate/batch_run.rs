@@ -9,10 +9,11 @@ use crate::error::Error;
 use crate::resolve::Resolved;
 use crate::scene::Scheme;
 
+use super::batch::Batch;
 use super::batch::{MAX_LANES, max_lanes};
 use super::batch_key::scene_columns;
+use super::modal_batch::ModalBatch;
 use super::run_batch::RunBatch;
-use super::{Batch, ModalBatch};
 
 /// Most runs of scene `sc` one batch takes: the kernels compiled for its
 /// columns (generalized-α, [`max_lanes`]), or [`MAX_LANES`] (`modal_exact`).

@@ -47,10 +47,11 @@ use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
 
 use super::chain::ChainBathe;
-use super::{
-    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,
-    rhs_columns,
-};
+use super::state::State;
+use super::step_map::{MassPrediction, StepMap, VelocityPrediction, combine};
+use super::stepper::Stepper;
+use super::system::{Initial, System};
+use crate::model::banded::rhs_columns;
 
 /// A Bathe stepper for one run.
 pub struct Bathe {

@@ -29,10 +29,11 @@ use crate::model::spectrum;
 use crate::resolve::Resolved;
 
 use super::chain::ChainCentral;
-use super::{
-    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,
-    rhs_columns,
-};
+use super::state::State;
+use super::step_map::{MassPrediction, StepMap, VelocityPrediction, combine};
+use super::stepper::Stepper;
+use super::system::{Initial, System};
+use crate::model::banded::rhs_columns;
 
 /// Lanczos steps for ω_max: after 100 steps the largest Ritz value is within
 /// 3e-5 of a dense solve's ω_max² on the reference beam at N = 400 and its

@@ -32,6 +32,7 @@
 //! are the same with their own unknown and A = c_m M + c_c C + c_k K
 //! (each struct's docs; lines.md P3).
 
+use crate::error::Error;
 use crate::scene::{ChainProps, GenAlphaParams, MAX_CHAIN};
 
 use super::step_map::MassPrediction;
@@ -612,8 +613,8 @@ impl ChainCentral {
 /// modes with that scalar; the chain's 2n-state exponential is not written)
 /// and methods registered from outside the crate (they see one mass dof
 /// per contact, [`super::System::masses`]).
-pub(crate) fn refusal(method: &str) -> crate::Error {
-    crate::Error::invalid(
+pub(crate) fn refusal(method: &str) -> Error {
+    Error::invalid(
         "integrator.method",
         format!("\"{method}\""),
         "a scene with a multi-mass carrier (carrier.masses) steps with generalized_alpha, \

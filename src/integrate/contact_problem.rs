@@ -22,10 +22,10 @@
 
 use crate::scene::Placement;
 
-use super::State;
 use super::carrier::{Carrier, MassDof};
-use super::rhs_columns;
+use super::state::State;
 use super::step_map::{Lanes, StepMap, VelocityPrediction};
+use crate::model::banded::rhs_columns;
 
 /// The pair (g_free, W) of a step, formed in place (no step allocates).
 /// With tension-only droppers (`dropper.rs`) the problem has a row per

@@ -7,7 +7,9 @@
 use crate::error::{Error, Result};
 use crate::scene::{Placement, Support};
 
-use super::{CarrierSample, State, System};
+use super::sample::CarrierSample;
+use super::state::State;
+use super::system::System;
 
 /// Displacements beyond this many beam lengths are not a small-deflection
 /// answer: a linear model that gets there has blown up.
@@ -100,4 +102,15 @@ pub(crate) fn check(
         });
     }
     Ok(())
+}
+
+/// `Integrator::constraint_damping_note` of a run's system (alone or in
+/// a batch) whose method notes `note` (`MethodFactory::constraint_note`):
+/// the note when some contact carrier moves.
+pub(crate) fn damping_note(sys: &System, note: Option<&str>) -> Option<String> {
+    let moving = sys
+        .carriers
+        .iter()
+        .any(|c| c.contact.is_some() && !c.props.motion.is_stationary());
+    moving.then(|| note.map(str::to_string)).flatten()
 }

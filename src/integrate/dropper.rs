@@ -62,7 +62,7 @@
 //! and k_d e_free,d → N_free,d = k_d e_free,d + c_d ė_free,d (the force of
 //! the free step). Without a dashpot k_eff,d = k_d and nothing changes.
 
-use super::VelocityPrediction;
+use super::step_map::VelocityPrediction;
 use crate::contact::ContactFailure;
 use crate::model::banded::SymBand;
 use crate::model::beam::{BeamModel, PointVector};

@@ -5,7 +5,8 @@
 
 use crate::scene::CarrierKind;
 
-use super::{State, System};
+use super::state::State;
+use super::system::System;
 
 /// The parts of the discrete energy, J.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -11,7 +11,9 @@ use crate::error::Result;
 use crate::scene::GenAlphaParams;
 
 use super::gen_alpha_kernel::Kernel;
-use super::{Initial, State, Stepper, System};
+use super::state::State;
+use super::stepper::Stepper;
+use super::system::{Initial, System};
 
 /// A generalized-α stepper for one run.
 pub struct GenAlpha {

@@ -71,10 +71,13 @@ use crate::model::banded::{Affine, BandedLdlt, SymBand};
 use crate::model::beam::BeamModel;
 use crate::scene::{GenAlphaParams, Placement};
 
+use super::carrier::MassDof;
 use super::chain::ChainGenAlpha;
 use super::gen_alpha_update::{MAX_COLUMNS, Pass, UpdateCoefs};
+use super::state::State;
 use super::step_map::Lanes;
-use super::{Initial, MassDof, MassPrediction, State, StepMap, System, VelocityPrediction};
+use super::step_map::{MassPrediction, StepMap, VelocityPrediction};
+use super::system::{Initial, System};
 
 pub use super::gen_alpha_update::MAX_LANES;
 

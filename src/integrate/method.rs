@@ -18,8 +18,15 @@
 //! type: a resolved scene's method ([`crate::scene::ResolvedMethod`]) is
 //! built without a lookup by name.
 
-use super::{Bathe, CentralDifference, GenAlpha, ModalExact, MoreauJean};
-use super::{Initial, Multipliers, State, Stepper, System};
+use super::bathe::Bathe;
+use super::central_difference::CentralDifference;
+use super::gen_alpha::GenAlpha;
+use super::modal_exact::ModalExact;
+use super::moreau_jean::MoreauJean;
+use super::state::State;
+use super::step_map::Multipliers;
+use super::stepper::Stepper;
+use super::system::{Initial, System};
 use crate::error::{Error, Result};
 use crate::resolve::Resolved;
 use crate::scene::{

@@ -125,7 +125,10 @@ use crate::scene::CarrierKind;
 
 use super::modal_cruise::Cruise;
 use super::oscillator::{MassStep, ModeSteps};
-use super::{Multipliers, State, Stepper, System};
+use super::state::State;
+use super::step_map::Multipliers;
+use super::stepper::Stepper;
+use super::system::System;
 
 /// What every run on one basis at one Δt shares (module docs): the modes'
 /// step maps, the fixed load's share of them, and the fast shapes.

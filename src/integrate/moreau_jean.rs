@@ -55,9 +55,11 @@ use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
 
 use super::chain::ChainMoreauJean;
-use super::{
-    MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine, rhs_columns,
-};
+use super::state::State;
+use super::step_map::{MassPrediction, StepMap, VelocityPrediction, combine};
+use super::stepper::Stepper;
+use super::system::System;
+use crate::model::banded::rhs_columns;
 
 /// A Moreau–Jean stepper for one run.
 pub struct MoreauJean {

@@ -59,7 +59,8 @@ use crate::model::banded::BandedLdlt;
 use crate::resolve::Resolved;
 use crate::scene::{CarrierKind, Formulation};
 
-use super::{State, System};
+use super::state::State;
+use super::system::System;
 
 /// Move `st` (at rest, straight) to the static start (module docs): d₀
 /// into `st.d`, q₀ into `st.q`, a chain's lower masses into its

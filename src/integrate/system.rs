@@ -21,12 +21,12 @@ use crate::model::source::Source;
 use crate::resolve::Resolved;
 use crate::scene::{CarrierKind, ContactKind, ContactSpec, Formulation, Placement, Support};
 
-use super::State;
 use super::carrier::{Carrier, MassDof};
 use super::chain::Chain;
 use super::contact_problem::{ProblemBuilder, contact_coef};
 use super::dropper::{DropperSample, Droppers};
 use super::external_force::ExternalForces;
+use super::state::State;
 use super::step_map::{Lanes, Multipliers, StepMap};
 use crate::model::banded::rhs_columns;
 

@@ -12,11 +12,12 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::contact::{ContactSpec, Formulation, Placement};
+use super::discretization::Discretization;
 use super::integrator::{IntegratorSpec, Key};
 use super::scheme::{
     DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, Scheme,
 };
-use super::{ContactSpec, Discretization, Formulation, Placement};
 use crate::error::{Error, Result};
 
 /// The built-in time integrators (`integrator.method`, MODEL §9.1): the
@@ -326,7 +327,7 @@ mod tests {
     fn the_default_method_is_the_study_s() {
         assert_eq!(
             Method::default().name(),
-            super::super::integrator::DEFAULT_METHOD
+            crate::scene::integrator::DEFAULT_METHOD
         );
     }
 

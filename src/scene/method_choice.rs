@@ -5,10 +5,12 @@
 //! the integrators build a run's stepper from; nothing after it looks a
 //! method up by name.
 
+use super::contact::ContactSpec;
+use super::discretization::Discretization;
 use super::integrator::{IntegratorSpec, Key};
+use super::method::{Method, MethodInfo};
 use super::method_registry::{MethodRef, method_names, method_ref};
 use super::scheme::{ParameterValues, Scheme};
-use super::{ContactSpec, Discretization, Method, MethodInfo};
 use crate::error::{Error, Result};
 
 /// A scene's method, resolved: its registry entry and its typed
@@ -111,7 +113,7 @@ impl IntegratorSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::GenAlphaParams;
+    use crate::scene::scheme::GenAlphaParams;
 
     #[test]
     fn a_key_of_another_method_is_refused_naming_both() {
