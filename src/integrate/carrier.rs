@@ -1,23 +1,11 @@
-//! A carrier during a run (MODEL §2, §3): its side sign, its mass dof when
-//! it is a mass–spring carrier, and its contact kinematics — the point
+//! A carrier during a run (MODEL §2, §3): its side sign, its contact index
+//! when it is a mass–spring carrier (its mass dofs are `mass_dofs.rs`), and
+//! its contact kinematics — the point
 //! vectors at which its force acts and its gap is measured, placed anew
 //! each step at the times the method asks for.
 
 use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::CarrierProps;
-
-/// A mass–spring carrier's mass dof: `m q̈ + c q̇ + k q = f0 − λ` (MODEL §2).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassDof {
-    /// Mass m, kg.
-    pub m: f64,
-    /// Spring stiffness k, N/m.
-    pub k: f64,
-    /// Dashpot c_s, N·s/m.
-    pub c: f64,
-    /// Constant force on q: k δ0 − s m g, N (MODEL §2).
-    pub f0: f64,
-}
 
 /// One carrier during a run.
 #[derive(Debug, Clone)]

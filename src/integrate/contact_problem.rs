@@ -22,7 +22,8 @@
 
 use crate::scene::Placement;
 
-use super::carrier::{Carrier, MassDof};
+use super::carrier::Carrier;
+use super::mass_dofs::MassDof;
 use super::state::State;
 use super::step_map::{Lanes, StepMap, VelocityPrediction};
 use crate::model::banded::rhs_columns;

@@ -62,7 +62,7 @@ pub(crate) fn energy(sys: &System, st: &State) -> Energy {
     for c in &sys.carriers {
         match (c.props.kind, c.contact) {
             (_, Some(j)) => {
-                let m = sys.masses[j];
+                let m = sys.masses.heads[j];
                 e.kinetic += 0.5 * m.m * st.q_dot[j] * st.q_dot[j];
                 e.strain += 0.5 * m.k * st.q[j] * st.q[j];
                 e.load_potential -= m.f0 * st.q[j];

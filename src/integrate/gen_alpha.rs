@@ -53,7 +53,7 @@ impl Stepper for GenAlpha {
         Ok(())
     }
 
-    /// The chain's dofs step with the same scheme (`chain.rs`).
+    /// The chain's dofs step with the same rule (`mass_step.rs`).
     fn carries_chains(&self) -> bool {
         true
     }

@@ -83,7 +83,14 @@ impl Integrator {
     /// Number of unknowns: free beam dofs plus one per mass (a multi-mass
     /// pantograph counts each of its masses).
     pub fn dofs(&self) -> usize {
-        let lower: usize = self.sys.chains.iter().flatten().map(|c| c.n - 1).sum();
+        let lower: usize = self
+            .sys
+            .masses
+            .chains
+            .iter()
+            .flatten()
+            .map(|c| c.n - 1)
+            .sum();
         self.sys.beam.n + self.sys.contacts() + lower
     }
 
@@ -193,7 +200,7 @@ impl Integrator {
                 "takes no external force: it has no mass to act on (apply forces to mass–spring carriers)",
             ));
         };
-        if self.sys.chains[j].is_some() {
+        if self.sys.masses.chains[j].is_some() {
             return Err(crate::error::Error::invalid(
                 format!("carrier.{carrier}"),
                 "a multi-mass pantograph (carrier.masses)",

@@ -35,6 +35,8 @@ mod bathe;
 mod carrier;
 mod central_difference;
 mod chain;
+#[cfg(test)]
+mod chain_steps;
 mod contact_problem;
 mod damped_modes;
 mod diagnose;
@@ -45,6 +47,8 @@ mod gen_alpha;
 mod gen_alpha_kernel;
 mod gen_alpha_update;
 mod integrator;
+mod mass_dofs;
+mod mass_step;
 mod method;
 mod modal_batch;
 mod modal_cruise;
@@ -68,11 +72,10 @@ pub use batch_key::{
 };
 pub use batch_run::{NewBatch, lanes_cap, new_batch};
 pub use bathe::Bathe;
-pub use carrier::MassDof;
 pub use central_difference::{
     CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
 };
-pub use chain::{Chain, ChainGenAlpha};
+pub use chain::Chain;
 pub(crate) use diagnose::{
     check as check_lane, damping_note as damping_note_of, near_support as near_support_lane,
 };
@@ -80,6 +83,7 @@ pub use dropper::DropperSample;
 pub use energy::Energy;
 pub use gen_alpha::GenAlpha;
 pub use integrator::Integrator;
+pub use mass_dofs::{MassDof, MassDofs};
 pub use method::{
     MethodFactory, factory_of, method_named, parse_methods, register, scene_method, stepper_for,
 };

@@ -96,9 +96,9 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
     for (i, c) in sys.carriers.iter().enumerate() {
         if let Some(j) = c.contact {
             let pv = beam.point_vector(c.props.motion.position(0.0));
-            let (lambda0, stiffness) = match &sys.chains[j] {
+            let (lambda0, stiffness) = match &sys.masses.chains[j] {
                 Some(ch) => (ch.static_force, ch.head_stiffness()),
-                None => (sys.masses[j].f0, sys.masses[j].k),
+                None => (sys.masses.heads[j].f0, sys.masses.heads[j].k),
             };
             let (a, b) = if kappa.is_finite() {
                 let share = kappa / (stiffness + kappa);
@@ -151,7 +151,7 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
             }
             let w = s * pv.dot(&d);
             let q0 = if kappa.is_finite() { w + l / kappa } else { w };
-            if let Some(ch) = sys.chains[j].as_mut() {
+            if let Some(ch) = sys.masses.chains[j].as_mut() {
                 ch.hold_head(q0);
             }
             st.q[j] = q0;

@@ -21,11 +21,11 @@ use crate::model::source::Source;
 use crate::resolve::Resolved;
 use crate::scene::{CarrierKind, ContactKind, ContactSpec, Formulation, Placement, Support};
 
-use super::carrier::{Carrier, MassDof};
+use super::carrier::Carrier;
 use super::chain::Chain;
 use super::contact_problem::{ProblemBuilder, contact_coef};
 use super::dropper::{DropperSample, Droppers};
-use super::external_force::ExternalForces;
+use super::mass_dofs::{MassDof, MassDofs};
 use super::state::State;
 use super::step_map::{Lanes, Multipliers, StepMap};
 use crate::model::banded::rhs_columns;
@@ -36,25 +36,21 @@ use crate::model::banded::rhs_columns;
 const FORCE_BOUND_FACTOR: f64 = 1e3;
 
 /// A manufactured solution's source during a run (MODEL §11): the smooth
-/// part projected on the basis ([`Source`]), the load time of the current
-/// step, and the mass dofs' constant forces without the mass source.
+/// part projected on the basis ([`Source`]) and the load time of the
+/// current step.
 #[derive(Debug, Clone)]
 struct SourceState {
     source: Source,
     /// t at which [`System::place`] put the loads, s.
     t_load: f64,
-    /// kδ0 − s m g of each mass dof (its `f0` is this plus the mass source).
-    f0: Vec<f64>,
 }
 
 /// The shared system (module docs).
 pub struct System {
     pub(crate) beam: BeamModel,
     pub(crate) carriers: Vec<Carrier>,
-    pub(crate) masses: Vec<MassDof>,
-    /// The multi-mass pantograph of each contact (`chain.rs`; `None` for
-    /// a single mass): its head is the contact's mass dof in `masses`.
-    pub(crate) chains: Vec<Option<Chain>>,
+    /// The carriers' mass dofs, one body per contact (`mass_dofs.rs`).
+    pub(crate) masses: MassDofs,
     /// Time step Δt, s.
     pub(crate) dt: f64,
     pub(crate) placement: Placement,
@@ -92,9 +88,6 @@ pub struct System {
     pub(crate) droppers: Droppers,
     /// The time the last [`System::place`] put the contact forces at, s.
     t_force: f64,
-    /// External forces on the mass dofs (`external_force.rs`); `None`
-    /// costs a branch per step.
-    external: Option<ExternalForces>,
 }
 
 /// Consistent initial accelerations (MODEL §5), for the methods that need them.
@@ -118,68 +111,21 @@ impl System {
     /// batch builds a basis once for all its runs).
     pub fn with_beam(sc: &Resolved, mut beam: BeamModel) -> Result<Self> {
         let mut nc = 0;
-        let mut masses = Vec::new();
-        let mut chains = Vec::new();
-        let mut force_scale: f64 = 0.0;
         let carriers: Vec<Carrier> = sc
             .carriers
             .iter()
             .map(|p| {
-                let s = p.side.sign();
                 let contact = match p.kind {
-                    CarrierKind::MassSpring {
-                        mass,
-                        stiffness,
-                        damping,
-                        preload,
-                    } if p.chain.is_some() => {
-                        // a multi-mass pantograph: its head as the mass
-                        // dof, with the static contact force as its f0
-                        // (chain.rs: the chain starts at rest in its static
-                        // state, so at t = 0 only the head's balance with λ
-                        // differs from it)
-                        let ch = Chain::new(&p.chain.expect("guarded"), s, sc.g);
+                    CarrierKind::MassSpring { .. } => {
                         nc += 1;
-                        force_scale = force_scale.max(
-                            stiffness * (preload + sc.beam.length)
-                                + ch.static_force.abs()
-                                + p.chain.map_or(0.0, |c| c.uplift + c.total_mass() * sc.g),
-                        );
-                        masses.push(MassDof {
-                            m: mass,
-                            k: stiffness,
-                            c: damping,
-                            f0: ch.static_force,
-                        });
-                        chains.push(Some(ch));
                         Some(nc - 1)
                     }
-                    CarrierKind::MassSpring {
-                        mass,
-                        stiffness,
-                        damping,
-                        preload,
-                    } => {
-                        chains.push(None);
-                        nc += 1;
-                        force_scale =
-                            force_scale.max(stiffness * (preload + sc.beam.length) + mass * sc.g);
-                        masses.push(MassDof {
-                            m: mass,
-                            k: stiffness,
-                            c: damping,
-                            f0: stiffness * preload - s * mass * sc.g,
-                        });
-                        Some(nc - 1)
-                    }
-                    CarrierKind::Force { force } => {
-                        force_scale = force_scale.max(force);
-                        None
-                    }
+                    CarrierKind::Force { .. } => None,
                 };
                 Carrier::new(p.clone(), contact, &beam)
             })
             .collect();
+        let masses = MassDofs::new(sc, &carriers);
         let droppers = Droppers::new(&sc.droppers, &beam, nc);
         // C = αM + βK + dashpots from K *before* the tension-only droppers'
         // springs join it: a slack dropper carries no force, so its spring
@@ -206,23 +152,10 @@ impl System {
         let source = sc.manufactured.as_ref().map(|m| SourceState {
             source: Source::new(&beam, m),
             t_load: 0.0,
-            f0: masses.iter().map(|m| m.f0).collect(),
         });
-        let external = sc
-            .external_forces
-            .iter()
-            .any(Option::is_some)
-            .then(|| external_forces(sc, &carriers, &masses));
-        if let Some(ext) = &external {
-            // the initial state's accelerations see the force at t = 0
-            for (j, m) in masses.iter_mut().enumerate() {
-                m.f0 = ext.f0(j, 0.0);
-            }
-        }
         Ok(System {
             damping,
             source,
-            external,
             t_force: 0.0,
             dt: sc.dt,
             placement: sc.contact.placement,
@@ -230,7 +163,7 @@ impl System {
             length: sc.beam.length,
             supports: (sc.beam.left, sc.beam.right),
             wave_speed: sc.beam.wave_speed(),
-            force_bound: FORCE_BOUND_FACTOR * force_scale.max(f64::MIN_POSITIVE),
+            force_bound: FORCE_BOUND_FACTOR * force_scale(sc).max(f64::MIN_POSITIVE),
             law,
             contact: sc.contact.clone(),
             multipliers: Multipliers::Forces,
@@ -243,7 +176,6 @@ impl System {
             beam,
             carriers,
             masses,
-            chains,
         })
     }
 
@@ -319,87 +251,48 @@ impl System {
         }
     }
 
-    /// Each mass dof's constant force plus a manufactured mass source at
-    /// `t` (MODEL §11), for a method that holds the mass's force over the
-    /// step itself (`modal_exact`, at the step's midpoint). No-op without
-    /// a source.
+    /// Each mass dof's constant force plus its external force and a
+    /// manufactured mass source at `t` (MODEL §11), for a method that
+    /// holds the mass's force over the step itself (`modal_exact`, at the
+    /// step's midpoint). No-op without either.
     pub(crate) fn set_mass_source(&mut self, t: f64) {
-        if let Some(ext) = &self.external {
-            // external forces (and a source, if any): base + s·F_ext(t) + source
-            for (i, c) in self.carriers.iter().enumerate() {
-                if let Some(j) = c.contact {
-                    let source = self
-                        .source
-                        .as_ref()
-                        .map_or(0.0, |s| s.source.solution().mass_source(i, t));
-                    self.masses[j].f0 = ext.f0(j, t) + source;
-                }
-            }
-            return;
-        }
-        let Some(src) = &self.source else { return };
-        let m = src.source.solution();
-        for (i, c) in self.carriers.iter().enumerate() {
-            if let Some(j) = c.contact {
-                self.masses[j].f0 = src.f0[j] + m.mass_source(i, t);
-            }
-        }
+        let source = self.source.as_ref().map(|s| s.source.solution());
+        self.masses.set_load_time(t, source);
     }
 
     /// The multi-mass pantograph of each contact (`None` for a single
     /// mass), one per contact.
     pub fn chains(&self) -> &[Option<Chain>] {
-        &self.chains
+        &self.masses.chains
     }
 
     /// True when some carrier is a multi-mass pantograph.
     pub fn has_chains(&self) -> bool {
-        self.chains.iter().any(Option::is_some)
+        self.masses.has_chains()
     }
 
     /// True when the run has external forces on its mass dofs (a series,
     /// or a force held with [`System::hold_external_force`]).
     pub(crate) fn has_external_force(&self) -> bool {
-        self.external.is_some()
+        self.masses.has_external_force()
     }
 
     /// Hold `newtons` (in +v, MODEL §2) on contact `j`'s mass from the next
     /// step on, until changed, on top of its series if any
     /// (`external_force.rs`). Allocates the first time only.
     pub fn hold_external_force(&mut self, j: usize, newtons: f64) {
-        if self.external.is_none() {
-            let base = match &self.source {
-                Some(src) => src.f0.clone(),
-                None => self.masses.iter().map(|m| m.f0).collect(),
-            };
-            let side = self
-                .carriers
-                .iter()
-                .filter(|c| c.contact.is_some())
-                .map(|c| c.s)
-                .collect();
-            let nc = self.masses.len();
-            self.external = Some(ExternalForces {
-                base,
-                side,
-                series: vec![None; nc],
-                held: vec![0.0; nc],
-            });
-        }
-        if let Some(ext) = &mut self.external {
-            ext.held[j] = newtons;
-        }
+        self.masses.hold_external_force(j, newtons);
     }
 
     /// The force held on contact `j`'s mass ([`System::hold_external_force`]),
     /// N in +v; 0 when none.
     pub fn held_external_force(&self, j: usize) -> f64 {
-        self.external.as_ref().map_or(0.0, |e| e.held[j])
+        self.masses.held_external_force(j)
     }
 
     /// The mass dofs, one per contact.
     pub fn masses(&self) -> &[MassDof] {
-        &self.masses
+        &self.masses.heads
     }
 
     /// The multipliers of the last contact solve (N, or N·s for impulses),
@@ -564,7 +457,7 @@ impl System {
         for i in 0..n {
             rhs[i * k] = self.beam.load[i];
         }
-        let saved_masses = self.masses.clone();
+        let saved_masses = self.masses.heads.clone();
         if let Some((d0, q0)) = start {
             let mut kd = vec![0.0; n];
             self.beam.stiffness.mul_acc(d0, 1.0, &mut kd);
@@ -573,7 +466,8 @@ impl System {
             }
             // a mass's spring at q₀: its free force f₀ − k q₀ (a chain's
             // head: f₀ − (K z₀)₁ with its lower masses at z₀, chain.rs)
-            for ((m, q), ch) in self.masses.iter_mut().zip(q0).zip(&self.chains) {
+            let masses = &mut self.masses;
+            for ((m, q), ch) in masses.heads.iter_mut().zip(q0).zip(&masses.chains) {
                 m.f0 -= match ch {
                     Some(ch) => ch.head_spring_force(),
                     None => m.k * q,
@@ -586,13 +480,13 @@ impl System {
         let contacts = &mut self.lambda[..nc];
         mass_factor.solve_many(&mut rhs, k);
         let problem = &mut self.problem;
-        problem.acceleration(&self.carriers, &self.masses, self.placement, &rhs, k);
+        problem.acceleration(&self.carriers, &self.masses.heads, self.placement, &rhs, k);
         let (g_free, w) = (&problem.g_free[..nc], &problem.w[..nc * nc]);
         if let Err(failure) = self
             .law
             .initial(g_free, w, contacts, &mut self.active[..nc])
         {
-            self.masses = saved_masses;
+            self.masses.heads = saved_masses;
             return Err(self.failure(0, 0.0, Level::Acceleration, failure));
         }
         // a penalty started static (static_start.rs, W7): with an absolute
@@ -627,9 +521,9 @@ impl System {
             a[i] = acc;
         }
         let aq = (0..nc)
-            .map(|j| (self.masses[j].f0 - self.lambda[j]) / self.masses[j].m)
+            .map(|j| (self.masses.heads[j].f0 - self.lambda[j]) / self.masses.heads[j].m)
             .collect();
-        self.masses = saved_masses;
+        self.masses.heads = saved_masses;
         Ok(Initial { a, aq, mass_factor })
     }
 
@@ -803,23 +697,32 @@ impl System {
     }
 }
 
-/// The external forces of a run whose scene gives at least one series:
-/// each mass dof's base force (its `f0` before), side sign and series.
-fn external_forces(sc: &Resolved, carriers: &[Carrier], masses: &[MassDof]) -> ExternalForces {
-    let mut series = vec![None; masses.len()];
-    let mut side = vec![1.0; masses.len()];
-    for (c, s) in carriers.iter().zip(&sc.external_forces) {
-        if let Some(j) = c.contact {
-            series[j] = s.clone();
-            side[j] = c.s;
-        }
+/// The carriers' force scale, N: the largest of k(δ0 + L) + m g (a
+/// chain's: k₁(δ0 + L) + |λ₀| + F₀ + g Σm) and a moving force F, from
+/// which [`System::force_bound`] is set.
+fn force_scale(sc: &Resolved) -> f64 {
+    let l = sc.beam.length;
+    let mut scale: f64 = 0.0;
+    for p in &sc.carriers {
+        scale = scale.max(match p.kind {
+            CarrierKind::MassSpring {
+                mass,
+                stiffness,
+                preload,
+                ..
+            } => match p.chain {
+                Some(ch) => {
+                    let static_force = Chain::new(&ch, p.side.sign(), sc.g).static_force;
+                    stiffness * (preload + l)
+                        + static_force.abs()
+                        + (ch.uplift + ch.total_mass() * sc.g)
+                }
+                None => stiffness * (preload + l) + mass * sc.g,
+            },
+            CarrierKind::Force { force } => force,
+        });
     }
-    ExternalForces {
-        base: masses.iter().map(|m| m.f0).collect(),
-        side,
-        series,
-        held: vec![0.0; masses.len()],
-    }
+    scale
 }
 
 /// The contact problem of a step with tension-only droppers
