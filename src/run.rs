@@ -655,7 +655,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
             Some(Recorder::new(
                 &scenes[lane.id],
                 lane.sys.beam(),
-                lane.sys.carriers.len(),
+                lane.sys.physics.carriers.len(),
             ))
         })
         .collect();
@@ -715,7 +715,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                             wall_seconds: start.elapsed().as_secs_f64() / runs,
                             dofs: lane.sys.beam().n + lane.sys.contacts(),
                             steps: lane.st.step,
-                            force_bound: lane.sys.force_bound,
+                            force_bound: lane.sys.law.force_bound,
                             method: sc.method.name().to_string(),
                             damping_note: crate::integrate::damping_note_of(
                                 &lane.sys,

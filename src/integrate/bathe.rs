@@ -241,13 +241,13 @@ impl Bathe {
         let ldlt2 = BandedLdlt::factor(&effective(c3))?;
         let first = FirstSubStep { h1, c0 };
         let second = SecondSubStep { c1, c2, c3 };
-        let mut masses = MassSteps::<BatheDof>::new(&sys.masses);
+        let mut masses = MassSteps::<BatheDof>::new(&sys.physics.masses);
         for (j, &aq) in init.aq.iter().enumerate() {
             masses.head_mut(j).za = aq;
         }
         let mut bathe = Bathe {
-            effective1: MassSteps::effective(&first, &sys.masses),
-            effective2: MassSteps::effective(&second, &sys.masses),
+            effective1: MassSteps::effective(&first, &sys.physics.masses),
+            effective2: MassSteps::effective(&second, &sys.physics.masses),
             first,
             second,
             masses,
@@ -342,7 +342,7 @@ impl Stepper for Bathe {
         );
         self.masses.begin(st);
         self.masses
-            .predict(&self.first, &self.effective1, &sys.masses);
+            .predict(&self.first, &self.effective1, &sys.physics.masses);
         let map = StepMap {
             solved: &self.rhs,
             c_d: 1.0,
@@ -367,7 +367,7 @@ impl Stepper for Bathe {
             self.v_pred[i] = -c1 * inc - s * inv_c3;
         }
         self.masses
-            .finish(&self.first, &self.effective1, &sys.masses, lambda);
+            .finish(&self.first, &self.effective1, &sys.physics.masses, lambda);
         for (j, qd1) in self.qd1.iter_mut().enumerate() {
             *qd1 = self.masses.head(j).zd1;
         }
@@ -385,7 +385,7 @@ impl Stepper for Bathe {
             &self.ldlt2,
         );
         self.masses
-            .predict(&self.second, &self.effective2, &sys.masses);
+            .predict(&self.second, &self.effective2, &sys.physics.masses);
         let map = StepMap {
             solved: &self.rhs,
             c_d: 1.0,
@@ -407,7 +407,7 @@ impl Stepper for Bathe {
             (self.p1[i], self.d_pred[i], self.v_pred[i]) = self.first_predictors(d, v, c3_sq * e);
         }
         self.masses
-            .finish(&self.second, &self.effective2, &sys.masses, lambda);
+            .finish(&self.second, &self.effective2, &sys.physics.masses, lambda);
         self.masses.end(st);
         Ok(())
     }

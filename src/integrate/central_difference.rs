@@ -187,8 +187,8 @@ impl CentralDifference {
         }
         let rule = CentralMass { dt };
         CentralDifference {
-            effective: MassSteps::effective(&rule, &sys.masses),
-            masses: MassSteps::new(&sys.masses),
+            effective: MassSteps::effective(&rule, &sys.physics.masses),
+            masses: MassSteps::new(&sys.physics.masses),
             rule,
             dt,
             mass_factor: init.mass_factor,
@@ -223,7 +223,7 @@ impl Stepper for CentralDifference {
         }
         self.masses.begin(st);
         self.masses
-            .predict(&self.rule, &self.effective, &sys.masses);
+            .predict(&self.rule, &self.effective, &sys.physics.masses);
         let map = StepMap {
             solved: &self.rhs,
             c_d: dt * dt,
@@ -241,7 +241,7 @@ impl Stepper for CentralDifference {
             st.d[i] = self.d_pred[i] + dt2 * a;
         }
         self.masses
-            .finish(&self.rule, &self.effective, &sys.masses, lambda);
+            .finish(&self.rule, &self.effective, &sys.physics.masses, lambda);
         self.masses.end(st);
         Ok(())
     }

@@ -27,10 +27,11 @@ impl GenAlpha {
     pub fn new(p: GenAlphaParams, sys: &mut System, st: &State, init: Initial) -> Result<Self> {
         let mut kernel = Kernel::new(p, sys.beam(), sys.damping(), sys.dt(), sys.columns(), 1)?;
         kernel.start(sys, &st.d, &st.v, init);
-        if sys.droppers.rows() > 0 {
+        if sys.physics.droppers.rows() > 0 {
             let c_d = p.beta * sys.dt() * sys.dt();
             let c_v = p.gamma * sys.dt();
-            sys.droppers
+            sys.physics
+                .droppers
                 .prepare(|x| kernel.solve_one(x), (c_d, c_v), p.alpha_f);
         }
         Ok(GenAlpha { kernel })

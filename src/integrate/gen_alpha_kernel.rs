@@ -264,11 +264,11 @@ impl Kernel {
         } = self.p;
         let (dt, c_k, L) = (self.dt, self.c_k, self.lanes);
         let stage = GenAlphaMass { p: self.p, dt };
-        let mut masses = MassSteps::<Kinematics>::new(&sys.masses);
+        let mut masses = MassSteps::<Kinematics>::new(&sys.physics.masses);
         for (j, &aq) in init.aq.iter().enumerate() {
             masses.head_mut(j).za = aq;
         }
-        let effective = MassSteps::effective(&stage, &sys.masses);
+        let effective = MassSteps::effective(&stage, &sys.physics.masses);
         let beam = sys.beam();
         let c_pred = (0.5 - beta) * dt * dt;
         let mut a_a = vec![0.0; self.n];
@@ -365,12 +365,14 @@ impl Kernel {
     /// (`dropper.rs`),
     /// so the update pass takes them with the contacts'. No-op without them.
     pub(crate) fn add_dropper_responses(&mut self, sys: &System) {
-        if sys.droppers.rows() == 0 {
+        if sys.physics.droppers.rows() == 0 {
             return;
         }
         debug_assert_eq!(self.lanes, 1, "droppers step alone");
         let (n, k) = (self.n, self.k);
-        sys.droppers.add_responses(&mut self.rhs[..n * k], k);
+        sys.physics
+            .droppers
+            .add_responses(&mut self.rhs[..n * k], k);
     }
 
     /// Lane `l`'s contact problem: its mass dofs' predictions, and the
@@ -387,8 +389,9 @@ impl Kernel {
         let ml = &mut self.masses[l];
         let stage = GenAlphaMass { p: self.p, dt };
         ml.masses.begin(st);
-        ml.masses.predict(&stage, &ml.effective, &sys.masses);
-        let alpha_weight = match sys.placement {
+        ml.masses
+            .predict(&stage, &ml.effective, &sys.physics.masses);
+        let alpha_weight = match sys.law.placement {
             Placement::End => 0.0,
             Placement::Alpha => af,
         };
@@ -490,8 +493,12 @@ impl Kernel {
         sys.scatter_contact_directions_in(&mut self.h[..n * L], lanes, -self.alpha_p);
         let ml = &mut self.masses[l];
         let stage = GenAlphaMass { p: self.p, dt };
-        ml.masses
-            .finish(&stage, &ml.effective, &sys.masses, sys.multipliers());
+        ml.masses.finish(
+            &stage,
+            &ml.effective,
+            &sys.physics.masses,
+            sys.multipliers(),
+        );
         ml.masses.end(st);
     }
 

@@ -55,7 +55,7 @@ impl Integrator {
         if sys.has_chains() && !stepper.carries_chains() {
             return Err(chain::refusal(&factory.name()));
         }
-        if !sys.droppers.ready() {
+        if !sys.physics.droppers.ready() {
             return Err(Error::invalid(
                 "integrator.method",
                 format!("\"{}\"", factory.name()),
@@ -75,7 +75,7 @@ impl Integrator {
     pub fn step(&mut self) -> Result<()> {
         self.stepper.step(&mut self.sys, &mut self.state)?;
         self.state.step += 1;
-        self.state.t = self.state.step as f64 * self.sys.dt;
+        self.state.t = self.state.step as f64 * self.sys.physics.dt;
         self.sys.end_step(&self.state);
         Ok(())
     }
@@ -85,18 +85,19 @@ impl Integrator {
     pub fn dofs(&self) -> usize {
         let lower: usize = self
             .sys
+            .physics
             .masses
             .chains
             .iter()
             .flatten()
             .map(|c| c.n - 1)
             .sum();
-        self.sys.beam.n + self.sys.contacts() + lower
+        self.sys.physics.beam.n + self.sys.contacts() + lower
     }
 
     /// The beam model.
     pub fn beam(&self) -> &BeamModel {
-        &self.sys.beam
+        &self.sys.physics.beam
     }
 
     /// The shared system.
@@ -138,7 +139,7 @@ impl Integrator {
 
     /// Number of carriers.
     pub fn carriers(&self) -> usize {
-        self.sys.carriers.len()
+        self.sys.physics.carriers.len()
     }
 
     /// The values of carrier `i` at the current time.
@@ -159,7 +160,7 @@ impl Integrator {
 
     /// Largest |λ| accepted before a run is taken as diverged, N.
     pub fn force_bound(&self) -> f64 {
-        self.sys.force_bound
+        self.sys.law.force_bound
     }
 
     /// The method's name ([`crate::scene::MethodInfo::name`]).
@@ -185,8 +186,8 @@ impl Integrator {
     /// Refused for a moving force (no mass) or a carrier that does not
     /// exist, and for a non-finite force.
     pub fn hold_external_force(&mut self, carrier: usize, newtons: f64) -> Result<()> {
-        let n = self.sys.carriers.len();
-        let Some(c) = self.sys.carriers.get(carrier) else {
+        let n = self.sys.physics.carriers.len();
+        let Some(c) = self.sys.physics.carriers.get(carrier) else {
             return Err(crate::error::Error::invalid(
                 "carrier",
                 carrier,
@@ -200,7 +201,7 @@ impl Integrator {
                 "takes no external force: it has no mass to act on (apply forces to mass–spring carriers)",
             ));
         };
-        if self.sys.masses.chains[j].is_some() {
+        if self.sys.physics.masses.chains[j].is_some() {
             return Err(crate::error::Error::invalid(
                 format!("carrier.{carrier}"),
                 "a multi-mass pantograph (carrier.masses)",

@@ -117,7 +117,7 @@ impl RunBatch for ModalBatch {
             match stepper.step_deferred(&mut lane.sys, &mut lane.st) {
                 Ok(()) => {
                     lane.st.step += 1;
-                    lane.st.t = lane.st.step as f64 * lane.sys.dt;
+                    lane.st.t = lane.st.step as f64 * lane.sys.physics.dt;
                     lane.sys.end_step(&lane.st);
                 }
                 Err(e) => lane.failed = Some(e),

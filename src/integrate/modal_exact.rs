@@ -278,8 +278,8 @@ impl ModalExact {
             .collect();
         let nc = sys.contacts();
         sys.set_multipliers(Multipliers::Held);
-        let beam = &sys.beam;
-        for c in sys.carriers.iter_mut() {
+        let beam = &sys.physics.beam;
+        for c in sys.physics.carriers.iter_mut() {
             let x0 = c.props.motion.position(0.0);
             coefs.place(beam, x0, &mut c.pv_f);
             coefs.place(beam, x0, &mut c.pv_g);
@@ -319,7 +319,7 @@ impl ModalExact {
     /// update"): the operations a step would have taken, so the same bits.
     pub fn settle(&mut self, sys: &System, st: &mut State) {
         if let Some(f) = self.pending.take() {
-            let c = &sys.carriers[0];
+            let c = &sys.physics.carriers[0];
             let all = (0, self.coefs.modes());
             let phi = (c.pv_f.dense(), c.pv_g.dense());
             add_path_load(&self.coefs.steps, f, phi, st, all, lanes::avx2_fma());
@@ -334,7 +334,7 @@ impl ModalExact {
             return pv.dot(&st.d);
         };
         let m = &self.coefs.steps;
-        let c = &sys.carriers[0];
+        let c = &sys.physics.carriers[0];
         let (p, q) = (c.pv_f.dense(), c.pv_g.dense());
         let j = m.len();
         let settled = |i: usize| {
@@ -424,16 +424,16 @@ impl PairSums {
 /// pass.
 #[inline(always)]
 fn is_single(sys: &System) -> bool {
-    sys.contacts() == 1 && sys.carriers.len() == 1
+    sys.contacts() == 1 && sys.physics.carriers.len() == 1
 }
 
 /// Phase 1: each carrier's previous `φ(x_{n+1})` becomes `φ(x_n)` (swapped,
 /// not copied) and `φ(x_{n+1})` is evaluated at t_{n+1}.
 #[inline(always)]
 fn place(coefs: &ModalCoefs, sys: &mut System, st: &State) {
-    let t1 = st.next_time(sys.dt);
-    let beam = &sys.beam;
-    for c in sys.carriers.iter_mut() {
+    let t1 = st.next_time(sys.physics.dt);
+    let beam = &sys.physics.beam;
+    for c in sys.physics.carriers.iter_mut() {
         std::mem::swap(&mut c.pv_f, &mut c.pv_g);
         coefs.place(beam, c.props.motion.position(t1), &mut c.pv_g);
     }
@@ -450,7 +450,7 @@ fn free_pair_range(
     sums: &mut PairSums,
     vector: bool,
 ) {
-    let c = &sys.carriers[0];
+    let c = &sys.physics.carriers[0];
     let phi = (c.pv_f.dense(), c.pv_g.dense());
     free_with_pair(
         &coefs.steps,
@@ -491,8 +491,8 @@ fn place_free_pair(
         place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
         return;
     };
-    let t1 = st.next_time(sys.dt);
-    let motion = &sys.carriers[0].props.motion;
+    let t1 = st.next_time(sys.physics.dt);
+    let motion = &sys.physics.carriers[0].props.motion;
     let x1 = motion.position(t1);
     match motion.uniform_speed(st.t, t1) {
         Some(speed) if !shapes.in_layer(x1) => {
@@ -500,7 +500,7 @@ fn place_free_pair(
                 rotate_free_pair(coefs, cruise, deferred, sys, st, sums, vector);
             } else {
                 place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
-                cruise.restart(shapes, x1, st.step, speed, sys.dt);
+                cruise.restart(shapes, x1, st.step, speed, sys.physics.dt);
             }
         }
         _ => {
@@ -526,7 +526,7 @@ fn rotate_free_pair(
     vector: bool,
 ) {
     let j = coefs.modes();
-    let c = &mut sys.carriers[0];
+    let c = &mut sys.physics.carriers[0];
     std::mem::swap(&mut c.pv_f, &mut c.pv_g);
     let mut done = 0;
     #[cfg(target_arch = "x86_64")]
@@ -666,8 +666,8 @@ fn place_free_pair_tables(
     let j = coefs.modes();
     #[cfg(target_arch = "x86_64")]
     if vector && let Some(shapes) = &coefs.shapes {
-        let t1 = st.next_time(sys.dt);
-        let c = &mut sys.carriers[0];
+        let t1 = st.next_time(sys.physics.dt);
+        let c = &mut sys.physics.carriers[0];
         if let Some(mut blocks) = shapes.blocks_at(c.props.motion.position(t1)) {
             std::mem::swap(&mut c.pv_f, &mut c.pv_g);
             let full = blocks.full();
@@ -722,7 +722,7 @@ fn place_free_pair_tables(
                 }
             };
             blocks.tail_into(&mut pn1[full..]);
-            let c = &sys.carriers[0];
+            let c = &sys.physics.carriers[0];
             let phi = (c.pv_f.dense(), c.pv_g.dense());
             free_with_pair(
                 &coefs.steps,
@@ -738,7 +738,7 @@ fn place_free_pair_tables(
     }
     if let Some(f) = deferred {
         // settled first: φ(x_{n−1}) in pv_f, φ(x_n) in pv_g before `place`
-        let c = &sys.carriers[0];
+        let c = &sys.physics.carriers[0];
         let phi = (c.pv_f.dense(), c.pv_g.dense());
         add_path_load(&coefs.steps, f, phi, st, (0, j), vector);
     }
@@ -830,15 +830,15 @@ fn contact(
     }
     match pair {
         Some((dg, dw)) => {
-            let s = sys.carriers[0].s;
+            let s = sys.physics.carriers[0].s;
             g[0] = s * dg - st.q[0];
             w[0] = s * s * dw + mass_steps[0].g[0];
         }
         None => {
-            for ci in &sys.carriers {
+            for ci in &sys.physics.carriers {
                 let Some(i) = ci.contact else { continue };
                 g[i] = ci.s * lanes::dot(ci.pv_g.dense(), &st.d) - st.q[i];
-                for cj in &sys.carriers {
+                for cj in &sys.physics.carriers {
                     let Some(j) = cj.contact else { continue };
                     let wij = path_dot(m, ci.pv_g.dense(), cj.pv_f.dense(), cj.pv_g.dense());
                     w[i * nc + j] =
@@ -849,9 +849,9 @@ fn contact(
     }
     sys.hold_multipliers();
     sys.solve_formed(g, w, st)?;
-    for c in &sys.carriers {
+    for c in &sys.physics.carriers {
         let Some(j) = c.contact else { continue };
-        let lambda = sys.lambda[j];
+        let lambda = sys.law.lambda[j];
         st.q[j] -= mass_steps[j].g[0] * lambda;
         st.q_dot[j] -= mass_steps[j].g[1] * lambda;
     }
@@ -864,7 +864,7 @@ fn contact(
 /// (second order), and the mass dofs' source held at the step's midpoint
 /// (the midpoint hold of a smooth force is second order too).
 fn add_source(m: &ModeSteps, src: &mut SourceLoads, sys: &mut System, st: &mut State) {
-    let (t0, t1) = (st.t, st.next_time(sys.dt));
+    let (t0, t1) = (st.t, st.next_time(sys.physics.dt));
     if src.t_n1 == t0 {
         std::mem::swap(&mut src.at_n, &mut src.at_n1);
     } else {
@@ -890,9 +890,9 @@ fn update_range(
     range: (usize, usize),
     vector: bool,
 ) {
-    for c in &sys.carriers {
+    for c in &sys.physics.carriers {
         let Some(j) = c.contact else { continue };
-        let lambda = sys.lambda[j];
+        let lambda = sys.law.lambda[j];
         if lambda != 0.0 {
             let phi = (c.pv_f.dense(), c.pv_g.dense());
             add_path_load(&coefs.steps, c.s * lambda, phi, st, range, vector);
@@ -953,13 +953,13 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         if let Some(f) = deferred {
             // the general path updates in its step: nothing was deferred
             // unless the run changed path (it does not); settle regardless
-            let c = &sys.carriers[0];
+            let c = &sys.physics.carriers[0];
             let phi = (c.pv_f.dense(), c.pv_g.dense());
             add_path_load(m, f, phi, st, all, vector);
         }
         place(coefs, sys, st);
         free(m, coefs.held.as_ref(), st, vector_free);
-        for c in &sys.carriers {
+        for c in &sys.physics.carriers {
             if let CarrierKind::Force { force } = c.props.kind {
                 let phi = (c.pv_f.dense(), c.pv_g.dense());
                 add_path_load(m, c.s * force, phi, st, all, vector);
@@ -971,7 +971,7 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         add_source(m, src, sys, st);
     } else if sys.has_external_force() {
         // external forces on the masses, held at the step's midpoint
-        sys.set_mass_source(0.5 * (st.t + st.next_time(sys.dt)));
+        sys.set_mass_source(0.5 * (st.t + st.next_time(sys.physics.dt)));
     }
     contact(coefs, mass_steps, (g, w), pair, sys, st)?;
     match pair {
@@ -979,15 +979,15 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
             // one contact: its update deferred to the next step's pass
             // (or `settle`), the sample's r_gᵀd from the pass's two sums:
             // r_g·(η_free + f z) = dg + f dw
-            let lambda = sys.lambda[0];
+            let lambda = sys.law.lambda[0];
             let rd = if lambda != 0.0 {
-                let f = sys.carriers[0].s * lambda;
+                let f = sys.physics.carriers[0].s * lambda;
                 *pending = Some(f);
                 f.mul_add(dw, dg)
             } else {
                 dg
             };
-            sys.carriers[0].gap_dot = Some((st.step + 1, rd));
+            sys.physics.carriers[0].gap_dot = Some((st.step + 1, rd));
         }
         None => update_range(coefs, sys, st, all, vector),
     }
@@ -1371,7 +1371,12 @@ mod tests {
             let (mut sb, mut b, mut rotating) = start(true);
             let (mut rotated, mut lost) = (0, false);
             let (mut dd, mut dmax, mut dl, mut lmax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-            while sa.carriers[0].props.motion.position(a.next_time(sa.dt)) < 50.0 {
+            while sa.physics.carriers[0]
+                .props
+                .motion
+                .position(a.next_time(sa.physics.dt))
+                < 50.0
+            {
                 let before = rotating.cruise.as_ref().map(|c| c.rotations());
                 tables.step(&mut sa, &mut a).unwrap();
                 rotating.step(&mut sb, &mut b).unwrap();
@@ -1380,10 +1385,10 @@ mod tests {
                 }
                 for (s, st) in [(&mut sa, &mut a), (&mut sb, &mut b)] {
                     st.step += 1;
-                    st.t = st.step as f64 * s.dt;
+                    st.t = st.step as f64 * s.physics.dt;
                     s.end_step(st);
                 }
-                let (la, lb) = (sa.lambda[0], sb.lambda[0]);
+                let (la, lb) = (sa.law.lambda[0], sb.law.lambda[0]);
                 if lost && la != 0.0 {
                     break;
                 }
@@ -1503,26 +1508,31 @@ mod tests {
         let (mut sa, mut a, mut now) = start();
         let (mut sb, mut b, mut later) = start();
         let (mut worst, mut losses, mut largest) = (0.0f64, 0, 0.0f64);
-        while sa.carriers[0].props.motion.position(a.next_time(sa.dt)) < 50.0 {
+        while sa.physics.carriers[0]
+            .props
+            .motion
+            .position(a.next_time(sa.physics.dt))
+            < 50.0
+        {
             now.step(&mut sa, &mut a).unwrap();
             later.step_deferred(&mut sb, &mut b).unwrap();
             for (s, st) in [(&mut sa, &mut a), (&mut sb, &mut b)] {
                 st.step += 1;
-                st.t = st.step as f64 * s.dt;
+                st.t = st.step as f64 * s.physics.dt;
                 s.end_step(st);
             }
             assert_eq!(
-                sa.lambda[0].to_bits(),
-                sb.lambda[0].to_bits(),
+                sa.law.lambda[0].to_bits(),
+                sb.law.lambda[0].to_bits(),
                 "step {}",
                 a.step
             );
-            losses += usize::from(sa.lambda[0] == 0.0);
-            let pv = &sa.carriers[0].pv_g;
+            losses += usize::from(sa.law.lambda[0] == 0.0);
+            let pv = &sa.physics.carriers[0].pv_g;
             let settled = pv.dot(&a.d);
-            let pending = later.displacement_at(&sb, &b, &sb.carriers[0].pv_g);
+            let pending = later.displacement_at(&sb, &b, &sb.physics.carriers[0].pv_g);
             assert_eq!(settled.to_bits(), pending.to_bits(), "step {}", a.step);
-            let (_, rd) = sb.carriers[0].gap_dot.unwrap();
+            let (_, rd) = sb.physics.carriers[0].gap_dot.unwrap();
             worst = worst.max((rd - settled).abs());
             largest = largest.max(settled.abs());
         }

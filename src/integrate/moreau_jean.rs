@@ -143,8 +143,8 @@ impl MoreauJean {
         let ldlt = BandedLdlt::factor(&a)?;
         let rule = MoreauJeanMass { theta, dt };
         Ok(MoreauJean {
-            effective: MassSteps::effective(&rule, &sys.masses),
-            masses: MassSteps::new(&sys.masses),
+            effective: MassSteps::effective(&rule, &sys.physics.masses),
+            masses: MassSteps::new(&sys.physics.masses),
             rule,
             theta,
             dt,
@@ -163,12 +163,13 @@ impl MoreauJean {
 /// end of the beam.
 fn impulse_time(sys: &System, t_theta: f64, t1: f64) -> f64 {
     let near_end = sys
+        .physics
         .carriers
         .iter()
         .filter(|c| c.contact.is_some())
         .any(|c| {
             let x = c.props.motion.position(t1);
-            x.min(sys.length - x) < c.props.motion.speed(t1).abs() * sys.dt
+            x.min(sys.physics.length - x) < c.props.motion.speed(t1).abs() * sys.physics.dt
         });
     if near_end { t1 } else { t_theta }
 }
@@ -204,7 +205,7 @@ impl Stepper for MoreauJean {
             .solve_affine(&mut self.rhs, k, &column, &mut self.b0);
         self.masses.begin(st);
         self.masses
-            .predict(&self.rule, &self.effective, &sys.masses);
+            .predict(&self.rule, &self.effective, &sys.physics.masses);
         let map = StepMap {
             solved: &self.rhs,
             c_d: theta * dt,
@@ -222,7 +223,7 @@ impl Stepper for MoreauJean {
             st.d[i] = self.d_pred[i] + c_d * dv;
         }
         self.masses
-            .finish(&self.rule, &self.effective, &sys.masses, impulse);
+            .finish(&self.rule, &self.effective, &sys.physics.masses, impulse);
         self.masses.end(st);
         Ok(())
     }

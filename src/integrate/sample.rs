@@ -35,7 +35,7 @@ pub(crate) fn sample_of(
     i: usize,
     dot: impl Fn(&PointVector) -> f64,
 ) -> CarrierSample {
-    let c = &sys.carriers[i];
+    let c = &sys.physics.carriers[i];
     let x = c.props.motion.position(st.t);
     let pv = if st.step == 0 { &c.pv_f } else { &c.pv_g };
     // r_gᵀd as the step computed it (modal_exact: from its pass's sums,
@@ -62,7 +62,7 @@ pub(crate) fn sample_of(
                 q: st.q[j],
                 gap: w - st.q[j],
                 force,
-                in_contact: sys.active[j],
+                in_contact: sys.law.active[j],
             }
         }
         _ => unreachable!("a mass carrier always has a contact"),
