@@ -89,6 +89,13 @@ pub struct Bathe {
     damped_load: Option<Vec<f64>>,
 }
 
+/// A sub-step's predictors of the beam: d̃ and ṽ (module docs).
+#[derive(Debug, Clone, Copy)]
+struct BeamPredictors<'a> {
+    d: &'a [f64],
+    v: &'a [f64],
+}
+
 /// A mass dof as Bathe's step keeps it: its state at t_n and the first
 /// sub-step's end.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -297,11 +304,15 @@ impl Bathe {
     fn solve(
         rhs: &mut [f64],
         b0: &mut [f64],
-        (d_pred, v_pred): (&[f64], &[f64]),
+        predicted: BeamPredictors,
         damped_load: &mut Option<Vec<f64>>,
         sys: &System,
         ldlt: &BandedLdlt,
     ) {
+        let BeamPredictors {
+            d: d_pred,
+            v: v_pred,
+        } = predicted;
         let beam = sys.beam();
         let k = sys.columns();
         let load: &[f64] = match (damped_load.as_mut(), sys.damping()) {
@@ -335,7 +346,10 @@ impl Stepper for Bathe {
         Self::solve(
             &mut self.rhs,
             &mut self.b0,
-            (&self.d_pred, &self.v_pred),
+            BeamPredictors {
+                d: &self.d_pred,
+                v: &self.v_pred,
+            },
             &mut self.damped_load,
             sys,
             &self.ldlt1,
@@ -379,7 +393,10 @@ impl Stepper for Bathe {
         Self::solve(
             &mut self.rhs,
             &mut self.b0,
-            (&self.d_pred, &self.v_pred),
+            BeamPredictors {
+                d: &self.d_pred,
+                v: &self.v_pred,
+            },
             &mut self.damped_load,
             sys,
             &self.ldlt2,

@@ -7,6 +7,16 @@
 use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::CarrierProps;
 
+/// When a step places its carriers (s): moving forces (and a manufactured
+/// source's loads) at x_m(`load`), contact force directions at
+/// x_m(`force`), gap rows at x_m(`gap`) — each method's own times.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PlaceTimes {
+    pub(crate) load: f64,
+    pub(crate) force: f64,
+    pub(crate) gap: f64,
+}
+
 /// One carrier during a run.
 #[derive(Debug, Clone)]
 pub(crate) struct Carrier {
@@ -59,12 +69,12 @@ impl Carrier {
     /// or x_m(t_load) (a moving force), its gap row r_g at x_m(t_gap), and,
     /// for a velocity-level law, the slope row r_g' and V there.
     #[inline]
-    pub(crate) fn place(
-        &mut self,
-        beam: &BeamModel,
-        (t_load, t_force, t_gap): (f64, f64, f64),
-        velocity: bool,
-    ) {
+    pub(crate) fn place(&mut self, beam: &BeamModel, at: PlaceTimes, velocity: bool) {
+        let PlaceTimes {
+            load: t_load,
+            force: t_force,
+            gap: t_gap,
+        } = at;
         let tf = if self.contact.is_some() {
             t_force
         } else {

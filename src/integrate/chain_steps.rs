@@ -53,15 +53,24 @@ fn z_of<D: Dof>(steps: &MassSteps<D>, n: usize, z: impl Fn(&D) -> f64) -> [f64; 
     out
 }
 
+/// A held run: the uplift step ΔF (N), Δt and the end time (s).
+#[derive(Debug, Clone, Copy)]
+struct HeldRun {
+    df: f64,
+    dt: f64,
+    t_end: f64,
+}
+
 /// A held run of a one-stage method: `lambda(u★, q̃, A_q)` is its held
 /// head's multiplier, `force` the force it records of it.
 fn held_one_stage<S: Stage<Dof = Kinematics>>(
     p: &ChainProps,
     stage: S,
-    (df, dt, t_end): (f64, f64, f64),
+    run: HeldRun,
     start: impl Fn(&mut MassSteps<Kinematics>),
     lambda: impl Fn(f64, f64, f64) -> f64,
 ) -> Run {
+    let HeldRun { df, dt, t_end } = run;
     let masses = stepped(p, df);
     let effective = MassSteps::effective(&stage, &masses);
     let mut steps = MassSteps::<Kinematics>::new(&masses);
@@ -85,7 +94,7 @@ fn held_run(p: &ChainProps, params: GenAlphaParams, df: f64, dt: f64, t_end: f64
     held_one_stage(
         p,
         GenAlphaMass { p: params, dt },
-        (df, dt, t_end),
+        HeldRun { df, dt, t_end },
         |steps| steps.dof_mut(0, n - 1).za = df / p.masses[n - 1],
         // rigid surface: g = 0 − q_{n+1}, g_free = −(q̃ + c_d u★), W = c_d/A_q
         |u, q, a_q| {
@@ -134,7 +143,7 @@ fn held_moreau_jean(p: &ChainProps, df: f64, dt: f64, t_end: f64) -> Run {
     let run = held_one_stage(
         p,
         MoreauJeanMass { theta, dt },
-        (df, dt, t_end),
+        HeldRun { df, dt, t_end },
         |_| {},
         |u, q, a_q| a_q * (u + q / (theta * dt)),
     );
@@ -149,7 +158,7 @@ fn held_central(p: &ChainProps, df: f64, dt: f64, t_end: f64) -> Run {
     held_one_stage(
         p,
         CentralMass { dt },
-        (df, dt, t_end),
+        HeldRun { df, dt, t_end },
         // ż_{−1/2} = ż₀ − (Δt/2) z̈₀
         |steps| steps.dof_mut(0, n - 1).zd = -0.5 * dt * df / p.masses[n - 1],
         |u, q, a_q| a_q * (u + q / (dt * dt)),

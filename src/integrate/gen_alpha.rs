@@ -32,7 +32,7 @@ impl GenAlpha {
             let c_v = p.gamma * sys.dt();
             sys.physics
                 .droppers
-                .prepare(|x| kernel.solve_one(x), (c_d, c_v), p.alpha_f);
+                .prepare(|x| kernel.solve_one(x), c_d, c_v, p.alpha_f);
         }
         Ok(GenAlpha { kernel })
     }

@@ -112,6 +112,7 @@
 //! (`modal_batch.rs`) calls the same functions and gets the same bits.
 //! Nothing is allocated after [`ModalExact::new`].
 
+use std::ops::Range;
 use std::sync::Arc;
 
 use crate::analytic::FastShapes;
@@ -123,6 +124,7 @@ use crate::model::beam::{Basis, BeamModel, PointVector};
 use crate::numeric::lanes::{self, LANES};
 use crate::scene::CarrierKind;
 
+use super::carrier::Carrier;
 use super::modal_cruise::Cruise;
 use super::oscillator::{MassStep, ModeSteps};
 use super::state::State;
@@ -320,9 +322,9 @@ impl ModalExact {
     pub fn settle(&mut self, sys: &System, st: &mut State) {
         if let Some(f) = self.pending.take() {
             let c = &sys.physics.carriers[0];
-            let all = (0, self.coefs.modes());
-            let phi = (c.pv_f.dense(), c.pv_g.dense());
-            add_path_load(&self.coefs.steps, f, phi, st, all, lanes::avx2_fma());
+            let all = 0..self.coefs.modes();
+            let path = PathShapes::of(c);
+            add_path_load(&self.coefs.steps, f, path, st, all, lanes::avx2_fma());
         }
     }
 
@@ -439,25 +441,25 @@ fn place(coefs: &ModalCoefs, sys: &mut System, st: &State) {
     }
 }
 
-/// Phase 2 of a single-contact run over modes `lo .. hi` (`lo` a multiple
-/// of [`LANES`]): the free step and the pair's partial sums.
+/// Phase 2 of a single-contact run over modes `range` (its start a
+/// multiple of [`LANES`]): the free step and the pair's partial sums.
 #[inline(always)]
 fn free_pair_range(
     coefs: &ModalCoefs,
     sys: &System,
     st: &mut State,
-    (lo, hi): (usize, usize),
+    range: Range<usize>,
     sums: &mut PairSums,
     vector: bool,
 ) {
     let c = &sys.physics.carriers[0];
-    let phi = (c.pv_f.dense(), c.pv_g.dense());
+    let path = PathShapes::of(c);
     free_with_pair(
         &coefs.steps,
         coefs.held.as_ref(),
         st,
-        phi,
-        (lo, hi),
+        path,
+        range,
         sums,
         vector,
     );
@@ -488,7 +490,7 @@ fn place_free_pair(
         deferred,
     } = pass;
     let (Some(shapes), Some(cruise)) = (&coefs.shapes, cruise) else {
-        place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
+        place_free_pair_tables(coefs, deferred, layered, sys, st, sums, vector);
         return;
     };
     let t1 = st.next_time(sys.physics.dt);
@@ -499,13 +501,13 @@ fn place_free_pair(
             if cruise.can_rotate(st.step, speed) {
                 rotate_free_pair(coefs, cruise, deferred, sys, st, sums, vector);
             } else {
-                place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
+                place_free_pair_tables(coefs, deferred, layered, sys, st, sums, vector);
                 cruise.restart(shapes, x1, st.step, speed, sys.physics.dt);
             }
         }
         _ => {
             cruise.invalidate();
-            place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
+            place_free_pair_tables(coefs, deferred, layered, sys, st, sums, vector);
         }
     }
 }
@@ -532,27 +534,29 @@ fn rotate_free_pair(
     #[cfg(target_arch = "x86_64")]
     if vector {
         let full = j / LANES * LANES;
-        let zeros: [f64; 0] = [];
-        let (hp, hv): (&[f64], &[f64]) = match coefs.held.as_ref() {
-            Some((hp, hv)) => (&hp[..j], &hv[..j]),
-            None => (&zeros, &zeros),
-        };
         let (fi, rr, ri) = cruise.parts();
-        let args = (
-            &coefs.steps,
-            (&mut st.d[..j], &mut st.v[..j]),
-            (&c.pv_f.dense()[..j], &mut c.pv_g.dense_mut()[..j]),
-            (&mut fi[..j], &rr[..j], &ri[..j]),
-            (hp, hv),
-            full,
-            &mut *sums,
-        );
+        let pass = FusedPass {
+            m: &coefs.steps,
+            modes: ModeState {
+                d: &mut st.d[..j],
+                v: &mut st.v[..j],
+            },
+            pn: &c.pv_f.dense()[..j],
+            pn1: &mut c.pv_g.dense_mut()[..j],
+            held: HeldStep::of(coefs.held.as_ref(), j),
+            sums: &mut *sums,
+        };
+        let phasors = Phasors {
+            fi: &mut fi[..j],
+            rr: &rr[..j],
+            ri: &ri[..j],
+        };
         // SAFETY: `vector` is true only where the CPU has AVX2 and FMA;
         // every slice holds J ≥ full, a multiple of LANES.
         unsafe {
             match deferred {
-                Some(f) => fused_free_pair_avx2::<true, true>(args, f),
-                None => fused_free_pair_avx2::<true, false>(args, 0.0),
+                Some(f) => fused_free_pair_avx2::<true, true>(pass, phasors, full, f),
+                None => fused_free_pair_avx2::<true, false>(pass, phasors, full, 0.0),
             }
         };
         done = full;
@@ -560,12 +564,15 @@ fn rotate_free_pair(
     if let Some(f) = deferred {
         // the rest of the deferred update, before their shapes overwrite
         // φ(x_{n−1}): from φ(x_{n−1}) (now pv_g) to φ(x_n) (now pv_f)
-        let phi = (c.pv_g.dense(), c.pv_f.dense());
-        add_path_load(&coefs.steps, f, phi, st, (done, j), false);
+        let path = PathShapes {
+            at_n: c.pv_g.dense(),
+            at_n1: c.pv_f.dense(),
+        };
+        add_path_load(&coefs.steps, f, path, st, done..j, false);
     }
-    cruise.rotate_range(c.pv_f.dense(), c.pv_g.dense_mut(), (done, j));
+    cruise.rotate_range(c.pv_f.dense(), c.pv_g.dense_mut(), done..j);
     cruise.rotated(st.step);
-    free_pair_range(coefs, sys, st, (done, j), sums, vector);
+    free_pair_range(coefs, sys, st, done..j, sums, vector);
 }
 
 /// Modes `0 .. end` of one fused pass: each mode's shape `q` — with
@@ -581,23 +588,25 @@ fn rotate_free_pair(
 /// # Safety
 /// The CPU supports AVX2 and FMA; `end` is a multiple of [`LANES`];
 /// every slice has at least `end` entries (`rr` and `ri` only with
-/// `ROTATE`), or `hp` and `hv` are both empty.
+/// `ROTATE`), or the held step's are both empty.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-#[allow(clippy::type_complexity)]
 unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bool>(
-    (m, (d, v), (pn, pn1), (fi, rr, ri), (hp, hv), end, sums): (
-        &ModeSteps,
-        (&mut [f64], &mut [f64]),
-        (&[f64], &mut [f64]),
-        (&mut [f64], &[f64], &[f64]),
-        (&[f64], &[f64]),
-        usize,
-        &mut PairSums,
-    ),
+    pass: FusedPass,
+    phasors: Phasors,
+    end: usize,
     f: f64,
 ) {
     use std::arch::x86_64::*;
+    let FusedPass {
+        m,
+        mut modes,
+        pn,
+        pn1,
+        held,
+        sums,
+    } = pass;
+    let Phasors { fi, rr, ri } = phasors;
     // SAFETY (whole body): loads and stores at k .. k + 4 ≤ end.
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
@@ -608,12 +617,16 @@ unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bool>(
                 let k = i + 4 * h;
                 // the shape: one complex product (Cruise::rotate_range)
                 let (p, b) = (ld(pn, k), ld(fi, k));
-                let (mut e, mut ev) = (ld(d, k), ld(v, k));
+                let mut now = modes.load4(k);
                 if DEFERRED {
                     // the last step's update: from φ(x_{n−1}) (pn1 before
                     // this pass stores into it) to φ(x_n) (pn)
                     let fv = _mm256_set1_pd(f);
-                    (e, ev) = path_load4(path_coefs(m), k, fv, (ld(pn1, k), p), (e, ev));
+                    let from = QuadPath {
+                        at_n: ld(pn1, k),
+                        at_n1: p,
+                    };
+                    now = path_load4(PathWeights::of(m), k, fv, from, now);
                 }
                 let q = if ROTATE {
                     let (cr, ci) = (ld(rr, k), ld(ri, k));
@@ -628,15 +641,12 @@ unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bool>(
                     b
                 };
                 _mm256_storeu_pd(pn1.as_mut_ptr().add(k), q);
-                free_pair4(
-                    m,
-                    k,
-                    (e, ev),
-                    (p, q),
-                    (hp, hv),
-                    (d, v),
-                    (&mut g[h], &mut w[h]),
-                );
+                let path = QuadPath { at_n: p, at_n1: q };
+                let into = QuadSums {
+                    g: &mut g[h],
+                    w: &mut w[h],
+                };
+                free_pair4(m, k, now, path, held, &mut modes, into);
             }
             i += LANES;
         }
@@ -653,11 +663,34 @@ struct Pass<'a> {
     deferred: Option<f64>,
 }
 
+/// The operands of one fused pass over the modes ([`fused_free_pair_avx2`],
+/// [`shapes_free_pair_avx2`]): the modes' steps, their state, the shapes
+/// `pn` = φ(x_n) and `pn1` (the pass stores φ(x_{n+1}) there), the held
+/// load's step and the pair's partial sums.
+struct FusedPass<'a> {
+    m: &'a ModeSteps,
+    modes: ModeState<'a>,
+    pn: &'a [f64],
+    pn1: &'a mut [f64],
+    held: HeldStep<'a>,
+    sums: &'a mut PairSums,
+}
+
+/// A fused pass's phasors at constant speed (`modal_cruise.rs`): their
+/// imaginary parts `fi` (each overwritten by its rotation) and the step's
+/// rotation `(rr, ri)`; empty when the shapes are stored, not rotated.
+struct Phasors<'a> {
+    fi: &'a mut [f64],
+    rr: &'a [f64],
+    ri: &'a [f64],
+}
+
 /// [`place_free_pair`] with the shapes from the tables.
 #[inline(always)]
 fn place_free_pair_tables(
     coefs: &ModalCoefs,
-    (deferred, layered): (Option<f64>, &mut [f64]),
+    deferred: Option<f64>,
+    layered: &mut [f64],
     sys: &mut System,
     st: &mut State,
     sums: &mut PairSums,
@@ -675,16 +708,15 @@ fn place_free_pair_tables(
                 // the deferred update of the tail, whose shapes are stored
                 // before its free step: from φ(x_{n−1}) (now pv_g) to
                 // φ(x_n) (now pv_f); the blocks add theirs in their pass
-                let phi = (c.pv_g.dense(), c.pv_f.dense());
-                add_path_load(&coefs.steps, f, phi, st, (full, j), vector);
+                let path = PathShapes {
+                    at_n: c.pv_g.dense(),
+                    at_n1: c.pv_f.dense(),
+                };
+                add_path_load(&coefs.steps, f, path, st, full..j, vector);
             }
             let pn1 = &mut c.pv_g.dense_mut()[..j];
             let pn = &c.pv_f.dense()[..j];
-            let zeros: [f64; 0] = [];
-            let (hp, hv): (&[f64], &[f64]) = match coefs.held.as_ref() {
-                Some((hp, hv)) => (&hp[..j], &hv[..j]),
-                None => (&zeros, &zeros),
-            };
+            let held = HeldStep::of(coefs.held.as_ref(), j);
             // within a clamped end's boundary layer, the blocks a layer row
             // reaches first: their shapes whole (into `layered`), then one
             // fused pass (the deferred update, the free step, the sums,
@@ -694,42 +726,56 @@ fn place_free_pair_tables(
             let lo = unsafe { blocks.layered_into(&mut layered[..j]) };
             let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
             if lo > 0 {
-                let args = (
-                    &coefs.steps,
-                    (&mut *d, &mut *v),
-                    (pn, &mut *pn1),
-                    (&mut layered[..j], &zeros[..], &zeros[..]),
-                    (hp, hv),
-                    lo,
-                    &mut *sums,
-                );
+                let pass = FusedPass {
+                    m: &coefs.steps,
+                    modes: ModeState {
+                        d: &mut *d,
+                        v: &mut *v,
+                    },
+                    pn,
+                    pn1: &mut *pn1,
+                    held,
+                    sums: &mut *sums,
+                };
+                // the shapes stored in `layered`, not rotated
+                let stored = Phasors {
+                    fi: &mut layered[..j],
+                    rr: &[],
+                    ri: &[],
+                };
                 // SAFETY: as above; lo is a multiple of SHAPE_BLOCK (so of
                 // LANES) and every slice holds J ≥ lo.
                 unsafe {
                     match deferred {
-                        Some(f) => fused_free_pair_avx2::<false, true>(args, f),
-                        None => fused_free_pair_avx2::<false, false>(args, 0.0),
+                        Some(f) => fused_free_pair_avx2::<false, true>(pass, stored, lo, f),
+                        None => fused_free_pair_avx2::<false, false>(pass, stored, lo, 0.0),
                     }
                 };
             }
-            let args = (&coefs.steps, (d, v), (pn, &mut *pn1), (hp, hv), &mut *sums);
+            let pass = FusedPass {
+                m: &coefs.steps,
+                modes: ModeState { d, v },
+                pn,
+                pn1: &mut *pn1,
+                held,
+                sums: &mut *sums,
+            };
             // SAFETY: as above; every slice holds J ≥ full, lo and full are
             // multiples of SHAPE_BLOCK.
             unsafe {
                 match deferred {
-                    Some(f) => shapes_free_pair_avx2::<true>(&mut blocks, lo, args, f),
-                    None => shapes_free_pair_avx2::<false>(&mut blocks, lo, args, 0.0),
+                    Some(f) => shapes_free_pair_avx2::<true>(&mut blocks, lo, pass, f),
+                    None => shapes_free_pair_avx2::<false>(&mut blocks, lo, pass, 0.0),
                 }
             };
             blocks.tail_into(&mut pn1[full..]);
             let c = &sys.physics.carriers[0];
-            let phi = (c.pv_f.dense(), c.pv_g.dense());
             free_with_pair(
                 &coefs.steps,
                 coefs.held.as_ref(),
                 st,
-                phi,
-                (full, j),
+                PathShapes::of(c),
+                full..j,
                 sums,
                 vector,
             );
@@ -739,11 +785,10 @@ fn place_free_pair_tables(
     if let Some(f) = deferred {
         // settled first: φ(x_{n−1}) in pv_f, φ(x_n) in pv_g before `place`
         let c = &sys.physics.carriers[0];
-        let phi = (c.pv_f.dense(), c.pv_g.dense());
-        add_path_load(&coefs.steps, f, phi, st, (0, j), vector);
+        add_path_load(&coefs.steps, f, PathShapes::of(c), st, 0..j, vector);
     }
     place(coefs, sys, st);
-    free_pair_range(coefs, sys, st, (0, j), sums, vector);
+    free_pair_range(coefs, sys, st, 0..j, sums, vector);
 }
 
 /// Modes `from .. blocks.full()` of [`place_free_pair`]: each block of shapes
@@ -753,23 +798,24 @@ fn place_free_pair_tables(
 ///
 /// # Safety
 /// The CPU supports AVX2 and FMA; every slice holds at least
-/// `blocks.full()` entries, or `hp` and `hv` are both empty.
+/// `blocks.full()` entries, or the held step's are both empty.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-#[allow(clippy::type_complexity)]
 unsafe fn shapes_free_pair_avx2<const DEFERRED: bool>(
     blocks: &mut Blocks,
     from: usize,
-    (m, (d, v), (pn, pn1), (hp, hv), sums): (
-        &ModeSteps,
-        (&mut [f64], &mut [f64]),
-        (&[f64], &mut [f64]),
-        (&[f64], &[f64]),
-        &mut PairSums,
-    ),
+    pass: FusedPass,
     f: f64,
 ) {
     use std::arch::x86_64::*;
+    let FusedPass {
+        m,
+        mut modes,
+        pn,
+        pn1,
+        held,
+        sums,
+    } = pass;
     let end = blocks.full();
     // SAFETY (whole body): loads and stores at k .. k + 4 ≤ end.
     unsafe {
@@ -782,23 +828,24 @@ unsafe fn shapes_free_pair_avx2<const DEFERRED: bool>(
             for (u, q) in q4.into_iter().enumerate() {
                 let (k, h) = (at + 4 * u, u % 2);
                 let p = ld(pn, k);
-                let (mut e, mut ev) = (ld(d, k), ld(v, k));
+                let mut now = modes.load4(k);
                 if DEFERRED {
                     // the last step's update: from φ(x_{n−1}) (pn1 before
                     // this pass stores into it) to φ(x_n) (pn)
                     let fv = _mm256_set1_pd(f);
-                    (e, ev) = path_load4(path_coefs(m), k, fv, (ld(pn1, k), p), (e, ev));
+                    let from = QuadPath {
+                        at_n: ld(pn1, k),
+                        at_n1: p,
+                    };
+                    now = path_load4(PathWeights::of(m), k, fv, from, now);
                 }
                 _mm256_storeu_pd(pn1.as_mut_ptr().add(k), q);
-                free_pair4(
-                    m,
-                    k,
-                    (e, ev),
-                    (p, q),
-                    (hp, hv),
-                    (d, v),
-                    (&mut g[h], &mut w[h]),
-                );
+                let path = QuadPath { at_n: p, at_n1: q };
+                let into = QuadSums {
+                    g: &mut g[h],
+                    w: &mut w[h],
+                };
+                free_pair4(m, k, now, path, held, &mut modes, into);
             }
             at += SHAPE_BLOCK;
         }
@@ -814,7 +861,8 @@ unsafe fn shapes_free_pair_avx2<const DEFERRED: bool>(
 fn contact(
     coefs: &ModalCoefs,
     mass_steps: &[MassStep],
-    (g, w): (&mut [f64], &mut [f64]),
+    g: &mut [f64],
+    w: &mut [f64],
     pair: Option<(f64, f64)>,
     sys: &mut System,
     st: &mut State,
@@ -826,7 +874,7 @@ fn contact(
     let m = &coefs.steps;
     // the mass dofs' free step (their constant force held)
     for (j, (ms, dof)) in mass_steps.iter().zip(sys.masses()).enumerate() {
-        (st.q[j], st.q_dot[j]) = ms.apply((st.q[j], st.q_dot[j]), dof.f0);
+        (st.q[j], st.q_dot[j]) = ms.apply(st.q[j], st.q_dot[j], dof.f0);
     }
     match pair {
         Some((dg, dw)) => {
@@ -880,22 +928,22 @@ fn add_source(m: &ModeSteps, src: &mut SourceLoads, sys: &mut System, st: &mut S
     sys.set_mass_source(0.5 * (t0 + t1));
 }
 
-/// Phase 4 over modes `lo .. hi`: each contact force, held over the step
+/// Phase 4 over modes `range`: each contact force, held over the step
 /// along its carrier's path, into every mode.
 #[inline(always)]
 fn update_range(
     coefs: &ModalCoefs,
     sys: &System,
     st: &mut State,
-    range: (usize, usize),
+    range: Range<usize>,
     vector: bool,
 ) {
     for c in &sys.physics.carriers {
         let Some(j) = c.contact else { continue };
         let lambda = sys.law.lambda[j];
         if lambda != 0.0 {
-            let phi = (c.pv_f.dense(), c.pv_g.dense());
-            add_path_load(&coefs.steps, c.s * lambda, phi, st, range, vector);
+            let path = PathShapes::of(c);
+            add_path_load(&coefs.steps, c.s * lambda, path, st, range.clone(), vector);
         }
     }
 }
@@ -937,7 +985,7 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
     let deferred = pending.take();
     let (coefs, source) = (&**coefs, source.as_mut());
     let m = &coefs.steps;
-    let all = (0, m.len());
+    let all = 0..m.len();
     // the vector free steps are of undamped modes (cos_v = cos)
     let vector_free = vector && !coefs.damped;
     let pair = if is_single(sys) && source.is_none() {
@@ -954,15 +1002,14 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
             // the general path updates in its step: nothing was deferred
             // unless the run changed path (it does not); settle regardless
             let c = &sys.physics.carriers[0];
-            let phi = (c.pv_f.dense(), c.pv_g.dense());
-            add_path_load(m, f, phi, st, all, vector);
+            add_path_load(m, f, PathShapes::of(c), st, all.clone(), vector);
         }
         place(coefs, sys, st);
         free(m, coefs.held.as_ref(), st, vector_free);
         for c in &sys.physics.carriers {
             if let CarrierKind::Force { force } = c.props.kind {
-                let phi = (c.pv_f.dense(), c.pv_g.dense());
-                add_path_load(m, c.s * force, phi, st, all, vector);
+                let path = PathShapes::of(c);
+                add_path_load(m, c.s * force, path, st, all.clone(), vector);
             }
         }
         None
@@ -973,7 +1020,7 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         // external forces on the masses, held at the step's midpoint
         sys.set_mass_source(0.5 * (st.t + st.next_time(sys.physics.dt)));
     }
-    contact(coefs, mass_steps, (g, w), pair, sys, st)?;
+    contact(coefs, mass_steps, g, w, pair, sys, st)?;
     match pair {
         Some((dg, dw)) => {
             // one contact: its update deferred to the next step's pass
@@ -992,6 +1039,145 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         None => update_range(coefs, sys, st, all, vector),
     }
     Ok(())
+}
+
+/// The shapes of a carrier's path over a step: φ(x_n) and φ(x_{n+1}) (J
+/// each, or a range of them).
+#[derive(Clone, Copy)]
+struct PathShapes<'a> {
+    at_n: &'a [f64],
+    at_n1: &'a [f64],
+}
+
+impl<'a> PathShapes<'a> {
+    /// Carrier `c`'s: `pv_f` holds φ(x_n), `pv_g` φ(x_{n+1}) after `place`.
+    #[inline(always)]
+    fn of(c: &'a Carrier) -> Self {
+        PathShapes {
+            at_n: c.pv_f.dense(),
+            at_n1: c.pv_g.dense(),
+        }
+    }
+}
+
+/// Each mode's weights of a load held over the step along a carrier's
+/// path (`oscillator.rs`): a0, a1 into η, b0, b1 into η̇.
+#[derive(Clone, Copy)]
+struct PathWeights<'a> {
+    a0: &'a [f64],
+    a1: &'a [f64],
+    b0: &'a [f64],
+    b1: &'a [f64],
+}
+
+impl<'a> PathWeights<'a> {
+    /// The weights of every mode of `m`.
+    #[inline(always)]
+    fn of(m: &'a ModeSteps) -> Self {
+        PathWeights {
+            a0: &m.a0,
+            a1: &m.a1,
+            b0: &m.b0,
+            b1: &m.b1,
+        }
+    }
+
+    /// The weights of modes `r`.
+    #[inline(always)]
+    fn range(self, r: Range<usize>) -> Self {
+        PathWeights {
+            a0: &self.a0[r.clone()],
+            a1: &self.a1[r.clone()],
+            b0: &self.b0[r.clone()],
+            b1: &self.b1[r],
+        }
+    }
+}
+
+/// The held distributed load's step of each mode: (a0 + a1) p_j into η,
+/// (b0 + b1) p_j into η̇ (both empty without a load).
+#[derive(Clone, Copy)]
+struct HeldStep<'a> {
+    d: &'a [f64],
+    v: &'a [f64],
+}
+
+impl<'a> HeldStep<'a> {
+    /// The first `j` modes' of `held` ([`ModalCoefs`]), empty without one.
+    #[inline(always)]
+    fn of(held: Option<&'a (Vec<f64>, Vec<f64>)>, j: usize) -> Self {
+        match held {
+            Some((hp, hv)) => HeldStep {
+                d: &hp[..j],
+                v: &hv[..j],
+            },
+            None => HeldStep { d: &[], v: &[] },
+        }
+    }
+}
+
+/// The modes' displacements η and velocities η̇, stepped in place.
+struct ModeState<'a> {
+    d: &'a mut [f64],
+    v: &'a mut [f64],
+}
+
+#[cfg(target_arch = "x86_64")]
+impl ModeState<'_> {
+    /// Modes `k .. k + 4` into registers.
+    ///
+    /// # Safety
+    /// The CPU supports AVX; both slices hold `k + 4` entries.
+    #[target_feature(enable = "avx")]
+    #[inline]
+    unsafe fn load4(&self, k: usize) -> Quad {
+        use std::arch::x86_64::_mm256_loadu_pd;
+        // SAFETY: loads at k .. k + 4 (the caller's contract).
+        unsafe {
+            Quad {
+                d: _mm256_loadu_pd(self.d.as_ptr().add(k)),
+                v: _mm256_loadu_pd(self.v.as_ptr().add(k)),
+            }
+        }
+    }
+
+    /// Modes `k .. k + 4` from registers.
+    ///
+    /// # Safety
+    /// The CPU supports AVX; both slices hold `k + 4` entries.
+    #[target_feature(enable = "avx")]
+    #[inline]
+    unsafe fn store4(&mut self, k: usize, q: Quad) {
+        use std::arch::x86_64::_mm256_storeu_pd;
+        // SAFETY: stores at k .. k + 4 (the caller's contract).
+        unsafe {
+            _mm256_storeu_pd(self.d.as_mut_ptr().add(k), q.d);
+            _mm256_storeu_pd(self.v.as_mut_ptr().add(k), q.v);
+        }
+    }
+}
+
+/// Four modes' η and η̇ in registers.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy)]
+struct Quad {
+    d: std::arch::x86_64::__m256d,
+    v: std::arch::x86_64::__m256d,
+}
+
+/// Four modes' shapes φ(x_n), φ(x_{n+1}) in registers.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy)]
+struct QuadPath {
+    at_n: std::arch::x86_64::__m256d,
+    at_n1: std::arch::x86_64::__m256d,
+}
+
+/// The two partial sums' registers four modes add into ([`PairSums`]).
+#[cfg(target_arch = "x86_64")]
+struct QuadSums<'a> {
+    g: &'a mut std::arch::x86_64::__m256d,
+    w: &'a mut std::arch::x86_64::__m256d,
 }
 
 // The kernels below round `a·b + c` once (AVX2 + FMA vectors where the
@@ -1063,7 +1249,7 @@ unsafe fn free_avx2(m: &ModeSteps, d: &mut [f64], v: &mut [f64]) -> usize {
     full
 }
 
-/// [`free`] over modes `lo .. hi` fused with the two sums of a single
+/// [`free`] over modes `range` fused with the two sums of a single
 /// contact ([`PairSums`]); mode i ≥ ⌊J/8⌋·8 goes into lane i − ⌊J/8⌋·8, as
 /// [`lanes::dot`] puts its tail, so any split into ranges at multiples of
 /// [`LANES`] gives the sums of one pass.
@@ -1072,28 +1258,34 @@ fn free_with_pair(
     m: &ModeSteps,
     held: Option<&(Vec<f64>, Vec<f64>)>,
     st: &mut State,
-    (pn, pn1): (&[f64], &[f64]),
-    (lo, hi): (usize, usize),
+    shapes: PathShapes,
+    range: Range<usize>,
     sums: &mut PairSums,
     vector: bool,
 ) {
+    let Range { start: lo, end: hi } = range;
     debug_assert!(lo % LANES == 0 && hi <= m.len());
     let j = m.len();
     let full = j / LANES * LANES;
     let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
-    let (pn, pn1) = (&pn[..j], &pn1[..j]);
-    let zeros: [f64; 0] = [];
-    let (hp, hv): (&[f64], &[f64]) = match held {
-        Some((hp, hv)) => (&hp[..j], &hv[..j]),
-        None => (&zeros, &zeros),
-    };
+    let (pn, pn1) = (&shapes.at_n[..j], &shapes.at_n1[..j]);
+    let step = HeldStep::of(held, j);
+    let (hp, hv) = (step.d, step.v);
     let mut done = lo;
     #[cfg(target_arch = "x86_64")]
     if vector {
         let end = hi.min(full).max(lo);
+        let modes = ModeState {
+            d: &mut *d,
+            v: &mut *v,
+        };
+        let shapes = PathShapes {
+            at_n: pn,
+            at_n1: pn1,
+        };
         // SAFETY: the caller checked AVX2 and FMA; every slice holds J ≥ end,
         // `lo` and `end` are multiples of LANES, hp/hv hold J when present.
-        unsafe { free_with_pair_avx2(m, (d, v), (pn, pn1), (hp, hv), (lo, end), sums) };
+        unsafe { free_with_pair_avx2(m, modes, shapes, step, lo..end, sums) };
         done = end;
     }
     for i in done..hi {
@@ -1110,34 +1302,41 @@ fn free_with_pair(
     }
 }
 
-/// Modes `lo .. end` of [`free_with_pair`], eight at a time.
+/// Modes `range` of [`free_with_pair`], eight at a time.
 ///
 /// # Safety
-/// The CPU supports AVX2 and FMA; `lo` and `end` are multiples of
-/// [`LANES`]; every slice has at least `end` entries, or `hp` and `hv` are
-/// both empty (no held load).
+/// The CPU supports AVX2 and FMA; the range's ends are multiples of
+/// [`LANES`]; every slice has at least `range.end` entries, or the held
+/// step's are both empty (no held load).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn free_with_pair_avx2(
     m: &ModeSteps,
-    (d, v): (&mut [f64], &mut [f64]),
-    (pn, pn1): (&[f64], &[f64]),
-    (hp, hv): (&[f64], &[f64]),
-    (lo, end): (usize, usize),
+    mut modes: ModeState,
+    path: PathShapes,
+    held: HeldStep,
+    range: Range<usize>,
     sums: &mut PairSums,
 ) {
     use std::arch::x86_64::*;
-    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ end.
+    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ range.end.
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
         let (mut g, mut w) = sums.load_avx2();
-        let mut i = lo;
-        while i < end {
+        let mut i = range.start;
+        while i < range.end {
             for h in 0..2 {
                 let k = i + 4 * h;
-                let (e, ev) = (ld(d, k), ld(v, k));
-                let pq = (ld(pn, k), ld(pn1, k));
-                free_pair4(m, k, (e, ev), pq, (hp, hv), (d, v), (&mut g[h], &mut w[h]));
+                let now = modes.load4(k);
+                let shapes = QuadPath {
+                    at_n: ld(path.at_n, k),
+                    at_n1: ld(path.at_n1, k),
+                };
+                let into = QuadSums {
+                    g: &mut g[h],
+                    w: &mut w[h],
+                };
+                free_pair4(m, k, now, shapes, held, &mut modes, into);
             }
             i += LANES;
         }
@@ -1146,30 +1345,30 @@ unsafe fn free_with_pair_avx2(
 }
 
 /// Modes `k .. k + 4` of a fused pass (`free_with_pair_avx2` and the
-/// fused kernels): the free step from `(e, ev)` plus the held load (when
-/// `hp`, `hv` are not empty), stored into `d` and `v`, and the two sums
-/// with `p = φ(x_n)`, `q = φ(x_{n+1})` into `g` and `w`: the operations of
+/// fused kernels): the free step from `now` plus the held load (when the
+/// held step is not empty), stored into `modes`, and the two sums with
+/// `p = φ(x_n)`, `q = φ(x_{n+1})` (`path`) into `into`: the operations of
 /// [`free_with_pair`]'s scalar loop (the same bits).
 ///
 /// # Safety
 /// The CPU supports AVX2 and FMA; every slice holds `k + 4` entries, or
-/// `hp` and `hv` are both empty.
+/// the held step's are both empty.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 #[inline]
 unsafe fn free_pair4(
     m: &ModeSteps,
     k: usize,
-    (e, ev): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
-    (p, q): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
-    (hp, hv): (&[f64], &[f64]),
-    (d, v): (&mut [f64], &mut [f64]),
-    (g, w): (
-        &mut std::arch::x86_64::__m256d,
-        &mut std::arch::x86_64::__m256d,
-    ),
+    now: Quad,
+    path: QuadPath,
+    held: HeldStep,
+    modes: &mut ModeState,
+    into: QuadSums,
 ) {
     use std::arch::x86_64::*;
+    let (Quad { d: e, v: ev }, QuadPath { at_n: p, at_n1: q }) = (now, path);
+    let (HeldStep { d: hp, v: hv }, QuadSums { g, w }) = (held, into);
+    let ModeState { d, v } = modes;
     // SAFETY: loads and stores at k .. k + 4 (the caller's contract).
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
@@ -1188,61 +1387,71 @@ unsafe fn free_pair4(
     }
 }
 
-/// The four path-load coefficient arrays `(a0, a1, b0, b1)` of `m`.
-#[inline(always)]
-fn path_coefs(m: &ModeSteps) -> (&[f64], &[f64], &[f64], &[f64]) {
-    (&m.a0, &m.a1, &m.b0, &m.b1)
-}
-
-/// Modes `k .. k + 4` of `(e, ev)` plus a force `fv` held along the path
-/// from shapes `p` to `q`: `(e + f (a0 p + a1 q), ev + f (b0 p + b1 q))`,
-/// the operations of [`add_path_load`]'s scalar loop (the same bits).
+/// Modes `k .. k + 4` of `now` plus a force `fv` held along the path
+/// from shapes `p` to `q` (`path`): `(e + f (a0 p + a1 q), ev + f (b0 p +
+/// b1 q))`, the operations of [`add_path_load`]'s scalar loop (the same
+/// bits).
 ///
 /// # Safety
-/// The CPU supports AVX2 and FMA; the four slices hold `k + 4` entries.
+/// The CPU supports AVX2 and FMA; the four weight slices hold `k + 4`
+/// entries.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 #[inline]
-#[allow(clippy::type_complexity)]
 unsafe fn path_load4(
-    (a0, a1, b0, b1): (&[f64], &[f64], &[f64], &[f64]),
+    weights: PathWeights,
     k: usize,
     fv: std::arch::x86_64::__m256d,
-    (p, q): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
-    (e, ev): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
-) -> (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d) {
+    path: QuadPath,
+    now: Quad,
+) -> Quad {
     use std::arch::x86_64::*;
+    let PathWeights { a0, a1, b0, b1 } = weights;
+    let (QuadPath { at_n: p, at_n1: q }, Quad { d: e, v: ev }) = (path, now);
     // SAFETY: loads at k .. k + 4 (the caller's contract).
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
         let z = _mm256_fmadd_pd(ld(a0, k), p, _mm256_mul_pd(ld(a1, k), q));
         let zv = _mm256_fmadd_pd(ld(b0, k), p, _mm256_mul_pd(ld(b1, k), q));
-        (_mm256_fmadd_pd(fv, z, e), _mm256_fmadd_pd(fv, zv, ev))
+        Quad {
+            d: _mm256_fmadd_pd(fv, z, e),
+            v: _mm256_fmadd_pd(fv, zv, ev),
+        }
     }
 }
 
 /// Add a force `f` (N) held over the step along the carrier's path into
-/// modes `lo .. hi`: `η += f (a0 φ(x_n) + a1 φ(x_{n+1}))`,
+/// modes `range`: `η += f (a0 φ(x_n) + a1 φ(x_{n+1}))`,
 /// `η̇ += f (b0 φ(x_n) + b1 φ(x_{n+1}))` (mode by mode: any split gives the
 /// same bits).
 #[inline(always)]
 fn add_path_load(
     m: &ModeSteps,
     f: f64,
-    (pn, pn1): (&[f64], &[f64]),
+    shapes: PathShapes,
     st: &mut State,
-    (lo, hi): (usize, usize),
+    range: Range<usize>,
     vector: bool,
 ) {
+    let (lo, hi) = (range.start, range.end);
     let (d, v) = (&mut st.d[lo..hi], &mut st.v[lo..hi]);
-    let (pn, pn1) = (&pn[lo..hi], &pn1[lo..hi]);
-    let (a0, a1, b0, b1) = (&m.a0[lo..hi], &m.a1[lo..hi], &m.b0[lo..hi], &m.b1[lo..hi]);
+    let (pn, pn1) = (&shapes.at_n[lo..hi], &shapes.at_n1[lo..hi]);
+    let weights = PathWeights::of(m).range(lo..hi);
     let mut done = 0;
     #[cfg(target_arch = "x86_64")]
     if vector {
+        let modes = ModeState {
+            d: &mut *d,
+            v: &mut *v,
+        };
+        let shapes = PathShapes {
+            at_n: pn,
+            at_n1: pn1,
+        };
         // SAFETY: the caller checked AVX2 and FMA; every slice holds hi − lo.
-        done = unsafe { add_path_load_avx2(f, (a0, a1, b0, b1), (pn, pn1), (d, v)) };
+        done = unsafe { add_path_load_avx2(f, weights, shapes, modes) };
     }
+    let PathWeights { a0, a1, b0, b1 } = weights;
     for i in done..hi - lo {
         d[i] = f.mul_add(path(a0[i], pn[i], a1[i], pn1[i]), d[i]);
         v[i] = f.mul_add(path(b0[i], pn[i], b1[i], pn1[i]), v[i]);
@@ -1252,27 +1461,30 @@ fn add_path_load(
 /// The whole vectors of [`add_path_load`]; returns how many modes it did.
 ///
 /// # Safety
-/// The CPU supports AVX2 and FMA; every slice has the length of `d`.
+/// The CPU supports AVX2 and FMA; every slice has the length of
+/// `modes.d`.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn add_path_load_avx2(
     f: f64,
-    (a0, a1, b0, b1): (&[f64], &[f64], &[f64], &[f64]),
-    (pn, pn1): (&[f64], &[f64]),
-    (d, v): (&mut [f64], &mut [f64]),
+    weights: PathWeights,
+    path: PathShapes,
+    mut modes: ModeState,
 ) -> usize {
     use std::arch::x86_64::*;
-    let full = d.len() / 4 * 4;
+    let full = modes.d.len() / 4 * 4;
     // SAFETY (whole body): loads and stores at i .. i + 4 ≤ full.
     unsafe {
         let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
         let fv = _mm256_set1_pd(f);
         let mut i = 0;
         while i < full {
-            let pq = (ld(pn, i), ld(pn1, i));
-            let (e, ev) = path_load4((a0, a1, b0, b1), i, fv, pq, (ld(d, i), ld(v, i)));
-            _mm256_storeu_pd(d.as_mut_ptr().add(i), e);
-            _mm256_storeu_pd(v.as_mut_ptr().add(i), ev);
+            let shapes = QuadPath {
+                at_n: ld(path.at_n, i),
+                at_n1: ld(path.at_n1, i),
+            };
+            let now = path_load4(weights, i, fv, shapes, modes.load4(i));
+            modes.store4(i, now);
             i += 4;
         }
     }
@@ -1429,6 +1641,10 @@ mod tests {
             let wave =
                 |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
             let (pn, pn1) = (wave(0.37), wave(0.371));
+            let path = PathShapes {
+                at_n: &pn,
+                at_n1: &pn1,
+            };
             let st0 = State {
                 step: 3,
                 t: 0.0,
@@ -1445,12 +1661,12 @@ mod tests {
                     PairSums::default(),
                     PairSums::default(),
                 );
-                free_with_pair(&m, h, &mut a, (&pn, &pn1), (0, j), &mut sa, true);
-                free_with_pair(&m, h, &mut b, (&pn, &pn1), (0, j), &mut sb, false);
+                free_with_pair(&m, h, &mut a, path, 0..j, &mut sa, true);
+                free_with_pair(&m, h, &mut b, path, 0..j, &mut sb, false);
                 // by ranges, as a batch takes them
                 for lo in (0..j).step_by(16) {
-                    let r = (lo, (lo + 16).min(j));
-                    free_with_pair(&m, h, &mut c, (&pn, &pn1), r, &mut sc, true);
+                    let r = lo..(lo + 16).min(j);
+                    free_with_pair(&m, h, &mut c, path, r, &mut sc, true);
                 }
                 let bits = |s: &PairSums| {
                     let (g, w) = s.total();
@@ -1460,11 +1676,11 @@ mod tests {
                 assert_eq!(bits(&sa), bits(&sc), "J = {j}");
                 assert_eq!(a, b);
                 assert_eq!(a, c);
-                add_path_load(&m, -37.5, (&pn, &pn1), &mut a, (0, j), true);
-                add_path_load(&m, -37.5, (&pn, &pn1), &mut b, (0, j), false);
+                add_path_load(&m, -37.5, path, &mut a, 0..j, true);
+                add_path_load(&m, -37.5, path, &mut b, 0..j, false);
                 for lo in (0..j).step_by(16) {
-                    let r = (lo, (lo + 16).min(j));
-                    add_path_load(&m, -37.5, (&pn, &pn1), &mut c, r, true);
+                    let r = lo..(lo + 16).min(j);
+                    add_path_load(&m, -37.5, path, &mut c, r, true);
                 }
                 assert_eq!(a, b, "J = {j}");
                 assert_eq!(a, c, "J = {j}");

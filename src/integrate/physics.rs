@@ -11,7 +11,7 @@ use crate::model::source::Source;
 use crate::resolve::Resolved;
 use crate::scene::{CarrierKind, Support};
 
-use super::carrier::Carrier;
+use super::carrier::{Carrier, PlaceTimes};
 use super::dropper::Droppers;
 use super::mass_dofs::MassDofs;
 use super::step_map::Lanes;
@@ -147,11 +147,12 @@ impl Physics {
         self.masses.set_load_time(t, source);
     }
 
-    /// Place the carriers for a step: moving forces at x_m(t_load), contact
-    /// force directions r_f at x_m(t_force), gap rows r_g at x_m(t_gap),
-    /// and, for a law at velocity level (`velocity`), the slope rows and
-    /// speeds there.
-    pub(crate) fn place(&mut self, (t_load, t_force, t_gap): (f64, f64, f64), velocity: bool) {
+    /// Place the carriers for a step ([`PlaceTimes`]): moving forces at
+    /// x_m(load), contact force directions r_f at x_m(force), gap rows r_g
+    /// at x_m(gap), and, for a law at velocity level (`velocity`), the
+    /// slope rows and speeds there.
+    pub(crate) fn place(&mut self, at: PlaceTimes, velocity: bool) {
+        let (t_load, t_force) = (at.load, at.force);
         self.t_force = t_force;
         if let Some(src) = &mut self.source {
             // a manufactured source: its loads at t_load (MODEL §11)
@@ -170,7 +171,7 @@ impl Physics {
         }
         self.set_mass_source(t_load);
         for c in self.carriers.iter_mut() {
-            c.place(&self.beam, (t_load, t_force, t_gap), velocity);
+            c.place(&self.beam, at, velocity);
         }
     }
 

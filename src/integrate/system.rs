@@ -23,9 +23,10 @@ use crate::model::beam::BeamModel;
 use crate::resolve::Resolved;
 use crate::scene::{Formulation, Placement};
 
+use super::carrier::PlaceTimes;
 use super::chain::Chain;
 use super::contact_problem::{ProblemBuilder, contact_coef};
-use super::dropper::{DropperSample, Droppers};
+use super::dropper::{ContactPair, DropperSample, Droppers};
 use super::law_state::LawState;
 use super::mass_dofs::MassDof;
 use super::physics::Physics;
@@ -219,7 +220,12 @@ impl System {
     /// force directions r_f at x_m(t_force), gap rows r_g at x_m(t_gap).
     pub fn place(&mut self, t_load: f64, t_force: f64, t_gap: f64) {
         let velocity = self.law.level() == Level::Velocity;
-        self.physics.place((t_load, t_force, t_gap), velocity);
+        let at = PlaceTimes {
+            load: t_load,
+            force: t_force,
+            gap: t_gap,
+        };
+        self.physics.place(at, velocity);
     }
 
     /// Add the moving forces scale·s·F·r_f into column 0 of `rhs` (k
@@ -415,18 +421,13 @@ impl System {
                         c.contact.map(|i| (i, c.s, pv))
                     });
                     let coef_c = contact_coef(self.law.placement, map);
-                    let pair = (&problem.g_free[..], &problem.w[..], nc + nd);
+                    let pair = ContactPair {
+                        g: &problem.g_free,
+                        w: &problem.w,
+                        stride: nc + nd,
+                    };
                     let d = &mut self.physics.droppers;
-                    d.begin(
-                        (map.solved, k),
-                        map.c_d,
-                        map.d_pred,
-                        &st.d,
-                        (map.v_pred, &st.v, map.c_v),
-                        rows,
-                        coef_c,
-                        pair,
-                    );
+                    d.begin(map, k, st, rows, coef_c, pair);
                     solve_with_droppers(
                         law.as_mut(),
                         d,

@@ -29,7 +29,7 @@ pub use damping::check_damping;
 pub use dropper::check_droppers;
 pub use memory::{
     EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
-    PLOT_BUCKETS, check_budget, estimate as estimate_memory, event_capacity, history_rows,
+    PLOT_BUCKETS, RunSize, check_budget, estimate as estimate_memory, event_capacity, history_rows,
 };
 pub use mesh::{MAX_GALERKIN_MODES, resolve_mesh};
 pub use reference::declared_reference;

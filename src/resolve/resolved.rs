@@ -144,16 +144,16 @@ impl Resolved {
             .iter()
             .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
             .count();
-        let mut need = memory::estimate(
-            self.steps,
-            self.record_every,
-            self.elements,
+        let mut need = memory::estimate(&memory::RunSize {
+            steps: self.steps,
+            every: self.record_every,
+            elements: self.elements,
             per_node,
             half_band,
-            self.carriers.len(),
+            carriers: self.carriers.len(),
             masses,
-            self.probes.len(),
-        );
+            probes: self.probes.len(),
+        });
         // snapshots and field: their values and one point vector a point
         // (counted with the output buffers: they are recorded outputs)
         need.outputs = need.outputs.saturating_add(memory::wire_bytes(
