@@ -54,6 +54,7 @@ mod method;
 mod modal_batch;
 mod modal_cruise;
 mod modal_exact;
+mod modal_kernels;
 mod moreau_jean;
 mod oscillator;
 mod physics;
