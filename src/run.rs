@@ -7,8 +7,8 @@ use serde::Serialize;
 use crate::error::Error;
 use crate::error::Result;
 use crate::integrate::{
-    CarrierSample, Integrator, MAX_LANES, MethodFactory, RunBatch, batch_key, lanes_cap, new_batch,
-    scene_method,
+    CarrierSample, Integrator, Lane, MAX_LANES, MethodFactory, RunBatch, batch_key, lanes_cap,
+    new_batch, scene_method,
 };
 use crate::record::{
     ContactAccumulator, ContactStats, DropperAccumulator, DropperSample, DropperStats, Envelope,
@@ -149,15 +149,7 @@ impl SteppedRun {
     /// record row 0. `start` is when the run's wall time starts.
     pub fn new(sc: &Resolved, it: Integrator, start: Instant) -> Result<Self> {
         let mut rec = Recorder::new(sc, it.beam(), it.carriers());
-        rec.observe(
-            it.time(),
-            true,
-            true,
-            |c| it.sample(c),
-            |s, c| it.check(s, c),
-            |x| it.near_support(x),
-            |pv| it.displacement_at(pv),
-        )?;
+        rec.observe(it.time(), true, true, &it)?;
         rec.observe_droppers(it.time(), true, |out| it.dropper_samples_into(out));
         rec.observe_wire(0, it.time(), |pv| it.displacement_at(pv));
         Ok(SteppedRun { it, rec, start })
@@ -178,15 +170,7 @@ impl SteppedRun {
         let n = it.steps_taken();
         let it = &self.it;
         let keep = self.rec.keeps(n, sc.steps);
-        self.rec.observe(
-            it.time(),
-            keep,
-            false,
-            |c| it.sample(c),
-            |s, c| it.check(s, c),
-            |x| it.near_support(x),
-            |pv| it.displacement_at(pv),
-        )?;
+        self.rec.observe(it.time(), keep, false, it)?;
         self.rec
             .observe_droppers(it.time(), keep, |out| it.dropper_samples_into(out));
         self.rec
@@ -373,6 +357,64 @@ fn record_row(
     }
 }
 
+/// What a recorder reads of a run after a step: an integrator alone, or
+/// one lane of a batch ([`LaneView`]).
+trait Observed {
+    /// Carrier `c`'s values now.
+    fn sample(&self, c: usize) -> CarrierSample;
+    /// Stop with a diagnosis if carrier `c`'s values `s` are absurd.
+    fn check(&self, s: &CarrierSample, c: usize) -> Result<()>;
+    /// True when x lies in the last element before a supported end.
+    fn near_support(&self, x: f64) -> bool;
+    /// rᵀd of the run's beam displacements.
+    fn displacement(&self, pv: &crate::model::beam::PointVector) -> f64;
+}
+
+impl Observed for Integrator {
+    fn sample(&self, c: usize) -> CarrierSample {
+        Integrator::sample(self, c)
+    }
+
+    fn check(&self, s: &CarrierSample, c: usize) -> Result<()> {
+        Integrator::check(self, s, c)
+    }
+
+    fn near_support(&self, x: f64) -> bool {
+        Integrator::near_support(self, x)
+    }
+
+    fn displacement(&self, pv: &crate::model::beam::PointVector) -> f64 {
+        self.displacement_at(pv)
+    }
+}
+
+/// Lane `l` of a batch `batch` (its `lane`, whose method notes `note`), as
+/// a recorder reads it.
+struct LaneView<'a> {
+    batch: &'a dyn RunBatch,
+    l: usize,
+    lane: &'a Lane,
+    note: Option<&'a str>,
+}
+
+impl Observed for LaneView<'_> {
+    fn sample(&self, c: usize) -> CarrierSample {
+        self.batch.sample(self.l, c)
+    }
+
+    fn check(&self, s: &CarrierSample, c: usize) -> Result<()> {
+        crate::integrate::check_lane(&self.lane.sys, &self.lane.st, s, c, self.note)
+    }
+
+    fn near_support(&self, x: f64) -> bool {
+        crate::integrate::near_support_lane(&self.lane.sys, x)
+    }
+
+    fn displacement(&self, pv: &crate::model::beam::PointVector) -> f64 {
+        self.batch.displacement_at(self.l, pv)
+    }
+}
+
 impl Recorder {
     fn new(sc: &Resolved, beam: &crate::model::beam::BeamModel, nc: usize) -> Self {
         let every = sc.record_every.max(1);
@@ -424,26 +466,18 @@ impl Recorder {
         n.is_multiple_of(self.every) || n == steps
     }
 
-    /// Record the state at time t (checking every carrier's values).
-    #[allow(clippy::too_many_arguments)]
-    fn observe(
-        &mut self,
-        t: f64,
-        keep: bool,
-        first: bool,
-        sample: impl Fn(usize) -> CarrierSample,
-        check: impl Fn(&CarrierSample, usize) -> Result<()>,
-        near_support: impl Fn(f64) -> bool,
-        displacement: impl Fn(&crate::model::beam::PointVector) -> f64,
-    ) -> Result<()> {
+    /// Record the state of `run` at time t (checking every carrier's
+    /// values); `keep`: the row goes into the history, `first`: it is
+    /// row 0 (t = 0).
+    fn observe(&mut self, t: f64, keep: bool, first: bool, run: &impl Observed) -> Result<()> {
         if keep {
             self.h.t.push(t);
         }
         for c in 0..self.acc.len() {
-            let s = sample(c);
-            check(&s, c)?;
+            let s = run.sample(c);
+            run.check(&s, c)?;
             self.acc[c].push(t, &s);
-            if !first && near_support(s.x) {
+            if !first && run.near_support(s.x) {
                 self.support_peak[c] = self.support_peak[c].max(s.force.abs());
             }
             if !first && let Some(k) = span_of(&self.supports, s.x) {
@@ -455,7 +489,7 @@ impl Recorder {
         }
         if keep {
             for (pv, (_, col)) in self.probes.iter().zip(self.h.probes.iter_mut()) {
-                col.push(displacement(pv));
+                col.push(run.displacement(pv));
             }
         }
         Ok(())
@@ -646,7 +680,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
     let mut notes: Vec<Option<String>> = vec![None; scenes.len()];
     for &i in members {
         let sc = &scenes[i];
-        notes[i] = scene_method(sc).ok().and_then(|m| m.constraint_note(sc));
+        notes[i] = scene_method(sc).constraint_note(sc);
     }
     let mut recs: Vec<Option<Recorder>> = b
         .lanes()
@@ -655,7 +689,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
             Some(Recorder::new(
                 &scenes[lane.id],
                 lane.sys.beam(),
-                lane.sys.carriers.len(),
+                lane.sys.physics.carriers.len(),
             ))
         })
         .collect();
@@ -673,18 +707,12 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                         lane.st.t,
                         first || rec.keeps(n, sc.steps),
                         first,
-                        |c| b.sample(l, c),
-                        |s, c| {
-                            crate::integrate::check_lane(
-                                &lane.sys,
-                                &lane.st,
-                                s,
-                                c,
-                                notes[lane.id].as_deref(),
-                            )
+                        &LaneView {
+                            batch: b,
+                            l,
+                            lane,
+                            note: notes[lane.id].as_deref(),
                         },
-                        |x| crate::integrate::near_support_lane(&lane.sys, x),
-                        |pv| b.displacement_at(l, pv),
                     )
                     .map(|()| rec.observe_wire(n, lane.st.t, |pv| b.displacement_at(l, pv)))
                     .map_err(Some),
@@ -715,8 +743,8 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                             wall_seconds: start.elapsed().as_secs_f64() / runs,
                             dofs: lane.sys.beam().n + lane.sys.contacts(),
                             steps: lane.st.step,
-                            force_bound: lane.sys.force_bound,
-                            method: sc.integrator.method.clone(),
+                            force_bound: lane.sys.law.force_bound,
+                            method: sc.method.name().to_string(),
                             damping_note: crate::integrate::damping_note_of(
                                 &lane.sys,
                                 notes[lane.id].as_deref(),

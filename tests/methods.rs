@@ -859,7 +859,7 @@ fn every_method_agrees_at_the_finest_step_of_the_ladder() {
 fn a_built_in_method_value_runs_that_method_whatever_the_scene_names() {
     let short = "time.end=0.02".to_string();
     let own = resolve_scene(REFERENCE, std::slice::from_ref(&short)).unwrap();
-    assert_eq!(own.integrator.method, "generalized_alpha");
+    assert_eq!(own.method.name(), "generalized_alpha");
     let named = resolve_scene(
         REFERENCE,
         &[short, "integrator={ method = \"newmark\" }".to_string()],

@@ -23,6 +23,6 @@ pub use moving_load::{MovingForceBeam, MovingForceString};
 pub use pantograph::{Pantograph, PantographModes, PantographStep, StepResponse, SurfaceContact};
 pub use periodic_supports::{PeriodicLine, PeriodicSupport};
 pub use rayleigh::{DampedOscillator, Rayleigh};
-pub use riding_mass::{RidingMassBeam, RidingMassHistory};
+pub use riding_mass::{Rider, RidingMassBeam, RidingMassHistory};
 pub use spring_supported::{DiscreteSpring, SpringSupportedLine};
 pub use static_load::StaticPointLoad;

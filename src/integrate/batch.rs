@@ -38,8 +38,10 @@ use crate::scene::Scheme;
 
 use super::gen_alpha_kernel::Kernel;
 pub use super::gen_alpha_kernel::MAX_LANES;
+use super::sample::CarrierSample;
+use super::state::State;
 use super::step_map::Lanes;
-use super::{CarrierSample, State, System};
+use super::system::{Initial, System};
 
 /// Most runs of `k` right-hand-side columns each a batch takes: the
 /// kernels compiled in `BandedLdlt::solve_affine_lanes` (2 ..= 8 lanes of
@@ -81,7 +83,7 @@ impl Batch {
     /// that fails to build is returned in the error list with its id.
     pub fn new(scenes: &[(usize, &Resolved)]) -> (Option<Batch>, Vec<(usize, Error)>) {
         let mut errors = Vec::new();
-        let mut built: Vec<(usize, System, State, super::Initial)> = Vec::new();
+        let mut built: Vec<(usize, System, State, Initial)> = Vec::new();
         for &(id, sc) in scenes {
             let made = System::new(sc).and_then(|mut sys| {
                 let st = State::at_rest(sys.beam().n, sys.contacts());
@@ -96,7 +98,7 @@ impl Batch {
         if built.is_empty() {
             return (None, errors);
         }
-        let Scheme::GenAlpha(p) = scenes[0].1.scheme else {
+        let Scheme::GenAlpha(p) = scenes[0].1.method.scheme else {
             unreachable!("batch_key admits generalized-α only")
         };
         let sys0 = &built[0].1;
@@ -207,7 +209,7 @@ impl Batch {
             count: self.lanes.len(),
             lane: l,
         };
-        super::sample_of(&lane.sys, &lane.st, i, |pv| lanes.dot(pv, &self.d))
+        super::sample::sample_of(&lane.sys, &lane.st, i, |pv| lanes.dot(pv, &self.d))
     }
 
     /// Remove the runs at `gone` (lane indices, ascending) from the batch,

@@ -15,7 +15,7 @@ use crate::scene::{
     BeamProps, CarrierKind, Discretization, Formulation, Grading, Placement, Scheme, Support,
 };
 
-use super::rhs_columns;
+use crate::model::banded::rhs_columns;
 
 /// The key of the runs that may step together; `None` from [`batch_key`]
 /// when a run steps alone.
@@ -123,7 +123,7 @@ pub fn scene_columns(sc: &Resolved) -> usize {
 /// attachments, no damping, the `end` placement, a force-level law, Hermite elements, no
 /// manufactured source, at most four columns).
 pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
-    let Scheme::GenAlpha(p) = sc.scheme else {
+    let Scheme::GenAlpha(p) = sc.method.scheme else {
         return None;
     };
     if sc.is_damped() {
@@ -161,7 +161,7 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
 /// The key of `modal_exact` runs that may step together: `None` for any
 /// other method, for a beam with point attachments and for a damped run.
 pub fn modal_key(sc: &Resolved) -> Option<ModalKey> {
-    if sc.scheme != Scheme::ModalExact || sc.is_damped() || !sc.droppers.is_empty() {
+    if sc.method.scheme != Scheme::ModalExact || sc.is_damped() || !sc.droppers.is_empty() {
         // a damped run steps alone (docs/lines.md §10.4): the shared step
         // maps are the undamped ones
         return None;

@@ -239,22 +239,43 @@ pub fn history_rows(steps: usize, every: usize) -> usize {
     1 + steps.div_ceil(every.max(1))
 }
 
-/// Estimate the memory of a run of `steps` steps on `elements` elements
-/// (`per_node` dofs per node, half-bandwidth `half_band`) with `carriers`
-/// carriers (`masses` of them with a mass dof) and `probes` probes,
-/// recording every `every`-th step. Saturating arithmetic: an absurd input
-/// gives `u64::MAX`, never an overflow.
-#[allow(clippy::too_many_arguments)]
-pub fn estimate(
-    steps: usize,
-    every: usize,
-    elements: usize,
-    per_node: usize,
-    half_band: usize,
-    carriers: usize,
-    masses: usize,
-    probes: usize,
-) -> MemoryEstimate {
+/// The sizes of a run that its memory estimate reads ([`estimate`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunSize {
+    /// Steps of the run.
+    pub steps: usize,
+    /// The history records every `every`-th step (`output.record_every`).
+    pub every: usize,
+    /// Elements of the mesh.
+    pub elements: usize,
+    /// Dofs per node (2 for Hermite beam elements, 1 for a string).
+    pub per_node: usize,
+    /// Half-bandwidth of the banded matrices.
+    pub half_band: usize,
+    /// Carriers.
+    pub carriers: usize,
+    /// Carriers with a mass dof.
+    pub masses: usize,
+    /// Probes.
+    pub probes: usize,
+}
+
+/// Estimate the memory of a run of `size.steps` steps on `size.elements`
+/// elements (`per_node` dofs per node, half-bandwidth `half_band`) with
+/// `carriers` carriers (`masses` of them with a mass dof) and `probes`
+/// probes, recording every `every`-th step. Saturating arithmetic: an
+/// absurd input gives `u64::MAX`, never an overflow.
+pub fn estimate(size: &RunSize) -> MemoryEstimate {
+    let RunSize {
+        steps,
+        every,
+        elements,
+        per_node,
+        half_band,
+        carriers,
+        masses,
+        probes,
+    } = *size;
     let u = |x: usize| x as u64;
     let rows = u(history_rows(steps, every));
     let row = ROW_TIME_BYTES

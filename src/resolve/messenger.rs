@@ -28,7 +28,9 @@
 
 use crate::error::{Error, Result};
 use crate::model::mesh::Mesh;
-use crate::scene::{Discretization, Dropper, Grading, ReferenceKind, Scene, Scheme};
+use crate::scene::{
+    Discretization, Dropper, Grading, ReferenceKind, ResolvedMethod, Scene, Scheme,
+};
 
 /// The largest distance between a support and its node that counts as
 /// "on the node", relative to the span: round-off in the node positions
@@ -44,23 +46,23 @@ pub fn check_messenger(
     elements: usize,
     grading: Grading,
     d: Discretization,
-    scheme: &Scheme,
+    method: &ResolvedMethod,
 ) -> Result<()> {
     let Some(m) = &beam.messenger else {
         return Ok(());
     };
-    let why = match scheme {
+    let why = match method.scheme {
         Scheme::GenAlpha(_)
         | Scheme::Bathe { .. }
         | Scheme::MoreauJean { .. }
         | Scheme::CentralDifference => None,
         Scheme::ModalExact => Some("it steps a diagonal basis of the contact wire alone"),
-        Scheme::Registered => Some("a registered method is not verified with two lines"),
+        Scheme::Registered(_) => Some("a registered method is not verified with two lines"),
     };
     if let Some(why) = why {
         return Err(Error::invalid(
             "integrator.method",
-            format!("\"{}\"", scene.integrator.method),
+            format!("\"{}\"", method.name()),
             format!(
                 "cannot carry a [messenger] ({why}): use a method verified with two lines, generalized_alpha, newmark, hht, wbz, bathe, moreau_jean or central_difference"
             ),

@@ -29,7 +29,7 @@ pub use damping::check_damping;
 pub use dropper::check_droppers;
 pub use memory::{
     EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
-    PLOT_BUCKETS, check_budget, estimate as estimate_memory, event_capacity, history_rows,
+    PLOT_BUCKETS, RunSize, check_budget, estimate as estimate_memory, event_capacity, history_rows,
 };
 pub use mesh::{MAX_GALERKIN_MODES, resolve_mesh};
 pub use reference::declared_reference;
@@ -67,16 +67,15 @@ impl Scene {
         let carriers = self.resolve_carriers(l)?;
         crate::scene::check_chain_scene(self, &carriers)?;
 
-        let scheme = self.integrator.scheme()?;
+        // the method, found by name and its parameters typed: once
+        let method = self.integrator.resolve()?;
         let damping = resolve_rayleigh(self.beam.damping.as_ref())?;
-        check_damping(self, &beam, &droppers, damping, discretization, scheme)?;
-        messenger::check_messenger(self, &beam, elements, grading, discretization, &scheme)?;
+        check_damping(self, &beam, &droppers, damping, discretization, &method)?;
+        messenger::check_messenger(self, &beam, elements, grading, discretization, &method)?;
         let g = self.gravity_g()?;
         validate_contact(&self.contact)?;
         // the method's own check of the contact settings and basis
-        self.integrator
-            .method_info()?
-            .accepts(&self.contact, discretization)?;
+        method.accepts(&self.contact, discretization)?;
 
         let time = self.resolve_time(&carriers, l)?;
         let (dt, t_end, steps) = (time.dt, time.t_end, time.steps);
@@ -159,8 +158,7 @@ impl Scene {
             discretization,
             grading,
             contact: self.contact.clone(),
-            integrator: self.integrator.clone(),
-            scheme,
+            method,
             g,
             dt,
             steps,

@@ -8,7 +8,7 @@ use crate::manufactured::Manufactured;
 use crate::model::mesh::Mesh;
 use crate::scene::{
     BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Dropper,
-    ForceSeries, Grading, IntegratorSpec, MeshPlan, Rayleigh, Scene, Scheme, fe_unknowns,
+    ForceSeries, Grading, MeshPlan, Rayleigh, ResolvedMethod, Scene, fe_unknowns,
 };
 
 /// A validated scene: physical parameters ready to build a model from.
@@ -37,10 +37,9 @@ pub struct Resolved {
     pub grading: Grading,
     /// Contact settings.
     pub contact: ContactSpec,
-    /// `[integrator]` as given.
-    pub integrator: IntegratorSpec,
-    /// The time integrator with its parameters resolved (MODEL §9.1).
-    pub scheme: Scheme,
+    /// The time integrator, found by name once and its parameters typed
+    /// (MODEL §9.1; `[integrator]` as given is `scene.integrator`).
+    pub method: ResolvedMethod,
     /// Gravity on carrier masses, m/s².
     pub g: f64,
     /// Time step Δt, s.
@@ -145,16 +144,16 @@ impl Resolved {
             .iter()
             .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
             .count();
-        let mut need = memory::estimate(
-            self.steps,
-            self.record_every,
-            self.elements,
+        let mut need = memory::estimate(&memory::RunSize {
+            steps: self.steps,
+            every: self.record_every,
+            elements: self.elements,
             per_node,
             half_band,
-            self.carriers.len(),
+            carriers: self.carriers.len(),
             masses,
-            self.probes.len(),
-        );
+            probes: self.probes.len(),
+        });
         // snapshots and field: their values and one point vector a point
         // (counted with the output buffers: they are recorded outputs)
         need.outputs = need.outputs.saturating_add(memory::wire_bytes(

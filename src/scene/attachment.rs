@@ -12,7 +12,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::validate::non_negative;
+use super::range::non_negative;
 use crate::error::{Error, Result};
 
 /// `[[attachment]]` as written in the scene.

@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::validate::non_negative;
+use super::range::non_negative;
 use crate::error::Result;
 
 /// `[beam] damping = { mass = α, stiffness = β }` as written in the scene.

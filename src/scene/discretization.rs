@@ -3,7 +3,9 @@
 //! `[mesh]` is checked against the beam and the model's bounds by the
 //! resolve layer (`crate::resolve::mesh`).
 
-use super::{BeamProps, MeshKind, Support};
+use super::beam::Support;
+use super::mesh::MeshKind;
+use super::props::BeamProps;
 
 /// Size ratio h_max/h_min of a graded mesh when `grading_ratio` is not
 /// given: elements at the graded end a quarter of the longest, a mild

@@ -24,7 +24,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::validate::{non_negative, positive};
+use super::range::{non_negative, positive};
 use crate::error::{Error, Result};
 
 /// `[[dropper]]` as written in the scene.

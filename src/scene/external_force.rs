@@ -17,7 +17,6 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{CarrierKind, CarrierProps};
 use crate::error::{Error, Result};
 
 /// Most points a series may have: a dense 10⁶-point record is ample, and a
@@ -123,43 +122,6 @@ impl ForceSeries {
         let (t0, t1) = (ts[k - 1], ts[k]);
         let r = (t - t0) / (t1 - t0);
         fs[k - 1] + r * (fs[k] - fs[k - 1])
-    }
-}
-
-impl super::Scene {
-    /// Each carrier's external force series (scene order; `None`: none),
-    /// checked against the resolved `carriers` (mass–spring only) and the
-    /// run's end time `t_end`, s.
-    pub fn resolve_external_forces(
-        &self,
-        carriers: &[CarrierProps],
-        t_end: f64,
-    ) -> Result<Vec<Option<ForceSeries>>> {
-        self.carriers
-            .iter()
-            .zip(carriers)
-            .enumerate()
-            .map(|(i, (c, p))| {
-                let Some(spec) = &c.external_force else {
-                    return Ok(None);
-                };
-                if let CarrierKind::Force { force } = p.kind {
-                    return Err(Error::invalid(
-                        format!("carrier.{i}.external_force"),
-                        format!("a series on a moving force (force = {force} N)"),
-                        "is for mass–spring carriers only: a moving force has no mass to act on; vary its `force` instead",
-                    ));
-                }
-                if p.chain.is_some() {
-                    return Err(Error::invalid(
-                        format!("carrier.{i}.external_force"),
-                        "a series on a multi-mass pantograph (carrier.masses)",
-                        "is for single mass–spring carriers only: a pantograph chain's masses are stepped by its own scheme (chain.rs), which does not read the series yet; change `uplift` instead",
-                    ));
-                }
-                ForceSeries::new(i, spec, t_end).map(Some)
-            })
-            .collect()
     }
 }
 

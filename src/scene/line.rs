@@ -230,8 +230,7 @@ impl Line {
             ));
         }
         let k_d = positive("line.dropper_stiffness", s.dropper_stiffness, "N/m")?;
-        let c_d =
-            super::validate::non_negative("line.dropper_damping", s.dropper_damping, "N·s/m")?;
+        let c_d = super::range::non_negative("line.dropper_damping", s.dropper_damping, "N·s/m")?;
         let h = positive("line.element_length", s.element_length, "m")?;
         if h > span {
             return Err(Error::invalid(
@@ -747,7 +746,7 @@ pub fn designed_droppers(tree: &Table) -> Result<Vec<DesignedDropper>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{parse_scene, scene_from_tree};
+    use crate::scene::load::{apply_override, parse_scene, scene_from_tree};
 
     /// The hand-computed figures below are sums of a few exact decimal
     /// terms: they and the code agree to round-off.
@@ -795,7 +794,7 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
     fn tree(overrides: &[&str]) -> Table {
         let mut t = parse_scene(TWO_SPANS).unwrap();
         for o in overrides {
-            crate::scene::apply_override(&mut t, o).unwrap();
+            apply_override(&mut t, o).unwrap();
         }
         t
     }

@@ -8,7 +8,8 @@ use std::path::Path;
 
 use toml::{Table, Value};
 
-use super::Scene;
+use super::line::expand_line;
+use super::scene_file::Scene;
 use crate::error::{Error, Result, one_line};
 
 /// The top-level tables of a scene ([`Scene`]'s fields, as spelled in a
@@ -270,7 +271,7 @@ fn parse_value(raw: &str) -> Value {
 /// ([`super::expand_line`]): here, after every override, so that `--set
 /// line.spans=12` and sweeps over `line.*` regenerate the line.
 pub fn scene_from_tree(tree: Table) -> Result<Scene> {
-    let value = Value::Table(super::expand_line(tree)?);
+    let value = Value::Table(expand_line(tree)?);
     serde_path_to_error::deserialize(value).map_err(|e| {
         let path = e.path().to_string().replace('[', ".").replace(']', "");
         let inner = e.into_inner().to_string();

@@ -10,6 +10,7 @@
 //! `uplift = F₀` (N, default 0). They replace `mass`, `stiffness`,
 //! `damping`, `preload` (and `force`): a scene gives one kind or the other.
 
+use super::carrier::CarrierSpec;
 use crate::error::{Error, Result};
 
 /// Most masses a chain may have.
@@ -57,7 +58,7 @@ impl ChainProps {
 /// any: `None` when `masses` is absent (and no other chain key is given).
 /// The single-mass keys (`mass`, `stiffness`, `damping`, `preload`) and
 /// `force` are refused alongside, naming both fields.
-pub(crate) fn resolve_chain(i: usize, c: &super::CarrierSpec) -> Result<Option<ChainProps>> {
+pub(crate) fn resolve_chain(i: usize, c: &CarrierSpec) -> Result<Option<ChainProps>> {
     let f = |name: &str| format!("carrier.{i}.{name}");
     let Some(masses) = &c.masses else {
         for (name, given) in [
@@ -168,33 +169,4 @@ pub(crate) fn resolve_chain(i: usize, c: &super::CarrierSpec) -> Result<Option<C
     }
     p.uplift = uplift;
     Ok(Some(p))
-}
-
-/// Refuse a multi-mass carrier where a scene's machinery assumes one mass
-/// per carrier: a `[manufactured]` solution (its mass source is one
-/// equation per carrier, MODEL §11) and a `[reference]` (each analytic
-/// reference is of a single-mass carrier or force). Nothing else reads the
-/// chain beyond the integrators.
-pub(crate) fn check_chain_scene(
-    scene: &super::Scene,
-    carriers: &[super::CarrierProps],
-) -> Result<()> {
-    let Some(i) = carriers.iter().position(|c| c.chain.is_some()) else {
-        return Ok(());
-    };
-    let what = if scene.manufactured.is_some() {
-        "manufactured"
-    } else if scene.reference.is_some() {
-        "reference"
-    } else {
-        return Ok(());
-    };
-    Err(Error::invalid(
-        format!("carrier.{i}.masses"),
-        "given",
-        format!(
-            "a multi-mass carrier cannot be used with [{what}] (its solutions are of \
-             single-mass carriers): give `mass`, or remove [{what}]"
-        ),
-    ))
 }

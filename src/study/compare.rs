@@ -281,7 +281,7 @@ pub fn compare_methods(
 ) -> Result<Comparison> {
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut compare")?;
-    let own = crate::integrate::scene_method(&base)?;
+    let own = crate::integrate::scene_method(&base);
     let methods: Vec<&dyn MethodFactory> = if spec.methods.is_empty() {
         vec![own]
     } else {

@@ -177,7 +177,7 @@ pub fn precision_variants(
     check_ratio(ratio)?;
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut precision")?;
-    let own = crate::integrate::scene_method(&base)?;
+    let own = crate::integrate::scene_method(&base);
     let methods: Vec<&dyn MethodFactory> = if methods.is_empty() {
         vec![own]
     } else {

@@ -18,7 +18,7 @@
 //!   own finest levels.
 
 use super::standing_force::StandingForce;
-use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam};
+use crate::analytic::{MovingForceBeam, MovingForceString, Rider, RidingMassBeam};
 use crate::error::{Error, Result};
 use crate::manufactured::Manufactured;
 use crate::resolve::Resolved;
@@ -180,16 +180,12 @@ pub fn riding_mass_beam(sc: &Resolved) -> Option<RidingMassBeam> {
         return None;
     };
     let b = &sc.beam;
-    RidingMassBeam::new(
-        b.ei,
-        b.tension,
-        b.rho_a,
-        b.length,
+    let rider = Rider {
         mass,
-        sc.g,
-        c.side,
-        c.motion.start,
+        gravity: sc.g,
+        side: c.side,
+        start: c.motion.start,
         speed,
-    )
-    .ok()
+    };
+    RidingMassBeam::new(b.ei, b.tension, b.rho_a, b.length, rider).ok()
 }

@@ -9,7 +9,9 @@ use crate::integrate::MethodFactory;
 use crate::scene::Formulation;
 
 use super::compare::{CompareSpec, Comparison, NotRun, compare_methods};
-use super::converge::{ConvergeRow, Convergence, MethodStudy, Refine, converge, converge_variants};
+use super::converge::{
+    ConvergeRow, Convergence, Ladder, MethodStudy, Refine, converge, converge_variants,
+};
 use super::cost::{Estimate, run_dof_steps};
 use super::precision::{Precision, precision_variants};
 use super::space::SpaceChoice;
@@ -218,9 +220,11 @@ impl ConvergeRequest {
             overrides,
             &self.methods,
             &self.discretizations,
-            self.refine,
-            self.levels,
-            self.ratio,
+            Ladder {
+                refine: self.refine,
+                levels: self.levels,
+                ratio: self.ratio,
+            },
             analytic,
             progress,
         )?;

@@ -295,7 +295,7 @@ pub fn main() {
     ];
     for (label, m) in family {
         let sc = scene(m, 1e-4, &[]);
-        let taut::scene::Scheme::GenAlpha(p) = sc.scheme else {
+        let taut::scene::Scheme::GenAlpha(p) = sc.method.scheme else {
             unreachable!("the generalized-α family")
         };
         let uni = match run(&sc, &mut |_, _| {}) {

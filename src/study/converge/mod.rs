@@ -60,6 +60,18 @@ pub enum Refine {
     Both,
 }
 
+/// A refinement ladder: what is refined, how many levels, by what ratio
+/// (`--refine`, `--levels`, `--ratio`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ladder {
+    /// What is refined.
+    pub refine: Refine,
+    /// Levels, in [`LEVELS`] (3 or more for observed orders).
+    pub levels: usize,
+    /// The refinement ratio r > 1 (an integer ≥ 2 when the step is refined).
+    pub ratio: f64,
+}
+
 impl std::str::FromStr for Refine {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
@@ -108,28 +120,15 @@ pub struct MethodStudy {
 /// explicit method above its stability limit at the coarse levels, a run
 /// that stops) is listed in the second vector with its reason; it is an
 /// error only when no method runs.
-#[allow(clippy::too_many_arguments)]
 pub fn converge_methods(
     text: &str,
     overrides: &[String],
     methods: &[&dyn MethodFactory],
-    refine: Refine,
-    levels: usize,
-    ratio: f64,
+    ladder: Ladder,
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<(Vec<MethodStudy>, Vec<NotRun>)> {
-    converge_variants(
-        text,
-        overrides,
-        methods,
-        &[],
-        refine,
-        levels,
-        ratio,
-        analytic,
-        progress,
-    )
+    converge_variants(text, overrides, methods, &[], ladder, analytic, progress)
 }
 
 /// Run the refinement sequence once per method × discretization
@@ -138,18 +137,16 @@ pub fn converge_methods(
 /// own: N for `hermite`, J for `galerkin` and `modal` (module docs of
 /// [`super::space`]); with `--refine step` only Δt is refined. Skipped
 /// variants as in [`converge_methods`].
-#[allow(clippy::too_many_arguments)]
 pub fn converge_variants(
     text: &str,
     overrides: &[String],
     methods: &[&dyn MethodFactory],
     spaces: &[SpaceChoice],
-    refine: Refine,
-    levels: usize,
-    ratio: f64,
+    ladder: Ladder,
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<(Vec<MethodStudy>, Vec<NotRun>)> {
+    let levels = ladder.levels;
     let ms: Vec<Option<&dyn MethodFactory>> = if methods.is_empty() {
         vec![None]
     } else {
@@ -172,9 +169,11 @@ pub fn converge_variants(
                 (None, None) => String::new(),
             };
             let mut inner = |l: usize, _: usize| progress(i * levels + l, total);
-            match converge_with(
-                text, overrides, m, s, refine, levels, ratio, analytic, &mut inner,
-            ) {
+            let variant = Variant {
+                method: m,
+                space: s,
+            };
+            match converge_with(text, overrides, variant, ladder, analytic, &mut inner) {
                 Ok(study) => done.push(MethodStudy {
                     method: label,
                     study,
@@ -258,24 +257,41 @@ pub fn converge(
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Convergence> {
-    converge_with(
-        text, overrides, None, None, refine, levels, ratio, analytic, progress,
-    )
+    let ladder = Ladder {
+        refine,
+        levels,
+        ratio,
+    };
+    let own = Variant {
+        method: None,
+        space: None,
+    };
+    converge_with(text, overrides, own, ladder, analytic, progress)
 }
 
-/// [`converge`] with the method `method` builds (`None`: the scene's own).
-#[allow(clippy::too_many_arguments)]
+/// One variant of a study: the method it steps and its space
+/// discretization (`None`: the scene's own).
+#[derive(Clone, Copy)]
+struct Variant<'a> {
+    method: Option<&'a dyn MethodFactory>,
+    space: Option<SpaceChoice>,
+}
+
+/// [`converge`] of one variant.
 fn converge_with(
     text: &str,
     overrides: &[String],
-    method: Option<&dyn MethodFactory>,
-    space: Option<SpaceChoice>,
-    refine: Refine,
-    levels: usize,
-    ratio: f64,
+    variant: Variant,
+    ladder: Ladder,
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Convergence> {
+    let Ladder {
+        refine,
+        levels,
+        ratio,
+    } = ladder;
+    let Variant { method, space } = variant;
     check_levels(levels)?;
     check_ratio(ratio)?;
     let refines_step = refine != Refine::Mesh;
@@ -343,10 +359,10 @@ fn converge_with(
         }
         _ => None,
     };
-    let name = method.map_or_else(|| base.integrator.method.clone(), |m| m.name());
+    let name = method.map_or_else(|| base.method.name().to_string(), |m| m.name());
     let time_order = match method {
         Some(m) => m.time_order(base),
-        None => scene_method(base)?.time_order(base),
+        None => scene_method(base).time_order(base),
     };
     let space_order = match base.discretization {
         Discretization::Hermite if base.beam.is_string() => Some(2.0),

@@ -233,7 +233,6 @@ pub(super) fn d_padded(d: &[f64]) -> Vec<f64> {
     d.to_vec()
 }
 
-#[allow(clippy::too_many_arguments)]
 pub(super) fn tabulate(
     scenes: &[Resolved],
     runs: &[RunOutput],

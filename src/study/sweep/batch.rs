@@ -32,7 +32,7 @@ pub const AUTO_BATCH_LANES: usize = 4;
 /// (built once per batch) and lose nothing by stepping in turn
 /// (`integrate::modal_batch`).
 pub fn auto_lanes(sc: &Resolved) -> usize {
-    match sc.scheme {
+    match sc.method.scheme {
         crate::scene::Scheme::ModalExact => crate::integrate::MAX_LANES,
         _ => AUTO_BATCH_LANES,
     }

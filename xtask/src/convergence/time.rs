@@ -193,7 +193,7 @@ pub(super) fn section_time(d: &mut String, clock: &mut Clock, exact: &[f64]) -> 
     let shifted: Vec<Vec<f64>> = (0..k)
         .map(|l| {
             let sc = &c.scenes[l];
-            let taut::scene::Scheme::GenAlpha(ga) = sc.scheme else {
+            let taut::scene::Scheme::GenAlpha(ga) = sc.method.scheme else {
                 unreachable!("the convergence report runs generalized-α")
             };
             let af = ga.alpha_f;
