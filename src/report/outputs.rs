@@ -46,6 +46,8 @@ impl Outputs {
                 "history.csv",
                 "summary.json",
                 "force.svg",
+                "standard.csv",
+                "standard.json",
                 "accuracy.csv",
                 "snapshots.csv",
                 "field.csv",

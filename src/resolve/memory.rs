@@ -186,10 +186,11 @@ pub struct MemoryEstimate {
     /// The rest of the working memory of writing the outputs
     /// ([`output_bytes`]).
     pub outputs: u64,
-    /// The summary's 0–20 Hz force filter: one copy of a carrier's force
-    /// history ([`FILTER_BYTES_PER_ROW`] a row; carriers one at a time),
-    /// when the history holds every step (else the summary has no filtered
-    /// statistics and this is 0). It shrinks with the rows, like the history.
+    /// The filtered force the history keeps beside the force: one copy of
+    /// every carrier's force history ([`FILTER_BYTES_PER_ROW`] a row and
+    /// carrier), when the history holds every step (else there is no
+    /// filtered force and this is 0). It shrinks with the rows, like the
+    /// history.
     pub filter: u64,
     /// The estimated size of `history.csv`, bytes (on disk, not in memory).
     pub csv: u64,
@@ -214,9 +215,9 @@ impl MemoryEstimate {
     }
 }
 
-/// Bytes a history row adds to the summary's 0–20 Hz force filter
-/// (`study::filter::filtered_force_stats`: the forward pass's output, one
-/// f64 a row, filtered back in place).
+/// Bytes a history row adds per carrier for its filtered force
+/// (`CarrierTrace::force_filtered`: the forward pass's output, one f64 a
+/// row, filtered back in place).
 pub const FILTER_BYTES_PER_ROW: u64 = 8;
 
 /// Bytes of one point vector r_b(x) of the recorder on a mesh: four
@@ -275,8 +276,10 @@ pub fn estimate(
                 .saturating_mul(u(carriers))
                 .saturating_mul(8 * DENSE_CONTACT_MATRICES),
         );
-    // t, then x, w, q, gap, λ and the contact flag per carrier, then probes
-    let csv_values = 1 + 6 * u(carriers) + u(probes);
+    // t, then x, w, q, gap, λ, the contact flag and (with every step kept)
+    // the filtered λ per carrier, then probes
+    let per_carrier = if every <= 1 { 7 } else { 6 };
+    let csv_values = 1 + per_carrier * u(carriers) + u(probes);
     let events = event_capacity(steps);
     MemoryEstimate {
         history: rows.saturating_mul(row),
@@ -290,6 +293,7 @@ pub fn estimate(
         outputs: output_bytes(csv_values, carriers, events),
         filter: if every <= 1 {
             rows.saturating_mul(FILTER_BYTES_PER_ROW)
+                .saturating_mul(u(carriers).max(1))
         } else {
             0
         },
@@ -326,7 +330,7 @@ pub fn check_budget(
         return Ok(());
     }
     let filter = if e.filter > 0 {
-        format!(" + {} of the summary's 0–20 Hz force filter", gib(e.filter))
+        format!(" + {} of the filtered force", gib(e.filter))
     } else {
         String::new()
     };

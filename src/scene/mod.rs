@@ -14,6 +14,7 @@
 //! [`Motion`]), and the methods' descriptions (`method.rs`); checks that
 //! need the model, a reference or the memory plan are the resolve layer's.
 
+mod analysis;
 mod attachment;
 mod damping;
 mod discretization;
@@ -31,6 +32,7 @@ mod speed;
 mod table_files;
 mod validate;
 
+pub use analysis::{AnalysisSpec, speed_unit};
 pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
 pub use damping::{Rayleigh, RayleighSpec, resolve_rayleigh};
 pub use discretization::{
@@ -102,6 +104,10 @@ pub struct Scene {
     /// What the history records (`[output]`).
     #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
     pub output: OutputSpec,
+    /// The filtered force's band and the analysis section of the
+    /// standards' statistics (`[analysis]`; `standard.csv`).
+    #[serde(default, skip_serializing_if = "AnalysisSpec::is_default")]
+    pub analysis: AnalysisSpec,
     /// A manufactured solution (`[manufactured]`, MODEL §11): its source is
     /// added to the run and it is the scene's reference.
     #[serde(default, skip_serializing_if = "Option::is_none")]
