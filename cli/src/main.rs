@@ -182,6 +182,19 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// One self-contained report.html (inline SVG and CSS, no network) from
+    /// the outputs taut wrote into one or more folders: scenes, summaries,
+    /// the standards' statistics, plots and study tables with their verdicts.
+    Report {
+        /// Output folders of taut run, compare, converge, precision, sweep,
+        /// verify or gate.
+        #[arg(required = true, value_name = "OUT_DIR")]
+        dirs: Vec<PathBuf>,
+        /// The page (default: OUT_DIR/report.html for one folder,
+        /// out/report.html for several).
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
+    },
     /// Join shard folders of one sweep into a single result.
     Merge {
         /// Shard output folders.
@@ -439,6 +452,7 @@ fn main() -> ExitCode {
             quiet,
         ),
         Command::Merge { shards, out } => cmd_merge(&shards, &out),
+        Command::Report { dirs, out } => cmd_report(dirs, out).map(|()| true),
         Command::Modes {
             scene,
             count,
@@ -897,6 +911,20 @@ fn cmd_sweep(
 }
 
 /// Returns whether every point of the merged sweep ran.
+fn cmd_report(dirs: Vec<PathBuf>, out: Option<PathBuf>) -> taut::Result<()> {
+    let r = app::report(&app::ReportRequest { dirs, out })?;
+    println!(
+        "taut {} — report of {} folder{}: {} plots, {} tables\n  wrote    {}",
+        env!("CARGO_PKG_VERSION"),
+        r.folders,
+        if r.folders == 1 { "" } else { "s" },
+        r.plots,
+        r.tables,
+        r.path.display()
+    );
+    Ok(())
+}
+
 fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
     let m = app::merge(shards, out, &Terminal::new("", true))?;
     println!(

@@ -386,16 +386,17 @@ type RunTuple<'py> = (
 );
 
 /// The line's tables (`spans.csv`, `supports.csv`, `envelope.csv`), each
-/// `None` when the scene does not ask for it.
+/// `None` when the scene does not ask for it, and `standard.csv` (always).
 pub(crate) type LineTuple<'py> = (
     Option<Bound<'py, PyList>>,
     Option<Bound<'py, PyList>>,
     Option<Bound<'py, PyList>>,
+    Bound<'py, PyList>,
 );
 
 /// A run's line tables ([`LineTuple`]): the summary's spans (the filtered
-/// force's included), the supports' uplift and the envelope, as the CLI
-/// writes them.
+/// force's included), the supports' uplift, the envelope and the
+/// standards' statistics (`standard.csv`), as the CLI writes them.
 pub(crate) fn line_to_py<'py>(
     py: Python<'py>,
     summary: &taut::report::Summary,
@@ -413,7 +414,8 @@ pub(crate) fn line_to_py<'py>(
         true => None,
         false => Some(table_to_py(py, &taut::report::envelope_table(&h.envelope))?),
     };
-    Ok((spans, supports, envelope))
+    let standard = table_to_py(py, &taut::report::standard_table(&summary.standard))?;
+    Ok((spans, supports, envelope, standard))
 }
 
 /// A recorded wire series (`taut::record::WireSeries`) as f64 bytes:

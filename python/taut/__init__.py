@@ -128,7 +128,13 @@ class Run:
             force_min, filtered_mean, filtered_std, loss_fraction), None
             without supports.
         supports: the wire's uplift at each support (Table of
-            supports.csv's columns: x, v_max, v_min, t_max), None without.
+            supports.csv's columns: x, v_max, v_min, t_max, v_static,
+            uplift), None without.
+        standard: the standards' statistics over the analysis section
+            (`[analysis]`), a row per carrier (Table of standard.csv's
+            columns: carrier, x_start, x_end, band_hz, speed, speed_kmh,
+            samples, mean, std, statistical_max, statistical_min, max, min,
+            loss_percent, uplift_max, uplift_x; docs/output.md).
         envelope: the range of v over time at every mesh node with
             `[output] envelope = true` (Table of envelope.csv's columns: x,
             v_min, v_max), None otherwise.
@@ -136,7 +142,8 @@ class Run:
         summary: the dict of the CLI's `summary.json` (scene, derived
             quantities, per-carrier statistics, warnings, wall time).
         history: the columns of `history.csv` as a Table of arrays (`t`,
-            `x_m`, `beam_w`, `mass_q`, `gap`, `force`, `in_contact`, probes;
+            `x_m`, `beam_w`, `mass_q`, `gap`, `force`, `in_contact`,
+            `force_filtered` (when every step is recorded), probes;
             suffixed `_0`, `_1`, ... with several carriers).
         warnings: findings that make the numbers suspect, as the CLI prints them.
         accuracy: for a run with `tolerance`, the columns of the CLI's
@@ -161,6 +168,7 @@ class Run:
         self.spans: Optional[Table] = None
         self.supports: Optional[Table] = None
         self.envelope: Optional[Table] = None
+        self.standard: Table = Table()
         self._scene: Optional[Tuple[Optional[str], Optional[str], List[str]]] = None
         self._x: Optional[np.ndarray] = None
 
@@ -170,12 +178,14 @@ class Run:
             Optional[List[Tuple[str, str, Any]]],
             Optional[List[Tuple[str, str, Any]]],
             Optional[List[Tuple[str, str, Any]]],
+            List[Tuple[str, str, Any]],
         ],
     ) -> None:
-        spans, supports, envelope = line
+        spans, supports, envelope, standard = line
         self.spans = None if spans is None else table(spans)
         self.supports = None if supports is None else table(supports)
         self.envelope = None if envelope is None else table(envelope)
+        self.standard = table(standard)
 
     @property
     def x(self) -> np.ndarray:
@@ -188,8 +198,20 @@ class Run:
         return self._x
 
     def __repr__(self) -> str:
-        loss = [c.get("loss_fraction") for c in self.summary.get("carriers", [])]
-        return f"taut.Run({self.history.rows} rows, P_l = {loss}, {len(self.warnings)} warnings)"
+        carriers = self.summary.get("carriers", [])
+        loss = ", ".join(_round(c.get("loss_fraction")) for c in carriers)
+        if len(carriers) != 1:
+            loss = f"[{loss}]"
+        f = (carriers[0].get("force_filtered") or {}) if carriers else {}
+        force = (
+            f", 0–{_round(f.get('cutoff_hz'))} Hz force {_round(f.get('mean'))} ± {_round(f.get('std'))} N"
+            if f
+            else ""
+        )
+        return (
+            f"taut.Run({self.history.rows} rows, P_l = {loss}{force}, "
+            f"{len(self.warnings)} warning{'' if len(self.warnings) == 1 else 's'})"
+        )
 
     @property
     def scalars(self) -> Dict[str, Any]:
@@ -235,7 +257,8 @@ class Run:
         each carrier's contact force along x_m/L (along t when no carrier
         moves), lost contact shaded. Returns the matplotlib Axes."""
         length = float(self.summary["scene"]["beam"]["length"])
-        return _show.plot_run(self.history, len(self.summary.get("carriers", [])), length, ax)
+        band = ((self.summary.get("carriers") or [{}])[0].get("force_filtered") or {}).get("cutoff_hz", 20.0)
+        return _show.plot_run(self.history, len(self.summary.get("carriers", [])), length, ax, band)
 
 
 class CarrierStats:
@@ -259,7 +282,15 @@ class CarrierStats:
         return sorted(set(super().__dir__()) | set(self.scalars))
 
     def __repr__(self) -> str:
-        return f"taut.CarrierStats(loss_fraction={self.scalars.get('loss_fraction')})"
+        return f"taut.CarrierStats(loss_fraction={_round(self.scalars.get('loss_fraction'))})"
+
+
+def _round(v: Any) -> str:
+    """A figure as a person reads it: 4 significant digits (a repr, not the
+    value: the attributes hold every digit)."""
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
 
 
 def _flat(d: Mapping[str, Any], prefix: str = "") -> Dict[str, Any]:
@@ -367,6 +398,9 @@ class Modes:
 
     def __repr__(self) -> str:
         return f"taut.Modes({len(self.frequency_hz)} modes, {self.source}, {len(self.x)} points)"
+
+    def _repr_html_(self) -> str:
+        return _show.modes_html(self.frequency_hz, self.string_hz, self.source, len(self.x))
 
 
 def _scene(scene: Scene) -> Tuple[Optional[str], Optional[str]]:

@@ -32,7 +32,9 @@ _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
 _Progress = Optional[Callable[[int, int], object]]
 _Wire = Optional[Tuple[bytes, bytes, bytes, bytes]]
-_Line = Tuple[Optional[List[_Column]], Optional[List[_Column]], Optional[List[_Column]]]
+_Line = Tuple[
+    Optional[List[_Column]], Optional[List[_Column]], Optional[List[_Column]], List[_Column]
+]
 
 def run(
     path: Optional[str],

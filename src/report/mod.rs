@@ -6,6 +6,7 @@ mod compare;
 mod converge;
 mod csv;
 mod gate;
+mod html;
 mod line;
 mod line_svg;
 mod modes;
@@ -28,6 +29,7 @@ pub use converge::{
 };
 pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
+pub use html::{MAX_ROWS, PLOTS, ReportSummary, TABLES, write_report};
 pub use line::{envelope_table, spans_table, supports_table, write_line};
 pub use modes::{mode_shapes_table, modes_table, write_modes};
 pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};

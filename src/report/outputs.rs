@@ -66,6 +66,7 @@ impl Outputs {
                 "sweep_force.csv",
                 "sweep_loss.csv",
                 "timing.csv",
+                "sweep.svg",
                 "force_map.svg",
                 "loss_map.svg",
                 "refinement.svg",

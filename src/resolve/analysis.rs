@@ -2,7 +2,7 @@
 //! band and the analysis section as a range of carrier positions, m.
 
 use crate::error::{Error, Result};
-use crate::record::filter::{FORCE_BAND_HZ, max_band_hz};
+use crate::numeric::filter::{FORCE_BAND_HZ, max_band_hz};
 use crate::scene::AnalysisSpec;
 
 /// The band and the section a run's standard statistics use.

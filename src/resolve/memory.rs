@@ -132,9 +132,10 @@ pub const GROWN_TEXT_FACTOR: u64 = 3;
 /// time ([`csv_block_rows`]): a line of `history.csv`'s text, `summary.json`'s copy of every carrier's
 /// `events` (carrier 0 twice: `contact` and `carriers[0]`; the JSON text
 /// itself is streamed to the file), and per carrier of `force.svg`: the
-/// decimated points (at most 4 × [`PLOT_BUCKETS`]; four
-/// copies of 16 bytes and two of 8 on their way to the drawing), the
-/// shaded intervals (two copies) and the SVG text, which the plotting
+/// decimated points of the force and of the filtered force (at most
+/// 4 × [`PLOT_BUCKETS`] each; four copies of 16 bytes and two of 8 on
+/// their way to the drawing), the shaded intervals (two copies; each
+/// drawn twice, as a shade and as a mark on the axis) and the SVG text, which the plotting
 /// library holds whole until it writes the file.
 pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
     let (nc, ev) = (carriers as u64, events as u64);
@@ -146,9 +147,9 @@ pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
         .saturating_add(1)
         .saturating_mul(ev)
         .saturating_mul(EVENT_BYTES);
-    let points = 4 * PLOT_BUCKETS as u64;
+    let points = 2 * 4 * PLOT_BUCKETS as u64;
     let svg_text = (points * SVG_POINT_BYTES)
-        .saturating_add(ev.saturating_mul(SVG_RECT_BYTES))
+        .saturating_add(ev.saturating_mul(2 * SVG_RECT_BYTES))
         .saturating_mul(GROWN_TEXT_FACTOR);
     let per_carrier = (points * (4 * 16 + 2 * 8))
         .saturating_add(ev.saturating_mul(2 * 16))
@@ -364,8 +365,14 @@ pub fn check_budget(
             )
         });
     }
-    // the fewest rows that fit both budgets, and the record_every that gives them
-    let row_csv = e.csv_values.saturating_mul(CSV_BYTES_PER_VALUE).max(1);
+    // the fewest rows that fit both budgets, and the record_every that gives
+    // them (at record_every ≥ 2 the filtered force's column is gone too)
+    let thinned_values = if every <= 1 {
+        e.csv_values.saturating_sub(carriers as u64)
+    } else {
+        e.csv_values
+    };
+    let row_csv = thinned_values.saturating_mul(CSV_BYTES_PER_VALUE).max(1);
     let rows_fit_csv = (OUTPUT_BUDGET_BYTES / row_csv).max(2);
     let rows_fit_memory = if memory_over {
         // rows r that fit: fixed + r·row + min(r, block)·row ≤ budget

@@ -71,29 +71,51 @@ pub mod speed_unit {
         Text(String),
     }
 
-    fn one<'de, D: Deserializer<'de>>(w: Written) -> Result<f64, D::Error> {
+    fn one<'de, D: Deserializer<'de>>(key: &str, w: Written) -> Result<f64, D::Error> {
         match w {
             Written::Number(v) => Ok(v),
-            Written::Text(t) => parse(&t).map_err(serde::de::Error::custom),
+            Written::Text(t) => {
+                parse(&t).map_err(|e| serde::de::Error::custom(format!("{key} = {e}")))
+            }
         }
     }
 
-    /// A speed, m/s.
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-        one::<D>(Written::deserialize(d).map_err(|_| {
-            serde::de::Error::custom("expected a speed: a number (m/s) or text with its unit, \"250 km/h\" or \"69.4 m/s\"")
-        })?)
+    /// One speed under `key` (named in a message: the speed table is
+    /// internally tagged, so the reader's path stops at `speed`), m/s.
+    fn speed<'de, D: Deserializer<'de>>(key: &str, d: D) -> Result<f64, D::Error> {
+        let w = Written::deserialize(d).map_err(|_| {
+            serde::de::Error::custom(format!(
+                "{key}: expected a speed: a number (m/s) or text with its unit, \"250 km/h\" or \"69.4 m/s\""
+            ))
+        })?;
+        one::<D>(key, w)
     }
 
-    /// A list of speeds, m/s.
+    /// `value` of a constant speed, m/s.
+    pub fn value<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        speed(d_key::VALUE, d)
+    }
+
+    /// `cruise` of a smooth ramp, m/s.
+    pub fn cruise<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        speed(d_key::CRUISE, d)
+    }
+
+    /// `speed` of a table, a list of speeds, m/s.
     pub fn list<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
         Vec::<Written>::deserialize(d)
             .map_err(|_| {
-                serde::de::Error::custom("expected a list of speeds: numbers (m/s) or texts with their unit, \"250 km/h\"")
+                serde::de::Error::custom("speed: expected a list of speeds: numbers (m/s) or texts with their unit, \"250 km/h\"")
             })?
             .into_iter()
-            .map(one::<D>)
+            .enumerate()
+            .map(|(i, w)| one::<D>(&format!("speed.{i}"), w))
             .collect()
+    }
+
+    mod d_key {
+        pub const VALUE: &str = "value";
+        pub const CRUISE: &str = "cruise";
     }
 
     #[cfg(test)]

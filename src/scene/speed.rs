@@ -9,14 +9,14 @@ pub enum SpeedProfile {
     /// Constant speed V, m/s (≥ 0; 0 = a stationary carrier).
     Constant {
         /// V, m/s (or text with its unit, `"250 km/h"`).
-        #[serde(deserialize_with = "super::analysis::speed_unit::deserialize")]
+        #[serde(deserialize_with = "super::analysis::speed_unit::value")]
         value: f64,
     },
     /// The study's smooth start: V0 reached after a ramp of length L/5
     /// with continuous acceleration (MODEL §3).
     SmoothRamp {
         /// Cruise speed V0, m/s (> 0; or text with its unit, `"250 km/h"`).
-        #[serde(deserialize_with = "super::analysis::speed_unit::deserialize")]
+        #[serde(deserialize_with = "super::analysis::speed_unit::cruise")]
         cruise: f64,
     },
     /// A tabulated speed V(t), piecewise linear between the knots (so the

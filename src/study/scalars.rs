@@ -215,6 +215,77 @@ fn filtered_stats(out: &RunOutput, carrier: usize) -> [f64; 4] {
     [s.mean, s.std, s.min, s.max]
 }
 
+/// The filtered force's mean, σ, max and min of one run's carrier 0 (N;
+/// NaN for a run that stopped): the four columns every study table carries
+/// ([`FILTERED_COLUMNS`], docs/output.md#filtered-force).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct FilteredColumns {
+    /// Mean, N.
+    #[serde(with = "super::sweep::nan_as_null", default = "nan")]
+    pub filtered_force_mean: f64,
+    /// Population standard deviation, N.
+    #[serde(with = "super::sweep::nan_as_null", default = "nan")]
+    pub filtered_force_std: f64,
+    /// Maximum, N.
+    #[serde(with = "super::sweep::nan_as_null", default = "nan")]
+    pub filtered_force_max: f64,
+    /// Minimum, N.
+    #[serde(with = "super::sweep::nan_as_null", default = "nan")]
+    pub filtered_force_min: f64,
+}
+
+fn nan() -> f64 {
+    f64::NAN
+}
+
+/// The names of [`FilteredColumns`], in table order.
+pub const FILTERED_COLUMNS: [&str; 4] = [
+    "filtered_force_mean",
+    "filtered_force_std",
+    "filtered_force_max",
+    "filtered_force_min",
+];
+
+impl FilteredColumns {
+    /// All NaN: a run that stopped, or a record of a taut before them.
+    pub const NONE: FilteredColumns = FilteredColumns {
+        filtered_force_mean: f64::NAN,
+        filtered_force_std: f64::NAN,
+        filtered_force_max: f64::NAN,
+        filtered_force_min: f64::NAN,
+    };
+
+    /// Carrier `carrier`'s, of `out`.
+    pub fn of(out: &RunOutput, carrier: usize) -> Self {
+        if out.history.carriers.get(carrier).is_none() {
+            return Self::NONE;
+        }
+        let [mean, std, min, max] = filtered_stats(out, carrier);
+        FilteredColumns {
+            filtered_force_mean: mean,
+            filtered_force_std: std,
+            filtered_force_max: max,
+            filtered_force_min: min,
+        }
+    }
+
+    /// The four values in [`FILTERED_COLUMNS`] order.
+    pub fn values(&self) -> [f64; 4] {
+        [
+            self.filtered_force_mean,
+            self.filtered_force_std,
+            self.filtered_force_max,
+            self.filtered_force_min,
+        ]
+    }
+}
+
+impl Default for FilteredColumns {
+    fn default() -> Self {
+        Self::NONE
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
