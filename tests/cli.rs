@@ -134,7 +134,7 @@ fn reference_run_writes_history_summary_and_plot() {
         rows[0]
     );
     for row in [&rows[0], &rows[rows.len() / 2], rows.last().unwrap()] {
-        assert_eq!(row.split(',').count(), 7, "row {row:?}");
+        assert_eq!(row.split(',').count(), 8, "row {row:?}");
     }
     let t_last: f64 = rows
         .last()

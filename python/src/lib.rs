@@ -752,6 +752,19 @@ fn mesh<'py>(
     Ok(f64_bytes(py, x.into_iter()))
 }
 
+/// One self-contained `report.html` from output folders (`taut report`):
+/// returns the page's path and its numbers of plots and tables.
+#[pyfunction]
+#[pyo3(signature = (dirs, out))]
+fn report(
+    py: Python<'_>,
+    dirs: Vec<PathBuf>,
+    out: Option<PathBuf>,
+) -> PyResult<(String, usize, usize)> {
+    let r = app::report(&app::ReportRequest { dirs, out }).map_err(|e| to_py_err(py, e))?;
+    Ok((r.path.display().to_string(), r.plots, r.tables))
+}
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -768,6 +781,7 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(report, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

@@ -85,6 +85,7 @@ __all__ = [
     "progress_enabled",
     "modes",
     "mesh",
+    "report",
     "Run",
     "CarrierStats",
     "Modes",
@@ -935,3 +936,31 @@ def mesh(
     snapshots, the field and mode shapes are sampled by default."""
     path, text = _scene(scene)
     return _f8(_taut.mesh(path, text, _overrides(set)))
+
+
+@_speaks_python
+def report(
+    dirs: Union[str, "os.PathLike[str]", Iterable[Union[str, "os.PathLike[str]"]]],
+    out: Union[None, str, "os.PathLike[str]"] = None,
+) -> str:
+    """One self-contained report.html (inline SVG and CSS, nothing fetched)
+    from the outputs taut wrote into one or more folders (`taut report`):
+    each run's scene, summary, the standards' statistics and warnings, the
+    plots, and the studies' tables with their verdicts (docs/output.md).
+
+    Args:
+        dirs: a folder, or a list of folders, given as `out=` to taut.run,
+            compare, converge, precision or sweep (or the CLI's --out).
+        out: the page (default: report.html in the folder when there is
+            one, out/report.html for several).
+
+    Returns:
+        The page's path.
+
+    Raises:
+        SceneError naming a folder that holds no taut outputs; OutputError.
+    """
+    if isinstance(dirs, (str, os.PathLike)):
+        dirs = [dirs]
+    path, _, _ = _taut.report([os.fspath(d) for d in dirs], _out(out))
+    return path

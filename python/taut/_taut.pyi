@@ -22,6 +22,7 @@ __all__ = [
     "mesh",
     "modes",
     "precision",
+    "report",
     "run",
     "scene_json",
     "sweep",
@@ -115,6 +116,7 @@ def modes(
     out: Optional[str],
 ) -> Tuple[List[_Column], List[_Column]]: ...
 def mesh(path: Optional[str], text: Optional[str], set: List[str]) -> bytes: ...
+def report(dirs: List[str], out: Optional[str]) -> Tuple[str, int, int]: ...
 
 _CarrierTuple = Tuple[float, float, float, Optional[float], float, float, bool, float]
 _ProbeTuple = Tuple[str, float, float, float]

@@ -67,9 +67,13 @@ pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<
             let points = decimate_with(tr.force.len().saturating_sub(1), |i| {
                 (x(i), tr.force[i + 1])
             });
-            let filtered = decimate_with(tr.force_filtered.len().saturating_sub(1), |i| {
-                (x(i), tr.force_filtered[i + 1])
-            });
+            let filtered = if c < crate::resolve::memory::MAX_FILTERED_LINES {
+                decimate_with(tr.force_filtered.len().saturating_sub(1), |i| {
+                    (x(i), tr.force_filtered[i + 1])
+                })
+            } else {
+                Vec::new()
+            };
             let stats = &out.stats[c];
             let label = match (prefix.is_empty(), nc) {
                 (true, 1) => "λ".to_string(),

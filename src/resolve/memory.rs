@@ -101,6 +101,12 @@ pub fn modal_bytes(n_fe: usize, modes: usize) -> u64 {
 /// pixel column). Defined here, with the memory plan that counts it.
 pub const PLOT_BUCKETS: usize = 2000;
 
+/// A force plot draws the filtered force of at most this many carriers
+/// (the first; one line a colour of the palette): beyond, the raw lines
+/// alone, so that a scene of thousands of carriers does not double its
+/// plot's memory.
+pub const MAX_FILTERED_LINES: usize = 10;
+
 /// Rows of the history formatted at a time by `report::write_history`: a
 /// few MB of columns, however long the history (building the whole table
 /// copied the history once more: 1 GB more at 2·10⁷ rows, issue 25).
@@ -147,15 +153,20 @@ pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
         .saturating_add(1)
         .saturating_mul(ev)
         .saturating_mul(EVENT_BYTES);
-    let points = 2 * 4 * PLOT_BUCKETS as u64;
+    let points = 4 * PLOT_BUCKETS as u64;
     let svg_text = (points * SVG_POINT_BYTES)
         .saturating_add(ev.saturating_mul(2 * SVG_RECT_BYTES))
         .saturating_mul(GROWN_TEXT_FACTOR);
     let per_carrier = (points * (4 * 16 + 2 * 8))
         .saturating_add(ev.saturating_mul(2 * 16))
         .saturating_add(svg_text);
+    // the filtered lines: as many again for the first MAX_FILTERED_LINES
+    let per_filtered =
+        (points * (4 * 16 + 2 * 8)).saturating_add(points * SVG_POINT_BYTES * GROWN_TEXT_FACTOR);
+    let filtered = nc.min(MAX_FILTERED_LINES as u64);
     line.saturating_add(summary)
         .saturating_add(nc.saturating_mul(per_carrier))
+        .saturating_add(filtered.saturating_mul(per_filtered))
         .saturating_add(SVG_FIXED_BYTES * GROWN_TEXT_FACTOR)
 }
 

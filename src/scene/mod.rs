@@ -1,4 +1,4 @@
-//! Scene files: what a run needs, as plain serde data (MODEL.md §1–§5).
+//! Scene files: what a run needs, as plain serde data (docs/model.md §1–§5).
 //!
 //! A scene is TOML. Every table rejects unknown keys. Loading is three steps:
 //! parse the text into a TOML tree, apply `--set` overrides on the tree
