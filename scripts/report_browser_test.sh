@@ -99,7 +99,7 @@ DOM="$OUT/check.dom.html"
 "${CHROMIUM[@]}" --enable-logging=stderr --v=0 --virtual-time-budget=10000 \
   --dump-dom "file://$CHECK" >"$DOM" 2>"$OUT/chromium.log" \
   || fail "chromium could not load the page (log: $OUT/chromium.log)"
-line=$(grep -o 'figures=[^<]*' "$DOM" || true)
+line=$(grep -o 'figures=[0-9][^<]*' "$DOM" | tail -1 || true)
 [ -n "$line" ] || fail "the page's checker did not run (DOM: $DOM, log: $OUT/chromium.log)"
 echo "report browser test: $line" | cut -c1-300
 figures=$(echo "$line" | sed -E 's/.*figures=([0-9]+).*/\1/')

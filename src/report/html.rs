@@ -389,7 +389,14 @@ fn short(x: f64) -> String {
             s
         }
     } else {
-        format!("{x:.5e}")
+        // the mantissa without trailing zeros: 1e-4, 2.5e-12
+        let t = format!("{x:.5e}");
+        match t.split_once('e') {
+            Some((m, e)) if m.contains('.') => {
+                format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+            }
+            _ => t,
+        }
     }
 }
 
@@ -537,7 +544,8 @@ mod tests {
     fn numbers_read_to_six_digits() {
         assert_eq!(short(45.90072271366183), "45.9007");
         assert_eq!(short(0.006), "0.006");
-        assert_eq!(short(1e-12), "1.00000e-12");
+        assert_eq!(short(1e-12), "1e-12");
+        assert_eq!(short(2.5e-7), "2.5e-7");
     }
 
     #[test]

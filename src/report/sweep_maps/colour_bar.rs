@@ -35,7 +35,7 @@ pub(super) fn colour_bar(
         b.margin_top(8)
             .margin_bottom(52 + 4)
             .margin_right(22)
-            .y_label_area_size(72);
+            .y_label_area_size(60);
         b
     };
     if *log {
