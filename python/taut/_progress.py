@@ -13,6 +13,7 @@ sweep) or done before the first report does not count into the rate.
 
 from __future__ import annotations
 
+import importlib
 from typing import Any, Callable, Optional, Union
 
 Progress = Union[None, bool, Callable[[int, int], Any]]
@@ -40,10 +41,10 @@ def progress_enabled() -> bool:
 def _in_notebook() -> bool:
     """True inside a Jupyter kernel (IPython's ZMQ shell)."""
     try:
-        from IPython import get_ipython
+        ipython: Any = importlib.import_module("IPython")
     except ImportError:
         return False
-    shell = get_ipython()
+    shell = ipython.get_ipython()
     return shell is not None and type(shell).__name__ == "ZMQInteractiveShell"
 
 
@@ -54,13 +55,13 @@ class NotebookBar:
     tqdm bar that `Sink` makes (total, n, update, close)."""
 
     def __init__(self, total: int, initial: int = 0, unit: str = "it", leave: bool = False) -> None:
-        from IPython.display import HTML, display
-
-        self._html = HTML
+        display_mod: Any = importlib.import_module("IPython.display")
+        HTML, display = display_mod.HTML, display_mod.display
+        self._html: Any = HTML
         self.total = total
         self.n = initial
         self.unit = unit
-        self._handle = display(HTML(self._text()), display_id=True)
+        self._handle: Any = display(HTML(self._text()), display_id=True)
 
     def _text(self) -> str:
         return (

@@ -110,7 +110,8 @@ class Table(Dict[str, np.ndarray]):
             raise ValueError(
                 "grid(): this table is not a grid sweep's (a list of points or another study has no grid)"
             )
-        return self[column].reshape([len(v) for _, v in self.axes])
+        col: np.ndarray = dict.__getitem__(self, column)
+        return col.reshape([len(v) for _, v in self.axes])
 
     def to_xarray(self) -> Any:
         """A grid sweep as an `xarray.Dataset` over its axes, one variable
