@@ -344,14 +344,7 @@ fn draw(
             builder.caption(&panel.title, ("sans-serif", 14));
         }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_desc)
-            .y_desc(y_desc)
-            .axis_desc_style(("sans-serif", 14))
-            .label_style(("sans-serif", 12))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()?;
+        style_axes(&mut chart, x_desc, y_desc)?;
         let widened = |iv: &[f64; 2]| {
             let c = 0.5 * (iv[0] + iv[1]);
             let w = (iv[1] - iv[0]).max(min_width);
@@ -412,15 +405,49 @@ fn draw(
                     Rectangle::new([(x, y - 5), (x + 18, y + 5)], shade.filled())
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .label_font(("sans-serif", 12))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .draw()?;
+        legend_upper_left(&mut chart)?;
     }
     root.present()?;
+    Ok(())
+}
+
+/// A chart of two real axes on an SVG (every line plot of taut's).
+pub(crate) type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// The axes of a line plot: labelled (with their units) in 14 px, ticks in
+/// 12 px, the major grid only.
+pub(crate) fn style_axes(
+    chart: &mut Chart<'_, '_>,
+    x_desc: &str,
+    y_desc: &str,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .axis_desc_style(("sans-serif", 14))
+        .label_style(("sans-serif", 12))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    Ok(())
+}
+
+/// The legend of a line plot, top left, in the room kept free above the
+/// lines.
+pub(crate) fn legend_upper_left<'a>(
+    chart: &mut Chart<'a, 'a>,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .label_font(("sans-serif", 12))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .draw()?;
     Ok(())
 }
 

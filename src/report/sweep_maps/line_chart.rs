@@ -12,6 +12,7 @@ use plotters::prelude::*;
 use super::axes::axis_label;
 use crate::error::{Error, Result};
 use crate::report::PALETTE;
+use crate::report::plot::{legend_upper_left, style_axes};
 use crate::report::table::{Column, Table};
 
 /// The columns of each panel: (y axis label, [(column, legend)]).
@@ -36,6 +37,9 @@ const PANELS: [PanelSpec<'static>; 2] = [
         ],
     ),
 ];
+
+/// A line of a panel: its legend, its values and their ± errors, if any.
+type Line<'a> = (&'a str, Vec<f64>, Option<Vec<f64>>);
 
 /// Pixel size of `sweep.svg`.
 const SIZE: (u32, u32) = (960, 720);
@@ -96,7 +100,7 @@ fn draw(path: &Path, key: &str, t: &Table) -> std::result::Result<(), Box<dyn st
     }
     let xpad = 0.02 * (x1 - x0).max(1e-12 * x1.abs().max(1.0));
     for ((y_desc, lines), area) in PANELS.iter().zip(root.split_evenly((2, 1))) {
-        let data: Vec<(&str, Vec<f64>, Option<Vec<f64>>)> = lines
+        let data: Vec<Line<'_>> = lines
             .iter()
             .filter_map(|(name, legend)| Some((*legend, column(t, name)?, error_bars(t, name))))
             .collect();
@@ -120,14 +124,7 @@ fn draw(path: &Path, key: &str, t: &Table) -> std::result::Result<(), Box<dyn st
             .x_label_area_size(44)
             .y_label_area_size(72)
             .build_cartesian_2d((x0 - xpad)..(x1 + xpad), y0..y1)?;
-        chart
-            .configure_mesh()
-            .x_desc(axis_label(key))
-            .y_desc(*y_desc)
-            .axis_desc_style(("sans-serif", 14))
-            .label_style(("sans-serif", 12))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()?;
+        style_axes(&mut chart, &axis_label(key), y_desc)?;
         for (i, (legend, y, e)) in data.iter().enumerate() {
             let col = PALETTE[i % PALETTE.len()];
             let pts: Vec<(f64, f64)> = x
@@ -163,13 +160,7 @@ fn draw(path: &Path, key: &str, t: &Table) -> std::result::Result<(), Box<dyn st
                 }
             }
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .label_font(("sans-serif", 12))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .draw()?;
+        legend_upper_left(&mut chart)?;
     }
     root.present()?;
     Ok(())
