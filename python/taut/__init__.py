@@ -222,7 +222,7 @@ class Run:
         figures (`speed_ratio`, `wave_speed`, `dofs`, ...). Each is an
         attribute too: `run.force_std`."""
         carriers = self.summary.get("carriers") or [{}]
-        flat = _flat(carriers[0])
+        flat = _study_names(_flat(carriers[0]))
         for k, v in _flat(self.summary.get("derived", {})).items():
             flat.setdefault(k, v)
         flat.setdefault("wall_seconds", self.summary.get("wall_seconds"))
@@ -232,7 +232,7 @@ class Run:
     def carriers(self) -> List["CarrierStats"]:
         """Each carrier's statistics with the same flat names:
         run.carriers[1].force_std."""
-        return [CarrierStats(_flat(c)) for c in self.summary.get("carriers", [])]
+        return [CarrierStats(_study_names(_flat(c))) for c in self.summary.get("carriers", [])]
 
     def __getattr__(self, name: str) -> Any:
         # only for names that are not attributes: the summary's scalars
@@ -292,6 +292,16 @@ def _round(v: Any) -> str:
     if isinstance(v, float):
         return f"{v:.4g}"
     return str(v)
+
+
+def _study_names(flat: Dict[str, Any]) -> Dict[str, Any]:
+    """The filtered force's figures also under the study tables' names
+    (`filtered_force_mean` for summary["carriers"][0]["force_filtered"]["mean"],
+    as sweep.csv and compare.csv name them)."""
+    for k in ("mean", "std", "max", "min"):
+        if f"force_filtered_{k}" in flat:
+            flat.setdefault(f"filtered_force_{k}", flat[f"force_filtered_{k}"])
+    return flat
 
 
 def _flat(d: Mapping[str, Any], prefix: str = "") -> Dict[str, Any]:

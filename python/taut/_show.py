@@ -169,6 +169,7 @@ def plot_run(history: "Table", carriers: int, length: float, ax: Any = None, ban
     suffixes = [""] if carriers == 1 else [f"_{i}" for i in range(carriers)]
     moving = any(np.ptp(history["x_m" + s]) > 0 for s in suffixes)
     lost_label = "contact lost (shaded, marked below)"
+    peaks: List[np.ndarray] = []
     for i, s in enumerate(suffixes):
         # rows 1 …: row 0 is the initial state, as the CLI's plot
         x = (history["x_m" + s] / length if moving else history["t"])[1:]
@@ -177,15 +178,42 @@ def plot_run(history: "Table", carriers: int, length: float, ax: Any = None, ban
         name = "λ" if carriers == 1 else f"carrier {i}"
         ax.plot(x, force, lw=0.7, color=f"C{i}", alpha=0.45 if filtered is not None else 1.0, label=name)
         if filtered is not None:
-            ax.plot(x, filtered[1:], lw=2.0, color=f"C{i}", label=f"{name}, 0–{band_hz:g} Hz filtered")
+            dark = _darker(f"C{i}")
+            ax.plot(x, filtered[1:], lw=2.0, color=dark, label=f"{name}, 0–{band_hz:g} Hz filtered")
+        peaks.append(force)
         lost = ~history["in_contact" + s][1:].astype(bool)
         for k, (a, b) in enumerate(_loss_spans(x, lost)):
             ax.axvspan(a, b, color=f"C{i}", alpha=0.22, lw=0, label=lost_label if (i == 0 and k == 0) else None)
             ax.axvspan(a, b, ymin=0.0, ymax=0.035, color="C3", lw=0)
     ax.set_xlabel("carrier position x_m / L (–)" if moving else "time t (s)")
     ax.set_ylabel("contact force λ (N)")
+    # the CLI's rule: clip the axis above re-contact spikes (over twice the
+    # 99.5th percentile), and say so with the peak
+    f = np.concatenate(peaks) if peaks else np.zeros(1)
+    f = f[np.isfinite(f)]
+    if f.size:
+        p995, top, low = float(np.percentile(f, 99.5)), float(f.max()), float(f.min())
+        if p995 > 0 and top > CLIP_FACTOR * p995:
+            clip = CLIP_FACTOR * p995
+            span = clip - low
+            ax.set_ylim(low - 0.05 * span, clip + 0.28 * span)
+            ax.set_title(f"(axis clipped; peak {top:.0f} N)", fontsize="small", loc="right")
     ax.legend(loc="upper left", fontsize="small", framealpha=0.85)
     return ax
+
+
+# the force axis is clipped at this multiple of the 99.5th percentile, as
+# the CLI's force.svg does (src/report/plot.rs CLIP_FACTOR)
+CLIP_FACTOR = 2.0
+
+
+def _darker(colour: str) -> Any:
+    """A darker shade of a matplotlib colour (the filtered line over its
+    raw line, as force.svg draws it)."""
+    from matplotlib.colors import to_rgb
+
+    r, g, b = to_rgb(colour)
+    return (0.55 * r, 0.55 * g, 0.55 * b)
 
 
 def plot_table(t: "Table", column: str, ax: Any = None) -> Any:
