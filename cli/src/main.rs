@@ -18,7 +18,7 @@ use taut::study::request::ConvergeOutcome;
 
 /// taut: dynamic contact of a tensioned beam and a moving mass–spring.
 #[derive(Parser)]
-#[command(version, about, long_about = None)]
+#[command(name = "taut", version, about, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
