@@ -127,8 +127,10 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
             };
             Panel {
                 title: format!(
-                    "{label}: P_l = {:.4} ({:.4} in span), RMS Δλ to the reference {:.3e} N",
-                    row.loss_fraction, row.loss_fraction_span, row.rms_force_difference
+                    "{label}: P_l = {:.4} ({:.4} in span), RMS Δλ vs reference {} N",
+                    row.loss_fraction,
+                    row.loss_fraction_span,
+                    short(row.rms_force_difference)
                 ),
                 series: force_series(&r.scene, &r.output, "λ"),
             }
@@ -159,6 +161,16 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
         super::plot::LOSS_SHADING,
         &filtered_label(first.output.history.band_hz()),
     )
+}
+
+/// A difference in a panel's title: 0, three decimals, or two digits with
+/// an exponent below 0.01 (round-off against the reference).
+fn short(v: f64) -> String {
+    match v.abs() {
+        0.0 => "0".into(),
+        a if a >= 0.01 => format!("{v:.3}"),
+        _ => format!("{v:.1e}"),
+    }
 }
 
 /// The terminal table.

@@ -341,7 +341,7 @@ fn draw(
             .x_label_area_size(if single { 44 } else { 36 })
             .y_label_area_size(if single { 72 } else { 64 });
         if !panel.title.is_empty() {
-            builder.caption(&panel.title, ("sans-serif", 14));
+            builder.caption(&panel.title, ("sans-serif", 13));
         }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
         style_axes(&mut chart, x_desc, y_desc)?;

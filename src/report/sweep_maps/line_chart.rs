@@ -185,7 +185,13 @@ mod tests {
         let p = dir.path().join("sweep.svg");
         write_sweep_chart(&p, "v", &t).unwrap();
         let svg = std::fs::read_to_string(&p).unwrap();
-        assert!(svg.contains("P_l (whole run)"), "the legend names the columns");
-        assert!(!svg.contains("P_l in span"), "a column the table lacks is not drawn");
+        assert!(
+            svg.contains("P_l (whole run)"),
+            "the legend names the columns"
+        );
+        assert!(
+            !svg.contains("P_l in span"),
+            "a column the table lacks is not drawn"
+        );
     }
 }
