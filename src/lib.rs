@@ -1,8 +1,8 @@
 //! # taut
 //!
 //! A verification-first testbed for the dynamic contact between a tensioned
-//! beam and a moving mass–spring. The physics contract is MODEL.md (in the
-//! project's shared spec, summarized in `docs/model.md`):
+//! beam and a moving mass–spring. The physics contract is `docs/model.md`
+//! (cited as MODEL §N):
 //!
 //! * §1 the continuum `ρA v_tt + EI v_xxxx − T v_xx = p + λ δ(x − x_m)`;
 //! * §2 the carrier `m q_tt + c_s q_t + k q = k δ0 − s m g − λ` and the gap

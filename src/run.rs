@@ -12,7 +12,8 @@ use crate::integrate::{
 };
 use crate::record::{
     ContactAccumulator, ContactStats, DropperAccumulator, DropperSample, DropperStats, Envelope,
-    History, LossGeometry, SpanAccumulator, SpanStats, SupportUplift, WireSeries, span_of,
+    History, LossGeometry, Section, SectionCount, SpanAccumulator, SpanStats, StandardStats,
+    SupportUplift, WireSeries, span_of, standard_stats,
 };
 use crate::resolve::Resolved;
 
@@ -29,6 +30,9 @@ pub struct RunOutput {
     /// carrier by carrier, span by span; empty without supports. The
     /// filtered force's are left `None` (the summary fills them).
     pub spans: Vec<SpanStats>,
+    /// Each carrier's standard statistics over the analysis section
+    /// (`[analysis]`; `standard.csv`), in scene order.
+    pub standard: Vec<StandardStats>,
     /// Number of unknowns (beam dofs + mass dofs).
     pub dofs: usize,
     /// Steps taken.
@@ -247,6 +251,9 @@ struct Recorder {
     /// its statistics over each span between them (empty without).
     supports: Vec<f64>,
     spans: Vec<Vec<SpanAccumulator>>,
+    /// Per carrier, its steps in the analysis section (`[analysis]`).
+    section: [f64; 2],
+    in_section: Vec<SectionCount>,
 }
 
 /// What [`Recorder`] records of the wire along the span
@@ -277,6 +284,13 @@ impl WireRecorder {
             h.field = WireSeries::with_capacity(w.field_x.clone(), w.field_rows(sc.steps));
         }
         h.supports = w.supports.iter().map(|&x| SupportUplift::new(x)).collect();
+        for (s, v) in h
+            .supports
+            .iter_mut()
+            .zip(static_positions(beam, &w.supports))
+        {
+            s.v_static = v;
+        }
         if !w.envelope_x.is_empty() {
             h.envelope = Envelope::new(w.envelope_x.clone());
         }
@@ -340,6 +354,26 @@ impl WireRecorder {
             h.envelope.push(i, displacement(pv));
         }
     }
+}
+
+/// The wire's static position v_static(x) at each of `xs` (m): K d = f
+/// with f the model's constant loads (self-weight, the droppers' preloads)
+/// and every dropper's spring in K, no carrier (what the standards
+/// measure uplift from; `record::SupportUplift`). One banded factor,
+/// made only when there are points; `None` where K is singular (a wire
+/// not held against rigid motion).
+fn static_positions(beam: &crate::model::beam::BeamModel, xs: &[f64]) -> Vec<Option<f64>> {
+    if xs.is_empty() {
+        return Vec::new();
+    }
+    let Ok(factor) = crate::model::banded::BandedLdlt::factor(&beam.stiffness) else {
+        return vec![None; xs.len()];
+    };
+    let mut d = beam.load.clone();
+    factor.solve(&mut d);
+    xs.iter()
+        .map(|&x| Some(beam.point_vector(x).dot(&d)).filter(|v| v.is_finite()))
+        .collect()
 }
 
 /// Append one row of v at the point vectors `pvs`.
@@ -419,6 +453,7 @@ impl Recorder {
     fn new(sc: &Resolved, beam: &crate::model::beam::BeamModel, nc: usize) -> Self {
         let every = sc.record_every.max(1);
         let mut h = History::with_capacity(sc.history_rows(), every, nc, &sc.probes);
+        h.filter_band_hz = sc.analysis.band_hz;
         h.droppers = sc
             .droppers
             .iter()
@@ -444,6 +479,8 @@ impl Recorder {
                 .map(|c| ContactAccumulator::for_steps(LossGeometry::of(sc, c), sc.steps))
                 .collect(),
             support_peak: vec![0.0f64; nc],
+            section: sc.analysis.x,
+            in_section: vec![SectionCount::default(); nc],
             probes: (0..sc.probes.len())
                 .map(|i| sc.probe_vector(beam, i))
                 .collect(),
@@ -483,6 +520,9 @@ impl Recorder {
             if !first && let Some(k) = span_of(&self.supports, s.x) {
                 self.spans[c][k].push(s.force, s.in_contact);
             }
+            if !first {
+                self.in_section[c].push(self.section, s.x, s.in_contact);
+            }
             if keep {
                 self.h.carriers[c].push(&s);
             }
@@ -517,7 +557,27 @@ impl Recorder {
     }
 
     /// Statistics and warnings of the finished run.
-    fn finish(self, sc: &Resolved, f: Finish) -> RunOutput {
+    fn finish(mut self, sc: &Resolved, f: Finish) -> RunOutput {
+        self.h.filter_forces(sc.dt);
+        for s in &mut self.h.supports {
+            let v = s.v_static;
+            s.set_static(v);
+        }
+        let standard = self
+            .h
+            .carriers
+            .iter()
+            .zip(&self.in_section)
+            .enumerate()
+            .map(|(c, (tr, &count))| {
+                let sec = Section {
+                    x: sc.analysis.x,
+                    band_hz: sc.analysis.band_hz,
+                    speed: sc.carriers[c].motion.profile.cruise_speed(),
+                };
+                standard_stats(c, sec, tr, count, &self.h.supports)
+            })
+            .collect();
         let max_abs_w: Vec<f64> = self.acc.iter().map(ContactAccumulator::max_abs_w).collect();
         let stats = self
             .acc
@@ -559,6 +619,7 @@ impl Recorder {
                 .map(SpanAccumulator::finish)
                 .collect(),
             force_lag: f.force_lag,
+            standard,
             warnings,
             dofs: f.dofs,
             steps: f.steps,

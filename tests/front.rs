@@ -14,6 +14,8 @@ mod common;
 mod bad_input;
 #[path = "cli.rs"]
 mod cli;
+#[path = "doc_files.rs"]
+mod doc_files;
 #[path = "gate.rs"]
 mod gate;
 #[path = "hostile_input.rs"]

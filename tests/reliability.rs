@@ -932,11 +932,11 @@ fn a_run_whose_history_csv_would_not_fit_is_refused_with_the_numbers() {
         ],
     );
     assert_eq!(code, 1, "{err}");
-    // (its memory is over the budget too since the summary's 0–20 Hz filter
-    // is counted, 8 bytes a row: both reasons are named)
+    // (its memory is over the budget too since the filtered force is
+    // counted, 8 bytes a row and carrier: both reasons are named)
     assert!(
         err.contains("`output.record_every` = 1: ")
-            && err.contains("history.csv would hold an estimated 4.535 GiB")
+            && err.contains("history.csv would hold an estimated 5.183 GiB")
             && err.contains("above the output budget of 4.000 GiB")
             && err.contains("record_every ≥ 2"),
         "{err}"

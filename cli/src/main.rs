@@ -23,7 +23,7 @@ use taut::study::request::ConvergeOutcome;
 
 /// taut: dynamic contact of a tensioned beam and a moving mass–spring.
 #[derive(Parser)]
-#[command(version, about, long_about = None)]
+#[command(name = "taut", version, about, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -132,6 +132,19 @@ enum Command {
         #[command(flatten)]
         args: ModesArgs,
     },
+    /// One self-contained report.html (inline SVG and CSS, no network) from
+    /// the outputs taut wrote into one or more folders: scenes, summaries,
+    /// the standards' statistics, plots and study tables with their verdicts.
+    Report {
+        /// Output folders of taut run, compare, converge, precision, sweep,
+        /// verify or gate.
+        #[arg(required = true, value_name = "OUT_DIR")]
+        dirs: Vec<PathBuf>,
+        /// The page (default: OUT_DIR/report.html for one folder,
+        /// out/report.html for several).
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
+    },
     /// Join shard folders of one sweep into a single result.
     Merge {
         /// Shard output folders.
@@ -215,6 +228,7 @@ fn main() -> ExitCode {
         Command::Sweep { on, args, q } => cmd_sweep(&on, &args, q.quiet),
         Command::Verify { args, out, q } => cmd_verify(&args, out, q.quiet),
         Command::Merge { shards, out } => cmd_merge(&shards, &out),
+        Command::Report { dirs, out } => cmd_report(dirs, out).map(|()| true),
         Command::Modes { on, args } => cmd_modes(&on, &args).map(|()| true),
         Command::Precision { on, args, q } => cmd_precision(&on, &args, q.quiet).map(|()| true),
         Command::Gate { args, out, q } => cmd_gate(&args, out, q.quiet),
@@ -427,6 +441,20 @@ fn cmd_sweep(on: &OnScene, args: &SweepArgs, quiet: bool) -> taut::Result<bool> 
 }
 
 /// Returns whether every point of the merged sweep ran.
+fn cmd_report(dirs: Vec<PathBuf>, out: Option<PathBuf>) -> taut::Result<()> {
+    let r = app::report(&app::ReportRequest { dirs, out })?;
+    println!(
+        "taut {} — report of {} folder{}: {} plots, {} tables\n  wrote    {}",
+        env!("CARGO_PKG_VERSION"),
+        r.folders,
+        if r.folders == 1 { "" } else { "s" },
+        r.plots,
+        r.tables,
+        r.path.display()
+    );
+    Ok(())
+}
+
 fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
     let m = app::merge(shards, out, &Terminal::new("", true))?;
     println!(

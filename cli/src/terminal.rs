@@ -127,6 +127,9 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
         t.push_str(&dropper_line(d));
     }
     t.push_str(&span_lines(s));
+    if accuracy.is_none() {
+        t.push_str(&standard_lines(s));
+    }
     for w in &s.warnings {
         let _ = writeln!(t, "  WARNING  {w}");
     }
@@ -160,9 +163,38 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
     };
     let _ = writeln!(
         t,
-        "  wrote    {}/{{history.csv, summary.json, force.svg{accuracy_csv}{snapshots}{field}{spans}{envelope}}}",
+        "  wrote    {}/{{history.csv, summary.json, force.svg, standard.csv, standard.json{accuracy_csv}{snapshots}{field}{spans}{envelope}}}",
         dir.display()
     );
+    t
+}
+
+/// The standards' statistics over the analysis section (`standard.csv`),
+/// a line per carrier.
+fn standard_lines(s: &taut::report::Summary) -> String {
+    let mut t = String::new();
+    let n = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2}"));
+    for r in &s.standard {
+        let uplift = match (r.uplift_max, r.uplift_x) {
+            (Some(u), Some(x)) => format!(", uplift {:.2} mm at x = {x:.2} m", u * 1e3),
+            _ => String::new(),
+        };
+        let _ = writeln!(
+            t,
+            "  standard carrier {}, x_m in {}–{} m, 0–{} Hz: F_m {} N, σ {} N, F_m ± 3σ {} / {} N, max {} N, min {} N, loss {} %{uplift}",
+            r.carrier,
+            r.x_start,
+            r.x_end,
+            r.band_hz,
+            n(r.mean),
+            n(r.std),
+            n(r.statistical_max),
+            n(r.statistical_min),
+            n(r.max),
+            n(r.min),
+            n(r.loss_percent),
+        );
+    }
     t
 }
 
@@ -200,11 +232,15 @@ fn span_lines(s: &taut::report::Summary) -> String {
     for u in &s.supports {
         let _ = writeln!(
             t,
-            "  support  x = {:.2} m: uplift max {:.2} mm at t = {:.4} s, min {:.2} mm",
+            "  support  x = {:.2} m: uplift max {:.2} mm at t = {:.4} s, min {:.2} mm{}",
             u.x,
             u.v_max * 1e3,
             u.t_max,
-            u.v_min * 1e3
+            u.v_min * 1e3,
+            u.uplift.map_or(String::new(), |v| format!(
+                "; {:.2} mm above its static position",
+                v * 1e3
+            ))
         );
     }
     t

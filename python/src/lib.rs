@@ -387,16 +387,17 @@ type RunTuple<'py> = (
 );
 
 /// The line's tables (`spans.csv`, `supports.csv`, `envelope.csv`), each
-/// `None` when the scene does not ask for it.
+/// `None` when the scene does not ask for it, and `standard.csv` (always).
 pub(crate) type LineTuple<'py> = (
     Option<Bound<'py, PyList>>,
     Option<Bound<'py, PyList>>,
     Option<Bound<'py, PyList>>,
+    Bound<'py, PyList>,
 );
 
 /// A run's line tables ([`LineTuple`]): the summary's spans (the filtered
-/// force's included), the supports' uplift and the envelope, as the CLI
-/// writes them.
+/// force's included), the supports' uplift, the envelope and the
+/// standards' statistics (`standard.csv`), as the CLI writes them.
 pub(crate) fn line_to_py<'py>(
     py: Python<'py>,
     summary: &taut::report::Summary,
@@ -414,7 +415,8 @@ pub(crate) fn line_to_py<'py>(
         true => None,
         false => Some(table_to_py(py, &taut::report::envelope_table(&h.envelope))?),
     };
-    Ok((spans, supports, envelope))
+    let standard = table_to_py(py, &taut::report::standard_table(&summary.standard))?;
+    Ok((spans, supports, envelope, standard))
 }
 
 /// A recorded wire series (`taut::record::WireSeries`) as f64 bytes:
@@ -714,6 +716,19 @@ fn mesh<'py>(
     Ok(f64_bytes(py, x.into_iter()))
 }
 
+/// One self-contained `report.html` from output folders (`taut report`):
+/// returns the page's path and its numbers of plots and tables.
+#[pyfunction]
+#[pyo3(signature = (dirs, out))]
+fn report(
+    py: Python<'_>,
+    dirs: Vec<PathBuf>,
+    out: Option<PathBuf>,
+) -> PyResult<(String, usize, usize)> {
+    let r = app::report(&app::ReportRequest { dirs, out }).map_err(|e| to_py_err(py, e))?;
+    Ok((r.path.display().to_string(), r.plots, r.tables))
+}
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -729,6 +744,7 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(report, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

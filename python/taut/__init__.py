@@ -86,6 +86,7 @@ __all__ = [
     "progress_enabled",
     "modes",
     "mesh",
+    "report",
     "Run",
     "CarrierStats",
     "Modes",
@@ -129,7 +130,13 @@ class Run:
             force_min, filtered_mean, filtered_std, loss_fraction), None
             without supports.
         supports: the wire's uplift at each support (Table of
-            supports.csv's columns: x, v_max, v_min, t_max), None without.
+            supports.csv's columns: x, v_max, v_min, t_max, v_static,
+            uplift), None without.
+        standard: the standards' statistics over the analysis section
+            (`[analysis]`), a row per carrier (Table of standard.csv's
+            columns: carrier, x_start, x_end, band_hz, speed, speed_kmh,
+            samples, mean, std, statistical_max, statistical_min, max, min,
+            loss_percent, uplift_max, uplift_x; docs/output.md).
         envelope: the range of v over time at every mesh node with
             `[output] envelope = true` (Table of envelope.csv's columns: x,
             v_min, v_max), None otherwise.
@@ -137,7 +144,8 @@ class Run:
         summary: the dict of the CLI's `summary.json` (scene, derived
             quantities, per-carrier statistics, warnings, wall time).
         history: the columns of `history.csv` as a Table of arrays (`t`,
-            `x_m`, `beam_w`, `mass_q`, `gap`, `force`, `in_contact`, probes;
+            `x_m`, `beam_w`, `mass_q`, `gap`, `force`, `in_contact`,
+            `force_filtered` (when every step is recorded), probes;
             suffixed `_0`, `_1`, ... with several carriers).
         warnings: findings that make the numbers suspect, as the CLI prints them.
         accuracy: for a run with `tolerance`, the columns of the CLI's
@@ -162,6 +170,7 @@ class Run:
         self.spans: Optional[Table] = None
         self.supports: Optional[Table] = None
         self.envelope: Optional[Table] = None
+        self.standard: Table = Table()
         self._scene: Optional[Tuple[Optional[str], Optional[str], List[str]]] = None
         self._x: Optional[np.ndarray] = None
 
@@ -171,12 +180,14 @@ class Run:
             Optional[List[Tuple[str, str, Any]]],
             Optional[List[Tuple[str, str, Any]]],
             Optional[List[Tuple[str, str, Any]]],
+            List[Tuple[str, str, Any]],
         ],
     ) -> None:
-        spans, supports, envelope = line
+        spans, supports, envelope, standard = line
         self.spans = None if spans is None else table(spans)
         self.supports = None if supports is None else table(supports)
         self.envelope = None if envelope is None else table(envelope)
+        self.standard = table(standard)
 
     @property
     def x(self) -> np.ndarray:
@@ -189,8 +200,20 @@ class Run:
         return self._x
 
     def __repr__(self) -> str:
-        loss = [c.get("loss_fraction") for c in self.summary.get("carriers", [])]
-        return f"taut.Run({self.history.rows} rows, P_l = {loss}, {len(self.warnings)} warnings)"
+        carriers = self.summary.get("carriers", [])
+        loss = ", ".join(_round(c.get("loss_fraction")) for c in carriers)
+        if len(carriers) != 1:
+            loss = f"[{loss}]"
+        f = (carriers[0].get("force_filtered") or {}) if carriers else {}
+        force = (
+            f", 0–{_round(f.get('cutoff_hz'))} Hz force {_round(f.get('mean'))} ± {_round(f.get('std'))} N"
+            if f
+            else ""
+        )
+        return (
+            f"taut.Run({self.history.rows} rows, P_l = {loss}{force}, "
+            f"{len(self.warnings)} warning{'' if len(self.warnings) == 1 else 's'})"
+        )
 
     @property
     def scalars(self) -> Dict[str, Any]:
@@ -200,7 +223,7 @@ class Run:
         figures (`speed_ratio`, `wave_speed`, `dofs`, ...). Each is an
         attribute too: `run.force_std`."""
         carriers = self.summary.get("carriers") or [{}]
-        flat = _flat(carriers[0])
+        flat = _study_names(_flat(carriers[0]))
         for k, v in _flat(self.summary.get("derived", {})).items():
             flat.setdefault(k, v)
         flat.setdefault("wall_seconds", self.summary.get("wall_seconds"))
@@ -210,7 +233,7 @@ class Run:
     def carriers(self) -> List["CarrierStats"]:
         """Each carrier's statistics with the same flat names:
         run.carriers[1].force_std."""
-        return [CarrierStats(_flat(c)) for c in self.summary.get("carriers", [])]
+        return [CarrierStats(_study_names(_flat(c))) for c in self.summary.get("carriers", [])]
 
     def __getattr__(self, name: str) -> Any:
         # only for names that are not attributes: the summary's scalars
@@ -236,7 +259,8 @@ class Run:
         each carrier's contact force along x_m/L (along t when no carrier
         moves), lost contact shaded. Returns the matplotlib Axes."""
         length = float(self.summary["scene"]["beam"]["length"])
-        return _show.plot_run(self.history, len(self.summary.get("carriers", [])), length, ax)
+        band = ((self.summary.get("carriers") or [{}])[0].get("force_filtered") or {}).get("cutoff_hz", 20.0)
+        return _show.plot_run(self.history, len(self.summary.get("carriers", [])), length, ax, band)
 
 
 class CarrierStats:
@@ -260,7 +284,25 @@ class CarrierStats:
         return sorted(set(super().__dir__()) | set(self.scalars))
 
     def __repr__(self) -> str:
-        return f"taut.CarrierStats(loss_fraction={self.scalars.get('loss_fraction')})"
+        return f"taut.CarrierStats(loss_fraction={_round(self.scalars.get('loss_fraction'))})"
+
+
+def _round(v: Any) -> str:
+    """A figure as a person reads it: 4 significant digits (a repr, not the
+    value: the attributes hold every digit)."""
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+def _study_names(flat: Dict[str, Any]) -> Dict[str, Any]:
+    """The filtered force's figures also under the study tables' names
+    (`filtered_force_mean` for summary["carriers"][0]["force_filtered"]["mean"],
+    as sweep.csv and compare.csv name them)."""
+    for k in ("mean", "std", "max", "min"):
+        if f"force_filtered_{k}" in flat:
+            flat.setdefault(f"filtered_force_{k}", flat[f"force_filtered_{k}"])
+    return flat
 
 
 def _flat(d: Mapping[str, Any], prefix: str = "") -> Dict[str, Any]:
@@ -368,6 +410,9 @@ class Modes:
 
     def __repr__(self) -> str:
         return f"taut.Modes({len(self.frequency_hz)} modes, {self.source}, {len(self.x)} points)"
+
+    def _repr_html_(self) -> str:
+        return _show.modes_html(self.frequency_hz, self.string_hz, self.source, len(self.x))
 
 
 def _scene(scene: Scene) -> Tuple[Optional[str], Optional[str]]:
@@ -900,3 +945,31 @@ def mesh(
     snapshots, the field and mode shapes are sampled by default."""
     path, text = _scene(scene)
     return _f8(_taut.mesh(path, text, _overrides(set)))
+
+
+@_speaks_python
+def report(
+    dirs: Union[str, "os.PathLike[str]", Iterable[Union[str, "os.PathLike[str]"]]],
+    out: Union[None, str, "os.PathLike[str]"] = None,
+) -> str:
+    """One self-contained report.html (inline SVG and CSS, nothing fetched)
+    from the outputs taut wrote into one or more folders (`taut report`):
+    each run's scene, summary, the standards' statistics and warnings, the
+    plots, and the studies' tables with their verdicts (docs/output.md).
+
+    Args:
+        dirs: a folder, or a list of folders, given as `out=` to taut.run,
+            compare, converge, precision or sweep (or the CLI's --out).
+        out: the page (default: report.html in the folder when there is
+            one, out/report.html for several).
+
+    Returns:
+        The page's path.
+
+    Raises:
+        SceneError naming a folder that holds no taut outputs; OutputError.
+    """
+    if isinstance(dirs, (str, os.PathLike)):
+        dirs = [dirs]
+    path, _, _ = _taut.report([os.fspath(d) for d in dirs], _out(out))
+    return path

@@ -21,6 +21,7 @@ __all__ = [
     "mesh",
     "modes",
     "precision",
+    "report",
     "run",
     "scene_json",
     "schema",
@@ -32,7 +33,9 @@ _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
 _Progress = Optional[Callable[[int, int], object]]
 _Wire = Optional[Tuple[bytes, bytes, bytes, bytes]]
-_Line = Tuple[Optional[List[_Column]], Optional[List[_Column]], Optional[List[_Column]]]
+_Line = Tuple[
+    Optional[List[_Column]], Optional[List[_Column]], Optional[List[_Column]], List[_Column]
+]
 
 # (path, text, set): a scene file or its TOML text, and the overrides
 _SceneArg = Tuple[Optional[str], Optional[str], List[str]]
@@ -63,6 +66,7 @@ def modes(
     on: _SceneArg, out: Optional[str], args: str
 ) -> Tuple[List[_Column], List[_Column]]: ...
 def mesh(path: Optional[str], text: Optional[str], set: List[str]) -> bytes: ...
+def report(dirs: List[str], out: Optional[str]) -> Tuple[str, int, int]: ...
 
 _CarrierTuple = Tuple[float, float, float, Optional[float], float, float, bool, float]
 _ProbeTuple = Tuple[str, float, float, float]

@@ -1,8 +1,8 @@
 //! Symmetric banded matrices and their LDLᵀ factorization.
 //!
 //! Written by hand on purpose: neither faer nor nalgebra has a banded solver,
-//! and the general sparse LDLᵀ of faer is slower for this band (measured in
-//! `../shared/notes/crates.md`: ≈ 28 µs vs ≈ 23 µs per step at n = 2000). The
+//! and the general sparse LDLᵀ of faer is slower for this band (measured when
+//! this kernel was written: ≈ 28 µs vs ≈ 23 µs per step at n = 2000). The
 //! per-step solve is bound by the dependency chain of the triangular sweeps
 //! (row i needs rows i−1..i−p), so the kernel below sweeps several right-hand
 //! sides at once (the free step and A⁻¹r of each contact, MODEL §5): their

@@ -23,9 +23,9 @@ pub struct ForceStats {
     pub max: f64,
 }
 
-/// The 0–20 Hz filtered contact force's statistics over the steps
-/// (docs/output.md#filtered-force): the filter's band and [`ForceStats`] of
-/// the filtered force.
+/// The filtered contact force's statistics over the steps
+/// (docs/output.md#filtered-force): the filter's band, [`ForceStats`] of
+/// the filtered force and its statistical max and min.
 #[derive(Debug, Clone, Copy, Serialize, PartialEq)]
 pub struct FilteredForce {
     /// The band's upper edge, Hz (the filter is −3 dB there).
@@ -38,6 +38,10 @@ pub struct FilteredForce {
     pub max: f64,
     /// Minimum, N.
     pub min: f64,
+    /// The statistical maximum mean + 3σ, N (EN 50367's F_m + 3σ).
+    pub statistical_max: f64,
+    /// The statistical minimum mean − 3σ, N.
+    pub statistical_min: f64,
 }
 
 /// Whether a [`ContactStats`] carries the filtered force's statistics.
@@ -540,6 +544,7 @@ mod tests {
             gap: vec![0.0; n],
             force: contact.iter().map(|&c| if c { 2.0 } else { 0.0 }).collect(),
             in_contact: contact.to_vec(),
+            force_filtered: vec![],
         };
         (t, tr)
     }

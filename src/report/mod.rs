@@ -6,12 +6,14 @@ mod compare;
 mod converge;
 mod csv;
 mod gate;
+mod html;
 mod line;
 mod line_svg;
 mod modes;
 mod outputs;
 mod plot;
 mod precision;
+mod standard;
 mod summary;
 mod sweep;
 mod sweep_maps;
@@ -27,11 +29,13 @@ pub use converge::{
 };
 pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
+pub use html::{MAX_ROWS, PLOTS, ReportSummary, TABLES, write_report};
 pub use line::{envelope_table, spans_table, supports_table, write_line};
 pub use modes::{mode_shapes_table, modes_table, write_modes};
 pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
 pub use plot::{PLOT_BUCKETS, write_force_plot};
 pub use precision::{PRECISION_COLUMNS, precision_rows, precision_table, write_precision};
+pub use standard::{STANDARD_BASIS, standard_table, write_standard};
 pub use summary::{Derived, Summary, mesh_label, write_summary};
 pub use sweep::{sweep_table, write_sweep};
 pub use sweep_maps::{
@@ -70,13 +74,16 @@ pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> 
     Some(path)
 }
 
-/// Write all three outputs of a run into `dir` (created if missing).
+/// Write the outputs of a run into `dir` (created if missing):
+/// `history.csv`, `summary.json`, `force.svg`, `standard.csv`,
+/// `standard.json`, and what the scene's `[output]` asks for.
 pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     write_history(&dir.join("history.csv"), out)?;
     let summary = Summary::new(sc, out);
     write_summary(&dir.join("summary.json"), &summary)?;
     write_force_plot(&dir.join("force.svg"), sc, out)?;
+    write_standard(dir, sc, &summary.standard, &summary.supports)?;
     write_wire(dir, &out.history)?;
     write_line(dir, sc, out, &summary.spans)?;
     Ok(summary)

@@ -41,6 +41,7 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
     t.push("force_std", real(|r| r.force_std));
     t.push("force_min", real(|r| r.force_min));
     t.push("force_max", real(|r| r.force_max));
+    t.push_filtered(records.iter().map(|r| &r.filtered));
     t.push(
         "first_loss_position",
         real(|r| r.first_loss_position.unwrap_or(f64::NAN)),

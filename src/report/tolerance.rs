@@ -54,6 +54,7 @@ pub fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary> {
         },
     )?;
     write_force_plot(&dir.join("force.svg"), &r.scene, &r.output)?;
+    super::write_standard(dir, &r.scene, &summary.standard, &summary.supports)?;
     super::write_wire(dir, &r.output.history)?;
     super::write_line(dir, &r.scene, &r.output, &summary.spans)?;
     let csv = dir.join("accuracy.csv");

@@ -101,6 +101,12 @@ pub fn modal_bytes(n_fe: usize, modes: usize) -> u64 {
 /// pixel column). Defined here, with the memory plan that counts it.
 pub const PLOT_BUCKETS: usize = 2000;
 
+/// A force plot draws the filtered force of at most this many carriers
+/// (the first; one line a colour of the palette): beyond, the raw lines
+/// alone, so that a scene of thousands of carriers does not double its
+/// plot's memory.
+pub const MAX_FILTERED_LINES: usize = 10;
+
 /// Rows of the history formatted at a time by `report::write_history`: a
 /// few MB of columns, however long the history (building the whole table
 /// copied the history once more: 1 GB more at 2·10⁷ rows, issue 25).
@@ -132,9 +138,10 @@ pub const GROWN_TEXT_FACTOR: u64 = 3;
 /// time ([`csv_block_rows`]): a line of `history.csv`'s text, `summary.json`'s copy of every carrier's
 /// `events` (carrier 0 twice: `contact` and `carriers[0]`; the JSON text
 /// itself is streamed to the file), and per carrier of `force.svg`: the
-/// decimated points (at most 4 × [`PLOT_BUCKETS`]; four
-/// copies of 16 bytes and two of 8 on their way to the drawing), the
-/// shaded intervals (two copies) and the SVG text, which the plotting
+/// decimated points of the force and of the filtered force (at most
+/// 4 × [`PLOT_BUCKETS`] each; four copies of 16 bytes and two of 8 on
+/// their way to the drawing), the shaded intervals (two copies; each
+/// drawn twice, as a shade and as a mark on the axis) and the SVG text, which the plotting
 /// library holds whole until it writes the file.
 pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
     let (nc, ev) = (carriers as u64, events as u64);
@@ -148,13 +155,18 @@ pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
         .saturating_mul(EVENT_BYTES);
     let points = 4 * PLOT_BUCKETS as u64;
     let svg_text = (points * SVG_POINT_BYTES)
-        .saturating_add(ev.saturating_mul(SVG_RECT_BYTES))
+        .saturating_add(ev.saturating_mul(2 * SVG_RECT_BYTES))
         .saturating_mul(GROWN_TEXT_FACTOR);
     let per_carrier = (points * (4 * 16 + 2 * 8))
         .saturating_add(ev.saturating_mul(2 * 16))
         .saturating_add(svg_text);
+    // the filtered lines: as many again for the first MAX_FILTERED_LINES
+    let per_filtered =
+        (points * (4 * 16 + 2 * 8)).saturating_add(points * SVG_POINT_BYTES * GROWN_TEXT_FACTOR);
+    let filtered = nc.min(MAX_FILTERED_LINES as u64);
     line.saturating_add(summary)
         .saturating_add(nc.saturating_mul(per_carrier))
+        .saturating_add(filtered.saturating_mul(per_filtered))
         .saturating_add(SVG_FIXED_BYTES * GROWN_TEXT_FACTOR)
 }
 
@@ -186,10 +198,11 @@ pub struct MemoryEstimate {
     /// The rest of the working memory of writing the outputs
     /// ([`output_bytes`]).
     pub outputs: u64,
-    /// The summary's 0–20 Hz force filter: one copy of a carrier's force
-    /// history ([`FILTER_BYTES_PER_ROW`] a row; carriers one at a time),
-    /// when the history holds every step (else the summary has no filtered
-    /// statistics and this is 0). It shrinks with the rows, like the history.
+    /// The filtered force the history keeps beside the force: one copy of
+    /// every carrier's force history ([`FILTER_BYTES_PER_ROW`] a row and
+    /// carrier), when the history holds every step (else there is no
+    /// filtered force and this is 0). It shrinks with the rows, like the
+    /// history.
     pub filter: u64,
     /// The estimated size of `history.csv`, bytes (on disk, not in memory).
     pub csv: u64,
@@ -214,9 +227,9 @@ impl MemoryEstimate {
     }
 }
 
-/// Bytes a history row adds to the summary's 0–20 Hz force filter
-/// (`study::filter::filtered_force_stats`: the forward pass's output, one
-/// f64 a row, filtered back in place).
+/// Bytes a history row adds per carrier for its filtered force
+/// (`CarrierTrace::force_filtered`: the forward pass's output, one f64 a
+/// row, filtered back in place).
 pub const FILTER_BYTES_PER_ROW: u64 = 8;
 
 /// Bytes of one point vector r_b(x) of the recorder on a mesh: four
@@ -296,8 +309,10 @@ pub fn estimate(size: &RunSize) -> MemoryEstimate {
                 .saturating_mul(u(carriers))
                 .saturating_mul(8 * DENSE_CONTACT_MATRICES),
         );
-    // t, then x, w, q, gap, λ and the contact flag per carrier, then probes
-    let csv_values = 1 + 6 * u(carriers) + u(probes);
+    // t, then x, w, q, gap, λ, the contact flag and (with every step kept)
+    // the filtered λ per carrier, then probes
+    let per_carrier = if every <= 1 { 7 } else { 6 };
+    let csv_values = 1 + per_carrier * u(carriers) + u(probes);
     let events = event_capacity(steps);
     MemoryEstimate {
         history: rows.saturating_mul(row),
@@ -311,6 +326,7 @@ pub fn estimate(size: &RunSize) -> MemoryEstimate {
         outputs: output_bytes(csv_values, carriers, events),
         filter: if every <= 1 {
             rows.saturating_mul(FILTER_BYTES_PER_ROW)
+                .saturating_mul(u(carriers).max(1))
         } else {
             0
         },
@@ -347,7 +363,7 @@ pub fn check_budget(
         return Ok(());
     }
     let filter = if e.filter > 0 {
-        format!(" + {} of the summary's 0–20 Hz force filter", gib(e.filter))
+        format!(" + {} of the filtered force", gib(e.filter))
     } else {
         String::new()
     };
@@ -381,8 +397,14 @@ pub fn check_budget(
             )
         });
     }
-    // the fewest rows that fit both budgets, and the record_every that gives them
-    let row_csv = e.csv_values.saturating_mul(CSV_BYTES_PER_VALUE).max(1);
+    // the fewest rows that fit both budgets, and the record_every that gives
+    // them (at record_every ≥ 2 the filtered force's column is gone too)
+    let thinned_values = if every <= 1 {
+        e.csv_values.saturating_sub(carriers as u64)
+    } else {
+        e.csv_values
+    };
+    let row_csv = thinned_values.saturating_mul(CSV_BYTES_PER_VALUE).max(1);
     let rows_fit_csv = (OUTPUT_BUDGET_BYTES / row_csv).max(2);
     let rows_fit_memory = if memory_over {
         // rows r that fit: fixed + r·row + min(r, block)·row ≤ budget

@@ -12,6 +12,7 @@
 //! below the integrators, which run a `Resolved`. [`Scene::validate`] is
 //! defined here, so that the scene's own module imports nothing above it.
 
+pub mod analysis;
 pub mod attachment;
 pub mod damping;
 pub mod dropper;
@@ -142,6 +143,7 @@ impl Scene {
                 },
             )?),
         };
+        let analysis = analysis::resolve_analysis(&self.analysis, l, dt, &wire.supports)?;
         let reference = declared_reference(self, &beam, &carriers)?;
         let external_forces = self.resolve_external_forces(&carriers, t_end)?;
 
@@ -166,6 +168,7 @@ impl Scene {
             probes,
             record_every,
             wire,
+            analysis,
         };
         check_budget(
             &resolved.memory_estimate(),

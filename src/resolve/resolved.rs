@@ -57,6 +57,9 @@ pub struct Resolved {
     /// The wire's snapshots and space–time field to record
     /// (`[output] snapshots`, `field`; empty: none).
     pub wire: super::wire::WirePlan,
+    /// The filtered force's band and the analysis section of the
+    /// standards' statistics (`[analysis]`).
+    pub analysis: super::analysis::AnalysisPlan,
     /// The manufactured solution of a scene with `[manufactured]` (MODEL §11).
     pub manufactured: Option<Manufactured>,
     /// The reference the scene declares (`[reference]`, or the manufactured

@@ -222,7 +222,7 @@ impl Method {
     /// step-to-step (Nyquist) mode that only some parameter sets damp, and
     /// a moving contact point drives it (MODEL §5, as `contact.placement =
     /// "alpha"` does). Measured on the reference case at Δt = 1e-4 s
-    /// (`examples/methods_report.rs`, docs/methods.md): with a bilateral
+    /// (`cargo xtask methods`, docs/methods.md): with a bilateral
     /// mass Newmark, HHT α ≤ 0.1, WBZ ρ∞ = 0.8 and generalized-α ρ∞ = 0.9
     /// diverge, while ρ∞ = 1 or 0.5, HHT α ≥ 0.2, WBZ ρ∞ ≤ 0.5 and Bathe run.
     pub fn constraint_note(self, scheme: &Scheme) -> Option<String> {

@@ -1,4 +1,4 @@
-//! Scene files: what a run needs, as plain serde data (MODEL.md §1–§5).
+//! Scene files: what a run needs, as plain serde data (docs/model.md §1–§5).
 //!
 //! A scene is TOML. Every table rejects unknown keys. Loading is three steps:
 //! parse the text into a TOML tree, apply `--set` overrides on the tree
@@ -14,6 +14,7 @@
 //! [`Motion`]), and the methods' descriptions (`method.rs`); checks that
 //! need the model, a reference or the memory plan are the resolve layer's.
 
+mod analysis;
 mod attachment;
 mod beam;
 mod carrier;
@@ -45,6 +46,7 @@ mod table_files;
 mod time;
 mod validate;
 
+pub use analysis::{AnalysisSpec, speed_unit};
 pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
 pub use beam::{BeamSpec, Support};
 pub use carrier::{CarrierSpec, Side};

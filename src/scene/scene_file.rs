@@ -1,8 +1,9 @@
-//! A whole scene file (MODEL.md §1–§5): every table of it, as plain serde
+//! A whole scene file (docs/model.md §1–§5): every table of it, as plain serde
 //! data; each table's own type lives in its own file.
 
 use serde::{Deserialize, Serialize};
 
+use super::analysis::AnalysisSpec;
 use super::attachment::AttachmentSpec;
 use super::beam::BeamSpec;
 use super::carrier::CarrierSpec;
@@ -57,6 +58,10 @@ pub struct Scene {
     /// What the history records (`[output]`).
     #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
     pub output: OutputSpec,
+    /// The filtered force's band and the analysis section of the
+    /// standards' statistics (`[analysis]`; `standard.csv`).
+    #[serde(default, skip_serializing_if = "AnalysisSpec::is_default")]
+    pub analysis: AnalysisSpec,
     /// A manufactured solution (`[manufactured]`, MODEL §11): its source is
     /// added to the run and it is the scene's reference.
     #[serde(default, skip_serializing_if = "Option::is_none")]

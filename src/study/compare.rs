@@ -56,6 +56,9 @@ pub struct CompareRow {
     pub mean_force: f64,
     /// Largest contact force (carrier 0), N.
     pub max_force: f64,
+    /// The filtered force's mean, σ, max and min (carrier 0), N.
+    #[serde(flatten)]
+    pub filtered: crate::study::scalars::FilteredColumns,
     /// Contact switches (carrier 0).
     pub contact_switches: usize,
     /// Steps taken.
@@ -507,6 +510,7 @@ fn row(r: &CompareRun, reference: &RunOutput) -> CompareRow {
             .fold(0.0, f64::max),
         mean_force: s0.force.mean,
         max_force: s0.force.max,
+        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
         contact_switches: s0.contact_switches,
         steps: out.steps,
         wall_seconds: out.wall_seconds,

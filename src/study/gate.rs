@@ -63,7 +63,7 @@ pub struct GateCase {
 /// the list `run --tolerance` estimates and `converge` refines), of carrier
 /// 0, or of carrier N with the suffix `_N` (`force_mean_1`);
 /// `final_probe_N` is probe N's last value.
-pub const QUANTITY_NAMES: [&str; 18] = [
+pub const QUANTITY_NAMES: [&str; 19] = [
     "steps",
     "dofs",
     "contact_switches",
@@ -76,6 +76,7 @@ pub const QUANTITY_NAMES: [&str; 18] = [
     "force_std",
     "force_min",
     "force_max",
+    "filtered_force_mean",
     "filtered_force_std",
     "filtered_force_min",
     "filtered_force_max",
@@ -386,6 +387,7 @@ mod tests {
             )],
             droppers: vec![],
             spans: vec![],
+            standard: vec![],
             dofs: 1,
             steps: 102,
             dt: 1.0,

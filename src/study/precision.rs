@@ -68,6 +68,9 @@ pub struct PrecisionRow {
     pub displacement_error: f64,
     /// |P_l − P_l,ref|.
     pub loss_fraction_error: f64,
+    /// The run's filtered force: mean, σ, max and min (carrier 0), N.
+    #[serde(flatten)]
+    pub filtered: crate::study::scalars::FilteredColumns,
     /// On its formulation's Pareto front (force error vs wall time).
     pub pareto: bool,
 }
@@ -343,6 +346,7 @@ fn row(
         force_error: relative_rms(&t.force[1..], &sample(&tr.force)),
         displacement_error: relative_rms(&t.w[1..], &sample(&tr.w)),
         loss_fraction_error: (out.stats[0].loss_fraction - reference.stats[0].loss_fraction).abs(),
+        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
         pareto: false,
     }
 }
@@ -381,6 +385,7 @@ mod tests {
             force_error: e,
             displacement_error: 0.0,
             loss_fraction_error: 0.0,
+            filtered: Default::default(),
             pareto: false,
         }
     }

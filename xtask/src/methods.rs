@@ -1,5 +1,5 @@
 //! The measured tables of `docs/methods.md`: every time integrator on the
-//! study's reference case (TARGETS.md; `scenes/reference.toml`, N = 400).
+//! study's reference case (docs/targets.md; `scenes/reference.toml`, N = 400).
 //!
 //! 1. Headline at each method's working step: P_l (whole run and in-span),
 //!    contact switches, the largest (re-contact) force, the 0–20 Hz contact

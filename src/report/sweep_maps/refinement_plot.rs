@@ -56,17 +56,19 @@ pub fn write_refinement_plot(path: &Path, spec: &SweepSpec, records: &[SweepReco
             label: "at the sweep's N, Δt".into(),
             points: base,
             shaded: unconverged,
+            filtered: vec![],
         },
         Series {
             label: "refined: 2N, Δt/2".into(),
             points: refined,
             shaded: vec![],
+            filtered: vec![],
         },
     ];
     line_plot(
         path,
         &title,
-        (&axis_label(&spec.axes[0].key), "P_l in span"),
+        (&axis_label(&spec.axes[0].key), "P_l in span (–)"),
         &series,
         "not converged (shaded)",
     )

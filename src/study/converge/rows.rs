@@ -68,7 +68,7 @@ pub struct ConvergeRow {
 }
 
 /// Quantities reported, in order.
-pub const QUANTITIES: [&str; 8] = [
+pub const QUANTITIES: [&str; 12] = [
     "displacement_max",
     "displacement_l2",
     "force_max",
@@ -77,14 +77,22 @@ pub const QUANTITIES: [&str; 8] = [
     "loss_fraction_span",
     "loss_fraction_support",
     "first_loss_position",
+    "filtered_force_mean",
+    "filtered_force_std",
+    "filtered_force_max",
+    "filtered_force_min",
 ];
 
 /// The scalar outputs ([`Scalar`]) among [`QUANTITIES`], in that order.
-pub const SCALARS: [Scalar; 4] = [
+pub const SCALARS: [Scalar; 8] = [
     Scalar::LossFraction,
     Scalar::LossFractionSpan,
     Scalar::LossFractionSupport,
     Scalar::FirstLossPosition,
+    Scalar::FilteredForceMean,
+    Scalar::FilteredForceStd,
+    Scalar::FilteredForceMax,
+    Scalar::FilteredForceMin,
 ];
 
 pub(super) fn max_norm(v: &[f64]) -> f64 {

@@ -27,11 +27,38 @@ use crate::error::{Error, Result};
 pub const LOCK_FILE: &str = "sweep.lock";
 
 /// A claimed sweep folder; the claim ends when this is dropped (or the
-/// process dies).
+/// process dies). Dropped, it removes `sweep.lock` while still holding it,
+/// so a finished sweep leaves no lock file behind; a claim that waited on
+/// the removed file finds it gone and takes a new one ([`claim`]).
 #[derive(Debug)]
 pub struct FolderLock {
     dir: PathBuf,
     _file: File,
+}
+
+impl Drop for FolderLock {
+    fn drop(&mut self) {
+        // removed before the descriptor (and so the lock) is closed
+        let _ = std::fs::remove_file(self.dir.join(LOCK_FILE));
+    }
+}
+
+/// True when `path` still names the file `file` has open (a lock taken on a
+/// file another claim has since removed is no claim of the folder).
+fn still_named(file: &File, path: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        match (file.metadata(), std::fs::metadata(path)) {
+            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (file, path);
+        true
+    }
 }
 
 impl FolderLock {
@@ -52,6 +79,31 @@ pub const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500)
 pub fn claim(dir: &Path) -> Result<FolderLock> {
     std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
     let path = dir.join(LOCK_FILE);
+    // a lock taken on a file its holder removed as it let go: open anew
+    for _ in 0..CLAIM_TRIES {
+        let file = claim_once(dir, &path)?;
+        if still_named(&file, &path) {
+            return Ok(FolderLock {
+                dir: dir.to_path_buf(),
+                _file: file,
+            });
+        }
+        // the file was removed under us: closing it lets go of nothing
+    }
+    Err(Error::invalid(
+        "--out",
+        dir.display(),
+        "its sweep.lock keeps being replaced by other sweeps or merges: wait for them to finish, or use another folder",
+    ))
+}
+
+/// Claims [`claim`] makes before giving up on a folder whose lock file
+/// keeps being removed under it (each removal is a claim that finished).
+const CLAIM_TRIES: usize = 20;
+
+/// Open `sweep.lock` and take its lock (one try of [`claim`]).
+fn claim_once(dir: &Path, path: &Path) -> Result<File> {
+    let path = path.to_path_buf();
     let mut file = OpenOptions::new()
         .create(true)
         .truncate(false)
@@ -91,10 +143,7 @@ pub fn claim(dir: &Path) -> Result<FolderLock> {
     // who holds it, for a person looking at the folder (the lock itself is the OS's)
     file.set_len(0).map_err(|e| Error::io(&path, e))?;
     writeln!(file, "process {}", std::process::id()).map_err(|e| Error::io(&path, e))?;
-    Ok(FolderLock {
-        dir: dir.to_path_buf(),
-        _file: file,
-    })
+    Ok(file)
 }
 
 /// The text of `sweep.json` for a spec.

@@ -43,7 +43,7 @@
 mod axis;
 mod batch;
 pub mod folder;
-mod nan_as_null;
+pub(crate) mod nan_as_null;
 mod points;
 mod record;
 mod refine;

@@ -54,6 +54,10 @@ pub struct SweepRecord {
     pub first_loss_position: Option<f64>,
     /// Contact switches.
     pub contact_switches: usize,
+    /// The filtered force's mean, σ, max and min (carrier 0), N (NaN in a
+    /// record of a taut before them, or a stopped run).
+    #[serde(flatten, default)]
+    pub filtered: crate::study::scalars::FilteredColumns,
     /// Mean force per x_m/L bin (PROFILE_BINS bins over [0, 1]), N; null for
     /// a bin no step fell in.
     pub force_profile: Vec<Option<f64>>,
@@ -89,6 +93,7 @@ impl SweepRecord {
             force_max: f64::NAN,
             first_loss_position: None,
             contact_switches: 0,
+            filtered: crate::study::scalars::FilteredColumns::NONE,
             force_profile: vec![],
             loss_profile: vec![],
             warnings: vec![],
@@ -170,6 +175,7 @@ pub(super) fn record_of(
         force_max: s.force.max,
         first_loss_position: s.first_loss_position,
         contact_switches: s.contact_switches,
+        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
         force_profile: (0..PROFILE_BINS)
             .map(|b| (n[b] > 0).then(|| fsum[b] / n[b] as f64))
             .collect(),

@@ -1,5 +1,5 @@
 //! The measured tables of `docs/contact_loss.md`: contact loss you can
-//! trust on the study's reference case (TARGETS.md; `scenes/reference.toml`).
+//! trust on the study's reference case (docs/targets.md; `scenes/reference.toml`).
 //!
 //! 1. P_l split into an in-span part and a support part (the carrier's
 //!    arrival at a support, inside the support zone of width

@@ -102,7 +102,7 @@ pub fn main() {
         md,
         "Source: Lee, Cho & Chung, *Dynamic contact analysis of a tensioned beam with a moving mass–spring system*, J. Sound Vib. 331 (2012) 2520–2531, Figs 8–12. \
 Every run is the bundled reference scene (`scenes/reference.toml`: clamped–pinned wire, L = 50 m, T = 3e4 N, ρA = 1.335 kg/m, EI = 129.2 N·m², 1 kg on k = 987 N/m with δ0 = 0.05 m riding on top, smooth start to V0, Lagrange contact imposed at t_{{n+1}}, ρ∞ = 1) with one or two values swept by `taut sweep`. \
-The published statements are the study's words and numbers as TARGETS.md records them; its figures can only be read approximately. Nothing here is tuned to match them: where taut differs, that is a finding, with the evidence beside it.\n"
+The published statements are the study's words and numbers as [targets.md](targets.md) records them; its figures can only be read approximately. Nothing here is tuned to match them: where taut differs, that is a finding, with the evidence beside it.\n"
     );
     let _ = writeln!(md, "**Terms.**\n");
     let every: Vec<&Point> = results
