@@ -199,7 +199,7 @@ fn run_study<S: Study>(req: &StudyRequest<S>, fe: &dyn Frontend) -> Result<S::Ou
         .map_err(|e| req.scene.name(e))
         .map_err(|e| save_failure(dir, e, fe))?;
     if let Some(d) = dir {
-        S::write(d, &outcome)?;
+        crate::report::write_whole(d, "taut study", || S::write(d, &outcome))?;
     }
     Ok(outcome)
 }

@@ -6,6 +6,7 @@ mod compare;
 mod converge;
 mod csv;
 mod gate;
+mod incomplete;
 mod line;
 mod line_svg;
 mod modes;
@@ -27,6 +28,7 @@ pub use converge::{
 };
 pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
+pub use incomplete::{INCOMPLETE_FILE, write_whole};
 pub use line::{envelope_table, spans_table, supports_table, write_line};
 pub use modes::{mode_shapes_table, modes_table, write_modes};
 pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
@@ -46,7 +48,7 @@ pub use tolerance::{
 pub use verify::{
     Counts, VERIFY_COLUMNS, verify_markdown, verify_rows, verify_table, write_verify,
 };
-pub use wire::{field_table, snapshots_table, write_wire};
+pub use wire::write_wire;
 
 use std::path::Path;
 
@@ -70,16 +72,19 @@ pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> 
     Some(path)
 }
 
-/// Write all three outputs of a run into `dir` (created if missing).
+/// Write a run's outputs into `dir` (created if missing), `summary.json`
+/// last, the folder marked [`INCOMPLETE_FILE`] until every file is written
+/// ([`write_whole`]).
 pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    write_history(&dir.join("history.csv"), out)?;
-    let summary = Summary::new(sc, out);
-    write_summary(&dir.join("summary.json"), &summary)?;
-    write_force_plot(&dir.join("force.svg"), sc, out)?;
-    write_wire(dir, &out.history)?;
-    write_line(dir, sc, out, &summary.spans)?;
-    Ok(summary)
+    write_whole(dir, "taut run", || {
+        write_history(&dir.join("history.csv"), out)?;
+        let summary = Summary::new(sc, out);
+        write_force_plot(&dir.join("force.svg"), sc, out)?;
+        write_wire(dir, &out.history)?;
+        write_line(dir, sc, out, &summary.spans)?;
+        write_summary(&dir.join("summary.json"), &summary)?;
+        Ok(summary)
+    })
 }
 
 /// Line colours of every plot (matplotlib's tab10), cycled.

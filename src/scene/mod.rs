@@ -29,6 +29,7 @@ mod motion;
 mod pantograph;
 mod speed;
 mod table_files;
+pub mod tables;
 mod validate;
 
 pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
@@ -38,7 +39,10 @@ pub use discretization::{
 };
 pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
-pub use line::{DesignedDropper, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line};
+pub use line::{
+    DesignedDropper, Generated, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line,
+    expand_line_with_origin,
+};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed, with_table_files,
@@ -110,6 +114,10 @@ pub struct Scene {
     /// verify` (`[reference]`; default: Richardson extrapolation).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceSpec>,
+    /// What `[line]` generated (nothing without one): errors found in the
+    /// expanded scene name the keys a user wrote ([`Generated::user_path`]).
+    #[serde(skip)]
+    pub generated: Generated,
 }
 
 /// Support condition at a beam end (MODEL §1).

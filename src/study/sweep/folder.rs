@@ -274,6 +274,58 @@ pub fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
     }
 }
 
+/// Refuse a shard (`--shard i/n`) into a folder holding records of points
+/// the shard does not run: the whole sweep (a merged folder, an unsharded
+/// run) or another shard's points. The shard would clear the folder's
+/// tables and maps and write tables of its own points only, with nothing
+/// to say they are a part (issue 41). A shard's own folder, fresh or
+/// holding its own points (a resumed shard), is accepted.
+pub fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Shard>) -> Result<()> {
+    let Some(shard) = shard else {
+        return Ok(());
+    };
+    let runs = dir.join("runs");
+    let entries = match std::fs::read_dir(&runs) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(Error::io(&runs, e)),
+    };
+    let mut foreign: Vec<usize> = Vec::new();
+    for entry in entries {
+        let path = entry.map_err(|e| Error::io(&runs, e))?.path();
+        let Some(index) = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .and_then(|n| n.strip_suffix(".json"))
+            .filter(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()))
+            .and_then(|s| s.parse::<usize>().ok())
+        else {
+            continue;
+        };
+        if index < spec.len() && !shard.owns(index) {
+            foreign.push(index);
+        }
+    }
+    foreign.sort_unstable();
+    match foreign.first() {
+        None => Ok(()),
+        Some(first) => Err(Error::invalid(
+            "--shard",
+            format!("{}/{}", shard.index, shard.count),
+            format!(
+                "{} holds the records of {} points this shard does not run (the first: point {first}){}: a shard writes the tables of its own points only, and would replace that folder's: run the shard into a folder of its own (taut merge joins shard folders), or resume the whole sweep there without --shard",
+                dir.display(),
+                foreign.len(),
+                if foreign.len() == (0..spec.len()).filter(|&i| !shard.owns(i)).count() {
+                    ": every point of the other shards, the whole sweep with this shard's"
+                } else {
+                    ""
+                }
+            ),
+        )),
+    }
+}
+
 /// Read the records of the given indices, every one present and checked.
 pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
     let id = sweep_id(spec);

@@ -61,7 +61,7 @@ use crate::error::{Error, Result};
 pub use axis::{Axis, AxisTarget, Ratio, WHOLE_SNAP};
 pub use batch::{AUTO_BATCH_LANES, BatchWidth, auto_lanes};
 use batch::{batches, records_guarded};
-pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
+pub use folder::{FolderLock, check_shard, claim, collect, merge, merge_into, read_spec};
 pub use points::{parse_points, read_points};
 pub use record::{PROFILE_BINS, SweepRecord};
 pub use refine::{REFINEMENT_ABS, REFINEMENT_REL, Refined, refinement_converged};
@@ -110,6 +110,7 @@ pub fn sweep_batched(
     let dir = claimed.dir();
     let had_spec = folder::check_spec(dir, spec)?;
     folder::check_no_strays(dir, spec)?;
+    folder::check_shard(dir, spec, shard)?;
     let id = folder::sweep_id(spec);
     let mine: Vec<usize> = (0..spec.len())
         .filter(|&i| shard.is_none_or(|s| s.owns(i)))
