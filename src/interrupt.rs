@@ -55,6 +55,20 @@ pub fn request() {
     REQUESTED.store(true, Ordering::SeqCst);
 }
 
+/// Ask every run in the process to stop, if a [`Call`] is at work; returns
+/// whether one was. A Ctrl-C seen on a thread that is not one of the
+/// calls' (Python's main thread while calls run in a thread pool's
+/// workers, which never see a signal) stops them, and one seen while
+/// nothing works leaves no request standing for the next call.
+pub fn request_if_working() -> bool {
+    // the count's lock orders this against the last call's withdrawal
+    let n = ACTIVE.lock().unwrap_or_else(|p| p.into_inner());
+    if *n > 0 {
+        request();
+    }
+    *n > 0
+}
+
 /// Withdraw the request. [`Call`] does it when the last call returns; a
 /// caller without calls (a test) may do it directly.
 pub fn clear() {

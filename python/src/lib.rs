@@ -109,9 +109,14 @@ fn failed(py: Python<'_>, e: taut::Error, saved: Option<PathBuf>) -> PyErr {
             (message, field, None::<String>, None::<String>),
         ),
         E::Override { spec, reason } => {
+            // `unset KEY` is the removal of KEY (Python's `set={KEY: None}`):
+            // the field is the key
             let (key, value) = match spec.split_once('=') {
                 Some((k, v)) => (k.trim().to_string(), Some(v.trim().to_string())),
-                None => (spec.clone(), None),
+                None => match spec.strip_prefix(taut::scene::UNSET) {
+                    Some(k) => (k.trim().to_string(), None),
+                    None => (spec.clone(), None),
+                },
             };
             raise(py, "SceneError", (message, key, value, Some(reason)))
         }
@@ -750,6 +755,15 @@ fn mesh<'py>(
     Ok(f64_bytes(py, x.into_iter()))
 }
 
+/// Ask every taut call at work in the process to stop at its next step
+/// (`taut::interrupt::request_if_working`); whether one was. The package's
+/// SIGINT handler calls it, so that a Ctrl-C stops calls made from any
+/// thread (a thread pool's workers never see a signal themselves).
+#[pyfunction]
+fn stop_running_calls() -> bool {
+    taut::interrupt::request_if_working()
+}
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -766,6 +780,7 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(stop_running_calls, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

@@ -33,8 +33,11 @@ pub fn write_whole<T>(dir: &Path, what: &str, write: impl FnOnce() -> Result<T>)
              The next command writing this folder removes them and this file.\n"
         )
     };
-    std::fs::write(&marker, text("was writing its outputs here and did not finish (it stopped or was killed)."))
-        .map_err(|e| Error::io(&marker, e))?;
+    std::fs::write(
+        &marker,
+        text("was writing its outputs here and did not finish (it stopped or was killed)."),
+    )
+    .map_err(|e| Error::io(&marker, e))?;
     match write() {
         Ok(v) => {
             std::fs::remove_file(&marker).map_err(|e| Error::io(&marker, e))?;
@@ -72,6 +75,9 @@ mod tests {
         .unwrap_err();
         assert!(e.to_string().contains("a test's failure"));
         let marker = std::fs::read_to_string(d.join(INCOMPLETE_FILE)).unwrap();
-        assert!(marker.contains("a test's failure") && marker.contains("partial"), "{marker}");
+        assert!(
+            marker.contains("a test's failure") && marker.contains("partial"),
+            "{marker}"
+        );
     }
 }

@@ -66,7 +66,12 @@ pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> 
     };
     let failed = e.payload::<crate::contact::ContactFailed>()?;
     let path = dir.join(format!("failed_contact_step_{step}.json"));
-    let json = serde_json::to_string_pretty(&failed.problem).ok()?;
+    // a problem JSON cannot hold (NaN, ±inf would be nulls no replay
+    // reads) is saved as the reason it cannot be replayed
+    let json = match crate::contact::NotReplayable::of(&failed.problem) {
+        Some(why) => serde_json::to_string_pretty(&why).ok()?,
+        None => serde_json::to_string_pretty(&failed.problem).ok()?,
+    };
     std::fs::create_dir_all(dir).ok()?;
     std::fs::write(&path, json).ok()?;
     Some(path)

@@ -18,7 +18,11 @@ use crate::record::{History, WireSeries};
 fn write_long(path: &Path, s: &WireSeries, requested: bool) -> Result<()> {
     let io = |e| Error::io(path, e);
     let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(io)?);
-    let header = if requested { "t_requested,t,x,v\n" } else { "t,x,v\n" };
+    let header = if requested {
+        "t_requested,t,x,v\n"
+    } else {
+        "t,x,v\n"
+    };
     w.write_all(header.as_bytes()).map_err(io)?;
     let mut line = String::new();
     for k in 0..s.rows() {

@@ -94,9 +94,13 @@ fn fixed_culprit(e: &MemoryEstimate, s: &RunSizes, droppers: DropperSource) -> E
                 DropperSource::Line => Error::invalid(
                     "line.droppers",
                     counts,
-                    format!("(line.spans × line.droppers, and any [[dropper]] tables): {need}: {advice}"),
+                    format!(
+                        "(line.spans × line.droppers, and any [[dropper]] tables): {need}: {advice}"
+                    ),
                 ),
-                DropperSource::Tables => Error::invalid("dropper", counts, format!("{need}: {advice}")),
+                DropperSource::Tables => {
+                    Error::invalid("dropper", counts, format!("{need}: {advice}"))
+                }
             }
         }
         2 => Error::invalid(

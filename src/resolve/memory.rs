@@ -431,7 +431,11 @@ const FIELD_CSV_VALUES: u64 = 3;
 /// up to n.
 fn squares_up_to(n: u64) -> u64 {
     // n(n+1)(2n+1)/6, each factor first divided where it can be
-    let (a, b, c) = (n, n.saturating_add(1), n.saturating_mul(2).saturating_add(1));
+    let (a, b, c) = (
+        n,
+        n.saturating_add(1),
+        n.saturating_mul(2).saturating_add(1),
+    );
     let (mut f, mut g, mut h) = (a, b, c);
     for d in [2u64, 3] {
         if f % d == 0 {
@@ -461,10 +465,10 @@ pub fn estimate(s: &RunSizes) -> MemoryEstimate {
         .saturating_mul(2 * u(s.half_band) + 1)
         .saturating_add(RHS_BLOCKS.saturating_mul(u(rhs_columns(s.carriers))))
         .saturating_add(u(s.source_vectors));
-    let mut model = n
-        .saturating_mul(per_dof)
-        .saturating_mul(8)
-        .saturating_add(nt.saturating_mul(nt).saturating_mul(8 * DENSE_CONTACT_MATRICES));
+    let mut model = n.saturating_mul(per_dof).saturating_mul(8).saturating_add(
+        nt.saturating_mul(nt)
+            .saturating_mul(8 * DENSE_CONTACT_MATRICES),
+    );
     if let Some(modes) = s.modal_modes {
         model = model.saturating_add(modal_bytes(s.fe_unknowns, modes));
     }
@@ -472,8 +476,14 @@ pub fn estimate(s: &RunSizes) -> MemoryEstimate {
     let droppers = n
         .saturating_mul(m)
         .saturating_mul(8 * DROPPER_RESPONSE_BLOCKS)
-        .saturating_add(m.saturating_mul(m).saturating_mul(8 * DROPPER_SQUARE_MATRICES))
-        .saturating_add(nc.saturating_mul(m).saturating_mul(8 * DROPPER_COUPLING_BLOCKS))
+        .saturating_add(
+            m.saturating_mul(m)
+                .saturating_mul(8 * DROPPER_SQUARE_MATRICES),
+        )
+        .saturating_add(
+            nc.saturating_mul(m)
+                .saturating_mul(8 * DROPPER_COUPLING_BLOCKS),
+        )
         .saturating_add(u(s.droppers).saturating_mul(DROPPER_BYTES))
         .saturating_add(u(s.attachments).saturating_mul(ATTACHMENT_BYTES))
         .saturating_add(nc.saturating_mul(CARRIER_BYTES))
@@ -509,8 +519,7 @@ pub fn estimate(s: &RunSizes) -> MemoryEstimate {
         .saturating_add(wire_points.saturating_mul(point.saturating_add(16)))
         .saturating_add(u(s.supports).saturating_mul(64))
         .saturating_add(
-            u(s.envelope_points)
-                .saturating_mul(ENVELOPE_BYTES_PER_NODE.saturating_add(2 * point)),
+            u(s.envelope_points).saturating_mul(ENVELOPE_BYTES_PER_NODE.saturating_add(2 * point)),
         );
     let summary_json = nc
         .saturating_add(1)

@@ -27,9 +27,9 @@ pub mod wire;
 use std::path::Path;
 
 pub use attachment::check_attachments;
+pub use budget_check::{DropperSource, check_budget};
 pub use damping::check_damping;
 pub use dropper::check_droppers;
-pub use budget_check::{DropperSource, check_budget};
 pub use memory::{
     EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
     PLOT_BUCKETS, RunSizes, estimate as estimate_memory, event_capacity, history_rows,

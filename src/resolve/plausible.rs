@@ -189,8 +189,14 @@ mod tests {
         assert!(s.stiffness("k", 0.0).is_ok());
         assert!(s.stiffness("k", 1e-8).is_ok());
         assert!(s.stiffness("k", 1e16).is_ok());
-        let e = s.stiffness("dropper.0.stiffness", 5e-324).unwrap_err().to_string();
-        assert!(e.contains("`dropper.0.stiffness` = 5e-324") && e.contains("could not tell it from 0"), "{e}");
+        let e = s
+            .stiffness("dropper.0.stiffness", 5e-324)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`dropper.0.stiffness` = 5e-324") && e.contains("could not tell it from 0"),
+            "{e}"
+        );
         let e = s.stiffness("k", 1e300).unwrap_err().to_string();
         assert!(e.contains("lost in round-off"), "{e}");
         assert!(s.mass("m", 1e-6).is_ok() && s.mass("m", 1e-30).is_err());

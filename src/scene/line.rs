@@ -149,10 +149,7 @@ pub fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generated)> {
     let Some(line) = tree.remove("line") else {
         return Ok((tree, Generated::default()));
     };
-    let given_elements = tree
-        .get("mesh")
-        .and_then(|m| m.get("elements"))
-        .is_some();
+    let given_elements = tree.get("mesh").and_then(|m| m.get("elements")).is_some();
     let spec: LineSpec = super::tables::from_value(line).map_err(|e| {
         let path = e.path().to_string().replace('[', ".").replace(']', "");
         let inner = e.into_inner().to_string();

@@ -12,8 +12,7 @@
 use std::fmt;
 
 use serde::de::{
-    self, DeserializeSeed, Deserializer, EnumAccess, MapAccess, SeqAccess,
-    VariantAccess, Visitor,
+    self, DeserializeSeed, Deserializer, EnumAccess, MapAccess, SeqAccess, VariantAccess, Visitor,
 };
 
 /// A deserializer whose structs are read from maps (tables) only.
@@ -398,10 +397,16 @@ mod tests {
             }
         );
         let e = read("inner = [1.0, 2.0]").unwrap_err();
-        assert!(e.contains("expected a table { mass = …, stiffness = … }, not an array"), "{e}");
+        assert!(
+            e.contains("expected a table { mass = …, stiffness = … }, not an array"),
+            "{e}"
+        );
         assert!(e.ends_with("at inner"), "{e}");
         let e = read("list = [[1.0, 2.0]]").unwrap_err();
-        assert!(e.contains("not an array") && e.ends_with("at list[0]"), "{e}");
+        assert!(
+            e.contains("not an array") && e.ends_with("at list[0]"),
+            "{e}"
+        );
         // a list of tables is still a list
         assert_eq!(read("list = [{ mass = 2.0 }]").unwrap().list.len(), 1);
     }

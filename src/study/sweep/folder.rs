@@ -31,7 +31,25 @@ pub const LOCK_FILE: &str = "sweep.lock";
 #[derive(Debug)]
 pub struct FolderLock {
     dir: PathBuf,
+    /// The folder's canonical path, held in [`CLAIMED`] until dropped.
+    canonical: PathBuf,
     _file: File,
+}
+
+/// The folders claimed by this process, by canonical path: a claim is
+/// refused here first, whatever the file system makes of two locks taken
+/// by one process (on NFS and other file systems that emulate `flock`
+/// with POSIX record locks, a process's second lock on a file succeeds:
+/// two sweeps of one Python process shared a folder, issue 41).
+static CLAIMED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+impl Drop for FolderLock {
+    fn drop(&mut self) {
+        let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some(i) = held.iter().position(|p| p == &self.canonical) {
+            held.swap_remove(i);
+        }
+    }
 }
 
 impl FolderLock {
@@ -51,14 +69,41 @@ pub const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500)
 /// process holds it.
 pub fn claim(dir: &Path) -> Result<FolderLock> {
     std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
+    let canonical = dir.canonicalize().map_err(|e| Error::io(dir, e))?;
+    let in_use = |holder: &str| {
+        Error::invalid(
+            "--out",
+            dir.display(),
+            format!(
+                "is in use by another sweep or merge running now ({holder}): wait for it to \
+                 finish, or use another folder"
+            ),
+        )
+    };
+    {
+        let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
+        if held.contains(&canonical) {
+            return Err(in_use(&format!("in this process, {}", std::process::id())));
+        }
+        held.push(canonical.clone());
+    }
+    // from here the claim is this process's: a failure below gives it back
+    let release = |e: Error| {
+        let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some(i) = held.iter().position(|p| p == &canonical) {
+            held.swap_remove(i);
+        }
+        e
+    };
     let path = dir.join(LOCK_FILE);
-    let mut file = OpenOptions::new()
+    let file = OpenOptions::new()
         .create(true)
         .truncate(false)
         .read(true)
         .write(true)
         .open(&path)
-        .map_err(|e| Error::io(&path, e))?;
+        .map_err(|e| release(Error::io(&path, e)))?;
+    let mut file = file;
     // A lock just released can look held for a moment: a thread of this
     // process that forks a child (std::process::Command) duplicates every
     // open descriptor until the child's exec closes it, and the lock lives
@@ -76,23 +121,20 @@ pub fn claim(dir: &Path) -> Result<FolderLock> {
         Err(TryLockError::WouldBlock) => {
             // a line or two ("process N"): read no more than a line's worth
             let holder = crate::input::read_text(&path, "a lock file", 256).unwrap_or_default();
-            return Err(Error::invalid(
-                "--out",
-                dir.display(),
-                format!(
-                    "is in use by another sweep or merge running now ({}): wait for it to \
-                     finish, or use another folder",
-                    holder.trim().lines().next().unwrap_or("its lock is held")
-                ),
-            ));
+            return Err(release(in_use(
+                holder.trim().lines().next().unwrap_or("its lock is held"),
+            )));
         }
-        Err(TryLockError::Error(e)) => return Err(Error::io(&path, e)),
+        Err(TryLockError::Error(e)) => return Err(release(Error::io(&path, e))),
     }
     // who holds it, for a person looking at the folder (the lock itself is the OS's)
-    file.set_len(0).map_err(|e| Error::io(&path, e))?;
-    writeln!(file, "process {}", std::process::id()).map_err(|e| Error::io(&path, e))?;
+    let stamped = file
+        .set_len(0)
+        .and_then(|()| writeln!(file, "process {}", std::process::id()));
+    stamped.map_err(|e| release(Error::io(&path, e)))?;
     Ok(FolderLock {
         dir: dir.to_path_buf(),
+        canonical,
         _file: file,
     })
 }

@@ -40,6 +40,7 @@
 //! [`batch`] (points stepped together), [`folder`] (the sweep's folder);
 //! this file runs the sweep.
 
+mod aliases;
 mod axis;
 mod batch;
 pub mod folder;
@@ -67,7 +68,7 @@ pub use record::{PROFILE_BINS, SweepRecord};
 pub use refine::{REFINEMENT_ABS, REFINEMENT_REL, Refined, refinement_converged};
 pub use resolve::DIMENSIONLESS;
 pub use shard::Shard;
-pub use spec::{MAX_POINTS, SweepSpec};
+pub use spec::{MAX_POINT_KEYS, MAX_POINTS, SweepSpec};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid
