@@ -387,14 +387,12 @@ def round_three(work: Path, must: dict, out) -> list:
 
     # plausible: lumped elements a model cannot compute
     for scene, key in [(drops, "dropper.0.stiffness"), (drops, "dropper.0.damping"),
-                       (ref, "carrier.mass"), (ref, "carrier.stiffness"), (ref, "carrier.damping"),
+                       (ref, "carrier.0.mass"), (ref, "carrier.0.stiffness"), (ref, "carrier.0.damping"),
                        (ref, "contact.penalty.stiffness"), (ref, "beam.damping.mass"),
                        (ref, "beam.damping.stiffness"), (panto, "carrier.0.masses.1"),
-                       (panto, "carrier.0.stiffnesses.0"), (line, "line.dropper_stiffness"),
+                       (panto, "carrier.0.stiffnesses.0"), (line, "line.dropper_damping"),
                        (line, "line.steady_arm.mass")]:
         for v in ["5e-324", "1e-300", "1e300"]:
-            if key.endswith(".damping") and v == "1e300" and scene == ref and key.startswith("carrier"):
-                pass
             add(f"plausible {Path(scene).stem} {key}={v}",
                 ["run", scene, "--set", f"{key}={v}", *short, *out("pl")], f"`{key}`")
     nulls = files / "failed_contact_step_1.json"
@@ -499,7 +497,7 @@ except taut.SceneError as e:
     "ctrl-c in a thread pool": """
 import os, signal, threading, time
 from concurrent.futures import ThreadPoolExecutor
-sets = [{"mesh.elements": 1600, "time.step": 2.5e-5} for _ in range(4)]
+sets = [{"mesh.elements": 3200, "time.step": 1.25e-5} for _ in range(4)]
 threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
 t0 = time.time()
 try:

@@ -54,7 +54,11 @@ fn taut(args: &[&str]) -> (i32, String, String) {
 fn refused(args: &[&str], key: &str) -> String {
     let (code, _, err) = taut(args);
     assert_eq!(code, 1, "{args:?}: {err}");
-    assert!(err.starts_with("error: "), "{args:?}: {err}");
+    // (a note of outputs an earlier case left may come first)
+    assert!(
+        err.lines().any(|l| l.starts_with("error: ")),
+        "{args:?}: {err}"
+    );
     assert!(err.contains(key), "{args:?} names {key}: {err}");
     err
 }
@@ -248,14 +252,14 @@ fn an_explicit_droppers_error_names_a_path_set_takes() {
             "run",
             &scene("line_10_spans.toml"),
             "--set",
-            "line.dropper_stiffness=5e-324",
+            "line.dropper_damping=1e300",
             "--set",
             "time.end=0.002",
             "--out",
             &o,
             "--quiet",
         ],
-        "`line.dropper_stiffness`",
+        "`line.dropper_damping`",
     );
 }
 
@@ -381,7 +385,7 @@ fn lumped_values_no_run_can_use_are_refused_with_the_reason() {
     let o = out(&d);
     for (name, key, value) in [
         ("span_droppers.toml", "dropper.0.stiffness", "5e-324"),
-        ("reference.toml", "carrier.mass", "1e-300"),
+        ("reference.toml", "carrier.0.mass", "1e-300"),
         ("reference.toml", "contact.penalty.stiffness", "1e300"),
         ("pantograph_3mass.toml", "carrier.0.masses.1", "5e-324"),
     ] {

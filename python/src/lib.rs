@@ -755,14 +755,29 @@ fn mesh<'py>(
     Ok(f64_bytes(py, x.into_iter()))
 }
 
+/// The most keys a list of points may set
+/// (`taut::study::sweep::MAX_POINT_KEYS`), so that the Python layer
+/// refuses a wider one before building its axes.
+#[pyfunction]
+fn most_point_keys() -> usize {
+    taut::study::sweep::MAX_POINT_KEYS
+}
+
 /// Ask every taut call at work in the process to stop at its next step
 /// (`taut::interrupt::request_if_working`); whether one was. The package's
 /// SIGINT handler calls it, so that a Ctrl-C stops calls made from any
 /// thread (a thread pool's workers never see a signal themselves).
 #[pyfunction]
 fn stop_running_calls() -> bool {
-    taut::interrupt::request_if_working()
+    taut::interrupt::request_if_working(STOP_HOLD)
 }
+
+/// How long a Ctrl-C keeps stopping calls that start after it
+/// ([`taut::interrupt::request_if_working`]): a thread pool that shuts down
+/// starts its queued calls within milliseconds of the running ones'
+/// stop; 2 s covers that on a loaded machine, and a call started later
+/// runs as usual.
+const STOP_HOLD: Duration = Duration::from_secs(2);
 
 /// The native module.
 #[pymodule]
@@ -781,6 +796,7 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(mesh, m)?)?;
     m.add_function(wrap_pyfunction!(stop_running_calls, m)?)?;
+    m.add_function(wrap_pyfunction!(most_point_keys, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

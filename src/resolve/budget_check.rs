@@ -44,7 +44,8 @@ fn breakdown(e: &MemoryEstimate) -> String {
         (e.other(), "of contact events and output buffers"),
         (e.filter, "of the summary's 0–20 Hz force filter"),
     ] {
-        if bytes > 0 {
+        // parts that round to nothing are left out
+        if bytes >= 1 << 16 {
             parts.push(format!("{} {what}", gib(bytes)));
         }
     }
@@ -95,7 +96,7 @@ fn fixed_culprit(e: &MemoryEstimate, s: &RunSizes, droppers: DropperSource) -> E
                     "line.droppers",
                     counts,
                     format!(
-                        "(line.spans × line.droppers, and any [[dropper]] tables): {need}: {advice}"
+                        "line.spans × line.droppers (and any [[dropper]] tables) give that many: {need}: {advice}"
                     ),
                 ),
                 DropperSource::Tables => {

@@ -465,17 +465,26 @@ pub fn estimate(s: &RunSizes) -> MemoryEstimate {
         .saturating_mul(2 * u(s.half_band) + 1)
         .saturating_add(RHS_BLOCKS.saturating_mul(u(rhs_columns(s.carriers))))
         .saturating_add(u(s.source_vectors));
-    let mut model = n.saturating_mul(per_dof).saturating_mul(8).saturating_add(
-        nt.saturating_mul(nt)
-            .saturating_mul(8 * DENSE_CONTACT_MATRICES),
-    );
+    let (m, nc) = (u(s.tension_droppers), u(s.carriers));
+    // the contact problem's dense matrices: the contacts' block in the
+    // model, the rest of nt × nt the droppers'
+    let dense = |rows: u64| {
+        rows.saturating_mul(rows)
+            .saturating_mul(8 * DENSE_CONTACT_MATRICES)
+    };
+    let mut model = n
+        .saturating_mul(per_dof)
+        .saturating_mul(8)
+        .saturating_add(dense(nc));
     if let Some(modes) = s.modal_modes {
         model = model.saturating_add(modal_bytes(s.fe_unknowns, modes));
     }
-    let (m, nc) = (u(s.tension_droppers), u(s.carriers));
-    let droppers = n
-        .saturating_mul(m)
-        .saturating_mul(8 * DROPPER_RESPONSE_BLOCKS)
+    let droppers = dense(nt)
+        .saturating_sub(dense(nc))
+        .saturating_add(
+            n.saturating_mul(m)
+                .saturating_mul(8 * DROPPER_RESPONSE_BLOCKS),
+        )
         .saturating_add(
             m.saturating_mul(m)
                 .saturating_mul(8 * DROPPER_SQUARE_MATRICES),

@@ -98,7 +98,7 @@ impl ForceSeries {
         }
         if t[0] > 0.0 {
             return Err(Error::invalid(
-                format!("{}[0]", f("time")),
+                format!("{}.0", f("time")),
                 t[0],
                 "must be ≤ 0 s: the series must cover the run from its start",
             ));
@@ -106,7 +106,7 @@ impl ForceSeries {
         let last = t[t.len() - 1];
         if last < t_end {
             return Err(Error::invalid(
-                format!("{}[{}]", f("time"), t.len() - 1),
+                format!("{}.{}", f("time"), t.len() - 1),
                 last,
                 format!("must be ≥ the run's end time {t_end} s: the series must cover the run"),
             ));
@@ -218,10 +218,10 @@ mod tests {
             "{m}"
         );
         let m = e(&[0.1, 1.0], &[1.0, 1.0], 1.0);
-        assert!(m.contains("time[0]") && m.contains("cover"), "{m}");
+        assert!(m.contains("time.0") && m.contains("cover"), "{m}");
         let m = e(&[0.0, 0.5], &[1.0, 1.0], 1.0);
         assert!(m.contains("time.1") && m.contains("end time 1"), "{m}");
         let m = e(&[0.0, 1.0], &[1.0, f64::NAN], 1.0);
-        assert!(m.contains("force[1]") && m.contains("finite"), "{m}");
+        assert!(m.contains("force.1") && m.contains("finite"), "{m}");
     }
 }
