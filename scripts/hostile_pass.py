@@ -350,11 +350,11 @@ def round_three(work: Path, must: dict, out) -> list:
         (ref, "carrier.0.speed", "[\"constant\", 10.0]"), (ref, "carrier", "[[1.0, 987.0]]"),
         (ref, "probe", "[[\"p\", 1.0]]"), (ref, "mesh", "[400]"), (ref, "reference", "[\"richardson\"]"),
         (ref, "beam", "[50.0]"), (line, "line", "[10, 55.0]"), (line, "line.messenger", "[1.6e4, 1.07]"),
-        (line, "line.steady_arm", "[1.0, 2.0]"), (line, "line.droppers", "[[9, 3.5]]"),
+        (line, "line.steady_arm", "[1.0, 2.0]"), (ref, "carrier.0.speed.profile", "[\"constant\"]"),
         (ref, "carrier.0.external_force", "[[0.0, 1.0], [0.0, 1.0]]"),
     ]:
-        add(f"tables {Path(scene).stem} {key}", ["run", scene, "--set", f"{key}={value}", *short,
-                                                  *out("ta")], "not" if key == "line.droppers" else "not an array")
+        add(f"tables {Path(scene).stem} {key}", ["run", scene, "--set", f"{key}={value}",
+                                                  *out("ta")], "not an array" if key != "carrier.0.speed.profile" else "carrier.0.speed")
 
     # folders: a shard into a whole sweep's folder; a run whose writing fails
     def shard_into_whole(r) -> list[str]:

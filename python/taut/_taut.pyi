@@ -21,9 +21,11 @@ __all__ = [
     "limits",
     "mesh",
     "modes",
+    "most_point_keys",
     "precision",
     "run",
     "scene_json",
+    "stop_running_calls",
     "sweep",
     "taut_version",
 ]

@@ -12,7 +12,8 @@
 use std::fmt;
 
 use serde::de::{
-    self, DeserializeSeed, Deserializer, EnumAccess, MapAccess, SeqAccess, VariantAccess, Visitor,
+    self, DeserializeSeed, Deserializer, EnumAccess, Error as _, MapAccess, SeqAccess,
+    VariantAccess, Visitor,
 };
 
 /// A deserializer whose structs are read from maps (tables) only.
@@ -94,6 +95,14 @@ impl<'de, V: Visitor<'de>> Visitor<'de> for Visit<V> {
     fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Value, A::Error> {
         match self.fields {
             Some(fields) => Err(not_a_table(fields)),
+            // an internally tagged enum (`speed = { profile = … }`, a
+            // manufactured factor `{ kind = … }`) is read through
+            // `deserialize_any`, and serde takes a sequence's first element
+            // as its tag and the rest by position: refused as well, told
+            // apart by what its visitor expects
+            None if tagged_enum(&self.inner) => Err(A::Error::custom(
+                "expected a table whose key names its form (`profile = …`, `kind = …`) and its values, not an array: a table's values are given by key, never by position",
+            )),
             None => self.inner.visit_seq(Seq(seq)),
         }
     }
@@ -105,6 +114,23 @@ impl<'de, V: Visitor<'de>> Visitor<'de> for Visit<V> {
     fn visit_enum<A: EnumAccess<'de>>(self, data: A) -> Result<Self::Value, A::Error> {
         self.inner.visit_enum(Enum(data))
     }
+}
+
+/// What a visitor expects, as text.
+struct Expecting<'a, V>(&'a V);
+
+impl<'de, V: Visitor<'de>> fmt::Display for Expecting<'_, V> {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        self.0.expecting(f)
+    }
+}
+
+/// Whether `v` reads an internally tagged enum (serde's visitor of one
+/// expects "internally tagged enum NAME").
+fn tagged_enum<'de, V: Visitor<'de>>(v: &V) -> bool {
+    Expecting(v)
+        .to_string()
+        .starts_with("internally tagged enum")
 }
 
 /// A seed whose value is read through [`Strict`].
@@ -409,5 +435,35 @@ mod tests {
         );
         // a list of tables is still a list
         assert_eq!(read("list = [{ mass = 2.0 }]").unwrap().list.len(), 1);
+    }
+
+    #[derive(Debug, Deserialize, PartialEq)]
+    #[serde(tag = "profile", rename_all = "snake_case", deny_unknown_fields)]
+    enum Speed {
+        Constant { value: f64 },
+    }
+
+    #[derive(Debug, Deserialize, PartialEq)]
+    struct WithSpeed {
+        speed: Speed,
+    }
+
+    #[test]
+    fn an_internally_tagged_table_given_as_an_array_is_refused() {
+        let read = |text: &str| {
+            let v = toml::Value::Table(text.parse::<toml::Table>().unwrap());
+            from_value::<WithSpeed>(v).map_err(|e| e.inner().to_string())
+        };
+        assert_eq!(
+            read("speed = { profile = \"constant\", value = 10.0 }").unwrap(),
+            WithSpeed {
+                speed: Speed::Constant { value: 10.0 }
+            }
+        );
+        let e = read("speed = [\"constant\", 10.0]").unwrap_err();
+        assert!(
+            e.contains("names its form") && e.contains("not an array"),
+            "{e}"
+        );
     }
 }
