@@ -10,12 +10,7 @@ use std::process::Command;
 const BIN: &str = env!("CARGO_BIN_EXE_taut");
 
 fn scene(name: &str) -> String {
-    common::crate_root()
-        .join("scenes")
-        .join(name)
-        .to_str()
-        .unwrap()
-        .to_string()
+    common::scene_path(name)
 }
 
 /// Run taut with `args`, returning (exit code, stdout, stderr).
@@ -193,26 +188,10 @@ fn a_modal_run_and_sweep_are_the_same_bytes_pinned_to_one_cpu() {
 /// takes well under a second here; a hang is endless.
 const HANG_SECONDS: u64 = 120;
 
-/// Run taut under a virtual-memory cap of `kib` KiB (`ulimit -v`) and a
-/// time limit ([`HANG_SECONDS`], then SIGKILL: exit code 137), so that a
-/// regression to unbounded reading or allocation, or a hang, fails the test
-/// (an abort, a refused allocation, a kill) instead of taking the machine.
+/// Run taut under a virtual-memory cap of `kib` KiB and [`HANG_SECONDS`]
+/// ([`common::taut_capped`]).
 fn taut_capped(kib: u64, args: &[&str]) -> (i32, String, String) {
-    let o = Command::new("bash")
-        .current_dir(common::crate_root())
-        .arg("-c")
-        .arg(format!(
-            "ulimit -v {kib}; exec timeout -s KILL {HANG_SECONDS} \"$0\" \"$@\""
-        ))
-        .arg(BIN)
-        .args(args)
-        .output()
-        .expect("bash runs");
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
+    common::taut_capped(kib, HANG_SECONDS, args)
 }
 
 /// Address space for one small run of taut: 1 GiB (a run of the reference

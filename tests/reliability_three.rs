@@ -10,15 +10,8 @@ use crate::common;
 use std::path::Path;
 use std::process::Command;
 
-const BIN: &str = env!("CARGO_BIN_EXE_taut");
-
 fn scene(name: &str) -> String {
-    common::crate_root()
-        .join("scenes")
-        .join(name)
-        .to_str()
-        .unwrap()
-        .to_string()
+    common::scene_path(name)
 }
 
 /// Longest a case may take, s, before it counts as a hang (each takes
@@ -30,28 +23,33 @@ const HANG_SECONDS: u64 = 60;
 /// nothing).
 const CAP_KIB: u64 = 3 << 20;
 
-/// Run taut under [`CAP_KIB`] of address space and [`HANG_SECONDS`]
-/// (then SIGKILL: exit code 137): (exit code, stdout, stderr).
-fn taut(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new("bash")
-        .current_dir(common::crate_root())
-        .arg("-c")
-        .arg(format!(
-            "ulimit -v {CAP_KIB}; exec timeout -s KILL {HANG_SECONDS} \"$0\" \"$@\""
-        ))
-        .arg(BIN)
-        .args(args)
-        .output()
-        .expect("bash runs");
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
+/// Run taut under [`CAP_KIB`] of address space and [`HANG_SECONDS`]:
+/// (exit code, stdout, stderr).
+fn taut<S: AsRef<str>>(args: &[S]) -> (i32, String, String) {
+    let args: Vec<&str> = args.iter().map(AsRef::as_ref).collect();
+    common::taut_capped(CAP_KIB, HANG_SECONDS, &args)
+}
+
+/// `run SCENE --set S… --out OUT --quiet`.
+fn run(scene: &str, sets: &[&str], out: &str) -> Vec<String> {
+    let mut a = vec!["run".to_string(), scene.to_string()];
+    for s in sets {
+        a.extend(["--set".to_string(), s.to_string()]);
+    }
+    a.extend(["--out".to_string(), out.to_string(), "--quiet".to_string()]);
+    a
+}
+
+/// `sweep scenes/reference.toml --points FILE --set S… --out OUT --quiet`.
+fn points(file: &str, sets: &[&str], out: &str) -> Vec<String> {
+    let mut a = run(&scene("reference.toml"), sets, out);
+    a[0] = "sweep".into();
+    a.splice(2..2, ["--points".to_string(), file.to_string()]);
+    a
 }
 
 /// `taut ARGS…` must exit 1 with an error naming `key`; returns stderr.
-fn refused(args: &[&str], key: &str) -> String {
+fn refused<S: AsRef<str> + std::fmt::Debug>(args: &[S], key: &str) -> String {
     let (code, _, err) = taut(args);
     assert_eq!(code, 1, "{args:?}: {err}");
     // (a note of outputs an earlier case left may come first)
@@ -82,17 +80,7 @@ fn lines_and_droppers_past_the_budget_are_refused_naming_their_keys() {
     // response each: 31.6 GB, an abort before)
     let line = scene("line_10_spans.toml");
     let err = refused(
-        &[
-            "run",
-            &line,
-            "--set",
-            "line.spans=1000",
-            "--set",
-            "time.end=0.002",
-            "--out",
-            &o,
-            "--quiet",
-        ],
+        &run(&line, &["line.spans=1000", "time.end=0.002"], &o),
         "`line.droppers`",
     );
     assert!(
@@ -101,19 +89,15 @@ fn lines_and_droppers_past_the_budget_are_refused_naming_their_keys() {
     );
     // 100 droppers a span on a 1 cm mesh: accepted before, 2.45 GB
     refused(
-        &[
-            "run",
+        &run(
             &line,
-            "--set",
-            "line.droppers.count=100",
-            "--set",
-            "line.element_length=0.01",
-            "--set",
-            "time.end=0.002",
-            "--out",
+            &[
+                "line.droppers.count=100",
+                "line.element_length=0.01",
+                "time.end=0.002",
+            ],
             &o,
-            "--quiet",
-        ],
+        ),
         "`line.droppers`",
     );
     // 30 000 explicit droppers on the reference scene (7.2 GB of Q)
@@ -127,15 +111,7 @@ fn lines_and_droppers_past_the_budget_are_refused_naming_their_keys() {
     let many = d.path().join("many.toml");
     std::fs::write(&many, text).unwrap();
     refused(
-        &[
-            "run",
-            many.to_str().unwrap(),
-            "--set",
-            "time.end=0.002",
-            "--out",
-            &o,
-            "--quiet",
-        ],
+        &run(many.to_str().unwrap(), &["time.end=0.002"], &o),
         "`dropper`",
     );
     assert!(!Path::new(&o).join("history.csv").exists());
@@ -152,17 +128,11 @@ fn fields_and_snapshots_past_a_budget_are_refused_naming_their_keys() {
     // 101 rows × 10⁶ points: a 4.5 GB field.csv (peaked above 2.4 GB and
     // aborted, after writing history.csv, summary.json and force.svg)
     let err = refused(
-        &[
-            "run",
+        &run(
             &reference,
-            "--set",
-            "time.end=0.01",
-            "--set",
-            "output.field={every=1, points=1000000}",
-            "--out",
+            &["time.end=0.01", "output.field={every=1, points=1000000}"],
             &o,
-            "--quiet",
-        ],
+        ),
         "`output.field`",
     );
     assert!(err.contains("field.csv"), "{err}");
@@ -170,17 +140,14 @@ fn fields_and_snapshots_past_a_budget_are_refused_naming_their_keys() {
     // 200 snapshots × 10⁶ points: 1.5 GB of values, a 12.8 GB snapshots.csv
     let times: Vec<String> = (0..200).map(|k| format!("{}", 0.003 * k as f64)).collect();
     refused(
-        &[
-            "run",
+        &run(
             &reference,
-            "--set",
-            &format!("output.snapshots=[{}]", times.join(", ")),
-            "--set",
-            "output.snapshot_points=1000000",
-            "--out",
+            &[
+                &format!("output.snapshots=[{}]", times.join(", ")),
+                "output.snapshot_points=1000000",
+            ],
             &o,
-            "--quiet",
-        ],
+        ),
         "`output.snapshots`",
     );
 }
@@ -198,18 +165,7 @@ fn points_columns_that_set_one_value_are_refused_naming_both() {
     ] {
         let f = d.path().join("points.csv");
         std::fs::write(&f, format!("{a},{b}\n1.0,0.5\n")).unwrap();
-        let err = refused(
-            &[
-                "sweep",
-                &scene("reference.toml"),
-                "--points",
-                f.to_str().unwrap(),
-                "--out",
-                &o,
-                "--quiet",
-            ],
-            "both set",
-        );
+        let err = refused(&points(f.to_str().unwrap(), &[], &o), "both set");
         assert!(err.contains(a) && err.contains(b), "{err}");
     }
 }
@@ -228,37 +184,18 @@ fn an_explicit_droppers_error_names_a_path_set_takes() {
     let f = d.path().join("line.toml");
     std::fs::write(&f, text).unwrap();
     let f = f.to_str().unwrap();
-    let err = refused(
-        &["run", f, "--set", "time.end=0.002", "--out", &o, "--quiet"],
-        "`dropper.0.stiffness`",
-    );
+    let err = refused(&run(f, &["time.end=0.002"], &o), "`dropper.0.stiffness`");
     assert!(!err.contains("dropper.90"), "{err}");
     // and that path is the one to fix it with: the error goes
-    let (code, _, err) = taut(&[
-        "run",
-        f,
-        "--set",
-        "dropper.0.stiffness=1e5",
-        "--set",
-        "time.end=0.002",
-        "--out",
-        &o,
-        "--quiet",
-    ]);
+    let (code, _, err) = taut(&run(f, &["dropper.0.stiffness=1e5", "time.end=0.002"], &o));
     assert_eq!(code, 0, "{err}");
     // a generated dropper's error names the [line] key that made it
     refused(
-        &[
-            "run",
+        &run(
             &scene("line_10_spans.toml"),
-            "--set",
-            "line.dropper_damping=1e300",
-            "--set",
-            "time.end=0.002",
-            "--out",
+            &["line.dropper_damping=1e300", "time.end=0.002"],
             &o,
-            "--quiet",
-        ],
+        ),
         "`line.dropper_damping`",
     );
 }
@@ -277,28 +214,16 @@ fn a_table_given_as_a_positional_array_is_refused() {
         ("integrator", "[\"newmark\"]"),
     ] {
         refused(
-            &[
-                "run",
-                &scene("reference.toml"),
-                "--set",
-                &format!("{key}={value}"),
-                "--out",
-                &o,
-                "--quiet",
-            ],
+            &run(&scene("reference.toml"), &[&format!("{key}={value}")], &o),
             "not an array",
         );
     }
     refused(
-        &[
-            "run",
+        &run(
             &scene("line_10_spans.toml"),
-            "--set",
-            "line.messenger=[1.6e4, 1.07, 130.0, 1.2]",
-            "--out",
+            &["line.messenger=[1.6e4, 1.07, 130.0, 1.2]"],
             &o,
-            "--quiet",
-        ],
+        ),
         "not an array",
     );
 }
@@ -344,15 +269,7 @@ fn a_run_that_fails_while_writing_leaves_its_folder_marked() {
     // force.svg cannot be created (a folder is in its way): the run fails
     // after history.csv; it used to leave summary.json as if complete
     std::fs::create_dir_all(Path::new(&o).join("force.svg")).unwrap();
-    let (code, _, err) = taut(&[
-        "run",
-        &scene("reference.toml"),
-        "--set",
-        "time.end=0.01",
-        "--out",
-        &o,
-        "--quiet",
-    ]);
+    let (code, _, err) = taut(&run(&scene("reference.toml"), &["time.end=0.01"], &o));
     assert_eq!(code, 1, "{err}");
     let marker = std::fs::read_to_string(Path::new(&o).join("INCOMPLETE")).unwrap();
     assert!(
@@ -362,15 +279,7 @@ fn a_run_that_fails_while_writing_leaves_its_folder_marked() {
     assert!(!Path::new(&o).join("summary.json").exists());
     // the next run clears the marker with the rest
     std::fs::remove_dir(Path::new(&o).join("force.svg")).unwrap();
-    let (code, _, err) = taut(&[
-        "run",
-        &scene("reference.toml"),
-        "--set",
-        "time.end=0.01",
-        "--out",
-        &o,
-        "--quiet",
-    ]);
+    let (code, _, err) = taut(&run(&scene("reference.toml"), &["time.end=0.01"], &o));
     assert_eq!(code, 0, "{err}");
     assert!(!Path::new(&o).join("INCOMPLETE").exists());
     assert!(Path::new(&o).join("summary.json").exists());
@@ -390,35 +299,22 @@ fn lumped_values_no_run_can_use_are_refused_with_the_reason() {
         ("pantograph_3mass.toml", "carrier.0.masses.1", "5e-324"),
     ] {
         let err = refused(
-            &[
-                "run",
-                &scene(name),
-                "--set",
-                &format!("{key}={value}"),
-                "--out",
-                &o,
-                "--quiet",
-            ],
+            &run(&scene(name), &[&format!("{key}={value}")], &o),
             &format!("`{key}`"),
         );
         assert!(err.contains("step matrix"), "{err}");
     }
     // the stability report's extremes stay inside the window
-    let (code, _, err) = taut(&[
-        "run",
+    let (code, _, err) = taut(&run(
         &scene("reference.toml"),
-        "--set",
-        "carrier.mass=1e-6",
-        "--set",
-        "contact.formulation=penalty",
-        "--set",
-        "contact.penalty.stiffness=1e16",
-        "--set",
-        "time.end=0.002",
-        "--out",
+        &[
+            "carrier.mass=1e-6",
+            "contact.formulation=penalty",
+            "contact.penalty.stiffness=1e16",
+            "time.end=0.002",
+        ],
         &o,
-        "--quiet",
-    ]);
+    ));
     assert_eq!(code, 0, "{err}");
 }
 
@@ -467,18 +363,7 @@ fn a_wide_points_file_is_refused_at_once_in_a_line() {
     let row = vec!["1"; 40_000];
     std::fs::write(&f, format!("{}\n{}\n", header.join(","), row.join(","))).unwrap();
     let start = std::time::Instant::now();
-    let err = refused(
-        &[
-            "sweep",
-            &scene("reference.toml"),
-            "--points",
-            f.to_str().unwrap(),
-            "--out",
-            &out(&d),
-            "--quiet",
-        ],
-        "40000 columns",
-    );
+    let err = refused(&points(f.to_str().unwrap(), &[], &out(&d)), "40000 columns");
     assert!(err.len() < 500, "{} characters: {err}", err.len());
     assert!(start.elapsed().as_secs() < 10, "{:?}", start.elapsed());
 }
@@ -493,18 +378,7 @@ fn a_fifo_as_scene_or_points_file_is_refused_without_waiting() {
     let fifo = fifo.to_str().unwrap();
     let start = std::time::Instant::now();
     refused(&["run", fifo, "--out", &out(&d), "--quiet"], "FIFO");
-    refused(
-        &[
-            "sweep",
-            &scene("reference.toml"),
-            "--points",
-            fifo,
-            "--out",
-            &out(&d),
-            "--quiet",
-        ],
-        "FIFO",
-    );
+    refused(&points(fifo, &[], &out(&d)), "FIFO");
     refused(&["replay", fifo], "FIFO");
     assert!(start.elapsed().as_secs() < 10, "{:?}", start.elapsed());
 }
@@ -538,17 +412,13 @@ fn refinement_errors_name_the_flag_and_manufactured_shapes_the_key() {
         "{err}"
     );
     let err = refused(
-        &[
-            "run",
+        &run(
             &common::crate_root()
                 .join("scenes/verify/mms_beam_space.toml")
                 .to_string_lossy(),
-            "--set",
-            "manufactured.term.0.x.0.half_waves=0",
-            "--out",
+            &["manufactured.term.0.x.0.half_waves=0"],
             &o,
-            "--quiet",
-        ],
+        ),
         "half_waves",
     );
     assert!(!err.contains("degree ≤ 3"), "{err}");
@@ -559,19 +429,11 @@ fn a_points_file_with_a_byte_order_mark_reads() {
     let d = tmp();
     let f = d.path().join("points.csv");
     std::fs::write(&f, "\u{feff}carrier.mass\n1.0\n1.2\n").unwrap();
-    let (code, _, err) = taut(&[
-        "sweep",
-        &scene("reference.toml"),
-        "--points",
+    let (code, _, err) = taut(&points(
         f.to_str().unwrap(),
-        "--set",
-        "time.end=0.01",
-        "--set",
-        "mesh.elements=50",
-        "--out",
+        &["time.end=0.01", "mesh.elements=50"],
         &out(&d),
-        "--quiet",
-    ]);
+    ));
     assert_eq!(code, 0, "{err}");
 }
 

@@ -1,17 +1,17 @@
 """Issue 25's Python messages: every bad argument raises SceneError naming
 the argument or key and the real range, never a bare Python or numpy error,
-and an empty `out` is refused (it would write into the current folder)."""
+and an empty `out` is refused (it would write into the current folder);
+and issue 41's Python findings (below): droppers past the memory budget,
+a removal's field, `progress`, strings for numbers, points, two sweeps
+into one folder, Ctrl-C of runs in a thread pool."""
 
 import os
-import signal
-import subprocess
-import sys
 import threading
 import time
 
 import numpy as np
 import pytest
-from conftest import REFERENCE
+from conftest import REFERENCE, ctrl_c
 
 import taut
 
@@ -173,23 +173,7 @@ print("finished", flush=True)
 def test_ctrl_c_stops_runs_in_a_thread_pool():
     # the pattern docs/python.md recommends for runs that are not a grid:
     # the workers never see the signal; the pool waited ~20 s for them
-    p = subprocess.Popen(
-        [sys.executable, "-c", THREAD_POOL],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    assert p.stdout is not None
-    assert p.stdout.readline().strip() == "started"
-    time.sleep(1.0)
-    t0 = time.perf_counter()
-    p.send_signal(signal.SIGINT)
-    try:
-        stdout, stderr = p.communicate(timeout=60)
-    except subprocess.TimeoutExpired:
-        p.kill()
-        pytest.fail("the pool did not stop on Ctrl-C")
-    stopped_in = time.perf_counter() - t0
+    stopped_in, stdout, stderr = ctrl_c(THREAD_POOL, [], 1.0)
     assert "KeyboardInterrupt" in stderr, stderr
     assert "finished" not in stdout
     # four runs of about 5 s each were pending (the two queued ones ran to

@@ -260,28 +260,7 @@ impl Generated {
         if !self.line {
             return e;
         }
-        match e {
-            Error::Invalid {
-                field,
-                value,
-                allowed,
-            } => Error::Invalid {
-                field: self.user_path(&field),
-                value,
-                allowed,
-            },
-            Error::Parse {
-                reason,
-                field: Some(field),
-            } => {
-                let user = self.user_path(&field);
-                Error::Parse {
-                    reason: reason.replace(&format!("`{field}`"), &format!("`{user}`")),
-                    field: Some(user),
-                }
-            }
-            other => other,
-        }
+        e.map_field(|path| self.user_path(path))
     }
 }
 

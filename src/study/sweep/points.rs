@@ -15,18 +15,7 @@ use crate::error::{Error, Result, one_line};
 /// The listed axes of a points file.
 pub fn read_points(path: &Path) -> Result<Vec<Axis>> {
     let text = crate::input::read_text(path, "a points file", crate::input::MAX_INPUT_BYTES)?;
-    parse_points(&text).map_err(|e| match e {
-        Error::Invalid {
-            field,
-            value,
-            allowed,
-        } => Error::Invalid {
-            field,
-            value,
-            allowed: format!("{allowed} (in {})", path.display()),
-        },
-        other => other,
-    })
+    parse_points(&text).map_err(|e| e.explained(&format!(" (in {})", path.display())))
 }
 
 /// The listed axes of a points table's text (see the module doc).

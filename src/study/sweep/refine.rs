@@ -45,15 +45,7 @@ pub fn in_refined_run(e: Error) -> Error {
             format!("`{field}` = {value} in {WHY}"),
             format!("{allowed}; {FIX}"),
         ),
-        Error::Parse { reason, field } => Error::Parse {
-            reason: format!("{reason} (in {WHY}: {FIX})"),
-            field,
-        },
-        Error::Override { spec, reason } => Error::Override {
-            spec,
-            reason: format!("{reason} (in {WHY}: {FIX})"),
-        },
-        other => other,
+        other => other.explained(&format!(" (in {WHY}: {FIX})")),
     }
 }
 

@@ -297,21 +297,5 @@ fn shown(values: &[f64]) -> String {
 
 /// Name the sweep point a resolution error happened at.
 fn at_point(e: Error, i: usize, values: &[f64]) -> Error {
-    let values = shown(values);
-    match e {
-        Error::Invalid {
-            field,
-            value,
-            allowed,
-        } => Error::Invalid {
-            field,
-            value,
-            allowed: format!("{allowed} (at sweep point {i}: {values})"),
-        },
-        Error::Parse { reason, field } => Error::Parse {
-            reason: format!("{reason} (at sweep point {i}: {values})"),
-            field,
-        },
-        other => other,
-    }
+    e.explained(&format!(" (at sweep point {i}: {})", shown(values)))
 }
