@@ -372,7 +372,8 @@ pub struct MemoryEstimate {
     pub csv: u64,
     /// Values in one row of `history.csv`.
     pub csv_values: u64,
-    /// The estimated size of `snapshots.csv` and `field.csv`, bytes.
+    /// The estimated size of `snapshots.csv`, `field.csv`,
+    /// `envelope.csv` and `line.svg`, bytes.
     pub wire_csv: u64,
     /// The estimated size of `summary.json`, bytes.
     pub summary_json: u64,
@@ -537,15 +538,21 @@ pub fn estimate(s: &RunSizes) -> MemoryEstimate {
         .saturating_add(u(s.droppers).saturating_mul(ev).saturating_mul(2))
         .saturating_mul(JSON_BYTES_PER_VALUE)
         .saturating_add(SUMMARY_FIXED_BYTES);
-    let wire_csv = u(s.snapshots)
-        .saturating_mul(u(s.snapshot_points))
-        .saturating_mul(SNAPSHOT_CSV_VALUES)
+    // snapshots.csv, field.csv, and envelope.csv (x, v_min, v_max) with
+    // line.svg's text (three lines of points, ≤ 16 characters a point)
+    let wire_csv = u(s.envelope_points)
+        .saturating_mul(3 * CSV_BYTES_PER_VALUE + 3 * 16)
         .saturating_add(
-            u(s.field_rows)
-                .saturating_mul(u(s.field_points))
-                .saturating_mul(FIELD_CSV_VALUES),
-        )
-        .saturating_mul(CSV_BYTES_PER_VALUE);
+            u(s.snapshots)
+                .saturating_mul(u(s.snapshot_points))
+                .saturating_mul(SNAPSHOT_CSV_VALUES)
+                .saturating_add(
+                    u(s.field_rows)
+                        .saturating_mul(u(s.field_points))
+                        .saturating_mul(FIELD_CSV_VALUES),
+                )
+                .saturating_mul(CSV_BYTES_PER_VALUE),
+        );
     MemoryEstimate {
         history: rows.saturating_mul(row),
         row,
