@@ -163,6 +163,60 @@ impl Error {
         }
     }
 
+    /// An input error with its key path made another by `path`: an
+    /// invalid value's field, and a read error's field and the path its
+    /// reason quotes; other errors as they are.
+    pub fn map_field(self, path: impl Fn(&str) -> String) -> Self {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => Error::Invalid {
+                field: path(&field),
+                value,
+                allowed,
+            },
+            Error::Parse {
+                reason,
+                field: Some(field),
+            } => {
+                let to = path(&field);
+                Error::Parse {
+                    reason: reason.replace(&format!("`{field}`"), &format!("`{to}`")),
+                    field: Some(to),
+                }
+            }
+            other => other,
+        }
+    }
+
+    /// An input error (an invalid value, a read error, an override) with
+    /// `more` appended to what it says is allowed or wrong (where it
+    /// happened: a sweep's point, a refined run); other errors as they are.
+    pub fn explained(self, more: &str) -> Self {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => Error::Invalid {
+                field,
+                value,
+                allowed: format!("{allowed}{more}"),
+            },
+            Error::Parse { reason, field } => Error::Parse {
+                reason: format!("{reason}{more}"),
+                field,
+            },
+            Error::Override { spec, reason } => Error::Override {
+                spec,
+                reason: format!("{reason}{more}"),
+            },
+            other => other,
+        }
+    }
+
     /// Shorthand for an [`Error::Parse`] not tied to a key.
     pub fn parse(reason: impl Into<String>) -> Self {
         Error::Parse {

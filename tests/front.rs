@@ -3,9 +3,11 @@
 //! binary, and the README's commands. Each file below is a module, run with
 //! its name as a filter, e.g. `cargo test --release --test front cli::`.
 //! `no_alloc.rs` (a counting global allocator), `interrupt.rs` (the
-//! process-wide interrupt flag) and `memory_peak.rs` (a child's peak
-//! memory includes its parent's: the parent must stay small) stay binaries
-//! of their own: tests beside them would disturb them or be disturbed.
+//! process-wide interrupt flag), `memory_peak.rs` (a child's peak memory
+//! includes its parent's: the parent must stay small) and
+//! `memory_budget.rs` (a counting allocator of the whole process's bytes)
+//! stay binaries of their own: tests beside them would disturb them or be
+//! disturbed.
 
 /// Shared helpers (one copy for the whole binary).
 mod common;
@@ -32,6 +34,8 @@ mod precision;
 mod readme;
 #[path = "reliability.rs"]
 mod reliability;
+#[path = "reliability_three.rs"]
+mod reliability_three;
 #[path = "simulation.rs"]
 mod simulation;
 #[path = "sweep.rs"]
@@ -55,6 +59,7 @@ fn every_test_file_runs_in_some_binary() {
         "no_alloc.rs",
         "interrupt.rs",
         "memory_peak.rs",
+        "memory_budget.rs",
     ];
     let mut included = String::new();
     for r in &roots[..2] {

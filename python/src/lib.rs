@@ -110,9 +110,14 @@ fn failed(py: Python<'_>, e: taut::Error, saved: Option<PathBuf>) -> PyErr {
             (message, field, None::<String>, None::<String>),
         ),
         E::Override { spec, reason } => {
+            // `unset KEY` is the removal of KEY (Python's `set={KEY: None}`):
+            // the field is the key
             let (key, value) = match spec.split_once('=') {
                 Some((k, v)) => (k.trim().to_string(), Some(v.trim().to_string())),
-                None => (spec.clone(), None),
+                None => match spec.strip_prefix(taut::scene::UNSET) {
+                    Some(k) => (k.trim().to_string(), None),
+                    None => (spec.clone(), None),
+                },
             };
             raise(py, "SceneError", (message, key, value, Some(reason)))
         }
@@ -729,6 +734,30 @@ fn report(
     Ok((r.path.display().to_string(), r.plots, r.tables))
 }
 
+/// The most keys a list of points may set
+/// (`taut::study::sweep::MAX_POINT_KEYS`), so that the Python layer
+/// refuses a wider one before building its axes.
+#[pyfunction]
+fn most_point_keys() -> usize {
+    taut::study::sweep::MAX_POINT_KEYS
+}
+
+/// Ask every taut call at work in the process to stop at its next step
+/// (`taut::interrupt::request_if_working`); whether one was. The package's
+/// SIGINT handler calls it, so that a Ctrl-C stops calls made from any
+/// thread (a thread pool's workers never see a signal themselves).
+#[pyfunction]
+fn stop_running_calls() -> bool {
+    taut::interrupt::request_if_working(STOP_HOLD)
+}
+
+/// How long a Ctrl-C keeps stopping calls that start after it
+/// ([`taut::interrupt::request_if_working`]): a thread pool that shuts down
+/// starts its queued calls within milliseconds of the running ones'
+/// stop; 2 s covers that on a loaded machine, and a call started later
+/// runs as usual.
+const STOP_HOLD: Duration = Duration::from_secs(2);
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -745,6 +774,8 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(mesh, m)?)?;
     m.add_function(wrap_pyfunction!(report, m)?)?;
+    m.add_function(wrap_pyfunction!(stop_running_calls, m)?)?;
+    m.add_function(wrap_pyfunction!(most_point_keys, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

@@ -108,6 +108,47 @@ __all__ = [
 
 __version__: str = _taut.__version__
 
+
+def _chain_sigint() -> None:
+    """Make Ctrl-C stop taut calls made from any thread.
+
+    Python runs signal handlers on the main thread only; a call made from
+    a thread pool's worker (docs/python.md, "Studies that are not a grid")
+    never sees a Ctrl-C, and the pool's shutdown waited for its runs to
+    end. So SIGINT's handler, when the package is imported on the main
+    thread, first asks every taut call at work to stop at its next step,
+    then does what the handler it replaces did (raise KeyboardInterrupt,
+    by default). A handler installed later replaces this one.
+    """
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return
+    try:
+        previous = signal.getsignal(signal.SIGINT)
+    except (ValueError, AttributeError):
+        return
+
+    def handler(signum: int, frame: Any) -> Any:
+        _taut.stop_running_calls()
+        if callable(previous):
+            return previous(signum, frame)
+        if previous == signal.SIG_IGN:
+            return None
+        # SIG_DFL (or None: set outside Python): end as the default would
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGINT)
+        return None
+
+    try:
+        signal.signal(signal.SIGINT, handler)
+    except (ValueError, OSError):
+        pass
+
+
+_chain_sigint()
+
 Scene = _scenes.Scene
 """A path to a scene file, a bundled scene's name, the scene's TOML text,
 or the scene as a dict (docs/python.md, "Scenes")."""
@@ -522,7 +563,15 @@ def _short(text: str) -> str:
 
 
 def _real(name: str, value: float) -> float:
-    """A real argument: refused by name unless a number a float can hold."""
+    """A real argument: refused by name unless a number a float can hold
+    (a str is not a number, though float() reads one; nor is a bool)."""
+    if isinstance(value, (str, bytes, bytearray, bool)):
+        raise SceneError(
+            f"invalid argument: `{name}` = {_short(repr(value))}: must be a number, not {type(value).__name__}",
+            field=name,
+            value=_short(repr(value)),
+            allowed="a number",
+        )
     try:
         return float(value)
     except OverflowError:

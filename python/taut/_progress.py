@@ -102,6 +102,18 @@ class Sink:
     or nowhere."""
 
     def __init__(self, progress: Progress, unit: str) -> None:
+        if not (progress is None or isinstance(progress, bool) or callable(progress)):
+            from ._errors import SceneError
+
+            shown = repr(progress)
+            shown = shown if len(shown) <= 200 else shown[:200] + "…"
+            raise SceneError(
+                f"invalid argument: `progress` = {shown}: must be None, True, False "
+                "or a callable progress(done, total)",
+                field="progress",
+                value=shown,
+                allowed="None, True, False or a callable progress(done, total)",
+            )
         self.bar: Any = None
         self.unit = unit
         self.tqdm: Any = None

@@ -20,11 +20,13 @@ __all__ = [
     "converge",
     "mesh",
     "modes",
+    "most_point_keys",
     "precision",
     "report",
     "run",
     "scene_json",
     "schema",
+    "stop_running_calls",
     "sweep",
     "taut_version",
 ]
@@ -67,6 +69,8 @@ def modes(
 ) -> Tuple[List[_Column], List[_Column]]: ...
 def mesh(path: Optional[str], text: Optional[str], set: List[str]) -> bytes: ...
 def report(dirs: List[str], out: Optional[str]) -> Tuple[str, int, int]: ...
+def stop_running_calls() -> bool: ...
+def most_point_keys() -> int: ...
 
 _CarrierTuple = Tuple[float, float, float, Optional[float], float, float, bool, float]
 _ProbeTuple = Tuple[str, float, float, float]

@@ -72,7 +72,19 @@ impl SceneSource {
     pub fn read(&self) -> Result<String> {
         match self {
             SceneSource::File(p) => crate::scene::read_scene(p),
-            // a text's table files are relative to the working directory
+            // a text is held to a file's cap (Python's scenes as text or
+            // dicts had none, issue 41); its table files are relative to
+            // the working directory
+            SceneSource::Text(t) if t.len() as u64 > crate::input::MAX_INPUT_BYTES => {
+                Err(Error::invalid(
+                    "scene",
+                    format!("a text of {} MiB", t.len() >> 20),
+                    format!(
+                        "a scene is at most {} MiB, as a scene file is (input::MAX_INPUT_BYTES): give long series as table files",
+                        crate::input::MAX_INPUT_BYTES >> 20
+                    ),
+                ))
+            }
             SceneSource::Text(t) => crate::scene::with_table_files(t.clone(), Path::new(".")),
         }
     }
@@ -205,7 +217,7 @@ fn run_study<S: Study>(req: &StudyRequest<S>, fe: &dyn Frontend) -> Result<S::Ou
         .map_err(|e| req.scene.name(e))
         .map_err(|e| save_failure(dir, e, fe))?;
     if let Some(d) = dir {
-        S::write(d, &outcome)?;
+        crate::report::write_whole(d, "taut study", || S::write(d, &outcome))?;
     }
     Ok(outcome)
 }

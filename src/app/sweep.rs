@@ -106,6 +106,9 @@ pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
     let dir = &req.out;
     crate::report::check_out_dir(dir)?;
     let claimed = claim(dir)?;
+    // before any table is cleared: a shard into a folder holding the whole
+    // sweep (or another shard's points) is refused, its tables kept
+    folder::check_shard(dir, &spec, req.shard)?;
     if req.files {
         // tables and maps of this sweep only: a folder holding another
         // sweep is refused (by check_spec) with its tables left as they are
@@ -123,8 +126,10 @@ pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
     })?;
     let records = records?;
     let maps = if req.files {
-        crate::report::write_sweep(dir, &spec, &records)?;
-        crate::report::write_sweep_maps(dir, &spec, &records)?
+        crate::report::write_whole(dir, "taut sweep", || {
+            crate::report::write_sweep(dir, &spec, &records)?;
+            crate::report::write_sweep_maps(dir, &spec, &records)
+        })?
     } else {
         Vec::new()
     };

@@ -24,7 +24,7 @@ pub mod problem;
 mod replay;
 
 pub use failure::{ContactFailed, ContactFailure};
-pub use problem::{ContactProblem, Level};
+pub use problem::{ContactProblem, Level, NotReplayable};
 pub use replay::{MAX_REPLAY_CONTACTS, ReplayOutcome, SIGNORINI_TOLERANCE, replay, validate};
 
 pub(crate) use impact::Impact;

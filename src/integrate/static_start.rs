@@ -164,7 +164,7 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
     for (i, force) in sys.physics.droppers.taut_forces(&d) {
         if force.is_nan() || force <= 0.0 {
             return Err(Error::invalid(
-                format!("dropper.{i}"),
+                sc.scene.generated.user_path(&format!("dropper.{i}")),
                 format!("{:?} with force {force:e} N", sc.droppers[i].name),
                 "must be taut (force > 0) at the static start: it would hang slack under the static loads; shorten it (length), or start at rest (time.initial = \"rest\")",
             ));

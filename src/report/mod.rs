@@ -7,6 +7,7 @@ mod converge;
 mod csv;
 mod gate;
 mod html;
+mod incomplete;
 mod line;
 mod line_svg;
 mod modes;
@@ -30,6 +31,7 @@ pub use converge::{
 pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
 pub use gate::{gate_table, junit_xml, write_gate};
 pub use html::{MAX_ROWS, PLOTS, ReportSummary, TABLES, write_report};
+pub use incomplete::{INCOMPLETE_FILE, write_whole};
 pub use line::{envelope_table, spans_table, supports_table, write_line};
 pub use modes::{mode_shapes_table, modes_table, write_modes};
 pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
@@ -50,7 +52,7 @@ pub use tolerance::{
 pub use verify::{
     Counts, VERIFY_COLUMNS, verify_markdown, verify_rows, verify_table, write_verify,
 };
-pub use wire::{field_table, snapshots_table, write_wire};
+pub use wire::write_wire;
 
 use std::path::Path;
 
@@ -68,25 +70,32 @@ pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> 
     };
     let failed = e.payload::<crate::contact::ContactFailed>()?;
     let path = dir.join(format!("failed_contact_step_{step}.json"));
-    let json = serde_json::to_string_pretty(&failed.problem).ok()?;
+    // a problem JSON cannot hold (NaN, ±inf would be nulls no replay
+    // reads) is saved as the reason it cannot be replayed
+    let json = match crate::contact::NotReplayable::of(&failed.problem) {
+        Some(why) => serde_json::to_string_pretty(&why).ok()?,
+        None => serde_json::to_string_pretty(&failed.problem).ok()?,
+    };
     std::fs::create_dir_all(dir).ok()?;
     std::fs::write(&path, json).ok()?;
     Some(path)
 }
 
-/// Write the outputs of a run into `dir` (created if missing):
-/// `history.csv`, `summary.json`, `force.svg`, `standard.csv`,
-/// `standard.json`, and what the scene's `[output]` asks for.
+/// Write a run's outputs into `dir` (created if missing): `history.csv`,
+/// `force.svg`, `standard.csv`, `standard.json`, what the scene's
+/// `[output]` asks for, and `summary.json` last, the folder marked
+/// [`INCOMPLETE_FILE`] until every file is written ([`write_whole`]).
 pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    write_history(&dir.join("history.csv"), out)?;
-    let summary = Summary::new(sc, out);
-    write_summary(&dir.join("summary.json"), &summary)?;
-    write_force_plot(&dir.join("force.svg"), sc, out)?;
-    write_standard(dir, sc, &summary.standard, &summary.supports)?;
-    write_wire(dir, &out.history)?;
-    write_line(dir, sc, out, &summary.spans)?;
-    Ok(summary)
+    write_whole(dir, "taut run", || {
+        write_history(&dir.join("history.csv"), out)?;
+        let summary = Summary::new(sc, out);
+        write_force_plot(&dir.join("force.svg"), sc, out)?;
+        write_standard(dir, sc, &summary.standard, &summary.supports)?;
+        write_wire(dir, &out.history)?;
+        write_line(dir, sc, out, &summary.spans)?;
+        write_summary(&dir.join("summary.json"), &summary)?;
+        Ok(summary)
+    })
 }
 
 /// Line colours of every plot (matplotlib's tab10), cycled.

@@ -108,6 +108,7 @@ pub fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
         let name = entry.file_name();
         let Some(name) = name.to_str() else { continue };
         let ours = kind.files().contains(&name)
+            || name == super::INCOMPLETE_FILE
             || (kind != Outputs::Sweep
                 && name.starts_with(FAILED_CONTACT_PREFIX)
                 && name.ends_with(".json"));

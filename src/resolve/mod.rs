@@ -14,11 +14,13 @@
 
 pub mod analysis;
 pub mod attachment;
+pub mod budget_check;
 pub mod damping;
 pub mod dropper;
 pub mod memory;
 pub mod mesh;
 pub mod messenger;
+pub mod plausible;
 pub mod reference;
 mod resolved;
 pub mod wire;
@@ -26,11 +28,12 @@ pub mod wire;
 use std::path::Path;
 
 pub use attachment::check_attachments;
+pub use budget_check::{DropperSource, check_budget};
 pub use damping::check_damping;
 pub use dropper::check_droppers;
 pub use memory::{
     EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
-    PLOT_BUCKETS, RunSize, check_budget, estimate as estimate_memory, event_capacity, history_rows,
+    PLOT_BUCKETS, RunSizes, estimate as estimate_memory, event_capacity, history_rows,
 };
 pub use mesh::{MAX_GALERKIN_MODES, resolve_mesh};
 pub use reference::declared_reference;
@@ -49,6 +52,14 @@ impl Scene {
     /// model, the references or the memory plan, in one fixed order (the
     /// first fault found is the one reported).
     pub fn validate(&self) -> Result<Resolved> {
+        // an error names the key a user wrote, not its path in the
+        // expanded `[line]` (`scene::Generated`)
+        self.validate_expanded()
+            .map_err(|e| self.generated.user_error(e))
+    }
+
+    /// [`Scene::validate`], its errors naming paths of the expanded scene.
+    fn validate_expanded(&self) -> Result<Resolved> {
         let mut beam = self.resolve_beam()?;
         let l = beam.length;
         let elements = self.elements()?;
@@ -80,6 +91,17 @@ impl Scene {
 
         let time = self.resolve_time(&carriers, l)?;
         let (dt, t_end, steps) = (time.dt, time.t_end, time.steps);
+        // each lumped element within what a model on this wire and step
+        // can compute (the scene's own attachments: the linear droppers'
+        // springs after them are the droppers')
+        plausible::check_plausible(
+            &plausible::Scales::of(&beam, elements, dt),
+            &carriers,
+            &beam.attachments[..self.attachments.len()],
+            &droppers,
+            self.contact.penalty.stiffness,
+            damping,
+        )?;
         crate::scene::check_speed_tables_cover(&carriers, t_end)?;
         let probes = self.resolve_probes(l)?;
         if let Some(i) = self
@@ -170,13 +192,15 @@ impl Scene {
             wire,
             analysis,
         };
+        let sizes = resolved.run_sizes();
         check_budget(
-            &resolved.memory_estimate(),
-            steps,
-            record_every,
-            elements,
-            resolved.carriers.len(),
-            resolved.probes.len(),
+            &memory::estimate(&sizes),
+            &sizes,
+            if self.generated.droppers > 0 {
+                DropperSource::Line
+            } else {
+                DropperSource::Tables
+            },
         )?;
         Ok(resolved)
     }

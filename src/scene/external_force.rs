@@ -41,6 +41,16 @@ pub struct ForceSeries {
 }
 
 impl ForceSeries {
+    /// Samples of the series.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// True for a series without samples (never, once checked).
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty()
+    }
+
     /// Check carrier `i`'s series `spec` against a run of end time
     /// `t_end`, s: equal lengths (≥ 2), finite values, strictly increasing
     /// times covering `[0, t_end]`.
@@ -63,21 +73,21 @@ impl ForceSeries {
         }
         if let Some((k, x)) = t.iter().enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::invalid(
-                format!("{}[{k}]", f("time")),
+                format!("{}.{k}", f("time")),
                 x,
                 "must be a finite number (s)",
             ));
         }
         if let Some((k, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::invalid(
-                format!("{}[{k}]", f("force")),
+                format!("{}.{k}", f("force")),
                 x,
                 "must be a finite number (N)",
             ));
         }
         if let Some(k) = (1..t.len()).find(|&k| t[k] <= t[k - 1]) {
             return Err(Error::invalid(
-                format!("{}[{k}]", f("time")),
+                format!("{}.{k}", f("time")),
                 t[k],
                 format!(
                     "must be > the time before it ({} s): strictly increasing",
@@ -87,7 +97,7 @@ impl ForceSeries {
         }
         if t[0] > 0.0 {
             return Err(Error::invalid(
-                format!("{}[0]", f("time")),
+                format!("{}.0", f("time")),
                 t[0],
                 "must be ≤ 0 s: the series must cover the run from its start",
             ));
@@ -95,7 +105,7 @@ impl ForceSeries {
         let last = t[t.len() - 1];
         if last < t_end {
             return Err(Error::invalid(
-                format!("{}[{}]", f("time"), t.len() - 1),
+                format!("{}.{}", f("time"), t.len() - 1),
                 last,
                 format!("must be ≥ the run's end time {t_end} s: the series must cover the run"),
             ));
@@ -166,14 +176,14 @@ mod tests {
         );
         let m = e(&[0.0, 0.0, 1.0], &[1.0, 1.0, 1.0], 1.0);
         assert!(
-            m.contains("time[1]") && m.contains("strictly increasing"),
+            m.contains("time.1") && m.contains("strictly increasing"),
             "{m}"
         );
         let m = e(&[0.1, 1.0], &[1.0, 1.0], 1.0);
-        assert!(m.contains("time[0]") && m.contains("cover"), "{m}");
+        assert!(m.contains("time.0") && m.contains("cover"), "{m}");
         let m = e(&[0.0, 0.5], &[1.0, 1.0], 1.0);
-        assert!(m.contains("time[1]") && m.contains("end time 1"), "{m}");
+        assert!(m.contains("time.1") && m.contains("end time 1"), "{m}");
         let m = e(&[0.0, 1.0], &[1.0, f64::NAN], 1.0);
-        assert!(m.contains("force[1]") && m.contains("finite"), "{m}");
+        assert!(m.contains("force.1") && m.contains("finite"), "{m}");
     }
 }

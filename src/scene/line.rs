@@ -138,11 +138,19 @@ pub struct DesignedDropper {
 
 /// Expand `[line]` into plain scene keys (see the module doc); a tree
 /// without `line` is returned as it is.
-pub fn expand_line(mut tree: Table) -> Result<Table> {
+pub fn expand_line(tree: Table) -> Result<Table> {
+    expand_line_with_origin(tree).map(|(t, _)| t)
+}
+
+/// [`expand_line`], with what it generated: the keys an error names by
+/// their path in the expanded scene are told apart from the ones a user
+/// wrote ([`Generated::user_path`]).
+pub fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generated)> {
     let Some(line) = tree.remove("line") else {
-        return Ok(tree);
+        return Ok((tree, Generated::default()));
     };
-    let spec: LineSpec = serde_path_to_error::deserialize(line).map_err(|e| {
+    let given_elements = tree.get("mesh").and_then(|m| m.get("elements")).is_some();
+    let spec: LineSpec = super::tables::from_value(line).map_err(|e| {
         let path = e.path().to_string().replace('[', ".").replace(']', "");
         let inner = e.into_inner().to_string();
         let inner = inner.split("\nin `").next().unwrap_or(&inner).trim_end();
@@ -159,7 +167,106 @@ pub fn expand_line(mut tree: Table) -> Result<Table> {
     let line = Line::check(&spec)?;
     let design = line.design(&tree)?;
     line.write(&spec, &design, &mut tree)?;
-    Ok(tree)
+    let generated = Generated {
+        line: true,
+        droppers: design.len(),
+        attachments: if spec.steady_arm.is_some() {
+            line.interior_supports().count()
+        } else {
+            0
+        },
+        messenger: line.anchor == LineAnchor::Messenger,
+        elements: !given_elements,
+    };
+    Ok((tree, generated))
+}
+
+/// What `[line]` generated in a scene ([`expand_line_with_origin`]): the
+/// generated droppers come first in `[[dropper]]` and the steady arms
+/// first in `[[attachment]]`, the scene's own tables after them. An error
+/// found in the expanded scene names the key a user can give back to
+/// `--set` (and Python's `set=`): [`Generated::user_path`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Generated {
+    /// The scene had a `[line]` table.
+    pub line: bool,
+    /// Droppers generated (`dropper.0` … `dropper.{droppers − 1}`).
+    pub droppers: usize,
+    /// Steady arms generated (`attachment.0` …).
+    pub attachments: usize,
+    /// The `[messenger]` table was generated (`anchor = "messenger"`).
+    pub messenger: bool,
+    /// `mesh.elements` was generated (from `line.element_length`).
+    pub elements: bool,
+}
+
+impl Generated {
+    /// The path a user gives back to `--set` for `path`, a key of the
+    /// expanded scene: a generated dropper's key is the `[line]` key that
+    /// made it, an explicit dropper's index counts from the scene's own
+    /// first `[[dropper]]` (likewise attachments and steady arms); other
+    /// paths are their own.
+    pub fn user_path(&self, path: &str) -> String {
+        if !self.line {
+            return path.to_string();
+        }
+        let (head, rest) = path.split_once('.').unwrap_or((path, ""));
+        let (index, key) = rest.split_once('.').unwrap_or((rest, ""));
+        let index = index.parse::<usize>().ok();
+        let tail = |i: usize| {
+            if key.is_empty() {
+                format!("{head}.{i}")
+            } else {
+                format!("{head}.{i}.{key}")
+            }
+        };
+        let top = key.split('.').next().unwrap_or("");
+        match (head, index) {
+            ("dropper", Some(i)) if i < self.droppers => match top {
+                "stiffness" => "line.dropper_stiffness",
+                "damping" => "line.dropper_damping",
+                "linear" => "line.linear_droppers",
+                "x" => "line.droppers",
+                "anchor" => "line.anchor",
+                "length" | "anchor_height" => "line.presag",
+                _ => "line",
+            }
+            .to_string(),
+            ("dropper", Some(i)) => tail(i - self.droppers),
+            ("attachment", Some(i)) if i < self.attachments => match top {
+                "stiffness" => "line.steady_arm.stiffness",
+                "mass" => "line.steady_arm.mass",
+                _ => "line.steady_arm",
+            }
+            .to_string(),
+            ("attachment", Some(i)) => tail(i - self.attachments),
+            ("messenger", _) if self.messenger => match top_of(rest) {
+                k @ ("tension" | "mass_per_length" | "bending_stiffness" | "height") => {
+                    format!("line.messenger.{k}")
+                }
+                "supports" => "line.spans".to_string(),
+                _ => "line.messenger".to_string(),
+            },
+            ("beam", _) if rest == "length" => "line.span_length".to_string(),
+            ("mesh", _) if rest == "elements" && self.elements => "line.element_length".to_string(),
+            _ => path.to_string(),
+        }
+    }
+
+    /// `e` with every key path it names made a user's ([`Generated::user_path`]):
+    /// the field of an invalid value or a read error, and the path quoted in
+    /// a read error's reason.
+    pub fn user_error(&self, e: Error) -> Error {
+        if !self.line {
+            return e;
+        }
+        e.map_field(|path| self.user_path(path))
+    }
+}
+
+/// The first segment of a dotted path.
+fn top_of(path: &str) -> &str {
+    path.split('.').next().unwrap_or("")
 }
 
 /// The checked keys.
@@ -638,12 +745,10 @@ fn dropper_positions(v: &Value, span: f64) -> Result<Vec<f64>> {
         }
         Value::Table(_) => {
             let even: EvenDroppers =
-                v.clone()
-                    .try_into()
-                    .map_err(|e: toml::de::Error| Error::Parse {
-                        reason: one_line(&format!("at `line.droppers`: {}", e.message())),
-                        field: Some("line.droppers".into()),
-                    })?;
+                super::tables::from_value(v.clone()).map_err(|e| Error::Parse {
+                    reason: one_line(&format!("at `line.droppers`: {}", e.inner().message())),
+                    field: Some("line.droppers".into()),
+                })?;
             match even.count {
                 n if n == 0 || n > MAX_DROPPERS_PER_SPAN => {
                     // refused before any list is built: a huge count must
@@ -939,10 +1044,11 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
             assert_eq!(again, expanded, "{o:?}");
             if o.is_empty() {
                 // no [line] left: the text's scene is the line's scene
-                assert_eq!(
-                    scene_from_tree(again).unwrap(),
-                    scene_from_tree(tree(o)).unwrap()
-                );
+                // (but for the record of what the line generated)
+                let mut line = scene_from_tree(tree(o)).unwrap();
+                assert!(line.generated.line && line.generated.droppers > 0);
+                line.generated = Generated::default();
+                assert_eq!(scene_from_tree(again).unwrap(), line);
             }
         }
     }

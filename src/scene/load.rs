@@ -8,7 +8,6 @@ use std::path::Path;
 
 use toml::{Table, Value};
 
-use super::line::expand_line;
 use super::scene_file::Scene;
 use crate::error::{Error, Result, one_line};
 
@@ -271,8 +270,9 @@ fn parse_value(raw: &str) -> Value {
 /// ([`super::expand_line`]): here, after every override, so that `--set
 /// line.spans=12` and sweeps over `line.*` regenerate the line.
 pub fn scene_from_tree(tree: Table) -> Result<Scene> {
-    let value = Value::Table(expand_line(tree)?);
-    serde_path_to_error::deserialize(value).map_err(|e| {
+    let (tree, generated) = super::expand_line_with_origin(tree)?;
+    let value = Value::Table(tree);
+    let scene: Result<Scene> = super::tables::from_value(value).map_err(|e| {
         let path = e.path().to_string().replace('[', ".").replace(']', "");
         let inner = e.into_inner().to_string();
         let inner = inner.split("\nin `").next().unwrap_or(&inner).trim_end();
@@ -284,7 +284,10 @@ pub fn scene_from_tree(tree: Table) -> Result<Scene> {
                 field: Some(one_line(&path)),
             }
         }
-    })
+    });
+    let mut scene = scene.map_err(|e| generated.user_error(e))?;
+    scene.generated = generated;
+    Ok(scene)
 }
 
 /// Parse scene text, apply overrides in order and deserialize, without

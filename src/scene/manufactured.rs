@@ -266,6 +266,13 @@ fn check_terms(terms: &[TermSpec], prefix: &str, t_end: f64) -> Result<()> {
                         MAX_HALF_WAVES,
                         "half-waves over L",
                     )?;
+                    if *half_waves == 0.0 {
+                        return Err(Error::invalid(
+                            g("half_waves"),
+                            0,
+                            "makes sin(0·πξ + φ) = sin φ a constant, which the supports' correction removes (or 0): must be ≠ 0 (half-waves over L, |n| ≤ 100)",
+                        ));
+                    }
                     finite(&g("phase"), *phase, "rad")?;
                 }
                 XFactor::Exponential { rate } => {

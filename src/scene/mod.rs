@@ -43,6 +43,7 @@ mod scene_file;
 mod scheme;
 mod speed;
 mod table_files;
+pub mod tables;
 mod time;
 mod validate;
 
@@ -62,7 +63,10 @@ pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
 pub use gravity::GravitySpec;
 pub use integrator::{DEFAULT_METHOD, IntegratorSpec, Key};
-pub use line::{DesignedDropper, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line};
+pub use line::{
+    DesignedDropper, Generated, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line,
+    expand_line_with_origin,
+};
 pub use load::{
     UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed, with_table_files,

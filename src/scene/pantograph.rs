@@ -129,7 +129,7 @@ pub(crate) fn resolve_chain(i: usize, c: &CarrierSpec) -> Result<Option<ChainPro
         let (m, k, c_j) = (masses[j], stiffnesses[j], dampings[j]);
         if !(m.is_finite() && m > 0.0) {
             return Err(Error::invalid(
-                f(&format!("masses[{j}]")),
+                f(&format!("masses.{j}")),
                 m,
                 "must be a finite number > 0 (kg)",
             ));
@@ -143,14 +143,14 @@ pub(crate) fn resolve_chain(i: usize, c: &CarrierSpec) -> Result<Option<ChainPro
                 "must be a finite number ≥ 0 (N/m): the frame's spring to the roof"
             };
             return Err(Error::invalid(
-                f(&format!("stiffnesses[{j}]")),
+                f(&format!("stiffnesses.{j}")),
                 k,
                 allowed.replace("{j}", &(j + 1).to_string()),
             ));
         }
         if !(c_j.is_finite() && c_j >= 0.0) {
             return Err(Error::invalid(
-                f(&format!("dampings[{j}]")),
+                f(&format!("dampings.{j}")),
                 c_j,
                 "must be a finite number ≥ 0 (N·s/m)",
             ));

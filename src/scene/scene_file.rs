@@ -11,6 +11,7 @@ use super::contact::ContactSpec;
 use super::dropper::DropperSpec;
 use super::gravity::GravitySpec;
 use super::integrator::IntegratorSpec;
+use super::line::Generated;
 use super::manufactured::{ManufacturedSpec, ReferenceSpec};
 use super::mesh::MeshSpec;
 use super::messenger::MessengerSpec;
@@ -70,4 +71,8 @@ pub struct Scene {
     /// verify` (`[reference]`; default: Richardson extrapolation).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceSpec>,
+    /// What `[line]` generated (nothing without one): errors found in the
+    /// expanded scene name the keys a user wrote ([`Generated::user_path`]).
+    #[serde(skip)]
+    pub generated: Generated,
 }

@@ -11,6 +11,16 @@ pub fn crate_root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
 }
 
+/// The path of the bundled scene `name` (`scenes/<name>`), as text.
+pub fn scene_path(name: &str) -> String {
+    crate_root()
+        .join("scenes")
+        .join(name)
+        .to_str()
+        .expect("the repository's path is UTF-8")
+        .to_string()
+}
+
 /// Run the `taut` binary from the repository root.
 pub fn taut_bin(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_taut"))
@@ -164,4 +174,27 @@ pub fn verify_case(name: &str) -> Vec<taut::study::verify::case::Case> {
         .collect();
     assert_eq!(case.len(), 1, "one case named {name}");
     case
+}
+
+/// Run the `taut` binary from the repository root under a virtual-memory
+/// cap of `kib` KiB (`ulimit -v`) and a time limit of `seconds` (then
+/// SIGKILL: exit code 137), so that a regression to unbounded reading or
+/// allocation, or a hang, fails a test (an abort, a refused allocation, a
+/// kill) instead of taking the machine: (exit code, stdout, stderr).
+pub fn taut_capped(kib: u64, seconds: u64, args: &[&str]) -> (i32, String, String) {
+    let o = Command::new("bash")
+        .current_dir(crate_root())
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v {kib}; exec timeout -s KILL {seconds} \"$0\" \"$@\""
+        ))
+        .arg(env!("CARGO_BIN_EXE_taut"))
+        .args(args)
+        .output()
+        .expect("bash runs");
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
 }

@@ -33,13 +33,31 @@ pub const LOCK_FILE: &str = "sweep.lock";
 #[derive(Debug)]
 pub struct FolderLock {
     dir: PathBuf,
+    /// The folder's canonical path, held in [`CLAIMED`] until dropped.
+    canonical: PathBuf,
     _file: File,
+}
+
+/// The folders claimed by this process, by canonical path: a claim is
+/// refused here first, whatever the file system makes of two locks taken
+/// by one process (on NFS and other file systems that emulate `flock`
+/// with POSIX record locks, a process's second lock on a file succeeds:
+/// two sweeps of one Python process shared a folder, issue 41).
+static CLAIMED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Give back this process's claim of `canonical` ([`CLAIMED`]).
+fn unclaim(canonical: &Path) {
+    let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some(i) = held.iter().position(|p| p == canonical) {
+        held.swap_remove(i);
+    }
 }
 
 impl Drop for FolderLock {
     fn drop(&mut self) {
         // removed before the descriptor (and so the lock) is closed
         let _ = std::fs::remove_file(self.dir.join(LOCK_FILE));
+        unclaim(&self.canonical);
     }
 }
 
@@ -74,22 +92,49 @@ impl FolderLock {
 /// for its whole run.
 pub const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500);
 
+/// The refusal of a folder another sweep or merge holds.
+fn in_use(dir: &Path, holder: &str) -> Error {
+    Error::invalid(
+        "--out",
+        dir.display(),
+        format!(
+            "is in use by another sweep or merge running now ({holder}): wait for it to \
+             finish, or use another folder"
+        ),
+    )
+}
+
 /// Claim `dir` for one sweep or merge (creating it), or refuse if another
-/// process holds it.
+/// claim holds it: first in this process ([`CLAIMED`]), then the
+/// operating system's lock on `sweep.lock`.
 pub fn claim(dir: &Path) -> Result<FolderLock> {
     std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
+    let canonical = dir.canonicalize().map_err(|e| Error::io(dir, e))?;
+    {
+        let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
+        if held.contains(&canonical) {
+            return Err(in_use(
+                dir,
+                &format!("in this process, {}", std::process::id()),
+            ));
+        }
+        held.push(canonical.clone());
+    }
+    // from here the claim is this process's: a failure below gives it back
     let path = dir.join(LOCK_FILE);
     // a lock taken on a file its holder removed as it let go: open anew
     for _ in 0..CLAIM_TRIES {
-        let file = claim_once(dir, &path)?;
+        let file = claim_once(dir, &path).inspect_err(|_| unclaim(&canonical))?;
         if still_named(&file, &path) {
             return Ok(FolderLock {
                 dir: dir.to_path_buf(),
+                canonical,
                 _file: file,
             });
         }
         // the file was removed under us: closing it lets go of nothing
     }
+    unclaim(&canonical);
     Err(Error::invalid(
         "--out",
         dir.display(),
@@ -128,14 +173,9 @@ fn claim_once(dir: &Path, path: &Path) -> Result<File> {
         Err(TryLockError::WouldBlock) => {
             // a line or two ("process N"): read no more than a line's worth
             let holder = crate::input::read_text(&path, "a lock file", 256).unwrap_or_default();
-            return Err(Error::invalid(
-                "--out",
-                dir.display(),
-                format!(
-                    "is in use by another sweep or merge running now ({}): wait for it to \
-                     finish, or use another folder",
-                    holder.trim().lines().next().unwrap_or("its lock is held")
-                ),
+            return Err(in_use(
+                dir,
+                holder.trim().lines().next().unwrap_or("its lock is held"),
             ));
         }
         Err(TryLockError::Error(e)) => return Err(Error::io(&path, e)),
@@ -317,6 +357,58 @@ pub fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
                     format!(", as are {} more", strays.len() - 1)
                 } else {
                     String::new()
+                }
+            ),
+        )),
+    }
+}
+
+/// Refuse a shard (`--shard i/n`) into a folder holding records of points
+/// the shard does not run: the whole sweep (a merged folder, an unsharded
+/// run) or another shard's points. The shard would clear the folder's
+/// tables and maps and write tables of its own points only, with nothing
+/// to say they are a part (issue 41). A shard's own folder, fresh or
+/// holding its own points (a resumed shard), is accepted.
+pub fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Shard>) -> Result<()> {
+    let Some(shard) = shard else {
+        return Ok(());
+    };
+    let runs = dir.join("runs");
+    let entries = match std::fs::read_dir(&runs) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(Error::io(&runs, e)),
+    };
+    let mut foreign: Vec<usize> = Vec::new();
+    for entry in entries {
+        let path = entry.map_err(|e| Error::io(&runs, e))?.path();
+        let Some(index) = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .and_then(|n| n.strip_suffix(".json"))
+            .filter(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()))
+            .and_then(|s| s.parse::<usize>().ok())
+        else {
+            continue;
+        };
+        if index < spec.len() && !shard.owns(index) {
+            foreign.push(index);
+        }
+    }
+    foreign.sort_unstable();
+    match foreign.first() {
+        None => Ok(()),
+        Some(first) => Err(Error::invalid(
+            "--shard",
+            format!("{}/{}", shard.index, shard.count),
+            format!(
+                "{} holds the records of {} points this shard does not run (the first: point {first}){}: a shard writes the tables of its own points only, and would replace that folder's: run the shard into a folder of its own (taut merge joins shard folders), or resume the whole sweep there without --shard",
+                dir.display(),
+                foreign.len(),
+                if foreign.len() == (0..spec.len()).filter(|&i| !shard.owns(i)).count() {
+                    ": every point of the other shards, the whole sweep with this shard's"
+                } else {
+                    ""
                 }
             ),
         )),

@@ -40,6 +40,7 @@
 //! [`batch`] (points stepped together), [`folder`] (the sweep's folder);
 //! this file runs the sweep.
 
+mod aliases;
 mod axis;
 mod batch;
 pub mod folder;
@@ -61,13 +62,13 @@ use crate::error::{Error, Result};
 pub use axis::{Axis, AxisTarget, Ratio, WHOLE_SNAP};
 pub use batch::{AUTO_BATCH_LANES, BatchWidth, auto_lanes};
 use batch::{batches, records_guarded};
-pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
+pub use folder::{FolderLock, check_shard, claim, collect, merge, merge_into, read_spec};
 pub use points::{parse_points, read_points};
 pub use record::{PROFILE_BINS, SweepRecord};
 pub use refine::{REFINEMENT_ABS, REFINEMENT_REL, Refined, refinement_converged};
 pub use resolve::DIMENSIONLESS;
 pub use shard::Shard;
-pub use spec::{MAX_POINTS, SweepSpec};
+pub use spec::{MAX_POINT_KEYS, MAX_POINTS, SweepSpec};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid
@@ -110,6 +111,7 @@ pub fn sweep_batched(
     let dir = claimed.dir();
     let had_spec = folder::check_spec(dir, spec)?;
     folder::check_no_strays(dir, spec)?;
+    folder::check_shard(dir, spec, shard)?;
     let id = folder::sweep_id(spec);
     let mine: Vec<usize> = (0..spec.len())
         .filter(|&i| shard.is_none_or(|s| s.owns(i)))

@@ -29,6 +29,26 @@ pub struct Refined {
     pub error: Option<String>,
 }
 
+/// An error of the refined run's scene, named by the flag that made it
+/// (`--check-refinement`): the doubled value is not one the user gave, so
+/// naming only its key (`mesh.elements` = 2000002) sent them looking for it.
+pub fn in_refined_run(e: Error) -> Error {
+    const WHY: &str = "the refined run of --check-refinement (twice mesh.elements, twice mesh.modes on a modal or galerkin basis, half time.step)";
+    const FIX: &str = "refine a coarser scene, or leave out --check-refinement";
+    match e {
+        Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => Error::invalid(
+            "--check-refinement",
+            format!("`{field}` = {value} in {WHY}"),
+            format!("{allowed}; {FIX}"),
+        ),
+        other => other.explained(&format!(" (in {WHY}: {FIX})")),
+    }
+}
+
 /// Whether a P_l is converged under one refinement: the change is at most
 /// [`REFINEMENT_REL`] of the refined value or [`REFINEMENT_ABS`] (None when
 /// either run stopped).

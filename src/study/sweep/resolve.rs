@@ -124,7 +124,7 @@ impl SweepSpec {
             )?;
         }
         set_real(&mut tree, "time.step", sc.dt / 2.0)?;
-        resolve_tree(&tree)
+        resolve_tree(&tree).map_err(super::refine::in_refined_run)
     }
 
     /// The resolved scene of point `index`.

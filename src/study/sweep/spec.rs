@@ -110,6 +110,13 @@ impl SweepSpec {
                 "is given twice: give each axis once",
             ));
         }
+        if self.axes.len() == 2
+            && let Ok(base) = self.base_tree()
+        {
+            // two keys that set one scene value (an error in the base is
+            // the first point's, below)
+            super::aliases::check_one_value_per_key(&self.axes, &base, "--vary")?;
+        }
         let points = self
             .axes
             .iter()
@@ -184,8 +191,18 @@ impl SweepSpec {
                 "give at least one key (a column of the points file)",
             ));
         };
-        for (k, a) in self.axes.iter().enumerate() {
-            if self.axes[..k].iter().any(|b| b.key == a.key) {
+        if self.axes.len() > MAX_POINT_KEYS {
+            return Err(Error::invalid(
+                "--points",
+                format!("{} keys", self.axes.len()),
+                format!(
+                    "a list of points sets at most {MAX_POINT_KEYS} keys: vary fewer scene values"
+                ),
+            ));
+        }
+        let mut seen = std::collections::HashSet::new();
+        for a in &self.axes {
+            if !seen.insert(a.key.as_str()) {
                 return Err(Error::invalid(
                     "--points",
                     &a.key,
@@ -206,6 +223,9 @@ impl SweepSpec {
                 first.count,
                 format!("a sweep has at most {MAX_POINTS} points: split the list"),
             ));
+        }
+        if let Ok(base) = self.base_tree() {
+            super::aliases::check_one_value_per_key(&self.axes, &base, "--points")?;
         }
         self.resolve_every_point().map(drop)
     }
@@ -228,6 +248,12 @@ impl SweepSpec {
         Ok(e)
     }
 }
+
+/// The most keys a list of points may set (columns of a `--points` file,
+/// keys of Python's points): each is set on every point's scene, and no
+/// study varies more than a few dozen scene values; a wider file is not a
+/// list of scene keys (40 000 columns took minutes to refuse, issue 41).
+pub const MAX_POINT_KEYS: usize = 1000;
 
 /// The most points a sweep may have: 100 000 runs is days of work at the
 /// reference resolution and ~0.4 GB of records; a larger grid is several sweeps.
@@ -256,22 +282,20 @@ impl SweepSpec {
     }
 }
 
+/// A point's values for a message: the first few and how many there are
+/// (a list of points may set up to [`MAX_POINT_KEYS`] keys).
+fn shown(values: &[f64]) -> String {
+    const SHOWN: usize = 8;
+    if values.len() <= SHOWN {
+        format!("{values:?}")
+    } else {
+        format!("{:?} … ({} values)", &values[..SHOWN], values.len())
+            .replacen("]", ", …]", 1)
+            .replacen(" … (", " (", 1)
+    }
+}
+
 /// Name the sweep point a resolution error happened at.
 fn at_point(e: Error, i: usize, values: &[f64]) -> Error {
-    match e {
-        Error::Invalid {
-            field,
-            value,
-            allowed,
-        } => Error::Invalid {
-            field,
-            value,
-            allowed: format!("{allowed} (at sweep point {i}: {values:?})"),
-        },
-        Error::Parse { reason, field } => Error::Parse {
-            reason: format!("{reason} (at sweep point {i}: {values:?})"),
-            field,
-        },
-        other => other,
-    }
+    e.explained(&format!(" (at sweep point {i}: {})", shown(values)))
 }
