@@ -167,6 +167,12 @@ impl Stage for FirstSubStep {
         f0 - c_term - k_term
     }
 
+    /// A chain's head at this sub-step's end feeds only the chain's second
+    /// sub-step (the contact's gap rate takes ż₁ from u★₁ − λ/A_q, formed
+    /// in [`Bathe::step`]): updated with the inverse's row, as the lower
+    /// masses are (`mass_step.rs`, bit-identical outputs).
+    const CHAIN_HEAD_BY_INVERSE: bool = true;
+
     #[inline]
     fn update(&self, d: &mut BatheDof, p: &Predicted, e: f64) {
         d.z1 = p.q + e;
@@ -202,6 +208,22 @@ impl Stage for SecondSubStep {
         let (inv_c3, inv_c3_sq) = (1.0 / c3, 1.0 / (c3 * c3));
         let s = c1 * d.zd + c2 * d.zd1 - c3 * c1 * d.dz1;
         let (q, q_dot) = (d.z1 - s * inv_c3_sq, -c1 * d.dz1 - s * inv_c3);
+        Predicted {
+            q,
+            q_dot,
+            c_at: q_dot,
+            k_at: q,
+        }
+    }
+
+    /// The same with s divided by c₃² and c₃ rather than multiplied by
+    /// their reciprocals: the chain's order of operations before the mass
+    /// dofs were one abstraction (`mass_step.rs`, bit-identical outputs).
+    #[inline]
+    fn predict_in_chain(&self, d: &mut BatheDof) -> Predicted {
+        let (c1, c2, c3) = (self.c1, self.c2, self.c3);
+        let s = c1 * d.zd + c2 * d.zd1 - c3 * c1 * d.dz1;
+        let (q, q_dot) = (d.z1 - s / (c3 * c3), -c1 * d.dz1 - s / c3);
         Predicted {
             q,
             q_dot,
@@ -380,11 +402,14 @@ impl Stepper for Bathe {
             self.d_pred[i] = self.d1[i] - s * inv_c3_sq;
             self.v_pred[i] = -c1 * inc - s * inv_c3;
         }
+        // each head's ż₁ for the gap rates, from u★₁ − λ/A_q (a chain's
+        // head state takes the inverse's row: `FirstSubStep`)
+        let preds = self.masses.predictions();
+        for ((qd1, m), &l) in self.qd1.iter_mut().zip(preds).zip(lambda) {
+            *qd1 = m.q_dot + c0 * m.unknown(l);
+        }
         self.masses
             .finish(&self.first, &self.effective1, &sys.physics.masses, lambda);
-        for (j, qd1) in self.qd1.iter_mut().enumerate() {
-            *qd1 = self.masses.head(j).zd1;
-        }
         sys.keep_gap_rates(&self.d1, &self.v1, &self.qd1);
 
         // sub-step 2: three-point backward Euler to t_{n+1}

@@ -80,6 +80,22 @@ pub(crate) trait Stage {
     /// may keep a part of it in the dof for its update).
     fn predict(&self, dof: &mut Self::Dof) -> Predicted;
 
+    /// [`Stage::predict`] of a chain's dof: the same in exact arithmetic;
+    /// a stage overrides it where the chain's own stepper, before the
+    /// mass dofs were one abstraction, ordered its floating-point
+    /// operations differently, so that a chain's outputs keep their bits.
+    #[inline]
+    fn predict_in_chain(&self, dof: &mut Self::Dof) -> Predicted {
+        self.predict(dof)
+    }
+
+    /// Whether a chain's head is updated, like its lower masses, with the
+    /// unknown `u★₁ − λ (A⁻¹)₁₁` rather than the contact's `u★₁ − λ/A_q`
+    /// (equal in exact arithmetic, A_q = 1/(A⁻¹)₁₁): Bathe's first
+    /// sub-step, whose head state feeds only the chain's second sub-step,
+    /// as the chain's own stepper did (bit-identical outputs).
+    const CHAIN_HEAD_BY_INVERSE: bool = false;
+
     /// The right-hand side of a dof, from its constant force `f0` (N), its
     /// mass `m` (kg), its state, and `c_term`, `k_term` = the dof's rows of
     /// C c_at and K k_at (N).
@@ -181,11 +197,6 @@ impl<D: Dof> MassSteps<D> {
         &mut self.bodies[j].dofs[0]
     }
 
-    /// Contact `j`'s head dof.
-    pub(crate) fn head(&self, j: usize) -> &D {
-        &self.bodies[j].dofs[0]
-    }
-
     /// At a step's start: each head's (q, q̇) from the contact's state.
     pub(crate) fn begin(&mut self, st: &State) {
         for (j, b) in self.bodies.iter_mut().enumerate() {
@@ -229,7 +240,7 @@ impl<D: Dof> MassSteps<D> {
                     let mut c_at = [0.0; MAX_CHAIN];
                     let mut k_at = [0.0; MAX_CHAIN];
                     for i in 0..n {
-                        let p = stage.predict(&mut b.dofs[i]);
+                        let p = stage.predict_in_chain(&mut b.dofs[i]);
                         b.predicted[i] = p;
                         (c_at[i], k_at[i]) = (p.c_at, p.k_at);
                     }
@@ -273,7 +284,13 @@ impl<D: Dof> MassSteps<D> {
         let bodies = self.bodies.iter_mut().zip(&self.predictions);
         for (j, (b, pred)) in bodies.enumerate() {
             let l = lambda[j];
-            stage.update(&mut b.dofs[0], &b.predicted[0], pred.unknown(l));
+            match (&masses.chains[j], &effective[j]) {
+                (Some(_), Effective::Chain(inv)) if S::CHAIN_HEAD_BY_INVERSE => {
+                    let u = b.u_star[0] - l * inv[0][0];
+                    stage.update(&mut b.dofs[0], &b.predicted[0], u);
+                }
+                _ => stage.update(&mut b.dofs[0], &b.predicted[0], pred.unknown(l)),
+            }
             if let (Some(ch), Effective::Chain(inv)) = (&masses.chains[j], &effective[j]) {
                 for i in 1..ch.n {
                     let u = b.u_star[i] - l * inv[i][0];
