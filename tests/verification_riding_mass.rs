@@ -25,7 +25,7 @@
 use crate::common;
 use common::{out_dir, run, scene, taut_bin};
 use taut::analytic::RidingMassHistory;
-use taut::study::grid::observed_order;
+use taut::study::uncertainty::observed_order;
 
 const SCENE: &str = "riding_mass_pinned.toml";
 

@@ -92,6 +92,35 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Solution verification: run a small family of the scene refined in
+    /// space and time, together and apart, and give every reported quantity
+    /// its numerical uncertainty u_num (GCI, Eça–Hoekstra least squares),
+    /// observed orders and the space/time split (uncertainty.csv,
+    /// uncertainty.json, uncertainty.svg; docs/verification.md).
+    Uncertainty {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Diagonal levels of the family (3 ..= 6; 2K − 1 runs).
+        #[arg(long, default_value = "4", allow_hyphen_values = true)]
+        levels: String,
+        /// Override a scene value (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY.PATH=VALUE")]
+        set: Vec<String>,
+        /// Remove a scene key so that its default applies (repeatable; applied
+        /// before the --set overrides): --unset integrator.rho_inf.
+        #[arg(long = "unset", value_name = "KEY.PATH")]
+        unset: Vec<String>,
+        /// Output folder (default: out/<scene name>-uncertainty).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Start even when the study's estimated cost is above 1e11
+        /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+        #[arg(long)]
+        yes: bool,
+        /// No progress bar.
+        #[arg(long)]
+        quiet: bool,
+    },
     /// Re-run a golden suite and compare each quantity with its reference
     /// (gate.json, junit.xml); exit code 1 when any check fails.
     Gate {
@@ -155,6 +184,26 @@ enum Command {
         /// (and, for a 2-D sweep, a map of where the loss map is converged).
         #[arg(long)]
         check_refinement: bool,
+        /// Refine each point until the numerical uncertainty u_num of
+        /// --quantity is at most TOL (absolute, in its unit), only as far as
+        /// it must; adds u_num and the resolution used to sweep.csv
+        /// (docs/sweeps.md).
+        #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+        tolerance: Option<String>,
+        /// What --tolerance is on: a column of sweep.csv (loss_fraction_span,
+        /// the default; loss_fraction, loss_fraction_support, force_mean,
+        /// force_std, force_max, force_min, first_loss_position).
+        #[arg(long, value_name = "Q", requires = "tolerance")]
+        quantity: Option<String>,
+        /// With --tolerance: the most a point may cost, pilots included, as a
+        /// multiple of its run at the scene's resolution (default 64).
+        #[arg(
+            long,
+            value_name = "F",
+            requires = "tolerance",
+            allow_hyphen_values = true
+        )]
+        max_cost: Option<String>,
         /// Worker threads (default: all cores; at most 4 per core, 1024).
         #[arg(long, value_name = "N", allow_hyphen_values = true)]
         threads: Option<String>,
@@ -406,6 +455,9 @@ fn main() -> ExitCode {
             out,
             shard,
             check_refinement,
+            tolerance,
+            quantity,
+            max_cost,
             threads,
             batch,
             quiet,
@@ -413,6 +465,7 @@ fn main() -> ExitCode {
         } => cmd_sweep(
             scene,
             (&vary, points.as_deref(), log, check_refinement),
+            (tolerance, quantity, max_cost),
             overrides(unset, set),
             out,
             shard.as_deref(),
@@ -500,6 +553,17 @@ fn main() -> ExitCode {
             (quiet, yes),
         )
         .map(|()| true),
+        Command::Uncertainty {
+            scene,
+            levels,
+            set,
+            unset,
+            out,
+            quiet,
+            yes,
+        } => {
+            cmd_uncertainty(scene, levels, overrides(unset, set), out, (quiet, yes)).map(|()| true)
+        }
         Command::Compare {
             scene,
             formulations,
@@ -776,6 +840,30 @@ fn cmd_converge(
     Ok(())
 }
 
+fn cmd_uncertainty(
+    scene: PathBuf,
+    levels: String,
+    set: Vec<String>,
+    out: Option<PathBuf>,
+    (quiet, yes): (bool, bool),
+) -> taut::Result<()> {
+    let levels = required_count(levels, taut::study::uncertainty::check_levels)?;
+    let study = app::words::uncertainty(levels, yes)?;
+    let place = (scene.as_path(), set, out, "-uncertainty");
+    let (u, dir) = on_scene(place, study, quiet, app::uncertainty)?;
+    let runs = u.family.len();
+    let kind = format!(
+        "uncertainty ({} levels, {runs} runs in {:.2} s wall)",
+        u.levels, u.wall_seconds
+    );
+    let files = "uncertainty.csv, uncertainty.json, uncertainty.svg";
+    print!(
+        "{}",
+        terminal::study(&kind, &scene, &terminal::family(&u), &dir, files)
+    );
+    Ok(())
+}
+
 /// Returns whether every row passed (or is known, cannot, reported).
 fn cmd_verify(
     (methods, spaces, formulations): (Option<&str>, Option<&str>, Option<&str>),
@@ -837,6 +925,7 @@ fn cmd_gate(
 fn cmd_sweep(
     scene: PathBuf,
     (vary, points, log, check_refinement): (&[String], Option<&std::path::Path>, bool, bool),
+    (tolerance, quantity, max_cost): (Option<String>, Option<String>, Option<String>),
     set: Vec<String>,
     out: Option<PathBuf>,
     shard: Option<&str>,
@@ -850,12 +939,18 @@ fn cmd_sweep(
         None => app::words::axes(vary, log)?,
     };
     let shard = shard.map(taut::study::sweep::Shard::parse).transpose()?;
+    let tolerance = app::words::sweep_tolerance(
+        tolerance.as_deref(),
+        quantity.as_deref(),
+        max_cost.as_deref(),
+    )?;
     let request = app::SweepRequest {
         scene: SceneSource::File(scene.clone()),
         set,
         axes,
         points: points.is_some(),
         check_refinement,
+        tolerance,
         out: out.unwrap_or_else(|| default_dir(&scene, "-sweep")),
         files: true,
         shard,

@@ -516,7 +516,7 @@ fn pretty(value: &impl serde::Serialize) -> PyResult<String> {
 /// returns the columns of `sweep.csv`. `files` writes the CLI's tables and
 /// maps into `out` as well.
 #[pyfunction]
-#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress, yes, points=false))]
+#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress, yes, points=false, tolerance=None, quantity=None, max_cost=None))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -533,6 +533,9 @@ fn sweep<'py>(
     progress: Option<Bound<'py, PyAny>>,
     yes: bool,
     points: bool,
+    tolerance: Option<String>,
+    quantity: Option<String>,
+    max_cost: Option<String>,
 ) -> PyResult<Bound<'py, PyList>> {
     let err = |e| to_py_err(py, e);
     let request = app::SweepRequest {
@@ -541,6 +544,12 @@ fn sweep<'py>(
         axes: words::axes(&vary, log).map_err(err)?,
         points,
         check_refinement,
+        tolerance: words::sweep_tolerance(
+            tolerance.as_deref(),
+            quantity.as_deref(),
+            max_cost.as_deref(),
+        )
+        .map_err(err)?,
         out,
         files,
         shard: None,
@@ -623,6 +632,35 @@ fn converge<'py>(
     Ok((table_to_py(py, &rows)?, skipped))
 }
 
+/// A solution verification (`taut uncertainty`): `(uncertainty.csv
+/// columns, the family's runs)`; with `out` the CLI's files too.
+#[pyfunction]
+#[pyo3(signature = (path, text, set, levels, out, progress, yes))]
+#[allow(clippy::too_many_arguments)]
+fn uncertainty<'py>(
+    py: Python<'py>,
+    path: Option<&str>,
+    text: Option<String>,
+    set: Vec<String>,
+    levels: usize,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+    yes: bool,
+) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
+    let err = |e| to_py_err(py, e);
+    let request = app::UncertaintyRequest {
+        scene: scene(path, text).map_err(err)?,
+        set,
+        study: words::uncertainty(levels, yes).map_err(err)?,
+        out,
+    };
+    let u = call(py, progress.as_ref(), |fe| app::uncertainty(&request, fe))?;
+    Ok((
+        table_to_py(py, &taut::report::uncertainty_table(&u))?,
+        table_to_py(py, &taut::report::family_table(&u))?,
+    ))
+}
+
 /// A work–precision study: `(precision.csv columns, skipped)`; with `out`
 /// the CLI's files too.
 #[pyfunction]
@@ -699,12 +737,17 @@ fn scene_json(
 /// converge_most), (precision_least, precision_most))`, so that the Python
 /// layer names them for a value no integer argument can hold (-1, 2**70).
 #[pyfunction]
-fn level_ranges() -> ((usize, usize), (usize, usize)) {
-    let (c, p) = (
+fn level_ranges() -> ((usize, usize), (usize, usize), (usize, usize)) {
+    let (c, p, u) = (
         taut::study::converge::LEVELS,
         taut::study::precision::LEVELS,
+        taut::study::uncertainty::LEVELS,
     );
-    ((*c.start(), *c.end()), (*p.start(), *p.end()))
+    (
+        (*c.start(), *c.end()),
+        (*p.start(), *p.end()),
+        (*u.start(), *u.end()),
+    )
 }
 
 /// The natural frequencies and mode shapes of a scene's beam (`taut
@@ -761,6 +804,7 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precision, m)?)?;
+    m.add_function(wrap_pyfunction!(uncertainty, m)?)?;
     m.add_function(wrap_pyfunction!(scene_json, m)?)?;
     m.add_function(wrap_pyfunction!(level_ranges, m)?)?;
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;

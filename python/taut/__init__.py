@@ -78,6 +78,7 @@ __all__ = [
     "compare",
     "converge",
     "precision",
+    "uncertainty",
     "load_scene",
     "scenes",
     "scene_text",
@@ -456,7 +457,7 @@ def _count(name: str, value: int, least: int, most: int = _LARGEST) -> int:
 
 
 def _levels(levels: int, study: int) -> int:
-    """`levels` of converge (study 0) or precision (1): refused with the
+    """`levels` of converge (study 0), precision (1) or uncertainty (2): refused with the
     library's range when no count can hold it (below 0, above 2**63 - 1);
     the library refuses the rest with the same range."""
     least, most = _taut.level_ranges()[study]
@@ -623,6 +624,9 @@ def sweep(
     log: bool = False,
     check_refinement: bool = False,
     batch: Optional[int] = None,
+    tolerance: Optional[float] = None,
+    quantity: Optional[str] = None,
+    max_cost: Optional[float] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
     yes: bool = False,
@@ -649,6 +653,18 @@ def sweep(
             add the refined P_l and its change as columns.
         batch: runs stepped together when they share their matrix (1 ..= 8;
             default 4); the table is the same whatever it is.
+        tolerance: refine each point until the numerical uncertainty of
+            `quantity` is at most this (absolute, in its unit), only as far
+            as it must (`taut sweep --tolerance`); adds the columns u_num,
+            tolerance_met, elements_used, modes_used, dt_used, runs_used,
+            dof_steps_used and estimator.
+        quantity: what `tolerance` is on: a column of the table
+            ("loss_fraction_span", the default; "loss_fraction",
+            "loss_fraction_support", "force_mean", "force_std", "force_max",
+            "force_min", "first_loss_position").
+        max_cost: with `tolerance`, the most a point may cost, pilots
+            included, as a multiple of its run at the scene's resolution
+            (default 64).
         out: a folder for the CLI's files (sweep.csv, maps, runs/). The sweep
             is resumable there: an interrupted sweep keeps the points it
             finished, and the same call resumes from them. Without `out`
@@ -686,10 +702,32 @@ def sweep(
         )
     args = (axes, log, _overrides(set))
     n_threads, n_batch = _opt_ranged("threads", threads), _opt_ranged("batch", batch)
+    if tolerance is None and (quantity is not None or max_cost is not None):
+        raise SceneError(
+            "sweep: `quantity` and `max_cost` go with `tolerance`",
+            field="tolerance",
+            value=None,
+            allowed="a number > 0 with quantity= or max_cost=",
+        )
+    tol = None if tolerance is None else _toml(_real("tolerance", tolerance))
+    cost = None if max_cost is None else _toml(_real("max_cost", max_cost))
 
     def call(folder: str, files: bool) -> Table:
         cols = _taut.sweep(
-            path, text, *args, folder, files, n_threads, n_batch, check_refinement, p, yes, paired
+            path,
+            text,
+            *args,
+            folder,
+            files,
+            n_threads,
+            n_batch,
+            check_refinement,
+            p,
+            yes,
+            paired,
+            tol,
+            quantity,
+            cost,
         )
         t = table(cols)
         t.paired = paired
@@ -812,6 +850,46 @@ def converge(
         )
     t = table(cols)
     t.skipped = _not_run(skipped)
+    return t
+
+
+@_speaks_python
+def uncertainty(
+    scene: Scene,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    *,
+    levels: int = 4,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+    yes: bool = False,
+) -> Table:
+    """The numerical uncertainty of every reported quantity of a scene
+    (`taut uncertainty`, docs/verification.md "Solution verification"): a
+    family of runs refined in space (h, or J) and time (Δt) together and
+    apart, and for each quantity its value, u_num, the estimator (Roache's
+    GCI, or Eça & Hoekstra's least squares for scattered data), the
+    observed orders the data support and the share of the error from space.
+
+    Args:
+        levels: diagonal levels K (3 ..= 6; 2K − 1 runs, the finest 4^(K−1)
+            times the scene's run).
+        set, out, progress, yes: as for sweep().
+
+    Returns:
+        Table of uncertainty.csv's columns (quantity, unit, smooth, value,
+        u_num, u_relative, error, extrapolated, safety_factor, estimator,
+        fit, behaviour, observed_order, formal_order, order_space,
+        order_time, space_share, asymptotic, sigma, data_range, value_scene,
+        u_scene, note; docs/output.md); `.family` is a Table of its runs
+        (role, level, elements, modes, h, dt, steps, dofs).
+    """
+    path, text = _scene(scene)
+    with _Sink(progress, "runs") as p:
+        cols, family = _taut.uncertainty(
+            path, text, _overrides(set), _levels(levels, 2), _out(out), p, yes
+        )
+    t = table(cols)
+    t.family = table(family)
     return t
 
 

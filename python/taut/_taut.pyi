@@ -1,7 +1,8 @@
 """Type stubs of the native module `taut._taut` (python/src/lib.rs).
 
 Not for direct use: `taut.run`, `taut.sweep`, `taut.compare`,
-`taut.converge` and `taut.precision` (python/taut/__init__.py) call these
+`taut.converge`, `taut.precision` and `taut.uncertainty`
+(python/taut/__init__.py) call these
 with the CLI's words and turn their `(name, kind, data)` columns into
 numpy arrays (python/taut/_table.py).
 """
@@ -26,6 +27,7 @@ __all__ = [
     "scene_json",
     "sweep",
     "taut_version",
+    "uncertainty",
 ]
 
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
@@ -60,6 +62,9 @@ def sweep(
     progress: _Progress,
     yes: bool,
     points: bool = False,
+    tolerance: Optional[str] = None,
+    quantity: Optional[str] = None,
+    max_cost: Optional[str] = None,
 ) -> List[_Column]: ...
 def compare(
     path: Optional[str],
@@ -102,8 +107,17 @@ def precision(
     progress: _Progress,
     yes: bool,
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
+def uncertainty(
+    path: Optional[str],
+    text: Optional[str],
+    set: List[str],
+    levels: int,
+    out: Optional[str],
+    progress: _Progress,
+    yes: bool,
+) -> Tuple[List[_Column], List[_Column]]: ...
 def scene_json(path: Optional[str], text: Optional[str], set: List[str]) -> str: ...
-def level_ranges() -> Tuple[Tuple[int, int], Tuple[int, int]]: ...
+def level_ranges() -> Tuple[Tuple[int, int], Tuple[int, int], Tuple[int, int]]: ...
 def bundled_scenes() -> List[Tuple[str, str]]: ...
 def modes(
     path: Optional[str],

@@ -14,6 +14,7 @@
 //! | [`convergence`] | `docs/convergence.md` (written in full) | `cargo xtask convergence` |
 //! | [`stability`] | `docs/stability.md` (written in full) | `cargo xtask stability` |
 //! | [`reproduction`] | `docs/reproduction.md` and `docs/reproduction/` | `cargo xtask reproduction [--full] [--resume]` |
+//! | [`uncertainty`] | `docs/verification.md` ("Solution verification": coverage tables) | `cargo xtask uncertainty [quick]` |
 
 /// The repository's top folder (scenes/, docs/): this crate sits one below it.
 pub const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
@@ -23,3 +24,4 @@ pub mod convergence;
 pub mod methods;
 pub mod reproduction;
 pub mod stability;
+pub mod uncertainty;

@@ -4,7 +4,7 @@
 use std::process::ExitCode;
 
 /// Each page's command, its entry point, and what it writes.
-const PAGES: [(&str, fn(), &str); 5] = [
+const PAGES: [(&str, fn(), &str); 6] = [
     (
         "methods",
         xtask::methods::main,
@@ -29,6 +29,11 @@ const PAGES: [(&str, fn(), &str); 5] = [
         "reproduction",
         xtask::reproduction::main,
         "docs/reproduction.md and docs/reproduction/ (`--full`: T7 refined at 41 x 41; `--resume`: keep finished runs)",
+    ),
+    (
+        "uncertainty",
+        xtask::uncertainty::main,
+        "the coverage tables of docs/verification.md (solution verification), printed as markdown (`quick`: a few pairs a case)",
     ),
 ];
 

@@ -33,6 +33,19 @@ pub fn write_loss_fraction_map(
     title: Option<&str>,
     levels: &[f64],
 ) -> Result<()> {
+    write_map_hatched(path, spec, records, title, levels, false)
+}
+
+/// [`write_loss_fraction_map`], with the cells of the points whose
+/// `--tolerance` was not met crossed out when `hatch`.
+pub(super) fn write_map_hatched(
+    path: &Path,
+    spec: &SweepSpec,
+    records: &[SweepRecord],
+    title: Option<&str>,
+    levels: &[f64],
+    hatch: bool,
+) -> Result<()> {
     if spec.axes.len() != 2 || records.len() != spec.len() {
         return Err(Error::invalid(
             "sweep maps",
@@ -132,6 +145,25 @@ pub fn write_loss_fraction_map(
             text: format!("V0/c = {}", tick(level)),
             anchor,
         });
+    }
+    if hatch {
+        // an X over each cell whose point did not reach its tolerance
+        for r in records {
+            let (i, j) = (r.index / ny, r.index % ny);
+            if i >= nx || r.accuracy.as_ref().is_none_or(|a| a.met) {
+                continue;
+            }
+            let (x0, x1) = (x_edges[i], x_edges[i + 1]);
+            let (y0, y1) = (y_edges[j], y_edges[j + 1]);
+            overlays.push(Overlay {
+                points: vec![(x0, y0), (x1, y1)],
+                bold: false,
+            });
+            overlays.push(Overlay {
+                points: vec![(x0, y1), (x1, y0)],
+                bold: false,
+            });
+        }
     }
     let with_loss = records.iter().filter(|r| r.loss_fraction > 0.0).count();
     let map = Map {
