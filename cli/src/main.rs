@@ -922,6 +922,7 @@ fn cmd_gate(
 }
 
 /// Returns whether every point ran (the tables are written either way).
+#[allow(clippy::too_many_arguments)]
 fn cmd_sweep(
     scene: PathBuf,
     (vary, points, log, check_refinement): (&[String], Option<&std::path::Path>, bool, bool),

@@ -19,7 +19,8 @@
 //!    u_num. Within EPS: done; else one more level on both (a + 1, b + 1),
 //!    up to [`MAX_CHECKS`] checks. Every candidate is cut down, its larger
 //!    refinement first, to what the point's budget (`budget` × its own
-//!    run, in unknowns × steps) still allows. A point that does not reach
+//!    run, in unknowns × steps) still allows and to scenes the model takes
+//!    (J within the exact modes' range). A point that does not reach
 //!    EPS keeps the candidate of smallest u_num, marked not met.
 //!
 //! Points are worked a chunk at a time ([`CHUNK`]): each round gathers
@@ -505,7 +506,15 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
             .map(|f| p.base_cost * (RATIO as f64).powi(f.0 + f.1))
             .sum()
     };
-    while p.spent() + cost(p, next) > tol.budget * p.base_cost {
+    // a scene the model refuses (J beyond the exact modes' range) is out of
+    // reach like one beyond the budget
+    let fits = |p: &Point, k: Key| {
+        p.spent() + cost(p, k) <= tol.budget * p.base_cost
+            && family(k)
+                .iter()
+                .all(|&f| p.value(f).is_some() || p.scene(f).is_ok())
+    };
+    while !fits(p, next) {
         if next.0 >= next.1 && next.0 > key.0 {
             next.0 -= 1;
         } else if next.1 > key.1 {
@@ -517,7 +526,7 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
         }
     }
     let refines = next.0 > key.0 || next.1 > key.1;
-    let affordable = p.spent() + cost(p, next) <= tol.budget * p.base_cost;
+    let affordable = fits(p, next);
     if !refines || !affordable || p.checks >= MAX_CHECKS {
         let best = p
             .candidates
@@ -599,7 +608,7 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
 pub(super) fn check_level(sc: &Resolved) -> Result<()> {
     let level = Level::of(sc);
     let n = level.start();
-    if n % LEVEL_MULTIPLE == 0 {
+    if n.is_multiple_of(LEVEL_MULTIPLE) {
         return Ok(());
     }
     Err(Error::invalid(

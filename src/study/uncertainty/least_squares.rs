@@ -338,7 +338,9 @@ fn solve(a: &mut [[f64; 4]; 3], m: usize) -> Option<[f64; 3]> {
     let scale = (0..m).map(|i| a[i][i].abs()).fold(0.0, f64::max);
     for col in 0..m {
         let piv = (col..m).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if !(a[piv][col].abs() > 1e-14 * scale) {
+        // a pivot that is zero, NaN or round-off of the largest: singular
+        let pivot = a[piv][col].abs();
+        if pivot.is_nan() || pivot <= 1e-14 * scale {
             return None;
         }
         a.swap(col, piv);

@@ -11,8 +11,10 @@
 //! Targets (issue 37): covered at ≥ [`COVERAGE_TARGET`] of the pairs,
 //! sharpness ≤ [`SHARPNESS_LIMIT`] at ≥ [`SHARPNESS_TARGET`] of them.
 //!
-//! Run: `cargo xtask uncertainty` (every pair, a few minutes on 2 cores),
-//! or `cargo xtask uncertainty quick` (a few pairs a case). It prints
+//! Run: `cargo xtask uncertainty` (every pair, about 15 minutes on 2
+//! cores), `cargo xtask uncertainty quick` (a few pairs a case), or with
+//! words that pick cases by name (`cargo xtask uncertainty "reference
+//! case"`). It prints
 //! markdown tables to stdout; wall times go to stderr. The default test
 //! suite runs a cut-down version (`tests/uncertainty.rs`).
 
@@ -197,9 +199,12 @@ pub fn shares(rows: &[Row]) -> (f64, f64) {
 /// The report: what `cargo xtask uncertainty` runs.
 pub fn main() {
     let quick = std::env::args().any(|a| a == "quick");
+    // any other argument keeps the cases whose name contains it
+    let only: Vec<String> = std::env::args().skip(2).filter(|a| a != "quick").collect();
     let mut all = Vec::new();
     let mut rm: Option<(&str, RidingMassHistory)> = None;
-    for case in cases(quick) {
+    let keep = |c: &Case| only.is_empty() || only.iter().any(|o| c.name.contains(o.as_str()));
+    for case in cases(quick).into_iter().filter(keep) {
         let clock = Instant::now();
         if case.truth == Truth::RidingMass && rm.as_ref().is_none_or(|(s, _)| *s != case.scene) {
             let h = riding_mass_of(&case).unwrap_or_else(|e| panic!("{}: {e}", case.name));
@@ -219,6 +224,21 @@ pub fn main() {
             clock.elapsed().as_secs_f64()
         );
         print!("{}", table(&case, &rows));
+        let text = scene_text(&case);
+        let set = overrides(&case, case.starts[0]);
+        let sc = resolve_scene(&text, &set).unwrap_or_else(|e| panic!("{}: {e}", case.name));
+        match truth::truth_spread(case.truth, case.quantity, &sc, &text, &set) {
+            Ok(0.0) => println!("the truth is exact"),
+            Ok(d) => println!(
+                "the truth's own accuracy: it moves by {d:.2e} when made at half its resolution (J/2{})",
+                if matches!(case.truth, Truth::Refined { .. }) {
+                    ", 2Δt"
+                } else {
+                    ""
+                }
+            ),
+            Err(e) => println!("the truth's own accuracy: not measured ({e})"),
+        }
         all.extend(rows);
     }
     print!("{}", summary(&all));

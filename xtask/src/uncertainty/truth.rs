@@ -61,9 +61,48 @@ const SIMPSON_POINTS: usize = 20_000;
 /// The riding-mass reference of scene `sc` (its beam, mass and speed) up
 /// to its end, J = [`RIDING_MASS_MODES`].
 pub fn riding_mass(sc: &Resolved) -> Result<RidingMassHistory> {
+    riding_mass_with(sc, RIDING_MASS_MODES)
+}
+
+/// [`riding_mass`] with J = `modes` (the truth's own check: J/2).
+pub fn riding_mass_with(sc: &Resolved, modes: usize) -> Result<RidingMassHistory> {
     let r = taut::study::reference::riding_mass_beam(sc).expect("a riding-mass scene");
-    let j = RIDING_MASS_MODES;
-    r.solve(j, r.max_step(j), RIDING_MASS_DT, sc.t_end)
+    r.solve(modes, r.max_step(modes), RIDING_MASS_DT, sc.t_end)
+}
+
+/// The truth's own accuracy: its value made once more at half the
+/// resolution (J/2; and 2Δt for a refined run), against the full one; 0
+/// for the exact series.
+pub fn truth_spread(
+    truth: Truth,
+    quantity_name: &str,
+    sc: &Resolved,
+    text: &str,
+    set: &[String],
+) -> Result<f64> {
+    let half = match truth {
+        Truth::Series => return Ok(0.0),
+        Truth::RidingMass => Truth::RidingMass,
+        Truth::Refined { modes, dt } => Truth::Refined {
+            modes: modes / 2,
+            dt: 2.0 * dt,
+        },
+    };
+    let (full, coarse) = match truth {
+        Truth::RidingMass => {
+            let a = riding_mass(sc)?;
+            let b = riding_mass_with(sc, RIDING_MASS_MODES / 2)?;
+            (
+                true_value(truth, quantity_name, sc, text, set, Some(&a))?,
+                true_value(half, quantity_name, sc, text, set, Some(&b))?,
+            )
+        }
+        _ => (
+            true_value(truth, quantity_name, sc, text, set, None)?,
+            true_value(half, quantity_name, sc, text, set, None)?,
+        ),
+    };
+    Ok((full - coarse).abs())
 }
 
 /// The true value of `quantity` for the finest run `finest` of a family
