@@ -16,6 +16,20 @@ fn set(s: &[&str]) -> Vec<String> {
     s.iter().map(|x| x.to_string()).collect()
 }
 
+/// `taut converge` on the moving force with overrides `s`, three levels.
+fn ladder(s: &[&str], refine: Refine) -> taut::study::converge::Convergence {
+    converge(
+        MOVING_FORCE,
+        &set(s),
+        refine,
+        3,
+        2.0,
+        &analytic_w,
+        &mut |_, _| {},
+    )
+    .unwrap()
+}
+
 /// The cut-down coverage study: the moving force's RMS displacement under
 /// the load against the exact series, from four starting resolutions of
 /// the full study's grid (docs/verification.md lists every pair). Every
@@ -130,16 +144,7 @@ fn a_divergence_is_named() {
 /// 50-element moving force, whose true error is 220 times the ladder's).
 #[test]
 fn a_one_variable_ladder_names_what_it_does_not_measure() {
-    let c = converge(
-        MOVING_FORCE,
-        &set(&["reference.kind=\"richardson\""]),
-        Refine::Step,
-        3,
-        2.0,
-        &analytic_w,
-        &mut |_, _| {},
-    )
-    .unwrap();
+    let c = ladder(&["reference.kind=\"richardson\""], Refine::Step);
     let last = c
         .rows
         .iter()
@@ -152,16 +157,7 @@ fn a_one_variable_ladder_names_what_it_does_not_measure() {
         last.regime
     );
     // both refined: the split says how much of each change is the mesh's
-    let c = converge(
-        MOVING_FORCE,
-        &set(&["reference.kind=\"richardson\""]),
-        Refine::Both,
-        3,
-        2.0,
-        &analytic_w,
-        &mut |_, _| {},
-    )
-    .unwrap();
+    let c = ladder(&["reference.kind=\"richardson\""], Refine::Both);
     assert_eq!(c.split.len(), 2);
     let both = c
         .rows
@@ -177,16 +173,7 @@ fn a_one_variable_ladder_names_what_it_does_not_measure() {
 /// each level is compared at the coarse grid's times they all reach.
 #[test]
 fn any_end_time_works() {
-    let c = converge(
-        MOVING_FORCE,
-        &set(&["time.end=0.5999"]),
-        Refine::Step,
-        3,
-        2.0,
-        &analytic_w,
-        &mut |_, _| {},
-    )
-    .unwrap();
+    let c = ladder(&["time.end=0.5999"], Refine::Step);
     assert_eq!(c.runs[0].steps, 1499);
     assert!(c.runs[2].steps > 4 * 1499);
     let u = uncertainty(MOVING_FORCE, &set(&["time.end=0.5999"]), 3, &mut |_, _| {}).unwrap();

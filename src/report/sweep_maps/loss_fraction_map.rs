@@ -33,11 +33,13 @@ pub fn write_loss_fraction_map(
     title: Option<&str>,
     levels: &[f64],
 ) -> Result<()> {
-    write_map_hatched(path, spec, records, title, levels, false)
+    write_map_hatched(path, spec, records, title, levels, false, None)
 }
 
 /// [`write_loss_fraction_map`], with the cells of the points whose
-/// `--tolerance` was not met crossed out when `hatch`.
+/// `--tolerance` was not met crossed out when `hatch`, and the colour
+/// bar's label `bar` for a map of another quantity than P_l (put in the
+/// records' `loss_fraction`).
 pub(super) fn write_map_hatched(
     path: &Path,
     spec: &SweepSpec,
@@ -45,6 +47,7 @@ pub(super) fn write_map_hatched(
     title: Option<&str>,
     levels: &[f64],
     hatch: bool,
+    bar: Option<&str>,
 ) -> Result<()> {
     if spec.axes.len() != 2 || records.len() != spec.len() {
         return Err(Error::invalid(
@@ -189,13 +192,20 @@ pub(super) fn write_map_hatched(
             hi: if hi > 0.0 { hi } else { 1.0 },
             zero_white: true,
             log: log_scale,
-            bar_label: "P_l = time with contact lost / run time".into(),
+            bar_label: bar
+                .unwrap_or("P_l = time with contact lost / run time")
+                .into(),
             clipped_max: None,
         },
         overlays,
         labels,
         footer: format!(
-            "{nx} × {ny} runs, {with_loss} with loss; lines: V0/c of each run (marching squares), bold at 0.64 and 0.96 (the study's band borders){}",
+            "{nx} × {ny} runs, {with_loss} {}; lines: V0/c of each run (marching squares), bold at 0.64 and 0.96 (the study's band borders){}",
+            if bar.is_some() {
+                "above 0"
+            } else {
+                "with loss"
+            },
             failed_note(records)
         ),
     };

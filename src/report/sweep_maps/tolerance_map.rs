@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::axes::axis_label;
 use super::loss_fraction_map::{SPEED_RATIO_LEVELS, write_map_hatched};
-use super::records::sorted_by_index;
+use super::records::{own_span, sorted_by_index};
 use crate::error::Result;
 use crate::study::sweep::{SweepRecord, SweepSpec};
 
@@ -30,7 +30,16 @@ pub fn write_u_num_map(path: &Path, spec: &SweepSpec, records: &[SweepRecord]) -
         tol.tolerance,
         records.len()
     );
-    write_map_hatched(path, spec, &u, Some(&title), &SPEED_RATIO_LEVELS, true)
+    let bar = format!("u_num of {} (its unit)", tol.quantity);
+    write_map_hatched(
+        path,
+        spec,
+        &u,
+        Some(&title),
+        &SPEED_RATIO_LEVELS,
+        true,
+        Some(&bar),
+    )
 }
 
 /// The value map of the targeted quantity with the points above EPS
@@ -41,7 +50,15 @@ pub fn write_value_map_hatched(
     records: &[SweepRecord],
     title: &str,
 ) -> Result<()> {
-    write_map_hatched(path, spec, records, Some(title), &SPEED_RATIO_LEVELS, true)
+    write_map_hatched(
+        path,
+        spec,
+        records,
+        Some(title),
+        &SPEED_RATIO_LEVELS,
+        true,
+        None,
+    )
 }
 
 /// `tolerance.svg` of a 1-D accuracy-targeted sweep: the targeted
@@ -51,15 +68,7 @@ pub fn write_tolerance_plot(path: &Path, spec: &SweepSpec, records: &[SweepRecor
     let tol = spec.tolerance.as_ref().expect("an accuracy-targeted sweep");
     let records = sorted_by_index(records);
     let x: Vec<f64> = records.iter().map(|r| r.values[0]).collect();
-    let half = |i: usize| -> [f64; 2] {
-        let lo = if i > 0 { 0.5 * (x[i - 1] + x[i]) } else { x[i] };
-        let hi = if i + 1 < x.len() {
-            0.5 * (x[i] + x[i + 1])
-        } else {
-            x[i]
-        };
-        [lo, hi]
-    };
+    let half = |i: usize| own_span(&x, i);
     let acc = |r: &SweepRecord| r.accuracy.clone();
     let unmet: Vec<[f64; 2]> = records
         .iter()

@@ -77,122 +77,153 @@ const CLAMPED: &[&str] = &["beam.left=\"clamped\"", "reference.kind=\"richardson
 /// The reference case at V0/c = 0.9 (in-span loss, TARGETS T3's band).
 const FAST: &[&str] = &["carrier.speed.cruise=134.92"];
 
+/// The steps Δt₀ of the smooth cases' grids, s.
+const STEPS: &[f64] = &[4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5];
+
+/// The refined truth of the P_l cases.
+const REFINED_PL: Truth = Truth::Refined {
+    modes: 3200,
+    dt: 3.125e-6,
+};
+
+/// One row of [`cases`]: name, scene file, overrides, quantity, truth,
+/// starting levels, steps, and the pairs the quick study keeps.
+type Row = (
+    &'static str,
+    &'static str,
+    &'static [&'static str],
+    &'static str,
+    Truth,
+    &'static [usize],
+    &'static [f64],
+    &'static [usize],
+);
+
 /// The cases of the full study (`cargo xtask uncertainty`), or of the
 /// quick one (`quick`: a few pairs of each, for a look in a minute). The
 /// P_l grids start at N₀, J₀ = 200: below it the support zone (4h, 4L/J)
 /// is a metre or more and the in-span P_l a different quantity
 /// (docs/contact_loss.md); a start whose finest level is the truth's own
-/// resolution is left out (its true error would be zero).
+/// resolution is left out (its true error would be zero). The riding mass
+/// stops at N₀ = 100: its finest mesh (800) keeps the reference's J =
+/// 3200 at four modes an element.
 pub fn cases(quick: bool) -> Vec<Case> {
-    let pick = |full: Vec<(usize, f64)>, keep: &[usize]| -> Vec<(usize, f64)> {
-        if quick {
-            keep.iter().map(|&i| full[i]).collect()
-        } else {
-            full
-        }
+    const MF: &str = "scenes/moving_force_beam.toml";
+    const RM: &str = "scenes/riding_mass_pinned.toml";
+    const REF: &str = "scenes/reference.toml";
+    const PL: &str = "loss_fraction_span";
+    let clamped_truth = Truth::Refined {
+        modes: 3200,
+        dt: 5e-6,
     };
-    vec![
-        Case {
-            name: "moving force, pinned–pinned",
-            scene: "scenes/moving_force_beam.toml",
-            set: &[],
-            quantity: "displacement_max",
-            truth: Truth::Series,
-            starts: pick(
-                grid(&[25, 50, 100, 200], &[4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5]),
-                &[0, 6, 12],
-            ),
-        },
-        Case {
-            name: "moving force, pinned–pinned",
-            scene: "scenes/moving_force_beam.toml",
-            set: &[],
-            quantity: "displacement_rms",
-            truth: Truth::Series,
-            starts: pick(
-                grid(&[25, 50, 100, 200], &[4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5]),
-                &[0, 6, 12],
-            ),
-        },
-        Case {
-            name: "moving force, clamped–pinned",
-            scene: "scenes/moving_force_beam.toml",
-            set: CLAMPED,
-            quantity: "displacement_max",
-            truth: Truth::Refined {
-                modes: 3200,
-                dt: 5e-6,
-            },
-            starts: pick(
-                grid(&[25, 50, 100, 200], &[4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5]),
-                &[0, 6, 12],
-            ),
-        },
-        Case {
-            name: "riding mass, pinned–pinned",
-            scene: "scenes/riding_mass_pinned.toml",
-            set: &[],
-            quantity: "displacement_max",
-            truth: Truth::RidingMass,
-            starts: pick(
-                grid(&[25, 50, 100], &[4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5]),
-                &[0, 6, 12],
-            ),
-        },
-        Case {
-            name: "riding mass, pinned–pinned",
-            scene: "scenes/riding_mass_pinned.toml",
-            set: &[],
-            quantity: "displacement_rms",
-            truth: Truth::RidingMass,
-            starts: pick(
-                grid(&[25, 50, 100], &[4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5]),
-                &[0, 6, 12],
-            ),
-        },
-        Case {
-            name: "riding mass, pinned–pinned",
-            scene: "scenes/riding_mass_pinned.toml",
-            set: &[],
-            quantity: "force_mean",
-            truth: Truth::RidingMass,
-            starts: pick(
-                grid(&[25, 50, 100], &[4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5]),
-                &[0, 6, 12],
-            ),
-        },
-        Case {
-            name: "reference case V0/c = 0.9, Hermite",
-            scene: "scenes/reference.toml",
-            set: FAST,
-            quantity: "loss_fraction_span",
-            truth: Truth::Refined {
-                modes: 3200,
-                dt: 3.125e-6,
-            },
-            starts: pick(grid(&[200, 400], &[2e-4, 1e-4, 5e-5, 2.5e-5]), &[1]),
-        },
-        Case {
-            name: "reference case V0/c = 0.9, modal_exact",
-            scene: "scenes/reference.toml",
-            set: FAST_MODAL_EXACT,
-            quantity: "loss_fraction_span",
-            truth: Truth::Refined {
-                modes: 3200,
-                dt: 3.125e-6,
-            },
-            starts: pick(grid(&[200, 400], &[4e-4, 2e-4, 1e-4, 5e-5]), &[1, 6]),
-        },
-        Case {
-            name: "reference case V0/c = 0.8, modal_exact",
-            scene: "scenes/reference.toml",
-            set: BAND_MODAL_EXACT,
-            quantity: "loss_fraction_span",
-            truth: Truth::Refined {
-                modes: 3200,
-                dt: 3.125e-6,
-            },
-            starts: pick(grid(&[200, 400], &[4e-4, 2e-4, 1e-4, 5e-5]), &[2]),
-        },
-    ]
+    let quick3: &[usize] = &[0, 6, 12];
+    let rows: [Row; 9] = [
+        (
+            "moving force, pinned–pinned",
+            MF,
+            &[],
+            "displacement_max",
+            Truth::Series,
+            &[25, 50, 100, 200],
+            STEPS,
+            quick3,
+        ),
+        (
+            "moving force, pinned–pinned",
+            MF,
+            &[],
+            "displacement_rms",
+            Truth::Series,
+            &[25, 50, 100, 200],
+            STEPS,
+            quick3,
+        ),
+        (
+            "moving force, clamped–pinned",
+            MF,
+            CLAMPED,
+            "displacement_max",
+            clamped_truth,
+            &[25, 50, 100, 200],
+            STEPS,
+            quick3,
+        ),
+        (
+            "riding mass, pinned–pinned",
+            RM,
+            &[],
+            "displacement_max",
+            Truth::RidingMass,
+            &[25, 50, 100],
+            STEPS,
+            quick3,
+        ),
+        (
+            "riding mass, pinned–pinned",
+            RM,
+            &[],
+            "displacement_rms",
+            Truth::RidingMass,
+            &[25, 50, 100],
+            STEPS,
+            quick3,
+        ),
+        (
+            "riding mass, pinned–pinned",
+            RM,
+            &[],
+            "force_mean",
+            Truth::RidingMass,
+            &[25, 50, 100],
+            STEPS,
+            quick3,
+        ),
+        (
+            "reference case V0/c = 0.9, Hermite",
+            REF,
+            FAST,
+            PL,
+            REFINED_PL,
+            &[200, 400],
+            &[2e-4, 1e-4, 5e-5, 2.5e-5],
+            &[1],
+        ),
+        (
+            "reference case V0/c = 0.9, modal_exact",
+            REF,
+            FAST_MODAL_EXACT,
+            PL,
+            REFINED_PL,
+            &[200, 400],
+            &STEPS[..4],
+            &[1, 6],
+        ),
+        (
+            "reference case V0/c = 0.8, modal_exact",
+            REF,
+            BAND_MODAL_EXACT,
+            PL,
+            REFINED_PL,
+            &[200, 400],
+            &STEPS[..4],
+            &[2],
+        ),
+    ];
+    rows.into_iter()
+        .map(|(name, scene, set, quantity, truth, levels, steps, keep)| {
+            let full = grid(levels, steps);
+            Case {
+                name,
+                scene,
+                set,
+                quantity,
+                truth,
+                starts: if quick {
+                    keep.iter().map(|&i| full[i]).collect()
+                } else {
+                    full
+                },
+            }
+        })
+        .collect()
 }
