@@ -187,7 +187,9 @@ pub fn oscillator_order(method: &dyn MethodFactory) -> Result<f64> {
                 .fold(0.0, f64::max);
         errors.push(err);
     }
-    Ok(taut::study::grid::observed_order(errors[0], errors[1], 2.0))
+    Ok(taut::study::uncertainty::observed_order(
+        errors[0], errors[1], 2.0,
+    ))
 }
 
 #[allow(dead_code)]

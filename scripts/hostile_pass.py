@@ -599,6 +599,7 @@ def main() -> int:
         ("study compare", ["compare", ref, "--set", "time.step=2e-8", "--set", "mesh.elements=1000", *out("c")]),
         ("study sweep", ["sweep", ref, "--vary", "speed_ratio=0.5:1:3", "--set", "time.step=2e-8", "--set", "output.record_every=10",
                          "--set", "mesh.elements=1000", *out("c2")]),
+        ("study uncertainty", ["uncertainty", ref, "--set", "time.step=2e-8", "--set", "mesh.elements=1000", *out("c3")]),
     ]
     # options: every integer option of every subcommand, out of range
     integer_options = [
@@ -611,6 +612,7 @@ def main() -> int:
         (["precision", ref], "--ratio"),
         (["converge", ref], "--levels"),
         (["converge", ref], "--ratio"),
+        (["uncertainty", ref], "--levels"),
         (["verify", "--quick"], "--threads"),
         (["replay", str(work / "none.json")], "--max-iter"),
     ]

@@ -44,6 +44,8 @@ mod sweep;
 mod sweep_faults;
 #[path = "sweep_lists.rs"]
 mod sweep_lists;
+#[path = "sweep_tolerance.rs"]
+mod sweep_tolerance;
 #[path = "tolerance.rs"]
 mod tolerance;
 

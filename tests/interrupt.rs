@@ -118,6 +118,7 @@ fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results
         axes: vec![Axis::parse("speed_ratio=0.4:1.2:8", false).unwrap()],
         check_refinement: false,
         paired: false,
+        tolerance: None,
     };
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("s");

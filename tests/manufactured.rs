@@ -254,9 +254,9 @@ fn a_manufactured_run_follows_its_exact_solution_and_halving_dt_quarters_the_err
         "manufactured: |w − w*| {w1:.3e} → {w2:.3e} m (max |w*| {scale:.3e}), |λ − λ*| {f1:.3e} → {f2:.3e} N"
     );
     assert!(w2 / scale < MMS_RELATIVE_W, "{w2} of {scale}");
-    let order = taut::study::grid::observed_order(w1, w2, 2.0);
+    let order = taut::study::uncertainty::observed_order(w1, w2, 2.0);
     assert!((order - 2.0).abs() < 0.3, "displacement order {order}");
-    let order = taut::study::grid::observed_order(f1, f2, 2.0);
+    let order = taut::study::uncertainty::observed_order(f1, f2, 2.0);
     assert!((order - 2.0).abs() < 0.3, "force order {order}");
 }
 

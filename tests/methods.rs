@@ -435,7 +435,7 @@ fn moreau_jean_theta_one_is_first_order_without_impacts() {
                 .fold(0.0, f64::max)
         })
         .collect();
-    let order = taut::study::grid::observed_order(errors[2], errors[3], 2.0);
+    let order = taut::study::uncertainty::observed_order(errors[2], errors[3], 2.0);
     println!("moreau_jean θ = 1 on the oscillator: errors {errors:?}, order {order:.2}");
     assert!((order - 1.0).abs() <= ORDER_TOL, "order {order}");
 }
@@ -517,7 +517,7 @@ fn moreau_jean_is_first_order_through_impacts() {
             .fold(0.0, f64::max);
         errors.push(e / peak);
     }
-    let order = taut::study::grid::fitted_order(&errors, 2.0);
+    let order = taut::study::uncertainty::fitted_order(&errors, 2.0);
     println!(
         "moreau_jean θ = ½ through impacts: q errors {errors:?}, order over the ladder {order:.2}"
     );

@@ -508,7 +508,7 @@ fn costly_studies_are_refused_before_any_run_with_the_estimate() {
                 "--levels",
                 "4",
             ],
-            "taut converge would make 4 runs of 3.30e12 DOF-steps",
+            "taut converge would make 7 runs of 3.47e12 DOF-steps",
         ),
         (
             vec!["precision", &reference, "--ratio", "100", "--levels", "2"],

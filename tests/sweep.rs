@@ -22,6 +22,7 @@ fn spec(axes: Vec<Axis>) -> SweepSpec {
         axes,
         check_refinement: false,
         paired: false,
+        tolerance: None,
     }
 }
 

@@ -39,6 +39,7 @@ fn spec(axes: &[&str]) -> SweepSpec {
             .collect(),
         check_refinement: false,
         paired: false,
+        tolerance: None,
     }
 }
 

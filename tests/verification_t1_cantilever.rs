@@ -61,7 +61,7 @@ fn tip_history_converges_with_observed_order() {
         .collect();
     let orders: Vec<f64> = diffs
         .windows(2)
-        .map(|d| taut::study::grid::observed_order(d[0], d[1], 2.0))
+        .map(|d| taut::study::uncertainty::observed_order(d[0], d[1], 2.0))
         .collect();
     println!("T1 tip history: successive max differences {diffs:?}, observed orders {orders:.2?}");
     for p in &orders {

@@ -16,7 +16,7 @@ mod terminal;
 
 use taut::app::{
     self, CompareArgs, ConvergeArgs, Frontend, GateArgs, ModesArgs, Note, PrecisionArgs,
-    ReplayArgs, RunArgs, SceneSource, SweepArgs, VerifyArgs,
+    ReplayArgs, RunArgs, SceneSource, SweepArgs, UncertaintyArgs, VerifyArgs,
 };
 use taut::report::{compare_table, converge_table, gate_table};
 use taut::study::request::ConvergeOutcome;
@@ -100,6 +100,19 @@ enum Command {
         on: OnScene,
         #[command(flatten)]
         args: ConvergeArgs,
+        #[command(flatten)]
+        q: Quiet,
+    },
+    /// Solution verification: run a small family of the scene refined in
+    /// space and time, together and apart, and give every reported quantity
+    /// its numerical uncertainty u_num (GCI, Eça–Hoekstra least squares),
+    /// observed orders and the space/time split (uncertainty.csv,
+    /// uncertainty.json, uncertainty.svg; docs/verification.md).
+    Uncertainty {
+        #[command(flatten)]
+        on: OnScene,
+        #[command(flatten)]
+        args: UncertaintyArgs,
         #[command(flatten)]
         q: Quiet,
     },
@@ -233,6 +246,7 @@ fn main() -> ExitCode {
         Command::Precision { on, args, q } => cmd_precision(&on, &args, q.quiet).map(|()| true),
         Command::Gate { args, out, q } => cmd_gate(&args, out, q.quiet),
         Command::Converge { on, args, q } => cmd_converge(&on, &args, q.quiet).map(|()| true),
+        Command::Uncertainty { on, args, q } => cmd_uncertainty(&on, &args, q.quiet).map(|()| true),
         Command::Compare { on, args, q } => cmd_compare(&on, &args, q.quiet),
         Command::Line {
             action: LineAction::Expand { scene, set, unset },
@@ -371,6 +385,22 @@ fn cmd_converge(on: &OnScene, args: &ConvergeArgs, quiet: bool) -> taut::Result<
     };
     let files = "converge.csv, converge.json, converge.svg";
     print!("{}", terminal::study(&kind, &on.scene, &table, &dir, files));
+    Ok(())
+}
+
+fn cmd_uncertainty(on: &OnScene, args: &UncertaintyArgs, quiet: bool) -> taut::Result<()> {
+    let study = args.study()?;
+    let (u, dir) = on_scene(on, "-uncertainty", study, quiet, app::uncertainty)?;
+    let runs = u.family.len();
+    let kind = format!(
+        "uncertainty ({} levels, {runs} runs in {:.2} s wall)",
+        u.levels, u.wall_seconds
+    );
+    let files = "uncertainty.csv, uncertainty.json, uncertainty.svg";
+    print!(
+        "{}",
+        terminal::study(&kind, &on.scene, &terminal::family(&u), &dir, files)
+    );
     Ok(())
 }
 

@@ -606,6 +606,34 @@ fn converge<'py>(
     Ok((table_to_py(py, &rows)?, skipped))
 }
 
+/// A solution verification (`taut uncertainty`): `(uncertainty.csv
+/// columns, the family's runs)`; with `out` the CLI's files too. `args`:
+/// [`taut::app::UncertaintyArgs`] as JSON.
+#[pyfunction]
+fn uncertainty<'py>(
+    py: Python<'py>,
+    on: SceneArg,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+    args: &str,
+) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
+    let err = |e| to_py_err(py, e);
+    let (scene, set) = on.source(py)?;
+    let request = app::UncertaintyRequest {
+        scene,
+        set,
+        study: options::<taut::app::UncertaintyArgs>(py, args)?
+            .study()
+            .map_err(err)?,
+        out,
+    };
+    let u = call(py, progress.as_ref(), |fe| app::uncertainty(&request, fe))?;
+    Ok((
+        table_to_py(py, &taut::report::uncertainty_table(&u))?,
+        table_to_py(py, &taut::report::family_table(&u))?,
+    ))
+}
+
 /// A work–precision study: `(precision.csv columns, skipped)`; with `out`
 /// the CLI's files too. `args`: [`taut::app::PrecisionArgs`] as JSON.
 #[pyfunction]
@@ -768,6 +796,7 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precision, m)?)?;
+    m.add_function(wrap_pyfunction!(uncertainty, m)?)?;
     m.add_function(wrap_pyfunction!(scene_json, m)?)?;
     m.add_function(wrap_pyfunction!(schema, m)?)?;
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;

@@ -79,6 +79,7 @@ __all__ = [
     "compare",
     "converge",
     "precision",
+    "uncertainty",
     "load_scene",
     "scenes",
     "scene_text",
@@ -715,6 +716,9 @@ def sweep(
     log: bool = False,
     check_refinement: bool = False,
     batch: Optional[int] = None,
+    tolerance: Optional[float] = None,
+    quantity: Optional[str] = None,
+    max_cost: Optional[float] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
     yes: bool = False,
@@ -743,6 +747,18 @@ def sweep(
             add the refined P_l and its change as columns.
         batch: runs stepped together when they share their matrix (1 ..= 8;
             default 4); the table is the same whatever it is.
+        tolerance: refine each point until the numerical uncertainty of
+            `quantity` is at most this (absolute, in its unit), only as far
+            as it must (`taut sweep --tolerance`); adds the columns u_num,
+            tolerance_met, elements_used, modes_used, dt_used, runs_used,
+            dof_steps_used and estimator.
+        quantity: what `tolerance` is on: a column of the table
+            ("loss_fraction_span", the default; "loss_fraction",
+            "loss_fraction_support", "force_mean", "force_std", "force_max",
+            "force_min", "first_loss_position").
+        max_cost: with `tolerance`, the most a point may cost, pilots
+            included, as a multiple of its run at the scene's resolution
+            (default 64).
         out: a folder for the CLI's files (sweep.csv, maps, runs/). The sweep
             is resumable there: an interrupted sweep keeps the points it
             finished, and the same call resumes from them. Without `out`
@@ -778,6 +794,9 @@ def sweep(
         log=log,
         shard=shard,
         check_refinement=check_refinement,
+        tolerance=tolerance,
+        quantity=quantity,
+        max_cost=max_cost,
         threads=threads,
         batch=batch,
         yes=yes,
@@ -906,6 +925,46 @@ def converge(
         )
     t = table(cols)
     t.skipped = _not_run(skipped)
+    return t
+
+
+@_speaks_python
+def uncertainty(
+    scene: Scene,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    *,
+    levels: int = 4,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+    yes: bool = False,
+) -> Table:
+    """The numerical uncertainty of every reported quantity of a scene
+    (`taut uncertainty`, docs/verification.md "Solution verification"): a
+    family of runs refined in space (h, or J) and time (Δt) together and
+    apart, and for each quantity its value, u_num, the estimator (Roache's
+    GCI, or Eça & Hoekstra's least squares for scattered data), the
+    observed orders the data support and the share of the error from space.
+
+    Args:
+        levels: diagonal levels K (3 ..= 6; 2K − 1 runs, the finest 4^(K−1)
+            times the scene's run).
+        set, out, progress, yes: as for sweep().
+
+    Returns:
+        Table of uncertainty.csv's columns (quantity, unit, smooth, value,
+        u_num, u_relative, error, extrapolated, safety_factor, estimator,
+        fit, behaviour, observed_order, formal_order, order_space,
+        order_time, space_share, asymptotic, sigma, data_range, value_scene,
+        u_scene, note; docs/output.md); `.family` is a Table of its runs
+        (role, level, elements, modes, h, dt, steps, dofs).
+    """
+    path, text = _scene(scene)
+    with _Sink(progress, "runs") as p:
+        cols, family = _taut.uncertainty(
+            (path, text, _overrides(set)), _out(out), p, _options(levels=levels, yes=yes)
+        )
+    t = table(cols)
+    t.family = table(family)
     return t
 
 

@@ -41,6 +41,7 @@ class Table(Dict[str, np.ndarray]):
             points × bins at x/L = span_x (sweep_force.csv,
             sweep_loss.csv); NaN where no step fell. None otherwise.
         warnings: of a sweep, each point's warning texts.
+        family: of an uncertainty study, its runs (a Table).
     """
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
@@ -53,6 +54,7 @@ class Table(Dict[str, np.ndarray]):
         self.span_loss: Optional[np.ndarray] = None
         self.span_x: Optional[np.ndarray] = None
         self.warnings: List[List[str]] = []
+        self.family: Optional["Table"] = None
 
     @property
     def rows(self) -> int:

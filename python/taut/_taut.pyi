@@ -1,7 +1,8 @@
 """Type stubs of the native module `taut._taut` (python/src/lib.rs).
 
 Not for direct use: `taut.run`, `taut.sweep`, `taut.compare`,
-`taut.converge` and `taut.precision` (python/taut/__init__.py) call these
+`taut.converge`, `taut.precision` and `taut.uncertainty`
+(python/taut/__init__.py) call these
 with their options as JSON (the library's `taut::app::args`, the CLI's
 flags) and turn their `(name, kind, data)` columns into
 numpy arrays (python/taut/_table.py).
@@ -29,6 +30,7 @@ __all__ = [
     "stop_running_calls",
     "sweep",
     "taut_version",
+    "uncertainty",
 ]
 
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
@@ -62,6 +64,9 @@ def precision(
     on: _SceneArg, out: Optional[str], progress: _Progress, args: str
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
 def schema() -> List[Tuple[str, List[Tuple[str, Optional[str], str]]]]: ...
+def uncertainty(
+    on: _SceneArg, out: Optional[str], progress: _Progress, args: str
+) -> Tuple[List[_Column], List[_Column]]: ...
 def scene_json(path: Optional[str], text: Optional[str], set: List[str]) -> str: ...
 def bundled_scenes() -> List[Tuple[str, str]]: ...
 def modes(

@@ -476,7 +476,7 @@ mod tests {
             assert!(err.iter().all(|e| *e > 0.0));
             if let Some(p) = prev {
                 for (ep, e) in p.iter().zip(&err) {
-                    let order = crate::study::grid::observed_order(*ep, *e, 2.0);
+                    let order = crate::study::uncertainty::observed_order(*ep, *e, 2.0);
                     println!("             observed order {order:.2}");
                     // h⁴ in the eigenvalue; pre-asymptotic modes may do better
                     assert!(order > 3.7 && order < 6.3, "order {order}");

@@ -466,7 +466,7 @@ mod tests {
                     .fold(0.0, f64::max)
             };
             let errs: Vec<f64> = levels.iter().map(|v| err(v)).collect();
-            let order = crate::study::grid::observed_order(errs[1], errs[2], 2.0);
+            let order = crate::study::uncertainty::observed_order(errs[1], errs[2], 2.0);
             // Richardson on the two finer levels (h⁴ left), then on all
             // three (h⁶ left, if the expansion holds)
             let r1 = |c: &[f64], fi: &[f64]| -> Vec<f64> {
@@ -479,7 +479,7 @@ mod tests {
                 .map(|(c, f)| (16.0 * f - c) / 15.0)
                 .collect();
             let (rich, rich2) = (err(&rb), err(&rich2));
-            let rich_order = crate::study::grid::observed_order(err(&ra), rich, 2.0);
+            let rich_order = crate::study::uncertainty::observed_order(err(&ra), rich, 2.0);
             println!(
                 "  {mu_l:<6} {n0:<5} {:.2e}  {:.2e}  {:.2e}          {order:.2}    {rich:.2e}  {rich2:.2e}  (order {rich_order:.2})",
                 errs[0], errs[1], errs[2]

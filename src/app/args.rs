@@ -303,6 +303,41 @@ impl ConvergeArgs {
     }
 }
 
+/// `taut uncertainty` / `taut.uncertainty`: the numerical uncertainty of
+/// every reported quantity of one scene (solution verification).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct UncertaintyArgs {
+    /// Diagonal levels of the family (3 ..= 6; 2K − 1 runs).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = "4", allow_hyphen_values = true)
+    )]
+    pub levels: Word,
+    /// Start even when the study's estimated cost is above 1e11
+    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub yes: bool,
+}
+
+impl Default for UncertaintyArgs {
+    fn default() -> Self {
+        UncertaintyArgs {
+            levels: Word("4".to_string()),
+            yes: false,
+        }
+    }
+}
+
+impl UncertaintyArgs {
+    /// The typed study: the levels by the study's own range.
+    pub fn study(&self) -> Result<request::UncertaintyRequest> {
+        let levels = self.levels.count(crate::study::uncertainty::check_levels)?;
+        words::uncertainty(levels, self.yes)
+    }
+}
+
 /// `taut precision` / `taut.precision`: work against precision over a
 /// (mesh, Δt) grid.
 #[derive(Debug, Clone, Deserialize)]
@@ -420,6 +455,32 @@ pub struct SweepArgs {
     /// (and, for a 2-D sweep, a map of where the loss map is converged).
     #[cfg_attr(feature = "clap", arg(long))]
     pub check_refinement: bool,
+    /// Refine each point until the numerical uncertainty u_num of
+    /// --quantity is at most TOL (absolute, in its unit), only as far as
+    /// it must; adds u_num and the resolution used to sweep.csv
+    /// (docs/sweeps.md).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "TOL", allow_hyphen_values = true)
+    )]
+    pub tolerance: Option<Word>,
+    /// What --tolerance is on: a column of sweep.csv (loss_fraction_span,
+    /// the default; loss_fraction, loss_fraction_support, force_mean,
+    /// force_std, force_max, force_min, first_loss_position).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "Q", requires = "tolerance"))]
+    pub quantity: Option<String>,
+    /// With --tolerance: the most a point may cost, pilots included, as a
+    /// multiple of its run at the scene's resolution (default 64).
+    #[cfg_attr(
+        feature = "clap",
+        arg(
+            long,
+            value_name = "F",
+            requires = "tolerance",
+            allow_hyphen_values = true
+        )
+    )]
+    pub max_cost: Option<Word>,
     /// Worker threads (default: all cores; at most 4 per core, 1024).
     #[cfg_attr(
         feature = "clap",
@@ -450,6 +511,8 @@ pub struct SweepStudy {
     pub points: bool,
     /// Run each point refined too.
     pub check_refinement: bool,
+    /// Refine each point until its u_num is within a tolerance.
+    pub tolerance: Option<crate::study::sweep::SweepTolerance>,
     /// One shard of the points.
     pub shard: Option<crate::study::sweep::Shard>,
     /// Worker threads (none: one per core).
@@ -483,10 +546,32 @@ impl SweepArgs {
             .as_deref()
             .map(crate::study::sweep::Shard::parse)
             .transpose()?;
+        if self.tolerance.is_none() {
+            if let Some(q) = &self.quantity {
+                return Err(Error::invalid(
+                    "--quantity",
+                    q,
+                    "is what --tolerance is on: give tolerance too",
+                ));
+            }
+            if let Some(f) = &self.max_cost {
+                return Err(Error::invalid(
+                    "--max-cost",
+                    &f.0,
+                    "bounds a point's refinement under --tolerance: give tolerance too",
+                ));
+            }
+        }
+        let tolerance = words::sweep_tolerance(
+            self.tolerance.as_ref().map(|w| w.0.as_str()),
+            self.quantity.as_deref(),
+            self.max_cost.as_ref().map(|w| w.0.as_str()),
+        )?;
         Ok(SweepStudy {
             axes,
             points: paired,
             check_refinement: self.check_refinement,
+            tolerance,
             shard,
             threads,
             batch,
@@ -708,6 +793,7 @@ pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
         ("run", of::<RunArgs>()),
         ("compare", of::<CompareArgs>()),
         ("converge", of::<ConvergeArgs>()),
+        ("uncertainty", of::<UncertaintyArgs>()),
         ("precision", of::<PrecisionArgs>()),
         ("sweep", of::<SweepArgs>()),
         ("modes", of::<ModesArgs>()),

@@ -30,6 +30,7 @@ pub mod run;
 pub mod scene;
 pub mod simulation;
 pub mod sweep;
+pub mod uncertainty;
 pub mod verify;
 pub mod words;
 
@@ -41,7 +42,7 @@ use crate::study::cost::Estimate;
 
 pub use args::{
     CompareArgs, ConvergeArgs, GateArgs, ModesArgs, PrecisionArgs, ReplayArgs, RunArgs, SweepArgs,
-    VerifyArgs, Word,
+    UncertaintyArgs, VerifyArgs, Word,
 };
 pub use compare::{CompareRequest, compare};
 pub use converge::{ConvergeRequest, converge};
@@ -55,6 +56,7 @@ pub use run::{RunOutcome, RunRequest, Tolerance, run};
 pub use scene::scene_tree;
 pub use simulation::{CarrierState, ProbeState, Simulation, SimulationState};
 pub use sweep::{SweepOutcome, SweepRequest, sweep};
+pub use uncertainty::{UncertaintyRequest, uncertainty};
 pub use verify::{VerifyOutcome, VerifyRequest, verify};
 
 /// Where a scene comes from: a file (read by the command, after the output

@@ -27,6 +27,9 @@ pub struct SweepRequest {
     pub points: bool,
     /// Run each point a second time, refined (`--check-refinement`).
     pub check_refinement: bool,
+    /// Refine each point until Q's u_num is within EPS (`--tolerance`,
+    /// `--quantity`, `--max-cost`).
+    pub tolerance: Option<crate::study::sweep::SweepTolerance>,
     /// The folder that holds the sweep's runs (resumable).
     pub out: PathBuf,
     /// Write the tables and maps into `out` too (the CLI always does).
@@ -57,6 +60,7 @@ impl SweepRequest {
             axes: study.axes,
             points: study.points,
             check_refinement: study.check_refinement,
+            tolerance: study.tolerance,
             out,
             files: true,
             shard: study.shard,
@@ -100,6 +104,7 @@ pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
         axes: req.axes.clone(),
         check_refinement: req.check_refinement,
         paired: req.points,
+        tolerance: req.tolerance.clone(),
     };
     spec.validate().map_err(|e| req.scene.name(e))?;
     started(&spec.estimate(req.shard)?, req.yes, fe)?;

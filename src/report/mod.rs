@@ -20,6 +20,7 @@ mod sweep;
 mod sweep_maps;
 mod table;
 mod tolerance;
+mod uncertainty;
 mod verify;
 mod wire;
 
@@ -48,6 +49,9 @@ pub use table::{Column, Table};
 pub use tolerance::{
     ACCURACY_COLUMNS, WithAccuracy, accuracy_csv, accuracy_header, accuracy_table, result_lines,
     write_tolerant_run,
+};
+pub use uncertainty::{
+    UNCERTAINTY_COLUMNS, family_table, uncertainty_lines, uncertainty_table, write_uncertainty,
 };
 pub use verify::{
     Counts, VERIFY_COLUMNS, verify_markdown, verify_rows, verify_table, write_verify,

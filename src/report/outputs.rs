@@ -33,6 +33,8 @@ pub enum Outputs {
     Sweep,
     /// `taut modes`.
     Modes,
+    /// `taut uncertainty`.
+    Uncertainty,
 }
 
 /// Prefix of a saved failing contact problem (`failed_contact_step_N.json`).
@@ -61,6 +63,7 @@ impl Outputs {
             Outputs::Precision => &["precision.csv", "precision.svg"],
             Outputs::Gate => &["gate.json", "junit.xml"],
             Outputs::Modes => &["modes.csv", "mode_shapes.csv"],
+            Outputs::Uncertainty => &["uncertainty.csv", "uncertainty.json", "uncertainty.svg"],
             Outputs::Sweep => &[
                 "sweep.csv",
                 "sweep_force.csv",
@@ -73,6 +76,8 @@ impl Outputs {
                 "loss_fraction_map.svg",
                 "loss_fraction_span_map.svg",
                 "refinement_map.svg",
+                "u_num_map.svg",
+                "tolerance.svg",
             ],
         }
     }

@@ -1,7 +1,7 @@
 //! Time grids and ladders shared by the studies (`converge`, `precision`,
 //! `run --tolerance`): the one check that a coarse run's times are a
-//! fine run's, the one resampling of a fine history onto the coarse grid,
-//! and the one observed order from successive differences.
+//! fine run's and the one resampling of a fine history onto the coarse
+//! grid (observed orders and error estimates: [`super::uncertainty`]).
 
 use std::ops::{Range, RangeInclusive};
 
@@ -73,61 +73,9 @@ pub fn in_range(key: &str, value: usize, range: &RangeInclusive<usize>) -> Resul
     }
 }
 
-/// Roache's safety factor for a three-grid study (the grid convergence
-/// index, GCI).
-pub const GCI_SAFETY_FACTOR: f64 = 1.25;
-
-/// Observed order p = ln(e_c/e_f)/ln r from two successive differences
-/// (coarse, fine) of a ladder refined by r; NaN unless both are > 0 (a
-/// zero, negative or NaN difference has no order).
-pub fn observed_order(e_coarse: f64, e_fine: f64, r: f64) -> f64 {
-    if e_coarse > 0.0 && e_fine > 0.0 {
-        (e_coarse / e_fine).ln() / r.ln()
-    } else {
-        f64::NAN
-    }
-}
-
-/// The observed order over a whole ladder refined by `r` at each level:
-/// the least-squares slope of ln(error) against the level, over ln r (the
-/// two-level [`observed_order`] for two errors). For a ladder whose single
-/// halvings scatter (impacts that fall at different places within the
-/// steps); NaN unless every error is > 0 and there are at least two.
-pub fn fitted_order(errors: &[f64], r: f64) -> f64 {
-    if errors.len() < 2 || !errors.iter().all(|e| *e > 0.0) {
-        return f64::NAN;
-    }
-    let n = errors.len() as f64;
-    let xm = (n - 1.0) / 2.0;
-    let ym = errors.iter().map(|e| e.ln()).sum::<f64>() / n;
-    let (mut sxy, mut sxx) = (0.0, 0.0);
-    for (i, e) in errors.iter().enumerate() {
-        let x = i as f64 - xm;
-        sxy += x * (e.ln() - ym);
-        sxx += x * x;
-    }
-    -sxy / sxx / r.ln()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn order_of_a_second_order_sequence() {
-        // u_ℓ = 1 + C h_ℓ², h halves: differences fall by 4
-        assert!((observed_order(0.3, 0.075, 2.0) - 2.0).abs() < 1e-12);
-        assert!(observed_order(0.0, 1.0, 2.0).is_nan());
-        assert!(observed_order(1.0, 0.0, 2.0).is_nan());
-        assert!(observed_order(f64::NAN, 1.0, 2.0).is_nan());
-        // a fit through an exact sequence is its order; two errors give
-        // the two-level order
-        let e: Vec<f64> = (0..5).map(|l| 3.0 * 0.5f64.powi(3 * l)).collect();
-        assert!((fitted_order(&e, 2.0) - 3.0).abs() < 1e-12);
-        assert!((fitted_order(&[0.3, 0.075], 2.0) - 2.0).abs() < 1e-12);
-        assert!(fitted_order(&[0.3], 2.0).is_nan());
-        assert!(fitted_order(&[0.3, 0.0], 2.0).is_nan());
-    }
 
     #[test]
     fn grids_nest_or_name_the_end() {

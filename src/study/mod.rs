@@ -1,9 +1,10 @@
 //! Studies: loops of runs over scenes. They never reach inside the integrator.
 //!
 //! What they share is here once: a run as typed changes to a base scene
-//! ([`variant`]), time grids that nest, resampling and observed orders
-//! ([`grid`]), the scalar outputs of a run ([`scalars`]) and the space
-//! discretizations ([`space`]).
+//! ([`variant`]), time grids that nest and resampling ([`grid`]), observed
+//! orders and the estimators of a numerical uncertainty ([`uncertainty`]),
+//! the scalar outputs of a run ([`scalars`]), the space discretizations
+//! ([`space`]) and their level parameter ([`level`]).
 
 pub mod compare;
 pub mod converge;
@@ -11,6 +12,7 @@ pub mod cost;
 pub mod filter;
 pub mod gate;
 pub mod grid;
+pub mod level;
 pub mod modes;
 pub mod precision;
 pub mod reference;
@@ -21,6 +23,7 @@ pub mod standing_force;
 pub mod sweep;
 pub mod threads;
 pub mod tolerance;
+pub mod uncertainty;
 pub mod variant;
 pub mod verify;
 

@@ -166,7 +166,8 @@ impl ConvergeOutcome {
 
 impl ConvergeRequest {
     /// The study's estimated work: level l refines the scene's mesh and/or
-    /// step by ratio^l, for every method and discretization.
+    /// step by ratio^l, for every method and discretization (with `both`,
+    /// the split runs of level ℓ's mesh at level ℓ − 1's Δt too).
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
         // in range first: the estimate loops over the levels
         super::converge::check_levels(self.levels)?;
@@ -178,11 +179,16 @@ impl ConvergeRequest {
             Refine::Both => self.ratio * self.ratio,
         };
         let mut e = Estimate::new("taut converge");
+        let power = |x: f64, l: usize| x.powi(l.min(i32::MAX as usize) as i32);
         for l in 0..self.levels {
-            e.add(
-                variants,
-                base * per_level.powi(l.min(i32::MAX as usize) as i32),
-            );
+            e.add(variants, base * power(per_level, l));
+            // --refine both: level ℓ's mesh at level ℓ − 1's Δt
+            if self.refine == Refine::Both && l > 0 {
+                e.add(
+                    variants,
+                    base * power(self.ratio, l) * power(self.ratio, l - 1),
+                );
+            }
         }
         Ok(e)
     }
@@ -300,5 +306,38 @@ impl PrecisionRequest {
             (self.levels, self.ratio, lanes(self.batch)),
             progress,
         )
+    }
+}
+
+/// `taut uncertainty`: the family of one scene (h and Δt refined together
+/// and apart) and every quantity's numerical uncertainty.
+#[derive(Debug, Clone, Copy)]
+pub struct UncertaintyRequest {
+    /// Diagonal levels K ([`super::uncertainty::LEVELS`]).
+    pub levels: usize,
+    /// Start even above the cost bound (`--yes`, [`super::cost`]).
+    pub yes: bool,
+}
+
+impl UncertaintyRequest {
+    /// The study's estimated work: every run of the family.
+    pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
+        super::uncertainty::estimate(text, overrides, self.levels)
+    }
+
+    /// Number of runs, for a progress bar: 2K − 1.
+    pub fn runs(&self) -> Result<usize> {
+        Ok(2 * super::uncertainty::check_levels(self.levels)? - 1)
+    }
+
+    /// Run the family on scene `text` with `overrides`.
+    pub fn run(
+        &self,
+        text: &str,
+        overrides: &[String],
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<super::uncertainty::Uncertainty> {
+        self.estimate(text, overrides)?.check(self.yes)?;
+        super::uncertainty::uncertainty(text, overrides, self.levels, progress)
     }
 }

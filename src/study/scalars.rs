@@ -78,7 +78,7 @@ impl Scalar {
     ];
 
     /// The name in tables, case files and `summary.json`.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             Scalar::Steps => "steps",
             Scalar::Dofs => "dofs",
@@ -126,7 +126,7 @@ impl Scalar {
     }
 
     /// Unit: `N`, `m`, `x/L` or `-`.
-    pub fn unit(self) -> &'static str {
+    pub const fn unit(self) -> &'static str {
         match self {
             Scalar::ForceMean
             | Scalar::ForceStd

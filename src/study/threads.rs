@@ -79,9 +79,70 @@ pub fn in_pool<R: Send>(threads: Option<usize>, work: impl FnOnce() -> R + Send)
     Ok(pool.install(work))
 }
 
+/// `f` of every item, in parallel on the current worker pool, the costliest
+/// first (`cost`), returned in the items' order; `progress(done, total)`
+/// is called on the calling thread as each finishes (so a front end's
+/// progress need not be shared across threads).
+pub fn map_with_progress<T: Sync, R: Send>(
+    items: &[T],
+    cost: impl Fn(&T) -> f64,
+    f: impl Fn(&T) -> R + Sync,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Vec<R> {
+    use rayon::prelude::*;
+    let n = items.len();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| cost(&items[b]).total_cmp(&cost(&items[a])));
+    let (tx, rx) = std::sync::mpsc::channel::<()>();
+    let pool = rayon::current_num_threads();
+    let mut done: Vec<(usize, R)> = std::thread::scope(|s| {
+        let worker = s.spawn(|| {
+            // the calling thread's pool, not the global one
+            let run = || {
+                order
+                    .par_iter()
+                    .with_max_len(1)
+                    .map_with(tx, |tx, &i| {
+                        let r = f(&items[i]);
+                        // the receiver outlives the workers
+                        let _ = tx.send(());
+                        (i, r)
+                    })
+                    .collect::<Vec<_>>()
+            };
+            match rayon::ThreadPoolBuilder::new().num_threads(pool).build() {
+                Ok(p) => p.install(run),
+                Err(_) => run(),
+            }
+        });
+        let mut finished = 0;
+        for () in rx {
+            finished += 1;
+            progress(finished, n);
+        }
+        worker
+            .join()
+            .unwrap_or_else(|payload| std::panic::resume_unwind(payload))
+    });
+    done.sort_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, r)| r).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn parallel_maps_keep_the_order_and_report_each_item() {
+        let items: Vec<u64> = (0..20).collect();
+        let mut seen = Vec::new();
+        let out = map_with_progress(&items, |&x| x as f64, |&x| x * x, &mut |d, t| {
+            seen.push((d, t))
+        });
+        assert_eq!(out, items.iter().map(|x| x * x).collect::<Vec<_>>());
+        assert_eq!(seen.len(), 20);
+        assert_eq!(seen.last(), Some(&(20, 20)));
+    }
 
     #[test]
     fn thread_counts_outside_one_to_the_cap_are_refused() {

@@ -4,7 +4,7 @@
 use std::process::ExitCode;
 
 /// Each page's command, its entry point, and what it writes.
-const PAGES: [(&str, fn(), &str); 7] = [
+const PAGES: [(&str, fn(), &str); 8] = [
     (
         "methods",
         xtask::methods::main,
@@ -39,6 +39,11 @@ const PAGES: [(&str, fn(), &str); 7] = [
         "accuracy-check",
         xtask::accuracy_check::main,
         "the tables of docs/accuracy.md, printed (`grid SCENE Q N1,N2,.. DT1,DT2,..` or `check SCENE Q TOL K`)",
+    ),
+    (
+        "uncertainty",
+        xtask::uncertainty::main,
+        "the coverage tables of docs/verification.md (solution verification), printed as markdown (`quick`: a few pairs a case)",
     ),
 ];
 

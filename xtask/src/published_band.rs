@@ -75,6 +75,7 @@ fn run_sweep(name: &str, set: &[&str], axes: &[&str]) -> Vec<SweepRecord> {
             .collect(),
         check_refinement: false,
         paired: false,
+        tolerance: None,
     };
     let dir = root().join("target/published_band").join(name);
     // A fresh folder: the sweep is cheap, and a stale one may hold another spec.

@@ -36,6 +36,7 @@ mod records;
 mod refinement_map;
 mod refinement_plot;
 mod span_map;
+mod tolerance_map;
 
 use std::path::{Path, PathBuf};
 
@@ -50,6 +51,7 @@ pub use loss_map::write_loss_map;
 pub use refinement_map::write_refinement_map;
 pub use refinement_plot::write_refinement_plot;
 use span_map::write_loss_fraction_span_map;
+pub use tolerance_map::{write_tolerance_plot, write_u_num_map, write_value_map_hatched};
 /// Draw the maps of a finished sweep into `dir` (none for a shard, which
 /// holds only part of the grid, for a list of points, and for an axis
 /// whose listed values are not in increasing or decreasing order). Returns the files written.
@@ -74,6 +76,11 @@ pub fn write_sweep_maps(
                 &crate::report::sweep_table(spec, records),
             )?;
             let mut maps = vec![c, f, l];
+            if spec.tolerance.is_some() {
+                let t = dir.join("tolerance.svg");
+                write_tolerance_plot(&t, spec, records)?;
+                maps.push(t);
+            }
             if spec.check_refinement {
                 let r = dir.join("refinement.svg");
                 write_refinement_plot(&r, spec, records)?;
@@ -88,6 +95,11 @@ pub fn write_sweep_maps(
             let s = dir.join("loss_fraction_span_map.svg");
             write_loss_fraction_span_map(&s, spec, records)?;
             let mut maps = vec![p, s];
+            if spec.tolerance.is_some() {
+                let u = dir.join("u_num_map.svg");
+                write_u_num_map(&u, spec, records)?;
+                maps.push(u);
+            }
             if spec.check_refinement {
                 let r = dir.join("refinement_map.svg");
                 write_refinement_map(&r, spec, records)?;

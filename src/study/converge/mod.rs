@@ -41,12 +41,12 @@ use crate::resolve::{Resolved, resolve_scene};
 use crate::run::{RunOutput, run, run_with};
 use crate::scene::{Declared, Discretization};
 
-pub use super::grid::GCI_SAFETY_FACTOR;
 pub use super::reference::AnalyticW;
+pub use super::uncertainty::FS_ASYMPTOTIC as GCI_SAFETY_FACTOR;
 use regime::Context;
 pub use regime::{FORMAL_GAP, ORDER_DRIFT, STALL_RATIO};
-use rows::tabulate;
 pub use rows::{ConvergeRow, QUANTITIES, SCALARS};
+use rows::{diverged_rows, tabulate};
 
 /// What is refined.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -98,10 +98,24 @@ pub struct Convergence {
     pub scenes: Vec<Resolved>,
     /// The runs, coarsest first.
     pub runs: Vec<RunOutput>,
+    /// `--refine both`: level ℓ's mesh at level ℓ − 1's Δt, ℓ = 1 … K − 1
+    /// (the split of each change into its mesh and Δt parts).
+    pub split: Vec<RunOutput>,
     /// All rows, level-major.
     pub rows: Vec<ConvergeRow>,
     /// Wall seconds of each level.
     pub wall_seconds: Vec<f64>,
+    /// The level whose run diverged, when one did (the ladder stops there).
+    pub diverged: Option<Diverged>,
+}
+
+/// A level of a ladder whose run blew up.
+#[derive(Debug, Clone, Serialize)]
+pub struct Diverged {
+    /// The level.
+    pub level: usize,
+    /// The run's diagnosis (step, time, quantity, likely cause).
+    pub reason: String,
 }
 
 /// One method's (or discretization's) refinement study in a `--methods`
@@ -308,11 +322,11 @@ fn converge_with(
         Some(m) => base_scene(text, overrides, Some(m))?.validate()?,
     };
     base.require_every_step("taut converge")?;
-    let mut scenes = Vec::with_capacity(levels);
     let modal = space.is_some_and(|s| s.is_modal());
-    for l in 0..levels {
+    // level ℓ: N₀·r^ℓ elements (or J₀·r^ℓ modes) and/or Δt₀/r^ℓ
+    let level_variant = |l: usize| {
         let f = ratio.powi(l as i32);
-        let variant = RunVariant {
+        RunVariant {
             elements: (refine != Refine::Step && !modal)
                 .then(|| (base.elements as f64 * f).round() as usize),
             dt: refines_step.then(|| base.dt / f),
@@ -328,27 +342,72 @@ fn converge_with(
                     },
                 )
             }),
-        };
-        scenes.push(variant.apply(&base)?);
-    }
+        }
+    };
+    let mut scenes = (0..levels)
+        .map(|l| level_variant(l).apply(&base))
+        .collect::<Result<Vec<Resolved>>>()?;
     let base = &scenes[0];
-    // the coarse time grid must be a subset of every level's
+    // the coarse time grid must be a subset of every level's; each level
+    // ends at its last whole step before the scene's end, so the levels
+    // are compared at the coarse grid's times, which every level reaches
     let stride = scenes
         .iter()
-        .map(|s| nest((base.steps, base.dt), (s.steps, s.dt), Reach::SameEnd))
+        .map(|s| nest((base.steps, base.dt), (s.steps, s.dt), Reach::AtLeast))
         .collect::<Result<Vec<usize>>>()?;
+    let go = |s: &Resolved| match method {
+        None => run(s, &mut |_, _| {}),
+        Some(m) => run_with(s, m, &mut |_, _| {}),
+    };
     let mut runs = Vec::with_capacity(levels);
     let mut wall = Vec::with_capacity(levels);
+    let mut diverged = None;
     for (l, s) in scenes.iter().enumerate() {
-        let out = match method {
-            None => run(s, &mut |_, _| {})?,
-            Some(m) => run_with(s, m, &mut |_, _| {})?,
-        };
-        wall.push(out.wall_seconds);
-        runs.push(out);
+        match go(s) {
+            Ok(out) => {
+                wall.push(out.wall_seconds);
+                runs.push(out);
+            }
+            // a level that blows up ends the ladder: the levels before it
+            // are kept and the study says where and how it diverged
+            Err(e @ Error::Diverged { .. }) if l > 0 => {
+                diverged = Some(Diverged {
+                    level: l,
+                    reason: e.to_string(),
+                });
+                break;
+            }
+            Err(e) => return Err(e),
+        }
         progress(l + 1, levels);
     }
-    let finest = &scenes[levels - 1];
+    let done = runs.len();
+    let stride = &stride[..done];
+    // --refine both: level ℓ's mesh at level ℓ − 1's Δt splits each
+    // change into its mesh part and its Δt part
+    let mut split = Vec::new();
+    if refine == Refine::Both && diverged.is_none() {
+        for l in 1..done {
+            let variant = RunVariant {
+                dt: Some(scenes[l - 1].dt),
+                ..level_variant(l)
+            };
+            let sc = variant.apply(&scenes[0])?;
+            match go(&sc) {
+                Ok(out) => split.push(out),
+                Err(e @ Error::Diverged { .. }) => {
+                    diverged = Some(Diverged {
+                        level: l,
+                        reason: format!("its mesh-only split run: {e}"),
+                    });
+                    split.clear();
+                    break;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    }
+    let finest = &scenes[done - 1];
     let reference = analytic(finest);
     // the exact force of a reference that has one (manufactured, a force's)
     let exact = match finest.reference {
@@ -387,7 +446,7 @@ fn converge_with(
             "neither refined variable (a floor: the reference's accuracy or a fixed parameter)",
         ),
     };
-    let omega_dt = scenes
+    let omega_dt = scenes[..done]
         .iter()
         .map(|s| {
             crate::integrate::central_difference_limit(s).map_or(f64::NAN, |l| l.omega_max * s.dt)
@@ -397,20 +456,35 @@ fn converge_with(
         w: reference.as_deref(),
         force: exact.as_ref().and_then(|e| e.force.as_deref()),
         name: finest.reference.name(),
+        refine,
+        refined: match (refine, modal) {
+            (Refine::Step, _) => "Δt",
+            (Refine::Mesh, false) => "mesh",
+            (Refine::Mesh, true) => "J",
+            (Refine::Both, false) => "mesh and Δt",
+            (Refine::Both, true) => "J and Δt",
+        },
         formal,
         unrefined,
         omega_dt,
     };
-    let mut rows = tabulate(&scenes, &runs, &stride, ratio, &ctx);
+    let mut rows = tabulate(&scenes[..done], &runs, stride, &split, ratio, &ctx);
+    if let Some(d) = &diverged {
+        let at = scenes.get(d.level).unwrap_or(&scenes[done - 1]);
+        rows.extend(diverged_rows(at, d));
+    }
     for r in &mut rows {
         r.method.clone_from(&name);
     }
+    scenes.truncate(done);
     Ok(Convergence {
         refine,
         ratio,
         scenes,
         runs,
+        split,
         rows,
         wall_seconds: wall,
+        diverged,
     })
 }

@@ -37,9 +37,11 @@
 //! One concept a file: [`axis`] (one swept axis), [`spec`] (the grid and its
 //! checks), [`points`] (a list of points), [`resolve`] (a grid point's scene), [`record`] (what a run
 //! contributes), [`refine`] (`--check-refinement`), [`shard`] (`--shard`),
-//! [`batch`] (points stepped together), [`folder`] (the sweep's folder);
-//! this file runs the sweep.
+//! [`batch`] (points stepped together), [`folder`] (the sweep's folder),
+//! [`accuracy`] (`--tolerance`: each point refined until its u_num is
+//! within EPS); this file runs the sweep.
 
+mod accuracy;
 mod aliases;
 mod axis;
 mod batch;
@@ -59,6 +61,10 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
+pub use accuracy::{
+    CHUNK, DEFAULT_BUDGET, LEVEL_MULTIPLE, MAX_CHECKS, PLAN_SHARE, PointAccuracy, SweepTolerance,
+    TARGETS,
+};
 pub use axis::{Axis, AxisTarget, Ratio, WHOLE_SNAP};
 pub use batch::{AUTO_BATCH_LANES, BatchWidth, auto_lanes};
 use batch::{batches, records_guarded};
@@ -131,6 +137,15 @@ pub fn sweep_batched(
     // the scene text and fixed overrides parsed once for every point (an
     // error there is each point's own, as resolving it again gives)
     let base = spec.base_tree().ok();
+    if spec.tolerance.is_some() {
+        accuracy::run_points(spec, base.as_ref(), &id, &todo, batch, &|r| {
+            folder::save(dir, &r)?;
+            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+            progress(n, mine.len());
+            Ok(())
+        })?;
+        return folder::collect(dir, spec, &mine);
+    }
     let items = batches(spec, base.as_ref(), &todo, batch);
     // one item a task (`with_max_len(1)`): items differ in cost (a batch at
     // 50 m/s takes four times the steps of one at 230 m/s), and rayon's

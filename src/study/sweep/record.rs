@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 use toml::Table;
 
+use super::accuracy::PointAccuracy;
 use super::nan_as_null;
 use super::refine::{Refined, refined};
 use super::spec::SweepSpec;
@@ -68,6 +69,10 @@ pub struct SweepRecord {
     /// The same point refined (N × 2, Δt / 2), with `--check-refinement`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub refined: Option<Refined>,
+    /// With `--tolerance`: what the point reached (its statistics above are
+    /// those of the reported run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<PointAccuracy>,
     /// The run's error, if it stopped (then the statistics are NaN/empty).
     pub error: Option<String>,
     /// Wall seconds (machine-dependent: written to timing.csv only).
@@ -98,6 +103,7 @@ impl SweepRecord {
             loss_profile: vec![],
             warnings: vec![],
             refined: None,
+            accuracy: None,
             error: None,
             wall_seconds: None,
         }
@@ -184,6 +190,7 @@ pub(super) fn record_of(
             .collect(),
         warnings: out.warnings.clone(),
         refined: spec.check_refinement.then(|| refined(spec, base, index)),
+        accuracy: None,
         error: None,
         wall_seconds: Some(out.wall_seconds),
     }

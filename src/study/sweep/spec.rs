@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::accuracy::SweepTolerance;
 use super::axis::Axis;
 use super::shard::Shard;
 use crate::error::{Error, Result};
@@ -25,6 +26,11 @@ pub struct SweepSpec {
     /// `sweep.json`) for a grid.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub paired: bool,
+    /// `--tolerance EPS --quantity Q`: every point refined until Q's
+    /// u_num is within EPS ([`super::accuracy`]); absent for a sweep at the
+    /// scene's resolution.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<SweepTolerance>,
 }
 
 impl SweepSpec {
@@ -91,6 +97,13 @@ impl SweepSpec {
     /// the scene (an axis that changes nothing would fill a map with one
     /// answer and call it a study).
     pub fn validate(&self) -> Result<()> {
+        if self.tolerance.is_some() && self.check_refinement {
+            return Err(Error::invalid(
+                "--check-refinement",
+                "given",
+                "does not go with --tolerance, which refines every point as far as it needs and reports u_num: give one of the two",
+            ));
+        }
         if self.paired {
             return self.validate_points();
         }
@@ -240,7 +253,17 @@ impl SweepSpec {
         let mut e = Estimate::new("taut sweep");
         let base = self.base_tree()?;
         for i in (0..self.len()).filter(|&i| shard.is_none_or(|s| s.owns(i))) {
-            e.add(1, run_dof_steps(&self.resolve_on(&base, i)?));
+            // with --tolerance: the pilots (1.81 runs' worth); refinements
+            // beyond them are each point's budget, not known before
+            let own = run_dof_steps(&self.resolve_on(&base, i)?);
+            e.add(
+                1,
+                if self.tolerance.is_some() {
+                    1.81 * own
+                } else {
+                    own
+                },
+            );
             if self.check_refinement {
                 e.add(1, run_dof_steps(&self.resolve_refined_on(&base, i)?));
             }
@@ -270,8 +293,12 @@ impl SweepSpec {
             .base_tree()
             .map_err(|e| at_point(e, 0, &self.point(0)))?;
         for i in 0..self.len() {
-            self.resolve_on(&base, i)
+            let sc = self
+                .resolve_on(&base, i)
                 .map_err(|e| at_point(e, i, &self.point(i)))?;
+            if self.tolerance.is_some() {
+                super::accuracy::check_level(&sc).map_err(|e| at_point(e, i, &self.point(i)))?;
+            }
             if self.check_refinement {
                 self.resolve_refined_on(&base, i).map_err(|e| {
                     at_point(e, i, &self.point(i)).in_run("the refined run of --check-refinement")

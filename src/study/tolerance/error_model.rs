@@ -17,13 +17,12 @@
 //! ([`MAX_MESH_ORDER`], …) is capped, and d₂ raised to d₁/r^p: differences
 //! that fall faster than the method allows are a chance cancellation at the
 //! finest rung, not a smaller error. F_s is Roache's three-grid safety factor
-//! ([`GCI_SAFETY_FACTOR`]): the reported estimate is a GCI-style band, not a
+//! ([`FS_ASYMPTOTIC`]): the reported estimate is a GCI-style band, not a
 //! bare extrapolation.
 
 use serde::Serialize;
 
-use crate::study::grid::GCI_SAFETY_FACTOR;
-use crate::study::grid::observed_order;
+use crate::study::uncertainty::{FS_ASYMPTOTIC, observed_order, richardson_error};
 
 /// Refinement ratio of each pilot ladder: 2, so every coarser time is a
 /// finer time and histories compare sample by sample.
@@ -139,7 +138,7 @@ impl LadderFit {
         // fall (d₂ = 0 included: P_l counts whole steps) is a chance
         // cancellation at the finest rung, so d₂ is taken as d₁/r^order
         let d2 = d2.max(d1 / r.powf(order));
-        let finest_error = d2 / (r.powf(order) - 1.0);
+        let finest_error = richardson_error(d2, r, order);
         LadderFit {
             differences,
             observed_order: observed,
@@ -194,7 +193,7 @@ impl ErrorModel {
         ErrorModel {
             mesh,
             step,
-            safety_factor: GCI_SAFETY_FACTOR,
+            safety_factor: FS_ASYMPTOTIC,
         }
     }
 

@@ -41,15 +41,13 @@
 //!
 //! One step a file: [`pilots`] (1), [`fit`] (2), [`choose`] (3),
 //! [`results`] (4); beside them [`quantity`] (what the tolerance is on and
-//! its error measure), [`limits`] (the tolerance's range), [`level`] (N or
-//! J), [`accuracy`] (what the run returns), [`refusal`] (the errors that
+//! its error measure), [`limits`] (the tolerance's range), [`accuracy`] (what the run returns), [`refusal`] (the errors that
 //! stop it) and [`error_model`].
 
 mod accuracy;
 mod choose;
 mod error_model;
 mod fit;
-mod level;
 mod limits;
 mod pilots;
 mod quantity;

@@ -5,7 +5,6 @@
 use super::MAX_DOF_STEPS;
 use super::accuracy::PilotRun;
 use super::error_model::Estimate;
-use super::level::Level;
 use super::quantity::Quantity;
 use super::refusal::too_costly;
 use crate::error::{Error, Result};
@@ -13,6 +12,7 @@ use crate::resolve::{Resolved, resolve_scene};
 use crate::run::run;
 use crate::scene::STEP_COUNT_SLACK;
 use crate::study::grid::{Reach, nest};
+use crate::study::level::Level;
 
 /// Runs an accuracy-targeted run reports to `progress`: the five pilots and
 /// the chosen run.

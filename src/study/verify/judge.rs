@@ -5,7 +5,7 @@ use super::DOMINANCE_LIMIT;
 use super::case::{Expect, Ladder, Quantity, Variable};
 use super::measure::Measured;
 use super::row::{Status, VerifyRow};
-use crate::study::grid::observed_order;
+use crate::study::uncertainty::observed_order;
 /// Fill a row from a ladder's measurements and its expectation.
 pub(super) fn judge(row: &mut VerifyRow, m: &Measured, q: Quantity, e: Expect, ladder: &Ladder) {
     let (errors, refined, scale) = match q {

@@ -185,7 +185,7 @@ pub(super) fn successive_slopes(x: &[f64], y: &[f64]) -> Vec<Option<f64>> {
     (1..x.len())
         .map(|i| {
             // the slope is the observed order of y "refined" by x_i/x_{i−1}
-            let p = taut::study::grid::observed_order(y[i], y[i - 1], x[i] / x[i - 1]);
+            let p = taut::study::uncertainty::observed_order(y[i], y[i - 1], x[i] / x[i - 1]);
             p.is_finite().then_some(p)
         })
         .collect()

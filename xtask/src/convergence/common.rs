@@ -127,7 +127,7 @@ pub(super) fn sub(a: &[f64], b: &[f64]) -> Vec<f64> {
 }
 
 pub(super) fn order(coarse: f64, fine: f64) -> f64 {
-    taut::study::grid::observed_order(coarse, fine, RATIO)
+    taut::study::uncertainty::observed_order(coarse, fine, RATIO)
 }
 
 /// Carrier 0's history of level `l` on the coarsest level's times (as the

@@ -44,13 +44,39 @@ different questions, and says whether either can be trusted:
   `moving_force_series`, `riding_mass_galerkin`, `standing_force_modes`) and
   its order between successive levels. This is the order of the error a
   user has. Without an exact reference `error` is against a Richardson
-  extrapolation of the same runs, and no `error_order` is given.
+  extrapolation of the same runs, and no `error_order` is given; the
+  `reference` column then says what that estimate measures:
+  `richardson (Δt error only)` for a Δt ladder, `(mesh error only)` or
+  `(J error only)` for a space ladder (the other variable's error is
+  **unmeasured**, and the `regime` says so), `(mesh and Δt)` for
+  `--refine both`. On `scenes/moving_force_beam.toml` without its
+  `[reference]` (N = 50, three levels from Δt = 4e-4 s) the Δt ladder's
+  estimate at the finest level is 5.4e-6 m (L2) while the true error is
+  1.33e-4 m: the mesh's, which a Δt ladder cannot see (`taut converge
+  scenes/moving_force_beam.toml --refine step --levels 3 --set
+  'reference.kind="richardson"'`, and without the `--set` for the true
+  error).
 * **`observed_order`**: from successive differences of the runs. It isolates
   the refined variable, but it can look asymptotic while the error stalls:
   on `scenes/moving_force_beam.toml` (N = 50) a Δt ladder shows a difference
   order of 1.62 while its error against the series does not move
   (`error_order` −0.01) — the mesh makes the error. It is never called
   `analytic`.
+* **`gci` and `u_num`**: Roache's grid convergence index of the level
+  (relative, with F_s = 1.25 when the observed order is within ±0.5 of
+  `formal_order`, 3 otherwise; `taut::study::uncertainty::Gci`) and the
+  level's numerical uncertainty in the quantity's unit, from the
+  estimators of `taut uncertainty` ([verification.md](verification.md#solution-verification-taut-uncertainty)):
+  of the refined variable's error only unless both are refined.
+* **`mesh_share`** (`--refine both`): each level ℓ ≥ 1 is run once more
+  with its mesh (or J) and the previous level's Δt, which splits the
+  level's change into its mesh part and its Δt part; the column is the
+  mesh's share.
+
+Each level ends at its last whole step before the scene's end time, so
+any `time.end` works: the levels are compared at the coarsest level's
+times, which every level reaches (the runs' ends differ by less than the
+coarsest Δt).
 
 `regime` names what a level shows, by these criteria (constants in
 `taut::study::converge`):
@@ -62,6 +88,11 @@ different questions, and says whether either can be trusted:
 | `not converging` | the same on successive differences (falling by less than 1.25× or rising), when there is no exact reference | |
 | `pre-asymptotic` | successive orders differ by more than `ORDER_DRIFT` = 0.3 (the ratio of successive error ratios, column `ratio_change`, outside r^(±0.3) = 0.81 … 1.23 at r = 2), or the order is more than `FORMAL_GAP` = 0.3 from `formal_order` | the leading error term does not yet dominate the next; ±0.3 is what `taut verify` allows a smooth case |
 | `asymptotic` | neither | |
+| `diverged` | a run of the ladder blew up (the ladder stops there; the level's row names the step, time and quantity), or a level's error (difference, without a reference) is at least `DIVERGED_RELATIVE` = 1 times the quantity itself | an error as large as the quantity is no discretization error: a Newmark ladder's force error of 250 N on a 15 N force was once called `limited by the mesh` |
+
+Without an exact reference, a one-variable ladder's regime ends with
+"the error of the mesh is unmeasured" (or of Δt, of J): its `asymptotic`
+is the refined variable's, not the result's.
 
 `omega_max_dt` is ω_max·Δt of each level's model. Above 1 its top modes are
 not resolved in time; a moving point load excites them, so its Δt order

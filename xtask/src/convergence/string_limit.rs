@@ -158,7 +158,7 @@ pub(super) fn section_string_limit(d: &mut String, clock: &mut Clock) -> Vec<Str
         e3(fe_beam_err[0]),
         e3(plateau[0]),
         e3(plateau[1]),
-        taut::study::grid::observed_order(plateau[0], plateau[1], 4.0),
+        taut::study::uncertainty::observed_order(plateau[0], plateau[1], 4.0),
         if plateau.iter().zip(&fe_string).all(|(a, b)| a < b) {
             "still more accurate than"
         } else {

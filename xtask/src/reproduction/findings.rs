@@ -138,6 +138,7 @@ pub(super) fn findings(
         axes: vec![Axis::parse("tension_ratio=0.001:0.001:1", false).unwrap()],
         check_refinement: false,
         paired: false,
+        tolerance: None,
     };
     let cw = spec.resolve(0).unwrap().beam.wave_speed();
 

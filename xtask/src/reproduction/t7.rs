@@ -24,6 +24,7 @@ pub(super) fn run_t7(clock: &Clock, res: Res, n: usize, maps: &Path) -> Run2 {
         axes: t7_axes(n),
         check_refinement: false,
         paired: false,
+        tolerance: None,
     };
     let name = format!("t7_{}", res.tag);
     let recs = run_sweep(clock, &name, &spec);

@@ -110,6 +110,7 @@ pub(super) fn run_1d(clock: &Clock, t: &Target1, res: Res, maps: &Path) -> Run1 
         axes: vec![Axis::parse(t.axis, false).expect("valid axis")],
         check_refinement: false,
         paired: false,
+        tolerance: None,
     };
     let name = format!("{}_{}", t.id.to_lowercase(), res.tag);
     let recs = run_sweep(clock, &name, &spec);
@@ -324,6 +325,7 @@ pub(super) fn write_1d(md: &mut String, t: &Target1, s: &Run1, c: &Run1) {
             axes: vec![Axis::parse("tension_ratio=0.001:0.001:1", false).unwrap()],
             check_refinement: false,
             paired: false,
+            tolerance: None,
         };
         let sc = spec.resolve(0).unwrap();
         let cw = sc.beam.wave_speed();

@@ -1,17 +1,17 @@
-//! The level parameter the mesh ladder refines: N of a Hermite mesh, J of
-//! a modal basis.
+//! The level parameter a study refines in space: N of a Hermite mesh, J of
+//! a modal basis (`run --tolerance`'s pilots, `taut uncertainty`'s family,
+//! the accuracy-targeted sweep).
 
-use super::accuracy::PilotRun;
 use crate::resolve::Resolved;
 use crate::scene::{Discretization, MeshKind};
 use crate::study::space::SpaceChoice;
 use crate::study::variant::RunVariant;
-/// The level parameter the mesh ladder refines (module docs): the elements
+/// The level parameter refined in space (module docs): the elements
 /// N of a Hermite (or string) mesh, the modes J of a `galerkin` basis, and
 /// the modes J of a `modal` basis with its FE mesh grown in proportion
 /// (J may not exceed the FE unknowns). `h = L/level` either way.
 #[derive(Debug, Clone, Copy)]
-pub(super) enum Level {
+pub(crate) enum Level {
     Elements(usize),
     Galerkin(usize),
     /// (J₀, N₀) of the scene.
@@ -19,7 +19,7 @@ pub(super) enum Level {
 }
 
 impl Level {
-    pub(super) fn of(sc: &Resolved) -> Self {
+    pub(crate) fn of(sc: &Resolved) -> Self {
         match sc.discretization {
             Discretization::Hermite => Level::Elements(sc.elements),
             Discretization::Galerkin { modes } => Level::Galerkin(modes),
@@ -28,14 +28,14 @@ impl Level {
     }
 
     /// The scene's own level (N₀ or J₀).
-    pub(super) fn start(&self) -> usize {
+    pub(crate) fn start(&self) -> usize {
         match *self {
             Level::Elements(n) | Level::Galerkin(n) | Level::Modal(n, _) => n,
         }
     }
 
     /// `N` or `J`, for messages.
-    pub(super) fn symbol(&self) -> &'static str {
+    pub(crate) fn symbol(&self) -> &'static str {
         match self {
             Level::Elements(_) => "N",
             _ => "J",
@@ -43,7 +43,7 @@ impl Level {
     }
 
     /// The run at level `n` and step `dt`.
-    pub(super) fn variant(&self, n: usize, dt: f64) -> RunVariant {
+    pub(crate) fn variant(&self, n: usize, dt: f64) -> RunVariant {
         let mut v = RunVariant {
             dt: Some(dt),
             ..RunVariant::default()
@@ -74,20 +74,15 @@ impl Level {
     }
 
     /// J on a modal basis (None for a Hermite mesh).
-    pub(super) fn modes(&self, n: usize) -> Option<usize> {
+    pub(crate) fn modes(&self, n: usize) -> Option<usize> {
         match self {
             Level::Elements(_) => None,
             _ => Some(n),
         }
     }
 
-    /// The level of a pilot.
-    pub(super) fn of_pilot(&self, p: &PilotRun) -> usize {
-        p.modes.unwrap_or(p.elements)
-    }
-
     /// The level of a resolved scene.
-    pub(super) fn of_scene(&self, sc: &Resolved) -> usize {
+    pub(crate) fn of_scene(&self, sc: &Resolved) -> usize {
         sc.discretization.modes().unwrap_or(sc.elements)
     }
 }
