@@ -29,7 +29,7 @@ def _same_default(python: object, library: object) -> bool:
 
 
 def test_every_command_of_the_library_has_its_python_function():
-    assert set(SCHEMA) == {"run", "compare", "converge", "precision", "sweep", "modes"}
+    assert set(SCHEMA) == {"run", "compare", "converge", "precision", "sweep", "modes", "uncertainty"}
 
 
 @pytest.mark.parametrize("command", sorted(SCHEMA))
