@@ -23,6 +23,7 @@ mod damping;
 mod discretization;
 mod dropper;
 mod external_force;
+mod generated;
 mod gravity;
 mod integrator;
 mod line;
@@ -61,10 +62,11 @@ pub use discretization::{
 };
 pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
 pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
+pub use generated::Generated;
 pub use gravity::GravitySpec;
 pub use integrator::{DEFAULT_METHOD, IntegratorSpec, Key};
 pub use line::{
-    DesignedDropper, Generated, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line,
+    DesignedDropper, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line,
     expand_line_with_origin,
 };
 pub use load::{
