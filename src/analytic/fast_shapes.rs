@@ -82,11 +82,11 @@ use std::f64::consts::PI;
 /// Modes advanced together by the rotation recurrence (module docs): four
 /// AVX2 vectors of independent chains, so the chain's latency is hidden,
 /// and a chain of J/16 products.
-pub const BLOCK: usize = 16;
+pub(crate) const BLOCK: usize = 16;
 
 /// Boundary-layer terms with `α_j d` at or above this are left out: they
 /// are below `e^{−40} ≈ 4.2·10⁻¹⁸` of their coefficient.
-pub const LAYER_CUT: f64 = 40.0;
+pub(crate) const LAYER_CUT: f64 = 40.0;
 
 /// Fast against direct evaluation, relative to the amplitude
 /// `sqrt(2/(ρA L))`: measured worst 9.2·10⁻¹³ over the test cases up to
@@ -94,7 +94,8 @@ pub const LAYER_CUT: f64 = 40.0;
 /// direct evaluation's own phase error `ε β_j L`, mode_shapes.rs), so
 /// ~4·10⁻¹² at J = 4000 (measured on the reference span); 10⁻¹¹ leaves a
 /// factor 2.5 there.
-pub const FAST_SHAPES_AGREEMENT: f64 = 1e-11;
+#[cfg(test)]
+pub(crate) const FAST_SHAPES_AGREEMENT: f64 = 1e-11;
 
 /// Table rows per radian of slow phase: `|ε_j δ| ≤ 1/64` (module docs).
 const ROWS_PER_RADIAN: f64 = 32.0;
@@ -863,7 +864,7 @@ unsafe fn shifted_avx2(
 /// constants of [`shifted_avx2`] / [`sine_avx2`], whose operations
 /// [`BlocksAvx::next`] repeats one block at a time (the same bits).
 #[cfg(target_arch = "x86_64")]
-pub struct BlocksAvx {
+pub(crate) struct BlocksAvx {
     vr: [std::arch::x86_64::__m256d; BLOCK / 4],
     vi: [std::arch::x86_64::__m256d; BLOCK / 4],
     cr: std::arch::x86_64::__m256d,

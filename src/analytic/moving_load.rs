@@ -42,7 +42,7 @@ use crate::scene::Support;
 /// general closed form divides by `1 − V²/c²`, losing `≈ ε/|1 − V/c|`
 /// relative accuracy, while the `V = c` form is off by `O(|1 − V/c|)` away
 /// from the wave front; the two errors balance near 1e-8.
-pub const RESONANCE_BAND: f64 = 1e-8;
+pub(crate) const RESONANCE_BAND: f64 = 1e-8;
 
 /// Default relative accuracy of [`MovingForceBeam::deflection`]: the
 /// truncation bound, relative to the static midspan deflection under `F`.
@@ -57,7 +57,7 @@ pub const MAX_MODES: usize = 1_000_000;
 /// Smallest `L sqrt(T_e/EI)` for which the quasi-static part is taken from
 /// [`StaticPointLoad`]: its exponential basis becomes ill-conditioned like
 /// `(μL)⁻³` as `μL → 0`, so below this the plain series is summed instead.
-pub const QS_MIN_MU_L: f64 = 0.5;
+pub(crate) const QS_MIN_MU_L: f64 = 0.5;
 
 /// `sin u / u`, regular at 0 (Taylor below 1e-4: error < u⁶/5040).
 fn sinc(u: f64) -> f64 {

@@ -51,7 +51,7 @@ use crate::scene::Side;
 /// `scenes/riding_mass_pinned.toml` (J = 800, 0.4 s): halving the step from
 /// 0.5/ω_J changes w by 1.5e-6 m, from 0.25/ω_J by 9.4e-8 m (fourth order),
 /// i.e. 5e-7 of max |w| here, well under the J-truncation error.
-pub const STEP_FACTOR: f64 = 0.25;
+pub(crate) const STEP_FACTOR: f64 = 0.25;
 
 /// A riding mass on a pinned–pinned tensioned beam (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]

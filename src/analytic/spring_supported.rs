@@ -50,7 +50,7 @@ use crate::error::{Error, Result};
 /// (T = 0): there the round-off of L2 (measured 7.9e-10 of the midspan
 /// compliance at μL = 1e-3, growing like 1/(μL)²: ≈ 2e-8 here) and the
 /// neglected tension ((μL)²/10 = 4e-9 relative at midspan) are both small.
-pub const MU_L_BARE: f64 = 2e-4;
+pub(crate) const MU_L_BARE: f64 = 2e-4;
 
 /// A vertical spring between the line at `x` and a fixed anchor.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -133,7 +133,7 @@ fn methods_help(what: &str, default: &str) -> String {
 }
 
 /// Every contact formulation, the default of `--formulations`.
-pub const ALL_FORMULATIONS: &str = "lagrange,penalty,complementarity,impact";
+pub(crate) const ALL_FORMULATIONS: &str = "lagrange,penalty,complementarity,impact";
 
 /// `taut run` / `taut.run`: one scene, or an accuracy-targeted run.
 #[derive(Debug, Clone, Default, Deserialize)]

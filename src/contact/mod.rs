@@ -24,8 +24,11 @@ pub mod problem;
 mod replay;
 
 pub use failure::{ContactFailed, ContactFailure};
-pub use problem::{ContactProblem, Level, NotReplayable};
-pub use replay::{MAX_REPLAY_CONTACTS, ReplayOutcome, SIGNORINI_TOLERANCE, replay, validate};
+pub(crate) use problem::NotReplayable;
+pub use problem::{ContactProblem, Level};
+pub use replay::ReplayOutcome;
+pub(crate) use replay::SIGNORINI_TOLERANCE;
+pub use replay::{replay, validate};
 
 pub(crate) use impact::Impact;
 pub(crate) use lagrange::Lagrange;

@@ -57,7 +57,7 @@ impl ContactProblem {
 /// says why rather than failing to read it (issue 41).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct NotReplayable {
+pub(crate) struct NotReplayable {
     /// Why the problem is not saved to be solved again.
     pub not_replayable: String,
     /// The units the problem's numbers were in.

@@ -9,13 +9,13 @@ use crate::scene::{ContactKind, Formulation};
 
 /// Most contacts a saved problem may have: W has nc² entries, and no scene
 /// has more than a few carriers (a larger file is not one taut wrote).
-pub const MAX_REPLAY_CONTACTS: usize = 1024;
+pub(crate) const MAX_REPLAY_CONTACTS: usize = 1024;
 
 /// Signorini residual above which a replayed answer is reported as not a
 /// contact solution: relative to the problem's gap and force scales, far
 /// above round-off (1e-16) and the QP tolerance (1e-12 by default; at most
 /// 1e-2 is accepted, so a loosened QP can exceed it and is then reported).
-pub const SIGNORINI_TOLERANCE: f64 = 1e-6;
+pub(crate) const SIGNORINI_TOLERANCE: f64 = 1e-6;
 
 /// The answer to a replayed problem.
 #[derive(Debug, Clone, PartialEq)]

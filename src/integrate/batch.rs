@@ -37,7 +37,7 @@ use crate::resolve::Resolved;
 use crate::scene::Scheme;
 
 use super::gen_alpha_kernel::Kernel;
-pub use super::gen_alpha_kernel::MAX_LANES;
+pub(crate) use super::gen_alpha_kernel::MAX_LANES;
 use super::sample::CarrierSample;
 use super::state::State;
 use super::step_map::Lanes;

@@ -135,7 +135,7 @@ impl MethodFactory for Method {
 }
 
 /// The stepper of a built-in `scheme`.
-pub fn stepper_for(
+pub(crate) fn stepper_for(
     scheme: Scheme,
     sc: &Resolved,
     sys: &mut System,
@@ -185,7 +185,7 @@ pub fn register(method: &'static dyn MethodFactory) -> Result<()> {
 
 /// The factory of a method of the registry: a built-in [`Method`], or the
 /// factory [`register`] put behind the entry's handle.
-pub fn factory_of(method: MethodRef) -> &'static dyn MethodFactory {
+pub(crate) fn factory_of(method: MethodRef) -> &'static dyn MethodFactory {
     if let Some(m) = method.built_in_method() {
         return &BUILT_IN[m as usize];
     }
@@ -199,13 +199,13 @@ pub fn factory_of(method: MethodRef) -> &'static dyn MethodFactory {
 }
 
 /// The method named `name`: a built-in [`Method`], or one [`register`]ed.
-pub fn method_named(name: &str) -> Option<&'static dyn MethodFactory> {
+pub(crate) fn method_named(name: &str) -> Option<&'static dyn MethodFactory> {
     method_ref(name).map(factory_of)
 }
 
 /// The method a validated scene names (`integrator.method`), as it was
 /// resolved: no lookup by name.
-pub fn scene_method(sc: &Resolved) -> &'static dyn MethodFactory {
+pub(crate) fn scene_method(sc: &Resolved) -> &'static dyn MethodFactory {
     factory_of(sc.method.handle)
 }
 

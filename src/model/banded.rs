@@ -47,7 +47,7 @@ use crate::error::{Error, Result};
 /// with three, a half-empty lane and register spills (two carriers at
 /// N = 800: 1.16 × 10⁸ DOF-steps/s with three columns, 1.55 × 10⁸ with four).
 /// A padding column stays zero (A⁻¹0 = 0) and enters the update with weight 0.
-pub fn rhs_columns(nc: usize) -> usize {
+pub(crate) fn rhs_columns(nc: usize) -> usize {
     (1 + nc).max(2).next_multiple_of(2)
 }
 

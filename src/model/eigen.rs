@@ -88,7 +88,7 @@ use crate::error::{Error, Result};
 /// ∝ n³ (8× the n = 3199 figure above: about a minute and a half on 2 cores).
 /// 6400 unknowns is N = 3200 Hermite elements, finer than any mesh the
 /// studies use; beyond it a sparse shift-invert Lanczos is the right tool.
-pub const MAX_MODAL_DOFS: usize = 6400;
+pub(crate) const MAX_MODAL_DOFS: usize = 6400;
 
 /// The J lowest eigenpairs of K φ = ω² M φ, mass-normalized (Φᵀ M Φ = I).
 #[derive(Debug, Clone, PartialEq)]
@@ -420,7 +420,7 @@ fn workspace(n: usize, vectors: ComputeEigenvectors) -> StackReq {
 /// faer's workspace (the banded factor and the kept shapes are O(n p), O(n J)
 /// and counted by the run). What the memory budget reserves for the solve
 /// ([`crate::budget`]).
-pub fn eigen_bytes(n: usize) -> u64 {
+pub(crate) fn eigen_bytes(n: usize) -> u64 {
     let dense = (n as u64).saturating_mul(n as u64).saturating_mul(8);
     dense
         .saturating_mul(2)

@@ -21,16 +21,16 @@ use crate::manufactured::{Line, Manufactured};
 use crate::numeric::quadrature::{composite, gauss_legendre};
 
 /// Gauss points per panel (exact for degree 15).
-pub const POINTS: usize = 8;
+pub(crate) const POINTS: usize = 8;
 
 /// Largest turn, rad, of the source's fastest factor over one panel.
-pub const PANEL_TURN: f64 = 0.5;
+pub(crate) const PANEL_TURN: f64 = 0.5;
 
 /// Most separable parts a source has (three per term of
 /// [`crate::scene::manufactured::MAX_TERMS`] on each of the two lines: T̂'',
 /// T̂ and, with dashpots, T̂'; and the droppers' constant part): the
 /// per-step coefficients live on the stack.
-pub const MAX_PARTS: usize = 6 * crate::scene::manufactured::MAX_TERMS + 1;
+pub(crate) const MAX_PARTS: usize = 6 * crate::scene::manufactured::MAX_TERMS + 1;
 
 /// The projected source of one run.
 #[derive(Debug, Clone)]

@@ -236,7 +236,7 @@ impl ContactStats {
 /// The force's standard deviation is Welford's running update, and its mean
 /// the plain running sum over the steps divided by their number.
 #[derive(Debug, Clone)]
-pub struct ContactAccumulator {
+pub(crate) struct ContactAccumulator {
     geometry: LossGeometry,
     length: f64,
     /// Samples seen (row 0 included).

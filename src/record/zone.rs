@@ -44,7 +44,7 @@ pub const SUPPORT_ELEMENTS: f64 = 4.0;
 pub const SUPPORT_STEPS: f64 = 4.0;
 
 /// A loss interval shorter than this many steps is not resolved in time.
-pub const MIN_RESOLVED_LOSS_STEPS: usize = 3;
+pub(crate) const MIN_RESOLVED_LOSS_STEPS: usize = 3;
 
 /// Where a carrier's losses count as in the span or at a support, and what a
 /// run resolves.

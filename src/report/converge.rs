@@ -14,7 +14,7 @@ use crate::study::converge::{
 };
 
 /// Column order of `converge.csv`.
-pub const CONVERGE_COLUMNS: [&str; 17] = [
+pub(crate) const CONVERGE_COLUMNS: [&str; 17] = [
     "method",
     "discretization",
     "level",
@@ -103,7 +103,7 @@ pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
 }
 
 /// Write the three files of one study into `dir`.
-pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
+pub(crate) fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
     let name = c.rows.first().map_or("", |r| r.method.as_str());
     write_studies(dir, &[(name, c)], &[])
 }

@@ -40,7 +40,7 @@ const ON_NODE_RELATIVE: f64 = 1e-9;
 
 /// Check the messenger's supports against the mesh and the scene's other
 /// choices (module docs); nothing to check without `[messenger]`.
-pub fn check_messenger(
+pub(crate) fn check_messenger(
     scene: &Scene,
     beam: &crate::scene::BeamProps,
     elements: usize,

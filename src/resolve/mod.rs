@@ -27,16 +27,18 @@ pub mod wire;
 
 use std::path::Path;
 
-pub use attachment::check_attachments;
-pub use budget_check::{DropperSource, check_budget};
-pub use damping::check_damping;
-pub use dropper::check_droppers;
+pub(crate) use attachment::check_attachments;
+pub(crate) use budget_check::{DropperSource, check_budget};
+pub(crate) use damping::check_damping;
+pub(crate) use dropper::check_droppers;
+pub(crate) use memory::MAX_STORED_EVENTS;
+pub use memory::RunSizes;
 pub use memory::{
-    EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
-    PLOT_BUCKETS, RunSizes, estimate as estimate_memory, event_capacity, history_rows,
+    HISTORY_ROWS_AT_A_TIME, MEMORY_BUDGET_BYTES, MemoryEstimate, estimate as estimate_memory,
+    history_rows,
 };
-pub use mesh::{MAX_GALERKIN_MODES, resolve_mesh};
-pub use reference::declared_reference;
+pub(crate) use mesh::resolve_mesh;
+pub(crate) use reference::declared_reference;
 pub use resolved::Resolved;
 
 use crate::error::Result;

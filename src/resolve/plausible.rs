@@ -32,7 +32,7 @@ use crate::scene::{Attachment, BeamProps, CarrierKind, CarrierProps, Dropper, Ra
 /// Relative width of the window on each side of a scale: the machine
 /// epsilon, below which an entry added to the step matrix's changes none
 /// of its bits (module docs).
-pub const PLAUSIBLE_RELATIVE: f64 = f64::EPSILON;
+pub(crate) const PLAUSIBLE_RELATIVE: f64 = f64::EPSILON;
 
 /// The scales of a scene's step matrix (module docs).
 #[derive(Debug, Clone, Copy)]
@@ -86,7 +86,7 @@ impl Scales {
 /// and dashpot), the attachments', the droppers', the penalty stiffness
 /// and the Rayleigh coefficients (α Δt and β/Δt are the shares of M and K
 /// they add).
-pub fn check_plausible(
+pub(crate) fn check_plausible(
     scales: &Scales,
     carriers: &[CarrierProps],
     attachments: &[Attachment],

@@ -28,10 +28,10 @@ use super::validate::MAX_ELEMENTS;
 use crate::error::{Error, Result, one_line};
 
 /// Most spans a line may have (a 1000-span line is 50 km: beyond any run).
-pub const MAX_SPANS: usize = 1000;
+pub(crate) const MAX_SPANS: usize = 1000;
 
 /// Most droppers a span may have.
-pub const MAX_DROPPERS_PER_SPAN: usize = 100;
+pub(crate) const MAX_DROPPERS_PER_SPAN: usize = 100;
 
 /// How far (relative, in elements) a dropper may be from a node and still
 /// count as on it: the round-off of x·N/L for positions written in decimal
@@ -122,7 +122,7 @@ struct EvenDroppers {
 
 /// One generated dropper (SI units), for the document and the tests.
 #[derive(Debug, Clone, PartialEq)]
-pub struct DesignedDropper {
+pub(crate) struct DesignedDropper {
     /// Label `s<span>d<k>` (1-based).
     pub name: String,
     /// x_d, m.
@@ -139,14 +139,14 @@ pub struct DesignedDropper {
 
 /// Expand `[line]` into plain scene keys (see the module doc); a tree
 /// without `line` is returned as it is.
-pub fn expand_line(tree: Table) -> Result<Table> {
+pub(crate) fn expand_line(tree: Table) -> Result<Table> {
     expand_line_with_origin(tree).map(|(t, _)| t)
 }
 
 /// [`expand_line`], with what it generated: the keys an error names by
 /// their path in the expanded scene are told apart from the ones a user
 /// wrote ([`Generated::user_path`]).
-pub fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generated)> {
+pub(crate) fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generated)> {
     let Some(line) = tree.remove("line") else {
         return Ok((tree, Generated::default()));
     };
@@ -751,7 +751,8 @@ fn take_array(tree: &mut Table, key: &str) -> Result<Vec<Value>> {
 
 /// The line's designed droppers (for tests and the docs' figures): the
 /// expansion's design without writing the document.
-pub fn designed_droppers(tree: &Table) -> Result<Vec<DesignedDropper>> {
+#[cfg(test)]
+pub(crate) fn designed_droppers(tree: &Table) -> Result<Vec<DesignedDropper>> {
     let Some(line) = tree.get("line") else {
         return Ok(Vec::new());
     };

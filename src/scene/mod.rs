@@ -48,50 +48,66 @@ pub mod tables;
 mod time;
 mod validate;
 
-pub use analysis::{AnalysisSpec, speed_unit};
-pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
-pub use beam::{BeamSpec, Support};
-pub use carrier::{CarrierSpec, Side};
-pub use contact::{
-    ComplementaritySolver, ComplementaritySpec, ContactKind, ContactSpec, Formulation, ImpactSpec,
-    PenaltySpec, Placement,
-};
-pub use damping::{Rayleigh, RayleighSpec, resolve_rayleigh};
-pub use discretization::{
-    DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
-};
-pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
-pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
+pub use analysis::AnalysisSpec;
+pub use analysis::speed_unit;
+pub use attachment::Attachment;
+pub use attachment::AttachmentSpec;
+pub use beam::BeamSpec;
+pub use beam::Support;
+pub use carrier::CarrierSpec;
+pub use carrier::Side;
+pub use contact::{ComplementaritySolver, ComplementaritySpec, ImpactSpec, PenaltySpec};
+pub use contact::{ContactKind, ContactSpec, Formulation, Placement};
+pub use damping::Rayleigh;
+pub use damping::RayleighSpec;
+pub(crate) use damping::resolve_rayleigh;
+pub use discretization::Discretization;
+pub(crate) use discretization::{DEFAULT_GRADING_RATIO, MAX_GRADING_RATIO, fe_unknowns};
+pub use discretization::{Grading, MeshPlan};
+pub use dropper::AnchorSpec;
+pub use dropper::Dropper;
+pub(crate) use dropper::resolve_droppers;
+pub use dropper::{Anchor, DropperSpec};
+pub use external_force::ExternalForceSpec;
+pub use external_force::ForceSeries;
 pub use generated::Generated;
 pub use gravity::GravitySpec;
-pub use integrator::{DEFAULT_METHOD, IntegratorSpec, Key};
-pub use line::{
-    DesignedDropper, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line,
-    expand_line_with_origin,
-};
-pub use load::{
-    UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
+pub use integrator::IntegratorSpec;
+pub use integrator::Key;
+pub(crate) use line::{expand_line, expand_line_with_origin};
+pub use load::UNSET;
+pub(crate) use load::{
+    apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed, with_table_files,
 };
-pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
-pub use mesh::{GradingKind, MeshKind, MeshSpec};
-pub use messenger::{Messenger, MessengerSpec};
-pub use method::{Method, MethodInfo, Parameter};
+pub use manufactured::ReferenceKind;
+pub use manufactured::{Declared, ManufacturedSpec, ReferenceSpec};
+pub use mesh::GradingKind;
+pub use mesh::{MeshKind, MeshSpec};
+pub use messenger::Messenger;
+pub use messenger::MessengerSpec;
+pub use method::Parameter;
+pub use method::{Method, MethodInfo};
 pub use method_choice::ResolvedMethod;
+pub use method_registry::MethodRef;
 pub(crate) use method_registry::register_method;
-pub use method_registry::{MethodRef, method_names, method_ref};
+pub(crate) use method_registry::{method_names, method_ref};
 pub use motion::Motion;
-pub use output::{FieldSpec, OutputSpec, ProbeSpec, Wire};
-pub use pantograph::{ChainProps, MAX_CHAIN};
-pub use props::{BeamProps, CarrierKind, CarrierProps, TimeProps};
+pub use output::FieldSpec;
+pub use output::Wire;
+pub use output::{OutputSpec, ProbeSpec};
+pub use pantograph::ChainProps;
+pub(crate) use pantograph::MAX_CHAIN;
+pub use props::{BeamProps, CarrierKind};
+pub use props::{CarrierProps, TimeProps};
 pub use scene_file::Scene;
-pub use scheme::{
-    DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, ParameterValues, Scheme,
-};
+pub use scheme::ParameterValues;
+pub use scheme::{GenAlphaParams, Scheme};
 pub use speed::SpeedProfile;
-pub use time::{EndTime, Initial, TimeSpec};
+pub use time::TimeSpec;
+pub use time::{EndTime, Initial};
+pub use validate::MAX_STEPS;
 pub(crate) use validate::check_chain_scene;
-pub use validate::{
-    DEFAULT_PENALTY_RELATIVE, MAX_ELEMENTS, MAX_STEPS, STEP_COUNT_SLACK, check_speed_tables_cover,
-    validate_contact,
+pub(crate) use validate::{
+    DEFAULT_PENALTY_RELATIVE, STEP_COUNT_SLACK, check_speed_tables_cover, validate_contact,
 };

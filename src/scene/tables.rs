@@ -17,7 +17,7 @@ use serde::de::{
 };
 
 /// A deserializer whose structs are read from maps (tables) only.
-pub struct Strict<D>(pub D);
+pub(crate) struct Strict<D>(pub D);
 
 /// A visitor that refuses a sequence where a struct with `fields` is read
 /// (`fields` is `None` for any other type), and passes [`Strict`] down to

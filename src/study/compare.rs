@@ -223,7 +223,7 @@ pub struct CompareSpec<'a> {
 }
 
 /// Parse `lagrange,penalty,…` into formulations.
-pub fn parse_formulations(list: &str) -> Result<Vec<Formulation>> {
+pub(crate) fn parse_formulations(list: &str) -> Result<Vec<Formulation>> {
     let mut out = Vec::new();
     for name in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let f = Formulation::ALL

@@ -18,11 +18,11 @@ use crate::resolve::Resolved;
 /// runs, started without `--yes`: 10¹¹ DOF-steps is about 9 minutes at the
 /// [`RATE_DOF_STEPS_PER_S`] one core reaches at N ≤ 800, 15 minutes or more
 /// on finer meshes (docs/performance.md).
-pub const MAX_DOF_STEPS: f64 = 1e11;
+pub(crate) const MAX_DOF_STEPS: f64 = 1e11;
 
 /// DOF-steps per second one core steps the reference case at N ≤ 800
 /// (docs/performance.md), for the time a refused estimate would take.
-pub const RATE_DOF_STEPS_PER_S: f64 = 1.9e8;
+pub(crate) const RATE_DOF_STEPS_PER_S: f64 = 1.9e8;
 
 /// The unknowns a run steps: (N + 1) × 2 for Hermite elements, N + 1 for
 /// string elements (the FE mesh's; a modal or Galerkin basis steps fewer, so
@@ -33,7 +33,7 @@ pub fn unknowns(sc: &Resolved) -> f64 {
 }
 
 /// A run's work: [`unknowns`] × steps.
-pub fn run_dof_steps(sc: &Resolved) -> f64 {
+pub(crate) fn run_dof_steps(sc: &Resolved) -> f64 {
     unknowns(sc) * sc.steps as f64
 }
 

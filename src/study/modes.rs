@@ -33,7 +33,7 @@ use crate::resolve::Resolved;
 use crate::scene::{Discretization, Support};
 
 /// Modes computed when no count is asked for.
-pub const DEFAULT_COUNT: usize = 10;
+pub(crate) const DEFAULT_COUNT: usize = 10;
 
 /// Where a scene's frequencies come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -68,7 +68,7 @@ pub struct ConvergeRow {
 }
 
 /// Quantities reported, in order.
-pub const QUANTITIES: [&str; 12] = [
+pub(crate) const QUANTITIES: [&str; 12] = [
     "displacement_max",
     "displacement_l2",
     "force_max",
@@ -84,7 +84,7 @@ pub const QUANTITIES: [&str; 12] = [
 ];
 
 /// The scalar outputs ([`Scalar`]) among [`QUANTITIES`], in that order.
-pub const SCALARS: [Scalar; 8] = [
+pub(crate) const SCALARS: [Scalar; 8] = [
     Scalar::LossFraction,
     Scalar::LossFractionSpan,
     Scalar::LossFractionSupport,

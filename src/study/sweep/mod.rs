@@ -6,7 +6,7 @@
 //!   linear or (with `--log`) logarithmic, or of listed axes `--vary
 //!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, [`points`]),
 //!   whose keys are walked together rather than as a grid. `key` is any dotted scene path
-//!   (`beam.tension`, `carrier.0.mass`) or one of [`DIMENSIONLESS`]:
+//!   (`beam.tension`, `carrier.0.mass`) or one of the dimensionless axes:
 //!   `speed_ratio` = V0/c (every carrier's cruise speed), `tension_ratio` =
 //!   T/EA, `mass_ratio` = m/M with M = ρAL (every mass carrier),
 //!   `stiffness_ratio` = k/(T/L) (every mass carrier). Ratios are applied after
@@ -59,16 +59,20 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
-pub use axis::{Axis, AxisTarget, Ratio, WHOLE_SNAP};
-pub use batch::{AUTO_BATCH_LANES, BatchWidth, auto_lanes};
+pub use axis::Axis;
+pub use axis::{AxisTarget, Ratio};
+pub(crate) use batch::AUTO_BATCH_LANES;
+pub use batch::BatchWidth;
 use batch::{batches, records_guarded};
-pub use folder::{FolderLock, check_shard, claim, collect, merge, merge_into, read_spec};
-pub use points::{parse_points, read_points};
+pub use folder::FolderLock;
+pub use folder::{claim, collect, merge};
+pub(crate) use folder::{merge_into, read_spec};
+pub(crate) use points::read_points;
 pub use record::{PROFILE_BINS, SweepRecord};
-pub use refine::{REFINEMENT_ABS, REFINEMENT_REL, Refined, refinement_converged};
-pub use resolve::DIMENSIONLESS;
+pub use refine::Refined;
+pub(crate) use refine::{REFINEMENT_ABS, REFINEMENT_REL, refinement_converged};
 pub use shard::Shard;
-pub use spec::{MAX_POINT_KEYS, MAX_POINTS, SweepSpec};
+pub use spec::{MAX_POINT_KEYS, SweepSpec};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid
@@ -88,7 +92,7 @@ pub fn sweep(
 /// writes the tables), for a spec the caller has validated
 /// ([`SweepSpec::validate`]; a point that does not resolve would still only
 /// be that point's error).
-pub fn sweep_in(
+pub(crate) fn sweep_in(
     claimed: &FolderLock,
     spec: &SweepSpec,
     shard: Option<Shard>,

@@ -257,7 +257,7 @@ pub const MAX_POINT_KEYS: usize = 1000;
 
 /// The most points a sweep may have: 100 000 runs is days of work at the
 /// reference resolution and ~0.4 GB of records; a larger grid is several sweeps.
-pub const MAX_POINTS: usize = 100_000;
+pub(crate) const MAX_POINTS: usize = 100_000;
 
 impl SweepSpec {
     /// Resolve every point (and its refined run with `--check-refinement`)

@@ -57,14 +57,14 @@ mod refusal;
 mod results;
 
 pub use crate::study::filter::{FORCE_BAND_HZ, design_cutoff_hz, lowpass_zero_phase};
-pub use accuracy::{Accuracy, PilotRun, ResultEstimate, TolerantRun};
-pub use error_model::{
-    ErrorModel, Estimate, LADDER_RATIO, LadderFit, LadderStatus, MAX_MESH_ORDER,
-    MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, MIN_ORDER, ROUND_OFF,
-};
-pub use limits::{MIN_TOLERANCE, TOLERANCE_RANGE, parse_tolerance};
-pub use pilots::whole_step;
-pub use quantity::{Quantity, quantity_difference, quantity_signal};
+pub use accuracy::{Accuracy, TolerantRun};
+pub use accuracy::{PilotRun, ResultEstimate};
+pub use error_model::LadderFit;
+pub use error_model::LadderStatus;
+pub use error_model::{ErrorModel, Estimate};
+pub use error_model::{MIN_ORDER, ROUND_OFF};
+pub(crate) use limits::parse_tolerance;
+pub use quantity::{Quantity, quantity_difference};
 pub use results::{RESULTS, result_values};
 
 use crate::error::Result;
@@ -78,7 +78,7 @@ use results::estimate_results;
 /// included: the bound every study shares ([`super::cost::MAX_DOF_STEPS`]).
 /// Beyond it the tool says what the tolerance would take instead of starting
 /// a run nobody waits for.
-pub use super::cost::MAX_DOF_STEPS;
+pub(crate) use super::cost::MAX_DOF_STEPS;
 
 /// Run the scene at the resolution that meets `tol` on `quantity`.
 /// `progress(done, total)` after each run (pilots, then the chosen run).

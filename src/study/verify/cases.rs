@@ -25,7 +25,7 @@ const BEAM_SUPPORTS: [(Support, Support); 6] = [
 /// Allowed |observed − tail order| of a J ladder: the discrete solution
 /// also carries the moving contact's coupling of the modes (as
 /// [`MOVING_CONTACT_TOL`]), which moves the pre-asymptotic constant.
-pub const TAIL_TOL: f64 = 0.5;
+pub(crate) const TAIL_TOL: f64 = 0.5;
 
 /// Allowed |observed − formal| of an h or J ladder with a moving contact:
 /// the mass's path has a curvature jump at every node of C¹ elements (and

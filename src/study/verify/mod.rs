@@ -55,17 +55,16 @@ use case::Case;
 use job::Job;
 use run_job::run_job;
 
-pub use explicit::{EXPLICIT_LEVELS, EXPLICIT_MARGIN, EXPLICIT_STEP_BUDGET, MAX_EXPLICIT_STEPS};
-pub use measure::TAIL_TIMES;
-pub use row::{Status, VerifyRow, any_failed};
-pub use select::{Selection, parse_spaces, selection};
+pub use row::VerifyRow;
+pub use row::{Status, any_failed};
+pub use select::{Selection, selection};
 
 /// Largest share of the finest error the fixed variables may make (step 3
 /// of the module docs): at 0.25 the refined variable makes ≥ 75 % of it,
 /// and the order it shows is off by at most log2(1/(1 − 0.25)) ≈ 0.4 in
 /// the worst case of a share that does not fall with the ladder (at the
 /// coarser levels, where errors are larger, its share is smaller still).
-pub const DOMINANCE_LIMIT: f64 = 0.25;
+pub(crate) const DOMINANCE_LIMIT: f64 = 0.25;
 
 /// Run the matrix of `sel` over `cases` on the current rayon pool;
 /// `progress(done, total)` after each combination. Rows in a fixed order
