@@ -226,7 +226,7 @@ impl Error {
     }
 
     /// Shorthand for [`Error::Invalid`]. The value is shown as a person
-    /// reads it ([`for_message`]: numbers compact, a huge value clipped),
+    /// reads it (`for_message`: numbers compact, a huge value clipped),
     /// and so are the numbers in `allowed`.
     pub fn invalid(
         field: impl Into<String>,
@@ -241,7 +241,7 @@ impl Error {
     }
 
     /// The typed failure a variant carries from a higher layer
-    /// ([`Payload`]), when it is a `T`: `e.payload::<contact::ContactFailed>()`
+    /// (`Payload`), when it is a `T`: `e.payload::<contact::ContactFailed>()`
     /// gives a failed contact solve's problem back.
     pub fn payload<T: std::error::Error + 'static>(&self) -> Option<&T> {
         match self {

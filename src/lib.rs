@@ -24,6 +24,8 @@
 // Numerical kernels index several arrays in lockstep (A[i][k], x[i − k], …);
 // index loops say that more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
+// every public item says what it is (docs/api.md lists the surface)
+#![warn(missing_docs)]
 
 pub mod analytic;
 pub mod app;

@@ -21,7 +21,7 @@
 //! ```
 //!
 //! * `e^{ijθ}` for j = 1 … J by a **rotation recurrence** in blocks of
-//!   [`BLOCK`] modes: `e^{iθ}` from one `sin_cos`, the first block by
+//!   `BLOCK` modes: `e^{iθ}` from one `sin_cos`, the first block by
 //!   repeated squaring and products, then block b+1 = block b × `e^{iBθ}`
 //!   (a complex product per mode; the B chains are independent, so they
 //!   vectorize). Each product adds at most a few ulps, so mode j carries
@@ -46,7 +46,7 @@
 //! mode_shapes.rs) are tabulated in the distance `d` to their end at
 //! spacing `Δ = 1/α_J`, times `e^{−α_j δ}` (`|α_j δ| ≤ 1/2`) by its Taylor
 //! polynomial to degree 15 (remainder ≤ `e^{1/2}·0.5¹⁶/16! ≈ 1.2·10⁻¹⁸`).
-//! A term with `α_j d ≥` [`LAYER_CUT`] is below `e^{−40} ≈ 4·10⁻¹⁸` of its
+//! A term with `α_j d ≥ LAYER_CUT` is below `e^{−40} ≈ 4·10⁻¹⁸` of its
 //! coefficient (itself at most ~2 amplitudes) and is left out: since α_j
 //! rises with j, row k keeps only the modes that count within half a row of
 //! it, and rows stop at `d = 40/α_1`. On the reference span (αL ≥ 760)
@@ -61,8 +61,8 @@
 //!
 //! ## Block by block
 //!
-//! [`FastShapes::blocks_at`] hands the same values out a block of [`BLOCK`]
-//! modes at a time ([`BlocksAvx::next`], then [`Blocks::tail_into`]), with
+//! [`FastShapes::blocks_at`] hands the same values out a block of `BLOCK`
+//! modes at a time (`BlocksAvx::next`, then [`Blocks::tail_into`]), with
 //! the very operations of the whole-vector kernels, for a caller that uses
 //! each block while it is in registers (the fused `modal_exact` step); it
 //! declines where a boundary-layer row applies (`tests` check both, bit for
@@ -72,7 +72,7 @@
 //!
 //! Against the direct evaluation [`super::ModeShapes::values_into`] (itself
 //! accurate to ~10⁻¹² at J = 1000, mode_shapes.rs "The limit on J"), the
-//! values agree to [`FAST_SHAPES_AGREEMENT`] of the amplitude `sqrt(2/(ρA L))`
+//! values agree to `FAST_SHAPES_AGREEMENT` of the amplitude `sqrt(2/(ρA L))`
 //! for every support pair and J up to [`super::MAX_MODES`] (`tests`).
 
 use super::mode_shapes::{Ends, ModeShapes};
@@ -487,7 +487,7 @@ impl FastShapes {
         }
     }
 
-    /// The values at `x` handed out [`BLOCK`] modes at a time, for a caller
+    /// The values at `x` handed out `BLOCK` modes at a time, for a caller
     /// that consumes each block as it is made (the fused `modal_exact` step,
     /// `integrate/modal_exact.rs`): the same operations as
     /// [`FastShapes::values_into`], so the same bits. Within a clamped
@@ -545,7 +545,7 @@ impl FastShapes {
     }
 
     /// `φ_j(x)`, kg^{−1/2}, for all j into `out` (length J), equal to
-    /// [`ModeShapes::values_into`] within [`FAST_SHAPES_AGREEMENT`] of the
+    /// [`ModeShapes::values_into`] within `FAST_SHAPES_AGREEMENT` of the
     /// amplitude. `x` is clamped to `[0, L]`. No allocation; one `sin_cos`.
     pub fn values_into(&self, x: f64, out: &mut [f64]) {
         self.values_by(x, out, lanes::avx2_fma())
@@ -685,9 +685,9 @@ enum BlockRows<'a> {
 impl Blocks<'_> {
     /// The values of the first modes, those in the blocks a boundary-layer
     /// row reaches at the point, into `out[..end]`, and `end` (a multiple
-    /// of [`BLOCK`], ≤ [`Blocks::full`]; 0 outside the layers): the
-    /// oscillating parts block by block ([`BlocksAvx::next`]), then each
-    /// layer row's terms over those modes ([`Layer::add_into`]), the
+    /// of `BLOCK`, ≤ [`Blocks::full`]; 0 outside the layers): the
+    /// oscillating parts block by block (`BlocksAvx::next`), then each
+    /// layer row's terms over those modes (`Layer::add_into`), the
     /// operations of [`FastShapes::values_into`]. The blocks from `end` on
     /// are then handed out as usual.
     ///
@@ -718,14 +718,14 @@ impl Blocks<'_> {
     }
 
     /// The modes in whole blocks, ⌊J/B⌋·B: the vector blocks
-    /// ([`BlocksAvx`]) cover `0 .. full()`, [`Blocks::tail_into`] the rest.
+    /// (`BlocksAvx`) cover `0 .. full()`, [`Blocks::tail_into`] the rest.
     pub fn full(&self) -> usize {
         self.full
     }
 
     /// The values of modes `full() .. J` into `out` (length J − full()),
     /// after the whole blocks have advanced the recurrence
-    /// ([`BlocksAvx::finish`]): as the last partial block of
+    /// (`BlocksAvx::finish`): as the last partial block of
     /// [`FastShapes::values_into`].
     #[inline(always)]
     pub fn tail_into(&self, out: &mut [f64]) {

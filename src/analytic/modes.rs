@@ -110,7 +110,7 @@ impl Dispersion {
 
 /// Eigenfrequencies of a pinned–pinned tensioned beam of length L (MODEL §8):
 /// `ω_j = (jπ/L)² sqrt(EI/ρA) sqrt(1 + T L²/(EI j²π²))`, rad/s, i.e.
-/// `ω_j = ω(k = jπ/L)` of [`Dispersion`] (written in that form, it also
+/// `ω_j = ω(k = jπ/L)` of `Dispersion` (written in that form, it also
 /// covers the string EI = 0: `ω_j = jπ c/L`). Mode shapes `sin(jπx/L)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PinnedPinnedModes {

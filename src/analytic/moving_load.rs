@@ -189,7 +189,7 @@ impl MovingForceString {
     }
 
     /// The quasi-static part `F x_<(L − x_>)/(L T_e)`, m, `x_m = Vt`, while the
-    /// force is on the string and `V ≠ c` (outside [`RESONANCE_BAND`]).
+    /// force is on the string and `V ≠ c` (outside `RESONANCE_BAND`).
     pub fn quasi_static(&self, x: f64, t: f64) -> Option<f64> {
         let l = self.length;
         if self.resonant() || !(0.0..=self.exit_time()).contains(&t) || !(0.0..=l).contains(&x) {
@@ -274,13 +274,13 @@ impl MovingForceString {
 /// Moving constant force on a pinned–pinned tensioned beam (MODEL §8):
 /// the modal series with `ω_j = κ_j sqrt((κ_j² EI + T)/ρA)`, `κ_j = jπ/L`.
 ///
-/// While the force is on and `μ_e L ≥` [`QS_MIN_MU_L`] (`μ_e² = T_e/EI`,
+/// While the force is on and `μ_e L ≥ QS_MIN_MU_L` (`μ_e² = T_e/EI`,
 /// `T_e = T − ρA V² ≥ 0`) the quasi-static part is summed in closed form by
 /// [`StaticPointLoad`] (pinned–pinned, tension `T_e`, load at `Vt`) and only
 /// the remainder `−Σ K(Ω_j/ω_j) sin(ω_j t) sin(κ_j x)/(ω_j² − Ω_j²)` is
 /// summed; its terms fall like `j⁻⁵`. Otherwise (after the force leaves,
 /// `T_e < 0` — above the string speed, with resonances at `V = c(2L/j)` of
-/// [`super::Dispersion`] — or small `μ_e L`) the full series is summed in the
+/// `super::Dispersion` — or small `μ_e L`) the full series is summed in the
 /// resonance-regular form (terms `∝ j⁻⁴` with the force on, `j⁻⁵` after).
 ///
 /// Truncation bounds (`a = sqrt(EI/ρA)`, valid for `N ≥ j_min`, the first
@@ -430,7 +430,7 @@ impl MovingForceBeam {
 
     /// The quasi-static part `F·G_{T_e}(x, Vt)`, m, in closed form via
     /// [`StaticPointLoad`], while the force is on and `L sqrt(T_e/EI) ≥`
-    /// [`QS_MIN_MU_L`] (or `T_e = 0` exactly).
+    /// `QS_MIN_MU_L` (or `T_e = 0` exactly).
     pub fn quasi_static(&self, x: f64, t: f64) -> Option<f64> {
         let l = self.length;
         let te = self.effective_tension();

@@ -257,7 +257,7 @@ impl Pantograph {
         (omega, phi)
     }
 
-    /// Whether C is proportional (ΦᵀCΦ diagonal within [`PROPORTIONAL`]).
+    /// Whether C is proportional (ΦᵀCΦ diagonal within `PROPORTIONAL`).
     pub fn proportional(&self) -> bool {
         let (_, c, _) = self.matrices();
         let (_, phi) = self.undamped_modes();

@@ -32,7 +32,7 @@
 //! (a unit test holds this against a dense nalgebra LU of the projected
 //! system). The first-order system `(a, a')` is integrated with the classical
 //! fourth-order Runge–Kutta method — no relation to taut's implicit
-//! integrators — at a step at most [`STEP_FACTOR`]`/ω_J`. Initial state as
+//! integrators — at a step at most `STEP_FACTOR/ω_J`. Initial state as
 //! MODEL §5: beam straight and at rest, gravity switched on at t = 0.
 //!
 //! Outputs: `w = s·v(x_m)` (m, as the FE history records it), its rate, and

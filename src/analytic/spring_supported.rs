@@ -35,7 +35,7 @@
 //! benign for μL ≳ 1: at the load both terms are O(L) and O(1/μ). For μL → 0
 //! the two terms agree to O((μL)²) and the difference carries a relative
 //! round-off of about ε/(μL)² (times the spread of the two terms); below
-//! [`MU_L_BARE`] the bare-beam form is used instead, whose relative error
+//! `MU_L_BARE` the bare-beam form is used instead, whose relative error
 //! there is (μL)²/10, so neither exceeds ≈ 2e-8 of the midspan compliance.
 //! Near a support (`μx ≪ 1` and `μa ≪ 1`) the same cancellation costs
 //! relative accuracy in a deflection that is itself small: the absolute error

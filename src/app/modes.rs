@@ -17,7 +17,7 @@ pub struct ModesRequest {
     pub scene: SceneSource,
     /// Scene overrides, `key.path=value` (`--set`).
     pub set: Vec<String>,
-    /// How many modes (`--count`; default [`crate::study::modes::DEFAULT_COUNT`]).
+    /// How many modes (`--count`; default `crate::study::modes::DEFAULT_COUNT`).
     pub count: Option<usize>,
     /// Output folder (none: nothing written).
     pub out: Option<PathBuf>,

@@ -26,7 +26,7 @@ pub struct ReplayOutcome {
     pub gap: Vec<f64>,
     /// Which contacts the law closed.
     pub active: Vec<bool>,
-    /// Largest Signorini residual (relative; see [`SIGNORINI_TOLERANCE`]),
+    /// Largest Signorini residual (relative; see `SIGNORINI_TOLERANCE`),
     /// or `None` for the penalty law, which lets the gap close only to λ/κ
     /// by design.
     pub violation: Option<f64>,
@@ -67,7 +67,7 @@ impl ContactProblem {
     }
 }
 
-/// Solve a saved problem again (after [`ContactProblem::validate`]) with the
+/// Solve a saved problem again (after `ContactProblem::validate`) with the
 /// law it names, and check the answer.
 pub fn replay(problem: &ContactProblem) -> std::result::Result<ReplayOutcome, ContactFailure> {
     let n = problem.g_free.len();

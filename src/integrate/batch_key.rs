@@ -23,7 +23,7 @@ use crate::model::banded::rhs_columns;
 pub enum BatchKey {
     /// Generalized-α runs sharing one factorization ([`super::Batch`]).
     GenAlpha(GenAlphaKey),
-    /// `modal_exact` runs sharing one basis ([`super::ModalBatch`]).
+    /// `modal_exact` runs sharing one basis (`super::ModalBatch`).
     Modal(ModalKey),
 }
 

@@ -175,7 +175,7 @@ struct FactoryHandle(&'static dyn MethodFactory);
 static BUILT_IN: [Method; Method::ALL.len()] = Method::ALL;
 
 /// Register `method` by its name, so that a scene (`integrator.method =
-/// "<name>"`), `--methods <name>` and [`method_named`] reach it as they
+/// "<name>"`), `--methods <name>` and `method_named` reach it as they
 /// reach a built-in method. Refused when the name is malformed or taken (a
 /// built-in name, or one registered before).
 pub fn register(method: &'static dyn MethodFactory) -> Result<()> {

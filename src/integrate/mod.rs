@@ -18,11 +18,11 @@
 //!   `moreau_jean.rs`, `modal_exact.rs` (with `oscillator.rs`, the exact
 //!   step of one mode, and `modal_kernels.rs`). Each steps the mass dofs
 //!   with its one rule, a `Stage` that `mass_step.rs` applies to a single
-//!   mass and a multi-mass chain (`chain.rs`) alike. [`stepper_for`]
+//!   mass and a multi-mass chain (`chain.rs`) alike. `stepper_for`
 //!   builds a built-in method's ([`crate::scene::Method`], described in
 //!   `scene/method.rs`) from its typed parameters.
 //! * `method.rs`: the seam — [`MethodFactory`] (a method's description and
-//!   the stepper it builds), [`register`] and [`factory_of`]: the one
+//!   the stepper it builds), [`register`] and `factory_of`: the one
 //!   registry is the scene layer's (`scene/method_registry.rs`), which
 //!   keeps a registered factory behind a type-erased handle this file
 //!   reads back. A method written outside the crate implements [`Stepper`]

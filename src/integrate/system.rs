@@ -97,7 +97,7 @@ impl System {
     }
 
     /// Columns of a right-hand side for [`System::scatter_loads`]:
-    /// [`rhs_columns`] of the number of contacts.
+    /// `rhs_columns` of the number of contacts.
     pub fn columns(&self) -> usize {
         rhs_columns(self.physics.masses.len())
     }

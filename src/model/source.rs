@@ -5,9 +5,9 @@
 //! work and no allocation.
 //!
 //! The projection is a Gauss–Legendre quadrature well above any scheme's
-//! order: on each element (Hermite or string), [`POINTS`] points on
+//! order: on each element (Hermite or string), `POINTS` points on
 //! sub-panels short enough that the source's fastest factor turns by at
-//! most [`PANEL_TURN`] rad over one (so a coarse mesh under a fast shape
+//! most `PANEL_TURN` rad over one (so a coarse mesh under a fast shape
 //! does not alias; on a resolved mesh one panel per element, exact for
 //! polynomial shapes up to degree 12 against cubic shape functions); for a
 //! `galerkin` basis, the modes' own composite rule

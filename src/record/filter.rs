@@ -1,5 +1,5 @@
 //! The filtered contact force's statistics (the filter itself is the
-//! numerics' [`crate::numeric::filter`], re-exported here).
+//! numerics' `crate::numeric::filter`, re-exported here).
 
 pub use crate::numeric::filter::*;
 

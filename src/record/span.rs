@@ -14,7 +14,7 @@
 //! ```
 //!
 //! over the n_k steps i in span k; σ_k is Welford's running update, as
-//! [`super::ContactAccumulator`]'s, the mean the plain running sum over n_k.
+//! `super::ContactAccumulator`'s, the mean the plain running sum over n_k.
 
 use serde::Serialize;
 

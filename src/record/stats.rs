@@ -153,7 +153,7 @@ pub struct ContactStats {
     pub support_zone: f64,
     /// Loss intervals as [x_start/L, x_end/L]: a lost step covers
     /// [x_{i−1}, x_i], and adjacent lost steps merge. At most
-    /// [`MAX_STORED_EVENTS`] are listed.
+    /// `MAX_STORED_EVENTS` are listed.
     pub loss_intervals: Vec<[f64; 2]>,
     /// The same intervals in time, [t_start, t_end], s.
     pub loss_intervals_time: Vec<[f64; 2]>,
@@ -167,7 +167,7 @@ pub struct ContactStats {
     pub suspect_loss_intervals: usize,
     /// Their share of the steps (a part of `loss_fraction_span`).
     pub suspect_loss_fraction: f64,
-    /// Re-contacts, with peak and impulse (at most [`MAX_STORED_EVENTS`]).
+    /// Re-contacts, with peak and impulse (at most `MAX_STORED_EVENTS`).
     pub recontacts: Vec<Recontact>,
     /// Number of re-contacts (all of them).
     pub recontact_count: usize,
@@ -195,7 +195,7 @@ pub struct ContactStats {
 
 impl ContactStats {
     /// Statistics of one trace over `geometry` (the span and its support
-    /// zones). The same numbers, bit for bit, as [`ContactAccumulator`] fed
+    /// zones). The same numbers, bit for bit, as `ContactAccumulator` fed
     /// row by row. Rows beyond the shortest column are ignored.
     pub fn from_trace(t: &[f64], tr: &CarrierTrace, geometry: LossGeometry) -> Self {
         let mut acc = ContactAccumulator::new(geometry);

@@ -66,7 +66,7 @@ struct Level {
     wall_seconds: f64,
 }
 
-/// `converge.csv` as a table ([`CONVERGE_COLUMNS`]): one row per level and
+/// `converge.csv` as a table (`CONVERGE_COLUMNS`): one row per level and
 /// quantity, study after study.
 pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
     let label = |f: fn(&ConvergeRow) -> &str| {

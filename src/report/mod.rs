@@ -91,7 +91,7 @@ pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> 
 /// Write a run's outputs into `dir` (created if missing): `history.csv`,
 /// `force.svg`, `standard.csv`, `standard.json`, what the scene's
 /// `[output]` asks for, and `summary.json` last, the folder marked
-/// [`INCOMPLETE_FILE`] until every file is written ([`write_whole`]).
+/// `INCOMPLETE_FILE` until every file is written (`write_whole`).
 pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> {
     write_whole(dir, "taut run", || {
         write_history(&dir.join("history.csv"), out)?;

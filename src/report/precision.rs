@@ -29,7 +29,7 @@ pub(crate) const PRECISION_COLUMNS: [&str; 16] = [
     "pareto",
 ];
 
-/// `precision.csv` as a table ([`PRECISION_COLUMNS`]): one row per run.
+/// `precision.csv` as a table (`PRECISION_COLUMNS`): one row per run.
 pub fn precision_rows(p: &Precision) -> Table {
     let rows = &p.rows;
     let label = |f: fn(&PrecisionRow) -> &str| {

@@ -120,7 +120,7 @@ pub(crate) const MAX_FILTERED_LINES: usize = 10;
 /// Rows of the history formatted at a time by `report::write_history`: a
 /// few MB of columns, however long the history (building the whole table
 /// copied the history once more: 1 GB more at 2·10⁷ rows, issue 25).
-/// Defined here, with the memory plan that counts it ([`csv_block_rows`]).
+/// Defined here, with the memory plan that counts it (`csv_block_rows`).
 pub const HISTORY_ROWS_AT_A_TIME: usize = 1 << 16;
 
 /// Characters of one `history.csv` cell at most: a value in shortest
@@ -364,20 +364,20 @@ pub struct MemoryEstimate {
     /// A complementarity law's clarabel solvers, one per problem size.
     pub solvers: u64,
     /// The statistics' stored events: the carriers' loss intervals and
-    /// re-contacts ([`event_capacity`] per carrier, reserved before the
+    /// re-contacts (`event_capacity` per carrier, reserved before the
     /// first step) and the droppers' slack intervals.
     pub events: u64,
     /// The wire's records: snapshots, the field, the envelope and the
     /// supports, with their point vectors.
     pub wire: u64,
-    /// The block of `history.csv` formatted at a time: [`csv_block_rows`]
+    /// The block of `history.csv` formatted at a time: `csv_block_rows`
     /// rows × [`Self::row`].
     pub csv_block: u64,
     /// The rest of the working memory of writing the outputs
-    /// ([`output_bytes`], `line.svg`, `summary.json`'s copies).
+    /// (`output_bytes`, `line.svg`, `summary.json`'s copies).
     pub outputs: u64,
     /// The filtered force the history keeps beside the force: one copy of
-    /// every carrier's force history ([`FILTER_BYTES_PER_ROW`] a row and
+    /// every carrier's force history (`FILTER_BYTES_PER_ROW` a row and
     /// carrier), when the history holds every step (else there is no
     /// filtered force and this is 0). It shrinks with the rows, like the
     /// history.
@@ -418,7 +418,7 @@ impl MemoryEstimate {
 
     /// Every file the run writes, bytes (`history.csv`, `snapshots.csv`,
     /// `field.csv`, `summary.json`; the plots are bounded by
-    /// [`output_bytes`]'s terms and small).
+    /// `output_bytes`'s terms and small).
     pub fn files(&self) -> u64 {
         self.csv
             .saturating_add(self.wire_csv)

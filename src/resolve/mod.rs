@@ -4,7 +4,7 @@
 //! the scene: the mesh against the model's bounds ([`mesh`]), the point
 //! attachments against the basis and references ([`attachment`]), the
 //! manufactured solution's and the declared reference's assumptions
-//! ([`reference`], `crate::manufactured`), the method's own check of the
+//! ([`reference`](mod@reference), `crate::manufactured`), the method's own check of the
 //! contact settings and basis (its `MethodInfo`), and the memory plan
 //! ([`memory`]).
 //!

@@ -208,7 +208,7 @@ impl Resolved {
     /// The memory the run is estimated to need and the size of the files
     /// it writes ([`memory::estimate`] of [`Resolved::run_sizes`]): what
     /// validation checks against the budgets and what a run reserves from
-    /// the process's budget while it runs ([`crate::budget`]).
+    /// the process's budget while it runs (`crate::budget`).
     pub fn memory_estimate(&self) -> memory::MemoryEstimate {
         memory::estimate(&self.run_sizes())
     }

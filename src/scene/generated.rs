@@ -5,7 +5,7 @@
 
 use crate::error::Error;
 
-/// What `[line]` generated in a scene ([`super::expand_line_with_origin`]): the
+/// What `[line]` generated in a scene (`super::expand_line_with_origin`): the
 /// generated droppers come first in `[[dropper]]` and the steady arms
 /// first in `[[attachment]]`, the scene's own tables after them. An error
 /// found in the expanded scene names the key a user can give back to

@@ -2,7 +2,7 @@
 //! its own reference (MODEL §8, §11), with the range checks that need
 //! nothing but the table itself. What the data mean, and the checks that
 //! need the beam and the carriers (supports met, a unilateral contact kept
-//! closed), are in [`crate::manufactured`].
+//! closed), are in `crate::manufactured`.
 //!
 //! ```toml
 //! [[manufactured.term]]            # v*(x, t) = Σ amplitude · X(x) · T̂(t)

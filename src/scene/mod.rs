@@ -2,7 +2,7 @@
 //!
 //! A scene is TOML. Every table rejects unknown keys. Loading is three steps:
 //! parse the text into a TOML tree, apply `--set` overrides on the tree
-//! ([`load`]), then deserialize and `Scene::validate` (the resolve layer,
+//! (`load`), then deserialize and `Scene::validate` (the resolve layer,
 //! `crate::resolve`) into a `Resolved` set of physical parameters that the
 //! model is built from. Every key, its unit, default and allowed range is
 //! documented in `docs/scene.md`.

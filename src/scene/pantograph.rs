@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 /// Most masses a chain may have.
 pub(crate) const MAX_CHAIN: usize = 3;
 
-/// A resolved chain (`n` of the [`MAX_CHAIN`] slots used; the rest 0).
+/// A resolved chain (`n` of the `MAX_CHAIN` slots used; the rest 0).
 /// Plain numbers, `Copy` like the carrier it belongs to.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ChainProps {

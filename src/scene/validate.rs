@@ -34,7 +34,7 @@ pub const MAX_STEPS: usize = 1_000_000_000;
 pub(crate) const STEP_COUNT_SLACK: f64 = 4.0 * f64::EPSILON;
 
 impl Scene {
-    /// `mesh.elements` in its range (1 ..= [`MAX_ELEMENTS`]).
+    /// `mesh.elements` in its range (1 ..= `MAX_ELEMENTS`).
     pub fn elements(&self) -> Result<usize> {
         let elements = self.mesh.elements;
         if elements == 0 || elements > MAX_ELEMENTS {

@@ -7,7 +7,7 @@
 //! about 3·10¹² DOF-steps (days on one core) and used to start silently
 //! (issue 25). Every study (`compare`, `converge`, `precision`, `sweep`)
 //! now builds an [`Estimate`] and calls [`Estimate::check`], which refuses
-//! above [`MAX_DOF_STEPS`] with the estimate and what to change, unless
+//! above `MAX_DOF_STEPS` with the estimate and what to change, unless
 //! the caller said yes; `run --tolerance` refuses above the same bound
 //! (its resolution is chosen, not given, so there is nothing to say yes to).
 
@@ -82,7 +82,7 @@ impl Estimate {
         )
     }
 
-    /// Refuse a study above [`MAX_DOF_STEPS`] (or whose estimate is not a
+    /// Refuse a study above `MAX_DOF_STEPS` (or whose estimate is not a
     /// number) unless `yes`, naming the estimate, the bound and the way out.
     pub fn check(&self, yes: bool) -> Result<()> {
         let over = self.dof_steps.is_nan() || self.dof_steps > MAX_DOF_STEPS;

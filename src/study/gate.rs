@@ -17,7 +17,7 @@
 //! ```
 //!
 //! `scene` is relative to the case file. A quantity passes when
-//! |value − reference| ≤ abs + rel·|reference|. [`QUANTITY_NAMES`] lists what
+//! |value − reference| ≤ abs + rel·|reference|. `QUANTITY_NAMES` lists what
 //! can be gated.
 
 use std::collections::BTreeMap;

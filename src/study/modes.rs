@@ -84,7 +84,7 @@ fn check_count(count: usize, most: usize, why: &str) -> Result<usize> {
 }
 
 /// The `count` lowest modes of the scene's beam (default
-/// [`DEFAULT_COUNT`], or fewer when the discretization has fewer).
+/// `DEFAULT_COUNT`, or fewer when the discretization has fewer).
 pub fn modes(sc: &Resolved, count: Option<usize>) -> Result<Modes> {
     let props = &sc.beam;
     let l = props.length;

@@ -5,7 +5,7 @@
 //! ([`crate::scene::Declared`], `docs/scene.md`):
 //!
 //! * `manufactured` — the manufactured solution, exact everywhere:
-//!   v*(x, t), and for every carrier w*, λ*, q* ([`crate::manufactured`]);
+//!   v*(x, t), and for every carrier w*, λ*, q* (`crate::manufactured`);
 //! * `moving_force_series` — the modal series of MODEL §8
 //!   ([`MovingForceString`], [`MovingForceBeam`]);
 //! * `riding_mass_galerkin` — the Galerkin solution in the exact modes with
@@ -13,7 +13,7 @@
 //!   finest level's time grid with J from `reference.modes` or
 //!   [`riding_mass_modes`];
 //! * `standing_force_modes` — the exact time history of the discretized
-//!   model under standing forces ([`StandingForce`]): no space error;
+//!   model under standing forces (`StandingForce`): no space error;
 //! * `richardson` (no `[reference]`) — none here: a study extrapolates its
 //!   own finest levels.
 

@@ -15,8 +15,8 @@ pub(crate) const MAX_THREADS_PER_CORE: usize = 4;
 /// them took minutes to start and exhausted a memory limit.
 pub(crate) const MAX_THREADS: usize = 1024;
 
-/// The largest `--threads` allowed here: [`MAX_THREADS_PER_CORE`] × the
-/// cores available to the process (1 if unknown), at most [`MAX_THREADS`].
+/// The largest `--threads` allowed here: `MAX_THREADS_PER_CORE` × the
+/// cores available to the process (1 if unknown), at most `MAX_THREADS`.
 pub fn max_threads() -> usize {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     cores.saturating_mul(MAX_THREADS_PER_CORE).min(MAX_THREADS)

@@ -2,7 +2,7 @@
 //! formatted and parsed again for every run.
 //!
 //! A study parses its scene text and `--set`s once into a [`Scene`]
-//! ([`base_scene`]), then each run is a [`RunVariant`]: the number of
+//! (`base_scene`), then each run is a `RunVariant`: the number of
 //! elements, the time step, the contact formulation and the space
 //! discretization set on a clone of that scene, which is validated once, so
 //! every range check of a scene file applies and a study reports the error

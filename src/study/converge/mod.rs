@@ -22,8 +22,8 @@
 //!
 //! Norms of histories: max over samples, and L2 as the RMS over samples.
 //!
-//! Beside this file (the study and its drivers): [`rows`] (the rows of
-//! `converge.csv` and how a study's runs become them) and [`regime`] (what
+//! Beside this file (the study and its drivers): `rows` (the rows of
+//! `converge.csv` and how a study's runs become them) and `regime` (what
 //! a level's errors say: asymptotic, stalled, pre-asymptotic, …).
 
 mod regime;
@@ -67,7 +67,7 @@ pub enum Refine {
 pub struct Ladder {
     /// What is refined.
     pub refine: Refine,
-    /// Levels, in [`LEVELS`] (3 or more for observed orders).
+    /// Levels, in `LEVELS` (3 or more for observed orders).
     pub levels: usize,
     /// The refinement ratio r > 1 (an integer ≥ 2 when the step is refined).
     pub ratio: f64,

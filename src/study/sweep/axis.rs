@@ -185,7 +185,7 @@ impl Axis {
     }
 
     /// The i-th value: `start` and `stop` exactly at the ends. On an axis
-    /// between whole numbers, a value within [`WHOLE_SNAP`] of a whole number
+    /// between whole numbers, a value within `WHOLE_SNAP` of a whole number
     /// is that number, so `mesh.elements=100:1600:5 --log` gives 200, 400, 800
     /// (integer keys take them) rather than 199.99999999999997.
     pub fn value(&self, i: usize) -> f64 {

@@ -11,7 +11,7 @@ use crate::resolve::Resolved;
 /// How many runs a sweep steps together (`--batch`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BatchWidth {
-    /// [`AUTO_BATCH_LANES`].
+    /// `AUTO_BATCH_LANES`.
     Auto,
     /// At most this many (1: every run alone, the unbatched path).
     Fixed(usize),

@@ -7,7 +7,7 @@
 //!   sweep killed with `kill -9` leaves nothing stale to clear: resuming it
 //!   just works.
 //! * **Every record stamped.** Each `runs/NNNNNN.json` carries the identity of
-//!   its sweep ([`sweep_id`], a hash of `sweep.json`), its grid index and its
+//!   its sweep (`sweep_id`, a hash of `sweep.json`), its grid index and its
 //!   axis values. A record is used only when all three match the folder's
 //!   sweep and the file it sits in; anything else (a record of another sweep,
 //!   of an older taut, under the wrong index) is refused with its path, on
@@ -105,7 +105,7 @@ fn in_use(dir: &Path, holder: &str) -> Error {
 }
 
 /// Claim `dir` for one sweep or merge (creating it), or refuse if another
-/// claim holds it: first in this process ([`CLAIMED`]), then the
+/// claim holds it: first in this process (`CLAIMED`), then the
 /// operating system's lock on `sweep.lock`.
 pub fn claim(dir: &Path) -> Result<FolderLock> {
     std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;

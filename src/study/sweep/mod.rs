@@ -4,7 +4,7 @@
 //!
 //! * A sweep is a 1-D or 2-D grid of `--vary key=start:stop:count` axes,
 //!   linear or (with `--log`) logarithmic, or of listed axes `--vary
-//!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, [`points`]),
+//!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, `points`),
 //!   whose keys are walked together rather than as a grid. `key` is any dotted scene path
 //!   (`beam.tension`, `carrier.0.mass`) or one of the dimensionless axes:
 //!   `speed_ratio` = V0/c (every carrier's cruise speed), `tension_ratio` =
@@ -34,10 +34,10 @@
 //! * `--shard i/n` runs the points with index ≡ i (mod n); `merge` joins
 //!   shard folders (same `sweep.json` spec) into one.
 //!
-//! One concept a file: [`axis`] (one swept axis), [`spec`] (the grid and its
-//! checks), [`points`] (a list of points), [`resolve`] (a grid point's scene), [`record`] (what a run
-//! contributes), [`refine`] (`--check-refinement`), [`shard`] (`--shard`),
-//! [`batch`] (points stepped together), [`folder`] (the sweep's folder);
+//! One concept a file: `axis` (one swept axis), `spec` (the grid and its
+//! checks), `points` (a list of points), `resolve` (a grid point's scene), `record` (what a run
+//! contributes), `refine` (`--check-refinement`), `shard` (`--shard`),
+//! `batch` (points stepped together), [`folder`] (the sweep's folder);
 //! this file runs the sweep.
 
 mod aliases;
@@ -101,7 +101,7 @@ pub(crate) fn sweep_in(
     sweep_batched(claimed, spec, shard, BatchWidth::Auto, progress)
 }
 
-/// [`sweep_in`] with the batch width given (`--batch`): points that share
+/// `sweep_in` with the batch width given (`--batch`): points that share
 /// their effective matrix step together, up to that many at a time; the
 /// records are the same bytes whatever the width (their `wall_seconds`
 /// aside).

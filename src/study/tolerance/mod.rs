@@ -14,7 +14,7 @@
 //!    the base pilot's and histories compare sample by sample on that grid
 //!    (as [`crate::study::converge`] does).
 //! 2. **Model.** e(h, Δt) ≈ F_s (C_h h^p + C_t Δt^q) from the ladders'
-//!    successive differences ([`error_model`]). A ladder whose differences do not
+//!    successive differences (`error_model`). A ladder whose differences do not
 //!    fall at order ≥ [`MIN_ORDER`] stops the run with an error that names
 //!    the quantity, the differences and orders, and another quantity to try:
 //!    nothing is extrapolated from a quantity that does not converge.
@@ -22,7 +22,7 @@
 //!    cheapest such pilot is the result (it is already run). Otherwise the
 //!    model's cheapest (h, Δt) ([`ErrorModel::cheapest`]), with N rounded up
 //!    and Δt rounded down to a whole number of steps to the run's end, and
-//!    refused above [`MAX_DOF_STEPS`].
+//!    refused above `MAX_DOF_STEPS`.
 //! 4. **Estimates.** Every scalar result (force mean, std, min, max, the
 //!    0–20 Hz force's std, min, max, P_l, loss intervals, first loss
 //!    position, switches, per carrier) gets its own ladder fits from the same
@@ -39,11 +39,11 @@
 //! are the alternatives. See docs/accuracy.md for what this measures on the
 //! reference case.
 //!
-//! One step a file: [`pilots`] (1), [`fit`] (2), [`choose`] (3),
-//! [`results`] (4); beside them [`quantity`] (what the tolerance is on and
-//! its error measure), [`limits`] (the tolerance's range), [`level`] (N or
-//! J), [`accuracy`] (what the run returns), [`refusal`] (the errors that
-//! stop it) and [`error_model`].
+//! One step a file: `pilots` (1), `fit` (2), `choose` (3),
+//! `results` (4); beside them `quantity` (what the tolerance is on and
+//! its error measure), `limits` (the tolerance's range), `level` (N or
+//! J), `accuracy` (what the run returns), `refusal` (the errors that
+//! stop it) and `error_model`.
 
 mod accuracy;
 mod choose;

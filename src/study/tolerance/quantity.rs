@@ -77,8 +77,8 @@ impl Quantity {
     }
 
     /// The largest (mesh, step) orders the method gives this quantity
-    /// ([`MAX_MESH_ORDER`], [`MAX_MESH_ORDER_FORCE`], [`MAX_STEP_ORDER`],
-    /// [`MAX_STEP_ORDER_CONTACT`]); `switches`: some pilot's contact opens
+    /// (`MAX_MESH_ORDER`, `MAX_MESH_ORDER_FORCE`, `MAX_STEP_ORDER`,
+    /// `MAX_STEP_ORDER_CONTACT`); `switches`: some pilot's contact opens
     /// or closes.
     pub fn max_orders(self, switches: bool) -> (f64, f64) {
         match self {

@@ -1,5 +1,5 @@
 //! `taut verify`: one harness that runs any method (a built-in one or a
-//! [`MethodFactory`] of one's own), discretization, formulation and
+//! [`MethodFactory`](crate::integrate::MethodFactory) of one's own), discretization, formulation and
 //! support pair on the declared verification cases ([`cases`]) and reports
 //! each observed order beside the expected one (MODEL §8, §11).
 //!
@@ -13,12 +13,12 @@
 //!    (under the carrier, at the probes and of the mass) and the contact
 //!    force at the time the method's multiplier acts ([`crate::RunOutput::force_lag`]);
 //! 2. computes the orders between successive levels and the ladder's order
-//!    (first to last level) with the one [`observed_order`];
+//!    (first to last level) with the one [`observed_order`](crate::study::grid::observed_order);
 //! 3. **shows that the refined variable dominates**: the finest level is run
 //!    again with the fixed variables refined once more (N×2 or J×2 for a Δt
 //!    ladder, Δt/2 for an h or J ladder), and `other_share = |e − e'|/e`
 //!    is the part of the finest error that the fixed variables make; a row
-//!    whose share exceeds [`DOMINANCE_LIMIT`] fails, since its order would
+//!    whose share exceeds `DOMINANCE_LIMIT` fails, since its order would
 //!    not be the refined variable's;
 //! 4. passes when the ladder's order is within the expectation's tolerance.
 //!
@@ -28,11 +28,11 @@
 //! formal order) do not fail; `fail` rows do, and `taut verify` exits with
 //! status 1.
 //!
-//! One job a file: [`select`] (what to run), [`job`] (one case under one
-//! combination), [`run_job`] (its rows), [`level`] (a case's scene at one ladder level),
-//! [`explicit`] (an explicit method's ladder held below its stable step),
-//! [`measure`] (a ladder's errors against the exact solution), [`judge`]
-//! (a row's orders and status), [`row`] (the rows of `verify.csv`); the
+//! One job a file: `select` (what to run), `job` (one case under one
+//! combination), `run_job` (its rows), `level` (a case's scene at one ladder level),
+//! `explicit` (an explicit method's ladder held below its stable step),
+//! `measure` (a ladder's errors against the exact solution), `judge`
+//! (a row's orders and status), `row` (the rows of `verify.csv`); the
 //! cases are [`case`] and [`cases`].
 
 pub mod case;
