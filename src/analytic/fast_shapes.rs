@@ -61,8 +61,8 @@
 //!
 //! ## Block by block
 //!
-//! [`FastShapes::blocks_at`] hands the same values out a block of `BLOCK`
-//! modes at a time (`BlocksAvx::next`, then [`Blocks::tail_into`]), with
+//! `FastShapes::blocks_at` hands the same values out a block of `BLOCK`
+//! modes at a time (`BlocksAvx::next`, then `Blocks::tail_into`), with
 //! the very operations of the whole-vector kernels, for a caller that uses
 //! each block while it is in registers (the fused `modal_exact` step); it
 //! declines where a boundary-layer row applies (`tests` check both, bit for
@@ -498,7 +498,7 @@ impl FastShapes {
     /// for AVX2 + FMA) the first block's products use the FMA instruction,
     /// not the library's `fma` call (the same bits, ~75 ns a step less).
     #[inline(always)]
-    pub fn blocks_at(&self, x: f64) -> Option<Blocks<'_>> {
+    pub(crate) fn blocks_at(&self, x: f64) -> Option<Blocks<'_>> {
         // as values_kernel
         let x = x.clamp(0.0, self.length);
         let s = if self.mirrored { self.length - x } else { x };
@@ -656,7 +656,7 @@ impl FastShapes {
 /// The mode shapes at one point, block by block ([`FastShapes::blocks_at`]):
 /// the table rows at that point and the rotation recurrence's state.
 #[derive(Debug, Clone)]
-pub struct Blocks<'a> {
+pub(crate) struct Blocks<'a> {
     rows: BlockRows<'a>,
     /// Each end's boundary-layer table (left, right) and the distance to
     /// that end.

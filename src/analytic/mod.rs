@@ -16,7 +16,7 @@ pub mod spring_supported;
 pub mod static_load;
 
 pub(crate) use fast_shapes::BLOCK as SHAPE_BLOCK;
-pub use fast_shapes::Blocks;
+pub(crate) use fast_shapes::Blocks;
 #[cfg(target_arch = "x86_64")]
 pub(crate) use fast_shapes::BlocksAvx;
 pub use fast_shapes::FastShapes;

@@ -214,7 +214,7 @@ impl Batch {
 
     /// Remove the runs at `gone` (lane indices, ascending) from the batch,
     /// moving the others down in place; returns them in that order.
-    pub fn retire(&mut self, gone: &[usize]) -> Vec<Lane> {
+    pub(crate) fn retire(&mut self, gone: &[usize]) -> Vec<Lane> {
         if gone.is_empty() {
             return Vec::new();
         }

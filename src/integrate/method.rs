@@ -40,7 +40,7 @@ pub trait MethodFactory: MethodInfo {
     /// Build the stepper for a validated scene, given its system and the
     /// consistent initial state (the accelerations in `init`; a method may
     /// adjust `st`, e.g. to a half-step velocity). A method that works with
-    /// impulses says so with [`System::set_multipliers`]. The driver has
+    /// impulses says so with `System::set_multipliers`. The driver has
     /// checked [`MethodInfo::accepts`] for the scene. A method registered
     /// by name that declares parameters ([`MethodInfo::parameters`]) finds
     /// their checked values in `sc.method.scheme`

@@ -87,7 +87,6 @@ pub use batch_run::new_batch;
 pub use bathe::Bathe;
 pub use central_difference::StabilityLimit;
 pub use central_difference::{CentralDifference, central_difference_limit};
-pub use chain::Chain;
 pub(crate) use diagnose::{
     check as check_lane, damping_note as damping_note_of, near_support as near_support_lane,
 };
@@ -104,7 +103,6 @@ pub use oscillator::ModeSteps;
 pub use run_batch::RunBatch;
 pub use sample::CarrierSample;
 pub use state::State;
-pub use step_map::{Lanes, Multipliers};
 pub use step_map::{MassPrediction, StepMap, VelocityPrediction, combine};
 pub use stepper::Stepper;
 pub use system::{Initial, System};

@@ -187,7 +187,7 @@ pub(crate) fn csv_block_rows(rows: u64) -> u64 {
 }
 
 /// The sizes a run's memory grows with, read off a validated scene
-/// ([`crate::Resolved::run_sizes`]): every count, from every key, that an
+/// (`crate::Resolved::run_sizes`): every count, from every key, that an
 /// allocation of the run, its records or its outputs is proportional to.
 /// [`estimate`] turns them into bytes.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
