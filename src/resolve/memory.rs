@@ -6,7 +6,7 @@
 //! carriers on a fine mesh) would exhaust the machine's memory and abort the
 //! process. Such a run is refused at validation with the estimate, the
 //! budget and a way out, naming the key that drives the part that does not
-//! fit ([`super::budget_check`]) — never started.
+//! fit (`super::budget_check`) — never started.
 //!
 //! Every allocation that grows with the scene is counted, from the sizes
 //! the scene's keys give ([`RunSizes`]): the history (carriers, probes,

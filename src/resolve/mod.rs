@@ -1,10 +1,10 @@
 //! The resolve layer: a parsed [`Scene`] (plain data, its own range checks
 //! in `crate::scene`) turned into what a run needs, a [`Resolved`] set of
 //! physical parameters, with the checks of combinations that need more than
-//! the scene: the mesh against the model's bounds ([`mesh`]), the point
-//! attachments against the basis and references ([`attachment`]), the
+//! the scene: the mesh against the model's bounds (`mesh`), the point
+//! attachments against the basis and references (`attachment`), the
 //! manufactured solution's and the declared reference's assumptions
-//! ([`reference`](mod@reference), `crate::manufactured`), the method's own check of the
+//! (`reference`, `crate::manufactured`), the method's own check of the
 //! contact settings and basis (its `MethodInfo`), and the memory plan
 //! ([`memory`]).
 //!
@@ -13,15 +13,15 @@
 //! defined here, so that the scene's own module imports nothing above it.
 
 pub mod analysis;
-pub mod attachment;
-pub mod budget_check;
-pub mod damping;
-pub mod dropper;
+pub(crate) mod attachment;
+pub(crate) mod budget_check;
+pub(crate) mod damping;
+pub(crate) mod dropper;
 pub mod memory;
-pub mod mesh;
+pub(crate) mod mesh;
 pub mod messenger;
 pub mod plausible;
-pub mod reference;
+pub(crate) mod reference;
 mod resolved;
 pub mod wire;
 

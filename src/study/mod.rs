@@ -1,7 +1,7 @@
 //! Studies: loops of runs over scenes. They never reach inside the integrator.
 //!
 //! What they share is here once: a run as typed changes to a base scene
-//! ([`variant`]), time grids that nest, resampling and observed orders
+//! (`variant`), time grids that nest, resampling and observed orders
 //! ([`grid`]), the scalar outputs of a run ([`scalars`]) and the space
 //! discretizations ([`space`]).
 
@@ -17,11 +17,11 @@ pub mod reference;
 pub mod request;
 pub mod scalars;
 pub mod space;
-pub mod standing_force;
+pub(crate) mod standing_force;
 pub mod sweep;
 pub mod threads;
 pub mod tolerance;
-pub mod variant;
+pub(crate) mod variant;
 pub mod verify;
 
 /// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.
