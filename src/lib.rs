@@ -55,3 +55,9 @@ pub use error::{Error, Result};
 pub use resolve::{Resolved, load_scene, resolve_scene};
 pub use run::{RunOutput, run, run_batch, run_with};
 pub use scene::Scene;
+
+// docs/api.md's examples, one per entry point, run as doc tests
+// (`cargo test --doc -p taut`)
+#[cfg(doctest)]
+#[doc = include_str!("../docs/api.md")]
+struct ApiDocTests;
