@@ -15,18 +15,15 @@ pub mod riding_mass;
 pub mod spring_supported;
 pub mod static_load;
 
-pub(crate) use fast_shapes::BLOCK as SHAPE_BLOCK;
-pub(crate) use fast_shapes::Blocks;
-#[cfg(target_arch = "x86_64")]
-pub(crate) use fast_shapes::BlocksAvx;
 pub use fast_shapes::FastShapes;
+#[cfg(target_arch = "x86_64")]
+pub(crate) use fast_shapes::{BLOCK as SHAPE_BLOCK, Blocks, BlocksAvx};
 pub use mode_shapes::{MAX_MODES, ModeShapes};
 #[cfg(test)]
 pub(crate) use modes::Dispersion;
 pub use modes::{ClampedPinnedModes, PinnedPinnedModes};
 pub use moving_load::{MovingForceBeam, MovingForceString};
-pub use pantograph::Pantograph;
-pub use pantograph::{PantographModes, PantographStep, StepResponse, SurfaceContact};
+pub use pantograph::{Pantograph, PantographModes, PantographStep, StepResponse, SurfaceContact};
 pub use rayleigh::{DampedOscillator, Rayleigh};
 pub use riding_mass::{Rider, RidingMassBeam, RidingMassHistory};
 pub use spring_supported::{DiscreteSpring, SpringSupportedLine};

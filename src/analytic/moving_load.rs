@@ -46,7 +46,7 @@ pub(crate) const RESONANCE_BAND: f64 = 1e-8;
 
 /// Default relative accuracy of [`MovingForceBeam::deflection`]: the
 /// truncation bound, relative to the static midspan deflection under `F`.
-pub const DEFAULT_REL_TOL: f64 = 1e-9;
+pub(crate) const DEFAULT_REL_TOL: f64 = 1e-9;
 
 /// Cap on the number of modes summed by [`MovingForceBeam::deflection`]
 /// (reached only for EI ≪ T L², where the string is the better reference;
@@ -293,7 +293,7 @@ impl MovingForceString {
 /// ```
 ///
 /// [`deflection`](Self::deflection) picks the smallest N meeting
-/// [`DEFAULT_REL_TOL`] × (static midspan deflection under F), capped at
+/// `DEFAULT_REL_TOL` × (static midspan deflection under F), capped at
 /// [`MAX_MODES`]. Displacement in m, positive up.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MovingForceBeam {
@@ -442,7 +442,7 @@ impl MovingForceBeam {
         Some(self.force * s.deflection((self.speed * t).min(l), x))
     }
 
-    /// Deflection v(x, t), m, to [`DEFAULT_REL_TOL`] (type docs). Zero for
+    /// Deflection v(x, t), m, to `DEFAULT_REL_TOL` (type docs). Zero for
     /// t ≤ 0 and for x outside [0, L].
     pub fn deflection(&self, x: f64, t: f64) -> f64 {
         self.deflection_to(x, t, DEFAULT_REL_TOL)

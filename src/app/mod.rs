@@ -45,24 +45,17 @@ pub use args::{
 };
 pub use compare::{CompareRequest, compare};
 pub use converge::{ConvergeRequest, converge};
-pub use gate::gate;
-pub use gate::{GateOutcome, GateRequest};
-pub use merge::MergeOutcome;
-pub use merge::merge;
+pub use gate::{GateOutcome, GateRequest, gate};
+pub use merge::{MergeOutcome, merge};
 pub use modes::{ModesRequest, mesh_nodes, modes};
 pub use precision::{PrecisionRequest, precision};
 pub use replay::{Replay, ReplayRequest, Solved, replay};
 pub use report::{ReportRequest, report};
-pub use run::RunOutcome;
-pub use run::{RunRequest, Tolerance, run};
+pub use run::{RunOutcome, RunRequest, Tolerance, run};
 pub use scene::scene_tree;
-pub use simulation::Simulation;
-pub use simulation::SimulationState;
-pub use simulation::{CarrierState, ProbeState};
-pub use sweep::SweepOutcome;
-pub use sweep::{SweepRequest, sweep};
-pub use verify::verify;
-pub use verify::{VerifyOutcome, VerifyRequest};
+pub use simulation::{CarrierState, ProbeState, Simulation, SimulationState};
+pub use sweep::{SweepOutcome, SweepRequest, sweep};
+pub use verify::{VerifyOutcome, VerifyRequest, verify};
 
 /// Where a scene comes from: a file (read by the command, after the output
 /// folder is cleared, so that a parse error names it) or TOML text.

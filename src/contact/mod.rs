@@ -12,7 +12,7 @@
 //! (`integrate::contact_problem`) and calls the law; a law never reaches into
 //! an integrator. A law that fails returns a typed [`ContactFailure`], and
 //! the system saves the problem it was given as a [`ContactProblem`] that
-//! [`replay`] solves again.
+//! `replay` solves again.
 
 mod complementarity;
 mod dense;
@@ -27,8 +27,7 @@ pub use failure::{ContactFailed, ContactFailure};
 pub(crate) use problem::NotReplayable;
 pub use problem::{ContactProblem, Level};
 pub use replay::ReplayOutcome;
-pub(crate) use replay::SIGNORINI_TOLERANCE;
-pub use replay::{replay, validate};
+pub(crate) use replay::{SIGNORINI_TOLERANCE, replay, validate};
 
 pub(crate) use impact::Impact;
 pub(crate) use lagrange::Lagrange;

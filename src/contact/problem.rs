@@ -1,6 +1,6 @@
 //! A contact problem as data: what a law was given when it failed, carried
 //! by [`crate::Error::Contact`], saved as JSON next to the run's outputs,
-//! and solved again by [`super::replay`] (`taut replay FILE`). Plain data,
+//! and solved again by `super::replay` (`taut replay FILE`). Plain data,
 //! so that the error type can carry it without depending on the laws.
 
 use serde::{Deserialize, Serialize};

@@ -33,7 +33,7 @@ pub struct ReplayOutcome {
 }
 
 /// Check a problem read from a file: sizes, finite numbers, settings.
-pub fn validate(problem: &ContactProblem) -> Result<()> {
+pub(crate) fn validate(problem: &ContactProblem) -> Result<()> {
     problem.check()
 }
 
@@ -69,7 +69,9 @@ impl ContactProblem {
 
 /// Solve a saved problem again (after `ContactProblem::validate`) with the
 /// law it names, and check the answer.
-pub fn replay(problem: &ContactProblem) -> std::result::Result<ReplayOutcome, ContactFailure> {
+pub(crate) fn replay(
+    problem: &ContactProblem,
+) -> std::result::Result<ReplayOutcome, ContactFailure> {
     let n = problem.g_free.len();
     let mut law = law_for(&problem.contact, n);
     let mut lambda = vec![0.0; n];

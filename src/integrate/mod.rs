@@ -77,28 +77,22 @@ mod step_map;
 mod stepper;
 mod system;
 
-pub use batch::Lane;
 pub(crate) use batch::MAX_LANES;
-pub use batch::{Batch, max_lanes};
-pub use batch_key::{BatchKey, batch_key};
-pub use batch_key::{GenAlphaKey, ModalKey};
+pub use batch::{Batch, Lane, max_lanes};
+pub use batch_key::{BatchKey, GenAlphaKey, ModalKey, batch_key};
 pub(crate) use batch_run::lanes_cap;
 pub use batch_run::new_batch;
-pub use bathe::Bathe;
-pub use central_difference::StabilityLimit;
-pub use central_difference::{CentralDifference, central_difference_limit};
+pub use central_difference::{CentralDifference, StabilityLimit, central_difference_limit};
 pub(crate) use diagnose::{
     check as check_lane, damping_note as damping_note_of, near_support as near_support_lane,
 };
 pub use dropper::DropperSample;
 pub use energy::Energy;
-pub use gen_alpha::GenAlpha;
 pub use integrator::Integrator;
 pub use mass_dofs::MassDof;
 pub(crate) use method::scene_method;
 pub use method::{MethodFactory, parse_methods, register};
 pub use modal_cruise::RESYNC_STEPS as CRUISE_RESYNC_STEPS;
-pub use moreau_jean::MoreauJean;
 pub use oscillator::ModeSteps;
 pub use run_batch::RunBatch;
 pub use sample::CarrierSample;

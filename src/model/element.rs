@@ -109,7 +109,7 @@ pub fn omega_max(rho_a: f64, ei: f64, tension: f64, h: f64) -> f64 {
 /// Splitting the assembled K and M into such element sums
 /// keeps Irons' bound: the assembled ω_max² is at most the largest of
 /// these element ω² (a spring raises it, a mass lowers it).
-pub fn omega_max_attached(
+pub(crate) fn omega_max_attached(
     rho_a: f64,
     ei: f64,
     tension: f64,

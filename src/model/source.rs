@@ -34,7 +34,7 @@ pub(crate) const MAX_PARTS: usize = 6 * crate::scene::manufactured::MAX_TERMS + 
 
 /// The projected source of one run.
 #[derive(Debug, Clone)]
-pub struct Source {
+pub(crate) struct Source {
     /// F, n × K row-major: row i holds unknown i's share of each part.
     shapes: Vec<f64>,
     parts: usize,

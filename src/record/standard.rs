@@ -87,7 +87,7 @@ impl SectionCount {
 
 /// The section, band and speed a carrier is evaluated with.
 #[derive(Debug, Clone, Copy)]
-pub struct Section {
+pub(crate) struct Section {
     /// [x_start, x_end], m.
     pub x: [f64; 2],
     /// The filtered force's band, Hz.

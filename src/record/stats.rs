@@ -75,7 +75,7 @@ pub const RECONTACT_WINDOW: f64 = 2e-3;
 
 /// A re-contact's peak is the largest λ over its first this-many steps: the
 /// rigid-impact spike sits in the first step or two.
-pub const PEAK_STEPS: usize = 3;
+pub(crate) const PEAK_STEPS: usize = 3;
 
 /// The memory plan's count of one stored event ([`EVENT_BYTES`]: a loss
 /// interval in x/L and in t, its class and a re-contact) is what these
@@ -113,7 +113,7 @@ pub struct Recontact {
     /// Closing speed Δv = −dg/dt over the last open step, m/s (null when
     /// the loss lasted one step).
     pub closing_speed: Option<f64>,
-    /// Largest λ over its first [`PEAK_STEPS`] steps, N: grows like Δt^−½
+    /// Largest λ over its first `PEAK_STEPS` steps, N: grows like Δt^−½
     /// (an impact on a beam); not a number to quote.
     pub peak: f64,
     /// Contact impulse ∫λ dt over [`RECONTACT_WINDOW`] from the re-contact

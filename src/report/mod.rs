@@ -44,9 +44,8 @@ pub(crate) use precision::write_precision;
 pub use precision::{precision_rows, precision_table};
 pub use standard::standard_table;
 pub(crate) use standard::write_standard;
-pub use summary::Derived;
 pub(crate) use summary::write_summary;
-pub use summary::{Summary, mesh_label};
+pub use summary::{Derived, Summary, mesh_label};
 pub use sweep::{sweep_table, write_sweep};
 pub(crate) use sweep_maps::write_sweep_maps;
 pub use sweep_maps::{
@@ -55,7 +54,7 @@ pub use sweep_maps::{
 pub use table::{Column, Table};
 pub(crate) use tolerance::write_tolerant_run;
 pub use tolerance::{
-    ACCURACY_COLUMNS, WithAccuracy, accuracy_csv, accuracy_header, accuracy_table, result_lines,
+    ACCURACY_COLUMNS, WithAccuracy, accuracy_header, accuracy_table, result_lines,
 };
 pub use verify::verify_table;
 pub(crate) use verify::write_verify;

@@ -138,7 +138,7 @@ pub fn accuracy_table(a: &Accuracy) -> Table {
 }
 
 /// `accuracy.csv`'s text ([`accuracy_table`]).
-pub fn accuracy_csv(a: &Accuracy) -> String {
+pub(crate) fn accuracy_csv(a: &Accuracy) -> String {
     accuracy_table(a).to_csv()
 }
 

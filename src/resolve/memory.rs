@@ -433,7 +433,7 @@ pub(crate) const FILTER_BYTES_PER_ROW: u64 = 8;
 
 /// Rows of a history that records row 0 (t = 0), every `every`-th step and
 /// always the last step.
-pub fn history_rows(steps: usize, every: usize) -> usize {
+pub(crate) fn history_rows(steps: usize, every: usize) -> usize {
     1 + steps.div_ceil(every.max(1))
 }
 

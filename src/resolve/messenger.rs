@@ -105,7 +105,7 @@ pub(crate) fn check_messenger(
 }
 
 /// The springs (x_d, k_d) of the linear messenger droppers (module docs).
-pub fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
+pub(crate) fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
     droppers
         .iter()
         .filter(|d| d.linear && d.on_messenger())
@@ -115,7 +115,7 @@ pub fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
 
 /// The dashpots (x_d, c_d) of the linear messenger droppers with damping:
 /// c_d r_d r_dᵀ with r_d = r_c(x_d) − r_m(x_d) enters C (eq. D11).
-pub fn tie_dashpots(droppers: &[Dropper]) -> Vec<(f64, f64)> {
+pub(crate) fn tie_dashpots(droppers: &[Dropper]) -> Vec<(f64, f64)> {
     droppers
         .iter()
         .filter(|d| d.linear && d.on_messenger() && d.damping != 0.0)

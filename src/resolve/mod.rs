@@ -21,7 +21,7 @@ pub mod memory;
 pub(crate) mod mesh;
 pub mod messenger;
 pub mod plausible;
-pub(crate) mod reference;
+pub mod reference;
 mod resolved;
 pub mod wire;
 
@@ -32,10 +32,9 @@ pub(crate) use budget_check::{DropperSource, check_budget};
 pub(crate) use damping::check_damping;
 pub(crate) use dropper::check_droppers;
 pub(crate) use memory::MAX_STORED_EVENTS;
-pub use memory::RunSizes;
 pub use memory::{
-    HISTORY_ROWS_AT_A_TIME, MEMORY_BUDGET_BYTES, MemoryEstimate, estimate as estimate_memory,
-    history_rows,
+    HISTORY_ROWS_AT_A_TIME, MEMORY_BUDGET_BYTES, MemoryEstimate, RunSizes,
+    estimate as estimate_memory,
 };
 pub(crate) use mesh::resolve_mesh;
 pub(crate) use reference::declared_reference;

@@ -36,7 +36,7 @@ pub(crate) const PLAUSIBLE_RELATIVE: f64 = f64::EPSILON;
 
 /// The scales of a scene's step matrix (module docs).
 #[derive(Debug, Clone, Copy)]
-pub struct Scales {
+pub(crate) struct Scales {
     /// S = ρA h/Δt² + T/h + EI/h³, N/m.
     pub stiffness: f64,
     /// ρA h, kg.

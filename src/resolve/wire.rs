@@ -64,7 +64,7 @@ impl WirePlan {
 }
 
 /// The run's mesh as the discretization sees it.
-pub struct Grid {
+pub(crate) struct Grid {
     /// Span L, m.
     pub length: f64,
     /// `mesh.elements`.
@@ -83,7 +83,7 @@ pub struct Grid {
 
 /// The mesh nodes, m: the FE mesh's, or for `galerkin` (no mesh) those of
 /// the uniform mesh of `mesh.elements` elements.
-pub fn nodes(g: &Grid) -> Result<Vec<f64>> {
+pub(crate) fn nodes(g: &Grid) -> Result<Vec<f64>> {
     let mesh = match g.discretization {
         Discretization::Galerkin { .. } => Mesh::uniform(g.length, g.elements),
         _ => Mesh::new(g.length, g.elements, g.grading)?,

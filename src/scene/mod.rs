@@ -48,64 +48,46 @@ pub mod tables;
 mod time;
 mod validate;
 
-pub use analysis::AnalysisSpec;
-pub use analysis::speed_unit;
-pub use attachment::Attachment;
-pub use attachment::AttachmentSpec;
-pub use beam::BeamSpec;
-pub use beam::Support;
-pub use carrier::CarrierSpec;
-pub use carrier::Side;
-pub use contact::{ComplementaritySolver, ComplementaritySpec, ImpactSpec, PenaltySpec};
-pub use contact::{ContactKind, ContactSpec, Formulation, Placement};
-pub use damping::Rayleigh;
-pub use damping::RayleighSpec;
+pub use analysis::{AnalysisSpec, speed_unit};
+pub use attachment::{Attachment, AttachmentSpec};
+pub use beam::{BeamSpec, Support};
+pub use carrier::{CarrierSpec, Side};
+pub use contact::{
+    ComplementaritySolver, ComplementaritySpec, ContactKind, ContactSpec, Formulation, ImpactSpec,
+    PenaltySpec, Placement,
+};
 pub(crate) use damping::resolve_rayleigh;
-pub use discretization::Discretization;
+pub use damping::{Rayleigh, RayleighSpec};
 pub(crate) use discretization::{DEFAULT_GRADING_RATIO, MAX_GRADING_RATIO, fe_unknowns};
-pub use discretization::{Grading, MeshPlan};
-pub use dropper::AnchorSpec;
-pub use dropper::Dropper;
+pub use discretization::{Discretization, Grading, MeshPlan};
 pub(crate) use dropper::resolve_droppers;
-pub use dropper::{Anchor, DropperSpec};
-pub use external_force::ExternalForceSpec;
-pub use external_force::ForceSeries;
+pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec};
+pub use external_force::{ExternalForceSpec, ForceSeries};
 pub use generated::Generated;
 pub use gravity::GravitySpec;
-pub use integrator::IntegratorSpec;
-pub use integrator::Key;
+pub use integrator::{IntegratorSpec, Key};
 pub(crate) use line::{expand_line, expand_line_with_origin};
 pub use load::UNSET;
 pub(crate) use load::{
     apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed, with_table_files,
 };
-pub use manufactured::ReferenceKind;
-pub use manufactured::{Declared, ManufacturedSpec, ReferenceSpec};
-pub use mesh::GradingKind;
-pub use mesh::{MeshKind, MeshSpec};
-pub use messenger::Messenger;
-pub use messenger::MessengerSpec;
-pub use method::Parameter;
-pub use method::{Method, MethodInfo};
+pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
+pub use mesh::{GradingKind, MeshKind, MeshSpec};
+pub use messenger::{Messenger, MessengerSpec};
+pub use method::{Method, MethodInfo, Parameter};
 pub use method_choice::ResolvedMethod;
 pub use method_registry::MethodRef;
-pub(crate) use method_registry::register_method;
-pub(crate) use method_registry::{method_names, method_ref};
+pub(crate) use method_registry::{method_names, method_ref, register_method};
 pub use motion::Motion;
-pub use output::FieldSpec;
-pub use output::Wire;
-pub use output::{OutputSpec, ProbeSpec};
+pub use output::{FieldSpec, OutputSpec, ProbeSpec, Wire};
 pub use pantograph::ChainProps;
 pub(crate) use pantograph::MAX_CHAIN;
-pub use props::{BeamProps, CarrierKind};
-pub use props::{CarrierProps, TimeProps};
+pub use props::{BeamProps, CarrierKind, CarrierProps, TimeProps};
 pub use scene_file::Scene;
-pub use scheme::ParameterValues;
-pub use scheme::{GenAlphaParams, Scheme};
+pub use scheme::{GenAlphaParams, ParameterValues, Scheme};
 pub use speed::SpeedProfile;
-pub use time::TimeSpec;
-pub use time::{EndTime, Initial};
+pub use time::{EndTime, Initial, TimeSpec};
 pub use validate::MAX_STEPS;
 pub(crate) use validate::check_chain_scene;
 pub(crate) use validate::{

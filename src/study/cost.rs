@@ -27,7 +27,7 @@ pub(crate) const RATE_DOF_STEPS_PER_S: f64 = 1.9e8;
 /// The unknowns a run steps: (N + 1) × 2 for Hermite elements, N + 1 for
 /// string elements (the FE mesh's; a modal or Galerkin basis steps fewer, so
 /// this bounds it from above), plus one per carrier mass.
-pub fn unknowns(sc: &Resolved) -> f64 {
+pub(crate) fn unknowns(sc: &Resolved) -> f64 {
     let per_node = if sc.beam.is_string() { 1.0 } else { 2.0 };
     (sc.elements as f64 + 1.0) * per_node + sc.carriers.len() as f64
 }

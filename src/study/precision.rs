@@ -144,7 +144,7 @@ pub fn precision(
 
 /// Run the study for every method × formulation (`methods` empty: the
 /// scene's own). `progress(done, total)` after each run.
-pub(crate) fn precision_methods(
+pub fn precision_methods(
     text: &str,
     overrides: &[String],
     methods: &[&dyn MethodFactory],

@@ -44,7 +44,6 @@ use crate::scene::{Declared, Discretization};
 pub(crate) use super::grid::GCI_SAFETY_FACTOR;
 pub(crate) use super::reference::AnalyticW;
 use regime::Context;
-pub use regime::{FORMAL_GAP, ORDER_DRIFT, STALL_RATIO};
 pub use rows::ConvergeRow;
 pub(crate) use rows::QUANTITIES;
 use rows::tabulate;

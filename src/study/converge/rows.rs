@@ -48,7 +48,7 @@ pub struct ConvergeRow {
     pub error_order: f64,
     /// Ratio of successive error ratios (e_{ℓ−2}/e_{ℓ−1})/(e_{ℓ−1}/e_ℓ),
     /// from the errors against an exact reference, else from successive
-    /// differences: 1 in the asymptotic range ([`ORDER_DRIFT`](super::ORDER_DRIFT)).
+    /// differences: 1 in the asymptotic range (`ORDER_DRIFT`).
     pub ratio_change: f64,
     /// The formal order of the displacement in the refined variable
     /// (Δt: the method's; h: Hermite 4, string elements 2; `both`: the

@@ -252,7 +252,12 @@ pub(crate) fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
 /// `Ok(None)` when the point has not finished (no file, or an empty or
 /// unparsable one), an error when the file holds a record that is not this
 /// sweep's point `index`.
-pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Option<SweepRecord>> {
+pub(crate) fn load(
+    dir: &Path,
+    spec: &SweepSpec,
+    id: &str,
+    index: usize,
+) -> Result<Option<SweepRecord>> {
     let path = run_file(dir, index);
     let text = match read_json(&path, "a sweep's run record") {
         Ok(t) => t,
@@ -416,7 +421,7 @@ pub(crate) fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Sha
 }
 
 /// Read the records of the given indices, every one present and checked.
-pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
+pub(crate) fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
     let id = sweep_id(spec);
     indices
         .iter()

@@ -59,13 +59,11 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
-pub use axis::Axis;
-pub use axis::{AxisTarget, Ratio};
+pub use axis::{Axis, AxisTarget, Ratio};
 pub(crate) use batch::AUTO_BATCH_LANES;
 pub use batch::BatchWidth;
 use batch::{batches, records_guarded};
-pub use folder::FolderLock;
-pub use folder::{claim, collect, merge};
+pub use folder::{FolderLock, claim, merge};
 pub(crate) use folder::{merge_into, read_spec};
 pub(crate) use points::read_points;
 pub use record::{PROFILE_BINS, SweepRecord};
@@ -92,7 +90,7 @@ pub fn sweep(
 /// writes the tables), for a spec the caller has validated
 /// ([`SweepSpec::validate`]; a point that does not resolve would still only
 /// be that point's error).
-pub(crate) fn sweep_in(
+pub fn sweep_in(
     claimed: &FolderLock,
     spec: &SweepSpec,
     shard: Option<Shard>,

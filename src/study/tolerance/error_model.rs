@@ -33,7 +33,7 @@ pub(crate) const LADDER_RATIO: f64 = 2.0;
 /// shrinks the difference by less than 2^0.5 ≈ 1.41: too little to tell a
 /// converging sequence from a noisy non-converging one, and extrapolating
 /// such an order to a tolerance asks for refinements far beyond the pilots.
-pub const MIN_ORDER: f64 = 0.5;
+pub(crate) const MIN_ORDER: f64 = 0.5;
 
 /// Largest mesh order used for a displacement: Hermite cubics converge
 /// displacements and eigenvalues at O(h⁴) at best (MODEL §4, §8). A higher
@@ -62,17 +62,17 @@ pub(crate) const MAX_STEP_ORDER_CONTACT: f64 = 1.0;
 /// Differences below this (relative to the quantity's scale) are round-off
 /// and count as zero: the integrator repeats bit-for-bit, and summation
 /// order alone moves a norm by ~1e-15.
-pub const ROUND_OFF: f64 = 1e-12;
+pub(crate) const ROUND_OFF: f64 = 1e-12;
 
 /// What a pilot ladder says about one parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LadderStatus {
-    /// Differences fall at an order ≥ [`MIN_ORDER`].
+    /// Differences fall at an order ≥ `MIN_ORDER`.
     Converging,
     /// Both differences are zero (round-off): the parameter does not matter.
     Exact,
-    /// Differences do not fall, or fall at an order below [`MIN_ORDER`].
+    /// Differences do not fall, or fall at an order below `MIN_ORDER`.
     NotConverging,
 }
 

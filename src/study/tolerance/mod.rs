@@ -15,7 +15,7 @@
 //!    (as [`crate::study::converge`] does).
 //! 2. **Model.** e(h, Δt) ≈ F_s (C_h h^p + C_t Δt^q) from the ladders'
 //!    successive differences (`error_model`). A ladder whose differences do not
-//!    fall at order ≥ [`MIN_ORDER`] stops the run with an error that names
+//!    fall at order ≥ `MIN_ORDER` stops the run with an error that names
 //!    the quantity, the differences and orders, and another quantity to try:
 //!    nothing is extrapolated from a quantity that does not converge.
 //! 3. **Choice.** If a pilot's estimate is already within the tolerance, the
@@ -57,12 +57,8 @@ mod refusal;
 mod results;
 
 pub use crate::study::filter::{FORCE_BAND_HZ, design_cutoff_hz, lowpass_zero_phase};
-pub use accuracy::{Accuracy, TolerantRun};
-pub use accuracy::{PilotRun, ResultEstimate};
-pub use error_model::LadderFit;
-pub use error_model::LadderStatus;
-pub use error_model::{ErrorModel, Estimate};
-pub use error_model::{MIN_ORDER, ROUND_OFF};
+pub use accuracy::{Accuracy, PilotRun, ResultEstimate, TolerantRun};
+pub use error_model::{ErrorModel, Estimate, LadderFit, LadderStatus};
 pub(crate) use limits::parse_tolerance;
 pub use quantity::{Quantity, quantity_difference};
 pub use results::{RESULTS, result_values};

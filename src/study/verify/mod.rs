@@ -55,8 +55,7 @@ use case::Case;
 use job::Job;
 use run_job::run_job;
 
-pub use row::VerifyRow;
-pub use row::{Status, any_failed};
+pub use row::{Status, VerifyRow, any_failed};
 pub use select::{Selection, selection};
 
 /// Largest share of the finest error the fixed variables may make (step 3
