@@ -2,7 +2,7 @@
 //!
 //! A caller that cannot kill the process to stop a long study (the Python
 //! module, on Ctrl-C: the interpreter lives on) calls [`request`]. Every run
-//! then stops before its next step with [`Error::Interrupted`]
+//! then stops before its next step with [`Error::Interrupted`](crate::Error::Interrupted)
 //! (`crate::error::Error`), a batch of runs stops all its lanes, and a sweep
 //! saves no record of a run that stopped this way (the finished points it
 //! saved stay, so the sweep resumes where it was).

@@ -24,6 +24,8 @@
 // Numerical kernels index several arrays in lockstep (A[i][k], x[i − k], …);
 // index loops say that more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
+// every public item says what it is (docs/api.md lists the surface)
+#![warn(missing_docs)]
 
 pub mod analytic;
 pub mod app;
@@ -53,3 +55,9 @@ pub use error::{Error, Result};
 pub use resolve::{Resolved, load_scene, resolve_scene};
 pub use run::{RunOutput, run, run_batch, run_with};
 pub use scene::Scene;
+
+// docs/api.md's examples, one per entry point, run as doc tests
+// (`cargo test --doc -p taut`)
+#[cfg(doctest)]
+#[doc = include_str!("../docs/api.md")]
+struct ApiDocTests;

@@ -53,7 +53,7 @@ pub struct RunOutput {
 /// A contact that opens or closes on more than this fraction of the steps is
 /// chattering: physical loss/reattachment events are separated by many steps,
 /// a step-to-step on/off pattern is a numerical oscillation (MODEL §5).
-pub const CHATTER_FRACTION: f64 = 0.05;
+pub(crate) const CHATTER_FRACTION: f64 = 0.05;
 
 /// How a run ended: the status a study keeps beside each run it lists
 /// (a row, or a combination that gave none), so that a table can say
@@ -686,7 +686,7 @@ pub fn run_batch(
 /// scene's own ([`MethodFactory::is_scene_method`]) through [`run_batch`]
 /// (batches of at most `batch`), the others alone with [`run_with`].
 /// Results in order, each the same as its run alone.
-pub fn run_many(
+pub(crate) fn run_many(
     jobs: &[(Resolved, &dyn MethodFactory)],
     batch: usize,
     done: &mut dyn FnMut(usize),

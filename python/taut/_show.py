@@ -10,12 +10,29 @@ from __future__ import annotations
 
 import html
 import math
-from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Protocol, Sequence, Tuple
 
 import numpy as np
 
-if TYPE_CHECKING:  # pragma: no cover
-    from ._table import Table
+
+class Table(Protocol):
+    """What the drawings read of a `taut.Table` (`_table.py`), named here
+    so that this file imports nothing of the package: columns by name,
+    the row count, a sweep's axes and its columns on the grid."""
+
+    axes: List[Tuple[str, np.ndarray]]
+    paired: bool
+
+    @property
+    def rows(self) -> int: ...
+
+    def keys(self) -> Any: ...
+
+    def get(self, key: str) -> Optional[np.ndarray]: ...
+
+    def __getitem__(self, key: Any) -> Any: ...
+
+    def grid(self, column: str) -> np.ndarray: ...
 
 # rows of a table a notebook shows: the head and the tail
 HTML_ROWS = 5
@@ -40,7 +57,7 @@ def _cell(v: Any) -> str:
     return html.escape(str(v))
 
 
-def table_html(t: "Table") -> str:
+def table_html(t: Table) -> str:
     """A table's head and tail as an HTML table, with its size."""
     names = list(t.keys())
     n = t.rows
@@ -160,7 +177,7 @@ def _loss_spans(x: np.ndarray, lost: np.ndarray) -> List[Any]:
     return spans
 
 
-def plot_run(history: "Table", carriers: int, length: float, ax: Any = None, band_hz: float = 20.0) -> Any:
+def plot_run(history: Table, carriers: int, length: float, ax: Any = None, band_hz: float = 20.0) -> Any:
     """force.svg: every carrier's contact force against its position
     x_m/L (against t when no carrier moves), light, its filtered force
     (`force_filtered`) bold over it, the steps with contact lost shaded
@@ -216,7 +233,7 @@ def _darker(colour: str) -> Any:
     return (0.55 * r, 0.55 * g, 0.55 * b)
 
 
-def plot_table(t: "Table", column: str, ax: Any = None) -> Any:
+def plot_table(t: Table, column: str, ax: Any = None) -> Any:
     """A sweep's `column` against its axis (1-D, with error bars from a
     `<column>_u_num` column when the table has one), as a map over its two
     axes (2-D), or against the row (anything else); axes labelled with

@@ -47,7 +47,7 @@ use crate::error::{Error, Result};
 
 /// Off-diagonal part of ΦᵀCΦ, relative to its diagonal, below which C counts
 /// as proportional (L10): the eigenvectors' round-off, ≈ 1e-15, with room.
-pub const PROPORTIONAL: f64 = 1e-10;
+pub(crate) const PROPORTIONAL: f64 = 1e-10;
 
 /// How the head meets the rigid surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -257,7 +257,7 @@ impl Pantograph {
         (omega, phi)
     }
 
-    /// Whether C is proportional (ΦᵀCΦ diagonal within [`PROPORTIONAL`]).
+    /// Whether C is proportional (ΦᵀCΦ diagonal within `PROPORTIONAL`).
     pub fn proportional(&self) -> bool {
         let (_, c, _) = self.matrices();
         let (_, phi) = self.undamped_modes();

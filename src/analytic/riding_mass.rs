@@ -32,7 +32,7 @@
 //! (a unit test holds this against a dense nalgebra LU of the projected
 //! system). The first-order system `(a, a')` is integrated with the classical
 //! fourth-order Runge–Kutta method — no relation to taut's implicit
-//! integrators — at a step at most [`STEP_FACTOR`]`/ω_J`. Initial state as
+//! integrators — at a step at most `STEP_FACTOR/ω_J`. Initial state as
 //! MODEL §5: beam straight and at rest, gravity switched on at t = 0.
 //!
 //! Outputs: `w = s·v(x_m)` (m, as the FE history records it), its rate, and
@@ -51,7 +51,7 @@ use crate::scene::Side;
 /// `scenes/riding_mass_pinned.toml` (J = 800, 0.4 s): halving the step from
 /// 0.5/ω_J changes w by 1.5e-6 m, from 0.25/ω_J by 9.4e-8 m (fourth order),
 /// i.e. 5e-7 of max |w| here, well under the J-truncation error.
-pub const STEP_FACTOR: f64 = 0.25;
+pub(crate) const STEP_FACTOR: f64 = 0.25;
 
 /// A riding mass on a pinned–pinned tensioned beam (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -35,7 +35,7 @@
 //! benign for μL ≳ 1: at the load both terms are O(L) and O(1/μ). For μL → 0
 //! the two terms agree to O((μL)²) and the difference carries a relative
 //! round-off of about ε/(μL)² (times the spread of the two terms); below
-//! [`MU_L_BARE`] the bare-beam form is used instead, whose relative error
+//! `MU_L_BARE` the bare-beam form is used instead, whose relative error
 //! there is (μL)²/10, so neither exceeds ≈ 2e-8 of the midspan compliance.
 //! Near a support (`μx ≪ 1` and `μa ≪ 1`) the same cancellation costs
 //! relative accuracy in a deflection that is itself small: the absolute error
@@ -50,7 +50,7 @@ use crate::error::{Error, Result};
 /// (T = 0): there the round-off of L2 (measured 7.9e-10 of the midspan
 /// compliance at μL = 1e-3, growing like 1/(μL)²: ≈ 2e-8 here) and the
 /// neglected tension ((μL)²/10 = 4e-9 relative at midspan) are both small.
-pub const MU_L_BARE: f64 = 2e-4;
+pub(crate) const MU_L_BARE: f64 = 2e-4;
 
 /// A vertical spring between the line at `x` and a fixed anchor.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -11,7 +11,7 @@
 //! …): the words are read, the counts checked and the defaults applied
 //! here, so both front ends refuse the same words with the same message
 //! (naming the CLI's flag; the Python module names its keyword instead).
-//! [`schema`] lists every command's options (name, default, help), and the
+//! `schema` lists every command's options (name, default, help), and the
 //! Python module's tests hold its functions' signatures against it.
 //!
 //! What stays with a front end is what only it has: where the scene comes
@@ -133,7 +133,7 @@ fn methods_help(what: &str, default: &str) -> String {
 }
 
 /// Every contact formulation, the default of `--formulations`.
-pub const ALL_FORMULATIONS: &str = "lagrange,penalty,complementarity,impact";
+pub(crate) const ALL_FORMULATIONS: &str = "lagrange,penalty,complementarity,impact";
 
 /// `taut run` / `taut.run`: one scene, or an accuracy-targeted run.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -187,6 +187,9 @@ pub struct CompareArgs {
     /// Comma-separated space discretizations to study side by side:
     /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
     /// the scene's mesh.modes). Default: the scene's own.
+    // the doc comment is also clap's help, printed as written: `[:J]`
+    // reads as an optional suffix there, not as a link
+    #[allow(rustdoc::broken_intra_doc_links)]
     #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
     pub discretizations: Option<String>,
     /// The formulation the differences are measured against.
@@ -267,6 +270,9 @@ pub struct ConvergeArgs {
     /// Comma-separated space discretizations to study side by side:
     /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
     /// the scene's mesh.modes). Default: the scene's own.
+    // the doc comment is also clap's help, printed as written: `[:J]`
+    // reads as an optional suffix there, not as a link
+    #[allow(rustdoc::broken_intra_doc_links)]
     #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
     pub discretizations: Option<String>,
     /// Start even when the study's estimated cost is above 1e11
@@ -356,6 +362,9 @@ pub struct PrecisionArgs {
     /// Comma-separated space discretizations to study side by side:
     /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
     /// the scene's mesh.modes). Default: the scene's own.
+    // the doc comment is also clap's help, printed as written: `[:J]`
+    // reads as an optional suffix there, not as a link
+    #[allow(rustdoc::broken_intra_doc_links)]
     #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
     pub discretizations: Option<String>,
     /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels; 1 ..= 5).

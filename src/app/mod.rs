@@ -6,7 +6,7 @@
 //! (what the CLI prints, what Python hands back).
 //!
 //! A request holds typed values (`&'static dyn MethodFactory`,
-//! [`Formulation`](crate::contact::Formulation), [`SpaceChoice`](crate::study::space::SpaceChoice),
+//! [`Formulation`](crate::scene::Formulation), [`SpaceChoice`](crate::study::space::SpaceChoice),
 //! [`Axis`](crate::study::sweep::Axis), counts); the words of a front end
 //! (`--methods newmark,bathe`, `methods="newmark,bathe"`) become those values
 //! at the edge, in [`words`], once for both.
@@ -112,7 +112,7 @@ impl SceneSource {
 #[derive(Debug)]
 pub enum Note<'a> {
     /// Outputs of an earlier command were removed from the output folder
-    /// (the text of [`crate::report::cleared_note`]).
+    /// (the text of `crate::report::cleared_note`).
     Cleared(String),
     /// The study's estimated cost is above the bound, and `yes` was given.
     AboveBound(&'a Estimate),

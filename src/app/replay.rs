@@ -32,7 +32,7 @@ pub struct Solved {
     pub out: ReplayOutcome,
     /// The largest Signorini residual of the answer (relative), `None` for
     /// the penalty law (the gap closes only to λ/κ, by design); an error
-    /// when it is above [`SIGNORINI_TOLERANCE`] (the answer is no solution).
+    /// when it is above `SIGNORINI_TOLERANCE` (the answer is no solution).
     pub verdict: Result<Option<f64>>,
 }
 

@@ -1,6 +1,6 @@
 //! `taut report DIR… [--out FILE]` / `taut.report`: one self-contained
 //! `report.html` from the outputs taut wrote into the folders
-//! ([`crate::report::write_report`]).
+//! (`crate::report::write_report`).
 
 use std::path::PathBuf;
 

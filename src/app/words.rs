@@ -57,7 +57,7 @@ pub fn reference_method(
 }
 
 /// `--solver`: `direct` or `clarabel`.
-pub fn complementarity_solver(name: &str) -> Result<crate::scene::ComplementaritySolver> {
+pub(crate) fn complementarity_solver(name: &str) -> Result<crate::scene::ComplementaritySolver> {
     use crate::scene::ComplementaritySolver;
     match name {
         "direct" => Ok(ComplementaritySolver::Direct),

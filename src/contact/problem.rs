@@ -1,6 +1,6 @@
 //! A contact problem as data: what a law was given when it failed, carried
 //! by [`crate::Error::Contact`], saved as JSON next to the run's outputs,
-//! and solved again by [`super::replay`] (`taut replay FILE`). Plain data,
+//! and solved again by `super::replay` (`taut replay FILE`). Plain data,
 //! so that the error type can carry it without depending on the laws.
 
 use serde::{Deserialize, Serialize};
@@ -57,7 +57,7 @@ impl ContactProblem {
 /// says why rather than failing to read it (issue 41).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct NotReplayable {
+pub(crate) struct NotReplayable {
     /// Why the problem is not saved to be solved again.
     pub not_replayable: String,
     /// The units the problem's numbers were in.

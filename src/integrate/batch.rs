@@ -37,7 +37,7 @@ use crate::resolve::Resolved;
 use crate::scene::Scheme;
 
 use super::gen_alpha_kernel::Kernel;
-pub use super::gen_alpha_kernel::MAX_LANES;
+pub(crate) use super::gen_alpha_kernel::MAX_LANES;
 use super::sample::CarrierSample;
 use super::state::State;
 use super::step_map::Lanes;
@@ -53,7 +53,7 @@ pub fn max_lanes(k: usize) -> usize {
 /// One run in a batch: its own system (carriers, contact law, multipliers)
 /// and mass dofs. In a generalized-α [`Batch`] its beam vectors live in
 /// the batch's interleaved arrays; in a `modal_exact` batch
-/// ([`super::ModalBatch`]) in its own state.
+/// (`super::ModalBatch`) in its own state.
 pub struct Lane {
     /// The run's system.
     pub sys: System,
@@ -77,7 +77,7 @@ pub struct Batch {
 }
 
 impl Batch {
-    /// Build the runs `scenes` (equal [`super::batch_key`]s, 2 ..= [`MAX_LANES`]
+    /// Build the runs `scenes` (equal [`super::batch_key`]s, 2 ..= `MAX_LANES`
     /// of them; `ids` are the caller's indices), factor A once, and set
     /// each run's initial state as [`super::Integrator::new`] would. A run
     /// that fails to build is returned in the error list with its id.
@@ -214,7 +214,7 @@ impl Batch {
 
     /// Remove the runs at `gone` (lane indices, ascending) from the batch,
     /// moving the others down in place; returns them in that order.
-    pub fn retire(&mut self, gone: &[usize]) -> Vec<Lane> {
+    pub(crate) fn retire(&mut self, gone: &[usize]) -> Vec<Lane> {
         if gone.is_empty() {
             return Vec::new();
         }

@@ -17,7 +17,7 @@ use super::run_batch::RunBatch;
 
 /// Most runs of scene `sc` one batch takes: the kernels compiled for its
 /// columns (generalized-α, [`max_lanes`]), or [`MAX_LANES`] (`modal_exact`).
-pub fn lanes_cap(sc: &Resolved) -> usize {
+pub(crate) fn lanes_cap(sc: &Resolved) -> usize {
     match sc.method.scheme {
         Scheme::ModalExact => MAX_LANES,
         _ => max_lanes(scene_columns(sc)),
@@ -26,7 +26,7 @@ pub fn lanes_cap(sc: &Resolved) -> usize {
 
 /// A built batch (when any run built) and the runs that failed to build,
 /// with the caller's ids.
-pub type NewBatch = (Option<Box<dyn RunBatch>>, Vec<(usize, Error)>);
+pub(crate) type NewBatch = (Option<Box<dyn RunBatch>>, Vec<(usize, Error)>);
 
 /// Build the batch for `scenes` (equal [`super::batch_key`]s; `ids` are the
 /// caller's indices), of the kind the key names. A run that fails to build

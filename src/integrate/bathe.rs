@@ -54,7 +54,7 @@ use super::system::{Initial, System};
 use crate::model::banded::rhs_columns;
 
 /// A Bathe stepper for one run.
-pub struct Bathe {
+pub(crate) struct Bathe {
     dt: f64,
     /// c₀ = 2/(γ_BΔt), c₁, c₂, c₃ (module docs).
     c0: f64,

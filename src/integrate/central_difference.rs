@@ -64,7 +64,11 @@ pub fn central_difference_limit(sc: &Resolved) -> Result<StabilityLimit> {
 }
 
 /// ω_max and the largest stable Δt of central difference for a scene.
-pub fn stability_limit(sc: &Resolved, sys: &System, mass_factor: &BandedLdlt) -> StabilityLimit {
+pub(crate) fn stability_limit(
+    sc: &Resolved,
+    sys: &System,
+    mass_factor: &BandedLdlt,
+) -> StabilityLimit {
     let beam = sys.beam();
     let (theta, residual) = spectrum::lanczos_max(beam, mass_factor, LANCZOS_STEPS);
     let bound = beam.omega_bound(&sc.beam);

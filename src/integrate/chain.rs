@@ -36,7 +36,7 @@ pub(crate) type Mat = [[f64; MAX_CHAIN]; MAX_CHAIN];
 
 /// A chain's matrices and static forces (module docs, P1–P2).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Chain {
+pub(crate) struct Chain {
     /// Masses n.
     pub n: usize,
     /// m_i, kg.

@@ -16,7 +16,7 @@ use super::stepper::Stepper;
 use super::system::{Initial, System};
 
 /// A generalized-α stepper for one run.
-pub struct GenAlpha {
+pub(crate) struct GenAlpha {
     kernel: Kernel,
 }
 

@@ -78,7 +78,7 @@ use super::step_map::Lanes;
 use super::step_map::{StepMap, VelocityPrediction};
 use super::system::{Initial, System};
 
-pub use super::gen_alpha_update::MAX_LANES;
+pub(crate) use super::gen_alpha_update::MAX_LANES;
 
 /// Generalized-α's step of a mass dof (MODEL §2, §5; docs/lines.md P3 for
 /// a chain's dofs): the unknown is its acceleration ü_{n+1},

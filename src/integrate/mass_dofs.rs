@@ -36,7 +36,7 @@ pub struct MassDof {
 
 /// The mass dofs of a run's contacts (module docs).
 #[derive(Debug, Clone)]
-pub struct MassDofs {
+pub(crate) struct MassDofs {
     /// Each contact's dof as the contact problem sees it: a single mass,
     /// or a chain's head (its f0 the chain's static contact force λ₀).
     pub(crate) heads: Vec<MassDof>,

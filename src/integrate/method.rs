@@ -40,7 +40,7 @@ pub trait MethodFactory: MethodInfo {
     /// Build the stepper for a validated scene, given its system and the
     /// consistent initial state (the accelerations in `init`; a method may
     /// adjust `st`, e.g. to a half-step velocity). A method that works with
-    /// impulses says so with [`System::set_multipliers`]. The driver has
+    /// impulses says so with `System::set_multipliers`. The driver has
     /// checked [`MethodInfo::accepts`] for the scene. A method registered
     /// by name that declares parameters ([`MethodInfo::parameters`]) finds
     /// their checked values in `sc.method.scheme`
@@ -135,7 +135,7 @@ impl MethodFactory for Method {
 }
 
 /// The stepper of a built-in `scheme`.
-pub fn stepper_for(
+pub(crate) fn stepper_for(
     scheme: Scheme,
     sc: &Resolved,
     sys: &mut System,
@@ -175,7 +175,7 @@ struct FactoryHandle(&'static dyn MethodFactory);
 static BUILT_IN: [Method; Method::ALL.len()] = Method::ALL;
 
 /// Register `method` by its name, so that a scene (`integrator.method =
-/// "<name>"`), `--methods <name>` and [`method_named`] reach it as they
+/// "<name>"`), `--methods <name>` and `method_named` reach it as they
 /// reach a built-in method. Refused when the name is malformed or taken (a
 /// built-in name, or one registered before).
 pub fn register(method: &'static dyn MethodFactory) -> Result<()> {
@@ -185,7 +185,7 @@ pub fn register(method: &'static dyn MethodFactory) -> Result<()> {
 
 /// The factory of a method of the registry: a built-in [`Method`], or the
 /// factory [`register`] put behind the entry's handle.
-pub fn factory_of(method: MethodRef) -> &'static dyn MethodFactory {
+pub(crate) fn factory_of(method: MethodRef) -> &'static dyn MethodFactory {
     if let Some(m) = method.built_in_method() {
         return &BUILT_IN[m as usize];
     }
@@ -199,13 +199,13 @@ pub fn factory_of(method: MethodRef) -> &'static dyn MethodFactory {
 }
 
 /// The method named `name`: a built-in [`Method`], or one [`register`]ed.
-pub fn method_named(name: &str) -> Option<&'static dyn MethodFactory> {
+pub(crate) fn method_named(name: &str) -> Option<&'static dyn MethodFactory> {
     method_ref(name).map(factory_of)
 }
 
 /// The method a validated scene names (`integrator.method`), as it was
 /// resolved: no lookup by name.
-pub fn scene_method(sc: &Resolved) -> &'static dyn MethodFactory {
+pub(crate) fn scene_method(sc: &Resolved) -> &'static dyn MethodFactory {
     factory_of(sc.method.handle)
 }
 

@@ -18,11 +18,11 @@
 //!   `moreau_jean.rs`, `modal_exact.rs` (with `oscillator.rs`, the exact
 //!   step of one mode, and `modal_kernels.rs`). Each steps the mass dofs
 //!   with its one rule, a `Stage` that `mass_step.rs` applies to a single
-//!   mass and a multi-mass chain (`chain.rs`) alike. [`stepper_for`]
+//!   mass and a multi-mass chain (`chain.rs`) alike. `stepper_for`
 //!   builds a built-in method's ([`crate::scene::Method`], described in
 //!   `scene/method.rs`) from its typed parameters.
 //! * `method.rs`: the seam — [`MethodFactory`] (a method's description and
-//!   the stepper it builds), [`register`] and [`factory_of`]: the one
+//!   the stepper it builds), [`register`] and `factory_of`: the one
 //!   registry is the scene layer's (`scene/method_registry.rs`), which
 //!   keeps a registered factory behind a type-erased handle this file
 //!   reads back. A method written outside the crate implements [`Stepper`]
@@ -77,38 +77,26 @@ mod step_map;
 mod stepper;
 mod system;
 
-/// Columns of a step's right-hand side (the model's banded solves carry them
-/// side by side): defined with the model, where the memory plan reads it too.
-pub use crate::model::banded::rhs_columns;
-pub use batch::{Batch, Lane, MAX_LANES, max_lanes};
-pub use batch_key::{
-    BatchKey, GenAlphaKey, ModalKey, batch_key, gen_alpha_key, modal_key, scene_columns,
-};
-pub use batch_run::{NewBatch, lanes_cap, new_batch};
-pub use bathe::Bathe;
-pub use central_difference::{
-    CentralDifference, StabilityLimit, central_difference_limit, stability_limit,
-};
-pub use chain::Chain;
+pub(crate) use batch::MAX_LANES;
+pub use batch::{Batch, Lane, max_lanes};
+pub use batch_key::{BatchKey, GenAlphaKey, ModalKey, batch_key};
+pub(crate) use batch_run::lanes_cap;
+pub use batch_run::new_batch;
+pub use central_difference::{CentralDifference, StabilityLimit, central_difference_limit};
 pub(crate) use diagnose::{
     check as check_lane, damping_note as damping_note_of, near_support as near_support_lane,
 };
 pub use dropper::DropperSample;
 pub use energy::Energy;
-pub use gen_alpha::GenAlpha;
 pub use integrator::Integrator;
-pub use mass_dofs::{MassDof, MassDofs};
-pub use method::{
-    MethodFactory, factory_of, method_named, parse_methods, register, scene_method, stepper_for,
-};
-pub use modal_batch::ModalBatch;
+pub use mass_dofs::MassDof;
+pub(crate) use method::scene_method;
+pub use method::{MethodFactory, parse_methods, register};
 pub use modal_cruise::RESYNC_STEPS as CRUISE_RESYNC_STEPS;
-pub use modal_exact::{ModalCoefs, ModalExact};
-pub use moreau_jean::MoreauJean;
-pub use oscillator::{MassStep, ModeSteps};
+pub use oscillator::ModeSteps;
 pub use run_batch::RunBatch;
 pub use sample::CarrierSample;
 pub use state::State;
-pub use step_map::{Lanes, MassPrediction, Multipliers, StepMap, VelocityPrediction, combine};
+pub use step_map::{MassPrediction, StepMap, VelocityPrediction, combine};
 pub use stepper::Stepper;
 pub use system::{Initial, System};

@@ -35,7 +35,7 @@ use super::state::State;
 use super::system::System;
 
 /// `modal_exact` runs on one basis at one Δt (module docs).
-pub struct ModalBatch {
+pub(crate) struct ModalBatch {
     lanes: Vec<Lane>,
     steppers: Vec<ModalExact>,
 }

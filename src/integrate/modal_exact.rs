@@ -138,7 +138,7 @@ use super::system::System;
 /// What every run on one basis at one Δt shares (module docs): the modes'
 /// step maps, the fixed load's share of them, and the fast shapes.
 #[derive(Debug)]
-pub struct ModalCoefs {
+pub(crate) struct ModalCoefs {
     /// The exact step maps of the J modes.
     pub steps: ModeSteps,
     /// (a0 + a1) p_j and (b0 + b1) p_j: the held distributed load's step
@@ -223,7 +223,7 @@ impl ModalCoefs {
 }
 
 /// A `modal_exact` stepper for one run (module docs).
-pub struct ModalExact {
+pub(crate) struct ModalExact {
     coefs: Arc<ModalCoefs>,
     /// The exact step of each contact's mass dof under a held force.
     mass_steps: Vec<MassStep>,

@@ -62,7 +62,7 @@ use super::system::System;
 use crate::model::banded::rhs_columns;
 
 /// A Moreau–Jean stepper for one run.
-pub struct MoreauJean {
+pub(crate) struct MoreauJean {
     theta: f64,
     dt: f64,
     ldlt: BandedLdlt,

@@ -140,7 +140,7 @@ impl ModeSteps {
 /// The exact step map of a mass dof under a force held over the step
 /// (module docs): `[q, q̇]_{n+1} = E [q, q̇]_n + g F`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassStep {
+pub(crate) struct MassStep {
     /// E, row-major.
     pub e: [[f64; 2]; 2],
     /// g: q and q̇ per newton held over the step, m/N and m/(N·s).

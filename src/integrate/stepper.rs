@@ -6,14 +6,14 @@ use crate::error::Result;
 use super::state::State;
 use super::system::System;
 
-/// One time integrator's step. Implement it (with a [`MethodFactory`]) to
+/// One time integrator's step. Implement it (with a [`MethodFactory`](super::MethodFactory)) to
 /// add a method: `examples/custom_method.rs` does, outside the crate.
 ///
 /// A step advances `st` from t_n to t_{n+1}: place the carriers
 /// ([`System::place`]), solve the step with the contact multipliers as
 /// unknowns (the free solution and one solution per contact,
 /// [`System::scatter_loads`]), hand the contact problem to
-/// [`System::solve_contact`] as a [`StepMap`], and update `st.d`, `st.v`,
+/// [`System::solve_contact`] as a [`StepMap`](super::StepMap), and update `st.d`, `st.v`,
 /// `st.q`, `st.q_dot` with the multipliers ([`System::multipliers`]). The
 /// driver then sets `st.step` and `st.t`. A step must not allocate.
 pub trait Stepper: Send {

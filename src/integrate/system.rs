@@ -97,7 +97,7 @@ impl System {
     }
 
     /// Columns of a right-hand side for [`System::scatter_loads`]:
-    /// [`rhs_columns`] of the number of contacts.
+    /// `rhs_columns` of the number of contacts.
     pub fn columns(&self) -> usize {
         rhs_columns(self.physics.masses.len())
     }
@@ -135,7 +135,7 @@ impl System {
 
     /// The multi-mass pantograph of each contact (`None` for a single
     /// mass), one per contact.
-    pub fn chains(&self) -> &[Option<Chain>] {
+    pub(crate) fn chains(&self) -> &[Option<Chain>] {
         &self.physics.masses.chains
     }
 
@@ -194,13 +194,8 @@ impl System {
 
     /// Declare how the method's multipliers are to be read; impulses make
     /// the law work at velocity level (called once, before the run).
-    pub fn set_multipliers(&mut self, m: Multipliers) {
+    pub(crate) fn set_multipliers(&mut self, m: Multipliers) {
         self.law.set_multipliers(m, self.physics.masses.len());
-    }
-
-    /// How the multipliers are read.
-    pub fn multiplier_kind(&self) -> Multipliers {
-        self.law.multipliers
     }
 
     /// The time the contact force recorded at `t` (after a step) acts at,
@@ -237,7 +232,7 @@ impl System {
 
     /// [`System::scatter_loads`] into this run's columns of a batched
     /// right-hand side (`k` columns per run, [`Lanes`]).
-    pub fn scatter_loads_in(&self, rhs: &mut [f64], k: usize, lanes: Lanes, scale: f64) {
+    pub(crate) fn scatter_loads_in(&self, rhs: &mut [f64], k: usize, lanes: Lanes, scale: f64) {
         self.physics.scatter_loads_in(rhs, k, lanes, scale)
     }
 
@@ -249,7 +244,7 @@ impl System {
 
     /// [`System::scatter_contact_directions`] into this run's lane of an
     /// interleaved vector.
-    pub fn scatter_contact_directions_in(&self, y: &mut [f64], lanes: Lanes, coef: f64) {
+    pub(crate) fn scatter_contact_directions_in(&self, y: &mut [f64], lanes: Lanes, coef: f64) {
         for c in &self.physics.carriers {
             if let Some(j) = c.contact {
                 c.pv_f
@@ -385,7 +380,12 @@ impl System {
     /// ([`Lanes`]). Only the force level with the `end` placement steps in
     /// batches (`integrate::batch`), so `st` is read for its mass dofs and
     /// step count only.
-    pub fn solve_contact_in(&mut self, map: &StepMap, lanes: Lanes, st: &State) -> Result<()> {
+    pub(crate) fn solve_contact_in(
+        &mut self,
+        map: &StepMap,
+        lanes: Lanes,
+        st: &State,
+    ) -> Result<()> {
         let (nc, nd) = (self.physics.masses.len(), self.physics.droppers.rows());
         if nc == 0 && nd == 0 {
             return Ok(());

@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 use crate::scene::BeamProps;
 
 /// Largest system solved densely (n³ work: 2000³ ≈ 10¹⁰ flops, seconds).
-pub const MAX_DENSE_DOFS: usize = 2000;
+pub(crate) const MAX_DENSE_DOFS: usize = 2000;
 
 /// The `count` lowest natural frequencies ω_j (rad/s) of the beam on
 /// `elements` equal elements, ascending.

@@ -42,7 +42,7 @@ pub fn design_cutoff_hz(band_hz: f64) -> f64 {
 }
 
 /// The largest band a run of step `dt` (s) can be filtered to, Hz: the
-/// design cut-off ([`design_cutoff_hz`]) below [`MAX_NYQUIST_FRACTION`] of
+/// design cut-off ([`design_cutoff_hz`]) below `MAX_NYQUIST_FRACTION` of
 /// the Nyquist frequency.
 pub fn max_band_hz(dt: f64) -> f64 {
     MAX_NYQUIST_FRACTION * 0.5 / dt / design_cutoff_hz(1.0)

@@ -1,17 +1,9 @@
 //! The filtered contact force's statistics (the filter itself is the
-//! numerics' [`crate::numeric::filter`], re-exported here).
+//! numerics' `crate::numeric::filter`, re-exported here).
 
 pub use crate::numeric::filter::*;
 
 use super::FilteredForce;
-
-/// Statistics of the 0–20 Hz contact force of one carrier's history
-/// (`force`, row 0 the initial state, then one row per step of `dt`):
-/// the force filtered by [`lowpass_zero_phase`] over all rows, then
-/// [`stats_of_filtered`].
-pub fn filtered_force_stats(force: &[f64], dt: f64) -> FilteredForce {
-    stats_of_filtered(&lowpass_zero_phase(force, dt, FORCE_BAND_HZ), FORCE_BAND_HZ)
-}
 
 /// The statistics of a filtered force history `f` (row 0 the initial
 /// state, filtered to 0–`band_hz` Hz): its mean, population standard
@@ -19,7 +11,7 @@ pub fn filtered_force_stats(force: &[f64], dt: f64) -> FilteredForce {
 /// statistics and P_l, MODEL §5), and the statistical max and min
 /// mean ± 3σ (EN 50367's F_m ± 3σ). λ = 0 where contact is lost entered
 /// the filter like any other sample.
-pub fn stats_of_filtered(f: &[f64], band_hz: f64) -> FilteredForce {
+pub(crate) fn stats_of_filtered(f: &[f64], band_hz: f64) -> FilteredForce {
     let f = if f.len() > 1 { &f[1..] } else { f };
     let (mean, std) = mean_std(f);
     FilteredForce {

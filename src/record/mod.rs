@@ -16,13 +16,15 @@ pub mod support;
 pub mod wire;
 pub mod zone;
 
-pub use dropper::{DropperAccumulator, DropperSample, DropperStats};
+pub(crate) use dropper::DropperAccumulator;
+pub use dropper::{DropperSample, DropperStats};
 pub use envelope::Envelope;
-pub use span::{SpanAccumulator, SpanStats, span_of};
-pub use standard::{Section, SectionCount, StandardStats, standard_stats};
-pub use stats::{
-    ContactAccumulator, ContactStats, Filtered, FilteredForce, ForceStats, LossClass, Recontact,
-};
+pub use span::SpanStats;
+pub(crate) use span::{SpanAccumulator, span_of};
+pub use standard::StandardStats;
+pub(crate) use standard::{Section, SectionCount, standard_stats};
+pub(crate) use stats::ContactAccumulator;
+pub use stats::{ContactStats, Filtered, FilteredForce, ForceStats, LossClass, Recontact};
 pub use support::SupportUplift;
 pub use wire::WireSeries;
 pub use zone::LossGeometry;

@@ -68,7 +68,7 @@ pub struct StandardStats {
 /// Steps in the section and open steps among them, counted over every step
 /// while the run goes (whatever rows the history keeps).
 #[derive(Debug, Clone, Copy, Default)]
-pub struct SectionCount {
+pub(crate) struct SectionCount {
     /// Steps whose contact point lies in the section.
     pub samples: usize,
     /// Those with the contact open.
@@ -87,7 +87,7 @@ impl SectionCount {
 
 /// The section, band and speed a carrier is evaluated with.
 #[derive(Debug, Clone, Copy)]
-pub struct Section {
+pub(crate) struct Section {
     /// [x_start, x_end], m.
     pub x: [f64; 2],
     /// The filtered force's band, Hz.
@@ -99,7 +99,7 @@ pub struct Section {
 /// Carrier `carrier`'s statistics from its trace `tr` (its
 /// `force_filtered` over every step, or empty), its step `count` and the
 /// `supports`' uplift.
-pub fn standard_stats(
+pub(crate) fn standard_stats(
     carrier: usize,
     sec: Section,
     tr: &CarrierTrace,

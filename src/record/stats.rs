@@ -75,7 +75,7 @@ pub const RECONTACT_WINDOW: f64 = 2e-3;
 
 /// A re-contact's peak is the largest λ over its first this-many steps: the
 /// rigid-impact spike sits in the first step or two.
-pub const PEAK_STEPS: usize = 3;
+pub(crate) const PEAK_STEPS: usize = 3;
 
 /// The memory plan's count of one stored event ([`EVENT_BYTES`]: a loss
 /// interval in x/L and in t, its class and a re-contact) is what these
@@ -113,7 +113,7 @@ pub struct Recontact {
     /// Closing speed Δv = −dg/dt over the last open step, m/s (null when
     /// the loss lasted one step).
     pub closing_speed: Option<f64>,
-    /// Largest λ over its first [`PEAK_STEPS`] steps, N: grows like Δt^−½
+    /// Largest λ over its first `PEAK_STEPS` steps, N: grows like Δt^−½
     /// (an impact on a beam); not a number to quote.
     pub peak: f64,
     /// Contact impulse ∫λ dt over [`RECONTACT_WINDOW`] from the re-contact
@@ -153,7 +153,7 @@ pub struct ContactStats {
     pub support_zone: f64,
     /// Loss intervals as [x_start/L, x_end/L]: a lost step covers
     /// [x_{i−1}, x_i], and adjacent lost steps merge. At most
-    /// [`MAX_STORED_EVENTS`] are listed.
+    /// `MAX_STORED_EVENTS` are listed.
     pub loss_intervals: Vec<[f64; 2]>,
     /// The same intervals in time, [t_start, t_end], s.
     pub loss_intervals_time: Vec<[f64; 2]>,
@@ -167,7 +167,7 @@ pub struct ContactStats {
     pub suspect_loss_intervals: usize,
     /// Their share of the steps (a part of `loss_fraction_span`).
     pub suspect_loss_fraction: f64,
-    /// Re-contacts, with peak and impulse (at most [`MAX_STORED_EVENTS`]).
+    /// Re-contacts, with peak and impulse (at most `MAX_STORED_EVENTS`).
     pub recontacts: Vec<Recontact>,
     /// Number of re-contacts (all of them).
     pub recontact_count: usize,
@@ -195,7 +195,7 @@ pub struct ContactStats {
 
 impl ContactStats {
     /// Statistics of one trace over `geometry` (the span and its support
-    /// zones). The same numbers, bit for bit, as [`ContactAccumulator`] fed
+    /// zones). The same numbers, bit for bit, as `ContactAccumulator` fed
     /// row by row. Rows beyond the shortest column are ignored.
     pub fn from_trace(t: &[f64], tr: &CarrierTrace, geometry: LossGeometry) -> Self {
         let mut acc = ContactAccumulator::new(geometry);
@@ -236,7 +236,7 @@ impl ContactStats {
 /// The force's standard deviation is Welford's running update, and its mean
 /// the plain running sum over the steps divided by their number.
 #[derive(Debug, Clone)]
-pub struct ContactAccumulator {
+pub(crate) struct ContactAccumulator {
     geometry: LossGeometry,
     length: f64,
     /// Samples seen (row 0 included).

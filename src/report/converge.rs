@@ -74,7 +74,7 @@ struct Level {
     wall_seconds: f64,
 }
 
-/// `converge.csv` as a table ([`CONVERGE_COLUMNS`]): one row per level and
+/// `converge.csv` as a table (`CONVERGE_COLUMNS`): one row per level and
 /// quantity, study after study.
 pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
     let label = |f: fn(&ConvergeRow) -> &str| {
@@ -117,7 +117,7 @@ pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
 }
 
 /// Write the three files of one study into `dir`.
-pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
+pub(crate) fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
     let name = c.rows.first().map_or("", |r| r.method.as_str());
     write_studies(dir, &[(name, c)], &[])
 }

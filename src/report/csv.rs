@@ -65,7 +65,7 @@ pub use crate::resolve::memory::HISTORY_ROWS_AT_A_TIME;
 
 /// Write the history ([`history_table`]) to `path`, a block of rows at a
 /// time: the same bytes as the whole table's CSV.
-pub fn write_history(path: &Path, out: &RunOutput) -> Result<()> {
+pub(crate) fn write_history(path: &Path, out: &RunOutput) -> Result<()> {
     use std::io::Write;
     let io = |e| crate::error::Error::io(path, e);
     let file = std::fs::File::create(path).map_err(io)?;

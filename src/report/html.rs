@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use crate::error::{Error, Result};
 
 /// The plots a report draws, in this order, with their captions.
-pub const PLOTS: [(&str, &str); 14] = [
+pub(crate) const PLOTS: [(&str, &str); 14] = [
     (
         "force.svg",
         "contact force (light), filtered force (bold), contact loss",
@@ -44,7 +44,7 @@ pub const PLOTS: [(&str, &str); 14] = [
 
 /// The tables a report shows, in this order: (file, title, the column
 /// that holds a verdict, if any).
-pub const TABLES: [(&str, &str, Option<&str>); 9] = [
+pub(crate) const TABLES: [(&str, &str, Option<&str>); 9] = [
     (
         "standard.csv",
         "the standards' statistics over the analysis section",
@@ -82,7 +82,7 @@ pub const TABLES: [(&str, &str, Option<&str>); 9] = [
 
 /// At most this many rows of a table are shown (the rest are counted, and
 /// are in the CSV beside the report).
-pub const MAX_ROWS: usize = 200;
+pub(crate) const MAX_ROWS: usize = 200;
 
 /// What a report was made from.
 #[derive(Debug, Clone)]
@@ -99,7 +99,7 @@ pub struct ReportSummary {
 
 /// Make `report.html` at `out` from the folders `dirs`. A folder without
 /// any output taut writes is an error naming it.
-pub fn write_report(dirs: &[PathBuf], out: &Path) -> Result<ReportSummary> {
+pub(crate) fn write_report(dirs: &[PathBuf], out: &Path) -> Result<ReportSummary> {
     if dirs.is_empty() {
         return Err(Error::invalid(
             "OUT_DIR",

@@ -18,13 +18,17 @@ use crate::error::{Error, Result};
 
 /// The marker of a folder whose outputs are being written, or were left
 /// partial.
-pub const INCOMPLETE_FILE: &str = "INCOMPLETE";
+pub(crate) const INCOMPLETE_FILE: &str = "INCOMPLETE";
 
 /// Write a command's outputs into `dir` with `write`, the folder marked
 /// [`INCOMPLETE_FILE`] until `write` has finished (`what` names the
 /// command in the marker: "taut run"). On an error the marker stays, with
 /// the error; on success it is removed.
-pub fn write_whole<T>(dir: &Path, what: &str, write: impl FnOnce() -> Result<T>) -> Result<T> {
+pub(crate) fn write_whole<T>(
+    dir: &Path,
+    what: &str,
+    write: impl FnOnce() -> Result<T>,
+) -> Result<T> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let marker = dir.join(INCOMPLETE_FILE);
     let text = |state: &str| {

@@ -75,7 +75,12 @@ pub fn envelope_table(e: &Envelope) -> Table {
 /// Write `spans.csv` and `supports.csv` (with `[output] supports`; `spans`
 /// are the summary's, filtered force included) and `envelope.csv` with
 /// `line.svg` (with `[output] envelope`) into `dir`.
-pub fn write_line(dir: &Path, sc: &Resolved, out: &RunOutput, spans: &[SpanStats]) -> Result<()> {
+pub(crate) fn write_line(
+    dir: &Path,
+    sc: &Resolved,
+    out: &RunOutput,
+    spans: &[SpanStats],
+) -> Result<()> {
     let h = &out.history;
     if !h.supports.is_empty() {
         if !spans.is_empty() {

@@ -25,38 +25,44 @@ mod verify;
 mod wire;
 
 pub use compare::{COMPARE_COLUMNS, compare_rows, compare_table, write_compare};
-pub use converge::{
-    CONVERGE_COLUMNS, converge_methods_table, converge_rows, converge_table, write_converge,
-    write_converge_methods,
-};
-pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
-pub use gate::{gate_table, junit_xml, write_gate};
-pub use html::{MAX_ROWS, PLOTS, ReportSummary, TABLES, write_report};
-pub use incomplete::{INCOMPLETE_FILE, write_whole};
-pub use line::{envelope_table, spans_table, supports_table, write_line};
-pub use modes::{mode_shapes_table, modes_table, write_modes};
-pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
-pub use plot::{PLOT_BUCKETS, write_force_plot};
-pub use precision::{PRECISION_COLUMNS, precision_rows, precision_table, write_precision};
-pub use standard::{STANDARD_BASIS, standard_table, write_standard};
-pub use summary::{Derived, Summary, mesh_label, write_summary};
+pub(crate) use converge::write_converge;
+pub use converge::{converge_methods_table, converge_rows, converge_table, write_converge_methods};
+pub(crate) use csv::write_history;
+pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table};
+pub use gate::gate_table;
+pub(crate) use gate::write_gate;
+pub use html::ReportSummary;
+pub(crate) use html::write_report;
+pub(crate) use incomplete::{INCOMPLETE_FILE, write_whole};
+pub(crate) use line::write_line;
+pub use line::{envelope_table, spans_table, supports_table};
+pub(crate) use modes::write_modes;
+pub use modes::{mode_shapes_table, modes_table};
+pub use outputs::Outputs;
+pub(crate) use outputs::{check_out_dir, clear_earlier, cleared_note};
+pub(crate) use plot::write_force_plot;
+pub(crate) use precision::write_precision;
+pub use precision::{precision_rows, precision_table};
+pub use standard::standard_table;
+pub(crate) use standard::write_standard;
+pub(crate) use summary::write_summary;
+pub use summary::{Derived, Summary, mesh_label};
 pub use sweep::{sweep_table, write_sweep};
+pub(crate) use sweep_maps::write_sweep_maps;
 pub use sweep_maps::{
-    SPEED_RATIO_LEVELS, axis_label, write_force_map, write_loss_fraction_map, write_loss_map,
-    write_sweep_maps,
+    SPEED_RATIO_LEVELS, write_force_map, write_loss_fraction_map, write_loss_map,
 };
 pub use table::{Column, Table};
+pub(crate) use tolerance::write_tolerant_run;
 pub use tolerance::{
-    ACCURACY_COLUMNS, WithAccuracy, accuracy_csv, accuracy_header, accuracy_table, result_lines,
-    write_tolerant_run,
+    ACCURACY_COLUMNS, WithAccuracy, accuracy_header, accuracy_table, result_lines,
 };
 pub use uncertainty::{
     UNCERTAINTY_COLUMNS, family_table, uncertainty_lines, uncertainty_table, write_uncertainty,
 };
-pub use verify::{
-    Counts, VERIFY_COLUMNS, verify_markdown, verify_rows, verify_table, write_verify,
-};
-pub use wire::write_wire;
+pub use verify::verify_table;
+pub(crate) use verify::write_verify;
+pub(crate) use wire::write_wire;
 
 use std::path::Path;
 
@@ -88,7 +94,7 @@ pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> 
 /// Write a run's outputs into `dir` (created if missing): `history.csv`,
 /// `force.svg`, `standard.csv`, `standard.json`, what the scene's
 /// `[output]` asks for, and `summary.json` last, the folder marked
-/// [`INCOMPLETE_FILE`] until every file is written ([`write_whole`]).
+/// `INCOMPLETE_FILE` until every file is written (`write_whole`).
 pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> {
     write_whole(dir, "taut run", || {
         write_history(&dir.join("history.csv"), out)?;

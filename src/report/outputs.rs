@@ -86,7 +86,7 @@ impl Outputs {
 /// Refuse an empty output folder path: it would write into the current
 /// folder (the CLI's `--out ""` is refused by its parser; Python's
 /// `out=""` reaches here).
-pub fn check_out_dir(dir: &Path) -> Result<()> {
+pub(crate) fn check_out_dir(dir: &Path) -> Result<()> {
     if dir.as_os_str().is_empty() {
         return Err(Error::invalid(
             "--out",
@@ -100,7 +100,7 @@ pub fn check_out_dir(dir: &Path) -> Result<()> {
 /// Remove from `dir` the outputs an earlier command of this kind left
 /// ([`Outputs::files`], and `failed_contact_step_N.json`), before the
 /// command runs; returns the files removed (none when `dir` does not exist).
-pub fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
+pub(crate) fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
     check_out_dir(dir)?;
     let mut removed = Vec::new();
     let entries = match std::fs::read_dir(dir) {
@@ -129,7 +129,7 @@ pub fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
 }
 
 /// What a front end says when [`clear_earlier`] removed files: one line.
-pub fn cleared_note(dir: &Path, removed: &[PathBuf]) -> Option<String> {
+pub(crate) fn cleared_note(dir: &Path, removed: &[PathBuf]) -> Option<String> {
     if removed.is_empty() {
         return None;
     }

@@ -97,7 +97,7 @@ pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<
 
 /// Plot the contact force of every carrier, its filtered force over it,
 /// loss shaded and marked (`force.svg`).
-pub fn write_force_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()> {
+pub(crate) fn write_force_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()> {
     let title = format!(
         "contact force: {} elements, dt = {} s, P_l = {:.4} ({:.4} in span)",
         sc.elements, sc.dt, out.stats[0].loss_fraction, out.stats[0].loss_fraction_span
@@ -169,7 +169,7 @@ pub(crate) fn panels_plot(
 /// Pixel size of a line plot.
 const SIZE: (u32, u32) = (960, 480);
 
-pub use crate::resolve::memory::PLOT_BUCKETS;
+pub(crate) use crate::resolve::memory::PLOT_BUCKETS;
 
 /// `points` reduced to at most 4 × [`PLOT_BUCKETS`], in order: per bucket
 /// of consecutive points, the first, the lowest, the highest and the last

@@ -14,7 +14,7 @@ use crate::resolve::Resolved;
 /// What taut computes, in one sentence a reader of `standard.json` sees
 /// beside the numbers (docs/output.md#the-standards-statistics says how it
 /// relates to EN 50317, EN 50318 and EN 50367).
-pub const STANDARD_BASIS: &str = "the contact force low-pass filtered to 0–band Hz (2nd-order Butterworth, forward and backward: zero phase); over the steps whose contact point lies in the section: mean F_m, population standard deviation σ, statistical max/min F_m ± 3σ, actual max/min of the filtered force, percentage of steps with the contact open; uplift at each support in the section = largest v(x_s, t) minus the support's static position (the wire under its own loads, no carrier)";
+pub(crate) const STANDARD_BASIS: &str = "the contact force low-pass filtered to 0–band Hz (2nd-order Butterworth, forward and backward: zero phase); over the steps whose contact point lies in the section: mean F_m, population standard deviation σ, statistical max/min F_m ± 3σ, actual max/min of the filtered force, percentage of steps with the contact open; uplift at each support in the section = largest v(x_s, t) minus the support's static position (the wire under its own loads, no carrier)";
 
 /// `standard.csv`: a row per carrier: `carrier`, `x_start`, `x_end` (m),
 /// `band_hz`, `speed` (m/s), `speed_kmh`, `samples`, `mean`, `std`,
@@ -77,7 +77,7 @@ struct Section {
 }
 
 /// Write `standard.csv` and `standard.json` into `dir`.
-pub fn write_standard(
+pub(crate) fn write_standard(
     dir: &Path,
     sc: &Resolved,
     rows: &[StandardStats],

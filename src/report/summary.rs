@@ -252,6 +252,6 @@ pub fn mesh_label(s: &Summary) -> String {
 }
 
 /// Write `summary.json` (pretty-printed).
-pub fn write_summary(path: &Path, s: &Summary) -> Result<()> {
+pub(crate) fn write_summary(path: &Path, s: &Summary) -> Result<()> {
     super::write_json(path, s)
 }

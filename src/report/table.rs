@@ -126,7 +126,7 @@ impl Table {
     /// Append the four filtered-force columns
     /// ([`crate::study::scalars::FILTERED_COLUMNS`]) of `rows`, one row
     /// each: the one place a study table gains them.
-    pub fn push_filtered<'a>(
+    pub(crate) fn push_filtered<'a>(
         &mut self,
         rows: impl Iterator<Item = &'a crate::study::scalars::FilteredColumns> + Clone,
     ) {

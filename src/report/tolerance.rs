@@ -42,7 +42,7 @@ pub struct WithAccuracy<'a> {
 
 /// Write `history.csv`, `summary.json` (with `accuracy`), `force.svg` and
 /// `accuracy.csv` into `dir` (created if missing).
-pub fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary> {
+pub(crate) fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary> {
     super::write_whole(dir, "taut run --tolerance", || {
         write_history(&dir.join("history.csv"), &r.output)?;
         let summary = Summary::new(&r.scene, &r.output);
@@ -138,7 +138,7 @@ pub fn accuracy_table(a: &Accuracy) -> Table {
 }
 
 /// `accuracy.csv`'s text ([`accuracy_table`]).
-pub fn accuracy_csv(a: &Accuracy) -> String {
+pub(crate) fn accuracy_csv(a: &Accuracy) -> String {
     accuracy_table(a).to_csv()
 }
 

@@ -47,7 +47,7 @@ fn write_long(path: &Path, s: &WireSeries, requested: bool) -> Result<()> {
 
 /// Write `snapshots.csv` (`t_requested`, `t`, `x`, `v`) and `field.csv`
 /// (`t`, `x`, `v`) into `dir`, each only when the scene asked for it.
-pub fn write_wire(dir: &Path, h: &History) -> Result<()> {
+pub(crate) fn write_wire(dir: &Path, h: &History) -> Result<()> {
     if !h.snapshots.is_empty() {
         write_long(&dir.join("snapshots.csv"), &h.snapshots, true)?;
     }

@@ -25,7 +25,7 @@ impl AnalysisPlan {
 
 /// Check `[analysis]` against the beam's `length` (m), the time step `dt`
 /// (s) and the line's `supports` (m; empty: none).
-pub fn resolve_analysis(
+pub(crate) fn resolve_analysis(
     spec: &AnalysisSpec,
     length: f64,
     dt: f64,

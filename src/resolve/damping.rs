@@ -31,7 +31,7 @@ use crate::scene::{
 
 /// Refuse the combinations damping breaks (module docs); nothing to check
 /// without damping.
-pub fn check_damping(
+pub(crate) fn check_damping(
     scene: &Scene,
     beam: &BeamProps,
     droppers: &[Dropper],

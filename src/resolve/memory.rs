@@ -6,7 +6,7 @@
 //! carriers on a fine mesh) would exhaust the machine's memory and abort the
 //! process. Such a run is refused at validation with the estimate, the
 //! budget and a way out, naming the key that drives the part that does not
-//! fit ([`super::budget_check`]) — never started.
+//! fit (`super::budget_check`) — never started.
 //!
 //! Every allocation that grows with the scene is counted, from the sizes
 //! the scene's keys give ([`RunSizes`]): the history (carriers, probes,
@@ -28,18 +28,18 @@ use crate::model::banded::rhs_columns;
 /// room for [`event_capacity`] of them per carrier before its first step.
 /// `record/stats.rs` asserts at compile time that its types take exactly
 /// this, so the plan cannot drift from them.
-pub const EVENT_BYTES: u64 = 113;
+pub(crate) const EVENT_BYTES: u64 = 113;
 
 /// Most loss intervals and re-contacts a run stores one by one (they are
 /// all counted): a contact that chatters every step over 10⁹ steps would
 /// otherwise hold gigabytes of intervals.
-pub const MAX_STORED_EVENTS: usize = 10_000;
+pub(crate) const MAX_STORED_EVENTS: usize = 10_000;
 
 /// The most loss intervals (and re-contacts) a run of `steps` steps can
 /// store per carrier: an interval needs a lost step, and two intervals a
 /// closed step between them, so at most ⌈steps/2⌉; and at most
 /// [`MAX_STORED_EVENTS`] are stored.
-pub fn event_capacity(steps: usize) -> usize {
+pub(crate) fn event_capacity(steps: usize) -> usize {
     steps.div_ceil(2).min(MAX_STORED_EVENTS)
 }
 
@@ -55,45 +55,45 @@ pub const MEMORY_BUDGET_BYTES: u64 = 2 << 30;
 /// estimate [`CSV_BYTES_PER_VALUE`] × values per row × rows: like the memory
 /// budget a fixed number, so a scene is accepted the same way everywhere.
 /// A 4.35·10⁷-row run wrote a 4.15 GB file before it (issue 25).
-pub const OUTPUT_BUDGET_BYTES: u64 = 4 << 30;
+pub(crate) const OUTPUT_BUDGET_BYTES: u64 = 4 << 30;
 
 /// Bytes of one value of `history.csv`, counted generously: a value is at
 /// most 24 characters in shortest round-trip form and a comma; measured
 /// 95 bytes a row for 7 values (13.6 a value) on a 4.35·10⁷-row
 /// `t2_stationary_mass` run, so 16 is an upper estimate for typical rows.
-pub const CSV_BYTES_PER_VALUE: u64 = 16;
+pub(crate) const CSV_BYTES_PER_VALUE: u64 = 16;
 
 /// Bytes of one history row for the time column (`t`, f64).
-pub const ROW_TIME_BYTES: u64 = 8;
+pub(crate) const ROW_TIME_BYTES: u64 = 8;
 
 /// Bytes of one history row per carrier: x_m, w, q, g and λ as f64, and the
 /// contact flag as a bool (`record::CarrierTrace`).
-pub const ROW_CARRIER_BYTES: u64 = 5 * 8 + 1;
+pub(crate) const ROW_CARRIER_BYTES: u64 = 5 * 8 + 1;
 
 /// Bytes of one history row per probe (v as f64).
-pub const ROW_PROBE_BYTES: u64 = 8;
+pub(crate) const ROW_PROBE_BYTES: u64 = 8;
 
 /// Banded n×n matrices a run keeps at once, counted generously: mass,
 /// stiffness, damping, the effective matrix and its factor, the mass
 /// factor of the initial state, and two spare for a method's second stage
 /// (Bathe) or the spectrum estimate (central difference).
-pub const BANDED_MATRICES: u64 = 8;
+pub(crate) const BANDED_MATRICES: u64 = 8;
 
 /// Dense n × `rhs_columns(nc)` blocks a run keeps at once: the step's
 /// right-hand sides and the constraint columns A⁻¹r of every carrier, plus
 /// the initial state's, counted generously.
-pub const RHS_BLOCKS: u64 = 4;
+pub(crate) const RHS_BLOCKS: u64 = 4;
 
 /// Dense nc × nc matrices of the contact solve (W, its reduced and modified
 /// copies, the active block), counted generously.
-pub const DENSE_CONTACT_MATRICES: u64 = 6;
+pub(crate) const DENSE_CONTACT_MATRICES: u64 = 6;
 
 /// The extra memory of a `modal` basis of J modes over n_fe FE unknowns:
 /// the dense eigenproblem at its peak ([`crate::model::eigen::eigen_bytes`]:
 /// C, the eigenvectors and faer's workspace, from faer's own requirement,
 /// ≈ 5 n² · 8 bytes; counted as 4 n² · 8 before, which a run at n = 1999
 /// exceeded by 32 MiB) and the n_fe × J mode shapes kept for the run.
-pub fn modal_bytes(n_fe: usize, modes: usize) -> u64 {
+pub(crate) fn modal_bytes(n_fe: usize, modes: usize) -> u64 {
     let n = n_fe as u64;
     let eigen = if n_fe <= crate::model::eigen::MAX_MODAL_DOFS {
         crate::model::eigen::eigen_bytes(n_fe)
@@ -109,39 +109,39 @@ pub fn modal_bytes(n_fe: usize, modes: usize) -> u64 {
 /// envelope is the data's at any length (a 4·10⁷-step run drew a 347 MB
 /// `force.svg`; now at most 4 × 2000 points a series, about two buckets a
 /// pixel column). Defined here, with the memory plan that counts it.
-pub const PLOT_BUCKETS: usize = 2000;
+pub(crate) const PLOT_BUCKETS: usize = 2000;
 
 /// A force plot draws the filtered force of at most this many carriers
 /// (the first; one line a colour of the palette): beyond, the raw lines
 /// alone, so that a scene of thousands of carriers does not double its
 /// plot's memory.
-pub const MAX_FILTERED_LINES: usize = 10;
+pub(crate) const MAX_FILTERED_LINES: usize = 10;
 
 /// Rows of the history formatted at a time by `report::write_history`: a
 /// few MB of columns, however long the history (building the whole table
 /// copied the history once more: 1 GB more at 2·10⁷ rows, issue 25).
-/// Defined here, with the memory plan that counts it ([`csv_block_rows`]).
+/// Defined here, with the memory plan that counts it (`csv_block_rows`).
 pub const HISTORY_ROWS_AT_A_TIME: usize = 1 << 16;
 
 /// Characters of one `history.csv` cell at most: a value in shortest
 /// round-trip form (`-1.2345678901234567e-308`, 24) and its comma.
-pub const CSV_CELL_CHARS: u64 = 25;
+pub(crate) const CSV_CELL_CHARS: u64 = 25;
 
 /// `force.svg` text per point of a force line: `x,y ` in pixels of a
 /// 960 × 480 plot, at most 3 + 1 + 3 + 1.
-pub const SVG_POINT_BYTES: u64 = 8;
+pub(crate) const SVG_POINT_BYTES: u64 = 8;
 
 /// `force.svg` text per shaded loss interval: a `<rect …/>` line, measured
 /// 88–90 bytes (reference scene, `contact.placement=alpha`), rounded up.
-pub const SVG_RECT_BYTES: u64 = 96;
+pub(crate) const SVG_RECT_BYTES: u64 = 96;
 
 /// `force.svg` text that does not grow with the data (axes, ticks, labels,
 /// legend): measured ≈ 22 KB, counted as 64 KiB.
-pub const SVG_FIXED_BYTES: u64 = 64 << 10;
+pub(crate) const SVG_FIXED_BYTES: u64 = 64 << 10;
 
 /// A text grown by doubling holds at most 3× its length at once (the old
 /// buffer and the new one, twice the old, while it is copied).
-pub const GROWN_TEXT_FACTOR: u64 = 3;
+pub(crate) const GROWN_TEXT_FACTOR: u64 = 3;
 
 /// The working memory of writing a run's outputs, bytes, beyond the
 /// history, the statistics and the block of `history.csv` formatted at a
@@ -153,7 +153,7 @@ pub const GROWN_TEXT_FACTOR: u64 = 3;
 /// their way to the drawing), the shaded intervals (two copies; each
 /// drawn twice, as a shade and as a mark on the axis) and the SVG text, which the plotting
 /// library holds whole until it writes the file.
-pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
+pub(crate) fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
     let (nc, ev) = (carriers as u64, events as u64);
     let line = csv_values
         .saturating_mul(CSV_CELL_CHARS)
@@ -182,12 +182,12 @@ pub fn output_bytes(csv_values: u64, carriers: usize, events: usize) -> u64 {
 
 /// Rows of the block of `history.csv` formatted at a time (its columns
 /// copied from the history: a second copy of that many rows).
-pub fn csv_block_rows(rows: u64) -> u64 {
+pub(crate) fn csv_block_rows(rows: u64) -> u64 {
     rows.min(HISTORY_ROWS_AT_A_TIME as u64)
 }
 
 /// The sizes a run's memory grows with, read off a validated scene
-/// ([`crate::Resolved::run_sizes`]): every count, from every key, that an
+/// (`crate::Resolved::run_sizes`): every count, from every key, that an
 /// allocation of the run, its records or its outputs is proportional to.
 /// [`estimate`] turns them into bytes.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -264,7 +264,8 @@ impl RunSizes {
 /// Bytes of one point vector (`model::beam::PointVector`: four indices,
 /// four weights and the handle of a modal basis's dense weights), beside
 /// its dense weights on the heap.
-pub const POINT_VECTOR_BYTES: u64 = std::mem::size_of::<crate::model::beam::PointVector>() as u64;
+pub(crate) const POINT_VECTOR_BYTES: u64 =
+    std::mem::size_of::<crate::model::beam::PointVector>() as u64;
 
 /// Bytes of one dropper beside its dense blocks and its records, counted
 /// generously: its spec in the scene and in the run's copy of it (name,
@@ -273,72 +274,72 @@ pub const POINT_VECTOR_BYTES: u64 = std::mem::size_of::<crate::model::beam::Poin
 /// statistics' accumulator and its history column's header and name, and,
 /// for a linear dropper, the attachment its spring becomes. Measured
 /// ≈ 1.1 KB a dropper on a 1980-dropper line (`tests/memory_budget.rs`).
-pub const DROPPER_BYTES: u64 = 2048;
+pub(crate) const DROPPER_BYTES: u64 = 2048;
 
 /// Bytes of one point attachment beside the model's matrices: its spec
 /// twice (scene, run), its props and its point vector, counted generously.
-pub const ATTACHMENT_BYTES: u64 = 1024;
+pub(crate) const ATTACHMENT_BYTES: u64 = 1024;
 
 /// Bytes of one carrier beside its history and events: its spec twice,
 /// its props and motion, its point vectors and work arrays (a few KB;
 /// counted generously).
-pub const CARRIER_BYTES: u64 = 8192;
+pub(crate) const CARRIER_BYTES: u64 = 8192;
 
 /// Bytes of one stored slack interval of a dropper (`[t_start, t_end]`).
-pub const SLACK_INTERVAL_BYTES: u64 = 16;
+pub(crate) const SLACK_INTERVAL_BYTES: u64 = 16;
 
 /// Copies of a dropper's slack intervals held at once: the list grows by
 /// doubling (up to twice its length in capacity) and `summary.json`'s
 /// statistics copy it once.
-pub const SLACK_INTERVAL_COPIES: u64 = 3;
+pub(crate) const SLACK_INTERVAL_COPIES: u64 = 3;
 
 /// Dense (n × tension-only droppers) blocks of the droppers' step: the
 /// responses z'_d = A'⁻¹ r_d, one column of n a dropper
 /// (`integrate::dropper`).
-pub const DROPPER_RESPONSE_BLOCKS: u64 = 1;
+pub(crate) const DROPPER_RESPONSE_BLOCKS: u64 = 1;
 
 /// Dense (droppers × droppers) matrices of the droppers' step: Q, H's
 /// Cholesky factor and G = H⁻¹ (`integrate::dropper`).
-pub const DROPPER_SQUARE_MATRICES: u64 = 3;
+pub(crate) const DROPPER_SQUARE_MATRICES: u64 = 3;
 
 /// Dense (contacts × droppers) blocks of the droppers' step: P, Ê and ÊG.
-pub const DROPPER_COUPLING_BLOCKS: u64 = 3;
+pub(crate) const DROPPER_COUPLING_BLOCKS: u64 = 3;
 
 /// Bytes clarabel's solver for a dense QP of size s holds, per entry of
 /// s²: P's upper triangle (values and row indices), the KKT matrix and
 /// its LDLᵀ factor (dense for a dense P) and their maps, counted
 /// generously; measured ≈ 70 s² bytes at s = 60 (`tests/memory_budget.rs`).
-pub const CLARABEL_BYTES_PER_ENTRY: u64 = 128;
+pub(crate) const CLARABEL_BYTES_PER_ENTRY: u64 = 128;
 
 /// `envelope.csv`, `line.svg` and the envelope's record per node: x,
 /// v_min, v_max and both wires' start shapes (5 f64), two point vectors
 /// (the contact wire's and the messenger's) and the picture's points and
 /// text (three lines of (x, v) pairs held twice, and the SVG text grown by
 /// doubling), counted generously.
-pub const ENVELOPE_BYTES_PER_NODE: u64 = 5 * 8 + 3 * 2 * 16 + 3 * 8 * GROWN_TEXT_FACTOR;
+pub(crate) const ENVELOPE_BYTES_PER_NODE: u64 = 5 * 8 + 3 * 2 * 16 + 3 * 8 * GROWN_TEXT_FACTOR;
 
 /// `line.svg` text per dropper (its line and label), counted generously.
-pub const LINE_SVG_BYTES_PER_DROPPER: u64 = 256 * GROWN_TEXT_FACTOR;
+pub(crate) const LINE_SVG_BYTES_PER_DROPPER: u64 = 256 * GROWN_TEXT_FACTOR;
 
 /// Copies a tabulated value of the scene is held in during a run: the
 /// scene and the run's copy of it, the resolved motion or force series,
 /// and a spare.
-pub const TABLE_VALUE_COPIES: u64 = 4;
+pub(crate) const TABLE_VALUE_COPIES: u64 = 4;
 
 /// Characters of one value of `summary.json` as serde_json's pretty
 /// printer writes it inside the nested lists of events: its indentation
 /// (up to 14 spaces at the depth of a dropper's slack interval), up to 24
 /// characters and a comma and line break.
-pub const JSON_BYTES_PER_VALUE: u64 = 48;
+pub(crate) const JSON_BYTES_PER_VALUE: u64 = 48;
 
 /// `summary.json` values per stored contact event of a carrier: its loss
 /// interval in x/L and t (4), its class (1) and a re-contact's seven
 /// fields with their names (counted as 3 values each).
-pub const JSON_VALUES_PER_EVENT: u64 = 4 + 1 + 7 * 3;
+pub(crate) const JSON_VALUES_PER_EVENT: u64 = 4 + 1 + 7 * 3;
 
 /// `summary.json` text that does not grow with the events (the scene
 /// echoed, the derived figures, the statistics), counted generously.
-pub const SUMMARY_FIXED_BYTES: u64 = 1 << 20;
+pub(crate) const SUMMARY_FIXED_BYTES: u64 = 1 << 20;
 
 /// The memory a run is estimated to need, bytes: an upper bound of what it
 /// holds at its peak, writing its outputs included (checked against the
@@ -363,20 +364,20 @@ pub struct MemoryEstimate {
     /// A complementarity law's clarabel solvers, one per problem size.
     pub solvers: u64,
     /// The statistics' stored events: the carriers' loss intervals and
-    /// re-contacts ([`event_capacity`] per carrier, reserved before the
+    /// re-contacts (`event_capacity` per carrier, reserved before the
     /// first step) and the droppers' slack intervals.
     pub events: u64,
     /// The wire's records: snapshots, the field, the envelope and the
     /// supports, with their point vectors.
     pub wire: u64,
-    /// The block of `history.csv` formatted at a time: [`csv_block_rows`]
+    /// The block of `history.csv` formatted at a time: `csv_block_rows`
     /// rows × [`Self::row`].
     pub csv_block: u64,
     /// The rest of the working memory of writing the outputs
-    /// ([`output_bytes`], `line.svg`, `summary.json`'s copies).
+    /// (`output_bytes`, `line.svg`, `summary.json`'s copies).
     pub outputs: u64,
     /// The filtered force the history keeps beside the force: one copy of
-    /// every carrier's force history ([`FILTER_BYTES_PER_ROW`] a row and
+    /// every carrier's force history (`FILTER_BYTES_PER_ROW` a row and
     /// carrier), when the history holds every step (else there is no
     /// filtered force and this is 0). It shrinks with the rows, like the
     /// history.
@@ -417,7 +418,7 @@ impl MemoryEstimate {
 
     /// Every file the run writes, bytes (`history.csv`, `snapshots.csv`,
     /// `field.csv`, `summary.json`; the plots are bounded by
-    /// [`output_bytes`]'s terms and small).
+    /// `output_bytes`'s terms and small).
     pub fn files(&self) -> u64 {
         self.csv
             .saturating_add(self.wire_csv)
@@ -428,11 +429,11 @@ impl MemoryEstimate {
 /// Bytes a history row adds per carrier for its filtered force
 /// (`CarrierTrace::force_filtered`: the forward pass's output, one f64 a
 /// row, filtered back in place).
-pub const FILTER_BYTES_PER_ROW: u64 = 8;
+pub(crate) const FILTER_BYTES_PER_ROW: u64 = 8;
 
 /// Rows of a history that records row 0 (t = 0), every `every`-th step and
 /// always the last step.
-pub fn history_rows(steps: usize, every: usize) -> usize {
+pub(crate) fn history_rows(steps: usize, every: usize) -> usize {
     1 + steps.div_ceil(every.max(1))
 }
 

@@ -40,7 +40,7 @@ const ON_NODE_RELATIVE: f64 = 1e-9;
 
 /// Check the messenger's supports against the mesh and the scene's other
 /// choices (module docs); nothing to check without `[messenger]`.
-pub fn check_messenger(
+pub(crate) fn check_messenger(
     scene: &Scene,
     beam: &crate::scene::BeamProps,
     elements: usize,
@@ -105,7 +105,7 @@ pub fn check_messenger(
 }
 
 /// The springs (x_d, k_d) of the linear messenger droppers (module docs).
-pub fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
+pub(crate) fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
     droppers
         .iter()
         .filter(|d| d.linear && d.on_messenger())
@@ -115,7 +115,7 @@ pub fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
 
 /// The dashpots (x_d, c_d) of the linear messenger droppers with damping:
 /// c_d r_d r_dᵀ with r_d = r_c(x_d) − r_m(x_d) enters C (eq. D11).
-pub fn tie_dashpots(droppers: &[Dropper]) -> Vec<(f64, f64)> {
+pub(crate) fn tie_dashpots(droppers: &[Dropper]) -> Vec<(f64, f64)> {
     droppers
         .iter()
         .filter(|d| d.linear && d.on_messenger() && d.damping != 0.0)

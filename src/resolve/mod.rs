@@ -1,10 +1,10 @@
 //! The resolve layer: a parsed [`Scene`] (plain data, its own range checks
 //! in `crate::scene`) turned into what a run needs, a [`Resolved`] set of
 //! physical parameters, with the checks of combinations that need more than
-//! the scene: the mesh against the model's bounds ([`mesh`]), the point
-//! attachments against the basis and references ([`attachment`]), the
+//! the scene: the mesh against the model's bounds (`mesh`), the point
+//! attachments against the basis and references (`attachment`), the
 //! manufactured solution's and the declared reference's assumptions
-//! ([`reference`], `crate::manufactured`), the method's own check of the
+//! (`reference`, `crate::manufactured`), the method's own check of the
 //! contact settings and basis (its `MethodInfo`), and the memory plan
 //! ([`memory`]).
 //!
@@ -13,12 +13,12 @@
 //! defined here, so that the scene's own module imports nothing above it.
 
 pub mod analysis;
-pub mod attachment;
-pub mod budget_check;
-pub mod damping;
-pub mod dropper;
+pub(crate) mod attachment;
+pub(crate) mod budget_check;
+pub(crate) mod damping;
+pub(crate) mod dropper;
 pub mod memory;
-pub mod mesh;
+pub(crate) mod mesh;
 pub mod messenger;
 pub mod plausible;
 pub mod reference;
@@ -27,16 +27,17 @@ pub mod wire;
 
 use std::path::Path;
 
-pub use attachment::check_attachments;
-pub use budget_check::{DropperSource, check_budget};
-pub use damping::check_damping;
-pub use dropper::check_droppers;
+pub(crate) use attachment::check_attachments;
+pub(crate) use budget_check::{DropperSource, check_budget};
+pub(crate) use damping::check_damping;
+pub(crate) use dropper::check_droppers;
+pub(crate) use memory::MAX_STORED_EVENTS;
 pub use memory::{
-    EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
-    PLOT_BUCKETS, RunSizes, estimate as estimate_memory, event_capacity, history_rows,
+    HISTORY_ROWS_AT_A_TIME, MEMORY_BUDGET_BYTES, MemoryEstimate, RunSizes,
+    estimate as estimate_memory,
 };
-pub use mesh::{MAX_GALERKIN_MODES, resolve_mesh};
-pub use reference::declared_reference;
+pub(crate) use mesh::resolve_mesh;
+pub(crate) use reference::declared_reference;
 pub use resolved::Resolved;
 
 use crate::error::Result;

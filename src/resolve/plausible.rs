@@ -32,11 +32,11 @@ use crate::scene::{Attachment, BeamProps, CarrierKind, CarrierProps, Dropper, Ra
 /// Relative width of the window on each side of a scale: the machine
 /// epsilon, below which an entry added to the step matrix's changes none
 /// of its bits (module docs).
-pub const PLAUSIBLE_RELATIVE: f64 = f64::EPSILON;
+pub(crate) const PLAUSIBLE_RELATIVE: f64 = f64::EPSILON;
 
 /// The scales of a scene's step matrix (module docs).
 #[derive(Debug, Clone, Copy)]
-pub struct Scales {
+pub(crate) struct Scales {
     /// S = ρA h/Δt² + T/h + EI/h³, N/m.
     pub stiffness: f64,
     /// ρA h, kg.
@@ -86,7 +86,7 @@ impl Scales {
 /// and dashpot), the attachments', the droppers', the penalty stiffness
 /// and the Rayleigh coefficients (α Δt and β/Δt are the shares of M and K
 /// they add).
-pub fn check_plausible(
+pub(crate) fn check_plausible(
     scales: &Scales,
     carriers: &[CarrierProps],
     attachments: &[Attachment],

@@ -135,7 +135,7 @@ impl Resolved {
     /// The sizes the run's memory grows with ([`memory::RunSizes`]): read
     /// off every key that sizes an allocation of the run, its records or
     /// its outputs.
-    pub fn run_sizes(&self) -> memory::RunSizes {
+    pub(crate) fn run_sizes(&self) -> memory::RunSizes {
         let messenger = self.beam.messenger.is_some();
         let half_band = match (self.beam.is_string(), messenger) {
             (true, false) => 1,
@@ -206,9 +206,9 @@ impl Resolved {
     }
 
     /// The memory the run is estimated to need and the size of the files
-    /// it writes ([`memory::estimate`] of [`Resolved::run_sizes`]): what
+    /// it writes ([`memory::estimate`] of `Resolved::run_sizes`): what
     /// validation checks against the budgets and what a run reserves from
-    /// the process's budget while it runs ([`crate::budget`]).
+    /// the process's budget while it runs (`crate::budget`).
     pub fn memory_estimate(&self) -> memory::MemoryEstimate {
         memory::estimate(&self.run_sizes())
     }

@@ -21,7 +21,7 @@ use crate::error::{Error, Result};
 
 /// Most points a series may have: a dense 10⁶-point record is ample, and a
 /// bound keeps a mistyped scene from asking for gigabytes.
-pub const MAX_SERIES_POINTS: usize = 1_000_000;
+pub(crate) const MAX_SERIES_POINTS: usize = 1_000_000;
 
 /// `external_force = { time = [...], force = [...] }` as written.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 /// `integrator.method` when the scene gives none: `generalized_alpha`,
 /// the study's method (`Method::default`).
-pub const DEFAULT_METHOD: &str = "generalized_alpha";
+pub(crate) const DEFAULT_METHOD: &str = "generalized_alpha";
 
 /// `[integrator]` as the scene gives it.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

@@ -22,15 +22,16 @@
 use serde::Deserialize;
 use toml::{Table, Value};
 
+use super::generated::Generated;
 use super::line_design::{PointSpring, StringLoad, dropper_forces, messenger_sag, presag_profile};
 use super::validate::MAX_ELEMENTS;
 use crate::error::{Error, Result, one_line};
 
 /// Most spans a line may have (a 1000-span line is 50 km: beyond any run).
-pub const MAX_SPANS: usize = 1000;
+pub(crate) const MAX_SPANS: usize = 1000;
 
 /// Most droppers a span may have.
-pub const MAX_DROPPERS_PER_SPAN: usize = 100;
+pub(crate) const MAX_DROPPERS_PER_SPAN: usize = 100;
 
 /// How far (relative, in elements) a dropper may be from a node and still
 /// count as on it: the round-off of x·N/L for positions written in decimal
@@ -121,7 +122,7 @@ struct EvenDroppers {
 
 /// One generated dropper (SI units), for the document and the tests.
 #[derive(Debug, Clone, PartialEq)]
-pub struct DesignedDropper {
+pub(crate) struct DesignedDropper {
     /// Label `s<span>d<k>` (1-based).
     pub name: String,
     /// x_d, m.
@@ -138,14 +139,14 @@ pub struct DesignedDropper {
 
 /// Expand `[line]` into plain scene keys (see the module doc); a tree
 /// without `line` is returned as it is.
-pub fn expand_line(tree: Table) -> Result<Table> {
+pub(crate) fn expand_line(tree: Table) -> Result<Table> {
     expand_line_with_origin(tree).map(|(t, _)| t)
 }
 
 /// [`expand_line`], with what it generated: the keys an error names by
 /// their path in the expanded scene are told apart from the ones a user
 /// wrote ([`Generated::user_path`]).
-pub fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generated)> {
+pub(crate) fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generated)> {
     let Some(line) = tree.remove("line") else {
         return Ok((tree, Generated::default()));
     };
@@ -179,94 +180,6 @@ pub fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generated)> {
         elements: !given_elements,
     };
     Ok((tree, generated))
-}
-
-/// What `[line]` generated in a scene ([`expand_line_with_origin`]): the
-/// generated droppers come first in `[[dropper]]` and the steady arms
-/// first in `[[attachment]]`, the scene's own tables after them. An error
-/// found in the expanded scene names the key a user can give back to
-/// `--set` (and Python's `set=`): [`Generated::user_path`].
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Generated {
-    /// The scene had a `[line]` table.
-    pub line: bool,
-    /// Droppers generated (`dropper.0` … `dropper.{droppers − 1}`).
-    pub droppers: usize,
-    /// Steady arms generated (`attachment.0` …).
-    pub attachments: usize,
-    /// The `[messenger]` table was generated (`anchor = "messenger"`).
-    pub messenger: bool,
-    /// `mesh.elements` was generated (from `line.element_length`).
-    pub elements: bool,
-}
-
-impl Generated {
-    /// The path a user gives back to `--set` for `path`, a key of the
-    /// expanded scene: a generated dropper's key is the `[line]` key that
-    /// made it, an explicit dropper's index counts from the scene's own
-    /// first `[[dropper]]` (likewise attachments and steady arms); other
-    /// paths are their own.
-    pub fn user_path(&self, path: &str) -> String {
-        if !self.line {
-            return path.to_string();
-        }
-        let (head, rest) = path.split_once('.').unwrap_or((path, ""));
-        let (index, key) = rest.split_once('.').unwrap_or((rest, ""));
-        let index = index.parse::<usize>().ok();
-        let tail = |i: usize| {
-            if key.is_empty() {
-                format!("{head}.{i}")
-            } else {
-                format!("{head}.{i}.{key}")
-            }
-        };
-        let top = key.split('.').next().unwrap_or("");
-        match (head, index) {
-            ("dropper", Some(i)) if i < self.droppers => match top {
-                "stiffness" => "line.dropper_stiffness",
-                "damping" => "line.dropper_damping",
-                "linear" => "line.linear_droppers",
-                "x" => "line.droppers",
-                "anchor" => "line.anchor",
-                "length" | "anchor_height" => "line.presag",
-                _ => "line",
-            }
-            .to_string(),
-            ("dropper", Some(i)) => tail(i - self.droppers),
-            ("attachment", Some(i)) if i < self.attachments => match top {
-                "stiffness" => "line.steady_arm.stiffness",
-                "mass" => "line.steady_arm.mass",
-                _ => "line.steady_arm",
-            }
-            .to_string(),
-            ("attachment", Some(i)) => tail(i - self.attachments),
-            ("messenger", _) if self.messenger => match top_of(rest) {
-                k @ ("tension" | "mass_per_length" | "bending_stiffness" | "height") => {
-                    format!("line.messenger.{k}")
-                }
-                "supports" => "line.spans".to_string(),
-                _ => "line.messenger".to_string(),
-            },
-            ("beam", _) if rest == "length" => "line.span_length".to_string(),
-            ("mesh", _) if rest == "elements" && self.elements => "line.element_length".to_string(),
-            _ => path.to_string(),
-        }
-    }
-
-    /// `e` with every key path it names made a user's ([`Generated::user_path`]):
-    /// the field of an invalid value or a read error, and the path quoted in
-    /// a read error's reason.
-    pub fn user_error(&self, e: Error) -> Error {
-        if !self.line {
-            return e;
-        }
-        e.map_field(|path| self.user_path(path))
-    }
-}
-
-/// The first segment of a dotted path.
-fn top_of(path: &str) -> &str {
-    path.split('.').next().unwrap_or("")
 }
 
 /// The checked keys.
@@ -838,7 +751,8 @@ fn take_array(tree: &mut Table, key: &str) -> Result<Vec<Value>> {
 
 /// The line's designed droppers (for tests and the docs' figures): the
 /// expansion's design without writing the document.
-pub fn designed_droppers(tree: &Table) -> Result<Vec<DesignedDropper>> {
+#[cfg(test)]
+pub(crate) fn designed_droppers(tree: &Table) -> Result<Vec<DesignedDropper>> {
     let Some(line) = tree.get("line") else {
         return Ok(Vec::new());
     };

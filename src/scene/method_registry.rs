@@ -117,7 +117,7 @@ fn registered() -> Vec<&'static Entry> {
 /// The method named `name`: a built-in one, or one registered; the one
 /// lookup by name (a scene's `integrator.method` as it is resolved, a
 /// front end's `--methods`).
-pub fn method_ref(name: &str) -> Option<MethodRef> {
+pub(crate) fn method_ref(name: &str) -> Option<MethodRef> {
     if let Some(m) = Method::ALL.into_iter().find(|m| m.name() == name) {
         return Some(MethodRef::built_in(m));
     }
@@ -128,7 +128,7 @@ pub fn method_ref(name: &str) -> Option<MethodRef> {
 }
 
 /// Every method's name: the built-in ones, then those registered.
-pub fn method_names() -> Vec<String> {
+pub(crate) fn method_names() -> Vec<String> {
     let mut names: Vec<String> = Method::ALL.iter().map(|m| m.name().to_string()).collect();
     names.extend(registered().iter().map(|e| e.name.to_string()));
     names

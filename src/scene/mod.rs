@@ -2,7 +2,7 @@
 //!
 //! A scene is TOML. Every table rejects unknown keys. Loading is three steps:
 //! parse the text into a TOML tree, apply `--set` overrides on the tree
-//! ([`load`]), then deserialize and `Scene::validate` (the resolve layer,
+//! (`load`), then deserialize and `Scene::validate` (the resolve layer,
 //! `crate::resolve`) into a `Resolved` set of physical parameters that the
 //! model is built from. Every key, its unit, default and allowed range is
 //! documented in `docs/scene.md`.
@@ -23,6 +23,7 @@ mod damping;
 mod discretization;
 mod dropper;
 mod external_force;
+mod generated;
 mod gravity;
 mod integrator;
 mod line;
@@ -48,27 +49,27 @@ mod time;
 mod validate;
 
 pub use analysis::{AnalysisSpec, speed_unit};
-pub use attachment::{Attachment, AttachmentSpec, resolve_attachments};
+pub use attachment::{Attachment, AttachmentSpec};
 pub use beam::{BeamSpec, Support};
 pub use carrier::{CarrierSpec, Side};
 pub use contact::{
     ComplementaritySolver, ComplementaritySpec, ContactKind, ContactSpec, Formulation, ImpactSpec,
     PenaltySpec, Placement,
 };
-pub use damping::{Rayleigh, RayleighSpec, resolve_rayleigh};
-pub use discretization::{
-    DEFAULT_GRADING_RATIO, Discretization, Grading, MAX_GRADING_RATIO, MeshPlan, fe_unknowns,
-};
-pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec, resolve_droppers};
-pub use external_force::{ExternalForceSpec, ForceSeries, MAX_SERIES_POINTS};
+pub(crate) use damping::resolve_rayleigh;
+pub use damping::{Rayleigh, RayleighSpec};
+pub(crate) use discretization::{DEFAULT_GRADING_RATIO, MAX_GRADING_RATIO, fe_unknowns};
+pub use discretization::{Discretization, Grading, MeshPlan};
+pub(crate) use dropper::resolve_droppers;
+pub use dropper::{Anchor, AnchorSpec, Dropper, DropperSpec};
+pub use external_force::{ExternalForceSpec, ForceSeries};
+pub use generated::Generated;
 pub use gravity::GravitySpec;
-pub use integrator::{DEFAULT_METHOD, IntegratorSpec, Key};
-pub use line::{
-    DesignedDropper, Generated, MAX_DROPPERS_PER_SPAN, MAX_SPANS, designed_droppers, expand_line,
-    expand_line_with_origin,
-};
-pub use load::{
-    UNSET, apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
+pub use integrator::{IntegratorSpec, Key};
+pub(crate) use line::{expand_line, expand_line_with_origin};
+pub use load::UNSET;
+pub(crate) use load::{
+    apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,
     scene_with_overrides, set_typed, with_table_files,
 };
 pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
@@ -76,20 +77,19 @@ pub use mesh::{GradingKind, MeshKind, MeshSpec};
 pub use messenger::{Messenger, MessengerSpec};
 pub use method::{Method, MethodInfo, Parameter};
 pub use method_choice::ResolvedMethod;
-pub(crate) use method_registry::register_method;
-pub use method_registry::{MethodRef, method_names, method_ref};
+pub use method_registry::MethodRef;
+pub(crate) use method_registry::{method_names, method_ref, register_method};
 pub use motion::Motion;
 pub use output::{FieldSpec, OutputSpec, ProbeSpec, Wire};
-pub use pantograph::{ChainProps, MAX_CHAIN};
+pub use pantograph::ChainProps;
+pub(crate) use pantograph::MAX_CHAIN;
 pub use props::{BeamProps, CarrierKind, CarrierProps, TimeProps};
 pub use scene_file::Scene;
-pub use scheme::{
-    DEFAULT_BATHE_GAMMA, DEFAULT_HHT_ALPHA, DEFAULT_THETA, GenAlphaParams, ParameterValues, Scheme,
-};
+pub use scheme::{GenAlphaParams, ParameterValues, Scheme};
 pub use speed::SpeedProfile;
 pub use time::{EndTime, Initial, TimeSpec};
+pub use validate::MAX_STEPS;
 pub(crate) use validate::check_chain_scene;
-pub use validate::{
-    DEFAULT_PENALTY_RELATIVE, MAX_ELEMENTS, MAX_STEPS, STEP_COUNT_SLACK, check_speed_tables_cover,
-    validate_contact,
+pub(crate) use validate::{
+    DEFAULT_PENALTY_RELATIVE, STEP_COUNT_SLACK, check_speed_tables_cover, validate_contact,
 };

@@ -14,9 +14,9 @@ use super::carrier::CarrierSpec;
 use crate::error::{Error, Result};
 
 /// Most masses a chain may have.
-pub const MAX_CHAIN: usize = 3;
+pub(crate) const MAX_CHAIN: usize = 3;
 
-/// A resolved chain (`n` of the [`MAX_CHAIN`] slots used; the rest 0).
+/// A resolved chain (`n` of the `MAX_CHAIN` slots used; the rest 0).
 /// Plain numbers, `Copy` like the carrier it belongs to.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ChainProps {

@@ -98,6 +98,6 @@ pub struct TimeProps {
     /// The run's end time, s: as given, or when the first moving carrier
     /// leaves the beam.
     pub t_end: f64,
-    /// Number of steps: floor(t_end/Δt · (1 + [`STEP_COUNT_SLACK`])).
+    /// Number of steps: floor(t_end/Δt · (1 + `STEP_COUNT_SLACK`)).
     pub steps: usize,
 }

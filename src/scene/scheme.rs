@@ -10,14 +10,14 @@ use super::integrator::Key;
 
 /// Default HHT α: the damping most often quoted for HHT (Hilber, Hughes &
 /// Taylor 1977 recommend α ∈ [0, 1/3]; 0.05 damps the highest modes mildly).
-pub const DEFAULT_HHT_ALPHA: f64 = 0.05;
+pub(crate) const DEFAULT_HHT_ALPHA: f64 = 0.05;
 
 /// Default Bathe splitting γ_B = 1/2 (Bathe & Baig 2005: equal sub-steps).
-pub const DEFAULT_BATHE_GAMMA: f64 = 0.5;
+pub(crate) const DEFAULT_BATHE_GAMMA: f64 = 0.5;
 
 /// Default Moreau–Jean θ = 1/2: the trapezoidal rule in velocity, which
 /// conserves the energy of a linear system between impacts.
-pub const DEFAULT_THETA: f64 = 0.5;
+pub(crate) const DEFAULT_THETA: f64 = 0.5;
 
 /// The parameters of the generalized-α family (MODEL §5):
 /// `A = (1 − α_m)M + (1 − α_f)βΔt²K`, balance at t_{n+1−α_f} and t_{n+1−α_m}.

@@ -4,10 +4,10 @@
 //! derive, `beam.damping = [1.0, 2.0]` became `{ mass = 1, stiffness = 2 }`,
 //! `attachment = [[10.0, 1e4]]` an attachment at x = 10 m of stiffness
 //! 1e4 N/m, `integrator = ["newmark"]` the Newmark method — silently, and
-//! in an order no document gave (issue 41). [`Strict`] wraps a deserializer
+//! in an order no document gave (issue 41). `Strict` wraps a deserializer
 //! so that every struct it reads, at any depth, refuses a sequence with the
 //! form it expects (its keys); everything else reads as before. The scene
-//! ([`super::scene_from_tree`]) and the `[line]` table are read through it.
+//! (`super::scene_from_tree`) and the `[line]` table are read through it.
 
 use std::fmt;
 
@@ -17,7 +17,7 @@ use serde::de::{
 };
 
 /// A deserializer whose structs are read from maps (tables) only.
-pub struct Strict<D>(pub D);
+pub(crate) struct Strict<D>(pub D);
 
 /// A visitor that refuses a sequence where a struct with `fields` is read
 /// (`fields` is `None` for any other type), and passes [`Strict`] down to
@@ -372,7 +372,7 @@ impl<'de, D: Deserializer<'de>> Deserializer<'de> for Strict<D> {
     }
 }
 
-/// Read a `T` from a TOML value through [`Strict`] (a struct from a table
+/// Read a `T` from a TOML value through `Strict` (a struct from a table
 /// only), with the path of an error (`serde_path_to_error`).
 pub fn from_value<T: de::DeserializeOwned>(
     value: toml::Value,

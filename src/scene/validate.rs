@@ -21,7 +21,7 @@ use crate::error::{Error, Result};
 
 /// Largest mesh accepted: beyond this the run would not fit a sane budget
 /// (10⁶ elements is 2·10⁶ unknowns; banded storage ≈ 0.2 GB).
-pub const MAX_ELEMENTS: usize = 1_000_000;
+pub(crate) const MAX_ELEMENTS: usize = 1_000_000;
 
 /// Largest number of steps accepted (10⁹ steps would take hours even at N = 4).
 pub const MAX_STEPS: usize = 1_000_000_000;
@@ -31,10 +31,10 @@ pub const MAX_STEPS: usize = 1_000_000_000;
 /// of the division (0.15 / 1e-4 = 1499.9999999999998) gets all its steps.
 /// A few ulps: any more would add a step to an end time that is really short
 /// of it.
-pub const STEP_COUNT_SLACK: f64 = 4.0 * f64::EPSILON;
+pub(crate) const STEP_COUNT_SLACK: f64 = 4.0 * f64::EPSILON;
 
 impl Scene {
-    /// `mesh.elements` in its range (1 ..= [`MAX_ELEMENTS`]).
+    /// `mesh.elements` in its range (1 ..= `MAX_ELEMENTS`).
     pub fn elements(&self) -> Result<usize> {
         let elements = self.mesh.elements;
         if elements == 0 || elements > MAX_ELEMENTS {
@@ -393,7 +393,7 @@ fn check_speed_table(i: usize, time: &[f64], speed: &[f64]) -> Result<()> {
 
 /// Every tabulated speed profile reaches the run's end `t_end` (s): past its
 /// last knot a table says nothing.
-pub fn check_speed_tables_cover(carriers: &[CarrierProps], t_end: f64) -> Result<()> {
+pub(crate) fn check_speed_tables_cover(carriers: &[CarrierProps], t_end: f64) -> Result<()> {
     for (i, c) in carriers.iter().enumerate() {
         if let SpeedProfile::Table { time, .. } = &c.motion.profile {
             let last = time[time.len() - 1];
@@ -490,10 +490,10 @@ fn resolve_carrier(i: usize, c: &CarrierSpec, l: f64) -> Result<CarrierProps> {
 
 /// Default penalty stiffness relative to the step's contact stiffness 1/W:
 /// the penalty force is then 1000/1001 of the Lagrange force per step.
-pub const DEFAULT_PENALTY_RELATIVE: f64 = 1e3;
+pub(crate) const DEFAULT_PENALTY_RELATIVE: f64 = 1e3;
 
 /// Check `[contact]`: penalty stiffness, QP tolerances, restitution.
-pub fn validate_contact(c: &ContactSpec) -> Result<()> {
+pub(crate) fn validate_contact(c: &ContactSpec) -> Result<()> {
     let p = &c.penalty;
     if let (Some(k), Some(_)) = (p.stiffness, p.relative) {
         return Err(Error::invalid(

@@ -5,7 +5,7 @@
 //! Every combination runs on the same scene text with the same overrides
 //! plus the method's `[integrator]` ([`MethodFactory::integrator`]), with
 //! its formulation and discretization set as a typed
-//! [`RunVariant`], so meshes, steps and settings are identical
+//! `RunVariant`, so meshes, steps and settings are identical
 //! and histories can be compared step by step. A combination that means
 //! nothing (a scene error naming both keys, e.g. `moreau_jean` with
 //! `penalty`, or an explicit method above its stability limit) is skipped
@@ -223,7 +223,7 @@ pub struct CompareSpec<'a> {
 }
 
 /// Parse `lagrange,penalty,…` into formulations.
-pub fn parse_formulations(list: &str) -> Result<Vec<Formulation>> {
+pub(crate) fn parse_formulations(list: &str) -> Result<Vec<Formulation>> {
     let mut out = Vec::new();
     for name in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let f = Formulation::ALL

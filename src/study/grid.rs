@@ -10,11 +10,11 @@ use crate::error::{Error, Result};
 /// Two steps are commensurate when m·Δt_f differs from Δt_c by less than
 /// this fraction of Δt_c (both are decimal inputs or i·Δt computed in
 /// floating point).
-pub const SAME_TIME: f64 = 1e-6;
+pub(crate) const SAME_TIME: f64 = 1e-6;
 
 /// How far the fine run of [`nest`] must reach.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Reach {
+pub(crate) enum Reach {
     /// Exactly the coarse run's end: N_f = m·N_c (the levels of one study).
     SameEnd,
     /// At least the coarse run's end: N_f ≥ m·N_c (a run compared on
@@ -28,7 +28,7 @@ pub enum Reach {
 /// multiple m ≥ 1 of Δt_f and the fine run must reach the coarse end
 /// ([`Reach`]). Otherwise the error names `time.end`, the one choice that
 /// makes every level's times nest.
-pub fn nest(coarse: (usize, f64), fine: (usize, f64), reach: Reach) -> Result<usize> {
+pub(crate) fn nest(coarse: (usize, f64), fine: (usize, f64), reach: Reach) -> Result<usize> {
     let ((nc, dtc), (nf, dtf)) = (coarse, fine);
     let m = (dtc / dtf).round() as usize;
     let whole = m >= 1 && ((m as f64 * dtf) - dtc).abs() <= SAME_TIME * dtc;
@@ -61,7 +61,7 @@ pub fn resample(fine: &[f64], stride: usize, rows: Range<usize>) -> Vec<f64> {
 
 /// `value` of option `key` if within `range`, else the error naming the
 /// option, the value and the range (a study's `--levels`).
-pub fn in_range(key: &str, value: usize, range: &RangeInclusive<usize>) -> Result<usize> {
+pub(crate) fn in_range(key: &str, value: usize, range: &RangeInclusive<usize>) -> Result<usize> {
     if range.contains(&value) {
         Ok(value)
     } else {

@@ -1,7 +1,7 @@
 //! Studies: loops of runs over scenes. They never reach inside the integrator.
 //!
 //! What they share is here once: a run as typed changes to a base scene
-//! ([`variant`]), time grids that nest and resampling ([`grid`]), observed
+//! (`variant`), time grids that nest and resampling ([`grid`]), observed
 //! orders and the estimators of a numerical uncertainty ([`uncertainty`]),
 //! the scalar outputs of a run ([`scalars`]), the space discretizations
 //! ([`space`]) and their level parameter ([`level`]).
@@ -19,12 +19,12 @@ pub mod reference;
 pub mod request;
 pub mod scalars;
 pub mod space;
-pub mod standing_force;
+pub(crate) mod standing_force;
 pub mod sweep;
 pub mod threads;
 pub mod tolerance;
 pub mod uncertainty;
-pub mod variant;
+pub(crate) mod variant;
 pub mod verify;
 
 /// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.

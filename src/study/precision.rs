@@ -92,18 +92,18 @@ pub struct Precision {
 /// Grid levels per axis a precision study takes (`--levels`, Python
 /// `levels=`): levels² grid points per formulation, method and
 /// discretization.
-pub const LEVELS: std::ops::RangeInclusive<usize> = 1..=5;
+pub(crate) const LEVELS: std::ops::RangeInclusive<usize> = 1..=5;
 
 /// `levels` if within [`LEVELS`], else the error naming `--levels`.
 /// Checked before the study's cost is estimated.
-pub fn check_levels(levels: usize) -> Result<usize> {
+pub(crate) fn check_levels(levels: usize) -> Result<usize> {
     super::grid::in_range("--levels", levels, &LEVELS)
 }
 
 /// `ratio` if an integer ≥ 2, else the error naming `--ratio` (a ratio so
 /// large that the reference mesh overflows is refused by
 /// [`reference_elements`]).
-pub fn check_ratio(ratio: usize) -> Result<usize> {
+pub(crate) fn check_ratio(ratio: usize) -> Result<usize> {
     if ratio >= 2 {
         Ok(ratio)
     } else {
@@ -115,7 +115,7 @@ pub fn check_ratio(ratio: usize) -> Result<usize> {
 /// grid's finest), checked: a ratio so large it overflows would wrap to a
 /// meaningless mesh in a release build. Also what the study's cost
 /// estimate checks first ([`super::request::PrecisionRequest::estimate`]).
-pub fn reference_elements(n0: usize, ratio: usize, levels: usize) -> Result<usize> {
+pub(crate) fn reference_elements(n0: usize, ratio: usize, levels: usize) -> Result<usize> {
     u32::try_from(levels)
         .ok()
         .and_then(|l| ratio.checked_pow(l))

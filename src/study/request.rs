@@ -19,7 +19,7 @@ use super::sweep::BatchWidth;
 
 /// `--batch B` (Python: `batch=`): 1 ..= [`crate::integrate::MAX_LANES`] runs
 /// stepped together, or the automatic width when absent.
-pub fn batch_width(b: Option<usize>) -> Result<BatchWidth> {
+pub(crate) fn batch_width(b: Option<usize>) -> Result<BatchWidth> {
     let max = crate::integrate::MAX_LANES;
     match b {
         None => Ok(BatchWidth::Auto),
@@ -41,7 +41,7 @@ pub fn lanes(b: BatchWidth) -> usize {
 }
 
 /// [`batch_width`] as a number of lanes.
-pub fn batch_lanes(b: Option<usize>) -> Result<usize> {
+pub(crate) fn batch_lanes(b: Option<usize>) -> Result<usize> {
     Ok(lanes(batch_width(b)?))
 }
 

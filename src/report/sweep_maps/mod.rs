@@ -43,7 +43,6 @@ use std::path::{Path, PathBuf};
 use crate::error::Result;
 use crate::study::sweep::{SweepRecord, SweepSpec};
 
-pub use axes::axis_label;
 pub use force_map::write_force_map;
 pub use line_chart::write_sweep_chart;
 pub use loss_fraction_map::{SPEED_RATIO_LEVELS, write_loss_fraction_map};
@@ -55,7 +54,7 @@ pub use tolerance_map::{write_tolerance_plot, write_u_num_map, write_value_map_h
 /// Draw the maps of a finished sweep into `dir` (none for a shard, which
 /// holds only part of the grid, for a list of points, and for an axis
 /// whose listed values are not in increasing or decreasing order). Returns the files written.
-pub fn write_sweep_maps(
+pub(crate) fn write_sweep_maps(
     dir: &Path,
     spec: &SweepSpec,
     records: &[SweepRecord],

@@ -22,8 +22,8 @@
 //!
 //! Norms of histories: max over samples, and L2 as the RMS over samples.
 //!
-//! Beside this file (the study and its drivers): [`rows`] (the rows of
-//! `converge.csv` and how a study's runs become them) and [`regime`] (what
+//! Beside this file (the study and its drivers): `rows` (the rows of
+//! `converge.csv` and how a study's runs become them) and `regime` (what
 //! a level's errors say: asymptotic, stalled, pre-asymptotic, …).
 
 mod regime;
@@ -41,11 +41,10 @@ use crate::resolve::{Resolved, resolve_scene};
 use crate::run::{RunOutput, run, run_with};
 use crate::scene::{Declared, Discretization};
 
-pub use super::reference::AnalyticW;
-pub use super::uncertainty::FS_ASYMPTOTIC as GCI_SAFETY_FACTOR;
+pub(crate) use super::reference::AnalyticW;
 use regime::Context;
-pub use regime::{FORMAL_GAP, ORDER_DRIFT, STALL_RATIO};
-pub use rows::{ConvergeRow, QUANTITIES, SCALARS};
+pub use rows::ConvergeRow;
+pub(crate) use rows::QUANTITIES;
 use rows::{diverged_rows, tabulate};
 
 /// What is refined.
@@ -66,7 +65,7 @@ pub enum Refine {
 pub struct Ladder {
     /// What is refined.
     pub refine: Refine,
-    /// Levels, in [`LEVELS`] (3 or more for observed orders).
+    /// Levels, in `LEVELS` (3 or more for observed orders).
     pub levels: usize,
     /// The refinement ratio r > 1 (an integer ≥ 2 when the step is refined).
     pub ratio: f64,
@@ -151,7 +150,7 @@ pub fn converge_methods(
 /// own: N for `hermite`, J for `galerkin` and `modal` (module docs of
 /// [`super::space`]); with `--refine step` only Δt is refined. Skipped
 /// variants as in [`converge_methods`].
-pub fn converge_variants(
+pub(crate) fn converge_variants(
     text: &str,
     overrides: &[String],
     methods: &[&dyn MethodFactory],
@@ -238,16 +237,16 @@ pub fn converge_variants(
 /// Levels a convergence study takes (`--levels`, Python `levels=`): at
 /// least 2 (one difference), 3 for an observed order; at most 12 (a ratio of
 /// 2 refines 2¹¹ = 2048 times on the finest level).
-pub const LEVELS: std::ops::RangeInclusive<usize> = 2..=12;
+pub(crate) const LEVELS: std::ops::RangeInclusive<usize> = 2..=12;
 
 /// `levels` if within [`LEVELS`], else the error naming `--levels`. Checked
 /// before the study's cost is estimated (which loops over the levels).
-pub fn check_levels(levels: usize) -> Result<usize> {
+pub(crate) fn check_levels(levels: usize) -> Result<usize> {
     super::grid::in_range("--levels", levels, &LEVELS)
 }
 
 /// `ratio` if finite and > 1, else the error naming `--ratio`.
-pub fn check_ratio(ratio: f64) -> Result<f64> {
+pub(crate) fn check_ratio(ratio: f64) -> Result<f64> {
     if ratio > 1.0 && ratio.is_finite() {
         Ok(ratio)
     } else {

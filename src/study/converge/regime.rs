@@ -28,7 +28,7 @@ pub(super) struct Context<'a> {
 /// what it does not refine. Chosen between a converging ladder's slowest
 /// useful rate (first order: ×2 per halving) and the ±10 % a stalled error
 /// wanders by.
-pub const STALL_RATIO: f64 = 1.25;
+pub(crate) const STALL_RATIO: f64 = 1.25;
 
 /// An error (against an exact reference) or a difference between levels
 /// at least this fraction of the quantity's own size is no discretization
@@ -41,13 +41,13 @@ pub const DIVERGED_RELATIVE: f64 = 1.0;
 /// the asymptotic range: the ratio of successive error ratios is outside
 /// r^(±0.3) (0.81 … 1.23 at r = 2), where the leading error term does not
 /// yet dominate the next one.
-pub const ORDER_DRIFT: f64 = 0.3;
+pub(crate) const ORDER_DRIFT: f64 = 0.3;
 
 /// An observed order this far from the formal one is pre-asymptotic (or
 /// the formal order does not hold for this solution: the regime says which
 /// to suspect, the numbers show it). The same ±0.3 the verification
 /// harness allows a smooth case.
-pub const FORMAL_GAP: f64 = 0.3;
+pub(crate) const FORMAL_GAP: f64 = 0.3;
 
 /// The regime of a level from the errors of its ladder (`e`, against an
 /// exact reference, or successive differences when `exact` is false), the

@@ -65,7 +65,7 @@ pub struct ConvergeRow {
     pub error_order: f64,
     /// Ratio of successive error ratios (e_{ℓ−2}/e_{ℓ−1})/(e_{ℓ−1}/e_ℓ),
     /// from the errors against an exact reference, else from successive
-    /// differences: 1 in the asymptotic range ([`ORDER_DRIFT`]).
+    /// differences: 1 in the asymptotic range (`ORDER_DRIFT`).
     pub ratio_change: f64,
     /// The formal order of the displacement in the refined variable
     /// (Δt: the method's; h: Hermite 4, string elements 2; `both`: the
@@ -87,7 +87,7 @@ pub struct ConvergeRow {
 }
 
 /// Quantities reported, in order.
-pub const QUANTITIES: [&str; 12] = [
+pub(crate) const QUANTITIES: [&str; 12] = [
     "displacement_max",
     "displacement_l2",
     "force_max",
@@ -103,7 +103,7 @@ pub const QUANTITIES: [&str; 12] = [
 ];
 
 /// The scalar outputs ([`Scalar`]) among [`QUANTITIES`], in that order.
-pub const SCALARS: [Scalar; 8] = [
+pub(crate) const SCALARS: [Scalar; 8] = [
     Scalar::LossFraction,
     Scalar::LossFractionSpan,
     Scalar::LossFractionSupport,

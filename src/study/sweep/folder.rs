@@ -7,7 +7,7 @@
 //!   sweep killed with `kill -9` leaves nothing stale to clear: resuming it
 //!   just works.
 //! * **Every record stamped.** Each `runs/NNNNNN.json` carries the identity of
-//!   its sweep ([`sweep_id`], a hash of `sweep.json`), its grid index and its
+//!   its sweep (`sweep_id`, a hash of `sweep.json`), its grid index and its
 //!   axis values. A record is used only when all three match the folder's
 //!   sweep and the file it sits in; anything else (a record of another sweep,
 //!   of an older taut, under the wrong index) is refused with its path, on
@@ -24,7 +24,7 @@ use super::{SweepRecord, SweepSpec};
 use crate::error::{Error, Result};
 
 /// The lock file a running sweep or merge holds in its folder.
-pub const LOCK_FILE: &str = "sweep.lock";
+pub(crate) const LOCK_FILE: &str = "sweep.lock";
 
 /// A claimed sweep folder; the claim ends when this is dropped (or the
 /// process dies). Dropped, it removes `sweep.lock` while still holding it,
@@ -90,7 +90,7 @@ impl FolderLock {
 /// folder ([`claim`]): a fork–exec window is microseconds to milliseconds
 /// even on a loaded machine; a sweep or merge holding the folder holds it
 /// for its whole run.
-pub const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500);
+pub(crate) const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500);
 
 /// The refusal of a folder another sweep or merge holds.
 fn in_use(dir: &Path, holder: &str) -> Error {
@@ -105,7 +105,7 @@ fn in_use(dir: &Path, holder: &str) -> Error {
 }
 
 /// Claim `dir` for one sweep or merge (creating it), or refuse if another
-/// claim holds it: first in this process ([`CLAIMED`]), then the
+/// claim holds it: first in this process (`CLAIMED`), then the
 /// operating system's lock on `sweep.lock`.
 pub fn claim(dir: &Path) -> Result<FolderLock> {
     std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
@@ -187,13 +187,13 @@ fn claim_once(dir: &Path, path: &Path) -> Result<File> {
 }
 
 /// The text of `sweep.json` for a spec.
-pub fn spec_text(spec: &SweepSpec) -> String {
+pub(crate) fn spec_text(spec: &SweepSpec) -> String {
     serde_json::to_string_pretty(spec).expect("a sweep spec is plain data") + "\n"
 }
 
 /// A sweep's identity: FNV-1a (64 bit) of its `sweep.json` text, in hex.
 /// It tells records of different sweeps apart (not a defence against forgery).
-pub fn sweep_id(spec: &SweepSpec) -> String {
+pub(crate) fn sweep_id(spec: &SweepSpec) -> String {
     const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
     const PRIME: u64 = 0x0100_0000_01b3;
     let h = spec_text(spec)
@@ -205,7 +205,7 @@ pub fn sweep_id(spec: &SweepSpec) -> String {
 /// Check that the folder's `sweep.json`, if any, is this sweep's; `Ok(false)`
 /// when there is none yet (write it with [`write_spec`] once the records
 /// already in the folder have been checked).
-pub fn check_spec(dir: &Path, spec: &SweepSpec) -> Result<bool> {
+pub(crate) fn check_spec(dir: &Path, spec: &SweepSpec) -> Result<bool> {
     let path = dir.join("sweep.json");
     match read_json(&path, "a sweep's sweep.json") {
         Ok(existing) if existing == spec_text(spec) => Ok(true),
@@ -225,25 +225,25 @@ fn read_json(path: &Path, what: &str) -> Result<String> {
 }
 
 /// Write the folder's `sweep.json`.
-pub fn write_spec(dir: &Path, spec: &SweepSpec) -> Result<()> {
+pub(crate) fn write_spec(dir: &Path, spec: &SweepSpec) -> Result<()> {
     write_atomic(&dir.join("sweep.json"), &spec_text(spec))
 }
 
 /// Path of point `index`'s record.
-pub fn run_file(dir: &Path, index: usize) -> PathBuf {
+pub(crate) fn run_file(dir: &Path, index: usize) -> PathBuf {
     dir.join("runs").join(format!("{index:06}.json"))
 }
 
 /// Write `text` to `path` through a temporary file and a rename, so a killed
 /// process never leaves half a file.
-pub fn write_atomic(path: &Path, text: &str) -> Result<()> {
+pub(crate) fn write_atomic(path: &Path, text: &str) -> Result<()> {
     let tmp = path.with_extension("json.tmp");
     std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
     std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
 }
 
 /// Save point `record.index`'s record.
-pub fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
+pub(crate) fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
     let text = serde_json::to_string(record).expect("a sweep record is plain data");
     write_atomic(&run_file(dir, record.index), &text)
 }
@@ -252,7 +252,12 @@ pub fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
 /// `Ok(None)` when the point has not finished (no file, or an empty or
 /// unparsable one), an error when the file holds a record that is not this
 /// sweep's point `index`.
-pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Option<SweepRecord>> {
+pub(crate) fn load(
+    dir: &Path,
+    spec: &SweepSpec,
+    id: &str,
+    index: usize,
+) -> Result<Option<SweepRecord>> {
     let path = run_file(dir, index);
     let text = match read_json(&path, "a sweep's run record") {
         Ok(t) => t,
@@ -312,7 +317,7 @@ pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Opti
 /// that has since changed, and silently leaving it out would hide that (a
 /// `000008.json` among a 7-point grid's records). Other files are not
 /// records and are left alone.
-pub fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
+pub(crate) fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
     let runs = dir.join("runs");
     let entries = match std::fs::read_dir(&runs) {
         Ok(e) => e,
@@ -369,7 +374,7 @@ pub fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
 /// tables and maps and write tables of its own points only, with nothing
 /// to say they are a part (issue 41). A shard's own folder, fresh or
 /// holding its own points (a resumed shard), is accepted.
-pub fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Shard>) -> Result<()> {
+pub(crate) fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Shard>) -> Result<()> {
     let Some(shard) = shard else {
         return Ok(());
     };
@@ -416,7 +421,7 @@ pub fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Shard>) ->
 }
 
 /// Read the records of the given indices, every one present and checked.
-pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
+pub(crate) fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
     let id = sweep_id(spec);
     indices
         .iter()
@@ -434,7 +439,7 @@ pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<Sw
 }
 
 /// Read a sweep folder's spec.
-pub fn read_spec(dir: &Path) -> Result<SweepSpec> {
+pub(crate) fn read_spec(dir: &Path) -> Result<SweepSpec> {
     let p = dir.join("sweep.json");
     let text = read_json(&p, "a sweep's sweep.json")?;
     serde_json::from_str(&text).map_err(|e| Error::parse(format!("{}: {e}", p.display())))
@@ -449,7 +454,10 @@ pub fn merge(shards: &[PathBuf], out: &Path) -> Result<(SweepSpec, Vec<SweepReco
 
 /// [`merge`] into a folder the caller has claimed (and holds while it
 /// writes the tables).
-pub fn merge_into(out: &FolderLock, shards: &[PathBuf]) -> Result<(SweepSpec, Vec<SweepRecord>)> {
+pub(crate) fn merge_into(
+    out: &FolderLock,
+    shards: &[PathBuf],
+) -> Result<(SweepSpec, Vec<SweepRecord>)> {
     let out = out.dir();
     let first = shards
         .first()

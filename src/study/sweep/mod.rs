@@ -4,9 +4,9 @@
 //!
 //! * A sweep is a 1-D or 2-D grid of `--vary key=start:stop:count` axes,
 //!   linear or (with `--log`) logarithmic, or of listed axes `--vary
-//!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, [`points`]),
+//!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, `points`),
 //!   whose keys are walked together rather than as a grid. `key` is any dotted scene path
-//!   (`beam.tension`, `carrier.0.mass`) or one of [`DIMENSIONLESS`]:
+//!   (`beam.tension`, `carrier.0.mass`) or one of the dimensionless axes:
 //!   `speed_ratio` = V0/c (every carrier's cruise speed), `tension_ratio` =
 //!   T/EA, `mass_ratio` = m/M with M = ρAL (every mass carrier),
 //!   `stiffness_ratio` = k/(T/L) (every mass carrier). Ratios are applied after
@@ -34,11 +34,11 @@
 //! * `--shard i/n` runs the points with index ≡ i (mod n); `merge` joins
 //!   shard folders (same `sweep.json` spec) into one.
 //!
-//! One concept a file: [`axis`] (one swept axis), [`spec`] (the grid and its
-//! checks), [`points`] (a list of points), [`resolve`] (a grid point's scene), [`record`] (what a run
-//! contributes), [`refine`] (`--check-refinement`), [`shard`] (`--shard`),
-//! [`batch`] (points stepped together), [`folder`] (the sweep's folder),
-//! [`accuracy`] (`--tolerance`: each point refined until its u_num is
+//! One concept a file: `axis` (one swept axis), `spec` (the grid and its
+//! checks), `points` (a list of points), `resolve` (a grid point's scene), `record` (what a run
+//! contributes), `refine` (`--check-refinement`), `shard` (`--shard`),
+//! `batch` (points stepped together), [`folder`] (the sweep's folder),
+//! `accuracy` (`--tolerance`: each point refined until its u_num is
 //! within EPS); this file runs the sweep.
 
 mod accuracy;
@@ -65,16 +65,18 @@ pub use accuracy::{
     CHUNK, DEFAULT_BUDGET, LEVEL_MULTIPLE, MAX_CHECKS, PLAN_SHARE, PointAccuracy, SweepTolerance,
     TARGETS,
 };
-pub use axis::{Axis, AxisTarget, Ratio, WHOLE_SNAP};
-pub use batch::{AUTO_BATCH_LANES, BatchWidth, auto_lanes};
+pub use axis::{Axis, AxisTarget, Ratio};
+pub(crate) use batch::AUTO_BATCH_LANES;
+pub use batch::BatchWidth;
 use batch::{batches, records_guarded};
-pub use folder::{FolderLock, check_shard, claim, collect, merge, merge_into, read_spec};
-pub use points::{parse_points, read_points};
+pub use folder::{FolderLock, claim, merge};
+pub(crate) use folder::{merge_into, read_spec};
+pub(crate) use points::read_points;
 pub use record::{PROFILE_BINS, SweepRecord};
-pub use refine::{REFINEMENT_ABS, REFINEMENT_REL, Refined, refinement_converged};
-pub use resolve::DIMENSIONLESS;
+pub use refine::Refined;
+pub(crate) use refine::{REFINEMENT_ABS, REFINEMENT_REL, refinement_converged};
 pub use shard::Shard;
-pub use spec::{MAX_POINT_KEYS, MAX_POINTS, SweepSpec};
+pub use spec::{MAX_POINT_KEYS, SweepSpec};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid
@@ -103,7 +105,7 @@ pub fn sweep_in(
     sweep_batched(claimed, spec, shard, BatchWidth::Auto, progress)
 }
 
-/// [`sweep_in`] with the batch width given (`--batch`): points that share
+/// `sweep_in` with the batch width given (`--batch`): points that share
 /// their effective matrix step together, up to that many at a time; the
 /// records are the same bytes whatever the width (their `wall_seconds`
 /// aside).

@@ -13,13 +13,13 @@ use super::spec::SweepSpec;
 use crate::error::{Error, Result, one_line};
 
 /// The listed axes of a points file.
-pub fn read_points(path: &Path) -> Result<Vec<Axis>> {
+pub(crate) fn read_points(path: &Path) -> Result<Vec<Axis>> {
     let text = crate::input::read_text(path, "a points file", crate::input::MAX_INPUT_BYTES)?;
     parse_points(&text).map_err(|e| e.explained(&format!(" (in {})", path.display())))
 }
 
 /// The listed axes of a points table's text (see the module doc).
-pub fn parse_points(text: &str) -> Result<Vec<Axis>> {
+pub(crate) fn parse_points(text: &str) -> Result<Vec<Axis>> {
     let mut lines = text
         .lines()
         .enumerate()

@@ -20,7 +20,7 @@ pub const PROFILE_BINS: usize = 200;
 /// empty and `error` says why.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct SweepRecord {
-    /// The sweep this record belongs to ([`super::folder::sweep_id`]); empty in
+    /// The sweep this record belongs to (`super::folder::sweep_id`); empty in
     /// records of taut before stamping, which are refused.
     #[serde(default)]
     pub sweep_id: String,

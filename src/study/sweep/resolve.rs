@@ -42,14 +42,6 @@ pub enum Variation<'a> {
         value: f64,
     },
 }
-/// The study's dimensionless axes ([`Ratio`]'s spellings).
-pub const DIMENSIONLESS: [&str; 4] = [
-    "speed_ratio",
-    "tension_ratio",
-    "mass_ratio",
-    "stiffness_ratio",
-];
-
 /// Whole numbers below 2^53 are exact as both i64 and f64.
 const EXACT_WHOLE: f64 = 9_007_199_254_740_992.0;
 

@@ -27,7 +27,7 @@ pub struct SweepSpec {
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub paired: bool,
     /// `--tolerance EPS --quantity Q`: every point refined until Q's
-    /// u_num is within EPS ([`super::accuracy`]); absent for a sweep at the
+    /// u_num is within EPS (`super::accuracy`); absent for a sweep at the
     /// scene's resolution.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<SweepTolerance>,
@@ -280,7 +280,7 @@ pub const MAX_POINT_KEYS: usize = 1000;
 
 /// The most points a sweep may have: 100 000 runs is days of work at the
 /// reference resolution and ~0.4 GB of records; a larger grid is several sweeps.
-pub const MAX_POINTS: usize = 100_000;
+pub(crate) const MAX_POINTS: usize = 100_000;
 
 impl SweepSpec {
     /// Resolve every point (and its refined run with `--check-refinement`)

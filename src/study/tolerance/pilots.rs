@@ -154,7 +154,7 @@ pub(super) fn run_pilots(
 /// scene validation counts as whole (within its [`STEP_COUNT_SLACK`]) keeps
 /// its Δt; any other is rounded up to whole steps, so that every pilot of the
 /// ladder, at Δt/2 and Δt/4, ends at the same time as the base pilot.
-pub fn whole_step(t_end: f64, dt: f64) -> f64 {
+pub(crate) fn whole_step(t_end: f64, dt: f64) -> f64 {
     let n = t_end / dt;
     let counted = (n * (1.0 + STEP_COUNT_SLACK)).floor();
     if counted >= 1.0 && n <= counted * (1.0 + STEP_COUNT_SLACK) {

@@ -10,7 +10,7 @@
 //!   [`ORDER_WINDOW`] of the formal one;
 //! * anything else (a quantity that is not smooth, scattered or
 //!   oscillating data, an order below [`LOWEST_ORDER`]): the least-squares
-//!   estimator of Eça & Hoekstra ([`least_squares`](super::least_squares)).
+//!   estimator of Eça & Hoekstra ([`least_squares`]).
 //!
 //! An order is reported only where the data support one: the GCI's
 //! observed order, or the least-squares δ_RE's p when that fit is the one

@@ -11,7 +11,7 @@
 //! * [`gci`]: Roache's grid convergence index;
 //! * [`least_squares`]: Eça & Hoekstra's least-squares estimator (J.
 //!   Comput. Phys. 262 (2014) 104–130) for scattered or non-monotone data;
-//! * [`assess`]: which of them a quantity's values call for, the orders the
+//! * `assess`: which of them a quantity's values call for, the orders the
 //!   data support, and the split of the error between space and time;
 //! * [`family`]: the family of runs of `taut uncertainty` (h and Δt refined
 //!   together, and apart);

@@ -8,7 +8,7 @@ use crate::scene::{Formulation, Support};
 /// in the asymptotic range, where successive orders agree to ±0.1; 0.3
 /// leaves room for the ladder's first level and still separates order 2
 /// from 1.5 (unresolved modes) and 4 from 3.
-pub const ORDER_TOL: f64 = 0.3;
+pub(crate) const ORDER_TOL: f64 = 0.3;
 
 use Support::{Clamped, Free, Pinned};
 
@@ -25,7 +25,7 @@ const BEAM_SUPPORTS: [(Support, Support); 6] = [
 /// Allowed |observed − tail order| of a J ladder: the discrete solution
 /// also carries the moving contact's coupling of the modes (as
 /// [`MOVING_CONTACT_TOL`]), which moves the pre-asymptotic constant.
-pub const TAIL_TOL: f64 = 0.5;
+pub(crate) const TAIL_TOL: f64 = 0.5;
 
 /// Allowed |observed − formal| of an h or J ladder with a moving contact:
 /// the mass's path has a curvature jump at every node of C¹ elements (and
@@ -33,7 +33,7 @@ pub const TAIL_TOL: f64 = 0.5;
 /// whose effect on the error depends on where the nodes fall, so
 /// successive orders scatter by about ±0.6 around the formal one (measured
 /// 3.2–4.4 for the displacement's 4, 2.1–2.7 for the force's 2).
-pub const MOVING_CONTACT_TOL: f64 = 0.5;
+pub(crate) const MOVING_CONTACT_TOL: f64 = 0.5;
 
 /// Methods that leave a moving contact's constraint oscillation undamped
 /// (trapezoidal at the contact point, α_f = 0): measured on `mms_beam_time`.

@@ -151,7 +151,7 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
 }
 
 /// Times at which a modal tail is sampled (evenly over the run, t > 0).
-pub const TAIL_TIMES: usize = 8;
+pub(crate) const TAIL_TIMES: usize = 8;
 
 /// The exact solution's own modal tail at each J level of a ladder: the
 /// largest |v* − Σ_{j ≤ J} c_j φ_j| over the probes and the carrier's

@@ -54,9 +54,9 @@ pub struct VerifyRow {
     pub errors: Vec<f64>,
     /// The finest error relative to the exact solution's largest value.
     pub relative_error: f64,
-    /// Orders between successive levels ([`observed_order`]).
+    /// Orders between successive levels (`observed_order`).
     pub orders: Vec<f64>,
-    /// The ladder's order, first to last level ([`observed_order`] over
+    /// The ladder's order, first to last level (`observed_order` over
     /// the whole ratio): what the expectation is checked against.
     pub observed: f64,
     /// The expected (formal) order; NaN when none.

@@ -18,7 +18,7 @@ pub struct Selection<'a> {
 }
 
 /// Parse `hermite,graded,galerkin,modal` (`--discretizations`).
-pub fn parse_spaces(list: &str) -> Result<Vec<Space>> {
+pub(crate) fn parse_spaces(list: &str) -> Result<Vec<Space>> {
     let mut out = Vec::new();
     for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let s = Space::ALL
