@@ -57,9 +57,8 @@ pub(crate) use tolerance::write_tolerant_run;
 pub use tolerance::{
     ACCURACY_COLUMNS, WithAccuracy, accuracy_header, accuracy_table, result_lines,
 };
-pub use uncertainty::{
-    UNCERTAINTY_COLUMNS, family_table, uncertainty_lines, uncertainty_table, write_uncertainty,
-};
+pub(crate) use uncertainty::write_uncertainty;
+pub use uncertainty::{family_table, uncertainty_lines, uncertainty_table};
 pub use verify::verify_table;
 pub(crate) use verify::write_verify;
 pub(crate) use wire::write_wire;

@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::study::uncertainty::{QuantityUncertainty, RATIO, Role, Uncertainty};
 
 /// Column order of `uncertainty.csv`.
-pub const UNCERTAINTY_COLUMNS: [&str; 23] = [
+pub(crate) const UNCERTAINTY_COLUMNS: [&str; 23] = [
     "quantity",
     "unit",
     "smooth",
@@ -38,7 +38,7 @@ pub const UNCERTAINTY_COLUMNS: [&str; 23] = [
     "note",
 ];
 
-/// `uncertainty.csv` as a table ([`UNCERTAINTY_COLUMNS`]): one row a
+/// `uncertainty.csv` as a table (`UNCERTAINTY_COLUMNS`): one row a
 /// quantity.
 pub fn uncertainty_table(u: &Uncertainty) -> Table {
     let q = &u.quantities;
@@ -135,7 +135,7 @@ struct UncertaintyJson<'a> {
 }
 
 /// Write the three files into `dir`.
-pub fn write_uncertainty(dir: &Path, u: &Uncertainty) -> Result<()> {
+pub(crate) fn write_uncertainty(dir: &Path, u: &Uncertainty) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     uncertainty_table(u).write_csv(&dir.join("uncertainty.csv"))?;
     let doc = UncertaintyJson {

@@ -313,7 +313,7 @@ impl PrecisionRequest {
 /// and apart) and every quantity's numerical uncertainty.
 #[derive(Debug, Clone, Copy)]
 pub struct UncertaintyRequest {
-    /// Diagonal levels K ([`super::uncertainty::LEVELS`]).
+    /// Diagonal levels K (`super::uncertainty::LEVELS`).
     pub levels: usize,
     /// Start even above the cost bound (`--yes`, [`super::cost`]).
     pub yes: bool,

@@ -50,7 +50,7 @@ pub use loss_map::write_loss_map;
 pub use refinement_map::write_refinement_map;
 pub use refinement_plot::write_refinement_plot;
 use span_map::write_loss_fraction_span_map;
-pub use tolerance_map::{write_tolerance_plot, write_u_num_map, write_value_map_hatched};
+pub(crate) use tolerance_map::{write_tolerance_plot, write_u_num_map, write_value_map_hatched};
 /// Draw the maps of a finished sweep into `dir` (none for a shard, which
 /// holds only part of the grid, for a list of points, and for an axis
 /// whose listed values are not in increasing or decreasing order). Returns the files written.

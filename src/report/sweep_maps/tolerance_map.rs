@@ -11,7 +11,11 @@ use crate::study::sweep::{SweepRecord, SweepSpec};
 
 /// `u_num_map.svg`: each point's u_num of the targeted quantity as a heat
 /// map, the points above EPS crossed out (the title counts them).
-pub fn write_u_num_map(path: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Result<()> {
+pub(crate) fn write_u_num_map(
+    path: &Path,
+    spec: &SweepSpec,
+    records: &[SweepRecord],
+) -> Result<()> {
     let tol = spec.tolerance.as_ref().expect("an accuracy-targeted sweep");
     let u: Vec<SweepRecord> = records
         .iter()
@@ -44,7 +48,7 @@ pub fn write_u_num_map(path: &Path, spec: &SweepSpec, records: &[SweepRecord]) -
 
 /// The value map of the targeted quantity with the points above EPS
 /// crossed out (`--tolerance` on `loss_fraction` or `loss_fraction_span`).
-pub fn write_value_map_hatched(
+pub(crate) fn write_value_map_hatched(
     path: &Path,
     spec: &SweepSpec,
     records: &[SweepRecord],
@@ -63,7 +67,11 @@ pub fn write_value_map_hatched(
 
 /// `tolerance.svg` of a 1-D accuracy-targeted sweep: the targeted
 /// quantity ± u_num along the axis, shaded where u_num is above EPS.
-pub fn write_tolerance_plot(path: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Result<()> {
+pub(crate) fn write_tolerance_plot(
+    path: &Path,
+    spec: &SweepSpec,
+    records: &[SweepRecord],
+) -> Result<()> {
     use crate::report::plot::{Series, line_plot};
     let tol = spec.tolerance.as_ref().expect("an accuracy-targeted sweep");
     let records = sorted_by_index(records);

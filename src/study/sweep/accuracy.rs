@@ -50,22 +50,22 @@ use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, 
 
 /// Checks after the pilots at most: with one more level on both each, a
 /// point may end 2⁵ times finer in h and Δt than the plan's first guess.
-pub const MAX_CHECKS: usize = 3;
+pub(crate) const MAX_CHECKS: usize = 3;
 
 /// A point's default budget (`--max-cost`): its refinements may cost this
 /// many times its own run (unknowns × steps), pilots included. 64 allows
 /// one variable refined 2⁴ times beyond the point's own and the other 2²,
 /// with their check families.
-pub const DEFAULT_BUDGET: f64 = 64.0;
+pub(crate) const DEFAULT_BUDGET: f64 = 64.0;
 
 /// The share of EPS the plan asks of `run --tolerance`'s model: its
 /// estimate carries Roache's 1.25, the check's u_num the 3 of a quantity
 /// that is not smooth, and the check adds its fit's scatter, so the plan
 /// aims at 1.25/3 of EPS and leaves a fifth of that for the scatter.
-pub const PLAN_SHARE: f64 = FS_ASYMPTOTIC / FS_CAUTIOUS * 0.8;
+pub(crate) const PLAN_SHARE: f64 = FS_ASYMPTOTIC / FS_CAUTIOUS * 0.8;
 
 /// The furthest a plan refines one variable: 2⁵ times the point's own.
-pub const MAX_EXPONENT: i32 = 5;
+pub(crate) const MAX_EXPONENT: i32 = 5;
 
 /// Points worked together: enough for batches of runs that share a matrix
 /// or a basis (a 2-D map's row of 41 speeds is one tension), few enough
@@ -74,7 +74,7 @@ pub const CHUNK: usize = 128;
 
 /// The level parameter must be a multiple of this, so the pilots can be
 /// made 2 and 4 times coarser.
-pub const LEVEL_MULTIPLE: usize = 4;
+pub(crate) const LEVEL_MULTIPLE: usize = 4;
 
 /// What an accuracy-targeted sweep asks: Q within EPS (in Q's unit).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

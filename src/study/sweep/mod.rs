@@ -61,10 +61,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
-pub use accuracy::{
-    CHUNK, DEFAULT_BUDGET, LEVEL_MULTIPLE, MAX_CHECKS, PLAN_SHARE, PointAccuracy, SweepTolerance,
-    TARGETS,
-};
+pub use accuracy::{CHUNK, PointAccuracy, SweepTolerance, TARGETS};
 pub use axis::{Axis, AxisTarget, Ratio};
 pub(crate) use batch::AUTO_BATCH_LANES;
 pub use batch::BatchWidth;

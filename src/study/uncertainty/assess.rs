@@ -5,11 +5,11 @@
 //! * every value the same (to round-off): `exact`, u_num = 0;
 //! * differences growing at every level: `diverging`, no u_num;
 //! * a smooth quantity whose levels converge monotonically at an order
-//!   ≥ [`LOWEST_ORDER`]: Roache's GCI on the three finest ([`Gci`]), with
+//!   ≥ `LOWEST_ORDER`: Roache's GCI on the three finest ([`Gci`]), with
 //!   F_s = 1.25 only when every triplet of the family shows an order within
-//!   [`ORDER_WINDOW`] of the formal one;
+//!   `ORDER_WINDOW` of the formal one;
 //! * anything else (a quantity that is not smooth, scattered or
-//!   oscillating data, an order below [`LOWEST_ORDER`]): the least-squares
+//!   oscillating data, an order below `LOWEST_ORDER`): the least-squares
 //!   estimator of Eça & Hoekstra ([`least_squares`]).
 //!
 //! An order is reported only where the data support one: the GCI's
@@ -154,7 +154,7 @@ impl Assessment {
 }
 
 /// Assess one quantity from its family's values.
-pub fn assess(inputs: &Inputs) -> Assessment {
+pub(crate) fn assess(inputs: &Inputs) -> Assessment {
     let k = inputs.diagonal.len();
     let defined = inputs.diagonal.iter().filter(|v| v.is_some()).count();
     if defined < k {

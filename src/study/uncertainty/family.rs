@@ -26,14 +26,14 @@ pub const RATIO: usize = 2;
 /// Levels of the diagonal (`--levels`): three for a GCI, four (the
 /// default) for a least-squares fit with a degree of freedom, at most six
 /// (4⁵ = 1024 times the scene's run on the finest level).
-pub const LEVELS: std::ops::RangeInclusive<usize> = 3..=6;
+pub(crate) const LEVELS: std::ops::RangeInclusive<usize> = 3..=6;
 
 /// Levels when none are asked for: the fewest for which the least-squares
 /// estimator of a three-parameter fit has a degree of freedom.
 pub const DEFAULT_LEVELS: usize = 4;
 
 /// `levels` if within [`LEVELS`], else the error naming `--levels`.
-pub fn check_levels(levels: usize) -> Result<usize> {
+pub(crate) fn check_levels(levels: usize) -> Result<usize> {
     crate::study::grid::in_range("--levels", levels, &LEVELS)
 }
 
@@ -72,7 +72,7 @@ pub struct Member {
 
 /// The family's runs, planned: (role, level, level parameter factor, Δt
 /// divisor), diagonal first, coarsest first.
-pub fn plan(levels: usize) -> Vec<(Role, usize, usize, usize)> {
+pub(crate) fn plan(levels: usize) -> Vec<(Role, usize, usize, usize)> {
     let p = |l: usize| RATIO.pow(l as u32);
     let diagonal = (0..levels).map(|l| (Role::Diagonal, l, p(l), p(l)));
     let space = (1..levels).map(|l| (Role::Space, l, p(l), p(l - 1)));
@@ -80,7 +80,7 @@ pub fn plan(levels: usize) -> Vec<(Role, usize, usize, usize)> {
 }
 
 /// The scenes of the family of `base` with `levels` diagonal levels, in
-/// [`plan`]'s order.
+/// `plan`'s order.
 pub fn scenes(base: &Resolved, levels: usize) -> Result<Vec<Resolved>> {
     let level = Level::of(base);
     let n0 = level.start();

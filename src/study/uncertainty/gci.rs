@@ -42,7 +42,7 @@ pub const FS_CAUTIOUS: f64 = 3.0;
 
 /// How far the observed order may be from the formal one and still count
 /// as the asymptotic range (MODEL §12: "within about ±0.5").
-pub const ORDER_WINDOW: f64 = 0.5;
+pub(crate) const ORDER_WINDOW: f64 = 0.5;
 
 /// The GCI of the finest of two or three solutions.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

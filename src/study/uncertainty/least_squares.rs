@@ -56,16 +56,16 @@ use super::gci::{FS_ASYMPTOTIC, FS_CAUTIOUS};
 
 /// Lowest observed order the paper accepts for δ_RE: below it the fit's
 /// extrapolation is too far from the data to trust.
-pub const LOWEST_ORDER: f64 = 0.5;
+pub(crate) const LOWEST_ORDER: f64 = 0.5;
 
 /// How far above the formal order δ_RE's p may be and still be used (the
 /// paper's 2.1 for a second-order method).
-pub const ORDER_MARGIN: f64 = 0.1;
+pub(crate) const ORDER_MARGIN: f64 = 0.1;
 
 /// The range of p searched for δ_RE: above zero (p → 0 makes h^p the
 /// constant and the fit singular) up to an order no discretization here
 /// reaches; a best p at either end is out of range.
-pub const ORDER_SEARCH: (f64, f64) = (0.05, 10.0);
+pub(crate) const ORDER_SEARCH: (f64, f64) = (0.05, 10.0);
 
 /// Points of the first, logarithmic scan of p (then golden section).
 const ORDER_SCAN: usize = 400;
@@ -142,11 +142,11 @@ impl Fit {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum OrderRange {
-    /// [`LOWEST_ORDER`] ≤ p < p_th + [`ORDER_MARGIN`].
+    /// `LOWEST_ORDER` ≤ p < p_th + `ORDER_MARGIN`.
     InRange,
-    /// Below [`LOWEST_ORDER`].
+    /// Below `LOWEST_ORDER`.
     Below,
-    /// At or above p_th + [`ORDER_MARGIN`].
+    /// At or above p_th + `ORDER_MARGIN`.
     Above,
 }
 

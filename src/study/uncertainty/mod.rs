@@ -38,13 +38,15 @@ use crate::study::cost::{Estimate, run_dof_steps};
 use crate::study::level::Level;
 use crate::study::tolerance::MAX_STEP_ORDER;
 
-pub use assess::{Assessment, Estimator, Inputs, assess};
-pub use family::{DEFAULT_LEVELS, LEVELS, Member, RATIO, Role, check_levels};
-pub use gci::{FS_ASYMPTOTIC, FS_CAUTIOUS, Gci, ORDER_WINDOW};
-pub use order::{
-    Behaviour, behaviour, convergence_ratio, fitted_order, observed_order, richardson_error,
-};
-pub use quantity::{QUANTITIES, QuantitySpec};
+pub(crate) use assess::assess;
+pub use assess::{Assessment, Estimator, Inputs};
+pub(crate) use family::check_levels;
+pub use family::{DEFAULT_LEVELS, Member, RATIO, Role};
+pub use gci::{FS_ASYMPTOTIC, FS_CAUTIOUS, Gci};
+pub(crate) use order::richardson_error;
+pub use order::{Behaviour, behaviour, fitted_order, observed_order};
+pub(crate) use quantity::QUANTITIES;
+pub use quantity::QuantitySpec;
 
 /// One quantity's row: what it is and its assessment.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -80,9 +82,9 @@ pub struct Uncertainty {
     pub level_symbol: &'static str,
     /// Diagonal levels K.
     pub levels: usize,
-    /// The runs, in [`family::plan`]'s order (the diagonal, then the split).
+    /// The runs, in `family::plan`'s order (the diagonal, then the split).
     pub family: Vec<Member>,
-    /// One row a quantity, in [`QUANTITIES`]' order (uplift only with
+    /// One row a quantity, in `QUANTITIES`' order (uplift only with
     /// `[output] supports`).
     pub quantities: Vec<QuantityUncertainty>,
     /// Things the numbers do not say by themselves.

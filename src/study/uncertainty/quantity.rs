@@ -77,7 +77,7 @@ const fn q(measure: Measure, smooth: bool, kind: Kind) -> QuantitySpec {
 }
 
 /// The quantities, in table order.
-pub const QUANTITIES: [QuantitySpec; 16] = [
+pub(crate) const QUANTITIES: [QuantitySpec; 16] = [
     q(
         Measure::Scalar(Scalar::LossFractionSpan),
         false,
@@ -127,11 +127,6 @@ pub const QUANTITIES: [QuantitySpec; 16] = [
 /// The quantity called `name`.
 pub fn quantity(name: &str) -> Option<QuantitySpec> {
     QUANTITIES.into_iter().find(|q| q.name == name)
-}
-
-/// The names of [`QUANTITIES`], comma-separated (for messages).
-pub fn quantity_names() -> String {
-    QUANTITIES.map(|q| q.name).join(", ")
 }
 
 impl QuantitySpec {
@@ -200,7 +195,7 @@ pub fn peak(w: &[f64], sign: f64) -> Option<f64> {
 
 /// The value of every quantity in `out`, in [`QUANTITIES`]' order (the
 /// 0–20 Hz force filtered once).
-pub fn all_values(out: &RunOutput) -> Vec<Option<f64>> {
+pub(crate) fn all_values(out: &RunOutput) -> Vec<Option<f64>> {
     let scalars: Vec<Scalar> = QUANTITIES
         .iter()
         .filter_map(|q| match q.measure {
