@@ -139,6 +139,17 @@ impl Chain {
     /// (K' is K without the head's row and column: positive definite since
     /// k₁ … k_{n−1} > 0).
     pub fn new(p: &ChainProps, s: f64, g: f64) -> Self {
+        Self::loaded(p, s, g, &[0.0; MAX_CHAIN])
+    }
+
+    /// [`Chain::new`] with the static forces `extra` (N, in z: toward the
+    /// wire) on the masses besides F₀ on `p.uplift_mass` (docs/lines.md
+    /// P5: a time-dependent uplift's and external force's values at
+    /// t = 0, `chain_load.rs`): `K' ζ' = F_u e_a + extra' − s g m'` and
+    /// λ₀ = k₁ ζ₂ − s m₁ g + extra₁ (+ F_u when the uplift acts on the
+    /// head). Zero `extra` with the uplift on m_n is [`Chain::new`]'s
+    /// arithmetic exactly.
+    pub(crate) fn loaded(p: &ChainProps, s: f64, g: f64, extra: &[f64; MAX_CHAIN]) -> Self {
         let n = p.n;
         let k = chain_matrix(n, p.stiffnesses());
         let c = chain_matrix(n, p.dampings());
@@ -150,9 +161,22 @@ impl Chain {
         for i in 1..n {
             fr[i - 1] = -s * g * m[i];
         }
-        fr[n - 2] += p.uplift;
+        if p.uplift_mass > 0 {
+            fr[p.uplift_mass - 1] += p.uplift;
+        }
+        for i in 1..n {
+            if extra[i] != 0.0 {
+                fr[i - 1] += extra[i];
+            }
+        }
         let zeta = solve(n - 1, &kr, &fr);
-        let static_force = p.stiffnesses[0] * zeta[0] - s * g * m[0];
+        let mut static_force = p.stiffnesses[0] * zeta[0] - s * g * m[0];
+        if p.uplift_mass == 0 {
+            static_force += p.uplift;
+        }
+        if extra[0] != 0.0 {
+            static_force += extra[0];
+        }
         let mut f0 = [0.0; MAX_CHAIN];
         f0[0] = static_force;
         Chain {
@@ -262,6 +286,8 @@ pub(crate) mod tests {
             stiffnesses: [0.0; MAX_CHAIN],
             dampings: [0.0; MAX_CHAIN],
             uplift,
+            uplift_coefficient: 0.0,
+            uplift_mass: m.len() - 1,
         };
         p.masses[..m.len()].copy_from_slice(m);
         p.stiffnesses[..m.len()].copy_from_slice(k);

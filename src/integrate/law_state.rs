@@ -100,7 +100,7 @@ impl LawState {
 }
 
 /// The carriers' force scale, N: the largest of k(δ0 + L) + m g (a
-/// chain's: k₁(δ0 + L) + |λ₀| + F₀ + g Σm) and a moving force F, from
+/// chain's: k₁(δ0 + L) + |λ₀| + F₀ + g Σm + |c_a| V²) and a moving force F, from
 /// which [`LawState::force_bound`] is set.
 fn force_scale(sc: &Resolved) -> f64 {
     let l = sc.beam.length;
@@ -115,9 +115,11 @@ fn force_scale(sc: &Resolved) -> f64 {
             } => match p.chain {
                 Some(ch) => {
                     let static_force = Chain::new(&ch, p.side.sign(), sc.g).static_force;
+                    let v = p.motion.profile.cruise_speed();
                     stiffness * (preload + l)
                         + static_force.abs()
                         + (ch.uplift + ch.total_mass() * sc.g)
+                        + ch.uplift_coefficient.abs() * v * v
                 }
                 None => stiffness * (preload + l) + mass * sc.g,
             },

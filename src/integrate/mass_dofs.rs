@@ -18,6 +18,7 @@ use crate::scene::CarrierKind;
 
 use super::carrier::Carrier;
 use super::chain::Chain;
+use super::chain_load::ChainLoad;
 use super::external_force::ExternalForces;
 
 /// A mass–spring carrier's mass dof: `m q̈ + c q̇ + k q = f0 − λ` (MODEL §2).
@@ -51,6 +52,10 @@ pub(crate) struct MassDofs {
     carrier: Vec<usize>,
     /// External forces on the heads; `None` costs a branch per step.
     external: Option<ExternalForces>,
+    /// The time-dependent forces of the chains that have any
+    /// (`chain_load.rs`: an aerodynamic uplift, a series on a mass), with
+    /// their contact index; empty for constant-uplift chains.
+    chain_loads: Vec<(usize, ChainLoad)>,
 }
 
 impl MassDofs {
@@ -61,6 +66,7 @@ impl MassDofs {
         let mut chains = Vec::new();
         let mut side = Vec::new();
         let mut carrier = Vec::new();
+        let mut chain_loads = Vec::new();
         for (i, c) in carriers.iter().enumerate() {
             let CarrierKind::MassSpring {
                 mass,
@@ -76,7 +82,21 @@ impl MassDofs {
             // static contact force as its f0 (chain.rs: the chain starts at
             // rest in its static state, so at t = 0 only the head's balance
             // with λ differs from it)
-            let chain = c.props.chain.map(|p| Chain::new(&p, c.s, sc.g));
+            // its time-dependent forces (chain_load.rs) enter its static
+            // state at their t = 0 values; a chain without any keeps the
+            // constant uplift's arithmetic
+            let series = sc.external_forces[i].as_ref();
+            let chain = c.props.chain.map(|p| {
+                match ChainLoad::initial_forces(&p, &c.props.motion, series, c.s) {
+                    Some(extra) => {
+                        let ch = Chain::loaded(&p, c.s, sc.g, &extra);
+                        let load = ChainLoad::new(&ch, &p, &c.props.motion, series, c.s);
+                        chain_loads.push((heads.len(), load));
+                        ch
+                    }
+                    None => Chain::new(&p, c.s, sc.g),
+                }
+            });
             let f0 = match &chain {
                 Some(ch) => ch.static_force,
                 None => stiffness * preload - c.s * mass * sc.g,
@@ -100,11 +120,19 @@ impl MassDofs {
             side,
             carrier,
             external: None,
+            chain_loads,
         };
-        if sc.external_forces.iter().any(Option::is_some) {
+        // a chain's series is its ChainLoad's, the single masses' are here
+        let single_series = |j: usize| {
+            let i = dofs.carrier[j];
+            sc.external_forces[i]
+                .as_ref()
+                .filter(|_| dofs.chains[j].is_none())
+        };
+        if (0..nc).any(|j| single_series(j).is_some()) {
             let mut ext = ExternalForces::new(nc);
-            for (j, &i) in dofs.carrier.iter().enumerate() {
-                ext.series[j] = sc.external_forces[i].clone();
+            for j in 0..nc {
+                ext.series[j] = single_series(j).cloned();
             }
             // the initial state's accelerations see the force at t = 0
             for (j, m) in dofs.heads.iter_mut().enumerate() {
@@ -132,11 +160,20 @@ impl MassDofs {
 
     /// Each head's f0 at the load time `t` of a step: its constant force,
     /// plus the external force (`external_force.rs`: `s·F_ext(t)`) and a
-    /// manufactured mass source (MODEL §11) at `t`. Untouched when the run
-    /// has neither (the constant force stands).
+    /// manufactured mass source (MODEL §11) at `t`; a chain's f₀ with its
+    /// time-dependent forces (`chain_load.rs`). Untouched when the run has
+    /// none (the constant force stands).
     pub(crate) fn set_load_time(&mut self, t: f64, source: Option<&Manufactured>) {
+        for (j, load) in &self.chain_loads {
+            if let Some(ch) = &mut self.chains[*j] {
+                load.apply(t, ch, &mut self.heads[*j]);
+            }
+        }
         if let Some(ext) = &self.external {
             for (j, m) in self.heads.iter_mut().enumerate() {
+                if self.chains[j].is_some() {
+                    continue;
+                }
                 let s = source.map_or(0.0, |src| src.mass_source(self.carrier[j], t));
                 m.f0 = self.base[j] + self.side[j] * ext.force(j, t) + s;
             }
@@ -182,6 +219,7 @@ impl MassDofs {
             side: vec![1.0],
             carrier: vec![0],
             external: None,
+            chain_loads: Vec::new(),
         }
     }
 }

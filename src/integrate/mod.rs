@@ -46,6 +46,7 @@ mod bathe;
 mod carrier;
 mod central_difference;
 mod chain;
+mod chain_load;
 #[cfg(test)]
 mod chain_steps;
 mod contact_problem;

@@ -56,16 +56,27 @@ pub struct CarrierSpec {
     /// Its dashpots c₁ … c_n, N·s/m, placed like the springs (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dampings: Option<Vec<f64>>,
-    /// Its static uplift F₀ on m_n, N (≥ 0, default 0).
+    /// Its static uplift F₀, N (≥ 0, default 0), on the mass
+    /// `uplift_mass`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uplift: Option<f64>,
+    /// Its aerodynamic uplift coefficient c_a, N·s²/m² (finite, default 0):
+    /// the uplift is F₀ + c_a·V(t)², V the carrier's speed
+    /// (`scene/pantograph.rs`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uplift_coefficient: Option<f64>,
+    /// The mass the uplift acts on, an index 0 (head) … n − 1 (frame; the
+    /// default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uplift_mass: Option<usize>,
     /// Side of the beam the carrier is on.
     pub side: Side,
     /// Initial position x_m(0), m (0 ≤ start ≤ L).
     pub start: f64,
     /// Speed profile (MODEL §3).
     pub speed: SpeedProfile,
-    /// An external force on the mass, N in +v, piecewise linear in t
+    /// An external force on the mass (a pantograph's: on its mass
+    /// `external_force.mass`), N in +v, piecewise linear in t
     /// (`external_force.rs`; mass–spring carriers only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub external_force: Option<ExternalForceSpec>,

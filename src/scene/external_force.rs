@@ -31,6 +31,10 @@ pub struct ExternalForceSpec {
     pub time: Vec<f64>,
     /// The force at each sample time, N (+v, up; finite).
     pub force: Vec<f64>,
+    /// The mass it acts on: an index into a multi-mass pantograph's
+    /// `masses`, 0 (head, the default) … n − 1; a single mass takes 0 only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<usize>,
 }
 
 /// A checked series: `force` linear between the samples `time`.
@@ -38,12 +42,19 @@ pub struct ExternalForceSpec {
 pub struct ForceSeries {
     time: Vec<f64>,
     force: Vec<f64>,
+    mass: usize,
 }
 
 impl ForceSeries {
     /// Samples of the series.
     pub fn len(&self) -> usize {
         self.time.len()
+    }
+
+    /// The mass it acts on (`external_force.mass`): 0, the head or a single
+    /// mass, … n − 1 of a multi-mass pantograph.
+    pub fn mass(&self) -> usize {
+        self.mass
     }
 
     /// True for a series without samples (never, once checked).
@@ -113,6 +124,7 @@ impl ForceSeries {
         Ok(ForceSeries {
             time: t.clone(),
             force: v.clone(),
+            mass: spec.mass.unwrap_or(0),
         })
     }
 
@@ -143,6 +155,7 @@ mod tests {
         ExternalForceSpec {
             time: time.to_vec(),
             force: force.to_vec(),
+            mass: None,
         }
     }
 

@@ -1,14 +1,21 @@
 //! A multi-mass pantograph carrier (MODEL §10, docs/lines.md P1–P4): two or
 //! three masses in series, the head m₁ in contact with the wire, spring
 //! k_i and dashpot c_i between m_i and m_{i+1}, the last pair (k_n, c_n)
-//! from the frame m_n to the roof, and the static uplift F₀ on m_n — the
-//! lumped pantograph models of this field (EN 50318's reference pantograph
-//! is a three-mass model of this shape).
+//! from the frame m_n to the roof, and the uplift on m_n (or the mass
+//! `uplift_mass`) — the lumped pantograph models of this field (EN 50318's
+//! reference pantograph is a three-mass model of this shape).
+//!
+//! The uplift is `F_u(t) = F₀ + c_a·V(t)²` (docs/lines.md P5): the static
+//! uplift F₀ plus the aerodynamic force of the usual quadratic form, V(t)
+//! the carrier's speed along the wire (its speed profile) and c_a in
+//! N·s²/m². c_a = 0 (the default) is the constant uplift.
 //!
 //! Scene keys on `[[carrier]]`: `masses = [m₁, …]` (head first),
-//! `stiffnesses = [k₁, …]`, `dampings = [c₁, …]` (default all 0) and
-//! `uplift = F₀` (N, default 0). They replace `mass`, `stiffness`,
-//! `damping`, `preload` (and `force`): a scene gives one kind or the other.
+//! `stiffnesses = [k₁, …]`, `dampings = [c₁, …]` (default all 0),
+//! `uplift = F₀` (N, default 0), `uplift_coefficient = c_a` (N·s²/m²,
+//! default 0) and `uplift_mass` (0 = head … n − 1 = frame, default n − 1).
+//! They replace `mass`, `stiffness`, `damping`, `preload` (and `force`): a
+//! scene gives one kind or the other.
 
 use super::carrier::CarrierSpec;
 use crate::error::{Error, Result};
@@ -28,8 +35,14 @@ pub struct ChainProps {
     pub stiffnesses: [f64; MAX_CHAIN],
     /// c₁ … c_n, N·s/m (≥ 0), placed like the springs.
     pub dampings: [f64; MAX_CHAIN],
-    /// Static uplift F₀ on m_n, N (≥ 0), pushing it toward the wire.
+    /// Static uplift F₀, N (≥ 0), on the mass `uplift_mass`, pushing it
+    /// toward the wire.
     pub uplift: f64,
+    /// Aerodynamic uplift coefficient c_a, N·s²/m²: the uplift is
+    /// F₀ + c_a·V(t)² (module docs); 0 for a constant uplift.
+    pub uplift_coefficient: f64,
+    /// The mass the uplift acts on: 0 (head) … n − 1 (frame).
+    pub uplift_mass: usize,
 }
 
 impl ChainProps {
@@ -65,6 +78,8 @@ pub(crate) fn resolve_chain(i: usize, c: &CarrierSpec) -> Result<Option<ChainPro
             ("stiffnesses", c.stiffnesses.is_some()),
             ("dampings", c.dampings.is_some()),
             ("uplift", c.uplift.is_some()),
+            ("uplift_coefficient", c.uplift_coefficient.is_some()),
+            ("uplift_mass", c.uplift_mass.is_some()),
         ] {
             if given {
                 return Err(Error::invalid(
@@ -124,6 +139,8 @@ pub(crate) fn resolve_chain(i: usize, c: &CarrierSpec) -> Result<Option<ChainPro
         stiffnesses: [0.0; MAX_CHAIN],
         dampings: [0.0; MAX_CHAIN],
         uplift: 0.0,
+        uplift_coefficient: 0.0,
+        uplift_mass: n - 1,
     };
     for j in 0..n {
         let (m, k, c_j) = (masses[j], stiffnesses[j], dampings[j]);
@@ -168,5 +185,27 @@ pub(crate) fn resolve_chain(i: usize, c: &CarrierSpec) -> Result<Option<ChainPro
         ));
     }
     p.uplift = uplift;
+    let coefficient = c.uplift_coefficient.unwrap_or(0.0);
+    if !coefficient.is_finite() {
+        return Err(Error::invalid(
+            f("uplift_coefficient"),
+            coefficient,
+            "must be a finite number (N·s²/m²): the aerodynamic uplift is c·V²",
+        ));
+    }
+    p.uplift_coefficient = coefficient;
+    if let Some(a) = c.uplift_mass {
+        if a >= n {
+            return Err(Error::invalid(
+                f("uplift_mass"),
+                a,
+                format!(
+                    "must be a mass index 0 (head) ..= {} (frame) of the {n} `masses`",
+                    n - 1
+                ),
+            ));
+        }
+        p.uplift_mass = a;
+    }
     Ok(Some(p))
 }

@@ -566,11 +566,21 @@ impl Scene {
                         "is for mass–spring carriers only: a moving force has no mass to act on; vary its `force` instead",
                     ));
                 }
-                if p.chain.is_some() {
+                // the mass it acts on: any of a pantograph's, a single one's only
+                let n = p.chain.map_or(1, |ch| ch.n);
+                if let Some(mass) = spec.mass.filter(|&m| m >= n) {
+                    let allowed = if n == 1 {
+                        "must be 0 (or absent): a single mass–spring carrier has one mass".to_string()
+                    } else {
+                        format!(
+                            "must be a mass index 0 (head) ..= {} (frame) of the {n} `masses`",
+                            n - 1
+                        )
+                    };
                     return Err(Error::invalid(
-                        format!("carrier.{i}.external_force"),
-                        "a series on a multi-mass pantograph (carrier.masses)",
-                        "is for single mass–spring carriers only: a pantograph chain's masses are stepped by its own scheme (chain.rs), which does not read the series yet; change `uplift` instead",
+                        format!("carrier.{i}.external_force.mass"),
+                        mass,
+                        allowed,
                     ));
                 }
                 ForceSeries::new(i, spec, t_end).map(Some)
