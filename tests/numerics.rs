@@ -56,6 +56,8 @@ mod mms_two_wires;
 mod modal_exact;
 #[path = "pantograph_chain.rs"]
 mod pantograph_chain;
+#[path = "pantograph_uplift.rs"]
+mod pantograph_uplift;
 #[path = "properties.rs"]
 mod properties;
 #[path = "static_start.rs"]
