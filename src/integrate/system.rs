@@ -95,6 +95,10 @@ pub struct System {
     /// External forces on the mass dofs (`external_force.rs`); `None`
     /// costs a branch per step.
     external: Option<ExternalForces>,
+    /// True when the velocity-level law takes the gap's increment over the
+    /// step as its rate ([`System::set_increment_rates`]: central
+    /// difference); false for the convective rate at t_{n+1}.
+    increment_rates: bool,
 }
 
 /// Consistent initial accelerations (MODEL §5), for the methods that need them.
@@ -223,6 +227,7 @@ impl System {
             damping,
             source,
             external,
+            increment_rates: false,
             t_force: 0.0,
             dt: sc.dt,
             placement: sc.contact.placement,
@@ -433,6 +438,23 @@ impl System {
         if m == Multipliers::Impulses {
             self.law.make_velocity(&self.contact, self.masses.len());
         }
+    }
+
+    /// Make a velocity-level law (`contact.formulation = "impact"`) take
+    /// the gap's increment over the step as the gap rate,
+    /// ġ_{n+1/2} = (g_{n+1} − g_n)/Δt (`contact_problem.rs`,
+    /// [`ProblemBuilder::increment`]): for a method whose displacement
+    /// advances by its own half-step velocity, d_{n+1} = d_n + Δt v_{n+1/2}
+    /// (central difference), that is the rate its velocity gives the gap,
+    /// exactly, with the carrier's motion between t_n and t_{n+1} in it.
+    /// The convective rate at t_{n+1} read with v_{n+1/2} is off by
+    /// O(Δt)·V(2w_xt + V w_xx): the position gap then drifts at that rate,
+    /// and where it drifts open the contact leaves Moreau's index set and
+    /// comes back with an impact (docs/verification.md, "Central difference
+    /// with the impact law"). A force-level law ignores it (called once,
+    /// before the run).
+    pub fn set_increment_rates(&mut self) {
+        self.increment_rates = true;
     }
 
     /// How the multipliers are read.
@@ -656,9 +678,19 @@ impl System {
         let solved = match &mut self.law {
             RunLaw::Velocity(law) => {
                 debug_assert_eq!(lanes, Lanes::ONE, "the velocity level steps alone");
-                problem.velocity(&self.carriers, map, st);
+                if self.increment_rates {
+                    problem.position(&self.carriers, self.placement, map, lanes);
+                    problem.increment(&self.carriers, st, self.dt);
+                } else {
+                    problem.velocity(&self.carriers, map, st);
+                }
                 let (g, rate, w_v) = (&problem.g_free, &problem.rate_free, &problem.w_v);
-                law.solve(g, rate, w_v, &mut self.lambda, &mut self.active)
+                let solved = law.solve(g, rate, w_v, &mut self.lambda, &mut self.active);
+                if self.increment_rates {
+                    // ġ_{n+1/2} = ġ_free + W_v λ, the next step's restitution memory
+                    problem.rates_after(&self.lambda, law.gap_rates_mut());
+                }
+                solved
             }
             RunLaw::Force(law) => {
                 problem.position(&self.carriers, self.placement, map, lanes);
@@ -795,6 +827,10 @@ impl System {
         let RunLaw::Velocity(law) = &mut self.law else {
             return;
         };
+        if self.increment_rates {
+            // the solve kept the increments' rates
+            return;
+        }
         let rates = law.gap_rates_mut();
         for c in &self.carriers {
             let Some(j) = c.contact else { continue };
