@@ -28,6 +28,7 @@ pub mod analytic;
 pub mod app;
 pub mod budget;
 pub mod contact;
+pub(crate) mod defects;
 pub mod error;
 pub mod input;
 pub mod integrate;

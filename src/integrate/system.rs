@@ -168,10 +168,12 @@ impl System {
                         nc += 1;
                         force_scale =
                             force_scale.max(stiffness * (preload + sc.beam.length) + mass * sc.g);
+                        // a deliberate defect of the test build (`crate::defects`)
+                        let half = crate::defects::on(crate::defects::Defect::HalfDashpot);
                         masses.push(MassDof {
                             m: mass,
                             k: stiffness,
-                            c: damping,
+                            c: if half { 0.5 * damping } else { damping },
                             f0: stiffness * preload - s * mass * sc.g,
                         });
                         Some(nc - 1)
@@ -468,6 +470,15 @@ impl System {
     /// and backward Euler 0), or ½ for impulses (P/Δt is the step's mean
     /// force). A reference force is compared at `t − lag·Δt`.
     pub fn force_lag(&self, t: f64) -> f64 {
+        // a deliberate defect of the test build (`crate::defects`)
+        if crate::defects::on(crate::defects::Defect::SamplingLag) {
+            return 0.5 + self.force_lag_of(t);
+        }
+        self.force_lag_of(t)
+    }
+
+    /// [`System::force_lag`] itself.
+    fn force_lag_of(&self, t: f64) -> f64 {
         match self.multipliers {
             Multipliers::Impulses => 0.5,
             Multipliers::Held => 1.0,
@@ -480,6 +491,18 @@ impl System {
     pub fn place(&mut self, t_load: f64, t_force: f64, t_gap: f64) {
         let velocity = self.law.level() == Level::Velocity;
         self.t_force = t_force;
+        // deliberate defects of the test build (`crate::defects`)
+        use crate::defects::{Defect, on};
+        let t_force = if on(Defect::ForceBehind) {
+            t_force - self.dt
+        } else {
+            t_force
+        };
+        let t_load = if on(Defect::SourceLate) && self.source.is_some() {
+            t_load + 0.5 * self.dt
+        } else {
+            t_load
+        };
         if let Some(src) = &mut self.source {
             // a manufactured source: its loads at t_load (MODEL §11)
             src.t_load = t_load;
