@@ -383,13 +383,15 @@ fn a_modal_basis_of_the_two_line_model_carries_the_messenger() {
 #[test]
 fn the_two_line_modal_j_ladder_follows_its_modal_tail() {
     let case = common::verify_case("mms_two_wires");
-    let sel = selection(
-        Some("generalized_alpha"),
-        Some("modal"),
-        Some("lagrange"),
-        false,
-    )
-    .unwrap();
+    // the scene's generalized-α alone (a selection by name brings its ρ∞ sets)
+    let sel = taut::study::verify::Selection {
+        methods: vec![
+            &taut::scene::Method::GeneralizedAlpha as &dyn taut::integrate::MethodFactory,
+        ],
+        spaces: vec![taut::study::verify::case::Space::Modal],
+        formulations: vec![taut::scene::Formulation::Lagrange],
+        quick: false,
+    };
     let rows = verify(&case, &sel, &|_, _| {}).unwrap();
     let j = rows
         .iter()
