@@ -203,7 +203,9 @@ pub enum Expect {
     },
     /// `inner`, except that a ladder whose error stops falling at some
     /// level (a pair's order below [`super::STALL_ORDER`], or a run stopped on an
-    /// instability) gets the verdict
+    /// instability) or whose contact chatters (with no prescribed loss, the
+    /// runs lose contact at every level, more often at each finer one) gets
+    /// the verdict
     /// `diverges` with `why`: a method whose moving contact's constraint
     /// oscillation is undamped (Newmark) diverges where a run excites it
     /// and converges at its order where none does — both are judged.
