@@ -187,12 +187,14 @@ pub fn oscillator_order(method: &dyn MethodFactory) -> Result<f64> {
                 .fold(0.0, f64::max);
         errors.push(err);
     }
-    Ok(taut::study::grid::observed_order(errors[0], errors[1], 2.0))
+    Ok(taut::study::uncertainty::observed_order(
+        errors[0], errors[1], 2.0,
+    ))
 }
 
 #[allow(dead_code)]
 fn main() -> Result<()> {
-    use taut::study::converge::{Refine, converge_methods};
+    use taut::study::converge::{Ladder, Refine, converge_methods};
     let out = std::path::Path::new("out/custom_method");
     // from here on "backward_euler" is a method name like the built-in ones
     register()?;
@@ -231,9 +233,11 @@ fn main() -> Result<()> {
         moving_force,
         &[],
         &methods,
-        Refine::Step,
-        4,
-        2.0,
+        Ladder {
+            refine: Refine::Step,
+            levels: 4,
+            ratio: 2.0,
+        },
         &taut::study::reference::analytic_w,
         &mut |_, _| {},
     )?;
@@ -264,7 +268,9 @@ fn main() -> Result<()> {
     let run = taut::run(&sc, &mut |_, _| {})?;
     println!(
         "{:18} reference case to t = {} s: largest contact force {:.2} N (the scene names it)",
-        sc.integrator.method, sc.t_end, run.stats[0].force.max
+        sc.method.name(),
+        sc.t_end,
+        run.stats[0].force.max
     );
 
     // side by side on the study's reference case, as `taut compare

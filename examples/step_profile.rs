@@ -71,7 +71,7 @@ fn main() {
     // the matrices of the reference scene; A as the integrator forms it
     let beam = BeamModel::new(&sc.beam, sc.elements);
     let n = beam.n;
-    let taut::scene::Scheme::GenAlpha(ga) = sc.scheme else {
+    let taut::scene::Scheme::GenAlpha(ga) = sc.method.scheme else {
         unreachable!("the reference scene runs generalized-α")
     };
     let c_k = (1.0 - ga.alpha_f) * ga.beta * sc.dt * sc.dt;

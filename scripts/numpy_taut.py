@@ -4,7 +4,7 @@
 What this is
 ------------
 A straightforward numpy/scipy implementation of the discrete method taut uses
-(the project's physics contract MODEL.md, "MODEL" below), run on the same
+(the project's physics contract docs/model.md, "MODEL" below), run on the same
 scene and mesh as the taut binary, in one run of this script on one machine.
 It
 

@@ -62,8 +62,9 @@ pub fn reserve(bytes: u64) -> Reservation {
     Reservation { bytes }
 }
 
-/// Bytes reserved now (for tests and reports).
-pub fn held() -> u64 {
+/// Bytes reserved now (the tests' view of the budget).
+#[cfg(test)]
+fn held() -> u64 {
     *HELD.lock().unwrap_or_else(|p| p.into_inner())
 }
 

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 /// on no higher floor (a contact law's failure with the problem it was
 /// given is `contact::ContactFailed`). Its message is the variant's;
 /// [`Error::payload`] gets the typed value back.
-pub type Payload = Box<dyn std::error::Error + Send + Sync>;
+pub(crate) type Payload = Box<dyn std::error::Error + Send + Sync>;
 
 /// Everything that can go wrong in taut.
 #[derive(Debug, thiserror::Error)]
@@ -163,6 +163,60 @@ impl Error {
         }
     }
 
+    /// An input error with its key path made another by `path`: an
+    /// invalid value's field, and a read error's field and the path its
+    /// reason quotes; other errors as they are.
+    pub fn map_field(self, path: impl Fn(&str) -> String) -> Self {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => Error::Invalid {
+                field: path(&field),
+                value,
+                allowed,
+            },
+            Error::Parse {
+                reason,
+                field: Some(field),
+            } => {
+                let to = path(&field);
+                Error::Parse {
+                    reason: reason.replace(&format!("`{field}`"), &format!("`{to}`")),
+                    field: Some(to),
+                }
+            }
+            other => other,
+        }
+    }
+
+    /// An input error (an invalid value, a read error, an override) with
+    /// `more` appended to what it says is allowed or wrong (where it
+    /// happened: a sweep's point, a refined run); other errors as they are.
+    pub fn explained(self, more: &str) -> Self {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => Error::Invalid {
+                field,
+                value,
+                allowed: format!("{allowed}{more}"),
+            },
+            Error::Parse { reason, field } => Error::Parse {
+                reason: format!("{reason}{more}"),
+                field,
+            },
+            Error::Override { spec, reason } => Error::Override {
+                spec,
+                reason: format!("{reason}{more}"),
+            },
+            other => other,
+        }
+    }
+
     /// Shorthand for an [`Error::Parse`] not tied to a key.
     pub fn parse(reason: impl Into<String>) -> Self {
         Error::Parse {
@@ -172,7 +226,7 @@ impl Error {
     }
 
     /// Shorthand for [`Error::Invalid`]. The value is shown as a person
-    /// reads it ([`for_message`]: numbers compact, a huge value clipped),
+    /// reads it (`for_message`: numbers compact, a huge value clipped),
     /// and so are the numbers in `allowed`.
     pub fn invalid(
         field: impl Into<String>,
@@ -187,7 +241,7 @@ impl Error {
     }
 
     /// The typed failure a variant carries from a higher layer
-    /// ([`Payload`]), when it is a `T`: `e.payload::<contact::ContactFailed>()`
+    /// (`Payload`), when it is a `T`: `e.payload::<contact::ContactFailed>()`
     /// gives a failed contact solve's problem back.
     pub fn payload<T: std::error::Error + 'static>(&self) -> Option<&T> {
         match self {
@@ -209,7 +263,7 @@ impl Error {
 /// parser's multi-line report, or a key or value that itself holds a line
 /// break) and other control characters are escaped, so that every error is
 /// one line whatever the input (`taut` prints `error: …` on one line).
-pub fn one_line(text: &str) -> String {
+pub(crate) fn one_line(text: &str) -> String {
     let text = &for_message(text, MAX_MESSAGE_CHARS);
     let mut out = String::with_capacity(text.len());
     for (i, line) in text
@@ -234,15 +288,15 @@ pub fn one_line(text: &str) -> String {
 
 /// Most characters of a value shown in a message: enough for any number,
 /// path or key; a 10 MB string value is shown by its start and its length.
-pub const MAX_VALUE_CHARS: usize = 200;
+pub(crate) const MAX_VALUE_CHARS: usize = 200;
 
 /// Most characters of a field name (a key path) shown in a message.
-pub const MAX_FIELD_CHARS: usize = 200;
+pub(crate) const MAX_FIELD_CHARS: usize = 200;
 
 /// Most characters of any one part of a message (a reason, an allowed
 /// range): the longest real ones (a divergence's likely cause) are under
 /// 1 000.
-pub const MAX_MESSAGE_CHARS: usize = 2000;
+pub(crate) const MAX_MESSAGE_CHARS: usize = 2000;
 
 /// `text` cut to `max` characters, the cut said with the full length.
 pub fn clip(text: &str, max: usize) -> String {
@@ -255,7 +309,7 @@ pub fn clip(text: &str, max: usize) -> String {
 /// Text for a message: every number written with more than 20 characters
 /// (`1e308` as `{}` prints 309 digits, `-1e-300` 302) rewritten compactly
 /// ([`compact_number`]), then [`clip`]ped to `max` characters.
-pub fn for_message(text: &str, max: usize) -> String {
+pub(crate) fn for_message(text: &str, max: usize) -> String {
     /// A number longer than this is rewritten.
     const LONG_NUMBER: usize = 20;
     let mut out = String::with_capacity(text.len().min(max + 64));
@@ -300,7 +354,7 @@ pub fn for_message(text: &str, max: usize) -> String {
 /// round-trip form, plain between 10⁻⁴ and 10¹⁵ (`0.25`, `120`), in
 /// exponent form outside (`1e308`, `-1e-300`, where `{}` would print 300
 /// digits), `NaN`, `inf` and `-inf` as they are.
-pub fn compact_number(v: f64) -> String {
+pub(crate) fn compact_number(v: f64) -> String {
     let a = v.abs();
     if !v.is_finite() || a == 0.0 || (1e-4..1e15).contains(&a) {
         format!("{v}")

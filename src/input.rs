@@ -47,12 +47,62 @@ fn refused(path: &Path, reason: String) -> Error {
     )
 }
 
+/// Refuse a file that is not a regular file (a FIFO, a socket, a device,
+/// a folder), naming what it is.
+fn refuse_special(path: &Path, t: &std::fs::FileType, what: &str) -> Result<()> {
+    if t.is_file() {
+        return Ok(());
+    }
+    let kind = if t.is_dir() {
+        "a folder"
+    } else {
+        special_kind(t)
+    };
+    Err(refused(
+        path,
+        format!(
+            "is {kind}, not a regular file, so not {what} (taut reads regular files only: a pipe or a device may block or never end)"
+        ),
+    ))
+}
+
+/// What a special file is, for a message.
+#[cfg(unix)]
+fn special_kind(t: &std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    if t.is_fifo() {
+        "a FIFO (named pipe)"
+    } else if t.is_socket() {
+        "a socket"
+    } else if t.is_char_device() {
+        "a character device"
+    } else if t.is_block_device() {
+        "a block device"
+    } else {
+        "a special file"
+    }
+}
+
+#[cfg(not(unix))]
+fn special_kind(_: &std::fs::FileType) -> &'static str {
+    "a special file"
+}
+
 /// The text of the file at `path` (`what` names it in errors: "a scene
 /// file", "a gate case"), read at most `limit` bytes: a longer file, a
 /// non-UTF-8 byte or a NUL byte is refused as soon as it is read, naming the
 /// file; nothing past `limit + CHUNK` bytes is ever read.
 pub fn read_text(path: &Path, what: &str, limit: u64) -> Result<String> {
+    // only a regular file: opening a FIFO blocks until something writes
+    // it, and a device may never end or block on its first read (a FIFO
+    // given as a scene, a points file or a run record hung for ever,
+    // issue 41); checked before the file is opened, and again on the
+    // file opened
+    let kind = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    refuse_special(path, &kind.file_type(), what)?;
     let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let opened = file.metadata().map_err(|e| Error::io(path, e))?;
+    refuse_special(path, &opened.file_type(), what)?;
     let mut reader = file.take(limit.saturating_add(1));
     let mut bytes: Vec<u8> = Vec::new();
     let mut chunk = vec![0u8; CHUNK];
@@ -99,7 +149,7 @@ pub fn read_text(path: &Path, what: &str, limit: u64) -> Result<String> {
             }
         }
     }
-    String::from_utf8(bytes).map_err(|e| {
+    let text = String::from_utf8(bytes).map_err(|e| {
         refused(
             path,
             format!(
@@ -107,6 +157,13 @@ pub fn read_text(path: &Path, what: &str, limit: u64) -> Result<String> {
                 e.utf8_error().valid_up_to()
             ),
         )
+    })?;
+    // a byte order mark (what some editors and spreadsheets put first) is
+    // no character of the text: it made the first key of a points file
+    // `\u{feff}carrier.mass` (issue 41)
+    Ok(match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_string(),
+        None => text,
     })
 }
 
@@ -164,12 +221,38 @@ mod tests {
 
     #[cfg(unix)]
     #[test]
-    fn endless_devices_stop_at_the_cap_or_the_first_bad_byte() {
+    fn devices_and_fifos_are_refused_without_reading() {
         for dev in ["/dev/zero", "/dev/urandom"] {
             let e = read_text(Path::new(dev), "a scene file", MAX_INPUT_BYTES)
                 .unwrap_err()
                 .to_string();
-            assert!(e.starts_with(dev), "{e}");
+            assert!(
+                e.starts_with(dev) && e.contains("a character device"),
+                "{e}"
+            );
         }
+        // a FIFO nothing writes: opening it to read would block for ever
+        let tmp = tempfile::tempdir().unwrap();
+        let fifo = tmp.path().join("scene.toml");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let e = read_text(&fifo, "a scene file", MAX_INPUT_BYTES)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("a FIFO (named pipe), not a regular file"), "{e}");
+        }
+        let e = read_text(tmp.path(), "a scene file", MAX_INPUT_BYTES)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("a folder"), "{e}");
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_dropped() {
+        let f = file("\u{feff}[beam]\n".as_bytes());
+        assert_eq!(
+            read_text(f.path(), "a scene file", 1 << 20).unwrap(),
+            "[beam]\n"
+        );
     }
 }

@@ -1,8 +1,8 @@
 //! # taut
 //!
 //! A verification-first testbed for the dynamic contact between a tensioned
-//! beam and a moving mass–spring. The physics contract is MODEL.md (in the
-//! project's shared spec, summarized in `docs/model.md`):
+//! beam and a moving mass–spring. The physics contract is `docs/model.md`
+//! (cited as MODEL §N):
 //!
 //! * §1 the continuum `ρA v_tt + EI v_xxxx − T v_xx = p + λ δ(x − x_m)`;
 //! * §2 the carrier `m q_tt + c_s q_t + k q = k δ0 − s m g − λ` and the gap
@@ -17,34 +17,37 @@
 //! The flow of a run: [`scene`] (parsed, plain data) → [`resolve`]
 //! (checked against the model: a [`Resolved`]) → [`integrate::Integrator`]
 //! → [`record::History`] → [`report`] (CSV / JSON / SVG). The layers and
-//! what each may import: `docs/architecture.md`. Above them all,
-//! [`pipelines`]: the programs that generate the measured pages of `docs/`.
+//! what each may import: `docs/architecture.md`. The `taut` command line
+//! (crate `taut-cli`), the Python module (`taut-python`) and the programs
+//! that regenerate `docs/` (`xtask`) are crates of their own over this one.
 
 // Numerical kernels index several arrays in lockstep (A[i][k], x[i − k], …);
 // index loops say that more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
+// every public item says what it is (docs/api.md lists the surface)
+#![warn(missing_docs)]
 
 pub mod analytic;
 pub mod app;
-pub mod budget;
+pub(crate) mod budget;
 pub mod contact;
 pub(crate) mod defects;
 pub mod error;
-pub mod input;
+pub(crate) mod input;
 pub mod integrate;
 pub mod interrupt;
-pub mod json_keys;
-pub mod manufactured;
+pub(crate) mod json_keys;
+pub(crate) mod manufactured;
 pub mod model;
-pub mod numeric;
-pub mod pipelines;
+pub(crate) mod numeric;
+
 pub mod record;
 pub mod report;
 pub mod resolve;
 pub mod run;
 pub mod scene;
 pub mod study;
-pub mod warnings;
+pub(crate) mod warnings;
 
 /// The library's version (`taut --version`).
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -53,3 +56,9 @@ pub use error::{Error, Result};
 pub use resolve::{Resolved, load_scene, resolve_scene};
 pub use run::{RunOutput, run, run_batch, run_with};
 pub use scene::Scene;
+
+// docs/api.md's examples, one per entry point, run as doc tests
+// (`cargo test --doc -p taut`)
+#[cfg(doctest)]
+#[doc = include_str!("../docs/api.md")]
+struct ApiDocTests;

@@ -7,12 +7,13 @@ use serde::Serialize;
 use crate::error::Error;
 use crate::error::Result;
 use crate::integrate::{
-    CarrierSample, Integrator, MAX_LANES, MethodFactory, RunBatch, batch_key, lanes_cap, new_batch,
-    scene_method,
+    CarrierSample, Integrator, Lane, MAX_LANES, MethodFactory, RunBatch, batch_key, lanes_cap,
+    new_batch, scene_method,
 };
 use crate::record::{
     ContactAccumulator, ContactStats, DropperAccumulator, DropperSample, DropperStats, Envelope,
-    History, LossGeometry, SpanAccumulator, SpanStats, SupportUplift, WireSeries, span_of,
+    History, LossGeometry, Section, SectionCount, SpanAccumulator, SpanStats, StandardStats,
+    SupportUplift, WireSeries, span_of, standard_stats,
 };
 use crate::resolve::Resolved;
 
@@ -29,6 +30,9 @@ pub struct RunOutput {
     /// carrier by carrier, span by span; empty without supports. The
     /// filtered force's are left `None` (the summary fills them).
     pub spans: Vec<SpanStats>,
+    /// Each carrier's standard statistics over the analysis section
+    /// (`[analysis]`; `standard.csv`), in scene order.
+    pub standard: Vec<StandardStats>,
     /// Number of unknowns (beam dofs + mass dofs).
     pub dofs: usize,
     /// Steps taken.
@@ -49,7 +53,7 @@ pub struct RunOutput {
 /// A contact that opens or closes on more than this fraction of the steps is
 /// chattering: physical loss/reattachment events are separated by many steps,
 /// a step-to-step on/off pattern is a numerical oscillation (MODEL §5).
-pub const CHATTER_FRACTION: f64 = 0.05;
+pub(crate) const CHATTER_FRACTION: f64 = 0.05;
 
 /// How a run ended: the status a study keeps beside each run it lists
 /// (a row, or a combination that gave none), so that a table can say
@@ -149,15 +153,7 @@ impl SteppedRun {
     /// record row 0. `start` is when the run's wall time starts.
     pub fn new(sc: &Resolved, it: Integrator, start: Instant) -> Result<Self> {
         let mut rec = Recorder::new(sc, it.beam(), it.carriers());
-        rec.observe(
-            it.time(),
-            true,
-            true,
-            |c| it.sample(c),
-            |s, c| it.check(s, c),
-            |x| it.near_support(x),
-            |pv| it.displacement_at(pv),
-        )?;
+        rec.observe(it.time(), true, true, &it)?;
         rec.observe_droppers(it.time(), true, |out| it.dropper_samples_into(out));
         rec.observe_wire(0, it.time(), |pv| it.displacement_at(pv));
         Ok(SteppedRun { it, rec, start })
@@ -178,15 +174,7 @@ impl SteppedRun {
         let n = it.steps_taken();
         let it = &self.it;
         let keep = self.rec.keeps(n, sc.steps);
-        self.rec.observe(
-            it.time(),
-            keep,
-            false,
-            |c| it.sample(c),
-            |s, c| it.check(s, c),
-            |x| it.near_support(x),
-            |pv| it.displacement_at(pv),
-        )?;
+        self.rec.observe(it.time(), keep, false, it)?;
         self.rec
             .observe_droppers(it.time(), keep, |out| it.dropper_samples_into(out));
         self.rec
@@ -263,6 +251,9 @@ struct Recorder {
     /// its statistics over each span between them (empty without).
     supports: Vec<f64>,
     spans: Vec<Vec<SpanAccumulator>>,
+    /// Per carrier, its steps in the analysis section (`[analysis]`).
+    section: [f64; 2],
+    in_section: Vec<SectionCount>,
 }
 
 /// What [`Recorder`] records of the wire along the span
@@ -293,6 +284,13 @@ impl WireRecorder {
             h.field = WireSeries::with_capacity(w.field_x.clone(), w.field_rows(sc.steps));
         }
         h.supports = w.supports.iter().map(|&x| SupportUplift::new(x)).collect();
+        for (s, v) in h
+            .supports
+            .iter_mut()
+            .zip(static_positions(beam, &w.supports))
+        {
+            s.v_static = v;
+        }
         if !w.envelope_x.is_empty() {
             h.envelope = Envelope::new(w.envelope_x.clone());
         }
@@ -358,6 +356,26 @@ impl WireRecorder {
     }
 }
 
+/// The wire's static position v_static(x) at each of `xs` (m): K d = f
+/// with f the model's constant loads (self-weight, the droppers' preloads)
+/// and every dropper's spring in K, no carrier (what the standards
+/// measure uplift from; `record::SupportUplift`). One banded factor,
+/// made only when there are points; `None` where K is singular (a wire
+/// not held against rigid motion).
+fn static_positions(beam: &crate::model::beam::BeamModel, xs: &[f64]) -> Vec<Option<f64>> {
+    if xs.is_empty() {
+        return Vec::new();
+    }
+    let Ok(factor) = crate::model::banded::BandedLdlt::factor(&beam.stiffness) else {
+        return vec![None; xs.len()];
+    };
+    let mut d = beam.load.clone();
+    factor.solve(&mut d);
+    xs.iter()
+        .map(|&x| Some(beam.point_vector(x).dot(&d)).filter(|v| v.is_finite()))
+        .collect()
+}
+
 /// Append one row of v at the point vectors `pvs`.
 fn record_row(
     s: &mut WireSeries,
@@ -373,10 +391,69 @@ fn record_row(
     }
 }
 
+/// What a recorder reads of a run after a step: an integrator alone, or
+/// one lane of a batch ([`LaneView`]).
+trait Observed {
+    /// Carrier `c`'s values now.
+    fn sample(&self, c: usize) -> CarrierSample;
+    /// Stop with a diagnosis if carrier `c`'s values `s` are absurd.
+    fn check(&self, s: &CarrierSample, c: usize) -> Result<()>;
+    /// True when x lies in the last element before a supported end.
+    fn near_support(&self, x: f64) -> bool;
+    /// rᵀd of the run's beam displacements.
+    fn displacement(&self, pv: &crate::model::beam::PointVector) -> f64;
+}
+
+impl Observed for Integrator {
+    fn sample(&self, c: usize) -> CarrierSample {
+        Integrator::sample(self, c)
+    }
+
+    fn check(&self, s: &CarrierSample, c: usize) -> Result<()> {
+        Integrator::check(self, s, c)
+    }
+
+    fn near_support(&self, x: f64) -> bool {
+        Integrator::near_support(self, x)
+    }
+
+    fn displacement(&self, pv: &crate::model::beam::PointVector) -> f64 {
+        self.displacement_at(pv)
+    }
+}
+
+/// Lane `l` of a batch `batch` (its `lane`, whose method notes `note`), as
+/// a recorder reads it.
+struct LaneView<'a> {
+    batch: &'a dyn RunBatch,
+    l: usize,
+    lane: &'a Lane,
+    note: Option<&'a str>,
+}
+
+impl Observed for LaneView<'_> {
+    fn sample(&self, c: usize) -> CarrierSample {
+        self.batch.sample(self.l, c)
+    }
+
+    fn check(&self, s: &CarrierSample, c: usize) -> Result<()> {
+        crate::integrate::check_lane(&self.lane.sys, &self.lane.st, s, c, self.note)
+    }
+
+    fn near_support(&self, x: f64) -> bool {
+        crate::integrate::near_support_lane(&self.lane.sys, x)
+    }
+
+    fn displacement(&self, pv: &crate::model::beam::PointVector) -> f64 {
+        self.batch.displacement_at(self.l, pv)
+    }
+}
+
 impl Recorder {
     fn new(sc: &Resolved, beam: &crate::model::beam::BeamModel, nc: usize) -> Self {
         let every = sc.record_every.max(1);
         let mut h = History::with_capacity(sc.history_rows(), every, nc, &sc.probes);
+        h.filter_band_hz = sc.analysis.band_hz;
         h.droppers = sc
             .droppers
             .iter()
@@ -402,6 +479,8 @@ impl Recorder {
                 .map(|c| ContactAccumulator::for_steps(LossGeometry::of(sc, c), sc.steps))
                 .collect(),
             support_peak: vec![0.0f64; nc],
+            section: sc.analysis.x,
+            in_section: vec![SectionCount::default(); nc],
             probes: (0..sc.probes.len())
                 .map(|i| sc.probe_vector(beam, i))
                 .collect(),
@@ -424,30 +503,25 @@ impl Recorder {
         n.is_multiple_of(self.every) || n == steps
     }
 
-    /// Record the state at time t (checking every carrier's values).
-    #[allow(clippy::too_many_arguments)]
-    fn observe(
-        &mut self,
-        t: f64,
-        keep: bool,
-        first: bool,
-        sample: impl Fn(usize) -> CarrierSample,
-        check: impl Fn(&CarrierSample, usize) -> Result<()>,
-        near_support: impl Fn(f64) -> bool,
-        displacement: impl Fn(&crate::model::beam::PointVector) -> f64,
-    ) -> Result<()> {
+    /// Record the state of `run` at time t (checking every carrier's
+    /// values); `keep`: the row goes into the history, `first`: it is
+    /// row 0 (t = 0).
+    fn observe(&mut self, t: f64, keep: bool, first: bool, run: &impl Observed) -> Result<()> {
         if keep {
             self.h.t.push(t);
         }
         for c in 0..self.acc.len() {
-            let s = sample(c);
-            check(&s, c)?;
+            let s = run.sample(c);
+            run.check(&s, c)?;
             self.acc[c].push(t, &s);
-            if !first && near_support(s.x) {
+            if !first && run.near_support(s.x) {
                 self.support_peak[c] = self.support_peak[c].max(s.force.abs());
             }
             if !first && let Some(k) = span_of(&self.supports, s.x) {
                 self.spans[c][k].push(s.force, s.in_contact);
+            }
+            if !first {
+                self.in_section[c].push(self.section, s.x, s.in_contact);
             }
             if keep {
                 self.h.carriers[c].push(&s);
@@ -455,7 +529,7 @@ impl Recorder {
         }
         if keep {
             for (pv, (_, col)) in self.probes.iter().zip(self.h.probes.iter_mut()) {
-                col.push(displacement(pv));
+                col.push(run.displacement(pv));
             }
         }
         Ok(())
@@ -483,7 +557,27 @@ impl Recorder {
     }
 
     /// Statistics and warnings of the finished run.
-    fn finish(self, sc: &Resolved, f: Finish) -> RunOutput {
+    fn finish(mut self, sc: &Resolved, f: Finish) -> RunOutput {
+        self.h.filter_forces(sc.dt);
+        for s in &mut self.h.supports {
+            let v = s.v_static;
+            s.set_static(v);
+        }
+        let standard = self
+            .h
+            .carriers
+            .iter()
+            .zip(&self.in_section)
+            .enumerate()
+            .map(|(c, (tr, &count))| {
+                let sec = Section {
+                    x: sc.analysis.x,
+                    band_hz: sc.analysis.band_hz,
+                    speed: sc.carriers[c].motion.profile.cruise_speed(),
+                };
+                standard_stats(c, sec, tr, count, &self.h.supports)
+            })
+            .collect();
         let max_abs_w: Vec<f64> = self.acc.iter().map(ContactAccumulator::max_abs_w).collect();
         let stats = self
             .acc
@@ -525,6 +619,7 @@ impl Recorder {
                 .map(SpanAccumulator::finish)
                 .collect(),
             force_lag: f.force_lag,
+            standard,
             warnings,
             dofs: f.dofs,
             steps: f.steps,
@@ -591,7 +686,7 @@ pub fn run_batch(
 /// scene's own ([`MethodFactory::is_scene_method`]) through [`run_batch`]
 /// (batches of at most `batch`), the others alone with [`run_with`].
 /// Results in order, each the same as its run alone.
-pub fn run_many(
+pub(crate) fn run_many(
     jobs: &[(Resolved, &dyn MethodFactory)],
     batch: usize,
     done: &mut dyn FnMut(usize),
@@ -646,7 +741,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
     let mut notes: Vec<Option<String>> = vec![None; scenes.len()];
     for &i in members {
         let sc = &scenes[i];
-        notes[i] = scene_method(sc).ok().and_then(|m| m.constraint_note(sc));
+        notes[i] = scene_method(sc).constraint_note(sc);
     }
     let mut recs: Vec<Option<Recorder>> = b
         .lanes()
@@ -655,7 +750,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
             Some(Recorder::new(
                 &scenes[lane.id],
                 lane.sys.beam(),
-                lane.sys.carriers.len(),
+                lane.sys.physics.carriers.len(),
             ))
         })
         .collect();
@@ -673,18 +768,12 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                         lane.st.t,
                         first || rec.keeps(n, sc.steps),
                         first,
-                        |c| b.sample(l, c),
-                        |s, c| {
-                            crate::integrate::check_lane(
-                                &lane.sys,
-                                &lane.st,
-                                s,
-                                c,
-                                notes[lane.id].as_deref(),
-                            )
+                        &LaneView {
+                            batch: b,
+                            l,
+                            lane,
+                            note: notes[lane.id].as_deref(),
                         },
-                        |x| crate::integrate::near_support_lane(&lane.sys, x),
-                        |pv| b.displacement_at(l, pv),
                     )
                     .map(|()| rec.observe_wire(n, lane.st.t, |pv| b.displacement_at(l, pv)))
                     .map_err(Some),
@@ -715,8 +804,8 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                             wall_seconds: start.elapsed().as_secs_f64() / runs,
                             dofs: lane.sys.beam().n + lane.sys.contacts(),
                             steps: lane.st.step,
-                            force_bound: lane.sys.force_bound,
-                            method: sc.integrator.method.clone(),
+                            force_bound: lane.sys.law.force_bound,
+                            method: sc.method.name().to_string(),
                             damping_note: crate::integrate::damping_note_of(
                                 &lane.sys,
                                 notes[lane.id].as_deref(),

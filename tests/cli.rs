@@ -10,7 +10,7 @@ use common::{crate_root, out_dir, run_fails, taut_bin};
 
 use serde_json::Value;
 
-const HISTORY_HEADER: &str = "t,x_m,beam_w,mass_q,gap,force,in_contact";
+const HISTORY_HEADER: &str = "t,x_m,beam_w,mass_q,gap,force,in_contact,force_filtered";
 
 /// Steps of the reference run: the carrier leaves after 1.2 L / V0 = 0.6 s at Δt = 1e-4 s.
 const REFERENCE_STEPS: u64 = 6000;
@@ -134,7 +134,7 @@ fn reference_run_writes_history_summary_and_plot() {
         rows[0]
     );
     for row in [&rows[0], &rows[rows.len() / 2], rows.last().unwrap()] {
-        assert_eq!(row.split(',').count(), 7, "row {row:?}");
+        assert_eq!(row.split(',').count(), 8, "row {row:?}");
     }
     let t_last: f64 = rows
         .last()
@@ -241,7 +241,7 @@ fn t1_history_has_a_tip_column() {
     let (header, rows) = history(&out);
     assert_eq!(header, format!("{HISTORY_HEADER},tip"));
     assert_eq!(rows.len() as u64, steps + 1);
-    let tip = |row: &str| -> f64 { row.split(',').nth(7).unwrap().parse().unwrap() };
+    let tip = |row: &str| -> f64 { row.split(',').nth(8).unwrap().parse().unwrap() };
     assert_eq!(tip(&rows[0]), 0.0, "the cantilever starts at rest");
     // the 2629 kg mass has reached the tip: the cantilever is bent down
     let last = tip(rows.last().unwrap());
@@ -283,7 +283,12 @@ fn compare_writes_the_table_and_three_files() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next().unwrap(),
-        taut::report::COMPARE_COLUMNS.join(",")
+        [
+            &taut::report::COMPARE_COLUMNS[..],
+            &taut::study::scalars::FILTERED_COLUMNS[..]
+        ]
+        .concat()
+        .join(",")
     );
     let rows: Vec<&str> = lines.collect();
     assert_eq!(rows.len(), 4);

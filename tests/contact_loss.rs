@@ -4,7 +4,7 @@
 //! does not resolve flagged. Reference case (TARGETS: the study's defaults),
 //! generalized-α ρ∞ = 1, Lagrange contact; V0/c = 0.9 (134.92 m/s), where
 //! contact is lost in the span. Cut-down ladders here; the full study is
-//! `cargo run --release --example contact_loss_report`.
+//! `cargo xtask contact-loss`.
 
 use crate::common;
 

@@ -25,7 +25,7 @@ use taut::study::reference::analytic_w;
 const ORDER_TOL: f64 = 0.3;
 
 fn study(scene: &str, refine: Refine, levels: usize, sets: &[&str]) -> Convergence {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .join("scenes")
         .join(scene);
     let text = std::fs::read_to_string(path).unwrap();

@@ -15,7 +15,7 @@
 //! * every time integrator and contact formulation runs on every kind;
 //! * bad input is a clear error naming the field, the value and the range.
 
-use taut::analytic::{MovingForceBeam, RidingMassBeam};
+use taut::analytic::{MovingForceBeam, Rider, RidingMassBeam};
 use taut::run::RunOutput;
 use taut::scene::Side;
 use taut::{Resolved, resolve_scene, run};
@@ -134,18 +134,14 @@ fn galerkin_is_the_moving_force_series_up_to_the_time_error() {
 fn galerkin_riding_mass_agrees_with_the_rk4_solution_in_the_same_modes() {
     let sc = scene(RIDING_MASS, &[]);
     let b = &sc.beam;
-    let r = RidingMassBeam::new(
-        b.ei,
-        b.tension,
-        b.rho_a,
-        b.length,
-        30.0,
-        9.81,
-        Side::Above,
-        0.0,
-        75.0,
-    )
-    .unwrap();
+    let rider = Rider {
+        mass: 30.0,
+        gravity: 9.81,
+        side: Side::Above,
+        start: 0.0,
+        speed: 75.0,
+    };
+    let r = RidingMassBeam::new(b.ei, b.tension, b.rho_a, b.length, rider).unwrap();
     for j in [20usize, 40] {
         let o = go(
             RIDING_MASS,

@@ -278,7 +278,8 @@ fn a_messenger_dropper_s_dashpot_couples_the_lines_and_damps() {
     // a messenger dropper's dashpot is refused where attachment dashpots are
     let e = taut::resolve_scene(
         &std::fs::read_to_string(
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/span_messenger.toml"),
+            std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+                .join("scenes/span_messenger.toml"),
         )
         .unwrap(),
         &[
@@ -354,7 +355,7 @@ fn the_line_generator_puts_the_dashpot_on_every_dropper() {
     // and on the tension-only line (D12)
     let sc = common::scene("line_10_spans.toml", &["line.dropper_damping=5.0"]);
     assert!(sc.droppers.iter().all(|d| d.damping == 5.0 && !d.linear));
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("scenes");
     for (scene, set, parts) in [(
         "line_10_spans_linear.toml",
         "line.dropper_damping=-1.0",

@@ -3,9 +3,11 @@
 //! binary, and the README's commands. Each file below is a module, run with
 //! its name as a filter, e.g. `cargo test --release --test front cli::`.
 //! `no_alloc.rs` (a counting global allocator), `interrupt.rs` (the
-//! process-wide interrupt flag) and `memory_peak.rs` (a child's peak
-//! memory includes its parent's: the parent must stay small) stay binaries
-//! of their own: tests beside them would disturb them or be disturbed.
+//! process-wide interrupt flag), `memory_peak.rs` (a child's peak memory
+//! includes its parent's: the parent must stay small) and
+//! `memory_budget.rs` (a counting allocator of the whole process's bytes)
+//! stay binaries of their own: tests beside them would disturb them or be
+//! disturbed.
 
 /// Shared helpers (one copy for the whole binary).
 mod common;
@@ -14,6 +16,8 @@ mod common;
 mod bad_input;
 #[path = "cli.rs"]
 mod cli;
+#[path = "doc_files.rs"]
+mod doc_files;
 #[path = "gate.rs"]
 mod gate;
 #[path = "hostile_input.rs"]
@@ -30,6 +34,8 @@ mod precision;
 mod readme;
 #[path = "reliability.rs"]
 mod reliability;
+#[path = "reliability_three.rs"]
+mod reliability_three;
 #[path = "simulation.rs"]
 mod simulation;
 #[path = "sweep.rs"]
@@ -38,6 +44,8 @@ mod sweep;
 mod sweep_faults;
 #[path = "sweep_lists.rs"]
 mod sweep_lists;
+#[path = "sweep_tolerance.rs"]
+mod sweep_tolerance;
 #[path = "tolerance.rs"]
 mod tolerance;
 
@@ -46,23 +54,25 @@ mod tolerance;
 /// false` in Cargo.toml).
 #[test]
 fn every_test_file_runs_in_some_binary() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let dir = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("tests");
     let roots = [
         "numerics.rs",
         "front.rs",
         "no_alloc.rs",
         "interrupt.rs",
         "memory_peak.rs",
+        "memory_budget.rs",
     ];
     let mut included = String::new();
     for r in &roots[..2] {
         included += &std::fs::read_to_string(dir.join(r)).expect("a group file reads");
     }
-    let manifest = std::fs::read_to_string(dir.join("../Cargo.toml")).expect("Cargo.toml reads");
+    let manifest =
+        std::fs::read_to_string(dir.join("../cli/Cargo.toml")).expect("cli/Cargo.toml reads");
     for r in roots {
         assert!(
-            manifest.contains(&format!("path = \"tests/{r}\"")),
-            "{r} is not a [[test]] target in Cargo.toml"
+            manifest.contains(&format!("path = \"../tests/{r}\"")),
+            "{r} is not a [[test]] target in cli/Cargo.toml"
         );
     }
     for entry in std::fs::read_dir(&dir).expect("tests/ lists") {

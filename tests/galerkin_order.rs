@@ -30,7 +30,7 @@ use std::f64::consts::PI;
 
 use common::{run, scene};
 use taut::analytic::{MovingForceBeam, PinnedPinnedModes};
-use taut::study::grid::observed_order;
+use taut::study::uncertainty::observed_order;
 
 const MOVING_FORCE: &str = "moving_force_beam.toml";
 

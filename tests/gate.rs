@@ -12,7 +12,7 @@ use taut::study::gate::{gate, quantity, read_case, run_case};
 const BIN: &str = env!("CARGO_BIN_EXE_taut");
 
 fn golden() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("golden")
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("golden")
 }
 
 #[test]

@@ -29,6 +29,34 @@ fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results
     drop(b);
     assert!(!interrupt::requested(), "withdrawn with the last call");
 
+    // a Ctrl-C seen outside the calls (Python's main thread while a thread
+    // pool's workers run them): nothing when none is at work; else a stop
+    // that stands for the hold, so that the calls a shutting-down pool
+    // starts from its queue stop too (issue 41), and no longer
+    let hold = std::time::Duration::from_millis(300);
+    assert!(!interrupt::request_if_working(hold));
+    assert!(
+        !interrupt::requested(),
+        "no call at work: nothing requested"
+    );
+    let a = interrupt::Call::enter();
+    assert!(interrupt::request_if_working(hold));
+    drop(a);
+    assert!(interrupt::requested(), "held after the last call");
+    let queued = interrupt::Call::enter();
+    assert!(
+        interrupt::requested(),
+        "a call started within the hold stops"
+    );
+    drop(queued);
+    std::thread::sleep(2 * hold);
+    let later = interrupt::Call::enter();
+    assert!(
+        !interrupt::requested(),
+        "a call started after the hold runs"
+    );
+    drop(later);
+
     let sc = resolve_scene(REFERENCE, &short()).unwrap();
 
     // a run stops at the step after the request, from inside its progress
@@ -90,6 +118,7 @@ fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results
         axes: vec![Axis::parse("speed_ratio=0.4:1.2:8", false).unwrap()],
         check_refinement: false,
         paired: false,
+        tolerance: None,
     };
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("s");

@@ -9,10 +9,11 @@ use std::path::Path;
 /// The floors of `docs/architecture.md`'s table: a room may import only
 /// rooms on a lower floor (and itself). `lib` is `src/lib.rs`; a path
 /// through its re-exports (`crate::Error`) counts as the room it re-exports.
-const FLOORS: [(&str, u32); 25] = [
+const FLOORS: [(&str, u32); 24] = [
     ("error", 1),
     ("interrupt", 1),
     ("numeric", 1),
+    ("defects", 1),
     ("input", 2),
     ("json_keys", 2),
     ("scene", 3),
@@ -30,8 +31,6 @@ const FLOORS: [(&str, u32); 25] = [
     ("lib", 11),
     ("report", 12),
     ("app", 13),
-    ("pipelines", 13),
-    ("main", 14),
     // lib.rs's re-exports, by the room that defines them
     ("Error", 1),
     ("Resolved", 6),
@@ -91,7 +90,7 @@ fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
 
 #[test]
 fn no_room_imports_a_room_above_it() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     assert!(files.len() > 100, "{} files under src/", files.len());

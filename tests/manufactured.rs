@@ -254,9 +254,9 @@ fn a_manufactured_run_follows_its_exact_solution_and_halving_dt_quarters_the_err
         "manufactured: |w − w*| {w1:.3e} → {w2:.3e} m (max |w*| {scale:.3e}), |λ − λ*| {f1:.3e} → {f2:.3e} N"
     );
     assert!(w2 / scale < MMS_RELATIVE_W, "{w2} of {scale}");
-    let order = taut::study::grid::observed_order(w1, w2, 2.0);
+    let order = taut::study::uncertainty::observed_order(w1, w2, 2.0);
     assert!((order - 2.0).abs() < 0.3, "displacement order {order}");
-    let order = taut::study::grid::observed_order(f1, f2, 2.0);
+    let order = taut::study::uncertainty::observed_order(f1, f2, 2.0);
     assert!((order - 2.0).abs() < 0.3, "force order {order}");
 }
 
@@ -295,7 +295,11 @@ fn bathe_force_at_force_level_has_a_first_order_term_proportional_to_the_speed()
     };
     let force = |v: f64, dt: f64, law: &str| run_errors(MMS_TIME, &set(v, dt, law)).1;
     let order = |v: f64, law: &str| {
-        taut::study::grid::observed_order(force(v, 1.25e-4, law), force(v, 6.25e-5, law), 2.0)
+        taut::study::uncertainty::observed_order(
+            force(v, 1.25e-4, law),
+            force(v, 6.25e-5, law),
+            2.0,
+        )
     };
     let (standing, moving, impact) = (
         order(0.0, "lagrange"),

@@ -6,9 +6,12 @@
 //! binary's own baseline. One case per term the estimate once left out or
 //! undercounted: a long history (a copy of one of its columns was taken to
 //! label the plot's axis), the modal eigenproblem (faer's workspace: ≈ 5 n²
-//! doubles, counted as 4 n²), and many probes over more rows than
+//! doubles, counted as 4 n²), many probes over more rows than
 //! `history.csv` formats at a time (that block is a second copy of its
-//! rows). Linux only (the figures are the kernel's).
+//! rows), tension-only droppers (their dense responses and the contact
+//! problem's rows were outside the estimate) and a large field (its table
+//! took four copies while written). Linux only (the figures are the
+//! kernel's).
 //!
 //! The kernel's figure for a child is the larger of its own peak and its
 //! parent's at the moment it was started (exec records the memory it
@@ -106,11 +109,13 @@ fn check(what: &str, scene: &str, sets: &[&str]) -> Option<String> {
     );
     let peak = peak_rss(scene, sets);
     println!(
-        "{what}: estimate {:.1} MiB (history {:.1}, history.csv block {:.1}, model {:.1}, events and outputs {:.1}), measured peak {:.1} MiB, ratio {:.3}",
+        "{what}: estimate {:.1} MiB (history {:.1}, history.csv block {:.1}, model {:.1}, droppers {:.1}, wire {:.1}, events and outputs {:.1}), measured peak {:.1} MiB, ratio {:.3}",
         e.total() as f64 / MIB,
         e.history as f64 / MIB,
         e.csv_block as f64 / MIB,
         e.model as f64 / MIB,
+        e.droppers as f64 / MIB,
+        e.wire as f64 / MIB,
         e.other() as f64 / MIB,
         peak as f64 / MIB,
         peak as f64 / e.total() as f64,
@@ -172,6 +177,25 @@ fn every_case_peaks_within_its_estimate_and_the_baseline() {
             ][..],
         ),
         ("150 probes", probes, &probe_sets[..]),
+        // 180 tension-only droppers on a three-span line with its
+        // messenger: a dense response over the unknowns each, the
+        // contact problem's rows (issue 41: droppers were outside the
+        // estimate)
+        (
+            "180 droppers",
+            "scenes/line_10_spans.toml",
+            &["line.spans=3", "line.droppers.count=60", "time.end=0.004"][..],
+        ),
+        // a field of 101 rows × 10⁵ points (issue 41: its table took four
+        // copies of the values while field.csv was written)
+        (
+            "field 101 × 1e5",
+            "scenes/reference.toml",
+            &[
+                "time.end=0.01",
+                "output.field={ every = 1, points = 100000 }",
+            ][..],
+        ),
     ]
     .into_iter()
     .filter_map(|(what, scene, sets)| check(what, scene, sets))

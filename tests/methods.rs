@@ -435,7 +435,7 @@ fn moreau_jean_theta_one_is_first_order_without_impacts() {
                 .fold(0.0, f64::max)
         })
         .collect();
-    let order = taut::study::grid::observed_order(errors[2], errors[3], 2.0);
+    let order = taut::study::uncertainty::observed_order(errors[2], errors[3], 2.0);
     println!("moreau_jean θ = 1 on the oscillator: errors {errors:?}, order {order:.2}");
     assert!((order - 1.0).abs() <= ORDER_TOL, "order {order}");
 }
@@ -517,7 +517,7 @@ fn moreau_jean_is_first_order_through_impacts() {
             .fold(0.0, f64::max);
         errors.push(e / peak);
     }
-    let order = taut::study::grid::fitted_order(&errors, 2.0);
+    let order = taut::study::uncertainty::fitted_order(&errors, 2.0);
     println!(
         "moreau_jean θ = ½ through impacts: q errors {errors:?}, order over the ladder {order:.2}"
     );
@@ -765,7 +765,7 @@ fn a_method_added_outside_the_crate_runs_with_its_own_order() {
 
 // The reference case's measures (in-span P_l, the 0–20 Hz force error in
 // span, the force's step-to-step component), shared with the report.
-use taut::pipelines::methods as methods_report;
+use xtask::methods as methods_report;
 
 /// The reference case under every method converges to the same in-span
 /// 0–20 Hz contact force as Δt falls: the error against generalized-α at a
@@ -859,7 +859,7 @@ fn every_method_agrees_at_the_finest_step_of_the_ladder() {
 fn a_built_in_method_value_runs_that_method_whatever_the_scene_names() {
     let short = "time.end=0.02".to_string();
     let own = resolve_scene(REFERENCE, std::slice::from_ref(&short)).unwrap();
-    assert_eq!(own.integrator.method, "generalized_alpha");
+    assert_eq!(own.method.name(), "generalized_alpha");
     let named = resolve_scene(
         REFERENCE,
         &[short, "integrator={ method = \"newmark\" }".to_string()],

@@ -27,7 +27,7 @@
 //! carrier.
 
 use taut::resolve_scene;
-use taut::study::grid::observed_order;
+use taut::study::uncertainty::observed_order;
 use taut::study::verify::{Status, any_failed, selection, verify};
 
 use crate::common;

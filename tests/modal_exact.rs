@@ -37,7 +37,7 @@ fn with(base: &[String], more: &[&str]) -> Vec<String> {
 }
 
 fn resolve(name: &str, o: &[String]) -> taut::Result<taut::Resolved> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .join("scenes")
         .join(name);
     taut::load_scene(&path, o)

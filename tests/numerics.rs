@@ -64,6 +64,8 @@ mod static_start;
 mod subnormal;
 #[path = "time_orders.rs"]
 mod time_orders;
+#[path = "uncertainty.rs"]
+mod uncertainty;
 #[path = "verification_contact.rs"]
 mod verification_contact;
 #[path = "verification_riding_mass.rs"]

@@ -181,11 +181,11 @@ fn bad_chain_keys_are_refused_naming_the_field() {
         ),
         (
             "masses = [7.2, 1.0]\nstiffnesses = [0.0, 1.0]".into(),
-            "carrier.0.stiffnesses[0]",
+            "carrier.0.stiffnesses.0",
         ),
         (
             "masses = [7.2, -1.0]\nstiffnesses = [1.0, 1.0]".into(),
-            "carrier.0.masses[1]",
+            "carrier.0.masses.1",
         ),
         (format!("{good}\nuplift = -3.0"), "carrier.0.uplift"),
         (

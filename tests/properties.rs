@@ -424,7 +424,7 @@ fn any_contact() -> impl Strategy<Value = ContactCase> {
 /// constant; Cauchy–Schwarz covers r_g ≠ r_f. The mass dof has
 /// A_q ≥ (1 − α_m)m (damping and spring only add).
 fn delassus_bound(sc: &Resolved) -> f64 {
-    let taut::scene::Scheme::GenAlpha(ga) = sc.scheme else {
+    let taut::scene::Scheme::GenAlpha(ga) = sc.method.scheme else {
         unreachable!("these scenes run generalized-α")
     };
     let (alpha_m, beta) = (ga.alpha_m, ga.beta);

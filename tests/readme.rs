@@ -39,7 +39,7 @@ fn the_python_install_command_is_the_one_ci_runs() {
     assert!(CI.contains("pip install --quiet --disable-pip-version-check \"./python[test]\""));
     assert!(CI.contains("pytest python/tests"));
     assert!(CI.contains("python/examples/speed_map.py --check"));
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     for f in [
         "python/pyproject.toml",
         "python/examples/speed_map.py",
@@ -51,7 +51,7 @@ fn the_python_install_command_is_the_one_ci_runs() {
 
 #[test]
 fn the_reference_scene_and_every_linked_doc_exist() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     assert!(root.join("scenes/reference.toml").is_file());
     // every `](docs/…)` link in the README points at a file
     let links: Vec<&str> = README

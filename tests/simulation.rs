@@ -398,7 +398,7 @@ fn bad_requests_are_refused_naming_the_field() {
     )
     .map(|_| ()));
     assert!(
-        m.contains("external_force.time[1]") && m.contains("end time 5"),
+        m.contains("external_force.time.1") && m.contains("end time 5"),
         "{m}"
     );
     let m = e(taut::resolve_scene(

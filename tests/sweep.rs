@@ -22,6 +22,7 @@ fn spec(axes: Vec<Axis>) -> SweepSpec {
         axes,
         check_refinement: false,
         paired: false,
+        tolerance: None,
     }
 }
 
@@ -84,7 +85,7 @@ fn cli(args: &[&str]) {
 #[test]
 fn same_bytes_for_any_thread_count_resume_and_shards() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/reference.toml");
+    let scene = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("scenes/reference.toml");
     let scene = scene.to_str().unwrap();
     let base = |out: &Path, extra: &[&str]| {
         let mut a = vec![

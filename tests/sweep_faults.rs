@@ -18,7 +18,7 @@ const REFERENCE: &str = include_str!("../scenes/reference.toml");
 const PATIENCE: Duration = Duration::from_secs(120);
 
 fn scene_path() -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .join("scenes/reference.toml")
         .to_string_lossy()
         .into_owned()
@@ -39,6 +39,7 @@ fn spec(axes: &[&str]) -> SweepSpec {
             .collect(),
         check_refinement: false,
         paired: false,
+        tolerance: None,
     }
 }
 
@@ -363,11 +364,12 @@ fn axes_that_change_nothing_are_refused() {
             "is given twice",
         ),
         (&["beam.length=50:50:3"], &[], "changes nothing"),
-        // the ratio overrides the plain key
+        // the ratio and the plain key set one value (issue 41: before, the
+        // ratio overrode it, and the plain axis changed nothing)
         (
             &["carrier.0.mass=1:2:2", "mass_ratio=0.01:0.02:2"],
             &[],
-            "changes nothing",
+            "both set `carrier.0.mass`",
         ),
         (
             &["mass_ratio=0.01:0.02:2"],

@@ -23,7 +23,7 @@ use std::sync::OnceLock;
 use common::{run, scene};
 use taut::analytic::{MovingForceBeam, PinnedPinnedModes};
 use taut::scene::Method;
-use taut::study::grid::observed_order;
+use taut::study::uncertainty::observed_order;
 
 const MOVING_FORCE: &str = "moving_force_beam.toml";
 const RIDING_MASS: &str = "riding_mass_pinned.toml";

@@ -128,7 +128,7 @@ fn reference_case_statistics_are_pinned() {
         "force_max": r(s.force.max, 1),
     });
     insta::with_settings!({
-        snapshot_path => concat!(env!("CARGO_MANIFEST_DIR"), "/golden"),
+        snapshot_path => concat!(concat!(env!("CARGO_MANIFEST_DIR"), "/.."), "/golden"),
         prepend_module_to_snapshot => false,
         description => "scenes/reference.toml: rounded statistics (steps and switches exact)",
     }, {

@@ -1,4 +1,4 @@
-//! TARGETS.md T1 — cantilever with a riding mass (Bowe & Mullarkey; study Fig. 5).
+//! docs/targets.md T1 — cantilever with a riding mass (Bowe & Mullarkey; study Fig. 5).
 //!
 //! Configuration: `scenes/t1_cantilever_riding_mass.toml` — untensioned
 //! cantilever L = 7.62 m, EI = 2.07e11·4.58e-5 N·m², ρA = 46 kg/m; a 2629 kg
@@ -15,7 +15,7 @@ use common::{run, scene};
 
 /// Published tip deflection at t = 0.15 s, m (read from the study's Fig. 5).
 const PUBLISHED_TIP: f64 = -0.06;
-/// Reading precision of that plot, m (TARGETS.md T1).
+/// Reading precision of that plot, m (docs/targets.md T1).
 const PLOT_READING: f64 = 0.005;
 /// Lowest acceptable observed order of the tip history under joint (h, Δt)
 /// halving: generalized-α is second order in time and the Hermite moving-load
@@ -61,7 +61,7 @@ fn tip_history_converges_with_observed_order() {
         .collect();
     let orders: Vec<f64> = diffs
         .windows(2)
-        .map(|d| taut::study::grid::observed_order(d[0], d[1], 2.0))
+        .map(|d| taut::study::uncertainty::observed_order(d[0], d[1], 2.0))
         .collect();
     println!("T1 tip history: successive max differences {diffs:?}, observed orders {orders:.2?}");
     for p in &orders {

@@ -1,4 +1,4 @@
-//! TARGETS.md T2 — wave travel with a stationary mass (study Fig. 6).
+//! docs/targets.md T2 — wave travel with a stationary mass (study Fig. 6).
 //!
 //! Configuration: `scenes/t2_stationary_mass.toml` (the reference beam,
 //! clamped–pinned, EI as given) and `scenes/t2_stationary_mass_string.toml`

@@ -1,14 +1,14 @@
 """Co-simulation from Python: an active pantograph under a PI controller.
 
-The reference wire (scenes/reference.toml) with its 1 kg mass–spring turned
-into a pantograph below the wire (side = "below": the spring's preload
-presses it up, gravity pulls it down, k δ0 − m g = 39.5 N on a rigid wire).
+The reference wire with its 1 kg mass–spring as a pantograph below the wire
+(the bundled scene scenes/reference_below.toml: the spring's preload presses
+it up, gravity pulls it down, k δ0 − m g = 39.5 N on a rigid wire).
 A PI controller on the contact force drives an actuator force on the mass
 through `taut.Simulation.apply_force`, step by step, to hold the force at
 F_REF. The notebook-style cells (`# %%`) run in Jupyter/VS Code as they do
 from the shell:
 
-    python python/examples/cosim.py                # figures, cosim.png with matplotlib
+    python python/examples/cosim.py                # figures, out/cosim.png with matplotlib
     python python/examples/cosim.py --check        # exit 1 unless the checks hold (CI, < 20 s)
 
 The checks: (1) with no force applied, a Simulation stepped in mixed groups
@@ -31,9 +31,9 @@ import numpy as np
 import taut
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-SCENE = ROOT / "scenes" / "reference.toml"
-# a pantograph below the wire, at a cut-down resolution (a few seconds of CPU)
-SET = ['carrier.0.side="below"', "mesh.elements=200", "carrier.0.speed.cruise=80.0"]
+SCENE = "reference_below"  # a bundled scene: the carrier below the wire
+# at a cut-down resolution (a few seconds of CPU)
+SET = ["mesh.elements=200", "carrier.0.speed.cruise=80.0"]
 
 F_REF = 70.0  # N: the contact force the controller holds
 KP = 0.3  # N/N: proportional gain on the force error
@@ -75,8 +75,8 @@ def controlled() -> taut.Run:
         u = KP * error + KI * integral
         if abs(u) < U_MAX:
             integral += error * sim.dt
-        # + up: for a pantograph below the wire, up presses it into the wire
-        sim.apply_force(0, float(np.clip(u, -U_MAX, U_MAX)))
+        # into the wire, whatever the side the carrier is on (here: up)
+        sim.apply_force(0, float(np.clip(u, -U_MAX, U_MAX)), into_wire=True)
         sim.step()
     return sim.result()
 
@@ -92,7 +92,7 @@ def cruise(r: taut.Run) -> "np.ndarray":
 def main(argv: Optional[List[str]] = None) -> int:
     ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     ap.add_argument("--check", action="store_true", help="exit 1 unless the checks hold")
-    ap.add_argument("--plot", default="cosim.png", help="figure file (needs matplotlib)")
+    ap.add_argument("--plot", default=str(ROOT / "out" / "cosim.png"), help="figure file (needs matplotlib)")
     args = ap.parse_args(argv)
 
     same = passive_identity()
@@ -119,6 +119,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         ax.set_ylabel("contact force (N)")
         ax.legend()
         fig.tight_layout()
+        pathlib.Path(args.plot).parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(args.plot, dpi=120)
         print(f"wrote {args.plot}")
     except ImportError:

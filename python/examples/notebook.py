@@ -5,7 +5,7 @@ uses only what `pip install "./python[all]"` brings. On the bundled reference
 scene (a 1 kg mass–spring under a 50 m wire at 100 m/s), cut to a few
 seconds of CPU:
 
-    python python/examples/notebook.py                    # prints, and notebook.png with matplotlib
+    python python/examples/notebook.py                    # prints, and out/notebook.png with matplotlib
     python python/examples/notebook.py --check            # exit 1 unless the checks hold (CI)
 
 1. A non-grid study on the sweep's engine: a Latin hypercube in (tension,
@@ -25,6 +25,7 @@ seconds of CPU:
 from __future__ import annotations
 
 import argparse
+import pathlib
 import sys
 from typing import Any, Dict, List, Optional
 
@@ -128,7 +129,7 @@ def controller(f_ref: float = 60.0, gain: float = 0.5) -> "tuple[float, float, b
 def main(argv: Optional[List[str]] = None) -> int:
     ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     ap.add_argument("--check", action="store_true", help="exit 1 unless the checks hold")
-    ap.add_argument("--plot", default="notebook.png", help="figure file (needs matplotlib)")
+    ap.add_argument("--plot", default=str(pathlib.Path(__file__).resolve().parents[2] / "out" / "notebook.png"), help="figure file (needs matplotlib)")
     args = ap.parse_args(argv)
 
     ok_study = study()
@@ -156,6 +157,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         a2.set_ylabel("mode shape (mass-normalized)")
         a2.legend()
         fig.tight_layout()
+        pathlib.Path(args.plot).parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(args.plot, dpi=120)
         print(f"wrote {args.plot}")
     except ImportError:

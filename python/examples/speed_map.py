@@ -8,7 +8,7 @@ against the study-like column of docs/reproduction.md's "Every run of T3"
 table (each printed there to 3 significant digits), and plots P_l against
 V0/c when matplotlib is installed.
 
-    python python/examples/speed_map.py                 # table, check, speed_map.png
+    python python/examples/speed_map.py                 # table, check, out/speed_map.png
     python python/examples/speed_map.py --check         # exit 1 unless every row agrees
 """
 
@@ -59,7 +59,7 @@ def sig(v: float) -> float:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--points", type=int, default=46, help="speeds from 0.4 to 1.3 (46: the doc's grid)")
-    ap.add_argument("--plot", default="speed_map.png", help="where to save the plot (matplotlib)")
+    ap.add_argument("--plot", default=str(pathlib.Path(__file__).resolve().parents[2] / "out" / "speed_map.png"), help="where to save the plot (matplotlib)")
     ap.add_argument("--check", action="store_true", help="exit 1 unless every documented row agrees")
     args = ap.parse_args()
 
@@ -99,6 +99,7 @@ def main() -> int:
         ax.set_title("reference scene, N = 400, Δt = 1e-4 s (study Fig. 8)")
         ax.legend()
         fig.tight_layout()
+        pathlib.Path(args.plot).parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(args.plot, dpi=120)
         print(f"plot: {args.plot}")
 

@@ -1,8 +1,9 @@
 //! `taut._taut`: the native half of the `taut` Python package.
 //!
 //! A thin layer over the Rust library: every function here computes nothing
-//! of its own. It makes the caller's words the typed request of the
-//! application layer (`taut::app::words`, as the CLI does), calls the same
+//! of its own. It reads the caller's options as the library declares them
+//! (`taut::app::args`: the struct the CLI's subcommand takes, here from the
+//! keyword arguments as JSON), makes the typed request, calls the same
 //! `taut::app` function the CLI calls, and hands back the same tables the
 //! CLI writes as CSV (`taut::report::Table`), column by column, so that the
 //! numbers are the CLI's bit for bit. The Pythonic surface (keyword
@@ -28,7 +29,7 @@ use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyList};
 
-use taut::app::{self, Frontend, Note, SceneSource, words};
+use taut::app::{self, Frontend, Note, SceneSource};
 use taut::report::{Column, Table};
 
 mod scenes;
@@ -109,9 +110,14 @@ fn failed(py: Python<'_>, e: taut::Error, saved: Option<PathBuf>) -> PyErr {
             (message, field, None::<String>, None::<String>),
         ),
         E::Override { spec, reason } => {
+            // `unset KEY` is the removal of KEY (Python's `set={KEY: None}`):
+            // the field is the key
             let (key, value) = match spec.split_once('=') {
                 Some((k, v)) => (k.trim().to_string(), Some(v.trim().to_string())),
-                None => (spec.clone(), None),
+                None => match spec.strip_prefix(taut::scene::UNSET) {
+                    Some(k) => (k.trim().to_string(), None),
+                    None => (spec.clone(), None),
+                },
             };
             raise(py, "SceneError", (message, key, value, Some(reason)))
         }
@@ -386,16 +392,17 @@ type RunTuple<'py> = (
 );
 
 /// The line's tables (`spans.csv`, `supports.csv`, `envelope.csv`), each
-/// `None` when the scene does not ask for it.
+/// `None` when the scene does not ask for it, and `standard.csv` (always).
 pub(crate) type LineTuple<'py> = (
     Option<Bound<'py, PyList>>,
     Option<Bound<'py, PyList>>,
     Option<Bound<'py, PyList>>,
+    Bound<'py, PyList>,
 );
 
 /// A run's line tables ([`LineTuple`]): the summary's spans (the filtered
-/// force's included), the supports' uplift and the envelope, as the CLI
-/// writes them.
+/// force's included), the supports' uplift, the envelope and the
+/// standards' statistics (`standard.csv`), as the CLI writes them.
 pub(crate) fn line_to_py<'py>(
     py: Python<'py>,
     summary: &taut::report::Summary,
@@ -413,7 +420,8 @@ pub(crate) fn line_to_py<'py>(
         true => None,
         false => Some(table_to_py(py, &taut::report::envelope_table(&h.envelope))?),
     };
-    Ok((spans, supports, envelope))
+    let standard = table_to_py(py, &taut::report::standard_table(&summary.standard))?;
+    Ok((spans, supports, envelope, standard))
 }
 
 /// A recorded wire series (`taut::record::WireSeries`) as f64 bytes:
@@ -443,40 +451,47 @@ fn wire_to_py<'py>(
     (one(&h.snapshots), one(&h.field))
 }
 
+/// Where a call's scene comes from, as Python passes it: `(path, text,
+/// set)`, a scene file or its TOML text, and the overrides (`set=`, as the
+/// CLI's `--set`).
+#[derive(FromPyObject)]
+struct SceneArg(Option<String>, Option<String>, Vec<String>);
+
+impl SceneArg {
+    /// The scene and its overrides.
+    fn source(self, py: Python<'_>) -> PyResult<(SceneSource, Vec<String>)> {
+        let SceneArg(path, text, set) = self;
+        let source = scene(path.as_deref(), text).map_err(|e| to_py_err(py, e))?;
+        Ok((source, set))
+    }
+}
+
+/// A command's options, the keyword arguments of the Python function as
+/// JSON ([`taut::app::args`]: the struct the CLI's subcommand takes).
+fn options<A: for<'de> serde::Deserialize<'de>>(py: Python<'_>, json: &str) -> PyResult<A> {
+    taut::app::args::from_json(json).map_err(|e| to_py_err(py, e))
+}
+
 /// One run (`taut run`), or with `tolerance` an accuracy-targeted one
 /// (`taut run --tolerance TOL --quantity Q`); with `out` the CLI's files
 /// (`history.csv`, `summary.json`, `force.svg`, and `accuracy.csv`) are
-/// written too.
+/// written too. `args`: [`taut::app::RunArgs`] as JSON.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, out, tolerance, quantity, progress))]
-#[allow(clippy::too_many_arguments)]
 fn run<'py>(
     py: Python<'py>,
-    path: Option<&str>,
-    text: Option<String>,
-    set: Vec<String>,
+    on: SceneArg,
     out: Option<PathBuf>,
-    tolerance: Option<String>,
-    quantity: Option<String>,
     progress: Option<Bound<'py, PyAny>>,
+    args: &str,
 ) -> PyResult<RunTuple<'py>> {
     let err = |e| to_py_err(py, e);
-    let tolerance = match (tolerance, quantity) {
-        (Some(t), q) => Some(words::tolerance(&t, q.as_deref()).map_err(err)?),
-        (None, Some(q)) => {
-            return Err(err(taut::Error::invalid(
-                "--quantity",
-                q,
-                "is what --tolerance is on: give tolerance too",
-            )));
-        }
-        (None, None) => None,
-    };
+    let args: taut::app::RunArgs = options(py, args)?;
+    let (scene, set) = on.source(py)?;
     let request = app::RunRequest {
-        scene: scene(path, text).map_err(err)?,
+        scene,
         set,
         out,
-        tolerance,
+        tolerance: args.tolerance().map_err(err)?,
     };
     let r = call(py, progress.as_ref(), |fe| app::run(&request, fe))?;
     let history = table_to_py(py, &taut::report::history_table(&r.output))?;
@@ -514,72 +529,47 @@ fn pretty(value: &impl serde::Serialize) -> PyResult<String> {
 
 /// A sweep into folder `out` (resumable: finished points are kept there);
 /// returns the columns of `sweep.csv`. `files` writes the CLI's tables and
-/// maps into `out` as well.
+/// maps into `out` as well. `args`: [`taut::app::SweepArgs`] as JSON (the
+/// module writes a list of points as `vary` lists with `paired`).
 #[pyfunction]
-#[pyo3(signature = (path, text, vary, log, set, out, files, threads, batch, check_refinement, progress, yes, points=false))]
-#[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
-    path: Option<&str>,
-    text: Option<String>,
-    vary: Vec<String>,
-    log: bool,
-    set: Vec<String>,
+    on: SceneArg,
     out: PathBuf,
     files: bool,
-    threads: Option<usize>,
-    batch: Option<usize>,
-    check_refinement: bool,
     progress: Option<Bound<'py, PyAny>>,
-    yes: bool,
-    points: bool,
+    args: &str,
 ) -> PyResult<Bound<'py, PyList>> {
     let err = |e| to_py_err(py, e);
-    let request = app::SweepRequest {
-        scene: scene(path, text).map_err(err)?,
-        set,
-        axes: words::axes(&vary, log).map_err(err)?,
-        points,
-        check_refinement,
-        out,
-        files,
-        shard: None,
-        threads,
-        batch: taut::study::request::batch_width(batch).map_err(err)?,
-        yes,
-    };
+    let study = options::<taut::app::SweepArgs>(py, args)?
+        .study()
+        .map_err(err)?;
+    let (source, set) = on.source(py)?;
+    let mut request = app::SweepRequest::new(source, set, study, out);
+    request.files = files;
     let s = call(py, progress.as_ref(), |fe| app::sweep(&request, fe))?;
     table_to_py(py, &taut::report::sweep_table(&s.spec, &s.records))
 }
 
 /// A comparison: `(compare.csv columns, failed, skipped)`: the runs that
 /// stopped and the combinations that could not run; with `out` the CLI's
-/// files too.
+/// files too. `args`: [`taut::app::CompareArgs`] as JSON.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, formulations, methods, discretizations, reference, reference_method, batch, out, progress, yes))]
-#[allow(clippy::too_many_arguments)]
 fn compare<'py>(
     py: Python<'py>,
-    path: Option<&str>,
-    text: Option<String>,
-    set: Vec<String>,
-    formulations: String,
-    methods: Option<String>,
-    discretizations: Option<String>,
-    reference: String,
-    reference_method: Option<String>,
-    batch: Option<usize>,
+    on: SceneArg,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
-    yes: bool,
+    args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
-    let variants = (methods.as_deref(), discretizations.as_deref());
-    let against = (reference.as_str(), reference_method.as_deref());
+    let (scene, set) = on.source(py)?;
     let request = app::CompareRequest {
-        scene: scene(path, text).map_err(err)?,
+        scene,
         set,
-        study: words::compare(&formulations, variants, against, batch, yes).map_err(err)?,
+        study: options::<taut::app::CompareArgs>(py, args)?
+            .study()
+            .map_err(err)?,
         out,
     };
     let c = call(py, progress.as_ref(), |fe| app::compare(&request, fe))?;
@@ -591,30 +581,23 @@ fn compare<'py>(
 }
 
 /// A convergence study: `(converge.csv columns, skipped)`; with `out` the
-/// CLI's files too.
+/// CLI's files too. `args`: [`taut::app::ConvergeArgs`] as JSON.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, refine, levels, ratio, methods, discretizations, out, progress, yes))]
-#[allow(clippy::too_many_arguments)]
 fn converge<'py>(
     py: Python<'py>,
-    path: Option<&str>,
-    text: Option<String>,
-    set: Vec<String>,
-    refine: String,
-    levels: usize,
-    ratio: f64,
-    methods: Option<String>,
-    discretizations: Option<String>,
+    on: SceneArg,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
-    yes: bool,
+    args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
-    let variants = (methods.as_deref(), discretizations.as_deref());
+    let (scene, set) = on.source(py)?;
     let request = app::ConvergeRequest {
-        scene: scene(path, text).map_err(err)?,
+        scene,
         set,
-        study: words::converge(&refine, (levels, ratio), variants, yes).map_err(err)?,
+        study: options::<taut::app::ConvergeArgs>(py, args)?
+            .study()
+            .map_err(err)?,
         out,
     };
     let outcome = call(py, progress.as_ref(), |fe| app::converge(&request, fe))?;
@@ -623,33 +606,52 @@ fn converge<'py>(
     Ok((table_to_py(py, &rows)?, skipped))
 }
 
-/// A work–precision study: `(precision.csv columns, skipped)`; with `out`
-/// the CLI's files too.
+/// A solution verification (`taut uncertainty`): `(uncertainty.csv
+/// columns, the family's runs)`; with `out` the CLI's files too. `args`:
+/// [`taut::app::UncertaintyArgs`] as JSON.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, formulations, methods, discretizations, levels, ratio, batch, out, progress, yes))]
-#[allow(clippy::too_many_arguments)]
-fn precision<'py>(
+fn uncertainty<'py>(
     py: Python<'py>,
-    path: Option<&str>,
-    text: Option<String>,
-    set: Vec<String>,
-    formulations: String,
-    methods: Option<String>,
-    discretizations: Option<String>,
-    levels: usize,
-    ratio: usize,
-    batch: Option<usize>,
+    on: SceneArg,
     out: Option<PathBuf>,
     progress: Option<Bound<'py, PyAny>>,
-    yes: bool,
+    args: &str,
+) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
+    let err = |e| to_py_err(py, e);
+    let (scene, set) = on.source(py)?;
+    let request = app::UncertaintyRequest {
+        scene,
+        set,
+        study: options::<taut::app::UncertaintyArgs>(py, args)?
+            .study()
+            .map_err(err)?,
+        out,
+    };
+    let u = call(py, progress.as_ref(), |fe| app::uncertainty(&request, fe))?;
+    Ok((
+        table_to_py(py, &taut::report::uncertainty_table(&u))?,
+        table_to_py(py, &taut::report::family_table(&u))?,
+    ))
+}
+
+/// A work–precision study: `(precision.csv columns, skipped)`; with `out`
+/// the CLI's files too. `args`: [`taut::app::PrecisionArgs`] as JSON.
+#[pyfunction]
+fn precision<'py>(
+    py: Python<'py>,
+    on: SceneArg,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+    args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
     let err = |e| to_py_err(py, e);
-    let variants = (methods.as_deref(), discretizations.as_deref());
-    let grid = (levels, ratio);
+    let (scene, set) = on.source(py)?;
     let request = app::PrecisionRequest {
-        scene: scene(path, text).map_err(err)?,
+        scene,
         set,
-        study: words::precision(&formulations, variants, grid, batch, yes).map_err(err)?,
+        study: options::<taut::app::PrecisionArgs>(py, args)?
+            .study()
+            .map_err(err)?,
         out,
     };
     let p = call(py, progress.as_ref(), |fe| app::precision(&request, fe))?;
@@ -659,15 +661,24 @@ fn precision<'py>(
     ))
 }
 
-/// The ranges of the counted arguments the library checks:
-/// `(threads, batch)` upper bounds (both from 1), so that the Python layer
-/// names the real range for a value it refuses before the call.
+/// One option: `(name, default, help)` ([`taut::app::args::OptionSchema`]).
+type OptionTuple = (String, Option<String>, String);
+
+/// Every command's options as the library declares them
+/// ([`taut::app::args::schema`]): `[(command, [(name, default, help)])]`,
+/// what the module's tests hold its functions' signatures against.
 #[pyfunction]
-fn limits() -> (usize, usize) {
-    (
-        taut::study::threads::max_threads(),
-        taut::integrate::MAX_LANES,
-    )
+fn schema() -> Vec<(String, Vec<OptionTuple>)> {
+    taut::app::args::schema()
+        .into_iter()
+        .map(|(command, options)| {
+            let options = options
+                .into_iter()
+                .map(|o| (o.name, o.default, o.help))
+                .collect();
+            (command.to_string(), options)
+        })
+        .collect()
 }
 
 /// The scene's TOML tree after `set` (`taut.load_scene`), as JSON text:
@@ -695,36 +706,24 @@ fn scene_json(
     })
 }
 
-/// The ranges of `levels` the library takes: `((converge_least,
-/// converge_most), (precision_least, precision_most))`, so that the Python
-/// layer names them for a value no integer argument can hold (-1, 2**70).
-#[pyfunction]
-fn level_ranges() -> ((usize, usize), (usize, usize)) {
-    let (c, p) = (
-        taut::study::converge::LEVELS,
-        taut::study::precision::LEVELS,
-    );
-    ((*c.start(), *c.end()), (*p.start(), *p.end()))
-}
-
 /// The natural frequencies and mode shapes of a scene's beam (`taut
 /// modes`): `(modes_columns, mode_shapes_columns)`, the CLI's `modes.csv`
 /// and `mode_shapes.csv`; with `out` those files are written too.
 #[pyfunction]
-#[pyo3(signature = (path, text, set, count, out))]
 fn modes<'py>(
     py: Python<'py>,
-    path: Option<&str>,
-    text: Option<String>,
-    set: Vec<String>,
-    count: Option<usize>,
+    on: SceneArg,
     out: Option<PathBuf>,
+    args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
     let err = |e| to_py_err(py, e);
+    let (scene, set) = on.source(py)?;
     let request = app::ModesRequest {
-        scene: scene(path, text).map_err(err)?,
+        scene,
         set,
-        count,
+        count: options::<taut::app::ModesArgs>(py, args)?
+            .count()
+            .map_err(err)?,
         out,
     };
     let m = call(py, None, |fe| app::modes(&request, fe))?;
@@ -750,22 +749,62 @@ fn mesh<'py>(
     Ok(f64_bytes(py, x.into_iter()))
 }
 
+/// One self-contained `report.html` from output folders (`taut report`):
+/// returns the page's path and its numbers of plots and tables.
+#[pyfunction]
+#[pyo3(signature = (dirs, out))]
+fn report(
+    py: Python<'_>,
+    dirs: Vec<PathBuf>,
+    out: Option<PathBuf>,
+) -> PyResult<(String, usize, usize)> {
+    let r = app::report(&app::ReportRequest { dirs, out }).map_err(|e| to_py_err(py, e))?;
+    Ok((r.path.display().to_string(), r.plots, r.tables))
+}
+
+/// The most keys a list of points may set
+/// (`taut::study::sweep::MAX_POINT_KEYS`), so that the Python layer
+/// refuses a wider one before building its axes.
+#[pyfunction]
+fn most_point_keys() -> usize {
+    taut::study::sweep::MAX_POINT_KEYS
+}
+
+/// Ask every taut call at work in the process to stop at its next step
+/// (`taut::interrupt::request_if_working`); whether one was. The package's
+/// SIGINT handler calls it, so that a Ctrl-C stops calls made from any
+/// thread (a thread pool's workers never see a signal themselves).
+#[pyfunction]
+fn stop_running_calls() -> bool {
+    taut::interrupt::request_if_working(STOP_HOLD)
+}
+
+/// How long a Ctrl-C keeps stopping calls that start after it
+/// ([`taut::interrupt::request_if_working`]): a thread pool that shuts down
+/// starts its queued calls within milliseconds of the running ones'
+/// stop; 2 s covers that on a loaded machine, and a call started later
+/// runs as usual.
+const STOP_HOLD: Duration = Duration::from_secs(2);
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("taut_version", taut::VERSION)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
-    m.add_function(wrap_pyfunction!(limits, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precision, m)?)?;
+    m.add_function(wrap_pyfunction!(uncertainty, m)?)?;
     m.add_function(wrap_pyfunction!(scene_json, m)?)?;
-    m.add_function(wrap_pyfunction!(level_ranges, m)?)?;
+    m.add_function(wrap_pyfunction!(schema, m)?)?;
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(report, m)?)?;
+    m.add_function(wrap_pyfunction!(stop_running_calls, m)?)?;
+    m.add_function(wrap_pyfunction!(most_point_keys, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

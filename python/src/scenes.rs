@@ -6,7 +6,7 @@
 use pyo3::prelude::*;
 
 /// `(name, TOML text)` of every bundled scene, by name.
-pub const BUNDLED: [(&str, &str); 15] = [
+pub const BUNDLED: [(&str, &str); 16] = [
     (
         "line_10_spans",
         include_str!("../../scenes/line_10_spans.toml"),
@@ -32,6 +32,10 @@ pub const BUNDLED: [(&str, &str); 15] = [
         include_str!("../../scenes/pantograph_3mass.toml"),
     ),
     ("reference", include_str!("../../scenes/reference.toml")),
+    (
+        "reference_below",
+        include_str!("../../scenes/reference_below.toml"),
+    ),
     (
         "riding_mass_pinned",
         include_str!("../../scenes/riding_mass_pinned.toml"),

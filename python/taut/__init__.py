@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import functools
 import json
+import operator
 import os
 import tempfile
 from typing import (
@@ -78,6 +79,7 @@ __all__ = [
     "compare",
     "converge",
     "precision",
+    "uncertainty",
     "load_scene",
     "scenes",
     "scene_text",
@@ -85,6 +87,7 @@ __all__ = [
     "progress_enabled",
     "modes",
     "mesh",
+    "report",
     "Run",
     "CarrierStats",
     "Modes",
@@ -105,6 +108,47 @@ __all__ = [
 ]
 
 __version__: str = _taut.__version__
+
+
+def _chain_sigint() -> None:
+    """Make Ctrl-C stop taut calls made from any thread.
+
+    Python runs signal handlers on the main thread only; a call made from
+    a thread pool's worker (docs/python.md, "Studies that are not a grid")
+    never sees a Ctrl-C, and the pool's shutdown waited for its runs to
+    end. So SIGINT's handler, when the package is imported on the main
+    thread, first asks every taut call at work to stop at its next step,
+    then does what the handler it replaces did (raise KeyboardInterrupt,
+    by default). A handler installed later replaces this one.
+    """
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return
+    try:
+        previous = signal.getsignal(signal.SIGINT)
+    except (ValueError, AttributeError):
+        return
+
+    def handler(signum: int, frame: Any) -> Any:
+        _taut.stop_running_calls()
+        if callable(previous):
+            return previous(signum, frame)
+        if previous == signal.SIG_IGN:
+            return None
+        # SIG_DFL (or None: set outside Python): end as the default would
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGINT)
+        return None
+
+    try:
+        signal.signal(signal.SIGINT, handler)
+    except (ValueError, OSError):
+        pass
+
+
+_chain_sigint()
 
 Scene = _scenes.Scene
 """A path to a scene file, a bundled scene's name, the scene's TOML text,
@@ -128,7 +172,13 @@ class Run:
             force_min, filtered_mean, filtered_std, loss_fraction), None
             without supports.
         supports: the wire's uplift at each support (Table of
-            supports.csv's columns: x, v_max, v_min, t_max), None without.
+            supports.csv's columns: x, v_max, v_min, t_max, v_static,
+            uplift), None without.
+        standard: the standards' statistics over the analysis section
+            (`[analysis]`), a row per carrier (Table of standard.csv's
+            columns: carrier, x_start, x_end, band_hz, speed, speed_kmh,
+            samples, mean, std, statistical_max, statistical_min, max, min,
+            loss_percent, uplift_max, uplift_x; docs/output.md).
         envelope: the range of v over time at every mesh node with
             `[output] envelope = true` (Table of envelope.csv's columns: x,
             v_min, v_max), None otherwise.
@@ -136,7 +186,8 @@ class Run:
         summary: the dict of the CLI's `summary.json` (scene, derived
             quantities, per-carrier statistics, warnings, wall time).
         history: the columns of `history.csv` as a Table of arrays (`t`,
-            `x_m`, `beam_w`, `mass_q`, `gap`, `force`, `in_contact`, probes;
+            `x_m`, `beam_w`, `mass_q`, `gap`, `force`, `in_contact`,
+            `force_filtered` (when every step is recorded), probes;
             suffixed `_0`, `_1`, ... with several carriers).
         warnings: findings that make the numbers suspect, as the CLI prints them.
         accuracy: for a run with `tolerance`, the columns of the CLI's
@@ -161,6 +212,7 @@ class Run:
         self.spans: Optional[Table] = None
         self.supports: Optional[Table] = None
         self.envelope: Optional[Table] = None
+        self.standard: Table = Table()
         self._scene: Optional[Tuple[Optional[str], Optional[str], List[str]]] = None
         self._x: Optional[np.ndarray] = None
 
@@ -170,12 +222,14 @@ class Run:
             Optional[List[Tuple[str, str, Any]]],
             Optional[List[Tuple[str, str, Any]]],
             Optional[List[Tuple[str, str, Any]]],
+            List[Tuple[str, str, Any]],
         ],
     ) -> None:
-        spans, supports, envelope = line
+        spans, supports, envelope, standard = line
         self.spans = None if spans is None else table(spans)
         self.supports = None if supports is None else table(supports)
         self.envelope = None if envelope is None else table(envelope)
+        self.standard = table(standard)
 
     @property
     def x(self) -> np.ndarray:
@@ -188,8 +242,20 @@ class Run:
         return self._x
 
     def __repr__(self) -> str:
-        loss = [c.get("loss_fraction") for c in self.summary.get("carriers", [])]
-        return f"taut.Run({self.history.rows} rows, P_l = {loss}, {len(self.warnings)} warnings)"
+        carriers = self.summary.get("carriers", [])
+        loss = ", ".join(_round(c.get("loss_fraction")) for c in carriers)
+        if len(carriers) != 1:
+            loss = f"[{loss}]"
+        f = (carriers[0].get("force_filtered") or {}) if carriers else {}
+        force = (
+            f", 0–{_round(f.get('cutoff_hz'))} Hz force {_round(f.get('mean'))} ± {_round(f.get('std'))} N"
+            if f
+            else ""
+        )
+        return (
+            f"taut.Run({self.history.rows} rows, P_l = {loss}{force}, "
+            f"{len(self.warnings)} warning{'' if len(self.warnings) == 1 else 's'})"
+        )
 
     @property
     def scalars(self) -> Dict[str, Any]:
@@ -199,7 +265,7 @@ class Run:
         figures (`speed_ratio`, `wave_speed`, `dofs`, ...). Each is an
         attribute too: `run.force_std`."""
         carriers = self.summary.get("carriers") or [{}]
-        flat = _flat(carriers[0])
+        flat = _study_names(_flat(carriers[0]))
         for k, v in _flat(self.summary.get("derived", {})).items():
             flat.setdefault(k, v)
         flat.setdefault("wall_seconds", self.summary.get("wall_seconds"))
@@ -209,7 +275,7 @@ class Run:
     def carriers(self) -> List["CarrierStats"]:
         """Each carrier's statistics with the same flat names:
         run.carriers[1].force_std."""
-        return [CarrierStats(_flat(c)) for c in self.summary.get("carriers", [])]
+        return [CarrierStats(_study_names(_flat(c))) for c in self.summary.get("carriers", [])]
 
     def __getattr__(self, name: str) -> Any:
         # only for names that are not attributes: the summary's scalars
@@ -235,7 +301,8 @@ class Run:
         each carrier's contact force along x_m/L (along t when no carrier
         moves), lost contact shaded. Returns the matplotlib Axes."""
         length = float(self.summary["scene"]["beam"]["length"])
-        return _show.plot_run(self.history, len(self.summary.get("carriers", [])), length, ax)
+        band = ((self.summary.get("carriers") or [{}])[0].get("force_filtered") or {}).get("cutoff_hz", 20.0)
+        return _show.plot_run(self.history, len(self.summary.get("carriers", [])), length, ax, band)
 
 
 class CarrierStats:
@@ -259,7 +326,25 @@ class CarrierStats:
         return sorted(set(super().__dir__()) | set(self.scalars))
 
     def __repr__(self) -> str:
-        return f"taut.CarrierStats(loss_fraction={self.scalars.get('loss_fraction')})"
+        return f"taut.CarrierStats(loss_fraction={_round(self.scalars.get('loss_fraction'))})"
+
+
+def _round(v: Any) -> str:
+    """A figure as a person reads it: 4 significant digits (a repr, not the
+    value: the attributes hold every digit)."""
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+def _study_names(flat: Dict[str, Any]) -> Dict[str, Any]:
+    """The filtered force's figures also under the study tables' names
+    (`filtered_force_mean` for summary["carriers"][0]["force_filtered"]["mean"],
+    as sweep.csv and compare.csv name them)."""
+    for k in ("mean", "std", "max", "min"):
+        if f"force_filtered_{k}" in flat:
+            flat.setdefault(f"filtered_force_{k}", flat[f"force_filtered_{k}"])
+    return flat
 
 
 def _flat(d: Mapping[str, Any], prefix: str = "") -> Dict[str, Any]:
@@ -368,6 +453,9 @@ class Modes:
     def __repr__(self) -> str:
         return f"taut.Modes({len(self.frequency_hz)} modes, {self.source}, {len(self.x)} points)"
 
+    def _repr_html_(self) -> str:
+        return _show.modes_html(self.frequency_hz, self.string_hz, self.source, len(self.x))
+
 
 def _scene(scene: Scene) -> Tuple[Optional[str], Optional[str]]:
     """(path, text) of a scene: a file, a bundled scene's name, TOML text
@@ -423,15 +511,6 @@ def _key(key: str) -> str:
 _LARGEST = 2**63 - 1
 
 
-def _opt_ranged(name: str, value: Optional[int]) -> Optional[int]:
-    """`threads` or `batch`: None (the default) or an int in the range the
-    library allows (1 ..= its limit), refused with that range."""
-    if value is None:
-        return None
-    threads, batch = _taut.limits()
-    return _count(name, value, 1, threads if name == "threads" else batch)
-
-
 def _count(name: str, value: int, least: int, most: int = _LARGEST) -> int:
     """An integer argument: refused by name unless an int in `least ..=
     most` (the library checks the upper bounds it knows and names them the
@@ -455,23 +534,28 @@ def _count(name: str, value: int, least: int, most: int = _LARGEST) -> int:
     return n
 
 
-def _levels(levels: int, study: int) -> int:
-    """`levels` of converge (study 0) or precision (1): refused with the
-    library's range when no count can hold it (below 0, above 2**63 - 1);
-    the library refuses the rest with the same range."""
-    least, most = _taut.level_ranges()[study]
-    try:
-        return _count("levels", levels, 0)
-    except SceneError:
-        if isinstance(levels, bool) or not hasattr(levels, "__index__"):
-            raise
-        shown = _short(str(int(levels)))
-        raise SceneError(
-            f"invalid argument: `levels` = {shown}: must be in {least} ..= {most}",
-            field="levels",
-            value=shown,
-            allowed=f"must be in {least} ..= {most}",
-        ) from None
+def _word(value: Any) -> Any:
+    """A command option's value as the library reads it (`taut._taut`
+    `args`, JSON): numbers as their text, so that every int Python has and
+    every float reach the library's range check exactly (its errors name
+    the keyword, the value and the range); None, strings and switches as
+    they are, lists item by item."""
+    if value is None or isinstance(value, (str, bool)):
+        return value
+    if isinstance(value, (list, tuple)):
+        return [_word(v) for v in value]
+    if isinstance(value, float):
+        return repr(value)
+    if hasattr(value, "__index__"):
+        return str(operator.index(value))
+    return repr(value)
+
+
+def _options(**words: Any) -> str:
+    """A command's options as JSON for `taut._taut` (its `args`): the
+    library's struct of the same command, the CLI's flags (`taut.app.args`),
+    declared once there; the keys given are the Python keywords."""
+    return json.dumps({k: _word(v) for k, v in words.items()})
 
 
 def _short(text: str) -> str:
@@ -480,7 +564,15 @@ def _short(text: str) -> str:
 
 
 def _real(name: str, value: float) -> float:
-    """A real argument: refused by name unless a number a float can hold."""
+    """A real argument: refused by name unless a number a float can hold
+    (a str is not a number, though float() reads one; nor is a bool)."""
+    if isinstance(value, (str, bytes, bytearray, bool)):
+        raise SceneError(
+            f"invalid argument: `{name}` = {_short(repr(value))}: must be a number, not {type(value).__name__}",
+            field=name,
+            value=_short(repr(value)),
+            allowed="a number",
+        )
     try:
         return float(value)
     except OverflowError:
@@ -593,11 +685,11 @@ def run(
         KeyboardInterrupt.
     """
     path, text = _scene(scene)
-    tol = None if tolerance is None else _toml(_real("tolerance", tolerance))
     sets = _overrides(set)
-    with _Sink(progress, "steps" if tol is None else "runs") as p:
+    args = _options(tolerance=tolerance, quantity=quantity)
+    with _Sink(progress, "steps" if tolerance is None else "runs") as p:
         summary, history, warnings, accuracy, (snap, field), line = _taut.run(
-            path, text, sets, _out(out), tol, quantity, p
+            (path, text, sets), _out(out), p, args
         )
     r = Run(
         json.loads(summary),
@@ -619,10 +711,14 @@ def sweep(
     set: Union[None, Mapping[str, Any], Iterable[str]] = None,
     *,
     points: Optional[_sweeps.Points] = None,
+    shard: Optional[str] = None,
     threads: Optional[int] = None,
     log: bool = False,
     check_refinement: bool = False,
     batch: Optional[int] = None,
+    tolerance: Optional[float] = None,
+    quantity: Optional[str] = None,
+    max_cost: Optional[float] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
     yes: bool = False,
@@ -643,12 +739,26 @@ def sweep(
         points: instead of `vary`, a list of points [{key: value, ...},
             ...] (a Latin hypercube, an optimizer's proposals; a dict of
             columns or a pandas DataFrame too): each is one run, in order.
+        shard: "i/n": run only the points with index ≡ i (mod n), into
+            `out` (the CLI's `--shard`; join the folders with `taut merge`).
         threads: worker threads (default: one per core).
         log: logarithmic spacing on every axis.
         check_refinement: run each point again with 2N elements and Δt/2 and
             add the refined P_l and its change as columns.
         batch: runs stepped together when they share their matrix (1 ..= 8;
             default 4); the table is the same whatever it is.
+        tolerance: refine each point until the numerical uncertainty of
+            `quantity` is at most this (absolute, in its unit), only as far
+            as it must (`taut sweep --tolerance`); adds the columns u_num,
+            tolerance_met, elements_used, modes_used, dt_used, runs_used,
+            dof_steps_used and estimator.
+        quantity: what `tolerance` is on: a column of the table
+            ("loss_fraction_span", the default; "loss_fraction",
+            "loss_fraction_support", "force_mean", "force_std", "force_max",
+            "force_min", "first_loss_position").
+        max_cost: with `tolerance`, the most a point may cost, pilots
+            included, as a multiple of its run at the scene's resolution
+            (default 64).
         out: a folder for the CLI's files (sweep.csv, maps, runs/). The sweep
             is resumable there: an interrupted sweep keeps the points it
             finished, and the same call resumes from them. Without `out`
@@ -677,20 +787,23 @@ def sweep(
     path, text = _scene(scene)
     axes = _sweeps.axes(vary) if vary is not None else _sweeps.points(points)
     paired = points is not None
-    if paired and log:
-        raise SceneError(
-            "sweep: `log` spaces a grid's ranges; a list of points has none",
-            field="log",
-            value="True",
-            allowed="False with points=",
-        )
-    args = (axes, log, _overrides(set))
-    n_threads, n_batch = _opt_ranged("threads", threads), _opt_ranged("batch", batch)
+    on = (path, text, _overrides(set))
+    args = _options(
+        vary=axes,
+        paired=paired,
+        log=log,
+        shard=shard,
+        check_refinement=check_refinement,
+        tolerance=tolerance,
+        quantity=quantity,
+        max_cost=max_cost,
+        threads=threads,
+        batch=batch,
+        yes=yes,
+    )
 
     def call(folder: str, files: bool) -> Table:
-        cols = _taut.sweep(
-            path, text, *args, folder, files, n_threads, n_batch, check_refinement, p, yes, paired
-        )
+        cols = _taut.sweep(on, folder, files, p, args)
         t = table(cols)
         t.paired = paired
         for k, v in _sweeps.span_profiles(folder, t.rows).items():
@@ -744,18 +857,18 @@ def compare(
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
         cols, failed, skipped = _taut.compare(
-            path,
-            text,
-            _overrides(set),
-            _list(formulations),
-            _names(methods),
-            _names(discretizations),
-            reference,
-            reference_method,
-            _opt_ranged("batch", batch),
+            (path, text, _overrides(set)),
             _out(out),
             p,
-            yes,
+            _options(
+                formulations=_list(formulations),
+                methods=_names(methods),
+                discretizations=_names(discretizations),
+                reference=reference,
+                reference_method=reference_method,
+                batch=batch,
+                yes=yes,
+            ),
         )
     t = table(cols)
     t.failed = _not_run(failed)
@@ -798,20 +911,60 @@ def converge(
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
         cols, skipped = _taut.converge(
-            path,
-            text,
-            _overrides(set),
-            refine,
-            _levels(levels, 0),
-            _real("ratio", ratio),
-            _names(methods),
-            _names(discretizations),
+            (path, text, _overrides(set)),
             _out(out),
             p,
-            yes,
+            _options(
+                refine=refine,
+                levels=levels,
+                ratio=ratio,
+                methods=_names(methods),
+                discretizations=_names(discretizations),
+                yes=yes,
+            ),
         )
     t = table(cols)
     t.skipped = _not_run(skipped)
+    return t
+
+
+@_speaks_python
+def uncertainty(
+    scene: Scene,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    *,
+    levels: int = 4,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+    yes: bool = False,
+) -> Table:
+    """The numerical uncertainty of every reported quantity of a scene
+    (`taut uncertainty`, docs/verification.md "Solution verification"): a
+    family of runs refined in space (h, or J) and time (Δt) together and
+    apart, and for each quantity its value, u_num, the estimator (Roache's
+    GCI, or Eça & Hoekstra's least squares for scattered data), the
+    observed orders the data support and the share of the error from space.
+
+    Args:
+        levels: diagonal levels K (3 ..= 6; 2K − 1 runs, the finest 4^(K−1)
+            times the scene's run).
+        set, out, progress, yes: as for sweep().
+
+    Returns:
+        Table of uncertainty.csv's columns (quantity, unit, smooth, value,
+        u_num, u_relative, error, extrapolated, safety_factor, estimator,
+        fit, behaviour, observed_order, formal_order, order_space,
+        order_time, space_share, asymptotic, sigma, data_range, value_scene,
+        u_scene, note; docs/output.md); `.family` is a Table of its runs
+        (role, level, elements, modes, h, dt, steps, dofs).
+    """
+    path, text = _scene(scene)
+    with _Sink(progress, "runs") as p:
+        cols, family = _taut.uncertainty(
+            (path, text, _overrides(set)), _out(out), p, _options(levels=levels, yes=yes)
+        )
+    t = table(cols)
+    t.family = table(family)
     return t
 
 
@@ -841,18 +994,18 @@ def precision(
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
         cols, skipped = _taut.precision(
-            path,
-            text,
-            _overrides(set),
-            _list(formulations),
-            _names(methods),
-            _names(discretizations),
-            _levels(levels, 1),
-            _count("ratio", ratio, 0),
-            _opt_ranged("batch", batch),
+            (path, text, _overrides(set)),
             _out(out),
             p,
-            yes,
+            _options(
+                formulations=_list(formulations),
+                methods=_names(methods),
+                discretizations=_names(discretizations),
+                levels=levels,
+                ratio=ratio,
+                batch=batch,
+                yes=yes,
+            ),
         )
     t = table(cols)
     t.skipped = _not_run(skipped)
@@ -885,8 +1038,7 @@ def modes(
         SceneError (a bad scene or count), OutputError.
     """
     path, text = _scene(scene)
-    n = None if count is None else _count("count", count, 1)
-    freq, shapes = _taut.modes(path, text, _overrides(set), n, _out(out))
+    freq, shapes = _taut.modes((path, text, _overrides(set)), _out(out), _options(count=count))
     return Modes(table(freq), table(shapes))
 
 
@@ -901,3 +1053,31 @@ def mesh(
     snapshots, the field and mode shapes are sampled by default."""
     path, text = _scene(scene)
     return _f8(_taut.mesh(path, text, _overrides(set)))
+
+
+@_speaks_python
+def report(
+    dirs: Union[str, "os.PathLike[str]", Iterable[Union[str, "os.PathLike[str]"]]],
+    out: Union[None, str, "os.PathLike[str]"] = None,
+) -> str:
+    """One self-contained report.html (inline SVG and CSS, nothing fetched)
+    from the outputs taut wrote into one or more folders (`taut report`):
+    each run's scene, summary, the standards' statistics and warnings, the
+    plots, and the studies' tables with their verdicts (docs/output.md).
+
+    Args:
+        dirs: a folder, or a list of folders, given as `out=` to taut.run,
+            compare, converge, precision or sweep (or the CLI's --out).
+        out: the page (default: report.html in the folder when there is
+            one, out/report.html for several).
+
+    Returns:
+        The page's path.
+
+    Raises:
+        SceneError naming a folder that holds no taut outputs; OutputError.
+    """
+    if isinstance(dirs, (str, os.PathLike)):
+        dirs = [dirs]
+    path, _, _ = _taut.report([os.fspath(d) for d in dirs], _out(out))
+    return path

@@ -2,15 +2,18 @@
 switch (`taut.set_progress`).
 
 A tqdm bar is shown only when tqdm is installed (`taut[progress]`) and
-progress is on. In Jupyter the widget bar (`tqdm.auto`) is used only when
-ipywidgets can be imported, so a kernel without it gets the text bar and
-no warning. A bar is made at the call's first report with that report's
+progress is on. In Jupyter the widget bar (`tqdm.auto`) is used when
+ipywidgets can be imported; a kernel without it gets a bar of its own, an
+HTML `<progress>` in one display that is emptied when the call ends, so a
+saved notebook keeps no progress text (tqdm's text bar would leave its
+lines in the cell's output). A bar is made at the call's first report with that report's
 count as its start (`initial`): work an earlier start finished (a resumed
 sweep) or done before the first report does not count into the rate.
 """
 
 from __future__ import annotations
 
+import importlib
 from typing import Any, Callable, Optional, Union
 
 Progress = Union[None, bool, Callable[[int, int], Any]]
@@ -35,8 +38,50 @@ def progress_enabled() -> bool:
     return _ON
 
 
+def _in_notebook() -> bool:
+    """True inside a Jupyter kernel (IPython's ZMQ shell)."""
+    try:
+        ipython: Any = importlib.import_module("IPython")
+    except ImportError:
+        return False
+    shell = ipython.get_ipython()
+    return shell is not None and type(shell).__name__ == "ZMQInteractiveShell"
+
+
+class NotebookBar:
+    """A progress bar for a Jupyter kernel without ipywidgets: an HTML
+    `<progress>` element in one display, updated in place and emptied on
+    close, so nothing of it is saved with the notebook. The calls of a
+    tqdm bar that `Sink` makes (total, n, update, close)."""
+
+    def __init__(self, total: int, initial: int = 0, unit: str = "it", leave: bool = False) -> None:
+        display_mod: Any = importlib.import_module("IPython.display")
+        HTML, display = display_mod.HTML, display_mod.display
+        self._html: Any = HTML
+        self.total = total
+        self.n = initial
+        self.unit = unit
+        self._handle: Any = display(HTML(self._text()), display_id=True)
+
+    def _text(self) -> str:
+        return (
+            f'<progress value="{self.n}" max="{max(self.total, 1)}" style="width:40em"></progress>'
+            f" {self.n}/{self.total} {self.unit}"
+        )
+
+    def update(self, k: int) -> None:
+        self.n += k
+        if self._handle is not None:
+            self._handle.update(self._html(self._text()))
+
+    def close(self) -> None:
+        if self._handle is not None:
+            self._handle.update(self._html(""))
+
+
 def _tqdm_class() -> Any:
-    """tqdm's bar for this front end, or None when tqdm is not installed."""
+    """tqdm's bar for this front end (NotebookBar in a notebook without
+    ipywidgets), or None when tqdm is not installed."""
     try:
         import ipywidgets  # noqa: F401  (the widget bar needs it)
     except ImportError:
@@ -44,7 +89,7 @@ def _tqdm_class() -> Any:
             from tqdm.std import tqdm
         except ImportError:
             return None
-        return tqdm
+        return NotebookBar if _in_notebook() else tqdm
     try:
         from tqdm.auto import tqdm as auto
     except ImportError:
@@ -57,6 +102,18 @@ class Sink:
     or nowhere."""
 
     def __init__(self, progress: Progress, unit: str) -> None:
+        if not (progress is None or isinstance(progress, bool) or callable(progress)):
+            from ._errors import SceneError
+
+            shown = repr(progress)
+            shown = shown if len(shown) <= 200 else shown[:200] + "…"
+            raise SceneError(
+                f"invalid argument: `progress` = {shown}: must be None, True, False "
+                "or a callable progress(done, total)",
+                field="progress",
+                value=shown,
+                allowed="None, True, False or a callable progress(done, total)",
+            )
         self.bar: Any = None
         self.unit = unit
         self.tqdm: Any = None

@@ -10,12 +10,29 @@ from __future__ import annotations
 
 import html
 import math
-from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Protocol, Sequence, Tuple
 
 import numpy as np
 
-if TYPE_CHECKING:  # pragma: no cover
-    from ._table import Table
+
+class Table(Protocol):
+    """What the drawings read of a `taut.Table` (`_table.py`), named here
+    so that this file imports nothing of the package: columns by name,
+    the row count, a sweep's axes and its columns on the grid."""
+
+    axes: List[Tuple[str, np.ndarray]]
+    paired: bool
+
+    @property
+    def rows(self) -> int: ...
+
+    def keys(self) -> Any: ...
+
+    def get(self, key: str) -> Optional[np.ndarray]: ...
+
+    def __getitem__(self, key: Any) -> Any: ...
+
+    def grid(self, column: str) -> np.ndarray: ...
 
 # rows of a table a notebook shows: the head and the tail
 HTML_ROWS = 5
@@ -40,7 +57,7 @@ def _cell(v: Any) -> str:
     return html.escape(str(v))
 
 
-def table_html(t: "Table") -> str:
+def table_html(t: Table) -> str:
     """A table's head and tail as an HTML table, with its size."""
     names = list(t.keys())
     n = t.rows
@@ -80,59 +97,210 @@ def run_html(scalars: Dict[str, Any], carriers: int, rows: int, warnings: Sequen
     )
 
 
-def plot_run(history: "Table", carriers: int, length: float, ax: Any = None) -> Any:
-    """force.svg: every carrier's contact force against its position
-    x_m/L (against t when no carrier moves), the steps with contact lost
-    shaded."""
+# units of the quantities a table's columns and a sweep's axes hold, for
+# axis labels (the CLI's maps label them the same way:
+# src/report/sweep_maps/axes.rs)
+_LABELS = {
+    "loss_fraction": "contact loss P_l (–)",
+    "loss_fraction_span": "contact loss in span P_l (–)",
+    "loss_fraction_support": "contact loss at supports P_l (–)",
+    "force_mean": "mean contact force (N)",
+    "force_std": "σ of the contact force (N)",
+    "force_min": "min contact force (N)",
+    "force_max": "max contact force (N)",
+    "filtered_force_mean": "mean filtered contact force (N)",
+    "filtered_force_std": "σ of the filtered contact force (N)",
+    "filtered_force_min": "min filtered contact force (N)",
+    "filtered_force_max": "max filtered contact force (N)",
+    "first_loss_position": "first loss x_m / L (–)",
+    "contact_switches": "contact switches (–)",
+    "speed_ratio": "speed ratio V0/c (–)",
+    "tension_ratio": "tension ratio T/EA (–)",
+    "mass_ratio": "mass ratio m/M (–)",
+    "stiffness_ratio": "stiffness ratio k/(T/L) (–)",
+    "tension": "tension T (N)",
+    "cruise": "cruise speed V0 (m/s)",
+    "value": "speed V (m/s)",
+    "mass": "mass m (kg)",
+    "stiffness": "stiffness k (N/m)",
+    "preload": "preload δ0 (m)",
+    "damping": "damping c_s (N·s/m)",
+    "length": "length L (m)",
+    "elements": "elements N (–)",
+    "step": "time step Δt (s)",
+    "wall_seconds": "wall time (s)",
+    "force_error": "relative RMS force error (–)",
+    "dt": "time step Δt (s)",
+}
+
+
+def label(name: str) -> str:
+    """An axis label with its unit for a column or a scene key (the key's
+    last part decides: `carrier.speed.cruise` is a speed in m/s); the name
+    itself when taut does not know its unit."""
+    last = name.rsplit(".", 1)[-1]
+    found = _LABELS.get(name) or _LABELS.get(last)
+    if found is None:
+        return name
+    return found if name == last else f"{found}   [{name}]"
+
+
+def _figure(ax: Any, size: Any) -> Any:
     plt = _pyplot()
     if ax is None:
-        _, ax = plt.subplots(figsize=(8, 3.5))
-    suffixes = [""] if carriers == 1 else [f"_{i}" for i in range(carriers)]
-    moving = any(np.ptp(history["x_m" + s]) > 0 for s in suffixes)
-    for i, s in enumerate(suffixes):
-        x = history["x_m" + s] / length if moving else history["t"]
-        force = history["force" + s]
-        lost = ~history["in_contact" + s].astype(bool)
-        name = "contact force" if carriers == 1 else f"carrier {i}"
-        ax.plot(x, force, lw=0.8, color=f"C{i}", label=name)
-        if lost.any():
-            lo, hi = float(np.nanmin(force)), float(np.nanmax(force))
-            ax.fill_between(
-                x,
-                lo,
-                hi,
-                where=lost,
-                color=f"C{i}",
-                alpha=0.2,
-                step="mid",
-                label="contact lost (shaded)" if i == 0 else None,
-            )
-    ax.set_xlabel("x_m / L" if moving else "t (s)")
-    ax.set_ylabel("contact force λ (N)")
-    ax.legend(loc="upper right")
+        # constrained layout keeps the axis labels inside a saved figure
+        _, ax = plt.subplots(figsize=size, layout="constrained")
     return ax
 
 
-def plot_table(t: "Table", column: str, ax: Any = None) -> Any:
-    """A sweep's `column` against its axis (1-D), as a map over its two
-    axes (2-D), or against the row (anything else)."""
-    plt = _pyplot()
-    if ax is None:
-        _, ax = plt.subplots(figsize=(7, 4))
+# loss intervals narrower than this share of the x range are widened to it
+# when drawn (the CLI's force.svg does the same: a single lost step shows)
+MIN_MARK_WIDTH = 0.003
+
+
+def _loss_spans(x: np.ndarray, lost: np.ndarray) -> List[Any]:
+    """[x_start, x_end] of each run of lost steps, widened to be seen."""
+    spans = []
+    i, n = 0, len(lost)
+    width = MIN_MARK_WIDTH * float(np.nanmax(x) - np.nanmin(x)) if n else 0.0
+    while i < n:
+        if lost[i]:
+            j = i
+            while j + 1 < n and lost[j + 1]:
+                j += 1
+            a, b = float(x[max(i - 1, 0)]), float(x[j])
+            c, w = 0.5 * (a + b), max(b - a, width)
+            spans.append((c - 0.5 * w, c + 0.5 * w))
+            i = j + 1
+        else:
+            i += 1
+    return spans
+
+
+def plot_run(history: Table, carriers: int, length: float, ax: Any = None, band_hz: float = 20.0) -> Any:
+    """force.svg: every carrier's contact force against its position
+    x_m/L (against t when no carrier moves), light, its filtered force
+    (`force_filtered`) bold over it, the steps with contact lost shaded
+    and marked under the lines."""
+    ax = _figure(ax, (9, 4))
+    suffixes = [""] if carriers == 1 else [f"_{i}" for i in range(carriers)]
+    moving = any(np.ptp(history["x_m" + s]) > 0 for s in suffixes)
+    lost_label = "contact lost (shaded, marked below)"
+    peaks: List[np.ndarray] = []
+    for i, s in enumerate(suffixes):
+        # rows 1 …: row 0 is the initial state, as the CLI's plot
+        x = (history["x_m" + s] / length if moving else history["t"])[1:]
+        force = history["force" + s][1:]
+        filtered = history.get("force_filtered" + s)
+        name = "λ" if carriers == 1 else f"carrier {i}"
+        ax.plot(x, force, lw=0.7, color=f"C{i}", alpha=0.45 if filtered is not None else 1.0, label=name)
+        if filtered is not None:
+            dark = _darker(f"C{i}")
+            ax.plot(x, filtered[1:], lw=2.0, color=dark, label=f"{name}, 0–{band_hz:g} Hz filtered")
+        peaks.append(force)
+        lost = ~history["in_contact" + s][1:].astype(bool)
+        for k, (a, b) in enumerate(_loss_spans(x, lost)):
+            ax.axvspan(a, b, color=f"C{i}", alpha=0.22, lw=0, label=lost_label if (i == 0 and k == 0) else None)
+            ax.axvspan(a, b, ymin=0.0, ymax=0.035, color="C3", lw=0)
+    ax.set_xlabel("carrier position x_m / L (–)" if moving else "time t (s)")
+    ax.set_ylabel("contact force λ (N)")
+    # the CLI's rule: clip the axis above re-contact spikes (over twice the
+    # 99.5th percentile), and say so with the peak
+    f = np.concatenate(peaks) if peaks else np.zeros(1)
+    f = f[np.isfinite(f)]
+    if f.size:
+        p995, top, low = float(np.percentile(f, 99.5)), float(f.max()), float(f.min())
+        if p995 > 0 and top > CLIP_FACTOR * p995:
+            clip = CLIP_FACTOR * p995
+            span = clip - low
+            ax.set_ylim(low - 0.05 * span, clip + 0.28 * span)
+            ax.set_title(f"(axis clipped; peak {top:.0f} N)", fontsize="small", loc="right")
+    ax.legend(loc="upper left", fontsize="small", framealpha=0.85)
+    return ax
+
+
+# the force axis is clipped at this multiple of the 99.5th percentile, as
+# the CLI's force.svg does (src/report/plot.rs CLIP_FACTOR)
+CLIP_FACTOR = 2.0
+
+
+def _darker(colour: str) -> Any:
+    """A darker shade of a matplotlib colour (the filtered line over its
+    raw line, as force.svg draws it)."""
+    from matplotlib.colors import to_rgb
+
+    r, g, b = to_rgb(colour)
+    return (0.55 * r, 0.55 * g, 0.55 * b)
+
+
+def plot_table(t: Table, column: str, ax: Any = None) -> Any:
+    """A sweep's `column` against its axis (1-D, with error bars from a
+    `<column>_u_num` column when the table has one), as a map over its two
+    axes (2-D), or against the row (anything else); axes labelled with
+    their units."""
+    ax = _figure(ax, (7, 4))
     if len(t.axes) == 2:
         g, (kx, x), (ky, y) = t.grid(column), t.axes[0], t.axes[1]
         # first axis on the vertical, as the CLI's loss_fraction_map.svg
         m = ax.pcolormesh(y, x, g, shading="nearest")
-        ax.figure.colorbar(m, ax=ax, label=column)
-        ax.set_xlabel(ky)
-        ax.set_ylabel(kx)
+        ax.figure.colorbar(m, ax=ax, label=label(column))
+        ax.set_xlabel(label(ky))
+        ax.set_ylabel(label(kx))
         return ax
     if len(t.axes) == 1:
         key, x = t.axes[0]
-        ax.plot(x, t.grid(column), marker="o", ms=3)
-        ax.set_xlabel(key)
+        err = t.get(column + "_u_num")
+        if err is not None:
+            ax.errorbar(x, t.grid(column), yerr=err, marker="o", ms=3, capsize=3)
+        else:
+            ax.plot(x, t.grid(column), marker="o", ms=3)
+        ax.set_xlabel(label(key))
     else:
         ax.plot(np.arange(t.rows), t[column], marker="o", ms=3, ls="none")
-        ax.set_xlabel("point")
-    ax.set_ylabel(column)
+        ax.set_xlabel("point (–)")
+    ax.set_ylabel(label(column))
     return ax
+
+
+def modes_html(frequency_hz: np.ndarray, string_hz: np.ndarray, source: str, points: int) -> str:
+    """A scene's modes as an HTML table: frequency and the taut string's."""
+    rows = "".join(
+        f"<tr><td>{j + 1}</td><td>{_cell(f)}</td><td>{_cell(s)}</td></tr>"
+        for j, (f, s) in enumerate(zip(frequency_hz, string_hz))
+    )
+    return (
+        f"<div><b>taut.Modes</b>: {len(frequency_hz)} modes ({html.escape(source)}), "
+        f"shapes on {points} points"
+        "<table><thead><tr><th>mode</th><th>f (Hz)</th><th>string j·c/(2L) (Hz)</th></tr></thead>"
+        f"<tbody>{rows}</tbody></table></div>"
+    )
+
+
+def state_html(state: Any, steps: Optional[int] = None) -> str:
+    """A simulation's state between steps as an HTML table, a row a
+    carrier (and a row a probe)."""
+    names = ("x", "w", "q", "q_dot", "gap", "force", "in_contact", "applied")
+    units = ("m", "m", "m", "m/s", "m", "N", "", "N")
+    head = "".join(
+        f"<th>{n}{f' ({u})' if u else ''}</th>" for n, u in zip(names, units)
+    )
+    rows = "".join(
+        f"<tr><td>{i}</td>" + "".join(f"<td>{_cell(getattr(c, n))}</td>" for n in names) + "</tr>"
+        for i, c in enumerate(state.carriers)
+    )
+    probes = "".join(
+        f"<tr><td>{html.escape(p.name)}</td><td>{_cell(p.x)}</td><td>{_cell(p.v)}</td><td>{_cell(p.v_dot)}</td></tr>"
+        for p in state.probes.values()
+    )
+    of = f" of {steps}" if steps is not None else ""
+    return (
+        f"<div><b>taut.Simulation</b> at t = {state.t:.6g} s, step {state.step}{of}"
+        f"<table><thead><tr><th>carrier</th>{head}</tr></thead><tbody>{rows}</tbody></table>"
+        + (
+            "<table><thead><tr><th>probe</th><th>x (m)</th><th>v (m)</th><th>v_dot (m/s)</th></tr></thead>"
+            f"<tbody>{probes}</tbody></table>"
+            if probes
+            else ""
+        )
+        + "</div>"
+    )

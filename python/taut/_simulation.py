@@ -40,7 +40,8 @@ class CarrierState:
         gap: g = w − q, m.
         force: contact force λ, N, as history.csv records it.
         in_contact: the contact is closed.
-        applied: the force held on the mass by apply_force, N (+ up).
+        applied: the force held on the mass by apply_force, N (+ up,
+            whatever `into_wire` it was given with).
     """
 
     x: float
@@ -74,6 +75,11 @@ class SimulationState:
     carriers: Tuple[CarrierState, ...]
     probes: Dict[str, ProbeState]
 
+    def _repr_html_(self) -> str:
+        from ._show import state_html
+
+        return state_html(self)
+
 
 class Simulation:
     """One run of a scene, stepped on request.
@@ -102,6 +108,13 @@ class Simulation:
         self._sim = _taut.Simulation(path, text, sets, _out(out))
         self._scene = (path, text, sets)
         steps, dt = self._sim.steps_dt()
+        # each carrier's side (MODEL §2): +1 below the wire, −1 above
+        from ._scene import load_scene
+
+        self._toward: Tuple[float, ...] = tuple(
+            1.0 if c.get("side") == "below" else -1.0
+            for c in load_scene(scene, set).get("carrier", [])
+        )
         self.steps: int = steps
         """The run's number of steps."""
         self.dt: float = dt
@@ -136,15 +149,35 @@ class Simulation:
             probes={p[0]: ProbeState(*p) for p in probes},
         )
 
-    def apply_force(self, carrier: int, newtons: float) -> None:
-        """Hold `newtons` on carrier `carrier`'s mass, positive up (+v,
-        MODEL §2: for a pantograph below the wire, up presses it into the
-        wire), from the next step on until changed, on top of the scene's
-        `external_force` series if any. Constant over each step. Refused
-        (SceneError) for a moving force or an index out of range."""
+    def apply_force(self, carrier: int, newtons: float, *, into_wire: bool = False) -> None:
+        """Hold `newtons` on carrier `carrier`'s mass from the next step on
+        until changed, on top of the scene's `external_force` series if
+        any; constant over each step.
+
+        The sign: with `into_wire=True`, positive newtons push the mass
+        toward the wire (up for a carrier below it, down for one above:
+        what a controller raising the contact force wants, whatever the
+        side); with the default `into_wire=False`, positive is up (+v,
+        MODEL §2). `toward_wire(carrier)` is the factor between the two.
+        Refused (SceneError) for a moving force or an index out of range."""
         from . import _count, _real
 
-        self._sim.apply_force(_count("carrier", carrier, 0), _real("newtons", newtons))
+        i = _count("carrier", carrier, 0)
+        f = _real("newtons", newtons)
+        if into_wire:
+            f *= self.toward_wire(i)
+        self._sim.apply_force(i, f)
+
+    def toward_wire(self, carrier: int) -> float:
+        """+1.0 when up is toward the wire for carrier `carrier` (a carrier
+        below the wire, side = "below"), −1.0 when down is (side = "above"):
+        `apply_force(c, toward_wire(c) * F)` pushes F newtons into the wire."""
+        from . import _count
+
+        i = _count("carrier", carrier, 0)
+        if i >= len(self._toward):
+            raise IndexError(f"carrier {i}: the scene has {len(self._toward)} carrier(s)")
+        return self._toward[i]
 
     def w_at(self, x: float) -> float:
         """The beam displacement v(x), m (+ up, as the probes), at any x on
@@ -170,3 +203,8 @@ class Simulation:
     def __repr__(self) -> str:
         s = self.state
         return f"taut.Simulation(step {s.step} of {self.steps}, t = {s.t:.6g} s)"
+
+    def _repr_html_(self) -> str:
+        from ._show import state_html
+
+        return state_html(self.state, self.steps)

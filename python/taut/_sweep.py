@@ -14,6 +14,7 @@ from typing import Any, Dict, Iterable, List, Mapping, Sequence, Union
 
 import numpy as np
 
+from . import _taut
 from ._errors import SceneError
 from ._scene import value as toml_value
 
@@ -100,7 +101,9 @@ def points(pts: Points) -> List[str]:
     pandas DataFrame too) as the library's listed axes, one a key."""
     if hasattr(pts, "to_dict") and not isinstance(pts, Mapping):
         pts = pts.to_dict("records")
+    most = _taut.most_point_keys()
     if isinstance(pts, Mapping):
+        _at_most(len(pts), most)
         cols = {str(k): list(v.tolist() if hasattr(v, "tolist") else v) for k, v in pts.items()}
         n = {len(v) for v in cols.values()}
         if len(n) > 1:
@@ -116,7 +119,9 @@ def points(pts: Points) -> List[str]:
         raise SceneError(
             "points: an empty list", field="points", value="[]", allowed="at least one point"
         )
-    keys: List[str] = []
+    # the keys in order of first appearance (a dict: a million keys in one
+    # point took minutes as a list, issue 41)
+    seen: Dict[str, None] = {}
     for r in rows:
         if not isinstance(r, Mapping):
             raise SceneError(
@@ -125,9 +130,11 @@ def points(pts: Points) -> List[str]:
                 value=repr(r)[:200],
                 allowed="a list of dicts {key: value}",
             )
+        _at_most(len(r), most)
         for k in r:
-            if str(k) not in keys:
-                keys.append(str(k))
+            seen.setdefault(str(k), None)
+        _at_most(len(seen), most)
+    keys = list(seen)
     for i, r in enumerate(rows):
         missing = [k for k in keys if k not in r]
         if missing:
@@ -138,6 +145,18 @@ def points(pts: Points) -> List[str]:
                 allowed="a value for each of " + ", ".join(keys),
             )
     return [_listed(k, [r[k] for r in rows], f"points[*][{k!r}]") for k in keys]
+
+
+def _at_most(keys: int, most: int) -> None:
+    """Refuse a list of points setting more than `most` keys (the library's
+    MAX_POINT_KEYS), before its axes are built."""
+    if keys > most:
+        raise SceneError(
+            f"points: {keys} keys: a list of points sets at most {most} keys: vary fewer scene values",
+            field="points",
+            value=f"{keys} keys",
+            allowed=f"at most {most} keys",
+        )
 
 
 def span_profiles(dir: str, n: int) -> Dict[str, Any]:

@@ -13,7 +13,7 @@ bytes into an array:
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 import numpy as np
 
@@ -21,7 +21,12 @@ _KINDS = {"f8": "<f8", "i8": "<i8"}
 
 
 class Table(Dict[str, np.ndarray]):
-    """Columns by name, in the CLI's column order.
+    """Columns by name, in the CLI's column order; rows by number.
+
+    `t["force"]` is a column (a numpy array), `t[0]` (or `t.row(0)`) a row
+    as a dict from column name to value, `t[-1]` the last row, and
+    `len(t)` the number of rows (as a DataFrame's); iterating gives the
+    column names, as a dict does (`t.columns` lists them).
 
     Attributes:
         failed: runs of a study that stopped (each a dict with `method`,
@@ -36,6 +41,7 @@ class Table(Dict[str, np.ndarray]):
             points × bins at x/L = span_x (sweep_force.csv,
             sweep_loss.csv); NaN where no step fell. None otherwise.
         warnings: of a sweep, each point's warning texts.
+        family: of an uncertainty study, its runs (a Table).
     """
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
@@ -48,11 +54,44 @@ class Table(Dict[str, np.ndarray]):
         self.span_loss: Optional[np.ndarray] = None
         self.span_x: Optional[np.ndarray] = None
         self.warnings: List[List[str]] = []
+        self.family: Optional["Table"] = None
 
     @property
     def rows(self) -> int:
         """Number of rows."""
-        return len(next(iter(self.values()))) if self else 0
+        return len(next(iter(self.values()))) if dict.__len__(self) else 0
+
+    @property
+    def columns(self) -> List[str]:
+        """The column names, in order."""
+        return list(self.keys())
+
+    def __len__(self) -> int:
+        """The number of rows (a dict's len would count the columns)."""
+        return self.rows
+
+    def __bool__(self) -> bool:
+        return dict.__len__(self) > 0
+
+    def __getitem__(self, key: Any) -> Any:
+        """A column by name, or a row by number (a dict of its values;
+        negative numbers count from the end)."""
+        if isinstance(key, (int, np.integer)) and not isinstance(key, bool):
+            return self.row(int(key))
+        return dict.__getitem__(self, key)
+
+    def row(self, i: int) -> Dict[str, Any]:
+        """Row `i` as a dict from column name to value (numbers as Python
+        floats, ints and bools; negative i counts from the end)."""
+        n = self.rows
+        if not -n <= i < n:
+            raise IndexError(f"row {i} of a table of {n} rows")
+        i %= max(n, 1)
+        return {k: _scalar(v[i]) for k, v in self.items()}
+
+    def iterrows(self) -> Iterator[Dict[str, Any]]:
+        """Each row as a dict, in order."""
+        return (self.row(i) for i in range(self.rows))
 
     def to_pandas(self) -> Any:
         """The table as a `pandas.DataFrame` (pandas is not a dependency of
@@ -73,7 +112,8 @@ class Table(Dict[str, np.ndarray]):
             raise ValueError(
                 "grid(): this table is not a grid sweep's (a list of points or another study has no grid)"
             )
-        return self[column].reshape([len(v) for _, v in self.axes])
+        col: np.ndarray = dict.__getitem__(self, column)
+        return col.reshape([len(v) for _, v in self.axes])
 
     def to_xarray(self) -> Any:
         """A grid sweep as an `xarray.Dataset` over its axes, one variable
@@ -81,7 +121,7 @@ class Table(Dict[str, np.ndarray]):
         try:
             import xarray as xr
         except ImportError as e:
-            raise ImportError("Table.to_xarray needs xarray: pip install xarray") from e
+            raise ImportError("Table.to_xarray needs xarray, in taut's `all` extra: pip install 'taut[all]' (or xarray)") from e
         if not self.axes:
             raise ValueError("to_xarray(): this table is not a grid sweep's")
         dims = [k for k, _ in self.axes]
@@ -104,6 +144,11 @@ class Table(Dict[str, np.ndarray]):
         from ._show import plot_table
 
         return plot_table(self, column, ax)
+
+
+def _scalar(v: Any) -> Any:
+    """A numpy scalar as the Python number it holds."""
+    return v.item() if isinstance(v, np.generic) else v
 
 
 def _array(kind: str, data: Any) -> np.ndarray:

@@ -1,8 +1,10 @@
 """Type stubs of the native module `taut._taut` (python/src/lib.rs).
 
 Not for direct use: `taut.run`, `taut.sweep`, `taut.compare`,
-`taut.converge` and `taut.precision` (python/taut/__init__.py) call these
-with the CLI's words and turn their `(name, kind, data)` columns into
+`taut.converge`, `taut.precision` and `taut.uncertainty`
+(python/taut/__init__.py) call these
+with their options as JSON (the library's `taut::app::args`, the CLI's
+flags) and turn their `(name, kind, data)` columns into
 numpy arrays (python/taut/_table.py).
 """
 
@@ -17,102 +19,63 @@ __all__ = [
     "bundled_scenes",
     "compare",
     "converge",
-    "level_ranges",
-    "limits",
     "mesh",
     "modes",
+    "most_point_keys",
     "precision",
+    "report",
     "run",
     "scene_json",
+    "schema",
+    "stop_running_calls",
     "sweep",
     "taut_version",
+    "uncertainty",
 ]
 
 _Column = Tuple[str, str, Union[bytes, List[Optional[str]]]]
 _NotRun = Tuple[str, str, str, str]
 _Progress = Optional[Callable[[int, int], object]]
 _Wire = Optional[Tuple[bytes, bytes, bytes, bytes]]
-_Line = Tuple[Optional[List[_Column]], Optional[List[_Column]], Optional[List[_Column]]]
+_Line = Tuple[
+    Optional[List[_Column]], Optional[List[_Column]], Optional[List[_Column]], List[_Column]
+]
 
+# (path, text, set): a scene file or its TOML text, and the overrides
+_SceneArg = Tuple[Optional[str], Optional[str], List[str]]
+
+# `args` of each command: its options as JSON (the library's
+# taut::app::args structs, the CLI's flags)
 def run(
-    path: Optional[str],
-    text: Optional[str],
-    set: List[str],
-    out: Optional[str],
-    tolerance: Optional[str],
-    quantity: Optional[str],
-    progress: _Progress,
+    on: _SceneArg, out: Optional[str], progress: _Progress, args: str
 ) -> Tuple[
     str, List[_Column], List[str], Optional[List[_Column]], Tuple[_Wire, _Wire], _Line
 ]: ...
-def limits() -> Tuple[int, int]: ...
 def sweep(
-    path: Optional[str],
-    text: Optional[str],
-    vary: List[str],
-    log: bool,
-    set: List[str],
-    out: str,
-    files: bool,
-    threads: Optional[int],
-    batch: Optional[int],
-    check_refinement: bool,
-    progress: _Progress,
-    yes: bool,
-    points: bool = False,
+    on: _SceneArg, out: str, files: bool, progress: _Progress, args: str
 ) -> List[_Column]: ...
 def compare(
-    path: Optional[str],
-    text: Optional[str],
-    set: List[str],
-    formulations: str,
-    methods: Optional[str],
-    discretizations: Optional[str],
-    reference: str,
-    reference_method: Optional[str],
-    batch: Optional[int],
-    out: Optional[str],
-    progress: _Progress,
-    yes: bool,
+    on: _SceneArg, out: Optional[str], progress: _Progress, args: str
 ) -> Tuple[List[_Column], List[_NotRun], List[_NotRun]]: ...
 def converge(
-    path: Optional[str],
-    text: Optional[str],
-    set: List[str],
-    refine: str,
-    levels: int,
-    ratio: float,
-    methods: Optional[str],
-    discretizations: Optional[str],
-    out: Optional[str],
-    progress: _Progress,
-    yes: bool,
+    on: _SceneArg, out: Optional[str], progress: _Progress, args: str
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
 def precision(
-    path: Optional[str],
-    text: Optional[str],
-    set: List[str],
-    formulations: str,
-    methods: Optional[str],
-    discretizations: Optional[str],
-    levels: int,
-    ratio: int,
-    batch: Optional[int],
-    out: Optional[str],
-    progress: _Progress,
-    yes: bool,
+    on: _SceneArg, out: Optional[str], progress: _Progress, args: str
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
+def schema() -> List[Tuple[str, List[Tuple[str, Optional[str], str]]]]: ...
+def uncertainty(
+    on: _SceneArg, out: Optional[str], progress: _Progress, args: str
+) -> Tuple[List[_Column], List[_Column]]: ...
 def scene_json(path: Optional[str], text: Optional[str], set: List[str]) -> str: ...
-def level_ranges() -> Tuple[Tuple[int, int], Tuple[int, int]]: ...
 def bundled_scenes() -> List[Tuple[str, str]]: ...
 def modes(
-    path: Optional[str],
-    text: Optional[str],
-    set: List[str],
-    count: Optional[int],
-    out: Optional[str],
+    on: _SceneArg, out: Optional[str], args: str
 ) -> Tuple[List[_Column], List[_Column]]: ...
 def mesh(path: Optional[str], text: Optional[str], set: List[str]) -> bytes: ...
+def report(dirs: List[str], out: Optional[str]) -> Tuple[str, int, int]: ...
+def stop_running_calls() -> bool: ...
+def most_point_keys() -> int: ...
 
 _CarrierTuple = Tuple[float, float, float, Optional[float], float, float, bool, float]
 _ProbeTuple = Tuple[str, float, float, float]

@@ -7,7 +7,11 @@ import csv
 import math
 import os
 import pathlib
+import select
+import signal
 import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -53,3 +57,31 @@ def same_column(cells: list, array: np.ndarray) -> bool:
         return [c in ("1", "true") for c in cells] == list(array)
     parsed = np.array([float(c) if c != "" else math.nan for c in cells])
     return bool(np.array_equal(parsed, array.astype(np.float64), equal_nan=True))
+
+
+def ctrl_c(script: str, args: list, after: float) -> tuple:
+    """Run `script` in a new interpreter, send it SIGINT `after` s past the
+    line "started" it prints once its work has begun, and return (seconds
+    from the signal to its exit, stdout, stderr)."""
+    p = subprocess.Popen(
+        [sys.executable, "-c", script, *map(str, args)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=ROOT,
+    )
+    assert p.stdout is not None
+    ready, _, _ = select.select([p.stdout], [], [], 60)
+    if not ready:
+        p.kill()
+        pytest.fail("the work did not start within 60 s")
+    assert p.stdout.readline().strip() == "started"
+    time.sleep(after)
+    t0 = time.perf_counter()
+    p.send_signal(signal.SIGINT)
+    try:
+        stdout, stderr = p.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        pytest.fail("the work did not stop on Ctrl-C")
+    return time.perf_counter() - t0, stdout, stderr

@@ -6,10 +6,6 @@ half-written files; an interrupted sweep into a folder resumes."""
 from __future__ import annotations
 
 import os
-import select
-import signal
-import subprocess
-import sys
 import threading
 import time
 
@@ -17,7 +13,7 @@ import numpy as np
 import pytest
 
 import taut
-from conftest import REFERENCE, ROOT
+from conftest import REFERENCE, ctrl_c
 
 # a run long enough to watch: 60 000 steps at N = 800, about 0.7 s on
 # this machine kind
@@ -198,27 +194,7 @@ print("finished", flush=True)
 @pytest.mark.skipif(os.name != "posix", reason="SIGINT by os.kill")
 def test_ctrl_c_stops_a_sweep_with_keyboard_interrupt(tmp_path):
     out = tmp_path / "sweep"
-    p = subprocess.Popen(
-        [sys.executable, "-c", SCRIPT, str(REFERENCE), str(out)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        cwd=ROOT,
-    )
-    ready, _, _ = select.select([p.stdout], [], [], 60)
-    if not ready:
-        p.kill()
-        pytest.fail("the sweep did not start within 60 s")
-    assert p.stdout.readline().strip() == "started"
-    time.sleep(0.3)
-    t0 = time.perf_counter()
-    p.send_signal(signal.SIGINT)
-    try:
-        stdout, stderr = p.communicate(timeout=30)
-    except subprocess.TimeoutExpired:
-        p.kill()
-        pytest.fail("the sweep did not stop on Ctrl-C")
-    stopped_in = time.perf_counter() - t0
+    stopped_in, stdout, stderr = ctrl_c(SCRIPT, [REFERENCE, out], 0.3)
     assert "KeyboardInterrupt" in stderr, stderr
     assert "finished" not in stdout
     # 40 runs of about 0.7 s each were pending (14 s on 2 cores): stopping

@@ -67,14 +67,15 @@ def test_plots_draw_what_the_cli_svgs_draw(monkeypatch):
     mpl.use("Agg")
     r = taut.run(REFERENCE, set={**SHORT, "time.end": 0.3}, progress=False)
     ax = r.plot()
-    assert ax.get_xlabel() == "x_m / L" and len(ax.lines) == 1
+    # the force light and its filtered force bold, as force.svg (issue 39)
+    assert ax.get_xlabel() == "carrier position x_m / L (–)" and len(ax.lines) == 2
     t = taut.sweep(REFERENCE, vary={"carrier.speed.cruise": [50.0, 60.0]}, set=SHORT, progress=False)
     ax = t.plot("force_std")
-    assert ax.get_xlabel() == "carrier.speed.cruise"
+    assert ax.get_xlabel() == "cruise speed V0 (m/s)   [carrier.speed.cruise]"
     assert list(ax.lines[0].get_ydata()) == list(t["force_std"])
     g = taut.sweep(REFERENCE, vary={"carrier.speed.cruise": [50.0, 60.0], "beam.tension": [2.5e4, 3e4]}, set=SHORT, progress=False)
     ax = g.plot("force_std")
-    assert ax.get_ylabel() == "carrier.speed.cruise" and ax.get_xlabel() == "beam.tension"
+    assert ax.get_ylabel().endswith("[carrier.speed.cruise]") and ax.get_xlabel() == "tension T (N)   [beam.tension]"
     # without matplotlib: an ImportError naming the extra
     monkeypatch.setitem(sys.modules, "matplotlib.pyplot", None)
     with pytest.raises(ImportError) as e:

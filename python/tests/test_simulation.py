@@ -110,7 +110,7 @@ def test_bad_input_is_refused_naming_the_field():
     assert e.value.field == "carrier.0.external_force"
     with pytest.raises(taut.SceneError) as e:
         taut.run(T2, set={**T2_SHORT, "carrier.0.external_force": {"time": [0.0, 0.01], "force": [1.0, 1.0]}}, progress=False)
-    assert e.value.field == "carrier.0.external_force.time[1]"
+    assert e.value.field == "carrier.0.external_force.time.1"
 
 
 def test_a_numpy_series_reaches_the_scene():

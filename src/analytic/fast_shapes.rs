@@ -21,7 +21,7 @@
 //! ```
 //!
 //! * `e^{ijθ}` for j = 1 … J by a **rotation recurrence** in blocks of
-//!   [`BLOCK`] modes: `e^{iθ}` from one `sin_cos`, the first block by
+//!   `BLOCK` modes: `e^{iθ}` from one `sin_cos`, the first block by
 //!   repeated squaring and products, then block b+1 = block b × `e^{iBθ}`
 //!   (a complex product per mode; the B chains are independent, so they
 //!   vectorize). Each product adds at most a few ulps, so mode j carries
@@ -46,7 +46,7 @@
 //! mode_shapes.rs) are tabulated in the distance `d` to their end at
 //! spacing `Δ = 1/α_J`, times `e^{−α_j δ}` (`|α_j δ| ≤ 1/2`) by its Taylor
 //! polynomial to degree 15 (remainder ≤ `e^{1/2}·0.5¹⁶/16! ≈ 1.2·10⁻¹⁸`).
-//! A term with `α_j d ≥` [`LAYER_CUT`] is below `e^{−40} ≈ 4·10⁻¹⁸` of its
+//! A term with `α_j d ≥ LAYER_CUT` is below `e^{−40} ≈ 4·10⁻¹⁸` of its
 //! coefficient (itself at most ~2 amplitudes) and is left out: since α_j
 //! rises with j, row k keeps only the modes that count within half a row of
 //! it, and rows stop at `d = 40/α_1`. On the reference span (αL ≥ 760)
@@ -61,8 +61,8 @@
 //!
 //! ## Block by block
 //!
-//! [`FastShapes::blocks_at`] hands the same values out a block of [`BLOCK`]
-//! modes at a time ([`BlocksAvx::next`], then [`Blocks::tail_into`]), with
+//! `FastShapes::blocks_at` hands the same values out a block of `BLOCK`
+//! modes at a time (`BlocksAvx::next`, then `Blocks::tail_into`), with
 //! the very operations of the whole-vector kernels, for a caller that uses
 //! each block while it is in registers (the fused `modal_exact` step); it
 //! declines where a boundary-layer row applies (`tests` check both, bit for
@@ -72,7 +72,7 @@
 //!
 //! Against the direct evaluation [`super::ModeShapes::values_into`] (itself
 //! accurate to ~10⁻¹² at J = 1000, mode_shapes.rs "The limit on J"), the
-//! values agree to [`FAST_SHAPES_AGREEMENT`] of the amplitude `sqrt(2/(ρA L))`
+//! values agree to `FAST_SHAPES_AGREEMENT` of the amplitude `sqrt(2/(ρA L))`
 //! for every support pair and J up to [`super::MAX_MODES`] (`tests`).
 
 use super::mode_shapes::{Ends, ModeShapes};
@@ -82,11 +82,11 @@ use std::f64::consts::PI;
 /// Modes advanced together by the rotation recurrence (module docs): four
 /// AVX2 vectors of independent chains, so the chain's latency is hidden,
 /// and a chain of J/16 products.
-pub const BLOCK: usize = 16;
+pub(crate) const BLOCK: usize = 16;
 
 /// Boundary-layer terms with `α_j d` at or above this are left out: they
 /// are below `e^{−40} ≈ 4.2·10⁻¹⁸` of their coefficient.
-pub const LAYER_CUT: f64 = 40.0;
+pub(crate) const LAYER_CUT: f64 = 40.0;
 
 /// Fast against direct evaluation, relative to the amplitude
 /// `sqrt(2/(ρA L))`: measured worst 9.2·10⁻¹³ over the test cases up to
@@ -94,7 +94,8 @@ pub const LAYER_CUT: f64 = 40.0;
 /// direct evaluation's own phase error `ε β_j L`, mode_shapes.rs), so
 /// ~4·10⁻¹² at J = 4000 (measured on the reference span); 10⁻¹¹ leaves a
 /// factor 2.5 there.
-pub const FAST_SHAPES_AGREEMENT: f64 = 1e-11;
+#[cfg(test)]
+pub(crate) const FAST_SHAPES_AGREEMENT: f64 = 1e-11;
 
 /// Table rows per radian of slow phase: `|ε_j δ| ≤ 1/64` (module docs).
 const ROWS_PER_RADIAN: f64 = 32.0;
@@ -486,7 +487,7 @@ impl FastShapes {
         }
     }
 
-    /// The values at `x` handed out [`BLOCK`] modes at a time, for a caller
+    /// The values at `x` handed out `BLOCK` modes at a time, for a caller
     /// that consumes each block as it is made (the fused `modal_exact` step,
     /// `integrate/modal_exact.rs`): the same operations as
     /// [`FastShapes::values_into`], so the same bits. Within a clamped
@@ -497,7 +498,7 @@ impl FastShapes {
     /// for AVX2 + FMA) the first block's products use the FMA instruction,
     /// not the library's `fma` call (the same bits, ~75 ns a step less).
     #[inline(always)]
-    pub fn blocks_at(&self, x: f64) -> Option<Blocks<'_>> {
+    pub(crate) fn blocks_at(&self, x: f64) -> Option<Blocks<'_>> {
         // as values_kernel
         let x = x.clamp(0.0, self.length);
         let s = if self.mirrored { self.length - x } else { x };
@@ -544,7 +545,7 @@ impl FastShapes {
     }
 
     /// `φ_j(x)`, kg^{−1/2}, for all j into `out` (length J), equal to
-    /// [`ModeShapes::values_into`] within [`FAST_SHAPES_AGREEMENT`] of the
+    /// [`ModeShapes::values_into`] within `FAST_SHAPES_AGREEMENT` of the
     /// amplitude. `x` is clamped to `[0, L]`. No allocation; one `sin_cos`.
     pub fn values_into(&self, x: f64, out: &mut [f64]) {
         self.values_by(x, out, lanes::avx2_fma())
@@ -655,7 +656,7 @@ impl FastShapes {
 /// The mode shapes at one point, block by block ([`FastShapes::blocks_at`]):
 /// the table rows at that point and the rotation recurrence's state.
 #[derive(Debug, Clone)]
-pub struct Blocks<'a> {
+pub(crate) struct Blocks<'a> {
     rows: BlockRows<'a>,
     /// Each end's boundary-layer table (left, right) and the distance to
     /// that end.
@@ -684,9 +685,9 @@ enum BlockRows<'a> {
 impl Blocks<'_> {
     /// The values of the first modes, those in the blocks a boundary-layer
     /// row reaches at the point, into `out[..end]`, and `end` (a multiple
-    /// of [`BLOCK`], ≤ [`Blocks::full`]; 0 outside the layers): the
-    /// oscillating parts block by block ([`BlocksAvx::next`]), then each
-    /// layer row's terms over those modes ([`Layer::add_into`]), the
+    /// of `BLOCK`, ≤ [`Blocks::full`]; 0 outside the layers): the
+    /// oscillating parts block by block (`BlocksAvx::next`), then each
+    /// layer row's terms over those modes (`Layer::add_into`), the
     /// operations of [`FastShapes::values_into`]. The blocks from `end` on
     /// are then handed out as usual.
     ///
@@ -717,14 +718,14 @@ impl Blocks<'_> {
     }
 
     /// The modes in whole blocks, ⌊J/B⌋·B: the vector blocks
-    /// ([`BlocksAvx`]) cover `0 .. full()`, [`Blocks::tail_into`] the rest.
+    /// (`BlocksAvx`) cover `0 .. full()`, [`Blocks::tail_into`] the rest.
     pub fn full(&self) -> usize {
         self.full
     }
 
     /// The values of modes `full() .. J` into `out` (length J − full()),
     /// after the whole blocks have advanced the recurrence
-    /// ([`BlocksAvx::finish`]): as the last partial block of
+    /// (`BlocksAvx::finish`): as the last partial block of
     /// [`FastShapes::values_into`].
     #[inline(always)]
     pub fn tail_into(&self, out: &mut [f64]) {
@@ -863,7 +864,7 @@ unsafe fn shifted_avx2(
 /// constants of [`shifted_avx2`] / [`sine_avx2`], whose operations
 /// [`BlocksAvx::next`] repeats one block at a time (the same bits).
 #[cfg(target_arch = "x86_64")]
-pub struct BlocksAvx {
+pub(crate) struct BlocksAvx {
     vr: [std::arch::x86_64::__m256d; BLOCK / 4],
     vi: [std::arch::x86_64::__m256d; BLOCK / 4],
     cr: std::arch::x86_64::__m256d,

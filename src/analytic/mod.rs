@@ -8,21 +8,23 @@ pub mod mode_shapes;
 pub mod modes;
 pub mod moving_load;
 pub mod pantograph;
-pub mod periodic_supports;
+#[cfg(test)]
+mod periodic_supports;
 pub mod rayleigh;
 pub mod riding_mass;
 pub mod spring_supported;
 pub mod static_load;
 
+pub use fast_shapes::FastShapes;
 #[cfg(target_arch = "x86_64")]
-pub use fast_shapes::BlocksAvx;
-pub use fast_shapes::{BLOCK as SHAPE_BLOCK, Blocks, FastShapes};
+pub(crate) use fast_shapes::{BLOCK as SHAPE_BLOCK, Blocks, BlocksAvx};
 pub use mode_shapes::{MAX_MODES, ModeShapes};
-pub use modes::{ClampedPinnedModes, Dispersion, PinnedPinnedModes};
+#[cfg(test)]
+pub(crate) use modes::Dispersion;
+pub use modes::{ClampedPinnedModes, PinnedPinnedModes};
 pub use moving_load::{MovingForceBeam, MovingForceString};
 pub use pantograph::{Pantograph, PantographModes, PantographStep, StepResponse, SurfaceContact};
-pub use periodic_supports::{PeriodicLine, PeriodicSupport};
 pub use rayleigh::{DampedOscillator, Rayleigh};
-pub use riding_mass::{RidingMassBeam, RidingMassHistory};
+pub use riding_mass::{Rider, RidingMassBeam, RidingMassHistory};
 pub use spring_supported::{DiscreteSpring, SpringSupportedLine};
 pub use static_load::StaticPointLoad;

@@ -110,7 +110,7 @@ pub const MAX_MODES: usize = 4000;
 /// coordinates must stay far from f64's 1.8e308. Below it every root is
 /// found to round-off (`ClampedPinnedModes::phase`: tested down to
 /// EI = 10⁻¹⁰⁰ N·m² on the reference span, T L²/EI ≈ 10¹⁰⁸).
-pub const MAX_MU_L_SQUARED: f64 = 1e200;
+pub(crate) const MAX_MU_L_SQUARED: f64 = 1e200;
 
 /// Which supported end pair the basis is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -73,8 +73,9 @@ fn check_section(ei: f64, tension: f64, rho_a: f64) -> Result<()> {
 /// Dispersion of free waves on an infinite tensioned beam (MODEL §1):
 /// `ω(k) = k sqrt((EI k² + T)/ρA)` and phase speed
 /// `c(ℓ) = sqrt((4π² EI + ℓ² T)/(ρA ℓ²))` for wavelength `ℓ = 2π/k`.
+#[cfg(test)]
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Dispersion {
+pub(crate) struct Dispersion {
     /// EI, N·m² (≥ 0).
     pub ei: f64,
     /// T, N (≥ 0; EI and T not both zero).
@@ -83,6 +84,7 @@ pub struct Dispersion {
     pub rho_a: f64,
 }
 
+#[cfg(test)]
 impl Dispersion {
     /// Check the inputs: EI, T ≥ 0 and not both zero, ρA > 0.
     pub fn new(ei: f64, tension: f64, rho_a: f64) -> Result<Self> {
@@ -108,7 +110,7 @@ impl Dispersion {
 
 /// Eigenfrequencies of a pinned–pinned tensioned beam of length L (MODEL §8):
 /// `ω_j = (jπ/L)² sqrt(EI/ρA) sqrt(1 + T L²/(EI j²π²))`, rad/s, i.e.
-/// `ω_j = ω(k = jπ/L)` of [`Dispersion`] (written in that form, it also
+/// `ω_j = ω(k = jπ/L)` of `Dispersion` (written in that form, it also
 /// covers the string EI = 0: `ω_j = jπ c/L`). Mode shapes `sin(jπx/L)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PinnedPinnedModes {
@@ -476,7 +478,7 @@ mod tests {
             assert!(err.iter().all(|e| *e > 0.0));
             if let Some(p) = prev {
                 for (ep, e) in p.iter().zip(&err) {
-                    let order = crate::study::grid::observed_order(*ep, *e, 2.0);
+                    let order = crate::study::uncertainty::observed_order(*ep, *e, 2.0);
                     println!("             observed order {order:.2}");
                     // h⁴ in the eigenvalue; pre-asymptotic modes may do better
                     assert!(order > 3.7 && order < 6.3, "order {order}");

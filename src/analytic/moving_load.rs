@@ -42,11 +42,11 @@ use crate::scene::Support;
 /// general closed form divides by `1 − V²/c²`, losing `≈ ε/|1 − V/c|`
 /// relative accuracy, while the `V = c` form is off by `O(|1 − V/c|)` away
 /// from the wave front; the two errors balance near 1e-8.
-pub const RESONANCE_BAND: f64 = 1e-8;
+pub(crate) const RESONANCE_BAND: f64 = 1e-8;
 
 /// Default relative accuracy of [`MovingForceBeam::deflection`]: the
 /// truncation bound, relative to the static midspan deflection under `F`.
-pub const DEFAULT_REL_TOL: f64 = 1e-9;
+pub(crate) const DEFAULT_REL_TOL: f64 = 1e-9;
 
 /// Cap on the number of modes summed by [`MovingForceBeam::deflection`]
 /// (reached only for EI ≪ T L², where the string is the better reference;
@@ -57,7 +57,7 @@ pub const MAX_MODES: usize = 1_000_000;
 /// Smallest `L sqrt(T_e/EI)` for which the quasi-static part is taken from
 /// [`StaticPointLoad`]: its exponential basis becomes ill-conditioned like
 /// `(μL)⁻³` as `μL → 0`, so below this the plain series is summed instead.
-pub const QS_MIN_MU_L: f64 = 0.5;
+pub(crate) const QS_MIN_MU_L: f64 = 0.5;
 
 /// `sin u / u`, regular at 0 (Taylor below 1e-4: error < u⁶/5040).
 fn sinc(u: f64) -> f64 {
@@ -189,7 +189,7 @@ impl MovingForceString {
     }
 
     /// The quasi-static part `F x_<(L − x_>)/(L T_e)`, m, `x_m = Vt`, while the
-    /// force is on the string and `V ≠ c` (outside [`RESONANCE_BAND`]).
+    /// force is on the string and `V ≠ c` (outside `RESONANCE_BAND`).
     pub fn quasi_static(&self, x: f64, t: f64) -> Option<f64> {
         let l = self.length;
         if self.resonant() || !(0.0..=self.exit_time()).contains(&t) || !(0.0..=l).contains(&x) {
@@ -274,13 +274,13 @@ impl MovingForceString {
 /// Moving constant force on a pinned–pinned tensioned beam (MODEL §8):
 /// the modal series with `ω_j = κ_j sqrt((κ_j² EI + T)/ρA)`, `κ_j = jπ/L`.
 ///
-/// While the force is on and `μ_e L ≥` [`QS_MIN_MU_L`] (`μ_e² = T_e/EI`,
+/// While the force is on and `μ_e L ≥ QS_MIN_MU_L` (`μ_e² = T_e/EI`,
 /// `T_e = T − ρA V² ≥ 0`) the quasi-static part is summed in closed form by
 /// [`StaticPointLoad`] (pinned–pinned, tension `T_e`, load at `Vt`) and only
 /// the remainder `−Σ K(Ω_j/ω_j) sin(ω_j t) sin(κ_j x)/(ω_j² − Ω_j²)` is
 /// summed; its terms fall like `j⁻⁵`. Otherwise (after the force leaves,
 /// `T_e < 0` — above the string speed, with resonances at `V = c(2L/j)` of
-/// [`super::Dispersion`] — or small `μ_e L`) the full series is summed in the
+/// `super::Dispersion` — or small `μ_e L`) the full series is summed in the
 /// resonance-regular form (terms `∝ j⁻⁴` with the force on, `j⁻⁵` after).
 ///
 /// Truncation bounds (`a = sqrt(EI/ρA)`, valid for `N ≥ j_min`, the first
@@ -293,7 +293,7 @@ impl MovingForceString {
 /// ```
 ///
 /// [`deflection`](Self::deflection) picks the smallest N meeting
-/// [`DEFAULT_REL_TOL`] × (static midspan deflection under F), capped at
+/// `DEFAULT_REL_TOL` × (static midspan deflection under F), capped at
 /// [`MAX_MODES`]. Displacement in m, positive up.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MovingForceBeam {
@@ -430,7 +430,7 @@ impl MovingForceBeam {
 
     /// The quasi-static part `F·G_{T_e}(x, Vt)`, m, in closed form via
     /// [`StaticPointLoad`], while the force is on and `L sqrt(T_e/EI) ≥`
-    /// [`QS_MIN_MU_L`] (or `T_e = 0` exactly).
+    /// `QS_MIN_MU_L` (or `T_e = 0` exactly).
     pub fn quasi_static(&self, x: f64, t: f64) -> Option<f64> {
         let l = self.length;
         let te = self.effective_tension();
@@ -442,7 +442,7 @@ impl MovingForceBeam {
         Some(self.force * s.deflection((self.speed * t).min(l), x))
     }
 
-    /// Deflection v(x, t), m, to [`DEFAULT_REL_TOL`] (type docs). Zero for
+    /// Deflection v(x, t), m, to `DEFAULT_REL_TOL` (type docs). Zero for
     /// t ≤ 0 and for x outside [0, L].
     pub fn deflection(&self, x: f64, t: f64) -> f64 {
         self.deflection_to(x, t, DEFAULT_REL_TOL)

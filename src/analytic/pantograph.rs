@@ -47,7 +47,7 @@ use crate::error::{Error, Result};
 
 /// Off-diagonal part of ΦᵀCΦ, relative to its diagonal, below which C counts
 /// as proportional (L10): the eigenvectors' round-off, ≈ 1e-15, with room.
-pub const PROPORTIONAL: f64 = 1e-10;
+pub(crate) const PROPORTIONAL: f64 = 1e-10;
 
 /// How the head meets the rigid surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -257,7 +257,7 @@ impl Pantograph {
         (omega, phi)
     }
 
-    /// Whether C is proportional (ΦᵀCΦ diagonal within [`PROPORTIONAL`]).
+    /// Whether C is proportional (ΦᵀCΦ diagonal within `PROPORTIONAL`).
     pub fn proportional(&self) -> bool {
         let (_, c, _) = self.matrices();
         let (_, phi) = self.undamped_modes();
@@ -487,19 +487,25 @@ mod tests {
         (off..n).map(|i| force[i] / p.masses[i]).collect()
     }
 
-    /// RK4 from (z0, v0) to time `t_end` in `steps` steps, the surface at
-    /// `h(t)` (with its rate `hd(t)`): the final (z, ż).
-    #[allow(clippy::too_many_arguments)]
+    /// The rigid surface the head is held on: its height `h(t)` (m) and
+    /// rate `rate(t)` (m/s).
+    struct Surface<'a> {
+        h: &'a dyn Fn(f64) -> f64,
+        rate: &'a dyn Fn(f64) -> f64,
+    }
+
+    /// RK4 from (z0, v0) to time `t_end` in `steps` steps, the head held on
+    /// `surface`: the final (z, ż).
     fn rk4(
         p: &Pantograph,
         z0: &[f64],
         v0: &[f64],
         f0: f64,
-        h: &dyn Fn(f64) -> f64,
-        hd: &dyn Fn(f64) -> f64,
+        surface: Surface,
         t_end: f64,
         steps: usize,
     ) -> (Vec<f64>, Vec<f64>) {
+        let Surface { h, rate: hd } = surface;
         let dt = t_end / steps as f64;
         let (mut z, mut v) = (z0.to_vec(), v0.to_vec());
         let n = z.len();
@@ -706,13 +712,16 @@ mod tests {
             let t_end = 0.7;
             let steps = (400.0 * wmax * t_end / (2.0 * std::f64::consts::PI)).ceil() as usize;
             let zero = |_: f64| 0.0;
+            let fixed = Surface {
+                h: &zero,
+                rate: &zero,
+            };
             let (zr, vr) = rk4(
                 p,
                 z0.as_slice(),
                 v0.as_slice(),
                 p.uplift + df,
-                &zero,
-                &zero,
+                fixed,
                 t_end,
                 steps,
             );
@@ -785,11 +794,16 @@ mod tests {
                 0.0
             }
         };
-        let (zr, vr) = rk4(&p, z0.as_slice(), &[0.0, 0.0], p.uplift, &h, &hd, tau, 40);
+        let ramp = Surface { h: &h, rate: &hd };
+        let (zr, vr) = rk4(&p, z0.as_slice(), &[0.0, 0.0], p.uplift, ramp, tau, 40);
         let t_end = 0.5;
         let zero = |_: f64| 0.0;
         let hold = move |_: f64| dh;
-        let (zr, vr) = rk4(&p, &zr, &vr, p.uplift, &hold, &zero, t_end - tau, 40_000);
+        let held = Surface {
+            h: &hold,
+            rate: &zero,
+        };
+        let (zr, vr) = rk4(&p, &zr, &vr, p.uplift, held, t_end - tau, 40_000);
         let (zs, vs) = resp.state_space(t_end);
         let size = (&resp.z_static - &z0).amax();
         let wmax = *p.undamped_modes().0.last().unwrap();

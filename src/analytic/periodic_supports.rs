@@ -76,7 +76,7 @@ use crate::error::{Error, Result};
 
 /// The support repeated every `d`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum PeriodicSupport {
+pub(crate) enum PeriodicSupport {
     /// v = 0 at each support (rotation free).
     Rigid,
     /// A spring to ground and a point mass at each support.
@@ -90,7 +90,7 @@ pub enum PeriodicSupport {
 
 /// An infinite string (EI = 0) or tensioned beam on periodic supports.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PeriodicLine {
+pub(crate) struct PeriodicLine {
     /// EI, N·m² (≥ 0; 0 is a string).
     pub ei: f64,
     /// T, N (> 0 for a string, ≥ 0 for a beam).

@@ -32,7 +32,7 @@
 //! (a unit test holds this against a dense nalgebra LU of the projected
 //! system). The first-order system `(a, a')` is integrated with the classical
 //! fourth-order Runge–Kutta method — no relation to taut's implicit
-//! integrators — at a step at most [`STEP_FACTOR`]`/ω_J`. Initial state as
+//! integrators — at a step at most `STEP_FACTOR/ω_J`. Initial state as
 //! MODEL §5: beam straight and at rest, gravity switched on at t = 0.
 //!
 //! Outputs: `w = s·v(x_m)` (m, as the FE history records it), its rate, and
@@ -51,7 +51,7 @@ use crate::scene::Side;
 /// `scenes/riding_mass_pinned.toml` (J = 800, 0.4 s): halving the step from
 /// 0.5/ω_J changes w by 1.5e-6 m, from 0.25/ω_J by 9.4e-8 m (fourth order),
 /// i.e. 5e-7 of max |w| here, well under the J-truncation error.
-pub const STEP_FACTOR: f64 = 0.25;
+pub(crate) const STEP_FACTOR: f64 = 0.25;
 
 /// A riding mass on a pinned–pinned tensioned beam (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -127,6 +127,21 @@ fn basis(x: f64, l: f64, modes: usize, phi: &mut [f64], dphi: &mut [f64], ddphi:
     }
 }
 
+/// The riding mass of a [`RidingMassBeam`] (MODEL §2, §3; SI units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rider {
+    /// Mass m, kg (> 0).
+    pub mass: f64,
+    /// Gravity g, m/s² (≥ 0).
+    pub gravity: f64,
+    /// The side of the beam it rides on.
+    pub side: Side,
+    /// x_m(0), m, in [0, L).
+    pub start: f64,
+    /// Constant speed V, m/s (≥ 0).
+    pub speed: f64,
+}
+
 /// Work arrays for one right-hand-side evaluation.
 struct Work {
     omega2: Vec<f64>,
@@ -139,18 +154,14 @@ impl RidingMassBeam {
     /// Check the inputs (module docs). EI must be > 0: on a string the
     /// curvature under a point load is a delta, `φ''ᵀa` diverges with J and
     /// the convective series has no limit.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        ei: f64,
-        tension: f64,
-        rho_a: f64,
-        length: f64,
-        mass: f64,
-        gravity: f64,
-        side: Side,
-        start: f64,
-        speed: f64,
-    ) -> Result<Self> {
+    pub fn new(ei: f64, tension: f64, rho_a: f64, length: f64, rider: Rider) -> Result<Self> {
+        let Rider {
+            mass,
+            gravity,
+            side,
+            start,
+            speed,
+        } = rider;
         require_positive(
             "ei",
             ei,
@@ -328,15 +339,40 @@ mod tests {
     const G: f64 = 9.81;
 
     fn wire(mass: f64, speed: f64) -> RidingMassBeam {
-        RidingMassBeam::new(EI, T, RA, L, mass, G, Side::Above, 0.0, speed).unwrap()
+        RidingMassBeam::new(
+            EI,
+            T,
+            RA,
+            L,
+            Rider {
+                mass,
+                gravity: G,
+                side: Side::Above,
+                start: 0.0,
+                speed,
+            },
+        )
+        .unwrap()
     }
 
     #[test]
     fn validation_names_the_field() {
         let bad = |ei, t, m, g, x0, v| {
-            RidingMassBeam::new(ei, t, RA, L, m, g, Side::Above, x0, v)
-                .unwrap_err()
-                .to_string()
+            RidingMassBeam::new(
+                ei,
+                t,
+                RA,
+                L,
+                Rider {
+                    mass: m,
+                    gravity: g,
+                    side: Side::Above,
+                    start: x0,
+                    speed: v,
+                },
+            )
+            .unwrap_err()
+            .to_string()
         };
         assert!(bad(0.0, T, 1.0, G, 0.0, 1.0).contains("ei"));
         assert!(bad(EI, -1.0, 1.0, G, 0.0, 1.0).contains("tension"));
@@ -369,7 +405,20 @@ mod tests {
     /// Sherman–Morrison evaluation vs a dense LU of the projected system.
     #[test]
     fn rank_one_solve_matches_the_dense_projected_system() {
-        let r = RidingMassBeam::new(EI, T, RA, L, 30.0, G, Side::Above, 3.0, 75.0).unwrap();
+        let r = RidingMassBeam::new(
+            EI,
+            T,
+            RA,
+            L,
+            Rider {
+                mass: 30.0,
+                gravity: G,
+                side: Side::Above,
+                start: 3.0,
+                speed: 75.0,
+            },
+        )
+        .unwrap();
         let n = 12;
         let x = 17.3;
         let a: Vec<f64> = (0..n).map(|j| 1e-3 / (1.0 + j as f64).powi(2)).collect();
@@ -447,10 +496,22 @@ mod tests {
     #[test]
     fn the_side_flips_w_and_the_force_only() {
         let mk = |side| {
-            RidingMassBeam::new(EI, T, RA, L, 30.0, G, side, 5.0, 75.0)
-                .unwrap()
-                .solve(40, 1e-4, 1e-3, 0.2)
-                .unwrap()
+            RidingMassBeam::new(
+                EI,
+                T,
+                RA,
+                L,
+                Rider {
+                    mass: 30.0,
+                    gravity: G,
+                    side,
+                    start: 5.0,
+                    speed: 75.0,
+                },
+            )
+            .unwrap()
+            .solve(40, 1e-4, 1e-3, 0.2)
+            .unwrap()
         };
         let (above, below) = (mk(Side::Above), mk(Side::Below));
         for k in 0..above.t.len() {

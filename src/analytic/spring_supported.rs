@@ -35,7 +35,7 @@
 //! benign for μL ≳ 1: at the load both terms are O(L) and O(1/μ). For μL → 0
 //! the two terms agree to O((μL)²) and the difference carries a relative
 //! round-off of about ε/(μL)² (times the spread of the two terms); below
-//! [`MU_L_BARE`] the bare-beam form is used instead, whose relative error
+//! `MU_L_BARE` the bare-beam form is used instead, whose relative error
 //! there is (μL)²/10, so neither exceeds ≈ 2e-8 of the midspan compliance.
 //! Near a support (`μx ≪ 1` and `μa ≪ 1`) the same cancellation costs
 //! relative accuracy in a deflection that is itself small: the absolute error
@@ -50,7 +50,7 @@ use crate::error::{Error, Result};
 /// (T = 0): there the round-off of L2 (measured 7.9e-10 of the midspan
 /// compliance at μL = 1e-3, growing like 1/(μL)²: ≈ 2e-8 here) and the
 /// neglected tension ((μL)²/10 = 4e-9 relative at midspan) are both small.
-pub const MU_L_BARE: f64 = 2e-4;
+pub(crate) const MU_L_BARE: f64 = 2e-4;
 
 /// A vertical spring between the line at `x` and a fixed anchor.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -466,7 +466,7 @@ mod tests {
                     .fold(0.0, f64::max)
             };
             let errs: Vec<f64> = levels.iter().map(|v| err(v)).collect();
-            let order = crate::study::grid::observed_order(errs[1], errs[2], 2.0);
+            let order = crate::study::uncertainty::observed_order(errs[1], errs[2], 2.0);
             // Richardson on the two finer levels (h⁴ left), then on all
             // three (h⁶ left, if the expansion holds)
             let r1 = |c: &[f64], fi: &[f64]| -> Vec<f64> {
@@ -479,7 +479,7 @@ mod tests {
                 .map(|(c, f)| (16.0 * f - c) / 15.0)
                 .collect();
             let (rich, rich2) = (err(&rb), err(&rich2));
-            let rich_order = crate::study::grid::observed_order(err(&ra), rich, 2.0);
+            let rich_order = crate::study::uncertainty::observed_order(err(&ra), rich, 2.0);
             println!(
                 "  {mu_l:<6} {n0:<5} {:.2e}  {:.2e}  {:.2e}          {order:.2}    {rich:.2e}  {rich2:.2e}  (order {rich_order:.2})",
                 errs[0], errs[1], errs[2]

@@ -37,8 +37,10 @@ pub fn merge(shards: &[PathBuf], out: &Path, fe: &dyn Frontend) -> Result<MergeO
         fresh(out, Outputs::Sweep, fe)?;
     }
     let (spec, records) = merge_into(&claimed, shards)?;
-    crate::report::write_sweep(out, &spec, &records)?;
-    let maps = crate::report::write_sweep_maps(out, &spec, &records)?;
+    let maps = crate::report::write_whole(out, "taut merge", || {
+        crate::report::write_sweep(out, &spec, &records)?;
+        crate::report::write_sweep_maps(out, &spec, &records)
+    })?;
     Ok(MergeOutcome {
         spec,
         records,

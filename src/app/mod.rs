@@ -6,7 +6,7 @@
 //! (what the CLI prints, what Python hands back).
 //!
 //! A request holds typed values (`&'static dyn MethodFactory`,
-//! [`Formulation`](crate::contact::Formulation), [`SpaceChoice`](crate::study::space::SpaceChoice),
+//! [`Formulation`](crate::scene::Formulation), [`SpaceChoice`](crate::study::space::SpaceChoice),
 //! [`Axis`](crate::study::sweep::Axis), counts); the words of a front end
 //! (`--methods newmark,bathe`, `methods="newmark,bathe"`) become those values
 //! at the edge, in [`words`], once for both.
@@ -16,6 +16,7 @@
 //! on stderr; Python prints the cleared-outputs note and keeps the saved
 //! contact problem's path for its exception).
 
+pub mod args;
 pub mod compare;
 pub mod converge;
 pub mod gate;
@@ -24,11 +25,12 @@ pub mod merge;
 pub mod modes;
 pub mod precision;
 pub mod replay;
+pub mod report;
 pub mod run;
 pub mod scene;
 pub mod simulation;
 pub mod sweep;
-pub mod terminal;
+pub mod uncertainty;
 pub mod verify;
 pub mod words;
 
@@ -38,6 +40,10 @@ use crate::error::{Error, Result};
 use crate::report::Outputs;
 use crate::study::cost::Estimate;
 
+pub use args::{
+    CompareArgs, ConvergeArgs, GateArgs, ModesArgs, PrecisionArgs, ReplayArgs, RunArgs, SweepArgs,
+    UncertaintyArgs, VerifyArgs, Word,
+};
 pub use compare::{CompareRequest, compare};
 pub use converge::{ConvergeRequest, converge};
 pub use gate::{GateOutcome, GateRequest, gate};
@@ -45,10 +51,12 @@ pub use merge::{MergeOutcome, merge};
 pub use modes::{ModesRequest, mesh_nodes, modes};
 pub use precision::{PrecisionRequest, precision};
 pub use replay::{Replay, ReplayRequest, Solved, replay};
+pub use report::{ReportRequest, report};
 pub use run::{RunOutcome, RunRequest, Tolerance, run};
 pub use scene::scene_tree;
 pub use simulation::{CarrierState, ProbeState, Simulation, SimulationState};
 pub use sweep::{SweepOutcome, SweepRequest, sweep};
+pub use uncertainty::{UncertaintyRequest, uncertainty};
 pub use verify::{VerifyOutcome, VerifyRequest, verify};
 
 /// Where a scene comes from: a file (read by the command, after the output
@@ -66,7 +74,19 @@ impl SceneSource {
     pub fn read(&self) -> Result<String> {
         match self {
             SceneSource::File(p) => crate::scene::read_scene(p),
-            // a text's table files are relative to the working directory
+            // a text is held to a file's cap (Python's scenes as text or
+            // dicts had none, issue 41); its table files are relative to
+            // the working directory
+            SceneSource::Text(t) if t.len() as u64 > crate::input::MAX_INPUT_BYTES => {
+                Err(Error::invalid(
+                    "scene",
+                    format!("a text of {} MiB", t.len() >> 20),
+                    format!(
+                        "a scene is at most {} MiB, as a scene file is (input::MAX_INPUT_BYTES): give long series as table files",
+                        crate::input::MAX_INPUT_BYTES >> 20
+                    ),
+                ))
+            }
             SceneSource::Text(t) => crate::scene::with_table_files(t.clone(), Path::new(".")),
         }
     }
@@ -92,7 +112,7 @@ impl SceneSource {
 #[derive(Debug)]
 pub enum Note<'a> {
     /// Outputs of an earlier command were removed from the output folder
-    /// (the text of [`crate::report::cleared_note`]).
+    /// (the text of `crate::report::cleared_note`).
     Cleared(String),
     /// The study's estimated cost is above the bound, and `yes` was given.
     AboveBound(&'a Estimate),
@@ -199,7 +219,7 @@ fn run_study<S: Study>(req: &StudyRequest<S>, fe: &dyn Frontend) -> Result<S::Ou
         .map_err(|e| req.scene.name(e))
         .map_err(|e| save_failure(dir, e, fe))?;
     if let Some(d) = dir {
-        S::write(d, &outcome)?;
+        crate::report::write_whole(d, "taut study", || S::write(d, &outcome))?;
     }
     Ok(outcome)
 }

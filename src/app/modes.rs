@@ -17,7 +17,7 @@ pub struct ModesRequest {
     pub scene: SceneSource,
     /// Scene overrides, `key.path=value` (`--set`).
     pub set: Vec<String>,
-    /// How many modes (`--count`; default [`crate::study::modes::DEFAULT_COUNT`]).
+    /// How many modes (`--count`; default `crate::study::modes::DEFAULT_COUNT`).
     pub count: Option<usize>,
     /// Output folder (none: nothing written).
     pub out: Option<PathBuf>,
@@ -39,7 +39,7 @@ pub fn modes(req: &ModesRequest, fe: &dyn Frontend) -> Result<Modes> {
 }
 
 /// The scene's mesh nodes, m (`taut.mesh`): where snapshots, the field and
-/// mode shapes are sampled by default ([`crate::resolve::wire::nodes`]).
+/// mode shapes are sampled by default (`crate::resolve::wire::nodes`).
 pub fn mesh_nodes(scene: &SceneSource, set: &[String]) -> Result<Vec<f64>> {
     let text = scene.read()?;
     let sc = crate::resolve::resolve_scene(&text, set).map_err(|e| scene.name(e))?;

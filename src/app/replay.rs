@@ -32,7 +32,7 @@ pub struct Solved {
     pub out: ReplayOutcome,
     /// The largest Signorini residual of the answer (relative), `None` for
     /// the penalty law (the gap closes only to λ/κ, by design); an error
-    /// when it is above [`SIGNORINI_TOLERANCE`] (the answer is no solution).
+    /// when it is above `SIGNORINI_TOLERANCE` (the answer is no solution).
     pub verdict: Result<Option<f64>>,
 }
 
@@ -58,6 +58,12 @@ pub fn replay(req: &ReplayRequest) -> Result<Replay> {
         crate::input::MAX_REPLAY_BYTES,
     )?;
     crate::json_keys::reject_duplicate_keys(&text, path)?;
+    if let Ok(not) = serde_json::from_str::<crate::contact::NotReplayable>(&text) {
+        return Err(Error::Replay {
+            path: path.clone(),
+            reason: format!("not replayable: {}", not.not_replayable),
+        });
+    }
     let mut problem: ContactProblem = serde_json::from_str(&text)
         .map_err(|e| Error::parse(format!("{}: {e}", path.display())))?;
     if let Some(n) = req.max_iter {

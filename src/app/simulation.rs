@@ -1,13 +1,13 @@
 //! `taut.Simulation`: one run stepped on request, for co-simulation (an
 //! active pantograph's controller, a force law of one's own). Built from a
-//! scene as [`super::run`] takes it; advanced `k` steps at a time
+//! scene as [`run`](fn@super::run) takes it; advanced `k` steps at a time
 //! ([`Simulation::step`]); its state read between steps
 //! ([`Simulation::state`], [`Simulation::w_at`]); a force applied to a
 //! carrier's mass between steps ([`Simulation::apply_force`]); and, once
 //! every step is taken, finished into what `run` gives
 //! ([`Simulation::finish`]: the same [`RunOutcome`], the same files).
 //!
-//! With nothing applied, the steps are [`crate::run`]'s steps, recorded by
+//! With nothing applied, the steps are [`crate::run`](fn@crate::run)'s steps, recorded by
 //! the same recorder ([`crate::run::SteppedRun`]): histories and summary
 //! are bit-identical to `run`'s however the steps are grouped (only
 //! `wall_seconds` differs: a simulation's wall time runs from its creation
@@ -269,7 +269,7 @@ impl Simulation {
 
     /// Once every step is taken: the run's statistics, warnings and
     /// histories, and its files written into the request's `out` folder —
-    /// what [`super::run`] gives. Refused before the end (the statistics
+    /// what [`run`](fn@super::run) gives. Refused before the end (the statistics
     /// of a part of a run are not the run's).
     pub fn finish(self) -> Result<RunOutcome> {
         let Some(run) = self.run else {

@@ -27,6 +27,9 @@ pub struct SweepRequest {
     pub points: bool,
     /// Run each point a second time, refined (`--check-refinement`).
     pub check_refinement: bool,
+    /// Refine each point until Q's u_num is within EPS (`--tolerance`,
+    /// `--quantity`, `--max-cost`).
+    pub tolerance: Option<crate::study::sweep::SweepTolerance>,
     /// The folder that holds the sweep's runs (resumable).
     pub out: PathBuf,
     /// Write the tables and maps into `out` too (the CLI always does).
@@ -39,6 +42,33 @@ pub struct SweepRequest {
     pub batch: BatchWidth,
     /// Start even above the cost bound.
     pub yes: bool,
+}
+
+impl SweepRequest {
+    /// A sweep of `scene` with overrides `set` as `study` gives it (the
+    /// words of [`super::SweepArgs`]), resumable in `out`, its tables and
+    /// maps written there.
+    pub fn new(
+        scene: SceneSource,
+        set: Vec<String>,
+        study: super::args::SweepStudy,
+        out: PathBuf,
+    ) -> SweepRequest {
+        SweepRequest {
+            scene,
+            set,
+            axes: study.axes,
+            points: study.points,
+            check_refinement: study.check_refinement,
+            tolerance: study.tolerance,
+            out,
+            files: true,
+            shard: study.shard,
+            threads: study.threads,
+            batch: study.batch,
+            yes: study.yes,
+        }
+    }
 }
 
 /// What a sweep gives.
@@ -74,12 +104,16 @@ pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
         axes: req.axes.clone(),
         check_refinement: req.check_refinement,
         paired: req.points,
+        tolerance: req.tolerance.clone(),
     };
     spec.validate().map_err(|e| req.scene.name(e))?;
     started(&spec.estimate(req.shard)?, req.yes, fe)?;
     let dir = &req.out;
     crate::report::check_out_dir(dir)?;
     let claimed = claim(dir)?;
+    // before any table is cleared: a shard into a folder holding the whole
+    // sweep (or another shard's points) is refused, its tables kept
+    folder::check_shard(dir, &spec, req.shard)?;
     if req.files {
         // tables and maps of this sweep only: a folder holding another
         // sweep is refused (by check_spec) with its tables left as they are
@@ -97,8 +131,10 @@ pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
     })?;
     let records = records?;
     let maps = if req.files {
-        crate::report::write_sweep(dir, &spec, &records)?;
-        crate::report::write_sweep_maps(dir, &spec, &records)?
+        crate::report::write_whole(dir, "taut sweep", || {
+            crate::report::write_sweep(dir, &spec, &records)?;
+            crate::report::write_sweep_maps(dir, &spec, &records)
+        })?
     } else {
         Vec::new()
     };

@@ -57,7 +57,7 @@ pub fn reference_method(
 }
 
 /// `--solver`: `direct` or `clarabel`.
-pub fn complementarity_solver(name: &str) -> Result<crate::scene::ComplementaritySolver> {
+pub(crate) fn complementarity_solver(name: &str) -> Result<crate::scene::ComplementaritySolver> {
     use crate::scene::ComplementaritySolver;
     match name {
         "direct" => Ok(ComplementaritySolver::Direct),
@@ -134,12 +134,47 @@ pub fn precision(
     })
 }
 
+/// The words of `taut uncertainty` (Python: `taut.uncertainty`) as its
+/// typed study; the levels are checked here, before the scene is read.
+pub fn uncertainty(levels: usize, yes: bool) -> Result<request::UncertaintyRequest> {
+    crate::study::uncertainty::check_levels(levels)?;
+    Ok(request::UncertaintyRequest { levels, yes })
+}
+
 /// `--tolerance TOL --quantity Q` (Python: `tolerance=`, `quantity=`): the
 /// quantity defaults to the filtered force.
 pub fn tolerance(tol: &str, quantity: Option<&str>) -> Result<super::Tolerance> {
     let quantity = quantity.unwrap_or("force").parse()?;
     let tol = crate::study::tolerance::parse_tolerance(tol)?;
     Ok(super::Tolerance { quantity, tol })
+}
+
+/// `taut sweep --tolerance TOL [--quantity Q] [--max-cost F]` (Python:
+/// `tolerance=`, `quantity=`, `max_cost=`): Q defaults to
+/// `loss_fraction_span`; none without a tolerance.
+pub fn sweep_tolerance(
+    tol: Option<&str>,
+    quantity: Option<&str>,
+    max_cost: Option<&str>,
+) -> Result<Option<crate::study::sweep::SweepTolerance>> {
+    let Some(tol) = tol else {
+        return Ok(None);
+    };
+    let number = |flag: &str, text: &str, what: &str| -> Result<f64> {
+        text.trim()
+            .parse::<f64>()
+            .map_err(|_| Error::invalid(flag, text, what.to_string()))
+    };
+    let t = number(
+        "--tolerance",
+        tol,
+        "must be a finite number > 0, in the quantity's unit (absolute: 0.002 for P_l)",
+    )?;
+    let budget = max_cost
+        .map(|b| number("--max-cost", b, "must be a finite number ≥ 2"))
+        .transpose()?;
+    crate::study::sweep::SweepTolerance::new(quantity.unwrap_or("loss_fraction_span"), t, budget)
+        .map(Some)
 }
 
 /// `--vary KEY=START:STOP:COUNT` or `KEY=V1,V2,...` (one or two), spaced

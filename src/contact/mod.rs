@@ -4,15 +4,15 @@
 //!
 //! Users pick a formulation through the serde enum
 //! [`crate::scene::Formulation`]; the behaviour lives behind the crate-private
-//! [`ContactLaw`] trait, one file per law with its `impl`. The velocity-level
-//! law ([`Impact`], `impact.rs`: Moreau's index set, restitution, the memory
+//! `ContactLaw` trait, one file per law with its `impl`. The velocity-level
+//! law (`Impact`, `impact.rs`: Moreau's index set, restitution, the memory
 //! of gap rates) sits beside them and solves its rate problem with one of
-//! them. A run holds its law as a [`RunLaw`], which says the level it works
+//! them. A run holds its law as a `RunLaw`, which says the level it works
 //! at. The integrator forms `(g_free, W)` at that level
 //! (`integrate::contact_problem`) and calls the law; a law never reaches into
 //! an integrator. A law that fails returns a typed [`ContactFailure`], and
 //! the system saves the problem it was given as a [`ContactProblem`] that
-//! [`replay`] solves again.
+//! `replay` solves again.
 
 mod complementarity;
 mod dense;
@@ -24,8 +24,10 @@ pub mod problem;
 mod replay;
 
 pub use failure::{ContactFailed, ContactFailure};
+pub(crate) use problem::NotReplayable;
 pub use problem::{ContactProblem, Level};
-pub use replay::{MAX_REPLAY_CONTACTS, ReplayOutcome, SIGNORINI_TOLERANCE, replay, validate};
+pub use replay::ReplayOutcome;
+pub(crate) use replay::{SIGNORINI_TOLERANCE, replay, validate};
 
 pub(crate) use impact::Impact;
 pub(crate) use lagrange::Lagrange;

@@ -9,13 +9,13 @@ use crate::scene::{ContactKind, Formulation};
 
 /// Most contacts a saved problem may have: W has nc² entries, and no scene
 /// has more than a few carriers (a larger file is not one taut wrote).
-pub const MAX_REPLAY_CONTACTS: usize = 1024;
+pub(crate) const MAX_REPLAY_CONTACTS: usize = 1024;
 
 /// Signorini residual above which a replayed answer is reported as not a
 /// contact solution: relative to the problem's gap and force scales, far
 /// above round-off (1e-16) and the QP tolerance (1e-12 by default; at most
 /// 1e-2 is accepted, so a loosened QP can exceed it and is then reported).
-pub const SIGNORINI_TOLERANCE: f64 = 1e-6;
+pub(crate) const SIGNORINI_TOLERANCE: f64 = 1e-6;
 
 /// The answer to a replayed problem.
 #[derive(Debug, Clone, PartialEq)]
@@ -26,14 +26,14 @@ pub struct ReplayOutcome {
     pub gap: Vec<f64>,
     /// Which contacts the law closed.
     pub active: Vec<bool>,
-    /// Largest Signorini residual (relative; see [`SIGNORINI_TOLERANCE`]),
+    /// Largest Signorini residual (relative; see `SIGNORINI_TOLERANCE`),
     /// or `None` for the penalty law, which lets the gap close only to λ/κ
     /// by design.
     pub violation: Option<f64>,
 }
 
 /// Check a problem read from a file: sizes, finite numbers, settings.
-pub fn validate(problem: &ContactProblem) -> Result<()> {
+pub(crate) fn validate(problem: &ContactProblem) -> Result<()> {
     problem.check()
 }
 
@@ -67,9 +67,11 @@ impl ContactProblem {
     }
 }
 
-/// Solve a saved problem again (after [`ContactProblem::validate`]) with the
+/// Solve a saved problem again (after `ContactProblem::validate`) with the
 /// law it names, and check the answer.
-pub fn replay(problem: &ContactProblem) -> std::result::Result<ReplayOutcome, ContactFailure> {
+pub(crate) fn replay(
+    problem: &ContactProblem,
+) -> std::result::Result<ReplayOutcome, ContactFailure> {
     let n = problem.g_free.len();
     let mut law = law_for(&problem.contact, n);
     let mut lambda = vec![0.0; n];

@@ -37,9 +37,11 @@ use crate::resolve::Resolved;
 use crate::scene::Scheme;
 
 use super::gen_alpha_kernel::Kernel;
-pub use super::gen_alpha_kernel::MAX_LANES;
+pub(crate) use super::gen_alpha_kernel::MAX_LANES;
+use super::sample::CarrierSample;
+use super::state::State;
 use super::step_map::Lanes;
-use super::{CarrierSample, State, System};
+use super::system::{Initial, System};
 
 /// Most runs of `k` right-hand-side columns each a batch takes: the
 /// kernels compiled in `BandedLdlt::solve_affine_lanes` (2 ..= 8 lanes of
@@ -51,7 +53,7 @@ pub fn max_lanes(k: usize) -> usize {
 /// One run in a batch: its own system (carriers, contact law, multipliers)
 /// and mass dofs. In a generalized-α [`Batch`] its beam vectors live in
 /// the batch's interleaved arrays; in a `modal_exact` batch
-/// ([`super::ModalBatch`]) in its own state.
+/// (`super::ModalBatch`) in its own state.
 pub struct Lane {
     /// The run's system.
     pub sys: System,
@@ -75,13 +77,13 @@ pub struct Batch {
 }
 
 impl Batch {
-    /// Build the runs `scenes` (equal [`super::batch_key`]s, 2 ..= [`MAX_LANES`]
+    /// Build the runs `scenes` (equal [`super::batch_key`]s, 2 ..= `MAX_LANES`
     /// of them; `ids` are the caller's indices), factor A once, and set
     /// each run's initial state as [`super::Integrator::new`] would. A run
     /// that fails to build is returned in the error list with its id.
     pub fn new(scenes: &[(usize, &Resolved)]) -> (Option<Batch>, Vec<(usize, Error)>) {
         let mut errors = Vec::new();
-        let mut built: Vec<(usize, System, State, super::Initial)> = Vec::new();
+        let mut built: Vec<(usize, System, State, Initial)> = Vec::new();
         for &(id, sc) in scenes {
             let made = System::new(sc).and_then(|mut sys| {
                 let st = State::at_rest(sys.beam().n, sys.contacts());
@@ -96,7 +98,7 @@ impl Batch {
         if built.is_empty() {
             return (None, errors);
         }
-        let Scheme::GenAlpha(p) = scenes[0].1.scheme else {
+        let Scheme::GenAlpha(p) = scenes[0].1.method.scheme else {
             unreachable!("batch_key admits generalized-α only")
         };
         let sys0 = &built[0].1;
@@ -207,12 +209,12 @@ impl Batch {
             count: self.lanes.len(),
             lane: l,
         };
-        super::sample_of(&lane.sys, &lane.st, i, |pv| lanes.dot(pv, &self.d))
+        super::sample::sample_of(&lane.sys, &lane.st, i, |pv| lanes.dot(pv, &self.d))
     }
 
     /// Remove the runs at `gone` (lane indices, ascending) from the batch,
     /// moving the others down in place; returns them in that order.
-    pub fn retire(&mut self, gone: &[usize]) -> Vec<Lane> {
+    pub(crate) fn retire(&mut self, gone: &[usize]) -> Vec<Lane> {
         if gone.is_empty() {
             return Vec::new();
         }

@@ -15,7 +15,7 @@ use crate::scene::{
     BeamProps, CarrierKind, Discretization, Formulation, Grading, Placement, Scheme, Support,
 };
 
-use super::rhs_columns;
+use crate::model::banded::rhs_columns;
 
 /// The key of the runs that may step together; `None` from [`batch_key`]
 /// when a run steps alone.
@@ -23,7 +23,7 @@ use super::rhs_columns;
 pub enum BatchKey {
     /// Generalized-α runs sharing one factorization ([`super::Batch`]).
     GenAlpha(GenAlphaKey),
-    /// `modal_exact` runs sharing one basis ([`super::ModalBatch`]).
+    /// `modal_exact` runs sharing one basis (`super::ModalBatch`).
     Modal(ModalKey),
 }
 
@@ -109,7 +109,7 @@ pub fn batch_key(sc: &Resolved) -> Option<BatchKey> {
 
 /// Right-hand-side columns of a scene's runs: the free step and one per
 /// contact (mass–spring carrier), [`rhs_columns`].
-pub fn scene_columns(sc: &Resolved) -> usize {
+pub(crate) fn scene_columns(sc: &Resolved) -> usize {
     rhs_columns(
         sc.carriers
             .iter()
@@ -122,8 +122,8 @@ pub fn scene_columns(sc: &Resolved) -> usize {
 /// `sc` cannot batch this way (`integrate::batch`'s module docs: no point
 /// attachments, no damping, the `end` placement, a force-level law, Hermite elements, no
 /// manufactured source, at most four columns).
-pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
-    let Scheme::GenAlpha(p) = sc.scheme else {
+pub(crate) fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
+    let Scheme::GenAlpha(p) = sc.method.scheme else {
         return None;
     };
     if sc.is_damped() {
@@ -160,8 +160,8 @@ pub fn gen_alpha_key(sc: &Resolved) -> Option<GenAlphaKey> {
 
 /// The key of `modal_exact` runs that may step together: `None` for any
 /// other method, for a beam with point attachments and for a damped run.
-pub fn modal_key(sc: &Resolved) -> Option<ModalKey> {
-    if sc.scheme != Scheme::ModalExact || sc.is_damped() || !sc.droppers.is_empty() {
+pub(crate) fn modal_key(sc: &Resolved) -> Option<ModalKey> {
+    if sc.method.scheme != Scheme::ModalExact || sc.is_damped() || !sc.droppers.is_empty() {
         // a damped run steps alone (docs/lines.md §10.4): the shared step
         // maps are the undamped ones
         return None;

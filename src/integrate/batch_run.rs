@@ -9,15 +9,16 @@ use crate::error::Error;
 use crate::resolve::Resolved;
 use crate::scene::Scheme;
 
+use super::batch::Batch;
 use super::batch::{MAX_LANES, max_lanes};
 use super::batch_key::scene_columns;
+use super::modal_batch::ModalBatch;
 use super::run_batch::RunBatch;
-use super::{Batch, ModalBatch};
 
 /// Most runs of scene `sc` one batch takes: the kernels compiled for its
 /// columns (generalized-α, [`max_lanes`]), or [`MAX_LANES`] (`modal_exact`).
-pub fn lanes_cap(sc: &Resolved) -> usize {
-    match sc.scheme {
+pub(crate) fn lanes_cap(sc: &Resolved) -> usize {
+    match sc.method.scheme {
         Scheme::ModalExact => MAX_LANES,
         _ => max_lanes(scene_columns(sc)),
     }
@@ -25,13 +26,13 @@ pub fn lanes_cap(sc: &Resolved) -> usize {
 
 /// A built batch (when any run built) and the runs that failed to build,
 /// with the caller's ids.
-pub type NewBatch = (Option<Box<dyn RunBatch>>, Vec<(usize, Error)>);
+pub(crate) type NewBatch = (Option<Box<dyn RunBatch>>, Vec<(usize, Error)>);
 
 /// Build the batch for `scenes` (equal [`super::batch_key`]s; `ids` are the
 /// caller's indices), of the kind the key names. A run that fails to build
 /// is returned in the error list with its id.
 pub fn new_batch(scenes: &[(usize, &Resolved)]) -> NewBatch {
-    match scenes.first().map(|(_, sc)| sc.scheme) {
+    match scenes.first().map(|(_, sc)| sc.method.scheme) {
         Some(Scheme::ModalExact) => {
             let (b, e) = ModalBatch::new(scenes);
             (b.map(|b| Box::new(b) as Box<dyn RunBatch>), e)

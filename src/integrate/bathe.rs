@@ -46,14 +46,15 @@
 use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
 
-use super::chain::ChainBathe;
-use super::{
-    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,
-    rhs_columns,
-};
+use super::mass_step::{Coefficients, Dof, Effective, MassSteps, Predicted, Stage};
+use super::state::State;
+use super::step_map::{StepMap, VelocityPrediction, combine};
+use super::stepper::Stepper;
+use super::system::{Initial, System};
+use crate::model::banded::rhs_columns;
 
 /// A Bathe stepper for one run.
-pub struct Bathe {
+pub(crate) struct Bathe {
     dt: f64,
     /// c₀ = 2/(γ_BΔt), c₁, c₂, c₃ (module docs).
     c0: f64,
@@ -64,30 +65,185 @@ pub struct Bathe {
     h1: f64,
     ldlt1: BandedLdlt,
     ldlt2: BandedLdlt,
-    /// A_q of each mass dof for sub-steps 1 and 2.
-    a_eff1: Vec<f64>,
-    a_eff2: Vec<f64>,
-    /// Mass accelerations q̈_n.
-    aq: Vec<f64>,
+    /// The mass dofs' rule of each sub-step, and its effective matrix
+    /// over each body (`mass_step.rs`).
+    first: FirstSubStep,
+    second: SecondSubStep,
+    effective1: Vec<Effective>,
+    effective2: Vec<Effective>,
+    /// The mass dofs (their q̈_n, and the first sub-step's end).
+    masses: MassSteps<BatheDof>,
     /// Sub-step 1's displacement predictor increment p₁ = h₁v_n + (h₁²/4)a_n, m.
     p1: Vec<f64>,
-    /// The first sub-step's end state, and Δ₁ = d₁ − d_n of the masses.
+    /// The first sub-step's end state of the beam, and q̇ of the masses there.
     d1: Vec<f64>,
     v1: Vec<f64>,
-    q1: Vec<f64>,
     qd1: Vec<f64>,
-    dq1: Vec<f64>,
     /// d̃ and ṽ of the current sub-step (module docs).
     d_pred: Vec<f64>,
     v_pred: Vec<f64>,
     /// Scratch: the affine column f − K d̃ before the solve.
     b0: Vec<f64>,
-    mass_pred: Vec<MassPrediction>,
     rhs: Vec<f64>,
     /// `f − C ṽ` of a sub-step with a damping matrix C (`None`: no damping).
     damped_load: Option<Vec<f64>>,
-    /// The multi-mass pantograph of each contact, if any (`chain.rs`).
-    chains: Vec<Option<ChainBathe>>,
+}
+
+/// A sub-step's predictors of the beam: d̃ and ṽ (module docs).
+#[derive(Debug, Clone, Copy)]
+struct BeamPredictors<'a> {
+    d: &'a [f64],
+    v: &'a [f64],
+}
+
+/// A mass dof as Bathe's step keeps it: its state at t_n and the first
+/// sub-step's end.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct BatheDof {
+    /// z, ż, z̈ at t_n (m, m/s, m/s²).
+    pub(crate) z: f64,
+    pub(crate) zd: f64,
+    pub(crate) za: f64,
+    /// z₁, ż₁ at t_n + γ_BΔt, and Δ₁ = z₁ − z_n formed from its parts.
+    pub(crate) z1: f64,
+    pub(crate) zd1: f64,
+    pub(crate) dz1: f64,
+}
+
+impl Dof for BatheDof {
+    fn rest(z: f64) -> Self {
+        BatheDof {
+            z,
+            ..BatheDof::default()
+        }
+    }
+
+    fn head(&self) -> (f64, f64) {
+        (self.z, self.zd)
+    }
+
+    fn set_head(&mut self, q: f64, q_dot: f64) {
+        (self.z, self.zd) = (q, q_dot);
+    }
+}
+
+/// Sub-step 1 of a mass dof (module docs, with m, c, k): A₁ = c₀²m + c₀c + k,
+/// the unknown the increment e, `A₁ e = f₀ − c ṽ − k q̃`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FirstSubStep {
+    /// h₁ = γ_BΔt, s.
+    pub(crate) h1: f64,
+    /// c₀ = 2/h₁, 1/s.
+    pub(crate) c0: f64,
+}
+
+impl Stage for FirstSubStep {
+    type Dof = BatheDof;
+
+    fn matrix(&self) -> Coefficients {
+        Coefficients {
+            c_m: self.c0 * self.c0,
+            c_c: self.c0,
+            c_k: 1.0,
+        }
+    }
+
+    #[inline]
+    fn predict(&self, d: &mut BatheDof) -> Predicted {
+        let h = self.h1;
+        let p = h * d.zd + 0.25 * h * h * d.za;
+        d.dz1 = p;
+        let (q, q_dot) = (d.z + p, d.zd + 0.5 * h * d.za);
+        Predicted {
+            q,
+            q_dot,
+            c_at: q_dot,
+            k_at: q,
+        }
+    }
+
+    #[inline]
+    fn load(&self, f0: f64, _: f64, _: &BatheDof, c_term: f64, k_term: f64) -> f64 {
+        f0 - c_term - k_term
+    }
+
+    /// A chain's head at this sub-step's end feeds only the chain's second
+    /// sub-step (the contact's gap rate takes ż₁ from u★₁ − λ/A_q, formed
+    /// in [`Bathe::step`]): updated with the inverse's row, as the lower
+    /// masses are (`mass_step.rs`, bit-identical outputs).
+    const CHAIN_HEAD_BY_INVERSE: bool = true;
+
+    #[inline]
+    fn update(&self, d: &mut BatheDof, p: &Predicted, e: f64) {
+        d.z1 = p.q + e;
+        d.zd1 = p.q_dot + self.c0 * e;
+        d.dz1 += e;
+    }
+}
+
+/// Sub-step 2 of a mass dof (module docs): A₂ = c₃²m + c₃c + k,
+/// s = c₁ż_n + c₂ż₁ − c₃c₁Δ₁, q̃ = z₁ − s/c₃², q̇̃ = −c₁Δ₁ − s/c₃.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SecondSubStep {
+    /// c₁, c₂, c₃ (module docs), 1/s.
+    pub(crate) c1: f64,
+    pub(crate) c2: f64,
+    pub(crate) c3: f64,
+}
+
+impl Stage for SecondSubStep {
+    type Dof = BatheDof;
+
+    fn matrix(&self) -> Coefficients {
+        Coefficients {
+            c_m: self.c3 * self.c3,
+            c_c: self.c3,
+            c_k: 1.0,
+        }
+    }
+
+    #[inline]
+    fn predict(&self, d: &mut BatheDof) -> Predicted {
+        let (c1, c2, c3) = (self.c1, self.c2, self.c3);
+        let (inv_c3, inv_c3_sq) = (1.0 / c3, 1.0 / (c3 * c3));
+        let s = c1 * d.zd + c2 * d.zd1 - c3 * c1 * d.dz1;
+        let (q, q_dot) = (d.z1 - s * inv_c3_sq, -c1 * d.dz1 - s * inv_c3);
+        Predicted {
+            q,
+            q_dot,
+            c_at: q_dot,
+            k_at: q,
+        }
+    }
+
+    /// The same with s divided by c₃² and c₃ rather than multiplied by
+    /// their reciprocals: the chain's order of operations before the mass
+    /// dofs were one abstraction (`mass_step.rs`, bit-identical outputs).
+    #[inline]
+    fn predict_in_chain(&self, d: &mut BatheDof) -> Predicted {
+        let (c1, c2, c3) = (self.c1, self.c2, self.c3);
+        let s = c1 * d.zd + c2 * d.zd1 - c3 * c1 * d.dz1;
+        let (q, q_dot) = (d.z1 - s / (c3 * c3), -c1 * d.dz1 - s / c3);
+        Predicted {
+            q,
+            q_dot,
+            c_at: q_dot,
+            k_at: q,
+        }
+    }
+
+    #[inline]
+    fn load(&self, f0: f64, _: f64, _: &BatheDof, c_term: f64, k_term: f64) -> f64 {
+        f0 - c_term - k_term
+    }
+
+    #[inline]
+    fn update(&self, d: &mut BatheDof, p: &Predicted, e: f64) {
+        let c3 = self.c3;
+        d.z = p.q + e;
+        d.zd = p.q_dot + c3 * e;
+        d.za = c3 * c3 * e;
+    }
 }
 
 impl Bathe {
@@ -112,24 +268,18 @@ impl Bathe {
         };
         let ldlt1 = BandedLdlt::factor(&effective(c0))?;
         let ldlt2 = BandedLdlt::factor(&effective(c3))?;
-        let a_eff1 = sys
-            .masses()
-            .iter()
-            .map(|m| c0 * c0 * m.m + c0 * m.c + m.k)
-            .collect();
-        let a_eff2 = sys
-            .masses()
-            .iter()
-            .map(|m| c3 * c3 * m.m + c3 * m.c + m.k)
-            .collect();
-        let chains = sys
-            .chains()
-            .iter()
-            .zip(&init.aq)
-            .map(|(ch, &aq)| ch.map(|ch| ChainBathe::new(ch, gamma, dt, aq)))
-            .collect();
+        let first = FirstSubStep { h1, c0 };
+        let second = SecondSubStep { c1, c2, c3 };
+        let mut masses = MassSteps::<BatheDof>::new(&sys.physics.masses);
+        for (j, &aq) in init.aq.iter().enumerate() {
+            masses.head_mut(j).za = aq;
+        }
         let mut bathe = Bathe {
-            chains,
+            effective1: MassSteps::effective(&first, &sys.physics.masses),
+            effective2: MassSteps::effective(&second, &sys.physics.masses),
+            first,
+            second,
+            masses,
             dt,
             c0,
             c1,
@@ -138,19 +288,13 @@ impl Bathe {
             h1,
             ldlt1,
             ldlt2,
-            a_eff1,
-            a_eff2,
-            aq: init.aq,
             p1: vec![0.0; n],
             d1: vec![0.0; n],
             v1: vec![0.0; n],
-            q1: vec![0.0; nc],
             qd1: vec![0.0; nc],
-            dq1: vec![0.0; nc],
             d_pred: vec![0.0; n],
             v_pred: vec![0.0; n],
             b0: vec![0.0; n],
-            mass_pred: vec![MassPrediction::default(); nc],
             rhs: vec![0.0; n * rhs_columns(nc)],
             damped_load: sys.damping().map(|_| vec![0.0; n]),
         };
@@ -182,11 +326,15 @@ impl Bathe {
     fn solve(
         rhs: &mut [f64],
         b0: &mut [f64],
-        (d_pred, v_pred): (&[f64], &[f64]),
+        predicted: BeamPredictors,
         damped_load: &mut Option<Vec<f64>>,
         sys: &System,
         ldlt: &BandedLdlt,
     ) {
+        let BeamPredictors {
+            d: d_pred,
+            v: v_pred,
+        } = predicted;
         let beam = sys.beam();
         let k = sys.columns();
         let load: &[f64] = match (damped_load.as_mut(), sys.damping()) {
@@ -220,26 +368,17 @@ impl Stepper for Bathe {
         Self::solve(
             &mut self.rhs,
             &mut self.b0,
-            (&self.d_pred, &self.v_pred),
+            BeamPredictors {
+                d: &self.d_pred,
+                v: &self.v_pred,
+            },
             &mut self.damped_load,
             sys,
             &self.ldlt1,
         );
-        for (j, m) in sys.masses().iter().enumerate() {
-            let (q, qd, aq) = (st.q[j], st.q_dot[j], self.aq[j]);
-            let p = h1 * qd + 0.25 * h1 * h1 * aq;
-            let (q_pred, qd_pred) = (q + p, qd + 0.5 * h1 * aq);
-            self.dq1[j] = p;
-            self.mass_pred[j] = match &mut self.chains[j] {
-                Some(ch) => ch.first((q, qd, aq)),
-                None => MassPrediction {
-                    q: q_pred,
-                    q_dot: qd_pred,
-                    u: (m.f0 - m.c * qd_pred - m.k * q_pred) / self.a_eff1[j],
-                    a_eff: self.a_eff1[j],
-                },
-            };
-        }
+        self.masses.begin(st);
+        self.masses
+            .predict(&self.first, &self.effective1, &sys.physics.masses);
         let map = StepMap {
             solved: &self.rhs,
             c_d: 1.0,
@@ -247,7 +386,7 @@ impl Stepper for Bathe {
             d_pred: &self.d_pred,
             v_pred: VelocityPrediction::Vector(&self.v_pred),
             alpha_weight: 0.0,
-            masses: &self.mass_pred,
+            masses: self.masses.predictions(),
         };
         sys.solve_contact(&map, st)?;
         let lambda = sys.multipliers();
@@ -263,15 +402,14 @@ impl Stepper for Bathe {
             self.d_pred[i] = self.d1[i] - s * inv_c3_sq;
             self.v_pred[i] = -c1 * inc - s * inv_c3;
         }
-        for (j, m) in self.mass_pred.iter().enumerate() {
-            let e = m.unknown(lambda[j]);
-            self.q1[j] = m.q + e;
-            self.qd1[j] = m.q_dot + c0 * e;
-            self.dq1[j] += e;
-            if let Some(ch) = &mut self.chains[j] {
-                ch.end_first(lambda[j]);
-            }
+        // each head's ż₁ for the gap rates, from u★₁ − λ/A_q (a chain's
+        // head state takes the inverse's row: `FirstSubStep`)
+        let preds = self.masses.predictions();
+        for ((qd1, m), &l) in self.qd1.iter_mut().zip(preds).zip(lambda) {
+            *qd1 = m.q_dot + c0 * m.unknown(l);
         }
+        self.masses
+            .finish(&self.first, &self.effective1, &sys.physics.masses, lambda);
         sys.keep_gap_rates(&self.d1, &self.v1, &self.qd1);
 
         // sub-step 2: three-point backward Euler to t_{n+1}
@@ -280,25 +418,16 @@ impl Stepper for Bathe {
         Self::solve(
             &mut self.rhs,
             &mut self.b0,
-            (&self.d_pred, &self.v_pred),
+            BeamPredictors {
+                d: &self.d_pred,
+                v: &self.v_pred,
+            },
             &mut self.damped_load,
             sys,
             &self.ldlt2,
         );
-        for (j, m) in sys.masses().iter().enumerate() {
-            let (qd, dq1) = (st.q_dot[j], self.dq1[j]);
-            let s = c1 * qd + c2 * self.qd1[j] - c3 * c1 * dq1;
-            let (q_pred, qd_pred) = (self.q1[j] - s * inv_c3_sq, -c1 * dq1 - s * inv_c3);
-            self.mass_pred[j] = match &mut self.chains[j] {
-                Some(ch) => ch.second(),
-                None => MassPrediction {
-                    q: q_pred,
-                    q_dot: qd_pred,
-                    u: (m.f0 - m.c * qd_pred - m.k * q_pred) / self.a_eff2[j],
-                    a_eff: self.a_eff2[j],
-                },
-            };
-        }
+        self.masses
+            .predict(&self.second, &self.effective2, &sys.physics.masses);
         let map = StepMap {
             solved: &self.rhs,
             c_d: 1.0,
@@ -306,7 +435,7 @@ impl Stepper for Bathe {
             d_pred: &self.d_pred,
             v_pred: VelocityPrediction::Vector(&self.v_pred),
             alpha_weight: 0.0,
-            masses: &self.mass_pred,
+            masses: self.masses.predictions(),
         };
         sys.solve_contact(&map, st)?;
         let lambda = sys.multipliers();
@@ -319,19 +448,13 @@ impl Stepper for Bathe {
             // a_{n+1} = c₃²e; the next step's sub-step 1 predictors
             (self.p1[i], self.d_pred[i], self.v_pred[i]) = self.first_predictors(d, v, c3_sq * e);
         }
-        for (j, m) in self.mass_pred.iter().enumerate() {
-            let e = m.unknown(lambda[j]);
-            st.q[j] = m.q + e;
-            st.q_dot[j] = m.q_dot + c3 * e;
-            self.aq[j] = c3_sq * e;
-            if let Some(ch) = &mut self.chains[j] {
-                ch.end_second(lambda[j]);
-            }
-        }
+        self.masses
+            .finish(&self.second, &self.effective2, &sys.physics.masses, lambda);
+        self.masses.end(st);
         Ok(())
     }
 
-    /// Each sub-step's effective matrix over the chain (`chain.rs`).
+    /// Each sub-step's mass rule over the chain (`mass_step.rs`).
     fn carries_chains(&self) -> bool {
         true
     }

@@ -1,22 +1,20 @@
-//! A carrier during a run (MODEL §2, §3): its side sign, its mass dof when
-//! it is a mass–spring carrier, and its contact kinematics — the point
+//! A carrier during a run (MODEL §2, §3): its side sign, its contact index
+//! when it is a mass–spring carrier (its mass dofs are `mass_dofs.rs`), and
+//! its contact kinematics — the point
 //! vectors at which its force acts and its gap is measured, placed anew
 //! each step at the times the method asks for.
 
 use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::CarrierProps;
 
-/// A mass–spring carrier's mass dof: `m q̈ + c q̇ + k q = f0 − λ` (MODEL §2).
+/// When a step places its carriers (s): moving forces (and a manufactured
+/// source's loads) at x_m(`load`), contact force directions at
+/// x_m(`force`), gap rows at x_m(`gap`) — each method's own times.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassDof {
-    /// Mass m, kg.
-    pub m: f64,
-    /// Spring stiffness k, N/m.
-    pub k: f64,
-    /// Dashpot c_s, N·s/m.
-    pub c: f64,
-    /// Constant force on q: k δ0 − s m g, N (MODEL §2).
-    pub f0: f64,
+pub(crate) struct PlaceTimes {
+    pub(crate) load: f64,
+    pub(crate) force: f64,
+    pub(crate) gap: f64,
 }
 
 /// One carrier during a run.
@@ -71,12 +69,12 @@ impl Carrier {
     /// or x_m(t_load) (a moving force), its gap row r_g at x_m(t_gap), and,
     /// for a velocity-level law, the slope row r_g' and V there.
     #[inline]
-    pub(crate) fn place(
-        &mut self,
-        beam: &BeamModel,
-        (t_load, t_force, t_gap): (f64, f64, f64),
-        velocity: bool,
-    ) {
+    pub(crate) fn place(&mut self, beam: &BeamModel, at: PlaceTimes, velocity: bool) {
+        let PlaceTimes {
+            load: t_load,
+            force: t_force,
+            gap: t_gap,
+        } = at;
         let tf = if self.contact.is_some() {
             t_force
         } else {

@@ -36,11 +36,12 @@ use crate::model::banded::{Affine, BandedLdlt};
 use crate::model::spectrum;
 use crate::resolve::Resolved;
 
-use super::chain::ChainCentral;
-use super::{
-    Initial, MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine,
-    rhs_columns,
-};
+use super::mass_step::{Coefficients, Effective, Kinematics, MassSteps, Predicted, Stage};
+use super::state::State;
+use super::step_map::{StepMap, VelocityPrediction, combine};
+use super::stepper::Stepper;
+use super::system::{Initial, System};
+use crate::model::banded::rhs_columns;
 
 /// Lanczos steps for ω_max: after 100 steps the largest Ritz value is within
 /// 3e-5 of a dense solve's ω_max² on the reference beam at N = 400 and its
@@ -71,7 +72,11 @@ pub fn central_difference_limit(sc: &Resolved) -> Result<StabilityLimit> {
 }
 
 /// ω_max and the largest stable Δt of central difference for a scene.
-pub fn stability_limit(sc: &Resolved, sys: &System, mass_factor: &BandedLdlt) -> StabilityLimit {
+pub(crate) fn stability_limit(
+    sc: &Resolved,
+    sys: &System,
+    mass_factor: &BandedLdlt,
+) -> StabilityLimit {
     let beam = sys.beam();
     let (theta, residual) = spectrum::lanczos_max(beam, mass_factor, LANCZOS_STEPS);
     let bound = beam.omega_bound(&sc.beam);
@@ -94,9 +99,11 @@ pub fn stability_limit(sc: &Resolved, sys: &System, mass_factor: &BandedLdlt) ->
 pub struct CentralDifference {
     dt: f64,
     mass_factor: BandedLdlt,
-    /// A_q = m + c_sΔt/2 per contact (the dashpot at the mean half-step velocity).
-    a_eff: Vec<f64>,
-    mass_pred: Vec<MassPrediction>,
+    /// The mass dofs' rule, its effective matrix over each body, and the
+    /// mass dofs, their velocity at the half step (`mass_step.rs`).
+    rule: CentralMass,
+    effective: Vec<Effective>,
+    masses: MassSteps<Kinematics>,
     /// d̃ = d_n + Δt v_{n−1/2}.
     d_pred: Vec<f64>,
     /// n × k right-hand sides: f_n − K d_n + moving forces, and s_c r_c.
@@ -105,8 +112,52 @@ pub struct CentralDifference {
     b0: Vec<f64>,
     /// The stability limit checked at the start.
     pub limit: StabilityLimit,
-    /// The multi-mass pantograph of each contact, if any (`chain.rs`).
-    chains: Vec<Option<ChainCentral>>,
+}
+
+/// Central difference's step of a mass dof (module docs): the unknown is
+/// its acceleration q̈_n, `(m + c_sΔt/2) q̈_n = f₀ − k q_n − c_s q̇_{n−1/2}
+/// − λ` (the dashpot at the mean half-step velocity), then
+/// q̇_{n+1/2} = q̇_{n−1/2} + Δt q̈_n, q_{n+1} = q_n + Δt q̇_{n−1/2} + Δt² q̈_n.
+/// A chain's masses likewise, stable for Δt ≤ 2/ω_max with its ω_max
+/// bounded by [`Chain::omega_bound`](super::chain::Chain::omega_bound).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CentralMass {
+    /// Δt, s.
+    pub(crate) dt: f64,
+}
+
+impl Stage for CentralMass {
+    type Dof = Kinematics;
+
+    fn matrix(&self) -> Coefficients {
+        Coefficients {
+            c_m: 1.0,
+            c_c: 0.5 * self.dt,
+            c_k: 0.0,
+        }
+    }
+
+    #[inline]
+    fn predict(&self, d: &mut Kinematics) -> Predicted {
+        Predicted {
+            q: d.z + self.dt * d.zd,
+            q_dot: d.zd,
+            c_at: d.zd,
+            k_at: d.z,
+        }
+    }
+
+    #[inline]
+    fn load(&self, f0: f64, _: f64, _: &Kinematics, c_term: f64, k_term: f64) -> f64 {
+        f0 - k_term - c_term
+    }
+
+    #[inline]
+    fn update(&self, d: &mut Kinematics, p: &Predicted, a: f64) {
+        let dt = self.dt;
+        d.zd += dt * a;
+        d.z = p.q + dt * dt * a;
+    }
 }
 
 impl CentralDifference {
@@ -148,18 +199,13 @@ impl CentralDifference {
         for j in 0..nc {
             st.q_dot[j] -= 0.5 * dt * init.aq[j];
         }
-        let a_eff = sys.masses().iter().map(|m| m.m + 0.5 * dt * m.c).collect();
-        let chains = sys
-            .chains()
-            .iter()
-            .map(|ch| ch.map(|ch| ChainCentral::new(ch, dt)))
-            .collect();
+        let rule = CentralMass { dt };
         CentralDifference {
-            chains,
+            effective: MassSteps::effective(&rule, &sys.physics.masses),
+            masses: MassSteps::new(&sys.physics.masses),
+            rule,
             dt,
             mass_factor: init.mass_factor,
-            a_eff,
-            mass_pred: vec![MassPrediction::default(); nc],
             d_pred: vec![0.0; n],
             rhs: vec![0.0; n * rhs_columns(nc)],
             b0: vec![0.0; n],
@@ -189,18 +235,9 @@ impl Stepper for CentralDifference {
         for (dp, (d, v)) in self.d_pred.iter_mut().zip(st.d.iter().zip(&st.v)) {
             *dp = d + dt * v;
         }
-        for (j, m) in sys.masses().iter().enumerate() {
-            let (q, v) = (st.q[j], st.q_dot[j]);
-            self.mass_pred[j] = match &mut self.chains[j] {
-                Some(ch) => ch.predict((q, v)),
-                None => MassPrediction {
-                    q: q + dt * v,
-                    q_dot: v,
-                    u: (m.f0 - m.k * q - m.c * v) / self.a_eff[j],
-                    a_eff: self.a_eff[j],
-                },
-            };
-        }
+        self.masses.begin(st);
+        self.masses
+            .predict(&self.rule, &self.effective, &sys.physics.masses);
         let map = StepMap {
             solved: &self.rhs,
             c_d: dt * dt,
@@ -208,7 +245,7 @@ impl Stepper for CentralDifference {
             d_pred: &self.d_pred,
             v_pred: VelocityPrediction::Vector(&st.v),
             alpha_weight: 0.0,
-            masses: &self.mass_pred,
+            masses: self.masses.predictions(),
         };
         sys.solve_contact(&map, st)?;
         let lambda = sys.multipliers();
@@ -217,18 +254,13 @@ impl Stepper for CentralDifference {
             st.v[i] += dt * a;
             st.d[i] = self.d_pred[i] + dt2 * a;
         }
-        for (j, m) in self.mass_pred.iter().enumerate() {
-            let a = m.unknown(lambda[j]);
-            st.q_dot[j] += dt * a;
-            st.q[j] = m.q + dt2 * a;
-            if let Some(ch) = &mut self.chains[j] {
-                ch.finish(lambda[j]);
-            }
-        }
+        self.masses
+            .finish(&self.rule, &self.effective, &sys.physics.masses, lambda);
+        self.masses.end(st);
         Ok(())
     }
 
-    /// The chain's explicit update (`chain.rs`).
+    /// The chain's dofs step with the same rule (`mass_step.rs`).
     fn carries_chains(&self) -> bool {
         true
     }

@@ -22,10 +22,11 @@
 
 use crate::scene::Placement;
 
-use super::State;
-use super::carrier::{Carrier, MassDof};
-use super::rhs_columns;
+use super::carrier::Carrier;
+use super::mass_dofs::MassDof;
+use super::state::State;
 use super::step_map::{Lanes, StepMap, VelocityPrediction};
+use crate::model::banded::rhs_columns;
 
 /// The pair (g_free, W) of a step, formed in place (no step allocates).
 /// With tension-only droppers (`dropper.rs`) the problem has a row per
@@ -88,11 +89,17 @@ impl ProblemBuilder {
         for (j, m) in masses.iter().enumerate() {
             self.inv_a[j] = 1.0 / m.m;
         }
+        let solved = Solved {
+            columns: solved,
+            k,
+            lanes: Lanes::ONE,
+        };
         fill_delassus(
             carriers,
             placement,
-            (solved, k, Lanes::ONE),
-            (1.0, self.nc),
+            solved,
+            1.0,
+            self.nc,
             &self.inv_a,
             &mut self.w,
         );
@@ -148,11 +155,18 @@ impl ProblemBuilder {
         for (j, m) in map.masses.iter().enumerate() {
             self.inv_a[j] = 1.0 / m.a_eff;
         }
+        let solved = Solved {
+            columns: map.solved,
+            k,
+            lanes,
+        };
+        let stride = self.g_free.len();
         fill_delassus(
             carriers,
             placement,
-            (map.solved, k, lanes),
-            (coef, self.g_free.len()),
+            solved,
+            coef,
+            stride,
             &self.inv_a,
             &mut self.w,
         );
@@ -246,18 +260,29 @@ pub(crate) fn contact_coef(placement: Placement, map: &StepMap) -> f64 {
     }
 }
 
+/// A step's solved right-hand sides as the Delassus matrix reads them:
+/// `k` columns a run, this run's [`Lanes`].
+#[derive(Debug, Clone, Copy)]
+struct Solved<'a> {
+    columns: &'a [f64],
+    k: usize,
+    lanes: Lanes,
+}
+
 /// W[i][j] = coef · (s_i r_iᵀ z_j + δ_ij · inv_a[i]) for the contacts i, j,
 /// at `w[i·stride + j]`, reading the solved directions z_j from column
-/// 1 + j of `solved` (k columns) and the gap rows r_i at the placement's
-/// point (r_g, or r_f for `alpha`).
+/// 1 + j of `solved` and the gap rows r_i at the placement's point (r_g,
+/// or r_f for `alpha`).
 fn fill_delassus(
     carriers: &[Carrier],
     placement: Placement,
-    (solved, k, lanes): (&[f64], usize, Lanes),
-    (coef, stride): (f64, usize),
+    solved: Solved,
+    coef: f64,
+    stride: usize,
     inv_a: &[f64],
     w: &mut [f64],
 ) {
+    let Solved { columns, k, lanes } = solved;
     let nc = inv_a.len();
     for ci in carriers {
         let Some(i) = ci.contact else { continue };
@@ -266,7 +291,7 @@ fn fill_delassus(
             Placement::Alpha => &ci.pv_f,
         };
         for j in 0..nc {
-            let mut wij = ci.s * pv.dot_strided(solved, k, lanes.col(1 + j));
+            let mut wij = ci.s * pv.dot_strided(columns, k, lanes.col(1 + j));
             if i == j {
                 wij += inv_a[i];
             }

@@ -7,7 +7,9 @@
 use crate::error::{Error, Result};
 use crate::scene::{Placement, Support};
 
-use super::{CarrierSample, State, System};
+use super::sample::CarrierSample;
+use super::state::State;
+use super::system::System;
 
 /// Displacements beyond this many beam lengths are not a small-deflection
 /// answer: a linear model that gets there has blown up.
@@ -17,9 +19,10 @@ const DISPLACEMENT_BOUND_IN_LENGTHS: f64 = 1.0;
 /// there): a carrier arriving at a support meets the beam's support corner,
 /// an impact the model has no law for (MODEL §6).
 pub(crate) fn near_support(sys: &System, x: f64) -> bool {
-    let h = sys.beam.h;
+    let h = sys.physics.beam.h;
     let held = |s: Support| s != Support::Free;
-    (held(sys.supports.0) && x < h) || (held(sys.supports.1) && x > sys.length - h)
+    (held(sys.physics.supports.0) && x < h)
+        || (held(sys.physics.supports.1) && x > sys.physics.length - h)
 }
 
 /// Stop with a diagnosis if a recorded value is non-finite or absurd.
@@ -36,11 +39,11 @@ pub(crate) fn check(
     carrier: usize,
     note: Option<&str>,
 ) -> Result<()> {
-    let bound = DISPLACEMENT_BOUND_IN_LENGTHS * sys.length;
+    let bound = DISPLACEMENT_BOUND_IN_LENGTHS * sys.physics.length;
     let force_limit = if near_support(sys, s.x) {
         f64::INFINITY
     } else {
-        sys.force_bound
+        sys.law.force_bound
     };
     let checks = [
         ("contact force λ (N)", s.force, force_limit),
@@ -51,11 +54,13 @@ pub(crate) fn check(
         if value.is_finite() && value.abs() <= limit {
             continue;
         }
-        let c = &sys.carriers[carrier];
+        let c = &sys.physics.carriers[carrier];
         let moving = !c.props.motion.is_stationary();
         let speed = c.props.motion.speed(st.t);
-        let supersonic_mass =
-            sys.bilateral && c.contact.is_some() && sys.wave_speed > 0.0 && speed > sys.wave_speed;
+        let supersonic_mass = sys.law.bilateral
+            && c.contact.is_some()
+            && sys.physics.wave_speed > 0.0
+            && speed > sys.physics.wave_speed;
         let weak = note.filter(|_| moving && c.contact.is_some());
         let cause = if st.step == 0 {
             // nothing has been integrated yet: no step or contact law is to blame
@@ -67,23 +72,23 @@ pub(crate) fn check(
                     "not finite"
                 }
             )
-        } else if sys.placement == Placement::Alpha && moving {
+        } else if sys.law.placement == Placement::Alpha && moving {
             "the gap is imposed at the α-level (contact.placement = \"alpha\"), which leaves an undamped step-to-step oscillation that a moving contact point drives unstable (MODEL §5); use contact.placement = \"end\"".to_string()
         } else if supersonic_mass {
             format!(
                 "a mass held on the beam (bilateral) moves at V = {speed:.1} m/s, faster than the wave speed c = {:.1} m/s: a moving inertial load above the wave speed can be genuinely unstable (anomalous Doppler waves; Metrikine & Dieterman); growth that quickens as the mesh and step are refined is that instability, not the integrator",
-                sys.wave_speed
+                sys.physics.wave_speed
             )
         } else {
             let step = if !value.is_finite() {
                 format!(
                     "a non-finite value: check the scene's magnitudes and time.step = {} s",
-                    sys.dt
+                    sys.physics.dt
                 )
             } else {
                 format!(
                     "|{name}| exceeds {limit:e}: time.step = {} s may be too coarse for the contact dynamics, or the scene is physically unbounded",
-                    sys.dt
+                    sys.physics.dt
                 )
             };
             match weak {
@@ -100,4 +105,16 @@ pub(crate) fn check(
         });
     }
     Ok(())
+}
+
+/// `Integrator::constraint_damping_note` of a run's system (alone or in
+/// a batch) whose method notes `note` (`MethodFactory::constraint_note`):
+/// the note when some contact carrier moves.
+pub(crate) fn damping_note(sys: &System, note: Option<&str>) -> Option<String> {
+    let moving = sys
+        .physics
+        .carriers
+        .iter()
+        .any(|c| c.contact.is_some() && !c.props.motion.is_stationary());
+    moving.then(|| note.map(str::to_string)).flatten()
 }

@@ -62,7 +62,8 @@
 //! and k_d e_free,d → N_free,d = k_d e_free,d + c_d ė_free,d (the force of
 //! the free step). Without a dashpot k_eff,d = k_d and nothing changes.
 
-use super::VelocityPrediction;
+use super::state::State;
+use super::step_map::{StepMap, VelocityPrediction};
 use crate::contact::ContactFailure;
 use crate::model::banded::SymBand;
 use crate::model::beam::{BeamModel, PointVector};
@@ -129,6 +130,18 @@ impl Link {
             pm.scatter(-a, y, stride, col);
         }
     }
+}
+
+/// The contacts' own pair (g_free, W) of a step, as the contact problem
+/// formed it: `w` row-major at stride `stride`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ContactPair<'a> {
+    /// The contacts' free gaps, m.
+    pub(crate) g: &'a [f64],
+    /// Their Delassus matrix, m/N.
+    pub(crate) w: &'a [f64],
+    /// W's row stride.
+    pub(crate) stride: usize,
 }
 
 /// The run's droppers, in scene order (module docs).
@@ -340,12 +353,7 @@ impl Droppers {
     /// constant A' (the droppers' springs and dashpots in it): `solve`
     /// overwrites a right-hand side with A'⁻¹ of it; `c_d`, `c_v` as in
     /// d_{n+1} = d̃ + c_d u, v_{n+1} = ṽ + c_v u; `weight` = α_f.
-    pub(crate) fn prepare(
-        &mut self,
-        solve: impl Fn(&mut [f64]),
-        (c_d, c_v): (f64, f64),
-        weight: f64,
-    ) {
+    pub(crate) fn prepare(&mut self, solve: impl Fn(&mut [f64]), c_d: f64, c_v: f64, weight: f64) {
         let (n, m) = (self.n, self.rows());
         self.z = vec![0.0; n * m];
         for (r, &li) in self.tension.iter().enumerate() {
@@ -381,26 +389,26 @@ impl Droppers {
         &self.z[r * self.n..(r + 1) * self.n]
     }
 
-    /// Begin a step's dropper problem (module docs, D9): the free
-    /// extensions from d̃ (`d_pred`), the free solution (column 0 of
-    /// `solved`, k columns) and d_n, and with a dashpot (D12) the free
-    /// rates from ṽ, the same column and v_n (`rates`: ṽ, v_n, c_v);
-    /// P from the contact columns 1 + c; the
-    /// contacts' couplings Ê from their gap rows `(i, s_i, r_i)` at the
-    /// placement with coefficient `coef_c`; the contacts' own pair from
-    /// `g`, `w` (stride `stride`); and the step's first set S.
-    #[allow(clippy::too_many_arguments)]
+    /// Begin a step's dropper problem (module docs, D9), from the
+    /// method's step `map` (`k` columns) and the state `st` at t_n: the
+    /// free extensions from d̃, the free solution (column 0) and d_n, and
+    /// with a dashpot (D12) the free rates from ṽ, the same column and
+    /// v_n; P from the contact columns 1 + c; the contacts' couplings Ê
+    /// from their gap rows `(i, s_i, r_i)` at the placement with
+    /// coefficient `coef_c`; the contacts' own pair `pair`; and the step's
+    /// first set S.
     pub(crate) fn begin<'a>(
         &mut self,
-        (solved, k): (&[f64], usize),
-        c_d: f64,
-        d_pred: &[f64],
-        d_n: &[f64],
-        rates: (VelocityPrediction, &[f64], f64),
+        map: &StepMap,
+        k: usize,
+        st: &State,
         contacts: impl Iterator<Item = (usize, f64, &'a PointVector)>,
         coef_c: f64,
-        (g, w, stride): (&[f64], &[f64], usize),
+        pair: ContactPair,
     ) {
+        let (solved, c_d, d_pred, d_n) = (map.solved, map.c_d, map.d_pred, &st.d[..]);
+        let (v_pred, v_n, c_v) = (map.v_pred, &st.v[..], map.c_v);
+        let ContactPair { g, w, stride } = pair;
         let (nc, m, a) = (self.nc, self.rows(), self.weight);
         let s = &mut self.scratch;
         s.scale = 0.0;
@@ -412,7 +420,6 @@ impl Droppers {
             if l.c != 0.0 {
                 // ê = (k e_free + c ė_free)/k_eff, ė_free = −r_dᵀv_free at
                 // the force level (D12)
-                let (v_pred, v_n, c_v) = rates;
                 let r_vn = l.dot(v_n);
                 let v_end = match v_pred {
                     VelocityPrediction::Vector(v) => l.dot(v),

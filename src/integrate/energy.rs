@@ -5,7 +5,8 @@
 
 use crate::scene::CarrierKind;
 
-use super::{State, System};
+use super::state::State;
+use super::system::System;
 
 /// The parts of the discrete energy, J.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -47,21 +48,21 @@ impl Energy {
 /// loads do work, so E is not conserved then.
 /// Allocates scratch vectors: for checks, not for the step loop.
 pub(crate) fn energy(sys: &System, st: &State) -> Energy {
-    let n = sys.beam.n;
+    let n = sys.physics.beam.n;
     let mut mv = vec![0.0; n];
-    sys.beam.mass.mul_acc(&st.v, 1.0, &mut mv);
+    sys.physics.beam.mass.mul_acc(&st.v, 1.0, &mut mv);
     let mut kd = vec![0.0; n];
-    sys.beam.stiffness.mul_acc(&st.d, 1.0, &mut kd);
+    sys.physics.beam.stiffness.mul_acc(&st.d, 1.0, &mut kd);
     let mut e = Energy::default();
     for i in 0..n {
         e.kinetic += 0.5 * st.v[i] * mv[i];
         e.strain += 0.5 * st.d[i] * kd[i];
-        e.load_potential -= sys.beam.load[i] * st.d[i];
+        e.load_potential -= sys.physics.beam.load[i] * st.d[i];
     }
-    for c in &sys.carriers {
+    for c in &sys.physics.carriers {
         match (c.props.kind, c.contact) {
             (_, Some(j)) => {
-                let m = sys.masses[j];
+                let m = sys.physics.masses.heads[j];
                 e.kinetic += 0.5 * m.m * st.q_dot[j] * st.q_dot[j];
                 e.strain += 0.5 * m.k * st.q[j] * st.q[j];
                 e.load_potential -= m.f0 * st.q[j];

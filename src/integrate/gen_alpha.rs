@@ -11,10 +11,12 @@ use crate::error::Result;
 use crate::scene::GenAlphaParams;
 
 use super::gen_alpha_kernel::Kernel;
-use super::{Initial, State, Stepper, System};
+use super::state::State;
+use super::stepper::Stepper;
+use super::system::{Initial, System};
 
 /// A generalized-α stepper for one run.
-pub struct GenAlpha {
+pub(crate) struct GenAlpha {
     kernel: Kernel,
 }
 
@@ -25,11 +27,12 @@ impl GenAlpha {
     pub fn new(p: GenAlphaParams, sys: &mut System, st: &State, init: Initial) -> Result<Self> {
         let mut kernel = Kernel::new(p, sys.beam(), sys.damping(), sys.dt(), sys.columns(), 1)?;
         kernel.start(sys, &st.d, &st.v, init);
-        if sys.droppers.rows() > 0 {
+        if sys.physics.droppers.rows() > 0 {
             let c_d = p.beta * sys.dt() * sys.dt();
             let c_v = p.gamma * sys.dt();
-            sys.droppers
-                .prepare(|x| kernel.solve_one(x), (c_d, c_v), p.alpha_f);
+            sys.physics
+                .droppers
+                .prepare(|x| kernel.solve_one(x), c_d, c_v, p.alpha_f);
         }
         Ok(GenAlpha { kernel })
     }
@@ -51,7 +54,7 @@ impl Stepper for GenAlpha {
         Ok(())
     }
 
-    /// The chain's dofs step with the same scheme (`chain.rs`).
+    /// The chain's dofs step with the same rule (`mass_step.rs`).
     fn carries_chains(&self) -> bool {
         true
     }

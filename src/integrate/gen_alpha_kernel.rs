@@ -71,23 +71,82 @@ use crate::model::banded::{Affine, BandedLdlt, SymBand};
 use crate::model::beam::BeamModel;
 use crate::scene::{GenAlphaParams, Placement};
 
-use super::chain::ChainGenAlpha;
 use super::gen_alpha_update::{MAX_COLUMNS, Pass, UpdateCoefs};
+use super::mass_step::{Coefficients, Effective, Kinematics, MassSteps, Predicted, Stage};
+use super::state::State;
 use super::step_map::Lanes;
-use super::{Initial, MassDof, MassPrediction, State, StepMap, System, VelocityPrediction};
+use super::step_map::{StepMap, VelocityPrediction};
+use super::system::{Initial, System};
 
-pub use super::gen_alpha_update::MAX_LANES;
+pub(crate) use super::gen_alpha_update::MAX_LANES;
 
-/// What generalized-α keeps per run for its mass dofs: accelerations q̈_n,
-/// effective masses A_q and this step's predictions.
+/// Generalized-α's step of a mass dof (MODEL §2, §5; docs/lines.md P3 for
+/// a chain's dofs): the unknown is its acceleration ü_{n+1},
+///
+/// ```text
+///   A ü = f₀ − α_m m ü_n − c((1 − α_f)ṽ + α_f v_n) − k((1 − α_f)q̃ + α_f q_n) − λ e₁,
+///   A = (1 − α_m)m + (1 − α_f)γΔt c + (1 − α_f)βΔt² k,
+///   q̃ = q_n + Δt v_n + (½ − β)Δt² ü_n,  ṽ = v_n + (1 − γ)Δt ü_n,
+/// ```
+///
+/// then q_{n+1} = q̃ + βΔt² ü, v_{n+1} = ṽ + γΔt ü (`mass_step.rs`
+/// applies it to a single mass and to a chain alike).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GenAlphaMass {
+    /// The family's parameters.
+    pub(crate) p: GenAlphaParams,
+    /// Δt, s.
+    pub(crate) dt: f64,
+}
+
+impl Stage for GenAlphaMass {
+    type Dof = Kinematics;
+
+    fn matrix(&self) -> Coefficients {
+        let (p, dt) = (self.p, self.dt);
+        Coefficients {
+            c_m: 1.0 - p.alpha_m,
+            c_c: (1.0 - p.alpha_f) * p.gamma * dt,
+            c_k: (1.0 - p.alpha_f) * p.beta * dt * dt,
+        }
+    }
+
+    #[inline]
+    fn predict(&self, d: &mut Kinematics) -> Predicted {
+        let (p, dt) = (self.p, self.dt);
+        let af = p.alpha_f;
+        let c_pred = (0.5 - p.beta) * dt * dt;
+        let q = d.z + dt * d.zd + c_pred * d.za;
+        let q_dot = d.zd + (1.0 - p.gamma) * dt * d.za;
+        Predicted {
+            q,
+            q_dot,
+            c_at: (1.0 - af) * q_dot + af * d.zd,
+            k_at: (1.0 - af) * q + af * d.z,
+        }
+    }
+
+    #[inline]
+    fn load(&self, f0: f64, m: f64, d: &Kinematics, c_term: f64, k_term: f64) -> f64 {
+        f0 - self.p.alpha_m * m * d.za - c_term - k_term
+    }
+
+    #[inline]
+    fn update(&self, d: &mut Kinematics, _: &Predicted, acc: f64) {
+        let (dt, beta, gamma) = (self.dt, self.p.beta, self.p.gamma);
+        let (bdt2, c_pred) = (beta * dt * dt, (0.5 - beta) * dt * dt);
+        let a = d.za;
+        d.z += dt * d.zd + c_pred * a + bdt2 * acc;
+        d.zd += dt * ((1.0 - gamma) * a + gamma * acc);
+        d.za = acc;
+    }
+}
+
+/// What generalized-α keeps per run for its mass dofs: their state and
+/// predictions, and the effective matrix over each body.
 struct MassLane {
-    aq: Vec<f64>,
-    /// A_q = (1 − α_m)m + (1 − α_f)γΔt c + (1 − α_f)βΔt² k per contact.
-    a_eff: Vec<f64>,
-    mass_pred: Vec<MassPrediction>,
-    /// The multi-mass pantograph of each contact (`chain.rs`), if any:
-    /// its A_q and predictions replace the single mass's.
-    chains: Vec<Option<ChainGenAlpha>>,
+    masses: MassSteps<Kinematics>,
+    effective: Vec<Effective>,
 }
 
 /// What a damped run's step adds (module docs, "Damping").
@@ -204,21 +263,12 @@ impl Kernel {
             gamma,
         } = self.p;
         let (dt, c_k, L) = (self.dt, self.c_k, self.lanes);
-        let chains: Vec<Option<ChainGenAlpha>> = sys
-            .chains()
-            .iter()
-            .zip(&init.aq)
-            .map(|(ch, &aq)| ch.map(|ch| ChainGenAlpha::new(ch, self.p, dt, aq)))
-            .collect();
-        let a_eff = sys
-            .masses()
-            .iter()
-            .zip(&chains)
-            .map(|(m, ch)| match ch {
-                Some(ch) => ch.a_eff(),
-                None => (1.0 - am) * m.m + (1.0 - af) * gamma * dt * m.c + c_k * m.k,
-            })
-            .collect();
+        let stage = GenAlphaMass { p: self.p, dt };
+        let mut masses = MassSteps::<Kinematics>::new(&sys.physics.masses);
+        for (j, &aq) in init.aq.iter().enumerate() {
+            masses.head_mut(j).za = aq;
+        }
+        let effective = MassSteps::effective(&stage, &sys.physics.masses);
         let beam = sys.beam();
         let c_pred = (0.5 - beta) * dt * dt;
         let mut a_a = vec![0.0; self.n];
@@ -236,12 +286,7 @@ impl Kernel {
             self.u_shift[at] = u - self.alpha_p * c_k * init.a[i];
             self.h[at] = beam.load[i] - self.alpha_p * a_a[i];
         }
-        self.masses.push(MassLane {
-            aq: init.aq,
-            a_eff,
-            mass_pred: vec![MassPrediction::default(); sys.contacts()],
-            chains,
-        });
+        self.masses.push(MassLane { masses, effective });
     }
 
     /// t_{n+1} and the force time t_{n+1−α_f} of the step from `st`.
@@ -320,12 +365,14 @@ impl Kernel {
     /// (`dropper.rs`),
     /// so the update pass takes them with the contacts'. No-op without them.
     pub(crate) fn add_dropper_responses(&mut self, sys: &System) {
-        if sys.droppers.rows() == 0 {
+        if sys.physics.droppers.rows() == 0 {
             return;
         }
         debug_assert_eq!(self.lanes, 1, "droppers step alone");
         let (n, k) = (self.n, self.k);
-        sys.droppers.add_responses(&mut self.rhs[..n * k], k);
+        sys.physics
+            .droppers
+            .add_responses(&mut self.rhs[..n * k], k);
     }
 
     /// Lane `l`'s contact problem: its mass dofs' predictions, and the
@@ -340,14 +387,11 @@ impl Kernel {
             ..
         } = self.p;
         let ml = &mut self.masses[l];
-        for (j, m) in sys.masses().iter().enumerate() {
-            let now = (st.q[j], st.q_dot[j], ml.aq[j]);
-            ml.mass_pred[j] = match &mut ml.chains[j] {
-                Some(ch) => ch.predict(now),
-                None => mass_prediction(self.p, dt, m, now, ml.a_eff[j]),
-            };
-        }
-        let alpha_weight = match sys.placement {
+        let stage = GenAlphaMass { p: self.p, dt };
+        ml.masses.begin(st);
+        ml.masses
+            .predict(&stage, &ml.effective, &sys.physics.masses);
+        let alpha_weight = match sys.law.placement {
             Placement::End => 0.0,
             Placement::Alpha => af,
         };
@@ -361,7 +405,7 @@ impl Kernel {
                 coef: (1.0 - gamma) * dt,
             },
             alpha_weight,
-            masses: &ml.mass_pred,
+            masses: ml.masses.predictions(),
         };
         sys.solve_contact_in(&map, Lanes { count: L, lane: l }, st)
     }
@@ -447,19 +491,15 @@ impl Kernel {
         let (n, L, dt) = (self.n, self.lanes, self.dt);
         let lanes = Lanes { count: L, lane: l };
         sys.scatter_contact_directions_in(&mut self.h[..n * L], lanes, -self.alpha_p);
-        let (beta, gamma) = (self.p.beta, self.p.gamma);
-        let (bdt2, c_pred) = (beta * dt * dt, (0.5 - beta) * dt * dt);
         let ml = &mut self.masses[l];
-        for (j, m) in ml.mass_pred.iter().enumerate() {
-            let lambda = sys.multipliers()[j];
-            let (a, acc) = (ml.aq[j], m.u - lambda / m.a_eff);
-            st.q[j] += dt * st.q_dot[j] + c_pred * a + bdt2 * acc;
-            st.q_dot[j] += dt * ((1.0 - gamma) * a + gamma * acc);
-            ml.aq[j] = acc;
-            if let Some(ch) = &mut ml.chains[j] {
-                ch.finish(lambda);
-            }
-        }
+        let stage = GenAlphaMass { p: self.p, dt };
+        ml.masses.finish(
+            &stage,
+            &ml.effective,
+            &sys.physics.masses,
+            sys.multipliers(),
+        );
+        ml.masses.end(st);
     }
 
     /// Keep the lanes `keep` (ascending) and drop the others, moving the
@@ -490,31 +530,5 @@ impl Kernel {
             }
         }
         self.lanes = new;
-    }
-}
-
-/// What generalized-α predicts for one mass dof (q, q̇, q̈ at t_n)
-/// this step: q̃, q̇̃ and the free acceleration u★ = F_q/A_q (MODEL §2, §5).
-#[inline]
-fn mass_prediction(
-    p: GenAlphaParams,
-    dt: f64,
-    m: &MassDof,
-    (q, v, a): (f64, f64, f64),
-    a_eff: f64,
-) -> MassPrediction {
-    let (am, af) = (p.alpha_m, p.alpha_f);
-    let c_pred = (0.5 - p.beta) * dt * dt;
-    let q_pred = q + dt * v + c_pred * a;
-    let v_pred = v + (1.0 - p.gamma) * dt * a;
-    let fq = m.f0
-        - am * m.m * a
-        - m.c * ((1.0 - af) * v_pred + af * v)
-        - m.k * ((1.0 - af) * q_pred + af * q);
-    MassPrediction {
-        q: q_pred,
-        q_dot: v_pred,
-        u: fq / a_eff,
-        a_eff,
     }
 }

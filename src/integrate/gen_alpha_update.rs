@@ -17,7 +17,7 @@ pub(crate) const MAX_COLUMNS: usize = 6;
 
 /// Most runs a batch steps together: the widest update pass compiled here
 /// (the kernel and the batch re-export it).
-pub const MAX_LANES: usize = 8;
+pub(crate) const MAX_LANES: usize = 8;
 
 /// The constants of the update pass (MODEL §5, update and predictors).
 #[derive(Debug, Clone, Copy)]

@@ -1,25 +1,37 @@
-//! The method seam: what a time integrator is to a run, and the registry
-//! of methods by name.
+//! The method seam: what a time integrator is to a run, and how a method
+//! found by name reaches its factory.
 //!
 //! A method is a [`MethodFactory`]: its description ([`MethodInfo`]: name,
 //! parameters, the contact settings and bases it accepts) and the
 //! [`Stepper`] it builds for a run. The built-in ones are the values of
 //! [`Method`], described in `scene/method.rs` and stepped by
-//! [`stepper_for`]; a method of one's own is registered by name
-//! ([`register`]) and is then reached as the built-in ones are: from a
-//! scene (`integrator.method = "<name>"`), from `--methods <name>`
-//! ([`parse_methods`]) and from Rust ([`method_named`],
+//! [`stepper_for`] from their typed parameters; a method of one's own is
+//! registered by name ([`register`]) and is then reached as the built-in
+//! ones are: from a scene (`integrator.method = "<name>"`), from
+//! `--methods <name>` ([`parse_methods`]) and from Rust ([`method_named`],
 //! [`crate::run_with`]). `examples/custom_method.rs` does it end to end.
+//!
+//! There is one registry, the scene layer's (`scene/method_registry.rs`):
+//! [`register`] adds the factory's description and a type-erased handle
+//! to the factory itself ([`FactoryHandle`]), and [`factory_of`] reads a
+//! [`MethodRef`] back into its factory, a downcast to this file's own
+//! type: a resolved scene's method ([`crate::scene::ResolvedMethod`]) is
+//! built without a lookup by name.
 
-use std::sync::RwLock;
-
-use super::{
-    Bathe, CentralDifference, GenAlpha, Initial, ModalExact, MoreauJean, Multipliers, State,
-    Stepper, System,
-};
+use super::bathe::Bathe;
+use super::central_difference::CentralDifference;
+use super::gen_alpha::GenAlpha;
+use super::modal_exact::ModalExact;
+use super::moreau_jean::MoreauJean;
+use super::state::State;
+use super::step_map::Multipliers;
+use super::stepper::Stepper;
+use super::system::{Initial, System};
 use crate::error::{Error, Result};
 use crate::resolve::Resolved;
-use crate::scene::{IntegratorSpec, Method, MethodInfo, Scheme, method_names};
+use crate::scene::{
+    IntegratorSpec, Method, MethodInfo, MethodRef, Scheme, method_names, method_ref,
+};
 
 /// Builds a [`Stepper`] for a run: a built-in [`Method`], or a method of
 /// one's own (describe it with [`MethodInfo`], build it here, and
@@ -28,8 +40,11 @@ pub trait MethodFactory: MethodInfo {
     /// Build the stepper for a validated scene, given its system and the
     /// consistent initial state (the accelerations in `init`; a method may
     /// adjust `st`, e.g. to a half-step velocity). A method that works with
-    /// impulses says so with [`System::set_multipliers`]. The driver has
-    /// checked [`MethodInfo::accepts`] for the scene.
+    /// impulses says so with `System::set_multipliers`. The driver has
+    /// checked [`MethodInfo::accepts`] for the scene. A method registered
+    /// by name that declares parameters ([`MethodInfo::parameters`]) finds
+    /// their checked values in `sc.method.scheme`
+    /// ([`Scheme::Registered`]) when the scene names it.
     fn build(
         &self,
         sc: &Resolved,
@@ -72,11 +87,17 @@ pub trait MethodFactory: MethodInfo {
 }
 
 impl Method {
-    /// This method's scheme for the scene `sc`: its parameters read from
-    /// the scene's `[integrator]` (keys of other methods ignored), its
-    /// contact settings and basis checked, whatever method the scene names.
+    /// This method's typed parameters for the scene `sc`: the scene's own,
+    /// resolved once, when the scene names this method; otherwise read
+    /// from the scene's `[integrator]` (keys of other methods ignored)
+    /// with its contact settings and basis checked.
     pub fn scheme_for(self, sc: &Resolved) -> Result<Scheme> {
-        self.scheme(&sc.integrator, &sc.contact, sc.discretization)
+        if sc.method.built_in_method() == Some(self) {
+            return Ok(sc.method.scheme);
+        }
+        let scheme = self.scheme(&sc.scene.integrator)?;
+        self.accepts(&sc.contact, sc.discretization)?;
+        Ok(scheme)
     }
 }
 
@@ -99,7 +120,7 @@ impl MethodFactory for Method {
     }
 
     fn is_scene_method(&self, sc: &Resolved) -> bool {
-        sc.integrator.method == self.name()
+        sc.method.built_in_method() == Some(*self)
     }
 
     fn time_order(&self, sc: &Resolved) -> Option<f64> {
@@ -114,7 +135,7 @@ impl MethodFactory for Method {
 }
 
 /// The stepper of a built-in `scheme`.
-pub fn stepper_for(
+pub(crate) fn stepper_for(
     scheme: Scheme,
     sc: &Resolved,
     sys: &mut System,
@@ -124,7 +145,7 @@ pub fn stepper_for(
     // a multi-mass pantograph: modal_exact does not carry it (`chain.rs`)
     // and refuses before any check of its own
     if sys.has_chains() && scheme == Scheme::ModalExact {
-        return Err(super::chain::refusal(method_name(scheme)));
+        return Err(super::chain::refusal(Method::ModalExact.name()));
     }
     Ok(match scheme {
         Scheme::GenAlpha(p) => {
@@ -146,49 +167,57 @@ pub fn stepper_for(
             Box::new(MoreauJean::new(theta, sys, st)?)
         }
         Scheme::ModalExact => Box::new(ModalExact::new(sys)?),
-        Scheme::Registered => {
+        Scheme::Registered(_) => {
             return Err(Error::invalid(
                 "integrator.method",
-                format!("\"{}\"", sc.integrator.method),
+                format!("\"{}\"", sc.method.name()),
                 "is a registered method, built by its own factory (integrate::method_named)",
             ));
         }
     })
 }
 
-/// The methods registered by name besides the built-in ones.
-static REGISTERED: RwLock<Vec<&'static dyn MethodFactory>> = RwLock::new(Vec::new());
+/// The type-erased handle a registry entry keeps of a registered
+/// factory (module docs): only [`register`] makes one, only
+/// [`factory_of`] reads one.
+struct FactoryHandle(&'static dyn MethodFactory);
+
+/// The built-in methods as factories.
+static BUILT_IN: [Method; Method::ALL.len()] = Method::ALL;
 
 /// Register `method` by its name, so that a scene (`integrator.method =
-/// "<name>"`), `--methods <name>` and [`method_named`] reach it as they
+/// "<name>"`), `--methods <name>` and `method_named` reach it as they
 /// reach a built-in method. Refused when the name is malformed or taken (a
 /// built-in name, or one registered before).
 pub fn register(method: &'static dyn MethodFactory) -> Result<()> {
-    let mut list = REGISTERED.write().unwrap_or_else(|e| e.into_inner());
-    crate::scene::register_info(method)?;
-    list.push(method);
+    crate::scene::register_method(method, Box::new(FactoryHandle(method)))?;
     Ok(())
 }
 
-/// The method named `name`: a built-in [`Method`], or one [`register`]ed.
-pub fn method_named(name: &str) -> Option<&'static dyn MethodFactory> {
-    static BUILT_IN: [Method; Method::ALL.len()] = Method::ALL;
-    if let Some(m) = BUILT_IN.iter().find(|m| m.name() == name) {
-        return Some(m);
+/// The factory of a method of the registry: a built-in [`Method`], or the
+/// factory [`register`] put behind the entry's handle.
+pub(crate) fn factory_of(method: MethodRef) -> &'static dyn MethodFactory {
+    if let Some(m) = method.built_in_method() {
+        return &BUILT_IN[m as usize];
     }
-    let list = REGISTERED.read().unwrap_or_else(|e| e.into_inner());
-    list.iter().copied().find(|m| m.name() == name)
+    let handle = method
+        .factory()
+        .and_then(|f| f.downcast_ref::<FactoryHandle>());
+    match handle {
+        Some(h) => h.0,
+        None => unreachable!("a registered entry holds the handle integrate::register made"),
+    }
 }
 
-/// The method a validated scene names (`integrator.method`).
-pub fn scene_method(sc: &Resolved) -> Result<&'static dyn MethodFactory> {
-    method_named(&sc.integrator.method).ok_or_else(|| {
-        Error::invalid(
-            "integrator.method",
-            format!("\"{}\"", sc.integrator.method),
-            format!("must be among {}", method_names().join(", ")),
-        )
-    })
+/// The method named `name`: a built-in [`Method`], or one [`register`]ed.
+pub(crate) fn method_named(name: &str) -> Option<&'static dyn MethodFactory> {
+    method_ref(name).map(factory_of)
+}
+
+/// The method a validated scene names (`integrator.method`), as it was
+/// resolved: no lookup by name.
+pub(crate) fn scene_method(sc: &Resolved) -> &'static dyn MethodFactory {
+    factory_of(sc.method.handle)
 }
 
 /// Parse a comma-separated list of method names (`--methods`): built-in
@@ -216,18 +245,6 @@ pub fn parse_methods(list: &str) -> Result<Vec<&'static dyn MethodFactory>> {
         ));
     }
     Ok(out)
-}
-
-/// The scene name of a built-in scheme, for messages.
-fn method_name(scheme: Scheme) -> &'static str {
-    match scheme {
-        Scheme::GenAlpha(_) => "generalized_alpha",
-        Scheme::Bathe { .. } => "bathe",
-        Scheme::CentralDifference => "central_difference",
-        Scheme::MoreauJean { .. } => "moreau_jean",
-        Scheme::ModalExact => "modal_exact",
-        Scheme::Registered => "registered",
-    }
 }
 
 #[cfg(test)]
@@ -285,5 +302,65 @@ mod tests {
             Some("unit_test_method".to_string())
         );
         assert!(crate::scene::method_names().contains(&"unit_test_method".to_string()));
+    }
+
+    /// A scene naming a registered method resolves to its entry once; the
+    /// entry gives back the very factory registered (no lookup by name),
+    /// with the values of the parameters it declares, checked.
+    #[test]
+    fn a_registered_method_resolves_to_its_own_factory() {
+        use crate::scene::{IntegratorSpec, Key, Parameter};
+        struct Declares;
+        const THETA: Parameter = Parameter {
+            key: Key::Theta,
+            default: 0.75,
+            range: "[0.5, 1]",
+            contains: |v| (0.5..=1.0).contains(&v),
+        };
+        impl MethodInfo for Declares {
+            fn name(&self) -> String {
+                "unit_test_declares".to_string()
+            }
+            fn parameters(&self) -> &[Parameter] {
+                &[THETA]
+            }
+        }
+        impl MethodFactory for Declares {
+            fn build(
+                &self,
+                _: &Resolved,
+                _: &mut System,
+                _: &mut State,
+                _: Initial,
+            ) -> Result<Box<dyn Stepper>> {
+                unreachable!("never run")
+            }
+        }
+        static DECLARES: Declares = Declares;
+        register(&DECLARES).unwrap();
+        let mut spec = IntegratorSpec {
+            method: "unit_test_declares".into(),
+            ..IntegratorSpec::default()
+        };
+        let m = spec.resolve().unwrap();
+        assert!(std::ptr::addr_eq(factory_of(m.handle), &DECLARES));
+        let Scheme::Registered(values) = m.scheme else {
+            panic!("a registered method's scheme: {:?}", m.scheme)
+        };
+        assert_eq!(values.get(Key::Theta), Some(0.75));
+        assert_eq!(values.get(Key::RhoInf), None);
+        spec.theta = Some(0.4);
+        let e = spec.resolve().unwrap_err().to_string();
+        assert!(
+            e.contains("integrator.theta") && e.contains("[0.5, 1]"),
+            "{e}"
+        );
+        spec.theta = None;
+        spec.rho_inf = Some(0.5);
+        let e = spec.resolve().unwrap_err().to_string();
+        assert!(
+            e.contains("integrator.rho_inf") && e.contains("unit_test_declares"),
+            "{e}"
+        );
     }
 }

@@ -27,12 +27,15 @@ use crate::error::{Error, Result};
 use crate::model::beam::{BeamModel, PointVector};
 use crate::resolve::Resolved;
 
+use super::batch::Lane;
 use super::modal_exact::{ModalCoefs, ModalExact};
 use super::run_batch::RunBatch;
-use super::{CarrierSample, Lane, State, System};
+use super::sample::CarrierSample;
+use super::state::State;
+use super::system::System;
 
 /// `modal_exact` runs on one basis at one Δt (module docs).
-pub struct ModalBatch {
+pub(crate) struct ModalBatch {
     lanes: Vec<Lane>,
     steppers: Vec<ModalExact>,
 }
@@ -114,7 +117,7 @@ impl RunBatch for ModalBatch {
             match stepper.step_deferred(&mut lane.sys, &mut lane.st) {
                 Ok(()) => {
                     lane.st.step += 1;
-                    lane.st.t = lane.st.step as f64 * lane.sys.dt;
+                    lane.st.t = lane.st.step as f64 * lane.sys.physics.dt;
                     lane.sys.end_step(&lane.st);
                 }
                 Err(e) => lane.failed = Some(e),
@@ -125,7 +128,7 @@ impl RunBatch for ModalBatch {
     fn sample(&self, l: usize, i: usize) -> CarrierSample {
         let lane = &self.lanes[l];
         let stepper = &self.steppers[l];
-        super::sample_of(&lane.sys, &lane.st, i, |pv| {
+        super::sample::sample_of(&lane.sys, &lane.st, i, |pv| {
             stepper.displacement_at(&lane.sys, &lane.st, pv)
         })
     }

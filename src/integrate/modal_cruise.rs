@@ -28,6 +28,8 @@
 //! agreement with the direct evaluation,
 //! [`crate::analytic::FAST_SHAPES_AGREEMENT`].
 
+use std::ops::Range;
+
 use crate::analytic::FastShapes;
 use crate::analytic::fast_shapes::rotate;
 
@@ -98,8 +100,8 @@ impl Cruise {
     /// Inlined into the step, which is compiled for FMA where the CPU has
     /// it, so that `f64::mul_add` is the instruction.
     #[inline(always)]
-    pub fn rotate_range(&mut self, pn: &[f64], pn1: &mut [f64], (lo, hi): (usize, usize)) {
-        for i in lo..hi {
+    pub fn rotate_range(&mut self, pn: &[f64], pn1: &mut [f64], modes: Range<usize>) {
+        for i in modes {
             (pn1[i], self.im[i]) = rotate((pn[i], self.im[i]), (self.rot_re[i], self.rot_im[i]));
         }
     }
@@ -169,7 +171,7 @@ mod tests {
                 cruise.restart(&shapes, x0, 0, speed, dt);
                 for n in 1..=RESYNC_STEPS {
                     assert!(cruise.can_rotate(n, speed));
-                    cruise.rotate_range(&pn, &mut pn1, (0, j));
+                    cruise.rotate_range(&pn, &mut pn1, 0..j);
                     cruise.rotated(n);
                     let x = x0 + speed * dt * n as f64;
                     assert!(!shapes.in_layer(x), "{e:?}: x = {x} within a layer");

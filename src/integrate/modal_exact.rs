@@ -112,11 +112,10 @@
 //! (`modal_batch.rs`) calls the same functions and gets the same bits.
 //! Nothing is allocated after [`ModalExact::new`].
 
+use std::ops::Range;
 use std::sync::Arc;
 
 use crate::analytic::FastShapes;
-#[cfg(target_arch = "x86_64")]
-use crate::analytic::{Blocks, BlocksAvx, SHAPE_BLOCK};
 use crate::error::{Error, Result};
 use crate::model::banded::SymBand;
 use crate::model::beam::{Basis, BeamModel, PointVector};
@@ -124,13 +123,22 @@ use crate::numeric::lanes::{self, LANES};
 use crate::scene::CarrierKind;
 
 use super::modal_cruise::Cruise;
+use super::modal_kernels::{
+    FusedPass, HeldStep, ModeState, PairSums, PathShapes, Phasors, add_path_load, free,
+    free_with_pair, path, path_dot,
+};
+#[cfg(target_arch = "x86_64")]
+use super::modal_kernels::{fused_free_pair_avx2, shapes_free_pair_avx2};
 use super::oscillator::{MassStep, ModeSteps};
-use super::{Multipliers, State, Stepper, System};
+use super::state::State;
+use super::step_map::Multipliers;
+use super::stepper::Stepper;
+use super::system::System;
 
 /// What every run on one basis at one Δt shares (module docs): the modes'
 /// step maps, the fixed load's share of them, and the fast shapes.
 #[derive(Debug)]
-pub struct ModalCoefs {
+pub(crate) struct ModalCoefs {
     /// The exact step maps of the J modes.
     pub steps: ModeSteps,
     /// (a0 + a1) p_j and (b0 + b1) p_j: the held distributed load's step
@@ -215,7 +223,7 @@ impl ModalCoefs {
 }
 
 /// A `modal_exact` stepper for one run (module docs).
-pub struct ModalExact {
+pub(crate) struct ModalExact {
     coefs: Arc<ModalCoefs>,
     /// The exact step of each contact's mass dof under a held force.
     mass_steps: Vec<MassStep>,
@@ -275,8 +283,8 @@ impl ModalExact {
             .collect();
         let nc = sys.contacts();
         sys.set_multipliers(Multipliers::Held);
-        let beam = &sys.beam;
-        for c in sys.carriers.iter_mut() {
+        let beam = &sys.physics.beam;
+        for c in sys.physics.carriers.iter_mut() {
             let x0 = c.props.motion.position(0.0);
             coefs.place(beam, x0, &mut c.pv_f);
             coefs.place(beam, x0, &mut c.pv_g);
@@ -316,10 +324,10 @@ impl ModalExact {
     /// update"): the operations a step would have taken, so the same bits.
     pub fn settle(&mut self, sys: &System, st: &mut State) {
         if let Some(f) = self.pending.take() {
-            let c = &sys.carriers[0];
-            let all = (0, self.coefs.modes());
-            let phi = (c.pv_f.dense(), c.pv_g.dense());
-            add_path_load(&self.coefs.steps, f, phi, st, all, lanes::avx2_fma());
+            let c = &sys.physics.carriers[0];
+            let all = 0..self.coefs.modes();
+            let path = PathShapes::of(c);
+            add_path_load(&self.coefs.steps, f, path, st, all, lanes::avx2_fma());
         }
     }
 
@@ -331,7 +339,7 @@ impl ModalExact {
             return pv.dot(&st.d);
         };
         let m = &self.coefs.steps;
-        let c = &sys.carriers[0];
+        let c = &sys.physics.carriers[0];
         let (p, q) = (c.pv_f.dense(), c.pv_g.dense());
         let j = m.len();
         let settled = |i: usize| {
@@ -353,108 +361,45 @@ impl Stepper for ModalExact {
     }
 }
 
-/// The two sums of a run with one contact and no other carrier, in
-/// [`LANES`] partial sums (carried from one range of modes to the next
-/// when a pass is split, as the tests do):
-/// `Σ φ_j(x_{n+1}) η_free,j` and
-/// `Σ φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1}))`.
-#[derive(Debug, Clone, Copy, Default)]
-struct PairSums {
-    g: [f64; LANES],
-    w: [f64; LANES],
-}
-
-impl PairSums {
-    fn total(&self) -> (f64, f64) {
-        (lanes::reduce(&self.g), lanes::reduce(&self.w))
-    }
-
-    /// The partial sums as two AVX2 vectors each (lanes 0–3, 4–7).
-    ///
-    /// # Safety
-    /// The CPU supports AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    unsafe fn load_avx2(
-        &self,
-    ) -> (
-        [std::arch::x86_64::__m256d; 2],
-        [std::arch::x86_64::__m256d; 2],
-    ) {
-        use std::arch::x86_64::_mm256_loadu_pd;
-        // SAFETY: g and w hold LANES = 8 entries.
-        unsafe {
-            let ld = |x: &[f64; LANES], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-            (
-                [ld(&self.g, 0), ld(&self.g, 4)],
-                [ld(&self.w, 0), ld(&self.w, 4)],
-            )
-        }
-    }
-
-    /// Back from [`PairSums::load_avx2`]'s vectors.
-    ///
-    /// # Safety
-    /// The CPU supports AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    unsafe fn store_avx2(
-        &mut self,
-        g: [std::arch::x86_64::__m256d; 2],
-        w: [std::arch::x86_64::__m256d; 2],
-    ) {
-        use std::arch::x86_64::_mm256_storeu_pd;
-        // SAFETY: g and w hold LANES = 8 entries.
-        unsafe {
-            _mm256_storeu_pd(self.g.as_mut_ptr(), g[0]);
-            _mm256_storeu_pd(self.g.as_mut_ptr().add(4), g[1]);
-            _mm256_storeu_pd(self.w.as_mut_ptr(), w[0]);
-            _mm256_storeu_pd(self.w.as_mut_ptr().add(4), w[1]);
-        }
-    }
-}
-
 /// True when a run's step takes the fused single-contact path (one
 /// carrier, a mass on a spring): the free step and its two sums in one
 /// pass.
 #[inline(always)]
 fn is_single(sys: &System) -> bool {
-    sys.contacts() == 1 && sys.carriers.len() == 1
+    sys.contacts() == 1 && sys.physics.carriers.len() == 1
 }
 
 /// Phase 1: each carrier's previous `φ(x_{n+1})` becomes `φ(x_n)` (swapped,
 /// not copied) and `φ(x_{n+1})` is evaluated at t_{n+1}.
 #[inline(always)]
 fn place(coefs: &ModalCoefs, sys: &mut System, st: &State) {
-    let t1 = st.next_time(sys.dt);
-    let beam = &sys.beam;
-    for c in sys.carriers.iter_mut() {
+    let t1 = st.next_time(sys.physics.dt);
+    let beam = &sys.physics.beam;
+    for c in sys.physics.carriers.iter_mut() {
         std::mem::swap(&mut c.pv_f, &mut c.pv_g);
         coefs.place(beam, c.props.motion.position(t1), &mut c.pv_g);
     }
 }
 
-/// Phase 2 of a single-contact run over modes `lo .. hi` (`lo` a multiple
-/// of [`LANES`]): the free step and the pair's partial sums.
+/// Phase 2 of a single-contact run over modes `range` (its start a
+/// multiple of [`LANES`]): the free step and the pair's partial sums.
 #[inline(always)]
 fn free_pair_range(
     coefs: &ModalCoefs,
     sys: &System,
     st: &mut State,
-    (lo, hi): (usize, usize),
+    range: Range<usize>,
     sums: &mut PairSums,
     vector: bool,
 ) {
-    let c = &sys.carriers[0];
-    let phi = (c.pv_f.dense(), c.pv_g.dense());
+    let c = &sys.physics.carriers[0];
+    let path = PathShapes::of(c);
     free_with_pair(
         &coefs.steps,
         coefs.held.as_ref(),
         st,
-        phi,
-        (lo, hi),
+        path,
+        range,
         sums,
         vector,
     );
@@ -485,24 +430,24 @@ fn place_free_pair(
         deferred,
     } = pass;
     let (Some(shapes), Some(cruise)) = (&coefs.shapes, cruise) else {
-        place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
+        place_free_pair_tables(coefs, deferred, layered, sys, st, sums, vector);
         return;
     };
-    let t1 = st.next_time(sys.dt);
-    let motion = &sys.carriers[0].props.motion;
+    let t1 = st.next_time(sys.physics.dt);
+    let motion = &sys.physics.carriers[0].props.motion;
     let x1 = motion.position(t1);
     match motion.uniform_speed(st.t, t1) {
         Some(speed) if !shapes.in_layer(x1) => {
             if cruise.can_rotate(st.step, speed) {
                 rotate_free_pair(coefs, cruise, deferred, sys, st, sums, vector);
             } else {
-                place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
-                cruise.restart(shapes, x1, st.step, speed, sys.dt);
+                place_free_pair_tables(coefs, deferred, layered, sys, st, sums, vector);
+                cruise.restart(shapes, x1, st.step, speed, sys.physics.dt);
             }
         }
         _ => {
             cruise.invalidate();
-            place_free_pair_tables(coefs, (deferred, layered), sys, st, sums, vector);
+            place_free_pair_tables(coefs, deferred, layered, sys, st, sums, vector);
         }
     }
 }
@@ -523,33 +468,35 @@ fn rotate_free_pair(
     vector: bool,
 ) {
     let j = coefs.modes();
-    let c = &mut sys.carriers[0];
+    let c = &mut sys.physics.carriers[0];
     std::mem::swap(&mut c.pv_f, &mut c.pv_g);
     let mut done = 0;
     #[cfg(target_arch = "x86_64")]
     if vector {
         let full = j / LANES * LANES;
-        let zeros: [f64; 0] = [];
-        let (hp, hv): (&[f64], &[f64]) = match coefs.held.as_ref() {
-            Some((hp, hv)) => (&hp[..j], &hv[..j]),
-            None => (&zeros, &zeros),
-        };
         let (fi, rr, ri) = cruise.parts();
-        let args = (
-            &coefs.steps,
-            (&mut st.d[..j], &mut st.v[..j]),
-            (&c.pv_f.dense()[..j], &mut c.pv_g.dense_mut()[..j]),
-            (&mut fi[..j], &rr[..j], &ri[..j]),
-            (hp, hv),
-            full,
-            &mut *sums,
-        );
+        let pass = FusedPass {
+            m: &coefs.steps,
+            modes: ModeState {
+                d: &mut st.d[..j],
+                v: &mut st.v[..j],
+            },
+            pn: &c.pv_f.dense()[..j],
+            pn1: &mut c.pv_g.dense_mut()[..j],
+            held: HeldStep::of(coefs.held.as_ref(), j),
+            sums: &mut *sums,
+        };
+        let phasors = Phasors {
+            fi: &mut fi[..j],
+            rr: &rr[..j],
+            ri: &ri[..j],
+        };
         // SAFETY: `vector` is true only where the CPU has AVX2 and FMA;
         // every slice holds J ≥ full, a multiple of LANES.
         unsafe {
             match deferred {
-                Some(f) => fused_free_pair_avx2::<true, true>(args, f),
-                None => fused_free_pair_avx2::<true, false>(args, 0.0),
+                Some(f) => fused_free_pair_avx2::<true, true>(pass, phasors, full, f),
+                None => fused_free_pair_avx2::<true, false>(pass, phasors, full, 0.0),
             }
         };
         done = full;
@@ -557,88 +504,15 @@ fn rotate_free_pair(
     if let Some(f) = deferred {
         // the rest of the deferred update, before their shapes overwrite
         // φ(x_{n−1}): from φ(x_{n−1}) (now pv_g) to φ(x_n) (now pv_f)
-        let phi = (c.pv_g.dense(), c.pv_f.dense());
-        add_path_load(&coefs.steps, f, phi, st, (done, j), false);
+        let path = PathShapes {
+            at_n: c.pv_g.dense(),
+            at_n1: c.pv_f.dense(),
+        };
+        add_path_load(&coefs.steps, f, path, st, done..j, false);
     }
-    cruise.rotate_range(c.pv_f.dense(), c.pv_g.dense_mut(), (done, j));
+    cruise.rotate_range(c.pv_f.dense(), c.pv_g.dense_mut(), done..j);
     cruise.rotated(st.step);
-    free_pair_range(coefs, sys, st, (done, j), sums, vector);
-}
-
-/// Modes `0 .. end` of one fused pass: each mode's shape `q` — with
-/// `ROTATE`, `Re[(pn + i·fi)(rr + i·ri)]` (its imaginary part back into
-/// `fi`; [`rotate_free_pair`]), else `fi` itself, shapes the caller stored
-/// there (a boundary layer's blocks, [`place_free_pair_tables`]) — stored
-/// into `pn1`; with `DEFERRED` the last step's update added first (from
-/// `pn1` before that store, φ(x_{n−1}), to `pn`, φ(x_n)); then
-/// [`free_with_pair_avx2`]'s operations, eight modes at a time into the
-/// same partial sums. The same operations as the separate passes, so the
-/// same bits.
-///
-/// # Safety
-/// The CPU supports AVX2 and FMA; `end` is a multiple of [`LANES`];
-/// every slice has at least `end` entries (`rr` and `ri` only with
-/// `ROTATE`), or `hp` and `hv` are both empty.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::type_complexity)]
-unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bool>(
-    (m, (d, v), (pn, pn1), (fi, rr, ri), (hp, hv), end, sums): (
-        &ModeSteps,
-        (&mut [f64], &mut [f64]),
-        (&[f64], &mut [f64]),
-        (&mut [f64], &[f64], &[f64]),
-        (&[f64], &[f64]),
-        usize,
-        &mut PairSums,
-    ),
-    f: f64,
-) {
-    use std::arch::x86_64::*;
-    // SAFETY (whole body): loads and stores at k .. k + 4 ≤ end.
-    unsafe {
-        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let (mut g, mut w) = sums.load_avx2();
-        let mut i = 0;
-        while i < end {
-            for h in 0..2 {
-                let k = i + 4 * h;
-                // the shape: one complex product (Cruise::rotate_range)
-                let (p, b) = (ld(pn, k), ld(fi, k));
-                let (mut e, mut ev) = (ld(d, k), ld(v, k));
-                if DEFERRED {
-                    // the last step's update: from φ(x_{n−1}) (pn1 before
-                    // this pass stores into it) to φ(x_n) (pn)
-                    let fv = _mm256_set1_pd(f);
-                    (e, ev) = path_load4(path_coefs(m), k, fv, (ld(pn1, k), p), (e, ev));
-                }
-                let q = if ROTATE {
-                    let (cr, ci) = (ld(rr, k), ld(ri, k));
-                    let q = _mm256_fmsub_pd(p, cr, _mm256_mul_pd(b, ci));
-                    _mm256_storeu_pd(
-                        fi.as_mut_ptr().add(k),
-                        _mm256_fmadd_pd(p, ci, _mm256_mul_pd(b, cr)),
-                    );
-                    q
-                } else {
-                    // the shapes stored by the caller
-                    b
-                };
-                _mm256_storeu_pd(pn1.as_mut_ptr().add(k), q);
-                free_pair4(
-                    m,
-                    k,
-                    (e, ev),
-                    (p, q),
-                    (hp, hv),
-                    (d, v),
-                    (&mut g[h], &mut w[h]),
-                );
-            }
-            i += LANES;
-        }
-        sums.store_avx2(g, w);
-    }
+    free_pair_range(coefs, sys, st, done..j, sums, vector);
 }
 
 /// What a single-contact step's first pass carries besides the state: the
@@ -654,7 +528,8 @@ struct Pass<'a> {
 #[inline(always)]
 fn place_free_pair_tables(
     coefs: &ModalCoefs,
-    (deferred, layered): (Option<f64>, &mut [f64]),
+    deferred: Option<f64>,
+    layered: &mut [f64],
     sys: &mut System,
     st: &mut State,
     sums: &mut PairSums,
@@ -663,8 +538,8 @@ fn place_free_pair_tables(
     let j = coefs.modes();
     #[cfg(target_arch = "x86_64")]
     if vector && let Some(shapes) = &coefs.shapes {
-        let t1 = st.next_time(sys.dt);
-        let c = &mut sys.carriers[0];
+        let t1 = st.next_time(sys.physics.dt);
+        let c = &mut sys.physics.carriers[0];
         if let Some(mut blocks) = shapes.blocks_at(c.props.motion.position(t1)) {
             std::mem::swap(&mut c.pv_f, &mut c.pv_g);
             let full = blocks.full();
@@ -672,16 +547,15 @@ fn place_free_pair_tables(
                 // the deferred update of the tail, whose shapes are stored
                 // before its free step: from φ(x_{n−1}) (now pv_g) to
                 // φ(x_n) (now pv_f); the blocks add theirs in their pass
-                let phi = (c.pv_g.dense(), c.pv_f.dense());
-                add_path_load(&coefs.steps, f, phi, st, (full, j), vector);
+                let path = PathShapes {
+                    at_n: c.pv_g.dense(),
+                    at_n1: c.pv_f.dense(),
+                };
+                add_path_load(&coefs.steps, f, path, st, full..j, vector);
             }
             let pn1 = &mut c.pv_g.dense_mut()[..j];
             let pn = &c.pv_f.dense()[..j];
-            let zeros: [f64; 0] = [];
-            let (hp, hv): (&[f64], &[f64]) = match coefs.held.as_ref() {
-                Some((hp, hv)) => (&hp[..j], &hv[..j]),
-                None => (&zeros, &zeros),
-            };
+            let held = HeldStep::of(coefs.held.as_ref(), j);
             // within a clamped end's boundary layer, the blocks a layer row
             // reaches first: their shapes whole (into `layered`), then one
             // fused pass (the deferred update, the free step, the sums,
@@ -691,42 +565,56 @@ fn place_free_pair_tables(
             let lo = unsafe { blocks.layered_into(&mut layered[..j]) };
             let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
             if lo > 0 {
-                let args = (
-                    &coefs.steps,
-                    (&mut *d, &mut *v),
-                    (pn, &mut *pn1),
-                    (&mut layered[..j], &zeros[..], &zeros[..]),
-                    (hp, hv),
-                    lo,
-                    &mut *sums,
-                );
+                let pass = FusedPass {
+                    m: &coefs.steps,
+                    modes: ModeState {
+                        d: &mut *d,
+                        v: &mut *v,
+                    },
+                    pn,
+                    pn1: &mut *pn1,
+                    held,
+                    sums: &mut *sums,
+                };
+                // the shapes stored in `layered`, not rotated
+                let stored = Phasors {
+                    fi: &mut layered[..j],
+                    rr: &[],
+                    ri: &[],
+                };
                 // SAFETY: as above; lo is a multiple of SHAPE_BLOCK (so of
                 // LANES) and every slice holds J ≥ lo.
                 unsafe {
                     match deferred {
-                        Some(f) => fused_free_pair_avx2::<false, true>(args, f),
-                        None => fused_free_pair_avx2::<false, false>(args, 0.0),
+                        Some(f) => fused_free_pair_avx2::<false, true>(pass, stored, lo, f),
+                        None => fused_free_pair_avx2::<false, false>(pass, stored, lo, 0.0),
                     }
                 };
             }
-            let args = (&coefs.steps, (d, v), (pn, &mut *pn1), (hp, hv), &mut *sums);
+            let pass = FusedPass {
+                m: &coefs.steps,
+                modes: ModeState { d, v },
+                pn,
+                pn1: &mut *pn1,
+                held,
+                sums: &mut *sums,
+            };
             // SAFETY: as above; every slice holds J ≥ full, lo and full are
             // multiples of SHAPE_BLOCK.
             unsafe {
                 match deferred {
-                    Some(f) => shapes_free_pair_avx2::<true>(&mut blocks, lo, args, f),
-                    None => shapes_free_pair_avx2::<false>(&mut blocks, lo, args, 0.0),
+                    Some(f) => shapes_free_pair_avx2::<true>(&mut blocks, lo, pass, f),
+                    None => shapes_free_pair_avx2::<false>(&mut blocks, lo, pass, 0.0),
                 }
             };
             blocks.tail_into(&mut pn1[full..]);
-            let c = &sys.carriers[0];
-            let phi = (c.pv_f.dense(), c.pv_g.dense());
+            let c = &sys.physics.carriers[0];
             free_with_pair(
                 &coefs.steps,
                 coefs.held.as_ref(),
                 st,
-                phi,
-                (full, j),
+                PathShapes::of(c),
+                full..j,
                 sums,
                 vector,
             );
@@ -735,73 +623,11 @@ fn place_free_pair_tables(
     }
     if let Some(f) = deferred {
         // settled first: φ(x_{n−1}) in pv_f, φ(x_n) in pv_g before `place`
-        let c = &sys.carriers[0];
-        let phi = (c.pv_f.dense(), c.pv_g.dense());
-        add_path_load(&coefs.steps, f, phi, st, (0, j), vector);
+        let c = &sys.physics.carriers[0];
+        add_path_load(&coefs.steps, f, PathShapes::of(c), st, 0..j, vector);
     }
     place(coefs, sys, st);
-    free_pair_range(coefs, sys, st, (0, j), sums, vector);
-}
-
-/// Modes `from .. blocks.full()` of [`place_free_pair`]: each block of shapes
-/// evaluated ([`BlocksAvx::next`]), stored into `pn1`, and taken by
-/// [`free_with_pair_avx2`]'s operations, four modes at a time, into the
-/// same partial sums (mode k into the lanes of vector ⌊k/4⌋ mod 2).
-///
-/// # Safety
-/// The CPU supports AVX2 and FMA; every slice holds at least
-/// `blocks.full()` entries, or `hp` and `hv` are both empty.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::type_complexity)]
-unsafe fn shapes_free_pair_avx2<const DEFERRED: bool>(
-    blocks: &mut Blocks,
-    from: usize,
-    (m, (d, v), (pn, pn1), (hp, hv), sums): (
-        &ModeSteps,
-        (&mut [f64], &mut [f64]),
-        (&[f64], &mut [f64]),
-        (&[f64], &[f64]),
-        &mut PairSums,
-    ),
-    f: f64,
-) {
-    use std::arch::x86_64::*;
-    let end = blocks.full();
-    // SAFETY (whole body): loads and stores at k .. k + 4 ≤ end.
-    unsafe {
-        let mut shapes = BlocksAvx::new(blocks);
-        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let (mut g, mut w) = sums.load_avx2();
-        let mut at = from;
-        while at < end {
-            let q4 = shapes.next(blocks, at);
-            for (u, q) in q4.into_iter().enumerate() {
-                let (k, h) = (at + 4 * u, u % 2);
-                let p = ld(pn, k);
-                let (mut e, mut ev) = (ld(d, k), ld(v, k));
-                if DEFERRED {
-                    // the last step's update: from φ(x_{n−1}) (pn1 before
-                    // this pass stores into it) to φ(x_n) (pn)
-                    let fv = _mm256_set1_pd(f);
-                    (e, ev) = path_load4(path_coefs(m), k, fv, (ld(pn1, k), p), (e, ev));
-                }
-                _mm256_storeu_pd(pn1.as_mut_ptr().add(k), q);
-                free_pair4(
-                    m,
-                    k,
-                    (e, ev),
-                    (p, q),
-                    (hp, hv),
-                    (d, v),
-                    (&mut g[h], &mut w[h]),
-                );
-            }
-            at += SHAPE_BLOCK;
-        }
-        shapes.finish(blocks);
-        sums.store_avx2(g, w);
-    }
+    free_pair_range(coefs, sys, st, 0..j, sums, vector);
 }
 
 /// Phase 3: the mass dofs' free step, the contact problem (g_free and W,
@@ -811,7 +637,8 @@ unsafe fn shapes_free_pair_avx2<const DEFERRED: bool>(
 fn contact(
     coefs: &ModalCoefs,
     mass_steps: &[MassStep],
-    (g, w): (&mut [f64], &mut [f64]),
+    g: &mut [f64],
+    w: &mut [f64],
     pair: Option<(f64, f64)>,
     sys: &mut System,
     st: &mut State,
@@ -823,19 +650,19 @@ fn contact(
     let m = &coefs.steps;
     // the mass dofs' free step (their constant force held)
     for (j, (ms, dof)) in mass_steps.iter().zip(sys.masses()).enumerate() {
-        (st.q[j], st.q_dot[j]) = ms.apply((st.q[j], st.q_dot[j]), dof.f0);
+        (st.q[j], st.q_dot[j]) = ms.apply(st.q[j], st.q_dot[j], dof.f0);
     }
     match pair {
         Some((dg, dw)) => {
-            let s = sys.carriers[0].s;
+            let s = sys.physics.carriers[0].s;
             g[0] = s * dg - st.q[0];
             w[0] = s * s * dw + mass_steps[0].g[0];
         }
         None => {
-            for ci in &sys.carriers {
+            for ci in &sys.physics.carriers {
                 let Some(i) = ci.contact else { continue };
                 g[i] = ci.s * lanes::dot(ci.pv_g.dense(), &st.d) - st.q[i];
-                for cj in &sys.carriers {
+                for cj in &sys.physics.carriers {
                     let Some(j) = cj.contact else { continue };
                     let wij = path_dot(m, ci.pv_g.dense(), cj.pv_f.dense(), cj.pv_g.dense());
                     w[i * nc + j] =
@@ -846,9 +673,9 @@ fn contact(
     }
     sys.hold_multipliers();
     sys.solve_formed(g, w, st)?;
-    for c in &sys.carriers {
+    for c in &sys.physics.carriers {
         let Some(j) = c.contact else { continue };
-        let lambda = sys.lambda[j];
+        let lambda = sys.law.lambda[j];
         st.q[j] -= mass_steps[j].g[0] * lambda;
         st.q_dot[j] -= mass_steps[j].g[1] * lambda;
     }
@@ -861,7 +688,7 @@ fn contact(
 /// (second order), and the mass dofs' source held at the step's midpoint
 /// (the midpoint hold of a smooth force is second order too).
 fn add_source(m: &ModeSteps, src: &mut SourceLoads, sys: &mut System, st: &mut State) {
-    let (t0, t1) = (st.t, st.next_time(sys.dt));
+    let (t0, t1) = (st.t, st.next_time(sys.physics.dt));
     if src.t_n1 == t0 {
         std::mem::swap(&mut src.at_n, &mut src.at_n1);
     } else {
@@ -877,22 +704,22 @@ fn add_source(m: &ModeSteps, src: &mut SourceLoads, sys: &mut System, st: &mut S
     sys.set_mass_source(0.5 * (t0 + t1));
 }
 
-/// Phase 4 over modes `lo .. hi`: each contact force, held over the step
+/// Phase 4 over modes `range`: each contact force, held over the step
 /// along its carrier's path, into every mode.
 #[inline(always)]
 fn update_range(
     coefs: &ModalCoefs,
     sys: &System,
     st: &mut State,
-    range: (usize, usize),
+    range: Range<usize>,
     vector: bool,
 ) {
-    for c in &sys.carriers {
+    for c in &sys.physics.carriers {
         let Some(j) = c.contact else { continue };
-        let lambda = sys.lambda[j];
+        let lambda = sys.law.lambda[j];
         if lambda != 0.0 {
-            let phi = (c.pv_f.dense(), c.pv_g.dense());
-            add_path_load(&coefs.steps, c.s * lambda, phi, st, range, vector);
+            let path = PathShapes::of(c);
+            add_path_load(&coefs.steps, c.s * lambda, path, st, range.clone(), vector);
         }
     }
 }
@@ -934,7 +761,7 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
     let deferred = pending.take();
     let (coefs, source) = (&**coefs, source.as_mut());
     let m = &coefs.steps;
-    let all = (0, m.len());
+    let all = 0..m.len();
     // the vector free steps are of undamped modes (cos_v = cos)
     let vector_free = vector && !coefs.damped;
     let pair = if is_single(sys) && source.is_none() {
@@ -950,16 +777,15 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         if let Some(f) = deferred {
             // the general path updates in its step: nothing was deferred
             // unless the run changed path (it does not); settle regardless
-            let c = &sys.carriers[0];
-            let phi = (c.pv_f.dense(), c.pv_g.dense());
-            add_path_load(m, f, phi, st, all, vector);
+            let c = &sys.physics.carriers[0];
+            add_path_load(m, f, PathShapes::of(c), st, all.clone(), vector);
         }
         place(coefs, sys, st);
         free(m, coefs.held.as_ref(), st, vector_free);
-        for c in &sys.carriers {
+        for c in &sys.physics.carriers {
             if let CarrierKind::Force { force } = c.props.kind {
-                let phi = (c.pv_f.dense(), c.pv_g.dense());
-                add_path_load(m, c.s * force, phi, st, all, vector);
+                let path = PathShapes::of(c);
+                add_path_load(m, c.s * force, path, st, all.clone(), vector);
             }
         }
         None
@@ -968,327 +794,27 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         add_source(m, src, sys, st);
     } else if sys.has_external_force() {
         // external forces on the masses, held at the step's midpoint
-        sys.set_mass_source(0.5 * (st.t + st.next_time(sys.dt)));
+        sys.set_mass_source(0.5 * (st.t + st.next_time(sys.physics.dt)));
     }
-    contact(coefs, mass_steps, (g, w), pair, sys, st)?;
+    contact(coefs, mass_steps, g, w, pair, sys, st)?;
     match pair {
         Some((dg, dw)) => {
             // one contact: its update deferred to the next step's pass
             // (or `settle`), the sample's r_gᵀd from the pass's two sums:
             // r_g·(η_free + f z) = dg + f dw
-            let lambda = sys.lambda[0];
+            let lambda = sys.law.lambda[0];
             let rd = if lambda != 0.0 {
-                let f = sys.carriers[0].s * lambda;
+                let f = sys.physics.carriers[0].s * lambda;
                 *pending = Some(f);
                 f.mul_add(dw, dg)
             } else {
                 dg
             };
-            sys.carriers[0].gap_dot = Some((st.step + 1, rd));
+            sys.physics.carriers[0].gap_dot = Some((st.step + 1, rd));
         }
         None => update_range(coefs, sys, st, all, vector),
     }
     Ok(())
-}
-
-// The kernels below round `a·b + c` once (AVX2 + FMA vectors where the
-// CPU has both, `f64::mul_add` lane by lane otherwise: the same bits,
-// `crate::numeric::lanes`), and take sums over modes in its eight lanes.
-
-/// The free step of mode i: `(cos·η + sin/ω·η̇, −ω sin·η + cos_v·η̇)`,
-/// fused (cos_v = cos for an undamped mode; the vector kernels below read
-/// `cos` for both and run undamped modes only).
-#[inline(always)]
-fn rotate_mode(m: &ModeSteps, i: usize, e: f64, ev: f64) -> (f64, f64) {
-    (
-        m.cos[i].mul_add(e, m.sin_over_omega[i] * ev),
-        m.minus_omega_sin[i].mul_add(e, m.cos_v[i] * ev),
-    )
-}
-
-/// `a0 p + a1 q` (or b0, b1) of mode i, fused.
-#[inline(always)]
-fn path(a0: f64, p: f64, a1: f64, q: f64) -> f64 {
-    a0.mul_add(p, a1 * q)
-}
-
-/// The free step of every mode: `[η, η̇] ← E [η, η̇]`, plus the held load.
-#[inline(always)]
-fn free(m: &ModeSteps, held: Option<&(Vec<f64>, Vec<f64>)>, st: &mut State, vector: bool) {
-    let j = m.len();
-    let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
-    let mut done = 0;
-    #[cfg(target_arch = "x86_64")]
-    if vector {
-        // SAFETY: the caller checked AVX2 and FMA; every slice holds J.
-        done = unsafe { free_avx2(m, d, v) };
-    }
-    for i in done..j {
-        (d[i], v[i]) = rotate_mode(m, i, d[i], v[i]);
-    }
-    if let Some((hp, hv)) = held {
-        for i in 0..j {
-            d[i] += hp[i];
-            v[i] += hv[i];
-        }
-    }
-}
-
-/// The whole vectors of [`free`] (without the held load); returns how many
-/// modes it did.
-///
-/// # Safety
-/// The CPU supports AVX2 and FMA; d, v and the coefficients hold J entries.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn free_avx2(m: &ModeSteps, d: &mut [f64], v: &mut [f64]) -> usize {
-    use std::arch::x86_64::*;
-    let full = d.len() / 4 * 4;
-    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ full.
-    unsafe {
-        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let mut i = 0;
-        while i < full {
-            let (e, ev, c) = (ld(d, i), ld(v, i), ld(&m.cos, i));
-            let e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, i), ev));
-            let v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, i), e, _mm256_mul_pd(c, ev));
-            _mm256_storeu_pd(d.as_mut_ptr().add(i), e1);
-            _mm256_storeu_pd(v.as_mut_ptr().add(i), v1);
-            i += 4;
-        }
-    }
-    full
-}
-
-/// [`free`] over modes `lo .. hi` fused with the two sums of a single
-/// contact ([`PairSums`]); mode i ≥ ⌊J/8⌋·8 goes into lane i − ⌊J/8⌋·8, as
-/// [`lanes::dot`] puts its tail, so any split into ranges at multiples of
-/// [`LANES`] gives the sums of one pass.
-#[inline(always)]
-fn free_with_pair(
-    m: &ModeSteps,
-    held: Option<&(Vec<f64>, Vec<f64>)>,
-    st: &mut State,
-    (pn, pn1): (&[f64], &[f64]),
-    (lo, hi): (usize, usize),
-    sums: &mut PairSums,
-    vector: bool,
-) {
-    debug_assert!(lo % LANES == 0 && hi <= m.len());
-    let j = m.len();
-    let full = j / LANES * LANES;
-    let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
-    let (pn, pn1) = (&pn[..j], &pn1[..j]);
-    let zeros: [f64; 0] = [];
-    let (hp, hv): (&[f64], &[f64]) = match held {
-        Some((hp, hv)) => (&hp[..j], &hv[..j]),
-        None => (&zeros, &zeros),
-    };
-    let mut done = lo;
-    #[cfg(target_arch = "x86_64")]
-    if vector {
-        let end = hi.min(full).max(lo);
-        // SAFETY: the caller checked AVX2 and FMA; every slice holds J ≥ end,
-        // `lo` and `end` are multiples of LANES, hp/hv hold J when present.
-        unsafe { free_with_pair_avx2(m, (d, v), (pn, pn1), (hp, hv), (lo, end), sums) };
-        done = end;
-    }
-    for i in done..hi {
-        let l = if i < full { i % LANES } else { i - full };
-        let (mut e1, mut v1) = rotate_mode(m, i, d[i], v[i]);
-        if held.is_some() {
-            e1 += hp[i];
-            v1 += hv[i];
-        }
-        d[i] = e1;
-        v[i] = v1;
-        sums.g[l] = pn1[i].mul_add(e1, sums.g[l]);
-        sums.w[l] = pn1[i].mul_add(path(m.a0[i], pn[i], m.a1[i], pn1[i]), sums.w[l]);
-    }
-}
-
-/// Modes `lo .. end` of [`free_with_pair`], eight at a time.
-///
-/// # Safety
-/// The CPU supports AVX2 and FMA; `lo` and `end` are multiples of
-/// [`LANES`]; every slice has at least `end` entries, or `hp` and `hv` are
-/// both empty (no held load).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn free_with_pair_avx2(
-    m: &ModeSteps,
-    (d, v): (&mut [f64], &mut [f64]),
-    (pn, pn1): (&[f64], &[f64]),
-    (hp, hv): (&[f64], &[f64]),
-    (lo, end): (usize, usize),
-    sums: &mut PairSums,
-) {
-    use std::arch::x86_64::*;
-    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ end.
-    unsafe {
-        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let (mut g, mut w) = sums.load_avx2();
-        let mut i = lo;
-        while i < end {
-            for h in 0..2 {
-                let k = i + 4 * h;
-                let (e, ev) = (ld(d, k), ld(v, k));
-                let pq = (ld(pn, k), ld(pn1, k));
-                free_pair4(m, k, (e, ev), pq, (hp, hv), (d, v), (&mut g[h], &mut w[h]));
-            }
-            i += LANES;
-        }
-        sums.store_avx2(g, w);
-    }
-}
-
-/// Modes `k .. k + 4` of a fused pass (`free_with_pair_avx2` and the
-/// fused kernels): the free step from `(e, ev)` plus the held load (when
-/// `hp`, `hv` are not empty), stored into `d` and `v`, and the two sums
-/// with `p = φ(x_n)`, `q = φ(x_{n+1})` into `g` and `w`: the operations of
-/// [`free_with_pair`]'s scalar loop (the same bits).
-///
-/// # Safety
-/// The CPU supports AVX2 and FMA; every slice holds `k + 4` entries, or
-/// `hp` and `hv` are both empty.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[inline]
-unsafe fn free_pair4(
-    m: &ModeSteps,
-    k: usize,
-    (e, ev): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
-    (p, q): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
-    (hp, hv): (&[f64], &[f64]),
-    (d, v): (&mut [f64], &mut [f64]),
-    (g, w): (
-        &mut std::arch::x86_64::__m256d,
-        &mut std::arch::x86_64::__m256d,
-    ),
-) {
-    use std::arch::x86_64::*;
-    // SAFETY: loads and stores at k .. k + 4 (the caller's contract).
-    unsafe {
-        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let c = ld(&m.cos, k);
-        let mut e1 = _mm256_fmadd_pd(c, e, _mm256_mul_pd(ld(&m.sin_over_omega, k), ev));
-        let mut v1 = _mm256_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm256_mul_pd(c, ev));
-        if !hp.is_empty() {
-            e1 = _mm256_add_pd(e1, ld(hp, k));
-            v1 = _mm256_add_pd(v1, ld(hv, k));
-        }
-        _mm256_storeu_pd(d.as_mut_ptr().add(k), e1);
-        _mm256_storeu_pd(v.as_mut_ptr().add(k), v1);
-        *g = _mm256_fmadd_pd(q, e1, *g);
-        let z = _mm256_fmadd_pd(ld(&m.a0, k), p, _mm256_mul_pd(ld(&m.a1, k), q));
-        *w = _mm256_fmadd_pd(q, z, *w);
-    }
-}
-
-/// The four path-load coefficient arrays `(a0, a1, b0, b1)` of `m`.
-#[inline(always)]
-fn path_coefs(m: &ModeSteps) -> (&[f64], &[f64], &[f64], &[f64]) {
-    (&m.a0, &m.a1, &m.b0, &m.b1)
-}
-
-/// Modes `k .. k + 4` of `(e, ev)` plus a force `fv` held along the path
-/// from shapes `p` to `q`: `(e + f (a0 p + a1 q), ev + f (b0 p + b1 q))`,
-/// the operations of [`add_path_load`]'s scalar loop (the same bits).
-///
-/// # Safety
-/// The CPU supports AVX2 and FMA; the four slices hold `k + 4` entries.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[inline]
-#[allow(clippy::type_complexity)]
-unsafe fn path_load4(
-    (a0, a1, b0, b1): (&[f64], &[f64], &[f64], &[f64]),
-    k: usize,
-    fv: std::arch::x86_64::__m256d,
-    (p, q): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
-    (e, ev): (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d),
-) -> (std::arch::x86_64::__m256d, std::arch::x86_64::__m256d) {
-    use std::arch::x86_64::*;
-    // SAFETY: loads at k .. k + 4 (the caller's contract).
-    unsafe {
-        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let z = _mm256_fmadd_pd(ld(a0, k), p, _mm256_mul_pd(ld(a1, k), q));
-        let zv = _mm256_fmadd_pd(ld(b0, k), p, _mm256_mul_pd(ld(b1, k), q));
-        (_mm256_fmadd_pd(fv, z, e), _mm256_fmadd_pd(fv, zv, ev))
-    }
-}
-
-/// Add a force `f` (N) held over the step along the carrier's path into
-/// modes `lo .. hi`: `η += f (a0 φ(x_n) + a1 φ(x_{n+1}))`,
-/// `η̇ += f (b0 φ(x_n) + b1 φ(x_{n+1}))` (mode by mode: any split gives the
-/// same bits).
-#[inline(always)]
-fn add_path_load(
-    m: &ModeSteps,
-    f: f64,
-    (pn, pn1): (&[f64], &[f64]),
-    st: &mut State,
-    (lo, hi): (usize, usize),
-    vector: bool,
-) {
-    let (d, v) = (&mut st.d[lo..hi], &mut st.v[lo..hi]);
-    let (pn, pn1) = (&pn[lo..hi], &pn1[lo..hi]);
-    let (a0, a1, b0, b1) = (&m.a0[lo..hi], &m.a1[lo..hi], &m.b0[lo..hi], &m.b1[lo..hi]);
-    let mut done = 0;
-    #[cfg(target_arch = "x86_64")]
-    if vector {
-        // SAFETY: the caller checked AVX2 and FMA; every slice holds hi − lo.
-        done = unsafe { add_path_load_avx2(f, (a0, a1, b0, b1), (pn, pn1), (d, v)) };
-    }
-    for i in done..hi - lo {
-        d[i] = f.mul_add(path(a0[i], pn[i], a1[i], pn1[i]), d[i]);
-        v[i] = f.mul_add(path(b0[i], pn[i], b1[i], pn1[i]), v[i]);
-    }
-}
-
-/// The whole vectors of [`add_path_load`]; returns how many modes it did.
-///
-/// # Safety
-/// The CPU supports AVX2 and FMA; every slice has the length of `d`.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn add_path_load_avx2(
-    f: f64,
-    (a0, a1, b0, b1): (&[f64], &[f64], &[f64], &[f64]),
-    (pn, pn1): (&[f64], &[f64]),
-    (d, v): (&mut [f64], &mut [f64]),
-) -> usize {
-    use std::arch::x86_64::*;
-    let full = d.len() / 4 * 4;
-    // SAFETY (whole body): loads and stores at i .. i + 4 ≤ full.
-    unsafe {
-        let ld = |x: &[f64], i: usize| _mm256_loadu_pd(x.as_ptr().add(i));
-        let fv = _mm256_set1_pd(f);
-        let mut i = 0;
-        while i < full {
-            let pq = (ld(pn, i), ld(pn1, i));
-            let (e, ev) = path_load4((a0, a1, b0, b1), i, fv, pq, (ld(d, i), ld(v, i)));
-            _mm256_storeu_pd(d.as_mut_ptr().add(i), e);
-            _mm256_storeu_pd(v.as_mut_ptr().add(i), ev);
-            i += 4;
-        }
-    }
-    full
-}
-
-/// `Σ_j r_j (a0_j p_j + a1_j q_j)`: a contact row against a unit force
-/// held along a carrier's path (φ(x_n) = p, φ(x_{n+1}) = q), in [`LANES`]
-/// partial sums (scalar: the general path of several carriers).
-#[inline(always)]
-fn path_dot(m: &ModeSteps, r: &[f64], p: &[f64], q: &[f64]) -> f64 {
-    let j = m.len();
-    let mut acc = [0.0; LANES];
-    let full = j / LANES * LANES;
-    for i in 0..j {
-        let l = if i < full { i % LANES } else { i - full };
-        acc[l] = r[i].mul_add(path(m.a0[i], p[i], m.a1[i], q[i]), acc[l]);
-    }
-    lanes::reduce(&acc)
 }
 
 #[cfg(test)]
@@ -1368,7 +894,12 @@ mod tests {
             let (mut sb, mut b, mut rotating) = start(true);
             let (mut rotated, mut lost) = (0, false);
             let (mut dd, mut dmax, mut dl, mut lmax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-            while sa.carriers[0].props.motion.position(a.next_time(sa.dt)) < 50.0 {
+            while sa.physics.carriers[0]
+                .props
+                .motion
+                .position(a.next_time(sa.physics.dt))
+                < 50.0
+            {
                 let before = rotating.cruise.as_ref().map(|c| c.rotations());
                 tables.step(&mut sa, &mut a).unwrap();
                 rotating.step(&mut sb, &mut b).unwrap();
@@ -1377,10 +908,10 @@ mod tests {
                 }
                 for (s, st) in [(&mut sa, &mut a), (&mut sb, &mut b)] {
                     st.step += 1;
-                    st.t = st.step as f64 * s.dt;
+                    st.t = st.step as f64 * s.physics.dt;
                     s.end_step(st);
                 }
-                let (la, lb) = (sa.lambda[0], sb.lambda[0]);
+                let (la, lb) = (sa.law.lambda[0], sb.law.lambda[0]);
                 if lost && la != 0.0 {
                     break;
                 }
@@ -1421,6 +952,10 @@ mod tests {
             let wave =
                 |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
             let (pn, pn1) = (wave(0.37), wave(0.371));
+            let path = PathShapes {
+                at_n: &pn,
+                at_n1: &pn1,
+            };
             let st0 = State {
                 step: 3,
                 t: 0.0,
@@ -1437,12 +972,12 @@ mod tests {
                     PairSums::default(),
                     PairSums::default(),
                 );
-                free_with_pair(&m, h, &mut a, (&pn, &pn1), (0, j), &mut sa, true);
-                free_with_pair(&m, h, &mut b, (&pn, &pn1), (0, j), &mut sb, false);
+                free_with_pair(&m, h, &mut a, path, 0..j, &mut sa, true);
+                free_with_pair(&m, h, &mut b, path, 0..j, &mut sb, false);
                 // by ranges, as a batch takes them
                 for lo in (0..j).step_by(16) {
-                    let r = (lo, (lo + 16).min(j));
-                    free_with_pair(&m, h, &mut c, (&pn, &pn1), r, &mut sc, true);
+                    let r = lo..(lo + 16).min(j);
+                    free_with_pair(&m, h, &mut c, path, r, &mut sc, true);
                 }
                 let bits = |s: &PairSums| {
                     let (g, w) = s.total();
@@ -1452,11 +987,11 @@ mod tests {
                 assert_eq!(bits(&sa), bits(&sc), "J = {j}");
                 assert_eq!(a, b);
                 assert_eq!(a, c);
-                add_path_load(&m, -37.5, (&pn, &pn1), &mut a, (0, j), true);
-                add_path_load(&m, -37.5, (&pn, &pn1), &mut b, (0, j), false);
+                add_path_load(&m, -37.5, path, &mut a, 0..j, true);
+                add_path_load(&m, -37.5, path, &mut b, 0..j, false);
                 for lo in (0..j).step_by(16) {
-                    let r = (lo, (lo + 16).min(j));
-                    add_path_load(&m, -37.5, (&pn, &pn1), &mut c, r, true);
+                    let r = lo..(lo + 16).min(j);
+                    add_path_load(&m, -37.5, path, &mut c, r, true);
                 }
                 assert_eq!(a, b, "J = {j}");
                 assert_eq!(a, c, "J = {j}");
@@ -1500,26 +1035,31 @@ mod tests {
         let (mut sa, mut a, mut now) = start();
         let (mut sb, mut b, mut later) = start();
         let (mut worst, mut losses, mut largest) = (0.0f64, 0, 0.0f64);
-        while sa.carriers[0].props.motion.position(a.next_time(sa.dt)) < 50.0 {
+        while sa.physics.carriers[0]
+            .props
+            .motion
+            .position(a.next_time(sa.physics.dt))
+            < 50.0
+        {
             now.step(&mut sa, &mut a).unwrap();
             later.step_deferred(&mut sb, &mut b).unwrap();
             for (s, st) in [(&mut sa, &mut a), (&mut sb, &mut b)] {
                 st.step += 1;
-                st.t = st.step as f64 * s.dt;
+                st.t = st.step as f64 * s.physics.dt;
                 s.end_step(st);
             }
             assert_eq!(
-                sa.lambda[0].to_bits(),
-                sb.lambda[0].to_bits(),
+                sa.law.lambda[0].to_bits(),
+                sb.law.lambda[0].to_bits(),
                 "step {}",
                 a.step
             );
-            losses += usize::from(sa.lambda[0] == 0.0);
-            let pv = &sa.carriers[0].pv_g;
+            losses += usize::from(sa.law.lambda[0] == 0.0);
+            let pv = &sa.physics.carriers[0].pv_g;
             let settled = pv.dot(&a.d);
-            let pending = later.displacement_at(&sb, &b, &sb.carriers[0].pv_g);
+            let pending = later.displacement_at(&sb, &b, &sb.physics.carriers[0].pv_g);
             assert_eq!(settled.to_bits(), pending.to_bits(), "step {}", a.step);
-            let (_, rd) = sb.carriers[0].gap_dot.unwrap();
+            let (_, rd) = sb.physics.carriers[0].gap_dot.unwrap();
             worst = worst.max((rd - settled).abs());
             largest = largest.max(settled.abs());
         }

@@ -54,19 +54,23 @@
 use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
 
-use super::chain::ChainMoreauJean;
-use super::{
-    MassPrediction, State, StepMap, Stepper, System, VelocityPrediction, combine, rhs_columns,
-};
+use super::mass_step::{Coefficients, Effective, Kinematics, MassSteps, Predicted, Stage};
+use super::state::State;
+use super::step_map::{StepMap, VelocityPrediction, combine};
+use super::stepper::Stepper;
+use super::system::System;
+use crate::model::banded::rhs_columns;
 
 /// A Moreau–Jean stepper for one run.
-pub struct MoreauJean {
+pub(crate) struct MoreauJean {
     theta: f64,
     dt: f64,
     ldlt: BandedLdlt,
-    /// A_q = m + θΔt c + θ²Δt² k per contact.
-    a_eff: Vec<f64>,
-    mass_pred: Vec<MassPrediction>,
+    /// The mass dofs' rule, its effective matrix over each body, and the
+    /// mass dofs (`mass_step.rs`).
+    rule: MoreauJeanMass,
+    effective: Vec<Effective>,
+    masses: MassSteps<Kinematics>,
     /// d̃ = d_n + Δt v_n.
     d_pred: Vec<f64>,
     /// Δt·f and Δt(d_n + θΔt v_n): the affine column Δt f − K(…) (scratch),
@@ -75,8 +79,53 @@ pub struct MoreauJean {
     w: Vec<f64>,
     b0: Vec<f64>,
     rhs: Vec<f64>,
-    /// The multi-mass pantograph of each contact, if any (`chain.rs`).
-    chains: Vec<Option<ChainMoreauJean>>,
+}
+
+/// Moreau–Jean's step of a mass dof (module docs): the unknown is its
+/// velocity change Δq̇, `(m + θΔt c + θ²Δt² k) Δq̇ = Δt(f₀ − c q̇_n −
+/// k(q_n + θΔt q̇_n)) − P`, then q̇_{n+1} = q̇_n + Δq̇,
+/// q_{n+1} = q_n + Δt q̇_n + θΔt Δq̇.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MoreauJeanMass {
+    /// θ.
+    pub(crate) theta: f64,
+    /// Δt, s.
+    pub(crate) dt: f64,
+}
+
+impl Stage for MoreauJeanMass {
+    type Dof = Kinematics;
+
+    fn matrix(&self) -> Coefficients {
+        let (theta, dt) = (self.theta, self.dt);
+        Coefficients {
+            c_m: 1.0,
+            c_c: theta * dt,
+            c_k: theta * theta * dt * dt,
+        }
+    }
+
+    #[inline]
+    fn predict(&self, d: &mut Kinematics) -> Predicted {
+        let (theta, dt) = (self.theta, self.dt);
+        Predicted {
+            q: d.z + dt * d.zd,
+            q_dot: d.zd,
+            c_at: d.zd,
+            k_at: d.z + theta * dt * d.zd,
+        }
+    }
+
+    #[inline]
+    fn load(&self, f0: f64, _: f64, _: &Kinematics, c_term: f64, k_term: f64) -> f64 {
+        self.dt * (f0 - c_term - k_term)
+    }
+
+    #[inline]
+    fn update(&self, d: &mut Kinematics, p: &Predicted, dqd: f64) {
+        d.zd += dqd;
+        d.z = p.q + self.theta * self.dt * dqd;
+    }
 }
 
 impl MoreauJean {
@@ -92,23 +141,14 @@ impl MoreauJean {
             a = a.combine(1.0, damping, theta * dt);
         }
         let ldlt = BandedLdlt::factor(&a)?;
-        let a_eff = sys
-            .masses()
-            .iter()
-            .map(|m| m.m + theta * dt * m.c + c * m.k)
-            .collect();
-        let chains = sys
-            .chains()
-            .iter()
-            .map(|ch| ch.map(|ch| ChainMoreauJean::new(ch, theta, dt)))
-            .collect();
+        let rule = MoreauJeanMass { theta, dt };
         Ok(MoreauJean {
-            chains,
+            effective: MassSteps::effective(&rule, &sys.physics.masses),
+            masses: MassSteps::new(&sys.physics.masses),
+            rule,
             theta,
             dt,
             ldlt,
-            a_eff,
-            mass_pred: vec![MassPrediction::default(); nc],
             d_pred: vec![0.0; n],
             h: vec![0.0; n],
             w: vec![0.0; n],
@@ -123,12 +163,13 @@ impl MoreauJean {
 /// end of the beam.
 fn impulse_time(sys: &System, t_theta: f64, t1: f64) -> f64 {
     let near_end = sys
+        .physics
         .carriers
         .iter()
         .filter(|c| c.contact.is_some())
         .any(|c| {
             let x = c.props.motion.position(t1);
-            x.min(sys.length - x) < c.props.motion.speed(t1).abs() * sys.dt
+            x.min(sys.physics.length - x) < c.props.motion.speed(t1).abs() * sys.physics.dt
         });
     if near_end { t1 } else { t_theta }
 }
@@ -162,19 +203,9 @@ impl Stepper for MoreauJean {
         };
         self.ldlt
             .solve_affine(&mut self.rhs, k, &column, &mut self.b0);
-        for (j, m) in sys.masses().iter().enumerate() {
-            let (q, qd) = (st.q[j], st.q_dot[j]);
-            let b = dt * (m.f0 - m.c * qd - m.k * (q + theta * dt * qd));
-            self.mass_pred[j] = match &mut self.chains[j] {
-                Some(ch) => ch.predict((q, qd)),
-                None => MassPrediction {
-                    q: q + dt * qd,
-                    q_dot: qd,
-                    u: b / self.a_eff[j],
-                    a_eff: self.a_eff[j],
-                },
-            };
-        }
+        self.masses.begin(st);
+        self.masses
+            .predict(&self.rule, &self.effective, &sys.physics.masses);
         let map = StepMap {
             solved: &self.rhs,
             c_d: theta * dt,
@@ -182,7 +213,7 @@ impl Stepper for MoreauJean {
             d_pred: &self.d_pred,
             v_pred: VelocityPrediction::Vector(&st.v),
             alpha_weight: 0.0,
-            masses: &self.mass_pred,
+            masses: self.masses.predictions(),
         };
         sys.solve_contact(&map, st)?;
         let impulse = sys.multipliers();
@@ -191,18 +222,13 @@ impl Stepper for MoreauJean {
             st.v[i] += dv;
             st.d[i] = self.d_pred[i] + c_d * dv;
         }
-        for (j, m) in self.mass_pred.iter().enumerate() {
-            let dqd = m.unknown(impulse[j]);
-            st.q_dot[j] += dqd;
-            st.q[j] = m.q + c_d * dqd;
-            if let Some(ch) = &mut self.chains[j] {
-                ch.finish(impulse[j]);
-            }
-        }
+        self.masses
+            .finish(&self.rule, &self.effective, &sys.physics.masses, impulse);
+        self.masses.end(st);
         Ok(())
     }
 
-    /// The chain's velocity-level block (`chain.rs`).
+    /// The chain's dofs step with the same rule (`mass_step.rs`).
     fn carries_chains(&self) -> bool {
         true
     }

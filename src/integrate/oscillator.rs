@@ -140,7 +140,7 @@ impl ModeSteps {
 /// The exact step map of a mass dof under a force held over the step
 /// (module docs): `[q, q̇]_{n+1} = E [q, q̇]_n + g F`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassStep {
+pub(crate) struct MassStep {
     /// E, row-major.
     pub e: [[f64; 2]; 2],
     /// g: q and q̇ per newton held over the step, m/N and m/(N·s).
@@ -163,9 +163,9 @@ impl MassStep {
         }
     }
 
-    /// `[q, q̇]` after the step from `(q, q̇)` under `f` held.
+    /// `[q, q̇]` after the step from `q`, `v` = q̇ under `f` held.
     #[inline]
-    pub fn apply(&self, (q, v): (f64, f64), f: f64) -> (f64, f64) {
+    pub fn apply(&self, q: f64, v: f64, f: f64) -> (f64, f64) {
         (
             self.e[0][0] * q + self.e[0][1] * v + self.g[0] * f,
             self.e[1][0] * q + self.e[1][1] * v + self.g[1] * f,
@@ -280,8 +280,9 @@ mod tests {
         let (c, k2) = (40.0, 300.0);
         let one = MassStep::new(m, k2, c, dt);
         let two = MassStep::new(m, k2, c, 2.0 * dt);
-        let (q1, v1) = one.apply(one.apply((0.01, 0.5), 3.0), 3.0);
-        let (q2, v2) = two.apply((0.01, 0.5), 3.0);
+        let (q, v) = one.apply(0.01, 0.5, 3.0);
+        let (q1, v1) = one.apply(q, v, 3.0);
+        let (q2, v2) = two.apply(0.01, 0.5, 3.0);
         assert!((q1 - q2).abs() <= 1e-14 && (v1 - v2).abs() <= 1e-12);
     }
 }

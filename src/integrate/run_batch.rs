@@ -5,7 +5,8 @@
 
 use crate::model::beam::PointVector;
 
-use super::{Batch, CarrierSample, Lane};
+use super::batch::{Batch, Lane};
+use super::sample::CarrierSample;
 
 /// Several runs stepped in lockstep, each bit-identical to the run alone.
 pub trait RunBatch: Send {

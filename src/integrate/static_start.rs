@@ -59,7 +59,8 @@ use crate::model::banded::BandedLdlt;
 use crate::resolve::Resolved;
 use crate::scene::{CarrierKind, Formulation};
 
-use super::{State, System};
+use super::state::State;
+use super::system::System;
 
 /// Move `st` (at rest, straight) to the static start (module docs): d₀
 /// into `st.d`, q₀ into `st.q`, a chain's lower masses into its
@@ -77,7 +78,7 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
         )
     })?;
     // moving forces at their start points (W6)
-    for c in &sys.carriers {
+    for c in &sys.physics.carriers {
         if let CarrierKind::Force { force } = c.props.kind {
             beam.point_vector(c.props.motion.position(0.0))
                 .scatter(c.s * force, &mut d, 1, 0);
@@ -92,12 +93,15 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
     };
     // (scene carrier index, r_b(x_c), s, a_c, b_c) of each contact, in contact order
     let mut rows = Vec::with_capacity(nc);
-    for (i, c) in sys.carriers.iter().enumerate() {
+    for (i, c) in sys.physics.carriers.iter().enumerate() {
         if let Some(j) = c.contact {
             let pv = beam.point_vector(c.props.motion.position(0.0));
-            let (lambda0, stiffness) = match &sys.chains[j] {
+            let (lambda0, stiffness) = match &sys.physics.masses.chains[j] {
                 Some(ch) => (ch.static_force, ch.head_stiffness()),
-                None => (sys.masses[j].f0, sys.masses[j].k),
+                None => (
+                    sys.physics.masses.heads[j].f0,
+                    sys.physics.masses.heads[j].k,
+                ),
             };
             let (a, b) = if kappa.is_finite() {
                 let share = kappa / (stiffness + kappa);
@@ -141,7 +145,7 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
         }
         for (j, (i, pv, s, _, _)) in rows.iter().enumerate() {
             let l = lambda[j];
-            if !l.is_finite() || (!sys.bilateral && l < 0.0) {
+            if !l.is_finite() || (!sys.law.bilateral && l < 0.0) {
                 return Err(Error::invalid(
                     format!("carrier.{i}"),
                     format!("a static contact force {l:e} N"),
@@ -150,17 +154,17 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
             }
             let w = s * pv.dot(&d);
             let q0 = if kappa.is_finite() { w + l / kappa } else { w };
-            if let Some(ch) = sys.chains[j].as_mut() {
+            if let Some(ch) = sys.physics.masses.chains[j].as_mut() {
                 ch.hold_head(q0);
             }
             st.q[j] = q0;
         }
-        sys.static_forces = lambda.iter().copied().collect();
+        sys.law.static_forces = lambda.iter().copied().collect();
     }
-    for (i, force) in sys.droppers.taut_forces(&d) {
+    for (i, force) in sys.physics.droppers.taut_forces(&d) {
         if force.is_nan() || force <= 0.0 {
             return Err(Error::invalid(
-                format!("dropper.{i}"),
+                sc.scene.generated.user_path(&format!("dropper.{i}")),
                 format!("{:?} with force {force:e} N", sc.droppers[i].name),
                 "must be taut (force > 0) at the static start: it would hang slack under the static loads; shorten it (length), or start at rest (time.initial = \"rest\")",
             ));

@@ -96,7 +96,7 @@ pub struct StepMap<'a> {
 /// this run at `c·count + lane`) and a beam vector holds the runs
 /// interleaved (`x[i·count + lane]`). [`Lanes::ONE`] is a run alone.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Lanes {
+pub(crate) struct Lanes {
     /// Runs side by side.
     pub count: usize,
     /// This run's lane.
@@ -127,7 +127,7 @@ impl Lanes {
 
 /// How a method's multipliers are to be read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Multipliers {
+pub(crate) enum Multipliers {
     /// Forces, N: the contact law works at its own level.
     Forces,
     /// Impulses over the step, N·s (Moreau–Jean): the law works at

@@ -370,7 +370,11 @@ fn line_terms(
         if big.is_nan() || big <= VANISHED * raw_big {
             return Err(Error::invalid(
                 field,
-                "a polynomial of degree ≤ 3",
+                if raw_big == 0.0 {
+                    "zero everywhere"
+                } else {
+                    "a shape of the correction's form (a polynomial of degree ≤ 3 on these supports)"
+                },
                 "is removed entirely by the correction that makes a shape meet the supports (X = 0): multiply it by another factor or raise its degree",
             ));
         }

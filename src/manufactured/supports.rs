@@ -170,7 +170,8 @@ impl Shape {
     }
 
     /// The correction's coefficients, (power of ξ, coefficient).
-    pub fn correction(&self) -> &[(usize, f64)] {
+    #[cfg(test)]
+    fn correction(&self) -> &[(usize, f64)] {
         &self.correction
     }
 }

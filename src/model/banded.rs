@@ -1,8 +1,8 @@
 //! Symmetric banded matrices and their LDLᵀ factorization.
 //!
 //! Written by hand on purpose: neither faer nor nalgebra has a banded solver,
-//! and the general sparse LDLᵀ of faer is slower for this band (measured in
-//! `../shared/notes/crates.md`: ≈ 28 µs vs ≈ 23 µs per step at n = 2000). The
+//! and the general sparse LDLᵀ of faer is slower for this band (measured when
+//! this kernel was written: ≈ 28 µs vs ≈ 23 µs per step at n = 2000). The
 //! per-step solve is bound by the dependency chain of the triangular sweeps
 //! (row i needs rows i−1..i−p), so the kernel below sweeps several right-hand
 //! sides at once (the free step and A⁻¹r of each contact, MODEL §5): their
@@ -22,7 +22,7 @@
 //! pass through the subnormal range (below 2.2e-308), where many CPUs take a
 //! microcode assist of ~100 cycles per operation: a step became up to 10×
 //! slower at N ≥ 1400 on an Intel Xeon. Every sweep therefore replaces a
-//! value below [`NEGLIGIBLE`] (1e-200) by exactly 0 as it produces it, so no
+//! value below `NEGLIGIBLE` (1e-200) by exactly 0 as it produces it, so no
 //! subnormal is ever formed, in this kernel or downstream (the states are
 //! combinations of its outputs). This is plain IEEE arithmetic, not a
 //! processor mode (flush-to-zero/denormals-are-zero flags are undefined
@@ -47,7 +47,7 @@ use crate::error::{Error, Result};
 /// with three, a half-empty lane and register spills (two carriers at
 /// N = 800: 1.16 × 10⁸ DOF-steps/s with three columns, 1.55 × 10⁸ with four).
 /// A padding column stays zero (A⁻¹0 = 0) and enters the update with weight 0.
-pub fn rhs_columns(nc: usize) -> usize {
+pub(crate) fn rhs_columns(nc: usize) -> usize {
     (1 + nc).max(2).next_multiple_of(2)
 }
 
@@ -673,7 +673,7 @@ impl BandedLdlt {
 /// quantity a run computes (in SI units, m, m/s, m/s², N) is of interest
 /// above 1e-30 or so, where one rounding is already ≥ 1e-46, 150 orders above
 /// what is dropped.
-pub const NEGLIGIBLE: f64 = 1e-200;
+pub(crate) const NEGLIGIBLE: f64 = 1e-200;
 
 /// A sweep's new row with each value below [`NEGLIGIBLE`] in magnitude set
 /// to 0 (module docs, "Subnormals"). Each value is judged alone, so a run's

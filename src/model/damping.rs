@@ -8,7 +8,7 @@
 //! Rayleigh damping of the assembled M and K (attachments' masses and
 //! springs included, so each of the model's modes keeps its own damping
 //! ratio ζ_j = α/(2ω_j) + βω_j/2, L12) plus each attachment's dashpot c_a
-//! at x_a, assembled as [`BeamModel::attach`] assembles a spring: r_a the
+//! at x_a, assembled as `BeamModel::attach` assembles a spring: r_a the
 //! interpolation vector at x_a (MODEL §4), so C has the band of M and K.
 //! In a modal basis (M = I, K = diag ω_j²) the Rayleigh part is diagonal,
 //! `α + β ω_j²`; a dashpot there is refused by the resolve layer (it

@@ -17,7 +17,7 @@
 //!    O(n p J)), which makes Φ mass-normalized: `Φᵀ M Φ = Yᵀ Y = I`;
 //! 5. the lowest min(J, n/8) pairs refined by two steps of subspace
 //!    iteration with the banded LDLᵀ of K + σM and Rayleigh–Ritz
-//!    ([`refine`]; issue 22): steps 1–4 are backward stable in ‖C‖ = ω²_max
+//!    (`refine`; issue 22): steps 1–4 are backward stable in ‖C‖ = ω²_max
 //!    ∝ h⁻⁴, so the low eigenvectors they give lose digits as the mesh is
 //!    refined (measured against the exact FE modes of a pinned–pinned mesh,
 //!    J = 32: 3.1·10⁻⁶ at N = 128, 6.2·10⁻⁵ at 256, 3.2·10⁻³ at 512, O(1)
@@ -71,7 +71,7 @@
 //!
 //! The reduction forms C in the storage of W (W is transposed in place and
 //! its columns solved), so the solve holds C, the eigenvectors and faer's
-//! workspace: [`eigen_bytes`] gives the exact figure from faer's own
+//! workspace: `eigen_bytes` gives the exact figure from faer's own
 //! workspace requirement (≈ 3 n² · 8 bytes, ≈ 250 MB at n = 3199). Every
 //! dense allocation is fallible: memory the machine cannot give is an error
 //! naming the eigenproblem, never an abort.
@@ -88,7 +88,7 @@ use crate::error::{Error, Result};
 /// ∝ n³ (8× the n = 3199 figure above: about a minute and a half on 2 cores).
 /// 6400 unknowns is N = 3200 Hermite elements, finer than any mesh the
 /// studies use; beyond it a sparse shift-invert Lanczos is the right tool.
-pub const MAX_MODAL_DOFS: usize = 6400;
+pub(crate) const MAX_MODAL_DOFS: usize = 6400;
 
 /// The J lowest eigenpairs of K φ = ω² M φ, mass-normalized (Φᵀ M Φ = I).
 #[derive(Debug, Clone, PartialEq)]
@@ -115,7 +115,7 @@ impl EigenPairs {
 /// step 5); each shape's sign is fixed so that its entry of largest
 /// magnitude is positive (deterministic across platforms and thread counts).
 ///
-/// Errors: `count` outside `1 ..= n`, n above [`MAX_MODAL_DOFS`], M and K of
+/// Errors: `count` outside `1 ..= n`, n above `MAX_MODAL_DOFS`, M and K of
 /// different sizes, M not positive definite, or the eigensolver not
 /// converging.
 pub fn lowest_eigenpairs(mass: &SymBand, stiffness: &SymBand, count: usize) -> Result<EigenPairs> {
@@ -420,7 +420,7 @@ fn workspace(n: usize, vectors: ComputeEigenvectors) -> StackReq {
 /// faer's workspace (the banded factor and the kept shapes are O(n p), O(n J)
 /// and counted by the run). What the memory budget reserves for the solve
 /// ([`crate::budget`]).
-pub fn eigen_bytes(n: usize) -> u64 {
+pub(crate) fn eigen_bytes(n: usize) -> u64 {
     let dense = (n as u64).saturating_mul(n as u64).saturating_mul(8);
     dense
         .saturating_mul(2)

@@ -4,9 +4,9 @@
 use nalgebra::{Cholesky, DMatrix, SMatrix, SVector};
 
 /// 4×4 element matrix of a Hermite beam element.
-pub type Mat4 = SMatrix<f64, 4, 4>;
+pub(crate) type Mat4 = SMatrix<f64, 4, 4>;
 /// 2×2 element matrix of a linear string element.
-pub type Mat2 = SMatrix<f64, 2, 2>;
+pub(crate) type Mat2 = SMatrix<f64, 2, 2>;
 
 /// Consistent mass M_e = ρA h/420 [...] (MODEL §4).
 pub fn hermite_mass(rho_a: f64, h: f64) -> Mat4 {
@@ -48,7 +48,7 @@ pub fn hermite_tension(tension: f64, h: f64) -> Mat4 {
 }
 
 /// Consistent load vector of a uniform load p (N/m) on a Hermite element.
-pub fn hermite_uniform_load(p: f64, h: f64) -> SVector<f64, 4> {
+pub(crate) fn hermite_uniform_load(p: f64, h: f64) -> SVector<f64, 4> {
     SVector::<f64, 4>::new(h / 2.0, h * h / 12.0, h / 2.0, -h * h / 12.0) * p
 }
 
@@ -76,22 +76,22 @@ pub fn hermite_slope(s: f64, h: f64) -> [f64; 4] {
 }
 
 /// String mass M_e = ρA h/6 [2 1; 1 2] (MODEL §6).
-pub fn string_mass(rho_a: f64, h: f64) -> Mat2 {
+pub(crate) fn string_mass(rho_a: f64, h: f64) -> Mat2 {
     Mat2::new(2.0, 1.0, 1.0, 2.0) * (rho_a * h / 6.0)
 }
 
 /// String stiffness K_e = T/h [1 −1; −1 1] (MODEL §6).
-pub fn string_stiffness(tension: f64, h: f64) -> Mat2 {
+pub(crate) fn string_stiffness(tension: f64, h: f64) -> Mat2 {
     Mat2::new(1.0, -1.0, -1.0, 1.0) * (tension / h)
 }
 
 /// Consistent load vector of a uniform load p (N/m) on a string element.
-pub fn string_uniform_load(p: f64, h: f64) -> SVector<f64, 2> {
+pub(crate) fn string_uniform_load(p: f64, h: f64) -> SVector<f64, 2> {
     SVector::<f64, 2>::new(h / 2.0, h / 2.0) * p
 }
 
 /// Linear shape functions at s ∈ [0, 1].
-pub fn string_shape(s: f64) -> [f64; 2] {
+pub(crate) fn string_shape(s: f64) -> [f64; 2] {
     [1.0 - s, s]
 }
 
@@ -109,7 +109,7 @@ pub fn omega_max(rho_a: f64, ei: f64, tension: f64, h: f64) -> f64 {
 /// Splitting the assembled K and M into such element sums
 /// keeps Irons' bound: the assembled ω_max² is at most the largest of
 /// these element ω² (a spring raises it, a mass lowers it).
-pub fn omega_max_attached(
+pub(crate) fn omega_max_attached(
     rho_a: f64,
     ei: f64,
     tension: f64,

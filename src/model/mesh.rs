@@ -161,7 +161,7 @@ impl Mesh {
 
 /// At least one element per graded segment ([`Grading::min_elements`]),
 /// else an error naming `mesh.elements` (scene validation and [`Mesh::new`]).
-pub fn check_elements(grading: Grading, elements: usize) -> Result<()> {
+pub(crate) fn check_elements(grading: Grading, elements: usize) -> Result<()> {
     let min = grading.min_elements();
     if elements < min {
         return Err(Error::invalid(
@@ -181,11 +181,11 @@ pub fn check_elements(grading: Grading, elements: usize) -> Result<()> {
 /// a shorter element comes only from a `point` grading at the very end of
 /// the span, where the element matrices (∝ h⁻³) lose their precision and
 /// then overflow (`grading_at = 1e-300` gave a NaN pivot, issue 25).
-pub const MIN_ELEMENT_FRACTION: f64 = 1e-10;
+pub(crate) const MIN_ELEMENT_FRACTION: f64 = 1e-10;
 
 /// The shortest element of `Mesh::new(length, elements, grading)`, m,
 /// without building the mesh (O(1)).
-pub fn shortest_element(length: f64, elements: usize, grading: Grading) -> f64 {
+pub(crate) fn shortest_element(length: f64, elements: usize, grading: Grading) -> f64 {
     // the first (smallest) size of graded_sizes(s, m, ratio)
     let first = |s: f64, m: usize, ratio: f64| {
         if m <= 1 || ratio == 1.0 {

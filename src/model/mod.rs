@@ -4,7 +4,7 @@
 
 pub mod banded;
 pub mod beam;
-pub mod damping;
+pub(crate) mod damping;
 pub mod eigen;
 pub mod element;
 pub mod mesh;

@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 use crate::scene::BeamProps;
 
 /// Largest system solved densely (n³ work: 2000³ ≈ 10¹⁰ flops, seconds).
-pub const MAX_DENSE_DOFS: usize = 2000;
+pub(crate) const MAX_DENSE_DOFS: usize = 2000;
 
 /// The `count` lowest natural frequencies ω_j (rad/s) of the beam on
 /// `elements` equal elements, ascending.
@@ -93,7 +93,7 @@ mod tests {
         for j in 0..3 {
             // Hermite elements with a consistent mass over-estimate frequencies
             assert!(errs.iter().all(|e| e[j] > 0.0), "mode {j}: {errs:?}");
-            let order = crate::study::grid::observed_order(errs[1][j], errs[2][j], 2.0);
+            let order = crate::study::uncertainty::observed_order(errs[1][j], errs[2][j], 2.0);
             println!(
                 "mode {j}: relative errors {:.2e} {:.2e} {:.2e}, order {order:.2}",
                 errs[0][j], errs[1][j], errs[2][j]
@@ -116,7 +116,7 @@ mod tests {
             .iter()
             .map(|&n| (fe_frequencies(&p, n, 1).unwrap()[0] - exact[0]) / exact[0])
             .collect();
-        let order = crate::study::grid::observed_order(e[0], e[1], 2.0);
+        let order = crate::study::uncertainty::observed_order(e[0], e[1], 2.0);
         assert!((order - 2.0).abs() <= EIGEN_ORDER_TOL, "order {order}");
     }
 }

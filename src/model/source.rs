@@ -5,9 +5,9 @@
 //! work and no allocation.
 //!
 //! The projection is a Gauss–Legendre quadrature well above any scheme's
-//! order: on each element (Hermite or string), [`POINTS`] points on
+//! order: on each element (Hermite or string), `POINTS` points on
 //! sub-panels short enough that the source's fastest factor turns by at
-//! most [`PANEL_TURN`] rad over one (so a coarse mesh under a fast shape
+//! most `PANEL_TURN` rad over one (so a coarse mesh under a fast shape
 //! does not alias; on a resolved mesh one panel per element, exact for
 //! polynomial shapes up to degree 12 against cubic shape functions); for a
 //! `galerkin` basis, the modes' own composite rule
@@ -21,20 +21,20 @@ use crate::manufactured::{Line, Manufactured};
 use crate::numeric::quadrature::{composite, gauss_legendre};
 
 /// Gauss points per panel (exact for degree 15).
-pub const POINTS: usize = 8;
+pub(crate) const POINTS: usize = 8;
 
 /// Largest turn, rad, of the source's fastest factor over one panel.
-pub const PANEL_TURN: f64 = 0.5;
+pub(crate) const PANEL_TURN: f64 = 0.5;
 
 /// Most separable parts a source has (three per term of
 /// [`crate::scene::manufactured::MAX_TERMS`] on each of the two lines: T̂'',
 /// T̂ and, with dashpots, T̂'; and the droppers' constant part): the
 /// per-step coefficients live on the stack.
-pub const MAX_PARTS: usize = 6 * crate::scene::manufactured::MAX_TERMS + 1;
+pub(crate) const MAX_PARTS: usize = 6 * crate::scene::manufactured::MAX_TERMS + 1;
 
 /// The projected source of one run.
 #[derive(Debug, Clone)]
-pub struct Source {
+pub(crate) struct Source {
     /// F, n × K row-major: row i holds unknown i's share of each part.
     shapes: Vec<f64>,
     parts: usize,

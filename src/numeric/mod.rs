@@ -2,5 +2,6 @@
 //! the physics: Gauss–Legendre quadrature and the eight-lane fused sums of
 //! the modal kernels. Imports nothing of the crate.
 
+pub mod filter;
 pub mod lanes;
 pub mod quadrature;

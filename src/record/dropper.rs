@@ -38,7 +38,7 @@ pub struct DropperStats {
 /// Accumulates a [`DropperStats`] step by step (no allocation until an
 /// interval is stored).
 #[derive(Debug, Clone)]
-pub struct DropperAccumulator {
+pub(crate) struct DropperAccumulator {
     name: String,
     x: f64,
     linear: bool,

@@ -8,18 +8,23 @@ use crate::integrate::CarrierSample;
 
 pub mod dropper;
 pub mod envelope;
+pub mod filter;
 pub mod span;
+pub mod standard;
 pub mod stats;
 pub mod support;
 pub mod wire;
 pub mod zone;
 
-pub use dropper::{DropperAccumulator, DropperSample, DropperStats};
+pub(crate) use dropper::DropperAccumulator;
+pub use dropper::{DropperSample, DropperStats};
 pub use envelope::Envelope;
-pub use span::{SpanAccumulator, SpanStats, span_of};
-pub use stats::{
-    ContactAccumulator, ContactStats, Filtered, FilteredForce, ForceStats, LossClass, Recontact,
-};
+pub use span::SpanStats;
+pub(crate) use span::{SpanAccumulator, span_of};
+pub use standard::StandardStats;
+pub(crate) use standard::{Section, SectionCount, standard_stats};
+pub(crate) use stats::ContactAccumulator;
+pub use stats::{ContactStats, Filtered, FilteredForce, ForceStats, LossClass, Recontact};
 pub use support::SupportUplift;
 pub use wire::WireSeries;
 pub use zone::LossGeometry;
@@ -39,6 +44,11 @@ pub struct CarrierTrace {
     pub force: Vec<f64>,
     /// Contact closed.
     pub in_contact: Vec<bool>,
+    /// λ low-pass filtered to 0–`History::filter_band_hz` Hz (zero phase,
+    /// [`filter::lowpass_zero_phase`]), N, one value per row; filled when
+    /// the run ends, and empty when the history keeps only every K-th step
+    /// (the filter needs every step).
+    pub force_filtered: Vec<f64>,
 }
 
 impl CarrierTrace {
@@ -50,6 +60,7 @@ impl CarrierTrace {
             gap: Vec::with_capacity(n),
             force: Vec::with_capacity(n),
             in_contact: Vec::with_capacity(n),
+            force_filtered: Vec::new(),
         }
     }
 
@@ -87,6 +98,9 @@ pub struct History {
     pub supports: Vec<SupportUplift>,
     /// v's range at every node (`output.envelope`; empty when not asked).
     pub envelope: Envelope,
+    /// The band of the carriers' `force_filtered`, Hz (`[analysis] band`;
+    /// 0 in a default history means [`filter::FORCE_BAND_HZ`]).
+    pub filter_band_hz: f64,
 }
 
 impl History {
@@ -113,6 +127,31 @@ impl History {
             field: WireSeries::default(),
             supports: Vec::new(),
             envelope: Envelope::default(),
+            filter_band_hz: filter::FORCE_BAND_HZ,
+        }
+    }
+
+    /// The band of the filtered force, Hz.
+    pub fn band_hz(&self) -> f64 {
+        if self.filter_band_hz > 0.0 {
+            self.filter_band_hz
+        } else {
+            filter::FORCE_BAND_HZ
+        }
+    }
+
+    /// Filter every carrier's force to 0–[`History::band_hz`] Hz into its
+    /// `force_filtered` (time step `dt`, s), when the history holds every
+    /// step; else leave them empty.
+    pub fn filter_forces(&mut self, dt: f64) {
+        let band = self.band_hz();
+        let every = self.record_every <= 1;
+        for tr in &mut self.carriers {
+            tr.force_filtered = if every && !tr.force.is_empty() {
+                filter::lowpass_zero_phase(&tr.force, dt, band)
+            } else {
+                Vec::new()
+            };
         }
     }
 

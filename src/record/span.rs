@@ -14,7 +14,7 @@
 //! ```
 //!
 //! over the n_k steps i in span k; σ_k is Welford's running update, as
-//! [`super::ContactAccumulator`]'s, the mean the plain running sum over n_k.
+//! `super::ContactAccumulator`'s, the mean the plain running sum over n_k.
 
 use serde::Serialize;
 
@@ -22,7 +22,7 @@ use serde::Serialize;
 /// increasing): k with x_k ≤ x < x_{k+1}, or the last span for x = x_S;
 /// `None` outside [x_0, x_S] or with fewer than two supports. O(log S), no
 /// allocation.
-pub fn span_of(supports: &[f64], x: f64) -> Option<usize> {
+pub(crate) fn span_of(supports: &[f64], x: f64) -> Option<usize> {
     let (&first, &last) = (supports.first()?, supports.last()?);
     if supports.len() < 2 || !(first..=last).contains(&x) {
         return None;
@@ -68,7 +68,7 @@ pub struct SpanStats {
 /// Accumulates one carrier's [`SpanStats`] over one span, a step at a time
 /// (no allocation).
 #[derive(Debug, Clone, Copy)]
-pub struct SpanAccumulator {
+pub(crate) struct SpanAccumulator {
     carrier: usize,
     span: usize,
     x_start: f64,

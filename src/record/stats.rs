@@ -23,9 +23,9 @@ pub struct ForceStats {
     pub max: f64,
 }
 
-/// The 0–20 Hz filtered contact force's statistics over the steps
-/// (docs/output.md#filtered-force): the filter's band and [`ForceStats`] of
-/// the filtered force.
+/// The filtered contact force's statistics over the steps
+/// (docs/output.md#filtered-force): the filter's band, [`ForceStats`] of
+/// the filtered force and its statistical max and min.
 #[derive(Debug, Clone, Copy, Serialize, PartialEq)]
 pub struct FilteredForce {
     /// The band's upper edge, Hz (the filter is −3 dB there).
@@ -38,6 +38,10 @@ pub struct FilteredForce {
     pub max: f64,
     /// Minimum, N.
     pub min: f64,
+    /// The statistical maximum mean + 3σ, N (EN 50367's F_m + 3σ).
+    pub statistical_max: f64,
+    /// The statistical minimum mean − 3σ, N.
+    pub statistical_min: f64,
 }
 
 /// Whether a [`ContactStats`] carries the filtered force's statistics.
@@ -71,7 +75,7 @@ pub const RECONTACT_WINDOW: f64 = 2e-3;
 
 /// A re-contact's peak is the largest λ over its first this-many steps: the
 /// rigid-impact spike sits in the first step or two.
-pub const PEAK_STEPS: usize = 3;
+pub(crate) const PEAK_STEPS: usize = 3;
 
 /// The memory plan's count of one stored event ([`EVENT_BYTES`]: a loss
 /// interval in x/L and in t, its class and a re-contact) is what these
@@ -109,7 +113,7 @@ pub struct Recontact {
     /// Closing speed Δv = −dg/dt over the last open step, m/s (null when
     /// the loss lasted one step).
     pub closing_speed: Option<f64>,
-    /// Largest λ over its first [`PEAK_STEPS`] steps, N: grows like Δt^−½
+    /// Largest λ over its first `PEAK_STEPS` steps, N: grows like Δt^−½
     /// (an impact on a beam); not a number to quote.
     pub peak: f64,
     /// Contact impulse ∫λ dt over [`RECONTACT_WINDOW`] from the re-contact
@@ -149,7 +153,7 @@ pub struct ContactStats {
     pub support_zone: f64,
     /// Loss intervals as [x_start/L, x_end/L]: a lost step covers
     /// [x_{i−1}, x_i], and adjacent lost steps merge. At most
-    /// [`MAX_STORED_EVENTS`] are listed.
+    /// `MAX_STORED_EVENTS` are listed.
     pub loss_intervals: Vec<[f64; 2]>,
     /// The same intervals in time, [t_start, t_end], s.
     pub loss_intervals_time: Vec<[f64; 2]>,
@@ -163,7 +167,7 @@ pub struct ContactStats {
     pub suspect_loss_intervals: usize,
     /// Their share of the steps (a part of `loss_fraction_span`).
     pub suspect_loss_fraction: f64,
-    /// Re-contacts, with peak and impulse (at most [`MAX_STORED_EVENTS`]).
+    /// Re-contacts, with peak and impulse (at most `MAX_STORED_EVENTS`).
     pub recontacts: Vec<Recontact>,
     /// Number of re-contacts (all of them).
     pub recontact_count: usize,
@@ -191,7 +195,7 @@ pub struct ContactStats {
 
 impl ContactStats {
     /// Statistics of one trace over `geometry` (the span and its support
-    /// zones). The same numbers, bit for bit, as [`ContactAccumulator`] fed
+    /// zones). The same numbers, bit for bit, as `ContactAccumulator` fed
     /// row by row. Rows beyond the shortest column are ignored.
     pub fn from_trace(t: &[f64], tr: &CarrierTrace, geometry: LossGeometry) -> Self {
         let mut acc = ContactAccumulator::new(geometry);
@@ -232,7 +236,7 @@ impl ContactStats {
 /// The force's standard deviation is Welford's running update, and its mean
 /// the plain running sum over the steps divided by their number.
 #[derive(Debug, Clone)]
-pub struct ContactAccumulator {
+pub(crate) struct ContactAccumulator {
     geometry: LossGeometry,
     length: f64,
     /// Samples seen (row 0 included).
@@ -540,6 +544,7 @@ mod tests {
             gap: vec![0.0; n],
             force: contact.iter().map(|&c| if c { 2.0 } else { 0.0 }).collect(),
             in_contact: contact.to_vec(),
+            force_filtered: vec![],
         };
         (t, tr)
     }

@@ -5,6 +5,9 @@
 //! supports (EN 50318 §10, EN 50119 limits). v is the basis's own
 //! interpolation r_b(x_s)ᵀ d (MODEL §4), the value a probe at x_s records.
 //!
+//! The uplift is also given from the support's static position
+//! ([`SupportUplift::uplift`]), as the standards measure it.
+//!
 //! Row 0 (t = 0, the initial state) is included, as in the field and the
 //! envelope (`envelope.rs`): the max over t of v, all recorded times.
 
@@ -21,6 +24,14 @@ pub struct SupportUplift {
     pub v_min: f64,
     /// The first time v reaches `v_max`, s.
     pub t_max: f64,
+    /// The support's static position v_static(x_s), m: the wire at rest
+    /// under its own loads (self-weight, droppers' preloads) with no
+    /// carrier, every dropper taut (null when the wire is not held
+    /// against rigid motion, K singular).
+    pub v_static: Option<f64>,
+    /// The uplift from the static position, v_max − v_static, m: what the
+    /// standards read at a support (null without `v_static`).
+    pub uplift: Option<f64>,
 }
 
 impl SupportUplift {
@@ -31,7 +42,15 @@ impl SupportUplift {
             v_max: f64::NEG_INFINITY,
             v_min: f64::INFINITY,
             t_max: 0.0,
+            v_static: None,
+            uplift: None,
         }
+    }
+
+    /// Set the static position (m) and the uplift from it.
+    pub fn set_static(&mut self, v_static: Option<f64>) {
+        self.v_static = v_static;
+        self.uplift = v_static.map(|v| self.v_max - v);
     }
 
     /// Add v (m) at time t (s). A NaN never replaces a number (the step's

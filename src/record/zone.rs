@@ -18,7 +18,7 @@
 //! a support part over the same denominator (all steps): they add up to P_l.
 //!
 //! **Suspect losses.** A loss interval that lasts fewer than
-//! [`MIN_RESOLVED_LOSS_STEPS`] steps, or less than the time the carrier
+//! `MIN_RESOLVED_LOSS_STEPS` steps, or less than the time the carrier
 //! takes to cross one element (h/V), away from the support zone, is below
 //! what the run resolves: a resolution artefact is likely (the reference
 //! scene's one-step loss at x/L = 0.6512 vanishes under refinement,
@@ -44,7 +44,7 @@ pub const SUPPORT_ELEMENTS: f64 = 4.0;
 pub const SUPPORT_STEPS: f64 = 4.0;
 
 /// A loss interval shorter than this many steps is not resolved in time.
-pub const MIN_RESOLVED_LOSS_STEPS: usize = 3;
+pub(crate) const MIN_RESOLVED_LOSS_STEPS: usize = 3;
 
 /// Where a carrier's losses count as in the span or at a support, and what a
 /// run resolves.

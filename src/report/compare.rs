@@ -4,7 +4,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::plot::{abscissa_label, force_series, line_plot};
+use super::plot::{Panel, abscissa_label, filtered_label, force_series, panels_plot};
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::{CompareRow, Comparison, NotRun};
@@ -61,6 +61,7 @@ pub fn compare_rows(c: &Comparison) -> Table {
     for (name, column) in COMPARE_COLUMNS.into_iter().zip(columns) {
         t.push(name, column);
     }
+    t.push_filtered(rows.iter().map(|r| &r.filtered));
     // with droppers: each one's slack fraction (every run has the same droppers)
     if let Some(first) = rows.first() {
         for (i, d) in first.droppers.iter().enumerate() {
@@ -111,20 +112,32 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
     let x_desc = abscissa_label(&first.scene);
     let several_methods = c.runs.iter().any(|r| r.method != first.method);
     let space = c.several_discretizations;
-    let series: Vec<_> = c
+    // small multiples: a panel per run on common axes, its raw force light
+    // and its filtered force bold, so that runs that agree to a pixel can
+    // still be told apart, each titled with its difference to the reference
+    let panels: Vec<Panel> = c
         .runs
         .iter()
-        .flat_map(|r| {
+        .zip(&c.rows)
+        .map(|(r, row)| {
             let label = if several_methods || space {
                 r.label(space)
             } else {
                 r.formulation.name().to_string()
             };
-            force_series(&r.scene, &r.output, &label)
+            Panel {
+                title: format!(
+                    "{label}: P_l = {:.4} ({:.4} in span), RMS Δλ vs reference {} N",
+                    row.loss_fraction,
+                    row.loss_fraction_span,
+                    short(row.rms_force_difference)
+                ),
+                series: force_series(&r.scene, &r.output, "λ"),
+            }
         })
         .collect();
     let title = format!(
-        "contact force by {}: {}, dt = {} s",
+        "contact force by {}: {}, dt = {} s; reference {}/{}",
         match (several_methods, space) {
             (true, true) => "method, discretization and formulation",
             (false, true) => "discretization and formulation",
@@ -136,15 +149,28 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
         } else {
             format!("{} elements", first.scene.elements)
         },
-        first.scene.dt
+        first.scene.dt,
+        c.reference_method,
+        c.reference.name()
     );
-    line_plot(
+    panels_plot(
         &dir.join("compare.svg"),
         &title,
         (x_desc, "contact force λ (N)"),
-        &series,
+        &panels,
         super::plot::LOSS_SHADING,
+        &filtered_label(first.output.history.band_hz()),
     )
+}
+
+/// A difference in a panel's title: 0, three decimals, or two digits with
+/// an exponent below 0.01 (round-off against the reference).
+fn short(v: f64) -> String {
+    match v.abs() {
+        0.0 => "0".into(),
+        a if a >= 0.01 => format!("{v:.3}"),
+        _ => format!("{v:.1e}"),
+    }
 }
 
 /// The terminal table.

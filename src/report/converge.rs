@@ -9,12 +9,11 @@ use super::PALETTE;
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::NotRun;
-use crate::study::converge::{
-    ConvergeRow, Convergence, GCI_SAFETY_FACTOR, MethodStudy, QUANTITIES, Refine,
-};
+use crate::study::converge::{ConvergeRow, Convergence, Diverged, MethodStudy, QUANTITIES, Refine};
+use crate::study::uncertainty::{FS_ASYMPTOTIC, FS_CAUTIOUS};
 
 /// Column order of `converge.csv`.
-pub const CONVERGE_COLUMNS: [&str; 17] = [
+pub const CONVERGE_COLUMNS: [&str; 19] = [
     "method",
     "discretization",
     "level",
@@ -26,6 +25,8 @@ pub const CONVERGE_COLUMNS: [&str; 17] = [
     "error",
     "observed_order",
     "gci",
+    "u_num",
+    "mesh_share",
     "reference",
     "error_order",
     "ratio_change",
@@ -39,7 +40,8 @@ struct ConvergeJson<'a> {
     taut_version: &'static str,
     refine: Refine,
     ratio: f64,
-    gci_safety_factor: f64,
+    /// Roache's F_s: near the formal order, and otherwise.
+    gci_safety_factors: [f64; 2],
     scene: &'a crate::scene::Scene,
     /// One entry per method: its levels.
     methods: Vec<MethodLevels<'a>>,
@@ -51,6 +53,12 @@ struct ConvergeJson<'a> {
 struct MethodLevels<'a> {
     method: &'a str,
     levels: Vec<Level>,
+    /// `--refine both`: level ℓ's mesh at level ℓ − 1's Δt.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    split: Vec<Level>,
+    /// The level whose run blew up, if one did.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    diverged: Option<&'a Diverged>,
 }
 
 #[derive(Serialize)]
@@ -66,7 +74,7 @@ struct Level {
     wall_seconds: f64,
 }
 
-/// `converge.csv` as a table ([`CONVERGE_COLUMNS`]): one row per level and
+/// `converge.csv` as a table (`CONVERGE_COLUMNS`): one row per level and
 /// quantity, study after study.
 pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
     let label = |f: fn(&ConvergeRow) -> &str| {
@@ -88,11 +96,17 @@ pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
         measured(|r| r.error),
         measured(|r| r.observed_order),
         measured(|r| r.gci),
-        label(|r| &r.reference),
+        measured(|r| r.u_num),
+        measured(|r| r.mesh_share),
+        Column::Label(rows.iter().map(|r| r.reference.replace(',', ";")).collect()),
         measured(|r| r.error_order),
         measured(|r| r.ratio_change),
         measured(|r| r.formal_order),
-        label(|r| &r.regime),
+        Column::Text(
+            rows.iter()
+                .map(|r| Some(r.regime.clone()).filter(|x| !x.is_empty()))
+                .collect(),
+        ),
         measured(|r| r.omega_max_dt),
     ];
     let mut t = Table::new();
@@ -103,7 +117,7 @@ pub fn converge_rows(rows: &[&ConvergeRow]) -> Table {
 }
 
 /// Write the three files of one study into `dir`.
-pub fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
+pub(crate) fn write_converge(dir: &Path, c: &Convergence) -> Result<()> {
     let name = c.rows.first().map_or("", |r| r.method.as_str());
     write_studies(dir, &[(name, c)], &[])
 }
@@ -147,17 +161,39 @@ fn write_studies(dir: &Path, studies: &[(&str, &Convergence)], skipped: &[NotRun
             })
             .collect()
     };
+    // level ℓ's mesh (scene ℓ) at level ℓ − 1's Δt (the run's own)
+    let split_levels = |c: &Convergence| -> Vec<Level> {
+        c.split
+            .iter()
+            .enumerate()
+            .map(|(i, o)| {
+                let s = &c.scenes[i + 1];
+                Level {
+                    level: i + 1,
+                    elements: s.elements,
+                    modes: s.discretization.modes(),
+                    h: s.resolution(),
+                    dt: o.dt,
+                    dofs: o.dofs,
+                    steps: o.steps,
+                    wall_seconds: o.wall_seconds,
+                }
+            })
+            .collect()
+    };
     let doc = ConvergeJson {
         taut_version: env!("CARGO_PKG_VERSION"),
         refine: first.refine,
         ratio: first.ratio,
-        gci_safety_factor: GCI_SAFETY_FACTOR,
+        gci_safety_factors: [FS_ASYMPTOTIC, FS_CAUTIOUS],
         scene: &first.scenes[0].scene,
         methods: studies
             .iter()
             .map(|(m, c)| MethodLevels {
                 method: m,
                 levels: levels(c),
+                split: split_levels(c),
+                diverged: c.diverged.as_ref(),
             })
             .collect(),
         rows: studies.iter().flat_map(|(_, c)| &c.rows).collect(),
@@ -196,7 +232,7 @@ pub fn converge_methods_table(studies: &[MethodStudy], skipped: &[NotRun]) -> St
 /// from the reference), the GCI, ω_max·Δt and the regime.
 pub fn converge_table(c: &Convergence) -> String {
     let mut s = format!(
-        "{:<20} {:>5} {:>10} {:>10} {:>13} {:>11} {:>6} {:>6} {:>10} {:>8}  {:<22} {}\n",
+        "{:<20} {:>5} {:>10} {:>10} {:>13} {:>11} {:>6} {:>6} {:>10} {:>10} {:>6} {:>8}  {:<22} {}\n",
         "quantity",
         "level",
         "h m",
@@ -206,6 +242,8 @@ pub fn converge_table(c: &Convergence) -> String {
         "err p",
         "diff p",
         "GCI",
+        "u_num",
+        "mesh",
         "ωmax·Δt",
         "regime",
         "reference"
@@ -227,7 +265,7 @@ pub fn converge_table(c: &Convergence) -> String {
                 }
             };
             s.push_str(&format!(
-                "{:<20} {:>5} {:>10.4e} {:>10.3e} {} {} {} {} {} {}  {:<22} {}\n",
+                "{:<20} {:>5} {:>10.4e} {:>10.3e} {} {} {} {} {} {} {} {}  {:<22} {}\n",
                 r.quantity,
                 r.level,
                 r.h,
@@ -237,6 +275,12 @@ pub fn converge_table(c: &Convergence) -> String {
                 order(r.error_order),
                 order(r.observed_order),
                 f(r.gci, 10),
+                f(r.u_num, 10),
+                if r.mesh_share.is_finite() {
+                    format!("{:>5.0}%", 100.0 * r.mesh_share)
+                } else {
+                    format!("{:>6}", "—")
+                },
                 if r.omega_max_dt.is_finite() {
                     format!("{:>8.3}", r.omega_max_dt)
                 } else {

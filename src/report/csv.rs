@@ -7,7 +7,8 @@ use crate::error::Result;
 use crate::run::RunOutput;
 
 /// The history as a table: `t, x_m, beam_w, mass_q, gap, force,
-/// in_contact`, then one column per probe, then `dropper_<name>_force` per
+/// in_contact, force_filtered` (the last only when the history holds every
+/// step: the filtered force, `[analysis] band`), then one column per probe, then `dropper_<name>_force` per
 /// dropper (N, tension positive). With several carriers the
 /// per-carrier columns are suffixed `_0`, `_1`, … (carrier by carrier).
 pub fn history_table(out: &RunOutput) -> Table {
@@ -41,6 +42,12 @@ fn history_rows(out: &RunOutput, rows: std::ops::Range<usize>) -> Table {
             name("in_contact", c),
             Column::Bit(tr.in_contact[rows.clone()].to_vec()),
         );
+        if !tr.force_filtered.is_empty() {
+            t.push(
+                name("force_filtered", c),
+                Column::Real(tr.force_filtered[rows.clone()].to_vec()),
+            );
+        }
     }
     for (n, col) in &h.probes {
         t.push(n.clone(), Column::Real(col[rows.clone()].to_vec()));
@@ -58,7 +65,7 @@ pub use crate::resolve::memory::HISTORY_ROWS_AT_A_TIME;
 
 /// Write the history ([`history_table`]) to `path`, a block of rows at a
 /// time: the same bytes as the whole table's CSV.
-pub fn write_history(path: &Path, out: &RunOutput) -> Result<()> {
+pub(crate) fn write_history(path: &Path, out: &RunOutput) -> Result<()> {
     use std::io::Write;
     let io = |e| crate::error::Error::io(path, e);
     let file = std::fs::File::create(path).map_err(io)?;

@@ -13,7 +13,7 @@ fn xml_escape(s: &str) -> String {
 }
 
 /// JUnit XML: one `testsuite` per case, one `testcase` per quantity.
-pub fn junit_xml(r: &GateReport) -> String {
+pub(crate) fn junit_xml(r: &GateReport) -> String {
     let mut cases: Vec<&str> = r.checks.iter().map(|c| c.case.as_str()).collect();
     cases.extend(r.errors.iter().map(|e| e.case.as_str()));
     cases.sort();
@@ -67,7 +67,7 @@ pub fn junit_xml(r: &GateReport) -> String {
 }
 
 /// Write `gate.json` and `junit.xml` into `dir`.
-pub fn write_gate(dir: &Path, r: &GateReport) -> Result<()> {
+pub(crate) fn write_gate(dir: &Path, r: &GateReport) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let json = dir.join("gate.json");
     super::write_json(

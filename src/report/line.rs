@@ -45,7 +45,8 @@ pub fn spans_table(rows: &[SpanStats]) -> Table {
 }
 
 /// `supports.csv`: a row per support: `x` (m), `v_max`, `v_min` (m,
-/// positive up) and `t_max` (s, the first time of `v_max`).
+/// positive up), `t_max` (s, the first time of `v_max`), `v_static` (m,
+/// the static position with no carrier) and `uplift` (m, v_max − v_static).
 pub fn supports_table(rows: &[SupportUplift]) -> Table {
     let mut t = Table::new();
     let real = |f: fn(&SupportUplift) -> f64| Column::Real(rows.iter().map(f).collect());
@@ -53,6 +54,11 @@ pub fn supports_table(rows: &[SupportUplift]) -> Table {
     t.push("v_max", real(|r| r.v_max));
     t.push("v_min", real(|r| r.v_min));
     t.push("t_max", real(|r| r.t_max));
+    let opt = |f: fn(&SupportUplift) -> Option<f64>| {
+        Column::RealOrNone(rows.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect())
+    };
+    t.push("v_static", opt(|r| r.v_static));
+    t.push("uplift", opt(|r| r.uplift));
     t
 }
 
@@ -69,7 +75,12 @@ pub fn envelope_table(e: &Envelope) -> Table {
 /// Write `spans.csv` and `supports.csv` (with `[output] supports`; `spans`
 /// are the summary's, filtered force included) and `envelope.csv` with
 /// `line.svg` (with `[output] envelope`) into `dir`.
-pub fn write_line(dir: &Path, sc: &Resolved, out: &RunOutput, spans: &[SpanStats]) -> Result<()> {
+pub(crate) fn write_line(
+    dir: &Path,
+    sc: &Resolved,
+    out: &RunOutput,
+    spans: &[SpanStats],
+) -> Result<()> {
     let h = &out.history;
     if !h.supports.is_empty() {
         if !spans.is_empty() {

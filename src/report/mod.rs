@@ -6,47 +6,62 @@ mod compare;
 mod converge;
 mod csv;
 mod gate;
+mod html;
+mod incomplete;
 mod line;
 mod line_svg;
 mod modes;
 mod outputs;
 mod plot;
 mod precision;
+mod standard;
 mod summary;
 mod sweep;
 mod sweep_maps;
 mod table;
 mod tolerance;
+mod uncertainty;
 mod verify;
 mod wire;
 
 pub use compare::{COMPARE_COLUMNS, compare_rows, compare_table, write_compare};
-pub use converge::{
-    CONVERGE_COLUMNS, converge_methods_table, converge_rows, converge_table, write_converge,
-    write_converge_methods,
-};
-pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table, write_history};
-pub use gate::{gate_table, junit_xml, write_gate};
-pub use line::{envelope_table, spans_table, supports_table, write_line};
-pub use modes::{mode_shapes_table, modes_table, write_modes};
-pub use outputs::{Outputs, check_out_dir, clear_earlier, cleared_note};
-pub use plot::{PLOT_BUCKETS, write_force_plot};
-pub use precision::{PRECISION_COLUMNS, precision_rows, precision_table, write_precision};
-pub use summary::{Derived, Summary, mesh_label, write_summary};
+pub(crate) use converge::write_converge;
+pub use converge::{converge_methods_table, converge_rows, converge_table, write_converge_methods};
+pub(crate) use csv::write_history;
+pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table};
+pub use gate::gate_table;
+pub(crate) use gate::write_gate;
+pub use html::ReportSummary;
+pub(crate) use html::write_report;
+pub(crate) use incomplete::{INCOMPLETE_FILE, write_whole};
+pub(crate) use line::write_line;
+pub use line::{envelope_table, spans_table, supports_table};
+pub(crate) use modes::write_modes;
+pub use modes::{mode_shapes_table, modes_table};
+pub use outputs::Outputs;
+pub(crate) use outputs::{check_out_dir, clear_earlier, cleared_note};
+pub(crate) use plot::write_force_plot;
+pub(crate) use precision::write_precision;
+pub use precision::{precision_rows, precision_table};
+pub use standard::standard_table;
+pub(crate) use standard::write_standard;
+pub(crate) use summary::write_summary;
+pub use summary::{Derived, Summary, mesh_label};
 pub use sweep::{sweep_table, write_sweep};
+pub(crate) use sweep_maps::write_sweep_maps;
 pub use sweep_maps::{
-    SPEED_RATIO_LEVELS, axis_label, write_force_map, write_loss_fraction_map, write_loss_map,
-    write_sweep_maps,
+    SPEED_RATIO_LEVELS, write_force_map, write_loss_fraction_map, write_loss_map,
 };
 pub use table::{Column, Table};
+pub(crate) use tolerance::write_tolerant_run;
 pub use tolerance::{
-    ACCURACY_COLUMNS, WithAccuracy, accuracy_csv, accuracy_header, accuracy_table, result_lines,
-    write_tolerant_run,
+    ACCURACY_COLUMNS, WithAccuracy, accuracy_header, accuracy_table, result_lines,
 };
-pub use verify::{
-    Counts, VERIFY_COLUMNS, verify_markdown, verify_rows, verify_table, write_verify,
-};
-pub use wire::{field_table, snapshots_table, write_wire};
+pub(crate) use uncertainty::write_uncertainty;
+pub use uncertainty::{family_table, uncertainty_lines, uncertainty_table};
+pub use verify::verify_table;
+pub(crate) use verify::write_verify;
+pub(crate) use wire::write_wire;
 
 use std::path::Path;
 
@@ -64,22 +79,32 @@ pub fn save_failed_contact(dir: &Path, e: &Error) -> Option<std::path::PathBuf> 
     };
     let failed = e.payload::<crate::contact::ContactFailed>()?;
     let path = dir.join(format!("failed_contact_step_{step}.json"));
-    let json = serde_json::to_string_pretty(&failed.problem).ok()?;
+    // a problem JSON cannot hold (NaN, ±inf would be nulls no replay
+    // reads) is saved as the reason it cannot be replayed
+    let json = match crate::contact::NotReplayable::of(&failed.problem) {
+        Some(why) => serde_json::to_string_pretty(&why).ok()?,
+        None => serde_json::to_string_pretty(&failed.problem).ok()?,
+    };
     std::fs::create_dir_all(dir).ok()?;
     std::fs::write(&path, json).ok()?;
     Some(path)
 }
 
-/// Write all three outputs of a run into `dir` (created if missing).
+/// Write a run's outputs into `dir` (created if missing): `history.csv`,
+/// `force.svg`, `standard.csv`, `standard.json`, what the scene's
+/// `[output]` asks for, and `summary.json` last, the folder marked
+/// `INCOMPLETE_FILE` until every file is written (`write_whole`).
 pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    write_history(&dir.join("history.csv"), out)?;
-    let summary = Summary::new(sc, out);
-    write_summary(&dir.join("summary.json"), &summary)?;
-    write_force_plot(&dir.join("force.svg"), sc, out)?;
-    write_wire(dir, &out.history)?;
-    write_line(dir, sc, out, &summary.spans)?;
-    Ok(summary)
+    write_whole(dir, "taut run", || {
+        write_history(&dir.join("history.csv"), out)?;
+        let summary = Summary::new(sc, out);
+        write_force_plot(&dir.join("force.svg"), sc, out)?;
+        write_standard(dir, sc, &summary.standard, &summary.supports)?;
+        write_wire(dir, &out.history)?;
+        write_line(dir, sc, out, &summary.spans)?;
+        write_summary(&dir.join("summary.json"), &summary)?;
+        Ok(summary)
+    })
 }
 
 /// Line colours of every plot (matplotlib's tab10), cycled.

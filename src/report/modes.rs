@@ -37,7 +37,7 @@ pub fn mode_shapes_table(m: &Modes) -> Table {
 }
 
 /// Write `modes.csv` and `mode_shapes.csv` into `dir`.
-pub fn write_modes(dir: &Path, m: &Modes) -> Result<()> {
+pub(crate) fn write_modes(dir: &Path, m: &Modes) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     modes_table(m).write_csv(&dir.join("modes.csv"))?;
     mode_shapes_table(m).write_csv(&dir.join("mode_shapes.csv"))

@@ -33,6 +33,8 @@ pub enum Outputs {
     Sweep,
     /// `taut modes`.
     Modes,
+    /// `taut uncertainty`.
+    Uncertainty,
 }
 
 /// Prefix of a saved failing contact problem (`failed_contact_step_N.json`).
@@ -46,6 +48,8 @@ impl Outputs {
                 "history.csv",
                 "summary.json",
                 "force.svg",
+                "standard.csv",
+                "standard.json",
                 "accuracy.csv",
                 "snapshots.csv",
                 "field.csv",
@@ -59,17 +63,21 @@ impl Outputs {
             Outputs::Precision => &["precision.csv", "precision.svg"],
             Outputs::Gate => &["gate.json", "junit.xml"],
             Outputs::Modes => &["modes.csv", "mode_shapes.csv"],
+            Outputs::Uncertainty => &["uncertainty.csv", "uncertainty.json", "uncertainty.svg"],
             Outputs::Sweep => &[
                 "sweep.csv",
                 "sweep_force.csv",
                 "sweep_loss.csv",
                 "timing.csv",
+                "sweep.svg",
                 "force_map.svg",
                 "loss_map.svg",
                 "refinement.svg",
                 "loss_fraction_map.svg",
                 "loss_fraction_span_map.svg",
                 "refinement_map.svg",
+                "u_num_map.svg",
+                "tolerance.svg",
             ],
         }
     }
@@ -78,7 +86,7 @@ impl Outputs {
 /// Refuse an empty output folder path: it would write into the current
 /// folder (the CLI's `--out ""` is refused by its parser; Python's
 /// `out=""` reaches here).
-pub fn check_out_dir(dir: &Path) -> Result<()> {
+pub(crate) fn check_out_dir(dir: &Path) -> Result<()> {
     if dir.as_os_str().is_empty() {
         return Err(Error::invalid(
             "--out",
@@ -92,7 +100,7 @@ pub fn check_out_dir(dir: &Path) -> Result<()> {
 /// Remove from `dir` the outputs an earlier command of this kind left
 /// ([`Outputs::files`], and `failed_contact_step_N.json`), before the
 /// command runs; returns the files removed (none when `dir` does not exist).
-pub fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
+pub(crate) fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
     check_out_dir(dir)?;
     let mut removed = Vec::new();
     let entries = match std::fs::read_dir(dir) {
@@ -105,6 +113,7 @@ pub fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
         let name = entry.file_name();
         let Some(name) = name.to_str() else { continue };
         let ours = kind.files().contains(&name)
+            || name == super::INCOMPLETE_FILE
             || (kind != Outputs::Sweep
                 && name.starts_with(FAILED_CONTACT_PREFIX)
                 && name.ends_with(".json"));
@@ -120,7 +129,7 @@ pub fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
 }
 
 /// What a front end says when [`clear_earlier`] removed files: one line.
-pub fn cleared_note(dir: &Path, removed: &[PathBuf]) -> Option<String> {
+pub(crate) fn cleared_note(dir: &Path, removed: &[PathBuf]) -> Option<String> {
     if removed.is_empty() {
         return None;
     }

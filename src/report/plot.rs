@@ -24,6 +24,18 @@ pub(crate) struct Series {
     pub points: Vec<(f64, f64)>,
     /// Intervals [x0, x1] to shade (contact lost).
     pub shaded: Vec<[f64; 2]>,
+    /// The same quantity filtered (the filtered contact force), drawn bold
+    /// over `points`, which are then drawn light; empty: none.
+    pub filtered: Vec<(f64, f64)>,
+}
+
+/// One panel of a plot of small multiples: its title and its lines.
+pub(crate) struct Panel {
+    /// Title above the panel (empty for a single panel: the plot's
+    /// caption says it all).
+    pub title: String,
+    /// Lines.
+    pub series: Vec<Series>,
 }
 
 /// The label of a run's x axis: x_m/L, or t when every carrier is
@@ -32,13 +44,14 @@ pub(crate) struct Series {
 /// estimate, issue 25).
 pub(crate) fn abscissa_label(sc: &Resolved) -> &'static str {
     if sc.carriers.iter().all(|c| c.motion.is_stationary()) {
-        "t (s)"
+        "time t (s)"
     } else {
-        "x_m / L"
+        "carrier position x_m / L (–)"
     }
 }
 
-/// The force series of every carrier of a run, labelled `prefix` + carrier.
+/// The force series of every carrier of a run, labelled `prefix` + carrier,
+/// each with its filtered force when the history holds it.
 pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<Series> {
     let in_time = sc.carriers.iter().all(|c| c.motion.is_stationary());
     let nc = out.history.carriers.len();
@@ -46,17 +59,21 @@ pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<
         .map(|c| {
             // rows 1 … n, reduced as they are read (no copy of the history)
             let h = &out.history;
-            let force = &h.carriers[c].force;
+            let tr = &h.carriers[c];
             let l = sc.beam.length;
-            let at = |i: usize| {
-                let x = if in_time {
-                    h.t[i + 1]
-                } else {
-                    h.carriers[c].x[i + 1] / l
-                };
-                (x, force[i + 1])
+            let x = |i: usize| {
+                if in_time { h.t[i + 1] } else { tr.x[i + 1] / l }
             };
-            let points = decimate_with(force.len().saturating_sub(1), at);
+            let points = decimate_with(tr.force.len().saturating_sub(1), |i| {
+                (x(i), tr.force[i + 1])
+            });
+            let filtered = if c < crate::resolve::memory::MAX_FILTERED_LINES {
+                decimate_with(tr.force_filtered.len().saturating_sub(1), |i| {
+                    (x(i), tr.force_filtered[i + 1])
+                })
+            } else {
+                Vec::new()
+            };
             let stats = &out.stats[c];
             let label = match (prefix.is_empty(), nc) {
                 (true, 1) => "λ".to_string(),
@@ -72,40 +89,78 @@ pub(crate) fn force_series(sc: &Resolved, out: &RunOutput, prefix: &str) -> Vec<
                 } else {
                     stats.loss_intervals.clone()
                 },
+                filtered,
             }
         })
         .collect()
 }
 
-/// Plot the contact force of every carrier, loss shaded (`force.svg`).
-pub fn write_force_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()> {
+/// Plot the contact force of every carrier, its filtered force over it,
+/// loss shaded and marked (`force.svg`).
+pub(crate) fn write_force_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()> {
     let title = format!(
         "contact force: {} elements, dt = {} s, P_l = {:.4} ({:.4} in span)",
         sc.elements, sc.dt, out.stats[0].loss_fraction, out.stats[0].loss_fraction_span
     );
     let x_desc = abscissa_label(sc);
-    line_plot(
+    panels_plot(
         path,
         &title,
         (x_desc, "contact force λ (N)"),
-        &force_series(sc, out, ""),
+        &[Panel {
+            title: String::new(),
+            series: force_series(sc, out, ""),
+        }],
         LOSS_SHADING,
+        &filtered_label(out.history.band_hz()),
     )
 }
 
+/// The legend of a filtered force line.
+pub(crate) fn filtered_label(band_hz: f64) -> String {
+    format!("0–{band_hz} Hz filtered")
+}
+
 /// What the shaded intervals of a force plot mean.
-pub(crate) const LOSS_SHADING: &str = "contact lost (shaded)";
+pub(crate) const LOSS_SHADING: &str = "contact lost (shaded, marked below)";
 
 /// Draw series as lines with shaded intervals (meaning `shading`, in the
 /// legend); clip the y axis above spikes.
 pub(crate) fn line_plot(
     path: &Path,
     title: &str,
-    (x_desc, y_desc): (&str, &str),
+    descs: (&str, &str),
     series: &[Series],
     shading: &str,
 ) -> Result<()> {
-    draw(path, title, x_desc, y_desc, series, shading).map_err(|e| Error::Output {
+    let panel = Panel {
+        title: String::new(),
+        series: series
+            .iter()
+            .map(|s| Series {
+                label: s.label.clone(),
+                points: s.points.clone(),
+                shaded: s.shaded.clone(),
+                filtered: s.filtered.clone(),
+            })
+            .collect(),
+    };
+    panels_plot(path, title, descs, &[panel], shading, "filtered")
+}
+
+/// Draw `panels` as small multiples on common axes (one column up to three
+/// panels, two above), each with its lines, their filtered lines (legend
+/// `filtered`) and shaded intervals (legend `shading`); clip the y axis
+/// above spikes.
+pub(crate) fn panels_plot(
+    path: &Path,
+    title: &str,
+    (x_desc, y_desc): (&str, &str),
+    panels: &[Panel],
+    shading: &str,
+    filtered: &str,
+) -> Result<()> {
+    draw(path, title, (x_desc, y_desc), panels, (shading, filtered)).map_err(|e| Error::Output {
         path: path.into(),
         reason: e.to_string(),
     })
@@ -114,7 +169,7 @@ pub(crate) fn line_plot(
 /// Pixel size of a line plot.
 const SIZE: (u32, u32) = (960, 480);
 
-pub use crate::resolve::memory::PLOT_BUCKETS;
+pub(crate) use crate::resolve::memory::PLOT_BUCKETS;
 
 /// `points` reduced to at most 4 × [`PLOT_BUCKETS`], in order: per bucket
 /// of consecutive points, the first, the lowest, the highest and the last
@@ -167,42 +222,65 @@ pub(crate) fn decimate_with(n: usize, at: impl Fn(usize) -> (f64, f64)) -> Vec<(
     out
 }
 
+/// Loss intervals narrower than this share of the x range are widened to
+/// it when drawn, so that a single lost step shows (the numbers are in the
+/// tables; the picture only has to show where).
+const MIN_MARK_WIDTH: f64 = 0.003;
+
+/// Opacity of the loss shading and of a raw line under its filtered one.
+const SHADE_OPACITY: f64 = 0.22;
+const RAW_OPACITY: f64 = 0.45;
+
+/// The share of the y range kept free at the top for the legend.
+const LEGEND_ROOM: f64 = 0.28;
+
+/// The colour of the loss marks under the plot area (tab10's red).
+const LOSS_MARK: RGBColor = RGBColor(214, 39, 40);
+
 fn draw(
     path: &Path,
     title: &str,
-    x_desc: &str,
-    y_desc: &str,
-    series: &[Series],
-    shading: &str,
+    (x_desc, y_desc): (&str, &str),
+    panels: &[Panel],
+    (shading, filtered_legend): (&str, &str),
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let series: Vec<Series> = series
+    let panels: Vec<Panel> = panels
         .iter()
-        .map(|s| Series {
-            label: s.label.clone(),
-            points: decimate(&s.points),
-            shaded: {
-                let mut v = Vec::with_capacity(s.shaded.len());
-                v.extend(
-                    s.shaded
-                        .iter()
-                        .copied()
-                        .filter(|iv| iv[0].is_finite() && iv[1].is_finite()),
-                );
-                v
-            },
+        .map(|p| Panel {
+            title: p.title.clone(),
+            series: p
+                .series
+                .iter()
+                .map(|s| Series {
+                    label: s.label.clone(),
+                    points: decimate(&s.points),
+                    filtered: decimate(&s.filtered),
+                    shaded: {
+                        let mut v = Vec::with_capacity(s.shaded.len());
+                        v.extend(
+                            s.shaded
+                                .iter()
+                                .copied()
+                                .filter(|iv| iv[0].is_finite() && iv[1].is_finite()),
+                        );
+                        v
+                    },
+                })
+                .collect(),
         })
         .collect();
     let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut ys: Vec<f64> = Vec::with_capacity(series.iter().map(|s| s.points.len()).sum());
-    for s in &series {
-        for &(x, y) in &s.points {
+    let all = || panels.iter().flat_map(|p| &p.series);
+    let mut ys: Vec<f64> = Vec::with_capacity(all().map(|s| s.points.len()).sum());
+    for s in all() {
+        for &(x, y) in s.points.iter().chain(&s.filtered) {
             x0 = x0.min(x);
             x1 = x1.max(x);
             y0 = y0.min(y);
             y1 = y1.max(y);
-            ys.push(y);
         }
+        ys.extend(s.points.iter().map(|p| p.1));
     }
     if !x0.is_finite() {
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
@@ -217,8 +295,9 @@ fn draw(
     if clipped {
         y1 = CLIP_FACTOR * p995;
     }
-    let pad = 0.05 * (y1 - y0).max(1e-9 * y1.abs().max(1.0));
-    let (y0, y1) = (y0 - pad, y1 + pad);
+    let clip = y1;
+    let span = (y1 - y0).max(1e-9 * y1.abs().max(1.0));
+    let (y0, y1) = (y0 - 0.05 * span, y1 + LEGEND_ROOM * span);
     let mut caption = title.to_string();
     if clipped {
         caption.push_str(&format!(
@@ -228,6 +307,14 @@ fn draw(
     }
     let ranges = super::axis_range::drawable("horizontal", x0, x1, false)
         .and_then(|x| super::axis_range::drawable("vertical", y0, y1, false).map(|y| (x, y)));
+    let single = panels.len() <= 1;
+    let cols = if panels.len() <= 3 { 1 } else { 2 };
+    let rows = panels.len().max(1).div_ceil(cols);
+    let size = if single {
+        SIZE
+    } else {
+        (SIZE.0, 40 + rows as u32 * PANEL_HEIGHT)
+    };
     let ((x0, x1), (y0, y1)) = match ranges {
         Ok(r) => r,
         Err(reason) => {
@@ -236,58 +323,141 @@ fn draw(
             } else {
                 "the CSV and JSON tables beside it"
             };
-            super::axis_range::write_note(path, SIZE, &caption, &reason, table)?;
+            super::axis_range::write_note(path, size, &caption, &reason, table)?;
             return Ok(());
         }
     };
 
-    let root = SVGBackend::new(path, SIZE).into_drawing_area();
+    let root = SVGBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(caption, ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)?;
+    let root = root.titled(&caption, ("sans-serif", 18))?;
+    let areas = root.split_evenly((rows, cols));
+    let min_width = MIN_MARK_WIDTH * (x1 - x0);
+    let mark = 0.035 * (y1 - y0);
+    for (panel, area) in panels.iter().zip(areas) {
+        let mut builder = ChartBuilder::on(&area);
+        builder
+            .margin(10)
+            .x_label_area_size(if single { 44 } else { 36 })
+            .y_label_area_size(if single { 72 } else { 64 });
+        if !panel.title.is_empty() {
+            builder.caption(&panel.title, ("sans-serif", 13));
+        }
+        let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1)?;
+        style_axes(&mut chart, x_desc, y_desc)?;
+        let widened = |iv: &[f64; 2]| {
+            let c = 0.5 * (iv[0] + iv[1]);
+            let w = (iv[1] - iv[0]).max(min_width);
+            (c - 0.5 * w, c + 0.5 * w)
+        };
+        for (i, s) in panel.series.iter().enumerate() {
+            let shade = PALETTE[i % PALETTE.len()].mix(SHADE_OPACITY);
+            chart.draw_series(s.shaded.iter().map(|iv| {
+                let (a, b) = widened(iv);
+                Rectangle::new([(a, y0), (b, clip)], shade.filled())
+            }))?;
+            // a mark per loss under the lines, visible however short
+            chart.draw_series(s.shaded.iter().map(|iv| {
+                let (a, b) = widened(iv);
+                Rectangle::new([(a, y0), (b, y0 + mark)], LOSS_MARK.filled())
+            }))?;
+        }
+        for (i, s) in panel.series.iter().enumerate() {
+            let col = PALETTE[i % PALETTE.len()];
+            let pts: Vec<(f64, f64)> = s.points.iter().map(|&(x, y)| (x, y.min(clip))).collect();
+            let raw = if s.filtered.is_empty() {
+                col.stroke_width(1)
+            } else {
+                col.mix(RAW_OPACITY).stroke_width(1)
+            };
+            chart
+                .draw_series(LineSeries::new(pts, raw))?
+                .label(s.label.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], raw));
+        }
+        for (i, s) in panel.series.iter().enumerate() {
+            if s.filtered.is_empty() {
+                continue;
+            }
+            let col = dark(PALETTE[i % PALETTE.len()]);
+            let pts: Vec<(f64, f64)> = s.filtered.iter().map(|&(x, y)| (x, y.min(clip))).collect();
+            let label = if panel.series.len() == 1 {
+                filtered_legend.to_string()
+            } else {
+                format!("{} ({filtered_legend})", s.label)
+            };
+            chart
+                .draw_series(LineSeries::new(pts, col.stroke_width(2)))?
+                .label(label)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(2))
+                });
+        }
+        if panel.series.iter().any(|s| !s.shaded.is_empty()) {
+            let shade = PALETTE[0].mix(SHADE_OPACITY);
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x0, y0), (x0, y0)],
+                    shade.filled(),
+                )))?
+                .label(shading)
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 5), (x + 18, y + 5)], shade.filled())
+                });
+        }
+        legend_upper_left(&mut chart)?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// A chart of two real axes on an SVG (every line plot of taut's).
+pub(crate) type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// The axes of a line plot: labelled (with their units) in 14 px, ticks in
+/// 12 px, the major grid only.
+pub(crate) fn style_axes(
+    chart: &mut Chart<'_, '_>,
+    x_desc: &str,
+    y_desc: &str,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
     chart
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
+        .axis_desc_style(("sans-serif", 14))
+        .label_style(("sans-serif", 12))
+        .light_line_style(WHITE.mix(0.0))
         .draw()?;
+    Ok(())
+}
 
-    for (i, s) in series.iter().enumerate() {
-        let shade = PALETTE[i % PALETTE.len()].mix(0.15);
-        chart.draw_series(
-            s.shaded
-                .iter()
-                .map(|iv| Rectangle::new([(iv[0], y0), (iv[1], y1)], shade.filled())),
-        )?;
-    }
-    for (i, s) in series.iter().enumerate() {
-        let col = PALETTE[i % PALETTE.len()];
-        let pts: Vec<(f64, f64)> = s.points.iter().map(|&(x, y)| (x, y.min(y1))).collect();
-        chart
-            .draw_series(LineSeries::new(pts, col.stroke_width(1)))?
-            .label(s.label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col));
-    }
-    if series.iter().any(|s| !s.shaded.is_empty()) {
-        let shade = PALETTE[0].mix(0.15);
-        chart
-            .draw_series(std::iter::once(Rectangle::new(
-                [(x0, y0), (x0, y0)],
-                shade.filled(),
-            )))?
-            .label(shading)
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], shade.filled()));
-    }
+/// The legend of a line plot, top left, in the room kept free above the
+/// lines.
+pub(crate) fn legend_upper_left<'a>(
+    chart: &mut Chart<'a, 'a>,
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
     chart
         .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperLeft)
+        .label_font(("sans-serif", 12))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
         .draw()?;
-    root.present()?;
     Ok(())
+}
+
+/// Pixel height of one panel of small multiples.
+const PANEL_HEIGHT: u32 = 260;
+
+/// A darker shade of `c` (the filtered line over its raw line).
+fn dark(c: RGBColor) -> RGBColor {
+    let d = |v: u8| (f64::from(v) * 0.55) as u8;
+    RGBColor(d(c.0), d(c.1), d(c.2))
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 use crate::study::precision::{Precision, PrecisionRow};
 
 /// Column order of `precision.csv`.
-pub const PRECISION_COLUMNS: [&str; 16] = [
+pub(crate) const PRECISION_COLUMNS: [&str; 16] = [
     "method",
     "discretization",
     "formulation",
@@ -29,7 +29,7 @@ pub const PRECISION_COLUMNS: [&str; 16] = [
     "pareto",
 ];
 
-/// `precision.csv` as a table ([`PRECISION_COLUMNS`]): one row per run.
+/// `precision.csv` as a table (`PRECISION_COLUMNS`): one row per run.
 pub fn precision_rows(p: &Precision) -> Table {
     let rows = &p.rows;
     let label = |f: fn(&PrecisionRow) -> &str| {
@@ -60,11 +60,12 @@ pub fn precision_rows(p: &Precision) -> Table {
     for (name, column) in PRECISION_COLUMNS.into_iter().zip(columns) {
         t.push(name, column);
     }
+    t.push_filtered(rows.iter().map(|r| &r.filtered));
     t
 }
 
 /// Write `precision.csv` and `precision.svg` into `dir`.
-pub fn write_precision(dir: &Path, p: &Precision) -> Result<()> {
+pub(crate) fn write_precision(dir: &Path, p: &Precision) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     precision_rows(p).write_csv(&dir.join("precision.csv"))?;
     let svg = dir.join("precision.svg");

@@ -5,7 +5,10 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::error::Result;
-use crate::record::{ContactStats, DropperStats, Filtered, SpanStats, SupportUplift, span_of};
+use crate::record::{
+    CarrierTrace, ContactStats, DropperStats, Filtered, SpanStats, StandardStats, SupportUplift,
+    span_of,
+};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
 use crate::scene::{Discretization, Scene};
@@ -78,6 +81,9 @@ pub struct Summary {
     /// largest value (docs/output.md#supports). Absent without supports.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub supports: Vec<SupportUplift>,
+    /// Each carrier's standard statistics over the analysis section
+    /// (`[analysis]`; `standard.csv`, docs/output.md#the-standards-statistics).
+    pub standard: Vec<StandardStats>,
     /// Wall-clock seconds of the run: model assembly, factorization, initial
     /// accelerations and the time loop with recording.
     pub wall_seconds: f64,
@@ -96,7 +102,7 @@ impl Summary {
             .iter()
             .zip(&out.history.carriers)
             .map(|(st, tr)| ContactStats {
-                force_filtered: filtered(out, &tr.force),
+                force_filtered: filtered(out, tr),
                 ..st.clone()
             })
             .collect();
@@ -128,46 +134,46 @@ impl Summary {
             droppers: out.droppers.clone(),
             spans: spans_filtered(sc, out),
             supports: out.history.supports.clone(),
+            standard: out.standard.clone(),
             wall_seconds: out.wall_seconds,
             warnings: out.warnings.clone(),
         }
     }
 }
 
-/// The 0–20 Hz force's statistics of one carrier's `force` history
-/// ([`crate::study::filter::filtered_force_stats`]); `null` when the
-/// history does not hold every step.
-fn filtered(out: &RunOutput, force: &[f64]) -> Filtered {
-    if out.history.record_every > 1 || force.is_empty() {
+/// The filtered force's statistics of one carrier (its `force_filtered`,
+/// [`crate::record::filter::stats_of_filtered`]); `null` when the history
+/// does not hold every step.
+fn filtered(out: &RunOutput, tr: &CarrierTrace) -> Filtered {
+    if tr.force_filtered.is_empty() {
         Filtered::Unavailable
     } else {
-        Filtered::Stats(crate::study::filter::filtered_force_stats(force, out.dt))
+        Filtered::Stats(crate::record::filter::stats_of_filtered(
+            &tr.force_filtered,
+            out.history.band_hz(),
+        ))
     }
 }
 
-/// The run's per-span statistics ([`RunOutput::spans`]) with the 0–20 Hz
-/// filtered force's mean and σ over each span's steps: the force history
-/// filtered as a whole ([`crate::study::filter::lowpass_zero_phase`], the
-/// filter of the whole-run `force_filtered`), then its mean and population
-/// σ (two passes) over the steps (rows 1…) whose x_m lies in the span
+/// The run's per-span statistics ([`RunOutput::spans`]) with the filtered
+/// force's mean and σ over each span's steps: the carrier's
+/// `force_filtered` (the whole run filtered at once, the filter of the
+/// whole-run `force_filtered`), then its mean and population σ (two
+/// passes) over the steps (rows 1…) whose x_m lies in the span
 /// ([`span_of`]). Left `null` when the history does not hold every step.
 fn spans_filtered(sc: &Resolved, out: &RunOutput) -> Vec<SpanStats> {
     let mut spans = out.spans.clone();
     let h = &out.history;
-    if spans.is_empty() || h.record_every > 1 {
+    if spans.is_empty() {
         return spans;
     }
     let supports = &sc.wire.supports;
     let per_carrier = supports.len().saturating_sub(1);
     for (c, tr) in h.carriers.iter().enumerate() {
-        if tr.force.is_empty() {
+        let f = &tr.force_filtered;
+        if f.is_empty() {
             continue;
         }
-        let f = crate::study::filter::lowpass_zero_phase(
-            &tr.force,
-            out.dt,
-            crate::study::filter::FORCE_BAND_HZ,
-        );
         let Some(mine) = spans.get_mut(c * per_carrier..(c + 1) * per_carrier) else {
             continue;
         };
@@ -246,6 +252,6 @@ pub fn mesh_label(s: &Summary) -> String {
 }
 
 /// Write `summary.json` (pretty-printed).
-pub fn write_summary(path: &Path, s: &Summary) -> Result<()> {
+pub(crate) fn write_summary(path: &Path, s: &Summary) -> Result<()> {
     super::write_json(path, s)
 }

@@ -41,6 +41,7 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
     t.push("force_std", real(|r| r.force_std));
     t.push("force_min", real(|r| r.force_min));
     t.push("force_max", real(|r| r.force_max));
+    t.push_filtered(records.iter().map(|r| &r.filtered));
     t.push(
         "first_loss_position",
         real(|r| r.first_loss_position.unwrap_or(f64::NAN)),
@@ -57,6 +58,9 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
         "error",
         Column::Text(records.iter().map(|r| r.error.clone()).collect()),
     );
+    if spec.tolerance.is_some() {
+        tolerance_columns(&mut t, records);
+    }
     if !spec.check_refinement {
         return t;
     }
@@ -135,6 +139,61 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
         ),
     );
     t
+}
+
+/// The columns of an accuracy-targeted sweep (`--tolerance`): u_num of the
+/// targeted quantity, whether it met the tolerance, and the resolution and
+/// cost the point took.
+fn tolerance_columns(t: &mut Table, records: &[SweepRecord]) {
+    use crate::study::sweep::PointAccuracy;
+    let acc = |f: fn(&PointAccuracy) -> f64| {
+        Column::RealOrNone(
+            records
+                .iter()
+                .map(|r| r.accuracy.as_ref().map_or(f64::NAN, f))
+                .collect(),
+        )
+    };
+    let count = |f: fn(&PointAccuracy) -> Option<u64>| {
+        Column::CountOrNone(
+            records
+                .iter()
+                .map(|r| r.accuracy.as_ref().and_then(f))
+                .collect(),
+        )
+    };
+    t.push("u_num", acc(|a| a.u_num));
+    t.push(
+        "tolerance_met",
+        Column::Label(
+            records
+                .iter()
+                .map(|r| match &r.accuracy {
+                    Some(a) if a.met => "yes".into(),
+                    Some(_) => "no".into(),
+                    None => String::new(),
+                })
+                .collect(),
+        ),
+    );
+    t.push("elements_used", count(|a| Some(a.elements as u64)));
+    t.push("modes_used", count(|a| a.modes.map(|j| j as u64)));
+    t.push("dt_used", acc(|a| a.dt));
+    t.push("runs_used", count(|a| Some(a.runs as u64)));
+    t.push("dof_steps_used", acc(|a| a.dof_steps));
+    t.push(
+        "estimator",
+        Column::Label(
+            records
+                .iter()
+                .map(|r| {
+                    r.accuracy
+                        .as_ref()
+                        .map_or(String::new(), |a| a.estimator.clone())
+                })
+                .collect(),
+        ),
+    );
 }
 
 /// Write the CSV outputs of a sweep into `dir`. Wall times go to

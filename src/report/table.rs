@@ -123,6 +123,21 @@ impl Table {
         self.columns.iter().find(|(n, _)| n == name).map(|(_, c)| c)
     }
 
+    /// Append the four filtered-force columns
+    /// ([`crate::study::scalars::FILTERED_COLUMNS`]) of `rows`, one row
+    /// each: the one place a study table gains them.
+    pub(crate) fn push_filtered<'a>(
+        &mut self,
+        rows: impl Iterator<Item = &'a crate::study::scalars::FilteredColumns> + Clone,
+    ) {
+        for (k, name) in crate::study::scalars::FILTERED_COLUMNS.iter().enumerate() {
+            self.push(
+                *name,
+                Column::RealOrNone(rows.clone().map(|r| r.values()[k]).collect()),
+            );
+        }
+    }
+
     /// The column names, in order.
     pub fn names(&self) -> Vec<&str> {
         self.columns.iter().map(|(n, _)| n.as_str()).collect()

@@ -42,23 +42,26 @@ pub struct WithAccuracy<'a> {
 
 /// Write `history.csv`, `summary.json` (with `accuracy`), `force.svg` and
 /// `accuracy.csv` into `dir` (created if missing).
-pub fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    write_history(&dir.join("history.csv"), &r.output)?;
-    let summary = Summary::new(&r.scene, &r.output);
-    super::write_json(
-        &dir.join("summary.json"),
-        &WithAccuracy {
-            summary: &summary,
-            accuracy: &r.accuracy,
-        },
-    )?;
-    write_force_plot(&dir.join("force.svg"), &r.scene, &r.output)?;
-    super::write_wire(dir, &r.output.history)?;
-    super::write_line(dir, &r.scene, &r.output, &summary.spans)?;
-    let csv = dir.join("accuracy.csv");
-    std::fs::write(&csv, accuracy_csv(&r.accuracy)).map_err(|e| Error::io(&csv, e))?;
-    Ok(summary)
+pub(crate) fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary> {
+    super::write_whole(dir, "taut run --tolerance", || {
+        write_history(&dir.join("history.csv"), &r.output)?;
+        let summary = Summary::new(&r.scene, &r.output);
+        write_force_plot(&dir.join("force.svg"), &r.scene, &r.output)?;
+        super::write_standard(dir, &r.scene, &summary.standard, &summary.supports)?;
+        super::write_wire(dir, &r.output.history)?;
+        super::write_line(dir, &r.scene, &r.output, &summary.spans)?;
+        let csv = dir.join("accuracy.csv");
+        std::fs::write(&csv, accuracy_csv(&r.accuracy)).map_err(|e| Error::io(&csv, e))?;
+        // last: a folder with a summary and no marker is a finished run's
+        super::write_json(
+            &dir.join("summary.json"),
+            &WithAccuracy {
+                summary: &summary,
+                accuracy: &r.accuracy,
+            },
+        )?;
+        Ok(summary)
+    })
 }
 
 /// `accuracy.csv` as a table ([`ACCURACY_COLUMNS`]): one row per pilot,
@@ -135,7 +138,7 @@ pub fn accuracy_table(a: &Accuracy) -> Table {
 }
 
 /// `accuracy.csv`'s text ([`accuracy_table`]).
-pub fn accuracy_csv(a: &Accuracy) -> String {
+pub(crate) fn accuracy_csv(a: &Accuracy) -> String {
     accuracy_table(a).to_csv()
 }
 

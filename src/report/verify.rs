@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::study::verify::{DOMINANCE_LIMIT, Status, VerifyRow};
 
 /// Column order of `verify.csv`.
-pub const VERIFY_COLUMNS: [&str; 29] = [
+pub(crate) const VERIFY_COLUMNS: [&str; 29] = [
     "case",
     "method",
     "discretization",
@@ -56,7 +56,7 @@ fn joined(v: &[f64]) -> String {
 }
 
 /// `verify.csv` as a table ([`VERIFY_COLUMNS`]).
-pub fn verify_rows(rows: &[VerifyRow]) -> Table {
+pub(crate) fn verify_rows(rows: &[VerifyRow]) -> Table {
     let label = |f: &dyn Fn(&VerifyRow) -> String| Column::Label(rows.iter().map(f).collect());
     let real = |f: &dyn Fn(&VerifyRow) -> f64| Column::RealOrNone(rows.iter().map(f).collect());
     let columns = [
@@ -109,7 +109,7 @@ pub fn verify_rows(rows: &[VerifyRow]) -> Table {
 
 /// Counts of each status.
 #[derive(Debug, Clone, Copy, Default, Serialize, PartialEq, Eq)]
-pub struct Counts {
+pub(crate) struct Counts {
     /// Rows that passed.
     pub pass: usize,
     /// Rows that failed.
@@ -153,7 +153,7 @@ struct VerifyJson<'a> {
 
 /// Write `verify.csv`, `verify.json` and `verify.md` (the order table,
 /// [`verify_markdown`]) into `dir`.
-pub fn write_verify(dir: &Path, rows: &[VerifyRow], wall_seconds: f64) -> Result<()> {
+pub(crate) fn write_verify(dir: &Path, rows: &[VerifyRow], wall_seconds: f64) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     verify_rows(rows).write_csv(&dir.join("verify.csv"))?;
     let md = dir.join("verify.md");
@@ -233,7 +233,7 @@ pub fn verify_table(rows: &[VerifyRow]) -> String {
 /// formulation; each cell the expected order, the observed ladder orders
 /// over the support pairs (least–largest) and the status (✓ pass, ✗ fail,
 /// `known`, `cannot`, `reported`; a cell with mixed statuses lists each).
-pub fn verify_markdown(rows: &[VerifyRow]) -> String {
+pub(crate) fn verify_markdown(rows: &[VerifyRow]) -> String {
     let mut forms: Vec<&str> = Vec::new();
     for r in rows {
         if !forms.contains(&r.formulation.as_str()) {

@@ -19,7 +19,7 @@ use crate::scene::{BeamProps, Discretization, ReferenceKind, Scene};
 
 /// Refuse the combinations an attachment breaks (module docs); nothing to
 /// check without attachments.
-pub fn check_attachments(scene: &Scene, beam: &BeamProps, d: Discretization) -> Result<()> {
+pub(crate) fn check_attachments(scene: &Scene, beam: &BeamProps, d: Discretization) -> Result<()> {
     if beam.attachments.is_empty() {
         return Ok(());
     }

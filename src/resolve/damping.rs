@@ -25,17 +25,19 @@
 //!   Rayleigh damping (its source is of the undamped lines).
 
 use crate::error::{Error, Result};
-use crate::scene::{BeamProps, Discretization, Dropper, Rayleigh, ReferenceKind, Scene, Scheme};
+use crate::scene::{
+    BeamProps, Discretization, Dropper, Rayleigh, ReferenceKind, ResolvedMethod, Scene, Scheme,
+};
 
 /// Refuse the combinations damping breaks (module docs); nothing to check
 /// without damping.
-pub fn check_damping(
+pub(crate) fn check_damping(
     scene: &Scene,
     beam: &BeamProps,
     droppers: &[Dropper],
     rayleigh: Rayleigh,
     d: Discretization,
-    scheme: Scheme,
+    method: &ResolvedMethod,
 ) -> Result<()> {
     // the first dashpot: an attachment's (a linear dropper's to a fixed
     // anchor among them), else a linear messenger dropper's; (key, c)
@@ -69,7 +71,7 @@ pub fn check_damping(
             ),
         ),
     };
-    match scheme {
+    match method.scheme {
         Scheme::CentralDifference => {
             return Err(Error::invalid(
                 "integrator.method",
@@ -79,10 +81,10 @@ pub fn check_damping(
                 ),
             ));
         }
-        Scheme::Registered => {
+        Scheme::Registered(_) => {
             return Err(Error::invalid(
                 "integrator.method",
-                format!("\"{}\"", scene.integrator.method),
+                format!("\"{}\"", method.name()),
                 format!(
                     "is a registered method, whose stepper does not read the damping of {key} = {value}: remove the damping or use a built-in implicit method"
                 ),

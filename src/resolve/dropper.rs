@@ -29,7 +29,7 @@ use crate::scene::{Attachment, ContactKind, Discretization, Dropper, Formulation
 
 /// Refuse the combinations a dropper breaks (module docs); nothing to check
 /// without droppers.
-pub fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) -> Result<()> {
+pub(crate) fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) -> Result<()> {
     if droppers.is_empty() {
         return Ok(());
     }
@@ -80,7 +80,7 @@ pub fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) ->
 
 /// The attachment springs of the linear droppers to a fixed anchor (module
 /// docs): k_d and the dashpot c_d at x_d, no mass.
-pub fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = Attachment> + '_ {
+pub(crate) fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = Attachment> + '_ {
     droppers
         .iter()
         .filter(|d| d.linear && !d.on_messenger())
@@ -96,7 +96,7 @@ pub fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = Attachme
 /// or `dropper.<j>.damping` for the attachment a linear dropper resolved
 /// into, [`linear_attachments`]): `scene_attachments` is the count of the
 /// scene's own `[[attachment]]`, which come first.
-pub fn dashpot_key(i: usize, scene_attachments: usize, droppers: &[Dropper]) -> String {
+pub(crate) fn dashpot_key(i: usize, scene_attachments: usize, droppers: &[Dropper]) -> String {
     if i < scene_attachments {
         return format!("attachment.{i}.damping");
     }

@@ -15,10 +15,10 @@ use crate::scene::{
 /// Most modes a `galerkin` basis takes ([`crate::analytic::MAX_MODES`]:
 /// the phase of mode J carries a relative error of about ε·Jπ, and 4000
 /// modes resolve half-wavelengths of L/4000, finer than any bundled mesh).
-pub const MAX_GALERKIN_MODES: usize = crate::analytic::MAX_MODES;
+pub(crate) const MAX_GALERKIN_MODES: usize = crate::analytic::MAX_MODES;
 
 /// Resolve `[mesh]` (its `elements` already checked) for `beam`.
-pub fn resolve_mesh(mesh: &MeshSpec, beam: &BeamProps) -> Result<(Discretization, Grading)> {
+pub(crate) fn resolve_mesh(mesh: &MeshSpec, beam: &BeamProps) -> Result<(Discretization, Grading)> {
     let grading = resolve_grading(mesh, beam)?;
     let kind = mesh.kind;
     let modes = match (kind, mesh.modes) {

@@ -28,7 +28,9 @@
 
 use crate::error::{Error, Result};
 use crate::model::mesh::Mesh;
-use crate::scene::{Discretization, Dropper, Grading, ReferenceKind, Scene, Scheme};
+use crate::scene::{
+    Discretization, Dropper, Grading, ReferenceKind, ResolvedMethod, Scene, Scheme,
+};
 
 /// The largest distance between a support and its node that counts as
 /// "on the node", relative to the span: round-off in the node positions
@@ -38,29 +40,29 @@ const ON_NODE_RELATIVE: f64 = 1e-9;
 
 /// Check the messenger's supports against the mesh and the scene's other
 /// choices (module docs); nothing to check without `[messenger]`.
-pub fn check_messenger(
+pub(crate) fn check_messenger(
     scene: &Scene,
     beam: &crate::scene::BeamProps,
     elements: usize,
     grading: Grading,
     d: Discretization,
-    scheme: &Scheme,
+    method: &ResolvedMethod,
 ) -> Result<()> {
     let Some(m) = &beam.messenger else {
         return Ok(());
     };
-    let why = match scheme {
+    let why = match method.scheme {
         Scheme::GenAlpha(_)
         | Scheme::Bathe { .. }
         | Scheme::MoreauJean { .. }
         | Scheme::CentralDifference => None,
         Scheme::ModalExact => Some("it steps a diagonal basis of the contact wire alone"),
-        Scheme::Registered => Some("a registered method is not verified with two lines"),
+        Scheme::Registered(_) => Some("a registered method is not verified with two lines"),
     };
     if let Some(why) = why {
         return Err(Error::invalid(
             "integrator.method",
-            format!("\"{}\"", scene.integrator.method),
+            format!("\"{}\"", method.name()),
             format!(
                 "cannot carry a [messenger] ({why}): use a method verified with two lines, generalized_alpha, newmark, hht, wbz, bathe, moreau_jean or central_difference"
             ),
@@ -103,7 +105,7 @@ pub fn check_messenger(
 }
 
 /// The springs (x_d, k_d) of the linear messenger droppers (module docs).
-pub fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
+pub(crate) fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
     droppers
         .iter()
         .filter(|d| d.linear && d.on_messenger())
@@ -113,7 +115,7 @@ pub fn ties(droppers: &[Dropper]) -> Vec<(f64, f64)> {
 
 /// The dashpots (x_d, c_d) of the linear messenger droppers with damping:
 /// c_d r_d r_dᵀ with r_d = r_c(x_d) − r_m(x_d) enters C (eq. D11).
-pub fn tie_dashpots(droppers: &[Dropper]) -> Vec<(f64, f64)> {
+pub(crate) fn tie_dashpots(droppers: &[Dropper]) -> Vec<(f64, f64)> {
     droppers
         .iter()
         .filter(|d| d.linear && d.on_messenger() && d.damping != 0.0)

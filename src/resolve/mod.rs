@@ -1,10 +1,10 @@
 //! The resolve layer: a parsed [`Scene`] (plain data, its own range checks
 //! in `crate::scene`) turned into what a run needs, a [`Resolved`] set of
 //! physical parameters, with the checks of combinations that need more than
-//! the scene: the mesh against the model's bounds ([`mesh`]), the point
-//! attachments against the basis and references ([`attachment`]), the
+//! the scene: the mesh against the model's bounds (`mesh`), the point
+//! attachments against the basis and references (`attachment`), the
 //! manufactured solution's and the declared reference's assumptions
-//! ([`reference`], `crate::manufactured`), the method's own check of the
+//! (`reference`, `crate::manufactured`), the method's own check of the
 //! contact settings and basis (its `MethodInfo`), and the memory plan
 //! ([`memory`]).
 //!
@@ -12,27 +12,32 @@
 //! below the integrators, which run a `Resolved`. [`Scene::validate`] is
 //! defined here, so that the scene's own module imports nothing above it.
 
-pub mod attachment;
-pub mod damping;
-pub mod dropper;
+pub mod analysis;
+pub(crate) mod attachment;
+pub(crate) mod budget_check;
+pub(crate) mod damping;
+pub(crate) mod dropper;
 pub mod memory;
-pub mod mesh;
+pub(crate) mod mesh;
 pub mod messenger;
+pub mod plausible;
 pub mod reference;
 mod resolved;
 pub mod wire;
 
 use std::path::Path;
 
-pub use attachment::check_attachments;
-pub use damping::check_damping;
-pub use dropper::check_droppers;
+pub(crate) use attachment::check_attachments;
+pub(crate) use budget_check::{DropperSource, check_budget};
+pub(crate) use damping::check_damping;
+pub(crate) use dropper::check_droppers;
+pub(crate) use memory::MAX_STORED_EVENTS;
 pub use memory::{
-    EVENT_BYTES, HISTORY_ROWS_AT_A_TIME, MAX_STORED_EVENTS, MEMORY_BUDGET_BYTES, MemoryEstimate,
-    PLOT_BUCKETS, check_budget, estimate as estimate_memory, event_capacity, history_rows,
+    HISTORY_ROWS_AT_A_TIME, MEMORY_BUDGET_BYTES, MemoryEstimate, RunSizes,
+    estimate as estimate_memory,
 };
-pub use mesh::{MAX_GALERKIN_MODES, resolve_mesh};
-pub use reference::declared_reference;
+pub(crate) use mesh::resolve_mesh;
+pub(crate) use reference::declared_reference;
 pub use resolved::Resolved;
 
 use crate::error::Result;
@@ -48,6 +53,14 @@ impl Scene {
     /// model, the references or the memory plan, in one fixed order (the
     /// first fault found is the one reported).
     pub fn validate(&self) -> Result<Resolved> {
+        // an error names the key a user wrote, not its path in the
+        // expanded `[line]` (`scene::Generated`)
+        self.validate_expanded()
+            .map_err(|e| self.generated.user_error(e))
+    }
+
+    /// [`Scene::validate`], its errors naming paths of the expanded scene.
+    fn validate_expanded(&self) -> Result<Resolved> {
         let mut beam = self.resolve_beam()?;
         let l = beam.length;
         let elements = self.elements()?;
@@ -67,19 +80,29 @@ impl Scene {
         let carriers = self.resolve_carriers(l)?;
         crate::scene::check_chain_scene(self, &carriers)?;
 
-        let scheme = self.integrator.scheme()?;
+        // the method, found by name and its parameters typed: once
+        let method = self.integrator.resolve()?;
         let damping = resolve_rayleigh(self.beam.damping.as_ref())?;
-        check_damping(self, &beam, &droppers, damping, discretization, scheme)?;
-        messenger::check_messenger(self, &beam, elements, grading, discretization, &scheme)?;
+        check_damping(self, &beam, &droppers, damping, discretization, &method)?;
+        messenger::check_messenger(self, &beam, elements, grading, discretization, &method)?;
         let g = self.gravity_g()?;
         validate_contact(&self.contact)?;
         // the method's own check of the contact settings and basis
-        self.integrator
-            .method_info()?
-            .accepts(&self.contact, discretization)?;
+        method.accepts(&self.contact, discretization)?;
 
         let time = self.resolve_time(&carriers, l)?;
         let (dt, t_end, steps) = (time.dt, time.t_end, time.steps);
+        // each lumped element within what a model on this wire and step
+        // can compute (the scene's own attachments: the linear droppers'
+        // springs after them are the droppers')
+        plausible::check_plausible(
+            &plausible::Scales::of(&beam, elements, dt),
+            &carriers,
+            &beam.attachments[..self.attachments.len()],
+            &droppers,
+            self.contact.penalty.stiffness,
+            damping,
+        )?;
         crate::scene::check_speed_tables_cover(&carriers, t_end)?;
         let probes = self.resolve_probes(l)?;
         if let Some(i) = self
@@ -143,6 +166,7 @@ impl Scene {
                 },
             )?),
         };
+        let analysis = analysis::resolve_analysis(&self.analysis, l, dt, &wire.supports)?;
         let reference = declared_reference(self, &beam, &carriers)?;
         let external_forces = self.resolve_external_forces(&carriers, t_end)?;
 
@@ -159,8 +183,7 @@ impl Scene {
             discretization,
             grading,
             contact: self.contact.clone(),
-            integrator: self.integrator.clone(),
-            scheme,
+            method,
             g,
             dt,
             steps,
@@ -168,14 +191,17 @@ impl Scene {
             probes,
             record_every,
             wire,
+            analysis,
         };
+        let sizes = resolved.run_sizes();
         check_budget(
-            &resolved.memory_estimate(),
-            steps,
-            record_every,
-            elements,
-            resolved.carriers.len(),
-            resolved.probes.len(),
+            &memory::estimate(&sizes),
+            &sizes,
+            if self.generated.droppers > 0 {
+                DropperSource::Line
+            } else {
+                DropperSource::Tables
+            },
         )?;
         Ok(resolved)
     }

@@ -11,7 +11,7 @@ use crate::scene::{
 /// The reference the scene declares, its assumptions checked (MODEL §8;
 /// `docs/scene.md`, `[reference]`): a declaration that does not fit the
 /// scene is refused naming `reference.kind` and the key that breaks it.
-pub fn declared_reference(
+pub(crate) fn declared_reference(
     scene: &Scene,
     beam: &BeamProps,
     carriers: &[CarrierProps],

@@ -8,7 +8,7 @@ use crate::manufactured::Manufactured;
 use crate::model::mesh::Mesh;
 use crate::scene::{
     BeamProps, CarrierKind, CarrierProps, ContactSpec, Declared, Discretization, Dropper,
-    ForceSeries, Grading, IntegratorSpec, MeshPlan, Rayleigh, Scene, Scheme, fe_unknowns,
+    ForceSeries, Grading, MeshPlan, Rayleigh, ResolvedMethod, Scene, fe_unknowns,
 };
 
 /// A validated scene: physical parameters ready to build a model from.
@@ -37,10 +37,9 @@ pub struct Resolved {
     pub grading: Grading,
     /// Contact settings.
     pub contact: ContactSpec,
-    /// `[integrator]` as given.
-    pub integrator: IntegratorSpec,
-    /// The time integrator with its parameters resolved (MODEL §9.1).
-    pub scheme: Scheme,
+    /// The time integrator, found by name once and its parameters typed
+    /// (MODEL §9.1; `[integrator]` as given is `scene.integrator`).
+    pub method: ResolvedMethod,
     /// Gravity on carrier masses, m/s².
     pub g: f64,
     /// Time step Δt, s.
@@ -58,6 +57,9 @@ pub struct Resolved {
     /// The wire's snapshots and space–time field to record
     /// (`[output] snapshots`, `field`; empty: none).
     pub wire: super::wire::WirePlan,
+    /// The filtered force's band and the analysis section of the
+    /// standards' statistics (`[analysis]`).
+    pub analysis: super::analysis::AnalysisPlan,
     /// The manufactured solution of a scene with `[manufactured]` (MODEL §11).
     pub manufactured: Option<Manufactured>,
     /// The reference the scene declares (`[reference]`, or the manufactured
@@ -130,45 +132,85 @@ impl Resolved {
         fe_unknowns(&self.beam, self.elements)
     }
 
-    /// The memory the run is estimated to need (history, model, a modal
-    /// basis's eigenproblem) and the size of its `history.csv`: what
-    /// validation checks against the budgets and what a run reserves from
-    /// the process's budget while it runs ([`crate::budget`]).
-    pub fn memory_estimate(&self) -> memory::MemoryEstimate {
-        let (per_node, half_band) = if self.beam.is_string() {
-            (1, 1)
-        } else {
-            (2, 3)
+    /// The sizes the run's memory grows with ([`memory::RunSizes`]): read
+    /// off every key that sizes an allocation of the run, its records or
+    /// its outputs.
+    pub(crate) fn run_sizes(&self) -> memory::RunSizes {
+        let messenger = self.beam.messenger.is_some();
+        let half_band = match (self.beam.is_string(), messenger) {
+            (true, false) => 1,
+            (false, false) => 3,
+            // both lines' unknowns interleaved node by node
+            (true, true) => 3,
+            (false, true) => 7,
         };
         let masses = self
             .carriers
             .iter()
-            .filter(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
-            .count();
-        let mut need = memory::estimate(
-            self.steps,
-            self.record_every,
-            self.elements,
-            per_node,
+            .map(|c| match (&c.chain, &c.kind) {
+                (Some(chain), _) => chain.n,
+                (None, CarrierKind::MassSpring { .. }) => 1,
+                (None, CarrierKind::Force { .. }) => 0,
+            })
+            .sum();
+        let source_vectors = self.scene.manufactured.as_ref().map_or(0, |m| {
+            let terms = m.terms.len() + m.messenger.as_ref().map_or(0, |mm| mm.terms.len());
+            // two load vectors a term (three with a dashpot), each over
+            // both lines' unknowns
+            3 * terms
+        });
+        let table_values = self
+            .carriers
+            .iter()
+            .map(|c| match &c.motion.profile {
+                crate::scene::SpeedProfile::Table { time, .. } => 3 * time.len(),
+                _ => 0,
+            })
+            .sum::<usize>()
+            + self
+                .external_forces
+                .iter()
+                .flatten()
+                .map(|f| 2 * f.len())
+                .sum::<usize>();
+        let w = &self.wire;
+        memory::RunSizes {
+            steps: self.steps,
+            every: self.record_every,
+            elements: self.elements,
+            fe_unknowns: fe_unknowns(&self.beam, self.elements),
             half_band,
-            self.carriers.len(),
             masses,
-            self.probes.len(),
-        );
-        // snapshots and field: their values and one point vector a point
-        // (counted with the output buffers: they are recorded outputs)
-        need.outputs = need.outputs.saturating_add(memory::wire_bytes(
-            self.wire.values(self.steps),
-            self.wire.points(),
-            self.discretization.modes().unwrap_or(0) as u64,
-        ));
-        if let Discretization::Modal { modes } = self.discretization {
-            need.model = need.model.saturating_add(memory::modal_bytes(
-                fe_unknowns(&self.beam, self.elements),
-                modes,
-            ));
+            carriers: self.carriers.len(),
+            probes: self.probes.len(),
+            droppers: self.droppers.len(),
+            tension_droppers: self.droppers.iter().filter(|d| !d.linear).count(),
+            attachments: self.beam.attachments.len(),
+            clarabel: self.contact.formulation == crate::scene::Formulation::Complementarity
+                && self.contact.complementarity.solver
+                    == crate::scene::ComplementaritySolver::Clarabel,
+            modal_modes: match self.discretization {
+                Discretization::Modal { modes } => Some(modes),
+                _ => None,
+            },
+            dense_weights: self.discretization.modes().unwrap_or(0),
+            snapshots: w.snapshots.len(),
+            snapshot_points: w.snapshot_x.len(),
+            field_rows: w.field_rows(self.steps),
+            field_points: w.field_x.len(),
+            envelope_points: w.envelope_x.len(),
+            supports: w.supports.len(),
+            source_vectors,
+            table_values,
         }
-        need
+    }
+
+    /// The memory the run is estimated to need and the size of the files
+    /// it writes ([`memory::estimate`] of `Resolved::run_sizes`): what
+    /// validation checks against the budgets and what a run reserves from
+    /// the process's budget while it runs (`crate::budget`).
+    pub fn memory_estimate(&self) -> memory::MemoryEstimate {
+        memory::estimate(&self.run_sizes())
     }
 
     /// Rows the run's history will hold.

@@ -14,7 +14,7 @@ use crate::scene::{Discretization, Grading, OutputSpec};
 
 /// Most points of a snapshot or of the field: far more than any mesh
 /// resolves; the memory estimate bounds their product with the rows.
-pub const MAX_POINTS: u64 = 1_000_000;
+pub(crate) const MAX_POINTS: u64 = 1_000_000;
 
 /// What a run records of the wire beyond its history.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -64,7 +64,7 @@ impl WirePlan {
 }
 
 /// The run's mesh as the discretization sees it.
-pub struct Grid {
+pub(crate) struct Grid {
     /// Span L, m.
     pub length: f64,
     /// `mesh.elements`.
@@ -83,7 +83,7 @@ pub struct Grid {
 
 /// The mesh nodes, m: the FE mesh's, or for `galerkin` (no mesh) those of
 /// the uniform mesh of `mesh.elements` elements.
-pub fn nodes(g: &Grid) -> Result<Vec<f64>> {
+pub(crate) fn nodes(g: &Grid) -> Result<Vec<f64>> {
     let mesh = match g.discretization {
         Discretization::Galerkin { .. } => Mesh::uniform(g.length, g.elements),
         _ => Mesh::new(g.length, g.elements, g.grading)?,
@@ -117,7 +117,7 @@ fn points(field: &str, n: Option<u64>, g: &Grid) -> Result<Vec<f64>> {
 }
 
 /// Check and resolve `[output]`'s wire keys.
-pub fn resolve_wire(o: &OutputSpec, g: &Grid) -> Result<WirePlan> {
+pub(crate) fn resolve_wire(o: &OutputSpec, g: &Grid) -> Result<WirePlan> {
     let mut plan = WirePlan::default();
     for (i, &t) in o.snapshots.iter().enumerate() {
         if !(t.is_finite() && (0.0..=g.t_end).contains(&t)) {
@@ -161,7 +161,7 @@ pub fn resolve_wire(o: &OutputSpec, g: &Grid) -> Result<WirePlan> {
 
 /// Check `[output] supports` on a span of `length` m: each finite in
 /// [0, L], strictly increasing.
-pub fn resolve_supports(supports: &[f64], length: f64) -> Result<Vec<f64>> {
+pub(crate) fn resolve_supports(supports: &[f64], length: f64) -> Result<Vec<f64>> {
     for (i, &x) in supports.iter().enumerate() {
         let field = format!("output.supports.{i}");
         if !(x.is_finite() && (0.0..=length).contains(&x)) {

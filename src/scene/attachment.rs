@@ -12,7 +12,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::validate::non_negative;
+use super::range::non_negative;
 use crate::error::{Error, Result};
 
 /// `[[attachment]]` as written in the scene.
@@ -54,7 +54,7 @@ pub struct Attachment {
 
 /// Check each `[[attachment]]` on a beam of span `l`, m: x in [0, L],
 /// stiffness, mass and damping finite and ≥ 0, at least one of them > 0.
-pub fn resolve_attachments(specs: &[AttachmentSpec], l: f64) -> Result<Vec<Attachment>> {
+pub(crate) fn resolve_attachments(specs: &[AttachmentSpec], l: f64) -> Result<Vec<Attachment>> {
     let mut out = Vec::with_capacity(specs.len());
     for (i, a) in specs.iter().enumerate() {
         if !(0.0..=l).contains(&a.x) {

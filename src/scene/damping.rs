@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::validate::non_negative;
+use super::range::non_negative;
 use crate::error::Result;
 
 /// `[beam] damping = { mass = α, stiffness = β }` as written in the scene.
@@ -47,7 +47,7 @@ impl Rayleigh {
 }
 
 /// Check `[beam] damping`: α and β finite and ≥ 0. Absent is no damping.
-pub fn resolve_rayleigh(spec: Option<&RayleighSpec>) -> Result<Rayleigh> {
+pub(crate) fn resolve_rayleigh(spec: Option<&RayleighSpec>) -> Result<Rayleigh> {
     let Some(s) = spec else {
         return Ok(Rayleigh::default());
     };

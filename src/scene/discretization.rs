@@ -3,18 +3,20 @@
 //! `[mesh]` is checked against the beam and the model's bounds by the
 //! resolve layer (`crate::resolve::mesh`).
 
-use super::{BeamProps, MeshKind, Support};
+use super::beam::Support;
+use super::mesh::MeshKind;
+use super::props::BeamProps;
 
 /// Size ratio h_max/h_min of a graded mesh when `grading_ratio` is not
 /// given: elements at the graded end a quarter of the longest, a mild
 /// grading that keeps the time step a uniform mesh of the same N needs
 /// within a factor of about 2 for the implicit methods' accuracy.
-pub const DEFAULT_GRADING_RATIO: f64 = 4.0;
+pub(crate) const DEFAULT_GRADING_RATIO: f64 = 4.0;
 
 /// Largest size ratio h_max/h_min accepted: beyond this the smallest
 /// elements are so short that the time step would have to follow them
 /// (and the mass matrix's conditioning, ∝ ratio⁴ for Hermite, degrades).
-pub const MAX_GRADING_RATIO: f64 = 1000.0;
+pub(crate) const MAX_GRADING_RATIO: f64 = 1000.0;
 
 /// Where a mesh is graded toward (MODEL §9.2), with its size ratio
 /// R = h_max/h_min (≥ 1).
@@ -144,7 +146,7 @@ pub struct MeshPlan {
 /// The FE unknowns of `elements` elements on `beam` (supported dofs
 /// removed): the contact wire's, and a messenger's (one element family,
 /// each pinned support on a node removing its w, `docs/lines.md` W1).
-pub fn fe_unknowns(beam: &BeamProps, elements: usize) -> usize {
+pub(crate) fn fe_unknowns(beam: &BeamProps, elements: usize) -> usize {
     let per_node = if beam.is_string() { 1 } else { 2 };
     let removed = |s: Support| match s {
         Support::Clamped => per_node,

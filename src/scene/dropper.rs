@@ -24,7 +24,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::validate::{non_negative, positive};
+use super::range::{non_negative, positive};
 use crate::error::{Error, Result};
 
 /// `[[dropper]]` as written in the scene.
@@ -138,7 +138,7 @@ impl Dropper {
 /// stiffness > 0, exactly one of `anchor_height` (finite) and `anchor =
 /// "messenger"` (with a `[messenger]`, whose rest height is `messenger`),
 /// length ≥ 0, damping finite and ≥ 0, names valid and distinct.
-pub fn resolve_droppers(
+pub(crate) fn resolve_droppers(
     specs: &[DropperSpec],
     l: f64,
     messenger: Option<f64>,

@@ -17,12 +17,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{CarrierKind, CarrierProps};
 use crate::error::{Error, Result};
 
 /// Most points a series may have: a dense 10⁶-point record is ample, and a
 /// bound keeps a mistyped scene from asking for gigabytes.
-pub const MAX_SERIES_POINTS: usize = 1_000_000;
+pub(crate) const MAX_SERIES_POINTS: usize = 1_000_000;
 
 /// `external_force = { time = [...], force = [...] }` as written.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -42,6 +41,16 @@ pub struct ForceSeries {
 }
 
 impl ForceSeries {
+    /// Samples of the series.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// True for a series without samples (never, once checked).
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty()
+    }
+
     /// Check carrier `i`'s series `spec` against a run of end time
     /// `t_end`, s: equal lengths (≥ 2), finite values, strictly increasing
     /// times covering `[0, t_end]`.
@@ -64,21 +73,21 @@ impl ForceSeries {
         }
         if let Some((k, x)) = t.iter().enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::invalid(
-                format!("{}[{k}]", f("time")),
+                format!("{}.{k}", f("time")),
                 x,
                 "must be a finite number (s)",
             ));
         }
         if let Some((k, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
             return Err(Error::invalid(
-                format!("{}[{k}]", f("force")),
+                format!("{}.{k}", f("force")),
                 x,
                 "must be a finite number (N)",
             ));
         }
         if let Some(k) = (1..t.len()).find(|&k| t[k] <= t[k - 1]) {
             return Err(Error::invalid(
-                format!("{}[{k}]", f("time")),
+                format!("{}.{k}", f("time")),
                 t[k],
                 format!(
                     "must be > the time before it ({} s): strictly increasing",
@@ -88,7 +97,7 @@ impl ForceSeries {
         }
         if t[0] > 0.0 {
             return Err(Error::invalid(
-                format!("{}[0]", f("time")),
+                format!("{}.0", f("time")),
                 t[0],
                 "must be ≤ 0 s: the series must cover the run from its start",
             ));
@@ -96,7 +105,7 @@ impl ForceSeries {
         let last = t[t.len() - 1];
         if last < t_end {
             return Err(Error::invalid(
-                format!("{}[{}]", f("time"), t.len() - 1),
+                format!("{}.{}", f("time"), t.len() - 1),
                 last,
                 format!("must be ≥ the run's end time {t_end} s: the series must cover the run"),
             ));
@@ -123,43 +132,6 @@ impl ForceSeries {
         let (t0, t1) = (ts[k - 1], ts[k]);
         let r = (t - t0) / (t1 - t0);
         fs[k - 1] + r * (fs[k] - fs[k - 1])
-    }
-}
-
-impl super::Scene {
-    /// Each carrier's external force series (scene order; `None`: none),
-    /// checked against the resolved `carriers` (mass–spring only) and the
-    /// run's end time `t_end`, s.
-    pub fn resolve_external_forces(
-        &self,
-        carriers: &[CarrierProps],
-        t_end: f64,
-    ) -> Result<Vec<Option<ForceSeries>>> {
-        self.carriers
-            .iter()
-            .zip(carriers)
-            .enumerate()
-            .map(|(i, (c, p))| {
-                let Some(spec) = &c.external_force else {
-                    return Ok(None);
-                };
-                if let CarrierKind::Force { force } = p.kind {
-                    return Err(Error::invalid(
-                        format!("carrier.{i}.external_force"),
-                        format!("a series on a moving force (force = {force} N)"),
-                        "is for mass–spring carriers only: a moving force has no mass to act on; vary its `force` instead",
-                    ));
-                }
-                if p.chain.is_some() {
-                    return Err(Error::invalid(
-                        format!("carrier.{i}.external_force"),
-                        "a series on a multi-mass pantograph (carrier.masses)",
-                        "is for single mass–spring carriers only: a pantograph chain's masses are stepped by its own scheme (chain.rs), which does not read the series yet; change `uplift` instead",
-                    ));
-                }
-                ForceSeries::new(i, spec, t_end).map(Some)
-            })
-            .collect()
     }
 }
 
@@ -204,14 +176,14 @@ mod tests {
         );
         let m = e(&[0.0, 0.0, 1.0], &[1.0, 1.0, 1.0], 1.0);
         assert!(
-            m.contains("time[1]") && m.contains("strictly increasing"),
+            m.contains("time.1") && m.contains("strictly increasing"),
             "{m}"
         );
         let m = e(&[0.1, 1.0], &[1.0, 1.0], 1.0);
-        assert!(m.contains("time[0]") && m.contains("cover"), "{m}");
+        assert!(m.contains("time.0") && m.contains("cover"), "{m}");
         let m = e(&[0.0, 0.5], &[1.0, 1.0], 1.0);
-        assert!(m.contains("time[1]") && m.contains("end time 1"), "{m}");
+        assert!(m.contains("time.1") && m.contains("end time 1"), "{m}");
         let m = e(&[0.0, 1.0], &[1.0, f64::NAN], 1.0);
-        assert!(m.contains("force[1]") && m.contains("finite"), "{m}");
+        assert!(m.contains("force.1") && m.contains("finite"), "{m}");
     }
 }

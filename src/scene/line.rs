@@ -22,15 +22,16 @@
 use serde::Deserialize;
 use toml::{Table, Value};
 
+use super::generated::Generated;
 use super::line_design::{PointSpring, StringLoad, dropper_forces, messenger_sag, presag_profile};
 use super::validate::MAX_ELEMENTS;
 use crate::error::{Error, Result, one_line};
 
 /// Most spans a line may have (a 1000-span line is 50 km: beyond any run).
-pub const MAX_SPANS: usize = 1000;
+pub(crate) const MAX_SPANS: usize = 1000;
 
 /// Most droppers a span may have.
-pub const MAX_DROPPERS_PER_SPAN: usize = 100;
+pub(crate) const MAX_DROPPERS_PER_SPAN: usize = 100;
 
 /// How far (relative, in elements) a dropper may be from a node and still
 /// count as on it: the round-off of x·N/L for positions written in decimal
@@ -121,7 +122,7 @@ struct EvenDroppers {
 
 /// One generated dropper (SI units), for the document and the tests.
 #[derive(Debug, Clone, PartialEq)]
-pub struct DesignedDropper {
+pub(crate) struct DesignedDropper {
     /// Label `s<span>d<k>` (1-based).
     pub name: String,
     /// x_d, m.
@@ -138,11 +139,19 @@ pub struct DesignedDropper {
 
 /// Expand `[line]` into plain scene keys (see the module doc); a tree
 /// without `line` is returned as it is.
-pub fn expand_line(mut tree: Table) -> Result<Table> {
+pub(crate) fn expand_line(tree: Table) -> Result<Table> {
+    expand_line_with_origin(tree).map(|(t, _)| t)
+}
+
+/// [`expand_line`], with what it generated: the keys an error names by
+/// their path in the expanded scene are told apart from the ones a user
+/// wrote ([`Generated::user_path`]).
+pub(crate) fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generated)> {
     let Some(line) = tree.remove("line") else {
-        return Ok(tree);
+        return Ok((tree, Generated::default()));
     };
-    let spec: LineSpec = serde_path_to_error::deserialize(line).map_err(|e| {
+    let given_elements = tree.get("mesh").and_then(|m| m.get("elements")).is_some();
+    let spec: LineSpec = super::tables::from_value(line).map_err(|e| {
         let path = e.path().to_string().replace('[', ".").replace(']', "");
         let inner = e.into_inner().to_string();
         let inner = inner.split("\nin `").next().unwrap_or(&inner).trim_end();
@@ -159,7 +168,18 @@ pub fn expand_line(mut tree: Table) -> Result<Table> {
     let line = Line::check(&spec)?;
     let design = line.design(&tree)?;
     line.write(&spec, &design, &mut tree)?;
-    Ok(tree)
+    let generated = Generated {
+        line: true,
+        droppers: design.len(),
+        attachments: if spec.steady_arm.is_some() {
+            line.interior_supports().count()
+        } else {
+            0
+        },
+        messenger: line.anchor == LineAnchor::Messenger,
+        elements: !given_elements,
+    };
+    Ok((tree, generated))
 }
 
 /// The checked keys.
@@ -230,8 +250,7 @@ impl Line {
             ));
         }
         let k_d = positive("line.dropper_stiffness", s.dropper_stiffness, "N/m")?;
-        let c_d =
-            super::validate::non_negative("line.dropper_damping", s.dropper_damping, "N·s/m")?;
+        let c_d = super::range::non_negative("line.dropper_damping", s.dropper_damping, "N·s/m")?;
         let h = positive("line.element_length", s.element_length, "m")?;
         if h > span {
             return Err(Error::invalid(
@@ -639,12 +658,10 @@ fn dropper_positions(v: &Value, span: f64) -> Result<Vec<f64>> {
         }
         Value::Table(_) => {
             let even: EvenDroppers =
-                v.clone()
-                    .try_into()
-                    .map_err(|e: toml::de::Error| Error::Parse {
-                        reason: one_line(&format!("at `line.droppers`: {}", e.message())),
-                        field: Some("line.droppers".into()),
-                    })?;
+                super::tables::from_value(v.clone()).map_err(|e| Error::Parse {
+                    reason: one_line(&format!("at `line.droppers`: {}", e.inner().message())),
+                    field: Some("line.droppers".into()),
+                })?;
             match even.count {
                 n if n == 0 || n > MAX_DROPPERS_PER_SPAN => {
                     // refused before any list is built: a huge count must
@@ -734,7 +751,8 @@ fn take_array(tree: &mut Table, key: &str) -> Result<Vec<Value>> {
 
 /// The line's designed droppers (for tests and the docs' figures): the
 /// expansion's design without writing the document.
-pub fn designed_droppers(tree: &Table) -> Result<Vec<DesignedDropper>> {
+#[cfg(test)]
+pub(crate) fn designed_droppers(tree: &Table) -> Result<Vec<DesignedDropper>> {
     let Some(line) = tree.get("line") else {
         return Ok(Vec::new());
     };
@@ -747,7 +765,7 @@ pub fn designed_droppers(tree: &Table) -> Result<Vec<DesignedDropper>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{parse_scene, scene_from_tree};
+    use crate::scene::load::{apply_override, parse_scene, scene_from_tree};
 
     /// The hand-computed figures below are sums of a few exact decimal
     /// terms: they and the code agree to round-off.
@@ -795,7 +813,7 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
     fn tree(overrides: &[&str]) -> Table {
         let mut t = parse_scene(TWO_SPANS).unwrap();
         for o in overrides {
-            crate::scene::apply_override(&mut t, o).unwrap();
+            apply_override(&mut t, o).unwrap();
         }
         t
     }
@@ -940,10 +958,11 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
             assert_eq!(again, expanded, "{o:?}");
             if o.is_empty() {
                 // no [line] left: the text's scene is the line's scene
-                assert_eq!(
-                    scene_from_tree(again).unwrap(),
-                    scene_from_tree(tree(o)).unwrap()
-                );
+                // (but for the record of what the line generated)
+                let mut line = scene_from_tree(tree(o)).unwrap();
+                assert!(line.generated.line && line.generated.droppers > 0);
+                line.generated = Generated::default();
+                assert_eq!(scene_from_tree(again).unwrap(), line);
             }
         }
     }

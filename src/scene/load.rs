@@ -8,7 +8,7 @@ use std::path::Path;
 
 use toml::{Table, Value};
 
-use super::Scene;
+use super::scene_file::Scene;
 use crate::error::{Error, Result, one_line};
 
 /// The top-level tables of a scene ([`Scene`]'s fields, as spelled in a
@@ -34,7 +34,7 @@ pub const SCENE_TABLES: [&str; 11] = [
 /// crate's own message quotes the offending line, and the file may not be a
 /// scene at all (`taut run /etc/passwd`, a gate case naming any file): its
 /// content must never be reproduced in a message, a log or a JUnit report.
-pub fn parse_scene(text: &str) -> Result<Table> {
+pub(crate) fn parse_scene(text: &str) -> Result<Table> {
     text.parse::<Table>().map_err(|e| {
         let reason = one_line(e.message().lines().next().unwrap_or("").trim());
         Error::parse(match e.span() {
@@ -63,7 +63,7 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
 /// Refuse a TOML tree none of whose top-level keys is a scene table: it is
 /// some other file, and naming its keys (as "unknown field" would) would
 /// reproduce its content.
-pub fn check_is_scene(tree: &Table) -> Result<()> {
+pub(crate) fn check_is_scene(tree: &Table) -> Result<()> {
     if tree.keys().any(|k| SCENE_TABLES.contains(&k.as_str())) {
         return Ok(());
     }
@@ -86,7 +86,7 @@ pub fn check_is_scene(tree: &Table) -> Result<()> {
 /// removes the key (a table's key, or an array's entry by index) instead,
 /// so that the scene's default applies; a key that is not there is refused
 /// (a misspelt key would otherwise remove nothing, silently).
-pub fn apply_override(tree: &mut Table, spec: &str) -> Result<()> {
+pub(crate) fn apply_override(tree: &mut Table, spec: &str) -> Result<()> {
     let bad = |reason: String| Error::Override {
         spec: one_line(spec),
         reason: one_line(&reason),
@@ -168,7 +168,7 @@ fn remove_in_value(v: &mut Value, segs: &[&str]) -> bool {
 /// axis's grid value or a value a study derives, with the walk and the
 /// errors of [`apply_override`] and no text made of the value. `spec`
 /// spells the change as a `--set` would, for an error only.
-pub fn set_typed(
+pub(crate) fn set_typed(
     tree: &mut Table,
     path: &str,
     value: Value,
@@ -269,9 +269,10 @@ fn parse_value(raw: &str) -> Value {
 /// A `[line]` table is expanded into the plain keys it stands for first
 /// ([`super::expand_line`]): here, after every override, so that `--set
 /// line.spans=12` and sweeps over `line.*` regenerate the line.
-pub fn scene_from_tree(tree: Table) -> Result<Scene> {
-    let value = Value::Table(super::expand_line(tree)?);
-    serde_path_to_error::deserialize(value).map_err(|e| {
+pub(crate) fn scene_from_tree(tree: Table) -> Result<Scene> {
+    let (tree, generated) = super::expand_line_with_origin(tree)?;
+    let value = Value::Table(tree);
+    let scene: Result<Scene> = super::tables::from_value(value).map_err(|e| {
         let path = e.path().to_string().replace('[', ".").replace(']', "");
         let inner = e.into_inner().to_string();
         let inner = inner.split("\nin `").next().unwrap_or(&inner).trim_end();
@@ -283,12 +284,15 @@ pub fn scene_from_tree(tree: Table) -> Result<Scene> {
                 field: Some(one_line(&path)),
             }
         }
-    })
+    });
+    let mut scene = scene.map_err(|e| generated.user_error(e))?;
+    scene.generated = generated;
+    Ok(scene)
 }
 
 /// Parse scene text, apply overrides in order and deserialize, without
 /// validating (a study applies its typed changes, then validates once).
-pub fn scene_with_overrides(text: &str, overrides: &[String]) -> Result<Scene> {
+pub(crate) fn scene_with_overrides(text: &str, overrides: &[String]) -> Result<Scene> {
     let mut tree = parse_scene(text)?;
     check_is_scene(&tree)?;
     for spec in overrides {
@@ -300,7 +304,7 @@ pub fn scene_with_overrides(text: &str, overrides: &[String]) -> Result<Scene> {
 /// A scene file's text (an unreadable file is an I/O error naming it; one
 /// larger than [`crate::input::MAX_INPUT_BYTES`], or not UTF-8 text, is
 /// refused as soon as that shows).
-pub fn read_scene(path: &Path) -> Result<String> {
+pub(crate) fn read_scene(path: &Path) -> Result<String> {
     let text = crate::input::read_text(path, "a scene file", crate::input::MAX_INPUT_BYTES)?;
     let base = path.parent().unwrap_or(Path::new("."));
     with_table_files(text, base).map_err(|e| in_file(e, path))
@@ -310,7 +314,7 @@ pub fn read_scene(path: &Path) -> Result<String> {
 /// ([`super::table_files`]; paths relative to `base`): the same text when
 /// it has no `file` key (or does not parse: its parse error is reported
 /// where it is deserialized, by line and column, as before).
-pub fn with_table_files(text: String, base: &Path) -> Result<String> {
+pub(crate) fn with_table_files(text: String, base: &Path) -> Result<String> {
     if !text.contains("file") {
         return Ok(text);
     }
@@ -331,7 +335,7 @@ pub fn with_table_files(text: String, base: &Path) -> Result<String> {
 
 /// Name the scene file in a parse error of its text (made by a function
 /// that was given the text only: a study, a sweep); other errors as they are.
-pub fn in_file(e: Error, path: &Path) -> Error {
+pub(crate) fn in_file(e: Error, path: &Path) -> Error {
     match e {
         Error::Parse { reason, field } => Error::Parse {
             reason: format!("{}: {reason}", path.display()),

@@ -2,7 +2,7 @@
 //! its own reference (MODEL §8, §11), with the range checks that need
 //! nothing but the table itself. What the data mean, and the checks that
 //! need the beam and the carriers (supports met, a unilateral contact kept
-//! closed), are in [`crate::manufactured`].
+//! closed), are in `crate::manufactured`.
 //!
 //! ```toml
 //! [[manufactured.term]]            # v*(x, t) = Σ amplitude · X(x) · T̂(t)
@@ -22,25 +22,25 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 
 /// Most terms in v* (each adds two load vectors to a step's work).
-pub const MAX_TERMS: usize = 8;
+pub(crate) const MAX_TERMS: usize = 8;
 
 /// Most coefficients of a polynomial factor (degree 8).
-pub const MAX_COEFFICIENTS: usize = 9;
+pub(crate) const MAX_COEFFICIENTS: usize = 9;
 
 /// Largest |half_waves| of an x-sine: 100 half-waves need ≳ 400 Hermite
 /// elements to resolve; more is no longer a smooth test function.
-pub const MAX_HALF_WAVES: f64 = 100.0;
+pub(crate) const MAX_HALF_WAVES: f64 = 100.0;
 
 /// Largest |rate| of an x-exponential e^{rate·ξ}: e^{±30} spans 26 decades,
 /// beyond which the source is round-off at one end.
-pub const MAX_X_RATE: f64 = 30.0;
+pub(crate) const MAX_X_RATE: f64 = 30.0;
 
 /// Largest |rate|·t_end of a t-exponential (same reason as [`MAX_X_RATE`]).
-pub const MAX_T_EXPONENT: f64 = 30.0;
+pub(crate) const MAX_T_EXPONENT: f64 = 30.0;
 
 /// Largest frequency of a t-sine, Hz: a smooth test motion is resolved by
 /// any step a run takes (ten steps a period at Δt = 1e-5 s).
-pub const MAX_FREQUENCY: f64 = 1e4;
+pub(crate) const MAX_FREQUENCY: f64 = 1e4;
 
 /// `[manufactured]`: a manufactured beam motion (MODEL §11).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -266,6 +266,13 @@ fn check_terms(terms: &[TermSpec], prefix: &str, t_end: f64) -> Result<()> {
                         MAX_HALF_WAVES,
                         "half-waves over L",
                     )?;
+                    if *half_waves == 0.0 {
+                        return Err(Error::invalid(
+                            g("half_waves"),
+                            0,
+                            "makes sin(0·πξ + φ) = sin φ a constant, which the supports' correction removes (or 0): must be ≠ 0 (half-waves over L, |n| ≤ 100)",
+                        ));
+                    }
                     finite(&g("phase"), *phase, "rad")?;
                 }
                 XFactor::Exponential { rate } => {

@@ -19,7 +19,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::validate::positive;
+use super::range::positive;
 use crate::error::{Error, Result};
 
 /// `[messenger]` as written in the scene.

@@ -1,6 +1,6 @@
 //! Carrier kinematics x_m(t), V(t) (MODEL §3).
 
-use super::SpeedProfile;
+use super::speed::SpeedProfile;
 use std::f64::consts::PI;
 
 /// How a carrier moves along the beam.

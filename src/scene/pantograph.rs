@@ -10,12 +10,13 @@
 //! `uplift = F₀` (N, default 0). They replace `mass`, `stiffness`,
 //! `damping`, `preload` (and `force`): a scene gives one kind or the other.
 
+use super::carrier::CarrierSpec;
 use crate::error::{Error, Result};
 
 /// Most masses a chain may have.
-pub const MAX_CHAIN: usize = 3;
+pub(crate) const MAX_CHAIN: usize = 3;
 
-/// A resolved chain (`n` of the [`MAX_CHAIN`] slots used; the rest 0).
+/// A resolved chain (`n` of the `MAX_CHAIN` slots used; the rest 0).
 /// Plain numbers, `Copy` like the carrier it belongs to.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ChainProps {
@@ -57,7 +58,7 @@ impl ChainProps {
 /// any: `None` when `masses` is absent (and no other chain key is given).
 /// The single-mass keys (`mass`, `stiffness`, `damping`, `preload`) and
 /// `force` are refused alongside, naming both fields.
-pub(crate) fn resolve_chain(i: usize, c: &super::CarrierSpec) -> Result<Option<ChainProps>> {
+pub(crate) fn resolve_chain(i: usize, c: &CarrierSpec) -> Result<Option<ChainProps>> {
     let f = |name: &str| format!("carrier.{i}.{name}");
     let Some(masses) = &c.masses else {
         for (name, given) in [
@@ -128,7 +129,7 @@ pub(crate) fn resolve_chain(i: usize, c: &super::CarrierSpec) -> Result<Option<C
         let (m, k, c_j) = (masses[j], stiffnesses[j], dampings[j]);
         if !(m.is_finite() && m > 0.0) {
             return Err(Error::invalid(
-                f(&format!("masses[{j}]")),
+                f(&format!("masses.{j}")),
                 m,
                 "must be a finite number > 0 (kg)",
             ));
@@ -142,14 +143,14 @@ pub(crate) fn resolve_chain(i: usize, c: &super::CarrierSpec) -> Result<Option<C
                 "must be a finite number ≥ 0 (N/m): the frame's spring to the roof"
             };
             return Err(Error::invalid(
-                f(&format!("stiffnesses[{j}]")),
+                f(&format!("stiffnesses.{j}")),
                 k,
                 allowed.replace("{j}", &(j + 1).to_string()),
             ));
         }
         if !(c_j.is_finite() && c_j >= 0.0) {
             return Err(Error::invalid(
-                f(&format!("dampings[{j}]")),
+                f(&format!("dampings.{j}")),
                 c_j,
                 "must be a finite number ≥ 0 (N·s/m)",
             ));
@@ -168,33 +169,4 @@ pub(crate) fn resolve_chain(i: usize, c: &super::CarrierSpec) -> Result<Option<C
     }
     p.uplift = uplift;
     Ok(Some(p))
-}
-
-/// Refuse a multi-mass carrier where a scene's machinery assumes one mass
-/// per carrier: a `[manufactured]` solution (its mass source is one
-/// equation per carrier, MODEL §11) and a `[reference]` (each analytic
-/// reference is of a single-mass carrier or force). Nothing else reads the
-/// chain beyond the integrators.
-pub(crate) fn check_chain_scene(
-    scene: &super::Scene,
-    carriers: &[super::CarrierProps],
-) -> Result<()> {
-    let Some(i) = carriers.iter().position(|c| c.chain.is_some()) else {
-        return Ok(());
-    };
-    let what = if scene.manufactured.is_some() {
-        "manufactured"
-    } else if scene.reference.is_some() {
-        "reference"
-    } else {
-        return Ok(());
-    };
-    Err(Error::invalid(
-        format!("carrier.{i}.masses"),
-        "given",
-        format!(
-            "a multi-mass carrier cannot be used with [{what}] (its solutions are of \
-             single-mass carriers): give `mass`, or remove [{what}]"
-        ),
-    ))
 }

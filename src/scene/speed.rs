@@ -8,13 +8,15 @@ use serde::{Deserialize, Serialize};
 pub enum SpeedProfile {
     /// Constant speed V, m/s (≥ 0; 0 = a stationary carrier).
     Constant {
-        /// V, m/s.
+        /// V, m/s (or text with its unit, `"250 km/h"`).
+        #[serde(deserialize_with = "super::analysis::speed_unit::value")]
         value: f64,
     },
     /// The study's smooth start: V0 reached after a ramp of length L/5
     /// with continuous acceleration (MODEL §3).
     SmoothRamp {
-        /// Cruise speed V0, m/s (> 0).
+        /// Cruise speed V0, m/s (> 0; or text with its unit, `"250 km/h"`).
+        #[serde(deserialize_with = "super::analysis::speed_unit::cruise")]
         cruise: f64,
     },
     /// A tabulated speed V(t), piecewise linear between the knots (so the
@@ -25,7 +27,8 @@ pub enum SpeedProfile {
     Table {
         /// Knot times t_k, s.
         time: Vec<f64>,
-        /// V(t_k), m/s.
+        /// V(t_k), m/s (each may be text with its unit, `"250 km/h"`).
+        #[serde(deserialize_with = "super::analysis::speed_unit::list")]
         speed: Vec<f64>,
     },
 }

@@ -4,16 +4,24 @@
 //! the memory plan are the resolve layer's (`crate::resolve`), which calls
 //! these in order.
 
-use super::{EndTime, Scene, Side, SpeedProfile, Support};
+use super::beam::Support;
+use super::carrier::CarrierSpec;
+use super::contact::ContactSpec;
+use super::scene_file::Scene;
+use super::speed::SpeedProfile;
+use super::time::EndTime;
 use std::collections::HashMap;
 
-use super::Motion;
-use super::{Attachment, Messenger, resolve_attachments};
+use super::attachment::resolve_attachments;
+use super::external_force::ForceSeries;
+use super::motion::Motion;
+use super::props::{BeamProps, CarrierKind, CarrierProps, TimeProps};
+use super::range::{non_negative, positive};
 use crate::error::{Error, Result};
 
 /// Largest mesh accepted: beyond this the run would not fit a sane budget
 /// (10⁶ elements is 2·10⁶ unknowns; banded storage ≈ 0.2 GB).
-pub const MAX_ELEMENTS: usize = 1_000_000;
+pub(crate) const MAX_ELEMENTS: usize = 1_000_000;
 
 /// Largest number of steps accepted (10⁹ steps would take hours even at N = 4).
 pub const MAX_STEPS: usize = 1_000_000_000;
@@ -23,131 +31,10 @@ pub const MAX_STEPS: usize = 1_000_000_000;
 /// of the division (0.15 / 1e-4 = 1499.9999999999998) gets all its steps.
 /// A few ulps: any more would add a step to an end time that is really short
 /// of it.
-pub const STEP_COUNT_SLACK: f64 = 4.0 * f64::EPSILON;
-
-/// The beam's resolved properties (SI units).
-#[derive(Debug, Clone, PartialEq)]
-pub struct BeamProps {
-    /// Span L, m.
-    pub length: f64,
-    /// Mass per length ρA, kg/m.
-    pub rho_a: f64,
-    /// Bending stiffness EI, N·m² (0 = taut string, MODEL §6).
-    pub ei: f64,
-    /// Axial stiffness EA, N, when `youngs_modulus` and `area` are given.
-    pub ea: Option<f64>,
-    /// Tension T, N.
-    pub tension: f64,
-    /// Support at x = 0.
-    pub left: Support,
-    /// Support at x = L.
-    pub right: Support,
-    /// Distributed load p, N/m (self-weight −ρA g when asked for, else 0).
-    pub distributed_load: f64,
-    /// Point attachments (`[[attachment]]`, MODEL §10): springs and lumped
-    /// masses at points of the span, assembled into K and M (empty: none).
-    pub attachments: Vec<Attachment>,
-    /// The messenger wire (`[messenger]`, `docs/lines.md` eq. W1–W6):
-    /// a second line in the same model, coupled by droppers (`None`: the
-    /// contact wire alone).
-    pub messenger: Option<Messenger>,
-}
-
-impl BeamProps {
-    /// String wave speed c = sqrt(T/ρA), m/s (MODEL §1).
-    pub fn wave_speed(&self) -> f64 {
-        (self.tension / self.rho_a).sqrt()
-    }
-
-    /// Beam mass M = ρA L, kg.
-    pub fn total_mass(&self) -> f64 {
-        self.rho_a * self.length
-    }
-
-    /// True when EI = 0: C0 string elements, one dof per node (MODEL §6).
-    pub fn is_string(&self) -> bool {
-        self.ei == 0.0
-    }
-}
-
-/// What a carrier is.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum CarrierKind {
-    /// A mass on a spring (k = 0: a riding mass), MODEL §2.
-    MassSpring {
-        /// m, kg.
-        mass: f64,
-        /// k, N/m.
-        stiffness: f64,
-        /// c_s, N·s/m.
-        damping: f64,
-        /// δ0, m.
-        preload: f64,
-    },
-    /// A constant force F, N, pressing into the beam; no mass dof.
-    Force {
-        /// F, N.
-        force: f64,
-    },
-}
-
-/// A carrier's resolved properties.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CarrierProps {
-    /// Mass–spring or force.
-    pub kind: CarrierKind,
-    /// A multi-mass pantograph (MODEL §10, `scene/pantograph.rs`): `kind`
-    /// is then its head's mass, spring and dashpot (preload 0), and the
-    /// integrators step the whole chain; `None` for every other carrier.
-    pub chain: Option<super::ChainProps>,
-    /// Side sign s (+1 below, −1 above).
-    pub side: Side,
-    /// Its motion along the beam.
-    pub motion: Motion,
-}
-
-/// `[time]` resolved (MODEL §5).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TimeProps {
-    /// Time step Δt, s.
-    pub dt: f64,
-    /// The run's end time, s: as given, or when the first moving carrier
-    /// leaves the beam.
-    pub t_end: f64,
-    /// Number of steps: floor(t_end/Δt · (1 + [`STEP_COUNT_SLACK`])).
-    pub steps: usize,
-}
-
-pub(crate) fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
-    if !v.is_finite() {
-        Err(Error::invalid(
-            field,
-            v,
-            format!("must be a finite number > 0 ({unit})"),
-        ))
-    } else if v > 0.0 {
-        Ok(v)
-    } else {
-        Err(Error::invalid(field, v, format!("must be > 0 ({unit})")))
-    }
-}
-
-pub(crate) fn non_negative(field: &str, v: f64, unit: &str) -> Result<f64> {
-    if !v.is_finite() {
-        Err(Error::invalid(
-            field,
-            v,
-            format!("must be a finite number ≥ 0 ({unit})"),
-        ))
-    } else if v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(Error::invalid(field, v, format!("must be ≥ 0 ({unit})")))
-    }
-}
+pub(crate) const STEP_COUNT_SLACK: f64 = 4.0 * f64::EPSILON;
 
 impl Scene {
-    /// `mesh.elements` in its range (1 ..= [`MAX_ELEMENTS`]).
+    /// `mesh.elements` in its range (1 ..= `MAX_ELEMENTS`).
     pub fn elements(&self) -> Result<usize> {
         let elements = self.mesh.elements;
         if elements == 0 || elements > MAX_ELEMENTS {
@@ -506,7 +393,7 @@ fn check_speed_table(i: usize, time: &[f64], speed: &[f64]) -> Result<()> {
 
 /// Every tabulated speed profile reaches the run's end `t_end` (s): past its
 /// last knot a table says nothing.
-pub fn check_speed_tables_cover(carriers: &[CarrierProps], t_end: f64) -> Result<()> {
+pub(crate) fn check_speed_tables_cover(carriers: &[CarrierProps], t_end: f64) -> Result<()> {
     for (i, c) in carriers.iter().enumerate() {
         if let SpeedProfile::Table { time, .. } = &c.motion.profile {
             let last = time[time.len() - 1];
@@ -524,7 +411,7 @@ pub fn check_speed_tables_cover(carriers: &[CarrierProps], t_end: f64) -> Result
     Ok(())
 }
 
-fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierProps> {
+fn resolve_carrier(i: usize, c: &CarrierSpec, l: f64) -> Result<CarrierProps> {
     let f = |name: &str| format!("carrier.{i}.{name}");
     let start = c.start;
     if !(0.0..=l).contains(&start) {
@@ -603,10 +490,10 @@ fn resolve_carrier(i: usize, c: &super::CarrierSpec, l: f64) -> Result<CarrierPr
 
 /// Default penalty stiffness relative to the step's contact stiffness 1/W:
 /// the penalty force is then 1000/1001 of the Lagrange force per step.
-pub const DEFAULT_PENALTY_RELATIVE: f64 = 1e3;
+pub(crate) const DEFAULT_PENALTY_RELATIVE: f64 = 1e3;
 
 /// Check `[contact]`: penalty stiffness, QP tolerances, restitution.
-pub fn validate_contact(c: &super::ContactSpec) -> Result<()> {
+pub(crate) fn validate_contact(c: &ContactSpec) -> Result<()> {
     let p = &c.penalty;
     if let (Some(k), Some(_)) = (p.stiffness, p.relative) {
         return Err(Error::invalid(
@@ -653,4 +540,67 @@ pub fn validate_contact(c: &super::ContactSpec) -> Result<()> {
         ));
     }
     Ok(())
+}
+
+impl Scene {
+    /// Each carrier's external force series (scene order; `None`: none),
+    /// checked against the resolved `carriers` (mass–spring only) and the
+    /// run's end time `t_end`, s.
+    pub fn resolve_external_forces(
+        &self,
+        carriers: &[CarrierProps],
+        t_end: f64,
+    ) -> Result<Vec<Option<ForceSeries>>> {
+        self.carriers
+            .iter()
+            .zip(carriers)
+            .enumerate()
+            .map(|(i, (c, p))| {
+                let Some(spec) = &c.external_force else {
+                    return Ok(None);
+                };
+                if let CarrierKind::Force { force } = p.kind {
+                    return Err(Error::invalid(
+                        format!("carrier.{i}.external_force"),
+                        format!("a series on a moving force (force = {force} N)"),
+                        "is for mass–spring carriers only: a moving force has no mass to act on; vary its `force` instead",
+                    ));
+                }
+                if p.chain.is_some() {
+                    return Err(Error::invalid(
+                        format!("carrier.{i}.external_force"),
+                        "a series on a multi-mass pantograph (carrier.masses)",
+                        "is for single mass–spring carriers only: a pantograph chain's masses are stepped by its own scheme (chain.rs), which does not read the series yet; change `uplift` instead",
+                    ));
+                }
+                ForceSeries::new(i, spec, t_end).map(Some)
+            })
+            .collect()
+    }
+}
+
+/// Refuse a multi-mass carrier where a scene's machinery assumes one mass
+/// per carrier: a `[manufactured]` solution (its mass source is one
+/// equation per carrier, MODEL §11) and a `[reference]` (each analytic
+/// reference is of a single-mass carrier or force). Nothing else reads the
+/// chain beyond the integrators.
+pub(crate) fn check_chain_scene(scene: &Scene, carriers: &[CarrierProps]) -> Result<()> {
+    let Some(i) = carriers.iter().position(|c| c.chain.is_some()) else {
+        return Ok(());
+    };
+    let what = if scene.manufactured.is_some() {
+        "manufactured"
+    } else if scene.reference.is_some() {
+        "reference"
+    } else {
+        return Ok(());
+    };
+    Err(Error::invalid(
+        format!("carrier.{i}.masses"),
+        "given",
+        format!(
+            "a multi-mass carrier cannot be used with [{what}] (its solutions are of \
+             single-mass carriers): give `mass`, or remove [{what}]"
+        ),
+    ))
 }

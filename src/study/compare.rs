@@ -5,7 +5,7 @@
 //! Every combination runs on the same scene text with the same overrides
 //! plus the method's `[integrator]` ([`MethodFactory::integrator`]), with
 //! its formulation and discretization set as a typed
-//! [`RunVariant`], so meshes, steps and settings are identical
+//! `RunVariant`, so meshes, steps and settings are identical
 //! and histories can be compared step by step. A combination that means
 //! nothing (a scene error naming both keys, e.g. `moreau_jean` with
 //! `penalty`, or an explicit method above its stability limit) is skipped
@@ -56,6 +56,9 @@ pub struct CompareRow {
     pub mean_force: f64,
     /// Largest contact force (carrier 0), N.
     pub max_force: f64,
+    /// The filtered force's mean, σ, max and min (carrier 0), N.
+    #[serde(flatten)]
+    pub filtered: crate::study::scalars::FilteredColumns,
     /// Contact switches (carrier 0).
     pub contact_switches: usize,
     /// Steps taken.
@@ -220,7 +223,7 @@ pub struct CompareSpec<'a> {
 }
 
 /// Parse `lagrange,penalty,…` into formulations.
-pub fn parse_formulations(list: &str) -> Result<Vec<Formulation>> {
+pub(crate) fn parse_formulations(list: &str) -> Result<Vec<Formulation>> {
     let mut out = Vec::new();
     for name in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let f = Formulation::ALL
@@ -281,7 +284,7 @@ pub fn compare_methods(
 ) -> Result<Comparison> {
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut compare")?;
-    let own = crate::integrate::scene_method(&base)?;
+    let own = crate::integrate::scene_method(&base);
     let methods: Vec<&dyn MethodFactory> = if spec.methods.is_empty() {
         vec![own]
     } else {
@@ -507,6 +510,7 @@ fn row(r: &CompareRun, reference: &RunOutput) -> CompareRow {
             .fold(0.0, f64::max),
         mean_force: s0.force.mean,
         max_force: s0.force.max,
+        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
         contact_switches: s0.contact_switches,
         steps: out.steps,
         wall_seconds: out.wall_seconds,

@@ -7,7 +7,7 @@
 //! about 3·10¹² DOF-steps (days on one core) and used to start silently
 //! (issue 25). Every study (`compare`, `converge`, `precision`, `sweep`)
 //! now builds an [`Estimate`] and calls [`Estimate::check`], which refuses
-//! above [`MAX_DOF_STEPS`] with the estimate and what to change, unless
+//! above `MAX_DOF_STEPS` with the estimate and what to change, unless
 //! the caller said yes; `run --tolerance` refuses above the same bound
 //! (its resolution is chosen, not given, so there is nothing to say yes to).
 
@@ -18,22 +18,22 @@ use crate::resolve::Resolved;
 /// runs, started without `--yes`: 10¹¹ DOF-steps is about 9 minutes at the
 /// [`RATE_DOF_STEPS_PER_S`] one core reaches at N ≤ 800, 15 minutes or more
 /// on finer meshes (docs/performance.md).
-pub const MAX_DOF_STEPS: f64 = 1e11;
+pub(crate) const MAX_DOF_STEPS: f64 = 1e11;
 
 /// DOF-steps per second one core steps the reference case at N ≤ 800
 /// (docs/performance.md), for the time a refused estimate would take.
-pub const RATE_DOF_STEPS_PER_S: f64 = 1.9e8;
+pub(crate) const RATE_DOF_STEPS_PER_S: f64 = 1.9e8;
 
 /// The unknowns a run steps: (N + 1) × 2 for Hermite elements, N + 1 for
 /// string elements (the FE mesh's; a modal or Galerkin basis steps fewer, so
 /// this bounds it from above), plus one per carrier mass.
-pub fn unknowns(sc: &Resolved) -> f64 {
+pub(crate) fn unknowns(sc: &Resolved) -> f64 {
     let per_node = if sc.beam.is_string() { 1.0 } else { 2.0 };
     (sc.elements as f64 + 1.0) * per_node + sc.carriers.len() as f64
 }
 
 /// A run's work: [`unknowns`] × steps.
-pub fn run_dof_steps(sc: &Resolved) -> f64 {
+pub(crate) fn run_dof_steps(sc: &Resolved) -> f64 {
     unknowns(sc) * sc.steps as f64
 }
 
@@ -82,7 +82,7 @@ impl Estimate {
         )
     }
 
-    /// Refuse a study above [`MAX_DOF_STEPS`] (or whose estimate is not a
+    /// Refuse a study above `MAX_DOF_STEPS` (or whose estimate is not a
     /// number) unless `yes`, naming the estimate, the bound and the way out.
     pub fn check(&self, yes: bool) -> Result<()> {
         let over = self.dof_steps.is_nan() || self.dof_steps > MAX_DOF_STEPS;

@@ -17,7 +17,7 @@
 //! ```
 //!
 //! `scene` is relative to the case file. A quantity passes when
-//! |value − reference| ≤ abs + rel·|reference|. [`QUANTITY_NAMES`] lists what
+//! |value − reference| ≤ abs + rel·|reference|. `QUANTITY_NAMES` lists what
 //! can be gated.
 
 use std::collections::BTreeMap;
@@ -63,7 +63,7 @@ pub struct GateCase {
 /// the list `run --tolerance` estimates and `converge` refines), of carrier
 /// 0, or of carrier N with the suffix `_N` (`force_mean_1`);
 /// `final_probe_N` is probe N's last value.
-pub const QUANTITY_NAMES: [&str; 18] = [
+pub(crate) const QUANTITY_NAMES: [&str; 19] = [
     "steps",
     "dofs",
     "contact_switches",
@@ -76,6 +76,7 @@ pub const QUANTITY_NAMES: [&str; 18] = [
     "force_std",
     "force_min",
     "force_max",
+    "filtered_force_mean",
     "filtered_force_std",
     "filtered_force_min",
     "filtered_force_max",
@@ -152,7 +153,7 @@ impl GateReport {
 }
 
 /// The case files of a suite, sorted by name.
-pub fn case_files(suite: &Path) -> Result<Vec<PathBuf>> {
+pub(crate) fn case_files(suite: &Path) -> Result<Vec<PathBuf>> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(suite)
         .map_err(|e| Error::io(suite, e))?
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -246,7 +247,7 @@ pub fn run_case(path: &Path, case: &GateCase) -> Result<RunOutput> {
 }
 
 /// Check one run against its case.
-pub fn check_case(name: &str, case: &GateCase, out: &RunOutput) -> Vec<Check> {
+pub(crate) fn check_case(name: &str, case: &GateCase, out: &RunOutput) -> Vec<Check> {
     case.quantities
         .iter()
         .map(|(q, t)| {
@@ -287,7 +288,7 @@ pub fn gate(
 /// their effective matrix (the same scene and mesh with other carriers, or
 /// formulations) step together (`integrate::batch`); each case's numbers
 /// are the same whatever the width.
-pub fn gate_batched(
+pub(crate) fn gate_batched(
     suite: &Path,
     update: bool,
     batch: usize,
@@ -386,6 +387,7 @@ mod tests {
             )],
             droppers: vec![],
             spans: vec![],
+            standard: vec![],
             dofs: 1,
             steps: 102,
             dt: 1.0,

@@ -1,9 +1,10 @@
 //! Studies: loops of runs over scenes. They never reach inside the integrator.
 //!
 //! What they share is here once: a run as typed changes to a base scene
-//! ([`variant`]), time grids that nest, resampling and observed orders
-//! ([`grid`]), the scalar outputs of a run ([`scalars`]) and the space
-//! discretizations ([`space`]).
+//! (`variant`), time grids that nest and resampling ([`grid`]), observed
+//! orders and the estimators of a numerical uncertainty ([`uncertainty`]),
+//! the scalar outputs of a run ([`scalars`]), the space discretizations
+//! ([`space`]) and their level parameter ([`level`]).
 
 pub mod compare;
 pub mod converge;
@@ -11,17 +12,19 @@ pub mod cost;
 pub mod filter;
 pub mod gate;
 pub mod grid;
+pub mod level;
 pub mod modes;
 pub mod precision;
 pub mod reference;
 pub mod request;
 pub mod scalars;
 pub mod space;
-pub mod standing_force;
+pub(crate) mod standing_force;
 pub mod sweep;
 pub mod threads;
 pub mod tolerance;
-pub mod variant;
+pub mod uncertainty;
+pub(crate) mod variant;
 pub mod verify;
 
 /// ‖a − b‖/‖b‖ (RMS); the absolute RMS difference when b is identically 0.

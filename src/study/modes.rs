@@ -33,7 +33,7 @@ use crate::resolve::Resolved;
 use crate::scene::{Discretization, Support};
 
 /// Modes computed when no count is asked for.
-pub const DEFAULT_COUNT: usize = 10;
+pub(crate) const DEFAULT_COUNT: usize = 10;
 
 /// Where a scene's frequencies come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -84,7 +84,7 @@ fn check_count(count: usize, most: usize, why: &str) -> Result<usize> {
 }
 
 /// The `count` lowest modes of the scene's beam (default
-/// [`DEFAULT_COUNT`], or fewer when the discretization has fewer).
+/// `DEFAULT_COUNT`, or fewer when the discretization has fewer).
 pub fn modes(sc: &Resolved, count: Option<usize>) -> Result<Modes> {
     let props = &sc.beam;
     let l = props.length;

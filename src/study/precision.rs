@@ -68,6 +68,9 @@ pub struct PrecisionRow {
     pub displacement_error: f64,
     /// |P_l − P_l,ref|.
     pub loss_fraction_error: f64,
+    /// The run's filtered force: mean, σ, max and min (carrier 0), N.
+    #[serde(flatten)]
+    pub filtered: crate::study::scalars::FilteredColumns,
     /// On its formulation's Pareto front (force error vs wall time).
     pub pareto: bool,
 }
@@ -89,18 +92,18 @@ pub struct Precision {
 /// Grid levels per axis a precision study takes (`--levels`, Python
 /// `levels=`): levels² grid points per formulation, method and
 /// discretization.
-pub const LEVELS: std::ops::RangeInclusive<usize> = 1..=5;
+pub(crate) const LEVELS: std::ops::RangeInclusive<usize> = 1..=5;
 
 /// `levels` if within [`LEVELS`], else the error naming `--levels`.
 /// Checked before the study's cost is estimated.
-pub fn check_levels(levels: usize) -> Result<usize> {
+pub(crate) fn check_levels(levels: usize) -> Result<usize> {
     super::grid::in_range("--levels", levels, &LEVELS)
 }
 
 /// `ratio` if an integer ≥ 2, else the error naming `--ratio` (a ratio so
 /// large that the reference mesh overflows is refused by
 /// [`reference_elements`]).
-pub fn check_ratio(ratio: usize) -> Result<usize> {
+pub(crate) fn check_ratio(ratio: usize) -> Result<usize> {
     if ratio >= 2 {
         Ok(ratio)
     } else {
@@ -112,7 +115,7 @@ pub fn check_ratio(ratio: usize) -> Result<usize> {
 /// grid's finest), checked: a ratio so large it overflows would wrap to a
 /// meaningless mesh in a release build. Also what the study's cost
 /// estimate checks first ([`super::request::PrecisionRequest::estimate`]).
-pub fn reference_elements(n0: usize, ratio: usize, levels: usize) -> Result<usize> {
+pub(crate) fn reference_elements(n0: usize, ratio: usize, levels: usize) -> Result<usize> {
     u32::try_from(levels)
         .ok()
         .and_then(|l| ratio.checked_pow(l))
@@ -177,7 +180,7 @@ pub fn precision_variants(
     check_ratio(ratio)?;
     let base = resolve_scene(text, overrides)?;
     base.require_every_step("taut precision")?;
-    let own = crate::integrate::scene_method(&base)?;
+    let own = crate::integrate::scene_method(&base);
     let methods: Vec<&dyn MethodFactory> = if methods.is_empty() {
         vec![own]
     } else {
@@ -343,6 +346,7 @@ fn row(
         force_error: relative_rms(&t.force[1..], &sample(&tr.force)),
         displacement_error: relative_rms(&t.w[1..], &sample(&tr.w)),
         loss_fraction_error: (out.stats[0].loss_fraction - reference.stats[0].loss_fraction).abs(),
+        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
         pareto: false,
     }
 }
@@ -381,6 +385,7 @@ mod tests {
             force_error: e,
             displacement_error: 0.0,
             loss_fraction_error: 0.0,
+            filtered: Default::default(),
             pareto: false,
         }
     }

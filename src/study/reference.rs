@@ -5,7 +5,7 @@
 //! ([`crate::scene::Declared`], `docs/scene.md`):
 //!
 //! * `manufactured` — the manufactured solution, exact everywhere:
-//!   v*(x, t), and for every carrier w*, λ*, q* ([`crate::manufactured`]);
+//!   v*(x, t), and for every carrier w*, λ*, q* (`crate::manufactured`);
 //! * `moving_force_series` — the modal series of MODEL §8
 //!   ([`MovingForceString`], [`MovingForceBeam`]);
 //! * `riding_mass_galerkin` — the Galerkin solution in the exact modes with
@@ -13,12 +13,12 @@
 //!   finest level's time grid with J from `reference.modes` or
 //!   [`riding_mass_modes`];
 //! * `standing_force_modes` — the exact time history of the discretized
-//!   model under standing forces ([`StandingForce`]): no space error;
+//!   model under standing forces (`StandingForce`): no space error;
 //! * `richardson` (no `[reference]`) — none here: a study extrapolates its
 //!   own finest levels.
 
 use super::standing_force::StandingForce;
-use crate::analytic::{MovingForceBeam, MovingForceString, RidingMassBeam};
+use crate::analytic::{MovingForceBeam, MovingForceString, Rider, RidingMassBeam};
 use crate::error::{Error, Result};
 use crate::manufactured::Manufactured;
 use crate::resolve::Resolved;
@@ -26,10 +26,10 @@ use crate::scene::{CarrierKind, Declared, SpeedProfile};
 
 /// A reference solution for the displacement under the carrier,
 /// w(x_m(t), t) as a function of t (m), when the scene has one.
-pub type AnalyticW = Box<dyn Fn(f64) -> f64 + Sync>;
+pub(crate) type AnalyticW = Box<dyn Fn(f64) -> f64 + Sync>;
 
 /// v(x, t) of a reference that has it everywhere, m (positive up).
-pub type ExactField = Box<dyn Fn(f64, f64) -> f64 + Send + Sync>;
+pub(crate) type ExactField = Box<dyn Fn(f64, f64) -> f64 + Send + Sync>;
 
 /// What a declared reference gives for a scene: the histories a run
 /// records, as functions of time (carrier 0), and v(x, t) where known.
@@ -147,18 +147,18 @@ pub fn analytic_w(sc: &Resolved) -> Option<AnalyticW> {
 /// `scenes/riding_mass_pinned.toml`, w changes by 1.8e-5 m from J = 800 to
 /// 1600 (about J^-2.3), so J = 800 is within ≈ 5e-6 m (2.5e-5 of max |w|),
 /// ten times below the FE error at N = 200 (4.7e-5 m).
-pub const RIDING_MASS_MIN_MODES: usize = 800;
+pub(crate) const RIDING_MASS_MIN_MODES: usize = 800;
 
 /// Modes per element of the finest mesh: the Hermite model has 2N unknowns,
 /// and J = 4N keeps the Galerkin truncation about ten times below the FE
 /// error at every N measured (N = 200: 4.7e-5 vs 5e-6 m; N = 400: 8.7e-6
 /// vs ≈ 1e-6 m at J = 1600).
-pub const RIDING_MASS_MODES_PER_ELEMENT: usize = 4;
+pub(crate) const RIDING_MASS_MODES_PER_ELEMENT: usize = 4;
 
 /// Cap on J: the RK4 step falls like 1/ω_J ∝ J⁻² in the bending range, so
 /// the cost grows like J³ (J = 1600: a few seconds for 0.4 s of motion); beyond
 /// this the reference would cost more than the FE ladder it checks.
-pub const RIDING_MASS_MAX_MODES: usize = 3200;
+pub(crate) const RIDING_MASS_MAX_MODES: usize = 3200;
 
 /// J for a riding-mass reference against a mesh of `elements` elements:
 /// `clamp(4N, 800, 3200)`.
@@ -180,16 +180,12 @@ pub fn riding_mass_beam(sc: &Resolved) -> Option<RidingMassBeam> {
         return None;
     };
     let b = &sc.beam;
-    RidingMassBeam::new(
-        b.ei,
-        b.tension,
-        b.rho_a,
-        b.length,
+    let rider = Rider {
         mass,
-        sc.g,
-        c.side,
-        c.motion.start,
+        gravity: sc.g,
+        side: c.side,
+        start: c.motion.start,
         speed,
-    )
-    .ok()
+    };
+    RidingMassBeam::new(b.ei, b.tension, b.rho_a, b.length, rider).ok()
 }

@@ -9,7 +9,9 @@ use crate::integrate::MethodFactory;
 use crate::scene::Formulation;
 
 use super::compare::{CompareSpec, Comparison, NotRun, compare_methods};
-use super::converge::{ConvergeRow, Convergence, MethodStudy, Refine, converge, converge_variants};
+use super::converge::{
+    ConvergeRow, Convergence, Ladder, MethodStudy, Refine, converge, converge_variants,
+};
 use super::cost::{Estimate, run_dof_steps};
 use super::precision::{Precision, precision_variants};
 use super::space::SpaceChoice;
@@ -17,7 +19,7 @@ use super::sweep::BatchWidth;
 
 /// `--batch B` (Python: `batch=`): 1 ..= [`crate::integrate::MAX_LANES`] runs
 /// stepped together, or the automatic width when absent.
-pub fn batch_width(b: Option<usize>) -> Result<BatchWidth> {
+pub(crate) fn batch_width(b: Option<usize>) -> Result<BatchWidth> {
     let max = crate::integrate::MAX_LANES;
     match b {
         None => Ok(BatchWidth::Auto),
@@ -39,7 +41,7 @@ pub fn lanes(b: BatchWidth) -> usize {
 }
 
 /// [`batch_width`] as a number of lanes.
-pub fn batch_lanes(b: Option<usize>) -> Result<usize> {
+pub(crate) fn batch_lanes(b: Option<usize>) -> Result<usize> {
     Ok(lanes(batch_width(b)?))
 }
 
@@ -164,7 +166,8 @@ impl ConvergeOutcome {
 
 impl ConvergeRequest {
     /// The study's estimated work: level l refines the scene's mesh and/or
-    /// step by ratio^l, for every method and discretization.
+    /// step by ratio^l, for every method and discretization (with `both`,
+    /// the split runs of level ℓ's mesh at level ℓ − 1's Δt too).
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
         // in range first: the estimate loops over the levels
         super::converge::check_levels(self.levels)?;
@@ -176,11 +179,16 @@ impl ConvergeRequest {
             Refine::Both => self.ratio * self.ratio,
         };
         let mut e = Estimate::new("taut converge");
+        let power = |x: f64, l: usize| x.powi(l.min(i32::MAX as usize) as i32);
         for l in 0..self.levels {
-            e.add(
-                variants,
-                base * per_level.powi(l.min(i32::MAX as usize) as i32),
-            );
+            e.add(variants, base * power(per_level, l));
+            // --refine both: level ℓ's mesh at level ℓ − 1's Δt
+            if self.refine == Refine::Both && l > 0 {
+                e.add(
+                    variants,
+                    base * power(self.ratio, l) * power(self.ratio, l - 1),
+                );
+            }
         }
         Ok(e)
     }
@@ -218,9 +226,11 @@ impl ConvergeRequest {
             overrides,
             &self.methods,
             &self.discretizations,
-            self.refine,
-            self.levels,
-            self.ratio,
+            Ladder {
+                refine: self.refine,
+                levels: self.levels,
+                ratio: self.ratio,
+            },
             analytic,
             progress,
         )?;
@@ -296,5 +306,38 @@ impl PrecisionRequest {
             (self.levels, self.ratio, lanes(self.batch)),
             progress,
         )
+    }
+}
+
+/// `taut uncertainty`: the family of one scene (h and Δt refined together
+/// and apart) and every quantity's numerical uncertainty.
+#[derive(Debug, Clone, Copy)]
+pub struct UncertaintyRequest {
+    /// Diagonal levels K (`super::uncertainty::LEVELS`).
+    pub levels: usize,
+    /// Start even above the cost bound (`--yes`, [`super::cost`]).
+    pub yes: bool,
+}
+
+impl UncertaintyRequest {
+    /// The study's estimated work: every run of the family.
+    pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
+        super::uncertainty::estimate(text, overrides, self.levels)
+    }
+
+    /// Number of runs, for a progress bar: 2K − 1.
+    pub fn runs(&self) -> Result<usize> {
+        Ok(2 * super::uncertainty::check_levels(self.levels)? - 1)
+    }
+
+    /// Run the family on scene `text` with `overrides`.
+    pub fn run(
+        &self,
+        text: &str,
+        overrides: &[String],
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<super::uncertainty::Uncertainty> {
+        self.estimate(text, overrides)?.check(self.yes)?;
+        super::uncertainty::uncertainty(text, overrides, self.levels, progress)
     }
 }

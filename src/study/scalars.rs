@@ -9,8 +9,8 @@
 //! JSON `null`, never as a stand-in number; a gate check on it fails
 //! (docs/gating.md).
 
-use super::filter::{FORCE_BAND_HZ, lowpass_zero_phase};
 use crate::record::ContactStats;
+use crate::record::filter::{lowpass_zero_phase, stats_of_filtered};
 use crate::run::RunOutput;
 
 /// A scalar output of a run, of one carrier.
@@ -40,7 +40,9 @@ pub enum Scalar {
     ForceMin,
     /// Largest contact force.
     ForceMax,
-    /// Standard deviation of the 0–20 Hz force (over the steps).
+    /// Mean of the filtered force (0–20 Hz unless `[analysis] band`).
+    FilteredForceMean,
+    /// Standard deviation of the filtered force (over the steps).
     FilteredForceStd,
     /// Smallest 0–20 Hz force.
     FilteredForceMin,
@@ -54,7 +56,7 @@ pub enum Scalar {
 
 impl Scalar {
     /// Every scalar, in the order documented.
-    pub const ALL: [Scalar; 17] = [
+    pub const ALL: [Scalar; 18] = [
         Scalar::Steps,
         Scalar::Dofs,
         Scalar::ContactSwitches,
@@ -67,6 +69,7 @@ impl Scalar {
         Scalar::ForceStd,
         Scalar::ForceMin,
         Scalar::ForceMax,
+        Scalar::FilteredForceMean,
         Scalar::FilteredForceStd,
         Scalar::FilteredForceMin,
         Scalar::FilteredForceMax,
@@ -75,7 +78,7 @@ impl Scalar {
     ];
 
     /// The name in tables, case files and `summary.json`.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             Scalar::Steps => "steps",
             Scalar::Dofs => "dofs",
@@ -89,6 +92,7 @@ impl Scalar {
             Scalar::ForceStd => "force_std",
             Scalar::ForceMin => "force_min",
             Scalar::ForceMax => "force_max",
+            Scalar::FilteredForceMean => "filtered_force_mean",
             Scalar::FilteredForceStd => "filtered_force_std",
             Scalar::FilteredForceMin => "filtered_force_min",
             Scalar::FilteredForceMax => "filtered_force_max",
@@ -112,6 +116,7 @@ impl Scalar {
             Scalar::ForceStd => "force std",
             Scalar::ForceMin => "force min",
             Scalar::ForceMax => "force max",
+            Scalar::FilteredForceMean => "0–20 Hz force mean",
             Scalar::FilteredForceStd => "0–20 Hz force std",
             Scalar::FilteredForceMin => "0–20 Hz force min",
             Scalar::FilteredForceMax => "0–20 Hz force max",
@@ -121,12 +126,13 @@ impl Scalar {
     }
 
     /// Unit: `N`, `m`, `x/L` or `-`.
-    pub fn unit(self) -> &'static str {
+    pub const fn unit(self) -> &'static str {
         match self {
             Scalar::ForceMean
             | Scalar::ForceStd
             | Scalar::ForceMin
             | Scalar::ForceMax
+            | Scalar::FilteredForceMean
             | Scalar::FilteredForceStd
             | Scalar::FilteredForceMin
             | Scalar::FilteredForceMax => "N",
@@ -149,11 +155,14 @@ impl Scalar {
     fn filtered(self) -> bool {
         matches!(
             self,
-            Scalar::FilteredForceStd | Scalar::FilteredForceMin | Scalar::FilteredForceMax
+            Scalar::FilteredForceMean
+                | Scalar::FilteredForceStd
+                | Scalar::FilteredForceMin
+                | Scalar::FilteredForceMax
         )
     }
 
-    fn read(self, out: &RunOutput, s: &ContactStats, w: &[f64], f: &[f64; 3]) -> Option<f64> {
+    fn read(self, out: &RunOutput, s: &ContactStats, w: &[f64], f: &[f64; 4]) -> Option<f64> {
         Some(match self {
             Scalar::Steps => out.steps as f64,
             Scalar::Dofs => out.dofs as f64,
@@ -167,9 +176,10 @@ impl Scalar {
             Scalar::ForceStd => s.force.std,
             Scalar::ForceMin => s.force.min,
             Scalar::ForceMax => s.force.max,
-            Scalar::FilteredForceStd => f[0],
-            Scalar::FilteredForceMin => f[1],
-            Scalar::FilteredForceMax => f[2],
+            Scalar::FilteredForceMean => f[0],
+            Scalar::FilteredForceStd => f[1],
+            Scalar::FilteredForceMin => f[2],
+            Scalar::FilteredForceMax => f[3],
             Scalar::MaxPenetration => s.max_penetration,
             Scalar::FinalW => return w.last().copied(),
         })
@@ -186,21 +196,94 @@ pub fn values(out: &RunOutput, carrier: usize, which: &[Scalar]) -> Vec<Option<f
     let f = if which.iter().any(|q| q.filtered()) {
         filtered_stats(out, carrier)
     } else {
-        [f64::NAN; 3]
+        [f64::NAN; 4]
     };
     which.iter().map(|q| q.read(out, s, &tr.w, &f)).collect()
 }
 
-/// [std, min, max] of the 0–20 Hz force over the steps (rows 1 …), N.
-fn filtered_stats(out: &RunOutput, carrier: usize) -> [f64; 3] {
-    let f = lowpass_zero_phase(&out.history.carriers[carrier].force, out.dt, FORCE_BAND_HZ);
-    let f = if f.len() > 1 { &f[1..] } else { &f[..] };
-    let m = f.len().max(1) as f64;
-    let mean = f.iter().sum::<f64>() / m;
-    let std = (f.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / m).sqrt();
-    let min = f.iter().copied().fold(f64::INFINITY, f64::min);
-    let max = f.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    [std, min, max]
+/// [mean, std, min, max] of the filtered force over the steps (rows 1 …),
+/// N: the history's `force_filtered`, or, when the history does not hold
+/// it (every K-th step kept), its rows filtered at the run's Δt.
+fn filtered_stats(out: &RunOutput, carrier: usize) -> [f64; 4] {
+    let tr = &out.history.carriers[carrier];
+    let band = out.history.band_hz();
+    let s = if tr.force_filtered.is_empty() {
+        stats_of_filtered(&lowpass_zero_phase(&tr.force, out.dt, band), band)
+    } else {
+        stats_of_filtered(&tr.force_filtered, band)
+    };
+    [s.mean, s.std, s.min, s.max]
+}
+
+/// The filtered force's mean, σ, max and min of one run's carrier 0 (N;
+/// NaN for a run that stopped): the four columns every study table carries
+/// ([`FILTERED_COLUMNS`], docs/output.md#filtered-force).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct FilteredColumns {
+    /// Mean, N.
+    #[serde(with = "super::sweep::nan_as_null", default = "nan")]
+    pub filtered_force_mean: f64,
+    /// Population standard deviation, N.
+    #[serde(with = "super::sweep::nan_as_null", default = "nan")]
+    pub filtered_force_std: f64,
+    /// Maximum, N.
+    #[serde(with = "super::sweep::nan_as_null", default = "nan")]
+    pub filtered_force_max: f64,
+    /// Minimum, N.
+    #[serde(with = "super::sweep::nan_as_null", default = "nan")]
+    pub filtered_force_min: f64,
+}
+
+fn nan() -> f64 {
+    f64::NAN
+}
+
+/// The names of [`FilteredColumns`], in table order.
+pub const FILTERED_COLUMNS: [&str; 4] = [
+    "filtered_force_mean",
+    "filtered_force_std",
+    "filtered_force_max",
+    "filtered_force_min",
+];
+
+impl FilteredColumns {
+    /// All NaN: a run that stopped, or a record of a taut before them.
+    pub const NONE: FilteredColumns = FilteredColumns {
+        filtered_force_mean: f64::NAN,
+        filtered_force_std: f64::NAN,
+        filtered_force_max: f64::NAN,
+        filtered_force_min: f64::NAN,
+    };
+
+    /// Carrier `carrier`'s, of `out`.
+    pub fn of(out: &RunOutput, carrier: usize) -> Self {
+        if out.history.carriers.get(carrier).is_none() {
+            return Self::NONE;
+        }
+        let [mean, std, min, max] = filtered_stats(out, carrier);
+        FilteredColumns {
+            filtered_force_mean: mean,
+            filtered_force_std: std,
+            filtered_force_max: max,
+            filtered_force_min: min,
+        }
+    }
+
+    /// The four values in [`FILTERED_COLUMNS`] order.
+    pub fn values(&self) -> [f64; 4] {
+        [
+            self.filtered_force_mean,
+            self.filtered_force_std,
+            self.filtered_force_max,
+            self.filtered_force_min,
+        ]
+    }
+}
+
+impl Default for FilteredColumns {
+    fn default() -> Self {
+        Self::NONE
+    }
 }
 
 #[cfg(test)]
@@ -226,6 +309,7 @@ mod tests {
             )],
             droppers: vec![],
             spans: vec![],
+            standard: vec![],
             dofs: 1,
             steps: 1,
             dt: 1.0,

@@ -97,7 +97,7 @@ impl SpaceChoice {
 
     /// Set this discretization's `[mesh]` fields on `scene`, its level
     /// parameter scaled by `factor` ([`SpaceChoice::apply`] without the
-    /// validation, for [`super::variant::RunVariant`]).
+    /// validation, for `super::variant::RunVariant`).
     pub fn set(&self, scene: &mut Scene, factor: f64) -> Result<()> {
         let mesh = &mut scene.mesh;
         mesh.kind = self.kind;

@@ -20,7 +20,7 @@ use crate::scene::CarrierKind;
 
 /// The modal solution of one scene's model.
 #[derive(Debug, Clone)]
-pub struct StandingForce {
+pub(crate) struct StandingForce {
     beam: BeamModel,
     /// ωⱼ, rad/s.
     omega: Vec<f64>,

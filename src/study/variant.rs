@@ -2,7 +2,7 @@
 //! formatted and parsed again for every run.
 //!
 //! A study parses its scene text and `--set`s once into a [`Scene`]
-//! ([`base_scene`]), then each run is a [`RunVariant`]: the number of
+//! (`base_scene`), then each run is a `RunVariant`: the number of
 //! elements, the time step, the contact formulation and the space
 //! discretization set on a clone of that scene, which is validated once, so
 //! every range check of a scene file applies and a study reports the error
@@ -26,7 +26,7 @@ use crate::scene::{Formulation, Scene, scene_with_overrides};
 /// One run of a study, as typed changes to a base scene (`None`: the base
 /// scene's own).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct RunVariant {
+pub(crate) struct RunVariant {
     /// `mesh.elements`.
     pub elements: Option<usize>,
     /// `time.step`, s.
@@ -67,7 +67,7 @@ impl RunVariant {
 /// The scene text with its `--set`s and, when given, the method's
 /// `[integrator]` ([`MethodFactory::integrator`]) in place of the scene's;
 /// not validated (its runs' variants are).
-pub fn base_scene(
+pub(crate) fn base_scene(
     text: &str,
     overrides: &[String],
     method: Option<&dyn MethodFactory>,

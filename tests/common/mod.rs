@@ -8,7 +8,17 @@ use taut::{Resolved, RunOutput};
 
 /// The repository root (scenes/ and docs/ are relative to it).
 pub fn crate_root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+}
+
+/// The path of the bundled scene `name` (`scenes/<name>`), as text.
+pub fn scene_path(name: &str) -> String {
+    crate_root()
+        .join("scenes")
+        .join(name)
+        .to_str()
+        .expect("the repository's path is UTF-8")
+        .to_string()
 }
 
 /// Run the `taut` binary from the repository root.
@@ -50,7 +60,7 @@ pub fn run_fails(scene: &str, out: &Path, extra: &[&str]) -> String {
 
 /// Load a bundled scene with overrides.
 pub fn scene(name: &str, overrides: &[&str]) -> Resolved {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+    let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .join("scenes")
         .join(name);
     let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
@@ -164,4 +174,27 @@ pub fn verify_case(name: &str) -> Vec<taut::study::verify::case::Case> {
         .collect();
     assert_eq!(case.len(), 1, "one case named {name}");
     case
+}
+
+/// Run the `taut` binary from the repository root under a virtual-memory
+/// cap of `kib` KiB (`ulimit -v`) and a time limit of `seconds` (then
+/// SIGKILL: exit code 137), so that a regression to unbounded reading or
+/// allocation, or a hang, fails a test (an abort, a refused allocation, a
+/// kill) instead of taking the machine: (exit code, stdout, stderr).
+pub fn taut_capped(kib: u64, seconds: u64, args: &[&str]) -> (i32, String, String) {
+    let o = Command::new("bash")
+        .current_dir(crate_root())
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v {kib}; exec timeout -s KILL {seconds} \"$0\" \"$@\""
+        ))
+        .arg(env!("CARGO_BIN_EXE_taut"))
+        .args(args)
+        .output()
+        .expect("bash runs");
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
 }

@@ -3,7 +3,7 @@
 
 use crate::study::sweep::Axis;
 /// The label of a swept key: the key, its symbol and unit.
-pub fn axis_label(key: &str) -> String {
+pub(crate) fn axis_label(key: &str) -> String {
     let last = key.rsplit('.').next().unwrap_or(key);
     let sym = match (key, last) {
         ("speed_ratio", _) => "V0/c",

@@ -31,10 +31,11 @@ pub(super) fn colour_bar(
     let hi = if hi > lo { hi } else { lo + 1.0 };
     let builder = |area| {
         let mut b = ChartBuilder::on(area);
+        // a narrow bar, its ticks and label right beside it
         b.margin_top(8)
             .margin_bottom(52 + 4)
-            .margin_right(4)
-            .y_label_area_size(96);
+            .margin_right(22)
+            .y_label_area_size(60);
         b
     };
     if *log {

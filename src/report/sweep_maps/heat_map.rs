@@ -16,7 +16,7 @@ use crate::error::{Error, Result};
 /// Pixel size of every map.
 pub(super) const SIZE: (u32, u32) = (960, 620);
 /// Width of the colour-bar panel, px.
-pub(super) const BAR_PANEL: u32 = 170;
+pub(super) const BAR_PANEL: u32 = 130;
 
 /// A line over the map (an iso-line segment), in data coordinates.
 pub(super) struct Overlay {
@@ -79,10 +79,32 @@ pub(super) fn draw_map(path: &Path, map: &Map) -> Result<()> {
             "sweep.csv, sweep_force.csv and sweep_loss.csv",
         );
     }
-    render(path, map).map_err(|e| Error::Output {
-        path: path.into(),
-        reason: e.to_string(),
-    })
+    render(path, map)
+        .and_then(|()| crisp_cells(path))
+        .map_err(|e| Error::Output {
+            path: path.into(),
+            reason: e.to_string(),
+        })
+}
+
+/// Draw the map's rectangles with crisp edges: adjacent cells anti-aliased
+/// each on its own leave a hairline of the background between them in a
+/// browser (a seam at every cell border); lines and text keep their
+/// smoothing.
+fn crisp_cells(path: &Path) -> DynResult<()> {
+    let svg = std::fs::read_to_string(path)?;
+    if let Some(open) = svg.find("<svg")
+        && let Some(end) = svg[open..].find('>')
+    {
+        let at = open + end + 1;
+        let styled = format!(
+            "{}\n<style>rect{{shape-rendering:crispEdges}}</style>{}",
+            &svg[..at],
+            &svg[at..]
+        );
+        std::fs::write(path, styled)?;
+    }
+    Ok(())
 }
 
 pub(super) fn render(path: &Path, map: &Map) -> DynResult<()> {

@@ -33,6 +33,22 @@ pub fn write_loss_fraction_map(
     title: Option<&str>,
     levels: &[f64],
 ) -> Result<()> {
+    write_map_hatched(path, spec, records, title, levels, false, None)
+}
+
+/// [`write_loss_fraction_map`], with the cells of the points whose
+/// `--tolerance` was not met crossed out when `hatch`, and the colour
+/// bar's label `bar` for a map of another quantity than P_l (put in the
+/// records' `loss_fraction`).
+pub(super) fn write_map_hatched(
+    path: &Path,
+    spec: &SweepSpec,
+    records: &[SweepRecord],
+    title: Option<&str>,
+    levels: &[f64],
+    hatch: bool,
+    bar: Option<&str>,
+) -> Result<()> {
     if spec.axes.len() != 2 || records.len() != spec.len() {
         return Err(Error::invalid(
             "sweep maps",
@@ -133,6 +149,25 @@ pub fn write_loss_fraction_map(
             anchor,
         });
     }
+    if hatch {
+        // an X over each cell whose point did not reach its tolerance
+        for r in records {
+            let (i, j) = (r.index / ny, r.index % ny);
+            if i >= nx || r.accuracy.as_ref().is_none_or(|a| a.met) {
+                continue;
+            }
+            let (x0, x1) = (x_edges[i], x_edges[i + 1]);
+            let (y0, y1) = (y_edges[j], y_edges[j + 1]);
+            overlays.push(Overlay {
+                points: vec![(x0, y0), (x1, y1)],
+                bold: false,
+            });
+            overlays.push(Overlay {
+                points: vec![(x0, y1), (x1, y0)],
+                bold: false,
+            });
+        }
+    }
     let with_loss = records.iter().filter(|r| r.loss_fraction > 0.0).count();
     let map = Map {
         title: title.map_or_else(
@@ -157,13 +192,20 @@ pub fn write_loss_fraction_map(
             hi: if hi > 0.0 { hi } else { 1.0 },
             zero_white: true,
             log: log_scale,
-            bar_label: "P_l = time with contact lost / run time".into(),
+            bar_label: bar
+                .unwrap_or("P_l = time with contact lost / run time")
+                .into(),
             clipped_max: None,
         },
         overlays,
         labels,
         footer: format!(
-            "{nx} × {ny} runs, {with_loss} with loss; lines: V0/c of each run (marching squares), bold at 0.64 and 0.96 (the study's band borders){}",
+            "{nx} × {ny} runs, {with_loss} {}; lines: V0/c of each run (marching squares), bold at 0.64 and 0.96 (the study's band borders){}",
+            if bar.is_some() {
+                "above 0"
+            } else {
+                "with loss"
+            },
             failed_note(records)
         ),
     };

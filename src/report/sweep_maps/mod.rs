@@ -1,6 +1,7 @@
 //! SVG maps of a sweep (`taut sweep` / `taut merge`; the study's Figs 8–12).
 //!
-//! * 1-D sweep: `force_map.svg`, the mean contact force over
+//! * 1-D sweep: `sweep.svg`, P_l and the filtered force against the axis
+//!   as line charts (error bars from an uncertainty column), `force_map.svg`, the mean contact force over
 //!   (x_m/L, parameter) as a heat map with a colour bar (the upper panels of
 //!   the study's Figs 8–11), and `loss_map.svg`, contact loss in black and
 //!   white over the same axes (black where some step in the x_m/L bin had
@@ -28,29 +29,32 @@ mod colour_bar;
 mod contour;
 mod force_map;
 mod heat_map;
+mod line_chart;
 mod loss_fraction_map;
 mod loss_map;
 mod records;
 mod refinement_map;
 mod refinement_plot;
 mod span_map;
+mod tolerance_map;
 
 use std::path::{Path, PathBuf};
 
 use crate::error::Result;
 use crate::study::sweep::{SweepRecord, SweepSpec};
 
-pub use axes::axis_label;
 pub use force_map::write_force_map;
+pub use line_chart::write_sweep_chart;
 pub use loss_fraction_map::{SPEED_RATIO_LEVELS, write_loss_fraction_map};
 pub use loss_map::write_loss_map;
 pub use refinement_map::write_refinement_map;
 pub use refinement_plot::write_refinement_plot;
 use span_map::write_loss_fraction_span_map;
+pub(crate) use tolerance_map::{write_tolerance_plot, write_u_num_map, write_value_map_hatched};
 /// Draw the maps of a finished sweep into `dir` (none for a shard, which
 /// holds only part of the grid, for a list of points, and for an axis
 /// whose listed values are not in increasing or decreasing order). Returns the files written.
-pub fn write_sweep_maps(
+pub(crate) fn write_sweep_maps(
     dir: &Path,
     spec: &SweepSpec,
     records: &[SweepRecord],
@@ -64,7 +68,18 @@ pub fn write_sweep_maps(
             let (f, l) = (dir.join("force_map.svg"), dir.join("loss_map.svg"));
             write_force_map(&f, spec, records, None)?;
             write_loss_map(&l, spec, records, None)?;
-            let mut maps = vec![f, l];
+            let c = dir.join("sweep.svg");
+            write_sweep_chart(
+                &c,
+                &spec.axes[0].key,
+                &crate::report::sweep_table(spec, records),
+            )?;
+            let mut maps = vec![c, f, l];
+            if spec.tolerance.is_some() {
+                let t = dir.join("tolerance.svg");
+                write_tolerance_plot(&t, spec, records)?;
+                maps.push(t);
+            }
             if spec.check_refinement {
                 let r = dir.join("refinement.svg");
                 write_refinement_plot(&r, spec, records)?;
@@ -79,6 +94,11 @@ pub fn write_sweep_maps(
             let s = dir.join("loss_fraction_span_map.svg");
             write_loss_fraction_span_map(&s, spec, records)?;
             let mut maps = vec![p, s];
+            if spec.tolerance.is_some() {
+                let u = dir.join("u_num_map.svg");
+                write_u_num_map(&u, spec, records)?;
+                maps.push(u);
+            }
             if spec.check_refinement {
                 let r = dir.join("refinement_map.svg");
                 write_refinement_map(&r, spec, records)?;

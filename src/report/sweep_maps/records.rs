@@ -52,3 +52,15 @@ pub(super) fn sorted_by_index(records: &[SweepRecord]) -> Vec<SweepRecord> {
     r.sort_by_key(|r| r.index);
     r
 }
+
+/// The stretch of a 1-D plot's axis that point `i` of the sorted values `x`
+/// owns: half-way to each neighbour (to the end of the axis at either end).
+pub(super) fn own_span(x: &[f64], i: usize) -> [f64; 2] {
+    let lo = if i > 0 { 0.5 * (x[i - 1] + x[i]) } else { x[i] };
+    let hi = if i + 1 < x.len() {
+        0.5 * (x[i] + x[i + 1])
+    } else {
+        x[i]
+    };
+    [lo, hi]
+}

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use super::axes::axis_label;
-use super::records::sorted_by_index;
+use super::records::{own_span, sorted_by_index};
 use crate::error::Result;
 use crate::study::sweep::{SweepRecord, SweepSpec};
 /// `--check-refinement` on a 1-D sweep: the in-span P_l at the sweep's
@@ -16,15 +16,7 @@ pub fn write_refinement_plot(path: &Path, spec: &SweepSpec, records: &[SweepReco
     let records = sorted_by_index(records);
     let x: Vec<f64> = records.iter().map(|r| r.values[0]).collect();
     // each point owns the axis up to halfway to its neighbours
-    let half = |i: usize| -> [f64; 2] {
-        let lo = if i > 0 { 0.5 * (x[i - 1] + x[i]) } else { x[i] };
-        let hi = if i + 1 < x.len() {
-            0.5 * (x[i] + x[i + 1])
-        } else {
-            x[i]
-        };
-        [lo, hi]
-    };
+    let half = |i: usize| own_span(&x, i);
     let unconverged: Vec<[f64; 2]> = records
         .iter()
         .enumerate()
@@ -56,17 +48,19 @@ pub fn write_refinement_plot(path: &Path, spec: &SweepSpec, records: &[SweepReco
             label: "at the sweep's N, Δt".into(),
             points: base,
             shaded: unconverged,
+            filtered: vec![],
         },
         Series {
             label: "refined: 2N, Δt/2".into(),
             points: refined,
             shaded: vec![],
+            filtered: vec![],
         },
     ];
     line_plot(
         path,
         &title,
-        (&axis_label(&spec.axes[0].key), "P_l in span"),
+        (&axis_label(&spec.axes[0].key), "P_l in span (–)"),
         &series,
         "not converged (shaded)",
     )

@@ -20,11 +20,14 @@ pub(super) fn write_loss_fraction_span_map(
             ..r.clone()
         })
         .collect();
-    write_loss_fraction_map(
-        path,
-        spec,
-        &span,
-        Some("P_l in span (outside the support zones)"),
-        &SPEED_RATIO_LEVELS,
-    )
+    let title = "P_l in span (outside the support zones)";
+    match &spec.tolerance {
+        Some(t) if t.quantity == "loss_fraction_span" => super::write_value_map_hatched(
+            path,
+            spec,
+            &span,
+            &format!("{title}; crossed out: u_num above {:e}", t.tolerance),
+        ),
+        _ => write_loss_fraction_map(path, spec, &span, Some(title), &SPEED_RATIO_LEVELS),
+    }
 }

@@ -22,8 +22,8 @@
 //!
 //! Norms of histories: max over samples, and L2 as the RMS over samples.
 //!
-//! Beside this file (the study and its drivers): [`rows`] (the rows of
-//! `converge.csv` and how a study's runs become them) and [`regime`] (what
+//! Beside this file (the study and its drivers): `rows` (the rows of
+//! `converge.csv` and how a study's runs become them) and `regime` (what
 //! a level's errors say: asymptotic, stalled, pre-asymptotic, …).
 
 mod regime;
@@ -41,12 +41,11 @@ use crate::resolve::{Resolved, resolve_scene};
 use crate::run::{RunOutput, run, run_with};
 use crate::scene::{Declared, Discretization};
 
-pub use super::grid::GCI_SAFETY_FACTOR;
-pub use super::reference::AnalyticW;
+pub(crate) use super::reference::AnalyticW;
 use regime::Context;
-pub use regime::{FORMAL_GAP, ORDER_DRIFT, STALL_RATIO};
-use rows::tabulate;
-pub use rows::{ConvergeRow, QUANTITIES, SCALARS};
+pub use rows::ConvergeRow;
+pub(crate) use rows::QUANTITIES;
+use rows::{diverged_rows, tabulate};
 
 /// What is refined.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -58,6 +57,18 @@ pub enum Refine {
     Step,
     /// Both together.
     Both,
+}
+
+/// A refinement ladder: what is refined, how many levels, by what ratio
+/// (`--refine`, `--levels`, `--ratio`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ladder {
+    /// What is refined.
+    pub refine: Refine,
+    /// Levels, in `LEVELS` (3 or more for observed orders).
+    pub levels: usize,
+    /// The refinement ratio r > 1 (an integer ≥ 2 when the step is refined).
+    pub ratio: f64,
 }
 
 impl std::str::FromStr for Refine {
@@ -86,10 +97,24 @@ pub struct Convergence {
     pub scenes: Vec<Resolved>,
     /// The runs, coarsest first.
     pub runs: Vec<RunOutput>,
+    /// `--refine both`: level ℓ's mesh at level ℓ − 1's Δt, ℓ = 1 … K − 1
+    /// (the split of each change into its mesh and Δt parts).
+    pub split: Vec<RunOutput>,
     /// All rows, level-major.
     pub rows: Vec<ConvergeRow>,
     /// Wall seconds of each level.
     pub wall_seconds: Vec<f64>,
+    /// The level whose run diverged, when one did (the ladder stops there).
+    pub diverged: Option<Diverged>,
+}
+
+/// A level of a ladder whose run blew up.
+#[derive(Debug, Clone, Serialize)]
+pub struct Diverged {
+    /// The level.
+    pub level: usize,
+    /// The run's diagnosis (step, time, quantity, likely cause).
+    pub reason: String,
 }
 
 /// One method's (or discretization's) refinement study in a `--methods`
@@ -108,28 +133,15 @@ pub struct MethodStudy {
 /// explicit method above its stability limit at the coarse levels, a run
 /// that stops) is listed in the second vector with its reason; it is an
 /// error only when no method runs.
-#[allow(clippy::too_many_arguments)]
 pub fn converge_methods(
     text: &str,
     overrides: &[String],
     methods: &[&dyn MethodFactory],
-    refine: Refine,
-    levels: usize,
-    ratio: f64,
+    ladder: Ladder,
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<(Vec<MethodStudy>, Vec<NotRun>)> {
-    converge_variants(
-        text,
-        overrides,
-        methods,
-        &[],
-        refine,
-        levels,
-        ratio,
-        analytic,
-        progress,
-    )
+    converge_variants(text, overrides, methods, &[], ladder, analytic, progress)
 }
 
 /// Run the refinement sequence once per method × discretization
@@ -138,18 +150,16 @@ pub fn converge_methods(
 /// own: N for `hermite`, J for `galerkin` and `modal` (module docs of
 /// [`super::space`]); with `--refine step` only Δt is refined. Skipped
 /// variants as in [`converge_methods`].
-#[allow(clippy::too_many_arguments)]
-pub fn converge_variants(
+pub(crate) fn converge_variants(
     text: &str,
     overrides: &[String],
     methods: &[&dyn MethodFactory],
     spaces: &[SpaceChoice],
-    refine: Refine,
-    levels: usize,
-    ratio: f64,
+    ladder: Ladder,
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<(Vec<MethodStudy>, Vec<NotRun>)> {
+    let levels = ladder.levels;
     let ms: Vec<Option<&dyn MethodFactory>> = if methods.is_empty() {
         vec![None]
     } else {
@@ -172,9 +182,11 @@ pub fn converge_variants(
                 (None, None) => String::new(),
             };
             let mut inner = |l: usize, _: usize| progress(i * levels + l, total);
-            match converge_with(
-                text, overrides, m, s, refine, levels, ratio, analytic, &mut inner,
-            ) {
+            let variant = Variant {
+                method: m,
+                space: s,
+            };
+            match converge_with(text, overrides, variant, ladder, analytic, &mut inner) {
                 Ok(study) => done.push(MethodStudy {
                     method: label,
                     study,
@@ -225,16 +237,16 @@ pub fn converge_variants(
 /// Levels a convergence study takes (`--levels`, Python `levels=`): at
 /// least 2 (one difference), 3 for an observed order; at most 12 (a ratio of
 /// 2 refines 2¹¹ = 2048 times on the finest level).
-pub const LEVELS: std::ops::RangeInclusive<usize> = 2..=12;
+pub(crate) const LEVELS: std::ops::RangeInclusive<usize> = 2..=12;
 
 /// `levels` if within [`LEVELS`], else the error naming `--levels`. Checked
 /// before the study's cost is estimated (which loops over the levels).
-pub fn check_levels(levels: usize) -> Result<usize> {
+pub(crate) fn check_levels(levels: usize) -> Result<usize> {
     super::grid::in_range("--levels", levels, &LEVELS)
 }
 
 /// `ratio` if finite and > 1, else the error naming `--ratio`.
-pub fn check_ratio(ratio: f64) -> Result<f64> {
+pub(crate) fn check_ratio(ratio: f64) -> Result<f64> {
     if ratio > 1.0 && ratio.is_finite() {
         Ok(ratio)
     } else {
@@ -258,24 +270,41 @@ pub fn converge(
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Convergence> {
-    converge_with(
-        text, overrides, None, None, refine, levels, ratio, analytic, progress,
-    )
+    let ladder = Ladder {
+        refine,
+        levels,
+        ratio,
+    };
+    let own = Variant {
+        method: None,
+        space: None,
+    };
+    converge_with(text, overrides, own, ladder, analytic, progress)
 }
 
-/// [`converge`] with the method `method` builds (`None`: the scene's own).
-#[allow(clippy::too_many_arguments)]
+/// One variant of a study: the method it steps and its space
+/// discretization (`None`: the scene's own).
+#[derive(Clone, Copy)]
+struct Variant<'a> {
+    method: Option<&'a dyn MethodFactory>,
+    space: Option<SpaceChoice>,
+}
+
+/// [`converge`] of one variant.
 fn converge_with(
     text: &str,
     overrides: &[String],
-    method: Option<&dyn MethodFactory>,
-    space: Option<SpaceChoice>,
-    refine: Refine,
-    levels: usize,
-    ratio: f64,
+    variant: Variant,
+    ladder: Ladder,
     analytic: &dyn Fn(&Resolved) -> Option<AnalyticW>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Convergence> {
+    let Ladder {
+        refine,
+        levels,
+        ratio,
+    } = ladder;
+    let Variant { method, space } = variant;
     check_levels(levels)?;
     check_ratio(ratio)?;
     let refines_step = refine != Refine::Mesh;
@@ -292,11 +321,11 @@ fn converge_with(
         Some(m) => base_scene(text, overrides, Some(m))?.validate()?,
     };
     base.require_every_step("taut converge")?;
-    let mut scenes = Vec::with_capacity(levels);
     let modal = space.is_some_and(|s| s.is_modal());
-    for l in 0..levels {
+    // level ℓ: N₀·r^ℓ elements (or J₀·r^ℓ modes) and/or Δt₀/r^ℓ
+    let level_variant = |l: usize| {
         let f = ratio.powi(l as i32);
-        let variant = RunVariant {
+        RunVariant {
             elements: (refine != Refine::Step && !modal)
                 .then(|| (base.elements as f64 * f).round() as usize),
             dt: refines_step.then(|| base.dt / f),
@@ -312,27 +341,72 @@ fn converge_with(
                     },
                 )
             }),
-        };
-        scenes.push(variant.apply(&base)?);
-    }
+        }
+    };
+    let mut scenes = (0..levels)
+        .map(|l| level_variant(l).apply(&base))
+        .collect::<Result<Vec<Resolved>>>()?;
     let base = &scenes[0];
-    // the coarse time grid must be a subset of every level's
+    // the coarse time grid must be a subset of every level's; each level
+    // ends at its last whole step before the scene's end, so the levels
+    // are compared at the coarse grid's times, which every level reaches
     let stride = scenes
         .iter()
-        .map(|s| nest((base.steps, base.dt), (s.steps, s.dt), Reach::SameEnd))
+        .map(|s| nest((base.steps, base.dt), (s.steps, s.dt), Reach::AtLeast))
         .collect::<Result<Vec<usize>>>()?;
+    let go = |s: &Resolved| match method {
+        None => run(s, &mut |_, _| {}),
+        Some(m) => run_with(s, m, &mut |_, _| {}),
+    };
     let mut runs = Vec::with_capacity(levels);
     let mut wall = Vec::with_capacity(levels);
+    let mut diverged = None;
     for (l, s) in scenes.iter().enumerate() {
-        let out = match method {
-            None => run(s, &mut |_, _| {})?,
-            Some(m) => run_with(s, m, &mut |_, _| {})?,
-        };
-        wall.push(out.wall_seconds);
-        runs.push(out);
+        match go(s) {
+            Ok(out) => {
+                wall.push(out.wall_seconds);
+                runs.push(out);
+            }
+            // a level that blows up ends the ladder: the levels before it
+            // are kept and the study says where and how it diverged
+            Err(e @ Error::Diverged { .. }) if l > 0 => {
+                diverged = Some(Diverged {
+                    level: l,
+                    reason: e.to_string(),
+                });
+                break;
+            }
+            Err(e) => return Err(e),
+        }
         progress(l + 1, levels);
     }
-    let finest = &scenes[levels - 1];
+    let done = runs.len();
+    let stride = &stride[..done];
+    // --refine both: level ℓ's mesh at level ℓ − 1's Δt splits each
+    // change into its mesh part and its Δt part
+    let mut split = Vec::new();
+    if refine == Refine::Both && diverged.is_none() {
+        for l in 1..done {
+            let variant = RunVariant {
+                dt: Some(scenes[l - 1].dt),
+                ..level_variant(l)
+            };
+            let sc = variant.apply(&scenes[0])?;
+            match go(&sc) {
+                Ok(out) => split.push(out),
+                Err(e @ Error::Diverged { .. }) => {
+                    diverged = Some(Diverged {
+                        level: l,
+                        reason: format!("its mesh-only split run: {e}"),
+                    });
+                    split.clear();
+                    break;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    }
+    let finest = &scenes[done - 1];
     let reference = analytic(finest);
     // the exact force of a reference that has one (manufactured, a force's)
     let exact = match finest.reference {
@@ -343,10 +417,10 @@ fn converge_with(
         }
         _ => None,
     };
-    let name = method.map_or_else(|| base.integrator.method.clone(), |m| m.name());
+    let name = method.map_or_else(|| base.method.name().to_string(), |m| m.name());
     let time_order = match method {
         Some(m) => m.time_order(base),
-        None => scene_method(base)?.time_order(base),
+        None => scene_method(base).time_order(base),
     };
     let space_order = match base.discretization {
         Discretization::Hermite if base.beam.is_string() => Some(2.0),
@@ -371,7 +445,7 @@ fn converge_with(
             "neither refined variable (a floor: the reference's accuracy or a fixed parameter)",
         ),
     };
-    let omega_dt = scenes
+    let omega_dt = scenes[..done]
         .iter()
         .map(|s| {
             crate::integrate::central_difference_limit(s).map_or(f64::NAN, |l| l.omega_max * s.dt)
@@ -381,20 +455,35 @@ fn converge_with(
         w: reference.as_deref(),
         force: exact.as_ref().and_then(|e| e.force.as_deref()),
         name: finest.reference.name(),
+        refine,
+        refined: match (refine, modal) {
+            (Refine::Step, _) => "Δt",
+            (Refine::Mesh, false) => "mesh",
+            (Refine::Mesh, true) => "J",
+            (Refine::Both, false) => "mesh and Δt",
+            (Refine::Both, true) => "J and Δt",
+        },
         formal,
         unrefined,
         omega_dt,
     };
-    let mut rows = tabulate(&scenes, &runs, &stride, ratio, &ctx);
+    let mut rows = tabulate(&scenes[..done], &runs, stride, &split, ratio, &ctx);
+    if let Some(d) = &diverged {
+        let at = scenes.get(d.level).unwrap_or(&scenes[done - 1]);
+        rows.extend(diverged_rows(at, d));
+    }
     for r in &mut rows {
         r.method.clone_from(&name);
     }
+    scenes.truncate(done);
     Ok(Convergence {
         refine,
         ratio,
         scenes,
         runs,
+        split,
         rows,
         wall_seconds: wall,
+        diverged,
     })
 }

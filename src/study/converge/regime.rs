@@ -11,6 +11,10 @@ pub(super) struct Context<'a> {
     pub(super) force: Option<&'a (dyn Fn(f64) -> f64 + Sync)>,
     /// The declared reference's name, for the `reference` column.
     pub(super) name: &'static str,
+    /// What the ladder refines.
+    pub(super) refine: super::Refine,
+    /// It in words: `mesh`, `J`, `Δt`, `mesh and Δt`, `J and Δt`.
+    pub(super) refined: &'static str,
     /// The displacement's formal order in the refined variable, if known.
     pub(super) formal: Option<f64>,
     /// What the ladder does not refine ("the mesh", "Δt", "J", …).
@@ -24,35 +28,61 @@ pub(super) struct Context<'a> {
 /// what it does not refine. Chosen between a converging ladder's slowest
 /// useful rate (first order: ×2 per halving) and the ±10 % a stalled error
 /// wanders by.
-pub const STALL_RATIO: f64 = 1.25;
+pub(crate) const STALL_RATIO: f64 = 1.25;
+
+/// An error (against an exact reference) or a difference between levels
+/// at least this fraction of the quantity's own size is no discretization
+/// error: the run blew up (a Newmark ladder's force error of 250 N on a
+/// 15 N force was once called "limited by the mesh"). The regime is then
+/// `diverged`, whatever the error did from level to level.
+pub const DIVERGED_RELATIVE: f64 = 1.0;
 
 /// Successive observed orders differing by more than this are not yet in
 /// the asymptotic range: the ratio of successive error ratios is outside
 /// r^(±0.3) (0.81 … 1.23 at r = 2), where the leading error term does not
 /// yet dominate the next one.
-pub const ORDER_DRIFT: f64 = 0.3;
+pub(crate) const ORDER_DRIFT: f64 = 0.3;
 
 /// An observed order this far from the formal one is pre-asymptotic (or
 /// the formal order does not hold for this solution: the regime says which
 /// to suspect, the numbers show it). The same ±0.3 the verification
 /// harness allows a smooth case.
-pub const FORMAL_GAP: f64 = 0.3;
+pub(crate) const FORMAL_GAP: f64 = 0.3;
 
 /// The regime of a level from the errors of its ladder (`e`, against an
-/// exact reference, or successive differences when `exact` is false) and
-/// the orders between levels (module docs, `docs/convergence.md`).
-pub(super) fn regime(e: &[f64], orders: &[f64], l: usize, ctx: &Context, exact: bool) -> String {
+/// exact reference, or successive differences when `exact` is false), the
+/// orders between levels and the quantity's size at the level (`size`:
+/// the exact history's norm, or the level's own for a history without a
+/// reference; `None` for a scalar) (module docs, `docs/convergence.md`).
+pub(super) fn regime(
+    e: &[f64],
+    orders: &[f64],
+    l: usize,
+    ctx: &Context,
+    exact: bool,
+    size: Option<f64>,
+) -> String {
     // with differences, level ℓ's difference is index ℓ − 1
-    let (prev, cur) = if exact {
-        if l == 0 {
-            return String::new();
-        }
-        (e[l - 1], e[l])
-    } else {
-        if l < 2 {
-            return String::new();
-        }
-        (e[l - 2], e[l - 1])
+    let cur = match (exact, l) {
+        (true, _) => e[l],
+        (false, 0) => return String::new(),
+        (false, _) => e[l - 1],
+    };
+    if size.is_some_and(|s| s > 0.0 && cur >= DIVERGED_RELATIVE * s) {
+        return format!(
+            "diverged: {} as large as the quantity itself ({cur:.3e} against {:.3e})",
+            if exact {
+                "the error is"
+            } else {
+                "successive levels differ by"
+            },
+            size.unwrap_or(f64::NAN)
+        );
+    }
+    let prev = match (exact, l) {
+        (true, 0) | (false, 1) => return String::new(),
+        (true, _) => e[l - 1],
+        (false, _) => e[l - 2],
     };
     if !(prev.is_finite() && cur.is_finite()) || prev == 0.0 {
         return String::new();

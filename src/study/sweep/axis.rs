@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 /// numbers is taken as the whole number it approximates: round-off of the
 /// spacing formula is ~1e-15; a genuine grid value is further than 1e-9
 /// from a whole number unless it is one.
-pub const WHOLE_SNAP: f64 = 1e-9;
+pub(crate) const WHOLE_SNAP: f64 = 1e-9;
 
 /// The most values one axis may have (a sweep has at most
 /// [`super::MAX_POINTS`] points in all).
@@ -36,7 +36,7 @@ pub struct Axis {
     pub values: Option<Vec<f64>>,
 }
 
-/// One of the study's dimensionless axes ([`super::DIMENSIONLESS`]): a
+/// One of the study's dimensionless axes (`speed_ratio`, `tension_ratio`, `mass_ratio`, `stiffness_ratio`): a
 /// ratio that fixes scene values through the scene itself.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Ratio {
@@ -185,7 +185,7 @@ impl Axis {
     }
 
     /// The i-th value: `start` and `stop` exactly at the ends. On an axis
-    /// between whole numbers, a value within [`WHOLE_SNAP`] of a whole number
+    /// between whole numbers, a value within `WHOLE_SNAP` of a whole number
     /// is that number, so `mesh.elements=100:1600:5 --log` gives 200, 400, 800
     /// (integer keys take them) rather than 199.99999999999997.
     pub fn value(&self, i: usize) -> f64 {

@@ -11,7 +11,7 @@ use crate::resolve::Resolved;
 /// How many runs a sweep steps together (`--batch`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BatchWidth {
-    /// [`AUTO_BATCH_LANES`].
+    /// `AUTO_BATCH_LANES`.
     Auto,
     /// At most this many (1: every run alone, the unbatched path).
     Fixed(usize),
@@ -24,15 +24,15 @@ pub enum BatchWidth {
 /// runs alone), two little (0.94–1.35×: the half-width vectors barely pay
 /// for the interleaving), eight less than four (the sweep's window of 3 × 16
 /// columns no longer fits the sixteen vector registers).
-pub const AUTO_BATCH_LANES: usize = 4;
+pub(crate) const AUTO_BATCH_LANES: usize = 4;
 
 /// The automatic batch width of a scene's runs: [`AUTO_BATCH_LANES`] for
 /// generalized-α (SIMD lanes of one band sweep), the widest batch for
 /// `modal_exact`, whose runs gain from sharing their basis and its tables
 /// (built once per batch) and lose nothing by stepping in turn
 /// (`integrate::modal_batch`).
-pub fn auto_lanes(sc: &Resolved) -> usize {
-    match sc.scheme {
+pub(crate) fn auto_lanes(sc: &Resolved) -> usize {
+    match sc.method.scheme {
         crate::scene::Scheme::ModalExact => crate::integrate::MAX_LANES,
         _ => AUTO_BATCH_LANES,
     }

@@ -7,7 +7,7 @@
 //!   sweep killed with `kill -9` leaves nothing stale to clear: resuming it
 //!   just works.
 //! * **Every record stamped.** Each `runs/NNNNNN.json` carries the identity of
-//!   its sweep ([`sweep_id`], a hash of `sweep.json`), its grid index and its
+//!   its sweep (`sweep_id`, a hash of `sweep.json`), its grid index and its
 //!   axis values. A record is used only when all three match the folder's
 //!   sweep and the file it sits in; anything else (a record of another sweep,
 //!   of an older taut, under the wrong index) is refused with its path, on
@@ -24,14 +24,59 @@ use super::{SweepRecord, SweepSpec};
 use crate::error::{Error, Result};
 
 /// The lock file a running sweep or merge holds in its folder.
-pub const LOCK_FILE: &str = "sweep.lock";
+pub(crate) const LOCK_FILE: &str = "sweep.lock";
 
 /// A claimed sweep folder; the claim ends when this is dropped (or the
-/// process dies).
+/// process dies). Dropped, it removes `sweep.lock` while still holding it,
+/// so a finished sweep leaves no lock file behind; a claim that waited on
+/// the removed file finds it gone and takes a new one ([`claim`]).
 #[derive(Debug)]
 pub struct FolderLock {
     dir: PathBuf,
+    /// The folder's canonical path, held in [`CLAIMED`] until dropped.
+    canonical: PathBuf,
     _file: File,
+}
+
+/// The folders claimed by this process, by canonical path: a claim is
+/// refused here first, whatever the file system makes of two locks taken
+/// by one process (on NFS and other file systems that emulate `flock`
+/// with POSIX record locks, a process's second lock on a file succeeds:
+/// two sweeps of one Python process shared a folder, issue 41).
+static CLAIMED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Give back this process's claim of `canonical` ([`CLAIMED`]).
+fn unclaim(canonical: &Path) {
+    let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some(i) = held.iter().position(|p| p == canonical) {
+        held.swap_remove(i);
+    }
+}
+
+impl Drop for FolderLock {
+    fn drop(&mut self) {
+        // removed before the descriptor (and so the lock) is closed
+        let _ = std::fs::remove_file(self.dir.join(LOCK_FILE));
+        unclaim(&self.canonical);
+    }
+}
+
+/// True when `path` still names the file `file` has open (a lock taken on a
+/// file another claim has since removed is no claim of the folder).
+fn still_named(file: &File, path: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        match (file.metadata(), std::fs::metadata(path)) {
+            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (file, path);
+        true
+    }
 }
 
 impl FolderLock {
@@ -45,13 +90,65 @@ impl FolderLock {
 /// folder ([`claim`]): a fork–exec window is microseconds to milliseconds
 /// even on a loaded machine; a sweep or merge holding the folder holds it
 /// for its whole run.
-pub const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500);
+pub(crate) const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500);
+
+/// The refusal of a folder another sweep or merge holds.
+fn in_use(dir: &Path, holder: &str) -> Error {
+    Error::invalid(
+        "--out",
+        dir.display(),
+        format!(
+            "is in use by another sweep or merge running now ({holder}): wait for it to \
+             finish, or use another folder"
+        ),
+    )
+}
 
 /// Claim `dir` for one sweep or merge (creating it), or refuse if another
-/// process holds it.
+/// claim holds it: first in this process (`CLAIMED`), then the
+/// operating system's lock on `sweep.lock`.
 pub fn claim(dir: &Path) -> Result<FolderLock> {
     std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
+    let canonical = dir.canonicalize().map_err(|e| Error::io(dir, e))?;
+    {
+        let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
+        if held.contains(&canonical) {
+            return Err(in_use(
+                dir,
+                &format!("in this process, {}", std::process::id()),
+            ));
+        }
+        held.push(canonical.clone());
+    }
+    // from here the claim is this process's: a failure below gives it back
     let path = dir.join(LOCK_FILE);
+    // a lock taken on a file its holder removed as it let go: open anew
+    for _ in 0..CLAIM_TRIES {
+        let file = claim_once(dir, &path).inspect_err(|_| unclaim(&canonical))?;
+        if still_named(&file, &path) {
+            return Ok(FolderLock {
+                dir: dir.to_path_buf(),
+                canonical,
+                _file: file,
+            });
+        }
+        // the file was removed under us: closing it lets go of nothing
+    }
+    unclaim(&canonical);
+    Err(Error::invalid(
+        "--out",
+        dir.display(),
+        "its sweep.lock keeps being replaced by other sweeps or merges: wait for them to finish, or use another folder",
+    ))
+}
+
+/// Claims [`claim`] makes before giving up on a folder whose lock file
+/// keeps being removed under it (each removal is a claim that finished).
+const CLAIM_TRIES: usize = 20;
+
+/// Open `sweep.lock` and take its lock (one try of [`claim`]).
+fn claim_once(dir: &Path, path: &Path) -> Result<File> {
+    let path = path.to_path_buf();
     let mut file = OpenOptions::new()
         .create(true)
         .truncate(false)
@@ -76,14 +173,9 @@ pub fn claim(dir: &Path) -> Result<FolderLock> {
         Err(TryLockError::WouldBlock) => {
             // a line or two ("process N"): read no more than a line's worth
             let holder = crate::input::read_text(&path, "a lock file", 256).unwrap_or_default();
-            return Err(Error::invalid(
-                "--out",
-                dir.display(),
-                format!(
-                    "is in use by another sweep or merge running now ({}): wait for it to \
-                     finish, or use another folder",
-                    holder.trim().lines().next().unwrap_or("its lock is held")
-                ),
+            return Err(in_use(
+                dir,
+                holder.trim().lines().next().unwrap_or("its lock is held"),
             ));
         }
         Err(TryLockError::Error(e)) => return Err(Error::io(&path, e)),
@@ -91,20 +183,17 @@ pub fn claim(dir: &Path) -> Result<FolderLock> {
     // who holds it, for a person looking at the folder (the lock itself is the OS's)
     file.set_len(0).map_err(|e| Error::io(&path, e))?;
     writeln!(file, "process {}", std::process::id()).map_err(|e| Error::io(&path, e))?;
-    Ok(FolderLock {
-        dir: dir.to_path_buf(),
-        _file: file,
-    })
+    Ok(file)
 }
 
 /// The text of `sweep.json` for a spec.
-pub fn spec_text(spec: &SweepSpec) -> String {
+pub(crate) fn spec_text(spec: &SweepSpec) -> String {
     serde_json::to_string_pretty(spec).expect("a sweep spec is plain data") + "\n"
 }
 
 /// A sweep's identity: FNV-1a (64 bit) of its `sweep.json` text, in hex.
 /// It tells records of different sweeps apart (not a defence against forgery).
-pub fn sweep_id(spec: &SweepSpec) -> String {
+pub(crate) fn sweep_id(spec: &SweepSpec) -> String {
     const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
     const PRIME: u64 = 0x0100_0000_01b3;
     let h = spec_text(spec)
@@ -116,7 +205,7 @@ pub fn sweep_id(spec: &SweepSpec) -> String {
 /// Check that the folder's `sweep.json`, if any, is this sweep's; `Ok(false)`
 /// when there is none yet (write it with [`write_spec`] once the records
 /// already in the folder have been checked).
-pub fn check_spec(dir: &Path, spec: &SweepSpec) -> Result<bool> {
+pub(crate) fn check_spec(dir: &Path, spec: &SweepSpec) -> Result<bool> {
     let path = dir.join("sweep.json");
     match read_json(&path, "a sweep's sweep.json") {
         Ok(existing) if existing == spec_text(spec) => Ok(true),
@@ -136,25 +225,25 @@ fn read_json(path: &Path, what: &str) -> Result<String> {
 }
 
 /// Write the folder's `sweep.json`.
-pub fn write_spec(dir: &Path, spec: &SweepSpec) -> Result<()> {
+pub(crate) fn write_spec(dir: &Path, spec: &SweepSpec) -> Result<()> {
     write_atomic(&dir.join("sweep.json"), &spec_text(spec))
 }
 
 /// Path of point `index`'s record.
-pub fn run_file(dir: &Path, index: usize) -> PathBuf {
+pub(crate) fn run_file(dir: &Path, index: usize) -> PathBuf {
     dir.join("runs").join(format!("{index:06}.json"))
 }
 
 /// Write `text` to `path` through a temporary file and a rename, so a killed
 /// process never leaves half a file.
-pub fn write_atomic(path: &Path, text: &str) -> Result<()> {
+pub(crate) fn write_atomic(path: &Path, text: &str) -> Result<()> {
     let tmp = path.with_extension("json.tmp");
     std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
     std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
 }
 
 /// Save point `record.index`'s record.
-pub fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
+pub(crate) fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
     let text = serde_json::to_string(record).expect("a sweep record is plain data");
     write_atomic(&run_file(dir, record.index), &text)
 }
@@ -163,7 +252,12 @@ pub fn save(dir: &Path, record: &SweepRecord) -> Result<()> {
 /// `Ok(None)` when the point has not finished (no file, or an empty or
 /// unparsable one), an error when the file holds a record that is not this
 /// sweep's point `index`.
-pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Option<SweepRecord>> {
+pub(crate) fn load(
+    dir: &Path,
+    spec: &SweepSpec,
+    id: &str,
+    index: usize,
+) -> Result<Option<SweepRecord>> {
     let path = run_file(dir, index);
     let text = match read_json(&path, "a sweep's run record") {
         Ok(t) => t,
@@ -223,7 +317,7 @@ pub fn load(dir: &Path, spec: &SweepSpec, id: &str, index: usize) -> Result<Opti
 /// that has since changed, and silently leaving it out would hide that (a
 /// `000008.json` among a 7-point grid's records). Other files are not
 /// records and are left alone.
-pub fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
+pub(crate) fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
     let runs = dir.join("runs");
     let entries = match std::fs::read_dir(&runs) {
         Ok(e) => e,
@@ -274,8 +368,60 @@ pub fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
     }
 }
 
+/// Refuse a shard (`--shard i/n`) into a folder holding records of points
+/// the shard does not run: the whole sweep (a merged folder, an unsharded
+/// run) or another shard's points. The shard would clear the folder's
+/// tables and maps and write tables of its own points only, with nothing
+/// to say they are a part (issue 41). A shard's own folder, fresh or
+/// holding its own points (a resumed shard), is accepted.
+pub(crate) fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Shard>) -> Result<()> {
+    let Some(shard) = shard else {
+        return Ok(());
+    };
+    let runs = dir.join("runs");
+    let entries = match std::fs::read_dir(&runs) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(Error::io(&runs, e)),
+    };
+    let mut foreign: Vec<usize> = Vec::new();
+    for entry in entries {
+        let path = entry.map_err(|e| Error::io(&runs, e))?.path();
+        let Some(index) = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .and_then(|n| n.strip_suffix(".json"))
+            .filter(|s| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()))
+            .and_then(|s| s.parse::<usize>().ok())
+        else {
+            continue;
+        };
+        if index < spec.len() && !shard.owns(index) {
+            foreign.push(index);
+        }
+    }
+    foreign.sort_unstable();
+    match foreign.first() {
+        None => Ok(()),
+        Some(first) => Err(Error::invalid(
+            "--shard",
+            format!("{}/{}", shard.index, shard.count),
+            format!(
+                "{} holds the records of {} points this shard does not run (the first: point {first}){}: a shard writes the tables of its own points only, and would replace that folder's: run the shard into a folder of its own (taut merge joins shard folders), or resume the whole sweep there without --shard",
+                dir.display(),
+                foreign.len(),
+                if foreign.len() == (0..spec.len()).filter(|&i| !shard.owns(i)).count() {
+                    ": every point of the other shards, the whole sweep with this shard's"
+                } else {
+                    ""
+                }
+            ),
+        )),
+    }
+}
+
 /// Read the records of the given indices, every one present and checked.
-pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
+pub(crate) fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<SweepRecord>> {
     let id = sweep_id(spec);
     indices
         .iter()
@@ -293,7 +439,7 @@ pub fn collect(dir: &Path, spec: &SweepSpec, indices: &[usize]) -> Result<Vec<Sw
 }
 
 /// Read a sweep folder's spec.
-pub fn read_spec(dir: &Path) -> Result<SweepSpec> {
+pub(crate) fn read_spec(dir: &Path) -> Result<SweepSpec> {
     let p = dir.join("sweep.json");
     let text = read_json(&p, "a sweep's sweep.json")?;
     serde_json::from_str(&text).map_err(|e| Error::parse(format!("{}: {e}", p.display())))
@@ -308,7 +454,10 @@ pub fn merge(shards: &[PathBuf], out: &Path) -> Result<(SweepSpec, Vec<SweepReco
 
 /// [`merge`] into a folder the caller has claimed (and holds while it
 /// writes the tables).
-pub fn merge_into(out: &FolderLock, shards: &[PathBuf]) -> Result<(SweepSpec, Vec<SweepRecord>)> {
+pub(crate) fn merge_into(
+    out: &FolderLock,
+    shards: &[PathBuf],
+) -> Result<(SweepSpec, Vec<SweepRecord>)> {
     let out = out.dir();
     let first = shards
         .first()

@@ -4,9 +4,9 @@
 //!
 //! * A sweep is a 1-D or 2-D grid of `--vary key=start:stop:count` axes,
 //!   linear or (with `--log`) logarithmic, or of listed axes `--vary
-//!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, [`points`]),
+//!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, `points`),
 //!   whose keys are walked together rather than as a grid. `key` is any dotted scene path
-//!   (`beam.tension`, `carrier.0.mass`) or one of [`DIMENSIONLESS`]:
+//!   (`beam.tension`, `carrier.0.mass`) or one of the dimensionless axes:
 //!   `speed_ratio` = V0/c (every carrier's cruise speed), `tension_ratio` =
 //!   T/EA, `mass_ratio` = m/M with M = ρAL (every mass carrier),
 //!   `stiffness_ratio` = k/(T/L) (every mass carrier). Ratios are applied after
@@ -34,16 +34,19 @@
 //! * `--shard i/n` runs the points with index ≡ i (mod n); `merge` joins
 //!   shard folders (same `sweep.json` spec) into one.
 //!
-//! One concept a file: [`axis`] (one swept axis), [`spec`] (the grid and its
-//! checks), [`points`] (a list of points), [`resolve`] (a grid point's scene), [`record`] (what a run
-//! contributes), [`refine`] (`--check-refinement`), [`shard`] (`--shard`),
-//! [`batch`] (points stepped together), [`folder`] (the sweep's folder);
-//! this file runs the sweep.
+//! One concept a file: `axis` (one swept axis), `spec` (the grid and its
+//! checks), `points` (a list of points), `resolve` (a grid point's scene), `record` (what a run
+//! contributes), `refine` (`--check-refinement`), `shard` (`--shard`),
+//! `batch` (points stepped together), [`folder`] (the sweep's folder),
+//! `accuracy` (`--tolerance`: each point refined until its u_num is
+//! within EPS); this file runs the sweep.
 
+mod accuracy;
+mod aliases;
 mod axis;
 mod batch;
 pub mod folder;
-mod nan_as_null;
+pub(crate) mod nan_as_null;
 mod points;
 mod record;
 mod refine;
@@ -58,16 +61,19 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
-pub use axis::{Axis, AxisTarget, Ratio, WHOLE_SNAP};
-pub use batch::{AUTO_BATCH_LANES, BatchWidth, auto_lanes};
+pub use accuracy::{CHUNK, PointAccuracy, SweepTolerance, TARGETS};
+pub use axis::{Axis, AxisTarget, Ratio};
+pub(crate) use batch::AUTO_BATCH_LANES;
+pub use batch::BatchWidth;
 use batch::{batches, records_guarded};
-pub use folder::{FolderLock, claim, collect, merge, merge_into, read_spec};
-pub use points::{parse_points, read_points};
+pub use folder::{FolderLock, claim, merge};
+pub(crate) use folder::{merge_into, read_spec};
+pub(crate) use points::read_points;
 pub use record::{PROFILE_BINS, SweepRecord};
-pub use refine::{REFINEMENT_ABS, REFINEMENT_REL, Refined, refinement_converged};
-pub use resolve::DIMENSIONLESS;
+pub use refine::Refined;
+pub(crate) use refine::{REFINEMENT_ABS, REFINEMENT_REL, refinement_converged};
 pub use shard::Shard;
-pub use spec::{MAX_POINTS, SweepSpec};
+pub use spec::{MAX_POINT_KEYS, SweepSpec};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid
@@ -96,7 +102,7 @@ pub fn sweep_in(
     sweep_batched(claimed, spec, shard, BatchWidth::Auto, progress)
 }
 
-/// [`sweep_in`] with the batch width given (`--batch`): points that share
+/// `sweep_in` with the batch width given (`--batch`): points that share
 /// their effective matrix step together, up to that many at a time; the
 /// records are the same bytes whatever the width (their `wall_seconds`
 /// aside).
@@ -110,6 +116,7 @@ pub fn sweep_batched(
     let dir = claimed.dir();
     let had_spec = folder::check_spec(dir, spec)?;
     folder::check_no_strays(dir, spec)?;
+    folder::check_shard(dir, spec, shard)?;
     let id = folder::sweep_id(spec);
     let mine: Vec<usize> = (0..spec.len())
         .filter(|&i| shard.is_none_or(|s| s.owns(i)))
@@ -129,6 +136,15 @@ pub fn sweep_batched(
     // the scene text and fixed overrides parsed once for every point (an
     // error there is each point's own, as resolving it again gives)
     let base = spec.base_tree().ok();
+    if spec.tolerance.is_some() {
+        accuracy::run_points(spec, base.as_ref(), &id, &todo, batch, &|r| {
+            folder::save(dir, &r)?;
+            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+            progress(n, mine.len());
+            Ok(())
+        })?;
+        return folder::collect(dir, spec, &mine);
+    }
     let items = batches(spec, base.as_ref(), &todo, batch);
     // one item a task (`with_max_len(1)`): items differ in cost (a batch at
     // 50 m/s takes four times the steps of one at 230 m/s), and rayon's

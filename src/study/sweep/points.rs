@@ -13,24 +13,13 @@ use super::spec::SweepSpec;
 use crate::error::{Error, Result, one_line};
 
 /// The listed axes of a points file.
-pub fn read_points(path: &Path) -> Result<Vec<Axis>> {
+pub(crate) fn read_points(path: &Path) -> Result<Vec<Axis>> {
     let text = crate::input::read_text(path, "a points file", crate::input::MAX_INPUT_BYTES)?;
-    parse_points(&text).map_err(|e| match e {
-        Error::Invalid {
-            field,
-            value,
-            allowed,
-        } => Error::Invalid {
-            field,
-            value,
-            allowed: format!("{allowed} (in {})", path.display()),
-        },
-        other => other,
-    })
+    parse_points(&text).map_err(|e| e.explained(&format!(" (in {})", path.display())))
 }
 
 /// The listed axes of a points table's text (see the module doc).
-pub fn parse_points(text: &str) -> Result<Vec<Axis>> {
+pub(crate) fn parse_points(text: &str) -> Result<Vec<Axis>> {
     let mut lines = text
         .lines()
         .enumerate()
@@ -43,6 +32,19 @@ pub fn parse_points(text: &str) -> Result<Vec<Axis>> {
             "a header of scene keys, then one row of numbers a point",
         ));
     };
+    let columns = header.split(',').count();
+    if columns > super::MAX_POINT_KEYS {
+        // refused before any row is read: a row of that many cells is no
+        // list of scene keys
+        return Err(Error::invalid(
+            "--points",
+            format!("{columns} columns"),
+            format!(
+                "a list of points sets at most {} keys (one a column): vary fewer scene values",
+                super::MAX_POINT_KEYS
+            ),
+        ));
+    }
     let keys: Vec<String> = header
         .split(',')
         .map(|k| k.trim().trim_matches('"').trim().to_string())
@@ -110,5 +112,18 @@ mod tests {
         for bad in ["", "a,b\n", "a,b\n1\n", "a,\n1,2\n", "a\nx\n", "a\nnan\n"] {
             assert!(parse_points(bad).is_err(), "{bad:?}");
         }
+        // a file wider than the cap is refused at its header, in a line
+        let wide = format!("{}\n", vec!["beam.tension"; 40_000].join(","));
+        let e = parse_points(&wide).unwrap_err().to_string();
+        assert!(e.contains("40000 columns") && e.len() < 300, "{e}");
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_not_part_of_the_first_key() {
+        let tmp = tempfile::tempdir().unwrap();
+        let p = tmp.path().join("p.csv");
+        std::fs::write(&p, "\u{feff}carrier.mass,beam.tension\n1.0,2e4\n").unwrap();
+        let axes = read_points(&p).unwrap();
+        assert_eq!(axes[0].key, "carrier.mass");
     }
 }

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 use toml::Table;
 
+use super::accuracy::PointAccuracy;
 use super::nan_as_null;
 use super::refine::{Refined, refined};
 use super::spec::SweepSpec;
@@ -19,7 +20,7 @@ pub const PROFILE_BINS: usize = 200;
 /// empty and `error` says why.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct SweepRecord {
-    /// The sweep this record belongs to ([`super::folder::sweep_id`]); empty in
+    /// The sweep this record belongs to (`super::folder::sweep_id`); empty in
     /// records of taut before stamping, which are refused.
     #[serde(default)]
     pub sweep_id: String,
@@ -54,6 +55,10 @@ pub struct SweepRecord {
     pub first_loss_position: Option<f64>,
     /// Contact switches.
     pub contact_switches: usize,
+    /// The filtered force's mean, σ, max and min (carrier 0), N (NaN in a
+    /// record of a taut before them, or a stopped run).
+    #[serde(flatten, default)]
+    pub filtered: crate::study::scalars::FilteredColumns,
     /// Mean force per x_m/L bin (PROFILE_BINS bins over [0, 1]), N; null for
     /// a bin no step fell in.
     pub force_profile: Vec<Option<f64>>,
@@ -64,6 +69,10 @@ pub struct SweepRecord {
     /// The same point refined (N × 2, Δt / 2), with `--check-refinement`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub refined: Option<Refined>,
+    /// With `--tolerance`: what the point reached (its statistics above are
+    /// those of the reported run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<PointAccuracy>,
     /// The run's error, if it stopped (then the statistics are NaN/empty).
     pub error: Option<String>,
     /// Wall seconds (machine-dependent: written to timing.csv only).
@@ -89,10 +98,12 @@ impl SweepRecord {
             force_max: f64::NAN,
             first_loss_position: None,
             contact_switches: 0,
+            filtered: crate::study::scalars::FilteredColumns::NONE,
             force_profile: vec![],
             loss_profile: vec![],
             warnings: vec![],
             refined: None,
+            accuracy: None,
             error: None,
             wall_seconds: None,
         }
@@ -170,6 +181,7 @@ pub(super) fn record_of(
         force_max: s.force.max,
         first_loss_position: s.first_loss_position,
         contact_switches: s.contact_switches,
+        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
         force_profile: (0..PROFILE_BINS)
             .map(|b| (n[b] > 0).then(|| fsum[b] / n[b] as f64))
             .collect(),
@@ -178,6 +190,7 @@ pub(super) fn record_of(
             .collect(),
         warnings: out.warnings.clone(),
         refined: spec.check_refinement.then(|| refined(spec, base, index)),
+        accuracy: None,
         error: None,
         wall_seconds: Some(out.wall_seconds),
     }

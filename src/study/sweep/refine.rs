@@ -29,10 +29,30 @@ pub struct Refined {
     pub error: Option<String>,
 }
 
+/// An error of the refined run's scene, named by the flag that made it
+/// (`--check-refinement`): the doubled value is not one the user gave, so
+/// naming only its key (`mesh.elements` = 2000002) sent them looking for it.
+pub fn in_refined_run(e: Error) -> Error {
+    const WHY: &str = "the refined run of --check-refinement (twice mesh.elements, twice mesh.modes on a modal or galerkin basis, half time.step)";
+    const FIX: &str = "refine a coarser scene, or leave out --check-refinement";
+    match e {
+        Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => Error::invalid(
+            "--check-refinement",
+            format!("`{field}` = {value} in {WHY}"),
+            format!("{allowed}; {FIX}"),
+        ),
+        other => other.explained(&format!(" (in {WHY}: {FIX})")),
+    }
+}
+
 /// Whether a P_l is converged under one refinement: the change is at most
 /// [`REFINEMENT_REL`] of the refined value or [`REFINEMENT_ABS`] (None when
 /// either run stopped).
-pub fn refinement_converged(base: f64, refined: f64) -> Option<bool> {
+pub(crate) fn refinement_converged(base: f64, refined: f64) -> Option<bool> {
     let d = (refined - base).abs();
     d.is_finite()
         .then(|| d <= (REFINEMENT_REL * refined.abs()).max(REFINEMENT_ABS))
@@ -42,12 +62,12 @@ pub fn refinement_converged(base: f64, refined: f64) -> Option<bool> {
 /// converged: the in-span P_l of the reference case changes by 0.02–4 %
 /// between its finest levels (`docs/contact_loss.md`), a non-converged one
 /// by tens of per cent.
-pub const REFINEMENT_REL: f64 = 0.05;
+pub(crate) const REFINEMENT_REL: f64 = 0.05;
 
 /// Absolute change of P_l taken as converged whatever its size: 5e-4 is
 /// three steps of loss in the reference run's 6000, below what a loss map
 /// resolves.
-pub const REFINEMENT_ABS: f64 = 5e-4;
+pub(crate) const REFINEMENT_ABS: f64 = 5e-4;
 
 /// Run point `index` refined (`base`: the spec's [`SweepSpec::base_tree`], when made).
 pub(super) fn refined(spec: &SweepSpec, base: Option<&Table>, index: usize) -> Refined {

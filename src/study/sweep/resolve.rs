@@ -1,8 +1,16 @@
 //! A sweep point's scene: the scene text parsed once into a TOML tree with
-//! the fixed `--set` overrides applied, then each point's typed axis values
-//! set on a copy of that tree ([`AxisTarget`]), the dimensionless axes
-//! turned into the scene values they fix, and the refined scene of
-//! `--check-refinement`. No number is written as text and read back.
+//! the fixed `--set` overrides applied, then each point's axis values set
+//! as typed variations on a copy of that tree ([`Variation`]): a scene key
+//! takes its value, a dimensionless axis the scene values it fixes, read
+//! off the point's beam and carriers (the scene's own resolution of those
+//! two tables, not a whole validation); the point's scene is then
+//! validated once. No number is written as text and read back.
+//!
+//! The variations act on the tree, not on a typed `Scene`, because a
+//! scene's `[line]` is expanded from the tree when it is read
+//! (`scene_from_tree`) and reads keys an axis may set (the tension sets
+//! the messenger's sag): set on the tree, every axis reaches the line as a
+//! `--set` would.
 
 use toml::{Table, Value};
 
@@ -11,17 +19,29 @@ use super::spec::SweepSpec;
 use crate::error::{Error, Result};
 use crate::resolve::Resolved;
 use crate::scene::{
-    CarrierKind, Discretization, SpeedProfile, apply_override, check_is_scene, parse_scene,
-    scene_from_tree, set_typed,
+    BeamProps, CarrierKind, CarrierProps, Discretization, SpeedProfile, apply_override,
+    check_is_scene, parse_scene, scene_from_tree, set_typed,
 };
-/// The study's dimensionless axes ([`Ratio`]'s spellings).
-pub const DIMENSIONLESS: [&str; 4] = [
-    "speed_ratio",
-    "tension_ratio",
-    "mass_ratio",
-    "stiffness_ratio",
-];
 
+/// One axis value of a point, as what it sets on the point's scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Variation<'a> {
+    /// A scene key (`--vary carrier.speed.cruise=…`) takes the value.
+    Path {
+        /// The dotted key.
+        path: &'a str,
+        /// The value.
+        value: f64,
+    },
+    /// A dimensionless axis: the scene values it fixes (MODEL §3; e.g.
+    /// `speed_ratio` sets every carrier's speed to ratio × c).
+    Ratio {
+        /// Which ratio.
+        ratio: Ratio,
+        /// Its value.
+        value: f64,
+    },
+}
 /// Whole numbers below 2^53 are exact as both i64 and f64.
 const EXACT_WHOLE: f64 = 9_007_199_254_740_992.0;
 
@@ -96,7 +116,7 @@ impl SweepSpec {
             )?;
         }
         set_real(&mut tree, "time.step", sc.dt / 2.0)?;
-        resolve_tree(&tree)
+        resolve_tree(&tree).map_err(super::refine::in_refined_run)
     }
 
     /// The resolved scene of point `index`.
@@ -109,25 +129,45 @@ impl SweepSpec {
         self.point_tree(base, index).map(|(sc, _)| sc)
     }
 
-    /// The resolved scene of point `index` and the tree that makes it: the
-    /// base with the path axes set, then the ratios (tension first: the
-    /// others depend on T), each read off the scene resolved so far.
-    fn point_tree(&self, base: &Table, index: usize) -> Result<(Resolved, Table)> {
+    /// The variations of point `index`, in the order they are applied:
+    /// the scene keys first, then the ratios, tension first (the others
+    /// depend on T).
+    pub fn variations(&self, index: usize) -> Vec<Variation<'_>> {
         let values = self.point(index);
-        let mut tree = base.clone();
-        let mut ratios: Vec<(Ratio, f64)> = Vec::new();
-        for (a, &v) in self.axes.iter().zip(&values) {
-            match a.target() {
-                AxisTarget::Ratio(r) => ratios.push((r, v)),
-                AxisTarget::Path(path) => set_typed(&mut tree, path, grid_value(v), || {
-                    format!("{path}={}", grid_text(v))
-                })?,
+        let mut out: Vec<Variation<'_>> = Vec::with_capacity(values.len());
+        for (a, &value) in self.axes.iter().zip(&values) {
+            if let AxisTarget::Path(path) = a.target() {
+                out.push(Variation::Path { path, value });
             }
         }
-        ratios.sort_by_key(|(r, _)| *r != Ratio::Tension);
-        for (ratio, v) in ratios {
-            let sc = resolve_tree(&tree)?;
-            set_ratio(&mut tree, &sc, ratio, v)?;
+        let mut ratios: Vec<Variation<'_>> = self
+            .axes
+            .iter()
+            .zip(&values)
+            .filter_map(|(a, &value)| match a.target() {
+                AxisTarget::Ratio(ratio) => Some(Variation::Ratio { ratio, value }),
+                AxisTarget::Path(_) => None,
+            })
+            .collect();
+        ratios.sort_by_key(|v| {
+            !matches!(
+                v,
+                Variation::Ratio {
+                    ratio: Ratio::Tension,
+                    ..
+                }
+            )
+        });
+        out.extend(ratios);
+        out
+    }
+
+    /// The resolved scene of point `index` and the tree that makes it: the
+    /// base with the point's [`Variation`]s applied, validated once.
+    fn point_tree(&self, base: &Table, index: usize) -> Result<(Resolved, Table)> {
+        let mut tree = base.clone();
+        for v in self.variations(index) {
+            v.apply(&mut tree)?;
         }
         let sc = resolve_tree(&tree)?;
         Ok((sc, tree))
@@ -164,13 +204,38 @@ impl SweepSpec {
     }
 }
 
-/// Set the scene values ratio `ratio` = `v` fixes, read off `sc` (the point
-/// resolved so far).
-fn set_ratio(tree: &mut Table, sc: &Resolved, ratio: Ratio, v: f64) -> Result<()> {
+impl Variation<'_> {
+    /// Set what this variation sets on a point's `tree`.
+    pub fn apply(self, tree: &mut Table) -> Result<()> {
+        match self {
+            Variation::Path { path, value } => set_typed(tree, path, grid_value(value), || {
+                format!("{path}={}", grid_text(value))
+            }),
+            Variation::Ratio { ratio, value } => {
+                // the point so far: its beam and carriers as the scene
+                // resolves them (what a ratio is relative to)
+                let scene = scene_from_tree(tree.clone())?;
+                let beam = scene.resolve_beam()?;
+                let carriers = scene.resolve_carriers(beam.length)?;
+                set_ratio(tree, &beam, &carriers, ratio, value)
+            }
+        }
+    }
+}
+
+/// Set the scene values ratio `ratio` = `v` fixes, read off the point's
+/// `beam` and `carriers` so far.
+fn set_ratio(
+    tree: &mut Table,
+    beam: &BeamProps,
+    carriers: &[CarrierProps],
+    ratio: Ratio,
+    v: f64,
+) -> Result<()> {
     let key = ratio.key();
     match ratio {
         Ratio::Tension => {
-            let ea = sc.beam.ea.ok_or_else(|| {
+            let ea = beam.ea.ok_or_else(|| {
                 Error::invalid(
                     "--vary tension_ratio",
                     v,
@@ -180,7 +245,7 @@ fn set_ratio(tree: &mut Table, sc: &Resolved, ratio: Ratio, v: f64) -> Result<()
             set_real(tree, "beam.tension", v * ea)
         }
         Ratio::Speed => {
-            let c = sc.beam.wave_speed();
+            let c = beam.wave_speed();
             if c <= 0.0 {
                 return Err(Error::invalid(
                     "--vary speed_ratio",
@@ -189,7 +254,7 @@ fn set_ratio(tree: &mut Table, sc: &Resolved, ratio: Ratio, v: f64) -> Result<()
                      vary the carrier's speed itself",
                 ));
             }
-            for (i, car) in sc.carriers.iter().enumerate() {
+            for (i, car) in carriers.iter().enumerate() {
                 let field = match car.motion.profile {
                     SpeedProfile::Constant { .. } => "value",
                     SpeedProfile::SmoothRamp { .. } => "cruise",
@@ -209,12 +274,11 @@ fn set_ratio(tree: &mut Table, sc: &Resolved, ratio: Ratio, v: f64) -> Result<()
         }
         Ratio::Mass | Ratio::Stiffness => {
             let (scale, field) = if ratio == Ratio::Mass {
-                (sc.beam.total_mass(), "mass")
+                (beam.total_mass(), "mass")
             } else {
-                (sc.beam.tension / sc.beam.length, "stiffness")
+                (beam.tension / beam.length, "stiffness")
             };
-            if !sc
-                .carriers
+            if !carriers
                 .iter()
                 .any(|c| matches!(c.kind, CarrierKind::MassSpring { .. }))
             {
@@ -235,7 +299,7 @@ fn set_ratio(tree: &mut Table, sc: &Resolved, ratio: Ratio, v: f64) -> Result<()
                      every point; vary carrier.stiffness itself",
                 ));
             }
-            for (i, car) in sc.carriers.iter().enumerate() {
+            for (i, car) in carriers.iter().enumerate() {
                 if matches!(car.kind, CarrierKind::MassSpring { .. }) {
                     set_real(tree, &format!("carrier.{i}.{field}"), v * scale)?;
                 }

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::accuracy::SweepTolerance;
 use super::axis::Axis;
 use super::shard::Shard;
 use crate::error::{Error, Result};
@@ -25,6 +26,11 @@ pub struct SweepSpec {
     /// `sweep.json`) for a grid.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub paired: bool,
+    /// `--tolerance EPS --quantity Q`: every point refined until Q's
+    /// u_num is within EPS (`super::accuracy`); absent for a sweep at the
+    /// scene's resolution.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<SweepTolerance>,
 }
 
 impl SweepSpec {
@@ -91,6 +97,13 @@ impl SweepSpec {
     /// the scene (an axis that changes nothing would fill a map with one
     /// answer and call it a study).
     pub fn validate(&self) -> Result<()> {
+        if self.tolerance.is_some() && self.check_refinement {
+            return Err(Error::invalid(
+                "--check-refinement",
+                "given",
+                "does not go with --tolerance, which refines every point as far as it needs and reports u_num: give one of the two",
+            ));
+        }
         if self.paired {
             return self.validate_points();
         }
@@ -109,6 +122,13 @@ impl SweepSpec {
                 &a.key,
                 "is given twice: give each axis once",
             ));
+        }
+        if self.axes.len() == 2
+            && let Ok(base) = self.base_tree()
+        {
+            // two keys that set one scene value (an error in the base is
+            // the first point's, below)
+            super::aliases::check_one_value_per_key(&self.axes, &base, "--vary")?;
         }
         let points = self
             .axes
@@ -184,8 +204,18 @@ impl SweepSpec {
                 "give at least one key (a column of the points file)",
             ));
         };
-        for (k, a) in self.axes.iter().enumerate() {
-            if self.axes[..k].iter().any(|b| b.key == a.key) {
+        if self.axes.len() > MAX_POINT_KEYS {
+            return Err(Error::invalid(
+                "--points",
+                format!("{} keys", self.axes.len()),
+                format!(
+                    "a list of points sets at most {MAX_POINT_KEYS} keys: vary fewer scene values"
+                ),
+            ));
+        }
+        let mut seen = std::collections::HashSet::new();
+        for a in &self.axes {
+            if !seen.insert(a.key.as_str()) {
                 return Err(Error::invalid(
                     "--points",
                     &a.key,
@@ -207,6 +237,9 @@ impl SweepSpec {
                 format!("a sweep has at most {MAX_POINTS} points: split the list"),
             ));
         }
+        if let Ok(base) = self.base_tree() {
+            super::aliases::check_one_value_per_key(&self.axes, &base, "--points")?;
+        }
         self.resolve_every_point().map(drop)
     }
 }
@@ -220,7 +253,17 @@ impl SweepSpec {
         let mut e = Estimate::new("taut sweep");
         let base = self.base_tree()?;
         for i in (0..self.len()).filter(|&i| shard.is_none_or(|s| s.owns(i))) {
-            e.add(1, run_dof_steps(&self.resolve_on(&base, i)?));
+            // with --tolerance: the pilots (1.81 runs' worth); refinements
+            // beyond them are each point's budget, not known before
+            let own = run_dof_steps(&self.resolve_on(&base, i)?);
+            e.add(
+                1,
+                if self.tolerance.is_some() {
+                    1.81 * own
+                } else {
+                    own
+                },
+            );
             if self.check_refinement {
                 e.add(1, run_dof_steps(&self.resolve_refined_on(&base, i)?));
             }
@@ -229,9 +272,15 @@ impl SweepSpec {
     }
 }
 
+/// The most keys a list of points may set (columns of a `--points` file,
+/// keys of Python's points): each is set on every point's scene, and no
+/// study varies more than a few dozen scene values; a wider file is not a
+/// list of scene keys (40 000 columns took minutes to refuse, issue 41).
+pub const MAX_POINT_KEYS: usize = 1000;
+
 /// The most points a sweep may have: 100 000 runs is days of work at the
 /// reference resolution and ~0.4 GB of records; a larger grid is several sweeps.
-pub const MAX_POINTS: usize = 100_000;
+pub(crate) const MAX_POINTS: usize = 100_000;
 
 impl SweepSpec {
     /// Resolve every point (and its refined run with `--check-refinement`)
@@ -244,8 +293,12 @@ impl SweepSpec {
             .base_tree()
             .map_err(|e| at_point(e, 0, &self.point(0)))?;
         for i in 0..self.len() {
-            self.resolve_on(&base, i)
+            let sc = self
+                .resolve_on(&base, i)
                 .map_err(|e| at_point(e, i, &self.point(i)))?;
+            if self.tolerance.is_some() {
+                super::accuracy::check_level(&sc).map_err(|e| at_point(e, i, &self.point(i)))?;
+            }
             if self.check_refinement {
                 self.resolve_refined_on(&base, i).map_err(|e| {
                     at_point(e, i, &self.point(i)).in_run("the refined run of --check-refinement")
@@ -256,22 +309,20 @@ impl SweepSpec {
     }
 }
 
+/// A point's values for a message: the first few and how many there are
+/// (a list of points may set up to [`MAX_POINT_KEYS`] keys).
+fn shown(values: &[f64]) -> String {
+    const SHOWN: usize = 8;
+    if values.len() <= SHOWN {
+        format!("{values:?}")
+    } else {
+        format!("{:?} … ({} values)", &values[..SHOWN], values.len())
+            .replacen("]", ", …]", 1)
+            .replacen(" … (", " (", 1)
+    }
+}
+
 /// Name the sweep point a resolution error happened at.
 fn at_point(e: Error, i: usize, values: &[f64]) -> Error {
-    match e {
-        Error::Invalid {
-            field,
-            value,
-            allowed,
-        } => Error::Invalid {
-            field,
-            value,
-            allowed: format!("{allowed} (at sweep point {i}: {values:?})"),
-        },
-        Error::Parse { reason, field } => Error::Parse {
-            reason: format!("{reason} (at sweep point {i}: {values:?})"),
-            field,
-        },
-        other => other,
-    }
+    e.explained(&format!(" (at sweep point {i}: {})", shown(values)))
 }

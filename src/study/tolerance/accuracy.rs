@@ -62,6 +62,13 @@ pub struct ResultEstimate {
     pub step: Option<LadderFit>,
 }
 
+impl PilotRun {
+    /// Its level parameter: J on a modal basis, else N.
+    pub(super) fn level(&self) -> usize {
+        self.modes.unwrap_or(self.elements)
+    }
+}
+
 /// Everything an accuracy-targeted run adds to `summary.json` (`accuracy`).
 #[derive(Debug, Clone, Serialize)]
 pub struct Accuracy {

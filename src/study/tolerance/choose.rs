@@ -54,11 +54,11 @@ fn reuse_pilot(start: &Start, p: &PilotRun, notes: &mut Vec<String>) -> Result<C
         "the pilot `{}` ({} = {}, Δt = {:e} s) already meets the tolerance (estimate {:.3e}): it is the result, no further run",
         p.role,
         level.symbol(),
-        level.of_pilot(p),
+        p.level(),
         p.dt,
         p.estimate.total
     ));
-    let sc = start.at(level.of_pilot(p), p.dt)?;
+    let sc = start.at(p.level(), p.dt)?;
     Ok(Chosen {
         scene: sc,
         output: p.output.clone(),
@@ -106,7 +106,7 @@ fn run_cheapest(
     let dt = t_end / steps;
     // unknowns grow linearly in N (2 per node for Hermite elements)
     let (a, b) = (&pilots[0], &pilots[1]);
-    let (la, lb) = (level.of_pilot(a), level.of_pilot(b));
+    let (la, lb) = (a.level(), b.level());
     let per_element = (b.dofs as f64 - a.dofs as f64) / (lb - la) as f64;
     let dofs = a.dofs as f64 + per_element * (n - la as f64);
     let cost = dofs * steps;

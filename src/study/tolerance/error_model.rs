@@ -17,39 +17,38 @@
 //! ([`MAX_MESH_ORDER`], …) is capped, and d₂ raised to d₁/r^p: differences
 //! that fall faster than the method allows are a chance cancellation at the
 //! finest rung, not a smaller error. F_s is Roache's three-grid safety factor
-//! ([`GCI_SAFETY_FACTOR`]): the reported estimate is a GCI-style band, not a
+//! ([`FS_ASYMPTOTIC`]): the reported estimate is a GCI-style band, not a
 //! bare extrapolation.
 
 use serde::Serialize;
 
-use crate::study::grid::GCI_SAFETY_FACTOR;
-use crate::study::grid::observed_order;
+use crate::study::uncertainty::{FS_ASYMPTOTIC, observed_order, richardson_error};
 
 /// Refinement ratio of each pilot ladder: 2, so every coarser time is a
 /// finer time and histories compare sample by sample.
-pub const LADDER_RATIO: f64 = 2.0;
+pub(crate) const LADDER_RATIO: f64 = 2.0;
 
 /// Smallest observed order accepted as convergence. Below it a halving
 /// shrinks the difference by less than 2^0.5 ≈ 1.41: too little to tell a
 /// converging sequence from a noisy non-converging one, and extrapolating
 /// such an order to a tolerance asks for refinements far beyond the pilots.
-pub const MIN_ORDER: f64 = 0.5;
+pub(crate) const MIN_ORDER: f64 = 0.5;
 
 /// Largest mesh order used for a displacement: Hermite cubics converge
 /// displacements and eigenvalues at O(h⁴) at best (MODEL §4, §8). A higher
 /// observed order is a lucky cancellation; using the cap instead gives a
 /// larger, safer error estimate.
-pub const MAX_MESH_ORDER: f64 = 4.0;
+pub(crate) const MAX_MESH_ORDER: f64 = 4.0;
 
 /// Largest mesh order used for the contact force and what is counted from
 /// it (P_l, loss intervals): the force balances the mass's acceleration,
 /// which for a moving contact holds V²·v_xx(x_m), and cubic elements give
 /// the curvature v_xx to O(h²) only (MODEL §2, §4).
-pub const MAX_MESH_ORDER_FORCE: f64 = 2.0;
+pub(crate) const MAX_MESH_ORDER_FORCE: f64 = 2.0;
 
 /// Largest step order used for a displacement of a run whose contacts never
 /// switch: generalized-α is second order (MODEL §5).
-pub const MAX_STEP_ORDER: f64 = 2.0;
+pub(crate) const MAX_STEP_ORDER: f64 = 2.0;
 
 /// Largest step order used for the contact force, for everything counted
 /// from it, and for any quantity of a run whose contact opens or closes:
@@ -57,22 +56,22 @@ pub const MAX_STEP_ORDER: f64 = 2.0;
 /// opens (T1 riding mass: 1.11, 1.02, 1.02, docs/convergence.md), and a
 /// contact that opens or closes does so at a step boundary, an O(Δt) error
 /// in the event's time that every later value inherits.
-pub const MAX_STEP_ORDER_CONTACT: f64 = 1.0;
+pub(crate) const MAX_STEP_ORDER_CONTACT: f64 = 1.0;
 
 /// Differences below this (relative to the quantity's scale) are round-off
 /// and count as zero: the integrator repeats bit-for-bit, and summation
 /// order alone moves a norm by ~1e-15.
-pub const ROUND_OFF: f64 = 1e-12;
+pub(crate) const ROUND_OFF: f64 = 1e-12;
 
 /// What a pilot ladder says about one parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LadderStatus {
-    /// Differences fall at an order ≥ [`MIN_ORDER`].
+    /// Differences fall at an order ≥ `MIN_ORDER`.
     Converging,
     /// Both differences are zero (round-off): the parameter does not matter.
     Exact,
-    /// Differences do not fall, or fall at an order below [`MIN_ORDER`].
+    /// Differences do not fall, or fall at an order below `MIN_ORDER`.
     NotConverging,
 }
 
@@ -139,7 +138,7 @@ impl LadderFit {
         // fall (d₂ = 0 included: P_l counts whole steps) is a chance
         // cancellation at the finest rung, so d₂ is taken as d₁/r^order
         let d2 = d2.max(d1 / r.powf(order));
-        let finest_error = d2 / (r.powf(order) - 1.0);
+        let finest_error = richardson_error(d2, r, order);
         LadderFit {
             differences,
             observed_order: observed,
@@ -194,7 +193,7 @@ impl ErrorModel {
         ErrorModel {
             mesh,
             step,
-            safety_factor: GCI_SAFETY_FACTOR,
+            safety_factor: FS_ASYMPTOTIC,
         }
     }
 

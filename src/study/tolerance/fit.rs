@@ -71,7 +71,7 @@ pub(super) fn fit_model(
         pilots[k].ladder_difference = d;
     }
     for p in pilots.iter_mut() {
-        p.estimate = model.estimate(length / level.of_pilot(p) as f64, p.dt);
+        p.estimate = model.estimate(length / p.level() as f64, p.dt);
     }
     Ok(Fit {
         model,

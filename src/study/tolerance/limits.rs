@@ -7,14 +7,14 @@ use crate::error::{Error, Result};
 /// [`ROUND_OFF`] are counted as round-off, so a smaller tolerance could not
 /// be told from round-off; it would also ask for a resolution beyond
 /// [`MAX_DOF_STEPS`] (or one that underflows) on any scene that is not exact.
-pub const MIN_TOLERANCE: f64 = ROUND_OFF;
+pub(crate) const MIN_TOLERANCE: f64 = ROUND_OFF;
 
 /// The allowed tolerances: a relative error (absolute for P_l) in
 /// [[`MIN_TOLERANCE`], 1].
-pub const TOLERANCE_RANGE: &str = "must be a number in [1e-12, 1]: a relative error (absolute for loss_fraction), e.g. 1e-3; below 1e-12 differences are round-off";
+pub(crate) const TOLERANCE_RANGE: &str = "must be a number in [1e-12, 1]: a relative error (absolute for loss_fraction), e.g. 1e-3; below 1e-12 differences are round-off";
 
 /// Read `--tolerance`: a finite number in [[`MIN_TOLERANCE`], 1].
-pub fn parse_tolerance(s: &str) -> Result<f64> {
+pub(crate) fn parse_tolerance(s: &str) -> Result<f64> {
     let bad = || Error::invalid("--tolerance", s, TOLERANCE_RANGE);
     let v: f64 = s.trim().parse().map_err(|_| bad())?;
     check_tolerance(v).map_err(|_| bad())

@@ -14,15 +14,15 @@
 //!    the base pilot's and histories compare sample by sample on that grid
 //!    (as [`crate::study::converge`] does).
 //! 2. **Model.** e(h, Δt) ≈ F_s (C_h h^p + C_t Δt^q) from the ladders'
-//!    successive differences ([`error_model`]). A ladder whose differences do not
-//!    fall at order ≥ [`MIN_ORDER`] stops the run with an error that names
+//!    successive differences (`error_model`). A ladder whose differences do not
+//!    fall at order ≥ `MIN_ORDER` stops the run with an error that names
 //!    the quantity, the differences and orders, and another quantity to try:
 //!    nothing is extrapolated from a quantity that does not converge.
 //! 3. **Choice.** If a pilot's estimate is already within the tolerance, the
 //!    cheapest such pilot is the result (it is already run). Otherwise the
 //!    model's cheapest (h, Δt) ([`ErrorModel::cheapest`]), with N rounded up
 //!    and Δt rounded down to a whole number of steps to the run's end, and
-//!    refused above [`MAX_DOF_STEPS`].
+//!    refused above `MAX_DOF_STEPS`.
 //! 4. **Estimates.** Every scalar result (force mean, std, min, max, the
 //!    0–20 Hz force's std, min, max, P_l, loss intervals, first loss
 //!    position, switches, per carrier) gets its own ladder fits from the same
@@ -39,17 +39,15 @@
 //! are the alternatives. See docs/accuracy.md for what this measures on the
 //! reference case.
 //!
-//! One step a file: [`pilots`] (1), [`fit`] (2), [`choose`] (3),
-//! [`results`] (4); beside them [`quantity`] (what the tolerance is on and
-//! its error measure), [`limits`] (the tolerance's range), [`level`] (N or
-//! J), [`accuracy`] (what the run returns), [`refusal`] (the errors that
-//! stop it) and [`error_model`].
+//! One step a file: `pilots` (1), `fit` (2), `choose` (3),
+//! `results` (4); beside them `quantity` (what the tolerance is on and
+//! its error measure), `limits` (the tolerance's range), `accuracy` (what the run returns), `refusal` (the errors that
+//! stop it) and `error_model`.
 
 mod accuracy;
 mod choose;
 mod error_model;
 mod fit;
-mod level;
 mod limits;
 mod pilots;
 mod quantity;
@@ -58,13 +56,12 @@ mod results;
 
 pub use crate::study::filter::{FORCE_BAND_HZ, design_cutoff_hz, lowpass_zero_phase};
 pub use accuracy::{Accuracy, PilotRun, ResultEstimate, TolerantRun};
-pub use error_model::{
-    ErrorModel, Estimate, LADDER_RATIO, LadderFit, LadderStatus, MAX_MESH_ORDER,
-    MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, MIN_ORDER, ROUND_OFF,
+pub use error_model::{ErrorModel, Estimate, LadderFit, LadderStatus};
+pub(crate) use error_model::{
+    MAX_MESH_ORDER, MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, ROUND_OFF,
 };
-pub use limits::{MIN_TOLERANCE, TOLERANCE_RANGE, parse_tolerance};
-pub use pilots::whole_step;
-pub use quantity::{Quantity, quantity_difference, quantity_signal};
+pub(crate) use limits::parse_tolerance;
+pub use quantity::{Quantity, quantity_difference};
 pub use results::{RESULTS, result_values};
 
 use crate::error::Result;
@@ -78,7 +75,7 @@ use results::estimate_results;
 /// included: the bound every study shares ([`super::cost::MAX_DOF_STEPS`]).
 /// Beyond it the tool says what the tolerance would take instead of starting
 /// a run nobody waits for.
-pub use super::cost::MAX_DOF_STEPS;
+pub(crate) use super::cost::MAX_DOF_STEPS;
 
 /// Run the scene at the resolution that meets `tol` on `quantity`.
 /// `progress(done, total)` after each run (pilots, then the chosen run).

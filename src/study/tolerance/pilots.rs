@@ -5,7 +5,6 @@
 use super::MAX_DOF_STEPS;
 use super::accuracy::PilotRun;
 use super::error_model::Estimate;
-use super::level::Level;
 use super::quantity::Quantity;
 use super::refusal::too_costly;
 use crate::error::{Error, Result};
@@ -13,6 +12,7 @@ use crate::resolve::{Resolved, resolve_scene};
 use crate::run::run;
 use crate::scene::STEP_COUNT_SLACK;
 use crate::study::grid::{Reach, nest};
+use crate::study::level::Level;
 
 /// Runs an accuracy-targeted run reports to `progress`: the five pilots and
 /// the chosen run.
@@ -154,7 +154,7 @@ pub(super) fn run_pilots(
 /// scene validation counts as whole (within its [`STEP_COUNT_SLACK`]) keeps
 /// its Δt; any other is rounded up to whole steps, so that every pilot of the
 /// ladder, at Δt/2 and Δt/4, ends at the same time as the base pilot.
-pub fn whole_step(t_end: f64, dt: f64) -> f64 {
+pub(crate) fn whole_step(t_end: f64, dt: f64) -> f64 {
     let n = t_end / dt;
     let counted = (n * (1.0 + STEP_COUNT_SLACK)).floor();
     if counted >= 1.0 && n <= counted * (1.0 + STEP_COUNT_SLACK) {

@@ -77,8 +77,8 @@ impl Quantity {
     }
 
     /// The largest (mesh, step) orders the method gives this quantity
-    /// ([`MAX_MESH_ORDER`], [`MAX_MESH_ORDER_FORCE`], [`MAX_STEP_ORDER`],
-    /// [`MAX_STEP_ORDER_CONTACT`]); `switches`: some pilot's contact opens
+    /// (`MAX_MESH_ORDER`, `MAX_MESH_ORDER_FORCE`, `MAX_STEP_ORDER`,
+    /// `MAX_STEP_ORDER_CONTACT`); `switches`: some pilot's contact opens
     /// or closes.
     pub fn max_orders(self, switches: bool) -> (f64, f64) {
         match self {
@@ -124,7 +124,7 @@ impl std::str::FromStr for Quantity {
 
 /// The quantity of carrier 0 at every recorded row (its P_l for
 /// `loss_fraction`, as a one-element vector).
-pub fn quantity_signal(q: Quantity, out: &RunOutput) -> Vec<f64> {
+pub(crate) fn quantity_signal(q: Quantity, out: &RunOutput) -> Vec<f64> {
     let tr = &out.history.carriers[0];
     match q {
         Quantity::Force => lowpass_zero_phase(&tr.force, out.dt, FORCE_BAND_HZ),

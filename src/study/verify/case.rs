@@ -138,7 +138,7 @@ pub enum Expect {
     /// `order`, its finest pair within `pair` of it (widened by the shift
     /// the measured share of the fixed variables can cause, `judge.rs`),
     /// and every pair approaches (none falls short of `order − pair` by
-    /// more than [`super::APPROACH_SLACK`]).
+    /// more than `APPROACH_SLACK`).
     Order {
         /// The formal order.
         order: f64,
@@ -176,7 +176,7 @@ pub enum Expect {
     /// A measured deviation from the formal order, judged against its own
     /// bounds: the finest pair's order lies in `range`, the finest error
     /// relative to the exact solution is at most `bound`, and the fixed
-    /// variables make at most [`super::DOMINANCE_LIMIT`] of it. Outside
+    /// variables make at most `DOMINANCE_LIMIT` of it. Outside
     /// them the row fails. `cause` is the measured finding.
     Known {
         /// Allowed orders (least, largest).
@@ -189,7 +189,7 @@ pub enum Expect {
     /// `inner`, unless the row's own runs measure the fixed variables (or,
     /// for penalty, the penalty's compliance; or, with a prescribed loss,
     /// the loss and reattachment) making more than
-    /// [`super::DOMINANCE_LIMIT`] of the finest error: then `cannot`, with
+    /// `DOMINANCE_LIMIT` of the finest error: then `cannot`, with
     /// the measured share and `why` that was expected.
     Limited {
         /// The expectation judged when the share is within the limit.
@@ -202,7 +202,7 @@ pub enum Expect {
         first_order: bool,
     },
     /// `inner`, except that a ladder whose error stops falling at some
-    /// level (a pair's order below [`super::STALL_ORDER`], or a run stopped on an
+    /// level (a pair's order below `STALL_ORDER`, or a run stopped on an
     /// instability) or whose contact chatters (with no prescribed loss, the
     /// runs lose contact at every level, more often at each finer one) gets
     /// the verdict
@@ -215,7 +215,7 @@ pub enum Expect {
         /// The mechanism of the divergence.
         why: String,
     },
-    /// `inner`, judged on the errors after the start (t > [`super::START_WINDOW`]):
+    /// `inner`, judged on the errors after the start (t > `START_WINDOW`):
     /// a penalty contact starts unloaded (λ = 0 at zero penetration, while
     /// the exact contact carries kδ0 + mg at once), and the start jump rings
     /// the unresolved penalty spring for tens of steps, at an amplitude its
@@ -320,7 +320,7 @@ pub struct Case {
 
 impl Case {
     /// True when the case runs the method named `name` (a parameter set,
-    /// `wbz(rho_inf=0.5)`, as its method: [`family`]).
+    /// `wbz(rho_inf=0.5)`, as its method: `family`).
     pub fn runs(&self, name: &str) -> bool {
         let name = family(name);
         (self.only.is_empty() || self.only.contains(&name)) && !self.skip.contains(&name)
@@ -329,6 +329,6 @@ impl Case {
 
 /// The method a matrix name is: `wbz` for `wbz(rho_inf=0.5)`, the name
 /// itself otherwise.
-pub fn family(name: &str) -> &str {
+pub(crate) fn family(name: &str) -> &str {
     name.split_once('(').map_or(name, |(f, _)| f)
 }

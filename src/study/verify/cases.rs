@@ -8,12 +8,12 @@ use crate::scene::{Formulation, Support};
 /// in the asymptotic range, where successive orders agree to ±0.1; 0.3
 /// leaves room for the ladder's first level and still separates order 2
 /// from 1.5 (unresolved modes) and 4 from 3.
-pub const ORDER_TOL: f64 = 0.3;
+pub(crate) const ORDER_TOL: f64 = 0.3;
 
 /// Allowed |finest pair − formal| for a smooth case, before the widening
 /// by the measured share (`judge.rs`): the asymptotic pairs agree to ±0.1
 /// and the round-off of errors near 1e-9 of the solution adds ±0.1.
-pub const ORDER_PAIR_TOL: f64 = 0.3;
+pub(crate) const ORDER_PAIR_TOL: f64 = 0.3;
 
 use Support::{Clamped, Free, Pinned};
 
@@ -30,14 +30,14 @@ const BEAM_SUPPORTS: [(Support, Support); 6] = [
 /// Allowed |observed − tail order| of a J ladder: the discrete solution
 /// also carries the moving contact's coupling of the modes (as
 /// [`MOVING_CONTACT_TOL`]), which moves the pre-asymptotic constant.
-pub const TAIL_TOL: f64 = 0.5;
+pub(crate) const TAIL_TOL: f64 = 0.5;
 
 /// Allowed |finest pair − the tail's finest pair| of a J ladder: the
 /// moving contact's coupling of the modes scatters single pairs about the
 /// tail's own (measured 3.79–3.99 against a tail pair of 4.7 on a
 /// pinned–free `modal` basis at J = 16 → 32), while the ladder's order
 /// stays within [`TAIL_TOL`].
-pub const TAIL_PAIR_TOL: f64 = 1.0;
+pub(crate) const TAIL_PAIR_TOL: f64 = 1.0;
 
 /// Allowed |observed − formal| of an h or J ladder with a moving contact:
 /// the mass's path has a curvature jump at every node of C¹ elements (and
@@ -45,25 +45,25 @@ pub const TAIL_PAIR_TOL: f64 = 1.0;
 /// whose effect on the error depends on where the nodes fall, so
 /// successive orders scatter around the formal one while the ladder's
 /// order (first to last level) stays within 0.5 of it.
-pub const MOVING_CONTACT_TOL: f64 = 0.5;
+pub(crate) const MOVING_CONTACT_TOL: f64 = 0.5;
 
 /// Allowed |finest pair − formal| of an h ladder with a moving contact:
 /// the pairs' scatter measured over the matrix (3.17–4.37 for the
 /// displacement's 4 at N = 32 → 64, e.g. 4.23, 3.77, 3.17 then 4.28 at
 /// N = 128 on `mms_attachments`' probe at 0.5 m).
-pub const MOVING_CONTACT_PAIR_TOL: f64 = 0.9;
+pub(crate) const MOVING_CONTACT_PAIR_TOL: f64 = 0.9;
 
 /// The contact force's order in J under a moving contact, as a lower
 /// bound: the force carries m ẅ along the path, whose modal tail is two
 /// orders below v*'s (curvature, V² v_xx), so 2 with the ladder's
 /// [`MOVING_CONTACT_TOL`]; measured 2.13–5.73 over the ladders.
-pub const J_FORCE_ORDER: f64 = 2.0;
+pub(crate) const J_FORCE_ORDER: f64 = 2.0;
 
 /// Allowed shortfall of the finest pair of a J force ladder below
 /// [`J_FORCE_ORDER`]: the truncated basis's ripple along the path makes
 /// single pairs scatter (measured 0.61–3.84 on `modal` bases, 1.69–3.20 on
 /// `galerkin`), so only a pair below 0.5 (a stall) fails.
-pub const J_FORCE_PAIR_TOL: f64 = 1.5;
+pub(crate) const J_FORCE_PAIR_TOL: f64 = 1.5;
 
 /// The built-in generalized-α member that imposes the gap and applies the
 /// force at t_{n+1} with no dissipation at all (α_m = α_f = 0: Newmark,

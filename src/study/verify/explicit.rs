@@ -7,16 +7,16 @@ use crate::integrate::central_difference_limit;
 use crate::scene::Scene;
 /// Most steps an explicit ladder's finest run may take: beyond it the
 /// stable step of its mesh makes the ladder cost more than the matrix.
-pub const MAX_EXPLICIT_STEPS: usize = 2_000_000;
+pub(crate) const MAX_EXPLICIT_STEPS: usize = 2_000_000;
 
 /// Levels of an explicit ladder: below its stable step the time error
 /// falls as Δt² ∝ h⁴ like the space error, so only the first two halvings
 /// keep it ≥ 4× the space error on the bundled cases; an h or J ladder
 /// runs at its finest mesh's stable step, whose cost grows as N³.
-pub const EXPLICIT_LEVELS: usize = 3;
+pub(crate) const EXPLICIT_LEVELS: usize = 3;
 
 /// Fraction of the stable step 2/ω_max an explicit run is held to.
-pub const EXPLICIT_MARGIN: f64 = 0.9;
+pub(crate) const EXPLICIT_MARGIN: f64 = 0.9;
 
 /// Central difference is stable for Δt ≤ 2/ω_max (MODEL §9.1): halve a
 /// ladder's Δt until every level and the dominance run are within
@@ -55,7 +55,7 @@ pub(super) fn fit_explicit(
 }
 
 /// Steps above which an explicit h or J ladder drops its finest level.
-pub const EXPLICIT_STEP_BUDGET: usize = 100_000;
+pub(crate) const EXPLICIT_STEP_BUDGET: usize = 100_000;
 
 /// [`fit_explicit`] for a given number of levels.
 pub(super) fn fit_levels(

@@ -33,7 +33,7 @@ use super::case::{Expect, Ladder, Quantity, Variable};
 use super::measure::{Measured, Window};
 use super::row::{Status, VerifyRow};
 use super::{APPROACH_SLACK, DOMINANCE_LIMIT, ROUND_OFF_FLOOR};
-use crate::study::grid::observed_order;
+use crate::study::uncertainty::observed_order;
 
 /// The refinement ratio of every ladder.
 const RATIO: f64 = 2.0;

@@ -92,7 +92,7 @@ fn stiffened(scene: &Scene, factor: f64) -> Scene {
 /// the default 1000), so that its finest level, 8 × that, leaves the fixed
 /// Δt and mesh a small share (at 8000 they made 29 % of the finest force
 /// error of generalized-α, measured).
-pub const PENALTY_LADDER_START: f64 = 0.25;
+pub(crate) const PENALTY_LADDER_START: f64 = 0.25;
 
 /// `scene` at level `k` of a κ ladder: ρ₀·2^k (the identity otherwise).
 fn at_level<'a>(scene: &'a Scene, ladder: &Ladder, k: usize) -> std::borrow::Cow<'a, Scene> {
@@ -255,7 +255,7 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
 }
 
 /// Times at which a modal tail is sampled (evenly over the run, t > 0).
-pub const TAIL_TIMES: usize = 8;
+pub(crate) const TAIL_TIMES: usize = 8;
 
 /// The exact solution's own modal tail at each J level of a ladder: the
 /// largest |v* − Σ_{j ≤ J} c_j φ_j| over the probes and the carrier's

@@ -1,5 +1,5 @@
 //! `taut verify`: one harness that runs any method (a built-in one or a
-//! [`MethodFactory`] of one's own), discretization, formulation and
+//! [`MethodFactory`](crate::integrate::MethodFactory) of one's own), discretization, formulation and
 //! support pair on the declared verification cases ([`cases`]) and reports
 //! each observed order beside the expected one (MODEL §8, §11).
 //!
@@ -13,12 +13,12 @@
 //!    (under the carrier, at the probes and of the mass) and the contact
 //!    force at the time the method's multiplier acts ([`crate::RunOutput::force_lag`]);
 //! 2. computes the orders between successive levels and the ladder's order
-//!    (first to last level) with the one [`observed_order`];
+//!    (first to last level) with the one `observed_order`;
 //! 3. **shows that the refined variable dominates**: the finest level is run
 //!    again with the fixed variables refined once more (N×2 or J×2 for a Δt
 //!    ladder, Δt/2 for an h or J ladder), and `other_share = |e − e'|/e`
 //!    is the part of the finest error that the fixed variables make; a row
-//!    whose share exceeds [`DOMINANCE_LIMIT`] fails, since its order would
+//!    whose share exceeds `DOMINANCE_LIMIT` fails, since its order would
 //!    not be the refined variable's;
 //! 4. passes when the ladder's order is within the expectation's tolerance.
 //!
@@ -28,11 +28,11 @@
 //! formal order) do not fail; `fail` rows do, and `taut verify` exits with
 //! status 1.
 //!
-//! One job a file: [`select`] (what to run), [`job`] (one case under one
-//! combination), [`run_job`] (its rows), [`level`] (a case's scene at one ladder level),
-//! [`explicit`] (an explicit method's ladder held below its stable step),
-//! [`measure`] (a ladder's errors against the exact solution), [`judge`]
-//! (a row's orders and status), [`row`] (the rows of `verify.csv`); the
+//! One job a file: `select` (what to run), `job` (one case under one
+//! combination), `run_job` (its rows), `level` (a case's scene at one ladder level),
+//! `explicit` (an explicit method's ladder held below its stable step),
+//! `measure` (a ladder's errors against the exact solution), `judge`
+//! (a row's orders and status), `row` (the rows of `verify.csv`); the
 //! cases are [`case`] and [`cases`].
 
 pub mod case;
@@ -47,7 +47,7 @@ mod mutation;
 mod row;
 mod run_job;
 mod select;
-pub mod tuned;
+pub(crate) mod tuned;
 
 use rayon::prelude::*;
 
@@ -58,48 +58,46 @@ use case::Case;
 use job::Job;
 use run_job::run_job;
 
-pub use explicit::{EXPLICIT_LEVELS, EXPLICIT_MARGIN, EXPLICIT_STEP_BUDGET, MAX_EXPLICIT_STEPS};
-pub use measure::TAIL_TIMES;
 pub use row::{Status, VerifyRow, any_failed};
-pub use select::{Selection, parse_spaces, selection};
+pub use select::{Selection, selection};
 
 /// Largest share of the finest error the fixed variables may make (step 3
 /// of the module docs): at 0.25 the refined variable makes ≥ 75 % of it,
 /// and the order it shows is off by at most log2(1/(1 − 0.25)) ≈ 0.4 in
 /// the worst case of a share that does not fall with the ladder (at the
 /// coarser levels, where errors are larger, its share is smaller still).
-pub const DOMINANCE_LIMIT: f64 = 0.25;
+pub(crate) const DOMINANCE_LIMIT: f64 = 0.25;
 
 /// How much stiffer the penalty of the compliance's share run is (a
 /// penalty row's finest level rerun with κ × 16, `measure.rs`): a penalty
 /// error ∝ 1/κ falls to 1/16 of itself, so the share it measures is 15/16
 /// of the compliance's part.
-pub const PENALTY_STIFFEN: f64 = 16.0;
+pub(crate) const PENALTY_STIFFEN: f64 = 16.0;
 
 /// The start window of a penalty row judged after the start
 /// (`Expect::AfterStart`), s: an unloaded penalty's start jump rings for
 /// tens of steps at its method's spectral radius per step (HHT α = 0.05:
 /// 0.905, so 40 steps to fall below 2 %, 0.04 s at the coarsest Δt of the
 /// matrix, 1e-3 s), a fifth of the cases' 0.25 s.
-pub const START_WINDOW: f64 = 0.05;
+pub(crate) const START_WINDOW: f64 = 0.05;
 
 /// The order below which a pair of a ladder declared to possibly diverge
 /// (`Expect::MayDiverge`) counts as not converging: the error falls less
 /// than √2 per halving there, or rises.
-pub const STALL_ORDER: f64 = 0.5;
+pub(crate) const STALL_ORDER: f64 = 0.5;
 
 /// How far below its expected order a coarser pair of a ladder may fall
 /// beyond the pair allowance and still count as approaching (`judge.rs`):
 /// a pre-asymptotic pair a few tenths low is the start of a ladder, a pair
 /// more than this low is a stall or a rise.
-pub const APPROACH_SLACK: f64 = 0.5;
+pub(crate) const APPROACH_SLACK: f64 = 0.5;
 
 /// A finest error this small relative to the exact solution's largest
 /// value is at the round-off floor (`judge.rs`): ≈ 10⁶ ε, what 10⁴–10⁵
 /// steps of sums of unit-size terms leave (measured: the smallest errors
 /// any ladder of the matrix reached stop falling there). Levels below it
 /// are not held to an order.
-pub const ROUND_OFF_FLOOR: f64 = 2e-10;
+pub(crate) const ROUND_OFF_FLOOR: f64 = 2e-10;
 
 /// Run the matrix of `sel` over `cases` on the current rayon pool;
 /// `progress(done, total)` after each combination. Rows in a fixed order

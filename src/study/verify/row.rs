@@ -61,9 +61,9 @@ pub struct VerifyRow {
     pub errors: Vec<f64>,
     /// The finest error relative to the exact solution's largest value.
     pub relative_error: f64,
-    /// Orders between successive levels ([`observed_order`]).
+    /// Orders between successive levels (`observed_order`).
     pub orders: Vec<f64>,
-    /// The ladder's order, first to last level ([`observed_order`] over
+    /// The ladder's order, first to last level (`observed_order` over
     /// the whole ratio).
     pub observed: f64,
     /// The expected (formal) order; NaN when none.
@@ -84,10 +84,10 @@ pub struct VerifyRow {
     pub other_share: f64,
     /// Penalty only: the share of the finest error made by the penalty's
     /// compliance, |e − e_κ|/e with e_κ the finest level's error at
-    /// [`super::PENALTY_STIFFEN`] times κ; NaN otherwise.
+    /// `PENALTY_STIFFEN` times κ; NaN otherwise.
     pub penalty_share: f64,
     /// The share of the whole run's finest error made at the start,
-    /// t ≤ [`super::START_WINDOW`] (|e − e_after|/e); NaN unless the row is
+    /// t ≤ `START_WINDOW` (|e − e_after|/e); NaN unless the row is
     /// judged after the start (`Expect::AfterStart`).
     pub start_share: f64,
     /// With a prescribed loss: the share of the finest error made from the

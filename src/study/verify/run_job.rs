@@ -133,7 +133,7 @@ pub(super) fn run_job(j: &Job) -> Result<Vec<VerifyRow>> {
         formulation: resolved.contact.formulation,
         supports: (resolved.beam.left, resolved.beam.right),
     };
-    let explicit = matches!(resolved.scheme, Scheme::CentralDifference);
+    let explicit = matches!(resolved.method.scheme, Scheme::CentralDifference);
     let mut rows = Vec::new();
     for ladder in (j.case.ladders)(j.space, &combo) {
         let ladder = if explicit {

@@ -18,7 +18,7 @@ pub struct Selection<'a> {
 }
 
 /// Parse `hermite,graded,galerkin,modal` (`--discretizations`).
-pub fn parse_spaces(list: &str) -> Result<Vec<Space>> {
+pub(crate) fn parse_spaces(list: &str) -> Result<Vec<Space>> {
     let mut out = Vec::new();
     for item in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let s = Space::ALL
@@ -51,7 +51,7 @@ pub fn parse_spaces(list: &str) -> Result<Vec<Space>> {
 /// formulation), and whether to run the cut-down matrix. Listed built-in
 /// methods run in their own order, then listed registered ones. A built-in
 /// method of the generalized-α family brings its parameter sets
-/// ([`super::tuned`]): the full matrix runs each; the cut-down one runs
+/// (`tuned`): the full matrix runs each; the cut-down one runs
 /// the scene's own, and `wbz` at ρ∞ = 0.5 (at the scene's ρ∞ = 1 it is
 /// Newmark's parameter set).
 pub fn selection(

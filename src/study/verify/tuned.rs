@@ -12,7 +12,9 @@
 use crate::error::Result;
 use crate::integrate::{Initial, MethodFactory, State, Stepper, System};
 use crate::resolve::Resolved;
-use crate::scene::{ContactSpec, Discretization, IntegratorSpec, Method, MethodInfo, Parameter};
+use crate::scene::{
+    ContactSpec, Discretization, IntegratorSpec, Key, Method, MethodInfo, Parameter,
+};
 
 /// A built-in method with one parameter fixed (module docs).
 #[derive(Debug, Clone, Copy)]
@@ -20,7 +22,7 @@ pub struct Tuned {
     /// The built-in method.
     pub method: Method,
     /// Its `[integrator]` key.
-    pub key: &'static str,
+    pub key: Key,
     /// The value.
     pub value: f64,
     /// The `method` column: `wbz(rho_inf=0.5)`.
@@ -37,49 +39,49 @@ const HHT_ALPHA_05: f64 = 1.0 / 3.0;
 pub static TUNED: [Tuned; 8] = [
     Tuned {
         method: Method::GeneralizedAlpha,
-        key: "rho_inf",
+        key: Key::RhoInf,
         value: 0.8,
         label: "generalized_alpha(rho_inf=0.8)",
     },
     Tuned {
         method: Method::GeneralizedAlpha,
-        key: "rho_inf",
+        key: Key::RhoInf,
         value: 0.5,
         label: "generalized_alpha(rho_inf=0.5)",
     },
     Tuned {
         method: Method::GeneralizedAlpha,
-        key: "rho_inf",
+        key: Key::RhoInf,
         value: 0.0,
         label: "generalized_alpha(rho_inf=0)",
     },
     Tuned {
         method: Method::Hht,
-        key: "alpha",
+        key: Key::Alpha,
         value: HHT_ALPHA_08,
         label: "hht(alpha=1/9)",
     },
     Tuned {
         method: Method::Hht,
-        key: "alpha",
+        key: Key::Alpha,
         value: HHT_ALPHA_05,
         label: "hht(alpha=1/3)",
     },
     Tuned {
         method: Method::Wbz,
-        key: "rho_inf",
+        key: Key::RhoInf,
         value: 0.8,
         label: "wbz(rho_inf=0.8)",
     },
     Tuned {
         method: Method::Wbz,
-        key: "rho_inf",
+        key: Key::RhoInf,
         value: 0.5,
         label: "wbz(rho_inf=0.5)",
     },
     Tuned {
         method: Method::Wbz,
-        key: "rho_inf",
+        key: Key::RhoInf,
         value: 0.0,
         label: "wbz(rho_inf=0)",
     },
@@ -118,13 +120,13 @@ impl MethodFactory for Tuned {
     /// The method's `[integrator]` with this parameter set.
     fn integrator(&self, base: &IntegratorSpec) -> Option<IntegratorSpec> {
         let mut spec = self.method.integrator(base);
-        spec.set(self.key, Some(self.value));
+        self.key.set(&mut spec, Some(self.value));
         Some(spec)
     }
 
     fn is_scene_method(&self, sc: &Resolved) -> bool {
-        sc.integrator.method == self.method.name()
-            && sc.integrator.get(self.key) == Some(self.value)
+        sc.method.built_in_method() == Some(self.method)
+            && self.key.of(&sc.scene.integrator) == Some(self.value)
     }
 
     fn time_order(&self, sc: &Resolved) -> Option<f64> {
@@ -148,7 +150,7 @@ mod tests {
         assert_eq!(GenAlphaParams::wbz(1.0), GenAlphaParams::newmark());
         for t in &TUNED {
             let spec = t.integrator(&IntegratorSpec::default()).unwrap();
-            let scheme = spec.scheme().unwrap();
+            let scheme = spec.resolve().unwrap().scheme;
             let expected = match t.method {
                 Method::GeneralizedAlpha => GenAlphaParams::from_rho_inf(t.value),
                 Method::Hht => GenAlphaParams::hht(t.value),

@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# taut report in a real browser (issue 39): makes the outputs of a run, a
+# line with its envelope, a comparison, a convergence ladder and a 1-D
+# sweep, writes one report.html of them (taut report), opens it in
+# headless Chromium (Debian's `chromium` package, installed here with
+# apt-get the way scripts/slurm_test.sh installs Slurm) and checks that
+#   * the page loads with no console error and no failed request,
+#   * every figure has a non-zero size, and there is one per plot file,
+#   * the page fetches nothing (no http(s) URL in it);
+# then keeps a screenshot, out/report/report.png, and the page,
+# out/report/report.html.
+#
+# Usage: scripts/report_browser_test.sh [TAUT_BINARY]   (default target/release/taut)
+# Skips (exit 0) with a clear message only where Chromium cannot be had:
+# not root or no apt-get, or the package does not install.
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+TAUT_BIN="$(realpath "${1:-$ROOT/target/release/taut}")"
+OUT="$ROOT/out/report"
+
+skip() {
+  echo "report browser test: SKIPPED: $*"
+  exit 0
+}
+fail() {
+  echo "report browser test: FAILED: $*" >&2
+  exit 1
+}
+[ -x "$TAUT_BIN" ] || fail "no taut binary at $TAUT_BIN (build it first)"
+
+# --- the browser ------------------------------------------------------------
+if ! command -v chromium >/dev/null; then
+  [ "$(id -u)" = 0 ] || skip "needs root to install Debian's chromium package"
+  command -v apt-get >/dev/null || skip "no apt-get to install Debian's chromium package"
+  echo "report browser test: installing chromium (apt-get)"
+  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+    --no-install-recommends chromium fonts-dejavu-core) >/tmp/taut-chromium-apt.log 2>&1 \
+    || skip "the chromium package did not install (log: /tmp/taut-chromium-apt.log)"
+fi
+CHROMIUM=(chromium --headless --no-sandbox --disable-gpu --disable-extensions
+  --no-first-run --disable-background-networking --disable-sync
+  --disable-component-update --user-data-dir="$(mktemp -d /tmp/taut-chromium.XXXXXX)")
+
+# --- the outputs ---------------------------------------------------------------
+rm -rf "$OUT" && mkdir -p "$OUT"
+cd "$ROOT"
+t() { "$TAUT_BIN" "$@" --quiet >/dev/null; }
+t run scenes/reference.toml --out "$OUT/run"
+t run scenes/line_10_spans.toml --set time.end=1.0 --set output.envelope=true \
+  --set 'analysis.spans=[0, 1]' --out "$OUT/line"
+t compare scenes/reference.toml --formulations lagrange,penalty,complementarity --out "$OUT/compare"
+t converge scenes/moving_force_beam.toml --refine step --levels 3 --out "$OUT/converge"
+t sweep scenes/reference.toml --vary speed_ratio=0.4:1.3:10 --out "$OUT/sweep"
+"$TAUT_BIN" report "$OUT/run" "$OUT/line" "$OUT/compare" "$OUT/converge" "$OUT/sweep" \
+  --out "$OUT/report.html"
+PAGE="$OUT/report.html"
+plots=$(ls "$OUT"/*/*.svg | wc -l)
+
+# --- nothing to fetch ------------------------------------------------------------
+if grep -Eq '(src|href)="(https?:)?//' "$PAGE"; then
+  fail "the page links something outside itself: $(grep -Eo '(src|href)="(https?:)?//[^"]*' "$PAGE" | head -3)"
+fi
+
+# --- in the browser: console errors and figure sizes -----------------------------
+# a copy of the page with a checker first in <head>: it records every
+# console error, uncaught error and failed resource, and once the page has
+# loaded writes what it found into <pre id="taut-check"> (read from the DOM
+# Chromium dumps)
+CHECK="$OUT/check.html"
+python3 - "$PAGE" "$CHECK" <<'PY'
+import sys
+page, check = sys.argv[1], sys.argv[2]
+html = open(page, encoding="utf-8").read()
+probe = """<script>
+(function () {
+  var errors = [];
+  var error = console.error;
+  console.error = function () { errors.push(Array.prototype.join.call(arguments, ' ')); error.apply(console, arguments); };
+  window.addEventListener('error', function (e) { errors.push('error: ' + (e.message || (e.target && (e.target.src || e.target.href)) || e.type)); }, true);
+  window.addEventListener('load', function () {
+    var figs = document.querySelectorAll('figure svg');
+    var zero = 0, sizes = [];
+    for (var i = 0; i < figs.length; i++) {
+      var r = figs[i].getBoundingClientRect();
+      if (!(r.width > 0 && r.height > 0)) zero++;
+      sizes.push(Math.round(r.width) + 'x' + Math.round(r.height));
+    }
+    var pre = document.createElement('pre');
+    pre.id = 'taut-check';
+    pre.textContent = 'figures=' + figs.length + ' zero=' + zero + ' errors=' + errors.length +
+      ' sizes=' + sizes.join(',') + (errors.length ? ' first=' + errors[0] : '');
+    document.body.appendChild(pre);
+  });
+})();
+</script>"""
+open(check, "w", encoding="utf-8").write(html.replace("<head>", "<head>\n" + probe, 1))
+PY
+DOM="$OUT/check.dom.html"
+"${CHROMIUM[@]}" --enable-logging=stderr --v=0 --virtual-time-budget=10000 \
+  --dump-dom "file://$CHECK" >"$DOM" 2>"$OUT/chromium.log" \
+  || fail "chromium could not load the page (log: $OUT/chromium.log)"
+line=$(grep -o 'figures=[0-9][^<]*' "$DOM" | tail -1 || true)
+[ -n "$line" ] || fail "the page's checker did not run (DOM: $DOM, log: $OUT/chromium.log)"
+echo "report browser test: $line" | cut -c1-300
+figures=$(echo "$line" | sed -E 's/.*figures=([0-9]+).*/\1/')
+zero=$(echo "$line" | sed -E 's/.*zero=([0-9]+).*/\1/')
+errors=$(echo "$line" | sed -E 's/.*errors=([0-9]+).*/\1/')
+[ "$figures" = "$plots" ] || fail "$figures figures in the page for $plots plot files"
+[ "$zero" = 0 ] || fail "$zero figures have no size"
+[ "$errors" = 0 ] || fail "console errors: $line"
+# what Chromium itself logged of the page's console (not its own start-up)
+if grep -E 'CONSOLE\(|Uncaught' "$OUT/chromium.log" | grep -qv 'taut-check'; then
+  fail "console messages: $(grep -E 'CONSOLE\(|Uncaught' "$OUT/chromium.log" | head -3)"
+fi
+
+# --- a picture of it -----------------------------------------------------------------
+"${CHROMIUM[@]}" --hide-scrollbars --window-size=1280,2400 \
+  --screenshot="$OUT/report.png" "file://$PAGE" >/dev/null 2>>"$OUT/chromium.log" \
+  || fail "no screenshot (log: $OUT/chromium.log)"
+[ -s "$OUT/report.png" ] || fail "the screenshot is empty"
+rm -f "$CHECK" "$DOM"
+echo "report browser test: passed: $figures figures, none empty, no console error; screenshot $OUT/report.png"

@@ -1,0 +1,875 @@
+//! Each command's options, declared once for both front ends.
+//!
+//! A command's options are one struct here (`CompareArgs`, `SweepArgs`, …):
+//! its fields are the options' names, its doc comments their help, its
+//! [`Default`] their defaults. The `taut` binary takes it as its
+//! subcommand's arguments (with the `clap` feature each struct derives
+//! `clap::Args`: the CLI flattens it into the subcommand) and the Python
+//! module takes it as the keyword arguments of the function of the same
+//! name, passed as JSON (`serde`, unknown names refused). Each struct then
+//! makes its study's typed request in one place ([`CompareArgs::study`],
+//! …): the words are read, the counts checked and the defaults applied
+//! here, so both front ends refuse the same words with the same message
+//! (naming the CLI's flag; the Python module names its keyword instead).
+//! `schema` lists every command's options (name, default, help), and the
+//! Python module's tests hold its functions' signatures against it.
+//!
+//! What stays with a front end is what only it has: where the scene comes
+//! from (a file; Python: a path, a bundled name, TOML text or a dict), the
+//! `--set`/`--unset` words (Python: a dict), the output folder, progress.
+
+use std::path::PathBuf;
+use std::str::FromStr;
+
+use serde::Deserialize;
+
+use super::words;
+use crate::error::{Error, Result};
+use crate::study::request;
+
+/// An option's value as a front end gives it, before it is read: the
+/// command line's text, or Python's number or string. Counts and ratios
+/// are kept as text so that every value a front end can give — `-1`, `x`,
+/// `2.5`, a number past any integer type — reaches the library's check and
+/// gets its error naming the option, the value and the range, never a
+/// parser's message.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Word(pub String);
+
+impl FromStr for Word {
+    type Err = std::convert::Infallible;
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
+        Ok(Word(s.to_string()))
+    }
+}
+
+impl std::fmt::Display for Word {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl<'de> Deserialize<'de> for Word {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Text;
+        impl serde::de::Visitor<'_> for Text {
+            type Value = Word;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a number or its text")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<Word, E> {
+                Ok(Word(v.to_string()))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> std::result::Result<Word, E> {
+                Ok(Word(v.to_string()))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> std::result::Result<Word, E> {
+                Ok(Word(v.to_string()))
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> std::result::Result<Word, E> {
+                Ok(Word(v.to_string()))
+            }
+        }
+        d.deserialize_any(Text)
+    }
+}
+
+impl Word {
+    /// The text as a count: a whole number checked by `check` (whose error
+    /// names the option and its range); text that is no whole number (`-1`,
+    /// `x`, `1.5`, a number past `usize`) gets the same error, with the text
+    /// given, as a number out of range.
+    pub fn count(&self, check: impl Fn(usize) -> Result<usize>) -> Result<usize> {
+        match self.0.trim().parse::<usize>() {
+            Ok(n) => check(n),
+            // 0 is outside every count's range: its error, with the text given
+            Err(_) => match check(0) {
+                Err(Error::Invalid { field, allowed, .. }) => {
+                    Err(Error::invalid(field, &self.0, allowed))
+                }
+                other => other,
+            },
+        }
+    }
+
+    /// The text as a real number checked by `check`; text that is no number
+    /// gets the error `check` gives for NaN, with the text given.
+    pub fn real(&self, check: impl Fn(f64) -> Result<f64>) -> Result<f64> {
+        match self.0.trim().parse::<f64>() {
+            Ok(v) => check(v),
+            Err(_) => match check(f64::NAN) {
+                Err(Error::Invalid { field, allowed, .. }) => {
+                    Err(Error::invalid(field, &self.0, allowed))
+                }
+                other => other,
+            },
+        }
+    }
+}
+
+/// An optional count ([`Word::count`]).
+fn count(w: &Option<Word>, check: impl Fn(usize) -> Result<usize>) -> Result<Option<usize>> {
+    w.as_ref().map(|w| w.count(check)).transpose()
+}
+
+/// `--threads N`: 1 ..= the most worker threads the library starts.
+fn threads(w: &Option<Word>) -> Result<Option<usize>> {
+    count(w, crate::study::threads::check_threads)
+}
+
+/// `--batch B`: 1 ..= the most runs stepped together.
+fn batch(w: &Option<Word>) -> Result<Option<usize>> {
+    count(w, |n| request::batch_width(Some(n)).map(|_| n))
+}
+
+/// The help of `--methods`: the names come from the method registry, so a
+/// method of one's own needs no edit here.
+#[cfg(feature = "clap")]
+fn methods_help(what: &str, default: &str) -> String {
+    format!(
+        "Comma-separated time integrators{what} (default: {default}): {}",
+        crate::scene::method_names().join(", ")
+    )
+}
+
+/// Every contact formulation, the default of `--formulations`.
+pub(crate) const ALL_FORMULATIONS: &str = "lagrange,penalty,complementarity,impact";
+
+/// `taut run` / `taut.run`: one scene, or an accuracy-targeted run.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct RunArgs {
+    /// Choose mesh and Δt from measured convergence so the error of
+    /// --quantity is at most TOL (relative; absolute for loss_fraction),
+    /// and print an estimated error next to every result (docs/accuracy.md).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "TOL", allow_hyphen_values = true)
+    )]
+    pub tolerance: Option<Word>,
+    /// What --tolerance is on: force (0–20 Hz contact force, the default),
+    /// force_raw, loss_fraction, loss_fraction_span or displacement.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "Q", requires = "tolerance"))]
+    pub quantity: Option<String>,
+}
+
+impl RunArgs {
+    /// The error target, if one is given.
+    pub fn tolerance(&self) -> Result<Option<super::Tolerance>> {
+        match (&self.tolerance, &self.quantity) {
+            (Some(t), q) => words::tolerance(&t.0, q.as_deref()).map(Some),
+            (None, Some(q)) => Err(Error::invalid(
+                "--quantity",
+                q,
+                "is what --tolerance is on: give tolerance too",
+            )),
+            (None, None) => Ok(None),
+        }
+    }
+}
+
+/// `taut compare` / `taut.compare`: formulations × methods ×
+/// discretizations of one scene.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct CompareArgs {
+    /// Comma-separated formulations: lagrange, penalty, complementarity, impact.
+    #[cfg_attr(feature = "clap", arg(long, default_value = ALL_FORMULATIONS))]
+    pub formulations: String,
+    /// Comma-separated time integrators (default: the scene's own).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = methods_help("", "the scene's own"))
+    )]
+    pub methods: Option<String>,
+    /// Comma-separated space discretizations to study side by side:
+    /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
+    /// the scene's mesh.modes). Default: the scene's own.
+    // the doc comment is also clap's help, printed as written: `[:J]`
+    // reads as an optional suffix there, not as a link
+    #[allow(rustdoc::broken_intra_doc_links)]
+    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
+    pub discretizations: Option<String>,
+    /// The formulation the differences are measured against.
+    #[cfg_attr(feature = "clap", arg(long, default_value = "lagrange"))]
+    pub reference: String,
+    /// The method the differences are measured against (default: the
+    /// first of --methods).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "METHOD"))]
+    pub reference_method: Option<String>,
+    /// Runs stepped together when they share their effective matrix
+    /// (formulations under one method and discretization; 1 ..= 8,
+    /// 1: every run alone; default 4). The table is the same whatever it is.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "B", allow_hyphen_values = true)
+    )]
+    pub batch: Option<Word>,
+    /// Start even when the study's estimated cost is above 1e11
+    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub yes: bool,
+}
+
+impl Default for CompareArgs {
+    fn default() -> Self {
+        CompareArgs {
+            formulations: ALL_FORMULATIONS.to_string(),
+            methods: None,
+            discretizations: None,
+            reference: "lagrange".to_string(),
+            reference_method: None,
+            batch: None,
+            yes: false,
+        }
+    }
+}
+
+impl CompareArgs {
+    /// The typed study.
+    pub fn study(&self) -> Result<request::CompareRequest> {
+        words::compare(
+            &self.formulations,
+            (self.methods.as_deref(), self.discretizations.as_deref()),
+            (&self.reference, self.reference_method.as_deref()),
+            batch(&self.batch)?,
+            self.yes,
+        )
+    }
+}
+
+/// `taut converge` / `taut.converge`: a refinement ladder.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct ConvergeArgs {
+    /// What to refine: mesh, step or both.
+    #[cfg_attr(feature = "clap", arg(long, default_value = "both"))]
+    pub refine: String,
+    /// Number of levels (2 ..= 12; ≥ 3 for observed orders).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = "4", allow_hyphen_values = true)
+    )]
+    pub levels: Word,
+    /// Refinement ratio between levels (> 1).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = "2", allow_hyphen_values = true)
+    )]
+    pub ratio: Word,
+    /// Comma-separated time integrators to study side by side (default:
+    /// the scene's own).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = methods_help(" to study side by side", "the scene's own"))
+    )]
+    pub methods: Option<String>,
+    /// Comma-separated space discretizations to study side by side:
+    /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
+    /// the scene's mesh.modes). Default: the scene's own.
+    // the doc comment is also clap's help, printed as written: `[:J]`
+    // reads as an optional suffix there, not as a link
+    #[allow(rustdoc::broken_intra_doc_links)]
+    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
+    pub discretizations: Option<String>,
+    /// Start even when the study's estimated cost is above 1e11
+    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub yes: bool,
+}
+
+impl Default for ConvergeArgs {
+    fn default() -> Self {
+        ConvergeArgs {
+            refine: "both".to_string(),
+            levels: Word("4".to_string()),
+            ratio: Word("2".to_string()),
+            methods: None,
+            discretizations: None,
+            yes: false,
+        }
+    }
+}
+
+impl ConvergeArgs {
+    /// The typed study: levels and ratio by the study's own ranges.
+    pub fn study(&self) -> Result<request::ConvergeRequest> {
+        use crate::study::converge::{check_levels, check_ratio};
+        let levels = self.levels.count(check_levels)?;
+        let ratio = self.ratio.real(check_ratio)?;
+        words::converge(
+            &self.refine,
+            (levels, ratio),
+            (self.methods.as_deref(), self.discretizations.as_deref()),
+            self.yes,
+        )
+    }
+}
+
+/// `taut uncertainty` / `taut.uncertainty`: the numerical uncertainty of
+/// every reported quantity of one scene (solution verification).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct UncertaintyArgs {
+    /// Diagonal levels of the family (3 ..= 6; 2K − 1 runs).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = "4", allow_hyphen_values = true)
+    )]
+    pub levels: Word,
+    /// Start even when the study's estimated cost is above 1e11
+    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub yes: bool,
+}
+
+impl Default for UncertaintyArgs {
+    fn default() -> Self {
+        UncertaintyArgs {
+            levels: Word("4".to_string()),
+            yes: false,
+        }
+    }
+}
+
+impl UncertaintyArgs {
+    /// The typed study: the levels by the study's own range.
+    pub fn study(&self) -> Result<request::UncertaintyRequest> {
+        let levels = self.levels.count(crate::study::uncertainty::check_levels)?;
+        words::uncertainty(levels, self.yes)
+    }
+}
+
+/// `taut precision` / `taut.precision`: work against precision over a
+/// (mesh, Δt) grid.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct PrecisionArgs {
+    /// Comma-separated formulations.
+    #[cfg_attr(feature = "clap", arg(long, default_value = ALL_FORMULATIONS))]
+    pub formulations: String,
+    /// Comma-separated time integrators (default: the scene's own).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = methods_help("", "the scene's own"))
+    )]
+    pub methods: Option<String>,
+    /// Comma-separated space discretizations to study side by side:
+    /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
+    /// the scene's mesh.modes). Default: the scene's own.
+    // the doc comment is also clap's help, printed as written: `[:J]`
+    // reads as an optional suffix there, not as a link
+    #[allow(rustdoc::broken_intra_doc_links)]
+    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
+    pub discretizations: Option<String>,
+    /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels; 1 ..= 5).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = "3", allow_hyphen_values = true)
+    )]
+    pub levels: Word,
+    /// Refinement ratio (an integer ≥ 2).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = "2", allow_hyphen_values = true)
+    )]
+    pub ratio: Word,
+    /// Runs stepped together when they share their effective matrix
+    /// (the formulations of a grid point; 1 ..= 8, 1: every run alone;
+    /// default 4). The table is the same whatever it is.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "B", allow_hyphen_values = true)
+    )]
+    pub batch: Option<Word>,
+    /// Start even when the study's estimated cost is above 1e11
+    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub yes: bool,
+}
+
+impl Default for PrecisionArgs {
+    fn default() -> Self {
+        PrecisionArgs {
+            formulations: ALL_FORMULATIONS.to_string(),
+            methods: None,
+            discretizations: None,
+            levels: Word("3".to_string()),
+            ratio: Word("2".to_string()),
+            batch: None,
+            yes: false,
+        }
+    }
+}
+
+impl PrecisionArgs {
+    /// The typed study: levels and ratio by the study's own ranges.
+    pub fn study(&self) -> Result<request::PrecisionRequest> {
+        use crate::study::precision::{check_levels, check_ratio};
+        let levels = self.levels.count(check_levels)?;
+        let ratio = self.ratio.count(check_ratio)?;
+        words::precision(
+            &self.formulations,
+            (self.methods.as_deref(), self.discretizations.as_deref()),
+            (levels, ratio),
+            batch(&self.batch)?,
+            self.yes,
+        )
+    }
+}
+
+/// `taut sweep` / `taut.sweep`: scene values or dimensionless axes over a
+/// grid, or a list of points, in parallel; resumable.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct SweepArgs {
+    /// An axis, key=start:stop:count, or key=v1,v2,... (a list of
+    /// values); one or two.
+    #[cfg_attr(
+        feature = "clap",
+        arg(
+            long = "vary",
+            value_name = "KEY=START:STOP:COUNT",
+            required_unless_present = "points"
+        )
+    )]
+    pub vary: Vec<String>,
+    /// A list of points instead of a grid: a CSV file whose header
+    /// names the keys and whose rows are the points (docs/sweeps.md).
+    /// (Python: a list of points, which the module writes as `vary` lists
+    /// walked together.)
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "FILE.csv", conflicts_with_all = ["vary", "log"])
+    )]
+    pub points: Option<PathBuf>,
+    /// The `vary` lists are a list of points, walked together (Python's
+    /// `points=`; the CLI reads its points from a file instead).
+    #[cfg_attr(feature = "clap", arg(skip))]
+    pub paired: bool,
+    /// Logarithmic spacing on every axis.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub log: bool,
+    /// Run only the points with index ≡ i (mod n): i/n.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "I/N"))]
+    pub shard: Option<String>,
+    /// Run each point a second time with twice the elements and half the
+    /// step, and add the change of P_l and of its in-span part as columns
+    /// (and, for a 2-D sweep, a map of where the loss map is converged).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub check_refinement: bool,
+    /// Refine each point until the numerical uncertainty u_num of
+    /// --quantity is at most TOL (absolute, in its unit), only as far as
+    /// it must; adds u_num and the resolution used to sweep.csv
+    /// (docs/sweeps.md).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "TOL", allow_hyphen_values = true)
+    )]
+    pub tolerance: Option<Word>,
+    /// What --tolerance is on: a column of sweep.csv (loss_fraction_span,
+    /// the default; loss_fraction, loss_fraction_support, force_mean,
+    /// force_std, force_max, force_min, first_loss_position).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "Q", requires = "tolerance"))]
+    pub quantity: Option<String>,
+    /// With --tolerance: the most a point may cost, pilots included, as a
+    /// multiple of its run at the scene's resolution (default 64).
+    #[cfg_attr(
+        feature = "clap",
+        arg(
+            long,
+            value_name = "F",
+            requires = "tolerance",
+            allow_hyphen_values = true
+        )
+    )]
+    pub max_cost: Option<Word>,
+    /// Worker threads (default: all cores; at most 4 per core, 1024).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "N", allow_hyphen_values = true)
+    )]
+    pub threads: Option<Word>,
+    /// Runs stepped together when they share their effective matrix
+    /// (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of
+    /// lanes). The records are the same bytes whatever the width.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "B", allow_hyphen_values = true)
+    )]
+    pub batch: Option<Word>,
+    /// Start even when the study's estimated cost is above 1e11
+    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub yes: bool,
+}
+
+/// A sweep as [`SweepArgs`] give it: what [`super::SweepRequest`] takes
+/// besides the scene, the overrides and the folder.
+#[derive(Debug, Clone)]
+pub struct SweepStudy {
+    /// The axes (a grid's, or a list of points' columns).
+    pub axes: Vec<crate::study::sweep::Axis>,
+    /// The axes are a list of points, walked together.
+    pub points: bool,
+    /// Run each point refined too.
+    pub check_refinement: bool,
+    /// Refine each point until its u_num is within a tolerance.
+    pub tolerance: Option<crate::study::sweep::SweepTolerance>,
+    /// One shard of the points.
+    pub shard: Option<crate::study::sweep::Shard>,
+    /// Worker threads (none: one per core).
+    pub threads: Option<usize>,
+    /// Runs stepped together.
+    pub batch: crate::study::sweep::BatchWidth,
+    /// Start even above the cost bound.
+    pub yes: bool,
+}
+
+impl SweepArgs {
+    /// The typed sweep: axes parsed (or read from the points file), counts
+    /// checked.
+    pub fn study(&self) -> Result<SweepStudy> {
+        let threads = threads(&self.threads)?;
+        let batch = request::batch_width(batch(&self.batch)?)?;
+        let paired = self.paired || self.points.is_some();
+        let axes = match &self.points {
+            Some(file) => crate::study::sweep::read_points(file)?,
+            None => words::axes(&self.vary, self.log && !paired)?,
+        };
+        if paired && self.log {
+            return Err(Error::invalid(
+                "--log",
+                "true",
+                "spaces a grid's ranges; a list of points has none",
+            ));
+        }
+        let shard = self
+            .shard
+            .as_deref()
+            .map(crate::study::sweep::Shard::parse)
+            .transpose()?;
+        if self.tolerance.is_none() {
+            if let Some(q) = &self.quantity {
+                return Err(Error::invalid(
+                    "--quantity",
+                    q,
+                    "is what --tolerance is on: give tolerance too",
+                ));
+            }
+            if let Some(f) = &self.max_cost {
+                return Err(Error::invalid(
+                    "--max-cost",
+                    &f.0,
+                    "bounds a point's refinement under --tolerance: give tolerance too",
+                ));
+            }
+        }
+        let tolerance = words::sweep_tolerance(
+            self.tolerance.as_ref().map(|w| w.0.as_str()),
+            self.quantity.as_deref(),
+            self.max_cost.as_ref().map(|w| w.0.as_str()),
+        )?;
+        Ok(SweepStudy {
+            axes,
+            points: paired,
+            check_refinement: self.check_refinement,
+            tolerance,
+            shard,
+            threads,
+            batch,
+            yes: self.yes,
+        })
+    }
+}
+
+/// `taut verify`: the verification matrix.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct VerifyArgs {
+    /// Comma-separated time integrators (default: every built-in one).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = methods_help("", "every built-in one"))
+    )]
+    pub methods: Option<String>,
+    /// Comma-separated discretizations: hermite, graded, galerkin,
+    /// modal (default: all; string elements run on the string cases).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
+    pub discretizations: Option<String>,
+    /// Comma-separated contact formulations (default: all four).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub formulations: Option<String>,
+    /// The cut-down matrix of the default test suite (two support pairs).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub quick: bool,
+    /// Worker threads (default: all cores; at most 4 per core, 1024).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "N", allow_hyphen_values = true)
+    )]
+    pub threads: Option<Word>,
+}
+
+impl VerifyArgs {
+    /// The typed matrix into `out`.
+    pub fn request(&self, out: PathBuf) -> Result<super::VerifyRequest> {
+        let threads = threads(&self.threads)?;
+        Ok(super::VerifyRequest {
+            selection: crate::study::verify::selection(
+                self.methods.as_deref(),
+                self.discretizations.as_deref(),
+                self.formulations.as_deref(),
+                self.quick,
+            )?,
+            threads,
+            out,
+        })
+    }
+}
+
+/// `taut gate`: a golden suite re-run against its references.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct GateArgs {
+    /// Suite folder of case files (*.json).
+    #[cfg_attr(feature = "clap", arg(default_value = "golden"))]
+    pub suite: PathBuf,
+    /// Accept this run's values as the new references and show what changed.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub update: bool,
+    /// Cases stepped together when their runs share the effective
+    /// matrix (1 ..= 8, 1: every case alone; default 4). The checks are
+    /// the same whatever it is.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "B", allow_hyphen_values = true)
+    )]
+    pub batch: Option<Word>,
+}
+
+impl Default for GateArgs {
+    fn default() -> Self {
+        GateArgs {
+            suite: PathBuf::from("golden"),
+            update: false,
+            batch: None,
+        }
+    }
+}
+
+impl GateArgs {
+    /// The typed gate, its reports into `out`.
+    pub fn request(&self, out: PathBuf) -> Result<super::GateRequest> {
+        Ok(super::GateRequest {
+            batch: request::batch_lanes(batch(&self.batch)?)?,
+            suite: self.suite.clone(),
+            out,
+            update: self.update,
+        })
+    }
+}
+
+/// `taut modes` / `taut.modes`: natural frequencies and mode shapes.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct ModesArgs {
+    /// Number of modes (default 10, or the mesh's unknowns if fewer).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "K", allow_hyphen_values = true)
+    )]
+    pub count: Option<Word>,
+}
+
+impl ModesArgs {
+    /// How many modes (≥ 1 here; the scene's own upper bound is the study's).
+    pub fn count(&self) -> Result<Option<usize>> {
+        count(&self.count, |n| {
+            if n >= 1 {
+                Ok(n)
+            } else {
+                Err(Error::invalid("--count", n, "must be ≥ 1"))
+            }
+        })
+    }
+}
+
+/// `taut replay`: a saved contact problem solved again.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct ReplayArgs {
+    /// The saved problem (JSON).
+    pub problem: PathBuf,
+    /// Override the saved iteration limit (1 ..= 4294967295).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "N", allow_hyphen_values = true)
+    )]
+    pub max_iter: Option<Word>,
+    /// Override the saved complementarity solver: `direct` or `clarabel`.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub solver: Option<String>,
+}
+
+impl ReplayArgs {
+    /// The typed replay.
+    pub fn request(&self) -> Result<super::ReplayRequest> {
+        let max_iter = count(&self.max_iter, |n| {
+            if n >= 1 && u32::try_from(n).is_ok() {
+                Ok(n)
+            } else {
+                Err(Error::invalid(
+                    "--max-iter",
+                    n,
+                    format!("must be in 1 ..= {}", u32::MAX),
+                ))
+            }
+        })?;
+        Ok(super::ReplayRequest {
+            max_iter: max_iter.map(|n| u32::try_from(n).expect("checked")),
+            solver: self
+                .solver
+                .as_deref()
+                .map(words::complementarity_solver)
+                .transpose()?,
+            problem: self.problem.clone(),
+        })
+    }
+}
+
+/// Read a command's options from JSON (the Python module's keyword
+/// arguments): unknown names and values of the wrong kind are refused,
+/// naming the option.
+pub fn from_json<A: for<'de> Deserialize<'de>>(json: &str) -> Result<A> {
+    let mut d = serde_json::Deserializer::from_str(json);
+    serde_path_to_error::deserialize(&mut d).map_err(|e| {
+        let path = e.path().to_string();
+        let field = if path == "." {
+            "arguments".to_string()
+        } else {
+            format!("--{}", path.replace('_', "-"))
+        };
+        let reason = e.into_inner().to_string();
+        Error::invalid(field, reason, "an option of this command, of its kind")
+    })
+}
+
+/// One option as a front end declares it.
+#[cfg(feature = "clap")]
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OptionSchema {
+    /// Its name (the struct's field; the CLI's flag with `-` for `_`).
+    pub name: String,
+    /// Its default as text (`None`: no default, or a switch that is off).
+    pub default: Option<String>,
+    /// Its help text.
+    pub help: String,
+}
+
+/// Every command's options as the struct of this module declares them:
+/// `(command, options)` for each command the Python module offers as well
+/// (`run`, `compare`, `converge`, `precision`, `sweep`, `modes`), for its
+/// tests to hold the Python signatures against.
+#[cfg(feature = "clap")]
+pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
+    fn of<A: clap::Args>() -> Vec<OptionSchema> {
+        A::augment_args(clap::Command::new("schema"))
+            .get_arguments()
+            .filter(|a| !a.is_hide_set())
+            .map(|a| OptionSchema {
+                name: a.get_id().to_string(),
+                default: a
+                    .get_default_values()
+                    .first()
+                    .map(|v| v.to_string_lossy().into_owned())
+                    .filter(|v| v != "false"),
+                help: a.get_help().map(|h| h.to_string()).unwrap_or_default(),
+            })
+            .collect()
+    }
+    vec![
+        ("run", of::<RunArgs>()),
+        ("compare", of::<CompareArgs>()),
+        ("converge", of::<ConvergeArgs>()),
+        ("uncertainty", of::<UncertaintyArgs>()),
+        ("precision", of::<PrecisionArgs>()),
+        ("sweep", of::<SweepArgs>()),
+        ("modes", of::<ModesArgs>()),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_count_that_is_no_number_gets_the_range_error_with_its_text() {
+        let check = |n: usize| {
+            if (1..=8).contains(&n) {
+                Ok(n)
+            } else {
+                Err(Error::invalid("--batch", n, "must be in 1 ..= 8"))
+            }
+        };
+        for bad in ["-1", "x", "1.5", "99999999999999999999", "0"] {
+            let e = Word(bad.into()).count(check).unwrap_err().to_string();
+            assert!(
+                e.contains("--batch") && e.contains(bad) && e.contains("1 ..= 8"),
+                "{e}"
+            );
+        }
+        assert_eq!(Word(" 3 ".into()).count(check).unwrap(), 3);
+    }
+
+    #[test]
+    fn python_s_keywords_are_read_and_unknown_ones_refused() {
+        let a: CompareArgs = from_json(r#"{"batch": 2, "methods": "bathe"}"#).unwrap();
+        assert_eq!(a.batch, Some(Word("2".into())));
+        assert_eq!(a.formulations, ALL_FORMULATIONS);
+        let e = from_json::<CompareArgs>(r#"{"bach": 2}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bach"), "{e}");
+        let e = from_json::<ConvergeArgs>(r#"{"levels": true}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--levels"), "{e}");
+    }
+
+    #[cfg(feature = "clap")]
+    #[test]
+    fn the_schema_holds_the_defaults_the_structs_apply() {
+        // clap's defaults (what the CLI and the schema show) are the
+        // structs' own (what Python's missing keywords get)
+        let s = schema();
+        let find = |cmd: &str, opt: &str| {
+            s.iter()
+                .find(|(c, _)| *c == cmd)
+                .and_then(|(_, o)| o.iter().find(|x| x.name == opt))
+                .unwrap_or_else(|| panic!("{cmd} {opt}"))
+                .default
+                .clone()
+        };
+        let c = ConvergeArgs::default();
+        assert_eq!(find("converge", "levels"), Some(c.levels.0));
+        assert_eq!(find("converge", "ratio"), Some(c.ratio.0));
+        assert_eq!(find("converge", "refine"), Some(c.refine));
+        let p = PrecisionArgs::default();
+        assert_eq!(find("precision", "levels"), Some(p.levels.0));
+        assert_eq!(find("precision", "formulations"), Some(p.formulations));
+        let k = CompareArgs::default();
+        assert_eq!(find("compare", "reference"), Some(k.reference));
+        assert_eq!(find("compare", "batch"), None);
+    }
+}

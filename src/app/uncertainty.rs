@@ -1,0 +1,43 @@
+//! `taut uncertainty` / `taut.uncertainty`: the numerical uncertainty of
+//! every reported quantity of one scene (uncertainty.csv, uncertainty.json,
+//! uncertainty.svg).
+
+use std::path::Path;
+
+use crate::error::Result;
+use crate::report::Outputs;
+use crate::study::cost::Estimate;
+use crate::study::request;
+use crate::study::uncertainty::Uncertainty;
+
+use super::{Frontend, Study, StudyRequest, run_study};
+
+/// A solution verification of one scene.
+pub type UncertaintyRequest = StudyRequest<request::UncertaintyRequest>;
+
+impl Study for request::UncertaintyRequest {
+    type Outcome = Uncertainty;
+    const OUTPUTS: Outputs = Outputs::Uncertainty;
+    fn yes(&self) -> bool {
+        self.yes
+    }
+    fn estimate(&self, text: &str, set: &[String]) -> Result<Estimate> {
+        request::UncertaintyRequest::estimate(self, text, set)
+    }
+    fn run(
+        &self,
+        text: &str,
+        set: &[String],
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<Uncertainty> {
+        request::UncertaintyRequest::run(self, text, set, progress)
+    }
+    fn write(dir: &Path, outcome: &Uncertainty) -> Result<()> {
+        crate::report::write_uncertainty(dir, outcome)
+    }
+}
+
+/// Run the family and write its outputs.
+pub fn uncertainty(req: &UncertaintyRequest, fe: &dyn Frontend) -> Result<Uncertainty> {
+    run_study(req, fe)
+}

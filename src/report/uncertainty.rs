@@ -1,0 +1,319 @@
+//! `uncertainty.csv`, `uncertainty.json` and `uncertainty.svg` of `taut
+//! uncertainty` (docs/output.md#taut-uncertainty).
+
+use std::path::Path;
+
+use plotters::prelude::*;
+use serde::Serialize;
+
+use super::PALETTE;
+use super::table::{Column, Table};
+use crate::error::{Error, Result};
+use crate::study::uncertainty::{QuantityUncertainty, RATIO, Role, Uncertainty};
+
+/// Column order of `uncertainty.csv`.
+pub(crate) const UNCERTAINTY_COLUMNS: [&str; 23] = [
+    "quantity",
+    "unit",
+    "smooth",
+    "value",
+    "u_num",
+    "u_relative",
+    "error",
+    "extrapolated",
+    "safety_factor",
+    "estimator",
+    "fit",
+    "behaviour",
+    "observed_order",
+    "formal_order",
+    "order_space",
+    "order_time",
+    "space_share",
+    "asymptotic",
+    "sigma",
+    "data_range",
+    "value_scene",
+    "u_scene",
+    "note",
+];
+
+/// `uncertainty.csv` as a table (`UNCERTAINTY_COLUMNS`): one row a
+/// quantity.
+pub fn uncertainty_table(u: &Uncertainty) -> Table {
+    let q = &u.quantities;
+    let label = |f: fn(&QuantityUncertainty) -> String| Column::Label(q.iter().map(f).collect());
+    let opt = |f: fn(&QuantityUncertainty) -> Option<f64>| {
+        Column::RealOrNone(q.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect())
+    };
+    let columns = [
+        label(|r| r.quantity.to_string()),
+        label(|r| r.unit.to_string()),
+        Column::Bool(q.iter().map(|r| r.smooth).collect()),
+        opt(|r| r.assessment.value),
+        opt(|r| r.assessment.u_num),
+        opt(|r| match (r.assessment.u_num, r.assessment.value) {
+            (Some(u), Some(v)) if v != 0.0 => Some(u / v.abs()),
+            _ => None,
+        }),
+        opt(|r| r.assessment.error),
+        opt(|r| r.assessment.extrapolated),
+        opt(|r| r.assessment.safety_factor),
+        label(|r| r.assessment.estimator.name().to_string()),
+        Column::Text(
+            q.iter()
+                .map(|r| Some(r.assessment.fit.clone()).filter(|f| !f.is_empty()))
+                .collect(),
+        ),
+        label(|r| r.assessment.behaviour.name().to_string()),
+        opt(|r| r.assessment.observed_order),
+        opt(|r| Some(r.assessment.formal_order)),
+        opt(|r| r.assessment.order_space),
+        opt(|r| r.assessment.order_time),
+        opt(|r| r.assessment.space_share),
+        Column::Bool(q.iter().map(|r| r.assessment.asymptotic).collect()),
+        opt(|r| r.assessment.sigma),
+        opt(|r| r.assessment.data_range),
+        opt(|r| r.value_scene),
+        opt(|r| r.u_scene),
+        Column::Text(q.iter().map(|r| Some(r.assessment.note.clone())).collect()),
+    ];
+    let mut t = Table::new();
+    for (name, column) in UNCERTAINTY_COLUMNS.into_iter().zip(columns) {
+        t.push(name, column);
+    }
+    t
+}
+
+/// The family's runs as a table: role, level, N, J, h, Δt, steps, unknowns.
+pub fn family_table(u: &Uncertainty) -> Table {
+    let f = &u.family;
+    let mut t = Table::new();
+    t.push(
+        "role",
+        Column::Label(
+            f.iter()
+                .map(|m| match m.role {
+                    Role::Diagonal => "diagonal".to_string(),
+                    Role::Space => "space".to_string(),
+                })
+                .collect(),
+        ),
+    );
+    t.push(
+        "level",
+        Column::Count(f.iter().map(|m| m.level as u64).collect()),
+    );
+    t.push(
+        "elements",
+        Column::Count(f.iter().map(|m| m.elements as u64).collect()),
+    );
+    t.push(
+        "modes",
+        Column::CountOrNone(f.iter().map(|m| m.modes.map(|j| j as u64)).collect()),
+    );
+    t.push("h", Column::Real(f.iter().map(|m| m.h).collect()));
+    t.push("dt", Column::Real(f.iter().map(|m| m.dt).collect()));
+    t.push(
+        "steps",
+        Column::Count(f.iter().map(|m| m.steps as u64).collect()),
+    );
+    t.push(
+        "dofs",
+        Column::Count(f.iter().map(|m| m.dofs as u64).collect()),
+    );
+    t
+}
+
+#[derive(Serialize)]
+struct UncertaintyJson<'a> {
+    taut_version: &'static str,
+    scene: &'a crate::scene::Scene,
+    ratio: usize,
+    #[serde(flatten)]
+    study: &'a Uncertainty,
+}
+
+/// Write the three files into `dir`.
+pub(crate) fn write_uncertainty(dir: &Path, u: &Uncertainty) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    uncertainty_table(u).write_csv(&dir.join("uncertainty.csv"))?;
+    let doc = UncertaintyJson {
+        taut_version: env!("CARGO_PKG_VERSION"),
+        scene: &u.scene,
+        ratio: RATIO,
+        study: u,
+    };
+    // serde_json writes NaN as null
+    super::write_json(&dir.join("uncertainty.json"), &doc)?;
+    let svg = dir.join("uncertainty.svg");
+    draw(&svg, u).map_err(|e| Error::Output {
+        path: svg.clone(),
+        reason: e.to_string(),
+    })
+}
+
+/// The terminal table: value ± u_num of each quantity, its estimator and
+/// what it says.
+pub fn uncertainty_lines(u: &Uncertainty) -> String {
+    let mut s = format!(
+        "  {:<22} {:>13} {:>10} {:>6} {:>5} {:>6} {:>6} {:>6}  {}\n",
+        "quantity",
+        "value",
+        "± u_num",
+        "F_s",
+        "p",
+        "p_h",
+        "p_Δt",
+        "space",
+        "estimator: what the data say"
+    );
+    let num = |v: Option<f64>, w: usize, prec: usize| match v {
+        Some(x) if x.is_finite() => format!("{x:>w$.prec$e}"),
+        _ => format!("{:>w$}", "—"),
+    };
+    let fixed = |v: Option<f64>, w: usize| match v {
+        Some(x) if x.is_finite() => format!("{x:>w$.2}"),
+        _ => format!("{:>w$}", "—"),
+    };
+    for r in &u.quantities {
+        let a = &r.assessment;
+        s.push_str(&format!(
+            "  {:<22} {} {} {} {} {} {} {}  {}: {}\n",
+            format!("{} ({})", r.quantity, r.unit),
+            num(a.value, 13, 5),
+            num(a.u_num, 10, 2),
+            fixed(a.safety_factor, 6),
+            fixed(a.observed_order, 5),
+            fixed(a.order_space, 6),
+            fixed(a.order_time, 6),
+            match a.space_share {
+                Some(x) => format!("{:>5.0}%", 100.0 * x),
+                None => format!("{:>6}", "—"),
+            },
+            a.estimator.name(),
+            a.note
+        ));
+    }
+    for n in &u.notes {
+        s.push_str(&format!("  note     {n}\n"));
+    }
+    s
+}
+
+/// One panel a quantity: the diagonal's values with their ±U bars against
+/// the level, the split runs between levels, the extrapolated value dashed.
+fn draw(path: &Path, u: &Uncertainty) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let shown: Vec<&QuantityUncertainty> = u
+        .quantities
+        .iter()
+        .filter(|q| q.diagonal.iter().any(|v| v.is_some()))
+        .collect();
+    let cols = 3usize;
+    let rows = shown.len().div_ceil(cols).max(1);
+    let (w, h) = (1200u32, 300 * rows as u32 + 40);
+    let root = SVGBackend::new(path, (w, h)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let (title, body) = root.split_vertically(40);
+    title.draw(&Text::new(
+        format!(
+            "value ± u_num against the level ({} and Δt refined ×{RATIO} a level; crosses: {} refined alone)",
+            u.level_symbol, u.level_symbol
+        ),
+        (10, 12),
+        ("sans-serif", 17).into_font(),
+    ))?;
+    let panels = body.split_evenly((rows, cols));
+    for (q, area) in shown.iter().zip(panels.iter()) {
+        panel(area, q, u.levels)?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+fn panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    q: &QuantityUncertainty,
+    levels: usize,
+) -> std::result::Result<(), Box<dyn std::error::Error>>
+where
+    DB::ErrorType: 'static,
+{
+    let a = &q.assessment;
+    let bars: Vec<(f64, f64, f64)> = q
+        .diagonal
+        .iter()
+        .enumerate()
+        .filter_map(|(l, v)| {
+            let v = (*v)?;
+            let e = a.u_levels.get(l).copied().flatten().unwrap_or(0.0);
+            Some((l as f64, v, e))
+        })
+        .collect();
+    let split: Vec<(f64, f64)> = q
+        .space
+        .iter()
+        .enumerate()
+        .filter_map(|(i, v)| Some((i as f64 + 0.5, (*v)?)))
+        .collect();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &(_, v, e) in &bars {
+        lo = lo.min(v - e);
+        hi = hi.max(v + e);
+    }
+    for &(_, v) in &split {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if let Some(x) = a.extrapolated.filter(|x| x.is_finite()) {
+        lo = lo.min(x);
+        hi = hi.max(x);
+    }
+    let caption = format!("{} ({}): {}", q.quantity, q.unit, a.estimator.name());
+    let pad = 0.08 * (hi - lo).abs();
+    let y = match super::axis_range::drawable("value", lo - pad, hi + pad, false) {
+        Ok(y) => y,
+        Err(reason) => {
+            area.draw(&Text::new(
+                format!("{caption}: not drawn, {reason}"),
+                (10, 20),
+                ("sans-serif", 12).into_font(),
+            ))?;
+            return Ok(());
+        }
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 14))
+        .margin(8)
+        .x_label_area_size(28)
+        .y_label_area_size(72)
+        .build_cartesian_2d(-0.3..(levels as f64 - 0.7), y.0..y.1)?;
+    chart
+        .configure_mesh()
+        .x_labels(levels)
+        .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_label_formatter(&|v| format!("{v:.4e}"))
+        .x_desc("level")
+        .draw()?;
+    let col = PALETTE[0];
+    if let Some(x) = a.extrapolated.filter(|x| x.is_finite()) {
+        chart.draw_series(DashedLineSeries::new(
+            vec![(-0.3, x), (levels as f64 - 0.7, x)],
+            6,
+            4,
+            BLACK.mix(0.5).stroke_width(1),
+        ))?;
+    }
+    for &(l, v, e) in &bars {
+        if e > 0.0 {
+            chart.draw_series(LineSeries::new(
+                vec![(l, v - e), (l, v + e)],
+                col.stroke_width(2),
+            ))?;
+        }
+        chart.draw_series(std::iter::once(Circle::new((l, v), 4, col.filled())))?;
+    }
+    let sq = PALETTE[1];
+    chart.draw_series(split.iter().map(|&p| Cross::new(p, 4, sq.stroke_width(2))))?;
+    Ok(())
+}

@@ -1,0 +1,439 @@
+//! One quantity's uncertainty from a family's values (MODEL §12): which
+//! estimator the data call for, the value and its u_num, the orders the
+//! data support, and how the error splits between space and time.
+//!
+//! * every value the same (to round-off): `exact`, u_num = 0;
+//! * differences growing at every level: `diverging`, no u_num;
+//! * a smooth quantity whose levels converge monotonically at an order
+//!   ≥ `LOWEST_ORDER`: Roache's GCI on the three finest ([`Gci`]), with
+//!   F_s = 1.25 only when every triplet of the family shows an order within
+//!   `ORDER_WINDOW` of the formal one;
+//! * anything else (a quantity that is not smooth, scattered or
+//!   oscillating data, an order below `LOWEST_ORDER`): the least-squares
+//!   estimator of Eça & Hoekstra ([`least_squares`]).
+//!
+//! An order is reported only where the data support one: the GCI's
+//! observed order, or the least-squares δ_RE's p when that fit is the one
+//! used; otherwise the table says why not.
+
+use serde::Serialize;
+
+use super::gci::{FS_CAUTIOUS, Gci, ORDER_WINDOW};
+use super::least_squares::{self, FitKind, LOWEST_ORDER, OrderRange};
+use super::order::{Behaviour, behaviour, fitted_order, observed_order, richardson_error};
+use crate::study::tolerance::ROUND_OFF;
+
+/// Which estimator gave the u_num.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Estimator {
+    /// The same value at every level: u_num = 0.
+    Exact,
+    /// Roache's GCI on the three finest levels.
+    Gci,
+    /// Roache's GCI of two levels (the formal order assumed, F_s = 3).
+    GciTwoLevels,
+    /// Eça & Hoekstra's least squares.
+    LeastSquares,
+    /// The differences grow at every level: no estimate.
+    Diverging,
+    /// A run of the family stopped (diverged): no estimate.
+    Diverged,
+    /// The quantity is not defined at some level (no first loss).
+    Undefined,
+}
+
+impl Estimator {
+    /// Its name in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Estimator::Exact => "exact",
+            Estimator::Gci => "gci",
+            Estimator::GciTwoLevels => "gci_two_levels",
+            Estimator::LeastSquares => "least_squares",
+            Estimator::Diverging => "diverging",
+            Estimator::Diverged => "diverged",
+            Estimator::Undefined => "undefined",
+        }
+    }
+}
+
+/// What a quantity's values are, for the estimate.
+#[derive(Debug, Clone, Copy)]
+pub struct Inputs<'a> {
+    /// Values along the family's diagonal, coarsest first (h and Δt
+    /// refined together by `ratio`).
+    pub diagonal: &'a [Option<f64>],
+    /// Values of the space-only refinements: entry ℓ − 1 at level ℓ's
+    /// mesh and level ℓ − 1's Δt (empty without a split).
+    pub space: &'a [Option<f64>],
+    /// Refinement ratio r.
+    pub ratio: f64,
+    /// Formal orders in space and time.
+    pub formal: (f64, f64),
+    /// Smooth in the resolution ([`super::quantity::QuantitySpec::smooth`]).
+    pub smooth: bool,
+}
+
+/// A quantity's uncertainty (a row of `uncertainty.csv`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Assessment {
+    /// The finest level's value.
+    pub value: Option<f64>,
+    /// Its numerical uncertainty U (same unit).
+    pub u_num: Option<f64>,
+    /// The estimated error of the finest value, φ_fine − φ_exact.
+    pub error: Option<f64>,
+    /// The extrapolated value φ_fine − error.
+    pub extrapolated: Option<f64>,
+    /// F_s.
+    pub safety_factor: Option<f64>,
+    /// The estimator.
+    pub estimator: Estimator,
+    /// The least-squares fit used (`free_order`, …; empty otherwise), and
+    /// whether it was weighted.
+    pub fit: String,
+    /// How the diagonal's values behave.
+    pub behaviour: Behaviour,
+    /// The order of the diagonal where the data support one.
+    pub observed_order: Option<f64>,
+    /// The formal order of the diagonal: min(space, time).
+    pub formal_order: f64,
+    /// The order in space alone, from the split, where supported.
+    pub order_space: Option<f64>,
+    /// The order in time alone, where supported.
+    pub order_time: Option<f64>,
+    /// Share of the finest level's estimated error from space (0–1; the
+    /// rest is time).
+    pub space_share: Option<f64>,
+    /// True when the estimate's F_s is the asymptotic 1.25.
+    pub asymptotic: bool,
+    /// The least-squares standard deviation σ (None for the GCI).
+    pub sigma: Option<f64>,
+    /// Its data range Δ_φ.
+    pub data_range: Option<f64>,
+    /// U at every diagonal level, coarsest first (the GCI's F_s·|φ_ℓ −
+    /// φ_extrapolated|).
+    pub u_levels: Vec<Option<f64>>,
+    /// What the numbers do not say by themselves.
+    pub note: String,
+}
+
+impl Assessment {
+    fn none(estimator: Estimator, inputs: &Inputs, note: String) -> Self {
+        Assessment {
+            value: inputs.diagonal.last().copied().flatten(),
+            u_num: None,
+            error: None,
+            extrapolated: None,
+            safety_factor: None,
+            estimator,
+            fit: String::new(),
+            behaviour: Behaviour::Scattered,
+            observed_order: None,
+            formal_order: inputs.formal.0.min(inputs.formal.1),
+            order_space: None,
+            order_time: None,
+            space_share: None,
+            asymptotic: false,
+            sigma: None,
+            data_range: None,
+            u_levels: vec![None; inputs.diagonal.len()],
+            note,
+        }
+    }
+
+    /// The assessment of a quantity whose family has a run that stopped.
+    pub fn diverged(inputs: &Inputs, why: &str) -> Self {
+        Assessment::none(
+            Estimator::Diverged,
+            inputs,
+            format!("a run of the family stopped: {why}"),
+        )
+    }
+}
+
+/// Assess one quantity from its family's values.
+pub(crate) fn assess(inputs: &Inputs) -> Assessment {
+    let k = inputs.diagonal.len();
+    let defined = inputs.diagonal.iter().filter(|v| v.is_some()).count();
+    if defined < k {
+        let note = if defined == 0 {
+            "not defined at any level (e.g. no contact loss)".to_string()
+        } else {
+            format!(
+                "defined at {defined} of {k} levels only: whether it exists depends on the resolution"
+            )
+        };
+        return Assessment::none(Estimator::Undefined, inputs, note);
+    }
+    let phi: Vec<f64> = inputs.diagonal.iter().flatten().copied().collect();
+    let r = inputs.ratio;
+    let formal = inputs.formal.0.min(inputs.formal.1);
+    let scale = phi.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let floor = ROUND_OFF * scale;
+    let shape = behaviour(&phi, floor);
+    let fine = phi[k - 1];
+    let mut a = Assessment::none(Estimator::Exact, inputs, String::new());
+    a.behaviour = shape;
+    a.value = Some(fine);
+    split(&mut a, inputs, floor);
+    match shape {
+        Behaviour::Exact => {
+            a.u_num = Some(0.0);
+            a.error = Some(0.0);
+            a.extrapolated = Some(fine);
+            a.u_levels = vec![Some(0.0); k];
+            a.note = "the same at every level: the resolution does not change it".into();
+            return a;
+        }
+        Behaviour::Diverging => {
+            a.estimator = Estimator::Diverging;
+            a.note = "the differences grow at every level: no estimate (refining makes it worse: an instability, or round-off)".into();
+            return a;
+        }
+        _ => {}
+    }
+    if k == 2 {
+        let g = Gci::two(phi[0], fine, r, formal);
+        set_gci(&mut a, &g, &phi, Estimator::GciTwoLevels);
+        a.note = format!("two levels: the formal order {formal} assumed, F_s = 3");
+        return a;
+    }
+    let gci = (inputs.smooth && shape == Behaviour::Monotone)
+        .then(|| Gci::three(phi[k - 3], phi[k - 2], fine, r, Some(formal)))
+        .flatten()
+        .filter(|g| g.observed_order >= LOWEST_ORDER);
+    if let Some(mut g) = gci {
+        // the asymptotic range: every triplet's order near the formal one
+        let orders: Vec<f64> = phi
+            .windows(3)
+            .map(|w| observed_order((w[0] - w[1]).abs(), (w[1] - w[2]).abs(), r))
+            .collect();
+        if orders.iter().any(|p| (p - formal).abs() > ORDER_WINDOW) && g.asymptotic() {
+            g.safety_factor = FS_CAUTIOUS;
+            g.u = FS_CAUTIOUS * g.error.abs();
+        }
+        set_gci(&mut a, &g, &phi, Estimator::Gci);
+        a.observed_order = Some(g.observed_order);
+        a.note = if a.asymptotic {
+            format!("asymptotic: every triplet's order within ±{ORDER_WINDOW} of {formal}")
+        } else {
+            format!(
+                "monotone, not asymptotic: triplet orders {} against a formal {formal} (F_s = 3)",
+                orders
+                    .iter()
+                    .map(|p| format!("{p:.2}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        return a;
+    }
+    // relative step sizes, the finest 1
+    let h: Vec<f64> = (0..k).map(|l| r.powi((k - 1 - l) as i32)).collect();
+    let Some(ls) = least_squares::estimate(&h, &phi, formal, inputs.smooth) else {
+        return Assessment::none(
+            Estimator::Undefined,
+            inputs,
+            "no least-squares fit could be made".into(),
+        );
+    };
+    a.estimator = Estimator::LeastSquares;
+    a.u_num = Some(ls.u[k - 1]);
+    a.error = Some(ls.error[k - 1]);
+    a.extrapolated = Some(ls.fit.phi0);
+    a.safety_factor = Some(if ls.widened {
+        FS_CAUTIOUS * ls.fit.sigma / ls.data_range.max(f64::MIN_POSITIVE)
+    } else {
+        ls.safety_factor
+    });
+    a.fit = format!(
+        "{}{}",
+        ls.fit.kind.name(),
+        if ls.fit.weighted { " (weighted)" } else { "" }
+    );
+    a.asymptotic = ls.asymptotic();
+    a.sigma = Some(ls.fit.sigma);
+    a.data_range = Some(ls.data_range);
+    a.u_levels = ls.u.iter().map(|&u| Some(u)).collect();
+    let supported = ls.fit.kind == FitKind::FreeOrder && ls.range == OrderRange::InRange;
+    if supported {
+        a.observed_order = Some(ls.fit.order);
+    }
+    let why = match (shape, ls.range) {
+        (Behaviour::Monotone, _) if !inputs.smooth => "not smooth (counts events or spikes)",
+        (Behaviour::Monotone, _) => "monotone at an order below 0.5",
+        (Behaviour::Oscillatory, _) => "oscillating",
+        _ => "scattered: differences that fall and rise",
+    };
+    a.note = format!(
+        "{why}; least squares ({}){}{}",
+        a.fit,
+        match ls.range {
+            OrderRange::InRange if supported => format!(", p = {:.2}", ls.fit.order),
+            OrderRange::InRange => String::new(),
+            OrderRange::Below => format!(
+                "; no order: the free fit's p = {:.2} is below {LOWEST_ORDER}",
+                ls.free.order
+            ),
+            OrderRange::Above => format!(
+                "; no order: the free fit's p = {:.2} is above {formal} + 0.1",
+                ls.free.order
+            ),
+        },
+        if ls.widened {
+            format!(
+                "; widened: σ = {:.3e} ≥ the data range {:.3e}",
+                ls.fit.sigma, ls.data_range
+            )
+        } else {
+            String::new()
+        }
+    );
+    a
+}
+
+fn set_gci(a: &mut Assessment, g: &Gci, phi: &[f64], estimator: Estimator) {
+    let fine = phi[phi.len() - 1];
+    let limit = fine - g.error;
+    a.estimator = estimator;
+    a.u_num = Some(g.u);
+    a.error = Some(g.error);
+    a.extrapolated = Some(limit);
+    a.safety_factor = Some(g.safety_factor);
+    a.asymptotic = g.asymptotic();
+    a.u_levels = phi
+        .iter()
+        .map(|v| Some(g.safety_factor * (v - limit).abs()))
+        .collect();
+}
+
+/// The orders in space and in time alone, and the space share, from the
+/// split runs (module docs of [`super`]).
+fn split(a: &mut Assessment, inputs: &Inputs, floor: f64) {
+    let k = inputs.diagonal.len();
+    if inputs.space.len() + 1 != k {
+        return;
+    }
+    let (mut dx, mut dt) = (Vec::new(), Vec::new());
+    for l in 1..k {
+        let (Some(prev), Some(mid), Some(cur)) = (
+            inputs.diagonal[l - 1],
+            inputs.space[l - 1],
+            inputs.diagonal[l],
+        ) else {
+            return;
+        };
+        dx.push(prev - mid);
+        dt.push(mid - cur);
+    }
+    let r = inputs.ratio;
+    // an order where the differences keep their sign and fall
+    let order = |d: &[f64]| -> Option<f64> {
+        let same = d.iter().all(|x| x.abs() > floor)
+            && (d.iter().all(|x| *x > 0.0) || d.iter().all(|x| *x < 0.0));
+        let falling = d.windows(2).all(|w| w[1].abs() < w[0].abs());
+        let p = fitted_order(&d.iter().map(|x| x.abs()).collect::<Vec<_>>(), r);
+        (d.len() >= 2 && same && falling && p >= LOWEST_ORDER).then_some(p)
+    };
+    a.order_space = order(&dx);
+    a.order_time = order(&dt);
+    let (lx, lt) = (dx[k - 2].abs(), dt[k - 2].abs());
+    // the remaining error of each from its own order, else the last change
+    let ex = a
+        .order_space
+        .map_or(lx, |p| richardson_error(lx, r, p).abs());
+    let et = a
+        .order_time
+        .map_or(lt, |p| richardson_error(lt, r, p).abs());
+    if ex + et > 0.0 {
+        a.space_share = Some(ex / (ex + et));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inputs<'a>(diag: &'a [Option<f64>], space: &'a [Option<f64>], smooth: bool) -> Inputs<'a> {
+        Inputs {
+            diagonal: diag,
+            space,
+            ratio: 2.0,
+            formal: (2.0, 2.0),
+            smooth,
+        }
+    }
+
+    /// φ(h, Δt) = 1 + a h² + b Δt² on the family (h, Δt relative, coarsest
+    /// first): the diagonal and the space-only runs.
+    fn family(a: f64, b: f64, p: f64, k: usize) -> (Vec<Option<f64>>, Vec<Option<f64>>) {
+        let f = |hx: f64, ht: f64| 1.0 + a * hx.powf(p) + b * ht.powf(p);
+        let x = |l: usize| 2f64.powi((k - 1 - l) as i32);
+        let diag = (0..k).map(|l| Some(f(x(l), x(l)))).collect();
+        let space = (1..k).map(|l| Some(f(x(l), x(l - 1)))).collect();
+        (diag, space)
+    }
+
+    #[test]
+    fn an_asymptotic_family_gets_the_gci_and_its_split() {
+        let (d, s) = family(0.03, 0.01, 2.0, 4);
+        let a = assess(&inputs(&d, &s, true));
+        assert_eq!(a.estimator, Estimator::Gci);
+        assert!(a.asymptotic);
+        assert!((a.observed_order.unwrap() - 2.0).abs() < 1e-9);
+        assert!((a.error.unwrap() - 0.04).abs() < 1e-12);
+        assert!((a.u_num.unwrap() - 1.25 * 0.04).abs() < 1e-12);
+        assert!((a.order_space.unwrap() - 2.0).abs() < 1e-9);
+        assert!((a.order_time.unwrap() - 2.0).abs() < 1e-9);
+        assert!((a.space_share.unwrap() - 0.75).abs() < 1e-9);
+    }
+
+    /// The test: outside the asymptotic range u_num grows (F_s = 3).
+    #[test]
+    fn u_num_grows_outside_the_asymptotic_range() {
+        // the same last difference, at order 2 (formal) and at order 1.2
+        let (d2, s2) = family(0.03, 0.0, 2.0, 4);
+        let (mut d1, s1) = family(0.03, 0.0, 1.2, 4);
+        // rescale so both ladders end with the same last difference
+        let last = |d: &[Option<f64>]| d[2].unwrap() - d[3].unwrap();
+        let f = last(&d2) / last(&d1);
+        for v in d1.iter_mut() {
+            *v = v.map(|x| 1.0 + (x - 1.0) * f);
+        }
+        let a2 = assess(&inputs(&d2, &s2, true));
+        let a1 = assess(&inputs(&d1, &s1, true));
+        assert!(a2.asymptotic && !a1.asymptotic, "{a2:?}\n{a1:?}");
+        assert_eq!(a1.safety_factor, Some(FS_CAUTIOUS));
+        assert!(a1.u_num.unwrap() > 2.0 * a2.u_num.unwrap());
+    }
+
+    #[test]
+    fn rough_quantities_use_least_squares_and_print_no_order_unless_supported() {
+        let d = [Some(0.010), Some(0.014), Some(0.012), Some(0.013)];
+        let a = assess(&inputs(&d, &[], false));
+        assert_eq!(a.estimator, Estimator::LeastSquares);
+        assert_eq!(a.safety_factor.map(|f| f >= FS_CAUTIOUS), Some(true));
+        assert!(a.u_num.unwrap() >= (0.013 - 0.012f64).abs());
+        assert!(a.space_share.is_none());
+    }
+
+    #[test]
+    fn exact_diverging_and_undefined_quantities_are_named() {
+        let same = [Some(46.0); 4];
+        assert_eq!(
+            assess(&inputs(&same, &[], true)).estimator,
+            Estimator::Exact
+        );
+        let grow = [Some(1.0), Some(1.1), Some(1.4), Some(2.4)];
+        let a = assess(&inputs(&grow, &[], true));
+        assert_eq!(a.estimator, Estimator::Diverging);
+        assert!(a.u_num.is_none());
+        let some = [None, Some(0.98), Some(0.98), Some(0.97)];
+        assert_eq!(
+            assess(&inputs(&some, &[], false)).estimator,
+            Estimator::Undefined
+        );
+    }
+}

@@ -1,0 +1,144 @@
+//! The family of solutions `taut uncertainty` runs from a scene (MODEL
+//! §12, "space and time together"): from the scene's own level (N₀ or J₀)
+//! and step Δt₀,
+//!
+//! * the **diagonal**: level ℓ = 0 … K − 1 at N₀·2^ℓ (or J₀·2^ℓ) and
+//!   Δt₀/2^ℓ, h and Δt refined together at the fixed ratio Δt/h of the
+//!   scene (Eça et al.'s refinement of space and time together);
+//! * the **split**: for ℓ = 1 … K − 1, level ℓ's mesh at level ℓ − 1's Δt,
+//!   which divides each diagonal change into its space part (mesh refined
+//!   at a fixed Δt) and its time part (Δt refined on a fixed mesh).
+//!
+//! 2K − 1 runs, of cost Σ 4^ℓ + Σ 2·4^(ℓ−1) scene runs (31 for K = 3, 127
+//! for K = 4). The runs are independent and run in parallel. Each ends at
+//! the scene's end time (its last whole step before it, as any run), and
+//! only their scalars are compared, so any end time works.
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::resolve::Resolved;
+use crate::study::level::Level;
+
+/// Refinement ratio between diagonal levels (in N or J, and in Δt).
+pub const RATIO: usize = 2;
+
+/// Levels of the diagonal (`--levels`): three for a GCI, four (the
+/// default) for a least-squares fit with a degree of freedom, at most six
+/// (4⁵ = 1024 times the scene's run on the finest level).
+pub(crate) const LEVELS: std::ops::RangeInclusive<usize> = 3..=6;
+
+/// Levels when none are asked for: the fewest for which the least-squares
+/// estimator of a three-parameter fit has a degree of freedom.
+pub const DEFAULT_LEVELS: usize = 4;
+
+/// `levels` if within [`LEVELS`], else the error naming `--levels`.
+pub(crate) fn check_levels(levels: usize) -> Result<usize> {
+    crate::study::grid::in_range("--levels", levels, &LEVELS)
+}
+
+/// Where a run sits in the family.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    /// Level ℓ of the diagonal: mesh and Δt both refined ℓ times.
+    Diagonal,
+    /// The split run of level ℓ: mesh refined ℓ times, Δt ℓ − 1 times.
+    Space,
+}
+
+/// One run of the family (a row of the family table).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Member {
+    /// Its role.
+    pub role: Role,
+    /// Its level ℓ.
+    pub level: usize,
+    /// Elements N.
+    pub elements: usize,
+    /// Modes J of a `galerkin` or `modal` basis.
+    pub modes: Option<usize>,
+    /// The length it resolves, m ([`Resolved::resolution`]).
+    pub h: f64,
+    /// Time step, s.
+    pub dt: f64,
+    /// Steps taken (0 before it runs).
+    pub steps: usize,
+    /// Unknowns.
+    pub dofs: usize,
+    /// Wall seconds of its run (machine-dependent).
+    pub wall_seconds: f64,
+}
+
+/// The family's runs, planned: (role, level, level parameter factor, Δt
+/// divisor), diagonal first, coarsest first.
+pub(crate) fn plan(levels: usize) -> Vec<(Role, usize, usize, usize)> {
+    let p = |l: usize| RATIO.pow(l as u32);
+    let diagonal = (0..levels).map(|l| (Role::Diagonal, l, p(l), p(l)));
+    let space = (1..levels).map(|l| (Role::Space, l, p(l), p(l - 1)));
+    diagonal.chain(space).collect()
+}
+
+/// The scenes of the family of `base` with `levels` diagonal levels, in
+/// `plan`'s order.
+pub fn scenes(base: &Resolved, levels: usize) -> Result<Vec<Resolved>> {
+    let level = Level::of(base);
+    let n0 = level.start();
+    plan(levels)
+        .into_iter()
+        .map(|(role, l, f, d)| {
+            let n = n0.checked_mul(f).ok_or_else(|| {
+                Error::invalid(
+                    "--levels",
+                    levels,
+                    format!("{} = {n0} × {f} is too large", level.symbol()),
+                )
+            })?;
+            level
+                .variant(n, base.dt / d as f64)
+                .apply(base)
+                .map_err(|e| e.in_run(&format!("the family's {role:?} run of level {l}")))
+        })
+        .collect()
+}
+
+impl Member {
+    /// The member of role `role` and level `l` for scene `sc`, not yet run.
+    pub fn of(role: Role, l: usize, sc: &Resolved) -> Self {
+        Member {
+            role,
+            level: l,
+            elements: sc.elements,
+            modes: sc.discretization.modes(),
+            h: sc.resolution(),
+            dt: sc.dt,
+            steps: 0,
+            dofs: 0,
+            wall_seconds: 0.0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_plan_is_the_diagonal_then_the_split() {
+        let p = plan(3);
+        assert_eq!(
+            p,
+            [
+                (Role::Diagonal, 0, 1, 1),
+                (Role::Diagonal, 1, 2, 2),
+                (Role::Diagonal, 2, 4, 4),
+                (Role::Space, 1, 2, 1),
+                (Role::Space, 2, 4, 2),
+            ]
+        );
+        // cost in scene runs: 31 for three levels, 127 for four
+        let cost = |k| plan(k).iter().map(|(_, _, f, d)| f * d).sum::<usize>();
+        assert_eq!((cost(3), cost(4)), (31, 127));
+        assert!(check_levels(2).is_err() && check_levels(7).is_err());
+    }
+}

@@ -1,0 +1,125 @@
+//! Accuracy-targeted sweeps (`taut sweep … --tolerance EPS --quantity Q`,
+//! issue 37): every point's u_num, the resolution it took, and the sweep's
+//! promises kept (resume, shards and merge give the same bytes), through
+//! the `taut` binary.
+
+use crate::common;
+
+use std::path::Path;
+
+use common::{out_dir, taut_bin};
+
+/// Three speeds of the reference case on a small modal basis (J = 100): at
+/// 140 m/s the contact is lost in the span and the point is refined, at
+/// 100 and 120 m/s the in-span P_l is 0 at every pilot; 0.1 s in all.
+const MAP: [&str; 8] = [
+    "--set",
+    "mesh.kind=galerkin",
+    "--set",
+    "mesh.modes=100",
+    "--set",
+    "time.step=2e-4",
+    "--set",
+    "integrator={ method = \"modal_exact\" }",
+];
+
+/// `taut sweep scenes/reference.toml --vary … MAP --tolerance TOL ARGS
+/// --out DIR`: its status, sweep.csv and stderr.
+fn sweep_at(dir: &Path, tol: &str, args: &[&str]) -> (bool, String, String) {
+    let mut all = vec![
+        "sweep",
+        "scenes/reference.toml",
+        "--vary",
+        "carrier.speed.cruise=100,120,140",
+    ];
+    all.extend_from_slice(&MAP);
+    all.extend_from_slice(&["--tolerance", tol]);
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["--out", dir.to_str().unwrap(), "--quiet"]);
+    let o = taut_bin(&all);
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap_or_default();
+    (
+        o.status.success(),
+        csv,
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+fn sweep(dir: &Path, args: &[&str]) -> (bool, String, String) {
+    sweep_at(dir, "0.01", args)
+}
+
+#[test]
+fn each_point_reports_u_num_and_the_resolution_it_took() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = out_dir(&tmp, "a");
+    let (ok, csv, err) = sweep(&dir, &[]);
+    assert!(ok, "{err}");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (u, met, modes, runs) = (
+        col("u_num"),
+        col("tolerance_met"),
+        col("modes_used"),
+        col("runs_used"),
+    );
+    let mut refined = 0;
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        let un: f64 = cells[u].parse().unwrap();
+        assert_eq!(cells[met] == "yes", un <= 0.01, "{line}");
+        let j: usize = cells[modes].parse().unwrap();
+        assert!(j >= 100 && j.is_multiple_of(100), "{line}");
+        let r: usize = cells[runs].parse().unwrap();
+        assert!(r >= 5, "{line}");
+        refined += usize::from(j > 100);
+    }
+    // the pilots (5 runs) settle two points, the third is refined
+    assert_eq!(refined, 1, "{csv}");
+    // the records say the same, and the folder resumes to the same bytes
+    let again = sweep(&dir, &[]);
+    assert!(again.0, "{}", again.2);
+    assert_eq!(again.1, csv);
+    // two shards merged are the sweep
+    for i in ["0/2", "1/2"] {
+        let (ok, _, err) = sweep(&out_dir(&tmp, &format!("s{}", &i[..1])), &["--shard", i]);
+        assert!(ok, "{err}");
+    }
+    let merged = out_dir(&tmp, "merged");
+    let o = taut_bin(&[
+        "merge",
+        out_dir(&tmp, "s0").to_str().unwrap(),
+        out_dir(&tmp, "s1").to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read_to_string(merged.join("sweep.csv")).unwrap(),
+        csv
+    );
+    // a 1-D sweep draws its value ± u_num
+    assert!(dir.join("tolerance.svg").exists());
+}
+
+#[test]
+fn bad_tolerance_flags_are_named() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (k, (tol, args, names)) in [
+        ("-1", vec![], "`--tolerance` = -1"),
+        ("x", vec![], "`--tolerance` = x"),
+        ("0.01", vec!["--quantity", "speed"], "`--quantity` = speed"),
+        ("0.01", vec!["--max-cost", "1"], "`--max-cost` = 1"),
+        ("0.01", vec!["--check-refinement"], "`--check-refinement`"),
+        ("0.01", vec!["--set", "mesh.modes=98"], "`mesh.modes` = 98"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let dir = out_dir(&tmp, &format!("bad{k}"));
+        let (ok, _, err) = sweep_at(&dir, tol, &args);
+        assert!(!ok, "{args:?} was accepted");
+        assert!(err.contains(names), "{args:?}: {err}");
+    }
+}

@@ -1,0 +1,181 @@
+//! Solution verification (MODEL §12, issue 37): `taut uncertainty`'s
+//! u_num against true errors (a cut-down version of `cargo xtask
+//! uncertainty`'s coverage study), u_num growing outside the asymptotic
+//! range, a divergence named, and `taut converge` claiming no more than it
+//! measured.
+
+use taut::study::converge::{Refine, converge};
+use taut::study::reference::analytic_w;
+use taut::study::uncertainty::{Estimator, FS_ASYMPTOTIC, FS_CAUTIOUS, uncertainty};
+use xtask::uncertainty::{Case, Truth, run_case, shares};
+
+const MOVING_FORCE: &str = include_str!("../scenes/moving_force_beam.toml");
+const REFERENCE: &str = include_str!("../scenes/reference.toml");
+
+fn set(s: &[&str]) -> Vec<String> {
+    s.iter().map(|x| x.to_string()).collect()
+}
+
+/// `taut converge` on the moving force with overrides `s`, three levels.
+fn ladder(s: &[&str], refine: Refine) -> taut::study::converge::Convergence {
+    converge(
+        MOVING_FORCE,
+        &set(s),
+        refine,
+        3,
+        2.0,
+        &analytic_w,
+        &mut |_, _| {},
+    )
+    .unwrap()
+}
+
+/// The cut-down coverage study: the moving force's RMS displacement under
+/// the load against the exact series, from four starting resolutions of
+/// the full study's grid (docs/verification.md lists every pair). Every
+/// one is covered there, with u_num at most 10× the error at 19 of 20:
+/// here every pair must be covered and sharp.
+#[test]
+fn u_num_covers_the_true_error_of_the_moving_force() {
+    let case = Case {
+        name: "moving force, pinned–pinned",
+        scene: "scenes/moving_force_beam.toml",
+        set: &[],
+        quantity: "displacement_rms",
+        truth: Truth::Series,
+        starts: vec![(25, 4e-4), (50, 4e-4), (50, 1e-4), (100, 2e-4)],
+    };
+    let rows = run_case(&case, 4, None).unwrap();
+    for r in &rows {
+        println!(
+            "N0 = {}, dt0 = {:e}: value {:.8e} ± {:.2e} ({}, F_s {}), true error {:.2e}",
+            r.start.0,
+            r.start.1,
+            r.value,
+            r.u_num,
+            r.estimator,
+            r.safety_factor,
+            r.error()
+        );
+    }
+    let (covered, sharp) = shares(&rows);
+    assert_eq!(covered, 1.0);
+    assert_eq!(sharp, 1.0);
+}
+
+/// The issue's test: a family outside the asymptotic range (N₀ = 25: h is
+/// 30 bending lengths) gets F_s = 3 and a wider band relative to its last
+/// change than one inside it (N₀ = 50).
+#[test]
+fn u_num_grows_outside_the_asymptotic_range() {
+    let band = |n0: usize| {
+        let u = uncertainty(
+            MOVING_FORCE,
+            &set(&[&format!("mesh.elements={n0}"), "time.step=4e-4"]),
+            4,
+            &mut |_, _| {},
+        )
+        .unwrap();
+        let q = u
+            .quantities
+            .iter()
+            .find(|q| q.quantity == "displacement_rms")
+            .unwrap()
+            .clone();
+        let d = q.diagonal[3].unwrap() - q.diagonal[2].unwrap();
+        let a = q.assessment;
+        println!("N0 = {n0}: {a:?}");
+        (
+            a.asymptotic,
+            a.safety_factor.unwrap(),
+            a.u_num.unwrap() / d.abs(),
+        )
+    };
+    let (outside, inside) = (band(25), band(50));
+    assert!(!outside.0 && outside.1 == FS_CAUTIOUS, "{outside:?}");
+    assert!(inside.0 && inside.1 == FS_ASYMPTOTIC, "{inside:?}");
+    assert!(outside.2 > 2.0 * inside.2, "{outside:?} {inside:?}");
+}
+
+/// The reference case with the α-level gap condition and a bilateral
+/// contact (MODEL §5: the constraint's undamped oscillation grows without
+/// bound) at 0.8 c: its runs blow up, and both studies say so.
+#[test]
+fn a_divergence_is_named() {
+    let blowup = set(&[
+        "contact.placement=alpha",
+        "contact.kind=bilateral",
+        "carrier.speed.cruise=120",
+        "time.end=0.1",
+        "mesh.elements=100",
+        "time.step=2e-4",
+    ]);
+    let u = uncertainty(REFERENCE, &blowup, 3, &mut |_, _| {}).unwrap();
+    for q in &u.quantities {
+        assert_eq!(q.assessment.estimator, Estimator::Diverged, "{q:?}");
+        assert!(q.assessment.u_num.is_none());
+    }
+    assert!(
+        u.notes.iter().any(|n| n.contains("diverged")),
+        "{:?}",
+        u.notes
+    );
+    let c = converge(
+        REFERENCE,
+        &blowup,
+        Refine::Step,
+        4,
+        2.0,
+        &analytic_w,
+        &mut |_, _| {},
+    )
+    .unwrap();
+    let named = c.rows.iter().any(|r| r.regime.starts_with("diverged"));
+    assert!(
+        named,
+        "{:#?}",
+        c.rows.iter().map(|r| &r.regime).collect::<Vec<_>>()
+    );
+    assert!(c.rows.iter().all(|r| !r.regime.contains("limited by")));
+}
+
+/// Without a declared reference a Δt ladder measures Δt's error only: its
+/// error column and regime say the mesh's is unmeasured (the issue's
+/// 50-element moving force, whose true error is 220 times the ladder's).
+#[test]
+fn a_one_variable_ladder_names_what_it_does_not_measure() {
+    let c = ladder(&["reference.kind=\"richardson\""], Refine::Step);
+    let last = c
+        .rows
+        .iter()
+        .find(|r| r.level == 2 && r.quantity == "displacement_l2")
+        .unwrap();
+    assert_eq!(last.reference, "richardson (Δt error only)");
+    assert!(
+        last.regime.ends_with("the error of the mesh is unmeasured"),
+        "{}",
+        last.regime
+    );
+    // both refined: the split says how much of each change is the mesh's
+    let c = ladder(&["reference.kind=\"richardson\""], Refine::Both);
+    assert_eq!(c.split.len(), 2);
+    let both = c
+        .rows
+        .iter()
+        .find(|r| r.level == 2 && r.quantity == "displacement_l2")
+        .unwrap();
+    assert_eq!(both.reference, "richardson (mesh and Δt)");
+    assert!((0.0..=1.0).contains(&both.mesh_share), "{both:?}");
+    assert!(both.u_num.is_finite() && both.u_num > 0.0, "{both:?}");
+}
+
+/// Any end time works: 0.5999 s is no whole number of 4e-4 s steps, and
+/// each level is compared at the coarse grid's times they all reach.
+#[test]
+fn any_end_time_works() {
+    let c = ladder(&["time.end=0.5999"], Refine::Step);
+    assert_eq!(c.runs[0].steps, 1499);
+    assert!(c.runs[2].steps > 4 * 1499);
+    let u = uncertainty(MOVING_FORCE, &set(&["time.end=0.5999"]), 3, &mut |_, _| {}).unwrap();
+    assert!(u.quantities.iter().any(|q| q.assessment.u_num.is_some()));
+}

@@ -1,0 +1,31 @@
+//! taut's tools for its own repository (the `xtask` pattern): the programs
+//! that regenerate the measured pages of `docs/`, run as
+//! `cargo xtask <page>` (an alias of `cargo run --release -p xtask --`, in
+//! `.cargo/config.toml`). They are users of the `taut` library like any
+//! other: they import only its public API, and nothing in the library or
+//! the CLI imports them. Tests call some of their parts (e.g.
+//! [`methods::scene`], [`methods::force_error`]) to check a page's claims
+//! in the default suite.
+//!
+//! | module | page | command |
+//! |---|---|---|
+//! | [`methods`] | `docs/methods.md` (measured tables) | `cargo xtask methods` |
+//! | [`contact_loss`] | `docs/contact_loss.md` (measured tables) | `cargo xtask contact-loss [quick]` |
+//! | [`convergence`] | `docs/convergence.md` (written in full) | `cargo xtask convergence` |
+//! | [`stability`] | `docs/stability.md` (written in full) | `cargo xtask stability` |
+//! | [`reproduction`] | `docs/reproduction.md` and `docs/reproduction/` | `cargo xtask reproduction [--full] [--resume]` |
+//! | [`published_band`] | the tables of `docs/reproduction.md`'s last section (printed) | `cargo xtask published-band` |
+//! | [`accuracy_check`] | the tables of `docs/accuracy.md` (printed) | `cargo xtask accuracy-check grid\|check …` |
+//! | [`uncertainty`] | `docs/verification.md` ("Solution verification": coverage tables) | `cargo xtask uncertainty [quick]` |
+
+/// The repository's top folder (scenes/, docs/): this crate sits one below it.
+pub const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+
+pub mod accuracy_check;
+pub mod contact_loss;
+pub mod convergence;
+pub mod methods;
+pub mod published_band;
+pub mod reproduction;
+pub mod stability;
+pub mod uncertainty;
