@@ -31,6 +31,7 @@ pub mod analytic;
 pub mod app;
 pub(crate) mod budget;
 pub mod contact;
+pub(crate) mod defects;
 pub mod error;
 pub(crate) mod input;
 pub mod integrate;

@@ -205,6 +205,42 @@ impl ProblemBuilder {
         }
     }
 
+    /// The velocity-level problem of a step whose displacement advances by
+    /// its own half-step velocity, d_{n+1} = d_n + Δt v_{n+1/2} (central
+    /// difference; [`super::System::set_increment_rates`]), after
+    /// [`ProblemBuilder::gaps`] and [`ProblemBuilder::position`]: the gap
+    /// rate is the gap's increment over the step,
+    /// `ġ_{n+1/2} = (g_{n+1} − g_n)/Δt`, with `g_{n+1} = g_free + Wλ` the
+    /// position-level pair and `g_n = s r_fᵀd_n − q_n` read along the force
+    /// row r_f, which central difference places at t_n (its forward
+    /// increment). So `ġ_free = (g_free − g_n)/Δt` and `W_v = W/Δt`: the
+    /// carrier's motion over the step is in g_{n+1} − g_n exactly, and a
+    /// contact held at ġ = 0 keeps its gap to round-off.
+    pub(crate) fn increment(&mut self, carriers: &[Carrier], st: &State, dt: f64) {
+        let nc = self.nc;
+        let stride = self.g_free.len();
+        for c in carriers {
+            let Some(j) = c.contact else { continue };
+            let g_n = c.s * c.pv_f.dot(&st.d) - st.q[j];
+            self.rate_free[j] = (self.g_free[j] - g_n) / dt;
+            for jj in 0..nc {
+                self.w_v[j * nc + jj] = self.w[j * stride + jj] / dt;
+            }
+        }
+    }
+
+    /// The gap rates ġ = ġ_free + W_v λ of the velocity-level problem just
+    /// solved with the multipliers `lambda`, into `rates` (one per contact).
+    pub(crate) fn rates_after(&self, lambda: &[f64], rates: &mut [f64]) {
+        let nc = self.nc;
+        for (j, r) in rates.iter_mut().enumerate().take(nc) {
+            *r = self.rate_free[j]
+                + (0..nc)
+                    .map(|jj| self.w_v[j * nc + jj] * lambda[jj])
+                    .sum::<f64>();
+        }
+    }
+
     /// A pair a method formed itself (`modal_exact`, MODEL §9.3: sums over
     /// modes), at position level: `g_free` (one per contact, m) and `w`
     /// (row-major nc × nc, m/N).

@@ -40,6 +40,10 @@ pub(crate) struct LawState {
     pub(crate) static_forces: Vec<f64>,
     /// Largest |λ| accepted before a run is taken as diverged, N.
     pub(crate) force_bound: f64,
+    /// True when the velocity-level law takes the gap's increment over the
+    /// step as its rate (`System::set_increment_rates`: central
+    /// difference); false for the convective rate at t_{n+1}.
+    pub(crate) increment_rates: bool,
 }
 
 impl LawState {
@@ -57,6 +61,7 @@ impl LawState {
             held_prev: vec![0.0; nc + nd],
             static_forces: Vec::new(),
             force_bound: FORCE_BOUND_FACTOR * force_scale(sc).max(f64::MIN_POSITIVE),
+            increment_rates: false,
         }
     }
 

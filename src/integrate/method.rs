@@ -148,7 +148,18 @@ pub(crate) fn stepper_for(
         return Err(super::chain::refusal(Method::ModalExact.name()));
     }
     Ok(match scheme {
-        Scheme::GenAlpha(p) => Box::new(GenAlpha::new(p, sys, st, init)?),
+        Scheme::GenAlpha(p) => {
+            // a deliberate defect of the test build (`crate::defects`)
+            let p = if crate::defects::on(crate::defects::Defect::StepGamma) {
+                crate::scene::GenAlphaParams {
+                    gamma: p.gamma + 0.01,
+                    ..p
+                }
+            } else {
+                p
+            };
+            Box::new(GenAlpha::new(p, sys, st, init)?)
+        }
         Scheme::Bathe { gamma } => Box::new(Bathe::new(gamma, sys, st, init)?),
         Scheme::CentralDifference => Box::new(CentralDifference::new(sc, sys, st, init)?),
         Scheme::MoreauJean { theta } => {

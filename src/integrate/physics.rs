@@ -154,6 +154,23 @@ impl Physics {
     pub(crate) fn place(&mut self, at: PlaceTimes, velocity: bool) {
         let (t_load, t_force) = (at.load, at.force);
         self.t_force = t_force;
+        // deliberate defects of the test build (`crate::defects`)
+        use crate::defects::{Defect, on};
+        let t_force = if on(Defect::ForceBehind) {
+            t_force - self.dt
+        } else {
+            t_force
+        };
+        let t_load = if on(Defect::SourceLate) && self.source.is_some() {
+            t_load + 0.5 * self.dt
+        } else {
+            t_load
+        };
+        let at = PlaceTimes {
+            load: t_load,
+            force: t_force,
+            gap: at.gap,
+        };
         if let Some(src) = &mut self.source {
             // a manufactured source: its loads at t_load (MODEL §11)
             src.t_load = t_load;

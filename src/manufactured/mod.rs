@@ -930,6 +930,13 @@ impl Manufactured {
         }
     }
 
+    /// The prescribed loss's window (s): from the start of the blend in
+    /// which λ* falls to the end of the one in which it rises again;
+    /// `None` without a `[manufactured.loss]`.
+    pub fn loss_window(&self) -> Option<(f64, f64)> {
+        self.loss.map(|l| (l.start - l.blend, l.end + l.blend))
+    }
+
     /// The carriers, in scene order.
     pub fn carriers(&self) -> usize {
         self.carriers.len()

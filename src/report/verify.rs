@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::study::verify::{DOMINANCE_LIMIT, Status, VerifyRow};
 
 /// Column order of `verify.csv`.
-pub(crate) const VERIFY_COLUMNS: [&str; 22] = [
+pub(crate) const VERIFY_COLUMNS: [&str; 29] = [
     "case",
     "method",
     "discretization",
@@ -21,16 +21,23 @@ pub(crate) const VERIFY_COLUMNS: [&str; 22] = [
     "tolerance",
     "observed",
     "finest_order",
+    "allowed_low",
+    "allowed_high",
+    "error_bound",
     "range_coarse",
     "range_fine",
     "finest_error",
     "relative_error",
     "other_share",
+    "penalty_share",
+    "start_share",
+    "loss_share",
     "omega_max_dt",
     "status",
     "note",
     "levels",
     "errors",
+    "loss_intervals",
     "wall_seconds",
 ];
 
@@ -64,11 +71,17 @@ pub(crate) fn verify_rows(rows: &[VerifyRow]) -> Table {
         real(&|r| r.tolerance),
         real(&|r| r.observed),
         real(&|r| r.orders.last().copied().unwrap_or(f64::NAN)),
+        real(&|r| r.allowed.0),
+        real(&|r| r.allowed.1),
+        real(&|r| r.error_bound),
         real(&|r| r.range.0),
         real(&|r| r.range.1),
         real(&|r| r.errors.last().copied().unwrap_or(f64::NAN)),
         real(&|r| r.relative_error),
         real(&|r| r.other_share),
+        real(&|r| r.penalty_share),
+        real(&|r| r.start_share),
+        real(&|r| r.loss_share),
         real(&|r| r.omega_max_dt),
         label(&|r| r.status.name().to_string()),
         Column::Text(
@@ -78,6 +91,13 @@ pub(crate) fn verify_rows(rows: &[VerifyRow]) -> Table {
         ),
         label(&|r| joined(&r.levels)),
         label(&|r| joined(&r.errors)),
+        label(&|r| {
+            r.loss_intervals
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(";")
+        }),
         Column::Real(rows.iter().map(|r| r.wall_seconds).collect()),
     ];
     let mut t = Table::new();
@@ -100,6 +120,8 @@ pub(crate) struct Counts {
     pub cannot: usize,
     /// Reported without an expectation.
     pub reported: usize,
+    /// Declared to diverge, and diverging.
+    pub diverges: usize,
 }
 
 impl Counts {
@@ -113,6 +135,7 @@ impl Counts {
                 Status::Known => c.known += 1,
                 Status::Cannot => c.cannot += 1,
                 Status::Reported => c.reported += 1,
+                Status::Diverges => c.diverges += 1,
             }
         }
         c
@@ -193,13 +216,14 @@ pub fn verify_table(rows: &[VerifyRow]) -> String {
     }
     let c = Counts::of(rows);
     s.push_str(&format!(
-        "{} rows: {} pass, {} fail, {} known, {} cannot, {} reported\n",
+        "{} rows: {} pass, {} fail, {} known, {} cannot, {} reported, {} diverges\n",
         rows.len(),
         c.pass,
         c.fail,
         c.known,
         c.cannot,
-        c.reported
+        c.reported,
+        c.diverges
     ));
     s
 }
@@ -275,6 +299,7 @@ fn cell_text(rows: &[&VerifyRow]) -> String {
         (Status::Fail, "✗"),
         (Status::Known, "known"),
         (Status::Reported, "reported"),
+        (Status::Diverges, "diverges"),
     ] {
         let obs: Vec<f64> = rows
             .iter()

@@ -19,6 +19,11 @@ pub enum Variable {
     /// The number of modes J of a modal basis (doubled per level).
     #[serde(rename = "J")]
     J,
+    /// The penalty's compliance 1/ρ (`contact.penalty.relative` = ρ
+    /// doubled per level, κ = ρ/W): the penalty force against the exact
+    /// contact's as the penalty stiffens (MODEL §6).
+    #[serde(rename = "kappa")]
+    Kappa,
 }
 
 impl Variable {
@@ -28,6 +33,7 @@ impl Variable {
             Variable::H => "h",
             Variable::Dt => "dt",
             Variable::J => "J",
+            Variable::Kappa => "kappa",
         }
     }
 
@@ -36,6 +42,7 @@ impl Variable {
         match self {
             Variable::Dt => "the mesh (h or J)",
             Variable::H | Variable::J => "Δt",
+            Variable::Kappa => "Δt and the mesh",
         }
     }
 }
@@ -80,8 +87,15 @@ impl Space {
 /// One combination the matrix runs a case under.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Combo<'a> {
-    /// The method's name (a built-in `integrator.method` or a custom factory's).
+    /// The method's name (a built-in `integrator.method`, a parameter set
+    /// of one, `wbz(rho_inf=0.5)`, or a custom factory's).
     pub method: &'a str,
+    /// The built-in method it is (its name before any parameter set);
+    /// the name itself for a custom factory.
+    pub family: &'a str,
+    /// The generalized-α family's parameters (α_m, α_f) of a built-in
+    /// member; `None` for the other methods.
+    pub alphas: Option<(f64, f64)>,
     /// Its formal order in Δt ([`crate::integrate::MethodFactory::time_order`]).
     pub time_order: Option<f64>,
     /// The discretization.
@@ -114,44 +128,143 @@ impl Quantity {
     }
 }
 
-/// What a combination should show when one variable is refined.
+/// What a combination should show when one variable is refined: every
+/// row the matrix runs is judged against one of these (`judge.rs`), and a
+/// `cannot` is only a refused combination or a measured share
+/// ([`Expect::Limited`]).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Expect {
-    /// The observed order lies within `tol` of `order`.
+    /// The ladder's order (first to last level) lies within `tol` of
+    /// `order`, its finest pair within `pair` of it (widened by the shift
+    /// the measured share of the fixed variables can cause, `judge.rs`),
+    /// and every pair approaches (none falls short of `order − pair` by
+    /// more than `APPROACH_SLACK`).
     Order {
         /// The formal order.
         order: f64,
-        /// Allowed |observed − order| (a named constant with its reason).
+        /// Allowed |ladder order − order| (a named constant with its reason).
         tol: f64,
+        /// Allowed |finest pair's order − order| (the successive orders'
+        /// measured scatter; a named constant with its reason).
+        pair: f64,
     },
-    /// A known deviation from the formal order, reported but not failed:
-    /// `order` is the formal one, `why` the measured finding and what is
-    /// known of its cause.
-    Known {
+    /// The formal order as a lower bound: the ladder's order at least
+    /// `order − tol`, its finest pair's at least `order − pair` (the contact
+    /// force in h under a moving contact, whose node kicks bound it from
+    /// below and whose smooth part converges faster; in J, the truncated
+    /// basis's ripple), every pair approaching as in [`Expect::Order`].
+    AtLeast {
         /// The formal order.
         order: f64,
-        /// The finding.
-        why: String,
+        /// Allowed shortfall of the ladder's order.
+        tol: f64,
+        /// Allowed shortfall of the finest pair's.
+        pair: f64,
     },
-    /// The combination cannot show an order in this variable, and why.
-    Cannot(String),
     /// The order of the exact solution's own modal tail: the error of
     /// v* truncated to the J lowest modes (the exact ones for `galerkin`,
-    /// the FE ones for `modal`) at the same points and times, over the same
+    /// the FE modes for `modal`) at the same points and times, over the same
     /// J levels — what a J-mode basis can do at best, since v*'s modal
-    /// coefficients set it (`docs/verification.md`). Within `tol` of it.
+    /// coefficients set it (`docs/verification.md`). Judged as
+    /// [`Expect::Order`], each pair against the tail's own pair.
     ModalTail {
-        /// Allowed |observed − tail order|.
+        /// Allowed |ladder order − tail order|.
         tol: f64,
+        /// Allowed |finest pair − the tail's finest pair|.
+        pair: f64,
     },
-    /// Nothing declared (a custom method without a formal order, or a
-    /// quantity whose order depends on the solution): reported, with why.
+    /// A measured deviation from the formal order, judged against its own
+    /// bounds: the finest pair's order lies in `range`, the finest error
+    /// relative to the exact solution is at most `bound`, and the fixed
+    /// variables make at most `DOMINANCE_LIMIT` of it. Outside
+    /// them the row fails. `cause` is the measured finding.
+    Known {
+        /// Allowed orders (least, largest).
+        range: (f64, f64),
+        /// Largest finest error relative to the exact solution's largest value.
+        bound: f64,
+        /// The measured cause, and the command or test that measures it.
+        cause: String,
+    },
+    /// `inner`, unless the row's own runs measure the fixed variables (or,
+    /// for penalty, the penalty's compliance; or, with a prescribed loss,
+    /// the loss and reattachment) making more than
+    /// `DOMINANCE_LIMIT` of the finest error: then `cannot`, with
+    /// the measured share and `why` that was expected.
+    Limited {
+        /// The expectation judged when the share is within the limit.
+        inner: Box<Expect>,
+        /// Why the fixed variables may dominate here.
+        why: String,
+        /// True when the fixed variables' error is first order, so that
+        /// refining them once removes only half of it: the measured share
+        /// counts twice.
+        first_order: bool,
+    },
+    /// `inner`, except that a ladder whose error stops falling at some
+    /// level (a pair's order below `STALL_ORDER`, or a run stopped on an
+    /// instability) or whose contact chatters (with no prescribed loss, the
+    /// runs lose contact at every level, more often at each finer one) gets
+    /// the verdict
+    /// `diverges` with `why`: a method whose moving contact's constraint
+    /// oscillation is undamped (Newmark) diverges where a run excites it
+    /// and converges at its order where none does — both are judged.
+    MayDiverge {
+        /// The expectation of a ladder that does not grow.
+        inner: Box<Expect>,
+        /// The mechanism of the divergence.
+        why: String,
+    },
+    /// `inner`, judged on the errors after the start (t > `START_WINDOW`):
+    /// a penalty contact starts unloaded (λ = 0 at zero penetration, while
+    /// the exact contact carries kδ0 + mg at once), and the start jump rings
+    /// the unresolved penalty spring for tens of steps, at an amplitude its
+    /// method's damping sets, not h, Δt or κ. The row gives the share of
+    /// the whole run's finest error that the start makes (`start_share`).
+    AfterStart(Box<Expect>),
+    /// Nothing declared (a method of one's own that declares no formal
+    /// order): reported, with why.
     Report(String),
+}
+
+impl Expect {
+    /// `self`, but `cannot` when the row's runs measure the fixed variables
+    /// above the dominance limit ([`Expect::Limited`]).
+    pub fn limited(self, why: impl Into<String>) -> Expect {
+        Expect::Limited {
+            inner: Box::new(self),
+            why: why.into(),
+            first_order: false,
+        }
+    }
+
+    /// [`Expect::limited`] where the fixed variables' error is first order.
+    pub fn limited_first_order(self, why: impl Into<String>) -> Expect {
+        Expect::Limited {
+            inner: Box::new(self),
+            why: why.into(),
+            first_order: true,
+        }
+    }
+
+    /// `self`, or `diverges` where the ladder grows ([`Expect::MayDiverge`]).
+    pub fn may_diverge(self, why: impl Into<String>) -> Expect {
+        Expect::MayDiverge {
+            inner: Box::new(self),
+            why: why.into(),
+        }
+    }
+
+    /// `self` judged after the start ([`Expect::AfterStart`]).
+    pub fn after_start(self) -> Expect {
+        Expect::AfterStart(Box::new(self))
+    }
 }
 
 /// One ladder of a case: the refined variable, its levels, and the fixed
 /// (fine) values of the others. Level ℓ has N = elements·2^ℓ (h), Δt =
-/// dt/2^ℓ (Δt) or J = modes·2^ℓ (J).
+/// dt/2^ℓ (Δt), J = modes·2^ℓ (J) or ρ = ρ₀·2^ℓ (κ, from the scene's
+/// `contact.penalty.relative`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ladder {
     /// The refined variable.
@@ -206,8 +319,16 @@ pub struct Case {
 }
 
 impl Case {
-    /// True when the case runs the method named `name`.
+    /// True when the case runs the method named `name` (a parameter set,
+    /// `wbz(rho_inf=0.5)`, as its method: `family`).
     pub fn runs(&self, name: &str) -> bool {
+        let name = family(name);
         (self.only.is_empty() || self.only.contains(&name)) && !self.skip.contains(&name)
     }
+}
+
+/// The method a matrix name is: `wbz` for `wbz(rho_inf=0.5)`, the name
+/// itself otherwise.
+pub(crate) fn family(name: &str) -> &str {
+    name.split_once('(').map_or(name, |(f, _)| f)
 }

@@ -70,12 +70,21 @@ pub(super) fn fit_levels(
         Variable::Dt => {
             let refined = match space {
                 Space::Galerkin => limit(l.elements, l.modes * 2)?,
-                // J×2 capped at the FE unknowns (the dominance run's)
+                // J×2 capped at the FE unknowns (the dominance run's); with
+                // every mode already, the dominance run is N×2 with every mode
                 Space::Modal => {
-                    let unknowns = level(scene, space, l.elements, l.dt, l.modes)
-                        .map_err(|e| e.to_string())?
-                        .beam_unknowns();
-                    limit(l.elements, l.modes)?.min(limit(l.elements, (l.modes * 2).min(unknowns))?)
+                    let unknowns = |n: usize| {
+                        level(scene, Space::Hermite, n, l.dt, 0)
+                            .map(|s| s.beam_unknowns())
+                            .map_err(|e| e.to_string())
+                    };
+                    let here = unknowns(l.elements)?;
+                    let refined = if l.modes >= here {
+                        limit(l.elements * 2, unknowns(l.elements * 2)?)?
+                    } else {
+                        limit(l.elements, (l.modes * 2).min(here))?
+                    };
+                    limit(l.elements, l.modes)?.min(refined)
                 }
                 _ => limit(l.elements * 2, l.modes)?,
             };
@@ -86,6 +95,11 @@ pub(super) fn fit_levels(
         }
         Variable::H => {
             let m = limit(l.elements << last, l.modes)?;
+            (m, m)
+        }
+        // a κ ladder keeps its mesh and step; the dominance run's N×2 (J×2)
+        Variable::Kappa => {
+            let m = limit(l.elements * 2, l.modes)?.min(limit(l.elements, l.modes)?);
             (m, m)
         }
         Variable::J => {

@@ -12,17 +12,41 @@ use crate::run::{RunOutput, run_with};
 use crate::scene::{CarrierKind, Scene};
 use crate::study::grid::{Reach, nest};
 use crate::study::reference::{Exact, exact};
+/// Which times an error is the max over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Window {
+    /// Every recorded time t > 0.
+    Whole = 0,
+    /// t > [`super::START_WINDOW`].
+    AfterStart = 1,
+    /// Before a prescribed loss's window ([`crate::manufactured::Manufactured::loss_window`]);
+    /// the whole run without one.
+    BeforeLoss = 2,
+}
+
+/// A ladder's errors over one [`Window`].
+#[derive(Debug, Clone, Default)]
+pub(super) struct View {
+    /// Displacement and force errors per level.
+    pub(super) displacement: Vec<f64>,
+    pub(super) force: Vec<f64>,
+    /// The dominance run's errors (NaN when it could not run).
+    pub(super) refined: (f64, f64),
+    /// Penalty only: the finest level's errors with κ stiffened
+    /// [`super::PENALTY_STIFFEN`] times (NaN otherwise).
+    pub(super) stiffened: (f64, f64),
+}
+
 /// A ladder's measurements.
 pub(super) struct Measured {
     /// The refined variable per level.
     pub(super) levels: Vec<f64>,
-    /// Displacement and force errors per level.
-    pub(super) displacement: Vec<f64>,
-    pub(super) force: Vec<f64>,
+    /// The errors over each [`Window`], indexed by it.
+    pub(super) views: [View; 3],
     /// The exact solution's largest displacement and force.
     pub(super) scale: (f64, f64),
-    /// The dominance run's errors (NaN when it could not run).
-    pub(super) refined: (f64, f64),
+    /// Loss intervals of each level's run.
+    pub(super) loss_intervals: Vec<usize>,
     pub(super) omega_max_dt: f64,
     pub(super) runs: usize,
     /// A run that failed, and why.
@@ -38,17 +62,62 @@ pub(super) fn level_params(l: &Ladder, k: usize) -> (f64, usize, f64, usize) {
         Variable::H => (f64::NAN, l.elements * f, l.dt, l.modes),
         Variable::Dt => (l.dt / f as f64, l.elements, l.dt / f as f64, l.modes),
         Variable::J => ((l.modes * f) as f64, l.elements, l.dt, l.modes * f),
+        Variable::Kappa => (f64::NAN, l.elements, l.dt, l.modes),
+    }
+}
+
+/// The penalty's relative stiffness ρ of `scene` (κ = ρ/W; MODEL §6), or
+/// `None` when it gives an absolute κ.
+fn penalty_relative(scene: &Scene) -> Option<f64> {
+    let p = &scene.contact.penalty;
+    match (p.stiffness, p.relative) {
+        (Some(_), _) => None,
+        (None, r) => Some(r.unwrap_or(crate::scene::DEFAULT_PENALTY_RELATIVE)),
+    }
+}
+
+/// `scene` with its penalty stiffened `factor` times (κ or ρ).
+fn stiffened(scene: &Scene, factor: f64) -> Scene {
+    let mut s = scene.clone();
+    let p = &mut s.contact.penalty;
+    match (p.stiffness, penalty_relative(scene)) {
+        (Some(k), _) => p.stiffness = Some(k * factor),
+        (None, Some(r)) => p.relative = Some(r * factor),
+        (None, None) => {}
+    }
+    s
+}
+
+/// A κ ladder's first level: the scene's penalty times this (ρ = 250 for
+/// the default 1000), so that its finest level, 8 × that, leaves the fixed
+/// Δt and mesh a small share (at 8000 they made 29 % of the finest force
+/// error of generalized-α, measured).
+pub(crate) const PENALTY_LADDER_START: f64 = 0.25;
+
+/// `scene` at level `k` of a κ ladder: ρ₀·2^k (the identity otherwise).
+fn at_level<'a>(scene: &'a Scene, ladder: &Ladder, k: usize) -> std::borrow::Cow<'a, Scene> {
+    if ladder.variable == Variable::Kappa {
+        std::borrow::Cow::Owned(stiffened(
+            scene,
+            PENALTY_LADDER_START * (1usize << k) as f64,
+        ))
+    } else {
+        std::borrow::Cow::Borrowed(scene)
     }
 }
 
 /// Run a ladder and its dominance run; errors against the exact solution.
 pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
+    let blank = View {
+        refined: (f64::NAN, f64::NAN),
+        stiffened: (f64::NAN, f64::NAN),
+        ..View::default()
+    };
     let mut m = Measured {
         levels: Vec::new(),
-        displacement: Vec::new(),
-        force: Vec::new(),
+        views: [blank.clone(), blank.clone(), blank],
         scale: (0.0, 0.0),
-        refined: (f64::NAN, f64::NAN),
+        loss_intervals: Vec::new(),
         omega_max_dt: f64::NAN,
         runs: 0,
         failed: None,
@@ -67,7 +136,7 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
     let mut scenes = Vec::with_capacity(ladder.levels);
     for k in 0..ladder.levels {
         let (_, n, dt, jm) = level_params(ladder, k);
-        match level(scene, j.space, n, dt, jm) {
+        match level(&at_level(scene, ladder, k), j.space, n, dt, jm) {
             Ok(s) => scenes.push(s),
             Err(e) => {
                 m.failed = Some(e.to_string());
@@ -94,6 +163,7 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
             Variable::H => sc.resolution(),
             Variable::Dt => sc.dt,
             Variable::J => sc.discretization.modes().unwrap_or(0) as f64,
+            Variable::Kappa => 1.0 / sc.contact.penalty.relative.unwrap_or(f64::NAN),
         });
         let out = match run_with(sc, j.factory, &mut |_, _| {}) {
             Ok(o) => o,
@@ -103,34 +173,60 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
             }
         };
         m.runs += 1;
+        m.loss_intervals
+            .push(out.stats.first().map_or(0, |s| s.loss_interval_count));
         let Ok(stride) = nest(coarse, (sc.steps, sc.dt), Reach::SameEnd) else {
             m.failed = Some("the levels' time grids do not nest".into());
             return m;
         };
-        let (d, f, scale) = errors(sc, &out, &ex, stride, coarse.0);
-        m.displacement.push(d);
-        m.force.push(f);
-        m.scale = scale;
+        let e = errors(sc, &out, &ex, stride, coarse.0);
+        for (v, (d, f)) in m.views.iter_mut().zip(e.d.iter().zip(&e.f)) {
+            v.displacement.push(*d);
+            v.force.push(*f);
+        }
+        m.scale = e.scale;
     }
     if ladder.variable == Variable::J
         && let Some(mf) = &finest.manufactured
     {
         m.tail = modal_tail(&scenes, mf, j.space).ok();
     }
+    // penalty: the finest level with κ stiffened, for the compliance's share
+    let last = &at_level(scene, ladder, ladder.levels - 1);
+    if finest.contact.formulation == crate::scene::Formulation::Penalty {
+        let (_, n, dt, jm) = level_params(ladder, ladder.levels - 1);
+        if let Ok(sc) = level(&stiffened(last, super::PENALTY_STIFFEN), j.space, n, dt, jm)
+            && let Ok(out) = run_with(&sc, j.factory, &mut |_, _| {})
+            && let Ok(stride) = nest(coarse, (sc.steps, sc.dt), Reach::SameEnd)
+        {
+            m.runs += 1;
+            let e = errors(&sc, &out, &ex, stride, coarse.0);
+            for (v, (d, f)) in m.views.iter_mut().zip(e.d.iter().zip(&e.f)) {
+                v.stiffened = (*d, *f);
+            }
+        }
+    }
     if ladder.fixed_exact {
-        m.refined = (
-            m.displacement[ladder.levels - 1],
-            m.force[ladder.levels - 1],
-        );
+        for v in &mut m.views {
+            v.refined = (
+                v.displacement[ladder.levels - 1],
+                v.force[ladder.levels - 1],
+            );
+        }
         return m;
     }
     // the dominance run: the finest level with the fixed variables refined
     // (a modal basis's FE mesh stays in a Δt ladder: its error is the
     // hermite ladder's at that N, which that ladder shows)
     let (_, n, dt, jm) = level_params(ladder, ladder.levels - 1);
+    // a modal basis with every mode of its mesh is the element model in
+    // its eigenbasis: its fixed variable is then the mesh (N×2, every mode)
+    let all_modes =
+        |n: usize| level(last, Space::Hermite, n, dt, 0).map_or(jm, |s| s.beam_unknowns());
     let (n2, dt2, j2) = match ladder.variable {
         Variable::Dt => match j.space {
             Space::Galerkin => (n, dt, jm * 2),
+            Space::Modal if jm >= finest.beam_unknowns() => (n * 2, dt, all_modes(n * 2)),
             Space::Modal => (n, dt, (jm * 2).min(finest.beam_unknowns())),
             _ => (n * 2, dt, jm),
         },
@@ -138,14 +234,22 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
         // makes the dense eigenvectors less accurate (ε·ω_max²/Δω²), which
         // docs/verification.md shows on its own
         Variable::H | Variable::J => (n, dt / 2.0, jm),
+        // a κ ladder: both fixed variables at once, Δt/2 and N×2 (J×2)
+        Variable::Kappa => match j.space {
+            Space::Galerkin => (n, dt / 2.0, jm * 2),
+            Space::Modal => (n, dt / 2.0, (jm * 2).min(finest.beam_unknowns())),
+            _ => (n * 2, dt / 2.0, jm),
+        },
     };
-    if let Ok(sc) = level(scene, j.space, n2, dt2, j2)
+    if let Ok(sc) = level(last, j.space, n2, dt2, j2)
         && let Ok(out) = run_with(&sc, j.factory, &mut |_, _| {})
         && let Ok(stride) = nest(coarse, (sc.steps, sc.dt), Reach::SameEnd)
     {
         m.runs += 1;
-        let (d, f, _) = errors(&sc, &out, &ex, stride, coarse.0);
-        m.refined = (d, f);
+        let e = errors(&sc, &out, &ex, stride, coarse.0);
+        for (v, (d, f)) in m.views.iter_mut().zip(e.d.iter().zip(&e.f)) {
+            v.refined = (*d, *f);
+        }
     }
     m
 }
@@ -273,34 +377,51 @@ pub(super) fn modal_tail(
     Ok(tail)
 }
 
-/// Max errors over the coarse grid's rows 1 ..= `rows` of a run: the
-/// displacement (under carrier 0, at the probes on their own wire, of its mass) and the force
-/// (at the time the multiplier acts); and the exact solution's largest
-/// values there.
+/// A run's errors over each [`Window`] (indexed by it), and the exact
+/// solution's largest values.
+pub(super) struct Errors {
+    /// Displacement errors, m.
+    pub(super) d: [f64; 3],
+    /// Force errors, N (NaN without a force reference).
+    pub(super) f: [f64; 3],
+    /// The exact solution's largest displacement and force over the run.
+    pub(super) scale: (f64, f64),
+}
+
+/// Max errors over the coarse grid's rows 1 ..= `rows` of a run, over each
+/// [`Window`]: the displacement (under carrier 0, at the probes on their
+/// own wire, of its mass) and the force (at the time the multiplier acts);
+/// and the exact solution's largest values there.
 pub(super) fn errors(
     sc: &Resolved,
     out: &RunOutput,
     ex: &Exact,
     stride: usize,
     rows: usize,
-) -> (f64, f64, (f64, f64)) {
+) -> Errors {
     let h = &out.history;
     let c = &h.carriers[0];
     let lag = out.force_lag * sc.dt;
     let has_force =
         ex.force.is_some() && matches!(sc.carriers[0].kind, CarrierKind::MassSpring { .. });
-    let (mut ed, mut ef, mut sd, mut sf) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let loss_from = ex
+        .manufactured
+        .as_ref()
+        .and_then(|m| m.loss_window())
+        .map_or(f64::INFINITY, |(a, _)| a);
+    let (mut ed, mut ef, mut sd, mut sf) = ([0.0f64; 3], [0.0f64; 3], 0.0f64, 0.0f64);
     let on_messenger = |p: usize| {
         sc.scene.probes.get(p).and_then(|p| p.wire) == Some(crate::scene::Wire::Messenger)
     };
     for k in 1..=rows {
         let i = k * stride;
         let t = h.t[i];
+        let within = [true, t > super::START_WINDOW, t < loss_from];
         let w = (ex.w)(t);
         sd = sd.max(w.abs());
-        ed = ed.max((c.w[i] - w).abs());
+        let mut e = (c.w[i] - w).abs();
         if let Some(q) = &ex.mass {
-            ed = ed.max((c.q[i] - q(t)).abs());
+            e = e.max((c.q[i] - q(t)).abs());
         }
         if let Some(field) = &ex.field {
             for (p, ((_, x), (_, col))) in sc.probes.iter().zip(&h.probes).enumerate() {
@@ -310,17 +431,28 @@ pub(super) fn errors(
                     _ => field(*x, t),
                 };
                 sd = sd.max(v.abs());
-                ed = ed.max((col[i] - v).abs());
+                e = e.max((col[i] - v).abs());
             }
         }
+        let mut g = f64::NAN;
         if has_force && let Some(f) = &ex.force {
             let l = f(t - lag);
             sf = sf.max(l.abs());
-            ef = ef.max((c.force[i] - l).abs());
+            g = (c.force[i] - l).abs();
+        }
+        for w in 0..3 {
+            if within[w] {
+                ed[w] = ed[w].max(e);
+                ef[w] = ef[w].max(g);
+            }
         }
     }
     if !has_force {
-        ef = f64::NAN;
+        ef = [f64::NAN; 3];
     }
-    (ed, ef, (sd, sf))
+    Errors {
+        d: ed,
+        f: ef,
+        scale: (sd, sf),
+    }
 }

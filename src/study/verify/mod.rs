@@ -42,9 +42,12 @@ mod job;
 mod judge;
 mod level;
 mod measure;
+#[cfg(test)]
+mod mutation;
 mod row;
 mod run_job;
 mod select;
+pub(crate) mod tuned;
 
 use rayon::prelude::*;
 
@@ -64,6 +67,37 @@ pub use select::{Selection, selection};
 /// the worst case of a share that does not fall with the ladder (at the
 /// coarser levels, where errors are larger, its share is smaller still).
 pub(crate) const DOMINANCE_LIMIT: f64 = 0.25;
+
+/// How much stiffer the penalty of the compliance's share run is (a
+/// penalty row's finest level rerun with κ × 16, `measure.rs`): a penalty
+/// error ∝ 1/κ falls to 1/16 of itself, so the share it measures is 15/16
+/// of the compliance's part.
+pub(crate) const PENALTY_STIFFEN: f64 = 16.0;
+
+/// The start window of a penalty row judged after the start
+/// (`Expect::AfterStart`), s: an unloaded penalty's start jump rings for
+/// tens of steps at its method's spectral radius per step (HHT α = 0.05:
+/// 0.905, so 40 steps to fall below 2 %, 0.04 s at the coarsest Δt of the
+/// matrix, 1e-3 s), a fifth of the cases' 0.25 s.
+pub(crate) const START_WINDOW: f64 = 0.05;
+
+/// The order below which a pair of a ladder declared to possibly diverge
+/// (`Expect::MayDiverge`) counts as not converging: the error falls less
+/// than √2 per halving there, or rises.
+pub(crate) const STALL_ORDER: f64 = 0.5;
+
+/// How far below its expected order a coarser pair of a ladder may fall
+/// beyond the pair allowance and still count as approaching (`judge.rs`):
+/// a pre-asymptotic pair a few tenths low is the start of a ladder, a pair
+/// more than this low is a stall or a rise.
+pub(crate) const APPROACH_SLACK: f64 = 0.5;
+
+/// A finest error this small relative to the exact solution's largest
+/// value is at the round-off floor (`judge.rs`): ≈ 10⁶ ε, what 10⁴–10⁵
+/// steps of sums of unit-size terms leave (measured: the smallest errors
+/// any ladder of the matrix reached stop falling there). Levels below it
+/// are not held to an order.
+pub(crate) const ROUND_OFF_FLOOR: f64 = 2e-10;
 
 /// Run the matrix of `sel` over `cases` on the current rayon pool;
 /// `progress(done, total)` after each combination. Rows in a fixed order

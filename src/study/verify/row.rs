@@ -12,10 +12,16 @@ pub enum Status {
     Fail,
     /// A known deviation, reported (not failed).
     Known,
-    /// Cannot show an order in this variable (the note says why).
+    /// A refused combination (the method's or law's own error), or a
+    /// measured share of the fixed variables above the dominance limit (the
+    /// note gives it).
     Cannot,
-    /// No expectation declared: reported.
+    /// No expectation declared (a method of one's own without a formal
+    /// order): reported.
     Reported,
+    /// Declared to diverge (`Expect::Diverges`), and the error grows over
+    /// the ladder as declared.
+    Diverges,
 }
 
 impl Status {
@@ -27,6 +33,7 @@ impl Status {
             Status::Known => "known",
             Status::Cannot => "cannot",
             Status::Reported => "reported",
+            Status::Diverges => "diverges",
         }
     }
 }
@@ -57,17 +64,38 @@ pub struct VerifyRow {
     /// Orders between successive levels (`observed_order`).
     pub orders: Vec<f64>,
     /// The ladder's order, first to last level (`observed_order` over
-    /// the whole ratio): what the expectation is checked against.
+    /// the whole ratio).
     pub observed: f64,
     /// The expected (formal) order; NaN when none.
     pub expected: f64,
     /// Allowed |observed − expected|; NaN when none.
     pub tolerance: f64,
+    /// The orders the finest pair was allowed (least, largest): the
+    /// expectation's band widened by the shift the measured share can
+    /// cause (`judge.rs`); NaN when none is judged.
+    pub allowed: (f64, f64),
+    /// A `known` row's bound on the finest error relative to the exact
+    /// solution's largest value; NaN otherwise.
+    pub error_bound: f64,
     /// The range of the refined variable the expectation is declared over
     /// (the ladder's coarsest and finest values).
     pub range: (f64, f64),
     /// Share of the finest error made by the fixed variables (module docs).
     pub other_share: f64,
+    /// Penalty only: the share of the finest error made by the penalty's
+    /// compliance, |e − e_κ|/e with e_κ the finest level's error at
+    /// `PENALTY_STIFFEN` times κ; NaN otherwise.
+    pub penalty_share: f64,
+    /// The share of the whole run's finest error made at the start,
+    /// t ≤ `START_WINDOW` (|e − e_after|/e); NaN unless the row is
+    /// judged after the start (`Expect::AfterStart`).
+    pub start_share: f64,
+    /// With a prescribed loss: the share of the finest error made from the
+    /// loss's blend on (|e − e_before|/e); NaN otherwise.
+    pub loss_share: f64,
+    /// Loss intervals of each level's run (contact cases), for a note on
+    /// bouncing reattachments.
+    pub loss_intervals: Vec<usize>,
     /// ω_max·Δt at the finest level.
     pub omega_max_dt: f64,
     /// Status.

@@ -72,8 +72,14 @@ pub(super) fn run_job(j: &Job) -> Result<Vec<VerifyRow>> {
         observed: f64::NAN,
         expected: f64::NAN,
         tolerance: f64::NAN,
+        allowed: (f64::NAN, f64::NAN),
+        error_bound: f64::NAN,
         range: (f64::NAN, f64::NAN),
         other_share: f64::NAN,
+        penalty_share: f64::NAN,
+        start_share: f64::NAN,
+        loss_share: f64::NAN,
+        loss_intervals: Vec::new(),
         omega_max_dt: f64::NAN,
         status,
         note,
@@ -82,8 +88,11 @@ pub(super) fn run_job(j: &Job) -> Result<Vec<VerifyRow>> {
     };
     // the case's own ladder variables (a combination that cannot be made
     // is a `cannot` in each)
+    let name = j.factory.name();
     let placeholder = Combo {
-        method: &j.factory.name(),
+        method: &name,
+        family: super::case::family(&name),
+        alphas: None,
         time_order: None,
         space: j.space,
         formulation: j.formulation.unwrap_or_default(),
@@ -105,12 +114,20 @@ pub(super) fn run_job(j: &Job) -> Result<Vec<VerifyRow>> {
             return Ok(variables
                 .iter()
                 .flat_map(|&v| j.case.quantities.iter().map(move |&q| (v, q)))
-                .map(|(v, q)| blank(v, q, Status::Cannot, e.to_string()))
+                .map(|(v, q)| blank(v, q, Status::Cannot, format!("refused: {e}")))
                 .collect());
         }
     };
+    let alphas = crate::scene::Method::from_name(super::case::family(&name))
+        .and_then(|m| m.scheme_for(&resolved).ok())
+        .and_then(|s| match s {
+            Scheme::GenAlpha(p) => Some((p.alpha_m, p.alpha_f)),
+            _ => None,
+        });
     let combo = Combo {
-        method: &j.factory.name(),
+        method: &name,
+        family: super::case::family(&name),
+        alphas,
         time_order: j.factory.time_order(&resolved),
         space: j.space,
         formulation: resolved.contact.formulation,
@@ -124,7 +141,12 @@ pub(super) fn run_job(j: &Job) -> Result<Vec<VerifyRow>> {
                 Ok(l) => l,
                 Err(why) => {
                     for &q in j.case.quantities {
-                        rows.push(blank(ladder.variable, q, Status::Cannot, why.clone()));
+                        rows.push(blank(
+                            ladder.variable,
+                            q,
+                            Status::Cannot,
+                            format!("refused: {why}"),
+                        ));
                     }
                     continue;
                 }
@@ -132,22 +154,15 @@ pub(super) fn run_job(j: &Job) -> Result<Vec<VerifyRow>> {
         } else {
             ladder
         };
+        // a κ ladder measures the penalty force (its penetration is far
+        // below the displacement's other errors)
         let expects: Vec<(Quantity, Expect)> = j
             .case
             .quantities
             .iter()
+            .filter(|&&q| ladder.variable != Variable::Kappa || q == Quantity::Force)
             .map(|&q| (q, (j.case.expect)(&combo, ladder.variable, q)))
             .collect();
-        // nothing to run when every quantity cannot
-        if expects.iter().all(|(_, e)| matches!(e, Expect::Cannot(_))) {
-            for (q, e) in expects {
-                let Expect::Cannot(why) = e else {
-                    unreachable!()
-                };
-                rows.push(blank(ladder.variable, q, Status::Cannot, why));
-            }
-            continue;
-        }
         let started = std::time::Instant::now();
         let measured = measure(&scene, j, &ladder);
         let wall = started.elapsed().as_secs_f64();

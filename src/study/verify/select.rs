@@ -49,7 +49,11 @@ pub(crate) fn parse_spaces(list: &str) -> Result<Vec<Space>> {
 /// The methods, discretizations and formulations of a `taut verify`
 /// request (`None`: every built-in method, every discretization and
 /// formulation), and whether to run the cut-down matrix. Listed built-in
-/// methods run in their own order, then listed registered ones.
+/// methods run in their own order, then listed registered ones. A built-in
+/// method of the generalized-α family brings its parameter sets
+/// (`tuned`): the full matrix runs each; the cut-down one runs
+/// the scene's own, and `wbz` at ρ∞ = 0.5 (at the scene's ρ∞ = 1 it is
+/// Newmark's parameter set).
 pub fn selection(
     methods: Option<&str>,
     spaces: Option<&str>,
@@ -57,18 +61,40 @@ pub fn selection(
     quick: bool,
 ) -> Result<Selection<'static>> {
     static ALL: [crate::scene::Method; crate::scene::Method::ALL.len()] = crate::scene::Method::ALL;
+    let builtin_named = |named: &dyn Fn(&str) -> bool| -> Vec<&'static dyn MethodFactory> {
+        let mut out: Vec<&'static dyn MethodFactory> = Vec::new();
+        for m in ALL.iter().filter(|m| named(m.name())) {
+            let tuned: Vec<&'static dyn MethodFactory> = super::tuned::tuned_of(*m)
+                .map(|t| t as &dyn MethodFactory)
+                .collect();
+            match (*m, quick) {
+                // wbz at the scene's ρ∞ = 1 is Newmark: its tuned sets only
+                (crate::scene::Method::Wbz, false) => out.extend(tuned),
+                (crate::scene::Method::Wbz, true) => out.extend(
+                    super::tuned::tuned_of(*m)
+                        .filter(|t| t.value == 0.5)
+                        .map(|t| t as &dyn MethodFactory),
+                ),
+                (_, false) => {
+                    out.push(m as &dyn MethodFactory);
+                    out.extend(tuned);
+                }
+                (_, true) => out.push(m as &dyn MethodFactory),
+            }
+        }
+        out
+    };
     let methods: Vec<&'static dyn MethodFactory> = match methods {
-        None => ALL.iter().map(|m| m as &dyn MethodFactory).collect(),
+        None => builtin_named(&|_| true),
         Some(list) => {
             let chosen = crate::integrate::parse_methods(list)?;
             let named = |n: &str| chosen.iter().any(|m| m.name() == n);
-            let builtin = ALL.iter().filter(|m| named(m.name()));
             let registered = chosen
                 .iter()
                 .copied()
                 .filter(|m| crate::scene::Method::from_name(&m.name()).is_none());
-            builtin
-                .map(|m| m as &dyn MethodFactory)
+            builtin_named(&named)
+                .into_iter()
                 .chain(registered)
                 .collect()
         }
