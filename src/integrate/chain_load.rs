@@ -18,7 +18,6 @@
 use crate::scene::{ChainProps, ForceSeries, MAX_CHAIN, Motion};
 
 use super::chain::Chain;
-use super::mass_dofs::MassDof;
 
 /// One chain's time-dependent forces (module docs).
 #[derive(Debug, Clone)]
@@ -82,10 +81,11 @@ impl ChainLoad {
         }
     }
 
-    /// Set the chain's f₀ and its head's at the load time `t` (module
-    /// docs). O(log n) in a table's or series' knots, no allocation.
+    /// Set the chain's f₀ at the load time `t` (module docs) and return
+    /// its head's, which the head's mass dof takes. O(log n) in a table's
+    /// or series' knots, no allocation.
     #[inline]
-    pub(crate) fn apply(&self, t: f64, chain: &mut Chain, head: &mut MassDof) {
+    pub(crate) fn apply(&self, t: f64, chain: &mut Chain) -> f64 {
         let mut f0 = self.base;
         if self.coefficient != 0.0 {
             let v = self.motion.speed(t);
@@ -95,6 +95,6 @@ impl ChainLoad {
             f0[*mass] += self.s * (series.at(t) - at0);
         }
         chain.f0 = f0;
-        head.f0 = f0[0];
+        f0[0]
     }
 }

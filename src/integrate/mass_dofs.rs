@@ -169,7 +169,7 @@ impl MassDofs {
     pub(crate) fn set_load_time(&mut self, t: f64, source: Option<&Manufactured>) {
         for (j, load) in &self.chain_loads {
             if let Some(ch) = &mut self.chains[*j] {
-                load.apply(t, ch, &mut self.heads[*j]);
+                self.heads[*j].f0 = load.apply(t, ch);
             }
         }
         if let Some(ext) = &self.external {

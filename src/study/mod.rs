@@ -10,6 +10,7 @@ pub mod compare;
 pub mod converge;
 pub mod cost;
 pub mod filter;
+pub(crate) mod formal_orders;
 pub mod gate;
 pub mod grid;
 pub mod level;

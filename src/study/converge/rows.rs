@@ -7,9 +7,9 @@ use super::Refine;
 use super::regime::{Context, ratio_change, regime};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
+use crate::study::formal_orders::{MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER_CONTACT};
 use crate::study::grid::resample;
 use crate::study::scalars::Scalar;
-use crate::study::tolerance::{MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER_CONTACT};
 use crate::study::uncertainty::{Gci, Inputs, assess, observed_order, richardson_error};
 
 /// One row of `converge.csv`.

@@ -31,32 +31,26 @@
 //! batch width; a finished point is saved at once (resumable).
 
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
 use toml::Table;
 
 use super::batch::{BatchWidth, auto_lanes};
-use super::nan_as_null;
 use super::record::{SweepRecord, record_of};
 use super::spec::SweepSpec;
+use super::tolerance_spec::{PointAccuracy, SweepTolerance};
 use crate::error::{Error, Result};
 use crate::integrate::{batch_key, scene_method};
 use crate::resolve::Resolved;
 use crate::run::{RunOutput, run_batch};
 use crate::study::cost::run_dof_steps;
+use crate::study::formal_orders::MAX_STEP_ORDER;
 use crate::study::level::Level;
-use crate::study::tolerance::{ErrorModel, LadderFit, MAX_STEP_ORDER};
-use crate::study::uncertainty::quantity::{self, QuantitySpec};
+use crate::study::tolerance::{ErrorModel, LadderFit};
+use crate::study::uncertainty::quantity::QuantitySpec;
 use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, RATIO, assess};
 
 /// Checks after the pilots at most: with one more level on both each, a
 /// point may end 2⁵ times finer in h and Δt than the plan's first guess.
 pub(crate) const MAX_CHECKS: usize = 3;
-
-/// A point's default budget (`--max-cost`): its refinements may cost this
-/// many times its own run (unknowns × steps), pilots included. 64 allows
-/// one variable refined 2⁴ times beyond the point's own and the other 2²,
-/// with their check families.
-pub(crate) const DEFAULT_BUDGET: f64 = 64.0;
 
 /// The share of EPS the plan asks of `run --tolerance`'s model: its
 /// estimate carries Roache's 1.25, the check's u_num the 3 of a quantity
@@ -71,103 +65,6 @@ pub(crate) const MAX_EXPONENT: i32 = 5;
 /// or a basis (a 2-D map's row of 41 speeds is one tension), few enough
 /// that an interruption loses little.
 pub const CHUNK: usize = 128;
-
-/// The level parameter must be a multiple of this, so the pilots can be
-/// made 2 and 4 times coarser.
-pub(crate) const LEVEL_MULTIPLE: usize = 4;
-
-/// What an accuracy-targeted sweep asks: Q within EPS (in Q's unit).
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-pub struct SweepTolerance {
-    /// Q: a quantity of `taut uncertainty` that `sweep.csv` has.
-    pub quantity: String,
-    /// EPS, in Q's unit (absolute).
-    pub tolerance: f64,
-    /// The most a point may cost, as a multiple of its own run.
-    pub budget: f64,
-}
-
-/// The quantities a sweep can target: those of `taut uncertainty` that
-/// are columns of `sweep.csv`.
-pub const TARGETS: [&str; 8] = [
-    "loss_fraction_span",
-    "loss_fraction",
-    "loss_fraction_support",
-    "force_mean",
-    "force_std",
-    "force_max",
-    "force_min",
-    "first_loss_position",
-];
-
-impl SweepTolerance {
-    /// `--tolerance EPS --quantity Q [--max-cost F]`, checked.
-    pub fn new(quantity: &str, tolerance: f64, budget: Option<f64>) -> Result<Self> {
-        if !TARGETS.contains(&quantity) {
-            return Err(Error::invalid(
-                "--quantity",
-                quantity,
-                format!(
-                    "must be one of {} (with --tolerance on a sweep)",
-                    TARGETS.join(", ")
-                ),
-            ));
-        }
-        if !(tolerance.is_finite() && tolerance > 0.0) {
-            return Err(Error::invalid(
-                "--tolerance",
-                tolerance,
-                "must be a finite number > 0, in the quantity's unit (absolute: 0.002 for P_l)",
-            ));
-        }
-        let budget = budget.unwrap_or(DEFAULT_BUDGET);
-        if !(budget.is_finite() && budget >= 2.0) {
-            return Err(Error::invalid(
-                "--max-cost",
-                budget,
-                "must be a finite number ≥ 2 (a point's cost, pilots included, as a multiple of its own run; the pilots alone cost 1.81)",
-            ));
-        }
-        Ok(SweepTolerance {
-            quantity: quantity.to_string(),
-            tolerance,
-            budget,
-        })
-    }
-
-    fn spec(&self) -> QuantitySpec {
-        quantity::quantity(&self.quantity).expect("checked by new")
-    }
-}
-
-/// What a point of an accuracy-targeted sweep reached (`runs/*.json`,
-/// the tolerance columns of `sweep.csv`).
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-pub struct PointAccuracy {
-    /// Q at the reported resolution.
-    #[serde(with = "nan_as_null")]
-    pub value: f64,
-    /// Its u_num (null when none could be given).
-    #[serde(with = "nan_as_null")]
-    pub u_num: f64,
-    /// u_num ≤ EPS.
-    pub met: bool,
-    /// The reported run's elements N.
-    pub elements: usize,
-    /// Its modes J on a modal basis.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub modes: Option<usize>,
-    /// Its Δt, s.
-    pub dt: f64,
-    /// Runs made for the point.
-    pub runs: usize,
-    /// Their unknowns × steps.
-    pub dof_steps: f64,
-    /// The estimator of u_num (`gci`, `least_squares`, `exact`, …).
-    pub estimator: String,
-    /// Checks made after the pilots.
-    pub checks: usize,
-}
 
 type Key = (i32, i32);
 
@@ -600,25 +497,4 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
     record.wall_seconds = None;
     p.record = Some(record);
     p.stage = Stage::Done;
-}
-
-/// Check that every point's level parameter can be coarsened by
-/// [`LEVEL_MULTIPLE`] (called with the spec's validation).
-pub(super) fn check_level(sc: &Resolved) -> Result<()> {
-    let level = Level::of(sc);
-    let n = level.start();
-    if n.is_multiple_of(LEVEL_MULTIPLE) {
-        return Ok(());
-    }
-    Err(Error::invalid(
-        if level.symbol() == "J" {
-            "mesh.modes"
-        } else {
-            "mesh.elements"
-        },
-        n,
-        format!(
-            "must be a multiple of {LEVEL_MULTIPLE} with --tolerance: the pilots run the point 2 and 4 times coarser"
-        ),
-    ))
 }

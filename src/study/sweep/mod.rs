@@ -53,6 +53,7 @@ mod refine;
 mod resolve;
 mod shard;
 mod spec;
+mod tolerance_spec;
 
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -61,7 +62,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
-pub use accuracy::{CHUNK, PointAccuracy, SweepTolerance, TARGETS};
+pub use accuracy::CHUNK;
 pub use axis::{Axis, AxisTarget, Ratio};
 pub(crate) use batch::AUTO_BATCH_LANES;
 pub use batch::BatchWidth;
@@ -74,6 +75,7 @@ pub use refine::Refined;
 pub(crate) use refine::{REFINEMENT_ABS, REFINEMENT_REL, refinement_converged};
 pub use shard::Shard;
 pub use spec::{MAX_POINT_KEYS, SweepSpec};
+pub use tolerance_spec::{PointAccuracy, SweepTolerance, TARGETS};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid

@@ -4,10 +4,10 @@
 use serde::{Deserialize, Serialize};
 use toml::Table;
 
-use super::accuracy::PointAccuracy;
 use super::nan_as_null;
 use super::refine::{Refined, refined};
 use super::spec::SweepSpec;
+use super::tolerance_spec::PointAccuracy;
 use crate::error::{Error, Result};
 use crate::resolve::Resolved;
 use crate::run::{RunOutput, run};

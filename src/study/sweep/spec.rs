@@ -3,9 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::accuracy::SweepTolerance;
 use super::axis::Axis;
 use super::shard::Shard;
+use super::tolerance_spec::SweepTolerance;
 use crate::error::{Error, Result};
 /// What a sweep is: the scene, its fixed overrides and the axes.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -297,7 +297,8 @@ impl SweepSpec {
                 .resolve_on(&base, i)
                 .map_err(|e| at_point(e, i, &self.point(i)))?;
             if self.tolerance.is_some() {
-                super::accuracy::check_level(&sc).map_err(|e| at_point(e, i, &self.point(i)))?;
+                super::tolerance_spec::check_level(&sc)
+                    .map_err(|e| at_point(e, i, &self.point(i)))?;
             }
             if self.check_refinement {
                 self.resolve_refined_on(&base, i).map_err(|e| {

@@ -28,40 +28,15 @@ use crate::study::uncertainty::{FS_ASYMPTOTIC, observed_order, richardson_error}
 /// finer time and histories compare sample by sample.
 pub(crate) const LADDER_RATIO: f64 = 2.0;
 
+pub(crate) use crate::study::formal_orders::{
+    MAX_MESH_ORDER, MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, ROUND_OFF,
+};
+
 /// Smallest observed order accepted as convergence. Below it a halving
 /// shrinks the difference by less than 2^0.5 ≈ 1.41: too little to tell a
 /// converging sequence from a noisy non-converging one, and extrapolating
 /// such an order to a tolerance asks for refinements far beyond the pilots.
 pub(crate) const MIN_ORDER: f64 = 0.5;
-
-/// Largest mesh order used for a displacement: Hermite cubics converge
-/// displacements and eigenvalues at O(h⁴) at best (MODEL §4, §8). A higher
-/// observed order is a lucky cancellation; using the cap instead gives a
-/// larger, safer error estimate.
-pub(crate) const MAX_MESH_ORDER: f64 = 4.0;
-
-/// Largest mesh order used for the contact force and what is counted from
-/// it (P_l, loss intervals): the force balances the mass's acceleration,
-/// which for a moving contact holds V²·v_xx(x_m), and cubic elements give
-/// the curvature v_xx to O(h²) only (MODEL §2, §4).
-pub(crate) const MAX_MESH_ORDER_FORCE: f64 = 2.0;
-
-/// Largest step order used for a displacement of a run whose contacts never
-/// switch: generalized-α is second order (MODEL §5).
-pub(crate) const MAX_STEP_ORDER: f64 = 2.0;
-
-/// Largest step order used for the contact force, for everything counted
-/// from it, and for any quantity of a run whose contact opens or closes:
-/// the Lagrange multiplier is first order in Δt even when the contact never
-/// opens (T1 riding mass: 1.11, 1.02, 1.02, docs/convergence.md), and a
-/// contact that opens or closes does so at a step boundary, an O(Δt) error
-/// in the event's time that every later value inherits.
-pub(crate) const MAX_STEP_ORDER_CONTACT: f64 = 1.0;
-
-/// Differences below this (relative to the quantity's scale) are round-off
-/// and count as zero: the integrator repeats bit-for-bit, and summation
-/// order alone moves a norm by ~1e-15.
-pub(crate) const ROUND_OFF: f64 = 1e-12;
 
 /// What a pilot ladder says about one parameter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

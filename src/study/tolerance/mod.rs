@@ -57,9 +57,6 @@ mod results;
 pub use crate::study::filter::{FORCE_BAND_HZ, design_cutoff_hz, lowpass_zero_phase};
 pub use accuracy::{Accuracy, PilotRun, ResultEstimate, TolerantRun};
 pub use error_model::{ErrorModel, Estimate, LadderFit, LadderStatus};
-pub(crate) use error_model::{
-    MAX_MESH_ORDER, MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, ROUND_OFF,
-};
 pub(crate) use limits::parse_tolerance;
 pub use quantity::{Quantity, quantity_difference};
 pub use results::{RESULTS, result_values};

@@ -21,7 +21,7 @@ use serde::Serialize;
 use super::gci::{FS_CAUTIOUS, Gci, ORDER_WINDOW};
 use super::least_squares::{self, FitKind, LOWEST_ORDER, OrderRange};
 use super::order::{Behaviour, behaviour, fitted_order, observed_order, richardson_error};
-use crate::study::tolerance::ROUND_OFF;
+use crate::study::formal_orders::ROUND_OFF;
 
 /// Which estimator gave the u_num.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

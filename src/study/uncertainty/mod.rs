@@ -35,8 +35,8 @@ use crate::resolve::resolve_scene;
 use crate::run::run;
 use crate::scene::Discretization;
 use crate::study::cost::{Estimate, run_dof_steps};
+use crate::study::formal_orders::MAX_STEP_ORDER;
 use crate::study::level::Level;
-use crate::study::tolerance::MAX_STEP_ORDER;
 
 pub(crate) use assess::assess;
 pub use assess::{Assessment, Estimator, Inputs};

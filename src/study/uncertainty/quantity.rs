@@ -8,10 +8,10 @@
 use serde::Serialize;
 
 use crate::run::RunOutput;
-use crate::study::scalars::{Scalar, values};
-use crate::study::tolerance::{
+use crate::study::formal_orders::{
     MAX_MESH_ORDER, MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT,
 };
+use crate::study::scalars::{Scalar, values};
 
 /// What a quantity is read from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
