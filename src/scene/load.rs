@@ -267,10 +267,10 @@ fn parse_value(raw: &str) -> Value {
 /// which repeats the path without array indices, is dropped.
 ///
 /// A `[line]` table is expanded into the plain keys it stands for first
-/// ([`super::expand_line`]): here, after every override, so that `--set
+/// ([`super::line::expand_line`]): here, after every override, so that `--set
 /// line.spans=12` and sweeps over `line.*` regenerate the line.
 pub(crate) fn scene_from_tree(tree: Table) -> Result<Scene> {
-    let (tree, generated) = super::expand_line_with_origin(tree)?;
+    let (tree, generated) = super::line::expand_line_with_origin(tree)?;
     let value = Value::Table(tree);
     let scene: Result<Scene> = super::tables::from_value(value).map_err(|e| {
         let path = e.path().to_string().replace('[', ".").replace(']', "");

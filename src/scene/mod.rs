@@ -66,7 +66,7 @@ pub use external_force::{ExternalForceSpec, ForceSeries};
 pub use generated::Generated;
 pub use gravity::GravitySpec;
 pub use integrator::{IntegratorSpec, Key};
-pub(crate) use line::{expand_line, expand_line_with_origin};
+pub(crate) use line::expand_line;
 pub use load::UNSET;
 pub(crate) use load::{
     apply_override, check_is_scene, in_file, parse_scene, read_scene, scene_from_tree,

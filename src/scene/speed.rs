@@ -2,6 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::analysis::speed_unit;
+
 /// A carrier's speed profile, `speed = { profile = "...", ... }`.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(tag = "profile", rename_all = "snake_case", deny_unknown_fields)]
@@ -9,14 +11,14 @@ pub enum SpeedProfile {
     /// Constant speed V, m/s (≥ 0; 0 = a stationary carrier).
     Constant {
         /// V, m/s (or text with its unit, `"250 km/h"`).
-        #[serde(deserialize_with = "super::analysis::speed_unit::value")]
+        #[serde(deserialize_with = "speed_unit::value")]
         value: f64,
     },
     /// The study's smooth start: V0 reached after a ramp of length L/5
     /// with continuous acceleration (MODEL §3).
     SmoothRamp {
         /// Cruise speed V0, m/s (> 0; or text with its unit, `"250 km/h"`).
-        #[serde(deserialize_with = "super::analysis::speed_unit::cruise")]
+        #[serde(deserialize_with = "speed_unit::cruise")]
         cruise: f64,
     },
     /// A tabulated speed V(t), piecewise linear between the knots (so the
@@ -28,7 +30,7 @@ pub enum SpeedProfile {
         /// Knot times t_k, s.
         time: Vec<f64>,
         /// V(t_k), m/s (each may be text with its unit, `"250 km/h"`).
-        #[serde(deserialize_with = "super::analysis::speed_unit::list")]
+        #[serde(deserialize_with = "speed_unit::list")]
         speed: Vec<f64>,
     },
 }
