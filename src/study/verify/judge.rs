@@ -483,35 +483,16 @@ mod tests {
     use super::*;
 
     fn row() -> VerifyRow {
-        VerifyRow {
-            case: "test".into(),
-            method: "m".into(),
-            discretization: "hermite".into(),
-            formulation: "lagrange".into(),
-            supports: "pinned-pinned".into(),
-            variable: "h".into(),
-            quantity: "force".into(),
-            levels: Vec::new(),
-            errors: Vec::new(),
-            relative_error: f64::NAN,
-            orders: Vec::new(),
-            observed: f64::NAN,
-            expected: f64::NAN,
-            tolerance: f64::NAN,
-            allowed: (f64::NAN, f64::NAN),
-            error_bound: f64::NAN,
-            range: (f64::NAN, f64::NAN),
-            other_share: f64::NAN,
-            penalty_share: f64::NAN,
-            start_share: f64::NAN,
-            loss_share: f64::NAN,
-            loss_intervals: Vec::new(),
-            omega_max_dt: f64::NAN,
-            status: Status::Fail,
-            note: String::new(),
-            runs: 0,
-            wall_seconds: 0.0,
-        }
+        let names = [
+            "test",
+            "m",
+            "hermite",
+            "lagrange",
+            "pinned-pinned",
+            "h",
+            "force",
+        ];
+        VerifyRow::unmeasured(names.map(String::from), Status::Fail, String::new())
     }
 
     /// A ladder's measurements: `force` errors, the dominance run's error

@@ -108,6 +108,52 @@ pub struct VerifyRow {
     pub wall_seconds: f64,
 }
 
+impl VerifyRow {
+    /// A row with nothing measured yet: its names — case, method,
+    /// discretization, formulation, supports, variable, quantity, in that
+    /// order — a status and a note; every measure NaN or empty.
+    pub(crate) fn unmeasured(names: [String; 7], status: Status, note: String) -> VerifyRow {
+        let [
+            case,
+            method,
+            discretization,
+            formulation,
+            supports,
+            variable,
+            quantity,
+        ] = names;
+        VerifyRow {
+            case,
+            method,
+            discretization,
+            formulation,
+            supports,
+            variable,
+            quantity,
+            levels: Vec::new(),
+            errors: Vec::new(),
+            relative_error: f64::NAN,
+            orders: Vec::new(),
+            observed: f64::NAN,
+            expected: f64::NAN,
+            tolerance: f64::NAN,
+            allowed: (f64::NAN, f64::NAN),
+            error_bound: f64::NAN,
+            range: (f64::NAN, f64::NAN),
+            other_share: f64::NAN,
+            penalty_share: f64::NAN,
+            start_share: f64::NAN,
+            loss_share: f64::NAN,
+            loss_intervals: Vec::new(),
+            omega_max_dt: f64::NAN,
+            status,
+            note,
+            runs: 0,
+            wall_seconds: 0.0,
+        }
+    }
+}
+
 /// True when any row failed.
 pub fn any_failed(rows: &[VerifyRow]) -> bool {
     rows.iter().any(|r| r.status == Status::Fail)

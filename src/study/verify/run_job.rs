@@ -57,34 +57,20 @@ pub(super) fn run_job(j: &Job) -> Result<Vec<VerifyRow>> {
         .formulation
         .map_or_else(|| "none".to_string(), |f| f.name().to_string());
     let discretization = name_of_space(scene.as_ref().ok());
-    let blank = |variable: Variable, quantity: Quantity, status: Status, note: String| VerifyRow {
-        case: j.case.name.to_string(),
-        method: j.factory.name(),
-        discretization: discretization.clone(),
-        formulation: formulation.clone(),
-        supports: supports.clone(),
-        variable: variable.name().to_string(),
-        quantity: quantity.name().to_string(),
-        levels: Vec::new(),
-        errors: Vec::new(),
-        relative_error: f64::NAN,
-        orders: Vec::new(),
-        observed: f64::NAN,
-        expected: f64::NAN,
-        tolerance: f64::NAN,
-        allowed: (f64::NAN, f64::NAN),
-        error_bound: f64::NAN,
-        range: (f64::NAN, f64::NAN),
-        other_share: f64::NAN,
-        penalty_share: f64::NAN,
-        start_share: f64::NAN,
-        loss_share: f64::NAN,
-        loss_intervals: Vec::new(),
-        omega_max_dt: f64::NAN,
-        status,
-        note,
-        runs: 0,
-        wall_seconds: 0.0,
+    let blank = |variable: Variable, quantity: Quantity, status: Status, note: String| {
+        VerifyRow::unmeasured(
+            [
+                j.case.name.to_string(),
+                j.factory.name(),
+                discretization.clone(),
+                formulation.clone(),
+                supports.clone(),
+                variable.name().to_string(),
+                quantity.name().to_string(),
+            ],
+            status,
+            note,
+        )
     };
     // the case's own ladder variables (a combination that cannot be made
     // is a `cannot` in each)
