@@ -1,7 +1,9 @@
 //! The published loss band above V0/c ≈ 0.96 (TARGETS T7, Fig. 12) and T2's
 //! period: the tables behind the findings at the end of docs/reproduction.md.
 //!
-//!     cargo xtask published-band
+//! ```sh
+//! cargo xtask published-band
+//! ```
 //!
 //! Prints four tables (about a minute on two cores; sweep folders go to
 //! `target/published_band/`):
