@@ -107,6 +107,15 @@ impl Word {
     }
 }
 
+/// `--quantity Q` given without `--tolerance` (run and sweep alike).
+fn quantity_without_tolerance(q: &str) -> Error {
+    Error::invalid(
+        "--quantity",
+        q,
+        "is what --tolerance is on: give tolerance too",
+    )
+}
+
 /// An optional count ([`Word::count`]).
 fn count(w: &Option<Word>, check: impl Fn(usize) -> Result<usize>) -> Result<Option<usize>> {
     w.as_ref().map(|w| w.count(check)).transpose()
@@ -159,11 +168,7 @@ impl RunArgs {
     pub fn tolerance(&self) -> Result<Option<super::Tolerance>> {
         match (&self.tolerance, &self.quantity) {
             (Some(t), q) => words::tolerance(&t.0, q.as_deref()).map(Some),
-            (None, Some(q)) => Err(Error::invalid(
-                "--quantity",
-                q,
-                "is what --tolerance is on: give tolerance too",
-            )),
+            (None, Some(q)) => Err(quantity_without_tolerance(q)),
             (None, None) => Ok(None),
         }
     }
@@ -557,11 +562,7 @@ impl SweepArgs {
             .transpose()?;
         if self.tolerance.is_none() {
             if let Some(q) = &self.quantity {
-                return Err(Error::invalid(
-                    "--quantity",
-                    q,
-                    "is what --tolerance is on: give tolerance too",
-                ));
+                return Err(quantity_without_tolerance(q));
             }
             if let Some(f) = &self.max_cost {
                 return Err(Error::invalid(
