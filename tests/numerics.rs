@@ -34,6 +34,8 @@ mod discretizations;
 mod dropper_damping;
 #[path = "droppers.rs"]
 mod droppers;
+#[path = "elastic_supports.rs"]
+mod elastic_supports;
 #[path = "formulations.rs"]
 mod formulations;
 #[path = "galerkin_order.rs"]

@@ -83,13 +83,16 @@ impl Physics {
         // springs join it: a slack dropper carries no force, so its spring
         // must not put a dashpot β k_d r_d r_dᵀ in C (the linear droppers'
         // springs are in K already, and in βK as before)
-        let tie_dashpots = sc
-            .beam
-            .messenger
-            .as_ref()
-            .map_or(&[][..], |m| &m.tie_dashpots[..]);
-        let mut damping =
-            beam.damping_matrix_with_ties(sc.damping, &sc.beam.attachments, tie_dashpots);
+        let (tie_dashpots, messenger_attachments) =
+            sc.beam.messenger.as_ref().map_or((&[][..], &[][..]), |m| {
+                (&m.tie_dashpots[..], &m.attachments[..])
+            });
+        let mut damping = beam.damping_matrix_with_ties(
+            sc.damping,
+            &sc.beam.attachments,
+            tie_dashpots,
+            messenger_attachments,
+        );
         // the tension-only droppers' dashpots in C (`dropper.rs`, D12), into
         // a zero C of K's band when nothing else damps
         if droppers.has_dashpots() {

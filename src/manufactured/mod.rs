@@ -274,9 +274,12 @@ struct DropperLoad {
 }
 
 /// A point attachment as the source sees it (`docs/lines.md` A0, §10.4):
-/// on the contact wire at x_a, anchored at v = 0, no preload.
+/// on the contact wire (or the messenger: an elastic support, a clamp,
+/// W9) at x_a, anchored at v = 0, no preload.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct AttachmentLoad {
+    /// On the messenger (r_m(x_a), v_m*) rather than the contact wire.
+    on_messenger: bool,
     /// x_a, m.
     x: f64,
     /// m_a, kg.
@@ -436,15 +439,25 @@ impl Manufactured {
         let terms = line_terms(&spec.terms, &ends, None, "manufactured", at.t_end)?;
         let messenger = Self::messenger_motion(spec, at)?;
         let droppers = Self::dropper_loads(at);
-        let attachments: Vec<AttachmentLoad> = at
-            .attachments
-            .iter()
-            .map(|a| AttachmentLoad {
+        let load = |on_messenger: bool| {
+            move |a: &Attachment| AttachmentLoad {
+                on_messenger,
                 x: a.x,
                 m: a.mass,
                 c: a.damping,
                 k: a.stiffness,
-            })
+            }
+        };
+        // the messenger's own (elastic supports, clamps) act on v_m*
+        let attachments: Vec<AttachmentLoad> = at
+            .attachments
+            .iter()
+            .map(load(false))
+            .chain(
+                b.messenger
+                    .iter()
+                    .flat_map(|m| m.attachments.iter().map(load(true))),
+            )
             .collect();
         let rates = droppers.iter().any(|d| d.c != 0.0) || attachments.iter().any(|a| a.c != 0.0);
         let carriers: Vec<Carrier> = at
@@ -540,8 +553,11 @@ impl Manufactured {
         };
         let l = b.length;
         let at_end = |x: f64, end: f64| (x - end).abs() <= SUPPORT_AT_END * l;
-        let first = m.supports.first().copied().unwrap_or(f64::NAN);
-        let last = m.supports.last().copied().unwrap_or(f64::NAN);
+        // an elastic support (W9) does not hold v_m* = 0: its spring's
+        // force is in the source; only the pinned ones enter the shapes
+        let pinned: Vec<f64> = m.pinned().collect();
+        let first = pinned.first().copied().unwrap_or(f64::NAN);
+        let last = pinned.last().copied().unwrap_or(f64::NAN);
         let ends = Ends {
             left: if at_end(first, 0.0) {
                 Support::Pinned
@@ -558,7 +574,7 @@ impl Manufactured {
             tension: m.tension,
         };
         let weight = Product(
-            m.supports
+            pinned
                 .iter()
                 .filter(|&&x| !at_end(x, 0.0) && !at_end(x, l))
                 .map(|&x| Factor::Polynomial(vec![-x / l, 1.0]))
@@ -721,13 +737,31 @@ impl Manufactured {
         self.attachments[a].x
     }
 
-    /// The force attachment a exerts on the contact wire in the
-    /// manufactured motion, N in +v: −(m_a v*_tt + c_a v*_t + k_a v*) at
-    /// x_a (`docs/verification.md` M4).
+    /// True when attachment a acts on the messenger (an elastic support or
+    /// a clamp, W9): its point vector is r_m(x_a).
+    pub fn attachment_on_messenger(&self, a: usize) -> bool {
+        self.attachments[a].on_messenger
+    }
+
+    /// The force attachment a exerts on its line in the manufactured
+    /// motion, N in +v: −(m_a v*_tt + c_a v*_t + k_a v*) at x_a
+    /// (`docs/verification.md` M4; v_m* on the messenger).
     pub fn attachment_force(&self, a: usize, t: f64) -> f64 {
         let at = &self.attachments[a];
-        let f = self.fields(at.x, t);
-        -(at.m * f.v_tt + at.c * f.v_t + at.k * f.v)
+        let terms = self.attachment_terms(a).map_or(&[][..], |(t, _)| t);
+        let d = |k| line_d(terms, at.x, t, (0, k));
+        -(at.m * d(2) + at.c * d(1) + at.k * d(0))
+    }
+
+    /// The terms attachment a's line moves with and the index of the first
+    /// of them among both lines' (`None`: a messenger without motion).
+    fn attachment_terms(&self, a: usize) -> Option<(&[Term], usize)> {
+        if self.attachments[a].on_messenger {
+            let m = self.messenger.as_ref()?;
+            Some((&m.terms, self.terms.len()))
+        } else {
+            Some((&self.terms, 0))
+        }
     }
 
     /// The weights w_k of attachment a's point load
@@ -741,8 +775,11 @@ impl Manufactured {
     pub fn attachment_weights(&self, a: usize, out: &mut [f64]) {
         out.fill(0.0);
         let at = &self.attachments[a];
-        for (i, term) in self.terms.iter().enumerate() {
-            let x = term.shape.jet(at.x).d(0);
+        let Some((terms, first)) = self.attachment_terms(a) else {
+            return;
+        };
+        for (j, term) in terms.iter().enumerate() {
+            let (i, x) = (first + j, term.shape.jet(at.x).d(0));
             out[2 * i] = at.m * x;
             out[2 * i + 1] = at.k * x;
             if at.c != 0.0 {

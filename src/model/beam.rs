@@ -245,8 +245,9 @@ impl BeamModel {
             }
         }
         if let Some(m) = &props.messenger {
-            // pinned: the messenger's w at each support's node (W3)
-            for &x in &m.supports {
+            // pinned: the messenger's w at each support's node (W3); an
+            // elastic support keeps it (a spring there, W9)
+            for x in m.pinned() {
                 removed[nearest_node(&mesh, x) * stride + per_node] = true;
             }
         }
@@ -356,6 +357,7 @@ impl BeamModel {
         model.attach(&props.attachments);
         if let Some(m) = &props.messenger {
             model.tie(&m.ties);
+            model.attach_messenger(&m.attachments);
         }
         model
     }
@@ -409,6 +411,23 @@ impl BeamModel {
             self.stiffness.add_outer(&r, a.stiffness);
             self.mass.add_outer(&r, a.mass);
         }
+    }
+
+    /// Add the messenger's point attachments (its elastic supports, eq. W9,
+    /// and dropper clamps): A0 with r_m(x), the messenger's interpolation
+    /// vector, in place of r_b(x).
+    fn attach_messenger(&mut self, attachments: &[Attachment]) {
+        for a in attachments {
+            let r = self.messenger_pairs(a.x);
+            self.stiffness.add_outer(&r, a.stiffness);
+            self.mass.add_outer(&r, a.mass);
+        }
+    }
+
+    /// The messenger's element vector r_m(x) as (index, value) pairs.
+    pub(super) fn messenger_pairs(&self, x: f64) -> [(usize, f64); 4] {
+        let (idx, val) = self.messenger_element_vector(x, false);
+        [0, 1, 2, 3].map(|k| (idx[k], val[k]))
     }
 
     /// FE modal truncation (MODEL §9.2): the J lowest eigenpairs of the
@@ -642,7 +661,16 @@ impl BeamModel {
                 };
                 let wire = line(props.rho_a, props.ei, props.tension, &contact);
                 match &props.messenger {
-                    Some(m) => wire.max(line(m.rho_a, m.ei, m.tension, &doubled)),
+                    Some(m) => {
+                        // its own attachments (elastic supports, clamps)
+                        // are grounded springs and masses on its elements
+                        let held: Vec<(f64, f64, f64)> = doubled
+                            .iter()
+                            .copied()
+                            .chain(m.attachments.iter().map(|a| (a.x, a.stiffness, a.mass)))
+                            .collect();
+                        wire.max(line(m.rho_a, m.ei, m.tension, &held))
+                    }
                     None => wire,
                 }
             }

@@ -31,19 +31,26 @@ impl BeamModel {
         rayleigh: Rayleigh,
         attachments: &[Attachment],
     ) -> Option<SymBand> {
-        self.damping_matrix_with_ties(rayleigh, attachments, &[])
+        self.damping_matrix_with_ties(rayleigh, attachments, &[], &[])
     }
 
     /// [`BeamModel::damping_matrix`] with the linear messenger droppers'
     /// dashpots `tie_dashpots` (x_d, c_d): c_d r_d r_dᵀ, r_d = r_c(x_d) −
-    /// r_m(x_d) (eq. D11).
+    /// r_m(x_d) (eq. D11), and the messenger's own attachments'
+    /// (`messenger_attachments`: its elastic supports' and clamps' c r_m r_mᵀ,
+    /// eq. W9).
     pub fn damping_matrix_with_ties(
         &self,
         rayleigh: Rayleigh,
         attachments: &[Attachment],
         tie_dashpots: &[(f64, f64)],
+        messenger_attachments: &[Attachment],
     ) -> Option<SymBand> {
-        let dashpots = attachments.iter().any(|a| a.damping != 0.0) || !tie_dashpots.is_empty();
+        let dashpots = attachments
+            .iter()
+            .chain(messenger_attachments)
+            .any(|a| a.damping != 0.0)
+            || !tie_dashpots.is_empty();
         if rayleigh.is_zero() && !dashpots {
             return None;
         }
@@ -60,6 +67,9 @@ impl BeamModel {
             }
             for &(x, cd) in tie_dashpots {
                 c.add_outer(&self.tie_vector(x), cd);
+            }
+            for a in messenger_attachments.iter().filter(|a| a.damping != 0.0) {
+                c.add_outer(&self.messenger_pairs(a.x), a.damping);
             }
         }
         Some(c)

@@ -145,7 +145,12 @@ fn attachments(beam: &BeamModel, m: &Manufactured, shapes: &mut [f64]) {
     let mut w = vec![0.0; k];
     for a in 0..m.attachments() {
         m.attachment_weights(a, &mut w);
-        let ra = beam.point_vector(m.attachment_at(a));
+        let x = m.attachment_at(a);
+        let ra = if m.attachment_on_messenger(a) {
+            beam.messenger_point_vector(x)
+        } else {
+            beam.point_vector(x)
+        };
         for (part, &wk) in w.iter().enumerate() {
             ra.scatter(wk, shapes, k, part);
         }

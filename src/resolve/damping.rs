@@ -29,10 +29,29 @@ use crate::scene::{
     BeamProps, Discretization, Dropper, Rayleigh, ReferenceKind, ResolvedMethod, Scene, Scheme,
 };
 
+/// The first dashpot on the messenger's own attachments (eq. W9): an
+/// elastic support's (`messenger.support…damping`) or a `[[attachment]]
+/// wire = "messenger"`'s; (key, c).
+fn messenger_dashpot(scene: &Scene, beam: &BeamProps) -> Option<(String, f64)> {
+    let m = beam.messenger.as_ref()?;
+    let supports = m.elastic.iter().filter(|e| e.is_some()).count();
+    let i = m.attachments.iter().position(|a| a.damping != 0.0)?;
+    let c = m.attachments[i].damping;
+    if i < supports {
+        return Some(("messenger.support.damping".to_string(), c));
+    }
+    let j = (0..scene.attachments.len())
+        .filter(|&j| scene.attachments[j].on_messenger())
+        .nth(i - supports)
+        .unwrap_or(i);
+    Some((format!("attachment.{j}.damping"), c))
+}
+
 /// Refuse the combinations damping breaks (module docs); nothing to check
 /// without damping.
 pub(crate) fn check_damping(
     scene: &Scene,
+    own: &[usize],
     beam: &BeamProps,
     droppers: &[Dropper],
     rayleigh: Rayleigh,
@@ -47,7 +66,7 @@ pub(crate) fn check_damping(
         .position(|a| a.damping != 0.0)
         .map(|i| {
             (
-                super::dropper::dashpot_key(i, scene.attachments.len(), droppers),
+                super::dropper::dashpot_key(i, own, droppers),
                 beam.attachments[i].damping,
             )
         })
@@ -56,7 +75,8 @@ pub(crate) fn check_damping(
                 .iter()
                 .position(|x| x.linear && x.on_messenger() && x.damping != 0.0)
                 .map(|j| (format!("dropper.{j}.damping"), droppers[j].damping))
-        });
+        })
+        .or_else(|| messenger_dashpot(scene, beam));
     if rayleigh.is_zero() && dashpot.is_none() {
         return Ok(());
     }

@@ -94,11 +94,12 @@ pub(crate) fn linear_attachments(droppers: &[Dropper]) -> impl Iterator<Item = A
 
 /// The scene key of `beam.attachments[i]`'s dashpot (`attachment.<i>.damping`,
 /// or `dropper.<j>.damping` for the attachment a linear dropper resolved
-/// into, [`linear_attachments`]): `scene_attachments` is the count of the
-/// scene's own `[[attachment]]`, which come first.
-pub(crate) fn dashpot_key(i: usize, scene_attachments: usize, droppers: &[Dropper]) -> String {
+/// into, [`linear_attachments`]): `own` holds the scene index of each of
+/// the scene's own contact-wire `[[attachment]]`, which come first.
+pub(crate) fn dashpot_key(i: usize, own: &[usize], droppers: &[Dropper]) -> String {
+    let scene_attachments = own.len();
     if i < scene_attachments {
-        return format!("attachment.{i}.damping");
+        return format!("attachment.{}.damping", own[i]);
     }
     let j = droppers
         .iter()

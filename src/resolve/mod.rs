@@ -66,6 +66,9 @@ impl Scene {
         let elements = self.elements()?;
         let droppers =
             resolve_droppers(&self.droppers, l, beam.messenger.as_ref().map(|m| m.height))?;
+        // the scene index of each contact-wire attachment (the others are
+        // the messenger's, `wire = "messenger"`)
+        let own = crate::scene::contact_indices(&self.attachments);
         let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
         check_droppers(self, &droppers, discretization)?;
         check_attachments(self, &beam, discretization)?;
@@ -83,7 +86,15 @@ impl Scene {
         // the method, found by name and its parameters typed: once
         let method = self.integrator.resolve()?;
         let damping = resolve_rayleigh(self.beam.damping.as_ref())?;
-        check_damping(self, &beam, &droppers, damping, discretization, &method)?;
+        check_damping(
+            self,
+            &own,
+            &beam,
+            &droppers,
+            damping,
+            discretization,
+            &method,
+        )?;
         messenger::check_messenger(self, &beam, elements, grading, discretization, &method)?;
         let g = self.gravity_g()?;
         validate_contact(&self.contact)?;
@@ -98,7 +109,8 @@ impl Scene {
         plausible::check_plausible(
             &plausible::Scales::of(&beam, elements, dt),
             &carriers,
-            &beam.attachments[..self.attachments.len()],
+            &own,
+            &beam.attachments[..own.len()],
             &droppers,
             self.contact.penalty.stiffness,
             damping,
@@ -162,7 +174,7 @@ impl Scene {
                     droppers: &droppers,
                     // the scene's own, first; the linear droppers' springs
                     // after them are in `droppers`
-                    attachments: &beam.attachments[..self.attachments.len()],
+                    attachments: &beam.attachments[..own.len()],
                 },
             )?),
         };

@@ -89,6 +89,7 @@ impl Scales {
 pub(crate) fn check_plausible(
     scales: &Scales,
     carriers: &[CarrierProps],
+    own: &[usize],
     attachments: &[Attachment],
     droppers: &[Dropper],
     penalty: Option<f64>,
@@ -114,7 +115,7 @@ pub(crate) fn check_plausible(
             scales.damping(&key("damping"), damping)?;
         }
     }
-    for (i, a) in attachments.iter().enumerate() {
+    for (&i, a) in own.iter().zip(attachments) {
         scales.stiffness(&format!("attachment.{i}.stiffness"), a.stiffness)?;
         scales.mass(&format!("attachment.{i}.mass"), a.mass)?;
         scales.damping(&format!("attachment.{i}.damping"), a.damping)?;

@@ -109,11 +109,9 @@ impl Resolved {
     pub fn is_damped(&self) -> bool {
         !self.damping.is_zero()
             || self.beam.attachments.iter().any(|a| a.damping != 0.0)
-            || self
-                .beam
-                .messenger
-                .as_ref()
-                .is_some_and(|m| !m.tie_dashpots.is_empty())
+            || self.beam.messenger.as_ref().is_some_and(|m| {
+                !m.tie_dashpots.is_empty() || m.attachments.iter().any(|a| a.damping != 0.0)
+            })
     }
 
     /// The mesh plan the model is built from

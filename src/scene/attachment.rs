@@ -12,6 +12,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::output::Wire;
 use super::range::non_negative;
 use crate::error::{Error, Result};
 
@@ -30,6 +31,11 @@ pub struct AttachmentSpec {
     /// Dashpot c_a to the fixed anchor, N·s/m (≥ 0, default 0).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub damping: f64,
+    /// The line it acts on: `"contact"` (default) or `"messenger"` (on the
+    /// messenger wire at x_a, r_m(x_a) in place of r_b(x_a): a dropper's
+    /// clamp; needs `[messenger]`, `docs/lines.md` eq. W9).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wire: Option<Wire>,
     /// An optional label (for messages and the reader), any text.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
@@ -52,11 +58,34 @@ pub struct Attachment {
     pub damping: f64,
 }
 
+impl AttachmentSpec {
+    /// True when it acts on the messenger (`wire = "messenger"`).
+    pub fn on_messenger(&self) -> bool {
+        self.wire == Some(Wire::Messenger)
+    }
+}
+
+/// The scene indices of the `[[attachment]]`s on the contact wire, in
+/// order: the i-th contact attachment is `attachment.<own[i]>`.
+pub(crate) fn contact_indices(specs: &[AttachmentSpec]) -> Vec<usize> {
+    (0..specs.len())
+        .filter(|&i| !specs[i].on_messenger())
+        .collect()
+}
+
 /// Check each `[[attachment]]` on a beam of span `l`, m: x in [0, L],
-/// stiffness, mass and damping finite and ≥ 0, at least one of them > 0.
-pub(crate) fn resolve_attachments(specs: &[AttachmentSpec], l: f64) -> Result<Vec<Attachment>> {
+/// stiffness, mass and damping finite and ≥ 0, at least one of them > 0;
+/// the ones on the line `on_messenger` says, in scene order.
+pub(crate) fn resolve_attachments(
+    specs: &[AttachmentSpec],
+    l: f64,
+    on_messenger: bool,
+) -> Result<Vec<Attachment>> {
     let mut out = Vec::with_capacity(specs.len());
     for (i, a) in specs.iter().enumerate() {
+        if a.on_messenger() != on_messenger {
+            continue;
+        }
         if !(0.0..=l).contains(&a.x) {
             return Err(Error::invalid(
                 format!("attachment.{i}.x"),

@@ -145,7 +145,7 @@ pub struct MeshPlan {
 
 /// The FE unknowns of `elements` elements on `beam` (supported dofs
 /// removed): the contact wire's, and a messenger's (one element family,
-/// each pinned support on a node removing its w, `docs/lines.md` W1).
+/// each pinned support on a node removing its w (an elastic one keeps it), `docs/lines.md` W1).
 pub(crate) fn fe_unknowns(beam: &BeamProps, elements: usize) -> usize {
     let per_node = if beam.is_string() { 1 } else { 2 };
     let removed = |s: Support| match s {
@@ -155,7 +155,7 @@ pub(crate) fn fe_unknowns(beam: &BeamProps, elements: usize) -> usize {
     };
     let wire = (per_node * (elements + 1)).saturating_sub(removed(beam.left) + removed(beam.right));
     let messenger = beam.messenger.as_ref().map_or(0, |m| {
-        (per_node * (elements + 1)).saturating_sub(m.supports.len())
+        (per_node * (elements + 1)).saturating_sub(m.pinned().count())
     });
     wire + messenger
 }

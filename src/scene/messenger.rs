@@ -9,7 +9,9 @@
 //! the straight line at height h_m above the contact wire's undeformed
 //! line; its displacement v_m(x) is measured from that line, positive up.
 //! It is held vertically (v_m = 0, pinned) at each support x_s and free to
-//! rotate there; beyond the outermost supports it is free.
+//! rotate there, or held there by a spring, dashpot and mass
+//! (`support`, [`super::messenger_support`], eq. W9); beyond the outermost
+//! supports it is free.
 //!
 //! Both lines use one element family (the contact wire's): Hermite
 //! (EI_m > 0) when the contact wire has EI > 0, linear string elements
@@ -19,6 +21,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::attachment::Attachment;
+use super::messenger_support::{ElasticSupport, resolve_support};
 use super::range::positive;
 use crate::error::{Error, Result};
 
@@ -39,6 +43,12 @@ pub struct MessengerSpec {
     /// Where the messenger is held vertically (pinned), x in [0, L], m:
     /// strictly increasing, at least two, each on a mesh node.
     pub supports: Vec<f64>,
+    /// Elastic supports (`docs/lines.md` eq. W9): `{ stiffness, damping,
+    /// mass }` for every support, or a list with one `"pinned"` or `{ … }`
+    /// per support; absent: every support pinned
+    /// ([`super::messenger_support`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub support: Option<toml::Value>,
 }
 
 /// The messenger wire, resolved (SI units).
@@ -52,8 +62,16 @@ pub struct Messenger {
     pub ei: f64,
     /// Height h_m of its rest line above the contact wire's, m.
     pub height: f64,
-    /// Pinned supports x_s, m (strictly increasing).
+    /// Supports x_s, m (strictly increasing): pinned, or elastic where
+    /// `elastic` says.
     pub supports: Vec<f64>,
+    /// Each support's spring, dashpot and mass (`None`: pinned, eq. W3;
+    /// `Some`: elastic, eq. W9), one per support.
+    pub elastic: Vec<Option<ElasticSupport>>,
+    /// Point attachments on the messenger (grounded spring k, dashpot c,
+    /// mass m at x; eq. A0 and W9 with r_m(x)): the elastic supports, then
+    /// the scene's `[[attachment]] wire = "messenger"` (dropper clamps).
+    pub attachments: Vec<Attachment>,
     /// Distributed load p_m, N/m (self-weight −ρA_m g when
     /// `[gravity] beam_self_weight`, else 0).
     pub distributed_load: f64,
@@ -119,15 +137,42 @@ impl MessengerSpec {
                 ));
             }
         }
+        let elastic = resolve_support(self.support.as_ref(), self.supports.len())?;
+        let attachments = self
+            .supports
+            .iter()
+            .zip(&elastic)
+            .filter_map(|(&x, e)| {
+                e.map(|e| Attachment {
+                    x,
+                    stiffness: e.stiffness,
+                    mass: e.mass,
+                    damping: e.damping,
+                })
+            })
+            .collect();
         Ok(Messenger {
             tension,
             rho_a,
             ei,
             height,
             supports: self.supports.clone(),
+            elastic,
+            attachments,
             distributed_load: if self_weight { -rho_a * g } else { 0.0 },
             ties: Vec::new(),
             tie_dashpots: Vec::new(),
         })
+    }
+}
+
+impl Messenger {
+    /// The pinned supports' x, m (those without an elastic support).
+    pub fn pinned(&self) -> impl Iterator<Item = f64> + '_ {
+        self.supports
+            .iter()
+            .zip(&self.elastic)
+            .filter(|(_, e)| e.is_none())
+            .map(|(&x, _)| x)
     }
 }

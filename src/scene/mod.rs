@@ -32,6 +32,7 @@ mod load;
 pub mod manufactured;
 mod mesh;
 mod messenger;
+mod messenger_support;
 mod method;
 mod method_choice;
 mod method_registry;
@@ -49,6 +50,7 @@ mod time;
 mod validate;
 
 pub use analysis::{AnalysisSpec, speed_unit};
+pub(crate) use attachment::contact_indices;
 pub use attachment::{Attachment, AttachmentSpec};
 pub use beam::{BeamSpec, Support};
 pub use carrier::{CarrierSpec, Side};
@@ -75,6 +77,7 @@ pub(crate) use load::{
 pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec};
 pub use mesh::{GradingKind, MeshKind, MeshSpec};
 pub use messenger::{Messenger, MessengerSpec};
+pub use messenger_support::ElasticSupport;
 pub use method::{Method, MethodInfo, Parameter};
 pub use method_choice::ResolvedMethod;
 pub use method_registry::MethodRef;

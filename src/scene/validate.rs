@@ -7,6 +7,7 @@
 use super::beam::Support;
 use super::carrier::CarrierSpec;
 use super::contact::ContactSpec;
+use super::messenger::Messenger;
 use super::scene_file::Scene;
 use super::speed::SpeedProfile;
 use super::time::EndTime;
@@ -321,13 +322,31 @@ impl Scene {
             } else {
                 0.0
             },
-            attachments: resolve_attachments(&self.attachments, length)?,
-            messenger: self
-                .messenger
-                .as_ref()
-                .map(|m| m.resolve(ei == 0.0, length, g, self.gravity.beam_self_weight))
-                .transpose()?,
+            attachments: resolve_attachments(&self.attachments, length, false)?,
+            messenger: self.resolve_messenger(ei == 0.0, length, g)?,
         })
+    }
+}
+
+impl Scene {
+    /// `[messenger]` resolved, with the scene's `[[attachment]] wire =
+    /// "messenger"` after its elastic supports (eq. W9); such an
+    /// attachment without a messenger is refused.
+    fn resolve_messenger(&self, is_string: bool, length: f64, g: f64) -> Result<Option<Messenger>> {
+        let Some(spec) = &self.messenger else {
+            if let Some(i) = self.attachments.iter().position(|a| a.on_messenger()) {
+                return Err(Error::invalid(
+                    format!("attachment.{i}.wire"),
+                    "\"messenger\"",
+                    "needs a [messenger] section: use wire = \"contact\" (the default)",
+                ));
+            }
+            return Ok(None);
+        };
+        let mut m = spec.resolve(is_string, length, g, self.gravity.beam_self_weight)?;
+        m.attachments
+            .extend(resolve_attachments(&self.attachments, length, true)?);
+        Ok(Some(m))
     }
 }
 
