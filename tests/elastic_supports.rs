@@ -320,7 +320,7 @@ fn elastic_support_keys_are_checked() {
             &[
                 "messenger.support",
                 "a list of 2",
-                "one entry per support (3",
+                "one entry per support (3)",
             ],
         ),
         (
@@ -365,4 +365,93 @@ fn elastic_support_keys_are_checked() {
     assert!(e.contains("attachment.0.damping"), "{e}");
     // an elastic support with a spring only, and none at all, run
     resolve_scene(&base("support = { stiffness = 1e5 }"), &[]).unwrap();
+}
+
+/// A `[line]` of two strings (EI = 0) on elastic interior messenger
+/// supports, with per-dropper stiffnesses, a pre-sag, steady arm springs,
+/// clamp and dropper masses, started static: the design (G2–G8, the
+/// settlement G5′) is exact for strings, so every dropper's contact-wire
+/// height at t = 0 is the design's −4pξ(1 − ξ) to round-off.
+fn designed_strings(support: &str) -> String {
+    let probes: String = (0..3)
+        .flat_map(|k| [4.0, 12.0, 20.0, 28.0].map(move |p| 32.0 * k as f64 + p))
+        .map(|x| format!("[[probe]]\nname = \"c{x}\"\nx = {x:?}\n"))
+        .collect();
+    format!(
+        r#"
+[beam]
+mass_per_length = 1.35
+bending_stiffness = 0.0
+tension = 2.0e4
+
+[mesh]
+
+[[carrier]]
+force = 0.0
+side = "below"
+start = 0.0
+speed = {{ profile = "constant", value = 0.0 }}
+
+[time]
+step = 1e-3
+end = 0.002
+initial = "static"
+
+[gravity]
+g = 9.81
+beam_self_weight = true
+
+[line]
+spans = 3
+span_length = 32.0
+droppers = [4.0, 12.0, 20.0, 28.0]
+presag = 0.032
+dropper_stiffness = [[2.0e5, 1.0e5, 1.0e5, 2.0e5], [1.5e5, 1.0e5, 1.0e5, 1.5e5]]
+dropper_mass = 0.4
+clamp_mass = {{ contact = 0.2, messenger = 0.15 }}
+element_length = 1.0
+anchor = "messenger"
+messenger = {{ tension = 1.6e4, mass_per_length = 1.07, bending_stiffness = 0.0, height = 1.2{support} }}
+steady_arm = {{ stiffness = 3000.0, mass = 1.0, damping = 20.0 }}
+
+{probes}
+"#
+    )
+}
+
+/// Heights at t = 0 against the design (m, relative to the pre-sag p):
+/// string elements hold point and uniform loads nodally exactly, so the
+/// static solve's round-off remains (measured 1e-13 of p).
+const DESIGN_EXACT: f64 = 1e-10;
+
+#[test]
+fn a_designed_line_on_elastic_supports_starts_at_its_design_heights() {
+    let p = 0.032;
+    let height = |support: &str| {
+        let sc = resolve_scene(&designed_strings(support), &[]).unwrap_or_else(|e| panic!("{e}"));
+        let out = common::run(&sc);
+        out.history
+            .probes
+            .iter()
+            .zip(&sc.probes)
+            .map(|((_, col), &(_, x))| {
+                let xi = (x % 32.0) / 32.0;
+                (col[0] - (-4.0 * p * xi * (1.0 - xi))) / p
+            })
+            .fold(0.0f64, |m, e| m.max(e.abs()))
+    };
+    let elastic = height(", support = { stiffness = 2.0e5, damping = 50.0, mass = 8.0 }");
+    let pinned = height("");
+    println!("design heights: elastic supports {elastic:.2e} of p, pinned {pinned:.2e} of p");
+    assert!(elastic < DESIGN_EXACT, "{elastic}");
+    assert!(pinned < DESIGN_EXACT, "{pinned}");
+    // the settlement is in the design: the messenger sinks at the supports
+    let sc = resolve_scene(
+        &designed_strings(", support = { stiffness = 2.0e5 }"),
+        &["probe=[{ name = \"m32\", x = 32.0, wire = \"messenger\" }]".into()],
+    )
+    .unwrap();
+    let sink = common::run(&sc).history.probes[0].1[0];
+    println!("messenger at the support x = 32 m: {sink:.6e} m");
+    assert!(sink < -1e-3, "{sink}");
 }

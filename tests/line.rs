@@ -78,13 +78,63 @@ fn summary(dir: &Path) -> serde_json::Value {
     v
 }
 
+/// `LINE` hung from a messenger on elastic interior supports, with
+/// per-dropper stiffnesses (one list a span), dashpots (a pattern of two
+/// spans), the droppers' own and clamp masses on both wires, and a damped
+/// steady arm spring (docs/lines.md G5′, G8).
+fn line_with_properties() -> String {
+    LINE.replace(
+        "dropper_stiffness = 1.0e5",
+        "dropper_stiffness = [2.0e5, 1.0e5, 2.0e5]\ndropper_damping = [[10.0, 0.0, 10.0], [0.0, 5.0, 0.0]]\ndropper_mass = 0.4\nclamp_mass = { contact = 0.2, messenger = [0.15, 0.1, 0.15] }",
+    )
+    .replace("anchor = \"fixed\"", "anchor = \"messenger\"")
+    .replace(
+        "height = 1.2 }",
+        "bending_stiffness = 130.0, height = 1.2, support = { stiffness = 5.0e5, damping = 100.0, mass = 10.0 } }",
+    )
+    .replace(
+        "steady_arm = { mass = 1.0 }",
+        "steady_arm = { stiffness = 2000.0, mass = 1.0, damping = 20.0 }",
+    )
+}
+
 /// The expanded scene runs bit for bit as the `[line]` scene: the same
 /// history.csv bytes and the same summary (wall time aside). The expansion
 /// is the run's own (one function, where every scene tree becomes a scene).
 #[test]
 fn the_expanded_scene_runs_bit_for_bit_as_the_line() {
+    bit_for_bit(LINE);
+}
+
+/// The same with the per-dropper properties, clamp masses and elastic
+/// messenger supports: each is written out as plain keys.
+#[test]
+fn the_expanded_properties_run_bit_for_bit_as_the_line() {
+    let text = bit_for_bit(&line_with_properties());
+    for key in [
+        "stiffness = 200000.0",
+        "damping = 5.0",
+        "wire = \"messenger\"",
+        "name = \"messenger_clamp_s2d2\"",
+        "support = [\"pinned\", { damping = 100.0, mass = 10.0, stiffness = 500000.0 }, \"pinned\"]",
+    ] {
+        assert!(text.contains(key), "{key}: {text}");
+    }
+    // 6 droppers: lower ends 0.2 + 0.4/2 kg, upper ends 0.15/0.1 + 0.2 kg
+    assert_eq!(text.matches("mass = 0.4").count(), 6, "{text}");
+    assert_eq!(text.matches("mass = 0.35").count(), 4, "{text}");
+    assert_eq!(
+        text.matches("mass = 0.30000000000000004").count(),
+        2,
+        "{text}"
+    );
+}
+
+/// Run `scene` and its `taut line expand` text; both histories and
+/// summaries agree, and expanding again changes nothing. The expanded text.
+fn bit_for_bit(scene: &str) -> String {
     let tmp = tempfile::tempdir().unwrap();
-    let line = write(tmp.path(), "line.toml", LINE);
+    let line = write(tmp.path(), "line.toml", scene);
     let text = ok(&["line", "expand", &line]);
     assert!(!text.contains("[line]"), "{text}");
     assert!(
@@ -105,6 +155,7 @@ fn the_expanded_scene_runs_bit_for_bit_as_the_line() {
     let header = String::from_utf8_lossy(&ha);
     let header = header.lines().next().unwrap();
     assert!(header.contains("dropper_s1d1_force"), "{header}");
+    text
 }
 
 /// A fixed-anchor line starts at its design state: with no pre-sag and no

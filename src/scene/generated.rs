@@ -16,8 +16,11 @@ pub struct Generated {
     pub line: bool,
     /// Droppers generated (`dropper.0` … `dropper.{droppers − 1}`).
     pub droppers: usize,
-    /// Steady arms generated (`attachment.0` …).
+    /// Attachments generated (`attachment.0` …): the steady arms, then the
+    /// droppers' clamp masses (G8).
     pub attachments: usize,
+    /// Steady arms among them (the first ones).
+    pub steady_arms: usize,
     /// The `[messenger]` table was generated (`anchor = "messenger"`).
     pub messenger: bool,
     /// `mesh.elements` was generated (from `line.element_length`).
@@ -57,18 +60,21 @@ impl Generated {
             }
             .to_string(),
             ("dropper", Some(i)) => tail(i - self.droppers),
-            ("attachment", Some(i)) if i < self.attachments => match top {
+            ("attachment", Some(i)) if i < self.steady_arms => match top {
                 "stiffness" => "line.steady_arm.stiffness",
                 "mass" => "line.steady_arm.mass",
+                "damping" => "line.steady_arm.damping",
                 _ => "line.steady_arm",
             }
             .to_string(),
+            ("attachment", Some(i)) if i < self.attachments => "line.clamp_mass".to_string(),
             ("attachment", Some(i)) => tail(i - self.attachments),
             ("messenger", _) if self.messenger => match top_of(rest) {
                 k @ ("tension" | "mass_per_length" | "bending_stiffness" | "height") => {
                     format!("line.messenger.{k}")
                 }
                 "supports" => "line.spans".to_string(),
+                "support" => "line.messenger.support".to_string(),
                 _ => "line.messenger".to_string(),
             },
             ("beam", _) if rest == "length" => "line.span_length".to_string(),

@@ -24,6 +24,8 @@ use toml::{Table, Value};
 
 use super::generated::Generated;
 use super::line_design::{PointSpring, StringLoad, dropper_forces, messenger_sag, presag_profile};
+use super::line_props::{Range, clamp_masses, per_dropper};
+use super::line_supports::{chord, line_supports, settlements};
 use super::validate::MAX_ELEMENTS;
 use crate::error::{Error, Result, one_line};
 
@@ -57,8 +59,9 @@ struct LineSpec {
     /// Contact wire pre-sag p at mid-span, m (≥ 0, default 0).
     #[serde(default)]
     presag: f64,
-    /// Dropper stiffness k_d, N/m (> 0).
-    dropper_stiffness: f64,
+    /// Dropper stiffness k_d, N/m (> 0): a number, one per dropper of a
+    /// span, or a pattern of spans (`super::line_props`, G8).
+    dropper_stiffness: Value,
     /// Target element length h, m (> 0): the mesh's h is at most this.
     element_length: f64,
     /// Where the droppers hang: the messenger wire, or fixed points on the
@@ -74,9 +77,18 @@ struct LineSpec {
     #[serde(default)]
     linear_droppers: bool,
     /// Each dropper's dashpot c_d, N·s/m (≥ 0, default 0): `damping` on
-    /// each (`docs/lines.md` D11 linear, D12 tension-only).
+    /// each (`docs/lines.md` D11 linear, D12 tension-only); per dropper as
+    /// `dropper_stiffness`.
     #[serde(default)]
-    dropper_damping: f64,
+    dropper_damping: Option<Value>,
+    /// Each dropper's own mass, kg (≥ 0, default 0), half lumped at each
+    /// end (G8); per dropper as `dropper_stiffness`.
+    #[serde(default)]
+    dropper_mass: Option<Value>,
+    /// The clamps' masses `{ contact, messenger }`, kg (≥ 0, default 0),
+    /// point masses on each wire at every dropper (G8).
+    #[serde(default)]
+    clamp_mass: Option<Value>,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
@@ -99,6 +111,10 @@ struct MessengerDesign {
     /// h_m: the messenger's support line above the contact wire's rest
     /// line, m (> 0).
     height: f64,
+    /// Elastic supports (`super::line_supports`, G5′): a table for every
+    /// interior support, or a list for each; absent: pinned.
+    #[serde(default)]
+    support: Option<Value>,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize)]
@@ -110,6 +126,9 @@ struct SteadyArm {
     /// m_s, kg (≥ 0; carries no weight in a run: attachments' masses do not).
     #[serde(default)]
     mass: f64,
+    /// c_s to the rest line, N·s/m (≥ 0).
+    #[serde(default)]
+    damping: f64,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -171,7 +190,8 @@ pub(crate) fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generat
     let generated = Generated {
         line: true,
         droppers: design.len(),
-        attachments: if spec.steady_arm.is_some() {
+        attachments: line.generated_attachments(&spec),
+        steady_arms: if spec.steady_arm.is_some() {
             line.interior_supports().count()
         } else {
             0
@@ -189,14 +209,20 @@ struct Line {
     /// Dropper positions within a span, m, strictly increasing in (0, S).
     local: Vec<f64>,
     presag: f64,
-    k_d: f64,
+    /// k_d of every dropper of the line, span by span, N/m.
+    k_d: Vec<f64>,
     h: f64,
     anchor: LineAnchor,
     messenger: MessengerDesign,
     steady_arm: Option<SteadyArm>,
     linear: bool,
-    /// c_d, N·s/m (0: no `damping` key emitted).
-    c_d: f64,
+    /// c_d of every dropper, N·s/m (0: no `damping` key emitted).
+    c_d: Vec<f64>,
+    /// The point mass at each dropper's lower and upper end, kg: its clamp
+    /// plus half its own mass (G8; 0: no attachment emitted).
+    end_mass: (Vec<f64>, Vec<f64>),
+    /// `[messenger] support` to write, and each support's kind (G5′).
+    supports: (Option<Value>, Vec<Option<super::ElasticSupport>>),
 }
 
 fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
@@ -249,8 +275,73 @@ impl Line {
                 ),
             ));
         }
-        let k_d = positive("line.dropper_stiffness", s.dropper_stiffness, "N/m")?;
-        let c_d = super::range::non_negative("line.dropper_damping", s.dropper_damping, "N·s/m")?;
+        let shape = (s.spans, local.len());
+        let k_d = per_dropper(
+            "line.dropper_stiffness",
+            Some(&s.dropper_stiffness),
+            0.0,
+            shape,
+            Range::Positive,
+            "N/m",
+        )?;
+        let c_d = per_dropper(
+            "line.dropper_damping",
+            s.dropper_damping.as_ref(),
+            0.0,
+            shape,
+            Range::NonNegative,
+            "N·s/m",
+        )?;
+        let own = per_dropper(
+            "line.dropper_mass",
+            s.dropper_mass.as_ref(),
+            0.0,
+            shape,
+            Range::NonNegative,
+            "kg",
+        )?;
+        let (clamp_c, clamp_m) = clamp_masses(s.clamp_mass.as_ref(), shape)?;
+        if s.anchor == LineAnchor::Fixed
+            && let Some(i) = clamp_m.iter().position(|&m| m != 0.0)
+        {
+            return Err(Error::invalid(
+                "line.clamp_mass.messenger",
+                clamp_m[i],
+                "must be 0 (kg) with line.anchor = \"fixed\": the droppers' upper ends are fixed points, which no mass moves; use anchor = \"messenger\"",
+            ));
+        }
+        // a fixed anchor holds the dropper's upper half: only the lower
+        // half moves with the wire
+        let half = |m: f64| 0.5 * m;
+        let end_mass = (
+            clamp_c
+                .iter()
+                .zip(&own)
+                .map(|(c, m)| c + half(*m))
+                .collect(),
+            match s.anchor {
+                LineAnchor::Messenger => clamp_m
+                    .iter()
+                    .zip(&own)
+                    .map(|(c, m)| c + half(*m))
+                    .collect(),
+                LineAnchor::Fixed => vec![0.0; own.len()],
+            },
+        );
+        let supports = line_supports(s.messenger.support.as_ref(), s.spans)?;
+        if s.anchor == LineAnchor::Fixed && supports.0.is_some() {
+            return Err(Error::invalid(
+                "line.messenger.support",
+                one_line(
+                    &s.messenger
+                        .support
+                        .clone()
+                        .unwrap_or(Value::Boolean(false))
+                        .to_string(),
+                ),
+                "needs line.anchor = \"messenger\": with fixed anchors the messenger is not part of the run (leave it out)",
+            ));
+        }
         let h = positive("line.element_length", s.element_length, "m")?;
         if h > span {
             return Err(Error::invalid(
@@ -283,11 +374,12 @@ impl Line {
         if let Some(arm) = s.steady_arm {
             let k = non_negative("line.steady_arm.stiffness", arm.stiffness, "N/m")?;
             let mass = non_negative("line.steady_arm.mass", arm.mass, "kg")?;
-            if k == 0.0 && mass == 0.0 {
+            let c = non_negative("line.steady_arm.damping", arm.damping, "N·s/m")?;
+            if k == 0.0 && mass == 0.0 && c == 0.0 {
                 return Err(Error::invalid(
                     "line.steady_arm",
                     "{ stiffness = 0, mass = 0 }",
-                    "needs stiffness > 0 (N/m) or mass > 0 (kg); leave it out for no steady arms",
+                    "needs stiffness > 0 (N/m), mass > 0 (kg) or damping > 0 (N·s/m); leave it out for no steady arms",
                 ));
             }
         }
@@ -303,6 +395,8 @@ impl Line {
             steady_arm: s.steady_arm,
             linear: s.linear_droppers,
             c_d,
+            end_mass,
+            supports,
         })
     }
 
@@ -374,6 +468,8 @@ impl Line {
         let forces = dropper_forces(self.length(), &xs, &vc, wire, &springs);
         let supports = self.supports();
         let loads: Vec<(f64, f64)> = xs.iter().copied().zip(forces.iter().copied()).collect();
+        // elastic supports sink under the messenger's reactions (G5′)
+        let delta = settlements(&supports, &self.supports.1, messenger, &loads);
         let mut out = Vec::with_capacity(xs.len());
         for (i, name) in names.into_iter().enumerate() {
             let force = forces[i];
@@ -395,8 +491,12 @@ impl Line {
                 messenger,
                 &loads[k * per..(k + 1) * per],
                 xs[i],
+            ) + chord(
+                xs[i],
+                (supports[k], supports[k + 1]),
+                (delta[k], delta[k + 1]),
             );
-            let length = self.messenger.height + vm - vc[i] - force / self.k_d;
+            let length = self.messenger.height + vm - vc[i] - force / self.k_d[i];
             if length.is_nan() || length <= 0.0 {
                 return Err(Error::invalid(
                     "line.messenger.height",
@@ -553,15 +653,19 @@ impl Line {
                 "supports".into(),
                 Value::Array(self.supports().into_iter().map(Value::Float).collect()),
             );
+            if let Some(list) = &self.supports.0 {
+                t.insert("support".into(), list.clone());
+            }
             tree.insert("messenger".into(), Value::Table(t));
         }
         let mut droppers: Vec<Value> = design
             .iter()
-            .map(|d| {
+            .enumerate()
+            .map(|(i, d)| {
                 let mut t = Table::new();
                 t.insert("name".into(), Value::String(d.name.clone()));
                 t.insert("x".into(), Value::Float(d.x));
-                t.insert("stiffness".into(), Value::Float(self.k_d));
+                t.insert("stiffness".into(), Value::Float(self.k_d[i]));
                 match self.anchor {
                     LineAnchor::Fixed => {
                         t.insert(
@@ -577,16 +681,16 @@ impl Line {
                 if self.linear {
                     t.insert("linear".into(), Value::Boolean(true));
                 }
-                if self.c_d != 0.0 {
-                    t.insert("damping".into(), Value::Float(self.c_d));
+                if self.c_d[i] != 0.0 {
+                    t.insert("damping".into(), Value::Float(self.c_d[i]));
                 }
                 Value::Table(t)
             })
             .collect();
         droppers.extend(take_array(tree, "dropper")?);
         tree.insert("dropper".into(), Value::Array(droppers));
-        if let Some(arm) = spec.steady_arm {
-            let mut arms: Vec<Value> = self
+        let mut arms: Vec<Value> = match spec.steady_arm {
+            Some(arm) => self
                 .interior_supports()
                 .enumerate()
                 .map(|(k, x)| {
@@ -602,15 +706,58 @@ impl Line {
                     if arm.mass > 0.0 {
                         t.insert("mass".into(), Value::Float(arm.mass));
                     }
+                    if arm.damping > 0.0 {
+                        t.insert("damping".into(), Value::Float(arm.damping));
+                    }
                     Value::Table(t)
                 })
-                .collect();
+                .collect(),
+            None => Vec::new(),
+        };
+        arms.extend(self.clamps(design));
+        if !arms.is_empty() {
             arms.extend(take_array(tree, "attachment")?);
-            if !arms.is_empty() {
-                tree.insert("attachment".into(), Value::Array(arms));
-            }
+            tree.insert("attachment".into(), Value::Array(arms));
         }
         Ok(())
+    }
+
+    /// The droppers' end masses as point masses (G8): on the contact wire
+    /// at x_d, then on the messenger; none where the mass is 0.
+    fn clamps(&self, design: &[DesignedDropper]) -> Vec<Value> {
+        let (lower, upper) = &self.end_mass;
+        let at = |side: &str, wire: Option<&str>, masses: &[f64]| -> Vec<Value> {
+            design
+                .iter()
+                .zip(masses)
+                .filter(|(_, m)| **m != 0.0)
+                .map(|(d, m)| {
+                    let mut t = Table::new();
+                    t.insert("name".into(), Value::String(format!("{side}_{}", d.name)));
+                    t.insert("x".into(), Value::Float(d.x));
+                    t.insert("mass".into(), Value::Float(*m));
+                    if let Some(w) = wire {
+                        t.insert("wire".into(), Value::String(w.into()));
+                    }
+                    Value::Table(t)
+                })
+                .collect()
+        };
+        let mut out = at("clamp", None, lower);
+        out.extend(at("messenger_clamp", Some("messenger"), upper));
+        out
+    }
+
+    /// How many `[[attachment]]` the expansion writes: the steady arms and
+    /// the clamps (G8).
+    fn generated_attachments(&self, spec: &LineSpec) -> usize {
+        let arms = if spec.steady_arm.is_some() {
+            self.interior_supports().count()
+        } else {
+            0
+        };
+        let (lower, upper) = &self.end_mass;
+        arms + lower.iter().chain(upper).filter(|m| **m != 0.0).count()
     }
 }
 

@@ -137,7 +137,11 @@ impl MessengerSpec {
                 ));
             }
         }
-        let elastic = resolve_support(self.support.as_ref(), self.supports.len())?;
+        let elastic = resolve_support(
+            "messenger.support",
+            self.support.as_ref(),
+            self.supports.len(),
+        )?;
         let attachments = self
             .supports
             .iter()

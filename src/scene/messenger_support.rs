@@ -38,10 +38,10 @@ pub struct ElasticSupport {
 /// The supports' kinds from `support` (`None`: every one pinned), one
 /// entry per support (`None`: pinned), for `count` supports.
 pub(crate) fn resolve_support(
+    field: &str,
     v: Option<&Value>,
     count: usize,
 ) -> Result<Vec<Option<ElasticSupport>>> {
-    let field = "messenger.support";
     match v {
         None => Ok(vec![None; count]),
         Some(Value::Table(_)) => {
@@ -54,7 +54,7 @@ pub(crate) fn resolve_support(
                     field,
                     format!("a list of {}", list.len()),
                     format!(
-                        "must give one entry per support ({count}, as messenger.supports), each \"pinned\" or {{ stiffness, damping, mass }}; or one table for every support"
+                        "must give one entry per support ({count}), each \"pinned\" or {{ stiffness, damping, mass }}; or one table for every support"
                     ),
                 ));
             }
@@ -136,6 +136,8 @@ fn elastic(field: &str, v: &Value) -> Result<ElasticSupport> {
 mod tests {
     use super::*;
 
+    const F: &str = "messenger.support";
+
     fn parse(text: &str) -> Value {
         let t: toml::Table = toml::from_str(&format!("support = {text}")).unwrap();
         t["support"].clone()
@@ -143,8 +145,8 @@ mod tests {
 
     #[test]
     fn every_support_one_each_or_none() {
-        assert_eq!(resolve_support(None, 3).unwrap(), vec![None; 3]);
-        let all = resolve_support(Some(&parse("{ stiffness = 5e5, mass = 2 }")), 2).unwrap();
+        assert_eq!(resolve_support(F, None, 3).unwrap(), vec![None; 3]);
+        let all = resolve_support(F, Some(&parse("{ stiffness = 5e5, mass = 2 }")), 2).unwrap();
         let s = ElasticSupport {
             stiffness: 5e5,
             damping: 0.0,
@@ -152,6 +154,7 @@ mod tests {
         };
         assert_eq!(all, vec![Some(s); 2]);
         let each = resolve_support(
+            F,
             Some(&parse(
                 "[\"pinned\", { stiffness = 5e5, damping = 3.0, mass = 2 }, \"pinned\"]",
             )),
@@ -197,7 +200,7 @@ mod tests {
                 &[
                     "messenger.support",
                     "a list of 1",
-                    "one entry per support (2",
+                    "one entry per support (2)",
                 ],
             ),
             (
@@ -212,7 +215,7 @@ mod tests {
             ),
             ("3.0", 2, &["messenger.support", "3.0", "every support"]),
         ] {
-            let e = resolve_support(Some(&parse(text)), count)
+            let e = resolve_support(F, Some(&parse(text)), count)
                 .unwrap_err()
                 .to_string();
             for w in want {

@@ -28,6 +28,8 @@ mod gravity;
 mod integrator;
 mod line;
 mod line_design;
+mod line_props;
+mod line_supports;
 mod load;
 pub mod manufactured;
 mod mesh;
