@@ -455,3 +455,98 @@ fn a_designed_line_on_elastic_supports_starts_at_its_design_heights() {
     println!("messenger at the support x = 32 m: {sink:.6e} m");
     assert!(sink < -1e-3, "{sink}");
 }
+
+/// Two 10 m spans of a string (T = 1000 N, ρA = 1 kg/m, no weight) with
+/// one nearly massless, nearly weightless dropper a span (linear, k_d =
+/// 1e-6 N/m: a design force of 0 and a spring 1e-9 of the wire's) and a
+/// steady arm at the middle support: `arm` is its `[line]` table.
+fn arm_line(arm: &str, element_length: f64) -> String {
+    format!(
+        r#"
+[beam]
+mass_per_length = 1.0
+bending_stiffness = 0.0
+tension = 1000.0
+
+[mesh]
+
+[[carrier]]
+force = 0.0
+side = "below"
+start = 0.0
+speed = {{ profile = "constant", value = 0.0 }}
+
+[time]
+step = 1e-3
+end = 0.002
+
+[line]
+spans = 2
+span_length = 10.0
+droppers = {{ count = 1 }}
+dropper_stiffness = 1.0e-6
+linear_droppers = true
+element_length = {element_length:e}
+anchor = "fixed"
+messenger = {{ tension = 1.6e4, mass_per_length = 1.07, height = 1.2 }}
+steady_arm = {arm}
+"#
+    )
+}
+
+/// A lumped mass m and spring k at x = a of a pinned–pinned string of
+/// length a + b (docs/lines.md A1): m ω² − k = T κ (cot κa + cot κb), κ =
+/// ω/c, its fundamental the one root in (0, π/max(a, b)).
+fn string_with_point(t: f64, rho: f64, (a, b): (f64, f64), (k, m): (f64, f64)) -> f64 {
+    let c = (t / rho).sqrt();
+    let g = |q: f64| m * c * c * q * q - k - t * q * (1.0 / (q * a).tan() + 1.0 / (q * b).tan());
+    let (mut lo, mut hi) = (1e-9, std::f64::consts::PI / a.max(b) * (1.0 - 1e-12));
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if g(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    c * 0.5 * (lo + hi)
+}
+
+#[test]
+fn a_pivoted_steady_arm_is_its_tip_mass_and_spring_by_hand() {
+    // ℓ_a = 1.2 m, I_a = 2.16 kg·m² (a 4.5 kg bar about its end, m ℓ²/3),
+    // k_φ = 720 N·m/rad, a 0.5 kg clamp and a 100 N/m registration spring:
+    // S1–S2 by hand, m_tip = 0.5 + 2.16/1.44 = 2 kg, k_tip = 100 + 720/1.44
+    // = 600 N/m
+    let arm = "{ stiffness = 100.0, mass = 0.5, arm_length = 1.2, inertia = 2.16, pivot_stiffness = 720.0 }";
+    let sc = resolve_scene(&arm_line(arm, 0.2), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let tip = sc.beam.attachments[0];
+    assert_eq!(tip.x, 10.0);
+    assert!(
+        (tip.mass - 2.0).abs() < 1e-15 && (tip.stiffness - 600.0).abs() < 1e-12,
+        "{tip:?}"
+    );
+    let want = string_with_point(1000.0, 1.0, (10.0, 10.0), (600.0, 2.0));
+    // the arm's inertia and pivot left out: another frequency (the check
+    // can fail)
+    let bare = string_with_point(1000.0, 1.0, (10.0, 10.0), (100.0, 0.5));
+    let mut errors = Vec::new();
+    for h in [0.2, 0.1] {
+        let sc = resolve_scene(&arm_line(arm, h), &[]).unwrap();
+        let beam = BeamModel::build(&sc.beam, &sc.mesh_plan()).unwrap();
+        let w = lowest_eigenpairs(&beam.mass, &beam.stiffness, 1)
+            .unwrap()
+            .omega_sq[0]
+            .sqrt();
+        let err = (w - want) / want;
+        println!(
+            "h = {h} m: ω₁ = {w:.9} rad/s, A1 with S1–S2 {want:.9} rad/s (error {err:.3e}); without the arm {bare:.6} rad/s"
+        );
+        assert!(err > 0.0, "Rayleigh–Ritz: from above");
+        assert!(((w - bare) / bare).abs() > 100.0 * err, "{w} {bare}");
+        errors.push(err);
+    }
+    let order = observed_order(errors[0], errors[1], 2.0);
+    println!("order {order:.3}");
+    assert!((order - 2.0).abs() < FREQ_ORDER_TOL, "{order}");
+}

@@ -26,6 +26,7 @@ use super::generated::Generated;
 use super::line_design::{PointSpring, StringLoad, dropper_forces, messenger_sag, presag_profile};
 use super::line_props::{Range, clamp_masses, per_dropper};
 use super::line_supports::{chord, line_supports, settlements};
+use super::steady_arm::{SteadyArm, SteadyArmSpec};
 use super::validate::MAX_ELEMENTS;
 use crate::error::{Error, Result, one_line};
 
@@ -72,7 +73,7 @@ struct LineSpec {
     messenger: MessengerDesign,
     /// A steady arm at every interior support (`[[attachment]]`).
     #[serde(default)]
-    steady_arm: Option<SteadyArm>,
+    steady_arm: Option<SteadyArmSpec>,
     /// Droppers that never slack (`linear = true` on each).
     #[serde(default)]
     linear_droppers: bool,
@@ -115,20 +116,6 @@ struct MessengerDesign {
     /// interior support, or a list for each; absent: pinned.
     #[serde(default)]
     support: Option<Value>,
-}
-
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SteadyArm {
-    /// k_s to the rest line, N/m (≥ 0).
-    #[serde(default)]
-    stiffness: f64,
-    /// m_s, kg (≥ 0; carries no weight in a run: attachments' masses do not).
-    #[serde(default)]
-    mass: f64,
-    /// c_s to the rest line, N·s/m (≥ 0).
-    #[serde(default)]
-    damping: f64,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -186,7 +173,7 @@ pub(crate) fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generat
     })?;
     let line = Line::check(&spec)?;
     let design = line.design(&tree)?;
-    line.write(&spec, &design, &mut tree)?;
+    line.write(&design, &mut tree)?;
     let generated = Generated {
         line: true,
         droppers: design.len(),
@@ -371,18 +358,8 @@ impl Line {
             }
             None => {}
         }
-        if let Some(arm) = s.steady_arm {
-            let k = non_negative("line.steady_arm.stiffness", arm.stiffness, "N/m")?;
-            let mass = non_negative("line.steady_arm.mass", arm.mass, "kg")?;
-            let c = non_negative("line.steady_arm.damping", arm.damping, "N·s/m")?;
-            if k == 0.0 && mass == 0.0 && c == 0.0 {
-                return Err(Error::invalid(
-                    "line.steady_arm",
-                    "{ stiffness = 0, mass = 0 }",
-                    "needs stiffness > 0 (N/m), mass > 0 (kg) or damping > 0 (N·s/m); leave it out for no steady arms",
-                ));
-            }
-        }
+        // the arm reduced to its tip (S1–S3)
+        let steady_arm = s.steady_arm.map(|a| a.tip()).transpose()?;
         Ok(Line {
             spans: s.spans,
             span,
@@ -392,7 +369,7 @@ impl Line {
             h,
             anchor: s.anchor,
             messenger: m.clone(),
-            steady_arm: s.steady_arm,
+            steady_arm,
             linear: s.linear_droppers,
             c_d,
             end_mass,
@@ -571,7 +548,7 @@ impl Line {
     }
 
     /// Write the generated keys into the tree.
-    fn write(&self, spec: &LineSpec, design: &[DesignedDropper], tree: &mut Table) -> Result<()> {
+    fn write(&self, design: &[DesignedDropper], tree: &mut Table) -> Result<()> {
         let beam = table_mut(tree, "beam")?;
         if let Some(v) = beam.get("length") {
             return Err(Error::invalid(
@@ -689,7 +666,7 @@ impl Line {
             .collect();
         droppers.extend(take_array(tree, "dropper")?);
         tree.insert("dropper".into(), Value::Array(droppers));
-        let mut arms: Vec<Value> = match spec.steady_arm {
+        let mut arms: Vec<Value> = match self.steady_arm {
             Some(arm) => self
                 .interior_supports()
                 .enumerate()

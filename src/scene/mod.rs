@@ -46,6 +46,7 @@ mod range;
 mod scene_file;
 mod scheme;
 mod speed;
+mod steady_arm;
 mod table_files;
 pub mod tables;
 mod time;
