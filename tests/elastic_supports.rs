@@ -1,5 +1,5 @@
 //! Elastic messenger supports and point attachments on the messenger
-//! (issue 42; docs/lines.md "Elastic supports and clamp masses", W9):
+//! (issue 42; docs/lines.md "Elastic supports and clamp masses", E1):
 //! `[messenger] support = { stiffness, damping, mass }` (every support) or
 //! a list with one `"pinned"` or `{ … }` per support, and `[[attachment]]
 //! wire = "messenger"`. Checked against
@@ -369,8 +369,8 @@ fn elastic_support_keys_are_checked() {
 
 /// A `[line]` of two strings (EI = 0) on elastic interior messenger
 /// supports, with per-dropper stiffnesses, a pre-sag, steady arm springs,
-/// clamp and dropper masses, started static: the design (G2–G8, the
-/// settlement G5′) is exact for strings, so every dropper's contact-wire
+/// clamp and dropper masses, started static: the design (G2–G7 with E2 and E3, the
+/// settlement E2) is exact for strings, so every dropper's contact-wire
 /// height at t = 0 is the design's −4pξ(1 − ξ) to round-off.
 fn designed_strings(support: &str) -> String {
     let probes: String = (0..3)

@@ -81,7 +81,7 @@ fn summary(dir: &Path) -> serde_json::Value {
 /// `LINE` hung from a messenger on elastic interior supports, with
 /// per-dropper stiffnesses (one list a span), dashpots (a pattern of two
 /// spans), the droppers' own and clamp masses on both wires, and a damped
-/// steady arm spring (docs/lines.md G5′, G8).
+/// steady arm spring (docs/lines.md E2, E3).
 fn line_with_properties() -> String {
     LINE.replace(
         "dropper_stiffness = 1.0e5",

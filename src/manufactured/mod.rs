@@ -275,7 +275,7 @@ struct DropperLoad {
 
 /// A point attachment as the source sees it (`docs/lines.md` A0, §10.4):
 /// on the contact wire (or the messenger: an elastic support, a clamp,
-/// W9) at x_a, anchored at v = 0, no preload.
+/// E1) at x_a, anchored at v = 0, no preload.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct AttachmentLoad {
     /// On the messenger (r_m(x_a), v_m*) rather than the contact wire.
@@ -553,7 +553,7 @@ impl Manufactured {
         };
         let l = b.length;
         let at_end = |x: f64, end: f64| (x - end).abs() <= SUPPORT_AT_END * l;
-        // an elastic support (W9) does not hold v_m* = 0: its spring's
+        // an elastic support (E1) does not hold v_m* = 0: its spring's
         // force is in the source; only the pinned ones enter the shapes
         let pinned: Vec<f64> = m.pinned().collect();
         let first = pinned.first().copied().unwrap_or(f64::NAN);
@@ -738,7 +738,7 @@ impl Manufactured {
     }
 
     /// True when attachment a acts on the messenger (an elastic support or
-    /// a clamp, W9): its point vector is r_m(x_a).
+    /// a clamp, E1): its point vector is r_m(x_a).
     pub fn attachment_on_messenger(&self, a: usize) -> bool {
         self.attachments[a].on_messenger
     }

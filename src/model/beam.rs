@@ -246,7 +246,7 @@ impl BeamModel {
         }
         if let Some(m) = &props.messenger {
             // pinned: the messenger's w at each support's node (W3); an
-            // elastic support keeps it (a spring there, W9)
+            // elastic support keeps it (a spring there, E1)
             for x in m.pinned() {
                 removed[nearest_node(&mesh, x) * stride + per_node] = true;
             }
@@ -413,7 +413,7 @@ impl BeamModel {
         }
     }
 
-    /// Add the messenger's point attachments (its elastic supports, eq. W9,
+    /// Add the messenger's point attachments (its elastic supports, eq. E1,
     /// and dropper clamps): A0 with r_m(x), the messenger's interpolation
     /// vector, in place of r_b(x).
     fn attach_messenger(&mut self, attachments: &[Attachment]) {

@@ -38,7 +38,7 @@ impl BeamModel {
     /// dashpots `tie_dashpots` (x_d, c_d): c_d r_d r_dᵀ, r_d = r_c(x_d) −
     /// r_m(x_d) (eq. D11), and the messenger's own attachments'
     /// (`messenger_attachments`: its elastic supports' and clamps' c r_m r_mᵀ,
-    /// eq. W9).
+    /// eq. E1).
     pub fn damping_matrix_with_ties(
         &self,
         rayleigh: Rayleigh,

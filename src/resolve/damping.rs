@@ -29,7 +29,7 @@ use crate::scene::{
     BeamProps, Discretization, Dropper, Rayleigh, ReferenceKind, ResolvedMethod, Scene, Scheme,
 };
 
-/// The first dashpot on the messenger's own attachments (eq. W9): an
+/// The first dashpot on the messenger's own attachments (eq. E1): an
 /// elastic support's (`messenger.support…damping`) or a `[[attachment]]
 /// wire = "messenger"`'s; (key, c).
 fn messenger_dashpot(scene: &Scene, beam: &BeamProps) -> Option<(String, f64)> {

@@ -33,7 +33,7 @@ pub struct AttachmentSpec {
     pub damping: f64,
     /// The line it acts on: `"contact"` (default) or `"messenger"` (on the
     /// messenger wire at x_a, r_m(x_a) in place of r_b(x_a): a dropper's
-    /// clamp; needs `[messenger]`, `docs/lines.md` eq. W9).
+    /// clamp; needs `[messenger]`, `docs/lines.md` eq. E1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wire: Option<Wire>,
     /// An optional label (for messages and the reader), any text.

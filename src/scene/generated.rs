@@ -17,7 +17,7 @@ pub struct Generated {
     /// Droppers generated (`dropper.0` … `dropper.{droppers − 1}`).
     pub droppers: usize,
     /// Attachments generated (`attachment.0` …): the steady arms, then the
-    /// droppers' clamp masses (G8).
+    /// droppers' clamp masses (E3).
     pub attachments: usize,
     /// Steady arms among them (the first ones).
     pub steady_arms: usize,

@@ -61,7 +61,7 @@ struct LineSpec {
     #[serde(default)]
     presag: f64,
     /// Dropper stiffness k_d, N/m (> 0): a number, one per dropper of a
-    /// span, or a pattern of spans (`super::line_props`, G8).
+    /// span, or a pattern of spans (`super::line_props`, E3).
     dropper_stiffness: Value,
     /// Target element length h, m (> 0): the mesh's h is at most this.
     element_length: f64,
@@ -83,11 +83,11 @@ struct LineSpec {
     #[serde(default)]
     dropper_damping: Option<Value>,
     /// Each dropper's own mass, kg (≥ 0, default 0), half lumped at each
-    /// end (G8); per dropper as `dropper_stiffness`.
+    /// end (E3); per dropper as `dropper_stiffness`.
     #[serde(default)]
     dropper_mass: Option<Value>,
     /// The clamps' masses `{ contact, messenger }`, kg (≥ 0, default 0),
-    /// point masses on each wire at every dropper (G8).
+    /// point masses on each wire at every dropper (E3).
     #[serde(default)]
     clamp_mass: Option<Value>,
 }
@@ -112,7 +112,7 @@ struct MessengerDesign {
     /// h_m: the messenger's support line above the contact wire's rest
     /// line, m (> 0).
     height: f64,
-    /// Elastic supports (`super::line_supports`, G5′): a table for every
+    /// Elastic supports (`super::line_supports`, E2): a table for every
     /// interior support, or a list for each; absent: pinned.
     #[serde(default)]
     support: Option<Value>,
@@ -206,9 +206,9 @@ struct Line {
     /// c_d of every dropper, N·s/m (0: no `damping` key emitted).
     c_d: Vec<f64>,
     /// The point mass at each dropper's lower and upper end, kg: its clamp
-    /// plus half its own mass (G8; 0: no attachment emitted).
+    /// plus half its own mass (E3; 0: no attachment emitted).
     end_mass: (Vec<f64>, Vec<f64>),
-    /// `[messenger] support` to write, and each support's kind (G5′).
+    /// `[messenger] support` to write, and each support's kind (E2).
     supports: (Option<Value>, Vec<Option<super::ElasticSupport>>),
 }
 
@@ -445,7 +445,7 @@ impl Line {
         let forces = dropper_forces(self.length(), &xs, &vc, wire, &springs);
         let supports = self.supports();
         let loads: Vec<(f64, f64)> = xs.iter().copied().zip(forces.iter().copied()).collect();
-        // elastic supports sink under the messenger's reactions (G5′)
+        // elastic supports sink under the messenger's reactions (E2)
         let delta = settlements(&supports, &self.supports.1, messenger, &loads);
         let mut out = Vec::with_capacity(xs.len());
         for (i, name) in names.into_iter().enumerate() {
@@ -699,7 +699,7 @@ impl Line {
         Ok(())
     }
 
-    /// The droppers' end masses as point masses (G8): on the contact wire
+    /// The droppers' end masses as point masses (E3): on the contact wire
     /// at x_d, then on the messenger; none where the mass is 0.
     fn clamps(&self, design: &[DesignedDropper]) -> Vec<Value> {
         let (lower, upper) = &self.end_mass;
@@ -726,7 +726,7 @@ impl Line {
     }
 
     /// How many `[[attachment]]` the expansion writes: the steady arms and
-    /// the clamps (G8).
+    /// the clamps (E3).
     fn generated_attachments(&self, spec: &LineSpec) -> usize {
         let arms = if spec.steady_arm.is_some() {
             self.interior_supports().count()

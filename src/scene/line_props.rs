@@ -1,5 +1,5 @@
 //! Per-dropper properties and clamp masses of a generated line (`[line]`,
-//! `docs/lines.md` "Per-dropper properties and clamp masses", G8): the
+//! `docs/lines.md` "Per-dropper properties and clamp masses", E3): the
 //! spellings that give each dropper of a span its own stiffness, dashpot
 //! and mass, and the masses of the clamps that hold it on each wire.
 //!
@@ -13,7 +13,7 @@
 //!
 //! and is expanded into one value per generated dropper, span by span.
 //! Nothing here is physics: the expansion writes plain `[[dropper]]` and
-//! `[[attachment]]` keys, whose meaning is D1–D12 and A0/W9.
+//! `[[attachment]]` keys, whose meaning is D1–D12 and A0/E1.
 
 use toml::Value;
 

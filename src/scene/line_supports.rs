@@ -1,5 +1,5 @@
 //! Elastic messenger supports of a generated line (`[line]`
-//! `messenger.support`, `docs/lines.md` eq. G5′): the key's spelling in
+//! `messenger.support`, `docs/lines.md` eq. E2): the key's spelling in
 //! `[line]`, and the supports' settlement in the design statics.
 //!
 //! `line.messenger.support = { stiffness, damping, mass }` makes every
@@ -9,14 +9,14 @@
 //! `[messenger] support` does (`super::messenger_support`). The expansion
 //! writes the list into `[messenger] support`.
 //!
-//! **Settlement (G5′).** The messenger designed as a string (G5) on rigid
+//! **Settlement (E2).** The messenger designed as a string (G5) on rigid
 //! supports pushes each support with R⁰_k (its weight's and droppers'
 //! shares of the two spans beside it). On a spring k_s the support sinks
 //! by δ_k, and the string between two supports tilts with them, so the
 //! support's balance couples its neighbours:
 //!
 //! ```text
-//!   (G5′) (k_s,k + T_m/S_l + T_m/S_r) δ_k − (T_m/S_l) δ_{k−1} − (T_m/S_r) δ_{k+1} = −R⁰_k
+//!   (E2) (k_s,k + T_m/S_l + T_m/S_r) δ_k − (T_m/S_l) δ_{k−1} − (T_m/S_r) δ_{k+1} = −R⁰_k
 //!         (δ = 0 at a pinned support; S_l, S_r the spans beside k, absent at an end)
 //!   v_m(x) = G5's v_m(x) + δ_a + (δ_b − δ_a)(x − a)/(b − a)   on the span [a, b]
 //! ```
@@ -63,7 +63,7 @@ pub(crate) fn line_supports(
 /// Each support's settlement δ_k, m (v up; 0 where pinned), of the
 /// messenger string `messenger` on `supports` (rising; `kinds` one per
 /// support) under its weight and the dropper loads `loads` = (x_d, N_d)
-/// pulling it down (eq. G5′, module docs).
+/// pulling it down (eq. E2, module docs).
 pub(crate) fn settlements(
     supports: &[f64],
     kinds: &[Option<ElasticSupport>],
@@ -123,7 +123,7 @@ pub(crate) fn settlements(
 }
 
 /// The settlements' part of v_m at x on the span [a, b] whose supports
-/// sank by δ_a, δ_b (G5′): their chord.
+/// sank by δ_a, δ_b (E2): their chord.
 pub(crate) fn chord(x: f64, (a, b): (f64, f64), (da, db): (f64, f64)) -> f64 {
     da + (db - da) * (x - a) / (b - a)
 }

@@ -10,7 +10,7 @@
 //! line; its displacement v_m(x) is measured from that line, positive up.
 //! It is held vertically (v_m = 0, pinned) at each support x_s and free to
 //! rotate there, or held there by a spring, dashpot and mass
-//! (`support`, [`super::messenger_support`], eq. W9); beyond the outermost
+//! (`support`, [`super::messenger_support`], eq. E1); beyond the outermost
 //! supports it is free.
 //!
 //! Both lines use one element family (the contact wire's): Hermite
@@ -43,7 +43,7 @@ pub struct MessengerSpec {
     /// Where the messenger is held vertically (pinned), x in [0, L], m:
     /// strictly increasing, at least two, each on a mesh node.
     pub supports: Vec<f64>,
-    /// Elastic supports (`docs/lines.md` eq. W9): `{ stiffness, damping,
+    /// Elastic supports (`docs/lines.md` eq. E1): `{ stiffness, damping,
     /// mass }` for every support, or a list with one `"pinned"` or `{ … }`
     /// per support; absent: every support pinned
     /// ([`super::messenger_support`]).
@@ -66,10 +66,10 @@ pub struct Messenger {
     /// `elastic` says.
     pub supports: Vec<f64>,
     /// Each support's spring, dashpot and mass (`None`: pinned, eq. W3;
-    /// `Some`: elastic, eq. W9), one per support.
+    /// `Some`: elastic, eq. E1), one per support.
     pub elastic: Vec<Option<ElasticSupport>>,
     /// Point attachments on the messenger (grounded spring k, dashpot c,
-    /// mass m at x; eq. A0 and W9 with r_m(x)): the elastic supports, then
+    /// mass m at x; eq. A0 and E1 with r_m(x)): the elastic supports, then
     /// the scene's `[[attachment]] wire = "messenger"` (dropper clamps).
     pub attachments: Vec<Attachment>,
     /// Distributed load p_m, N/m (self-weight −ρA_m g when

@@ -1,5 +1,5 @@
 //! `[messenger] support`: elastic supports of the messenger wire
-//! (`docs/lines.md` eq. W9). Without the key every support is pinned
+//! (`docs/lines.md` eq. E1). Without the key every support is pinned
 //! (v_m = 0, eq. W3). With it a support is a spring k_s (N/m), a dashpot
 //! c_s (N·s/m) and a point mass m_s (kg) to the ground at x_s, the three
 //! assembled as a point attachment on the messenger (`k_s r_m r_mᵀ` in K,

@@ -330,7 +330,7 @@ impl Scene {
 
 impl Scene {
     /// `[messenger]` resolved, with the scene's `[[attachment]] wire =
-    /// "messenger"` after its elastic supports (eq. W9); such an
+    /// "messenger"` after its elastic supports (eq. E1); such an
     /// attachment without a messenger is refused.
     fn resolve_messenger(&self, is_string: bool, length: f64, g: f64) -> Result<Option<Messenger>> {
         let Some(spec) = &self.messenger else {
