@@ -194,7 +194,12 @@ fn an_elastic_support_settles_by_its_force_over_its_stiffness() {
 /// to +∞).
 fn spring_mass_end(l: f64, tm: f64, rho: f64, k: f64, m: f64) -> f64 {
     let c = (tm / rho).sqrt();
-    let g = |q: f64| m * c * c * q * q - k - tm * q / (q * l).tan();
+    c * lowest_root(|q| m * c * c * q * q - k - tm * q / (q * l).tan(), l)
+}
+
+/// The root of `g` in (0, π/l), where it rises from < 0 to +∞, by
+/// bisection to the last bit.
+fn lowest_root(g: impl Fn(f64) -> f64, l: f64) -> f64 {
     let (mut lo, mut hi) = (1e-9, std::f64::consts::PI / l * (1.0 - 1e-12));
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
@@ -204,7 +209,7 @@ fn spring_mass_end(l: f64, tm: f64, rho: f64, k: f64, m: f64) -> f64 {
             hi = mid;
         }
     }
-    c * 0.5 * (lo + hi)
+    0.5 * (lo + hi)
 }
 
 /// Allowed |observed − 2| of the fundamental's h order (linear elements,
@@ -500,16 +505,7 @@ steady_arm = {arm}
 fn string_with_point(t: f64, rho: f64, (a, b): (f64, f64), (k, m): (f64, f64)) -> f64 {
     let c = (t / rho).sqrt();
     let g = |q: f64| m * c * c * q * q - k - t * q * (1.0 / (q * a).tan() + 1.0 / (q * b).tan());
-    let (mut lo, mut hi) = (1e-9, std::f64::consts::PI / a.max(b) * (1.0 - 1e-12));
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if g(mid) < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    c * 0.5 * (lo + hi)
+    c * lowest_root(g, a.max(b))
 }
 
 #[test]

@@ -39,9 +39,11 @@
 //! `[messenger]`, the messenger has its own motion
 //! `v_m*(x, t) = Σⱼ bⱼ X_m,j(x) T̂ⱼ(t)` (`[manufactured.messenger]`; absent:
 //! v_m* = 0), each shape `X_m = (S − c)·P`, `P(ξ) = Π (ξ − ξ_s)` over the
-//! messenger's interior supports (so X_m = 0 there whatever c is) and c the
-//! correction of its ends (pinned where a support sits at x = 0 or L, free
-//! otherwise, [`supports::Shape::weighted`]); its smooth source is
+//! messenger's pinned interior supports (so X_m = 0 there whatever c is) and c the
+//! correction of its ends (pinned where a pinned support sits at x = 0 or L, free
+//! otherwise, [`supports::Shape::weighted`]); an elastic support
+//! (`docs/lines.md` E1) is a point attachment on the messenger, below, and
+//! does not hold X_m = 0; its smooth source is
 //! `ρA_m v_m,tt + EI_m v_m,xxxx − T_m v_m,xx`. Each dropper d carries in the
 //! manufactured motion the force `N_d*(t) = k_d(e₀ + v_m*(x_d) − v_c*(x_d))`
 //! (W2; `e₀ − v_c*(x_d)` on a fixed anchor, D1), and the source gets the
@@ -59,7 +61,8 @@
 //!
 //! **Point attachments, dashpots, self-weight** (`docs/verification.md`
 //! M4–M7). Each `[[attachment]]` a (spring k_a, dashpot c_a, mass m_a at
-//! x_a to a fixed anchor, no preload) exerts in the manufactured motion the
+//! x_a to a fixed anchor, no preload; on the messenger, with v_m* and r_m,
+//! the messenger's elastic supports and clamps, E1) exerts in the manufactured motion the
 //! force `−(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t)`; the source gets the
 //! point load `+(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t) r_a`, r_a the
 //! interpolation vector the model's attachment is assembled with

@@ -24,7 +24,7 @@ use toml::{Table, Value};
 
 use super::generated::Generated;
 use super::line_design::{PointSpring, StringLoad, dropper_forces, messenger_sag, presag_profile};
-use super::line_props::{Range, clamp_masses, per_dropper};
+use super::line_props::dropper_props;
 use super::line_supports::{chord, line_supports, settlements};
 use super::steady_arm::{SteadyArm, SteadyArmSpec};
 use super::validate::MAX_ELEMENTS;
@@ -262,59 +262,16 @@ impl Line {
                 ),
             ));
         }
-        let shape = (s.spans, local.len());
-        let k_d = per_dropper(
-            "line.dropper_stiffness",
-            Some(&s.dropper_stiffness),
-            0.0,
-            shape,
-            Range::Positive,
-            "N/m",
+        let props = dropper_props(
+            (
+                &s.dropper_stiffness,
+                s.dropper_damping.as_ref(),
+                s.dropper_mass.as_ref(),
+                s.clamp_mass.as_ref(),
+            ),
+            (s.spans, local.len()),
+            s.anchor == LineAnchor::Fixed,
         )?;
-        let c_d = per_dropper(
-            "line.dropper_damping",
-            s.dropper_damping.as_ref(),
-            0.0,
-            shape,
-            Range::NonNegative,
-            "N·s/m",
-        )?;
-        let own = per_dropper(
-            "line.dropper_mass",
-            s.dropper_mass.as_ref(),
-            0.0,
-            shape,
-            Range::NonNegative,
-            "kg",
-        )?;
-        let (clamp_c, clamp_m) = clamp_masses(s.clamp_mass.as_ref(), shape)?;
-        if s.anchor == LineAnchor::Fixed
-            && let Some(i) = clamp_m.iter().position(|&m| m != 0.0)
-        {
-            return Err(Error::invalid(
-                "line.clamp_mass.messenger",
-                clamp_m[i],
-                "must be 0 (kg) with line.anchor = \"fixed\": the droppers' upper ends are fixed points, which no mass moves; use anchor = \"messenger\"",
-            ));
-        }
-        // a fixed anchor holds the dropper's upper half: only the lower
-        // half moves with the wire
-        let half = |m: f64| 0.5 * m;
-        let end_mass = (
-            clamp_c
-                .iter()
-                .zip(&own)
-                .map(|(c, m)| c + half(*m))
-                .collect(),
-            match s.anchor {
-                LineAnchor::Messenger => clamp_m
-                    .iter()
-                    .zip(&own)
-                    .map(|(c, m)| c + half(*m))
-                    .collect(),
-                LineAnchor::Fixed => vec![0.0; own.len()],
-            },
-        );
         let supports = line_supports(s.messenger.support.as_ref(), s.spans)?;
         if s.anchor == LineAnchor::Fixed && supports.0.is_some() {
             return Err(Error::invalid(
@@ -365,14 +322,14 @@ impl Line {
             span,
             local,
             presag,
-            k_d,
+            k_d: props.stiffness,
             h,
             anchor: s.anchor,
             messenger: m.clone(),
             steady_arm,
             linear: s.linear_droppers,
-            c_d,
-            end_mass,
+            c_d: props.damping,
+            end_mass: (props.lower_mass, props.upper_mass),
             supports,
         })
     }

@@ -100,6 +100,63 @@ pub(crate) fn per_dropper(
         .collect())
 }
 
+/// Every dropper's properties (span by span) from `[line]`.
+pub(crate) struct DropperProps {
+    /// k_d, N/m.
+    pub stiffness: Vec<f64>,
+    /// c_d, N·s/m.
+    pub damping: Vec<f64>,
+    /// The point mass at the lower end (contact wire), kg: its clamp plus
+    /// half the dropper's own mass (E3).
+    pub lower_mass: Vec<f64>,
+    /// The same at the upper end (messenger), kg; 0 on a fixed anchor,
+    /// which holds the upper half.
+    pub upper_mass: Vec<f64>,
+}
+
+/// `dropper_stiffness`, `dropper_damping`, `dropper_mass` and
+/// `clamp_mass` of a line of `shape` = (spans, droppers a span) as each
+/// dropper's values (E3); `fixed_anchor`: the upper ends are fixed points
+/// (a messenger clamp mass is refused).
+pub(crate) fn dropper_props(
+    (stiffness, damping, mass, clamp): (&Value, Option<&Value>, Option<&Value>, Option<&Value>),
+    shape: (usize, usize),
+    fixed_anchor: bool,
+) -> Result<DropperProps> {
+    let [stiffness, damping, own] = [
+        (
+            "line.dropper_stiffness",
+            Some(stiffness),
+            Range::Positive,
+            "N/m",
+        ),
+        ("line.dropper_damping", damping, Range::NonNegative, "N·s/m"),
+        ("line.dropper_mass", mass, Range::NonNegative, "kg"),
+    ]
+    .map(|(field, v, range, unit)| per_dropper(field, v, 0.0, shape, range, unit));
+    let own = own?;
+    let (clamp_c, clamp_m) = clamp_masses(clamp, shape)?;
+    if fixed_anchor && let Some(i) = clamp_m.iter().position(|&m| m != 0.0) {
+        return Err(Error::invalid(
+            "line.clamp_mass.messenger",
+            clamp_m[i],
+            "must be 0 (kg) with line.anchor = \"fixed\": the droppers' upper ends are fixed points, which no mass moves; use anchor = \"messenger\"",
+        ));
+    }
+    let ends =
+        |clamp: &[f64]| -> Vec<f64> { clamp.iter().zip(&own).map(|(c, m)| c + 0.5 * m).collect() };
+    Ok(DropperProps {
+        stiffness: stiffness?,
+        damping: damping?,
+        lower_mass: ends(&clamp_c),
+        upper_mass: if fixed_anchor {
+            vec![0.0; own.len()]
+        } else {
+            ends(&clamp_m)
+        },
+    })
+}
+
 /// `line.clamp_mass = { contact = …, messenger = … }`: each a per-dropper
 /// key (kg, ≥ 0, default 0); (contact side, messenger side), one value per
 /// dropper of the line.
