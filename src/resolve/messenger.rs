@@ -2,10 +2,12 @@
 //! W1–W6): its supports on the mesh's nodes, the bases that carry it, and
 //! the linear messenger droppers' springs it gains.
 //!
-//! * Each support must fall on a node of the mesh (the support removes
-//!   that node's messenger w, as an end support removes the contact
-//!   wire's); a support between nodes would need a constraint, not a
-//!   removed unknown. The error names the support and the nearest node.
+//! * Each support must fall on a node of the mesh (a pinned support
+//!   removes that node's messenger w, as an end support removes the
+//!   contact wire's; an elastic one, `docs/lines.md` E1, keeps it and adds
+//!   its spring, dashpot and mass there); a support between nodes would
+//!   need a constraint, not a removed unknown. The error names the support
+//!   and the nearest node.
 //! * Every implicit method steps it: the generalized-α family
 //!   (`generalized_alpha`, `newmark`, `hht`, `wbz`), `bathe` and
 //!   `moreau_jean` use the assembled two-line M, K (and C) like any

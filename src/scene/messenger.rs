@@ -46,7 +46,7 @@ pub struct MessengerSpec {
     /// Elastic supports (`docs/lines.md` eq. E1): `{ stiffness, damping,
     /// mass }` for every support, or a list with one `"pinned"` or `{ … }`
     /// per support; absent: every support pinned
-    /// ([`super::messenger_support`]).
+    /// (`scene/messenger_support.rs`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub support: Option<toml::Value>,
 }
