@@ -24,7 +24,7 @@ use toml::{Table, Value};
 
 use super::generated::Generated;
 use super::line_design::{PointSpring, StringLoad, dropper_forces, messenger_sag, presag_profile};
-use super::line_props::dropper_props;
+use super::line_props::{EndMasses, dropper_props};
 use super::line_supports::{chord, line_supports, settlements};
 use super::steady_arm::{SteadyArm, SteadyArmSpec};
 use super::validate::MAX_ELEMENTS;
@@ -207,7 +207,7 @@ struct Line {
     c_d: Vec<f64>,
     /// The point mass at each dropper's lower and upper end, kg: its clamp
     /// plus half its own mass (E3; 0: no attachment emitted).
-    end_mass: (Vec<f64>, Vec<f64>),
+    end_mass: EndMasses,
     /// `[messenger] support` to write, and each support's kind (E2).
     supports: (Option<Value>, Vec<Option<super::ElasticSupport>>),
 }
@@ -329,7 +329,7 @@ impl Line {
             steady_arm,
             linear: s.linear_droppers,
             c_d: props.damping,
-            end_mass: (props.lower_mass, props.upper_mass),
+            end_mass: props.end_mass,
             supports,
         })
     }
@@ -648,38 +648,15 @@ impl Line {
                 .collect(),
             None => Vec::new(),
         };
-        arms.extend(self.clamps(design));
+        arms.extend(
+            self.end_mass
+                .tables(design.iter().map(|d| (d.name.as_str(), d.x))),
+        );
         if !arms.is_empty() {
             arms.extend(take_array(tree, "attachment")?);
             tree.insert("attachment".into(), Value::Array(arms));
         }
         Ok(())
-    }
-
-    /// The droppers' end masses as point masses (E3): on the contact wire
-    /// at x_d, then on the messenger; none where the mass is 0.
-    fn clamps(&self, design: &[DesignedDropper]) -> Vec<Value> {
-        let (lower, upper) = &self.end_mass;
-        let at = |side: &str, wire: Option<&str>, masses: &[f64]| -> Vec<Value> {
-            design
-                .iter()
-                .zip(masses)
-                .filter(|(_, m)| **m != 0.0)
-                .map(|(d, m)| {
-                    let mut t = Table::new();
-                    t.insert("name".into(), Value::String(format!("{side}_{}", d.name)));
-                    t.insert("x".into(), Value::Float(d.x));
-                    t.insert("mass".into(), Value::Float(*m));
-                    if let Some(w) = wire {
-                        t.insert("wire".into(), Value::String(w.into()));
-                    }
-                    Value::Table(t)
-                })
-                .collect()
-        };
-        let mut out = at("clamp", None, lower);
-        out.extend(at("messenger_clamp", Some("messenger"), upper));
-        out
     }
 
     /// How many `[[attachment]]` the expansion writes: the steady arms and
@@ -690,8 +667,7 @@ impl Line {
         } else {
             0
         };
-        let (lower, upper) = &self.end_mass;
-        arms + lower.iter().chain(upper).filter(|m| **m != 0.0).count()
+        arms + self.end_mass.count()
     }
 }
 

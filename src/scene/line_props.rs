@@ -106,12 +106,59 @@ pub(crate) struct DropperProps {
     pub stiffness: Vec<f64>,
     /// c_d, N·s/m.
     pub damping: Vec<f64>,
-    /// The point mass at the lower end (contact wire), kg: its clamp plus
-    /// half the dropper's own mass (E3).
-    pub lower_mass: Vec<f64>,
-    /// The same at the upper end (messenger), kg; 0 on a fixed anchor,
-    /// which holds the upper half.
-    pub upper_mass: Vec<f64>,
+    /// The point masses at the droppers' ends.
+    pub end_mass: EndMasses,
+}
+
+/// The point masses at each dropper's two ends (E3), kg.
+pub(crate) struct EndMasses {
+    /// At the lower end (contact wire): its clamp plus half the dropper's
+    /// own mass.
+    lower: Vec<f64>,
+    /// The same at the upper end (messenger); 0 on a fixed anchor, which
+    /// holds the upper half.
+    upper: Vec<f64>,
+}
+
+impl EndMasses {
+    /// The `[[attachment]]` tables of the droppers `(name, x_d)`: on the
+    /// contact wire (`clamp_<name>`), then on the messenger
+    /// (`messenger_clamp_<name>`, `wire = "messenger"`); none where the
+    /// mass is 0.
+    pub(crate) fn tables<'a>(
+        &self,
+        droppers: impl Iterator<Item = (&'a str, f64)> + Clone,
+    ) -> Vec<Value> {
+        let at = |side: &str, wire: Option<&str>, masses: &[f64]| -> Vec<Value> {
+            droppers
+                .clone()
+                .zip(masses)
+                .filter(|(_, m)| **m != 0.0)
+                .map(|((name, x), m)| {
+                    let mut t = toml::Table::new();
+                    t.insert("name".into(), Value::String(format!("{side}_{name}")));
+                    t.insert("x".into(), Value::Float(x));
+                    t.insert("mass".into(), Value::Float(*m));
+                    if let Some(w) = wire {
+                        t.insert("wire".into(), Value::String(w.into()));
+                    }
+                    Value::Table(t)
+                })
+                .collect()
+        };
+        let mut out = at("clamp", None, &self.lower);
+        out.extend(at("messenger_clamp", Some("messenger"), &self.upper));
+        out
+    }
+
+    /// How many tables [`EndMasses::tables`] writes.
+    pub(crate) fn count(&self) -> usize {
+        self.lower
+            .iter()
+            .chain(&self.upper)
+            .filter(|m| **m != 0.0)
+            .count()
+    }
 }
 
 /// `dropper_stiffness`, `dropper_damping`, `dropper_mass` and
@@ -148,11 +195,13 @@ pub(crate) fn dropper_props(
     Ok(DropperProps {
         stiffness: stiffness?,
         damping: damping?,
-        lower_mass: ends(&clamp_c),
-        upper_mass: if fixed_anchor {
-            vec![0.0; own.len()]
-        } else {
-            ends(&clamp_m)
+        end_mass: EndMasses {
+            lower: ends(&clamp_c),
+            upper: if fixed_anchor {
+                vec![0.0; own.len()]
+            } else {
+                ends(&clamp_m)
+            },
         },
     })
 }
