@@ -164,8 +164,8 @@ impl Point {
 /// point has the runs its stage needs it moves on and queues its next
 /// ones. Points are admitted [`CHUNK`] at a time whenever fewer jobs wait
 /// than there are workers, so no worker waits for a slow run of another
-/// point (a round of a chunk waited for its slowest run: on the 41 × 41
-/// map two cores were busy 1.6 of 2).
+/// point (rounds of a chunk waited for each round's slowest run: the 9 × 9
+/// subgrid of the Fig. 12 map kept 1.63 of 2 cores busy).
 pub(super) fn run_points(
     spec: &SweepSpec,
     base: Option<&Table>,
