@@ -35,11 +35,11 @@
 //! the records are the same whatever the order, threads or batch width; a
 //! finished point is saved at once (resumable).
 
-use std::sync::{Condvar, Mutex};
+use std::sync::{Condvar, Mutex, MutexGuard};
 
 use toml::Table;
 
-use super::batch::{BatchWidth, auto_lanes};
+use super::batch::{BatchWidth, auto_lanes, panic_message};
 use super::record::{SweepRecord, record_of};
 use super::spec::SweepSpec;
 use super::tolerance_spec::{PointAccuracy, SweepTolerance};
@@ -365,13 +365,9 @@ fn work(ctx: &Ctx, queue: &Mutex<Queue>, wake: &Condvar) {
         }
         let saved = q.admit(ctx);
         if !saved.is_empty() {
-            drop(q);
-            let r = saved.into_iter().try_for_each(|r| (ctx.save)(r));
-            q = lock();
-            if let Err(e) = r {
-                q.stop.get_or_insert(e);
-                wake.notify_all();
-                break;
+            match save_unlocked(ctx, queue, wake, q, saved) {
+                Some(g) => q = g,
+                None => break,
             }
             continue;
         }
@@ -420,6 +416,7 @@ fn work(ctx: &Ctx, queue: &Mutex<Queue>, wake: &Condvar) {
             }
         }
         let mut slots: Vec<usize> = job.members.iter().map(|m| m.0).collect();
+        slots.sort_unstable();
         slots.dedup();
         for slot in slots {
             if q.points[slot].is_some() {
@@ -428,14 +425,32 @@ fn work(ctx: &Ctx, queue: &Mutex<Queue>, wake: &Condvar) {
         }
         wake.notify_all();
         if !saved.is_empty() {
-            drop(q);
-            let r = saved.into_iter().try_for_each(|r| (ctx.save)(r));
-            q = lock();
-            if let Err(e) = r {
-                q.stop.get_or_insert(e);
-                wake.notify_all();
-                break;
+            match save_unlocked(ctx, queue, wake, q, saved) {
+                Some(g) => q = g,
+                None => break,
             }
+        }
+    }
+}
+
+/// Save finished records with the lock released; the lock again, or None
+/// when a save failed (the sweep stops with that error, the workers woken).
+fn save_unlocked<'a>(
+    ctx: &Ctx,
+    queue: &'a Mutex<Queue>,
+    wake: &Condvar,
+    q: MutexGuard<'a, Queue>,
+    saved: Vec<SweepRecord>,
+) -> Option<MutexGuard<'a, Queue>> {
+    drop(q);
+    let r = saved.into_iter().try_for_each(|r| (ctx.save)(r));
+    let mut q = queue.lock().unwrap_or_else(|e| e.into_inner());
+    match r {
+        Ok(()) => Some(q),
+        Err(e) => {
+            q.stop.get_or_insert(e);
+            wake.notify_all();
+            None
         }
     }
 }
@@ -522,11 +537,7 @@ fn run_job(ctx: &Ctx, job: &Job, keep: &[bool], indices: &[usize]) -> Vec<Result
             .collect::<Vec<_>>()
     };
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(go)).unwrap_or_else(|payload| {
-        let what = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "no message".into());
+        let what = panic_message(payload.as_ref());
         job.members
             .iter()
             .map(|_| {
