@@ -81,6 +81,11 @@ fn each_point_reports_u_num_and_the_resolution_it_took() {
     let again = sweep(&dir, &[]);
     assert!(again.0, "{}", again.2);
     assert_eq!(again.1, csv);
+    // one thread, every run alone: the same bytes (the queue's order and
+    // its batches change nothing a point records)
+    let alone = sweep(&out_dir(&tmp, "alone"), &["--threads", "1", "--batch", "1"]);
+    assert!(alone.0, "{}", alone.2);
+    assert_eq!(alone.1, csv);
     // two shards merged are the sweep
     for i in ["0/2", "1/2"] {
         let (ok, _, err) = sweep(&out_dir(&tmp, &format!("s{}", &i[..1])), &["--shard", i]);

@@ -9,31 +9,37 @@
 //! 1. **Pilots**: the family of `taut uncertainty` with three levels ending
 //!    at the point's own resolution, coarsened — (−2, −2), (−1, −1), (0, 0)
 //!    and the split runs (−1, −2), (0, −1), together 1.81 times the point's
-//!    own run. Q's u_num at (0, 0) ([`assess`]); within EPS: done.
+//!    own run. Q's u_num at (0, 0) ([`assess`]; for a quantity that is
+//!    not smooth, at least [`split_floor`]: its mesh and Δt parts added
+//!    without their signs); within EPS: done.
 //! 2. **Plan**: `run --tolerance`'s error model from the split's mesh and
 //!    Δt differences ([`LadderFit`], [`ErrorModel::cheapest`]) gives the
 //!    cheapest (h, Δt) whose modelled error is within [`PLAN_SHARE`] × EPS;
 //!    the candidate is the coarsest (a, b) at or below it.
 //! 3. **Check**: the candidate's own three-level family, (a − 2, b − 2),
-//!    (a − 1, b − 1), (a, b) (runs made already are reused), gives its
-//!    u_num. Within EPS: done; else one more level on both (a + 1, b + 1),
+//!    (a − 1, b − 1), (a, b), and its split (a − 1, b − 2), (a, b − 1)
+//!    (runs made already are reused), gives its u_num. Within EPS: done;
+//!    else one more level on both (a + 1, b + 1),
 //!    up to [`MAX_CHECKS`] checks. Every candidate is cut down, its larger
 //!    refinement first, to what the point's budget (`budget` × its own
 //!    run, in unknowns × steps) still allows and to scenes the model takes
 //!    (J within the exact modes' range). A point that does not reach
 //!    EPS keeps the candidate of smallest u_num, marked not met.
 //!
-//! Points are worked a chunk at a time ([`CHUNK`]): each round gathers
-//! every run the chunk's points need next and steps those that share their
-//! effective matrix or modal basis together (`--batch`), in parallel. Each
-//! point's numbers depend on its scene alone (a batch gives a run's own
-//! bits), so the records are the same whatever the chunking, threads or
-//! batch width; a finished point is saved at once (resumable).
+//! The points' runs go through one queue ([`run_points`]): a worker takes
+//! the costliest job waiting (runs that share their effective matrix or
+//! modal basis, stepped together, `--batch`), and a point moves on the
+//! moment its stage's runs are in, queuing its next ones; points are
+//! admitted [`CHUNK`] at a time as the queue runs low. Each point's
+//! numbers depend on its scene alone (a batch gives a run's own bits), so
+//! the records are the same whatever the order, threads or batch width; a
+//! finished point is saved at once (resumable).
 
-use rayon::prelude::*;
+use std::sync::{Condvar, Mutex, MutexGuard};
+
 use toml::Table;
 
-use super::batch::{BatchWidth, auto_lanes};
+use super::batch::{BatchWidth, auto_lanes, panic_message};
 use super::record::{SweepRecord, record_of};
 use super::spec::SweepSpec;
 use super::tolerance_spec::{PointAccuracy, SweepTolerance};
@@ -61,9 +67,9 @@ pub(crate) const PLAN_SHARE: f64 = FS_ASYMPTOTIC / FS_CAUTIOUS * 0.8;
 /// The furthest a plan refines one variable: 2⁵ times the point's own.
 pub(crate) const MAX_EXPONENT: i32 = 5;
 
-/// Points worked together: enough for batches of runs that share a matrix
-/// or a basis (a 2-D map's row of 41 speeds is one tension), few enough
-/// that an interruption loses little.
+/// Points admitted at a time when fewer jobs wait than workers: enough for
+/// batches of runs that share a matrix or a basis (a 2-D map's row of 41
+/// speeds is one tension), few enough that an interruption loses little.
 pub const CHUNK: usize = 128;
 
 type Key = (i32, i32);
@@ -72,6 +78,36 @@ const PILOTS: [Key; 5] = [(-2, -2), (-1, -1), (0, 0), (-1, -2), (0, -1)];
 
 fn family(k: Key) -> [Key; 3] {
     [(k.0 - 2, k.1 - 2), (k.0 - 1, k.1 - 1), k]
+}
+
+/// A check's runs: the family ending at `k`, then its split (each level's
+/// mesh at the previous level's Δt), as the pilots have.
+fn check_runs(k: Key) -> [Key; 5] {
+    let [a, b, c] = family(k);
+    [a, b, c, (k.0 - 1, k.1 - 2), (k.0, k.1 - 1)]
+}
+
+/// The `estimator` of a point whose u_num is [`split_floor`]'s.
+pub(crate) const SPLIT_FLOOR: &str = "split_floor";
+
+/// The u_num a quantity that is not smooth gets at least, from the split
+/// of its finest diagonal change φ(a−1, b−1) → φ(a, b) into its mesh part
+/// Δ_h = φ(a−1, b−1) − φ(a, b−1) and its Δt part Δ_Δt = φ(a, b−1) − φ(a, b):
+/// F_s (|Δ_h| + |Δ_Δt|), F_s = 3, the two-level GCI of each variable at
+/// order 1 (r^p − 1 = 1), added without their signs. Along the diagonal
+/// the two parts can cancel: on the Fig. 12 map above V0/c = 1 the in-span
+/// P_l falls with h and rises with Δt, and three diagonal levels that
+/// agree to 0.0003 (T = 22612.5 N, V0 = 207.5 m/s: 0.5798, 0.5821, 0.5818)
+/// hid parts of −0.0040 and +0.0037 and a value 0.019 below the refined
+/// one (docs/performance.md#the-fig-12-map-with---tolerance-0002). None
+/// when a split value is missing.
+fn split_floor(diag: &[Option<f64>], split: &[Option<f64>]) -> Option<f64> {
+    let (prev, mid, cur) = (
+        diag.get(diag.len().checked_sub(2)?).copied().flatten()?,
+        split.last().copied().flatten()?,
+        diag.last().copied().flatten()?,
+    );
+    Some(FS_CAUTIOUS * ((prev - mid).abs() + (mid - cur).abs()))
 }
 
 /// One run of a point.
@@ -99,9 +135,12 @@ struct Point {
     stage: Stage,
     checks: usize,
     base_cost: f64,
-    /// (key, assessment) of each candidate, in order.
-    candidates: Vec<(Key, Assessment)>,
+    /// (key, assessment, whether [`split_floor`] set its u_num) of each
+    /// candidate, in order.
+    candidates: Vec<(Key, Assessment, bool)>,
     record: Option<SweepRecord>,
+    /// Runs queued or being stepped.
+    queued: Vec<Key>,
 }
 
 impl Point {
@@ -142,7 +181,7 @@ impl Point {
     fn wants(&self) -> Vec<Key> {
         let keys: Vec<Key> = match self.stage {
             Stage::Pilot => PILOTS.to_vec(),
-            Stage::Check(k) => family(k).to_vec(),
+            Stage::Check(k) => check_runs(k).to_vec(),
             Stage::Done => vec![],
         };
         keys.into_iter()
@@ -153,6 +192,14 @@ impl Point {
 
 /// Run (or resume) the points `todo` of an accuracy-targeted sweep; each
 /// finished record is handed to `save` (and counted by it).
+///
+/// A queue, not rounds: every worker takes the costliest job waiting (a
+/// batch of runs that share their matrix or basis), and the moment a
+/// point has the runs its stage needs it moves on and queues its next
+/// ones. Points are admitted [`CHUNK`] at a time whenever fewer jobs wait
+/// than there are workers, so no worker waits for a slow run of another
+/// point (rounds of a chunk waited for each round's slowest run: the 9 × 9
+/// subgrid of the Fig. 12 map kept 1.63 of 2 cores busy).
 pub(super) fn run_points(
     spec: &SweepSpec,
     base: Option<&Table>,
@@ -162,50 +209,250 @@ pub(super) fn run_points(
     save: &(dyn Fn(SweepRecord) -> Result<()> + Sync),
 ) -> Result<()> {
     let tol = spec.tolerance.as_ref().expect("an accuracy-targeted sweep");
-    for chunk in todo.chunks(CHUNK) {
-        let mut points: Vec<Point> = chunk.iter().map(|&i| start(spec, base, id, i)).collect();
-        loop {
-            // every run the chunk's points need next, batched and in parallel
-            let mut requests: Vec<(usize, Key, Resolved)> = Vec::new();
-            let mut refused: Vec<(usize, Key, Error)> = Vec::new();
-            for (p, point) in points.iter().enumerate() {
-                for k in point.wants() {
-                    match point.scene(k) {
-                        Ok(sc) => requests.push((p, k, sc)),
-                        Err(e) => refused.push((p, k, e)),
-                    }
-                }
+    let workers = rayon::current_num_threads().max(1);
+    let queue = Mutex::new(Queue {
+        points: Vec::new(),
+        pending: Vec::new(),
+        running: 0,
+        admitted: 0,
+        stop: None,
+    });
+    let wake = Condvar::new();
+    let ctx = Ctx {
+        spec,
+        base,
+        id,
+        todo,
+        tol,
+        batch,
+        workers,
+        save,
+    };
+    rayon::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|_| work(&ctx, &queue, &wake));
+        }
+    });
+    let q = queue.into_inner().unwrap_or_else(|e| e.into_inner());
+    match q.stop {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// What every worker shares, read-only.
+struct Ctx<'a> {
+    spec: &'a SweepSpec,
+    base: Option<&'a Table>,
+    id: &'a str,
+    todo: &'a [usize],
+    tol: &'a SweepTolerance,
+    batch: BatchWidth,
+    workers: usize,
+    save: &'a (dyn Fn(SweepRecord) -> Result<()> + Sync),
+}
+
+/// Runs that may step together ([`crate::integrate::batch_key`]), waiting
+/// or running: (point slot, key, scene) each.
+struct Job {
+    key: Option<crate::integrate::BatchKey>,
+    cap: usize,
+    members: Vec<(usize, Key, Resolved)>,
+    cost: f64,
+}
+
+/// The sweep's state, behind one lock.
+struct Queue {
+    /// The admitted points by slot; `None` once saved.
+    points: Vec<Option<Point>>,
+    /// Jobs waiting for a worker.
+    pending: Vec<Job>,
+    /// Jobs being stepped.
+    running: usize,
+    /// Points of `todo` admitted so far.
+    admitted: usize,
+    /// Why the sweep stops early (an interruption, a record not saved).
+    stop: Option<Error>,
+}
+
+impl Queue {
+    /// Queue a run of point `slot`, in a waiting job of its batch key with
+    /// room, or a job of its own.
+    fn push(&mut self, ctx: &Ctx, slot: usize, key: Key, sc: Resolved) {
+        let w = match ctx.batch {
+            BatchWidth::Fixed(b) => b,
+            BatchWidth::Auto => auto_lanes(&sc),
+        };
+        let bk = batch_key(&sc).filter(|_| w > 1);
+        let cost = run_dof_steps(&sc);
+        if let Some(k) = &bk
+            && let Some(job) = self
+                .pending
+                .iter_mut()
+                .find(|j| j.key.as_ref() == Some(k) && j.members.len() < j.cap)
+        {
+            job.members.push((slot, key, sc));
+            job.cost += cost;
+            return;
+        }
+        self.pending.push(Job {
+            cap: if bk.is_some() { w } else { 1 },
+            key: bk,
+            members: vec![(slot, key, sc)],
+            cost,
+        });
+    }
+
+    /// Queue what point `slot` needs next; a point done is taken out and
+    /// its record returned for saving.
+    fn next_of(&mut self, ctx: &Ctx, slot: usize) -> Option<SweepRecord> {
+        let point = self.points[slot].as_mut().expect("a point in flight");
+        advance(point, ctx.tol);
+        let mut wants = Vec::new();
+        let mut refused = Vec::new();
+        for k in point.wants() {
+            // a run already queued or running for this point is not asked twice
+            if point.queued.contains(&k) {
+                continue;
             }
-            for (p, k, e) in refused {
-                fail(&mut points[p], spec, id, k, e);
+            match point.scene(k) {
+                Ok(sc) => wants.push((k, sc)),
+                Err(e) => refused.push((k, e)),
             }
-            if requests.is_empty() && points.iter().all(|p| matches!(p.stage, Stage::Done)) {
-                for point in points.iter_mut() {
-                    if let Some(r) = point.record.take() {
-                        save(r)?;
-                    }
-                }
+        }
+        for (k, e) in refused {
+            fail(point, ctx.spec, ctx.id, k, e);
+        }
+        if matches!(point.stage, Stage::Done) {
+            if point.queued.is_empty() {
+                let mut p = self.points[slot].take().expect("in flight");
+                return p.record.take();
+            }
+            return None;
+        }
+        point.queued.extend(wants.iter().map(|(k, _)| *k));
+        for (k, sc) in wants {
+            self.push(ctx, slot, k, sc);
+        }
+        None
+    }
+
+    /// Admit the next [`CHUNK`] points when fewer jobs wait than workers;
+    /// the records of points that finish at once (a refused scene).
+    fn admit(&mut self, ctx: &Ctx) -> Vec<SweepRecord> {
+        let mut done = Vec::new();
+        while self.pending.len() < ctx.workers && self.admitted < ctx.todo.len() {
+            let end = (self.admitted + CHUNK).min(ctx.todo.len());
+            for &i in &ctx.todo[self.admitted..end] {
+                let slot = self.points.len();
+                self.points.push(Some(start(ctx.spec, ctx.base, ctx.id, i)));
+                done.extend(self.next_of(ctx, slot));
+            }
+            self.admitted = end;
+        }
+        done
+    }
+}
+
+/// One worker: take the costliest waiting job, step it, hand its runs to
+/// their points and queue what they need next, until every point is saved.
+fn work(ctx: &Ctx, queue: &Mutex<Queue>, wake: &Condvar) {
+    let lock = || queue.lock().unwrap_or_else(|e| e.into_inner());
+    let mut q = lock();
+    loop {
+        if q.stop.is_some() {
+            break;
+        }
+        let saved = q.admit(ctx);
+        if !saved.is_empty() {
+            match save_unlocked(ctx, queue, wake, q, saved) {
+                Some(g) => q = g,
+                None => break,
+            }
+            continue;
+        }
+        let Some(at) =
+            (0..q.pending.len()).max_by(|&a, &b| q.pending[a].cost.total_cmp(&q.pending[b].cost))
+        else {
+            if q.running == 0 {
+                // nothing waits, nothing runs, every point admitted: done
+                wake.notify_all();
                 break;
             }
-            let results = run_requests(spec, base, id, tol, &points, &requests, batch);
-            if crate::interrupt::requested() {
-                return Err(Error::Interrupted);
+            q = wake.wait(q).unwrap_or_else(|e| e.into_inner());
+            continue;
+        };
+        let job = q.pending.swap_remove(at);
+        q.running += 1;
+        let stages: Vec<bool> = job
+            .members
+            .iter()
+            .map(|(slot, key, _)| {
+                let p = q.points[*slot].as_ref().expect("in flight");
+                is_candidate(p, *key)
+            })
+            .collect();
+        let indices: Vec<usize> = job
+            .members
+            .iter()
+            .map(|(slot, ..)| q.points[*slot].as_ref().expect("in flight").index)
+            .collect();
+        drop(q);
+        let results = run_job(ctx, &job, &stages, &indices);
+        q = lock();
+        q.running -= 1;
+        if crate::interrupt::requested() {
+            q.stop.get_or_insert(Error::Interrupted);
+            wake.notify_all();
+            break;
+        }
+        let mut saved = Vec::new();
+        for ((slot, key, _), result) in job.members.iter().zip(results) {
+            let point = q.points[*slot].as_mut().expect("in flight");
+            point.queued.retain(|k| k != key);
+            match result {
+                Ok(ran) => point.runs.push(ran),
+                Err(e) => fail(point, ctx.spec, ctx.id, *key, e),
             }
-            for ((p, key, _), result) in requests.iter().zip(results) {
-                match result {
-                    Ok(ran) => points[*p].runs.push(ran),
-                    Err(e) => fail(&mut points[*p], spec, id, *key, e),
-                }
+        }
+        let mut slots: Vec<usize> = job.members.iter().map(|m| m.0).collect();
+        slots.sort_unstable();
+        slots.dedup();
+        for slot in slots {
+            if q.points[slot].is_some() {
+                saved.extend(q.next_of(ctx, slot));
             }
-            for point in points.iter_mut() {
-                advance(point, tol);
-                if let (Stage::Done, Some(r)) = (&point.stage, point.record.take()) {
-                    save(r)?;
-                }
+        }
+        wake.notify_all();
+        if !saved.is_empty() {
+            match save_unlocked(ctx, queue, wake, q, saved) {
+                Some(g) => q = g,
+                None => break,
             }
         }
     }
-    Ok(())
+}
+
+/// Save finished records with the lock released; the lock again, or None
+/// when a save failed (the sweep stops with that error, the workers woken).
+fn save_unlocked<'a>(
+    ctx: &Ctx,
+    queue: &'a Mutex<Queue>,
+    wake: &Condvar,
+    q: MutexGuard<'a, Queue>,
+    saved: Vec<SweepRecord>,
+) -> Option<MutexGuard<'a, Queue>> {
+    drop(q);
+    let r = saved.into_iter().try_for_each(|r| (ctx.save)(r));
+    let mut q = queue.lock().unwrap_or_else(|e| e.into_inner());
+    match r {
+        Ok(()) => Some(q),
+        Err(e) => {
+            q.stop.get_or_insert(e);
+            wake.notify_all();
+            None
+        }
+    }
 }
 
 /// A point at its own resolution, or its record when its scene is refused.
@@ -220,6 +467,7 @@ fn start(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> Poin
         base_cost: 0.0,
         candidates: Vec::new(),
         record: None,
+        queued: Vec::new(),
     };
     match spec.resolve_with(base, index) {
         Ok(sc) => {
@@ -259,86 +507,61 @@ fn describe(p: &Point, k: Key) -> String {
     }
 }
 
-/// Run the requested runs: those that share a batch key stepped together,
-/// every batch in parallel; each run reduced at once to Q's value, its
-/// cost and (for a candidate) the point's record.
-fn run_requests(
-    spec: &SweepSpec,
-    base: Option<&Table>,
-    id: &str,
-    tol: &SweepTolerance,
-    points: &[Point],
-    requests: &[(usize, Key, Resolved)],
-    width: BatchWidth,
-) -> Vec<Result<Ran>> {
-    // groups of requests that share their matrix or basis, at most the
-    // batch width each
-    let mut groups: Vec<(Option<crate::integrate::BatchKey>, usize, Vec<usize>)> = Vec::new();
-    for (r, (_, _, sc)) in requests.iter().enumerate() {
-        let w = match width {
-            BatchWidth::Fixed(b) => b,
-            BatchWidth::Auto => auto_lanes(sc),
-        };
-        let key = batch_key(sc).filter(|_| w > 1).map(|k| (k, w));
-        match key {
-            Some((k, w)) => match groups
-                .iter_mut()
-                .find(|(g, cap, m)| g.as_ref() == Some(&k) && m.len() < *cap)
-            {
-                Some(g) => g.2.push(r),
-                None => groups.push((Some(k), w, vec![r])),
-            },
-            None => groups.push((None, 1, vec![r])),
-        }
-    }
-    let q = tol.spec();
-    let reduced: Vec<Vec<(usize, Result<Ran>)>> = groups
-        .par_iter()
-        .with_max_len(1)
-        .map(|(_, w, members)| {
-            let scenes: Vec<Resolved> = members.iter().map(|&r| requests[r].2.clone()).collect();
-            let outs = run_batch(&scenes, *w, &mut |_| {});
-            members
-                .iter()
-                .zip(outs)
-                .map(|(&r, out)| {
-                    let (p, key, sc) = &requests[r];
-                    let ran =
-                        out.map(|out| reduce(spec, base, id, &q, &points[*p], *key, sc, &out));
-                    (r, ran)
+/// A run's record is kept when it may be reported: the point's own
+/// resolution (0, 0) and the last run of a check's family.
+fn is_candidate(p: &Point, key: Key) -> bool {
+    key == (0, 0) || matches!(p.stage, Stage::Check(k) if k == key)
+}
+
+/// Step a job's runs together (one batch; a run alone when the job has
+/// one), each reduced at once to Q's value, its cost and (for a
+/// candidate, `keep`) the point's record. A panic inside makes every run
+/// of the job an error (none of them is trusted), never a stuck sweep.
+fn run_job(ctx: &Ctx, job: &Job, keep: &[bool], indices: &[usize]) -> Vec<Result<Ran>> {
+    let q = ctx.tol.spec();
+    let go = || {
+        let scenes: Vec<Resolved> = job.members.iter().map(|m| m.2.clone()).collect();
+        let outs = run_batch(&scenes, job.cap, &mut |_| {});
+        job.members
+            .iter()
+            .zip(outs)
+            .enumerate()
+            .map(|(m, ((_, key, sc), out))| {
+                out.map(|out| {
+                    let record = keep[m].then(|| {
+                        record_of(ctx.spec, ctx.base, ctx.id, indices[m], Some(sc), Ok(&out))
+                    });
+                    reduce(&q, *key, &out, record)
                 })
-                .collect()
-        })
-        .collect();
-    let mut out: Vec<Option<Result<Ran>>> = (0..requests.len()).map(|_| None).collect();
-    for (r, ran) in reduced.into_iter().flatten() {
-        out[r] = Some(ran);
-    }
-    out.into_iter()
-        .map(|r| r.expect("every request ran"))
-        .collect()
+            })
+            .collect::<Vec<_>>()
+    };
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(go)).unwrap_or_else(|payload| {
+        let what = panic_message(payload.as_ref());
+        job.members
+            .iter()
+            .map(|_| {
+                Err(Error::invalid(
+                    "--tolerance",
+                    "a run",
+                    format!(
+                        "internal error (a panic in taut, please report it), in a batch of {} runs: {what}",
+                        job.members.len()
+                    ),
+                ))
+            })
+            .collect()
+    })
 }
 
 /// A run reduced to what the point keeps.
-#[allow(clippy::too_many_arguments)]
-fn reduce(
-    spec: &SweepSpec,
-    base: Option<&Table>,
-    id: &str,
-    q: &QuantitySpec,
-    point: &Point,
-    key: Key,
-    sc: &Resolved,
-    out: &RunOutput,
-) -> Ran {
-    // a candidate's record is kept: (0, 0) and the last of a check family
-    let candidate = key == (0, 0) || matches!(point.stage, Stage::Check(k) if k == key);
+fn reduce(q: &QuantitySpec, key: Key, out: &RunOutput, record: Option<SweepRecord>) -> Ran {
     Ran {
         key,
         value: q.of(out),
         dof_steps: out.dofs as f64 * out.steps as f64,
         loss: out.stats.first().is_some_and(|s| s.loss_interval_count > 0),
-        record: candidate.then(|| record_of(spec, base, id, point.index, Some(sc), Ok(out))),
+        record,
     }
 }
 
@@ -358,33 +581,30 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     let formal = q.formal_orders(method_order, switch, string);
     let at =
         |keys: &[Key]| -> Vec<Option<f64>> { keys.iter().map(|&k| p.value(k).flatten()).collect() };
-    let (key, a) = match p.stage {
-        Stage::Pilot => {
-            let (diag, split) = (at(&PILOTS[..3]), at(&PILOTS[3..]));
-            let a = assess(&Inputs {
-                diagonal: &diag,
-                space: &split,
-                ratio: RATIO as f64,
-                formal,
-                smooth: q.smooth,
-            });
-            ((0, 0), a)
-        }
-        Stage::Check(k) => {
-            let diag = at(&family(k));
-            let a = assess(&Inputs {
-                diagonal: &diag,
-                space: &[],
-                ratio: RATIO as f64,
-                formal,
-                smooth: q.smooth,
-            });
-            (k, a)
-        }
+    let (key, keys) = match p.stage {
+        Stage::Pilot => ((0, 0), PILOTS),
+        Stage::Check(k) => (k, check_runs(k)),
         Stage::Done => return,
     };
+    let (diag, split) = (at(&keys[..3]), at(&keys[3..]));
+    let mut a = assess(&Inputs {
+        diagonal: &diag,
+        space: &split,
+        ratio: RATIO as f64,
+        formal,
+        smooth: q.smooth,
+    });
+    // a quantity that is not smooth: its mesh and Δt parts may cancel
+    // along the diagonal
+    let floor = (!q.smooth)
+        .then(|| split_floor(&diag, &split))
+        .flatten()
+        .filter(|&f| a.u_num.is_some_and(|u| f > u));
+    if let Some(f) = floor {
+        a.u_num = Some(f);
+    }
     let u = a.u_num.unwrap_or(f64::INFINITY);
-    p.candidates.push((key, a));
+    p.candidates.push((key, a, floor.is_some()));
     if u <= tol.tolerance {
         return finish(p, tol, key);
     }
@@ -396,7 +616,7 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     // within the budget: the plan cut down, the larger refinement first,
     // so a point out of reach still gets as close as its budget allows
     let cost = |p: &Point, k: Key| -> f64 {
-        family(k)
+        check_runs(k)
             .iter()
             .filter(|&&f| p.value(f).is_none())
             .map(|f| p.base_cost * (RATIO as f64).powi(f.0 + f.1))
@@ -406,7 +626,7 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     // reach like one beyond the budget
     let fits = |p: &Point, k: Key| {
         p.spent() + cost(p, k) <= tol.budget * p.base_cost
-            && family(k)
+            && check_runs(k)
                 .iter()
                 .all(|&f| p.value(f).is_some() || p.scene(f).is_ok())
     };
@@ -468,11 +688,11 @@ fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
 
 /// Finish a point with candidate `key`: its record and accuracy.
 fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
-    let a = p
+    let (a, floored) = p
         .candidates
         .iter()
         .rfind(|c| c.0 == key)
-        .map(|c| c.1.clone())
+        .map(|c| (c.1.clone(), c.2))
         .expect("a candidate");
     let run = p
         .runs
@@ -491,10 +711,35 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
         dt: sc.as_ref().map_or(f64::NAN, |s| s.dt),
         runs: p.runs.len(),
         dof_steps: p.spent(),
-        estimator: a.estimator.name().to_string(),
+        estimator: if floored {
+            SPLIT_FLOOR.to_string()
+        } else {
+            a.estimator.name().to_string()
+        },
         checks: p.checks,
     });
     record.wall_seconds = None;
     p.record = Some(record);
     p.stage = Stage::Done;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The Fig. 12 map's point T = 22612.5 N, V0 = 207.5 m/s: a diagonal
+    /// that agrees to 0.0003 over mesh and Δt parts of −0.0040 and +0.0037.
+    #[test]
+    fn the_split_floor_sees_parts_that_cancel_on_the_diagonal() {
+        let diag = [Some(0.57977), Some(0.58208), Some(0.58181)];
+        let split = [Some(0.58349), Some(0.57808)];
+        let f = split_floor(&diag, &split).unwrap();
+        let parts = (0.58208f64 - 0.57808).abs() + (0.57808f64 - 0.58181).abs();
+        assert!((f - FS_CAUTIOUS * parts).abs() < 1e-12, "{f}");
+        // wider than the diagonal's own last change, and than its true error
+        assert!(f > 0.019 && f > 10.0 * (0.58208f64 - 0.58181).abs());
+        // no split, no floor
+        assert_eq!(split_floor(&diag, &[]), None);
+        assert_eq!(split_floor(&diag, &[Some(0.5), None]), None);
+    }
 }

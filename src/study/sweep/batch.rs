@@ -110,11 +110,7 @@ pub(super) fn records_guarded(
             .collect::<Vec<_>>()
     };
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(go)).unwrap_or_else(|payload| {
-        let what = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "no message".into());
+        let what = panic_message(payload.as_ref());
         item.iter()
             .map(|&i| SweepRecord {
                 error: Some(format!(
@@ -125,4 +121,13 @@ pub(super) fn records_guarded(
             })
             .collect()
     })
+}
+
+/// A panic's message, for the error record of the runs it stopped.
+pub(super) fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "no message".into())
 }
