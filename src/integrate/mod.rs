@@ -54,6 +54,7 @@ mod damped_modes;
 mod diagnose;
 mod dropper;
 mod energy;
+mod form_finding;
 mod external_force;
 mod gen_alpha;
 mod gen_alpha_kernel;
@@ -89,6 +90,7 @@ pub(crate) use diagnose::{
 };
 pub use dropper::DropperSample;
 pub use energy::Energy;
+pub use form_finding::{FORM_TOLERANCE, FormFound, StaticDropper};
 pub use integrator::Integrator;
 pub use mass_dofs::MassDof;
 pub(crate) use method::scene_method;

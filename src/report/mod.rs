@@ -5,6 +5,7 @@ mod axis_range;
 mod compare;
 mod converge;
 mod csv;
+mod form;
 mod gate;
 mod html;
 mod incomplete;
@@ -46,7 +47,8 @@ pub use precision::{precision_rows, precision_table};
 pub use standard::standard_table;
 pub(crate) use standard::write_standard;
 pub(crate) use summary::write_summary;
-pub use summary::{Derived, Summary, mesh_label};
+pub use form::{droppers_static_table, static_heights_table};
+pub use summary::{Derived, FormSummary, Summary, mesh_label};
 pub use sweep::{sweep_table, write_sweep};
 pub(crate) use sweep_maps::write_sweep_maps;
 pub use sweep_maps::{
@@ -102,6 +104,7 @@ pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> 
         write_standard(dir, sc, &summary.standard, &summary.supports)?;
         write_wire(dir, &out.history)?;
         write_line(dir, sc, out, &summary.spans)?;
+        form::write_form(dir, sc, out.form.as_ref())?;
         write_summary(&dir.join("summary.json"), &summary)?;
         Ok(summary)
     })

@@ -77,6 +77,11 @@ struct LineSpec {
     /// each (`docs/lines.md` D11 linear, D12 tension-only).
     #[serde(default)]
     dropper_damping: f64,
+    /// Form-find the dropper lengths (`docs/lines.md` eq. F1–F5): each
+    /// dropper gets `design_height` = v_c(x_d) (G2), and the run solves
+    /// for the lengths from the G6 ones (default false: G6's lengths).
+    #[serde(default)]
+    form_finding: bool,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
@@ -197,6 +202,8 @@ struct Line {
     linear: bool,
     /// c_d, N·s/m (0: no `damping` key emitted).
     c_d: f64,
+    /// Emit each dropper's `design_height` (form-finding, F1–F5).
+    form_finding: bool,
 }
 
 fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
@@ -303,6 +310,7 @@ impl Line {
             steady_arm: s.steady_arm,
             linear: s.linear_droppers,
             c_d,
+            form_finding: s.form_finding,
         })
     }
 
@@ -579,6 +587,9 @@ impl Line {
                 }
                 if self.c_d != 0.0 {
                     t.insert("damping".into(), Value::Float(self.c_d));
+                }
+                if self.form_finding {
+                    t.insert("design_height".into(), Value::Float(d.contact_v));
                 }
                 Value::Table(t)
             })
