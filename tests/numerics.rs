@@ -34,6 +34,8 @@ mod discretizations;
 mod dropper_damping;
 #[path = "droppers.rs"]
 mod droppers;
+#[path = "form_finding.rs"]
+mod form_finding;
 #[path = "formulations.rs"]
 mod formulations;
 #[path = "galerkin_order.rs"]

@@ -116,7 +116,10 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
     let Some(base) = physics.free_load.take() else {
         return Ok(None);
     };
-    let points: Vec<_> = design.iter().map(|&(i, _)| beam.point_vector(sc.droppers[i].x)).collect();
+    let points: Vec<_> = design
+        .iter()
+        .map(|&(i, _)| beam.point_vector(sc.droppers[i].x))
+        .collect();
     let heights = |d: &[f64]| -> Vec<f64> { points.iter().map(|p| p.dot(d)).collect() };
     let at_rest = |load: &[f64]| -> Vec<f64> {
         let mut d = load.to_vec();
@@ -189,7 +192,9 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
                 lengths[i] = l;
                 let mut found = sc.droppers[i].clone();
                 found.length = l;
-                physics.droppers.set_rest_extension(i, found.rest_extension());
+                physics
+                    .droppers
+                    .set_rest_extension(i, found.rest_extension());
             }
             // the load as a run from these lengths builds it (Physics::new)
             physics.beam.load.copy_from_slice(&base);
@@ -245,4 +250,146 @@ fn worst_index(rho: &[f64]) -> usize {
             if r.abs() > bv { (i, r.abs()) } else { (bi, bv) }
         })
         .0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::System;
+    use crate::resolve::resolve_scene;
+
+    /// String elements are nodally exact for a string under a uniform load
+    /// held at nodes: the found lengths and the hand's agree to the static
+    /// solve's round-off (relative to the O(1) m lengths).
+    const NODAL: f64 = 1e-12;
+
+    /// A 10 m string (T = 1000 N, ρA = 1 kg/m, g = 10: w = 10 N/m) on 40
+    /// linear elements, three tension-only droppers (k_d = 1e4 N/m) to fixed
+    /// anchors at z_a = 1 m, at x = 2.5, 5, 7.5 m, with design heights
+    /// `heights` (m).
+    fn string_scene(heights: [f64; 3], extra: &str) -> String {
+        let droppers: String = [2.5, 5.0, 7.5]
+            .iter()
+            .zip(heights)
+            .map(|(x, v)| {
+                format!(
+                    "[[dropper]]\nx = {x}\nstiffness = 1.0e4\nanchor_height = 1.0\nlength = 1.0\ndesign_height = {v:e}\n{extra}\n"
+                )
+            })
+            .collect();
+        format!(
+            r#"
+[beam]
+length = 10.0
+mass_per_length = 1.0
+bending_stiffness = 0.0
+tension = 1000.0
+left = "pinned"
+right = "pinned"
+
+[mesh]
+elements = 40
+
+[[carrier]]
+force = 10.0
+side = "below"
+start = 0.0
+speed = {{ profile = "constant", value = 0.0 }}
+
+[time]
+step = 1e-3
+end = 0.002
+initial = "static"
+
+[gravity]
+g = 10.0
+beam_self_weight = true
+
+{droppers}
+"#
+        )
+    }
+
+    fn found(text: &str) -> Result<FormFound> {
+        let sc = resolve_scene(text, &[])?;
+        let sys = System::new(&sc)?;
+        Ok(sys.form_found().expect("design heights").clone())
+    }
+
+    #[test]
+    fn a_string_held_at_design_heights_has_the_lengths_of_its_statics() {
+        // By hand (G3 on the string held at the design points): chord
+        // slopes −0.004, −0.004, 0.006, 0.002 on the four 2.5 m segments,
+        // each segment's weight 25 N shared by its ends, so
+        //   N₁ = (T s₀ + 12.5) + (−T s₁ + 12.5) = 8.5 + 16.5 = 25 N,
+        //   N₂ = 8.5 + 6.5 = 15 N,  N₃ = 18.5 + 10.5 = 29 N,
+        // and ℓ = z_a − V − N/k_d (the anchors are rigid).
+        let v = [-0.01, -0.02, -0.005];
+        let n = [25.0, 15.0, 29.0];
+        let f = found(&string_scene(v, "")).unwrap();
+        assert_eq!(f.steps, 1, "an affine problem: one Newton step");
+        assert!(f.error <= NODAL, "{}", f.error);
+        assert!(f.start_error > 1e-3, "the given lengths were off");
+        for ((d, v), n) in f.droppers.iter().zip(v).zip(n) {
+            let l = 1.0 - v - n / 1.0e4;
+            assert!((d.length - l).abs() <= NODAL, "{d:?} against ℓ = {l}");
+            assert!(
+                (d.force - n).abs() <= NODAL * n * 1e3,
+                "{d:?} against N = {n}"
+            );
+            assert!((d.height - v).abs() <= NODAL, "{d:?}");
+        }
+        // linear droppers: the same statics, the same lengths
+        let g = found(&string_scene(v, "linear = true")).unwrap();
+        for (a, b) in f.droppers.iter().zip(&g.droppers) {
+            assert!((a.length - b.length).abs() <= NODAL);
+        }
+    }
+
+    #[test]
+    fn the_found_lengths_given_back_take_no_step_and_build_the_same_line() {
+        let v = [-0.01, -0.02, -0.005];
+        let text = string_scene(v, "");
+        let f = found(&text).unwrap();
+        let mut again = text.clone();
+        for d in &f.droppers {
+            again = again.replacen(
+                "\nlength = 1.0\n",
+                &format!("\nlength = {:?}\n", d.length),
+                1,
+            );
+        }
+        let g = found(&again).unwrap();
+        assert_eq!(g.steps, 0, "{again}");
+        assert_eq!(g.droppers, f.droppers, "the same bits");
+        let (a, b) = (
+            resolve_scene(&text, &[]).unwrap(),
+            resolve_scene(&again, &[]).unwrap(),
+        );
+        let (a, b) = (System::new(&a).unwrap(), System::new(&b).unwrap());
+        assert_eq!(a.beam().load, b.beam().load, "the same load, bit for bit");
+    }
+
+    #[test]
+    fn an_unreachable_design_is_refused_naming_the_dropper() {
+        // above its anchor: no length reaches it
+        let e = found(&string_scene([-0.01, 1.5, -0.005], ""))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("dropper.1.design_height") && e.contains("1.5") && e.contains("> 0"),
+            "{e}"
+        );
+        // far below the others: the middle dropper would have to push
+        let e = found(&string_scene([-0.01, -0.5, -0.005], ""))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("dropper.1.design_height") && e.contains("push"),
+            "{e}"
+        );
+        // a linear dropper may push: the same design is reached
+        let f = found(&string_scene([-0.01, -0.5, -0.005], "linear = true")).unwrap();
+        assert!(f.droppers[1].force < 0.0 && f.error <= FORM_TOLERANCE);
+    }
 }
