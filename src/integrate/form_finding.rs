@@ -140,7 +140,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
     let mut error = start_error;
     let mut lengths: Vec<f64> = sc.droppers.iter().map(|d| d.length).collect();
     let mut steps = 0;
-    if !(error <= FORM_TOLERANCE) {
+    if !met(error) {
         // J (F3): one solve per design dropper
         let m = design.len();
         let mut jac = nalgebra::DMatrix::<f64>::zeros(m, m);
@@ -155,7 +155,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
             }
         }
         let lu = jac.lu();
-        while !(error <= FORM_TOLERANCE) {
+        while !met(error) {
             if steps == MAX_STEPS {
                 let (i, v) = design[worst_index(&rho)];
                 return Err(Error::invalid(
@@ -179,7 +179,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
                 })?;
             for (&(i, v), dl) in design.iter().zip(step.iter()) {
                 let l = lengths[i] + dl;
-                if !(l > 0.0) {
+                if l.is_nan() || l <= 0.0 {
                     return Err(Error::invalid(
                         field(i),
                         v,
@@ -211,7 +211,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
         let wanted = design.get(k).filter(|&&(j, _)| j == i).map(|&(_, v)| v);
         if wanted.is_some() {
             k += 1;
-            if !dr.linear && !(force > 0.0) {
+            if !dr.linear && (force.is_nan() || force <= 0.0) {
                 return Err(Error::invalid(
                     field(i),
                     wanted.unwrap_or(f64::NAN),
@@ -240,6 +240,11 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
 /// v_c(x) at `d`, m.
 fn beam_height(physics: &Physics, x: f64, d: &[f64]) -> f64 {
     physics.beam.point_vector(x).dot(d)
+}
+
+/// True when the heights meet the design: max |ρ| ≤ ε_F (false for NaN).
+fn met(error: f64) -> bool {
+    error <= FORM_TOLERANCE
 }
 
 /// The index of the largest |ρ_i|.
