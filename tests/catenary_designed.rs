@@ -9,27 +9,10 @@ use crate::common;
 
 use std::path::Path;
 
-use common::{out_dir, scene_path, taut_bin};
+use common::{out_dir, scene_path, summary_json as summary, taut_ok as ok};
 
 /// Two spans, the first 0.3 s.
 const CUT: [&str; 4] = ["--set", "line.spans=2", "--set", "time.end=0.3"];
-
-fn ok(args: &[&str]) -> String {
-    let o = taut_bin(args);
-    assert!(
-        o.status.success(),
-        "taut {args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
-}
-
-fn summary(dir: &Path) -> serde_json::Value {
-    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
-    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    v.as_object_mut().unwrap().remove("wall_seconds");
-    v
-}
 
 fn csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     let text = std::fs::read_to_string(path).unwrap();
