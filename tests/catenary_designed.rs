@@ -99,4 +99,14 @@ fn a_design_no_dropper_can_hold_is_refused_by_name() {
         &["--set", "line.spans=1", "--set", "line.presag=0.3"],
     );
     assert!(e.contains("line.presag") && e.contains("0.3"), "{e}");
+    // more droppers than form-finding's dense Jacobian takes
+    let e = common::run_fails(
+        &scene_path("catenary_designed.toml"),
+        &out_dir(&tmp, "run"),
+        &["--set", "line.spans=223", "--set", "time.end=0.01"],
+    );
+    assert!(
+        e.contains("line.form_finding") && e.contains("2007") && e.contains("2000"),
+        "{e}"
+    );
 }

@@ -52,6 +52,12 @@ use super::physics::Physics;
 /// `docs/lines.md` "Form-finding").
 pub const FORM_TOLERANCE: f64 = 1e-6;
 
+/// Most droppers with a design height in one scene: J (F3) is dense,
+/// |D|² numbers formed by |D| banded solves, and factored by a dense LU
+/// (|D|³): 2000 droppers (222 spans of 9) is 32 MB and 5e9 operations
+/// for the LU. Beyond it the scene is refused, naming the count.
+pub const MAX_FORM_DROPPERS: usize = 2000;
+
 /// Most Newton steps (F4). The problem is affine, so the first step lands
 /// within round-off; more than this means J is near-singular (two design
 /// points that cannot move apart), reported as not reachable.
@@ -98,17 +104,42 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
     if design.is_empty() {
         return Ok(None);
     }
+    if design.len() > MAX_FORM_DROPPERS {
+        let (i, v) = design[MAX_FORM_DROPPERS];
+        let (field, value) = if sc.scene.generated.line {
+            ("line.form_finding".to_string(), "true".to_string())
+        } else {
+            (format!("dropper.{i}.design_height"), v.to_string())
+        };
+        return Err(Error::invalid(
+            field,
+            value,
+            format!(
+                "is one of {} droppers with a design height: form-finding takes at most {MAX_FORM_DROPPERS} (its Jacobian is dense, |D|² numbers): form-find a shorter line, or give the lengths",
+                design.len()
+            ),
+        ));
+    }
     let field = |i: usize| {
         sc.scene
             .generated
             .user_path(&format!("dropper.{i}.design_height"))
+    };
+    // the value an error shows: the design height, and for a generated
+    // dropper (named by `line.presag`, which set it) which one
+    let value = |i: usize, v: f64| {
+        if sc.scene.generated.line {
+            format!("{v} m, the design height of {:?}", sc.droppers[i].name)
+        } else {
+            v.to_string()
+        }
     };
     let beam = &physics.beam;
     let n = beam.n;
     let factor = BandedLdlt::factor(&beam.stiffness).map_err(|_| {
         Error::invalid(
             field(design[0].0),
-            design[0].1,
+            value(design[0].0, design[0].1),
             "needs a line held against rigid motion (K positive definite) to form-find: the supports, attachments and droppers leave it free",
         )
     })?;
@@ -160,7 +191,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
                 let (i, v) = design[worst_index(&rho)];
                 return Err(Error::invalid(
                     field(i),
-                    v,
+                    value(i, v),
                     format!(
                         "is not reachable: after {MAX_STEPS} Newton steps of form-finding the contact wire at dropper {:?} (x = {} m) is still {error:.3e} m from the design (tolerance {FORM_TOLERANCE:e} m): two design points the line cannot set apart",
                         sc.droppers[i].name, sc.droppers[i].x
@@ -173,7 +204,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
                 .ok_or_else(|| {
                     Error::invalid(
                         field(design[0].0),
-                        design[0].1,
+                        value(design[0].0, design[0].1),
                         "cannot be form-found: the design heights' response to the dropper lengths is singular (a dropper at a support, or two at one point)",
                     )
                 })?;
@@ -182,7 +213,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
                 if l.is_nan() || l <= 0.0 {
                     return Err(Error::invalid(
                         field(i),
-                        v,
+                        value(i, v),
                         format!(
                             "is not reachable: dropper {:?} (x = {} m) would need a length of {l:.4} m (must be > 0): the wire cannot hang that high below its anchor; lower the design height or raise the anchor",
                             sc.droppers[i].name, sc.droppers[i].x
@@ -214,7 +245,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
             if !dr.linear && (force.is_nan() || force <= 0.0) {
                 return Err(Error::invalid(
                     field(i),
-                    wanted.unwrap_or(f64::NAN),
+                    value(i, wanted.unwrap_or(f64::NAN)),
                     format!(
                         "is not reachable: dropper {:?} (x = {} m) would have to push ({force:.4} N at rest) to hold the wire there: the design needs a strut, not a tension-only dropper (lower the pre-sag, or make the dropper linear)",
                         dr.name, dr.x

@@ -90,7 +90,7 @@ pub(crate) use diagnose::{
 };
 pub use dropper::DropperSample;
 pub use energy::Energy;
-pub use form_finding::{FORM_TOLERANCE, FormFound, StaticDropper};
+pub use form_finding::{FORM_TOLERANCE, FormFound, MAX_FORM_DROPPERS, StaticDropper};
 pub use integrator::Integrator;
 pub use mass_dofs::MassDof;
 pub(crate) use method::scene_method;

@@ -1066,6 +1066,24 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
     }
 
     #[test]
+    fn form_finding_gives_every_generated_dropper_its_design_height() {
+        let t = expand_line(tree(&["line.form_finding=true"])).unwrap();
+        let d = designed_droppers(&tree(&[])).unwrap();
+        for (g, d) in t["dropper"].as_array().unwrap().iter().zip(&d) {
+            assert_eq!(g["design_height"].as_float(), Some(d.contact_v));
+            assert_eq!(g["length"].as_float(), Some(d.length), "G6: the start");
+        }
+        let t = expand_line(tree(&[])).unwrap();
+        assert!(t["dropper"][0].get("design_height").is_none());
+        let line = scene_from_tree(tree(&["line.form_finding=true"])).unwrap();
+        assert_eq!(
+            line.generated.user_path("dropper.2.design_height"),
+            "line.presag"
+        );
+        assert_eq!(line.droppers[0].design_height, Some(d[0].contact_v));
+    }
+
+    #[test]
     fn a_scene_without_line_is_untouched() {
         let text = include_str!("../../scenes/span_droppers.toml");
         let t = parse_scene(text).unwrap();
