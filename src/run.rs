@@ -48,6 +48,10 @@ pub struct RunOutput {
     /// t − force_lag·Δt ([`crate::integrate::System::force_lag`]; 0 for a
     /// run of no steps). A reference force is compared there.
     pub force_lag: f64,
+    /// The line at rest after form-finding (`docs/lines.md` eq. F1–F5):
+    /// each dropper's length, force and height against its design; `None`
+    /// without a dropper `design_height`.
+    pub form: Option<crate::integrate::FormFound>,
 }
 
 /// A contact that opens or closes on more than this fraction of the steps is
@@ -217,6 +221,7 @@ impl SteppedRun {
                 } else {
                     0.0
                 },
+                form: it.system().form_found().cloned(),
             },
         )
     }
@@ -232,6 +237,7 @@ struct Finish {
     method: String,
     damping_note: Option<String>,
     force_lag: f64,
+    form: Option<crate::integrate::FormFound>,
 }
 
 /// A run's history and statistics as they are recorded, step by step:
@@ -619,6 +625,7 @@ impl Recorder {
                 .map(SpanAccumulator::finish)
                 .collect(),
             force_lag: f.force_lag,
+            form: f.form,
             standard,
             warnings,
             dofs: f.dofs,
@@ -811,6 +818,7 @@ fn drive_batch(scenes: &[Resolved], members: &[usize]) -> Vec<(usize, Result<Run
                                 notes[lane.id].as_deref(),
                             ),
                             force_lag: lane.sys.force_lag(lane.st.t),
+                            form: lane.sys.form_found().cloned(),
                         },
                     )),
                 };

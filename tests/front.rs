@@ -14,6 +14,8 @@ mod common;
 
 #[path = "bad_input.rs"]
 mod bad_input;
+#[path = "catenary_designed.rs"]
+mod catenary_designed;
 #[path = "cli.rs"]
 mod cli;
 #[path = "doc_files.rs"]

@@ -60,23 +60,7 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
     p.to_str().unwrap().to_string()
 }
 
-fn ok(args: &[&str]) -> String {
-    let o = taut_bin(args);
-    assert!(
-        o.status.success(),
-        "taut {args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
-}
-
-/// summary.json without its wall time (the one field a rerun changes).
-fn summary(dir: &Path) -> serde_json::Value {
-    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
-    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    v.as_object_mut().unwrap().remove("wall_seconds");
-    v
-}
+use common::{summary_json as summary, taut_ok as ok};
 
 /// `LINE` hung from a messenger on elastic interior supports, with
 /// per-dropper stiffnesses (one list a span), dashpots (a pattern of two

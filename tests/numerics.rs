@@ -36,6 +36,8 @@ mod dropper_damping;
 mod droppers;
 #[path = "elastic_supports.rs"]
 mod elastic_supports;
+#[path = "form_finding.rs"]
+mod form_finding;
 #[path = "formulations.rs"]
 mod formulations;
 #[path = "galerkin_order.rs"]

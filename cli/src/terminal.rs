@@ -154,6 +154,13 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
     for d in &s.droppers {
         t.push_str(&dropper_line(d));
     }
+    if let Some(f) = &s.form_finding {
+        let _ = writeln!(
+            t,
+            "  form     dropper lengths form-found in {} Newton step(s): the wire at rest within {:.2e} m of its design heights (tolerance {:.0e} m; {:.2e} m with the lengths given)",
+            f.steps, f.error, f.tolerance, f.start_error
+        );
+    }
     t.push_str(&span_lines(s));
     if accuracy.is_none() {
         t.push_str(&standard_lines(s));
@@ -189,9 +196,14 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
     } else {
         ""
     };
+    let form = if s.form_finding.is_some() {
+        ", static_heights.csv, droppers_static.csv"
+    } else {
+        ""
+    };
     let _ = writeln!(
         t,
-        "  wrote    {}/{{history.csv, summary.json, force.svg, standard.csv, standard.json{accuracy_csv}{snapshots}{field}{spans}{envelope}}}",
+        "  wrote    {}/{{history.csv, summary.json, force.svg, standard.csv, standard.json{accuracy_csv}{snapshots}{field}{spans}{envelope}{form}}}",
         dir.display()
     );
     t

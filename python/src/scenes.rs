@@ -6,7 +6,11 @@
 use pyo3::prelude::*;
 
 /// `(name, TOML text)` of every bundled scene, by name.
-pub const BUNDLED: [(&str, &str); 16] = [
+pub const BUNDLED: [(&str, &str); 17] = [
+    (
+        "catenary_designed",
+        include_str!("../../scenes/catenary_designed.toml"),
+    ),
     (
         "line_10_spans",
         include_str!("../../scenes/line_10_spans.toml"),

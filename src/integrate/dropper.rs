@@ -349,6 +349,29 @@ impl Droppers {
         })
     }
 
+    /// Dropper `i`'s force k_d (e₀ − r_dᵀd) at `d` taken taut, N (the
+    /// form-finding's forces at rest, `form_finding.rs`).
+    pub(crate) fn taut_force(&self, i: usize, d: &[f64]) -> f64 {
+        let l = &self.links[i];
+        l.k * (l.e0 - l.dot(d))
+    }
+
+    /// y += a·r_d of dropper `i` (its direction, W2).
+    pub(crate) fn scatter_direction(&self, i: usize, a: f64, y: &mut [f64]) {
+        self.links[i].scatter(a, y, 1, 0);
+    }
+
+    /// k_d of dropper `i`, N/m.
+    pub(crate) fn stiffness(&self, i: usize) -> f64 {
+        self.links[i].k
+    }
+
+    /// Set dropper `i`'s e₀ (its length changed, `form_finding.rs`); the
+    /// load must then be formed again ([`Droppers::add_preloads`]).
+    pub(crate) fn set_rest_extension(&mut self, i: usize, e0: f64) {
+        self.links[i].e0 = e0;
+    }
+
     /// Form z'_d = A'⁻¹ r_d and Q once (module docs), for a method with
     /// constant A' (the droppers' springs and dashpots in it): `solve`
     /// overwrites a right-hand side with A'⁻¹ of it; `c_d`, `c_v` as in

@@ -55,6 +55,7 @@ mod diagnose;
 mod dropper;
 mod energy;
 mod external_force;
+mod form_finding;
 mod gen_alpha;
 mod gen_alpha_kernel;
 mod gen_alpha_update;
@@ -89,6 +90,7 @@ pub(crate) use diagnose::{
 };
 pub use dropper::DropperSample;
 pub use energy::Energy;
+pub use form_finding::{FORM_TOLERANCE, FormFound, MAX_FORM_DROPPERS, StaticDropper};
 pub use integrator::Integrator;
 pub use mass_dofs::MassDof;
 pub(crate) use method::scene_method;

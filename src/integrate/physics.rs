@@ -52,6 +52,10 @@ pub(crate) struct Physics {
     pub(crate) supports: (Support, Support),
     /// String wave speed c = sqrt(T/ρA), m/s.
     pub(crate) wave_speed: f64,
+    /// The constant load before the droppers' preloads (f₀ of
+    /// `form_finding.rs`, eq. F1), kept only when a dropper has a design
+    /// height.
+    pub(crate) free_load: Option<Vec<f64>>,
     /// The time the last [`Physics::place`] put the contact forces at, s.
     pub(crate) t_force: f64,
 }
@@ -101,6 +105,11 @@ impl Physics {
         }
         // every dropper's spring in K and preload in the load (`dropper.rs`, D7)
         droppers.add_springs(&mut beam.stiffness);
+        let free_load = sc
+            .droppers
+            .iter()
+            .any(|d| d.design_height.is_some())
+            .then(|| beam.load.clone());
         droppers.add_preloads(&mut beam.load);
         let source = sc.manufactured.as_ref().map(|m| SourceState {
             source: Source::new(&beam, m),
@@ -114,6 +123,7 @@ impl Physics {
             length: sc.beam.length,
             supports: (sc.beam.left, sc.beam.right),
             wave_speed: sc.beam.wave_speed(),
+            free_load,
             droppers,
             beam,
             carriers,

@@ -27,6 +27,7 @@ use super::carrier::PlaceTimes;
 use super::chain::Chain;
 use super::contact_problem::{ProblemBuilder, contact_coef};
 use super::dropper::{ContactPair, DropperSample, Droppers};
+use super::form_finding::FormFound;
 use super::law_state::LawState;
 use super::mass_dofs::MassDof;
 use super::physics::Physics;
@@ -45,6 +46,9 @@ pub struct System {
     /// The pair (g_free, W) of the current step, formed in place
     /// (scratch, `contact_problem.rs`).
     problem: ProblemBuilder,
+    /// The line at rest after form-finding (`form_finding.rs`, eq. F1–F5);
+    /// `None` without a dropper design height.
+    form: Option<FormFound>,
 }
 
 /// Consistent initial accelerations (MODEL §5), for the methods that need them.
@@ -67,13 +71,21 @@ impl System {
     /// of `sc`, or of a scene with the same beam and discretization: a
     /// batch builds a basis once for all its runs).
     pub fn with_beam(sc: &Resolved, beam: BeamModel) -> Result<Self> {
-        let physics = Physics::new(sc, beam);
+        let mut physics = Physics::new(sc, beam);
+        let form = super::form_finding::form_find(sc, &mut physics)?;
         let (nc, nd) = (physics.masses.len(), physics.droppers.rows());
         Ok(System {
             law: LawState::new(sc, nc, nd),
             problem: ProblemBuilder::new(nc, nd),
             physics,
+            form,
         })
+    }
+
+    /// The line at rest after form-finding (`docs/lines.md` eq. F1–F5), when
+    /// a dropper has a design height.
+    pub fn form_found(&self) -> Option<&FormFound> {
+        self.form.as_ref()
     }
 
     /// The discretized beam: M, K, the distributed load, point vectors.

@@ -5,6 +5,7 @@ mod axis_range;
 mod compare;
 mod converge;
 mod csv;
+mod form;
 mod gate;
 mod html;
 mod incomplete;
@@ -29,6 +30,7 @@ pub(crate) use converge::write_converge;
 pub use converge::{converge_methods_table, converge_rows, converge_table, write_converge_methods};
 pub(crate) use csv::write_history;
 pub use csv::{HISTORY_ROWS_AT_A_TIME, history_table};
+pub use form::{droppers_static_table, static_heights_table};
 pub use gate::gate_table;
 pub(crate) use gate::write_gate;
 pub use html::ReportSummary;
@@ -46,7 +48,7 @@ pub use precision::{precision_rows, precision_table};
 pub use standard::standard_table;
 pub(crate) use standard::write_standard;
 pub(crate) use summary::write_summary;
-pub use summary::{Derived, Summary, mesh_label};
+pub use summary::{Derived, FormSummary, Summary, mesh_label};
 pub use sweep::{sweep_table, write_sweep};
 pub(crate) use sweep_maps::write_sweep_maps;
 pub use sweep_maps::{
@@ -102,6 +104,7 @@ pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> 
         write_standard(dir, sc, &summary.standard, &summary.supports)?;
         write_wire(dir, &out.history)?;
         write_line(dir, sc, out, &summary.spans)?;
+        form::write_form(dir, sc, out.form.as_ref())?;
         write_summary(&dir.join("summary.json"), &summary)?;
         Ok(summary)
     })

@@ -57,6 +57,8 @@ impl Outputs {
                 "supports.csv",
                 "envelope.csv",
                 "line.svg",
+                "static_heights.csv",
+                "droppers_static.csv",
             ],
             Outputs::Compare => &["compare.csv", "compare.json", "compare.svg"],
             Outputs::Converge => &["converge.csv", "converge.json", "converge.svg"],

@@ -89,6 +89,24 @@ pub struct Summary {
     pub wall_seconds: f64,
     /// Findings that make the numbers suspect (empty when none).
     pub warnings: Vec<String>,
+    /// Form-finding's result (`docs/lines.md` eq. F1–F5): absent without a
+    /// dropper `design_height`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub form_finding: Option<FormSummary>,
+}
+
+/// `summary.json`'s `form_finding`: how close the line at rest came to its
+/// design heights (docs/output.md#form-finding).
+#[derive(Debug, Clone, Serialize)]
+pub struct FormSummary {
+    /// ε_F, m ([`crate::integrate::FORM_TOLERANCE`]).
+    pub tolerance: f64,
+    /// max |v_c(x_d) − V_d| with the lengths as given, m.
+    pub start_error: f64,
+    /// max |v_c(x_d) − V_d| after form-finding, m.
+    pub error: f64,
+    /// Newton steps taken.
+    pub steps: usize,
 }
 
 impl Summary {
@@ -108,7 +126,7 @@ impl Summary {
             .collect();
         Summary {
             taut_version: env!("CARGO_PKG_VERSION"),
-            scene: sc.scene.clone(),
+            scene: with_found_lengths(sc, out),
             derived: Derived {
                 mass_per_length: b.rho_a,
                 bending_stiffness: b.ei,
@@ -137,6 +155,12 @@ impl Summary {
             standard: out.standard.clone(),
             wall_seconds: out.wall_seconds,
             warnings: out.warnings.clone(),
+            form_finding: out.form.as_ref().map(|f| FormSummary {
+                tolerance: crate::integrate::FORM_TOLERANCE,
+                start_error: f.start_error,
+                error: f.error,
+                steps: f.steps,
+            }),
         }
     }
 }
@@ -254,4 +278,16 @@ pub fn mesh_label(s: &Summary) -> String {
 /// Write `summary.json` (pretty-printed).
 pub(crate) fn write_summary(path: &Path, s: &Summary) -> Result<()> {
     super::write_json(path, s)
+}
+
+/// The scene as it ran: a form-found dropper's `length` is the one found
+/// (`docs/lines.md` eq. F1–F5), as `taut line expand` writes it.
+fn with_found_lengths(sc: &Resolved, out: &RunOutput) -> Scene {
+    let mut scene = sc.scene.clone();
+    if let Some(form) = &out.form {
+        for (spec, found) in scene.droppers.iter_mut().zip(&form.droppers) {
+            spec.length = found.length;
+        }
+    }
+    scene
 }

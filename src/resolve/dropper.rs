@@ -43,6 +43,15 @@ pub(crate) fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretizat
             ),
         ));
     }
+    if let Some(i) = droppers.iter().position(|d| d.design_height.is_some())
+        && scene.manufactured.is_some()
+    {
+        return Err(Error::invalid(
+            format!("dropper.{i}.design_height"),
+            droppers[i].design_height.unwrap_or(f64::NAN),
+            "cannot be form-found in a [manufactured] scene (its lines start straight and its droppers' lengths are the solution's): give the length instead",
+        ));
+    }
     // a manufactured solution's source carries the droppers' forces
     super::attachment::closed_form_references(scene, &format!("the scene's {n} [[dropper]]"))?;
     let Some(i) = droppers.iter().position(|d| !d.linear) else {

@@ -59,6 +59,12 @@ pub struct DropperSpec {
     /// `_` and `-`; default the dropper's index.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// The contact wire's design height v_c(x_d) at rest, m (v axis, finite;
+    /// default none): form-finding (`docs/lines.md` eq. F1–F5) then finds
+    /// the dropper's `length` so that the line's static equilibrium puts the
+    /// wire at this height, starting from the `length` given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub design_height: Option<f64>,
 }
 
 fn is_false(b: &bool) -> bool {
@@ -106,6 +112,10 @@ pub struct Dropper {
     pub linear: bool,
     /// Dashpot c_d in parallel, N·s/m (0: none; D11 linear, D12 tension-only).
     pub damping: f64,
+    /// The contact wire's design height v_c(x_d) at rest, m: the length is
+    /// form-found to meet it (`docs/lines.md` eq. F1–F5; `None`: the length
+    /// as given).
+    pub design_height: Option<f64>,
 }
 
 impl Dropper {
@@ -192,6 +202,15 @@ pub(crate) fn resolve_droppers(
         };
         let length = non_negative(&field("length"), d.length, "m")?;
         let damping = non_negative(&field("damping"), d.damping.unwrap_or(0.0), "N·s/m")?;
+        if let Some(h) = d.design_height
+            && !h.is_finite()
+        {
+            return Err(Error::invalid(
+                field("design_height"),
+                h,
+                "must be a finite height of the contact wire at rest (m, positive up)",
+            ));
+        }
         let name = match &d.name {
             Some(n) => {
                 let ok = !n.is_empty()
@@ -224,6 +243,7 @@ pub(crate) fn resolve_droppers(
             length,
             linear: d.linear,
             damping,
+            design_height: d.design_height,
         });
     }
     Ok(out)

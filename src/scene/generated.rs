@@ -55,7 +55,7 @@ impl Generated {
                 "linear" => "line.linear_droppers",
                 "x" => "line.droppers",
                 "anchor" => "line.anchor",
-                "length" | "anchor_height" => "line.presag",
+                "length" | "anchor_height" | "design_height" => "line.presag",
                 _ => "line",
             }
             .to_string(),

@@ -90,6 +90,11 @@ struct LineSpec {
     /// point masses on each wire at every dropper (E3).
     #[serde(default)]
     clamp_mass: Option<Value>,
+    /// Form-find the dropper lengths (`docs/lines.md` eq. F1–F5): each
+    /// dropper gets `design_height` = v_c(x_d) (G2), and the run solves
+    /// for the lengths from the G6 ones (default false: G6's lengths).
+    #[serde(default)]
+    form_finding: bool,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
@@ -210,6 +215,8 @@ struct Line {
     end_mass: EndMasses,
     /// `[messenger] support` to write, and each support's kind (E2).
     supports: (Option<Value>, Vec<Option<super::ElasticSupport>>),
+    /// Emit each dropper's `design_height` (form-finding, F1–F5).
+    form_finding: bool,
 }
 
 fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
@@ -331,6 +338,7 @@ impl Line {
             c_d: props.damping,
             end_mass: props.end_mass,
             supports,
+            form_finding: s.form_finding,
         })
     }
 
@@ -617,6 +625,9 @@ impl Line {
                 }
                 if self.c_d[i] != 0.0 {
                     t.insert("damping".into(), Value::Float(self.c_d[i]));
+                }
+                if self.form_finding {
+                    t.insert("design_height".into(), Value::Float(d.contact_v));
                 }
                 Value::Table(t)
             })
@@ -1109,6 +1120,24 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
             e.contains("line.element_length") && e.contains("common grid"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn form_finding_gives_every_generated_dropper_its_design_height() {
+        let t = expand_line(tree(&["line.form_finding=true"])).unwrap();
+        let d = designed_droppers(&tree(&[])).unwrap();
+        for (g, d) in t["dropper"].as_array().unwrap().iter().zip(&d) {
+            assert_eq!(g["design_height"].as_float(), Some(d.contact_v));
+            assert_eq!(g["length"].as_float(), Some(d.length), "G6: the start");
+        }
+        let t = expand_line(tree(&[])).unwrap();
+        assert!(t["dropper"][0].get("design_height").is_none());
+        let line = scene_from_tree(tree(&["line.form_finding=true"])).unwrap();
+        assert_eq!(
+            line.generated.user_path("dropper.2.design_height"),
+            "line.presag"
+        );
+        assert_eq!(line.droppers[0].design_height, Some(d[0].contact_v));
     }
 
     #[test]

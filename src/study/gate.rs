@@ -394,6 +394,7 @@ mod tests {
             wall_seconds: 0.0,
             warnings: vec![],
             force_lag: 0.0,
+            form: None,
         };
         out.history.carriers.push(Default::default());
         assert!(check_case("c", &case, &out)[0].pass);

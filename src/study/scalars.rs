@@ -316,6 +316,7 @@ mod tests {
             wall_seconds: 0.0,
             warnings: vec![],
             force_lag: 0.0,
+            form: None,
         };
         out.history.carriers.push(Default::default());
         assert_eq!(Scalar::FirstLossPosition.of(&out, 0), None);

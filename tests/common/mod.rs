@@ -30,6 +30,26 @@ pub fn taut_bin(args: &[&str]) -> Output {
         .expect("the taut binary runs")
 }
 
+/// Run the `taut` binary, asserting success; returns stdout.
+pub fn taut_ok(args: &[&str]) -> String {
+    let o = taut_bin(args);
+    assert!(
+        o.status.success(),
+        "taut {args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8(o.stdout).expect("stdout is UTF-8")
+}
+
+/// A run's summary.json without its wall time (the one field a rerun
+/// changes).
+pub fn summary_json(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).expect("summary.json reads");
+    let mut v: serde_json::Value = serde_json::from_str(&text).expect("summary.json parses");
+    v.as_object_mut().expect("an object").remove("wall_seconds");
+    v
+}
+
 /// A not-yet-existing output folder `name` in `tmp`.
 pub fn out_dir(tmp: &tempfile::TempDir, name: &str) -> PathBuf {
     tmp.path().join(name)
