@@ -112,4 +112,59 @@ mod tests {
         let lagrange = -g / w;
         assert!((l[0] / lagrange - rho / (1.0 + rho)).abs() < 1e-13);
     }
+
+    /// Two coupled contacts, both penetrating: λ solves (W + diag(1/κ_c))λ
+    /// = −g_free (MODEL §6), each κ_c = ρ/W_cc from its own diagonal — the
+    /// single-contact tests cannot tell a row's index or its diagonal apart
+    /// (cargo mutants: `c * nc + c` → `c * nc − c`, `nc * nc` → `nc / nc`
+    /// survived them).
+    #[test]
+    fn two_coupled_contacts_solve_the_stiffened_system() {
+        let (g, w, rho) = ([-3e-4, -2e-4], [2e-6, 5e-7, 5e-7, 4e-6], 9.0);
+        let mut law = Penalty::new(Kappa::Relative(rho), false, 2);
+        let (mut l, mut a) = ([0.0; 2], [false; 2]);
+        law.solve(&g, &w, &mut l, &mut a).unwrap();
+        assert_eq!(a, [true, true]);
+        // W + diag(W_cc/ρ), solved by Cramer's rule
+        let m = [
+            w[0] * (1.0 + 1.0 / rho),
+            w[1],
+            w[2],
+            w[3] * (1.0 + 1.0 / rho),
+        ];
+        let det = m[0] * m[3] - m[1] * m[2];
+        let exact = [
+            (-g[0] * m[3] + g[1] * m[1]) / det,
+            (-g[1] * m[0] + g[0] * m[2]) / det,
+        ];
+        for c in 0..2 {
+            assert!(l[c] > 0.0);
+            assert!(
+                (l[c] - exact[c]).abs() <= 1e-12 * exact[c],
+                "{l:?} {exact:?}"
+            );
+        }
+    }
+
+    /// `penalize_first`: rows after the first `nc` (droppers, compliant
+    /// already) keep their W; an absolute κ stiffens the contact's alone.
+    #[test]
+    fn only_the_first_rows_are_penalized() {
+        let (g, w, k) = ([-3e-4, -2e-4], [2e-6, 0.0, 0.0, 4e-6], 1e6);
+        let mut law = Penalty::new(Kappa::Absolute(k), true, 2).penalize_first(1);
+        let (mut l, mut a) = ([0.0; 2], [false; 2]);
+        law.solve(&g, &w, &mut l, &mut a).unwrap();
+        assert!((l[0] - (-g[0]) / (w[0] + 1.0 / k)).abs() <= 1e-12 * l[0]);
+        assert!((l[1] - (-g[1]) / w[3]).abs() <= 1e-12 * l[1]);
+    }
+
+    /// At t = 0 the penalty carries no force and every contact is closed.
+    #[test]
+    fn the_initial_force_is_zero() {
+        let mut law = Penalty::new(Kappa::Absolute(1e6), false, 2);
+        let (mut l, mut a) = ([5.0; 2], [false; 2]);
+        law.initial(&[-1e-4, 1e-4], &[1e-6, 0.0, 0.0, 1e-6], &mut l, &mut a)
+            .unwrap();
+        assert_eq!((l, a), ([0.0; 2], [true; 2]));
+    }
 }

@@ -22,7 +22,14 @@ pub(super) enum Window {
     /// Before a prescribed loss's window ([`crate::manufactured::Manufactured::loss_window`]);
     /// the whole run without one.
     BeforeLoss = 2,
+    /// After the start and before the loss: the share the loss makes of an
+    /// error judged after the start (the start's ringing would hide it in
+    /// the whole run's max).
+    AfterStartBeforeLoss = 3,
 }
+
+/// How many [`Window`]s a run's errors are measured over.
+pub(super) const WINDOWS: usize = 4;
 
 /// A ladder's errors over one [`Window`].
 #[derive(Debug, Clone, Default)]
@@ -42,7 +49,7 @@ pub(super) struct Measured {
     /// The refined variable per level.
     pub(super) levels: Vec<f64>,
     /// The errors over each [`Window`], indexed by it.
-    pub(super) views: [View; 3],
+    pub(super) views: [View; WINDOWS],
     /// The exact solution's largest displacement and force.
     pub(super) scale: (f64, f64),
     /// Loss intervals of each level's run.
@@ -115,7 +122,7 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
     };
     let mut m = Measured {
         levels: Vec::new(),
-        views: [blank.clone(), blank.clone(), blank],
+        views: [blank.clone(), blank.clone(), blank.clone(), blank],
         scale: (0.0, 0.0),
         loss_intervals: Vec::new(),
         omega_max_dt: f64::NAN,
@@ -381,9 +388,9 @@ pub(super) fn modal_tail(
 /// solution's largest values.
 pub(super) struct Errors {
     /// Displacement errors, m.
-    pub(super) d: [f64; 3],
+    pub(super) d: [f64; WINDOWS],
     /// Force errors, N (NaN without a force reference).
-    pub(super) f: [f64; 3],
+    pub(super) f: [f64; WINDOWS],
     /// The exact solution's largest displacement and force over the run.
     pub(super) scale: (f64, f64),
 }
@@ -409,14 +416,15 @@ pub(super) fn errors(
         .as_ref()
         .and_then(|m| m.loss_window())
         .map_or(f64::INFINITY, |(a, _)| a);
-    let (mut ed, mut ef, mut sd, mut sf) = ([0.0f64; 3], [0.0f64; 3], 0.0f64, 0.0f64);
+    let (mut ed, mut ef, mut sd, mut sf) = ([0.0f64; WINDOWS], [0.0f64; WINDOWS], 0.0f64, 0.0f64);
     let on_messenger = |p: usize| {
         sc.scene.probes.get(p).and_then(|p| p.wire) == Some(crate::scene::Wire::Messenger)
     };
     for k in 1..=rows {
         let i = k * stride;
         let t = h.t[i];
-        let within = [true, t > super::START_WINDOW, t < loss_from];
+        let after = t > super::START_WINDOW;
+        let within = [true, after, t < loss_from, after && t < loss_from];
         let w = (ex.w)(t);
         sd = sd.max(w.abs());
         let mut e = (c.w[i] - w).abs();
@@ -440,7 +448,7 @@ pub(super) fn errors(
             sf = sf.max(l.abs());
             g = (c.force[i] - l).abs();
         }
-        for w in 0..3 {
+        for w in 0..WINDOWS {
             if within[w] {
                 ed[w] = ed[w].max(e);
                 ef[w] = ef[w].max(g);
@@ -448,7 +456,7 @@ pub(super) fn errors(
         }
     }
     if !has_force {
-        ef = [f64::NAN; 3];
+        ef = [f64::NAN; WINDOWS];
     }
     Errors {
         d: ed,
