@@ -26,6 +26,7 @@ use super::generated::Generated;
 use super::line_design::{PointSpring, StringLoad, dropper_forces, messenger_sag, presag_profile};
 use super::line_props::{EndMasses, dropper_props};
 use super::line_supports::{chord, line_supports, settlements};
+use super::range::{non_negative, positive};
 use super::steady_arm::{SteadyArm, SteadyArmSpec};
 use super::validate::MAX_ELEMENTS;
 use crate::error::{Error, Result, one_line};
@@ -217,30 +218,6 @@ struct Line {
     supports: (Option<Value>, Vec<Option<super::ElasticSupport>>),
     /// Emit each dropper's `design_height` (form-finding, F1–F5).
     form_finding: bool,
-}
-
-fn positive(field: &str, v: f64, unit: &str) -> Result<f64> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(Error::invalid(
-            field,
-            v,
-            format!("must be finite and > 0 ({unit})"),
-        ))
-    }
-}
-
-fn non_negative(field: &str, v: f64, unit: &str) -> Result<f64> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(Error::invalid(
-            field,
-            v,
-            format!("must be finite and ≥ 0 ({unit})"),
-        ))
-    }
 }
 
 impl Line {
