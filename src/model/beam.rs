@@ -354,10 +354,10 @@ impl BeamModel {
             load,
             basis: Basis::Elements,
         };
-        model.attach(&props.attachments);
+        model.attach(&props.attachments, Self::element_pairs);
         if let Some(m) = &props.messenger {
             model.tie(&m.ties);
-            model.attach_messenger(&m.attachments);
+            model.attach(&m.attachments, Self::messenger_pairs);
         }
         model
     }
@@ -404,21 +404,13 @@ impl BeamModel {
     /// linear ones on its two w dofs for a string), so the attachment
     /// couples only dofs one element already couples and the band is
     /// unchanged; at a node it is that node's w dof alone (the other shape
-    /// functions vanish there). Supported dofs carry weight 0.
-    fn attach(&mut self, attachments: &[Attachment]) {
+    /// functions vanish there). Supported dofs carry weight 0. The
+    /// messenger's attachments (its elastic supports, eq. E1, and dropper
+    /// clamps) are the same with r_m(x), its interpolation vector
+    /// ([`BeamModel::messenger_pairs`]), as `vector`.
+    fn attach(&mut self, attachments: &[Attachment], vector: fn(&Self, f64) -> [(usize, f64); 4]) {
         for a in attachments {
-            let r = self.element_pairs(a.x);
-            self.stiffness.add_outer(&r, a.stiffness);
-            self.mass.add_outer(&r, a.mass);
-        }
-    }
-
-    /// Add the messenger's point attachments (its elastic supports, eq. E1,
-    /// and dropper clamps): A0 with r_m(x), the messenger's interpolation
-    /// vector, in place of r_b(x).
-    fn attach_messenger(&mut self, attachments: &[Attachment]) {
-        for a in attachments {
-            let r = self.messenger_pairs(a.x);
+            let r = vector(self, a.x);
             self.stiffness.add_outer(&r, a.stiffness);
             self.mass.add_outer(&r, a.mass);
         }
