@@ -10,7 +10,7 @@
 //!    at the point's own resolution, coarsened — (−2, −2), (−1, −1), (0, 0)
 //!    and the split runs (−1, −2), (0, −1), together 1.81 times the point's
 //!    own run. Q's u_num at (0, 0) ([`assess`]; for a quantity that is
-//!    not smooth, at least [`split_floor`]: its mesh and Δt parts added
+//!    not smooth, at least the [split floor](crate::study::uncertainty::assess::split_floor): its mesh and Δt parts added
 //!    without their signs); within EPS: done.
 //! 2. **Plan**: `run --tolerance`'s error model from the split's mesh and
 //!    Δt differences ([`LadderFit`], [`ErrorModel::cheapest`]) gives the
@@ -87,29 +87,6 @@ fn check_runs(k: Key) -> [Key; 5] {
     [a, b, c, (k.0 - 1, k.1 - 2), (k.0, k.1 - 1)]
 }
 
-/// The `estimator` of a point whose u_num is [`split_floor`]'s.
-pub(crate) const SPLIT_FLOOR: &str = "split_floor";
-
-/// The u_num a quantity that is not smooth gets at least, from the split
-/// of its finest diagonal change φ(a−1, b−1) → φ(a, b) into its mesh part
-/// Δ_h = φ(a−1, b−1) − φ(a, b−1) and its Δt part Δ_Δt = φ(a, b−1) − φ(a, b):
-/// F_s (|Δ_h| + |Δ_Δt|), F_s = 3, the two-level GCI of each variable at
-/// order 1 (r^p − 1 = 1), added without their signs. Along the diagonal
-/// the two parts can cancel: on the Fig. 12 map above V0/c = 1 the in-span
-/// P_l falls with h and rises with Δt, and three diagonal levels that
-/// agree to 0.0003 (T = 22612.5 N, V0 = 207.5 m/s: 0.5798, 0.5821, 0.5818)
-/// hid parts of −0.0040 and +0.0037 and a value 0.019 below the refined
-/// one (docs/performance.md#the-fig-12-map-with---tolerance-0002). None
-/// when a split value is missing.
-fn split_floor(diag: &[Option<f64>], split: &[Option<f64>]) -> Option<f64> {
-    let (prev, mid, cur) = (
-        diag.get(diag.len().checked_sub(2)?).copied().flatten()?,
-        split.last().copied().flatten()?,
-        diag.last().copied().flatten()?,
-    );
-    Some(FS_CAUTIOUS * ((prev - mid).abs() + (mid - cur).abs()))
-}
-
 /// One run of a point.
 struct Ran {
     key: Key,
@@ -135,9 +112,8 @@ struct Point {
     stage: Stage,
     checks: usize,
     base_cost: f64,
-    /// (key, assessment, whether [`split_floor`] set its u_num) of each
-    /// candidate, in order.
-    candidates: Vec<(Key, Assessment, bool)>,
+    /// (key, assessment) of each candidate, in order.
+    candidates: Vec<(Key, Assessment)>,
     record: Option<SweepRecord>,
     /// Runs queued or being stepped.
     queued: Vec<Key>,
@@ -587,24 +563,17 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
         Stage::Done => return,
     };
     let (diag, split) = (at(&keys[..3]), at(&keys[3..]));
-    let mut a = assess(&Inputs {
+    // a quantity that is not smooth gets at least the split floor: its
+    // mesh and Δt parts may cancel along the diagonal
+    let a = assess(&Inputs {
         diagonal: &diag,
         space: &split,
         ratio: RATIO as f64,
         formal,
         smooth: q.smooth,
     });
-    // a quantity that is not smooth: its mesh and Δt parts may cancel
-    // along the diagonal
-    let floor = (!q.smooth)
-        .then(|| split_floor(&diag, &split))
-        .flatten()
-        .filter(|&f| a.u_num.is_some_and(|u| f > u));
-    if let Some(f) = floor {
-        a.u_num = Some(f);
-    }
     let u = a.u_num.unwrap_or(f64::INFINITY);
-    p.candidates.push((key, a, floor.is_some()));
+    p.candidates.push((key, a));
     if u <= tol.tolerance {
         return finish(p, tol, key);
     }
@@ -688,11 +657,11 @@ fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
 
 /// Finish a point with candidate `key`: its record and accuracy.
 fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
-    let (a, floored) = p
+    let a = p
         .candidates
         .iter()
         .rfind(|c| c.0 == key)
-        .map(|c| (c.1.clone(), c.2))
+        .map(|c| c.1.clone())
         .expect("a candidate");
     let run = p
         .runs
@@ -711,35 +680,10 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
         dt: sc.as_ref().map_or(f64::NAN, |s| s.dt),
         runs: p.runs.len(),
         dof_steps: p.spent(),
-        estimator: if floored {
-            SPLIT_FLOOR.to_string()
-        } else {
-            a.estimator.name().to_string()
-        },
+        estimator: a.estimator.name().to_string(),
         checks: p.checks,
     });
     record.wall_seconds = None;
     p.record = Some(record);
     p.stage = Stage::Done;
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The Fig. 12 map's point T = 22612.5 N, V0 = 207.5 m/s: a diagonal
-    /// that agrees to 0.0003 over mesh and Δt parts of −0.0040 and +0.0037.
-    #[test]
-    fn the_split_floor_sees_parts_that_cancel_on_the_diagonal() {
-        let diag = [Some(0.57977), Some(0.58208), Some(0.58181)];
-        let split = [Some(0.58349), Some(0.57808)];
-        let f = split_floor(&diag, &split).unwrap();
-        let parts = (0.58208f64 - 0.57808).abs() + (0.57808f64 - 0.58181).abs();
-        assert!((f - FS_CAUTIOUS * parts).abs() < 1e-12, "{f}");
-        // wider than the diagonal's own last change, and than its true error
-        assert!(f > 0.019 && f > 10.0 * (0.58208f64 - 0.58181).abs());
-        // no split, no floor
-        assert_eq!(split_floor(&diag, &[]), None);
-        assert_eq!(split_floor(&diag, &[Some(0.5), None]), None);
-    }
 }

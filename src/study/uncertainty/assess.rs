@@ -12,6 +12,10 @@
 //!   oscillating data, an order below `LOWEST_ORDER`): the least-squares
 //!   estimator of Eça & Hoekstra ([`least_squares`]).
 //!
+//! For a quantity that is not smooth, u_num is then at least the split
+//! floor ([`split_floor`]): the diagonal can hide mesh and Δt errors of
+//! opposite sign.
+//!
 //! An order is reported only where the data support one: the GCI's
 //! observed order, or the least-squares δ_RE's p when that fit is the one
 //! used; otherwise the table says why not.
@@ -35,6 +39,10 @@ pub enum Estimator {
     GciTwoLevels,
     /// Eça & Hoekstra's least squares.
     LeastSquares,
+    /// A quantity that is not smooth whose mesh and Δt parts of the finest
+    /// step, added without their signs, give a wider u_num than the
+    /// diagonal's estimator ([`split_floor`]).
+    SplitFloor,
     /// The differences grow at every level: no estimate.
     Diverging,
     /// A run of the family stopped (diverged): no estimate.
@@ -51,6 +59,7 @@ impl Estimator {
             Estimator::Gci => "gci",
             Estimator::GciTwoLevels => "gci_two_levels",
             Estimator::LeastSquares => "least_squares",
+            Estimator::SplitFloor => "split_floor",
             Estimator::Diverging => "diverging",
             Estimator::Diverged => "diverged",
             Estimator::Undefined => "undefined",
@@ -153,8 +162,62 @@ impl Assessment {
     }
 }
 
-/// Assess one quantity from its family's values.
+/// Assess one quantity from its family's values: the diagonal's
+/// estimator, then, for a quantity that is not smooth, the split floor.
 pub(crate) fn assess(inputs: &Inputs) -> Assessment {
+    let mut a = assess_diagonal(inputs);
+    let floor = (!inputs.smooth)
+        .then(|| split_floor(inputs.diagonal, inputs.space))
+        .flatten()
+        .filter(|&f| a.u_num.is_some_and(|u| f > u));
+    if let Some(f) = floor {
+        let below = a.u_num.unwrap_or(0.0);
+        a.u_num = Some(f);
+        if let Some(last) = a.u_levels.last_mut() {
+            *last = Some(f);
+        }
+        a.estimator = Estimator::SplitFloor;
+        a.safety_factor = Some(FS_CAUTIOUS);
+        a.asymptotic = false;
+        let why = format!(
+            "u_num widened from {below:.3e} to the split floor: the finest step's mesh and Δt parts, added without their signs, times {FS_CAUTIOUS}"
+        );
+        a.note = if a.note.is_empty() {
+            why
+        } else {
+            format!("{}; {why}", a.note)
+        };
+    }
+    a
+}
+
+/// The u_num a quantity that is not smooth gets at least, from the split
+/// of its finest diagonal change φ(ℓ−1) → φ(ℓ) into its mesh part
+/// Δ_h = φ(h_{ℓ−1}, Δt_{ℓ−1}) − φ(h_ℓ, Δt_{ℓ−1}) and its Δt part
+/// Δ_Δt = φ(h_ℓ, Δt_{ℓ−1}) − φ(h_ℓ, Δt_ℓ): F_s (|Δ_h| + |Δ_Δt|), F_s = 3,
+/// the two-level GCI of each variable at order 1 (r^p − 1 = 1 for r = 2),
+/// added without their signs. Along the diagonal the two parts can
+/// cancel: on the Fig. 12 map above V0/c = 1 the in-span P_l falls with h
+/// and rises with Δt, and three diagonal levels that agree to 0.0003
+/// (T = 22612.5 N, V0 = 207.5 m/s: 0.5798, 0.5821, 0.5818) hid parts of
+/// −0.0040 and +0.0037 and a value 0.019 below the refined one
+/// (docs/performance.md#the-fig-12-map-with---tolerance-0002). None
+/// without the split's last value.
+pub fn split_floor(diag: &[Option<f64>], split: &[Option<f64>]) -> Option<f64> {
+    if split.len() + 1 != diag.len() {
+        return None;
+    }
+    let (prev, mid, cur) = (
+        diag.get(diag.len().checked_sub(2)?).copied().flatten()?,
+        split.last().copied().flatten()?,
+        diag.last().copied().flatten()?,
+    );
+    Some(FS_CAUTIOUS * ((prev - mid).abs() + (mid - cur).abs()))
+}
+
+/// The diagonal's own estimate (module docs) with the split's orders and
+/// shares.
+fn assess_diagonal(inputs: &Inputs) -> Assessment {
     let k = inputs.diagonal.len();
     let defined = inputs.diagonal.iter().filter(|v| v.is_some()).count();
     if defined < k {
@@ -374,6 +437,35 @@ mod tests {
         let diag = (0..k).map(|l| Some(f(x(l), x(l)))).collect();
         let space = (1..k).map(|l| Some(f(x(l), x(l - 1)))).collect();
         (diag, space)
+    }
+
+    /// The Fig. 12 map's point T = 22612.5 N, V0 = 207.5 m/s: a diagonal
+    /// that agrees to 0.0003 over mesh and Δt parts of −0.0040 and +0.0037
+    /// (docs/performance.md). P_l is not smooth: u_num is the split floor;
+    /// a smooth quantity with the same values keeps its diagonal estimate.
+    #[test]
+    fn the_split_floor_sees_parts_that_cancel_on_the_diagonal() {
+        let diag = [Some(0.57977), Some(0.58208), Some(0.58181)];
+        let split = [Some(0.58349), Some(0.57808)];
+        let parts = (0.58208f64 - 0.57808).abs() + (0.57808f64 - 0.58181).abs();
+        let f = split_floor(&diag, &split).unwrap();
+        assert!((f - FS_CAUTIOUS * parts).abs() < 1e-12, "{f}");
+        let a = assess(&inputs(&diag, &split, false));
+        assert_eq!(a.estimator, Estimator::SplitFloor, "{a:?}");
+        assert_eq!(a.u_num, Some(f));
+        assert_eq!(a.u_levels.last(), Some(&Some(f)));
+        assert!(a.note.contains("split floor"), "{}", a.note);
+        // wider than the diagonal's own estimate, and than the true error
+        // (the refined run gives 0.6007)
+        let diagonal_only = assess(&inputs(&diag, &[], false));
+        assert!(f > diagonal_only.u_num.unwrap());
+        assert!(f > (0.6007f64 - 0.58181).abs());
+        // a smooth quantity is left to its diagonal's estimator
+        let smooth = assess(&inputs(&diag, &split, true));
+        assert_ne!(smooth.estimator, Estimator::SplitFloor);
+        // no split, or a split value missing: no floor
+        assert_eq!(split_floor(&diag, &[]), None);
+        assert_eq!(split_floor(&diag, &[Some(0.5), None]), None);
     }
 
     #[test]
