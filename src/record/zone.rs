@@ -14,7 +14,9 @@
 //!
 //! of a held (not free) end: a few bending lengths, and never less than a few
 //! elements or steps of travel, so that it always holds the part of the
-//! arrival the resolution cannot follow. P_l splits into an in-span part and
+//! arrival the resolution cannot follow. `[analysis] support_zone` sets z
+//! (a refinement study sets its scene's own z on every run: a zone that
+//! narrowed with h would make each level's P_l a different quantity). P_l splits into an in-span part and
 //! a support part over the same denominator (all steps): they add up to P_l.
 //!
 //! **Suspect losses.** A loss interval that lasts fewer than
@@ -87,11 +89,13 @@ impl LossGeometry {
             .carriers
             .get(carrier)
             .map_or(0.0, |c| c.motion.profile.cruise_speed().abs());
-        let zone = (SUPPORT_BENDING_LENGTHS * bending_length)
-            .max(SUPPORT_ELEMENTS * h)
-            .max(SUPPORT_STEPS * v * sc.dt)
-            // a zone never covers more than half the span
-            .min(0.5 * b.length);
+        let zone = sc.analysis.support_zone.unwrap_or(
+            (SUPPORT_BENDING_LENGTHS * bending_length)
+                .max(SUPPORT_ELEMENTS * h)
+                .max(SUPPORT_STEPS * v * sc.dt)
+                // a zone never covers more than half the span
+                .min(0.5 * b.length),
+        );
         let held = |s: Support| s != Support::Free;
         LossGeometry {
             length: b.length,
@@ -112,6 +116,15 @@ impl LossGeometry {
     pub fn unresolved(&self, steps: usize, duration: f64) -> bool {
         steps < MIN_RESOLVED_LOSS_STEPS || self.element_passing_time.is_some_and(|p| duration < p)
     }
+}
+
+/// The support zone of scene `sc`, m: `[analysis] support_zone` when
+/// given, else the widest of its carriers' default zones (0 without a
+/// carrier).
+pub fn support_zone_of(sc: &Resolved) -> f64 {
+    (0..sc.carriers.len())
+        .map(|c| LossGeometry::of(sc, c).support_zone)
+        .fold(sc.analysis.support_zone.unwrap_or(0.0), f64::max)
 }
 
 #[cfg(test)]

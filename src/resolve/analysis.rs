@@ -14,6 +14,9 @@ pub struct AnalysisPlan {
     pub x: [f64; 2],
     /// The spans it was given as (`analysis.spans`), if it was.
     pub spans: Option<[usize; 2]>,
+    /// The support zone's width, m, when given (`analysis.support_zone`;
+    /// None: each carrier's default, `record::zone`).
+    pub support_zone: Option<f64>,
 }
 
 impl AnalysisPlan {
@@ -86,10 +89,23 @@ pub(crate) fn resolve_analysis(
         }
         (None, None) => [0.0, length],
     };
+    if let Some(z) = spec.support_zone
+        && !(z.is_finite() && z > 0.0 && z <= 0.5 * length)
+    {
+        return Err(Error::invalid(
+            "analysis.support_zone",
+            z,
+            format!(
+                "must be > 0 and at most L/2 = {} (m); default max(4ℓ_b, 4h, 4VΔt)",
+                0.5 * length
+            ),
+        ));
+    }
     Ok(AnalysisPlan {
         band_hz,
         x,
         spans: spec.spans,
+        support_zone: spec.support_zone,
     })
 }
 
@@ -132,6 +148,8 @@ mod tests {
                 "analysis.spans",
             ),
             ("band = 0.0", &[], "analysis.band"),
+            ("support_zone = 0.0", &[], "analysis.support_zone"),
+            ("support_zone = 30.0", &[], "analysis.support_zone"),
             ("band = 4000.0", &[], "analysis.band"),
         ] {
             let e = resolve_analysis(&spec(text), 50.0, 1e-4, supports)

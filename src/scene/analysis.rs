@@ -2,7 +2,8 @@
 //! railway standards do (docs/output.md#the-standards-statistics): the band
 //! of the low-pass filtered force (0–`band` Hz, default 20) and the analysis
 //! section, a range of each carrier's own position x_m, given in metres
-//! (`x`) or as spans between the line's supports (`spans`).
+//! (`x`) or as spans between the line's supports (`spans`), and the width
+//! of the support zones that split P_l (`support_zone`).
 
 use serde::{Deserialize, Serialize};
 
@@ -23,6 +24,14 @@ pub struct AnalysisSpec {
     /// needs supports: `[output] supports`, a `[line]` or a `[messenger]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spans: Option<[usize; 2]>,
+    /// Width z of the support zone at each held end, m (> 0, at most L/2;
+    /// default max(4ℓ_b, 4h, 4VΔt) of each carrier, `record::zone`): where
+    /// P_l counts as at a support rather than in the span. A refinement
+    /// study (`taut uncertainty`, `sweep --tolerance`, `run --tolerance`)
+    /// sets its scene's own zone on every run, so that every level measures
+    /// P_l over the same part of the span.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub support_zone: Option<f64>,
 }
 
 impl AnalysisSpec {

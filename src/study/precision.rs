@@ -210,6 +210,7 @@ pub fn precision_variants(
             },
             1.0,
         )),
+        support_zone: None,
     }
     .apply(&base)?;
     let reference = run(&ref_sc, &mut |_, _| {})?;
@@ -243,6 +244,7 @@ pub fn precision_variants(
                             dt: Some(dt),
                             formulation: Some(f),
                             space: space.map(|s| (s, if modal { factor as f64 } else { 1.0 })),
+                            support_zone: None,
                         };
                         let scene = match &method_scene {
                             Ok(scene) => variant.apply_to(scene).map_err(Arc::new),

@@ -20,6 +20,7 @@
 use super::space::SpaceChoice;
 use crate::error::Result;
 use crate::integrate::MethodFactory;
+use crate::record::zone::support_zone_of;
 use crate::resolve::Resolved;
 use crate::scene::{Formulation, Scene, scene_with_overrides};
 
@@ -36,6 +37,8 @@ pub(crate) struct RunVariant {
     /// A space discretization and the factor on its level parameter
     /// ([`SpaceChoice::set`]), applied after `elements`.
     pub space: Option<(SpaceChoice, f64)>,
+    /// `analysis.support_zone`, m.
+    pub support_zone: Option<f64>,
 }
 
 impl RunVariant {
@@ -60,7 +63,20 @@ impl RunVariant {
         if let Some((choice, factor)) = self.space {
             choice.set(&mut scene, factor)?;
         }
+        if let Some(z) = self.support_zone {
+            scene.analysis.support_zone = Some(z);
+        }
         scene.validate()
+    }
+
+    /// These changes with `base`'s own support zone kept
+    /// ([`support_zone_of`]): a refinement study's levels then measure P_l
+    /// over the same part of the span, where the default zone,
+    /// max(4ℓ_b, 4h, 4VΔt), would narrow as h and Δt fall and make each
+    /// level's P_l,span a different quantity.
+    pub fn keeping_zone_of(mut self, base: &Resolved) -> Self {
+        self.support_zone = Some(support_zone_of(base));
+        self
     }
 }
 
@@ -96,6 +112,7 @@ mod tests {
                 dt: Some(dt),
                 formulation: Some(Formulation::Penalty),
                 space: None,
+                support_zone: None,
             };
             let typed = v.apply(&base).unwrap();
             let strings = resolve_scene(

@@ -29,6 +29,7 @@
 mod regime;
 mod rows;
 
+use crate::record::zone::support_zone_of;
 use serde::Serialize;
 
 use super::compare::NotRun;
@@ -323,7 +324,7 @@ fn converge_with(
     base.require_every_step("taut converge")?;
     let modal = space.is_some_and(|s| s.is_modal());
     // level ℓ: N₀·r^ℓ elements (or J₀·r^ℓ modes) and/or Δt₀/r^ℓ
-    let level_variant = |l: usize| {
+    let level_variant = |l: usize, zone: Option<f64>| {
         let f = ratio.powi(l as i32);
         RunVariant {
             elements: (refine != Refine::Step && !modal)
@@ -341,8 +342,13 @@ fn converge_with(
                     },
                 )
             }),
+            support_zone: zone,
         }
     };
+    // every level measures P_l over level 0's support zone (the default
+    // zone narrows with h and Δt: each level would split P_l elsewhere)
+    let zone = support_zone_of(&level_variant(0, None).apply(&base)?);
+    let level_variant = |l: usize| level_variant(l, Some(zone));
     let mut scenes = (0..levels)
         .map(|l| level_variant(l).apply(&base))
         .collect::<Result<Vec<Resolved>>>()?;

@@ -150,7 +150,8 @@ impl Point {
             )
         })?;
         let dt = base.dt * (RATIO as f64).powi(-k.1);
-        level.variant(n, dt).apply(base)
+        // every run measures P_l over the point's own support zone
+        level.variant(n, dt).keeping_zone_of(base).apply(base)
     }
 
     /// The keys the point needs next that it has not run.

@@ -66,7 +66,11 @@ impl Start {
 
     /// The scene at level `n` and step `dt`.
     pub(super) fn at(&self, n: usize, dt: f64) -> Result<Resolved> {
-        self.level.variant(n, dt).apply(&self.base)
+        // every run measures P_l over the scene's own support zone
+        self.level
+            .variant(n, dt)
+            .keeping_zone_of(&self.base)
+            .apply(&self.base)
     }
 }
 

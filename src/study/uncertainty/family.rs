@@ -94,8 +94,10 @@ pub fn scenes(base: &Resolved, levels: usize) -> Result<Vec<Resolved>> {
                     format!("{} = {n0} × {f} is too large", level.symbol()),
                 )
             })?;
+            // every level measures P_l over the scene's own support zone
             level
                 .variant(n, base.dt / d as f64)
+                .keeping_zone_of(base)
                 .apply(base)
                 .map_err(|e| e.in_run(&format!("the family's {role:?} run of level {l}")))
         })
@@ -140,5 +142,27 @@ mod tests {
         let cost = |k| plan(k).iter().map(|(_, _, f, d)| f * d).sum::<usize>();
         assert_eq!((cost(3), cost(4)), (31, 127));
         assert!(check_levels(2).is_err() && check_levels(7).is_err());
+    }
+
+    /// Every member measures P_l over the scene's own support zone: on
+    /// the reference scene (N = 400, L = 50 m) that is 4h = 0.5 m, where
+    /// the finer levels' own zones would be 4ℓ_b ≈ 0.26 m.
+    #[test]
+    fn every_member_keeps_the_scene_s_support_zone() {
+        use crate::record::zone::{LossGeometry, support_zone_of};
+        let base =
+            crate::resolve::resolve_scene(include_str!("../../../scenes/reference.toml"), &[])
+                .unwrap();
+        let zone = support_zone_of(&base);
+        assert!((zone - 0.5).abs() < 1e-12, "{zone}");
+        let family = scenes(&base, 3).unwrap();
+        for sc in &family {
+            assert_eq!(sc.analysis.support_zone, Some(zone));
+            assert_eq!(LossGeometry::of(sc, 0).support_zone, zone);
+        }
+        // without it the finest level's zone would be narrower
+        let mut finest = family[2].clone();
+        finest.analysis.support_zone = None;
+        assert!(LossGeometry::of(&finest, 0).support_zone < 0.3);
     }
 }
