@@ -1164,3 +1164,28 @@ fn the_two_carrier_scene_is_valid() {
     assert_eq!(text.matches(CARRIER_HEADER).count(), 2);
     assert_eq!(resolves(&text, &[]).carriers.len(), 2);
 }
+
+/// `[analysis] support_zone`: > 0 and at most L/2; given, it is the zone
+/// every carrier's P_l split uses.
+#[test]
+fn support_zone_out_of_range_is_named() {
+    expect_invalid(
+        REFERENCE,
+        &["analysis.support_zone=0.0"],
+        "analysis.support_zone",
+        "0",
+        "must be > 0 and at most L/2 = 25 (m)",
+    );
+    expect_invalid(
+        REFERENCE,
+        &["analysis.support_zone=26.0"],
+        "analysis.support_zone",
+        "26",
+        "must be > 0 and at most L/2 = 25 (m)",
+    );
+    let sc = resolves(REFERENCE, &["analysis.support_zone=1.5"]);
+    assert_eq!(
+        taut::record::zone::LossGeometry::of(&sc, 0).support_zone,
+        1.5
+    );
+}
