@@ -33,8 +33,9 @@ fn ladder(s: &[&str], refine: Refine) -> taut::study::converge::Convergence {
 /// The cut-down coverage study: the moving force's RMS displacement under
 /// the load against the exact series, from four starting resolutions of
 /// the full study's grid (docs/verification.md lists every pair). Every
-/// one is covered there, with u_num at most 10× the error at 19 of 20:
-/// here every pair must be covered and sharp.
+/// one of the 20 is covered there, with u_num at most 10× the error at 16
+/// of them, these four among them: here every pair must be covered and
+/// sharp.
 #[test]
 fn u_num_covers_the_true_error_of_the_moving_force() {
     let case = Case {

@@ -167,7 +167,7 @@ impl Assessment {
 pub(crate) fn assess(inputs: &Inputs) -> Assessment {
     let mut a = assess_diagonal(inputs);
     let floor = (!inputs.smooth)
-        .then(|| split_floor(inputs.diagonal, inputs.space))
+        .then(|| split_floor(inputs.diagonal, inputs.space, inputs.ratio))
         .flatten()
         .filter(|&f| a.u_num.is_some_and(|u| f > u));
     if let Some(f) = floor {
@@ -180,7 +180,7 @@ pub(crate) fn assess(inputs: &Inputs) -> Assessment {
         a.safety_factor = Some(FS_CAUTIOUS);
         a.asymptotic = false;
         let why = format!(
-            "u_num widened from {below:.3e} to the split floor: the finest step's mesh and Δt parts, added without their signs, times {FS_CAUTIOUS}"
+            "u_num widened from {below:.3e} to the split floor: the finest step's mesh and Δt parts, each carried down at its own order (≤ {FLOOR_ORDER}), added without their signs, times {FS_CAUTIOUS}"
         );
         a.note = if a.note.is_empty() {
             why
@@ -191,28 +191,61 @@ pub(crate) fn assess(inputs: &Inputs) -> Assessment {
     a
 }
 
+/// The order a part of the split floor is extrapolated at, at most: the
+/// formal order in Δt of anything counted from the contact force once
+/// contact switches (`formal_orders`), so a part is never carried down
+/// faster than a quantity that is not smooth can converge.
+const FLOOR_ORDER: f64 = 1.0;
+
 /// The u_num a quantity that is not smooth gets at least, from the split
 /// of its finest diagonal change φ(ℓ−1) → φ(ℓ) into its mesh part
 /// Δ_h = φ(h_{ℓ−1}, Δt_{ℓ−1}) − φ(h_ℓ, Δt_{ℓ−1}) and its Δt part
-/// Δ_Δt = φ(h_ℓ, Δt_{ℓ−1}) − φ(h_ℓ, Δt_ℓ): F_s (|Δ_h| + |Δ_Δt|), F_s = 3,
-/// the two-level GCI of each variable at order 1 (r^p − 1 = 1 for r = 2),
-/// added without their signs. Along the diagonal the two parts can
-/// cancel: on the Fig. 12 map above V0/c = 1 the in-span P_l falls with h
-/// and rises with Δt, and three diagonal levels that agree to 0.0003
-/// (T = 22612.5 N, V0 = 207.5 m/s: 0.5798, 0.5821, 0.5818) hid parts of
-/// −0.0040 and +0.0037 and a value 0.019 below the refined one
-/// (docs/performance.md#the-fig-12-map-with---tolerance-0002). None
-/// without the split's last value.
-pub fn split_floor(diag: &[Option<f64>], split: &[Option<f64>]) -> Option<f64> {
-    if split.len() + 1 != diag.len() {
+/// Δ_Δt = φ(h_ℓ, Δt_{ℓ−1}) − φ(h_ℓ, Δt_ℓ):
+///
+/// ```text
+/// U_split = F_s (|Δ_h| / (r^p_h − 1) + |Δ_Δt| / (r^p_Δt − 1)),   F_s = 3
+/// ```
+///
+/// each part the two-level Richardson error of its own variable (MODEL
+/// §12, "space and time together": ε = α_x h^p_x + α_t Δt^p_t), added
+/// without their signs. A part's order p is read from the same variable's
+/// part one level coarser when the two have the same sign,
+/// p = log_r(|coarser| / |finest|), held within [`LOWEST_ORDER`] …
+/// [`FLOOR_ORDER`] (a part that does not fall gets `LOWEST_ORDER`: it is
+/// not converging, and 1/(r^0.5 − 1) = 2.4 its last change is the least
+/// left); otherwise (one level, or a sign change) p = [`FLOOR_ORDER`].
+///
+/// Along the diagonal the two parts can cancel: on the Fig. 12 map above
+/// V0/c = 1 the in-span P_l falls with h and rises with Δt, and three
+/// diagonal levels that agree to 0.0003 (T = 22612.5 N, V0 = 207.5 m/s:
+/// 0.5798, 0.5821, 0.5818) hid parts of −0.0040 and +0.0037 and a value
+/// 0.019 below the refined one; and there the Δt parts grow as Δt falls
+/// (0.0046, 0.0037, 0.0081, 0.0108 at J = 3200,
+/// docs/performance.md#the-fig-12-map-with---tolerance-0002). None without
+/// the split's last value.
+pub fn split_floor(diag: &[Option<f64>], split: &[Option<f64>], ratio: f64) -> Option<f64> {
+    let k = diag.len();
+    if split.len() + 1 != k || k < 2 {
         return None;
     }
-    let (prev, mid, cur) = (
-        diag.get(diag.len().checked_sub(2)?).copied().flatten()?,
-        split.last().copied().flatten()?,
-        diag.last().copied().flatten()?,
-    );
-    Some(FS_CAUTIOUS * ((prev - mid).abs() + (mid - cur).abs()))
+    // the mesh and Δt parts of diagonal step ℓ − 1 → ℓ
+    let parts = |l: usize| -> Option<(f64, f64)> {
+        let (prev, mid, cur) = (diag[l - 1]?, split[l - 1]?, diag[l]?);
+        Some((prev - mid, mid - cur))
+    };
+    let (dx, dt) = parts(k - 1)?;
+    let before = (k >= 3).then(|| parts(k - 2)).flatten();
+    // 1/(r^p − 1) at the part's own order, within LOWEST_ORDER ..= FLOOR_ORDER
+    let carried = |last: f64, coarser: Option<f64>| -> f64 {
+        let p = match coarser {
+            Some(c) if c * last > 0.0 => (c.abs() / last.abs())
+                .log(ratio)
+                .clamp(LOWEST_ORDER, FLOOR_ORDER),
+            _ => FLOOR_ORDER,
+        };
+        last.abs() / (ratio.powf(p) - 1.0)
+    };
+    Some(FS_CAUTIOUS * (carried(dx, before.map(|b| b.0)) + carried(dt, before.map(|b| b.1))))
 }
 
 /// The diagonal's own estimate (module docs) with the split's orders and
@@ -448,7 +481,8 @@ mod tests {
         let diag = [Some(0.57977), Some(0.58208), Some(0.58181)];
         let split = [Some(0.58349), Some(0.57808)];
         let parts = (0.58208f64 - 0.57808).abs() + (0.57808f64 - 0.58181).abs();
-        let f = split_floor(&diag, &split).unwrap();
+        // both parts change sign between the two steps: each at order 1
+        let f = split_floor(&diag, &split, 2.0).unwrap();
         assert!((f - FS_CAUTIOUS * parts).abs() < 1e-12, "{f}");
         let a = assess(&inputs(&diag, &split, false));
         assert_eq!(a.estimator, Estimator::SplitFloor, "{a:?}");
@@ -464,8 +498,38 @@ mod tests {
         let smooth = assess(&inputs(&diag, &split, true));
         assert_ne!(smooth.estimator, Estimator::SplitFloor);
         // no split, or a split value missing: no floor
-        assert_eq!(split_floor(&diag, &[]), None);
-        assert_eq!(split_floor(&diag, &[Some(0.5), None]), None);
+        assert_eq!(split_floor(&diag, &[], 2.0), None);
+        assert_eq!(split_floor(&diag, &[Some(0.5), None], 2.0), None);
+    }
+
+    /// A part that keeps its sign is carried down at its own order: one
+    /// that grows (P_l's Δt parts at J = 3200 on the Fig. 12 map, 0.0037
+    /// then 0.0081) at the lowest, 0.5 (1/(√2 − 1) = 2.41 its change); one
+    /// that falls faster than order 1 at order 1.
+    #[test]
+    fn the_split_floor_carries_each_part_at_its_own_order() {
+        // no mesh part (each split run equals the level before), Δt parts
+        // 0.0037 then 0.0081
+        let diag = [Some(0.5), Some(0.4963), Some(0.4882)];
+        let split = [Some(0.5), Some(0.4963)];
+        let f = split_floor(&diag, &split, 2.0).unwrap();
+        let want = FS_CAUTIOUS * 0.0081 / (2f64.sqrt() - 1.0);
+        assert!((f - want).abs() < 1e-12, "{f} against {want}");
+        // falling by 8 (order 3): carried at order 1, its change itself
+        let diag = [Some(0.5), Some(0.492), Some(0.491)];
+        let split = [Some(0.5), Some(0.492)];
+        let f = split_floor(&diag, &split, 2.0).unwrap();
+        assert!((f - FS_CAUTIOUS * 0.001).abs() < 1e-12, "{f}");
+        // falling by 1.6 (order 0.68): carried at its own order
+        let diag = [Some(0.5), Some(0.4984), Some(0.4974)];
+        let split = [Some(0.5), Some(0.4984)];
+        let f = split_floor(&diag, &split, 2.0).unwrap();
+        let p = (0.0016f64 / 0.001).log2();
+        let want = FS_CAUTIOUS * 0.001 / (2f64.powf(p) - 1.0);
+        assert!(
+            p > 0.5 && p < 1.0 && (f - want).abs() < 1e-12,
+            "{f} against {want}"
+        );
     }
 
     #[test]

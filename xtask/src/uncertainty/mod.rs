@@ -258,21 +258,28 @@ pub fn main() {
         let mut rows = run_case(&case, DEFAULT_LEVELS, reference)
             .unwrap_or_else(|e| panic!("{}: {e}", case.name));
         // the truth's own accuracy, once for each support zone of the
-        // case's families (the widest printed)
+        // case's families when the truth is a run that splits P_l (the
+        // widest printed), else once
         let text = scene_text(&case);
         let mut spread: Result<f64> = Ok(0.0);
         let mut zones: Vec<(f64, (usize, f64))> = Vec::new();
         for r in &rows {
-            if !zones.iter().any(|(z, _)| *z == r.support_zone) {
+            if !zones.iter().any(|(z, _)| *z == r.support_zone)
+                && (zones.is_empty() || matches!(case.truth, Truth::Refined { .. }))
+            {
                 zones.push((r.support_zone, r.start));
             }
         }
+        let refined = matches!(case.truth, Truth::Refined { .. });
         for (zone, start) in zones {
             let set = truth_set(&overrides(&case, start), zone);
             let sc = resolve_scene(&text, &set).unwrap_or_else(|e| panic!("{}: {e}", case.name));
             let d = truth::truth_spread(case.truth, case.quantity, &sc, &text, &set);
             if let Ok(d) = d {
-                for r in rows.iter_mut().filter(|r| r.support_zone == zone) {
+                for r in rows
+                    .iter_mut()
+                    .filter(|r| !refined || r.support_zone == zone)
+                {
                     r.truth_spread = Some(d);
                 }
             }
