@@ -210,10 +210,10 @@ const FLOOR_ORDER: f64 = 1.0;
 /// §12, "space and time together": ε = α_x h^p_x + α_t Δt^p_t), added
 /// without their signs. A part's order p is read from the same variable's
 /// part one level coarser when the two have the same sign,
-/// p = log_r(|coarser| / |finest|), held within [`LOWEST_ORDER`] …
-/// [`FLOOR_ORDER`] (a part that does not fall gets `LOWEST_ORDER`: it is
+/// p = log_r(|coarser| / |finest|), held within `LOWEST_ORDER` (0.5) …
+/// `FLOOR_ORDER` (1) (a part that does not fall gets `LOWEST_ORDER`: it is
 /// not converging, and 1/(r^0.5 − 1) = 2.4 its last change is the least
-/// left); otherwise (one level, or a sign change) p = [`FLOOR_ORDER`].
+/// left); otherwise (one level, or a sign change) p = `FLOOR_ORDER` (1).
 ///
 /// Along the diagonal the two parts can cancel: on the Fig. 12 map above
 /// V0/c = 1 the in-span P_l falls with h and rises with Δt, and three
