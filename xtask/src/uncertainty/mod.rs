@@ -11,7 +11,7 @@
 //! Targets (issue 37): covered at ≥ [`COVERAGE_TARGET`] of the pairs,
 //! sharpness ≤ [`SHARPNESS_LIMIT`] at ≥ [`SHARPNESS_TARGET`] of them.
 //!
-//! Run: `cargo xtask uncertainty` (every pair, about 15 minutes on 2
+//! Run: `cargo xtask uncertainty` (every pair, about 6 minutes on 2
 //! cores), `cargo xtask uncertainty quick` (a few pairs a case), or with
 //! words that pick cases by name (`cargo xtask uncertainty "reference
 //! case"`). It prints
