@@ -220,6 +220,10 @@ pub fn uncertainty(
     }
     if switch {
         notes.push("contact opens or closes in the family: the displacement's formal order in Δt is 1 (an event's time is O(Δt))".into());
+        notes.push(format!(
+            "every run splits P_l at the scene's own support zone, {:.4} m from each held end (analysis.support_zone), so every level measures the same P_l,span",
+            crate::record::zone::support_zone_of(&base)
+        ));
     }
     Ok(Uncertainty {
         scene: base.scene.clone(),
