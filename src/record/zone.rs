@@ -16,8 +16,9 @@
 //! elements or steps of travel, so that it always holds the part of the
 //! arrival the resolution cannot follow. `[analysis] support_zone` sets z
 //! (a refinement study sets its scene's own z on every run: a zone that
-//! narrowed with h would make each level's P_l a different quantity). P_l splits into an in-span part and
-//! a support part over the same denominator (all steps): they add up to P_l.
+//! narrowed with h would make each level's P_l a different quantity). P_l
+//! splits into an in-span part and a support part over the same
+//! denominator (all steps): they add up to P_l.
 //!
 //! **Suspect losses.** A loss interval that lasts fewer than
 //! `MIN_RESOLVED_LOSS_STEPS` steps, or less than the time the carrier

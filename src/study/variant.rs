@@ -75,7 +75,8 @@ impl RunVariant {
     /// max(4ℓ_b, 4h, 4VΔt), would narrow as h and Δt fall and make each
     /// level's P_l,span a different quantity.
     pub fn keeping_zone_of(mut self, base: &Resolved) -> Self {
-        self.support_zone = Some(support_zone_of(base));
+        // a scene without a carrier has no zone to keep
+        self.support_zone = Some(support_zone_of(base)).filter(|&z| z > 0.0);
         self
     }
 }

@@ -347,8 +347,8 @@ fn converge_with(
     };
     // every level measures P_l over level 0's support zone (the default
     // zone narrows with h and Δt: each level would split P_l elsewhere)
-    let zone = support_zone_of(&level_variant(0, None).apply(&base)?);
-    let level_variant = |l: usize| level_variant(l, Some(zone));
+    let zone = Some(support_zone_of(&level_variant(0, None).apply(&base)?)).filter(|&z| z > 0.0);
+    let level_variant = |l: usize| level_variant(l, zone);
     let mut scenes = (0..levels)
         .map(|l| level_variant(l).apply(&base))
         .collect::<Result<Vec<Resolved>>>()?;
