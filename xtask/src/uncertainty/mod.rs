@@ -237,6 +237,39 @@ pub fn resolved_sharpness(rows: &[Row]) -> (f64, usize) {
     )
 }
 
+/// Measure the truth's own accuracy ([`truth::truth_spread`]) for `rows`
+/// and set it on each: once a case, or once for each support zone of its
+/// families when the truth is a run that splits P_l itself. Returns the
+/// largest (the one printed under the case's table).
+fn set_truth_spreads(case: &Case, rows: &mut [Row]) -> Result<f64> {
+    let text = scene_text(case);
+    let refined = matches!(case.truth, Truth::Refined { .. });
+    // the zone matters only to a refined truth
+    let key = |r: &Row| refined.then_some(r.support_zone);
+    let mut widest: Result<f64> = Ok(0.0);
+    let mut done: Vec<Option<f64>> = Vec::new();
+    for i in 0..rows.len() {
+        let k = key(&rows[i]);
+        if done.contains(&k) {
+            continue;
+        }
+        done.push(k);
+        let set = truth_set(&overrides(case, rows[i].start), rows[i].support_zone);
+        let sc = resolve_scene(&text, &set)?;
+        let d = truth::truth_spread(case.truth, case.quantity, &sc, &text, &set);
+        if let Ok(d) = d {
+            for r in rows.iter_mut().filter(|r| key(r) == k) {
+                r.truth_spread = Some(d);
+            }
+        }
+        widest = match (widest, d) {
+            (Ok(a), Ok(b)) => Ok(a.max(b)),
+            (Err(e), _) | (_, Err(e)) => Err(e),
+        };
+    }
+    widest
+}
+
 /// The report: what `cargo xtask uncertainty` runs.
 pub fn main() {
     let quick = std::env::args().any(|a| a == "quick");
@@ -257,37 +290,7 @@ pub fn main() {
             .map(|(_, h)| h);
         let mut rows = run_case(&case, DEFAULT_LEVELS, reference)
             .unwrap_or_else(|e| panic!("{}: {e}", case.name));
-        // the truth's own accuracy, once for each support zone of the
-        // case's families when the truth is a run that splits P_l (the
-        // widest printed), else once
-        let text = scene_text(&case);
-        let mut spread: Result<f64> = Ok(0.0);
-        let mut zones: Vec<(f64, (usize, f64))> = Vec::new();
-        for r in &rows {
-            if !zones.iter().any(|(z, _)| *z == r.support_zone)
-                && (zones.is_empty() || matches!(case.truth, Truth::Refined { .. }))
-            {
-                zones.push((r.support_zone, r.start));
-            }
-        }
-        let refined = matches!(case.truth, Truth::Refined { .. });
-        for (zone, start) in zones {
-            let set = truth_set(&overrides(&case, start), zone);
-            let sc = resolve_scene(&text, &set).unwrap_or_else(|e| panic!("{}: {e}", case.name));
-            let d = truth::truth_spread(case.truth, case.quantity, &sc, &text, &set);
-            if let Ok(d) = d {
-                for r in rows
-                    .iter_mut()
-                    .filter(|r| !refined || r.support_zone == zone)
-                {
-                    r.truth_spread = Some(d);
-                }
-            }
-            spread = match (spread, d) {
-                (Ok(a), Ok(b)) => Ok(a.max(b)),
-                (Err(e), _) | (_, Err(e)) => Err(e),
-            };
-        }
+        let spread = set_truth_spreads(&case, &mut rows);
         eprintln!(
             "{} ({}): {} pairs in {:.1} s wall",
             case.name,
