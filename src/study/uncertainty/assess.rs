@@ -164,7 +164,7 @@ impl Assessment {
 
 /// Assess one quantity from its family's values: the diagonal's
 /// estimator, then, for a quantity that is not smooth, the split floor.
-pub(crate) fn assess(inputs: &Inputs) -> Assessment {
+pub fn assess(inputs: &Inputs) -> Assessment {
     let mut a = assess_diagonal(inputs);
     let floor = (!inputs.smooth)
         .then(|| split_floor(inputs.diagonal, inputs.space, inputs.ratio))

@@ -38,8 +38,7 @@ use crate::study::cost::{Estimate, run_dof_steps};
 use crate::study::formal_orders::MAX_STEP_ORDER;
 use crate::study::level::Level;
 
-pub(crate) use assess::assess;
-pub use assess::{Assessment, Estimator, Inputs};
+pub use assess::{Assessment, Estimator, Inputs, assess};
 pub(crate) use family::check_levels;
 pub use family::{DEFAULT_LEVELS, Member, RATIO, Role};
 pub use gci::{FS_ASYMPTOTIC, FS_CAUTIOUS, Gci};

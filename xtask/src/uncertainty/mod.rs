@@ -15,10 +15,15 @@
 //! cores), `cargo xtask uncertainty quick` (a few pairs a case), or with
 //! words that pick cases by name (`cargo xtask uncertainty "reference
 //! case"`). It prints
-//! markdown tables to stdout; wall times go to stderr. The default test
+//! markdown tables to stdout; wall times go to stderr. `--dump FILE`
+//! also writes every pair's family values and truth, and `cargo xtask
+//! uncertainty replay FILE` assesses them again with the library's
+//! current estimators (seconds, no run): a change to an estimator is
+//! measured against the whole grid before the grid is run again. The default test
 //! suite runs a cut-down version (`tests/uncertainty.rs`).
 
 pub mod cases;
+pub mod replay;
 pub mod truth;
 
 use std::time::Instant;
@@ -73,6 +78,15 @@ pub struct Row {
     /// The family's support zone, m (`analysis.support_zone`: the start
     /// scene's own), which a refined truth of P_l shares.
     pub support_zone: f64,
+    /// The family's values along the diagonal, coarsest first, and of
+    /// its space-only runs: what [`replay`] assesses again.
+    pub diagonal: Vec<Option<f64>>,
+    /// The space-only runs' values (level 1 first).
+    pub space: Vec<Option<f64>>,
+    /// The quantity's formal orders (space, time) in that family.
+    pub formal: (f64, f64),
+    /// The quantity is smooth in the resolution.
+    pub smooth: bool,
 }
 
 impl Row {
@@ -204,6 +218,10 @@ pub fn run_case(case: &Case, levels: usize, rm: Option<&RidingMassHistory>) -> R
             behaviour: a.behaviour.name(),
             truth_spread: (case.truth == Truth::Series).then_some(0.0),
             support_zone: zone,
+            diagonal: q.diagonal.clone(),
+            space: q.space.clone(),
+            formal: q.formal,
+            smooth: q.smooth,
         });
     }
     Ok(rows)
@@ -272,9 +290,27 @@ fn set_truth_spreads(case: &Case, rows: &mut [Row]) -> Result<f64> {
 
 /// The report: what `cargo xtask uncertainty` runs.
 pub fn main() {
-    let quick = std::env::args().any(|a| a == "quick");
+    let args: Vec<String> = std::env::args().skip(2).collect();
+    if let [first, file] = args.as_slice()
+        && first == "replay"
+    {
+        replay::main(file);
+        return;
+    }
+    let quick = args.iter().any(|a| a == "quick");
+    // `--dump FILE`: every pair's family values and truth, one JSON line
+    // each, for `cargo xtask uncertainty replay FILE`
+    let dump = args
+        .iter()
+        .position(|a| a == "--dump")
+        .map(|i| args.get(i + 1).expect("--dump FILE").clone());
     // any other argument keeps the cases whose name contains it
-    let only: Vec<String> = std::env::args().skip(2).filter(|a| a != "quick").collect();
+    let only: Vec<String> = args
+        .iter()
+        .enumerate()
+        .filter(|&(i, a)| a != "quick" && a != "--dump" && (i == 0 || args[i - 1] != "--dump"))
+        .map(|(_, a)| a.clone())
+        .collect();
     let mut all = Vec::new();
     let mut rm: Option<(&str, RidingMassHistory)> = None;
     let keep = |c: &Case| only.is_empty() || only.iter().any(|o| c.name.contains(o.as_str()));
@@ -314,6 +350,10 @@ pub fn main() {
         all.extend(rows);
     }
     print!("{}", summary(&all));
+    if let Some(path) = dump {
+        replay::write(&path, &all).unwrap_or_else(|e| panic!("{path}: {e}"));
+        eprintln!("wrote {path}");
+    }
 }
 
 /// One case's markdown table.
@@ -344,9 +384,20 @@ pub fn table(case: &Case, rows: &[Row]) -> String {
                 format!("`modal_exact` on the exact modes, J = {modes}, Δt = {dt:e} s"),
         }
     );
-    s.push_str(&format!(
+    s.push_str(&table_rows_with(sym, rows));
+    s
+}
+
+/// A table's rows and its share line (`N` for the level symbol).
+pub fn table_rows(rows: &[Row]) -> String {
+    table_rows_with("N", rows)
+}
+
+/// A table's rows and its share line, with level symbol `sym`.
+fn table_rows_with(sym: &str, rows: &[Row]) -> String {
+    let mut s = format!(
         "| {sym}₀ | Δt₀ (s) | finest {sym} | finest Δt (s) | value | u_num | F_s | estimator | data | p | true error | u_num / error | covered |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
-    ));
+    );
     for r in rows {
         s.push_str(&format!(
             "| {} | {:e} | {} | {:e} | {:.6e} | {:.2e} | {:.2} | {} | {} | {} | {:.2e} | {:.2} | {} |\n",

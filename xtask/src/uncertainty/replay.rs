@@ -1,0 +1,244 @@
+//! The coverage study without its runs: every pair's family values and
+//! true value written once (`cargo xtask uncertainty --dump FILE`), then
+//! assessed again by the library's current estimators (`cargo xtask
+//! uncertainty replay FILE`), so a change to an estimator is measured on
+//! the whole grid in seconds. The tables it prints are the study's; only
+//! the final `cargo xtask uncertainty` run goes into the docs.
+
+use std::io::Write;
+
+use serde_json::{Value, json};
+use taut::study::uncertainty::{Inputs, RATIO, assess};
+
+use super::{Row, summary, table_rows};
+
+/// Write `rows`, one JSON object a line.
+pub fn write(path: &str, rows: &[Row]) -> std::io::Result<()> {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    for r in rows {
+        let line = json!({
+            "case": r.case,
+            "quantity": r.quantity,
+            "start": [r.start.0, r.start.1],
+            "finest": [r.finest.0, r.finest.1],
+            "truth": r.truth,
+            "truth_spread": r.truth_spread,
+            "support_zone": r.support_zone,
+            "diagonal": r.diagonal,
+            "space": r.space,
+            "formal": [r.formal.0, r.formal.1],
+            "smooth": r.smooth,
+        });
+        writeln!(f, "{line}")?;
+    }
+    Ok(())
+}
+
+/// The rows of `path` ([`write`]), each assessed again.
+pub fn read(path: &str) -> Result<Vec<Row>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    text.lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            serde_json::from_str(l)
+                .map(|v| reassess(&v))
+                .map_err(|e| format!("{path}: {e}"))
+        })
+        .collect()
+}
+
+/// Read the rows of `path`, assess each again, and print the tables and
+/// the frontier.
+pub fn main(path: &str) {
+    let rows = read(path).unwrap_or_else(|e| panic!("{e}"));
+    let mut cases: Vec<(&str, &str)> = Vec::new();
+    for r in &rows {
+        if !cases.contains(&(r.case, r.quantity)) {
+            cases.push((r.case, r.quantity));
+        }
+    }
+    for (c, q) in cases {
+        let of: Vec<Row> = rows
+            .iter()
+            .filter(|r| r.case == c && r.quantity == q)
+            .cloned()
+            .collect();
+        print!("\n**{c}**, `{q}`\n{}", table_rows(&of));
+    }
+    print!("{}", summary(&rows));
+    print!("{}", frontier(&rows));
+}
+
+/// The finest diagonal step's mesh and Δt parts added without their
+/// signs, |Δ_h| + |Δ_Δt| (each the two-level Richardson error of its own
+/// variable at order 1); NaN without a split.
+fn split_sum(r: &Row) -> f64 {
+    let k = r.diagonal.len();
+    match (
+        r.diagonal.get(k.wrapping_sub(2)).copied().flatten(),
+        r.space.last().copied().flatten(),
+        r.diagonal.last().copied().flatten(),
+    ) {
+        (Some(prev), Some(mid), Some(cur)) => (prev - mid).abs() + (mid - cur).abs(),
+        _ => f64::NAN,
+    }
+}
+
+/// Safety factors of the frontier's split estimators.
+const FRONTIER_FACTORS: [f64; 5] = [1.0, 1.25, 1.5, 2.0, 3.0];
+
+/// Coverage against sharpness of simpler estimators made from the same
+/// runs, beside the library's: U = c (|Δ_h| + |Δ_Δt|) of the finest
+/// step, and its minimum and geometric mean with the library's u_num. It
+/// shows where both targets can be met at once on this grid, if anywhere.
+fn frontier(rows: &[Row]) -> String {
+    let with = |u: &dyn Fn(&Row) -> f64| -> (f64, f64) {
+        let r: Vec<Row> = rows
+            .iter()
+            .map(|r| Row {
+                u_num: u(r),
+                ..r.clone()
+            })
+            .collect();
+        super::shares(&r)
+    };
+    let mut s =
+        String::from("\n| estimator (same runs) | covered | u_num ≤ 10× error |\n|---|---|---|\n");
+    let mut line = |name: String, (c, sh): (f64, f64)| {
+        s.push_str(&format!(
+            "| {name} | {:.1} % | {:.1} % |\n",
+            100.0 * c,
+            100.0 * sh
+        ));
+    };
+    line(
+        "taut's (GCI, least squares, split floor)".into(),
+        with(&|r| r.u_num),
+    );
+    for c in FRONTIER_FACTORS {
+        line(
+            format!("{c} (\\|Δ_h\\| + \\|Δ_Δt\\|)"),
+            with(&|r| c * split_sum(r)),
+        );
+    }
+    for c in FRONTIER_FACTORS {
+        line(
+            format!("min(taut's, {c} (\\|Δ_h\\| + \\|Δ_Δt\\|))"),
+            with(&|r| r.u_num.min(c * split_sum(r))),
+        );
+    }
+    for c in FRONTIER_FACTORS {
+        line(
+            format!("sqrt(taut's · {c} (\\|Δ_h\\| + \\|Δ_Δt\\|))"),
+            with(&|r| (r.u_num * c * split_sum(r)).sqrt()),
+        );
+    }
+    s
+}
+
+/// A stored pair assessed by the current estimators.
+fn reassess(v: &Value) -> Row {
+    let num = |k: &str| v[k].as_f64().unwrap_or(f64::NAN);
+    let list = |k: &str| -> Vec<Option<f64>> {
+        v[k].as_array()
+            .map(|a| a.iter().map(Value::as_f64).collect())
+            .unwrap_or_default()
+    };
+    let pair = |k: &str| {
+        (
+            v[k][0].as_f64().unwrap_or(0.0),
+            v[k][1].as_f64().unwrap_or(0.0),
+        )
+    };
+    let leak = |k: &str| -> &'static str {
+        Box::leak(v[k].as_str().unwrap_or("").to_string().into_boxed_str())
+    };
+    let (diagonal, space) = (list("diagonal"), list("space"));
+    let formal = pair("formal");
+    let smooth = v["smooth"].as_bool().unwrap_or(true);
+    let a = assess(&Inputs {
+        diagonal: &diagonal,
+        space: &space,
+        ratio: RATIO as f64,
+        formal,
+        smooth,
+    });
+    let (s0, s1) = pair("start");
+    let (f0, f1) = pair("finest");
+    Row {
+        case: leak("case"),
+        quantity: leak("quantity"),
+        start: (s0 as usize, s1),
+        finest: (f0 as usize, f1),
+        value: a.value.unwrap_or(f64::NAN),
+        u_num: a.u_num.unwrap_or(f64::NAN),
+        truth: num("truth"),
+        estimator: a.estimator.name().to_string(),
+        safety_factor: a.safety_factor.unwrap_or(f64::NAN),
+        order: a.observed_order.unwrap_or(f64::NAN),
+        behaviour: a.behaviour.name(),
+        truth_spread: v["truth_spread"].as_f64(),
+        support_zone: num("support_zone"),
+        diagonal,
+        space,
+        formal,
+        smooth,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(diagonal: &[f64], space: &[f64], truth: f64) -> Row {
+        Row {
+            case: "c",
+            quantity: "displacement_max",
+            start: (25, 4e-4),
+            finest: (200, 5e-5),
+            value: f64::NAN,
+            u_num: f64::NAN,
+            truth,
+            estimator: String::new(),
+            safety_factor: f64::NAN,
+            order: f64::NAN,
+            behaviour: "",
+            truth_spread: Some(0.0),
+            support_zone: 1.0,
+            diagonal: diagonal.iter().map(|&v| Some(v)).collect(),
+            space: space.iter().map(|&v| Some(v)).collect(),
+            formal: (4.0, 2.0),
+            smooth: true,
+        }
+    }
+
+    #[test]
+    fn a_replayed_pair_is_assessed_as_the_library_assesses_it() {
+        // a monotone family near 1, and a scattered one
+        let rows = [
+            row(&[1.016, 1.004, 1.001], &[1.0041, 1.00102], 1.0),
+            row(&[2.0, 2.3, 2.1, 2.2], &[2.25, 2.0, 2.15], 2.19),
+        ];
+        let path = std::env::temp_dir().join(format!("taut_replay_{}.jsonl", std::process::id()));
+        let path = path.to_str().unwrap();
+        write(path, &rows).unwrap();
+        let back = read(path).unwrap();
+        std::fs::remove_file(path).unwrap();
+        assert_eq!(back.len(), 2);
+        for (b, r) in back.iter().zip(&rows) {
+            let a = assess(&Inputs {
+                diagonal: &r.diagonal,
+                space: &r.space,
+                ratio: RATIO as f64,
+                formal: r.formal,
+                smooth: r.smooth,
+            });
+            assert_eq!(Some(b.u_num), a.u_num);
+            assert_eq!(b.value, *r.diagonal.last().unwrap().as_ref().unwrap());
+            assert_eq!(b.truth, r.truth);
+            assert_eq!(b.estimator, a.estimator.name());
+        }
+        // the finest step 2.1 → 2.2 through the split run 2.15
+        assert!((split_sum(&back[1]) - (0.05 + 0.05)).abs() < 1e-12);
+    }
+}
