@@ -108,6 +108,45 @@ fn each_point_reports_u_num_and_the_resolution_it_took() {
     assert!(dir.join("tolerance.svg").exists());
 }
 
+/// A point met at or above the wave speed says that its u_num was measured
+/// to miss there (`SUPERSONIC_MET`); one below it does not.
+#[test]
+fn a_point_met_above_the_wave_speed_carries_the_warning() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = out_dir(&tmp, "fast");
+    let mut all = vec![
+        "sweep",
+        "scenes/reference.toml",
+        "--vary",
+        "carrier.speed.cruise=100,170",
+    ];
+    all.extend_from_slice(&MAP);
+    // wide enough that both points are met at their pilots or one step on
+    all.extend_from_slice(&[
+        "--tolerance",
+        "0.5",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let o = taut_bin(&all);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let warned = |i: usize| -> (bool, bool) {
+        let text = std::fs::read_to_string(dir.join(format!("runs/{i:06}.json"))).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let met = v["accuracy"]["met"].as_bool().unwrap();
+        let w = v["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|w| w.as_str().unwrap().contains("at or above the wave speed"));
+        (met, w)
+    };
+    // 100 m/s = 0.67 c: met, no warning; 170 m/s = 1.13 c: met, warned
+    assert_eq!(warned(0), (true, false));
+    assert_eq!(warned(1), (true, true));
+}
+
 #[test]
 fn bad_tolerance_flags_are_named() {
     let tmp = tempfile::tempdir().unwrap();
