@@ -285,7 +285,12 @@ fn assess_diagonal(inputs: &Inputs) -> Assessment {
         }
         Behaviour::Diverging => {
             a.estimator = Estimator::Diverging;
-            a.note = "the differences grow at every level: no estimate (refining makes it worse: an instability, or round-off)".into();
+            a.note = if inputs.smooth {
+                "the differences grow at every level: no estimate (refining makes it worse: an instability, or round-off)".into()
+            } else {
+                // P_l, counts, first loss: finer runs resolve shorter events
+                "the differences grow at every level: no estimate (finer runs resolve events the coarser ones step over — shorter losses, more bounces — or refining makes it worse: an instability)".into()
+            };
             return a;
         }
         _ => {}
