@@ -145,6 +145,19 @@ fn a_point_met_above_the_wave_speed_carries_the_warning() {
     // 100 m/s = 0.67 c: met, no warning; 170 m/s = 1.13 c: met, warned
     assert_eq!(warned(0), (true, false));
     assert_eq!(warned(1), (true, true));
+    // the summary counts points and their runs, not records as runs
+    let runs: usize = (0..2)
+        .map(|i| {
+            let text = std::fs::read_to_string(dir.join(format!("runs/{i:06}.json"))).unwrap();
+            let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+            v["accuracy"]["runs"].as_u64().unwrap() as usize
+        })
+        .sum();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains(&format!("2 points ({runs} runs, 2 within the tolerance)")),
+        "{stdout}"
+    );
 }
 
 #[test]

@@ -444,8 +444,32 @@ fn cmd_sweep(on: &OnScene, args: &SweepArgs, quiet: bool) -> taut::Result<bool> 
     let s = Terminal::new("runs", quiet).run(|fe| app::sweep(&request, fe))?;
     println!("taut {} — sweep {}", taut::VERSION, on.scene.display());
     let ran = s.records.len() - s.resumed.min(s.records.len());
+    // with --tolerance a record is a point of several runs
+    let points: Vec<_> = s
+        .records
+        .iter()
+        .filter_map(|r| r.accuracy.as_ref())
+        .collect();
+    let (what, rate) = if points.is_empty() {
+        (
+            "runs".to_string(),
+            format!("{:.2} runs/s", ran as f64 / s.wall_seconds.max(1e-9)),
+        )
+    } else {
+        let runs: usize = points.iter().map(|a| a.runs).sum();
+        let met = points.iter().filter(|a| a.met).count();
+        let rate = if s.resumed == 0 {
+            format!("{:.2} runs/s", runs as f64 / s.wall_seconds.max(1e-9))
+        } else {
+            format!("{:.2} points/s", ran as f64 / s.wall_seconds.max(1e-9))
+        };
+        (
+            format!("points ({runs} runs, {met} within the tolerance)"),
+            rate,
+        )
+    };
     println!(
-        "  {} runs{}{} in {:.2} s wall ({:.2} runs/s, {} threads); {} stopped with an error",
+        "  {} {what}{}{} in {:.2} s wall ({rate}, {} threads); {} stopped with an error",
         s.records.len(),
         shard.map_or(String::new(), |s| format!(
             " (shard {}/{})",
@@ -457,7 +481,6 @@ fn cmd_sweep(on: &OnScene, args: &SweepArgs, quiet: bool) -> taut::Result<bool> 
             String::new()
         },
         s.wall_seconds,
-        ran as f64 / s.wall_seconds.max(1e-9),
         s.threads,
         s.stopped()
     );
