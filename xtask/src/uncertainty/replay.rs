@@ -121,6 +121,13 @@ fn frontier(rows: &[Row]) -> String {
             with(&|r| c * split_sum(r)),
         );
     }
+    // a factor for each kind of quantity: smooth, and not
+    for (cs, cn) in [(1.25, 1.5), (1.25, 2.0), (1.0, 1.5)] {
+        line(
+            format!("{cs} (smooth) or {cn} (not smooth) × (\\|Δ_h\\| + \\|Δ_Δt\\|)"),
+            with(&|r| if r.smooth { cs } else { cn } * split_sum(r)),
+        );
+    }
     for c in FRONTIER_FACTORS {
         line(
             format!("min(taut's, {c} (\\|Δ_h\\| + \\|Δ_Δt\\|))"),
