@@ -193,9 +193,31 @@ fn reassess(v: &Value) -> Row {
     }
 }
 
+/// The coverage study's pairs as stored with the repository
+/// (`cargo xtask uncertainty --dump`, the run whose tables
+/// docs/verification.md shows): a test replays them on every change of an
+/// estimator.
+pub const STORED: &str = "golden/uncertainty_pairs.jsonl";
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::uncertainty::{COVERAGE_TARGET, shares};
+
+    /// Pairs the estimators were sharp at (u_num ≤ 10× the true error)
+    /// when the pairs were stored, of 129: the estimators may not get
+    /// wider than that without the docs' tables being made again.
+    const SHARP_WHEN_STORED: usize = 73;
+
+    #[test]
+    fn the_stored_pairs_are_covered_at_the_target_and_no_wider_than_measured() {
+        let rows = read(&format!("{}/{STORED}", crate::ROOT)).unwrap();
+        assert_eq!(rows.len(), 129);
+        let (covered, sharp) = shares(&rows);
+        assert!(covered >= COVERAGE_TARGET, "covered {covered}");
+        let n_sharp = (sharp * rows.len() as f64).round() as usize;
+        assert!(n_sharp >= SHARP_WHEN_STORED, "sharp at {n_sharp} of 129");
+    }
 
     fn row(diagonal: &[f64], space: &[f64], truth: f64) -> Row {
         Row {
