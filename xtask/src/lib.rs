@@ -16,7 +16,7 @@
 //! | [`reproduction`] | `docs/reproduction.md` and `docs/reproduction/` | `cargo xtask reproduction [--full] [--resume]` |
 //! | [`published_band`] | the tables of `docs/reproduction.md`'s last section (printed) | `cargo xtask published-band` |
 //! | [`accuracy_check`] | the tables of `docs/accuracy.md` (printed) | `cargo xtask accuracy-check grid\|check …` |
-//! | [`uncertainty`] | `docs/verification.md` ("Solution verification": coverage tables) | `cargo xtask uncertainty [quick] [--dump FILE]`, `cargo xtask uncertainty replay FILE` |
+//! | [`uncertainty`] | `docs/verification.md` ("Solution verification": coverage tables) | `cargo xtask uncertainty [quick] [--dump FILE]`, `cargo xtask uncertainty replay FILE [--pairs OUT]` |
 
 /// The repository's top folder (scenes/, docs/): this crate sits one below it.
 pub const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");

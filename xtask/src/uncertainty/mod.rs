@@ -17,9 +17,11 @@
 //! case"`). It prints
 //! markdown tables to stdout; wall times go to stderr. `--dump FILE`
 //! also writes every pair's family values and truth, and `cargo xtask
-//! uncertainty replay FILE` assesses them again with the library's
-//! current estimators (seconds, no run): a change to an estimator is
-//! measured against the whole grid before the grid is run again. The default test
+//! uncertainty replay FILE [--pairs OUT]` assesses them again with the
+//! library's current estimators (milliseconds, no run; `--pairs` writes
+//! each pair's u_num and errors for `scripts/sibling_spread.py`): a change
+//! to an estimator is measured against the whole grid before the grid is
+//! run again. The default test
 //! suite runs a cut-down version (`tests/uncertainty.rs`).
 
 pub mod cases;
@@ -65,6 +67,9 @@ pub struct Row {
     pub truth: f64,
     /// The estimator and F_s.
     pub estimator: String,
+    /// Its estimated error of the finest value, φ − φ_exact (NaN where it
+    /// gives none).
+    pub error_estimated: f64,
     /// F_s.
     pub safety_factor: f64,
     /// The observed order of the diagonal (NaN where the data support none).
@@ -213,6 +218,7 @@ pub fn run_case(case: &Case, levels: usize, rm: Option<&RidingMassHistory>) -> R
             u_num: a.u_num.unwrap_or(f64::NAN),
             truth: t,
             estimator: a.estimator.name().to_string(),
+            error_estimated: a.error.unwrap_or(f64::NAN),
             safety_factor: a.safety_factor.unwrap_or(f64::NAN),
             order: a.observed_order.unwrap_or(f64::NAN),
             behaviour: a.behaviour.name(),
@@ -291,10 +297,12 @@ fn set_truth_spreads(case: &Case, rows: &mut [Row]) -> Result<f64> {
 /// The report: what `cargo xtask uncertainty` runs.
 pub fn main() {
     let args: Vec<String> = std::env::args().skip(2).collect();
-    if let [first, file] = args.as_slice()
-        && first == "replay"
-    {
-        replay::main(file);
+    if args.first().is_some_and(|a| a == "replay") {
+        match args.as_slice() {
+            [_, file] => replay::main(file, None),
+            [_, file, flag, out] if flag == "--pairs" => replay::main(file, Some(out)),
+            _ => panic!("usage: cargo xtask uncertainty replay FILE [--pairs OUT]"),
+        }
         return;
     }
     let quick = args.iter().any(|a| a == "quick");

@@ -48,9 +48,14 @@ pub fn read(path: &str) -> Result<Vec<Row>, String> {
 }
 
 /// Read the rows of `path`, assess each again, and print the tables and
-/// the frontier.
-pub fn main(path: &str) {
+/// the frontier; with `pairs`, also write each pair's u_num, estimated
+/// error and true error there, one JSON line a pair in the same order
+/// (what `scripts/sibling_spread.py` reads).
+pub fn main(path: &str, pairs: Option<&str>) {
     let rows = read(path).unwrap_or_else(|e| panic!("{e}"));
+    if let Some(out) = pairs {
+        write_pairs(out, &rows).unwrap_or_else(|e| panic!("{out}: {e}"));
+    }
     let mut cases: Vec<(&str, &str)> = Vec::new();
     for r in &rows {
         if !cases.contains(&(r.case, r.quantity)) {
@@ -143,6 +148,23 @@ fn frontier(rows: &[Row]) -> String {
     s
 }
 
+/// Each row's u_num, estimated error and true error, one JSON line each.
+fn write_pairs(path: &str, rows: &[Row]) -> std::io::Result<()> {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    for r in rows {
+        let line = json!({
+            "case": r.case,
+            "quantity": r.quantity,
+            "start": [r.start.0, r.start.1],
+            "u_num": r.u_num,
+            "error_estimated": r.error_estimated,
+            "error_true": r.error(),
+        });
+        writeln!(f, "{line}")?;
+    }
+    Ok(())
+}
+
 /// A stored pair assessed by the current estimators.
 fn reassess(v: &Value) -> Row {
     let num = |k: &str| v[k].as_f64().unwrap_or(f64::NAN);
@@ -181,6 +203,7 @@ fn reassess(v: &Value) -> Row {
         u_num: a.u_num.unwrap_or(f64::NAN),
         truth: num("truth"),
         estimator: a.estimator.name().to_string(),
+        error_estimated: a.error.unwrap_or(f64::NAN),
         safety_factor: a.safety_factor.unwrap_or(f64::NAN),
         order: a.observed_order.unwrap_or(f64::NAN),
         behaviour: a.behaviour.name(),
@@ -229,6 +252,7 @@ mod tests {
             u_num: f64::NAN,
             truth,
             estimator: String::new(),
+            error_estimated: f64::NAN,
             safety_factor: f64::NAN,
             order: f64::NAN,
             behaviour: "",
