@@ -14,9 +14,8 @@ use super::{Row, summary, table_rows};
 
 /// Write `rows`, one JSON object a line.
 pub fn write(path: &str, rows: &[Row]) -> std::io::Result<()> {
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
-    for r in rows {
-        let line = json!({
+    write_lines(path, rows, |r| {
+        json!({
             "case": r.case,
             "quantity": r.quantity,
             "start": [r.start.0, r.start.1],
@@ -28,10 +27,17 @@ pub fn write(path: &str, rows: &[Row]) -> std::io::Result<()> {
             "space": r.space,
             "formal": [r.formal.0, r.formal.1],
             "smooth": r.smooth,
-        });
-        writeln!(f, "{line}")?;
+        })
+    })
+}
+
+/// `line(r)` of every row of `rows` to `path`, one JSON object a line.
+fn write_lines(path: &str, rows: &[Row], line: impl Fn(&Row) -> Value) -> std::io::Result<()> {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    for r in rows {
+        writeln!(f, "{}", line(r))?;
     }
-    Ok(())
+    f.flush()
 }
 
 /// The rows of `path` ([`write`]), each assessed again.
@@ -150,19 +156,16 @@ fn frontier(rows: &[Row]) -> String {
 
 /// Each row's u_num, estimated error and true error, one JSON line each.
 fn write_pairs(path: &str, rows: &[Row]) -> std::io::Result<()> {
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
-    for r in rows {
-        let line = json!({
+    write_lines(path, rows, |r| {
+        json!({
             "case": r.case,
             "quantity": r.quantity,
             "start": [r.start.0, r.start.1],
             "u_num": r.u_num,
             "error_estimated": r.error_estimated,
             "error_true": r.error(),
-        });
-        writeln!(f, "{line}")?;
-    }
-    Ok(())
+        })
+    })
 }
 
 /// A stored pair assessed by the current estimators.
