@@ -246,7 +246,7 @@ fn main() -> Result<()> {
             .study
             .rows
             .iter()
-            .rfind(|r| r.quantity == "displacement_l2")
+            .rfind(|r| r.quantity == "displacement_history_l2")
         {
             println!(
                 "{:18} moving force, taut converge: error against the series {:.3e} (order {:.2}), successive differences' order {:.2}: {}",

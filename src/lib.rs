@@ -40,6 +40,7 @@ pub(crate) mod json_keys;
 pub(crate) mod manufactured;
 pub mod model;
 pub(crate) mod numeric;
+pub mod quantity;
 
 pub mod record;
 pub mod report;

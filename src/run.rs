@@ -44,6 +44,11 @@ pub struct RunOutput {
     pub wall_seconds: f64,
     /// Findings that make the numbers suspect (e.g. contact chatter).
     pub warnings: Vec<String>,
+    /// The end of the window every time statistic is taken over, s: the
+    /// scene's end time T for a run of all its steps (its last row may fall
+    /// short of T by less than a step), the last row's time for one stopped
+    /// early (MODEL §7, `record::window`).
+    pub window_end: f64,
     /// The contact force recorded at t is the method's multiplier acting at
     /// t − force_lag·Δt ([`crate::integrate::System::force_lag`]; 0 for a
     /// run of no steps). A reference force is compared there.
@@ -585,10 +590,15 @@ impl Recorder {
             })
             .collect();
         let max_abs_w: Vec<f64> = self.acc.iter().map(ContactAccumulator::max_abs_w).collect();
+        let window_end = if f.steps == sc.steps {
+            sc.t_end
+        } else {
+            f.steps as f64 * sc.dt
+        };
         let stats = self
             .acc
             .into_iter()
-            .map(ContactAccumulator::finish)
+            .map(|a| a.with_window_end(window_end).finish())
             .collect::<Vec<ContactStats>>();
         let mut warnings: Vec<String> = stats
             .iter()
@@ -624,6 +634,7 @@ impl Recorder {
                 .flatten()
                 .map(SpanAccumulator::finish)
                 .collect(),
+            window_end,
             force_lag: f.force_lag,
             form: f.form,
             standard,

@@ -71,8 +71,8 @@ fn generalized_alpha_is_second_order_in_time() {
         4,
         &["mesh.elements=100", "time.step=5e-5"],
     );
-    assert_orders(&c, "displacement_l2", 2.0);
-    assert_orders(&c, "displacement_max", 2.0);
+    assert_orders(&c, "displacement_history_l2", 2.0);
+    assert_orders(&c, "displacement_history_max", 2.0);
 }
 
 #[test]
@@ -83,7 +83,7 @@ fn riding_mass_displacement_is_second_order_in_time() {
         4,
         &["mesh.elements=80", "time.step=2e-4"],
     );
-    assert_orders(&c, "displacement_l2", 2.0);
+    assert_orders(&c, "displacement_history_l2", 2.0);
 }
 
 #[test]
@@ -94,9 +94,9 @@ fn string_elements_are_first_order_at_the_load_point() {
         4,
         &["time.step=5e-5"],
     );
-    assert_orders(&c, "displacement_l2", 1.0);
+    assert_orders(&c, "displacement_history_l2", 1.0);
     // FE against analytic, at the tolerance the rate gives
-    let e = errors(&c, "displacement_l2");
+    let e = errors(&c, "displacement_history_l2");
     let bound = e[0] * 0.5f64.powi(3).powf(1.0 - ORDER_TOL);
     println!(
         "string: error against analytic {:.3e} → {:.3e} (bound {bound:.3e})",
@@ -104,16 +104,16 @@ fn string_elements_are_first_order_at_the_load_point() {
     );
     assert!(e[3] <= bound);
     assert!(
-        c.rows
-            .iter()
-            .all(|r| r.quantity != "displacement_l2" || r.reference == "moving_force_series")
+        c.rows.iter().all(
+            |r| r.quantity != "displacement_history_l2" || r.reference == "moving_force_series"
+        )
     );
 }
 
 #[test]
 fn hermite_beam_against_the_analytic_moving_load() {
     let c = study("moving_force_beam.toml", Refine::Both, 4, &[]);
-    let e = errors(&c, "displacement_l2");
+    let e = errors(&c, "displacement_history_l2");
     let bound = e[0] * 0.5f64.powi(3).powf(2.0 - ORDER_TOL);
     println!("beam: error against analytic {e:?} (finest bound {bound:.3e})");
     assert!(e[3] <= bound);
@@ -121,7 +121,7 @@ fn hermite_beam_against_the_analytic_moving_load() {
     let value = c
         .rows
         .iter()
-        .rfind(|r| r.quantity == "displacement_l2")
+        .rfind(|r| r.quantity == "displacement_history_l2")
         .unwrap()
         .value;
     assert!(e[3] / value < 1e-4, "{}", e[3] / value);
@@ -136,8 +136,8 @@ fn generalized_alpha_time_order_full() {
         6,
         &["mesh.elements=100", "time.step=1e-4"],
     );
-    assert_orders(&c, "displacement_l2", 2.0);
-    assert_orders(&c, "displacement_max", 2.0);
+    assert_orders(&c, "displacement_history_l2", 2.0);
+    assert_orders(&c, "displacement_history_max", 2.0);
 }
 
 #[test]
@@ -149,5 +149,5 @@ fn string_space_order_full() {
         5,
         &["time.step=2.5e-5"],
     );
-    assert_orders(&c, "displacement_l2", 1.0);
+    assert_orders(&c, "displacement_history_l2", 1.0);
 }

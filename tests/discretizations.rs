@@ -73,7 +73,7 @@ const SERIES_AGREEMENT_TOL: f64 = 3e-5;
 const RIDING_MASS_AGREEMENT_TOL: f64 = 5e-6;
 
 /// Graded meshes keep the order in h: the observed orders of
-/// displacement_l2 on the moving-force ladder N = 20 … 160 differ from the
+/// displacement_history_l2 on the moving-force ladder N = 20 … 160 differ from the
 /// uniform mesh's by at most 0.2 (measured 0.09–0.20; the ladder is
 /// pre-asymptotic, orders 1.1–1.5), bounded here by 0.3.
 const GRADED_ORDER_TOL: f64 = 0.3;
@@ -219,7 +219,7 @@ fn graded_meshes_keep_the_order_in_h() {
         .unwrap();
         c.rows
             .iter()
-            .filter(|r| r.quantity == "displacement_l2" && r.level >= 2)
+            .filter(|r| r.quantity == "displacement_history_l2" && r.level >= 2)
             .map(|r| r.observed_order)
             .collect()
     };

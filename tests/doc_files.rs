@@ -155,3 +155,35 @@ fn the_word_finder_sees_names_and_paths_but_not_urls() {
     );
     assert_eq!(w, ["MODEL.md", "docs/lines.md", "src/run.rs"]);
 }
+
+/// docs/model.md §7 lists every quantity of the registry, with its unit,
+/// and no name the registry does not have: the reference a reader checks a
+/// column against cannot drift from the code.
+#[test]
+fn the_model_lists_every_quantity_of_the_registry() {
+    let text = std::fs::read_to_string(crate::common::crate_root().join("docs/model.md")).unwrap();
+    let start = text.find("## 7. Measured quantities").expect("§7");
+    let end = text[start..]
+        .find("\n## 8.")
+        .map_or(text.len(), |e| start + e);
+    let section = &text[start..end];
+    let rows: Vec<&str> = section.lines().filter(|l| l.starts_with("| `")).collect();
+    let all = taut::quantity::all();
+    for q in &all {
+        let row = rows
+            .iter()
+            .find(|r| r.starts_with(&format!("| `{}` |", q.name)))
+            .unwrap_or_else(|| panic!("docs/model.md §7 has no row for `{}`", q.name));
+        assert!(
+            row.contains(&format!("| {} |", q.unit)),
+            "`{}`'s row does not give its unit {}: {row}",
+            q.name,
+            q.unit
+        );
+    }
+    assert_eq!(
+        rows.len(),
+        all.len(),
+        "a row for a quantity the registry has not"
+    );
+}

@@ -204,7 +204,10 @@ fn penalty_recovers_the_lagrange_loss_set_when_kappa_is_large() {
     );
     assert!(soft.rows[0].loss_set_difference > 0.0);
     assert_eq!(stiff.rows[0].loss_set_difference, 0.0);
-    assert!(stiff.rows[0].max_penetration < soft.rows[0].max_penetration / 100.0);
+    assert!(
+        stiff.rows[0].max_penetration_all_carriers
+            < soft.rows[0].max_penetration_all_carriers / 100.0
+    );
 }
 
 #[test]

@@ -507,7 +507,7 @@ fn converge_flags_a_ladder_limited_by_the_mesh_and_reports_omega_dt() {
     let last = c
         .rows
         .iter()
-        .find(|r| r.level == 2 && r.quantity == "displacement_l2")
+        .find(|r| r.level == 2 && r.quantity == "displacement_history_l2")
         .unwrap();
     println!("moving force, Δt ladder at N = 50: {last:?}");
     assert_eq!(last.reference, "moving_force_series");
@@ -516,7 +516,7 @@ fn converge_flags_a_ladder_limited_by_the_mesh_and_reports_omega_dt() {
     let first = c
         .rows
         .iter()
-        .find(|r| r.level == 0 && r.quantity == "displacement_l2")
+        .find(|r| r.level == 0 && r.quantity == "displacement_history_l2")
         .unwrap();
     assert!((first.omega_max_dt / last.omega_max_dt - 4.0).abs() < 1e-9);
     // the manufactured Δt ladder on a fine mesh is asymptotic at order 2
@@ -533,7 +533,7 @@ fn converge_flags_a_ladder_limited_by_the_mesh_and_reports_omega_dt() {
     let last = c
         .rows
         .iter()
-        .find(|r| r.level == 2 && r.quantity == "displacement_max")
+        .find(|r| r.level == 2 && r.quantity == "displacement_history_max")
         .unwrap();
     assert_eq!(last.reference, "manufactured");
     assert_eq!(last.regime, "asymptotic");
@@ -543,7 +543,7 @@ fn converge_flags_a_ladder_limited_by_the_mesh_and_reports_omega_dt() {
     let f = c
         .rows
         .iter()
-        .find(|r| r.level == 2 && r.quantity == "force_max")
+        .find(|r| r.level == 2 && r.quantity == "force_history_max")
         .unwrap();
     assert_eq!(f.reference, "manufactured");
     assert!(f.error_order > 1.7, "{}", f.error_order);

@@ -235,7 +235,7 @@ fn tolerance_run_writes_accuracy_next_to_every_result() {
     assert_eq!(acc["pilots"].as_array().unwrap().len(), 5);
     // every result of carrier 0 has an estimate or a stated reason
     let results = acc["results"].as_array().unwrap();
-    assert_eq!(results.len(), taut::study::tolerance::RESULTS.len());
+    assert_eq!(results.len(), taut::study::tolerance::results().len());
     for r in results {
         assert!(
             r["estimated_error"].is_f64()

@@ -149,7 +149,7 @@ fn a_one_variable_ladder_names_what_it_does_not_measure() {
     let last = c
         .rows
         .iter()
-        .find(|r| r.level == 2 && r.quantity == "displacement_l2")
+        .find(|r| r.level == 2 && r.quantity == "displacement_history_l2")
         .unwrap();
     assert_eq!(last.reference, "richardson (Δt error only)");
     assert!(
@@ -163,7 +163,7 @@ fn a_one_variable_ladder_names_what_it_does_not_measure() {
     let both = c
         .rows
         .iter()
-        .find(|r| r.level == 2 && r.quantity == "displacement_l2")
+        .find(|r| r.level == 2 && r.quantity == "displacement_history_l2")
         .unwrap();
     assert_eq!(both.reference, "richardson (mesh and Δt)");
     assert!((0.0..=1.0).contains(&both.mesh_share), "{both:?}");

@@ -243,7 +243,7 @@ fn taut_converge_reports_the_galerkin_errors() {
         .lines()
         .skip(1)
         .map(|l| l.split(',').collect())
-        .filter(|r: &Vec<&str>| r[quantity] == "displacement_max")
+        .filter(|r: &Vec<&str>| r[quantity] == "displacement_history_max")
         .collect();
     assert_eq!(rows.len(), 3);
     let errors: Vec<f64> = rows.iter().map(|r| r[error].parse().unwrap()).collect();

@@ -281,20 +281,20 @@ fn the_summary_filters_the_force_as_the_sweep_columns_do() {
     assert_eq!(s.contact.force_filtered, s.carriers[0].force_filtered);
     // an independent filter of history.csv's force (the study's filter,
     // the statistics written out here): the same numbers
+    // mean and σ over the window [0, T] (MODEL §7), max and min over the
+    // steps
     let y = taut::study::filter::lowpass_zero_phase(&out.history.carriers[0].force, sc.dt, 20.0);
+    let (mean, std) = taut::record::window::time_mean_std(&out.history.t, &y, out.window_end);
     let y = &y[1..];
-    let m = y.len() as f64;
-    let mean = y.iter().sum::<f64>() / m;
-    let std = (y.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / m).sqrt();
     assert_eq!(f.cutoff_hz, 20.0);
     assert_eq!(f.mean, mean);
     assert_eq!(f.std, std);
     assert_eq!(f.max, y.iter().copied().fold(f64::NEG_INFINITY, f64::max));
     assert_eq!(f.min, y.iter().copied().fold(f64::INFINITY, f64::min));
     // the sweep's filtered columns are the same statistic
-    use taut::study::scalars::Scalar;
-    assert_eq!(Scalar::FilteredForceStd.of(&out, 0), Some(f.std));
-    assert_eq!(Scalar::FilteredForceMax.of(&out, 0), Some(f.max));
+    use taut::quantity::{FILTERED_FORCE_MAX, FILTERED_FORCE_STD};
+    assert_eq!(FILTERED_FORCE_STD.of(&out, 0), Some(f.std));
+    assert_eq!(FILTERED_FORCE_MAX.of(&out, 0), Some(f.max));
     // filtering smooths: the filtered spread is below the raw one
     assert!(f.std < s.carriers[0].force.std && f.max <= s.carriers[0].force.max);
     let json = serde_json::to_value(&s).unwrap();

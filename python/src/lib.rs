@@ -786,6 +786,32 @@ fn stop_running_calls() -> bool {
 /// runs as usual.
 const STOP_HOLD: Duration = Duration::from_secs(2);
 
+/// The registry of quantities (`taut::quantity::all`) as JSON: one object
+/// a quantity, with its name (the column and key in every table and
+/// summary), label, unit, definition, window, smoothness, error kind and
+/// whether it is a count. The package's labels and docs read it, so a
+/// quantity registered in the library is known here without a list of
+/// its own.
+#[pyfunction]
+fn quantities() -> String {
+    let all: Vec<serde_json::Value> = taut::quantity::all()
+        .into_iter()
+        .map(|q| {
+            serde_json::json!({
+                "name": q.name,
+                "label": q.label,
+                "unit": q.unit,
+                "definition": q.definition,
+                "window": q.window,
+                "smooth": q.smooth,
+                "error": q.error,
+                "count": q.count,
+            })
+        })
+        .collect();
+    serde_json::Value::Array(all).to_string()
+}
+
 /// The native module.
 #[pymodule]
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -805,6 +831,7 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(report, m)?)?;
     m.add_function(wrap_pyfunction!(stop_running_calls, m)?)?;
     m.add_function(wrap_pyfunction!(most_point_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(quantities, m)?)?;
     m.add_class::<simulation::Simulation>()?;
     Ok(())
 }

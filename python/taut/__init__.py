@@ -88,6 +88,7 @@ __all__ = [
     "modes",
     "mesh",
     "report",
+    "quantities",
     "Run",
     "CarrierStats",
     "Modes",
@@ -108,6 +109,24 @@ __all__ = [
 ]
 
 __version__: str = _taut.__version__
+
+
+def quantities() -> List[Dict[str, Any]]:
+    """Every quantity taut reports, one dict each: `name` (its column in
+    every table and its key in `summary["quantities"]`), `label`, `unit`,
+    `definition`, `window` (what it is measured over), `smooth`, `error`
+    (how its discretization error behaves) and `count`. The library's
+    registry, read as it is: a quantity registered there is here too."""
+    found: List[Dict[str, Any]] = json.loads(_taut.quantities())
+    return found
+
+
+_show.QUANTITY_LABELS.update(
+    {
+        q["name"]: f'{q["label"]} ({"–" if q["unit"] == "-" else q["unit"]})'
+        for q in quantities()
+    }
+)
 
 
 def _chain_sigint() -> None:
@@ -265,7 +284,8 @@ class Run:
         figures (`speed_ratio`, `wave_speed`, `dofs`, ...). Each is an
         attribute too: `run.force_std`."""
         carriers = self.summary.get("carriers") or [{}]
-        flat = _study_names(_flat(carriers[0]))
+        values = self.summary.get("quantities") or [{}]
+        flat = _study_names(_flat(carriers[0]), values[0])
         for k, v in _flat(self.summary.get("derived", {})).items():
             flat.setdefault(k, v)
         flat.setdefault("wall_seconds", self.summary.get("wall_seconds"))
@@ -275,7 +295,11 @@ class Run:
     def carriers(self) -> List["CarrierStats"]:
         """Each carrier's statistics with the same flat names:
         run.carriers[1].force_std."""
-        return [CarrierStats(_study_names(_flat(c))) for c in self.summary.get("carriers", [])]
+        values = self.summary.get("quantities") or []
+        return [
+            CarrierStats(_study_names(_flat(c), values[i] if i < len(values) else {}))
+            for i, c in enumerate(self.summary.get("carriers", []))
+        ]
 
     def __getattr__(self, name: str) -> Any:
         # only for names that are not attributes: the summary's scalars
@@ -337,14 +361,15 @@ def _round(v: Any) -> str:
     return str(v)
 
 
-def _study_names(flat: Dict[str, Any]) -> Dict[str, Any]:
-    """The filtered force's figures also under the study tables' names
-    (`filtered_force_mean` for summary["carriers"][0]["force_filtered"]["mean"],
-    as sweep.csv and compare.csv name them)."""
-    for k in ("mean", "std", "max", "min"):
-        if f"force_filtered_{k}" in flat:
-            flat.setdefault(f"filtered_force_{k}", flat[f"force_filtered_{k}"])
-    return flat
+def _study_names(flat: Dict[str, Any], values: Mapping[str, Any]) -> Dict[str, Any]:
+    """The carrier's quantities under the names every table gives them
+    (summary["quantities"], the library's registry: `filtered_force_mean`,
+    `displacement_max`, ...), then the rest of its statistics under their
+    flat summary names."""
+    out: Dict[str, Any] = dict(values)
+    for k, v in flat.items():
+        out.setdefault(k, v)
+    return out
 
 
 def _flat(d: Mapping[str, Any], prefix: str = "") -> Dict[str, Any]:

@@ -97,23 +97,14 @@ def run_html(scalars: Dict[str, Any], carriers: int, rows: int, warnings: Sequen
     )
 
 
-# units of the quantities a table's columns and a sweep's axes hold, for
-# axis labels (the CLI's maps label them the same way:
+# units of the other columns and of a sweep's axes, for axis labels (the CLI's maps label them the same way:
 # src/report/sweep_maps/axes.rs)
+# labels of the library's quantities ("contact loss P_l (-)"), filled from
+# its registry by the package (taut/__init__.py) so that no list of them is
+# kept here
+QUANTITY_LABELS: Dict[str, str] = {}
+
 _LABELS = {
-    "loss_fraction": "contact loss P_l (–)",
-    "loss_fraction_span": "contact loss in span P_l (–)",
-    "loss_fraction_support": "contact loss at supports P_l (–)",
-    "force_mean": "mean contact force (N)",
-    "force_std": "σ of the contact force (N)",
-    "force_min": "min contact force (N)",
-    "force_max": "max contact force (N)",
-    "filtered_force_mean": "mean filtered contact force (N)",
-    "filtered_force_std": "σ of the filtered contact force (N)",
-    "filtered_force_min": "min filtered contact force (N)",
-    "filtered_force_max": "max filtered contact force (N)",
-    "first_loss_position": "first loss x_m / L (–)",
-    "contact_switches": "contact switches (–)",
     "speed_ratio": "speed ratio V0/c (–)",
     "tension_ratio": "tension ratio T/EA (–)",
     "mass_ratio": "mass ratio m/M (–)",
@@ -139,7 +130,12 @@ def label(name: str) -> str:
     last part decides: `carrier.speed.cruise` is a speed in m/s); the name
     itself when taut does not know its unit."""
     last = name.rsplit(".", 1)[-1]
-    found = _LABELS.get(name) or _LABELS.get(last)
+    found = (
+        QUANTITY_LABELS.get(name)
+        or _LABELS.get(name)
+        or QUANTITY_LABELS.get(last)
+        or _LABELS.get(last)
+    )
     if found is None:
         return name
     return found if name == last else f"{found}   [{name}]"

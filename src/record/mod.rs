@@ -1,8 +1,9 @@
 //! Histories and statistics of a run (MODEL §7).
 //!
 //! Row 0 of every history is the initial state at t = 0; rows 1..=steps are
-//! the ends of the steps. Statistics and P_l are taken over the steps
-//! (rows 1..), as MODEL §5 defines P_l: steps with λ = 0 over all steps.
+//! the ends of the steps. Time statistics (means, σ, RMS, P_l) are taken
+//! over the window [0, T], T the scene's end time, whatever Δt
+//! ([`window`]); extremes over the steps (rows 1..).
 
 use crate::integrate::CarrierSample;
 
@@ -13,6 +14,7 @@ pub mod span;
 pub mod standard;
 pub mod stats;
 pub mod support;
+pub mod window;
 pub mod wire;
 pub mod zone;
 

@@ -6,6 +6,7 @@
 use serde::Serialize;
 
 use super::CarrierTrace;
+use super::window::TimeAverage;
 use super::zone::LossGeometry;
 use crate::integrate::CarrierSample;
 use crate::resolve::memory::{EVENT_BYTES, MAX_STORED_EVENTS, event_capacity};
@@ -141,7 +142,10 @@ pub enum LossClass {
 /// A carrier's contact statistics over the steps of a run.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct ContactStats {
-    /// P_l: steps with the contact open over all steps.
+    /// P_l: the time with the contact open over the window [0, T] (MODEL
+    /// §7): each loss from its instant located within its step to the
+    /// re-contact's (`ContactAccumulator`), so that it does not move in
+    /// whole steps as Δt changes.
     pub loss_fraction: f64,
     /// The part of P_l in the span, outside the support zones: the number
     /// to quote (it converges in h and Δt where P_l does not).
@@ -149,6 +153,9 @@ pub struct ContactStats {
     /// The part of P_l in the support zones (the carrier's arrival at a
     /// support; does not converge in Δt). Span + support = P_l.
     pub loss_fraction_support: f64,
+    /// P_l as the source study counts it: the steps with the contact open
+    /// over all steps (moves in whole steps as Δt changes).
+    pub loss_fraction_steps: f64,
     /// Width z of the support zone at each held end, m ([`LossGeometry`]).
     pub support_zone: f64,
     /// Loss intervals as [x_start/L, x_end/L]: a lost step covers
@@ -175,7 +182,9 @@ pub struct ContactStats {
     pub first_loss_position: Option<f64>,
     /// Number of contact state changes (closed → open and open → closed).
     pub contact_switches: usize,
-    /// Force statistics over the steps, N (λ = 0 counts where contact is lost).
+    /// Force statistics, N (λ = 0 counts where contact is lost): the mean
+    /// and σ over the window [0, T] (`super::window`), the min and max over
+    /// the steps.
     pub force: ForceStats,
     /// Statistics of the 0–20 Hz force (EN 50317/50318/50367 style), in a
     /// run's summary only (the filter is a study's: `report::Summary` fills
@@ -230,11 +239,19 @@ impl ContactStats {
 
 /// One carrier's contact statistics, accumulated a sample at a time over
 /// every step, so that they do not depend on which rows the history keeps
-/// (`output.record_every`). Row 0 (t = 0) is the initial state; statistics
-/// are over the steps (rows 1..), as MODEL §5 defines P_l.
+/// (`output.record_every`). Row 0 (t = 0) is the initial state.
 ///
-/// The force's standard deviation is Welford's running update, and its mean
-/// the plain running sum over the steps divided by their number.
+/// Every time statistic is over the window [0, T], T the scene's end time
+/// ([`Self::with_window_end`]), whatever Δt (`super::window`): the force's
+/// mean and σ are time averages (trapezoids, West's weighted update), and
+/// P_l is a time. A loss starts where λ, extrapolated along its last two
+/// closed rows, reaches 0 within the first open step; contact returns
+/// where the gap, extrapolated along its last two open rows, closes within
+/// the re-contact step (linear event location, as an ODE solver's). Where
+/// the two rows are not there or do not head to zero (a loss after one
+/// step, λ not falling), the step's start stands for the instant: the
+/// step count's convention. The step count itself is kept
+/// (`loss_fraction_steps`).
 #[derive(Debug, Clone)]
 pub(crate) struct ContactAccumulator {
     geometry: LossGeometry,
@@ -268,13 +285,24 @@ pub(crate) struct ContactAccumulator {
     max_gap: f64,
     min_gap: f64,
     max_gap_force: f64,
-    sum: f64,
-    mean: f64,
-    m2: f64,
     min: f64,
     max: f64,
     /// Row 0's force, used only when no step follows it.
     force0: f64,
+    /// The window's end T, s (NaN: the last row's time).
+    window_end: f64,
+    /// Row 0's time, s: the window's start.
+    t_first: f64,
+    /// The force's time average so far.
+    force_time: TimeAverage,
+    /// λ at the previous row and the one before, N.
+    prev_force: [f64; 2],
+    /// The time and contact state of the row before the previous one.
+    prev2_t: f64,
+    prev2_contact: bool,
+    /// Time with the contact open, s, and its part in a support zone.
+    lost_time: f64,
+    lost_time_support: f64,
     /// Largest |w| over every row (row 0 included), m.
     max_abs_w: f64,
 }
@@ -308,13 +336,63 @@ impl ContactAccumulator {
             max_gap: 0.0,
             min_gap: f64::INFINITY,
             max_gap_force: 0.0,
-            sum: -0.0,
-            mean: 0.0,
-            m2: 0.0,
             min: f64::INFINITY,
             max: f64::NEG_INFINITY,
             force0: 0.0,
             max_abs_w: 0.0,
+            window_end: f64::NAN,
+            t_first: 0.0,
+            force_time: TimeAverage::default(),
+            prev_force: [0.0; 2],
+            prev2_t: 0.0,
+            prev2_contact: false,
+            lost_time: 0.0,
+            lost_time_support: 0.0,
+        }
+    }
+
+    /// The same statistics over the window [t₀, `t_end`] (the scene's end
+    /// time; the run's last row may fall short of it by less than a step).
+    pub fn with_window_end(mut self, t_end: f64) -> Self {
+        self.window_end = t_end;
+        self
+    }
+
+    /// The instant within the step ending at `t` where contact was lost
+    /// (struct docs): λ's line through the two closed rows before it, at 0.
+    fn loss_instant(&self, t: f64) -> f64 {
+        let t0 = self.prev_t;
+        let [l2, l1] = self.prev_force;
+        if self.rows >= 2 && self.prev2_contact && l2 > l1 && l1 >= 0.0 {
+            return (t0 + l1 / (l2 - l1) * (t0 - self.prev2_t)).clamp(t0, t);
+        }
+        t0
+    }
+
+    /// The instant within the step ending at `t` where contact returned
+    /// (struct docs): the gap's line through the two open rows before it,
+    /// at 0.
+    fn recontact_instant(&self, t: f64) -> f64 {
+        let t0 = self.prev_t;
+        let [g2, g1] = self.prev_gap;
+        if self.rows >= 2 && !self.prev2_contact && g2 > g1 && g1 >= 0.0 {
+            return (t0 + g1 / (g2 - g1) * (t0 - self.prev2_t)).clamp(t0, t);
+        }
+        t0
+    }
+
+    /// Add the step ending at `t` (contact `c`, position `x`)'s time with
+    /// the contact open.
+    fn add_lost_time(&mut self, t: f64, c: bool, x: f64) {
+        let (piece, at) = match (self.prev_contact, c) {
+            (true, true) => return,
+            (false, false) => (t - self.prev_t, x),
+            (true, false) => (t - self.loss_instant(t), x),
+            (false, true) => (self.recontact_instant(t) - self.prev_t, self.prev_x),
+        };
+        self.lost_time += piece;
+        if self.geometry.in_support_zone(at) {
+            self.lost_time_support += piece;
         }
     }
 
@@ -340,12 +418,15 @@ impl ContactAccumulator {
         self.max_abs_w = self.max_abs_w.max(s.w.abs());
         if self.rows == 0 {
             self.force0 = s.force;
+            self.t_first = t;
         } else {
             let c = s.in_contact;
             if c != self.prev_contact {
                 self.switches += 1;
             }
             let dt = t - self.prev_t;
+            self.force_time.add_step(self.prev_force[1], s.force, dt);
+            self.add_lost_time(t, c, s.x);
             if c && self.open.is_some() {
                 self.recontact(t, dt, s);
             }
@@ -378,18 +459,16 @@ impl ContactAccumulator {
             self.min_gap = self.min_gap.min(s.gap);
             self.max_gap_force = self.max_gap_force.max((s.gap * s.force).abs());
             let f = s.force;
-            self.sum += f;
-            let k = self.rows as f64; // steps so far, this one included
-            let d = f - self.mean;
-            self.mean += d / k;
-            self.m2 += d * (f - self.mean);
             self.min = self.min.min(f);
             self.max = self.max.max(f);
         }
+        self.prev2_contact = self.prev_contact;
+        self.prev2_t = self.prev_t;
         self.prev_contact = s.in_contact;
         self.prev_x = s.x;
         self.prev_t = t;
         self.prev_gap = [self.prev_gap[1], s.gap];
+        self.prev_force = [self.prev_force[1], s.force];
         self.rows += 1;
     }
 
@@ -477,6 +556,32 @@ impl ContactAccumulator {
         self.recontacts.shrink_to_fit();
         let steps = self.rows.saturating_sub(1);
         let per_step = 1.0 / steps.max(1) as f64;
+        // the window's end: the last row's step carried on to T (less
+        // than a step), the contact as it last was
+        let t_end = if self.window_end.is_finite() {
+            self.window_end.max(self.prev_t)
+        } else {
+            self.prev_t
+        };
+        let rest = t_end - self.prev_t;
+        if steps > 0 && rest > 0.0 {
+            let [f2, f1] = self.prev_force;
+            let dt = self.prev_t - self.prev2_t;
+            let at_end = if dt > 0.0 {
+                f1 + rest / dt * (f1 - f2)
+            } else {
+                f1
+            };
+            self.force_time.add_step(f1, at_end, rest);
+            if !self.prev_contact {
+                self.lost_time += rest;
+                if self.geometry.in_support_zone(self.prev_x) {
+                    self.lost_time_support += rest;
+                }
+            }
+        }
+        let window = t_end - self.t_first;
+        let per_time = if window > 0.0 { 1.0 / window } else { 0.0 };
         let min_gap = if self.min_gap.is_finite() {
             self.min_gap
         } else {
@@ -498,16 +603,17 @@ impl ContactAccumulator {
             }
         } else {
             ForceStats {
-                mean: self.sum / steps as f64,
-                std: (self.m2 / steps as f64).sqrt(),
+                mean: self.force_time.mean(),
+                std: self.force_time.std(),
                 min: self.min,
                 max: self.max,
             }
         };
         ContactStats {
-            loss_fraction: self.lost as f64 / steps.max(1) as f64,
-            loss_fraction_span: (self.lost - self.lost_support) as f64 * per_step,
-            loss_fraction_support: self.lost_support as f64 * per_step,
+            loss_fraction: self.lost_time * per_time,
+            loss_fraction_span: (self.lost_time - self.lost_time_support) * per_time,
+            loss_fraction_support: self.lost_time_support * per_time,
+            loss_fraction_steps: self.lost as f64 * per_step,
             support_zone: self.geometry.support_zone,
             first_loss_position: self.intervals.first().map(|iv| iv[0]),
             loss_intervals: self.intervals,

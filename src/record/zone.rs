@@ -9,16 +9,22 @@
 //! in Δt (`docs/contact_loss.md`). The zone is the part of the span within
 //!
 //! ```text
-//! z = max(4·ℓ_b, 4·h, 4·V·Δt)
+//! z = 4·ℓ_b                     (EI > 0, T > 0)
+//! z = 4·V·m/Z,  Z = 2·sqrt(T·ρA) (a string, EI = 0)
+//! z = 0                          (no tension: no boundary layer)
 //! ```
 //!
-//! of a held (not free) end: a few bending lengths, and never less than a few
-//! elements or steps of travel, so that it always holds the part of the
-//! arrival the resolution cannot follow. `[analysis] support_zone` sets z
-//! (a refinement study sets its scene's own z on every run: a zone that
-//! narrowed with h would make each level's P_l a different quantity). P_l
-//! splits into an in-span part and a support part over the same
-//! denominator (all steps): they add up to P_l.
+//! of a held (not free) end: a few bending lengths, or on a string, where
+//! there is no boundary layer, the distance the carrier travels in a few of
+//! its contact's relaxation times m/Z (the time a mass m takes to settle on
+//! a string of drive-point impedance Z). Both are lengths of the physics,
+//! never of the discretization (an untensioned beam has neither, and no
+//! zone unless the scene gives one): a zone that followed h or Δt would make
+//! each level of a refinement study measure a different P_l (MODEL §7).
+//! A coarse run whose arrival spreads wider than z has a larger error in
+//! its in-span P_l, which refinement removes; the quantity stays the same.
+//! `[analysis] support_zone` sets z. P_l splits into an in-span part and a
+//! support part over the same window: they add up to P_l.
 //!
 //! **Suspect losses.** A loss interval that lasts fewer than
 //! `MIN_RESOLVED_LOSS_STEPS` steps, or less than the time the carrier
@@ -38,13 +44,10 @@ use crate::scene::Support;
 /// 0.25 m ≈ 3.8 ℓ_b (`docs/contact_loss.md`).
 pub const SUPPORT_BENDING_LENGTHS: f64 = 4.0;
 
-/// Elements in the support zone: a coarse mesh spreads the arrival over a
-/// few elements, whatever ℓ_b.
-pub const SUPPORT_ELEMENTS: f64 = 4.0;
-
-/// Steps of carrier travel in the support zone: a coarse step jumps over the
-/// boundary layer in a few steps, whatever ℓ_b and h.
-pub const SUPPORT_STEPS: f64 = 4.0;
+/// Relaxation times m/Z of travel in a string's support zone (EI = 0, no
+/// bending length): the contact of a mass m on a string of impedance Z
+/// settles as e^(−t·Z/m), to 2 % after 4 of them.
+pub const SUPPORT_RELAXATION_TIMES: f64 = 4.0;
 
 /// A loss interval shorter than this many steps is not resolved in time.
 pub(crate) const MIN_RESOLVED_LOSS_STEPS: usize = 3;
@@ -90,13 +93,26 @@ impl LossGeometry {
             .carriers
             .get(carrier)
             .map_or(0.0, |c| c.motion.profile.cruise_speed().abs());
-        let zone = sc.analysis.support_zone.unwrap_or(
-            (SUPPORT_BENDING_LENGTHS * bending_length)
-                .max(SUPPORT_ELEMENTS * h)
-                .max(SUPPORT_STEPS * v * sc.dt)
-                // a zone never covers more than half the span
-                .min(0.5 * b.length),
-        );
+        let physical = if bending_length > 0.0 {
+            SUPPORT_BENDING_LENGTHS * bending_length
+        } else {
+            // a string: the carrier's travel over its contact's relaxation
+            let impedance = 2.0 * (b.tension.max(0.0) * b.rho_a).sqrt();
+            let mass = sc.carriers.get(carrier).map_or(0.0, |c| match c.kind {
+                crate::scene::CarrierKind::MassSpring { mass, .. } => mass,
+                crate::scene::CarrierKind::Force { .. } => 0.0,
+            });
+            if impedance > 0.0 {
+                SUPPORT_RELAXATION_TIMES * v * mass / impedance
+            } else {
+                0.0
+            }
+        };
+        // a zone never covers more than half the span
+        let zone = sc
+            .analysis
+            .support_zone
+            .unwrap_or(physical.min(0.5 * b.length));
         let held = |s: Support| s != Support::Free;
         LossGeometry {
             length: b.length,
@@ -133,7 +149,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_zone_holds_a_few_bending_lengths_elements_or_steps_at_held_ends() {
+    fn a_point_is_in_the_zone_of_a_held_end_only() {
         let g = LossGeometry {
             length: 50.0,
             support_zone: 0.5,
@@ -144,5 +160,31 @@ mod tests {
         assert!(!g.in_support_zone(49.9), "a free end has no zone");
         assert!(g.unresolved(2, 1.0) && g.unresolved(5, 5e-4) && !g.unresolved(5, 2e-3));
         assert!(!LossGeometry::span_only(50.0).unresolved(3, 0.0));
+    }
+
+    /// The default zone is a length of the physics: the same at every
+    /// mesh and step, 4ℓ_b on a beam and 4·V·m/Z on a string.
+    #[test]
+    fn the_default_zone_does_not_move_with_the_resolution() {
+        let scene = include_str!("../../scenes/reference.toml");
+        let zone = |set: &[&str]| {
+            let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+            let sc = crate::resolve::resolve_scene(scene, &set).unwrap();
+            LossGeometry::of(&sc, 0).support_zone
+        };
+        let z = zone(&[]);
+        for set in [
+            &["mesh.elements=100"][..],
+            &["mesh.elements=1600", "time.step=2.5e-5"],
+            &["time.step=4e-4"],
+        ] {
+            assert_eq!(zone(set), z, "{set:?}");
+        }
+        assert!((z - 4.0 * (129.176f64 / 3.0e4).sqrt()).abs() < 1e-6, "{z}");
+        // a string: the carrier's travel over 4 relaxation times m/Z
+        let string = zone(&["beam.second_moment=0", "beam.left=\"pinned\""]);
+        let (t, rho_a, v, m) = (3.0e4f64, 8900.0 * 1.5e-4, 100.0, 1.0);
+        let want = SUPPORT_RELAXATION_TIMES * v * m / (2.0 * (t * rho_a).sqrt());
+        assert!((string - want).abs() < 1e-12 * want, "{string} vs {want}");
     }
 }

@@ -9,59 +9,49 @@ use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::{CompareRow, Comparison, NotRun};
 
-/// Column order of `compare.csv` (documented in `docs/output.md`).
-pub const COMPARE_COLUMNS: [&str; 17] = [
+/// The columns of `compare.csv` that are the comparison's own (documented
+/// in `docs/output.md`): who ran, how far each run is from the reference,
+/// and the contact's extremes over every carrier. After them come the
+/// registry's quantities of carrier 0 offered to the tables with one row
+/// per run ([`crate::quantity::Offer::RUN_TABLES`]), then `wall_seconds`.
+pub const COMPARE_COLUMNS: [&str; 10] = [
     "method",
     "discretization",
     "formulation",
-    "loss_fraction",
-    "loss_fraction_span",
     "loss_set_difference",
     "max_force_difference",
     "rms_force_difference",
-    "max_penetration",
-    "min_gap",
-    "min_force",
-    "max_gap_force_product",
-    "mean_force",
-    "max_force",
-    "contact_switches",
-    "steps",
-    "wall_seconds",
+    "max_penetration_all_carriers",
+    "min_gap_all_carriers",
+    "force_min_all_carriers",
+    "max_gap_force_product_all_carriers",
 ];
 
-/// `compare.csv` as a table ([`COMPARE_COLUMNS`]): one row per run.
+/// `compare.csv` as a table ([`COMPARE_COLUMNS`], the quantities, then
+/// `wall_seconds`): one row per run.
 pub fn compare_rows(c: &Comparison) -> Table {
     let rows = &c.rows;
     let label =
         |f: fn(&CompareRow) -> &str| Column::Label(rows.iter().map(|r| f(r).to_string()).collect());
     let real = |f: fn(&CompareRow) -> f64| Column::Real(rows.iter().map(f).collect());
-    let count =
-        |f: fn(&CompareRow) -> usize| Column::Count(rows.iter().map(|r| f(r) as u64).collect());
     let columns = [
         label(|r| &r.method),
         label(|r| &r.discretization),
         label(|r| &r.formulation),
-        real(|r| r.loss_fraction),
-        real(|r| r.loss_fraction_span),
         real(|r| r.loss_set_difference),
         real(|r| r.max_force_difference),
         real(|r| r.rms_force_difference),
-        real(|r| r.max_penetration),
-        real(|r| r.min_gap),
-        real(|r| r.min_force),
-        real(|r| r.max_gap_force_product),
-        real(|r| r.mean_force),
-        real(|r| r.max_force),
-        count(|r| r.contact_switches),
-        count(|r| r.steps),
-        real(|r| r.wall_seconds),
+        real(|r| r.max_penetration_all_carriers),
+        real(|r| r.min_gap_all_carriers),
+        real(|r| r.force_min_all_carriers),
+        real(|r| r.max_gap_force_product_all_carriers),
     ];
     let mut t = Table::new();
     for (name, column) in COMPARE_COLUMNS.into_iter().zip(columns) {
         t.push(name, column);
     }
-    t.push_filtered(rows.iter().map(|r| &r.filtered));
+    t.push_quantities(rows.iter().map(|r| &r.quantities));
+    t.push("wall_seconds", real(|r| r.wall_seconds));
     // with droppers: each one's slack fraction (every run has the same droppers)
     if let Some(first) = rows.first() {
         for (i, d) in first.droppers.iter().enumerate() {
@@ -128,8 +118,8 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
             Panel {
                 title: format!(
                     "{label}: P_l = {:.4} ({:.4} in span), RMS Δλ vs reference {} N",
-                    row.loss_fraction,
-                    row.loss_fraction_span,
+                    row.quantities.real(&crate::quantity::LOSS_FRACTION),
+                    row.quantities.real(&crate::quantity::LOSS_FRACTION_SPAN),
                     short(row.rms_force_difference)
                 ),
                 series: force_series(&r.scene, &r.output, "λ"),
@@ -207,14 +197,14 @@ pub fn compare_table(c: &Comparison) -> String {
             "{:<w$} {:<16} {:>9.5} {:>9.5} {:>10.5} {:>11.4e} {:>11.4e} {:>11.3e} {:>10.2} {:>9} {:>8.3}\n",
             who(&r.method, &r.discretization),
             r.formulation,
-            r.loss_fraction,
-            r.loss_fraction_span,
+            r.quantities.real(&crate::quantity::LOSS_FRACTION),
+            r.quantities.real(&crate::quantity::LOSS_FRACTION_SPAN),
             r.loss_set_difference,
             r.max_force_difference,
             r.rms_force_difference,
-            r.max_penetration,
-            r.max_force,
-            r.contact_switches,
+            r.max_penetration_all_carriers,
+            r.quantities.real(&crate::quantity::FORCE_MAX),
+            r.quantities.real(&crate::quantity::CONTACT_SWITCHES),
             r.wall_seconds
         ));
     }

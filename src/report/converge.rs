@@ -9,7 +9,9 @@ use super::PALETTE;
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::NotRun;
-use crate::study::converge::{ConvergeRow, Convergence, Diverged, MethodStudy, QUANTITIES, Refine};
+use crate::study::converge::{
+    ConvergeRow, Convergence, Diverged, MethodStudy, Refine, quantity_names,
+};
 use crate::study::uncertainty::{FS_ASYMPTOTIC, FS_CAUTIOUS};
 
 /// Column order of `converge.csv`.
@@ -255,7 +257,7 @@ pub fn converge_table(c: &Convergence) -> String {
             format!("{:>6}", "—")
         }
     };
-    for q in QUANTITIES {
+    for q in quantity_names() {
         for r in c.rows.iter().filter(|r| r.quantity == q) {
             let f = |v: f64, w: usize| {
                 if v.is_finite() {
@@ -297,8 +299,8 @@ pub fn converge_table(c: &Convergence) -> String {
 /// One study: each quantity's relative error against h (or Δt), with
 /// reference slopes 1, 2 and 4.
 fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let series: Vec<(String, Vec<(f64, f64)>)> = QUANTITIES
-        .iter()
+    let series: Vec<(String, Vec<(f64, f64)>)> = quantity_names()
+        .into_iter()
         .map(|q| (q.to_string(), relative_errors(c, q)))
         .collect();
     let caption = format!(
@@ -314,7 +316,7 @@ fn draw_methods(
     path: &Path,
     studies: &[(&str, &Convergence)],
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    const QUANTITY: &str = "displacement_l2";
+    const QUANTITY: &str = "displacement_history_l2";
     let first = studies[0].1;
     let series: Vec<(String, Vec<(f64, f64)>)> = studies
         .iter()

@@ -60,7 +60,7 @@ pub fn precision_rows(p: &Precision) -> Table {
     for (name, column) in PRECISION_COLUMNS.into_iter().zip(columns) {
         t.push(name, column);
     }
-    t.push_filtered(rows.iter().map(|r| &r.filtered));
+    t.push_quantities(rows.iter().map(|r| &r.quantities));
     t
 }
 

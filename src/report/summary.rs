@@ -68,6 +68,11 @@ pub struct Summary {
     pub contact: ContactStats,
     /// Contact statistics of every carrier, in scene order.
     pub carriers: Vec<ContactStats>,
+    /// Every quantity of the registry ([`crate::quantity::all`]) for every
+    /// carrier, in scene order: one object of `name: value` (`null` where
+    /// undefined) a carrier. The names are those of every table and of
+    /// `taut gate`.
+    pub quantities: Vec<crate::quantity::Values>,
     /// Statistics of every dropper (`[[dropper]]`), in scene order: force
     /// range and slack intervals. Absent without droppers.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -148,6 +153,9 @@ impl Summary {
                 grading: sc.grading.ratio().map(|r| (sc.grading.name(), r)),
             },
             contact: carriers[0].clone(),
+            quantities: (0..carriers.len())
+                .map(|c| crate::quantity::Values::of_all(out, c))
+                .collect(),
             carriers,
             droppers: out.droppers.clone(),
             spans: spans_filtered(sc, out),
@@ -173,7 +181,9 @@ fn filtered(out: &RunOutput, tr: &CarrierTrace) -> Filtered {
         Filtered::Unavailable
     } else {
         Filtered::Stats(crate::record::filter::stats_of_filtered(
+            &out.history.t,
             &tr.force_filtered,
+            out.window_end,
             out.history.band_hz(),
         ))
     }

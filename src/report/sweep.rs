@@ -34,22 +34,7 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
     if !spec.axes.iter().any(|a| a.key == "speed_ratio") {
         t.push("speed_ratio", real(|r| r.speed_ratio.unwrap_or(f64::NAN)));
     }
-    t.push("loss_fraction", real(|r| r.loss_fraction));
-    t.push("loss_fraction_span", real(|r| r.loss_fraction_span));
-    t.push("loss_fraction_support", real(|r| r.loss_fraction_support));
-    t.push("force_mean", real(|r| r.force_mean));
-    t.push("force_std", real(|r| r.force_std));
-    t.push("force_min", real(|r| r.force_min));
-    t.push("force_max", real(|r| r.force_max));
-    t.push_filtered(records.iter().map(|r| &r.filtered));
-    t.push(
-        "first_loss_position",
-        real(|r| r.first_loss_position.unwrap_or(f64::NAN)),
-    );
-    t.push(
-        "contact_switches",
-        Column::Count(records.iter().map(|r| r.contact_switches as u64).collect()),
-    );
+    t.push_quantities(records.iter().map(|r| &r.quantities));
     t.push(
         "warnings",
         Column::Count(records.iter().map(|r| r.warnings.len() as u64).collect()),
@@ -106,11 +91,11 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
     );
     t.push(
         "loss_fraction_change",
-        change(|f, r| f.loss_fraction - r.loss_fraction),
+        change(|f, r| f.loss_fraction - r.loss_fraction()),
     );
     t.push(
         "loss_fraction_span_change",
-        change(|f, r| f.loss_fraction_span - r.loss_fraction_span),
+        change(|f, r| f.loss_fraction_span - r.loss_fraction_span()),
     );
     t.push(
         "loss_fraction_span_converged",
@@ -121,7 +106,7 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
                     r.refined
                         .as_ref()
                         .and_then(|f| {
-                            refinement_converged(r.loss_fraction_span, f.loss_fraction_span)
+                            refinement_converged(r.loss_fraction_span(), f.loss_fraction_span)
                         })
                         .map_or("", |c| if c { "yes" } else { "no" })
                         .to_string()

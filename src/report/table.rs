@@ -123,18 +123,23 @@ impl Table {
         self.columns.iter().find(|(n, _)| n == name).map(|(_, c)| c)
     }
 
-    /// Append the four filtered-force columns
-    /// ([`crate::study::scalars::FILTERED_COLUMNS`]) of `rows`, one row
-    /// each: the one place a study table gains them.
-    pub(crate) fn push_filtered<'a>(
+    /// Append a column for each quantity the tables with one row per run
+    /// offer ([`crate::quantity::Offer::RUN_TABLES`], in the registry's
+    /// order) from `rows`' values, one row each: the one place a study
+    /// table gains its quantities. A count is written as a count, any
+    /// other quantity as a real; a value a row does not have is an empty
+    /// cell.
+    pub(crate) fn push_quantities<'a>(
         &mut self,
-        rows: impl Iterator<Item = &'a crate::study::scalars::FilteredColumns> + Clone,
+        rows: impl Iterator<Item = &'a crate::quantity::Values> + Clone,
     ) {
-        for (k, name) in crate::study::scalars::FILTERED_COLUMNS.iter().enumerate() {
-            self.push(
-                *name,
-                Column::RealOrNone(rows.clone().map(|r| r.values()[k]).collect()),
-            );
+        for q in crate::quantity::offered(crate::quantity::Offer::RUN_TABLES) {
+            let column = if q.count {
+                Column::CountOrNone(rows.clone().map(|r| r.get(q).map(|v| v as u64)).collect())
+            } else {
+                Column::RealOrNone(rows.clone().map(|r| r.real(q)).collect())
+            };
+            self.push(q.name, column);
         }
     }
 

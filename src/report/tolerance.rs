@@ -10,7 +10,6 @@ use serde::Serialize;
 use super::table::{Column, Table};
 use super::{Summary, write_force_plot, write_history};
 use crate::error::{Error, Result};
-use crate::study::scalars::Scalar;
 use crate::study::tolerance::{Accuracy, Estimate, LadderFit, ResultEstimate, TolerantRun};
 
 /// Column order of `accuracy.csv`.
@@ -218,9 +217,9 @@ pub fn accuracy_header(a: &Accuracy) -> String {
     s
 }
 
-/// Labels of the results in the terminal ([`Scalar::label`]).
+/// Labels of the results in the terminal ([`crate::quantity::Quantity::label`]).
 fn label(name: &str) -> &'static str {
-    Scalar::from_name(name).map_or("result", Scalar::label)
+    crate::quantity::by_name(name).map_or("result", |q| q.label)
 }
 
 fn estimate_text(r: &ResultEstimate) -> String {

@@ -25,11 +25,10 @@ pub struct AnalysisSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spans: Option<[usize; 2]>,
     /// Width z of the support zone at each held end, m (> 0, at most L/2;
-    /// default max(4ℓ_b, 4h, 4VΔt) of each carrier, `record::zone`): where
-    /// P_l counts as at a support rather than in the span. A refinement
-    /// study (`taut uncertainty`, `sweep --tolerance`, `run --tolerance`)
-    /// sets its scene's own zone on every run, so that every level measures
-    /// P_l over the same part of the span.
+    /// default 4ℓ_b, ℓ_b = sqrt(EI/T) the bending length, or on a string
+    /// 4·V·m/Z, `record::zone`: lengths of the physics, never of h or Δt;
+    /// none without tension):
+    /// where P_l counts as at a support rather than in the span.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub support_zone: Option<f64>,
 }

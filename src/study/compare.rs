@@ -32,10 +32,6 @@ pub struct CompareRow {
     pub discretization: String,
     /// Formulation name.
     pub formulation: String,
-    /// P_l (carrier 0).
-    pub loss_fraction: f64,
-    /// Its in-span part (outside the support zones), the part to quote.
-    pub loss_fraction_span: f64,
     /// Measure of the symmetric difference between this formulation's loss
     /// set and the reference's, in x_m/L (t/t_end for stationary carriers),
     /// summed over carriers.
@@ -45,24 +41,17 @@ pub struct CompareRow {
     /// RMS over steps and carriers of λ − λ_ref, N.
     pub rms_force_difference: f64,
     /// Largest penetration max(0, −g) over steps and carriers, m.
-    pub max_penetration: f64,
-    /// Smallest gap, m.
-    pub min_gap: f64,
-    /// Smallest contact force, N.
-    pub min_force: f64,
-    /// Largest |g·λ|, N·m.
-    pub max_gap_force_product: f64,
-    /// Mean contact force (carrier 0), N.
-    pub mean_force: f64,
-    /// Largest contact force (carrier 0), N.
-    pub max_force: f64,
-    /// The filtered force's mean, σ, max and min (carrier 0), N.
+    pub max_penetration_all_carriers: f64,
+    /// Smallest gap over steps and carriers, m.
+    pub min_gap_all_carriers: f64,
+    /// Smallest contact force over steps and carriers, N.
+    pub force_min_all_carriers: f64,
+    /// Largest |g·λ| over steps and carriers, N·m.
+    pub max_gap_force_product_all_carriers: f64,
+    /// Carrier 0's values of the quantities the tables with one row per
+    /// run offer ([`crate::quantity::Offer::RUN_TABLES`]), by name.
     #[serde(flatten)]
-    pub filtered: crate::study::scalars::FilteredColumns,
-    /// Contact switches (carrier 0).
-    pub contact_switches: usize,
-    /// Steps taken.
-    pub steps: usize,
+    pub quantities: crate::quantity::Values,
     /// Wall-clock seconds of the run.
     pub wall_seconds: f64,
     /// The run's warnings (e.g. contact chatter); empty when none.
@@ -478,41 +467,34 @@ fn row(r: &CompareRun, reference: &RunOutput) -> CompareRow {
             count += 1;
         }
     }
-    let s0 = &out.stats[0];
     CompareRow {
         method: r.method.clone(),
         discretization: r.discretization.clone(),
         formulation: r.formulation.name().to_string(),
-        loss_fraction: s0.loss_fraction,
-        loss_fraction_span: s0.loss_fraction_span,
         loss_set_difference: loss_set_difference(sc, out, reference),
         max_force_difference: max_d,
         rms_force_difference: (sum2 / count.max(1) as f64).sqrt(),
-        max_penetration: out
+        max_penetration_all_carriers: out
             .stats
             .iter()
             .map(|s| s.max_penetration)
             .fold(0.0, f64::max),
-        min_gap: out
+        min_gap_all_carriers: out
             .stats
             .iter()
             .map(|s| s.min_gap)
             .fold(f64::INFINITY, f64::min),
-        min_force: out
+        force_min_all_carriers: out
             .stats
             .iter()
             .map(|s| s.force.min)
             .fold(f64::INFINITY, f64::min),
-        max_gap_force_product: out
+        max_gap_force_product_all_carriers: out
             .stats
             .iter()
             .map(|s| s.max_gap_force_product)
             .fold(0.0, f64::max),
-        mean_force: s0.force.mean,
-        max_force: s0.force.max,
-        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
-        contact_switches: s0.contact_switches,
-        steps: out.steps,
+        quantities: crate::quantity::Values::of(out, 0, crate::quantity::Offer::RUN_TABLES),
         wall_seconds: out.wall_seconds,
         warnings: out.warnings.clone(),
         droppers: out

@@ -17,7 +17,7 @@
 //! ```
 //!
 //! `scene` is relative to the case file. A quantity passes when
-//! |value − reference| ≤ abs + rel·|reference|. `QUANTITY_NAMES` lists what
+//! |value − reference| ≤ abs + rel·|reference|. [`quantity_names`] lists what
 //! can be gated.
 
 use std::collections::BTreeMap;
@@ -25,7 +25,6 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::scalars::Scalar;
 use crate::error::{Error, Result};
 use crate::resolve::load_scene;
 use crate::run::{RunOutput, run};
@@ -59,31 +58,16 @@ pub struct GateCase {
     pub quantities: BTreeMap<String, Tolerance>,
 }
 
-/// Quantities a case may gate: every scalar output of a run ([`Scalar`],
-/// the list `run --tolerance` estimates and `converge` refines), of carrier
-/// 0, or of carrier N with the suffix `_N` (`force_mean_1`);
-/// `final_probe_N` is probe N's last value.
-pub(crate) const QUANTITY_NAMES: [&str; 19] = [
-    "steps",
-    "dofs",
-    "contact_switches",
-    "loss_fraction",
-    "loss_fraction_span",
-    "loss_fraction_support",
-    "loss_interval_count",
-    "first_loss_position",
-    "force_mean",
-    "force_std",
-    "force_min",
-    "force_max",
-    "filtered_force_mean",
-    "filtered_force_std",
-    "filtered_force_min",
-    "filtered_force_max",
-    "max_penetration",
-    "final_w",
-    "final_probe",
-];
+/// What a case may gate: every quantity of the registry
+/// ([`crate::quantity::all`]), of carrier 0, or of carrier N with the
+/// suffix `_N` (`force_mean_1`); and `final_probe_N`, probe N's last value.
+pub fn quantity_names() -> Vec<&'static str> {
+    crate::quantity::all()
+        .into_iter()
+        .map(|q| q.name)
+        .chain(["final_probe"])
+        .collect()
+}
 
 /// Extract a quantity from a run; `None` if the run does not have it (an
 /// unknown name, a carrier or probe it does not have, the first loss of a
@@ -100,7 +84,7 @@ pub fn quantity(out: &RunOutput, name: &str) -> Option<f64> {
         }
         _ => (name, 0),
     };
-    Scalar::from_name(base)?.of(out, carrier)
+    crate::quantity::by_name(base)?.of(out, carrier)
 }
 
 /// The result for one quantity.
@@ -185,10 +169,11 @@ pub fn read_case(path: &Path) -> Result<GateCase> {
             "{} (none)",
             format!(
                 "must gate at least one quantity ({}): a case that checks nothing would pass whatever the run gives",
-                QUANTITY_NAMES.join(", ")
+                quantity_names().join(", ")
             ),
         ));
     }
+    let names = quantity_names();
     if Path::new(&case.scene)
         .extension()
         .is_none_or(|x| x != "toml")
@@ -201,7 +186,7 @@ pub fn read_case(path: &Path) -> Result<GateCase> {
     }
     for (name, t) in &case.quantities {
         let field = format!("{}: quantities.{name}", path.display());
-        if !QUANTITY_NAMES.iter().any(|q| {
+        if !names.iter().any(|q| {
             name == q
                 || name
                     .strip_prefix(q)
@@ -210,7 +195,7 @@ pub fn read_case(path: &Path) -> Result<GateCase> {
             return Err(Error::invalid(
                 field,
                 name,
-                format!("must be one of {}", QUANTITY_NAMES.join(", ")),
+                format!("must be one of {}", names.join(", ")),
             ));
         }
         // abs + rel·|value| must be finite too: an infinite allowance passes
@@ -356,10 +341,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_scalar_can_be_gated() {
-        let names: Vec<&str> = Scalar::ALL.iter().map(|s| s.name()).collect();
-        assert_eq!(QUANTITY_NAMES[..names.len()], names[..]);
-        assert_eq!(QUANTITY_NAMES[names.len()..], ["final_probe"]);
+    fn every_quantity_can_be_gated() {
+        let names = quantity_names();
+        for q in crate::quantity::all() {
+            assert!(names.contains(&q.name), "{}", q.name);
+        }
+        assert_eq!(names.last(), Some(&"final_probe"));
     }
 
     #[test]
@@ -393,6 +380,7 @@ mod tests {
             dt: 1.0,
             wall_seconds: 0.0,
             warnings: vec![],
+            window_end: 1.0,
             force_lag: 0.0,
             form: None,
         };

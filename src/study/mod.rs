@@ -3,14 +3,13 @@
 //! What they share is here once: a run as typed changes to a base scene
 //! (`variant`), time grids that nest and resampling ([`grid`]), observed
 //! orders and the estimators of a numerical uncertainty ([`uncertainty`]),
-//! the scalar outputs of a run ([`scalars`]), the space discretizations
+//! the space discretizations
 //! ([`space`]) and their level parameter ([`level`]).
 
 pub mod compare;
 pub mod converge;
 pub mod cost;
 pub mod filter;
-pub(crate) mod formal_orders;
 pub mod gate;
 pub mod grid;
 pub mod level;
@@ -18,7 +17,6 @@ pub mod modes;
 pub mod precision;
 pub mod reference;
 pub mod request;
-pub mod scalars;
 pub mod space;
 pub(crate) mod standing_force;
 pub mod sweep;

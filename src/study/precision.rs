@@ -68,9 +68,10 @@ pub struct PrecisionRow {
     pub displacement_error: f64,
     /// |P_l − P_l,ref|.
     pub loss_fraction_error: f64,
-    /// The run's filtered force: mean, σ, max and min (carrier 0), N.
+    /// Carrier 0's values of the quantities the tables with one row per
+    /// run offer ([`crate::quantity::Offer::RUN_TABLES`]), by name.
     #[serde(flatten)]
-    pub filtered: crate::study::scalars::FilteredColumns,
+    pub quantities: crate::quantity::Values,
     /// On its formulation's Pareto front (force error vs wall time).
     pub pareto: bool,
 }
@@ -348,7 +349,7 @@ fn row(
         force_error: relative_rms(&t.force[1..], &sample(&tr.force)),
         displacement_error: relative_rms(&t.w[1..], &sample(&tr.w)),
         loss_fraction_error: (out.stats[0].loss_fraction - reference.stats[0].loss_fraction).abs(),
-        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
+        quantities: crate::quantity::Values::of(out, 0, crate::quantity::Offer::RUN_TABLES),
         pareto: false,
     }
 }
@@ -387,7 +388,7 @@ mod tests {
             force_error: e,
             displacement_error: 0.0,
             loss_fraction_error: 0.0,
-            filtered: Default::default(),
+            quantities: Default::default(),
             pareto: false,
         }
     }

@@ -142,19 +142,22 @@ fn speed_sweeps() {
         let ratio = |r: &SweepRecord| r.values[0];
         let span: Vec<f64> = recs
             .iter()
-            .filter(|r| r.loss_fraction_span > 0.0)
+            .filter(|r| r.loss_fraction_span() > 0.0)
             .map(ratio)
             .collect();
         let any: Vec<f64> = recs
             .iter()
-            .filter(|r| r.loss_fraction > 0.0)
+            .filter(|r| r.loss_fraction() > 0.0)
             .map(ratio)
             .collect();
         let above: Vec<&SweepRecord> = recs
             .iter()
             .filter(|r| ratio(r) > PUBLISHED_UPPER + 1e-9)
             .collect();
-        let kept = above.iter().filter(|r| r.loss_fraction_span == 0.0).count();
+        let kept = above
+            .iter()
+            .filter(|r| r.loss_fraction_span() == 0.0)
+            .count();
         let shown: Vec<String> = SHOWN_SPEEDS
             .iter()
             .map(|&v| {
@@ -162,7 +165,7 @@ fn speed_sweeps() {
                     .iter()
                     .find(|r| (ratio(r) - v).abs() < 1e-6)
                     .expect("grid point");
-                format!("{:.4}", r.loss_fraction_span)
+                format!("{:.4}", r.loss_fraction_span())
             })
             .collect();
         println!(
@@ -254,7 +257,7 @@ fn phase_speed_caps() {
         let ct = (b.tension / b.rho_a).sqrt();
         let lost: Vec<f64> = recs
             .iter()
-            .filter(|r| (r.values[0] - t).abs() < 1e-12 && r.loss_fraction_span > 0.0)
+            .filter(|r| (r.values[0] - t).abs() < 1e-12 && r.loss_fraction_span() > 0.0)
             .map(|r| r.values[1])
             .collect();
         let hi = lost.iter().cloned().fold(f64::NAN, f64::max);

@@ -64,7 +64,7 @@ pub(super) fn write_map_hatched(
     for r in records {
         let (i, j) = (r.index / ny, r.index % ny);
         if i < nx {
-            cells[j][i] = Some(r.loss_fraction).filter(|v| v.is_finite());
+            cells[j][i] = Some(r.loss_fraction()).filter(|v| v.is_finite());
             ratio[i][j] = r.speed_ratio.unwrap_or(f64::NAN);
         }
     }
@@ -168,7 +168,7 @@ pub(super) fn write_map_hatched(
             });
         }
     }
-    let with_loss = records.iter().filter(|r| r.loss_fraction > 0.0).count();
+    let with_loss = records.iter().filter(|r| r.loss_fraction() > 0.0).count();
     let map = Map {
         title: title.map_or_else(
             || {

@@ -22,7 +22,7 @@ pub fn write_loss_map(
     let records = sorted_by_index(records);
     let cells = profile_rows(&records, |r| &r.loss_profile);
     let key = &spec.axes[0].key;
-    let lost_runs = records.iter().filter(|r| r.loss_fraction > 0.0).count();
+    let lost_runs = records.iter().filter(|r| r.loss_fraction() > 0.0).count();
     let map = Map {
         title: title.map_or_else(
             || format!("contact loss over (x_m/L, {key})"),

@@ -15,19 +15,16 @@ pub fn write_refinement_map(path: &Path, spec: &SweepSpec, records: &[SweepRecor
         .iter()
         .map(|r| {
             let d = r.refined.as_ref().map_or(f64::NAN, |f| {
-                (f.loss_fraction_span - r.loss_fraction_span).abs()
+                (f.loss_fraction_span - r.loss_fraction_span()).abs()
             });
-            SweepRecord {
-                loss_fraction: d,
-                ..r.clone()
-            }
+            r.with_loss_fraction(d)
         })
         .collect();
     let converged = records
         .iter()
         .filter(|r| {
             r.refined.as_ref().is_some_and(|f| {
-                refinement_converged(r.loss_fraction_span, f.loss_fraction_span) == Some(true)
+                refinement_converged(r.loss_fraction_span(), f.loss_fraction_span) == Some(true)
             })
         })
         .count();

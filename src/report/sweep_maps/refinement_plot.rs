@@ -22,14 +22,14 @@ pub fn write_refinement_plot(path: &Path, spec: &SweepSpec, records: &[SweepReco
         .enumerate()
         .filter(|(_, r)| {
             r.refined.as_ref().is_none_or(|f| {
-                refinement_converged(r.loss_fraction_span, f.loss_fraction_span) != Some(true)
+                refinement_converged(r.loss_fraction_span(), f.loss_fraction_span) != Some(true)
             })
         })
         .map(|(i, _)| half(i))
         .collect();
     let base: Vec<(f64, f64)> = records
         .iter()
-        .map(|r| (r.values[0], r.loss_fraction_span))
+        .map(|r| (r.values[0], r.loss_fraction_span()))
         .filter(|p| p.1.is_finite())
         .collect();
     let refined: Vec<(f64, f64)> = records

@@ -15,10 +15,7 @@ pub(super) fn write_loss_fraction_span_map(
 ) -> Result<()> {
     let span: Vec<SweepRecord> = records
         .iter()
-        .map(|r| SweepRecord {
-            loss_fraction: r.loss_fraction_span,
-            ..r.clone()
-        })
+        .map(|r| r.with_loss_fraction(r.loss_fraction_span()))
         .collect();
     let title = "P_l in span (outside the support zones)";
     match &spec.tolerance {

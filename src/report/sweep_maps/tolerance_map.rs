@@ -19,10 +19,7 @@ pub(crate) fn write_u_num_map(
     let tol = spec.tolerance.as_ref().expect("an accuracy-targeted sweep");
     let u: Vec<SweepRecord> = records
         .iter()
-        .map(|r| SweepRecord {
-            loss_fraction: r.accuracy.as_ref().map_or(f64::NAN, |a| a.u_num),
-            ..r.clone()
-        })
+        .map(|r| r.with_loss_fraction(r.accuracy.as_ref().map_or(f64::NAN, |a| a.u_num)))
         .collect();
     let met = records
         .iter()

@@ -45,7 +45,7 @@ use crate::scene::{Declared, Discretization};
 pub(crate) use super::reference::AnalyticW;
 use regime::Context;
 pub use rows::ConvergeRow;
-pub(crate) use rows::QUANTITIES;
+pub(crate) use rows::quantity_names;
 use rows::{diverged_rows, tabulate};
 
 /// What is refined.

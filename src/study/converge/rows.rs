@@ -5,11 +5,11 @@ use serde::Serialize;
 
 use super::Refine;
 use super::regime::{Context, ratio_change, regime};
+use crate::quantity::formal_orders::{MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER_CONTACT};
+use crate::quantity::{Offer, offered};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::study::formal_orders::{MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER_CONTACT};
 use crate::study::grid::resample;
-use crate::study::scalars::Scalar;
 use crate::study::uncertainty::{Gci, Inputs, assess, observed_order, richardson_error};
 
 /// One row of `converge.csv`.
@@ -86,33 +86,24 @@ pub struct ConvergeRow {
     pub omega_max_dt: f64,
 }
 
-/// Quantities reported, in order.
-pub(crate) const QUANTITIES: [&str; 12] = [
-    "displacement_max",
-    "displacement_l2",
-    "force_max",
-    "force_l2",
-    "loss_fraction",
-    "loss_fraction_span",
-    "loss_fraction_support",
-    "first_loss_position",
-    "filtered_force_mean",
-    "filtered_force_std",
-    "filtered_force_max",
-    "filtered_force_min",
+/// The norms of a history converge reports beside the registry's
+/// quantities: the max and L2 (RMS over the steps) norms of w under the
+/// carrier and of λ, each with its error against the reference history.
+pub(crate) const HISTORY_NORMS: [&str; 4] = [
+    "displacement_history_max",
+    "displacement_history_l2",
+    "force_history_max",
+    "force_history_l2",
 ];
 
-/// The scalar outputs ([`Scalar`]) among [`QUANTITIES`], in that order.
-pub(crate) const SCALARS: [Scalar; 8] = [
-    Scalar::LossFraction,
-    Scalar::LossFractionSpan,
-    Scalar::LossFractionSupport,
-    Scalar::FirstLossPosition,
-    Scalar::FilteredForceMean,
-    Scalar::FilteredForceStd,
-    Scalar::FilteredForceMax,
-    Scalar::FilteredForceMin,
-];
+/// Quantities reported, in order: [`HISTORY_NORMS`], then the registry's
+/// quantities offered to converge ([`Offer::CONVERGE`]).
+pub(crate) fn quantity_names() -> Vec<&'static str> {
+    HISTORY_NORMS
+        .into_iter()
+        .chain(offered(Offer::CONVERGE).into_iter().map(|q| q.name))
+        .collect()
+}
 
 pub(super) fn max_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
@@ -398,7 +389,7 @@ pub(super) fn tabulate(
     let same = |e: &Vec<f64>| Some(vec![e.clone(); k]);
     for (name, h, hs, norm, exact, formal) in [
         (
-            "displacement_max",
+            "displacement_history_max",
             &w,
             &ws,
             max_norm as fn(&[f64]) -> f64,
@@ -406,15 +397,22 @@ pub(super) fn tabulate(
             ctx.formal,
         ),
         (
-            "displacement_l2",
+            "displacement_history_l2",
             &w,
             &ws,
             l2_norm,
             w_exact.as_ref().and_then(same),
             ctx.formal,
         ),
-        ("force_max", &f, &fs, max_norm, f_exact.clone(), None),
-        ("force_l2", &f, &fs, l2_norm, f_exact.clone(), None),
+        (
+            "force_history_max",
+            &f,
+            &fs,
+            max_norm,
+            f_exact.clone(),
+            None,
+        ),
+        ("force_history_l2", &f, &fs, l2_norm, f_exact.clone(), None),
     ] {
         all.push(hist(name, h, hs, norm, exact, formal));
     }
@@ -428,7 +426,7 @@ pub(super) fn tabulate(
         Refine::Step => (p_time, p_time),
         Refine::Both => (p_space, p_time),
     };
-    for q in SCALARS {
+    for q in offered(Offer::CONVERGE) {
         let of = |o: &RunOutput| q.of(o, 0);
         let vals: Vec<f64> = runs.iter().map(|o| of(o).unwrap_or(f64::NAN)).collect();
         let opt: Vec<Option<f64>> = runs.iter().map(of).collect();
@@ -467,7 +465,7 @@ pub(super) fn tabulate(
             let m = mixed[l - 1].unwrap_or(f64::NAN);
             (vals[l - 1] - m, m - vals[l])
         });
-        all.push((q.name().to_string(), rows, mesh_share));
+        all.push((q.name.to_string(), rows, mesh_share));
     }
 
     // without an exact reference a one-variable ladder measures that
@@ -504,7 +502,7 @@ pub(super) fn tabulate(
                 reference: rows.reference.clone(),
                 error_order: rows.error_order[l],
                 ratio_change: rows.ratio_change[l],
-                formal_order: if quantity.starts_with("displacement") {
+                formal_order: if quantity.starts_with("displacement_history") {
                     ctx.formal.unwrap_or(f64::NAN)
                 } else {
                     f64::NAN
@@ -514,15 +512,16 @@ pub(super) fn tabulate(
             });
         }
     }
-    out.sort_by_key(|r| (r.level, QUANTITIES.iter().position(|q| *q == r.quantity)));
+    let names = quantity_names();
+    out.sort_by_key(|r| (r.level, names.iter().position(|q| *q == r.quantity)));
     out
 }
 
 /// The rows of a level whose run diverged (`d`; `sc` its scene): every
 /// quantity without a value, the regime naming the divergence.
 pub(super) fn diverged_rows(sc: &Resolved, d: &super::Diverged) -> Vec<ConvergeRow> {
-    QUANTITIES
-        .iter()
+    quantity_names()
+        .into_iter()
         .map(|q| ConvergeRow {
             method: String::new(),
             discretization: sc.discretization.name().to_string(),

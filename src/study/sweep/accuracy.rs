@@ -45,13 +45,13 @@ use super::spec::SweepSpec;
 use super::tolerance_spec::{PointAccuracy, SweepTolerance};
 use crate::error::{Error, Result};
 use crate::integrate::{batch_key, scene_method};
+use crate::quantity::Quantity;
+use crate::quantity::formal_orders::MAX_STEP_ORDER;
 use crate::resolve::Resolved;
 use crate::run::{RunOutput, run_batch};
 use crate::study::cost::run_dof_steps;
-use crate::study::formal_orders::MAX_STEP_ORDER;
 use crate::study::level::Level;
 use crate::study::tolerance::{ErrorModel, LadderFit};
-use crate::study::uncertainty::quantity::QuantitySpec;
 use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, RATIO, assess};
 
 /// Checks after the pilots at most: with one more level on both each, a
@@ -508,7 +508,7 @@ fn run_job(ctx: &Ctx, job: &Job, keep: &[bool], indices: &[usize]) -> Vec<Result
                     let record = keep[m].then(|| {
                         record_of(ctx.spec, ctx.base, ctx.id, indices[m], Some(sc), Ok(&out))
                     });
-                    reduce(&q, *key, &out, record)
+                    reduce(q, *key, &out, record)
                 })
             })
             .collect::<Vec<_>>()
@@ -532,10 +532,10 @@ fn run_job(ctx: &Ctx, job: &Job, keep: &[bool], indices: &[usize]) -> Vec<Result
 }
 
 /// A run reduced to what the point keeps.
-fn reduce(q: &QuantitySpec, key: Key, out: &RunOutput, record: Option<SweepRecord>) -> Ran {
+fn reduce(q: &Quantity, key: Key, out: &RunOutput, record: Option<SweepRecord>) -> Ran {
     Ran {
         key,
-        value: q.of(out),
+        value: q.of(out, 0),
         dof_steps: out.dofs as f64 * out.steps as f64,
         loss: out.stats.first().is_some_and(|s| s.loss_interval_count > 0),
         record,
@@ -555,7 +555,8 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     let switch = p.runs.iter().any(|r| r.loss);
     let string =
         base.beam.is_string() && base.discretization == crate::scene::Discretization::Hermite;
-    let formal = q.formal_orders(method_order, switch, string);
+    let formal =
+        crate::study::uncertainty::quantity::formal_orders(q, method_order, switch, string);
     let at =
         |keys: &[Key]| -> Vec<Option<f64>> { keys.iter().map(|&k| p.value(k).flatten()).collect() };
     let (key, keys) = match p.stage {
@@ -682,8 +683,7 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
     let sc = p.scene(key).ok();
     let u = a.u_num.unwrap_or(f64::NAN);
     let met = u <= tol.tolerance;
-    let smooth =
-        crate::study::uncertainty::quantity::quantity(&tol.quantity).is_some_and(|q| q.smooth);
+    let smooth = tol.spec().smooth;
     if met && !smooth && record.speed_ratio.is_some_and(|r| r >= 1.0) {
         record.warnings.push(SUPERSONIC_MET.to_string());
     }

@@ -75,7 +75,7 @@ pub use refine::Refined;
 pub(crate) use refine::{REFINEMENT_ABS, REFINEMENT_REL, refinement_converged};
 pub use shard::Shard;
 pub use spec::{MAX_POINT_KEYS, SweepSpec};
-pub use tolerance_spec::{PointAccuracy, SweepTolerance, TARGETS};
+pub use tolerance_spec::{PointAccuracy, SweepTolerance, targets};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid

@@ -4,7 +4,6 @@
 use serde::{Deserialize, Serialize};
 use toml::Table;
 
-use super::nan_as_null;
 use super::refine::{Refined, refined};
 use super::spec::SweepSpec;
 use super::tolerance_spec::PointAccuracy;
@@ -30,35 +29,11 @@ pub struct SweepRecord {
     pub values: Vec<f64>,
     /// V0/c of carrier 0 (null when c = 0).
     pub speed_ratio: Option<f64>,
-    /// P_l (carrier 0).
-    #[serde(with = "nan_as_null")]
-    pub loss_fraction: f64,
-    /// Its in-span part (outside the support zones): the part to quote.
-    #[serde(with = "nan_as_null")]
-    pub loss_fraction_span: f64,
-    /// Its support part (the carrier's arrival at a support).
-    #[serde(with = "nan_as_null")]
-    pub loss_fraction_support: f64,
-    /// Force statistics (carrier 0), N.
-    #[serde(with = "nan_as_null")]
-    pub force_mean: f64,
-    /// Standard deviation, N.
-    #[serde(with = "nan_as_null")]
-    pub force_std: f64,
-    /// Minimum, N.
-    #[serde(with = "nan_as_null")]
-    pub force_min: f64,
-    /// Maximum, N.
-    #[serde(with = "nan_as_null")]
-    pub force_max: f64,
-    /// x_m/L of the first loss (null if none).
-    pub first_loss_position: Option<f64>,
-    /// Contact switches.
-    pub contact_switches: usize,
-    /// The filtered force's mean, σ, max and min (carrier 0), N (NaN in a
-    /// record of a taut before them, or a stopped run).
-    #[serde(flatten, default)]
-    pub filtered: crate::study::scalars::FilteredColumns,
+    /// Carrier 0's values of the quantities the tables with one row per
+    /// run offer ([`crate::quantity::Offer::RUN_TABLES`]), by name (`null`
+    /// for a run that stopped, and for a value it does not have).
+    #[serde(flatten)]
+    pub quantities: crate::quantity::Values,
     /// Mean force per x_m/L bin (PROFILE_BINS bins over [0, 1]), N; null for
     /// a bin no step fell in.
     pub force_profile: Vec<Option<f64>>,
@@ -89,16 +64,7 @@ impl SweepRecord {
             index,
             values,
             speed_ratio: None,
-            loss_fraction: f64::NAN,
-            loss_fraction_span: f64::NAN,
-            loss_fraction_support: f64::NAN,
-            force_mean: f64::NAN,
-            force_std: f64::NAN,
-            force_min: f64::NAN,
-            force_max: f64::NAN,
-            first_loss_position: None,
-            contact_switches: 0,
-            filtered: crate::study::scalars::FilteredColumns::NONE,
+            quantities: crate::quantity::Values::none(),
             force_profile: vec![],
             loss_profile: vec![],
             warnings: vec![],
@@ -107,6 +73,31 @@ impl SweepRecord {
             error: None,
             wall_seconds: None,
         }
+    }
+}
+
+impl SweepRecord {
+    /// Its value of `q` (carrier 0), NaN where it has none.
+    pub fn value(&self, q: &crate::quantity::Quantity) -> f64 {
+        self.quantities.real(q)
+    }
+
+    /// P_l (carrier 0), NaN for a run that stopped.
+    pub fn loss_fraction(&self) -> f64 {
+        self.value(&crate::quantity::LOSS_FRACTION)
+    }
+
+    /// P_l's in-span part (carrier 0), NaN for a run that stopped.
+    pub fn loss_fraction_span(&self) -> f64 {
+        self.value(&crate::quantity::LOSS_FRACTION_SPAN)
+    }
+
+    /// A copy whose P_l is `v`: how a map drawn from P_l draws another
+    /// value of each point (its in-span part, its u_num).
+    pub fn with_loss_fraction(&self, v: f64) -> Self {
+        let mut r = self.clone();
+        r.quantities.set(&crate::quantity::LOSS_FRACTION, Some(v));
+        r
     }
 }
 
@@ -152,7 +143,6 @@ pub(super) fn record_of(
         }
         (None, Ok(_)) => unreachable!("a run needs its scene"),
     };
-    let s = &out.stats[0];
     let tr = &out.history.carriers[0];
     let l = sc.beam.length;
     let (mut fsum, mut lost, mut n) = (
@@ -172,16 +162,7 @@ pub(super) fn record_of(
         index,
         values,
         speed_ratio: (c > 0.0).then(|| sc.carriers[0].motion.profile.cruise_speed() / c),
-        loss_fraction: s.loss_fraction,
-        loss_fraction_span: s.loss_fraction_span,
-        loss_fraction_support: s.loss_fraction_support,
-        force_mean: s.force.mean,
-        force_std: s.force.std,
-        force_min: s.force.min,
-        force_max: s.force.max,
-        first_loss_position: s.first_loss_position,
-        contact_switches: s.contact_switches,
-        filtered: crate::study::scalars::FilteredColumns::of(out, 0),
+        quantities: crate::quantity::Values::of(out, 0, crate::quantity::Offer::RUN_TABLES),
         force_profile: (0..PROFILE_BINS)
             .map(|b| (n[b] > 0).then(|| fsum[b] / n[b] as f64))
             .collect(),

@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 
 use super::nan_as_null;
 use crate::error::{Error, Result};
+use crate::quantity::{Offer, Quantity};
 use crate::resolve::Resolved;
 use crate::study::level::Level;
-use crate::study::uncertainty::QuantitySpec;
 use crate::study::uncertainty::quantity;
 
 /// A point's default budget (`--max-cost`): its refinements may cost this
@@ -32,29 +32,28 @@ pub struct SweepTolerance {
     pub budget: f64,
 }
 
-/// The quantities a sweep can target: those of `taut uncertainty` that
-/// are columns of `sweep.csv`.
-pub const TARGETS: [&str; 8] = [
-    "loss_fraction_span",
-    "loss_fraction",
-    "loss_fraction_support",
-    "force_mean",
-    "force_std",
-    "force_max",
-    "force_min",
-    "first_loss_position",
-];
+/// The quantities a sweep can target: those given an error bar
+/// ([`quantity::quantities`]) that are columns of `sweep.csv`
+/// ([`Offer::RUN_TABLES`]), in the registry's order.
+pub fn targets() -> Vec<&'static Quantity> {
+    quantity::quantities()
+        .into_iter()
+        .filter(|q| q.offered_in(Offer::RUN_TABLES))
+        .collect()
+}
 
 impl SweepTolerance {
     /// `--tolerance EPS --quantity Q [--max-cost F]`, checked.
     pub fn new(quantity: &str, tolerance: f64, budget: Option<f64>) -> Result<Self> {
-        if !TARGETS.contains(&quantity) {
+        let targets = targets();
+        if !targets.iter().any(|q| q.name == quantity) {
+            let names: Vec<&str> = targets.iter().map(|q| q.name).collect();
             return Err(Error::invalid(
                 "--quantity",
                 quantity,
                 format!(
                     "must be one of {} (with --tolerance on a sweep)",
-                    TARGETS.join(", ")
+                    names.join(", ")
                 ),
             ));
         }
@@ -81,7 +80,7 @@ impl SweepTolerance {
     }
 
     /// Q's description (what it is read from, its formal orders).
-    pub(crate) fn spec(&self) -> QuantitySpec {
+    pub(crate) fn spec(&self) -> &'static Quantity {
         quantity::quantity(&self.quantity).expect("checked by new")
     }
 }

@@ -28,7 +28,7 @@ use crate::study::uncertainty::{FS_ASYMPTOTIC, observed_order, richardson_error}
 /// finer time and histories compare sample by sample.
 pub(crate) const LADDER_RATIO: f64 = 2.0;
 
-pub(crate) use crate::study::formal_orders::{
+pub(crate) use crate::quantity::formal_orders::{
     MAX_MESH_ORDER, MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, ROUND_OFF,
 };
 

@@ -59,7 +59,7 @@ pub use accuracy::{Accuracy, PilotRun, ResultEstimate, TolerantRun};
 pub use error_model::{ErrorModel, Estimate, LadderFit, LadderStatus};
 pub(crate) use limits::parse_tolerance;
 pub use quantity::{Quantity, quantity_difference};
-pub use results::{RESULTS, result_values};
+pub use results::{result_values, results};
 
 use crate::error::Result;
 use choose::{Chosen, choose};

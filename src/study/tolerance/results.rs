@@ -5,30 +5,24 @@ use super::accuracy::{PilotRun, ResultEstimate};
 use super::error_model::{
     ErrorModel, LadderFit, LadderStatus, MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER_CONTACT,
 };
+use crate::quantity::{ErrorKind, Offer, Quantity, offered};
 use crate::run::RunOutput;
-use crate::study::scalars::{self, Scalar};
-/// Every scalar result that gets an estimate, in print order (names and
-/// units: [`Scalar`]).
-pub const RESULTS: [Scalar; 13] = [
-    Scalar::ForceMean,
-    Scalar::ForceStd,
-    Scalar::ForceMin,
-    Scalar::ForceMax,
-    Scalar::FilteredForceStd,
-    Scalar::FilteredForceMin,
-    Scalar::FilteredForceMax,
-    Scalar::LossFraction,
-    Scalar::LossFractionSpan,
-    Scalar::LossFractionSupport,
-    Scalar::LossIntervalCount,
-    Scalar::FirstLossPosition,
-    Scalar::ContactSwitches,
-];
 
-/// The values of [`RESULTS`] for one carrier of a run, in that order
+/// Every scalar result that gets an estimate, in print order: the
+/// registry's quantities offered to `run --tolerance`
+/// ([`Offer::TOLERANCE`]; names and units there), less any exact for its
+/// discretization.
+pub fn results() -> Vec<&'static Quantity> {
+    offered(Offer::TOLERANCE)
+        .into_iter()
+        .filter(|q| q.error != ErrorKind::Exact)
+        .collect()
+}
+
+/// The values of [`results`] for one carrier of a run, in that order
 /// (`None` where undefined, e.g. the first loss of a contact never lost).
 pub fn result_values(out: &RunOutput, carrier: usize) -> Vec<Option<f64>> {
-    scalars::values(out, carrier, &RESULTS)
+    crate::quantity::values(out, carrier, &results())
 }
 
 /// Per-result ladder fits from the pilots and estimates at (h, dt).
@@ -47,8 +41,14 @@ pub(super) fn estimate_results(
         let at_pilots: Vec<Vec<Option<f64>>> =
             pilots.iter().map(|p| result_values(&p.output, c)).collect();
         let at_chosen = result_values(chosen, c);
-        for (k, q) in RESULTS.iter().enumerate() {
-            let (name, unit) = (q.name(), q.unit());
+        for (k, q) in results().iter().enumerate() {
+            let (name, unit) = (q.name, q.unit);
+            // the caps of a run whose contact switches: the method's own
+            // order is not known here, and O(Δt) is the safe one
+            let (mesh_cap, step_cap) = q
+                .error
+                .formal_orders(MAX_STEP_ORDER_CONTACT, true, false)
+                .unwrap_or((MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER_CONTACT));
             let vals: Vec<Option<f64>> = at_pilots.iter().map(|v| v[k]).collect();
             let value = at_chosen[k];
             let defined = vals.iter().filter(|v| v.is_some()).count();
@@ -75,13 +75,13 @@ pub(super) fn estimate_results(
                 [(v[0] - v[1]).abs(), (v[1] - v[2]).abs()],
                 h_fine,
                 scale,
-                MAX_MESH_ORDER_FORCE,
+                mesh_cap,
             );
             let step = LadderFit::new(
                 [(v[0] - v[3]).abs(), (v[3] - v[4]).abs()],
                 dt_fine,
                 scale,
-                MAX_STEP_ORDER_CONTACT,
+                step_cap,
             );
             let (status, estimated_error) = match (mesh.usable(), step.usable()) {
                 (true, true) => {

@@ -25,7 +25,7 @@ use serde::Serialize;
 use super::gci::{FS_CAUTIOUS, Gci, ORDER_WINDOW};
 use super::least_squares::{self, FitKind, LOWEST_ORDER, OrderRange};
 use super::order::{Behaviour, behaviour, fitted_order, observed_order, richardson_error};
-use crate::study::formal_orders::ROUND_OFF;
+use crate::quantity::formal_orders::ROUND_OFF;
 
 /// Which estimator gave the u_num.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -80,7 +80,7 @@ pub struct Inputs<'a> {
     pub ratio: f64,
     /// Formal orders in space and time.
     pub formal: (f64, f64),
-    /// Smooth in the resolution ([`super::quantity::QuantitySpec::smooth`]).
+    /// Smooth in the resolution ([`crate::quantity::Quantity::smooth`]).
     pub smooth: bool,
 }
 

@@ -144,9 +144,9 @@ mod tests {
         assert!(check_levels(2).is_err() && check_levels(7).is_err());
     }
 
-    /// Every member measures P_l over the scene's own support zone: on
-    /// the reference scene (N = 400, L = 50 m) that is 4h = 0.5 m, where
-    /// the finer levels' own zones would be 4ℓ_b ≈ 0.26 m.
+    /// Every member measures P_l over the scene's own support zone, a
+    /// length of the physics: on the reference scene 4ℓ_b = 0.2625 m,
+    /// whatever N and Δt.
     #[test]
     fn every_member_keeps_the_scene_s_support_zone() {
         use crate::record::zone::{LossGeometry, support_zone_of};
@@ -154,15 +154,16 @@ mod tests {
             crate::resolve::resolve_scene(include_str!("../../../scenes/reference.toml"), &[])
                 .unwrap();
         let zone = support_zone_of(&base);
-        assert!((zone - 0.5).abs() < 1e-12, "{zone}");
+        let bending_length = (base.beam.ei / base.beam.tension).sqrt();
+        assert!((zone - 4.0 * bending_length).abs() < 1e-12, "{zone}");
         let family = scenes(&base, 3).unwrap();
         for sc in &family {
             assert_eq!(sc.analysis.support_zone, Some(zone));
             assert_eq!(LossGeometry::of(sc, 0).support_zone, zone);
         }
-        // without it the finest level's zone would be narrower
+        // and the finest level's own default is the same length
         let mut finest = family[2].clone();
         finest.analysis.support_zone = None;
-        assert!(LossGeometry::of(&finest, 0).support_zone < 0.3);
+        assert_eq!(LossGeometry::of(&finest, 0).support_zone, zone);
     }
 }

@@ -15,7 +15,7 @@
 //!   data support, and the split of the error between space and time;
 //! * [`family`]: the family of runs of `taut uncertainty` (h and Δt refined
 //!   together, and apart);
-//! * [`quantity`]: what is given an error bar.
+//! * [`mod@quantity`]: what is given an error bar.
 //!
 //! This file runs the family and assesses every quantity
 //! ([`uncertainty`]).
@@ -31,11 +31,11 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 use crate::integrate::scene_method;
+use crate::quantity::formal_orders::MAX_STEP_ORDER;
 use crate::resolve::resolve_scene;
 use crate::run::run;
 use crate::scene::Discretization;
 use crate::study::cost::{Estimate, run_dof_steps};
-use crate::study::formal_orders::MAX_STEP_ORDER;
 use crate::study::level::Level;
 
 pub use assess::{Assessment, Estimator, Inputs, assess};
@@ -44,8 +44,7 @@ pub use family::{DEFAULT_LEVELS, Member, RATIO, Role};
 pub use gci::{FS_ASYMPTOTIC, FS_CAUTIOUS, Gci};
 pub(crate) use order::richardson_error;
 pub use order::{Behaviour, behaviour, fitted_order, observed_order};
-pub(crate) use quantity::QUANTITIES;
-pub use quantity::QuantitySpec;
+pub use quantity::{quantities, quantity};
 
 /// One quantity's row: what it is and its assessment.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -54,7 +53,7 @@ pub struct QuantityUncertainty {
     pub quantity: &'static str,
     /// Its unit.
     pub unit: &'static str,
-    /// Smooth in the resolution ([`QuantitySpec::smooth`]).
+    /// Smooth in the resolution ([`crate::quantity::Quantity::smooth`]).
     pub smooth: bool,
     /// The formal orders (space, time).
     pub formal: (f64, f64),
@@ -83,13 +82,23 @@ pub struct Uncertainty {
     pub levels: usize,
     /// The runs, in `family::plan`'s order (the diagonal, then the split).
     pub family: Vec<Member>,
-    /// One row a quantity, in `QUANTITIES`' order (uplift only with
+    /// One row a quantity, in the registry's order (uplift only with
     /// `[output] supports`).
     pub quantities: Vec<QuantityUncertainty>,
     /// Things the numbers do not say by themselves.
     pub notes: Vec<String>,
     /// Wall seconds of the whole family (runs in parallel).
     pub wall_seconds: f64,
+}
+
+/// Whether a contact opens or closes in any run of the family (a loss
+/// interval), read from the values of `qs`.
+fn outs_switch(values: &[Vec<Option<f64>>], qs: &[&crate::quantity::Quantity]) -> bool {
+    let loss = qs
+        .iter()
+        .position(|q| q.name == crate::quantity::LOSS_INTERVAL_COUNT.name)
+        .expect("loss_interval_count is given an error bar");
+    values.iter().any(|v| v[loss].is_some_and(|n| n > 0.0))
 }
 
 /// The study's estimated work: every run of the family.
@@ -130,6 +139,7 @@ pub fn uncertainty(
         .zip(&scenes)
         .map(|(&(role, l, _, _), sc)| Member::of(role, l, sc))
         .collect();
+    let qs = quantities();
     let mut values: Vec<Vec<Option<f64>>> = Vec::with_capacity(outs.len());
     let mut stopped: Option<String> = None;
     for (m, out) in family.iter_mut().zip(outs) {
@@ -138,7 +148,7 @@ pub fn uncertainty(
                 m.steps = o.steps;
                 m.dofs = o.dofs;
                 m.wall_seconds = o.wall_seconds;
-                values.push(quantity::all_values(&o));
+                values.push(quantity::all_values(&o, &qs));
             }
             Err(Error::Interrupted) => return Err(Error::Interrupted),
             Err(e @ Error::Diverged { .. }) => {
@@ -151,7 +161,7 @@ pub fn uncertainty(
                     m.dt
                 );
                 stopped.get_or_insert_with(|| format!("{run}: {e}"));
-                values.push(vec![None; QUANTITIES.len()]);
+                values.push(vec![None; qs.len()]);
             }
             Err(e) => {
                 return Err(e.in_run(&format!(
@@ -163,19 +173,15 @@ pub fn uncertainty(
     }
     // an opening or closing contact (a loss interval) makes the
     // displacement's Δt order 1
-    let loss = QUANTITIES
-        .iter()
-        .position(|q| q.name == "loss_interval_count")
-        .expect("listed");
-    let switch = values.iter().any(|v| v[loss].is_some_and(|n| n > 0.0));
+    let switch = outs_switch(&values, &qs);
     let method_order = scene_method(&base)
         .time_order(&base)
         .unwrap_or(MAX_STEP_ORDER);
     let string = base.beam.is_string() && base.discretization == Discretization::Hermite;
     let has_supports = !base.wire.supports.is_empty();
     let mut quantities = Vec::new();
-    for (i, q) in QUANTITIES.iter().enumerate() {
-        if q.name == "uplift_max" && !has_supports {
+    for (i, q) in qs.iter().enumerate() {
+        if q.name == crate::quantity::UPLIFT_MAX.name && !has_supports {
             continue;
         }
         let column = |role: Role| -> Vec<Option<f64>> {
@@ -187,7 +193,7 @@ pub fn uncertainty(
                 .collect()
         };
         let (diagonal, space) = (column(Role::Diagonal), column(Role::Space));
-        let formal = q.formal_orders(method_order, switch, string);
+        let formal = quantity::formal_orders(q, method_order, switch, string);
         let inputs = Inputs {
             diagonal: &diagonal,
             space: &space,

@@ -30,8 +30,9 @@ mod zone;
 use common::*;
 use recontact::*;
 use split::*;
-use taut::record::zone::{SUPPORT_BENDING_LENGTHS, SUPPORT_ELEMENTS, SUPPORT_STEPS};
+use taut::record::zone::SUPPORT_BENDING_LENGTHS;
 pub use zone::{LossSplit, split_loss, support_zone, support_zone_with};
+use zone::{SUPPORT_ELEMENTS, SUPPORT_STEPS};
 // ---------------------------------------------------------------------------
 
 /// The report: what `cargo xtask contact-loss` runs (its

@@ -7,7 +7,18 @@
 // checks that this split at 4 ℓ_b is the library's loss_fraction_span.
 // ---------------------------------------------------------------------------
 
-use taut::record::zone::{SUPPORT_BENDING_LENGTHS, SUPPORT_ELEMENTS, SUPPORT_STEPS};
+use taut::record::zone::SUPPORT_BENDING_LENGTHS;
+
+/// Elements in this report's support zone. The report reproduces a study
+/// made with an earlier default zone, max(4ℓ_b, 4h, 4VΔt), that followed
+/// the mesh and the step; the library's zone is now 4ℓ_b alone (a length
+/// of the physics), and this report keeps the old one to regenerate its
+/// tables as they were measured.
+pub const SUPPORT_ELEMENTS: f64 = 4.0;
+
+/// Steps of carrier travel in this report's support zone
+/// ([`SUPPORT_ELEMENTS`]).
+pub const SUPPORT_STEPS: f64 = 4.0;
 
 /// Width z (m) of the support zone at each end support, with `bending`
 /// bending lengths: z = max(bending·ℓ_b, 4h, 4VΔt). ℓ_b = 0 for a string.

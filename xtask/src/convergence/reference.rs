@@ -99,7 +99,7 @@ pub(super) fn section_reference(d: &mut String, clock: &mut Clock) -> Vec<String
          Lagrange contact, `end` placement, ρ∞ = 1, 0.6 s; contact is lost near the right \
          support). Three library studies, then a grid of single runs. In the study tables \
          ‖Δλ‖_L2 is the RMS of the difference of successive force histories on the coarsest \
-         level's times; \"λ RMS\" is the library's force_l2 value (RMS of λ on those times); \
+         level's times; \"λ RMS\" is the library's force_history_l2 value (RMS of λ on those times); \
          GCIs are the library's (relative; for λ from the history differences, for P_l from \
          the values); \"pre-loss\" is ‖Δλ‖/‖λ‖ over the samples with x_m/L ≤ {PRE_LOSS_X}, \
          before the loss region.\n"
@@ -136,18 +136,20 @@ pub(super) fn section_reference(d: &mut String, clock: &mut Clock) -> Vec<String
             .collect();
         let x: Vec<f64> = coarse(c, 0, |tr, i| tr.x[i] / length);
         let df = successive(&f, l2_norm);
-        check_orders(c, "force_l2", &orders(&df));
+        check_orders(c, "force_history_l2", &orders(&df));
         study_orders.push((
             title[..2].to_string(),
             (0..levels)
-                .map(|l| row(c, l, "force_l2").observed_order)
+                .map(|l| row(c, l, "force_history_l2").observed_order)
                 .collect(),
             (0..levels)
                 .map(|l| row(c, l, "loss_fraction").observed_order)
                 .collect(),
         ));
         if refine == Refine::Step {
-            step_rms = (0..levels).map(|l| row(c, l, "force_l2").value).collect();
+            step_rms = (0..levels)
+                .map(|l| row(c, l, "force_history_l2").value)
+                .collect();
         }
         let mut rows = Vec::new();
         for l in 0..levels {
@@ -158,7 +160,7 @@ pub(super) fn section_reference(d: &mut String, clock: &mut Clock) -> Vec<String
             } else {
                 rel_l2(&f[l - 1], &f[l], &x, |xi| xi <= PRE_LOSS_X)
             };
-            let (rf, rp) = (row(c, l, "force_l2"), row(c, l, "loss_fraction"));
+            let (rf, rp) = (row(c, l, "force_history_l2"), row(c, l, "loss_fraction"));
             let pl_diff = if l == 0 {
                 f64::NAN
             } else {

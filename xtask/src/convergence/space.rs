@@ -91,24 +91,24 @@ pub(super) fn section_space(d: &mut String, clock: &mut Clock, exact: &[f64]) ->
     for l in 0..5 {
         let h = b.length / cb.scenes[l].elements as f64;
         let kink = force * h / (4.0 * te);
-        ratios.push(err(cb, l, "displacement_l2") / kink);
-        max_ratio.push(err(cb, l, "displacement_max") / kink);
-        o_both.push(eorder(cb, l, "displacement_l2"));
-        o_mesh.push(eorder(cm, l, "displacement_l2"));
-        o_max.push(eorder(cb, l, "displacement_max"));
+        ratios.push(err(cb, l, "displacement_history_l2") / kink);
+        max_ratio.push(err(cb, l, "displacement_history_max") / kink);
+        o_both.push(eorder(cb, l, "displacement_history_l2"));
+        o_mesh.push(eorder(cm, l, "displacement_history_l2"));
+        o_max.push(eorder(cb, l, "displacement_history_max"));
         rows.push(vec![
             l.to_string(),
             cb.scenes[l].elements.to_string(),
             format!("{:e}", cb.scenes[l].dt),
             e3(kink),
-            e3(err(cb, l, "displacement_l2")),
-            f2(eorder(cb, l, "displacement_l2")),
+            e3(err(cb, l, "displacement_history_l2")),
+            f2(eorder(cb, l, "displacement_history_l2")),
             format!("{:.3}", ratios[l]),
-            e3(err(cb, l, "displacement_max")),
-            f2(eorder(cb, l, "displacement_max")),
-            f2(row(cb, l, "displacement_l2").observed_order),
-            e3(err(cm, l, "displacement_l2")),
-            f2(eorder(cm, l, "displacement_l2")),
+            e3(err(cb, l, "displacement_history_max")),
+            f2(eorder(cb, l, "displacement_history_max")),
+            f2(row(cb, l, "displacement_history_l2").observed_order),
+            e3(err(cm, l, "displacement_history_l2")),
+            f2(eorder(cm, l, "displacement_history_l2")),
         ]);
     }
     w!(
@@ -181,8 +181,8 @@ pub(super) fn section_space(d: &mut String, clock: &mut Clock, exact: &[f64]) ->
     let w: Vec<Vec<f64>> = (0..6).map(|l| coarse(c, l, |tr, i| tr.w[i])).collect();
     let (dm, d2) = (successive(&w, max_norm), successive(&w, l2_norm));
     let (pm, p2) = (orders(&dm), orders(&d2));
-    check_orders(c, "displacement_max", &pm);
-    check_orders(c, "displacement_l2", &p2);
+    check_orders(c, "displacement_history_max", &pm);
+    check_orders(c, "displacement_history_l2", &p2);
     let mut rows = Vec::new();
     let mut errs = Vec::new();
     for l in 0..6 {
@@ -199,7 +199,7 @@ pub(super) fn section_space(d: &mut String, clock: &mut Clock, exact: &[f64]) ->
             f2(pm[l]),
             e3(d2[l]),
             f2(p2[l]),
-            e3(row(c, l, "displacement_l2").gci),
+            e3(row(c, l, "displacement_history_l2").gci),
             e3(max_norm(&e)),
             e3(l2_norm(&e)),
         ]);

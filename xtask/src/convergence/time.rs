@@ -56,8 +56,8 @@ pub(super) fn section_time(d: &mut String, clock: &mut Clock, exact: &[f64]) -> 
         let dm = successive(&w, max_norm);
         let d2 = successive(&w, l2_norm);
         let (pm, p2) = (orders(&dm), orders(&d2));
-        check_orders(c, "displacement_max", &pm);
-        check_orders(c, "displacement_l2", &p2);
+        check_orders(c, "displacement_history_max", &pm);
+        check_orders(c, "displacement_history_l2", &p2);
         let omega_max = *fe_frequencies(&c.scenes[0].beam, n, usize::MAX)
             .expect("modal solve")
             .last()
@@ -76,7 +76,7 @@ pub(super) fn section_time(d: &mut String, clock: &mut Clock, exact: &[f64]) -> 
                 f2(pm[l]),
                 e3(d2[l]),
                 f2(p2[l]),
-                e3(row(c, l, "displacement_l2").gci),
+                e3(row(c, l, "displacement_history_l2").gci),
                 e3(err),
             ]);
         }
@@ -183,10 +183,10 @@ pub(super) fn section_time(d: &mut String, clock: &mut Clock, exact: &[f64]) -> 
     let (dw_m, dw_2) = (successive(&w, max_norm), successive(&w, l2_norm));
     let (df_m, df_2) = (successive(&f, max_norm), successive(&f, l2_norm));
     let (pw_m, pw_2, pf_m, pf_2) = (orders(&dw_m), orders(&dw_2), orders(&df_m), orders(&df_2));
-    check_orders(c, "displacement_max", &pw_m);
-    check_orders(c, "displacement_l2", &pw_2);
-    check_orders(c, "force_max", &pf_m);
-    check_orders(c, "force_l2", &pf_2);
+    check_orders(c, "displacement_history_max", &pw_m);
+    check_orders(c, "displacement_history_l2", &pw_2);
+    check_orders(c, "force_history_max", &pf_m);
+    check_orders(c, "force_history_l2", &pf_2);
     // λ re-sampled where the step applies it, t_n − α_fΔt (linear
     // interpolation), on the interior coarse samples
     let t0 = c.runs[0].history.t.clone();

@@ -41,10 +41,7 @@ pub(super) fn run_t7(clock: &Clock, res: Res, n: usize, maps: &Path) -> Run2 {
     let span: Vec<SweepRecord> = recs
         .iter()
         .zip(&points)
-        .map(|(r, p)| SweepRecord {
-            loss_fraction: p.pl_span,
-            ..r.clone()
-        })
+        .map(|(r, p)| r.with_loss_fraction(p.pl_span))
         .collect();
     write_loss_fraction_map(
         &maps.join(format!("{name}_pl_span.svg")),

@@ -116,7 +116,9 @@ pub fn true_value(
     set: &[String],
     rm: Option<&RidingMassHistory>,
 ) -> Result<f64> {
-    let t_end = finest.steps as f64 * finest.dt;
+    // every time statistic's window is [0, T], T the scene's end time,
+    // whatever the step (MODEL §7)
+    let t_end = finest.t_end;
     match truth {
         Truth::Series => {
             let e = taut::study::reference::exact(finest)?.expect("a declared series");
@@ -157,7 +159,7 @@ pub fn true_value(
             })?;
             let out = run(&sc, &mut |_, _| {})?;
             let q = quantity::quantity(quantity_name).expect("a listed quantity");
-            Ok(q.of(&out).expect("defined on the refined run"))
+            Ok(q.of(&out, 0).expect("defined on the refined run"))
         }
     }
 }
