@@ -356,22 +356,6 @@ def simulate_batch(scenes, modes):
     }
 
 
-def zone_width(sc, modes):
-    """The support zone of src/record/zone.rs for a galerkin run (h = L/J)."""
-    lb = math.sqrt(sc.ei / sc.tension) if sc.tension > 0.0 else 0.0
-    v = sc.motion.v0
-    return min(max(4.0 * lb, 4.0 * sc.length / modes, 4.0 * v * sc.dt), 0.5 * sc.length)
-
-
-def loss_fractions(h, sc, zone):
-    """(P_l, in-span P_l) over steps 1 … n (src/record/stats.rs)."""
-    open_ = ~h["in_contact"][1:]
-    x = h["x_m"][1:]
-    in_zone = (x < zone) | (x > sc.length - zone)
-    n = len(open_)
-    return open_.sum() / n, (open_ & ~in_zone).sum() / n
-
-
 # --------------------------------------------------------------------------
 # taut, comparison, timing
 # --------------------------------------------------------------------------

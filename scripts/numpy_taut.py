@@ -925,8 +925,11 @@ def compare(args, elements):
 
 
 def run_stats(h):
-    """sweep.csv's statistics of one history (src/record/stats.rs): over the
-    steps 1 … n (row 0, the initial state, only sets the first contact state)."""
+    """sweep.csv's statistics of one history (src/record/stats.rs), as
+    samples over the steps 1 … n (row 0, the initial state, only sets the
+    first contact state): P_l as taut's `loss_fraction_steps`; taut's mean
+    and σ are time averages over [0, T] (the trapezoid rule), which differ
+    from these by O(Δt/T) of the force, far inside SWEEP_FORCE_MEAN_REL."""
     lam = h["force"][1:]
     return {
         "loss_fraction": loss_fraction(h["in_contact"]),
@@ -986,7 +989,9 @@ def sweep_agreement(taut_rows, numpy_stats, key):
                     abs(ns["force_min"]), abs(ns["force_max"]))
         r = {
             "value": float(tr[key]),
-            "P_l_taut": float(tr["loss_fraction"]),
+            # the step count, numpy's definition (taut's `loss_fraction` is
+            # the time in loss with each instant located within its step)
+            "P_l_taut": float(tr["loss_fraction_steps"]),
             "P_l_numpy": ns["loss_fraction"],
             "switches_taut": int(tr["contact_switches"]),
             "switches_numpy": ns["contact_switches"],
