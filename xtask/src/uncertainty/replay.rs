@@ -95,6 +95,38 @@ fn split_sum(r: &Row) -> f64 {
     }
 }
 
+/// Xing & Stern's factor-of-safety estimator (J. Fluids Eng. 132 (2010)
+/// 061403) on the finest three diagonal levels: U = FS·|δ_RE|, δ_RE the
+/// Richardson error ε₂₁/(r^p − 1) at the observed order p, and FS a
+/// function of P = p/p_formal: 2.45 − 0.85P for 0 < P ≤ 1, 16.4P − 14.8
+/// above (p_formal the smaller formal order: the diagonal refines both
+/// variables, and the slower one rules). NaN where the three levels do not
+/// converge monotonically (no p; the method gives no estimate there).
+fn xing_stern(r: &Row) -> f64 {
+    let k = r.diagonal.len();
+    if k < 3 {
+        return f64::NAN;
+    }
+    let (Some(s3), Some(s2), Some(s1)) = (r.diagonal[k - 3], r.diagonal[k - 2], r.diagonal[k - 1])
+    else {
+        return f64::NAN;
+    };
+    let (e32, e21) = (s2 - s3, s1 - s2);
+    let ratio = e21 / e32;
+    if !(ratio > 0.0 && ratio < 1.0) {
+        return f64::NAN;
+    }
+    let rr = RATIO as f64;
+    let p = (1.0 / ratio).ln() / rr.ln();
+    let big_p = p / r.formal.0.min(r.formal.1);
+    let fs = if big_p <= 1.0 {
+        2.45 - 0.85 * big_p
+    } else {
+        16.4 * big_p - 14.8
+    };
+    fs * (e21 / (rr.powf(p) - 1.0)).abs()
+}
+
 /// Safety factors of the frontier's split estimators.
 const FRONTIER_FACTORS: [f64; 5] = [1.0, 1.25, 1.5, 2.0, 3.0];
 
@@ -125,6 +157,17 @@ fn frontier(rows: &[Row]) -> String {
     line(
         "taut's (GCI, least squares, split floor)".into(),
         with(&|r| r.u_num),
+    );
+    line(
+        "Xing & Stern's factor of safety (finest three levels)".into(),
+        with(&xing_stern),
+    );
+    line(
+        "Xing & Stern's, else taut's where it gives none".into(),
+        with(&|r| {
+            let u = xing_stern(r);
+            if u.is_finite() { u } else { r.u_num }
+        }),
     );
     for c in FRONTIER_FACTORS {
         line(
