@@ -195,9 +195,10 @@ pub fn run_case(case: &Case, levels: usize, rm: Option<&RidingMassHistory>) -> R
         });
         fset.push(format!("time.step={:e}", fine.dt));
         let finest = resolve_scene(&text, &fset)?;
+        // the window's end, the scene's end time whatever the step (MODEL §7)
         let t_end = match case.truth {
             Truth::Refined { .. } => 0.0,
-            _ => finest.steps as f64 * finest.dt,
+            _ => finest.t_end,
         };
         let t = match known.iter().find(|(t, z, _)| *t == t_end && *z == zone) {
             Some(&(_, _, v)) => v,
