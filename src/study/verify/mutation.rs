@@ -13,6 +13,7 @@
 //! running beside it on their own threads, never see it.
 
 use super::cases::CASES;
+use super::golden::{self, key};
 use super::row::{Status, VerifyRow};
 use super::{selection, verify};
 use crate::defects::{self, Defect};
@@ -29,15 +30,6 @@ pub(super) fn quick_matrix_with(defect: Option<Defect>) -> Vec<VerifyRow> {
     let sel = selection(None, None, None, true).expect("the default selection");
     pool.install(|| verify(&CASES, &sel, &|_, _| {}))
         .expect("the matrix runs")
-}
-
-/// A row's identity: case, method, discretization, formulation,
-/// supports, variable, quantity.
-fn key(r: &VerifyRow) -> String {
-    format!(
-        "{} {} {} {} {} {} {}",
-        r.case, r.method, r.discretization, r.formulation, r.supports, r.variable, r.quantity
-    )
 }
 
 /// One line of the mutation table: the rows failing that do not fail in
@@ -66,7 +58,8 @@ fn summary(rows: &[VerifyRow], clean: &[VerifyRow]) -> (usize, String) {
 }
 
 /// Every defect makes `taut verify --quick` fail at least one row that
-/// does not fail without it, and the matrix without one fails none (so
+/// does not fail without it, or raises a pass row's finest error above
+/// its golden constant ([`golden`]), and the matrix without one fails none (so
 /// each failure is the defect's). The clean matrix's failures, if any, are
 /// printed first and fail the test at its end, after every defect is
 /// measured against them.
@@ -106,18 +99,30 @@ fn the_quick_matrix_flags_every_deliberate_defect() {
     for f in &clean_failed {
         println!("  clean FAIL {f}");
     }
+    let golden = golden::read();
     let mut missed = Vec::new();
     println!(
-        "| defect | rows failed that pass without it (of {}) | e.g. |",
-        clean.len()
+        "| defect | rows failed that do not fail without it (of {}) | pass rows above {}× their golden error | e.g. |",
+        clean.len(),
+        golden::GOLDEN_FACTOR
     );
-    println!("|---|---|---|");
+    println!("|---|---|---|---|");
     for d in defects {
         let rows = quick_matrix_with(Some(d));
         dump(&format!("{d:?}"), &rows);
         let (n, first) = summary(&rows, &clean);
-        println!("| {d:?} | {n} | {first} |");
-        if n == 0 {
+        let over = golden::exceeded(&rows, &golden);
+        let first = if n == 0 {
+            over.iter()
+                .take(3)
+                .map(|(k, e, g)| format!("{k} ({:.2}×)", e / g))
+                .collect::<Vec<_>>()
+                .join("; ")
+        } else {
+            first
+        };
+        println!("| {d:?} | {n} | {} | {first} |", over.len());
+        if n == 0 && over.is_empty() {
             missed.push(d);
         }
     }
