@@ -1,5 +1,5 @@
 //! Deliberate defects, compiled into test builds only, that the
-//! verification harness must flag (issue 38; `docs/verification.md`, "The
+//! verification harness must flag (`docs/verification.md`, "The
 //! harness tested against known defects").
 //!
 //! Each [`Defect`] is a small, plausible mistake at one place of the code:

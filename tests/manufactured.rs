@@ -433,7 +433,7 @@ fn the_cut_down_verification_matrix_passes() {
     }
     assert!(!any_failed(&rows));
     assert!(rows.iter().filter(|r| r.status == Status::Pass).count() > 40);
-    // issue 38: a `cannot` is a refusal or a measured share, never a rule
+    // a `cannot` is a refusal or a measured share, never a rule
     for r in rows.iter().filter(|r| r.status == Status::Cannot) {
         assert!(
             r.note.starts_with("refused: ") || r.note.starts_with("measured: "),
