@@ -395,16 +395,29 @@ fn the_harness_fails_a_method_that_declares_the_wrong_order() {
 /// The cut-down matrix of the default suite: the quick cases (the
 /// oscillator and the moving-mass Δt and space cases on their first two
 /// support pairs), every method, three discretizations, three
-/// formulations.
+/// formulations. Of the quick matrix's parameter sets it keeps those of
+/// the methods whose step has a kernel of its own (`bathe(gamma=0.6)`,
+/// `moreau_jean(theta=1)`, `wbz(rho_inf=0.5)`); the generalized-α ones
+/// beside their defaults (`generalized_alpha(rho_inf=0.5)`,
+/// `hht(alpha=1/3)`) run in `taut verify --quick` and the mutation test
+/// only, which keeps this test's runs at +23 % rather than +50 % (measured
+/// in the runs' own wall time over the quick matrix: 367 s before the
+/// parameter sets, 452 s with these, 550 s with all).
 #[test]
 fn the_cut_down_verification_matrix_passes() {
-    let sel = selection(
+    let mut sel = selection(
         None,
         Some("hermite,galerkin,modal"),
         Some("lagrange,penalty,impact"),
         true,
     )
     .unwrap();
+    sel.methods.retain(|m| {
+        !matches!(
+            m.name().as_str(),
+            "generalized_alpha(rho_inf=0.5)" | "hht(alpha=1/3)"
+        )
+    });
     let start = std::time::Instant::now();
     let rows = verify(&CASES, &sel, &|_, _| {}).unwrap();
     println!(
@@ -420,7 +433,7 @@ fn the_cut_down_verification_matrix_passes() {
     }
     assert!(!any_failed(&rows));
     assert!(rows.iter().filter(|r| r.status == Status::Pass).count() > 40);
-    // issue 38: a `cannot` is a refusal or a measured share, never a rule
+    // a `cannot` is a refusal or a measured share, never a rule
     for r in rows.iter().filter(|r| r.status == Status::Cannot) {
         assert!(
             r.note.starts_with("refused: ") || r.note.starts_with("measured: "),

@@ -61,6 +61,12 @@ impl ContactLaw for Penalty {
         for c in 0..nc.min(self.penalized) {
             let kappa = match self.kappa {
                 Kappa::Absolute(k) => k,
+                // a deliberate defect of the test build (`crate::defects`)
+                Kappa::Relative(r)
+                    if crate::defects::on(crate::defects::Defect::PenaltyUnscaled) =>
+                {
+                    r
+                }
                 Kappa::Relative(r) => r / w[c * nc + c],
             };
             wm[c * nc + c] += 1.0 / kappa;

@@ -255,7 +255,12 @@ impl Bathe {
         let nc = sys.contacts();
         let h1 = gamma * dt;
         let c0 = 2.0 / h1;
-        let c1 = (1.0 - gamma) / (gamma * dt);
+        // a deliberate defect of the test build (`crate::defects`)
+        let c1 = if crate::defects::on(crate::defects::Defect::BatheC1) {
+            gamma / ((1.0 - gamma) * dt)
+        } else {
+            (1.0 - gamma) / (gamma * dt)
+        };
         let c2 = -1.0 / ((1.0 - gamma) * gamma * dt);
         let c3 = (2.0 - gamma) / ((1.0 - gamma) * dt);
         // with a damping matrix C (docs/lines.md §10.4): A₁ += c₀C, A₂ += c₃C

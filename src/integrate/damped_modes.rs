@@ -63,7 +63,14 @@ impl ModeSteps {
             m.sin_over_omega.push(e[(0, 1)] / s);
             m.minus_omega_sin.push(s * e[(1, 0)]);
             m.cos_v.push(e[(1, 1)]);
-            m.a0.push(e[(0, 2)] / s2 - a1);
+            let a0 = e[(0, 2)] / s2 - a1;
+            // a deliberate defect of the test build (`crate::defects`)
+            let (a0, a1) = if crate::defects::on(crate::defects::Defect::HoldSwapped) {
+                (a1, a0)
+            } else {
+                (a0, a1)
+            };
+            m.a0.push(a0);
             m.a1.push(a1);
             m.b0.push(s * e[(1, 2)] / s2 - b1);
             m.b1.push(b1);

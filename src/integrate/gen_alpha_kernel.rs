@@ -122,7 +122,12 @@ impl Stage for GenAlphaMass {
             q,
             q_dot,
             c_at: (1.0 - af) * q_dot + af * d.zd,
-            k_at: (1.0 - af) * q + af * d.z,
+            // a deliberate defect of the test build (`crate::defects`)
+            k_at: if crate::defects::on(crate::defects::Defect::PredictorSpring) {
+                (1.0 - af) * q
+            } else {
+                (1.0 - af) * q + af * d.z
+            },
         }
     }
 

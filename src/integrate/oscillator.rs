@@ -118,7 +118,14 @@ impl ModeSteps {
             m.sin_over_omega.push(dt * sinc);
             m.minus_omega_sin.push(-w * su);
             m.cos_v.push(cu);
-            m.a0.push(dt * dt * c2 - a1);
+            let a0 = dt * dt * c2 - a1;
+            // a deliberate defect of the test build (`crate::defects`)
+            let (a0, a1) = if crate::defects::on(crate::defects::Defect::HoldSwapped) {
+                (a1, a0)
+            } else {
+                (a0, a1)
+            };
+            m.a0.push(a0);
             m.a1.push(a1);
             m.b0.push(dt * sinc - b1);
             m.b1.push(b1);

@@ -11,10 +11,16 @@ pub(crate) type Mat2 = SMatrix<f64, 2, 2>;
 /// Consistent mass M_e = ρA h/420 [...] (MODEL §4).
 pub fn hermite_mass(rho_a: f64, h: f64) -> Mat4 {
     let h2 = h * h;
+    // a deliberate defect of the test build (`crate::defects`)
+    let m11 = if crate::defects::on(crate::defects::Defect::HermiteMass) {
+        5.0
+    } else {
+        4.0
+    };
     #[rustfmt::skip]
     let m = Mat4::new(
         156.0,      22.0 * h,   54.0,      -13.0 * h,
-        22.0 * h,   4.0 * h2,   13.0 * h,  -3.0 * h2,
+        22.0 * h,   m11 * h2,   13.0 * h,  -3.0 * h2,
         54.0,       13.0 * h,   156.0,     -22.0 * h,
         -13.0 * h,  -3.0 * h2,  -22.0 * h, 4.0 * h2,
     );

@@ -152,7 +152,13 @@ impl Mesh {
                 let x = x.clamp(0.0, self.nodes[n]);
                 // first node beyond x, less one: the element whose left node ≤ x
                 let e = self.nodes.partition_point(|&xn| xn <= x).clamp(1, n) - 1;
-                let s = (x - self.nodes[e]) / (self.nodes[e + 1] - self.nodes[e]);
+                // a deliberate defect of the test build (`crate::defects`)
+                let len = if e > 0 && crate::defects::on(crate::defects::Defect::LocatePrevious) {
+                    self.nodes[e] - self.nodes[e - 1]
+                } else {
+                    self.nodes[e + 1] - self.nodes[e]
+                };
+                let s = (x - self.nodes[e]) / len;
                 (e, s.clamp(0.0, 1.0))
             }
         }

@@ -79,7 +79,7 @@ pub(crate) fn verify_rows(rows: &[VerifyRow]) -> Table {
         real(&|r| r.errors.last().copied().unwrap_or(f64::NAN)),
         real(&|r| r.relative_error),
         real(&|r| r.other_share),
-        real(&|r| r.penalty_share),
+        real(&|r| r.penalty_share.unwrap_or(f64::NAN)),
         real(&|r| r.start_share),
         real(&|r| r.loss_share),
         real(&|r| r.omega_max_dt),

@@ -88,14 +88,29 @@ fn smooth(order: f64) -> Expect {
     }
 }
 
+/// Bathe's known force deviation over the whole matrix's cases: its
+/// order falls toward 1 over their ladders (1.06–1.80 per pair on one
+/// wire, 0.58–1.27 on two), its finest error at most 1.5e-5 of the force,
+/// which this range and bound hold at 2×.
+const BATHE_FORCE_WHOLE: ((f64, f64), f64) = ((0.5, 1.9), 3e-5);
+
+/// Bathe's known force deviation on `mms_beam_time`, the case whose Δt
+/// ladders it is declared for: measured on the quick matrix (γ = ½ and
+/// 0.6, hermite and graded, Lagrange and complementarity, pinned–pinned
+/// and clamped–pinned), ladder orders 1.47–1.62, finest pairs 1.40–1.58,
+/// finest errors 8.7e-7 … 3.2e-6 of the force (the whole matrix's other
+/// supports: 1.47–1.73). The range keeps 0.2 below the least order
+/// measured, so a ladder fallen to first order fails; the bound is 2× the
+/// largest error.
+const BATHE_FORCE_BEAM_TIME: ((f64, f64), f64) = ((1.2, 1.9), 6.5e-6);
+
 /// Bathe's contact force at force level under a moving contact (its
-/// measured first-order term, `docs/verification.md`): its order falls
-/// toward 1 over the matrix's ladders (1.06–1.80 per pair on one wire,
-/// 0.58–1.27 on two), its finest error at most 1.5e-5 of the force.
-fn bathe_force_known() -> Expect {
+/// measured first-order term, `docs/verification.md`), within `range` and
+/// `bound` ([`BATHE_FORCE_WHOLE`], [`BATHE_FORCE_BEAM_TIME`]).
+fn bathe_force_known((range, bound): ((f64, f64), f64)) -> Expect {
     Expect::Known {
-        range: (0.5, 1.9),
-        bound: 3e-5,
+        range,
+        bound,
         cause: "Bathe's multiplier at force level carries a first-order term proportional to the carrier's speed: with a moving contact the gap is a time-dependent constraint, which its three-point sub-step differentiates inconsistently with the beam's; measured on mms_beam_time, N = 128: orders 1.48, 1.40, 1.31, 1.19, 1.08 as Δt halves from 5e-4 s, exactly 2.00 at V = 0, the error ∝ V at fixed Δt (4.4e-6, 9.0e-6, 1.8e-5 N at V = 1.5, 3, 6 m/s, Δt = 3.1e-5 s), and second order with the impact law (tests/manufactured.rs)".into(),
     }
     .limited("Bathe's first-order term depends on the basis's resolution of the path (its curvature, V² v_xx): refining the mesh moves it")
@@ -135,11 +150,30 @@ fn penalty_force_known(loss: bool) -> Expect {
 /// The expected orders of the manufactured beam cases with a moving mass
 /// (`docs/verification.md` gives the measurements behind each exception).
 fn expect_moving_mass(c: &Combo, v: Variable, q: Quantity) -> Expect {
-    moving_mass(c, v, q, false)
+    moving_mass(c, v, q, false, BATHE_FORCE_WHOLE)
 }
 
-/// [`expect_moving_mass`], through a prescribed loss or not.
-fn moving_mass(c: &Combo, v: Variable, q: Quantity, loss: bool) -> Expect {
+/// [`expect_moving_mass`] on `mms_beam_time`: Bathe's force held to the
+/// bounds measured on it ([`BATHE_FORCE_BEAM_TIME`]).
+fn expect_beam_time(c: &Combo, v: Variable, q: Quantity) -> Expect {
+    moving_mass(c, v, q, false, BATHE_FORCE_BEAM_TIME)
+}
+
+/// A first-order method's Δt error at a space ladder's fixed step: the
+/// ladders' Δt is chosen for second-order methods, and Moreau–Jean at
+/// θ = 1 measured 50 % of the finest displacement error (35–48 % of the
+/// force's) in it on `mms_beam_space` — halving Δt halved it.
+const FIRST_ORDER_IN_SPACE: &str = "a first-order method in Δt: the space ladder's fixed step, chosen for second-order methods, leaves its Δt error dominant";
+
+/// [`expect_moving_mass`], through a prescribed loss or not, with Bathe's
+/// force bounds `bathe`.
+fn moving_mass(
+    c: &Combo,
+    v: Variable,
+    q: Quantity,
+    loss: bool,
+    bathe: ((f64, f64), f64),
+) -> Expect {
     let f = c.formulation;
     let penalty = f == Formulation::Penalty;
     if v == Variable::Dt && c.time_order.is_none() {
@@ -153,7 +187,7 @@ fn moving_mass(c: &Combo, v: Variable, q: Quantity, loss: bool) -> Expect {
     };
     let mut e = match (v, q) {
         (Variable::Dt, Quantity::Force) if c.family == "bathe" && f != Formulation::Impact => {
-            bathe_force_known()
+            bathe_force_known(bathe)
         }
         (Variable::Dt | Variable::Kappa, _) => smooth(formal),
         (Variable::H, Quantity::Displacement) => Expect::Order {
@@ -177,6 +211,9 @@ fn moving_mass(c: &Combo, v: Variable, q: Quantity, loss: bool) -> Expect {
         }
         .limited("at J = 32 the contact force's error reaches the time error of the ladder's Δt"),
     };
+    if v != Variable::Dt && v != Variable::Kappa && c.time_order == Some(1.0) {
+        e = e.limited_first_order(FIRST_ORDER_IN_SPACE);
+    }
     if c.family == "central_difference" && v == Variable::Dt {
         e = e.limited(
             "central difference at its stable steps: Δt² ∝ h⁴ (h² on a graded mesh's shortest element), so its time error falls with the mesh like the space error",
@@ -227,8 +264,20 @@ fn beam_time_ladders(space: Space, c: &Combo) -> Vec<Ladder> {
     // the 1.60 of the ladder outside ORDER_TOL), so its ladder starts a
     // level finer
     let rho_zero = c.alphas == Some((-1.0, 0.0));
+    // HHT at its default α = 0.05 (the least dissipative member but
+    // Newmark) with the penalty law on a modal basis: its force after the
+    // start was 2.0 N at 1e-3 s (35× the Hermite basis's), pairs 4.00,
+    // 3.58, 1.42 — the ladder's 3.00 far from the first order of its
+    // finest pair — so its ladder starts two levels finer: from 2.5e-4 s
+    // the ladders measured 1.01–1.28, pairs 0.99–1.29 (pinned–pinned and
+    // clamped–pinned), the displacement 1.94–1.98
+    let hht_penalty_modal = c.alphas == Some((0.0, 0.05))
+        && c.formulation == Formulation::Penalty
+        && matches!(space, Space::Galerkin | Space::Modal);
     let (dt, levels) = if c.family == "modal_exact" {
         (2e-3, 3)
+    } else if hht_penalty_modal {
+        (2.5e-4, 3)
     } else if rho_zero {
         (5e-4, 4)
     } else {
@@ -466,7 +515,7 @@ fn loss_ladders(space: Space, c: &Combo) -> Vec<Ladder> {
 /// bounces, more often as Δt falls, although the exact reattachment is
 /// smooth; the note gives the loss intervals of each level).
 fn expect_loss(c: &Combo, v: Variable, q: Quantity) -> Expect {
-    moving_mass(c, v, q, true).limited("the contact bounces at reattachment: the discrete contact reattaches with the approach velocity its free flight left, more often as the step falls, although the exact reattachment is smooth")
+    moving_mass(c, v, q, true, BATHE_FORCE_WHOLE).limited("the contact bounces at reattachment: the discrete contact reattaches with the approach velocity its free flight left, more often as the step falls, although the exact reattachment is smooth")
 }
 
 /// The expected orders of the string case: a standing contact (no node
@@ -655,7 +704,7 @@ pub const CASES: [Case; 9] = [
         spaces: &Space::ALL,
         contact: true,
         ladders: beam_time_ladders,
-        expect: expect_moving_mass,
+        expect: expect_beam_time,
         quantities: &[Quantity::Displacement, Quantity::Force],
         quick: true,
         only: &[],

@@ -11,8 +11,10 @@
 //!   solution, [`ROUND_OFF_FLOOR`]) is not held to an order: the ladder is
 //!   judged on its levels above the floor;
 //! * **at least** (`AtLeast`): the same, one-sided;
-//! * **known** (`Known`): the ladder's and the finest pair's orders in the
-//!   declared range and the finest relative error within the declared bound;
+//! * **known** (`Known`): the ladder's order (first to last level) and the
+//!   finest pair's in the declared range, the approach (every pair at least
+//!   the range's least order − `APPROACH_SLACK`), and the finest relative
+//!   error within the declared bound;
 //! * **diverges** (`Diverges`, where the case declared `MayDiverge`), a
 //!   verdict on the ladder's runs, read from both quantities
 //!   ([`diverging`]): a pair's error stops falling or rises, the dominance
@@ -45,8 +47,13 @@ const RATIO: f64 = 2.0;
 
 /// The shift (below, above) of a pair's order p that a constant share s of
 /// the finer error can cause (module docs).
+/// A share that is not a number gives a band of NaN, which no order is
+/// inside: the judge never widens or narrows on one ([`band_share`]).
 pub(super) fn share_shift(p: f64, s: f64) -> (f64, f64) {
-    if s.is_nan() || s <= 0.0 || !p.is_finite() {
+    if s.is_nan() {
+        return (f64::NAN, f64::NAN);
+    }
+    if s <= 0.0 || !p.is_finite() {
         return (0.0, 0.0);
     }
     let s = s.min(DOMINANCE_LIMIT);
@@ -70,8 +77,13 @@ fn orders_text(orders: &[f64]) -> String {
 fn fill_from(row: &mut VerifyRow, m: &Measured, q: Quantity, w: Window) {
     let v = &m.views[w as usize];
     let (errors, refined, stiffened, scale) = match q {
-        Quantity::Displacement => (&v.displacement, v.refined.0, v.stiffened.0, m.scale.0),
-        Quantity::Force => (&v.force, v.refined.1, v.stiffened.1, m.scale.1),
+        Quantity::Displacement => (
+            &v.displacement,
+            v.refined.0,
+            v.stiffened.map(|s| s.0),
+            m.scale.0,
+        ),
+        Quantity::Force => (&v.force, v.refined.1, v.stiffened.map(|s| s.1), m.scale.1),
     };
     row.errors = errors.clone();
     row.orders = errors
@@ -83,8 +95,42 @@ fn fill_from(row: &mut VerifyRow, m: &Measured, q: Quantity, w: Window) {
         row.observed = observed_order(errors[0], errors[k - 1], RATIO.powi(k as i32 - 1));
         row.relative_error = errors[k - 1] / scale.max(f64::MIN_POSITIVE);
         row.other_share = (errors[k - 1] - refined).abs() / errors[k - 1];
-        row.penalty_share = (errors[k - 1] - stiffened).abs() / errors[k - 1];
+        row.penalty_share = stiffened.map(|s| (errors[k - 1] - s).abs() / errors[k - 1]);
     }
+}
+
+/// The share s that widens the finest pair's band by δ(s) (module docs):
+/// the fixed variables' share, and the penalty's compliance's where it was
+/// measured (`Some`) and is not the refined variable (a κ ladder refines
+/// it). A share that was not measured (`None`) plays no part. `Err` names
+/// a share that should have been measured and is not a number (its run
+/// failed, or the finest error is zero): the judge cannot bound the pair
+/// then, and fails the row rather than widen or narrow its band.
+pub(super) fn band_share(
+    other: f64,
+    penalty: Option<f64>,
+    variable: Variable,
+) -> Result<f64, &'static str> {
+    if other.is_nan() {
+        return Err("the fixed variables' share");
+    }
+    match penalty {
+        Some(p) if variable != Variable::Kappa => {
+            if p.is_nan() {
+                Err("the penalty's compliance share")
+            } else {
+                Ok(other.max(p))
+            }
+        }
+        _ => Ok(other),
+    }
+}
+
+/// The note of a row whose measured share is not a number ([`band_share`]).
+fn unmeasured_note(which: &str) -> String {
+    format!(
+        "the judge cannot bound this row: {which} was to be measured and is not a number (its run failed or the finest error is zero)"
+    )
 }
 
 /// |e − e_w|/e: the share of the error over window `outer` made outside
@@ -255,6 +301,16 @@ pub(super) fn judge(row: &mut VerifyRow, m: &Measured, q: Quantity, e: Expect, l
             );
         }
     }
+    // a share that should have been measured and is not a number: a hard
+    // error of the judge, never a silent widening or narrowing
+    if complete
+        && !matches!(e, Expect::Report(_))
+        && let Err(which) = band_share(row.other_share, row.penalty_share, ladder.variable)
+    {
+        row.status = Status::Fail;
+        row.note = unmeasured_note(which);
+        return;
+    }
     let start_note = if row.start_share.is_finite() {
         format!(
             " [judged after the start, t > {} s; the start made {:.0} % of the whole run's finest error]",
@@ -377,15 +433,36 @@ fn judge_expectation(
             row.error_bound = bound;
             let finest = row.orders.last().copied().unwrap_or(f64::NAN);
             let inside = |o: f64| o >= range.0 && o <= range.1;
+            // the approach: no pair below the range's least order by more
+            // than the slack (the error falls at every level)
+            let stalled = row
+                .orders
+                .iter()
+                .enumerate()
+                .find(|(_, o)| o.is_nan() || **o < range.0 - APPROACH_SLACK);
             row.status = Status::Fail;
             row.note = if let Some(f) = &m.failed {
                 format!("a run failed: {f}")
             } else if !complete || !finest.is_finite() {
                 "no order: an error is zero or not finite".into()
+            } else if !inside(row.observed) {
+                format!(
+                    "known deviation outside its declared range: the ladder's order {:.2} (first to last level; pairs {}), declared {:.2}–{:.2} ({cause})",
+                    row.observed,
+                    orders_text(&row.orders),
+                    range.0,
+                    range.1
+                )
             } else if !inside(finest) {
                 format!(
                     "known deviation outside its declared range: the finest pair's order {finest:.2} (the ladder's {:.2}), declared {:.2}–{:.2} ({cause})",
                     row.observed, range.0, range.1
+                )
+            } else if let Some((i, o)) = stalled {
+                format!(
+                    "known deviation that does not approach: pair {i} → {} has order {o:.2}, below {:.2} − {APPROACH_SLACK} (slack) ({cause})",
+                    i + 1,
+                    range.0
                 )
             } else if row.relative_error.is_nan() || row.relative_error > bound {
                 format!(
@@ -431,10 +508,13 @@ fn dominated(row: &VerifyRow, variable: Variable, declared: bool) -> Option<Stri
             100.0 * DOMINANCE_LIMIT
         ));
     }
-    if variable != Variable::Kappa && row.penalty_share > DOMINANCE_LIMIT {
+    if variable != Variable::Kappa
+        && let Some(share) = row.penalty_share
+        && (share.is_nan() || share > DOMINANCE_LIMIT)
+    {
         return Some(format!(
             "the penalty's compliance makes {:.0} % of the finest error (a run with κ × {} measured; limit {:.0} %): the order is not the refined variable's",
-            100.0 * row.penalty_share,
+            100.0 * share,
             super::PENALTY_STIFFEN,
             100.0 * DOMINANCE_LIMIT
         ));
@@ -507,7 +587,14 @@ fn judge_order(
     // the finest pair above the floor, widened by the share's shift
     let last = above - 2;
     let (p, allowance) = pair(last);
-    let (below, over) = share_shift(p, row.other_share.max(row.penalty_share.min(1.0)));
+    let s = match band_share(row.other_share, row.penalty_share, ladder.variable) {
+        Ok(s) => s,
+        Err(which) => {
+            row.note = unmeasured_note(which);
+            return;
+        }
+    };
+    let (below, over) = share_shift(p, s);
     let band = (
         p - allowance - below,
         if one_sided {
@@ -567,7 +654,7 @@ mod tests {
             displacement: vec![f64::NAN; force.len()],
             force: force.to_vec(),
             refined: (f64::NAN, refined),
-            stiffened: (f64::NAN, f64::NAN),
+            stiffened: None,
         };
         Measured {
             levels: (0..force.len()).map(|k| 0.25 / (1 << k) as f64).collect(),
@@ -656,6 +743,24 @@ mod tests {
         let r = judged(&e, 6.0e-4, known());
         assert_eq!(r.status, Status::Fail);
         assert!(r.note.contains("bound"), "{}", r.note);
+        // the ladder's order outside the range, its finest pair inside: an
+        // HHT penalty force ladder in Δt (pairs 4.00, 3.58, 1.42), known
+        // under the finest-pair rule alone
+        let penalty = Expect::Known {
+            range: (0.5, 1.8),
+            bound: 6e-4,
+            cause: "test".into(),
+        };
+        let e = [2.008, 0.1257, 0.01053, 0.003924];
+        let r = judged(&e, 0.003924, penalty);
+        assert_eq!(r.status, Status::Fail, "{}", r.note);
+        assert!(r.note.contains("the ladder's order 3.00"), "{}", r.note);
+        // a stall before the finest pair (pairs 0.07, 2.25, 1.32; the
+        // ladder's 1.21): it does not approach
+        let e = [1.0e-4, 9.5e-5, 2.0e-5, 8.0e-6];
+        let r = judged(&e, 8.0e-6, known());
+        assert_eq!(r.status, Status::Fail, "{}", r.note);
+        assert!(r.note.contains("does not approach"), "{}", r.note);
     }
 
     /// `cannot` only with the share measured above the limit; below it the
@@ -819,6 +924,113 @@ mod tests {
         assert_eq!(r.status, Status::Pass, "{}", r.note);
         assert!(r.note.contains("round-off floor"), "{}", r.note);
     }
+
+    /// A row judged on `force` errors whose compliance's share run gave
+    /// `stiffened` (`None`: a law without one) in a ladder in `variable`.
+    fn judged_with(
+        force: &[f64],
+        refined: f64,
+        stiffened: Option<f64>,
+        variable: Variable,
+    ) -> VerifyRow {
+        let mut m = measured(force, refined);
+        for v in &mut m.views {
+            v.stiffened = stiffened.map(|s| (f64::NAN, s));
+        }
+        let mut r = row();
+        let l = Ladder {
+            variable,
+            ..ladder(force.len())
+        };
+        judge(&mut r, &m, Quantity::Force, SMOOTH, &l);
+        r
+    }
+
+    /// A row whose law has no compliance is judged in the band its fixed
+    /// variables' share gives: the compliance's share, not measured (NaN),
+    /// used to widen every such band to the largest (`f64::min(NaN, 1.0)`
+    /// is 1.0: 1.40–2.55 for 2 ± 0.3), so a finest pair of 2.45 with the
+    /// fixed variables at 1 % passed.
+    #[test]
+    fn an_unmeasured_share_does_not_widen_the_band() {
+        let e = [1.6e-3, 4.0e-4, 1.0e-4, 1.0e-4 / 2f64.powf(2.45)];
+        let r = judged(&e, 0.99 * e[3], SMOOTH);
+        assert_eq!(r.status, Status::Fail, "{}", r.note);
+        assert!(
+            (r.allowed.0 - 1.689).abs() < 0.01 && (r.allowed.1 - 2.311).abs() < 0.01,
+            "{:?}",
+            r.allowed
+        );
+        // a compliance measured at 20 % widens it, to 2.50 above
+        let r = judged_with(&e, 0.99 * e[3], Some(0.8 * e[3]), Variable::H);
+        assert_eq!(r.status, Status::Pass, "{}", r.note);
+        assert!((r.allowed.1 - 2.50).abs() < 0.01, "{:?}", r.allowed);
+    }
+
+    /// A share that should have been measured and is not a number fails
+    /// the row: the judge cannot bound its pair.
+    #[test]
+    fn a_share_that_is_not_a_number_fails_the_row() {
+        let e = [1.6e-3, 4.0e-4, 1.0e-4, 2.5e-5];
+        let r = judged_with(&e, 2.5e-5, Some(f64::NAN), Variable::H);
+        assert_eq!(r.status, Status::Fail, "{}", r.note);
+        assert!(r.note.contains("cannot bound"), "{}", r.note);
+        // declared limited: still a fail, not a `cannot` with "NaN %"
+        let mut m = measured(&e, f64::NAN);
+        for v in &mut m.views {
+            v.stiffened = None;
+        }
+        let mut r = row();
+        judge(
+            &mut r,
+            &m,
+            Quantity::Force,
+            SMOOTH.limited("test"),
+            &ladder(4),
+        );
+        assert_eq!(r.status, Status::Fail, "{}", r.note);
+        assert!(r.note.contains("fixed variables' share"), "{}", r.note);
+        assert_eq!(band_share(0.1, Some(f64::NAN), Variable::Kappa), Ok(0.1));
+        assert!(share_shift(2.0, f64::NAN).0.is_nan());
+    }
+
+    proptest::proptest! {
+        /// A row's band never depends on a share that was not measured:
+        /// without a compliance it is the fixed variables' δ(s) alone, the
+        /// same as with a compliance measured at 0; a κ ladder (which
+        /// refines the compliance) gets the same band whatever its
+        /// compliance run gave.
+        #[test]
+        fn a_band_never_depends_on_an_unmeasured_share(
+            e0 in 1e-5f64..1e-2,
+            orders in proptest::array::uniform3(1.0f64..3.0),
+            other in 0.0f64..0.3,
+            x in 0.0f64..2.0,
+        ) {
+            let mut e = vec![e0];
+            for o in orders {
+                let last = e[e.len() - 1];
+                e.push(last / 2f64.powf(o));
+            }
+            let fine = e[3];
+            let refined = fine * (1.0 - other);
+            let bits = |r: &VerifyRow| (r.allowed.0.to_bits(), r.allowed.1.to_bits(), r.status);
+            let none = judged_with(&e, refined, None, Variable::H);
+            let zero = judged_with(&e, refined, Some(fine), Variable::H);
+            proptest::prop_assert_eq!(bits(&none), bits(&zero));
+            if none.allowed.0.is_finite() {
+                let (below, over) = share_shift(2.0, none.other_share);
+                proptest::prop_assert!((none.allowed.0 - (2.0 - ORDER_PAIR - below)).abs() < 1e-12);
+                proptest::prop_assert!((none.allowed.1 - (2.0 + ORDER_PAIR + over)).abs() < 1e-12);
+            }
+            let k_none = judged_with(&e, refined, None, Variable::Kappa);
+            let k_some = judged_with(&e, refined, Some(x * fine), Variable::Kappa);
+            proptest::prop_assert_eq!(bits(&k_none), bits(&k_some));
+        }
+    }
+
+    /// The pair allowance of [`SMOOTH`].
+    const ORDER_PAIR: f64 = 0.3;
 
     /// δ(s): the shift a constant share can cause, zero without one.
     #[test]

@@ -40,8 +40,9 @@ pub(super) struct View {
     /// The dominance run's errors (NaN when it could not run).
     pub(super) refined: (f64, f64),
     /// Penalty only: the finest level's errors with κ stiffened
-    /// [`super::PENALTY_STIFFEN`] times (NaN otherwise).
-    pub(super) stiffened: (f64, f64),
+    /// [`super::PENALTY_STIFFEN`] times; `None` where the law has no
+    /// compliance to measure, NaN where the run that measures it failed.
+    pub(super) stiffened: Option<(f64, f64)>,
 }
 
 /// A ladder's measurements.
@@ -117,7 +118,7 @@ fn at_level<'a>(scene: &'a Scene, ladder: &Ladder, k: usize) -> std::borrow::Cow
 pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
     let blank = View {
         refined: (f64::NAN, f64::NAN),
-        stiffened: (f64::NAN, f64::NAN),
+        stiffened: None,
         ..View::default()
     };
     let mut m = Measured {
@@ -201,6 +202,10 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
     // penalty: the finest level with κ stiffened, for the compliance's share
     let last = &at_level(scene, ladder, ladder.levels - 1);
     if finest.contact.formulation == crate::scene::Formulation::Penalty {
+        // measured from here on: NaN until its run succeeds
+        for v in &mut m.views {
+            v.stiffened = Some((f64::NAN, f64::NAN));
+        }
         let (_, n, dt, jm) = level_params(ladder, ladder.levels - 1);
         if let Ok(sc) = level(&stiffened(last, super::PENALTY_STIFFEN), j.space, n, dt, jm)
             && let Ok(out) = run_with(&sc, j.factory, &mut |_, _| {})
@@ -209,7 +214,7 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
             m.runs += 1;
             let e = errors(&sc, &out, &ex, stride, coarse.0);
             for (v, (d, f)) in m.views.iter_mut().zip(e.d.iter().zip(&e.f)) {
-                v.stiffened = (*d, *f);
+                v.stiffened = Some((*d, *f));
             }
         }
     }

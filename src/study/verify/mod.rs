@@ -38,6 +38,8 @@
 pub mod case;
 pub mod cases;
 mod explicit;
+#[cfg(test)]
+mod golden;
 mod job;
 mod judge;
 mod level;

@@ -84,8 +84,10 @@ pub struct VerifyRow {
     pub other_share: f64,
     /// Penalty only: the share of the finest error made by the penalty's
     /// compliance, |e − e_κ|/e with e_κ the finest level's error at
-    /// `PENALTY_STIFFEN` times κ; NaN otherwise.
-    pub penalty_share: f64,
+    /// `PENALTY_STIFFEN` times κ; `None` where the law has no compliance
+    /// (the share is not measured, and nothing is judged on it), NaN where
+    /// its run failed (the judge then fails the row).
+    pub penalty_share: Option<f64>,
     /// The share of the whole run's finest error made at the start,
     /// t ≤ `START_WINDOW` (|e − e_after|/e); NaN unless the row is
     /// judged after the start (`Expect::AfterStart`).
@@ -141,7 +143,7 @@ impl VerifyRow {
             error_bound: f64::NAN,
             range: (f64::NAN, f64::NAN),
             other_share: f64::NAN,
-            penalty_share: f64::NAN,
+            penalty_share: None,
             start_share: f64::NAN,
             loss_share: f64::NAN,
             loss_intervals: Vec::new(),

@@ -52,8 +52,8 @@ pub(crate) fn parse_spaces(list: &str) -> Result<Vec<Space>> {
 /// methods run in their own order, then listed registered ones. A built-in
 /// method of the generalized-α family brings its parameter sets
 /// (`tuned`): the full matrix runs each; the cut-down one runs
-/// the scene's own, and `wbz` at ρ∞ = 0.5 (at the scene's ρ∞ = 1 it is
-/// Newmark's parameter set).
+/// the scene's own and the one marked quick of each method (`wbz` that one
+/// alone: at the scene's ρ∞ = 1 it is Newmark's parameter set).
 pub fn selection(
     methods: Option<&str>,
     spaces: Option<&str>,
@@ -67,19 +67,21 @@ pub fn selection(
             let tuned: Vec<&'static dyn MethodFactory> = super::tuned::tuned_of(*m)
                 .map(|t| t as &dyn MethodFactory)
                 .collect();
+            let quick_set = super::tuned::tuned_of(*m)
+                .filter(|t| t.quick)
+                .map(|t| t as &dyn MethodFactory);
             match (*m, quick) {
                 // wbz at the scene's ρ∞ = 1 is Newmark: its tuned sets only
                 (crate::scene::Method::Wbz, false) => out.extend(tuned),
-                (crate::scene::Method::Wbz, true) => out.extend(
-                    super::tuned::tuned_of(*m)
-                        .filter(|t| t.value == 0.5)
-                        .map(|t| t as &dyn MethodFactory),
-                ),
+                (crate::scene::Method::Wbz, true) => out.extend(quick_set),
                 (_, false) => {
                     out.push(m as &dyn MethodFactory);
                     out.extend(tuned);
                 }
-                (_, true) => out.push(m as &dyn MethodFactory),
+                (_, true) => {
+                    out.push(m as &dyn MethodFactory);
+                    out.extend(quick_set);
+                }
             }
         }
         out
