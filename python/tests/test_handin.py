@@ -25,8 +25,12 @@ def test_the_history_has_the_filtered_force_and_the_summary_its_statistics() -> 
     f = r.history["force_filtered"]
     assert f.shape == r.history["force"].shape
     s = r.summary["carriers"][0]["force_filtered"]
-    # the summary's statistics are the column's, over the steps (rows 1 …)
-    assert s["mean"] == pytest.approx(float(np.mean(f[1:])), rel=1e-12)
+    # the summary's mean is the column's time average over the window
+    # [0, T] (the trapezoid rule between rows; here T is a whole number of
+    # steps, so no step is carried past the last row)
+    t = r.history["t"]
+    trapezoid = float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(t)))
+    assert s["mean"] == pytest.approx(trapezoid / t[-1], rel=1e-12)
     assert s["statistical_max"] == s["mean"] + 3 * s["std"]
     assert r.filtered_force_mean == s["mean"]
 
