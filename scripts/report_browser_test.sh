@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# taut report in a real browser (issue 39): makes the outputs of a run, a
+# taut report in a real browser: makes the outputs of a run, a
 # line with its envelope, a comparison, a convergence ladder and a 1-D
 # sweep, writes one report.html of them (taut report), opens it in
 # headless Chromium (Debian's `chromium` package, installed here with

@@ -505,6 +505,15 @@ fn cmd_report(dirs: Vec<PathBuf>, out: Option<PathBuf>) -> taut::Result<()> {
         r.tables,
         r.path.display()
     );
+    for dir in &r.incomplete {
+        eprintln!(
+            "WARNING {} is marked INCOMPLETE: shown as partial, not as results",
+            dir.display()
+        );
+    }
+    for why in &r.left_out {
+        eprintln!("WARNING left out of the report: {why}");
+    }
     Ok(())
 }
 
