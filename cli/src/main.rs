@@ -145,9 +145,10 @@ enum Command {
         #[command(flatten)]
         args: ModesArgs,
     },
-    /// One self-contained report.html (inline SVG and CSS, no network) from
-    /// the outputs taut wrote into one or more folders: scenes, summaries,
-    /// the standards' statistics, plots and study tables with their verdicts.
+    /// One self-contained report.html (plots as embedded images, inline
+    /// CSS, no script, no network) from the outputs taut wrote into one or
+    /// more folders: scenes, summaries, the standards' statistics, plots
+    /// and study tables with their verdicts.
     Report {
         /// Output folders of taut run, compare, converge, precision, sweep,
         /// verify or gate.

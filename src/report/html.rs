@@ -123,7 +123,7 @@ pub(crate) const MAX_ROWS: usize = 200;
 pub struct ReportSummary {
     /// The page, written to this file.
     pub path: PathBuf,
-    /// Plots inlined.
+    /// Plots embedded (as images).
     pub plots: usize,
     /// Tables shown.
     pub tables: usize,
