@@ -1,14 +1,19 @@
 #!/usr/bin/env bash
-# taut report in a real browser (issue 39): makes the outputs of a run, a
+# taut report in a real browser: makes the outputs of a run, a
 # line with its envelope, a comparison, a convergence ladder and a 1-D
 # sweep, writes one report.html of them (taut report), opens it in
 # headless Chromium (Debian's `chromium` package, installed here with
 # apt-get the way scripts/slurm_test.sh installs Slurm) and checks that
 #   * the page loads with no console error and no failed request,
-#   * every figure has a non-zero size, and there is one per plot file,
+#   * every figure is an image that decoded, has a non-zero size, and
+#     there is one per plot file,
 #   * the page fetches nothing (no http(s) URL in it);
 # then keeps a screenshot, out/report/report.png, and the page,
-# out/report/report.html.
+# out/report/report.html. Last it makes a report of a tampered folder (a
+# plot with a script, an onload handler, a javascript: iframe and images
+# on a local HTTP server; a table with markup in a cell), opens that page
+# as it is and checks that no script ran (the title is unchanged, nothing
+# added to the page) and that no request reached the server.
 #
 # Usage: scripts/report_browser_test.sh [TAUT_BINARY]   (default target/release/taut)
 # Skips (exit 0) with a clear message only where Chromium cannot be had:
@@ -65,7 +70,10 @@ fi
 # a copy of the page with a checker first in <head>: it records every
 # console error, uncaught error and failed resource, and once the page has
 # loaded writes what it found into <pre id="taut-check"> (read from the DOM
-# Chromium dumps)
+# Chromium dumps). It comes before the page's Content-Security-Policy
+# <meta>, which applies only to what follows it, so the checker runs while
+# the page's own content is held to the policy (a plot the policy blocked
+# would count as an image that did not decode).
 CHECK="$OUT/check.html"
 python3 - "$PAGE" "$CHECK" <<'PY'
 import sys
@@ -78,11 +86,11 @@ probe = """<script>
   console.error = function () { errors.push(Array.prototype.join.call(arguments, ' ')); error.apply(console, arguments); };
   window.addEventListener('error', function (e) { errors.push('error: ' + (e.message || (e.target && (e.target.src || e.target.href)) || e.type)); }, true);
   window.addEventListener('load', function () {
-    var figs = document.querySelectorAll('figure svg');
+    var figs = document.querySelectorAll('figure img');
     var zero = 0, sizes = [];
     for (var i = 0; i < figs.length; i++) {
       var r = figs[i].getBoundingClientRect();
-      if (!(r.width > 0 && r.height > 0)) zero++;
+      if (!(r.width > 0 && r.height > 0 && figs[i].complete && figs[i].naturalWidth > 0)) zero++;
       sizes.push(Math.round(r.width) + 'x' + Math.round(r.height));
     }
     var pre = document.createElement('pre');
@@ -106,7 +114,7 @@ figures=$(echo "$line" | sed -E 's/.*figures=([0-9]+).*/\1/')
 zero=$(echo "$line" | sed -E 's/.*zero=([0-9]+).*/\1/')
 errors=$(echo "$line" | sed -E 's/.*errors=([0-9]+).*/\1/')
 [ "$figures" = "$plots" ] || fail "$figures figures in the page for $plots plot files"
-[ "$zero" = 0 ] || fail "$zero figures have no size"
+[ "$zero" = 0 ] || fail "$zero figures have no size or did not decode"
 [ "$errors" = 0 ] || fail "console errors: $line"
 # what Chromium itself logged of the page's console (not its own start-up)
 if grep -E 'CONSOLE\(|Uncaught' "$OUT/chromium.log" | grep -qv 'taut-check'; then
@@ -119,4 +127,71 @@ fi
   || fail "no screenshot (log: $OUT/chromium.log)"
 [ -s "$OUT/report.png" ] || fail "the screenshot is empty"
 rm -f "$CHECK" "$DOM"
-echo "report browser test: passed: $figures figures, none empty, no console error; screenshot $OUT/report.png"
+
+# --- a tampered folder -----------------------------------------------------------------
+# the run's folder with a hostile plot and table, and a local HTTP server
+# that logs every request the page might make
+BAD="$OUT/tampered"
+cp -r "$OUT/run" "$BAD"
+rm -f "$BAD/report.html"
+PORT=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+HITS="$OUT/tampered.requests.log"
+: >"$HITS"
+python3 - "$PORT" "$HITS" <<'PY' &
+import http.server, sys
+port, log = int(sys.argv[1]), sys.argv[2]
+class H(http.server.BaseHTTPRequestHandler):
+    def do_GET(self):
+        open(log, "a").write(self.path + "\n")
+        self.send_response(204)
+        self.end_headers()
+    def log_message(self, *a):
+        pass
+http.server.HTTPServer(("127.0.0.1", port), H).serve_forever()
+PY
+SERVER=$!
+trap 'kill "$SERVER" 2>/dev/null || true' EXIT
+URL="http://127.0.0.1:$PORT"
+sleep 1
+# the server answers (else "no request" would prove nothing)
+python3 -c "import urllib.request; urllib.request.urlopen('$URL/probe')" \
+  || fail "the local HTTP server did not start"
+grep -q '^/probe$' "$HITS" || fail "the local HTTP server logs no request"
+: >"$HITS"
+cat >"$BAD/force.svg" <<SVG
+<?xml version="1.0"?>
+<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="960" height="480" viewBox="0 0 960 480" onload="document.title='pwned-onload'">
+<script>document.title='pwned-script';new Image().src='$URL/script';</script>
+<foreignObject width="960" height="100"><iframe xmlns="http://www.w3.org/1999/xhtml" src="javascript:parent.document.title='pwned-iframe'"></iframe></foreignObject>
+<image href="$URL/image" xlink:href="$URL/xlink" width="10" height="10"/>
+<rect x="0" y="0" width="960" height="480" fill="#1f77b4"/>
+</svg>
+SVG
+printf 'span,force_mean_N\n0,"<script>document.title=\x27pwned-cell\x27</script>"\n1,<img src=%s/cell>\n' "$URL" >"$BAD/spans.csv"
+"$TAUT_BIN" report "$BAD" --out "$OUT/tampered.html" >/dev/null 2>"$OUT/tampered.stderr" \
+  || fail "no report of the tampered folder ($OUT/tampered.stderr)"
+# the page as written: no markup from the folder in it (its text, escaped,
+# may be: `&lt;img src=http…` is a table cell's text)
+if sed -E 's|;base64,[A-Za-z0-9+/=]*|;base64,|g' "$OUT/tampered.html" \
+  | grep -Eiq '<script|<iframe|<[a-z]+ [^>]*(src|href)="?https?:|javascript:|onload='; then
+  fail "the tampered folder's markup reached the page: $OUT/tampered.html"
+fi
+TDOM="$OUT/tampered.dom.html"
+"${CHROMIUM[@]}" --virtual-time-budget=5000 --dump-dom "file://$OUT/tampered.html" >"$TDOM" \
+  2>>"$OUT/chromium.log" || fail "chromium could not load the tampered page (log: $OUT/chromium.log)"
+grep -q '<title>taut report</title>' "$TDOM" \
+  || fail "a script ran in the tampered page: $(grep -o '<title>[^<]*' "$TDOM")"
+# every hostile script sets the title to pwned-…; the folder's text may
+# hold the word (escaped, in a cell), the DOM no element of its markup
+if grep -Eiq '<script|<iframe|<foreignObject' "$TDOM"; then
+  fail "the tampered folder's markup is in the page's DOM ($TDOM)"
+fi
+grep -q 'data:image/svg+xml;base64,' "$TDOM" || fail "the tampered plot is not in the page as an image"
+"${CHROMIUM[@]}" --hide-scrollbars --window-size=1280,1600 \
+  --screenshot="$OUT/tampered.png" "file://$OUT/tampered.html" >/dev/null 2>>"$OUT/chromium.log" \
+  || fail "no screenshot of the tampered page (log: $OUT/chromium.log)"
+sleep 1
+if [ -s "$HITS" ]; then fail "the tampered page made requests: $(head -3 "$HITS" | tr '\n' ' ')"; fi
+kill "$SERVER" 2>/dev/null || true
+rm -f "$TDOM"
+echo "report browser test: passed: $figures figures, none empty, no console error; screenshot $OUT/report.png; tampered folder: no script ran, no request left the page"

@@ -2,9 +2,11 @@
 //!
 //! Every file taut reads (a scene, a gate case and the scene it names, a
 //! saved contact problem for `replay`, a sweep's `sweep.json` and run
-//! records, a folder's lock) goes through [`read_text`]. A path can name
+//! records, a folder's lock) goes through [`read_text`]; the files a
+//! report reads back from folders through [`read_regular_text`], which
+//! also refuses symbolic links. A path can name
 //! anything: `/dev/zero`, `/dev/urandom`, a pipe, a 30 GB log. Reading such
-//! a file whole grew the process until the kernel killed it (issue 25), and
+//! a file whole grew the process until the kernel killed it, and
 //! the UTF-8 check came only after the whole read. Here the file is read in
 //! chunks through a reader that stops at the cap, each chunk is checked as
 //! it arrives (UTF-8, no NUL byte: no scene, JSON or TOML holds one), and
@@ -95,14 +97,96 @@ fn special_kind(_: &std::fs::FileType) -> &'static str {
 pub fn read_text(path: &Path, what: &str, limit: u64) -> Result<String> {
     // only a regular file: opening a FIFO blocks until something writes
     // it, and a device may never end or block on its first read (a FIFO
-    // given as a scene, a points file or a run record hung for ever,
-    // issue 41); checked before the file is opened, and again on the
+    // given as a scene, a points file or a run record would hang for
+    // ever); checked before the file is opened, and again on the
     // file opened
     let kind = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
     refuse_special(path, &kind.file_type(), what)?;
     let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let opened = file.metadata().map_err(|e| Error::io(path, e))?;
     refuse_special(path, &opened.file_type(), what)?;
+    read_opened(file, path, what, limit)
+}
+
+/// The text of the file at `path` inside a folder taut was given to read
+/// back (a report's inputs: `what` names them in errors), or `None` when
+/// there is no such file. Only a regular file is read: a symbolic link is
+/// refused, not followed (it may lead out of the folder, to any file the
+/// reader may read), and so is a FIFO, socket or device (it may block or
+/// never end); the file is opened without following a link and without
+/// waiting on a pipe, so one swapped in after the check is refused too. A
+/// file of more than `limit` bytes is refused from its size, before a byte
+/// is read; the text is checked as [`read_text`] checks it.
+pub fn read_regular_text(path: &Path, what: &str, limit: u64) -> Result<Option<String>> {
+    let meta = match std::fs::symlink_metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(Error::io(path, e)),
+    };
+    let link = || {
+        refused(
+            path,
+            format!(
+                "is a symbolic link, so not read as {what} (only regular files in the folder are read: a link may lead anywhere)"
+            ),
+        )
+    };
+    if meta.file_type().is_symlink() {
+        return Err(link());
+    }
+    refuse_special(path, &meta.file_type(), what)?;
+    let file = match open_no_follow(path) {
+        Ok(f) => f,
+        Err(e) if is_link_error(&e) => return Err(link()),
+        Err(e) => return Err(Error::io(path, e)),
+    };
+    let opened = file.metadata().map_err(|e| Error::io(path, e))?;
+    refuse_special(path, &opened.file_type(), what)?;
+    if opened.len() > limit {
+        return Err(refused(
+            path,
+            format!(
+                "is {}, larger than {}, the most {what} may be (not read)",
+                size(opened.len()),
+                size(limit)
+            ),
+        ));
+    }
+    read_opened(file, path, what, limit).map(Some)
+}
+
+/// `path` opened to read, never through a symbolic link (`O_NOFOLLOW`) and
+/// without waiting for a writer if it is a FIFO (`O_NONBLOCK`; reading a
+/// regular file is not changed by it).
+#[cfg(unix)]
+fn open_no_follow(path: &Path) -> std::io::Result<std::fs::File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK)
+        .open(path)
+}
+
+#[cfg(not(unix))]
+fn open_no_follow(path: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::File::open(path)
+}
+
+/// Whether opening failed because the path is a symbolic link (`ELOOP`
+/// under `O_NOFOLLOW`).
+#[cfg(unix)]
+fn is_link_error(e: &std::io::Error) -> bool {
+    e.raw_os_error() == Some(libc::ELOOP)
+}
+
+#[cfg(not(unix))]
+fn is_link_error(_: &std::io::Error) -> bool {
+    false
+}
+
+/// The text of the opened regular `file` (at `path`), read in chunks up to
+/// `limit` bytes as [`read_text`] says.
+fn read_opened(file: std::fs::File, path: &Path, what: &str, limit: u64) -> Result<String> {
     let mut reader = file.take(limit.saturating_add(1));
     let mut bytes: Vec<u8> = Vec::new();
     let mut chunk = vec![0u8; CHUNK];
@@ -160,7 +244,7 @@ pub fn read_text(path: &Path, what: &str, limit: u64) -> Result<String> {
     })?;
     // a byte order mark (what some editors and spreadsheets put first) is
     // no character of the text: it made the first key of a points file
-    // `\u{feff}carrier.mass` (issue 41)
+    // `\u{feff}carrier.mass`
     Ok(match text.strip_prefix('\u{feff}') {
         Some(rest) => rest.to_string(),
         None => text,
@@ -245,6 +329,46 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("a folder"), "{e}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_folders_file_is_read_only_when_regular_and_within_the_cap() {
+        let tmp = tempfile::tempdir().unwrap();
+        let d = tmp.path();
+        let what = "a report's input";
+        assert!(
+            read_regular_text(&d.join("none.csv"), what, 1 << 20)
+                .unwrap()
+                .is_none()
+        );
+        std::fs::write(d.join("a.csv"), "x,y\n1,2\n").unwrap();
+        let a = read_regular_text(&d.join("a.csv"), what, 1 << 20).unwrap();
+        assert_eq!(a.as_deref(), Some("x,y\n1,2\n"));
+        // a link, even to a readable regular file, is refused
+        std::os::unix::fs::symlink("/etc/passwd", d.join("link.csv")).unwrap();
+        let e = read_regular_text(&d.join("link.csv"), what, 1 << 20)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("is a symbolic link"), "{e}");
+        // too large: refused from its size
+        std::fs::write(d.join("big.csv"), vec![b'x'; 3000]).unwrap();
+        let e = read_regular_text(&d.join("big.csv"), what, 2000)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("is 3000 bytes, larger than 2000 bytes"), "{e}");
+        let made = std::process::Command::new("mkfifo")
+            .arg(d.join("fifo.csv"))
+            .status();
+        if made.is_ok_and(|s| s.success()) {
+            let e = read_regular_text(&d.join("fifo.csv"), what, 1 << 20)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("a FIFO (named pipe)"), "{e}");
+        }
+        // O_NOFOLLOW itself refuses a link (the check before it aside)
+        let e = open_no_follow(&d.join("link.csv")).unwrap_err();
+        assert!(is_link_error(&e), "{e}");
     }
 
     #[test]

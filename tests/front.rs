@@ -1,4 +1,4 @@
-//! The front ends' tests in one binary (issue 23): the CLI, bad and hostile
+//! The front ends' tests in one binary: the CLI, bad and hostile
 //! input, sweeps and their faults, the gate, studies driven from the
 //! binary, and the README's commands. Each file below is a module, run with
 //! its name as a filter, e.g. `cargo test --release --test front cli::`.
@@ -38,6 +38,8 @@ mod readme;
 mod reliability;
 #[path = "reliability_three.rs"]
 mod reliability_three;
+#[path = "report_hostile.rs"]
+mod report_hostile;
 #[path = "simulation.rs"]
 mod simulation;
 #[path = "sweep.rs"]

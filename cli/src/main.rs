@@ -145,9 +145,10 @@ enum Command {
         #[command(flatten)]
         args: ModesArgs,
     },
-    /// One self-contained report.html (inline SVG and CSS, no network) from
-    /// the outputs taut wrote into one or more folders: scenes, summaries,
-    /// the standards' statistics, plots and study tables with their verdicts.
+    /// One self-contained report.html (plots as embedded images, inline
+    /// CSS, no script, no network) from the outputs taut wrote into one or
+    /// more folders: scenes, summaries, the standards' statistics, plots
+    /// and study tables with their verdicts.
     Report {
         /// Output folders of taut run, compare, converge, precision, sweep,
         /// verify or gate.
@@ -505,6 +506,15 @@ fn cmd_report(dirs: Vec<PathBuf>, out: Option<PathBuf>) -> taut::Result<()> {
         r.tables,
         r.path.display()
     );
+    for dir in &r.incomplete {
+        eprintln!(
+            "WARNING {} is marked INCOMPLETE: shown as partial, not as results",
+            dir.display()
+        );
+    }
+    for why in &r.left_out {
+        eprintln!("WARNING left out of the report: {why}");
+    }
     Ok(())
 }
 

@@ -1085,10 +1085,11 @@ def report(
     dirs: Union[str, "os.PathLike[str]", Iterable[Union[str, "os.PathLike[str]"]]],
     out: Union[None, str, "os.PathLike[str]"] = None,
 ) -> str:
-    """One self-contained report.html (inline SVG and CSS, nothing fetched)
-    from the outputs taut wrote into one or more folders (`taut report`):
-    each run's scene, summary, the standards' statistics and warnings, the
-    plots, and the studies' tables with their verdicts (docs/output.md).
+    """One self-contained report.html (plots as embedded images, inline
+    CSS, no script, nothing fetched) from the outputs taut wrote into one
+    or more folders (`taut report`): each run's scene, summary, the
+    standards' statistics and warnings, the plots, and the studies' tables
+    with their verdicts (docs/output.md).
 
     Args:
         dirs: a folder, or a list of folders, given as `out=` to taut.run,

@@ -110,10 +110,13 @@ def test_a_report_of_run_and_sweep_folders(tmp_path: pathlib.Path) -> None:
     taut.sweep(REFERENCE, vary={"speed_ratio": (0.5, 0.9, 3)}, set=SHORT, out=tmp_path / "sweep", progress=False)
     page = taut.report([tmp_path / "run", tmp_path / "sweep"], out=tmp_path / "report.html")
     html = pathlib.Path(page).read_text(encoding="utf-8")
-    assert html.count("<svg") == len(list(tmp_path.glob("*/*.svg")))
+    # every plot embedded as an image, none as markup
+    assert html.count('<img src="data:image/svg+xml;base64,') == len(list(tmp_path.glob("*/*.svg")))
+    assert "<svg" not in html
     assert "standard.csv" in html and "sweep.csv" in html
-    # nothing fetched (an SVG's xmlns names its namespace, it loads nothing)
+    # nothing fetched, no script, and a policy that forbids both
     assert not re.search(r'(src|href)="(https?:)?//', html) and "<script" not in html
+    assert "Content-Security-Policy\" content=\"default-src 'none'" in html
     # a finished sweep leaves no lock file behind
     assert not (tmp_path / "sweep" / "sweep.lock").exists()
     empty = tmp_path / "empty"

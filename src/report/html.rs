@@ -1,19 +1,53 @@
 //! `report.html` (`taut report DIR…`): one self-contained page from the
 //! outputs taut wrote into one or more folders: each run's scene, summary,
-//! the standards' statistics and warnings, every SVG plot inline, and the
-//! tables of the studies (compare, converge, precision, sweep, verify,
-//! gate) with their verdicts. Inline CSS and inline SVG only: no script,
-//! no link, no font or image to fetch, so the file opens the same offline,
-//! attached to a review or kept as a CI artefact (docs/output.md#report).
+//! the standards' statistics and warnings, every SVG plot, and the tables
+//! of the studies (compare, converge, precision, sweep, verify, gate) with
+//! their verdicts. Inline CSS and `data:` images only: no script, no link,
+//! no font or image to fetch, so the file opens the same offline, attached
+//! to a review or kept as a CI artefact (docs/output.md#report).
 //!
-//! The page reads the files back as they are on disk, so it shows what a
-//! reader of the folder would find; a file it cannot parse is named in the
-//! page, not fatal.
+//! Safe to open whatever the folders hold: a folder may have been edited
+//! or made by someone else, so nothing read from it is pasted into the page
+//! as markup. Text and numbers are escaped; a plot is embedded as an
+//! `<img>` of a base64 `data:` URL (an SVG shown as an image runs no script
+//! and fetches nothing, whatever it holds), and a file named `.svg` that is
+//! no SVG is left out. The page's Content-Security-Policy ([`CSP`]) forbids
+//! script and every fetch besides. Files are read only when regular, never
+//! through a symbolic link and at most [`MAX_FILE_BYTES`] each
+//! ([`crate::input::read_regular_text`]); a file left out is named in the
+//! page with the reason, not fatal, and so is a file that does not parse.
+//! A folder still marked [`INCOMPLETE_FILE`] is shown as partial, under a
+//! banner, its values not presented as results.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+use crate::report::INCOMPLETE_FILE;
+
+/// The page's Content-Security-Policy: nothing is fetched (`default-src
+/// 'none'`), no script runs (no `script-src`), images only from `data:`
+/// URLs (the plots, embedded), style only inline (the page's one `<style>`
+/// element). A page edited after it was written still cannot fetch or run
+/// anything.
+pub(crate) const CSP: &str = "default-src 'none'; img-src data:; style-src 'unsafe-inline'";
+
+/// Most bytes of one file a report reads (16 MiB, as
+/// [`crate::input::MAX_INPUT_BYTES`]); a larger one is named as left out
+/// and not read. taut's own outputs are far below it: a plot is drawn from
+/// at most 4 × [`crate::resolve::memory::PLOT_BUCKETS`] points per series (under
+/// 1 MiB), a summary a few KiB, a study's table a row per run or point; the
+/// page shows at most [`MAX_ROWS`] rows of a table anyway. It bounds the
+/// memory a report takes per file (a 2 GB table was read whole) and the
+/// page's size (an SVG grows by a third as base64).
+pub(crate) const MAX_FILE_BYTES: u64 = 16 << 20;
+
+/// Most bytes of the [`INCOMPLETE_FILE`] marker shown in the page (taut
+/// writes a few lines: the command and why it stopped).
+const MAX_MARKER_BYTES: u64 = 64 << 10;
+
+/// What a report's inputs are called in the reasons a file is left out.
+const WHAT: &str = "a report's input";
 
 /// The plots a report draws, in this order, with their captions.
 pub(crate) const PLOTS: [(&str, &str); 14] = [
@@ -89,12 +123,17 @@ pub(crate) const MAX_ROWS: usize = 200;
 pub struct ReportSummary {
     /// The page, written to this file.
     pub path: PathBuf,
-    /// Plots inlined.
+    /// Plots embedded (as images).
     pub plots: usize,
     /// Tables shown.
     pub tables: usize,
     /// Folders read.
     pub folders: usize,
+    /// Each file left out of the page, with the reason (a symbolic link,
+    /// not a regular file, too large, not UTF-8, not an SVG).
+    pub left_out: Vec<String>,
+    /// The folders shown as incomplete (marked [`INCOMPLETE_FILE`]).
+    pub incomplete: Vec<PathBuf>,
 }
 
 /// Make `report.html` at `out` from the folders `dirs`. A folder without
@@ -110,19 +149,50 @@ pub(crate) fn write_report(dirs: &[PathBuf], out: &Path) -> Result<ReportSummary
     let mut body = String::new();
     let mut toc = String::new();
     let (mut plots, mut tables) = (0, 0);
+    let mut left_out = Vec::new();
+    let mut incomplete = Vec::new();
     for (k, dir) in dirs.iter().enumerate() {
         let section = folder_section(dir, k)?;
         plots += section.plots;
         tables += section.tables;
+        let mark = if section.incomplete {
+            incomplete.push(dir.clone());
+            " <span class=\"fail\">INCOMPLETE</span>"
+        } else {
+            ""
+        };
         let _ = writeln!(
             toc,
-            "<li><a href=\"#f{k}\">{}</a></li>",
+            "<li><a href=\"#f{k}\">{}</a>{mark}</li>",
             esc(&dir.display().to_string())
         );
         body.push_str(&section.html);
+        left_out.extend(
+            section
+                .left_out
+                .iter()
+                .map(|(file, why)| format!("{}: {why}", dir.join(file).display())),
+        );
+    }
+    let mut notes = String::new();
+    if !incomplete.is_empty() {
+        let _ = write!(
+            notes,
+            " · <span class=\"fail\">{} folder{} INCOMPLETE</span>",
+            incomplete.len(),
+            plural(incomplete.len())
+        );
+    }
+    if !left_out.is_empty() {
+        let _ = write!(
+            notes,
+            " · <span class=\"fail\">{} file{} left out</span>",
+            left_out.len(),
+            plural(left_out.len())
+        );
     }
     let page = format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>taut report</title>\n<style>{CSS}</style>\n</head>\n<body>\n<header><h1>taut report</h1><p>taut {} · {} folder{} · {plots} plot{} · {tables} table{}</p><ol>{toc}</ol></header>\n{body}</body>\n</html>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta http-equiv=\"Content-Security-Policy\" content=\"{CSP}\">\n<title>taut report</title>\n<style>{CSS}</style>\n</head>\n<body>\n<header><h1>taut report</h1><p>taut {} · {} folder{} · {plots} plot{} · {tables} table{}{notes}</p><ol>{toc}</ol></header>\n{body}</body>\n</html>\n",
         env!("CARGO_PKG_VERSION"),
         dirs.len(),
         plural(dirs.len()),
@@ -138,6 +208,8 @@ pub(crate) fn write_report(dirs: &[PathBuf], out: &Path) -> Result<ReportSummary
         plots,
         tables,
         folders: dirs.len(),
+        left_out,
+        incomplete,
     })
 }
 
@@ -149,18 +221,25 @@ fn plural(n: usize) -> &'static str {
 /// the page.
 const CSS: &str = "body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.4}\
 h1{margin-bottom:0.2em}h2{border-bottom:2px solid #1f77b4;padding-bottom:0.2em;margin-top:2em}h3{margin-top:1.5em}\
-figure{margin:1em 0;border:1px solid #ddd;padding:0.5em;background:#fff}figure svg{display:block;width:100%;height:auto}\
+figure{margin:1em 0;border:1px solid #ddd;padding:0.5em;background:#fff}figure img{display:block;width:100%;height:auto}\
 figcaption{font-size:0.9em;color:#555;margin-top:0.3em}\
 table{border-collapse:collapse;font-size:0.82em;margin:0.5em 0;display:block;overflow-x:auto}\
 th,td{border:1px solid #ccc;padding:2px 6px;text-align:right;white-space:nowrap}th{background:#f0f4f8}\
 td.text{text-align:left}.pass,.asymptotic,.yes,.true{background:#e3f4e3}.fail,.no,.diverged{background:#fbe3e3}\
 .known,.pre-asymptotic,.reported,.cannot{background:#fff6dc}.warning{background:#fff3cd;border-left:4px solid #e0a800;padding:0.4em 0.8em;margin:0.3em 0}\
-.note{color:#555;font-size:0.9em}pre{background:#f7f7f7;padding:0.6em;overflow-x:auto;font-size:0.85em}";
+.note{color:#555;font-size:0.9em}pre{background:#f7f7f7;padding:0.6em;overflow-x:auto;font-size:0.85em}\
+.incomplete{background:#fbe3e3;border:2px solid #c62828;padding:0.5em 0.8em;margin:0.5em 0;font-weight:bold}\
+.partial{border-left:6px solid #c62828;padding-left:0.8em;opacity:0.75}.partial td,.partial span{background:none}\
+.partial h3::after{content:' (partial: not a result)';color:#c62828;font-weight:normal;font-size:0.8em}";
 
 struct Section {
     html: String,
     plots: usize,
     tables: usize,
+    /// Files left out of the page: (file name, reason).
+    left_out: Vec<(String, String)>,
+    /// Whether the folder is marked [`INCOMPLETE_FILE`].
+    incomplete: bool,
 }
 
 /// One folder's part of the page.
@@ -172,20 +251,50 @@ fn folder_section(dir: &Path, k: usize) -> Result<Section> {
             "give folders taut wrote outputs into (taut run --out DIR, …)",
         ));
     }
+    let mut left_out = Vec::new();
+    // the marker's presence is what counts (a link or an unreadable
+    // marker still marks the folder); its text, when readable, says why
+    let marker = dir.join(INCOMPLETE_FILE);
+    let incomplete = std::fs::symlink_metadata(&marker).is_ok();
     let mut html = format!(
-        "<section id=\"f{k}\"><h2>{}</h2>\n",
-        esc(&dir.display().to_string())
+        "<section id=\"f{k}\"><h2>{}{}</h2>\n",
+        esc(&dir.display().to_string()),
+        if incomplete { " — INCOMPLETE" } else { "" }
     );
-    let mut found = false;
-    if let Some(s) = read_json(&dir.join("summary.json"), &mut html) {
-        found = true;
+    if incomplete {
+        let why = crate::input::read_regular_text(&marker, WHAT, MAX_MARKER_BYTES)
+            .ok()
+            .flatten()
+            .map(|t| format!("<pre>{}</pre>", esc(t.trim_end())))
+            .unwrap_or_default();
+        let _ = writeln!(
+            html,
+            "<div class=\"incomplete\"><p>INCOMPLETE: this folder holds the marker {INCOMPLETE_FILE}: the command writing it did not finish. \
+             Its files are partial: what is shown below is not a result, and a verdict in it is not one.</p>{why}</div>\n<div class=\"partial\">"
+        );
+    }
+    let mut found = incomplete;
+    let read = |file: &str, found: &mut bool, left_out: &mut Vec<(String, String)>| {
+        match crate::input::read_regular_text(&dir.join(file), WHAT, MAX_FILE_BYTES) {
+            Ok(text) => {
+                *found |= text.is_some();
+                text
+            }
+            Err(e) => {
+                *found = true;
+                left_out.push((file.to_string(), reason(&e)));
+                None
+            }
+        }
+    };
+    if let Some(s) = read("summary.json", &mut found, &mut left_out)
+        .and_then(|t| parse_json("summary.json", &t, &mut html))
+    {
         html.push_str(&summary_html(&s));
     }
     let (mut plots, mut tables) = (0, 0);
     for (file, title, verdict) in TABLES {
-        let p = dir.join(file);
-        if let Ok(text) = std::fs::read_to_string(&p) {
-            found = true;
+        if let Some(text) = read(file, &mut found, &mut left_out) {
             tables += 1;
             let _ = writeln!(
                 html,
@@ -195,23 +304,32 @@ fn folder_section(dir: &Path, k: usize) -> Result<Section> {
             html.push_str(&csv_html(&text, verdict));
         }
     }
-    if let Some(g) = read_json(&dir.join("gate.json"), &mut html) {
-        found = true;
+    if let Some(g) = read("gate.json", &mut found, &mut left_out)
+        .and_then(|t| parse_json("gate.json", &t, &mut html))
+    {
         tables += 1;
         html.push_str(&gate_html(&g));
     }
     for (file, caption) in PLOTS {
-        let p = dir.join(file);
-        if let Ok(svg) = std::fs::read_to_string(&p) {
-            found = true;
-            plots += 1;
-            let _ = writeln!(
-                html,
-                "<figure>{}<figcaption>{file}: {}</figcaption></figure>",
-                inline_svg(&svg),
-                esc(caption)
-            );
+        let Some(svg) = read(file, &mut found, &mut left_out) else {
+            continue;
+        };
+        if !is_svg(&svg) {
+            left_out.push((
+                file.to_string(),
+                "not an SVG image (its text does not begin with an <svg> element), so not shown"
+                    .into(),
+            ));
+            continue;
         }
+        plots += 1;
+        let alt = format!("{file}: {caption}");
+        let _ = writeln!(
+            html,
+            "<figure>{}<figcaption>{file}: {}</figcaption></figure>",
+            svg_img(&svg, &alt),
+            esc(caption)
+        );
     }
     if !found {
         return Err(Error::invalid(
@@ -220,25 +338,44 @@ fn folder_section(dir: &Path, k: usize) -> Result<Section> {
             "a folder with summary.json, compare.csv, converge.csv, precision.csv, sweep.csv, verify.csv, gate.json or their plots",
         ));
     }
+    if !left_out.is_empty() {
+        html.push_str("<div class=\"warning\"><p>Left out of this page:</p><ul>\n");
+        for (file, why) in &left_out {
+            let _ = writeln!(html, "<li>{}: {}</li>", esc(file), esc(why));
+        }
+        html.push_str("</ul></div>\n");
+    }
+    if incomplete {
+        html.push_str("</div>\n");
+    }
     html.push_str("</section>\n");
     Ok(Section {
         html,
         plots,
         tables,
+        left_out,
+        incomplete,
     })
 }
 
-/// A JSON file, or None when absent; a file that does not parse is named
-/// in the page.
-fn read_json(path: &Path, html: &mut String) -> Option<serde_json::Value> {
-    let text = std::fs::read_to_string(path).ok()?;
-    match serde_json::from_str(&text) {
+/// Why a file was not read, without its path (the page names it).
+fn reason(e: &Error) -> String {
+    match e {
+        Error::Io { source, .. } => source.to_string(),
+        e => e.to_string(),
+    }
+}
+
+/// A JSON file's text parsed (`file` names it); one that does not parse
+/// is named in the page.
+fn parse_json(file: &str, text: &str, html: &mut String) -> Option<serde_json::Value> {
+    match serde_json::from_str(text) {
         Ok(v) => Some(v),
         Err(e) => {
             let _ = writeln!(
                 html,
                 "<p class=\"warning\">{} could not be read: {}</p>",
-                esc(&path.display().to_string()),
+                esc(file),
                 esc(&e.to_string())
             );
             None
@@ -492,24 +629,66 @@ fn split_csv(line: &str) -> Vec<String> {
     out
 }
 
-/// An SVG file as inline markup: without its XML declaration, with a
-/// viewBox from its width and height so that it scales with the page.
-fn inline_svg(svg: &str) -> String {
-    let start = svg.find("<svg").unwrap_or(0);
-    let svg = &svg[start..];
-    let attr = |name: &str| -> Option<&str> {
-        let tag_end = svg.find('>')?;
-        let tag = &svg[..tag_end];
-        let at = tag.find(&format!(" {name}=\""))? + name.len() + 3;
-        let len = tag[at..].find('"')?;
-        Some(&tag[at..at + len])
-    };
-    match (attr("width"), attr("height"), attr("viewBox")) {
-        (Some(w), Some(h), None) => {
-            svg.replacen("<svg", &format!("<svg viewBox=\"0 0 {w} {h}\""), 1)
+/// Whether `text` is an SVG document: after an optional byte order mark,
+/// white space, XML declaration or processing instructions, comments and
+/// document type declaration, its first element is `<svg`. Anything else
+/// (HTML, a CSV, a script renamed `.svg`) is not embedded.
+fn is_svg(text: &str) -> bool {
+    let mut t = text.trim_start_matches('\u{feff}');
+    loop {
+        t = t.trim_start();
+        let skip = if t.starts_with("<?") {
+            t.find("?>").map(|e| e + 2)
+        } else if t.starts_with("<!--") {
+            t.find("-->").map(|e| e + 3)
+        } else if t.starts_with("<!DOCTYPE") {
+            t.find('>').map(|e| e + 1)
+        } else {
+            break;
+        };
+        match skip {
+            Some(n) => t = &t[n..],
+            None => return false,
         }
-        _ => svg.to_string(),
     }
+    t.strip_prefix("<svg")
+        .and_then(|r| r.chars().next())
+        .is_some_and(|c| c.is_ascii_whitespace() || c == '>' || c == '/')
+}
+
+/// An SVG as an `<img>` of a base64 `data:` URL with the text `alt`: shown
+/// as an image, the SVG runs no script and fetches nothing, and none of its
+/// text reaches the page's markup (base64 has no `<`, `"` or `&`).
+fn svg_img(svg: &str, alt: &str) -> String {
+    format!(
+        "<img src=\"data:image/svg+xml;base64,{}\" alt=\"{}\">",
+        base64(svg.as_bytes()),
+        esc(alt)
+    )
+}
+
+/// Standard base64 (RFC 4648 §4, with `=` padding). Written here: no crate
+/// in the dependency tree provides it, and these few lines are the whole
+/// encoder.
+fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            chunk.get(1).copied().unwrap_or(0),
+            chunk.get(2).copied().unwrap_or(0),
+        ];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for i in 0..4 {
+            if i <= chunk.len() {
+                out.push(ALPHABET[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
 }
 
 /// Text escaped for HTML.
@@ -530,14 +709,32 @@ mod tests {
     }
 
     #[test]
-    fn svgs_get_a_view_box_and_lose_their_declaration() {
-        let s = inline_svg(
-            "<?xml version=\"1.0\"?>\n<svg width=\"960\" height=\"480\" xmlns=\"x\"></svg>",
-        );
-        assert!(
-            s.starts_with("<svg viewBox=\"0 0 960 480\" width=\"960\""),
-            "{s}"
-        );
+    fn base64_matches_the_rfc_vectors() {
+        for (plain, coded) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(plain.as_bytes()), coded, "{plain}");
+        }
+        assert_eq!(base64(&[0xff, 0xfe, 0x00]), "//4A");
+    }
+
+    #[test]
+    fn only_svg_documents_are_svgs() {
+        assert!(is_svg("<svg width=\"1\"></svg>"));
+        assert!(is_svg(
+            "\u{feff}<?xml version=\"1.0\"?>\n<!-- drawn -->\n<!DOCTYPE svg>\n <svg>"
+        ));
+        assert!(!is_svg("<html><svg></svg></html>"));
+        assert!(!is_svg("x,y\n1,2\n<svg>"));
+        assert!(!is_svg("<svgx>"));
+        assert!(!is_svg("<!-- never closed <svg>"));
+        assert!(!is_svg(""));
     }
 
     #[test]
