@@ -348,7 +348,7 @@ impl Frontend for Binding<'_> {
 
     fn note(&self, note: Note<'_>) {
         match note {
-            Note::Cleared(text) => eprintln!("{text}"),
+            Note::Cleared(text) | Note::Kept(text) => eprintln!("{text}"),
             Note::AboveBound(_) => {}
             Note::FailureSaved(path) => {
                 if let Ok(mut saved) = self.saved.lock() {
