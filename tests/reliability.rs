@@ -712,7 +712,7 @@ fn messages_name_the_field_and_stay_short() {
         assert_eq!(code, 1, "{err}");
         assert!(
             err.starts_with(&format!(
-                "error: invalid scene: `{flag}` = -1: must be in 1 ..= "
+                "error: invalid option: `{flag}` = -1: must be in 1 ..= "
             )),
             "{flag}: {err}"
         );
@@ -810,7 +810,7 @@ fn every_integer_option_refuses_what_is_not_in_its_range_naming_it() {
             let (code, _, err) = taut(&args);
             assert_eq!(code, 1, "{args:?}: {err}");
             assert!(
-                err.starts_with(&format!("error: invalid scene: `{flag}` = "))
+                err.starts_with(&format!("error: invalid option: `{flag}` = "))
                     && err.contains(range)
                     && err.lines().count() == 1
                     && !out.exists(),
@@ -842,7 +842,7 @@ fn every_integer_option_refuses_what_is_not_in_its_range_naming_it() {
         let (code, _, err) = taut(&args);
         assert_eq!(code, 1, "{args:?}: {err}");
         assert!(
-            err.starts_with(&format!("error: invalid scene: `{flag}` = {value}: must")),
+            err.starts_with(&format!("error: invalid option: `{flag}` = {value}: must")),
             "{args:?}: {err}"
         );
     }

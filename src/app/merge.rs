@@ -44,7 +44,7 @@ fn merge_in(shards: &[PathBuf], out: &Path, fe: &dyn Frontend) -> Result<MergeOu
     let maps = maps.iter().map(|m| staged.in_place(m)).collect();
     let removed = staged.commit()?;
     if let Some(note) = crate::report::replaced_note(out, &removed) {
-        fe.note(Note::Cleared(note));
+        fe.note(Note::Replaced(note));
     }
     Ok(MergeOutcome {
         spec,

@@ -76,7 +76,7 @@ impl SceneSource {
         match self {
             SceneSource::File(p) => crate::scene::read_scene(p),
             // a text is held to a file's cap (Python's scenes as text or
-            // dicts had none, issue 41); its table files are relative to
+            // dicts had none); its table files are relative to
             // the working directory
             SceneSource::Text(t) if t.len() as u64 > crate::input::MAX_INPUT_BYTES => {
                 Err(Error::invalid(
@@ -114,7 +114,7 @@ impl SceneSource {
 pub enum Note<'a> {
     /// A command's new outputs replaced those of an earlier command in
     /// the output folder (the text of `crate::report::replaced_note`).
-    Cleared(String),
+    Replaced(String),
     /// A command that stopped (refused, failed, interrupted) left the
     /// earlier outputs of its output folder as they were (the text of
     /// `crate::report::kept_note`).
@@ -188,7 +188,7 @@ impl Writing {
         let dir = staged.dir().to_path_buf();
         let removed = staged.commit()?;
         if let Some(note) = crate::report::replaced_note(&dir, &removed) {
-            fe.note(Note::Cleared(note));
+            fe.note(Note::Replaced(note));
         }
         Ok(())
     }

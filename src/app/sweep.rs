@@ -154,7 +154,7 @@ fn sweep_in(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
             let maps = maps.iter().map(|m| staged.in_place(m)).collect();
             let removed = staged.commit()?;
             if let Some(note) = crate::report::replaced_note(dir, &removed) {
-                fe.note(Note::Cleared(note));
+                fe.note(Note::Replaced(note));
             }
             maps
         }

@@ -222,7 +222,7 @@ pub(crate) fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
 /// the shard does not run: the whole sweep (a merged folder, an unsharded
 /// run) or another shard's points. The shard would clear the folder's
 /// tables and maps and write tables of its own points only, with nothing
-/// to say they are a part (issue 41). A shard's own folder, fresh or
+/// to say they are a part. A shard's own folder, fresh or
 /// holding its own points (a resumed shard), is accepted.
 pub(crate) fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Shard>) -> Result<()> {
     let Some(shard) = shard else {
