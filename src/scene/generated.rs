@@ -1,5 +1,5 @@
 //! What `[line]` generated in a scene, so that an error found in the
-//! expanded scene names the key a user wrote (issue 41). Its own file: the
+//! expanded scene names the key a user wrote. Its own file: the
 //! scene file's [`super::Scene`] keeps it, and the expansion in `line.rs`
 //! fills it.
 
@@ -74,7 +74,15 @@ impl Generated {
                     format!("line.messenger.{k}")
                 }
                 "supports" => "line.spans".to_string(),
-                "support" => "line.messenger.support".to_string(),
+                // the expansion writes a list with the end supports
+                // pinned: its index is no index of the user's
+                // `line.messenger.support`, its leaf key is
+                "support" => match rest.rsplit('.').next() {
+                    Some(k @ ("stiffness" | "mass" | "damping")) => {
+                        format!("line.messenger.support.{k}")
+                    }
+                    _ => "line.messenger.support".to_string(),
+                },
                 _ => "line.messenger".to_string(),
             },
             ("beam", _) if rest == "length" => "line.span_length".to_string(),
