@@ -249,14 +249,14 @@ pub(crate) fn check_uplift(scales: &Scales, carriers: &[CarrierProps], t_end: f6
                 scales.force
             )
         };
-        if !(chain.uplift.abs() <= high) {
+        if chain.uplift.is_nan() || chain.uplift.abs() > high {
             return Err(Error::invalid(
                 format!("carrier.{i}.uplift"),
                 chain.uplift,
                 why("the uplift F₀"),
             ));
         }
-        if !(force.abs() <= high) {
+        if force.is_nan() || force.abs() > high {
             return Err(Error::invalid(
                 format!("carrier.{i}.uplift_coefficient"),
                 chain.uplift_coefficient,
