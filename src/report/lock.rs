@@ -25,7 +25,7 @@ use crate::error::{Error, Result};
 pub(crate) const LOCK_FILE: &str = "sweep.lock";
 
 /// A claimed folder; the claim ends when this is dropped (or the process
-/// dies). Dropped, it removes [`LOCK_FILE`] while still holding it, so a
+/// dies). Dropped, it removes `sweep.lock` while still holding it, so a
 /// finished command leaves no lock file behind; a claim that waited on the
 /// removed file finds it gone and takes a new one ([`claim_folder`]).
 #[derive(Debug)]
@@ -105,7 +105,7 @@ fn in_use(dir: &Path, holder: &str) -> Error {
 /// Claim `dir` for one command (creating it), `command` naming it in the
 /// lock file (`taut run`), or refuse if another claim holds it: first in
 /// this process (`CLAIMED`), then the operating system's lock on
-/// [`LOCK_FILE`].
+/// `sweep.lock`.
 pub fn claim_folder(dir: &Path, command: &str) -> Result<FolderLock> {
     super::check_out_dir(dir)?;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
