@@ -53,8 +53,9 @@ its name is in `must`, by the key its error must name:
              written (refused before the work), an uncertainty whose
              family diverged (exit 1);
   plausible  lumped stiffnesses, masses and dashpots at 5e-324, 1e-300 and
-             1e300 (refused naming the key), and a saved contact problem
-             with nulls (replay says why);
+             1e300 (refused naming the key), the messenger's supports and
+             clamps, a pantograph's uplift at 1e308 and 3e152, and a saved
+             contact problem with nulls (replay says why);
   fifo       a FIFO as scene, points file, run record, gate case, table file
              and replay file (refused or run again, never waited on);
   messages   the flag of --check-refinement, half_waves = 0, reference.modes'
@@ -466,8 +467,20 @@ def round_three(work: Path, must: dict, out) -> list:
         return found
     add("folders unwritable", unwritable)
     add("folders uncertainty nothing estimated",
-        ["uncertainty", panto, "--levels", "3", "--set", "carrier.0.uplift_coefficient=1e308",
-         *out("un")], "diverged")
+        ["uncertainty", ref, "--levels", "3", *diverges, *out("un")], "diverged")
+    for v in ["1e308", "3e152"]:
+        add(f"plausible pantograph uplift_coefficient={v}",
+            ["run", panto, "--set", f"carrier.0.uplift_coefficient={v}", *short, *out("pu")],
+            "`carrier.0.uplift_coefficient`")
+    for k in ["stiffness", "mass", "damping"]:
+        for v in ["5e-324", "1e308"]:
+            t = {"stiffness": "1e5", "mass": "0", "damping": "0", k: v}
+            if k == "stiffness" and v == "5e-324":
+                continue  # the messenger's sag check comes first
+            add(f"plausible messenger support {k}={v}",
+                ["run", line, "--set",
+                 "line.messenger.support={" + ", ".join(f"{a}={b}" for a, b in t.items()) + "}",
+                 *short, *out("ps")], f"`line.messenger.support.{k}`")
 
     # plausible: lumped elements a model cannot compute
     for scene, key in [(drops, "dropper.0.stiffness"), (drops, "dropper.0.damping"),
@@ -475,7 +488,8 @@ def round_three(work: Path, must: dict, out) -> list:
                        (ref, "contact.penalty.stiffness"), (ref, "beam.damping.mass"),
                        (ref, "beam.damping.stiffness"), (panto, "carrier.0.masses.1"),
                        (panto, "carrier.0.stiffnesses.0"), (line, "line.dropper_damping"),
-                       (line, "line.steady_arm.mass")]:
+                       (line, "line.steady_arm.mass"), (line, "line.clamp_mass.contact"),
+                       (line, "line.clamp_mass.messenger")]:
         for v in ["5e-324", "1e-300", "1e300"]:
             add(f"plausible {Path(scene).stem} {key}={v}",
                 ["run", scene, "--set", f"{key}={v}", *short, *out("pl")], f"`{key}`")

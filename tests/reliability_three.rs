@@ -338,7 +338,7 @@ fn the_messengers_elements_and_the_uplift_are_held_to_the_same_scales() {
         cases.push((
             "line_10_spans.toml",
             format!("line.clamp_mass.messenger={v}"),
-            "`line.clamp_mass`",
+            "`line.clamp_mass.messenger`",
         ));
         for (k, key) in [
             ("mass", "`line.messenger.support.mass`"),

@@ -21,6 +21,9 @@ pub struct Generated {
     pub attachments: usize,
     /// Steady arms among them (the first ones).
     pub steady_arms: usize,
+    /// Clamp masses on the contact wire among them (after the steady
+    /// arms; those on the messenger follow).
+    pub contact_clamps: usize,
     /// The `[messenger]` table was generated (`anchor = "messenger"`).
     pub messenger: bool,
     /// `mesh.elements` was generated (from `line.element_length`).
@@ -67,7 +70,12 @@ impl Generated {
                 _ => "line.steady_arm",
             }
             .to_string(),
-            ("attachment", Some(i)) if i < self.attachments => "line.clamp_mass".to_string(),
+            ("attachment", Some(i)) if i < self.steady_arms + self.contact_clamps => {
+                "line.clamp_mass.contact".to_string()
+            }
+            ("attachment", Some(i)) if i < self.attachments => {
+                "line.clamp_mass.messenger".to_string()
+            }
             ("attachment", Some(i)) => tail(i - self.attachments),
             ("messenger", _) if self.messenger => match top_of(rest) {
                 k @ ("tension" | "mass_per_length" | "bending_stiffness" | "height") => {
