@@ -16,6 +16,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+pub(crate) use crate::study::lock::check_out_dir;
 
 /// The kinds of command that write outputs, by the files they write.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -87,20 +88,6 @@ impl Outputs {
             ],
         }
     }
-}
-
-/// Refuse an empty output folder path: it would write into the current
-/// folder (the CLI's `--out ""` is refused by its parser; Python's
-/// `out=""` reaches here).
-pub(crate) fn check_out_dir(dir: &Path) -> Result<()> {
-    if dir.as_os_str().is_empty() {
-        return Err(Error::invalid(
-            "--out",
-            "\"\"",
-            "must name a folder (an empty path would write into the current folder; use \".\" for that)",
-        ));
-    }
-    Ok(())
 }
 
 /// The outputs an earlier command of this kind left in `dir`

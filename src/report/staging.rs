@@ -1,6 +1,6 @@
 //! New outputs written beside the old ones and swapped in whole.
 //!
-//! A command that writes a folder claims it ([`super::claim_folder`]) and
+//! A command that writes a folder claims it ([`crate::study::lock::claim_folder`]) and
 //! opens a staging folder inside it ([`Staged::open`]:
 //! `DIR/.taut-staging-<pid>/`, which also proves the folder writable
 //! before any heavy work). Its outputs are written there. Only when the
@@ -17,8 +17,8 @@
 use std::path::{Path, PathBuf};
 
 use super::Outputs;
-use super::lock::FolderLock;
 use crate::error::{Error, Result};
+use crate::study::lock::FolderLock;
 
 /// Prefix of a staging folder's name (`.taut-staging-<pid>`).
 pub(crate) const STAGING_PREFIX: &str = ".taut-staging-";

@@ -14,6 +14,7 @@ pub(crate) mod formal_orders;
 pub mod gate;
 pub mod grid;
 pub mod level;
+pub mod lock;
 pub mod modes;
 pub mod precision;
 pub mod reference;

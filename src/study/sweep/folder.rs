@@ -2,7 +2,7 @@
 //!
 //! * **One writer at a time.** A sweep or merge claims its folder with the
 //!   operating-system lock every command that writes a folder takes
-//!   (`sweep.lock`, [`FolderLock`], `crate::report::claim_folder`), held
+//!   (`sweep.lock`, [`FolderLock`], `crate::study::lock::claim_folder`), held
 //!   until it finishes. A second writer of the same folder is refused at once
 //!   instead of mixing its records with the first's. The lock dies with its
 //!   process, so a sweep killed with `kill -9` leaves nothing stale to clear:
@@ -21,10 +21,10 @@ use std::path::{Path, PathBuf};
 
 use super::{SweepRecord, SweepSpec};
 use crate::error::{Error, Result};
-pub use crate::report::FolderLock;
+pub use crate::study::lock::FolderLock;
 
 /// Claim `dir` for one sweep (creating it and its `runs/`), or refuse if
-/// another command holds it (`crate::report::claim_folder`).
+/// another command holds it (`crate::study::lock::claim_folder`).
 pub fn claim(dir: &Path) -> Result<FolderLock> {
     claim_as(dir, "taut sweep")
 }
@@ -33,7 +33,7 @@ pub fn claim(dir: &Path) -> Result<FolderLock> {
 /// sweep's).
 pub(crate) fn claim_as(dir: &Path, command: &str) -> Result<FolderLock> {
     std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
-    crate::report::claim_folder(dir, command)
+    crate::study::lock::claim_folder(dir, command)
 }
 
 /// The text of `sweep.json` for a spec.

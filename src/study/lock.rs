@@ -3,7 +3,7 @@
 //! Every command that writes a folder (`run`, the studies, `modes`, `gate`,
 //! `verify`, `sweep`, `merge`, Python's functions and `Simulation`) first
 //! claims it ([`claim_folder`]) with an operating-system lock on the file
-//! [`LOCK_FILE`] in it, and holds the claim until its outputs are in place.
+//! `sweep.lock` in it, and holds the claim until its outputs are in place.
 //! A second writer of the same folder, of any kind, is refused at once,
 //! naming the holder (its process, command and start time, which the lock
 //! file holds as text), instead of splicing its files with the first's.
@@ -20,6 +20,20 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+
+/// Refuse an empty output folder path: it would write into the current
+/// folder (the CLI's `--out ""` is refused by its parser; Python's
+/// `out=""` reaches here).
+pub(crate) fn check_out_dir(dir: &Path) -> Result<()> {
+    if dir.as_os_str().is_empty() {
+        return Err(Error::invalid(
+            "--out",
+            "\"\"",
+            "must name a folder (an empty path would write into the current folder; use \".\" for that)",
+        ));
+    }
+    Ok(())
+}
 
 /// The lock file a command writing a folder holds in it.
 pub(crate) const LOCK_FILE: &str = "sweep.lock";
@@ -107,7 +121,7 @@ fn in_use(dir: &Path, holder: &str) -> Error {
 /// this process (`CLAIMED`), then the operating system's lock on
 /// `sweep.lock`.
 pub fn claim_folder(dir: &Path, command: &str) -> Result<FolderLock> {
-    super::check_out_dir(dir)?;
+    check_out_dir(dir)?;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let canonical = dir.canonicalize().map_err(|e| Error::io(dir, e))?;
     {
