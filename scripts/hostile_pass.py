@@ -44,11 +44,18 @@ its name is in `must`, by the key its error must name:
              the key the error names is taken by --set;
   tables     every table given as a positional array (refused);
   folders    a shard into a folder holding the whole sweep (refused, the
-             folder's tables kept), and a run whose writing fails (its
-             folder marked INCOMPLETE, no summary.json);
+             folder's tables kept), a run whose writing fails (its
+             folder marked INCOMPLETE, no summary.json), a good folder
+             of run, compare, modes, converge and uncertainty kept byte
+             for byte by a typo, a missing scene, a bad value and a
+             diverging run, two runs on one folder (one refused naming
+             the holder, never a mixed folder), a folder that cannot be
+             written (refused before the work), an uncertainty whose
+             family diverged (exit 1);
   plausible  lumped stiffnesses, masses and dashpots at 5e-324, 1e-300 and
-             1e300 (refused naming the key), and a saved contact problem
-             with nulls (replay says why);
+             1e300 (refused naming the key), the messenger's supports and
+             clamps, a pantograph's uplift at 1e308 and 3e152, and a saved
+             contact problem with nulls (replay says why);
   fifo       a FIFO as scene, points file, run record, gate case, table file
              and replay file (refused or run again, never waited on);
   messages   the flag of --check-refinement, half_waves = 0, reference.modes'
@@ -385,13 +392,104 @@ def round_three(work: Path, must: dict, out) -> list:
         return found
     add("folders failed writing", failed_writing)
 
+    # folders: a good result survives every command that stops
+    good = ["--set", "mesh.elements=20", "--set", "time.end=0.02"]
+    diverges = ["--set", "contact.placement=alpha", "--set", "contact.kind=bilateral",
+                "--set", "carrier.speed.cruise=120", "--set", "time.end=0.1",
+                "--set", "mesh.elements=400"]
+
+    def snapshot(d: Path) -> dict:
+        return {f.name: f.read_bytes() for f in d.iterdir() if f.is_file()} if d.is_dir() else {}
+
+    for command, own in [("run", []), ("compare", []), ("modes", ["--count", "3"]),
+                         ("converge", ["--levels", "3", "--refine", "step"]),
+                         ("uncertainty", ["--levels", "3"])]:
+        def survives(r, command=command, own=own) -> list[str]:
+            case = f"folders {command} survives"
+            d = work / f"survive_{command}"
+            quiet = [] if command == "modes" else ["--quiet"]
+            found, p = r.judged(case, [command, ref, *good, *own, "--out", str(d), *quiet])
+            if p is None or p.returncode != 0:
+                return found + [f"{case}: the good {command} did not run"]
+            before = snapshot(d)
+            stops = [("typo", ref, ["--set", "mesh.elemnts=5"]),
+                     ("missing scene", str(files / "no_such.toml"), []),
+                     ("bad value", ref, ["--set", "mesh.elements=-1"])]
+            if command != "modes":
+                stops.append(("diverging", ref, diverges))
+            for what, scene, extra in stops:
+                f2, p2 = r.judged(case, [command, scene, *good, *own, *extra, "--out", str(d), *quiet])
+                found += f2
+                if p2 is None or p2.returncode != 1:
+                    found.append(f"{case}: {what}: exit {None if p2 is None else p2.returncode}, not 1")
+                if snapshot(d) != before:
+                    found.append(f"{case}: {what}: the good folder changed")
+            return found
+        add(f"folders {command} survives", survives)
+
+    def two_writers(r) -> list[str]:
+        case = "folders two writers"
+        found = []
+        for trial in range(5):
+            d = work / f"two_{trial}"
+            procs = [subprocess.Popen([r.taut, "run", ref, "--set", "mesh.elements=40", "--set",
+                                       f"time.end={end}", "--out", str(d), "--quiet"],
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                     for end in ["0.2", "0.25"]]
+            outs = [(q.wait(timeout=r.limit_s), q.stderr.read().decode("utf-8", "replace"))
+                    for q in procs]
+            codes = [c for c, _ in outs]
+            if 0 not in codes:
+                found.append(f"{case}: neither run finished: {outs}")
+                continue
+            for c, err in outs:
+                if c != 0 and "in use by another command" not in err:
+                    found.append(f"{case}: a refused writer does not name the holder: {err[:200]!r}")
+            rows = len((d / "history.csv").read_text().splitlines()) - 1
+            steps = __import__("json").loads((d / "summary.json").read_text())["derived"]["steps"]
+            if rows != steps + 1 or (d / "INCOMPLETE").exists():
+                found.append(f"{case}: a mixed folder ({rows} rows for {steps} steps)")
+        return found
+    add("folders two writers", two_writers)
+
+    def unwritable(r) -> list[str]:
+        case = "folders unwritable"
+        blocker = files / "a_file"
+        blocker.write_text("x")
+        import time
+        t = time.perf_counter()
+        found, p = r.judged(case, ["modes", line, "--count", "50", "--out", str(blocker / "o")])
+        took = time.perf_counter() - t
+        if p is None or p.returncode != 1:
+            found.append(f"{case}: exit {None if p is None else p.returncode}, not 1")
+        if took > 10:
+            found.append(f"{case}: refused after {took:.1f} s: it computed first")
+        return found
+    add("folders unwritable", unwritable)
+    add("folders uncertainty nothing estimated",
+        ["uncertainty", ref, "--levels", "3", *diverges, *out("un")], "diverged")
+    for v in ["1e308", "3e152"]:
+        add(f"plausible pantograph uplift_coefficient={v}",
+            ["run", panto, "--set", f"carrier.0.uplift_coefficient={v}", *short, *out("pu")],
+            "`carrier.0.uplift_coefficient`")
+    for k in ["stiffness", "mass", "damping"]:
+        for v in ["5e-324", "1e308"]:
+            t = {"stiffness": "1e5", "mass": "0", "damping": "0", k: v}
+            if k == "stiffness" and v == "5e-324":
+                continue  # the messenger's sag check comes first
+            add(f"plausible messenger support {k}={v}",
+                ["run", line, "--set",
+                 "line.messenger.support={" + ", ".join(f"{a}={b}" for a, b in t.items()) + "}",
+                 *short, *out("ps")], f"`line.messenger.support.{k}`")
+
     # plausible: lumped elements a model cannot compute
     for scene, key in [(drops, "dropper.0.stiffness"), (drops, "dropper.0.damping"),
                        (ref, "carrier.0.mass"), (ref, "carrier.0.stiffness"), (ref, "carrier.0.damping"),
                        (ref, "contact.penalty.stiffness"), (ref, "beam.damping.mass"),
                        (ref, "beam.damping.stiffness"), (panto, "carrier.0.masses.1"),
                        (panto, "carrier.0.stiffnesses.0"), (line, "line.dropper_damping"),
-                       (line, "line.steady_arm.mass")]:
+                       (line, "line.steady_arm.mass"), (line, "line.clamp_mass.contact"),
+                       (line, "line.clamp_mass.messenger")]:
         for v in ["5e-324", "1e-300", "1e300"]:
             add(f"plausible {Path(scene).stem} {key}={v}",
                 ["run", scene, "--set", f"{key}={v}", *short, *out("pl")], f"`{key}`")

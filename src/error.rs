@@ -16,8 +16,9 @@ pub(crate) type Payload = Box<dyn std::error::Error + Send + Sync>;
 /// Everything that can go wrong in taut.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// A scene value outside its allowed range.
-    #[error("invalid scene: `{field}` = {value}: {allowed}")]
+    /// A scene value outside its allowed range, or a command-line option's
+    /// (a `field` that starts with `--`: `invalid option: …`).
+    #[error("invalid {}: `{field}` = {value}: {allowed}", invalid_what(field))]
     Invalid {
         /// Dotted path of the offending key, e.g. `beam.length`.
         field: String,
@@ -360,6 +361,16 @@ pub(crate) fn compact_number(v: f64) -> String {
         format!("{v}")
     } else {
         format!("{v:e}")
+    }
+}
+
+/// What an [`Error::Invalid`] is of: a command-line option (its field a
+/// flag, `--threads`) or the scene (a key path, `beam.length`).
+fn invalid_what(field: &str) -> &'static str {
+    if field.starts_with("--") {
+        "option"
+    } else {
+        "scene"
     }
 }
 

@@ -30,6 +30,8 @@ mod layers;
 mod line;
 #[path = "line_scenes.rs"]
 mod line_scenes;
+#[path = "output_folders.rs"]
+mod output_folders;
 #[path = "precision.rs"]
 mod precision;
 #[path = "readme.rs"]

@@ -417,10 +417,11 @@ fn a_record_outside_the_grid_is_refused_with_its_path() {
 }
 
 // ---------------------------------------------------------------------------
-// Class 7: a failed command leaves no earlier outputs of its kind behind.
+// Class 7: a failed command leaves the earlier outputs of its kind whole,
+// and says they are an earlier run's.
 
 #[test]
-fn a_failed_command_leaves_no_outputs_of_an_earlier_one() {
+fn a_failed_command_keeps_the_outputs_of_an_earlier_one_and_says_so() {
     let tmp = tempfile::tempdir().unwrap();
     let reference = scene("reference.toml");
     let dir = tmp.path().join("o");
@@ -452,20 +453,21 @@ fn a_failed_command_leaves_no_outputs_of_an_earlier_one() {
         }
         ok(&args);
         std::fs::write(dir.join("mine.txt"), "a user's file").unwrap();
-        for f in files {
-            assert!(dir.join(f).exists(), "{command}: {f}");
-        }
+        let before: Vec<Vec<u8>> = files
+            .iter()
+            .map(|f| std::fs::read(dir.join(f)).unwrap())
+            .collect();
         let mut bad = vec![command, reference.as_str(), "--out", out, "--quiet"];
         bad.extend_from_slice(&small);
         bad.extend_from_slice(failing);
         let (code, _, err) = taut(&bad);
         assert_eq!(code, 1, "{command}: {err}");
         assert!(
-            err.contains("note: removed the outputs of an earlier run"),
+            err.contains("keeps the outputs of an earlier run"),
             "{command}: {err}"
         );
-        for f in files {
-            assert!(!dir.join(f).exists(), "{command}: a stale {f} was left");
+        for (f, was) in files.iter().zip(&before) {
+            assert_eq!(&std::fs::read(dir.join(f)).unwrap(), was, "{command}: {f}");
         }
         assert!(dir.join("mine.txt").exists(), "{command}: other files stay");
     }
@@ -480,7 +482,7 @@ fn a_failed_command_leaves_no_outputs_of_an_earlier_one() {
         "converge", &reference, "--out", out, "--quiet", "--levels", "1",
     ]);
     assert_eq!(code, 1, "{err}");
-    assert!(!err.contains("removed the outputs"), "{err}");
+    assert!(!err.contains("replaced the outputs"), "{err}");
     assert!(dir.join("converge.csv").exists());
 }
 
@@ -710,7 +712,7 @@ fn messages_name_the_field_and_stay_short() {
         assert_eq!(code, 1, "{err}");
         assert!(
             err.starts_with(&format!(
-                "error: invalid scene: `{flag}` = -1: must be in 1 ..= "
+                "error: invalid option: `{flag}` = -1: must be in 1 ..= "
             )),
             "{flag}: {err}"
         );
@@ -808,7 +810,7 @@ fn every_integer_option_refuses_what_is_not_in_its_range_naming_it() {
             let (code, _, err) = taut(&args);
             assert_eq!(code, 1, "{args:?}: {err}");
             assert!(
-                err.starts_with(&format!("error: invalid scene: `{flag}` = "))
+                err.starts_with(&format!("error: invalid option: `{flag}` = "))
                     && err.contains(range)
                     && err.lines().count() == 1
                     && !out.exists(),
@@ -840,7 +842,7 @@ fn every_integer_option_refuses_what_is_not_in_its_range_naming_it() {
         let (code, _, err) = taut(&args);
         assert_eq!(code, 1, "{args:?}: {err}");
         assert!(
-            err.starts_with(&format!("error: invalid scene: `{flag}` = {value}: must")),
+            err.starts_with(&format!("error: invalid option: `{flag}` = {value}: must")),
             "{args:?}: {err}"
         );
     }

@@ -319,6 +319,68 @@ fn lumped_values_no_run_can_use_are_refused_with_the_reason() {
 }
 
 #[test]
+fn the_messengers_elements_and_the_uplift_are_held_to_the_same_scales() {
+    let d = tmp();
+    let o = out(&d);
+    let short = "time.end=0.002";
+    let support = |k: &str, v: &str| {
+        let mut t = ["stiffness=1e5", "mass=0", "damping=0"].map(String::from);
+        for s in &mut t {
+            if s.starts_with(k) {
+                *s = format!("{k}={v}");
+            }
+        }
+        format!("line.messenger.support={{{}}}", t.join(", "))
+    };
+    // (scene, override, the key the error names)
+    let mut cases: Vec<(&str, String, &str)> = Vec::new();
+    for v in ["1e308", "5e-324"] {
+        cases.push((
+            "line_10_spans.toml",
+            format!("line.clamp_mass.messenger={v}"),
+            "`line.clamp_mass.messenger`",
+        ));
+        for (k, key) in [
+            ("mass", "`line.messenger.support.mass`"),
+            ("damping", "`line.messenger.support.damping`"),
+        ] {
+            cases.push(("line_10_spans.toml", support(k, v), key));
+        }
+    }
+    cases.push((
+        "line_10_spans.toml",
+        support("stiffness", "1e308"),
+        "`line.messenger.support.stiffness`",
+    ));
+    for v in ["1e308", "3e152"] {
+        cases.push((
+            "pantograph_3mass.toml",
+            format!("carrier.0.uplift_coefficient={v}"),
+            "`carrier.0.uplift_coefficient`",
+        ));
+    }
+    for (name, set, key) in &cases {
+        let err = refused(&run(&scene(name), &[set, short], &o), key);
+        assert!(
+            err.contains("step matrix") || err.contains("force scale"),
+            "{set}: {err}"
+        );
+        assert!(!err.contains("NaN"), "{set}: {err}");
+    }
+    // ordinary values run
+    for (name, set) in [
+        ("line_10_spans.toml", support("mass", "10")),
+        (
+            "pantograph_3mass.toml",
+            "carrier.0.uplift_coefficient=0.5".into(),
+        ),
+    ] {
+        let (code, _, err) = taut(&run(&scene(name), &[&set, short], &o));
+        assert_eq!(code, 0, "{set}: {err}");
+    }
+}
+
+#[test]
 fn a_failed_contact_record_is_replayable_or_says_why_not() {
     use taut::contact::{ContactFailed, ContactFailure, ContactProblem, Level};
     let d = tmp();

@@ -206,12 +206,12 @@ fn two_sweeps_on_one_folder_never_mix() {
             let e = sweep(other, tmp.path(), None, &|_, _| {})
                 .unwrap_err()
                 .to_string();
-            assert!(e.contains("in use by another sweep"), "{e}");
+            assert!(e.contains("in use by another command"), "{e}");
         }
         let e = merge(&[tmp.path().to_path_buf()], tmp.path())
             .unwrap_err()
             .to_string();
-        assert!(e.contains("in use by another sweep"), "{e}");
+        assert!(e.contains("in use by another command"), "{e}");
     }
     // released with its holder: now the folder is free
     sweep(&a, tmp.path(), None, &|_, _| {}).unwrap();
@@ -247,7 +247,7 @@ fn two_sweeps_on_one_folder_never_mix() {
         if !o.status.success() {
             let e = String::from_utf8_lossy(&o.stderr);
             assert!(
-                e.contains("in use by another sweep") || e.contains("holds a different sweep"),
+                e.contains("in use by another command") || e.contains("holds a different sweep"),
                 "{e}"
             );
         }

@@ -312,7 +312,7 @@ impl Frontend for Terminal {
 
     fn note(&self, note: Note<'_>) {
         self.bar.suspend(|| match note {
-            Note::Cleared(text) => eprintln!("{text}"),
+            Note::Replaced(text) | Note::Kept(text) => eprintln!("{text}"),
             Note::AboveBound(e) => {
                 eprintln!("note: {} (above the bound; --yes given)", e.describe())
             }

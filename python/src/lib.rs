@@ -334,7 +334,7 @@ fn not_run(n: &taut::study::compare::NotRun) -> NotRunTuple {
 }
 
 /// The binding as the application layer's front end: progress to the
-/// waiting thread ([`work`]); of the notes, the cleared outputs on stderr
+/// waiting thread ([`work`]); of the notes, those on the output folder on stderr
 /// (as the CLI) and the saved contact problem kept for the exception.
 struct Binding<'a> {
     report: &'a (dyn Fn(usize, usize) + Sync),
@@ -348,7 +348,7 @@ impl Frontend for Binding<'_> {
 
     fn note(&self, note: Note<'_>) {
         match note {
-            Note::Cleared(text) => eprintln!("{text}"),
+            Note::Replaced(text) | Note::Kept(text) => eprintln!("{text}"),
             Note::AboveBound(_) => {}
             Note::FailureSaved(path) => {
                 if let Ok(mut saved) = self.saved.lock() {

@@ -153,7 +153,7 @@ def test_two_sweeps_into_one_out_in_one_process_are_refused(tmp_path):
     time.sleep(0.2)
     with pytest.raises(taut.SceneError) as e:
         taut.sweep(REFERENCE, vary={"speed_ratio": (0.5, 0.9, 8)}, set=slow, out=out, progress=False)
-    assert "in use by another sweep" in str(e.value)
+    assert "in use by another command" in str(e.value)
     t.join()
     assert "table" in first, first
 

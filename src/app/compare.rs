@@ -17,6 +17,7 @@ pub type CompareRequest = StudyRequest<request::CompareRequest>;
 impl Study for request::CompareRequest {
     type Outcome = Comparison;
     const OUTPUTS: Outputs = Outputs::Compare;
+    const COMMAND: &'static str = "taut compare";
     fn yes(&self) -> bool {
         self.yes
     }

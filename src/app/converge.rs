@@ -16,6 +16,7 @@ pub type ConvergeRequest = StudyRequest<request::ConvergeRequest>;
 impl Study for request::ConvergeRequest {
     type Outcome = ConvergeOutcome;
     const OUTPUTS: Outputs = Outputs::Converge;
+    const COMMAND: &'static str = "taut converge";
     fn yes(&self) -> bool {
         self.yes
     }

@@ -3,10 +3,10 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::Result;
-use crate::report::Outputs;
-use crate::study::sweep::{SweepRecord, SweepSpec, claim, folder, merge_into, read_spec};
+use crate::report::{Outputs, Staged};
+use crate::study::sweep::{SweepRecord, SweepSpec, folder::claim_as, merge_into};
 
-use super::{Frontend, fresh};
+use super::{Frontend, Note, kept};
 
 /// What a merge gives.
 pub struct MergeOutcome {
@@ -25,22 +25,27 @@ impl MergeOutcome {
     }
 }
 
-/// Join `shards` into `out` and write the sweep's tables and maps there.
+/// Join `shards` into `out` and write the sweep's tables and maps there:
+/// written beside the folder's earlier ones and put in place once the
+/// merge has succeeded; a merge that stops leaves them as they were.
 pub fn merge(shards: &[PathBuf], out: &Path, fe: &dyn Frontend) -> Result<MergeOutcome> {
-    let claimed = claim(out)?;
-    // clear the tables only of a folder that holds this sweep (or none):
-    // merge_into refuses any other, which then keeps its tables
-    if let Some(first) = shards.first()
-        && let Ok(spec) = read_spec(first)
-        && folder::check_spec(out, &spec).is_ok()
-    {
-        fresh(out, Outputs::Sweep, fe)?;
-    }
+    merge_in(shards, out, fe).map_err(|e| kept(Some(out), Outputs::Sweep, e, fe))
+}
+
+/// [`merge`] but for the note of a merge that stopped.
+fn merge_in(shards: &[PathBuf], out: &Path, fe: &dyn Frontend) -> Result<MergeOutcome> {
+    crate::report::check_out_dir(out)?;
+    let claimed = claim_as(out, "taut merge")?;
+    let staged = Staged::open(&claimed, Outputs::Sweep, "taut merge")?;
+    // a folder holding another sweep is refused here, its tables kept
     let (spec, records) = merge_into(&claimed, shards)?;
-    let maps = crate::report::write_whole(out, "taut merge", || {
-        crate::report::write_sweep(out, &spec, &records)?;
-        crate::report::write_sweep_maps(out, &spec, &records)
-    })?;
+    crate::report::write_sweep(staged.path(), &spec, &records)?;
+    let maps = crate::report::write_sweep_maps(staged.path(), &spec, &records)?;
+    let maps = maps.iter().map(|m| staged.in_place(m)).collect();
+    let removed = staged.commit()?;
+    if let Some(note) = crate::report::replaced_note(out, &removed) {
+        fe.note(Note::Replaced(note));
+    }
     Ok(MergeOutcome {
         spec,
         records,

@@ -1,9 +1,10 @@
 //! The application layer: one function a command, shared by both front
 //! ends. `taut::app::compare(&request, &frontend)` is what `taut compare`
-//! and Python's `taut.compare` both call: it clears the output folder of an
-//! earlier call, reads the scene, checks the study's cost, runs the study,
-//! writes its outputs through [`crate::report`] and returns the outcome
-//! (what the CLI prints, what Python hands back).
+//! and Python's `taut.compare` both call: it reads and checks the scene and
+//! the study's cost, claims the output folder, runs the study, writes its
+//! outputs through [`crate::report`] beside the folder's earlier ones and
+//! puts them in place, and returns the outcome (what the CLI prints, what
+//! Python hands back). A command that stops leaves the folder as it was.
 //!
 //! A request holds typed values (`&'static dyn MethodFactory`,
 //! [`Formulation`](crate::scene::Formulation), [`SpaceChoice`](crate::study::space::SpaceChoice),
@@ -13,8 +14,8 @@
 //!
 //! What differs between the front ends comes in through a [`Frontend`]:
 //! where progress goes, and what becomes of a [`Note`] (the CLI prints each
-//! on stderr; Python prints the cleared-outputs note and keeps the saved
-//! contact problem's path for its exception).
+//! on stderr; Python prints the notes on the output folder and keeps the
+//! saved contact problem's path for its exception).
 
 pub mod args;
 pub mod compare;
@@ -59,8 +60,8 @@ pub use sweep::{SweepOutcome, SweepRequest, sweep};
 pub use uncertainty::{UncertaintyRequest, uncertainty};
 pub use verify::{VerifyOutcome, VerifyRequest, verify};
 
-/// Where a scene comes from: a file (read by the command, after the output
-/// folder is cleared, so that a parse error names it) or TOML text.
+/// Where a scene comes from: a file (read by the command, so that a parse
+/// error names it) or TOML text.
 #[derive(Debug, Clone)]
 pub enum SceneSource {
     /// A scene file.
@@ -75,7 +76,7 @@ impl SceneSource {
         match self {
             SceneSource::File(p) => crate::scene::read_scene(p),
             // a text is held to a file's cap (Python's scenes as text or
-            // dicts had none, issue 41); its table files are relative to
+            // dicts had none); its table files are relative to
             // the working directory
             SceneSource::Text(t) if t.len() as u64 > crate::input::MAX_INPUT_BYTES => {
                 Err(Error::invalid(
@@ -111,9 +112,13 @@ impl SceneSource {
 /// Something a command says on the way, beside its outcome.
 #[derive(Debug)]
 pub enum Note<'a> {
-    /// Outputs of an earlier command were removed from the output folder
-    /// (the text of `crate::report::cleared_note`).
-    Cleared(String),
+    /// A command's new outputs replaced those of an earlier command in
+    /// the output folder (the text of `crate::report::replaced_note`).
+    Replaced(String),
+    /// A command that stopped (refused, failed, interrupted) left the
+    /// earlier outputs of its output folder as they were (the text of
+    /// `crate::report::kept_note`).
+    Kept(String),
     /// The study's estimated cost is above the bound, and `yes` was given.
     AboveBound(&'a Estimate),
     /// A contact solve failed and its problem was saved here, for `taut replay`.
@@ -136,14 +141,77 @@ impl Frontend for Silent {
     fn note(&self, _: Note<'_>) {}
 }
 
-/// Remove the outputs an earlier command of this kind left in `dir`, with a
-/// note: a folder holds one run's outputs ([`crate::report::clear_earlier`]).
-fn fresh(dir: &Path, kind: Outputs, fe: &dyn Frontend) -> Result<()> {
-    let removed = crate::report::clear_earlier(dir, kind)?;
-    if let Some(note) = crate::report::cleared_note(dir, &removed) {
-        fe.note(Note::Cleared(note));
+/// An output folder held for one command: claimed against every other
+/// writer ([`crate::report::claim_folder`]), with a staging folder its new
+/// outputs are written into and put in place from when the command has
+/// succeeded ([`crate::report::Staged`]). Dropped unfinished, the folder is
+/// as it was: the staging folder removed, the claim given back, and a
+/// folder the claim created removed again if it is empty.
+struct Writing {
+    // dropped first: the staging folder is removed while the claim holds
+    staged: Option<crate::report::Staged>,
+    lock: Option<crate::report::FolderLock>,
+    /// The folder, when the claim created it.
+    created: Option<PathBuf>,
+}
+
+impl Writing {
+    /// Claim `dir` for `what` (`taut run`) writing outputs of `kind`, and
+    /// open its staging folder: a folder that another command holds, or
+    /// that cannot be written, is refused here, before any work.
+    fn open(dir: &Path, kind: Outputs, what: &str) -> Result<Writing> {
+        let created = (!dir.exists()).then(|| dir.to_path_buf());
+        let mut w = Writing {
+            staged: None,
+            lock: None,
+            created,
+        };
+        let lock = w.lock.insert(crate::report::claim_folder(dir, what)?);
+        w.staged = Some(crate::report::Staged::open(lock, kind, what)?);
+        Ok(w)
     }
-    Ok(())
+
+    /// [`Writing::open`] for an optional folder.
+    fn open_some(dir: Option<&Path>, kind: Outputs, what: &str) -> Result<Option<Writing>> {
+        dir.map(|d| Writing::open(d, kind, what)).transpose()
+    }
+
+    /// Where the command writes its outputs.
+    fn stage(&self) -> &Path {
+        self.staged.as_ref().expect("open until finished").path()
+    }
+
+    /// Put the outputs in place, with a note of the earlier ones replaced.
+    fn finish(mut self, fe: &dyn Frontend) -> Result<()> {
+        self.created = None;
+        let staged = self.staged.take().expect("open until finished");
+        let dir = staged.dir().to_path_buf();
+        let removed = staged.commit()?;
+        if let Some(note) = crate::report::replaced_note(&dir, &removed) {
+            fe.note(Note::Replaced(note));
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Writing {
+    fn drop(&mut self) {
+        drop(self.staged.take());
+        drop(self.lock.take());
+        if let Some(dir) = &self.created {
+            // only if empty: a saved failing contact problem stays
+            let _ = std::fs::remove_dir(dir);
+        }
+    }
+}
+
+/// A command's error, after a note that the earlier outputs of its output
+/// folder `dir`, if any, are as they were (`crate::report::kept_note`).
+fn kept(dir: Option<&Path>, kind: Outputs, e: Error, fe: &dyn Frontend) -> Error {
+    if let Some(note) = dir.and_then(|d| crate::report::kept_note(d, kind)) {
+        fe.note(Note::Kept(note));
+    }
+    e
 }
 
 /// Refuse a study above the cost bound unless `yes` ([`crate::study::cost`]);
@@ -182,8 +250,10 @@ pub struct StudyRequest<S> {
 pub trait Study {
     /// What the study gives.
     type Outcome;
-    /// The files it writes (cleared first when left by an earlier call).
+    /// The files it writes (replacing those an earlier call left).
     const OUTPUTS: Outputs;
+    /// The command, as the folder's lock and marker name it (`taut compare`).
+    const COMMAND: &'static str;
     /// Start even above the cost bound.
     fn yes(&self) -> bool;
     /// Its estimated cost on scene `text` with `set`.
@@ -195,17 +265,31 @@ pub trait Study {
         set: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Self::Outcome>;
+    /// The failure of an outcome that estimated nothing (every run of the
+    /// study stopped): the command then fails, its folder untouched.
+    fn nothing(_outcome: &mut Self::Outcome) -> Option<Error> {
+        None
+    }
     /// Write its outputs into `dir`.
     fn write(dir: &Path, outcome: &Self::Outcome) -> Result<()>;
 }
 
-/// The course of every study of one scene: clear the folder of an earlier
-/// call, read the scene, check the cost, run (a parse error naming the
-/// scene file, a failed contact problem saved for `taut replay`), write.
+/// The course of every study of one scene: read the scene, check it and
+/// the cost, claim the output folder (refused before any run when another
+/// command holds it or it cannot be written), run (a parse error naming
+/// the scene file, a failed contact problem saved for `taut replay`),
+/// write into the staging folder, and put the outputs in place. A study
+/// that stops leaves the folder's earlier outputs as they were, and says so.
 fn run_study<S: Study>(req: &StudyRequest<S>, fe: &dyn Frontend) -> Result<S::Outcome> {
     let dir = req.out.as_deref();
+    study_in(req, fe).map_err(|e| kept(dir, S::OUTPUTS, e, fe))
+}
+
+/// [`run_study`] but for the note of a study that stopped.
+fn study_in<S: Study>(req: &StudyRequest<S>, fe: &dyn Frontend) -> Result<S::Outcome> {
+    let dir = req.out.as_deref();
     if let Some(d) = dir {
-        fresh(d, S::OUTPUTS, fe)?;
+        crate::report::check_out_dir(d)?;
     }
     let text = req.scene.read()?;
     let estimate = req
@@ -213,13 +297,18 @@ fn run_study<S: Study>(req: &StudyRequest<S>, fe: &dyn Frontend) -> Result<S::Ou
         .estimate(&text, &req.set)
         .map_err(|e| req.scene.name(e))?;
     started(&estimate, req.study.yes(), fe)?;
-    let outcome = req
+    let writing = Writing::open_some(dir, S::OUTPUTS, S::COMMAND)?;
+    let mut outcome = req
         .study
         .run(&text, &req.set, &mut |d, t| fe.progress(d, t))
         .map_err(|e| req.scene.name(e))
         .map_err(|e| save_failure(dir, e, fe))?;
-    if let Some(d) = dir {
-        crate::report::write_whole(d, "taut study", || S::write(d, &outcome))?;
+    if let Some(e) = S::nothing(&mut outcome) {
+        return Err(e);
+    }
+    if let Some(w) = writing {
+        S::write(w.stage(), &outcome)?;
+        w.finish(fe)?;
     }
     Ok(outcome)
 }

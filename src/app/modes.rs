@@ -8,7 +8,7 @@ use crate::error::Result;
 use crate::report::Outputs;
 use crate::study::modes::Modes;
 
-use super::{Frontend, SceneSource, fresh};
+use super::{Frontend, SceneSource, Writing, kept};
 
 /// The modes of one scene.
 #[derive(Debug, Clone)]
@@ -23,17 +23,27 @@ pub struct ModesRequest {
     pub out: Option<PathBuf>,
 }
 
-/// Compute the scene's modes and write them.
+/// Compute the scene's modes and write them. The output folder is claimed
+/// (and so known writable) before the modes are computed; a command that
+/// stops leaves its earlier outputs as they were.
 pub fn modes(req: &ModesRequest, fe: &dyn Frontend) -> Result<Modes> {
     let dir = req.out.as_deref();
+    modes_in(req, fe).map_err(|e| kept(dir, Outputs::Modes, e, fe))
+}
+
+/// [`modes`] but for the note of a command that stopped.
+fn modes_in(req: &ModesRequest, fe: &dyn Frontend) -> Result<Modes> {
+    let dir = req.out.as_deref();
     if let Some(d) = dir {
-        fresh(d, Outputs::Modes, fe)?;
+        crate::report::check_out_dir(d)?;
     }
     let text = req.scene.read()?;
     let sc = crate::resolve::resolve_scene(&text, &req.set).map_err(|e| req.scene.name(e))?;
+    let writing = Writing::open_some(dir, Outputs::Modes, "taut modes")?;
     let m = crate::study::modes::modes(&sc, req.count)?;
-    if let Some(d) = dir {
-        crate::report::write_modes(d, &m)?;
+    if let Some(w) = writing {
+        crate::report::write_modes(w.stage(), &m)?;
+        w.finish(fe)?;
     }
     Ok(m)
 }

@@ -17,6 +17,7 @@ pub type PrecisionRequest = StudyRequest<request::PrecisionRequest>;
 impl Study for request::PrecisionRequest {
     type Outcome = Precision;
     const OUTPUTS: Outputs = Outputs::Precision;
+    const COMMAND: &'static str = "taut precision";
     fn yes(&self) -> bool {
         self.yes
     }

@@ -9,7 +9,7 @@ use crate::report::{Outputs, Summary};
 use crate::run::RunOutput;
 use crate::study::tolerance::{Accuracy, Quantity, tolerance_run};
 
-use super::{Frontend, SceneSource, fresh, save_failure};
+use super::{Frontend, SceneSource, Writing, kept, save_failure};
 
 /// An error target: choose mesh and Δt so that the error of `quantity` is
 /// at most `tol` (docs/accuracy.md).
@@ -45,20 +45,37 @@ pub struct RunOutcome {
     pub accuracy: Option<Accuracy>,
 }
 
-/// Run the scene and write its outputs.
+/// Run the scene and write its outputs. The scene is read and checked
+/// before the output folder is claimed; the outputs are written beside the
+/// folder's earlier ones and put in place once the run has succeeded. A
+/// run that is refused, fails or is interrupted leaves the folder's
+/// earlier outputs as they were, and says so (a failed contact solve's
+/// problem is saved there, for `taut replay`).
 pub fn run(req: &RunRequest, fe: &dyn Frontend) -> Result<RunOutcome> {
+    run_in(req, fe).map_err(|e| kept(req.out.as_deref(), Outputs::Run, e, fe))
+}
+
+/// [`run`] but for the note of a run that stopped.
+fn run_in(req: &RunRequest, fe: &dyn Frontend) -> Result<RunOutcome> {
     let dir = req.out.as_deref();
     if let Some(d) = dir {
-        fresh(d, Outputs::Run, fe)?;
+        crate::report::check_out_dir(d)?;
     }
     let text = req.scene.read()?;
     let progress = &mut |d, t| fe.progress(d, t);
     if let Some(Tolerance { quantity, tol }) = req.tolerance {
+        crate::study::tolerance::check_start(&text, &req.set, tol)
+            .map_err(|e| req.scene.name(e))?;
+        let writing = Writing::open_some(dir, Outputs::Run, "taut run --tolerance")?;
         let r = tolerance_run(&text, &req.set, quantity, tol, progress)
             .map_err(|e| req.scene.name(e))
             .map_err(|e| save_failure(dir, e, fe))?;
-        let summary = match dir {
-            Some(d) => crate::report::write_tolerant_run(d, &r)?,
+        let summary = match writing {
+            Some(w) => {
+                let summary = crate::report::write_tolerant_run(w.stage(), &r)?;
+                w.finish(fe)?;
+                summary
+            }
             None => Summary::new(&r.scene, &r.output),
         };
         return Ok(RunOutcome {
@@ -68,9 +85,14 @@ pub fn run(req: &RunRequest, fe: &dyn Frontend) -> Result<RunOutcome> {
         });
     }
     let sc = crate::resolve::resolve_scene(&text, &req.set).map_err(|e| req.scene.name(e))?;
+    let writing = Writing::open_some(dir, Outputs::Run, "taut run")?;
     let output = crate::run::run(&sc, progress).map_err(|e| save_failure(dir, e, fe))?;
-    let summary = match dir {
-        Some(d) => crate::report::write_run(d, &sc, &output)?,
+    let summary = match writing {
+        Some(w) => {
+            let summary = crate::report::write_run(w.stage(), &sc, &output)?;
+            w.finish(fe)?;
+            summary
+        }
         None => Summary::new(&sc, &output),
     };
     Ok(RunOutcome {

@@ -29,7 +29,7 @@ use crate::report::{Outputs, Summary};
 use crate::resolve::Resolved;
 use crate::run::SteppedRun;
 
-use super::{Frontend, RunOutcome, RunRequest, fresh};
+use super::{Frontend, RunOutcome, RunRequest, Writing, kept};
 
 /// One carrier's state between steps (MODEL §2 names and signs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -95,9 +95,11 @@ pub struct Simulation {
 
 impl Simulation {
     /// Read and resolve the scene of `req` (overrides applied), build its
-    /// integrator and the initial state, record t = 0; clear `req.out` of
-    /// an earlier call's outputs as `run` does (written at
-    /// [`Simulation::finish`]). A tolerance is refused (module docs).
+    /// integrator and the initial state, record t = 0. `req.out` is
+    /// checked (another command holding it, or a folder that cannot be
+    /// written, is refused here) but written only at [`Simulation::finish`],
+    /// whose outputs replace an earlier call's as `run`'s do. A tolerance
+    /// is refused (module docs).
     pub fn new(req: &RunRequest, fe: &dyn Frontend) -> Result<Self> {
         if let Some(t) = req.tolerance {
             return Err(Error::invalid(
@@ -106,11 +108,25 @@ impl Simulation {
                 "is not for a simulation stepped on request: a tolerance run chooses mesh and Δt by running the scene several times (use run with a tolerance, then step a simulation with the mesh and step it reports)",
             ));
         }
+        let dir = req.out.as_deref();
+        Self::start(req).map_err(|e| kept(dir, Outputs::Run, e, fe))
+    }
+
+    /// [`Simulation::new`] but for the tolerance and the note of a
+    /// simulation refused.
+    fn start(req: &RunRequest) -> Result<Self> {
         if let Some(d) = req.out.as_deref() {
-            fresh(d, Outputs::Run, fe)?;
+            crate::report::check_out_dir(d)?;
         }
         let text = req.scene.read()?;
         let sc = crate::resolve::resolve_scene(&text, &req.set).map_err(|e| req.scene.name(e))?;
+        // a folder another command holds, or that cannot be written, is
+        // refused now, not after the steps (it is claimed again to write)
+        drop(Writing::open_some(
+            req.out.as_deref(),
+            Outputs::Run,
+            "taut.Simulation",
+        )?);
         let start = Instant::now();
         let it = Integrator::new(&sc)?;
         let probes = (0..sc.probes.len())
@@ -290,7 +306,11 @@ impl Simulation {
         let output = run.finish(&self.sc);
         let summary = match self.out.as_deref() {
             Some(d) => {
-                crate::report::write_run(d, &self.sc, &output).map_err(|e| self.scene.name(e))?
+                let w = Writing::open(d, Outputs::Run, "taut.Simulation")?;
+                let summary = crate::report::write_run(w.stage(), &self.sc, &output)
+                    .map_err(|e| self.scene.name(e))?;
+                w.finish(&super::Silent)?;
+                summary
             }
             None => Summary::new(&self.sc, &output),
         };

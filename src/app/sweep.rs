@@ -7,12 +7,12 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 use crate::error::Result;
-use crate::report::Outputs;
+use crate::report::{Outputs, Staged};
 use crate::study::sweep::{
     Axis, BatchWidth, Shard, SweepRecord, SweepSpec, claim, folder, sweep_batched,
 };
 
-use super::{Frontend, SceneSource, fresh, started};
+use super::{Frontend, Note, SceneSource, kept, started};
 
 /// A sweep of one scene.
 pub struct SweepRequest {
@@ -95,8 +95,19 @@ impl SweepOutcome {
 }
 
 /// Run the sweep (the points not finished by an earlier start) and write
-/// its tables and maps.
+/// its tables and maps. Everything is checked (the scene, the axes, the
+/// cost, the threads, the folder's own sweep and shard) before a run
+/// starts; the records of finished points go into `runs/` as they come
+/// (the sweep's resumable state); the tables and maps are written beside
+/// the folder's earlier ones and put in place once every point is done. A
+/// sweep that stops leaves the earlier tables and maps as they were.
 pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
+    let dir = req.files.then_some(req.out.as_path());
+    sweep_in(req, fe).map_err(|e| kept(dir, Outputs::Sweep, e, fe))
+}
+
+/// [`sweep`] but for the note of a sweep that stopped.
+fn sweep_in(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
     let start = Instant::now();
     let spec = SweepSpec {
         scene_text: req.scene.read()?,
@@ -108,18 +119,23 @@ pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
     };
     spec.validate().map_err(|e| req.scene.name(e))?;
     started(&spec.estimate(req.shard)?, req.yes, fe)?;
+    if let Some(n) = req.threads {
+        crate::study::threads::check_threads(n)?;
+    }
     let dir = &req.out;
     crate::report::check_out_dir(dir)?;
     let claimed = claim(dir)?;
-    // before any table is cleared: a shard into a folder holding the whole
+    // before anything is written: a shard into a folder holding the whole
     // sweep (or another shard's points) is refused, its tables kept
     folder::check_shard(dir, &spec, req.shard)?;
-    if req.files {
+    let staged = if req.files {
         // tables and maps of this sweep only: a folder holding another
         // sweep is refused (by check_spec) with its tables left as they are
         folder::check_spec(dir, &spec)?;
-        fresh(dir, Outputs::Sweep, fe)?;
-    }
+        Some(Staged::open(&claimed, Outputs::Sweep, "taut sweep")?)
+    } else {
+        None
+    };
     // the first report says how many points an earlier start had finished
     let resumed = OnceLock::new();
     let (records, threads) = crate::study::threads::in_pool(req.threads, || {
@@ -130,13 +146,19 @@ pub fn sweep(req: &SweepRequest, fe: &dyn Frontend) -> Result<SweepOutcome> {
         (records, rayon::current_num_threads())
     })?;
     let records = records?;
-    let maps = if req.files {
-        crate::report::write_whole(dir, "taut sweep", || {
-            crate::report::write_sweep(dir, &spec, &records)?;
-            crate::report::write_sweep_maps(dir, &spec, &records)
-        })?
-    } else {
-        Vec::new()
+    let maps = match staged {
+        Some(staged) => {
+            let at = staged.path();
+            crate::report::write_sweep(at, &spec, &records)?;
+            let maps = crate::report::write_sweep_maps(at, &spec, &records)?;
+            let maps = maps.iter().map(|m| staged.in_place(m)).collect();
+            let removed = staged.commit()?;
+            if let Some(note) = crate::report::replaced_note(dir, &removed) {
+                fe.note(Note::Replaced(note));
+            }
+            maps
+        }
+        None => Vec::new(),
     };
     Ok(SweepOutcome {
         spec,

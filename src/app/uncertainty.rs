@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::report::Outputs;
 use crate::study::cost::Estimate;
 use crate::study::request;
@@ -18,6 +18,7 @@ pub type UncertaintyRequest = StudyRequest<request::UncertaintyRequest>;
 impl Study for request::UncertaintyRequest {
     type Outcome = Uncertainty;
     const OUTPUTS: Outputs = Outputs::Uncertainty;
+    const COMMAND: &'static str = "taut uncertainty";
     fn yes(&self) -> bool {
         self.yes
     }
@@ -32,12 +33,19 @@ impl Study for request::UncertaintyRequest {
     ) -> Result<Uncertainty> {
         request::UncertaintyRequest::run(self, text, set, progress)
     }
+    /// A run of the family that diverged: nothing is estimated.
+    fn nothing(outcome: &mut Uncertainty) -> Option<Error> {
+        let e = outcome.stopped.take()?;
+        Some(std::sync::Arc::try_unwrap(e).unwrap_or_else(|e| Error::parse(e.to_string())))
+    }
     fn write(dir: &Path, outcome: &Uncertainty) -> Result<()> {
         crate::report::write_uncertainty(dir, outcome)
     }
 }
 
-/// Run the family and write its outputs.
+/// Run the family and write its outputs. A family with a run that
+/// diverged estimates nothing: the command fails with that run's
+/// divergence, its output folder untouched.
 pub fn uncertainty(req: &UncertaintyRequest, fe: &dyn Frontend) -> Result<Uncertainty> {
     run_study(req, fe)
 }

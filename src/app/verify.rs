@@ -7,7 +7,8 @@ use std::time::Instant;
 use crate::error::Result;
 use crate::study::verify::{Selection, VerifyRow, any_failed, cases::CASES};
 
-use super::Frontend;
+use super::{Frontend, Writing, kept};
+use crate::report::Outputs;
 
 /// A run of the verification matrix.
 pub struct VerifyRequest {
@@ -32,16 +33,29 @@ pub struct VerifyOutcome {
     pub passed: bool,
 }
 
-/// Run the matrix and write its tables.
+/// Run the matrix and write its tables. The output folder is claimed (and
+/// so known writable) before any combination runs; a matrix that stops
+/// leaves its earlier outputs as they were.
 pub fn verify(req: &VerifyRequest, fe: &dyn Frontend) -> Result<VerifyOutcome> {
+    verify_in(req, fe).map_err(|e| kept(Some(&req.out), Outputs::Verify, e, fe))
+}
+
+/// [`verify`] but for the note of a matrix that stopped.
+fn verify_in(req: &VerifyRequest, fe: &dyn Frontend) -> Result<VerifyOutcome> {
     let start = Instant::now();
+    crate::report::check_out_dir(&req.out)?;
+    if let Some(n) = req.threads {
+        crate::study::threads::check_threads(n)?;
+    }
+    let writing = Writing::open(&req.out, Outputs::Verify, "taut verify")?;
     let (rows, threads) = crate::study::threads::in_pool(req.threads, || {
         let rows = crate::study::verify::verify(&CASES, &req.selection, &|d, t| fe.progress(d, t));
         (rows, rayon::current_num_threads())
     })?;
     let rows = rows?;
     let wall_seconds = start.elapsed().as_secs_f64();
-    crate::report::write_verify(&req.out, &rows, wall_seconds)?;
+    crate::report::write_verify(writing.stage(), &rows, wall_seconds)?;
+    writing.finish(fe)?;
     Ok(VerifyOutcome {
         passed: !any_failed(&rows),
         rows,

@@ -202,7 +202,17 @@ pub(crate) fn write_report(dirs: &[PathBuf], out: &Path) -> Result<ReportSummary
     if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
     }
-    std::fs::write(out, page).map_err(|e| Error::io(out, e))?;
+    // written beside and renamed over: a report that fails while writing
+    // (a full disk) leaves an earlier page whole
+    let mut tmp = out.as_os_str().to_owned();
+    tmp.push(format!(".tmp-{}", std::process::id()));
+    let tmp = PathBuf::from(tmp);
+    std::fs::write(&tmp, page)
+        .and_then(|()| std::fs::rename(&tmp, out))
+        .map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            Error::io(out, e)
+        })?;
     Ok(ReportSummary {
         path: out.to_path_buf(),
         plots,

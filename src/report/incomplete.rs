@@ -1,15 +1,17 @@
 //! A folder being written says so until it is whole.
 //!
-//! A command writes several files into its folder, one after another; one
+//! A command puts several files into its folder, one after another; one
 //! that stops between them (a full disk, a file it cannot create, an abort
-//! or a kill) used to leave the files written so far, `summary.json`
-//! among them, looking like a complete result (issue 41). So writing
-//! starts by putting [`INCOMPLETE_FILE`] into the folder and ends by
-//! removing it, once the last file is written: a folder holding it is
-//! partial, whatever else it holds. A command that fails while writing
-//! leaves it with its error; one that is killed leaves it as it was put
-//! there. The next command of any kind that writes the folder clears it
-//! first ([`super::clear_earlier`]). A run writes `summary.json` last, so a
+//! or a kill) would leave the files put so far, `summary.json` among them,
+//! looking like a complete result. So writing starts by putting
+//! [`INCOMPLETE_FILE`] into the folder and ends by removing it, once the
+//! last file is in: a folder holding it is partial, whatever else it
+//! holds. A command that fails while writing leaves it with its error; one
+//! that is killed leaves it as it was put there. The next command of any
+//! kind that writes the folder removes it with the earlier outputs. A
+//! command writes its files into a staging folder first and marks its
+//! output folder only while it puts them in place (`super::staging`), so
+//! the window is a few renames; a run puts `summary.json` in last, so a
 //! folder with a summary and no marker is a finished run's.
 
 use std::path::Path;

@@ -1,20 +1,22 @@
-//! One command's outputs in a folder at a time.
+//! One command's outputs in a folder at a time, and never none.
 //!
-//! A run that failed used to leave the previous run's `summary.json`,
-//! `history.csv` and `force.svg` in its `--out` folder beside its own exit
-//! status 1, with nothing to say they were stale (issue 25): a script, or a
-//! person, would read an old result as the new one. So every command that
-//! writes outputs first removes the files a command of its kind writes
-//! ([`Outputs::files`]) and any saved failing contact problem
-//! (`failed_contact_step_N.json`), and says so ([`clear_earlier`]); what is
-//! in the folder afterwards is this command's, or nothing. Other files in
-//! the folder are left alone. A sweep's records and `sweep.json` are its
-//! resumable state, not outputs: only its tables and maps, which it draws
-//! again from the records, are cleared.
+//! A folder holds the outputs of one command of a kind: the files a command
+//! of its kind writes ([`Outputs::files`]) come from one run. A command
+//! writes its new outputs into a staging folder inside the output folder
+//! and puts them in place only once it has succeeded (`super::staging`):
+//! then the earlier files of its kind and any saved failing contact
+//! problem (`failed_contact_step_N.json`) are removed and the new files
+//! renamed in ([`earlier_outputs`], [`replaced_note`]). A command that is
+//! refused, fails or is interrupted leaves the earlier outputs as they were
+//! and says so ([`kept_note`]). Other files in the folder are left alone. A
+//! sweep's records and `sweep.json` are its resumable state, not outputs:
+//! only its tables and maps, which it draws again from the records, are
+//! replaced.
 
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
+pub(crate) use crate::study::lock::check_out_dir;
 
 /// The kinds of command that write outputs, by the files they write.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,6 +37,8 @@ pub enum Outputs {
     Modes,
     /// `taut uncertainty`.
     Uncertainty,
+    /// `taut verify`.
+    Verify,
 }
 
 /// Prefix of a saved failing contact problem (`failed_contact_step_N.json`).
@@ -66,6 +70,7 @@ impl Outputs {
             Outputs::Gate => &["gate.json", "junit.xml"],
             Outputs::Modes => &["modes.csv", "mode_shapes.csv"],
             Outputs::Uncertainty => &["uncertainty.csv", "uncertainty.json", "uncertainty.svg"],
+            Outputs::Verify => &["verify.csv", "verify.json", "verify.md"],
             Outputs::Sweep => &[
                 "sweep.csv",
                 "sweep_force.csv",
@@ -85,29 +90,15 @@ impl Outputs {
     }
 }
 
-/// Refuse an empty output folder path: it would write into the current
-/// folder (the CLI's `--out ""` is refused by its parser; Python's
-/// `out=""` reaches here).
-pub(crate) fn check_out_dir(dir: &Path) -> Result<()> {
-    if dir.as_os_str().is_empty() {
-        return Err(Error::invalid(
-            "--out",
-            "\"\"",
-            "must name a folder (an empty path would write into the current folder; use \".\" for that)",
-        ));
-    }
-    Ok(())
-}
-
-/// Remove from `dir` the outputs an earlier command of this kind left
-/// ([`Outputs::files`], and `failed_contact_step_N.json`), before the
-/// command runs; returns the files removed (none when `dir` does not exist).
-pub(crate) fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
+/// The outputs an earlier command of this kind left in `dir`
+/// ([`Outputs::files`], and with `failed` any `failed_contact_step_N.json`
+/// too), sorted; none when `dir` does not exist.
+pub(crate) fn earlier_outputs(dir: &Path, kind: Outputs, failed: bool) -> Result<Vec<PathBuf>> {
     check_out_dir(dir)?;
-    let mut removed = Vec::new();
+    let mut found = Vec::new();
     let entries = match std::fs::read_dir(dir) {
         Ok(e) => e,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(removed),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(found),
         Err(e) => return Err(Error::io(dir, e)),
     };
     for entry in entries {
@@ -115,34 +106,57 @@ pub(crate) fn clear_earlier(dir: &Path, kind: Outputs) -> Result<Vec<PathBuf>> {
         let name = entry.file_name();
         let Some(name) = name.to_str() else { continue };
         let ours = kind.files().contains(&name)
-            || name == super::INCOMPLETE_FILE
-            || (kind != Outputs::Sweep
+            || (failed
+                && kind != Outputs::Sweep
                 && name.starts_with(FAILED_CONTACT_PREFIX)
                 && name.ends_with(".json"));
         if !ours || !entry.file_type().is_ok_and(|t| t.is_file()) {
             continue;
         }
-        let path = entry.path();
-        std::fs::remove_file(&path).map_err(|e| Error::io(&path, e))?;
-        removed.push(path);
+        found.push(entry.path());
     }
-    removed.sort();
-    Ok(removed)
+    found.sort();
+    Ok(found)
 }
 
-/// What a front end says when [`clear_earlier`] removed files: one line.
-pub(crate) fn cleared_note(dir: &Path, removed: &[PathBuf]) -> Option<String> {
+/// The file names of `paths`, joined by `, `.
+fn names(paths: &[PathBuf]) -> String {
+    paths
+        .iter()
+        .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// What a front end says when a command's new outputs replaced earlier
+/// ones (`removed`): one line.
+pub(crate) fn replaced_note(dir: &Path, removed: &[PathBuf]) -> Option<String> {
     if removed.is_empty() {
         return None;
     }
-    let names: Vec<String> = removed
-        .iter()
-        .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
-        .collect();
     Some(format!(
-        "note: removed the outputs of an earlier run from {} ({}): a folder holds one run's outputs",
+        "note: replaced the outputs of an earlier run in {} ({}): a folder holds one run's outputs",
         dir.display(),
-        names.join(", ")
+        names(removed)
+    ))
+}
+
+/// What a front end says when a command that names `dir` stopped without
+/// writing it: the earlier outputs of its kind there, if any, are as they
+/// were (one line). None when there are none, or when the folder is marked
+/// partial (`INCOMPLETE`: its files are no result to keep).
+pub(crate) fn kept_note(dir: &Path, kind: Outputs) -> Option<String> {
+    if dir.as_os_str().is_empty() || dir.join(super::INCOMPLETE_FILE).exists() {
+        return None;
+    }
+    let kept = earlier_outputs(dir, kind, false).ok()?;
+    if kept.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "note: {} keeps the outputs of an earlier run ({}), untouched: this command wrote none of its own",
+        dir.display(),
+        names(&kept)
     ))
 }
 
@@ -151,7 +165,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn only_the_kinds_own_files_are_removed() {
+    fn only_the_kinds_own_files_are_found() {
         let tmp = tempfile::tempdir().unwrap();
         let d = tmp.path();
         for f in [
@@ -163,24 +177,30 @@ mod tests {
         ] {
             std::fs::write(d.join(f), "x").unwrap();
         }
-        let removed = clear_earlier(d, Outputs::Run).unwrap();
-        let names: Vec<_> = removed
-            .iter()
-            .map(|p| p.file_name().unwrap().to_str().unwrap().to_string())
-            .collect();
+        let found = earlier_outputs(d, Outputs::Run, true).unwrap();
         assert_eq!(
-            names,
-            ["failed_contact_step_12.json", "history.csv", "summary.json"]
+            names(&found),
+            "failed_contact_step_12.json, history.csv, summary.json"
         );
-        assert!(d.join("notes.txt").exists() && d.join("compare.csv").exists());
-        let note = cleared_note(d, &removed).unwrap();
+        let note = replaced_note(d, &found).unwrap();
         assert!(note.contains("history.csv, summary.json"), "{note}");
+        let kept = kept_note(d, Outputs::Run).unwrap();
         assert!(
-            clear_earlier(&d.join("none"), Outputs::Run)
+            kept.contains("(history.csv, summary.json), untouched"),
+            "{kept}"
+        );
+        assert!(kept_note(d, Outputs::Modes).is_none());
+        std::fs::write(d.join(super::super::INCOMPLETE_FILE), "x").unwrap();
+        assert!(
+            kept_note(d, Outputs::Run).is_none(),
+            "a partial folder keeps no result"
+        );
+        assert!(
+            earlier_outputs(&d.join("none"), Outputs::Run, true)
                 .unwrap()
                 .is_empty()
         );
-        let e = clear_earlier(Path::new(""), Outputs::Run)
+        let e = earlier_outputs(Path::new(""), Outputs::Run, true)
             .unwrap_err()
             .to_string();
         assert!(e.contains("`--out`") && e.contains("current folder"), "{e}");

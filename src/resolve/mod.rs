@@ -115,6 +115,22 @@ impl Scene {
             self.contact.penalty.stiffness,
             damping,
         )?;
+        if let Some(m) = &beam.messenger {
+            let one_table = self
+                .messenger
+                .as_ref()
+                .and_then(|s| s.support.as_ref())
+                .is_some_and(toml::Value::is_table);
+            let on_messenger: Vec<usize> = (0..self.attachments.len())
+                .filter(|i| !own.contains(i))
+                .collect();
+            plausible::check_messenger(m, one_table, &on_messenger, l, elements, dt)?;
+        }
+        plausible::check_uplift(
+            &plausible::Scales::of(&beam, elements, dt),
+            &carriers,
+            t_end,
+        )?;
         crate::scene::check_speed_tables_cover(&carriers, t_end)?;
         let probes = self.resolve_probes(l)?;
         if let Some(i) = self

@@ -25,9 +25,19 @@
 //! 1e16 N/m, m = 1e-6 kg on the reference wire, S ≈ 1.7e7 N/m) are well
 //! inside it. A value of exactly 0, where a key allows it, is no element
 //! and always accepted.
+//!
+//! The messenger's own elements (its elastic supports' springs, dashpots
+//! and masses, and the dropper clamps on it) are held to the messenger's
+//! scales, built the same way from its ρA_m, T_m and EI_m. A pantograph's
+//! uplift F₀ + c_a V² is a load, not a matrix entry: only its top is
+//! bounded, by the force S h / ε that would move one element by h/ε
+//! (beyond it the wire's response is round-off of the load's), at the
+//! carrier's top speed.
 
 use crate::error::{Error, Result};
-use crate::scene::{Attachment, BeamProps, CarrierKind, CarrierProps, Dropper, Rayleigh};
+use crate::scene::{
+    Attachment, BeamProps, CarrierKind, CarrierProps, Dropper, Messenger, Rayleigh, SpeedProfile,
+};
 
 /// Relative width of the window on each side of a scale: the machine
 /// epsilon, below which an entry added to the step matrix's changes none
@@ -45,38 +55,66 @@ pub(crate) struct Scales {
     pub damping: f64,
     /// Δt, s.
     pub dt: f64,
+    /// S h, N: the force that moves one element by its length h.
+    pub force: f64,
+    /// Whose scales, for a message: "the wire's", "the messenger's".
+    pub whose: &'static str,
 }
 
 impl Scales {
     /// The scales of a wire with `beam`'s properties on `elements` elements
     /// at step `dt`.
     pub fn of(beam: &BeamProps, elements: usize, dt: f64) -> Self {
-        let h = beam.length / elements.max(1) as f64;
-        let mass = beam.rho_a * h;
-        let stiffness = mass / (dt * dt) + beam.tension / h + beam.ei / (h * h * h);
+        Self::wire(
+            beam.length,
+            (beam.rho_a, beam.tension, beam.ei),
+            elements,
+            dt,
+        )
+        .named("the wire's")
+    }
+
+    /// The scales of a wire of length `length` with (ρA, T, EI) on
+    /// `elements` elements at step `dt`.
+    pub fn wire(
+        length: f64,
+        (rho_a, tension, ei): (f64, f64, f64),
+        elements: usize,
+        dt: f64,
+    ) -> Self {
+        let h = length / elements.max(1) as f64;
+        let mass = rho_a * h;
+        let stiffness = mass / (dt * dt) + tension / h + ei / (h * h * h);
         Scales {
             stiffness,
             mass,
             damping: stiffness * dt,
             dt,
+            force: stiffness * h,
+            whose: "the wire's",
         }
+    }
+
+    /// These scales, said to be `whose` in messages.
+    pub fn named(self, whose: &'static str) -> Self {
+        Scales { whose, ..self }
     }
 
     fn stiffness(&self, field: &str, k: f64) -> Result<()> {
         let what = format!(
-            "the wire's scale S = ρA h/Δt² + T/h + EI/h³ = {:.3e} N/m",
-            self.stiffness
+            "{} scale S = ρA h/Δt² + T/h + EI/h³ = {:.3e} N/m",
+            self.whose, self.stiffness
         );
         check_window(field, k, self.stiffness, "N/m", &what)
     }
 
     fn mass(&self, field: &str, m: f64) -> Result<()> {
-        let what = format!("the wire's element mass ρA h = {:.3e} kg", self.mass);
+        let what = format!("{} element mass ρA h = {:.3e} kg", self.whose, self.mass);
         check_window(field, m, self.mass, "kg", &what)
     }
 
     fn damping(&self, field: &str, c: f64) -> Result<()> {
-        let what = format!("the wire's scale S Δt = {:.3e} N·s/m", self.damping);
+        let what = format!("{} scale S Δt = {:.3e} N·s/m", self.whose, self.damping);
         check_window(field, c, self.damping, "N·s/m", &what)
     }
 }
@@ -146,6 +184,91 @@ pub(crate) fn check_plausible(
     )
 }
 
+/// Check the messenger's own lumped elements against its scales (module
+/// docs): its elastic supports (`messenger.support`, one table for every
+/// support when `one_table`, else a list) and the scene's attachments on it
+/// (`on_messenger`: their indices in `[[attachment]]`, in order).
+pub(crate) fn check_messenger(
+    m: &Messenger,
+    one_table: bool,
+    on_messenger: &[usize],
+    length: f64,
+    elements: usize,
+    dt: f64,
+) -> Result<()> {
+    let scales =
+        Scales::wire(length, (m.rho_a, m.tension, m.ei), elements, dt).named("the messenger's");
+    for (i, e) in m.elastic.iter().enumerate() {
+        let Some(e) = e else { continue };
+        let key = |k: &str| {
+            if one_table {
+                format!("messenger.support.{k}")
+            } else {
+                format!("messenger.support.{i}.{k}")
+            }
+        };
+        scales.stiffness(&key("stiffness"), e.stiffness)?;
+        scales.mass(&key("mass"), e.mass)?;
+        scales.damping(&key("damping"), e.damping)?;
+    }
+    let supports = m.elastic.iter().filter(|e| e.is_some()).count();
+    let own = m.attachments.get(supports..).unwrap_or(&[]);
+    for (&i, a) in on_messenger.iter().zip(own) {
+        scales.stiffness(&format!("attachment.{i}.stiffness"), a.stiffness)?;
+        scales.mass(&format!("attachment.{i}.mass"), a.mass)?;
+        scales.damping(&format!("attachment.{i}.damping"), a.damping)?;
+    }
+    Ok(())
+}
+
+/// Speeds sampled over a run to find a carrier's top speed for
+/// [`check_uplift`] (a table's knots are taken as well): the bound it
+/// checks is sixteen decades wide, so a sampled top is close enough.
+const SPEED_SAMPLES: usize = 64;
+
+/// Check each pantograph's uplift F₀ + c_a V², at the carrier's top speed
+/// over `t_end`, against the wire's force scale (module docs).
+pub(crate) fn check_uplift(scales: &Scales, carriers: &[CarrierProps], t_end: f64) -> Result<()> {
+    let high = scales.force / PLAUSIBLE_RELATIVE;
+    for (i, c) in carriers.iter().enumerate() {
+        let Some(chain) = &c.chain else { continue };
+        let mut v_max = (0..=SPEED_SAMPLES)
+            .map(|k| {
+                c.motion
+                    .speed(t_end * k as f64 / SPEED_SAMPLES as f64)
+                    .abs()
+            })
+            .fold(0.0_f64, f64::max);
+        if let SpeedProfile::Table { speed, .. } = &c.motion.profile {
+            v_max = speed.iter().fold(v_max, |a, v| a.max(v.abs()));
+        }
+        let force = chain.uplift_coefficient * v_max * v_max;
+        let why = |what: &str| {
+            format!(
+                "{what} is above the wire's force scale S h / ε = {high:.3e} N (S h = {:.3e} N, the force that moves one element by its length; ε = 2.2e-16): the wire's response to it would be round-off; give a value that keeps it below",
+                scales.force
+            )
+        };
+        if chain.uplift.is_nan() || chain.uplift.abs() > high {
+            return Err(Error::invalid(
+                format!("carrier.{i}.uplift"),
+                chain.uplift,
+                why("the uplift F₀"),
+            ));
+        }
+        if force.is_nan() || force.abs() > high {
+            return Err(Error::invalid(
+                format!("carrier.{i}.uplift_coefficient"),
+                chain.uplift_coefficient,
+                why(&format!(
+                    "the aerodynamic uplift c_a V² at the run's top speed V = {v_max:.4} m/s ({force:.3e} N)"
+                )),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Check one lumped quantity `value` (unit `unit`) of key `field`
 /// against `scale` (`what` names the scale for the message): 0, or in
 /// [ε·scale, scale/ε].
@@ -186,6 +309,8 @@ mod tests {
             mass: 0.2,
             damping: 1e3,
             dt: 1e-4,
+            force: 1e6,
+            whose: "the wire's",
         };
         assert!(s.stiffness("k", 0.0).is_ok());
         assert!(s.stiffness("k", 1e-8).is_ok());

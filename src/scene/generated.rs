@@ -1,5 +1,5 @@
 //! What `[line]` generated in a scene, so that an error found in the
-//! expanded scene names the key a user wrote (issue 41). Its own file: the
+//! expanded scene names the key a user wrote. Its own file: the
 //! scene file's [`super::Scene`] keeps it, and the expansion in `line.rs`
 //! fills it.
 
@@ -21,6 +21,9 @@ pub struct Generated {
     pub attachments: usize,
     /// Steady arms among them (the first ones).
     pub steady_arms: usize,
+    /// Clamp masses on the contact wire among them (after the steady
+    /// arms; those on the messenger follow).
+    pub contact_clamps: usize,
     /// The `[messenger]` table was generated (`anchor = "messenger"`).
     pub messenger: bool,
     /// `mesh.elements` was generated (from `line.element_length`).
@@ -67,14 +70,27 @@ impl Generated {
                 _ => "line.steady_arm",
             }
             .to_string(),
-            ("attachment", Some(i)) if i < self.attachments => "line.clamp_mass".to_string(),
+            ("attachment", Some(i)) if i < self.steady_arms + self.contact_clamps => {
+                "line.clamp_mass.contact".to_string()
+            }
+            ("attachment", Some(i)) if i < self.attachments => {
+                "line.clamp_mass.messenger".to_string()
+            }
             ("attachment", Some(i)) => tail(i - self.attachments),
             ("messenger", _) if self.messenger => match top_of(rest) {
                 k @ ("tension" | "mass_per_length" | "bending_stiffness" | "height") => {
                     format!("line.messenger.{k}")
                 }
                 "supports" => "line.spans".to_string(),
-                "support" => "line.messenger.support".to_string(),
+                // the expansion writes a list with the end supports
+                // pinned: its index is no index of the user's
+                // `line.messenger.support`, its leaf key is
+                "support" => match rest.rsplit('.').next() {
+                    Some(k @ ("stiffness" | "mass" | "damping")) => {
+                        format!("line.messenger.support.{k}")
+                    }
+                    _ => "line.messenger.support".to_string(),
+                },
                 _ => "line.messenger".to_string(),
             },
             ("beam", _) if rest == "length" => "line.span_length".to_string(),

@@ -189,6 +189,7 @@ pub(crate) fn expand_line_with_origin(mut tree: Table) -> Result<(Table, Generat
         } else {
             0
         },
+        contact_clamps: line.end_mass.contact_count(),
         messenger: line.anchor == LineAnchor::Messenger,
         elements: !given_elements,
     };

@@ -151,6 +151,12 @@ impl EndMasses {
         out
     }
 
+    /// How many of [`EndMasses::tables`]' tables are on the contact wire
+    /// (the first ones).
+    pub(crate) fn contact_count(&self) -> usize {
+        self.lower.iter().filter(|m| **m != 0.0).count()
+    }
+
     /// How many tables [`EndMasses::tables`] writes.
     pub(crate) fn count(&self) -> usize {
         self.lower

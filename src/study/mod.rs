@@ -13,6 +13,7 @@ pub mod filter;
 pub mod gate;
 pub mod grid;
 pub mod level;
+pub mod lock;
 pub mod modes;
 pub mod precision;
 pub mod reference;

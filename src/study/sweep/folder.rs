@@ -1,11 +1,12 @@
 //! A sweep's folder: who may write it, and which records belong to it.
 //!
-//! * **One writer at a time.** A sweep or merge claims its folder with an
-//!   operating-system lock on `sweep.lock` ([`FolderLock`]), held until it
-//!   finishes. A second sweep on the same folder is refused at once instead of
-//!   mixing its records with the first's. The lock dies with its process, so a
-//!   sweep killed with `kill -9` leaves nothing stale to clear: resuming it
-//!   just works.
+//! * **One writer at a time.** A sweep or merge claims its folder with the
+//!   operating-system lock every command that writes a folder takes
+//!   (`sweep.lock`, [`FolderLock`], `crate::study::lock::claim_folder`), held
+//!   until it finishes. A second writer of the same folder is refused at once
+//!   instead of mixing its records with the first's. The lock dies with its
+//!   process, so a sweep killed with `kill -9` leaves nothing stale to clear:
+//!   resuming it just works.
 //! * **Every record stamped.** Each `runs/NNNNNN.json` carries the identity of
 //!   its sweep (`sweep_id`, a hash of `sweep.json`), its grid index and its
 //!   axis values. A record is used only when all three match the folder's
@@ -16,174 +17,23 @@
 //!   renamed. An empty or unparsable record (what a machine crash can leave)
 //!   is not evidence of anything: its point is run again.
 
-use std::fs::{File, OpenOptions, TryLockError};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::{SweepRecord, SweepSpec};
 use crate::error::{Error, Result};
+pub use crate::study::lock::FolderLock;
 
-/// The lock file a running sweep or merge holds in its folder.
-pub(crate) const LOCK_FILE: &str = "sweep.lock";
-
-/// A claimed sweep folder; the claim ends when this is dropped (or the
-/// process dies). Dropped, it removes `sweep.lock` while still holding it,
-/// so a finished sweep leaves no lock file behind; a claim that waited on
-/// the removed file finds it gone and takes a new one ([`claim`]).
-#[derive(Debug)]
-pub struct FolderLock {
-    dir: PathBuf,
-    /// The folder's canonical path, held in [`CLAIMED`] until dropped.
-    canonical: PathBuf,
-    _file: File,
-}
-
-/// The folders claimed by this process, by canonical path: a claim is
-/// refused here first, whatever the file system makes of two locks taken
-/// by one process (on NFS and other file systems that emulate `flock`
-/// with POSIX record locks, a process's second lock on a file succeeds:
-/// two sweeps of one Python process shared a folder, issue 41).
-static CLAIMED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
-
-/// Give back this process's claim of `canonical` ([`CLAIMED`]).
-fn unclaim(canonical: &Path) {
-    let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
-    if let Some(i) = held.iter().position(|p| p == canonical) {
-        held.swap_remove(i);
-    }
-}
-
-impl Drop for FolderLock {
-    fn drop(&mut self) {
-        // removed before the descriptor (and so the lock) is closed
-        let _ = std::fs::remove_file(self.dir.join(LOCK_FILE));
-        unclaim(&self.canonical);
-    }
-}
-
-/// True when `path` still names the file `file` has open (a lock taken on a
-/// file another claim has since removed is no claim of the folder).
-fn still_named(file: &File, path: &Path) -> bool {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::MetadataExt;
-        match (file.metadata(), std::fs::metadata(path)) {
-            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
-            _ => false,
-        }
-    }
-    #[cfg(not(unix))]
-    {
-        let _ = (file, path);
-        true
-    }
-}
-
-impl FolderLock {
-    /// The claimed folder.
-    pub fn dir(&self) -> &Path {
-        &self.dir
-    }
-}
-
-/// How long a claim waits for a lock that looks held before refusing the
-/// folder ([`claim`]): a fork–exec window is microseconds to milliseconds
-/// even on a loaded machine; a sweep or merge holding the folder holds it
-/// for its whole run.
-pub(crate) const LOCK_WAIT: std::time::Duration = std::time::Duration::from_millis(500);
-
-/// The refusal of a folder another sweep or merge holds.
-fn in_use(dir: &Path, holder: &str) -> Error {
-    Error::invalid(
-        "--out",
-        dir.display(),
-        format!(
-            "is in use by another sweep or merge running now ({holder}): wait for it to \
-             finish, or use another folder"
-        ),
-    )
-}
-
-/// Claim `dir` for one sweep or merge (creating it), or refuse if another
-/// claim holds it: first in this process (`CLAIMED`), then the
-/// operating system's lock on `sweep.lock`.
+/// Claim `dir` for one sweep (creating it and its `runs/`), or refuse if
+/// another command holds it (`crate::study::lock::claim_folder`).
 pub fn claim(dir: &Path) -> Result<FolderLock> {
-    std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
-    let canonical = dir.canonicalize().map_err(|e| Error::io(dir, e))?;
-    {
-        let mut held = CLAIMED.lock().unwrap_or_else(|p| p.into_inner());
-        if held.contains(&canonical) {
-            return Err(in_use(
-                dir,
-                &format!("in this process, {}", std::process::id()),
-            ));
-        }
-        held.push(canonical.clone());
-    }
-    // from here the claim is this process's: a failure below gives it back
-    let path = dir.join(LOCK_FILE);
-    // a lock taken on a file its holder removed as it let go: open anew
-    for _ in 0..CLAIM_TRIES {
-        let file = claim_once(dir, &path).inspect_err(|_| unclaim(&canonical))?;
-        if still_named(&file, &path) {
-            return Ok(FolderLock {
-                dir: dir.to_path_buf(),
-                canonical,
-                _file: file,
-            });
-        }
-        // the file was removed under us: closing it lets go of nothing
-    }
-    unclaim(&canonical);
-    Err(Error::invalid(
-        "--out",
-        dir.display(),
-        "its sweep.lock keeps being replaced by other sweeps or merges: wait for them to finish, or use another folder",
-    ))
+    claim_as(dir, "taut sweep")
 }
 
-/// Claims [`claim`] makes before giving up on a folder whose lock file
-/// keeps being removed under it (each removal is a claim that finished).
-const CLAIM_TRIES: usize = 20;
-
-/// Open `sweep.lock` and take its lock (one try of [`claim`]).
-fn claim_once(dir: &Path, path: &Path) -> Result<File> {
-    let path = path.to_path_buf();
-    let mut file = OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .read(true)
-        .write(true)
-        .open(&path)
-        .map_err(|e| Error::io(&path, e))?;
-    // A lock just released can look held for a moment: a thread of this
-    // process that forks a child (std::process::Command) duplicates every
-    // open descriptor until the child's exec closes it, and the lock lives
-    // while any duplicate does. Waiting up to LOCK_WAIT for that to pass
-    // tells such a moment from a sweep that really holds the folder (a run
-    // takes far longer).
-    let deadline = std::time::Instant::now() + LOCK_WAIT;
-    let mut attempt = file.try_lock();
-    while matches!(attempt, Err(TryLockError::WouldBlock)) && std::time::Instant::now() < deadline {
-        std::thread::sleep(std::time::Duration::from_millis(10));
-        attempt = file.try_lock();
-    }
-    match attempt {
-        Ok(()) => {}
-        Err(TryLockError::WouldBlock) => {
-            // a line or two ("process N"): read no more than a line's worth
-            let holder = crate::input::read_text(&path, "a lock file", 256).unwrap_or_default();
-            return Err(in_use(
-                dir,
-                holder.trim().lines().next().unwrap_or("its lock is held"),
-            ));
-        }
-        Err(TryLockError::Error(e)) => return Err(Error::io(&path, e)),
-    }
-    // who holds it, for a person looking at the folder (the lock itself is the OS's)
-    file.set_len(0).map_err(|e| Error::io(&path, e))?;
-    writeln!(file, "process {}", std::process::id()).map_err(|e| Error::io(&path, e))?;
-    Ok(file)
+/// [`claim`] for the command `command` (`taut merge` claims its folder as a
+/// sweep's).
+pub(crate) fn claim_as(dir: &Path, command: &str) -> Result<FolderLock> {
+    std::fs::create_dir_all(dir.join("runs")).map_err(|e| Error::io(dir, e))?;
+    crate::study::lock::claim_folder(dir, command)
 }
 
 /// The text of `sweep.json` for a spec.
@@ -372,7 +222,7 @@ pub(crate) fn check_no_strays(dir: &Path, spec: &SweepSpec) -> Result<()> {
 /// the shard does not run: the whole sweep (a merged folder, an unsharded
 /// run) or another shard's points. The shard would clear the folder's
 /// tables and maps and write tables of its own points only, with nothing
-/// to say they are a part (issue 41). A shard's own folder, fresh or
+/// to say they are a part. A shard's own folder, fresh or
 /// holding its own points (a resumed shard), is accepted.
 pub(crate) fn check_shard(dir: &Path, spec: &SweepSpec, shard: Option<super::Shard>) -> Result<()> {
     let Some(shard) = shard else {
@@ -449,7 +299,7 @@ pub(crate) fn read_spec(dir: &Path) -> Result<SweepSpec> {
 /// record checked against the sweep, a point run in two shards the same in
 /// both. `out` is claimed for the merge.
 pub fn merge(shards: &[PathBuf], out: &Path) -> Result<(SweepSpec, Vec<SweepRecord>)> {
-    merge_into(&claim(out)?, shards)
+    merge_into(&claim_as(out, "taut merge")?, shards)
 }
 
 /// [`merge`] into a folder the caller has claimed (and holds while it

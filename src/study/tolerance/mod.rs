@@ -74,6 +74,14 @@ use results::estimate_results;
 /// a run nobody waits for.
 pub(crate) use super::cost::MAX_DOF_STEPS;
 
+/// Check what [`tolerance_run`] checks before its first run (the
+/// tolerance, the scene with its overrides), running nothing: a command
+/// refuses bad input before it claims its output folder.
+pub fn check_start(text: &str, overrides: &[String], tol: f64) -> Result<()> {
+    check_tolerance(tol)?;
+    Start::of(text, overrides, &mut Vec::new()).map(|_| ())
+}
+
 /// Run the scene at the resolution that meets `tol` on `quantity`.
 /// `progress(done, total)` after each run (pilots, then the chosen run).
 pub fn tolerance_run(

@@ -89,6 +89,11 @@ pub struct Uncertainty {
     pub notes: Vec<String>,
     /// Wall seconds of the whole family (runs in parallel).
     pub wall_seconds: f64,
+    /// The first divergence of a run of the family, naming the run: then
+    /// nothing is estimated (every quantity is `diverged`), and a command
+    /// that writes the study fails with it (`crate::app::uncertainty`).
+    #[serde(skip)]
+    pub stopped: Option<std::sync::Arc<Error>>,
 }
 
 /// Whether a contact opens or closes in any run of the family (a loss
@@ -142,6 +147,7 @@ pub fn uncertainty(
     let qs = quantities();
     let mut values: Vec<Vec<Option<f64>>> = Vec::with_capacity(outs.len());
     let mut stopped: Option<String> = None;
+    let mut first_divergence: Option<Error> = None;
     for (m, out) in family.iter_mut().zip(outs) {
         match out {
             Ok(o) => {
@@ -161,6 +167,9 @@ pub fn uncertainty(
                     m.dt
                 );
                 stopped.get_or_insert_with(|| format!("{run}: {e}"));
+                if first_divergence.is_none() {
+                    first_divergence = Some(e.in_run(&format!("the family's {run}")));
+                }
                 values.push(vec![None; qs.len()]);
             }
             Err(e) => {
@@ -238,5 +247,6 @@ pub fn uncertainty(
         quantities,
         notes,
         wall_seconds: start.elapsed().as_secs_f64(),
+        stopped: first_divergence.map(std::sync::Arc::new),
     })
 }
