@@ -132,7 +132,7 @@ pub struct ReportSummary {
     /// Each file left out of the page, with the reason (a symbolic link,
     /// not a regular file, too large, not UTF-8, not an SVG).
     pub left_out: Vec<String>,
-    /// The folders shown as incomplete (marked [`INCOMPLETE_FILE`]).
+    /// The folders shown as incomplete (marked by an `INCOMPLETE` file).
     pub incomplete: Vec<PathBuf>,
 }
 
