@@ -40,6 +40,13 @@ fn short() -> Vec<String> {
     ]
 }
 
+/// One name, one column.
+fn assert_unique(names: &[&str]) {
+    for (i, n) in names.iter().enumerate() {
+        assert!(!names[..i].contains(n), "column {n} twice: {names:?}");
+    }
+}
+
 #[test]
 fn a_registered_quantity_is_in_every_table() {
     let q = register();
@@ -73,7 +80,22 @@ fn a_registered_quantity_is_in_every_table() {
     .unwrap();
     let t = taut::report::compare_rows(&c);
     assert!(t.names().contains(&name), "{:?}", t.names());
+    assert_unique(&t.names());
     assert_eq!(c.rows[0].quantities.get(q), Some(value));
+
+    // precision's table: the quantity, and its own steps and dofs once
+    let p = taut::study::precision::precision(
+        REFERENCE,
+        &short(),
+        &[taut::scene::Formulation::Lagrange],
+        2,
+        2,
+        &mut |_, _| {},
+    )
+    .unwrap();
+    let t = taut::report::precision_rows(&p);
+    assert!(t.names().contains(&name), "{:?}", t.names());
+    assert_unique(&t.names());
 
     // a sweep's records and sweep.csv
     let spec = SweepSpec {
@@ -89,6 +111,7 @@ fn a_registered_quantity_is_in_every_table() {
     assert!(records.iter().all(|r| r.quantities.get(q).is_some()));
     let t = taut::report::sweep_table(&spec, &records);
     assert!(t.names().contains(&name), "{:?}", t.names());
+    assert_unique(&t.names());
 
     // converge: a row per level
     let conv = taut::study::converge::converge(

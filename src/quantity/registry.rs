@@ -14,24 +14,58 @@ use crate::error::{Error, Result};
 /// program (a registration is made once, at start-up).
 static REGISTERED: RwLock<Vec<&'static Quantity>> = RwLock::new(Vec::new());
 
-/// Names a table already uses for a column of its own (not a quantity):
-/// a quantity of that name would make two columns of one name.
-pub const RESERVED: [&str; 16] = [
+/// Names a table or record already uses for a field of its own (not a
+/// quantity): a quantity of that name would make two columns, or two JSON
+/// keys, of one name (the compare, precision and sweep rows flatten their
+/// quantities beside these; converge and uncertainty rows name them).
+pub const RESERVED: [&str; 42] = [
+    // every table
     "method",
     "discretization",
     "formulation",
+    "wall_seconds",
+    "warnings",
+    "error",
+    // compare
+    "loss_set_difference",
+    "max_force_difference",
+    "rms_force_difference",
+    "max_penetration_all_carriers",
+    "min_gap_all_carriers",
+    "force_min_all_carriers",
+    "max_gap_force_product_all_carriers",
+    "droppers",
+    // precision
+    "mesh_level",
+    "step_level",
+    "elements",
+    "modes",
+    "dt",
+    "dof_steps",
+    "force_error",
+    "displacement_error",
+    "loss_fraction_error",
+    "pareto",
+    // a sweep's records and sweep.csv
+    "sweep_id",
     "index",
     "values",
     "speed_ratio",
-    "warnings",
-    "error",
-    "wall_seconds",
+    "force_profile",
+    "loss_profile",
+    "refined",
+    "accuracy",
+    "u_num",
+    "tolerance_met",
+    "estimator",
+    // converge and uncertainty rows
     "level",
-    "elements",
-    "dt",
     "quantity",
     "carrier",
     "value",
+    "h",
+    "unit",
+    // the gate's probes
     "final_probe",
 ];
 

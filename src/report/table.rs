@@ -128,12 +128,16 @@ impl Table {
     /// order) from `rows`' values, one row each: the one place a study
     /// table gains its quantities. A count is written as a count, any
     /// other quantity as a real; a value a row does not have is an empty
-    /// cell.
+    /// cell. A quantity the table already has a column for (precision's
+    /// `steps` and `dofs`) keeps that column: one name, one column.
     pub(crate) fn push_quantities<'a>(
         &mut self,
         rows: impl Iterator<Item = &'a crate::quantity::Values> + Clone,
     ) {
         for q in crate::quantity::offered(crate::quantity::Offer::RUN_TABLES) {
+            if self.get(q.name).is_some() {
+                continue;
+            }
             let column = if q.count {
                 Column::CountOrNone(rows.clone().map(|r| r.get(q).map(|v| v as u64)).collect())
             } else {
