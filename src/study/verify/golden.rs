@@ -1,5 +1,5 @@
 //! The quick matrix's golden error constants: each `pass` row's finest
-//! error, stored in `golden/verify_quick_errors.json`, and a row whose
+//! error, stored in `golden/verify/quick_errors.json`, and a row whose
 //! finest error grows beyond [`GOLDEN_FACTOR`] times its constant flagged.
 //! An order alone misses a defect that keeps it (`modal_exact`'s hold
 //! with its two coefficients swapped keeps order 2 while its force errors
@@ -25,7 +25,7 @@ use super::row::{Status, VerifyRow};
 pub(crate) const GOLDEN_FACTOR: f64 = 1.5;
 
 /// The golden file, from the crate's root.
-pub(crate) const GOLDEN_FILE: &str = "golden/verify_quick_errors.json";
+pub(crate) const GOLDEN_FILE: &str = "golden/verify/quick_errors.json";
 
 /// A row's identity: case, method, discretization, formulation,
 /// supports, variable, quantity.

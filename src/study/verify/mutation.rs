@@ -67,6 +67,10 @@ fn summary(rows: &[VerifyRow], clean: &[VerifyRow]) -> (usize, String) {
 /// `TAUT_DEFECTS=HermiteMass,BatheC1` runs those defects only (the clean
 /// matrix still first); `TAUT_VERIFY_DUMP=dir` writes each matrix's
 /// `verify.csv` under `dir/<defect or clean>/`.
+// (this whole file is the test build's: the attribute below says so to
+// tests/layers.rs, which reads a file's imports up to it, so that the
+// dump's use of the report layer above is a test's)
+#[cfg(test)]
 #[test]
 #[ignore = "the quick matrix thirteen times: about an hour in release (cargo test --release --lib study::verify::mutation -- --ignored --nocapture)"]
 fn the_quick_matrix_flags_every_deliberate_defect() {
