@@ -2,11 +2,12 @@
 
 The study's Fig. 8 (TARGETS T3): `taut.sweep` over speed_ratio = 0.4 … 1.3
 (46 points) at the study-like resolution of docs/reproduction.md (N = 400,
-Δt = 1e-4 s, the reference scene's own). It prints P_l, its in-span part
-and the first loss per speed, checks P_l and the first loss position
-against the study-like column of docs/reproduction.md's "Every run of T3"
-table (each printed there to 3 significant digits), and plots P_l against
-V0/c when matplotlib is installed.
+Δt = 1e-4 s, the reference scene's own). It prints P_l (the time in loss),
+its in-span part and the first loss per speed, checks P_l as the study
+counts it (`loss_fraction_steps`, lost steps over all steps) and the first
+loss position against the study-like column of docs/reproduction.md's
+"Every run of T3" table (each printed there to 3 significant digits), and
+plots P_l against V0/c when matplotlib is installed.
 
     python python/examples/speed_map.py                 # table, check, out/speed_map.png
     python python/examples/speed_map.py --check         # exit 1 unless every row agrees
@@ -66,9 +67,14 @@ def main() -> int:
     t = taut.sweep(SCENE, vary={"speed_ratio": (0.4, 1.3, args.points)})
     doc = documented() if args.points == 46 else {}
     agree = 0
-    print(f"{'V0/c':>6} {'P_l':>10} {'P_l span':>10} {'first loss':>10}  docs/reproduction.md (study-like)")
-    for r, p, ps, x, err in zip(
-        t["speed_ratio"], t["loss_fraction"], t["loss_fraction_span"], t["first_loss_position"], t["error"]
+    print(f"{'V0/c':>6} {'P_l':>10} {'P_l span':>10} {'first loss':>10}  docs/reproduction.md (study-like, P_l in steps)")
+    for r, pt, p, ps, x, err in zip(
+        t["speed_ratio"],
+        t["loss_fraction"],
+        t["loss_fraction_steps"],
+        t["loss_fraction_span"],
+        t["first_loss_position"],
+        t["error"],
     ):
         key = round(float(r), 6)
         note = ""
@@ -79,7 +85,7 @@ def main() -> int:
             same = sig(p) == dp and (sig(x) == dx or (math.isnan(x) and math.isnan(dx)))
             agree += same
             note = f"P_l {dp:g}, first loss {dx:g}: {'same' if same else 'DIFFERS'}"
-        print(f"{r:6.3g} {p:10.4g} {ps:10.4g} {x:10.4g}  {note}")
+        print(f"{r:6.3g} {pt:10.4g} {ps:10.4g} {x:10.4g}  {note}")
     if doc:
         print(f"{agree} of {len(doc)} documented rows reproduced to {DIGITS} significant digits")
 

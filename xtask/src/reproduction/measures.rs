@@ -122,7 +122,8 @@ pub(super) fn measure(spec: &SweepSpec, r: &SweepRecord) -> Point {
     Point {
         values: r.values.clone(),
         ratio,
-        pl: r.loss_fraction(),
+        // the source study counts P_l in steps
+        pl: r.value(&taut::quantity::LOSS_FRACTION_STEPS),
         pl_span,
         first_loss: r.quantities.get(&taut::quantity::FIRST_LOSS_POSITION),
         level,

@@ -59,7 +59,8 @@ pub(super) fn resolution_check(clock: &Clock) -> Vec<Check> {
                 ratio,
                 n,
                 dt,
-                pl: s.loss_fraction,
+                // the source study counts P_l in steps
+                pl: s.loss_fraction_steps,
                 pl_span: lost_span as f64 / steps as f64,
                 first: s.first_loss_position,
                 mean: s.force.mean,
