@@ -17,16 +17,7 @@ const BIN: &str = env!("CARGO_BIN_EXE_taut");
 
 /// Run taut with `args`, returning (exit code, stdout, stderr).
 fn taut(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(BIN)
-        .current_dir(common::crate_root())
-        .args(args)
-        .output()
-        .expect("taut runs");
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
+    common::taut_status(args)
 }
 
 /// Every file of `dir` (not its subfolders) by name, with its bytes.

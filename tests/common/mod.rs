@@ -30,6 +30,17 @@ pub fn taut_bin(args: &[&str]) -> Output {
         .expect("the taut binary runs")
 }
 
+/// Run the `taut` binary from the repository root: (exit code, stdout,
+/// stderr), the exit code -1 when a signal ended it.
+pub fn taut_status(args: &[&str]) -> (i32, String, String) {
+    let o = taut_bin(args);
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
 /// Run the `taut` binary, asserting success; returns stdout.
 pub fn taut_ok(args: &[&str]) -> String {
     let o = taut_bin(args);
