@@ -23,6 +23,12 @@ mod reading;
 pub mod registry;
 mod values;
 
+/// The generation of the quantities' definitions. It changes when a
+/// definition does (2: time statistics over [0, T], P_l a located time, a
+/// physical support zone), so that what was stored under another — a
+/// sweep's records — is never mixed with what is computed now.
+pub const DEFINITIONS: u32 = 2;
+
 pub use builtin::*;
 pub use definition::{ErrorKind, Offer, Quantity, Window};
 pub use reading::Reading;

@@ -8,7 +8,7 @@
 //!   process, so a sweep killed with `kill -9` leaves nothing stale to clear:
 //!   resuming it just works.
 //! * **Every record stamped.** Each `runs/NNNNNN.json` carries the identity of
-//!   its sweep (`sweep_id`, a hash of `sweep.json`), its grid index and its
+//!   its sweep (`sweep_id`, a hash of `sweep.json` and the quantities' definitions), its grid index and its
 //!   axis values. A record is used only when all three match the folder's
 //!   sweep and the file it sits in; anything else (a record of another sweep,
 //!   of an older taut, under the wrong index) is refused with its path, on
@@ -41,12 +41,21 @@ pub(crate) fn spec_text(spec: &SweepSpec) -> String {
     serde_json::to_string_pretty(spec).expect("a sweep spec is plain data") + "\n"
 }
 
-/// A sweep's identity: FNV-1a (64 bit) of its `sweep.json` text, in hex.
-/// It tells records of different sweeps apart (not a defence against forgery).
+/// A sweep's identity: FNV-1a (64 bit) of its `sweep.json` text and the
+/// generation of the quantities' definitions
+/// ([`crate::quantity::DEFINITIONS`]), in hex. It tells records of
+/// different sweeps apart, and records made under other definitions (a
+/// folder resumed by a newer taut: they are refused by name, never mixed
+/// in); not a defence against forgery.
 pub(crate) fn sweep_id(spec: &SweepSpec) -> String {
     const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
     const PRIME: u64 = 0x0100_0000_01b3;
-    let h = spec_text(spec)
+    let text = format!(
+        "{}definitions {}\n",
+        spec_text(spec),
+        crate::quantity::DEFINITIONS
+    );
+    let h = text
         .bytes()
         .fold(OFFSET, |h, b| (h ^ u64::from(b)).wrapping_mul(PRIME));
     format!("{h:016x}")
