@@ -40,10 +40,16 @@ fn short() -> Vec<String> {
     ]
 }
 
-/// One name, one column.
+/// One name, one column; and every column that is not a quantity is one
+/// the registry reserves, so that no quantity a program registers can
+/// take its name.
 fn assert_unique(names: &[&str]) {
     for (i, n) in names.iter().enumerate() {
         assert!(!names[..i].contains(n), "column {n} twice: {names:?}");
+        assert!(
+            quantity::by_name(n).is_some() || quantity::registry::RESERVED.contains(n),
+            "column {n} is neither a quantity nor reserved"
+        );
     }
 }
 

@@ -32,5 +32,5 @@ pub const DEFINITIONS: u32 = 2;
 pub use builtin::*;
 pub use definition::{ErrorKind, Offer, Quantity, Window};
 pub use reading::Reading;
-pub use registry::{all, by_name, offered, register};
+pub use registry::{all, by_name, estimated, offered, register};
 pub use values::{Values, values};

@@ -86,6 +86,16 @@ pub fn offered(offer: Offer) -> Vec<&'static Quantity> {
     all().into_iter().filter(|q| q.offered_in(offer)).collect()
 }
 
+/// The quantities `offer` offers that have an error to estimate (not a
+/// count of the discretization itself): those a study gives an error bar
+/// or an estimate.
+pub fn estimated(offer: Offer) -> Vec<&'static Quantity> {
+    offered(offer)
+        .into_iter()
+        .filter(|q| q.error != super::definition::ErrorKind::Exact)
+        .collect()
+}
+
 /// The quantity called `name`.
 pub fn by_name(name: &str) -> Option<&'static Quantity> {
     all().into_iter().find(|q| q.name == name)

@@ -265,7 +265,6 @@ pub(crate) struct ContactAccumulator {
     prev_gap: [f64; 2],
     lost: usize,
     /// Lost steps in a support zone.
-    lost_support: usize,
     /// (x, t) at the row before the first lost step of the open interval.
     open: Option<(f64, f64)>,
     /// Steps of the open interval, and whether one lay in a support zone.
@@ -319,7 +318,6 @@ impl ContactAccumulator {
             prev_t: 0.0,
             prev_gap: [0.0; 2],
             lost: 0,
-            lost_support: 0,
             open: None,
             open_steps: 0,
             open_at_support: false,
@@ -447,7 +445,6 @@ impl ContactAccumulator {
             } else {
                 self.lost += 1;
                 let at_support = self.geometry.in_support_zone(s.x);
-                self.lost_support += usize::from(at_support);
                 if self.open.is_none() {
                     self.open = Some((self.prev_x, self.prev_t));
                     self.open_steps = 0;

@@ -5,7 +5,7 @@ use super::accuracy::{PilotRun, ResultEstimate};
 use super::error_model::{
     ErrorModel, LadderFit, LadderStatus, MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER_CONTACT,
 };
-use crate::quantity::{ErrorKind, Offer, Quantity, offered};
+use crate::quantity::{Offer, Quantity, estimated};
 use crate::run::RunOutput;
 
 /// Every scalar result that gets an estimate, in print order: the
@@ -13,10 +13,7 @@ use crate::run::RunOutput;
 /// ([`Offer::TOLERANCE`]; names and units there), less any exact for its
 /// discretization.
 pub fn results() -> Vec<&'static Quantity> {
-    offered(Offer::TOLERANCE)
-        .into_iter()
-        .filter(|q| q.error != ErrorKind::Exact)
-        .collect()
+    estimated(Offer::TOLERANCE)
 }
 
 /// The values of [`results`] for one carrier of a run, in that order

@@ -5,17 +5,14 @@
 //! A quantity exact for its discretization (a count of steps) has no error
 //! to estimate and is never among them.
 
-use crate::quantity::{ErrorKind, Offer, Quantity, offered};
+use crate::quantity::{Offer, Quantity, estimated};
 use crate::run::RunOutput;
 
 pub use crate::quantity::peak;
 
 /// The quantities given an error bar, in the registry's order.
 pub fn quantities() -> Vec<&'static Quantity> {
-    offered(Offer::UNCERTAINTY)
-        .into_iter()
-        .filter(|q| q.error != ErrorKind::Exact)
-        .collect()
+    estimated(Offer::UNCERTAINTY)
 }
 
 /// The quantity called `name`, when it is given an error bar.
