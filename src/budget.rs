@@ -3,7 +3,7 @@
 //! Validation refuses a run whose own estimate is above
 //! [`crate::resolve::MEMORY_BUDGET_BYTES`], but a study runs several at once:
 //! a modal sweep at N = 3200 on `--threads 4` put four 1.3 GB eigenproblems
-//! in flight and aborted on a failed allocation (issue 25). So every run
+//! in flight and aborted on a failed allocation. So every run
 //! ([`crate::run`], [`crate::run_batch`]) reserves its estimate
 //! ([`crate::Resolved::memory_estimate`]) here before it allocates, and
 //! gives it back when it ends. A reservation waits while the runs in flight

@@ -1,5 +1,5 @@
 //! The J exact mode shapes at a moving point, without a transcendental call
-//! per mode (issue 24, MODEL §9.3): what `integrator.method = "modal_exact"`
+//! per mode (MODEL §9.3): what `integrator.method = "modal_exact"`
 //! evaluates every step, for every carrier, on a `galerkin` basis.
 //!
 //! [`super::ModeShapes::values_into`] costs one `sin_cos` (and, off

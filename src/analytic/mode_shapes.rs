@@ -1117,7 +1117,7 @@ mod tests {
         }
     }
 
-    /// Issue 25: with clamped ends and a boundary layer thinner than ε L
+    /// A regression: with clamped ends and a boundary layer thinner than ε L
     /// (μL ≳ 4.5·10¹⁵, EI ≲ 10⁻²⁴ N·m² on the reference span) the roots
     /// were bisected on the rounded sin βL and landed a quarter period off.
     /// Now every root and clamp holds to round-off down to the refusal at

@@ -214,7 +214,7 @@ impl ClampedPinnedModes {
     /// whose rounding (ε jπ) times α outweighs the `β cos βL` term once
     /// `αL ≳ 1/ε`: the sign at the bracket's end was then noise and the
     /// root could land a quarter period off (EI = 10⁻²⁶ N·m² on the
-    /// reference span: clamped–clamped Galerkin forces 9 % low, issue 25).
+    /// reference span: clamped–clamped Galerkin forces 9 % low).
     /// In δ the terms are O(α δ) and O(β) with no cancellation, so δ ≈ β/α
     /// is found to its own relative round-off for any αL.
     pub fn phase(&self, j: usize) -> f64 {

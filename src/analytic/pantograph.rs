@@ -1,5 +1,5 @@
 //! A two- or three-mass lumped pantograph pressed by its static uplift
-//! against a rigid surface (issue 27, docs/lines.md L9–L11): the independent
+//! against a rigid surface (docs/lines.md L9–L11): the independent
 //! reference for multi-mass carriers (MODEL §10), built before them.
 //!
 //! The model is the lumped-mass pantograph used in this field (the

@@ -1,7 +1,7 @@
 //! Free waves on an infinite string or tensioned beam resting on identical
 //! supports every `d` (Floquet–Bloch), their pass and stop bands, and the
 //! natural frequencies of a finite line of N such spans with pinned ends
-//! (issue 27, docs/lines.md L4–L8): the independent reference for
+//! (docs/lines.md L4–L8): the independent reference for
 //! multi-span lines, built before them.
 //!
 //! A support is rigid (v = 0) or elastic: a spring k to ground and a point

@@ -1,5 +1,5 @@
 //! Rayleigh damping `C = α M + β K` (MODEL §10) and the damped free
-//! vibration of one mode (issue 27, docs/lines.md L12–L13): the independent
+//! vibration of one mode (docs/lines.md L12–L13): the independent
 //! reference for the wire's damping, built before it.
 //!
 //! With mass-normalized modes (φⱼᵀMφⱼ = 1, φⱼᵀKφⱼ = ωⱼ²), C is diagonal in

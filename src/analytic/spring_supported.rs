@@ -1,5 +1,5 @@
 //! Static deflection of a string or a pinned–pinned tensioned beam resting on
-//! discrete vertical springs, under a point load (issue 27, docs/lines.md
+//! discrete vertical springs, under a point load (docs/lines.md
 //! L1–L3): the independent reference for point attachments (MODEL §10) and
 //! for the supports of a multi-span line, built before those features.
 //!

@@ -54,7 +54,7 @@ impl ContactProblem {
 /// What is saved as `failed_contact_step_N.json` in place of a problem that
 /// cannot be solved again (one whose numbers are not all finite, which
 /// JSON cannot hold): why, and what the problem was. `taut replay` of it
-/// says why rather than failing to read it (issue 41).
+/// says why rather than failing to read it.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct NotReplayable {

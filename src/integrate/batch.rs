@@ -1,5 +1,5 @@
-//! Batched stepping: runs that share their effective matrix step together
-//! (issue: studies at the speed of the hardware).
+//! Batched stepping: runs that share their effective matrix step together,
+//! so that a study runs at the speed of the hardware.
 //!
 //! In a sweep over speed, mass, spring, preload or carrier count every run
 //! has the same effective matrix A = (1 − α_m)M + (1 − α_f)βΔt²K (same beam,

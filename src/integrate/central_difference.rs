@@ -25,7 +25,7 @@
 //! the gap, the carrier's motion over the step included, so a contact held
 //! at ġ = 0 keeps its gap to round-off. (The convective rate at t_{n+1},
 //! s(r_{n+1}ᵀv_{n+1/2} + V r'ᵀd_{n+1}) − q̇_{n+1/2}, mixes two times: the gap
-//! drifted at O(Δt) and opened, issue 38.)
+//! drifted at O(Δt) and opened.)
 //!
 //! The state's `v` is the half-step velocity v_{n+1/2} (the method's own),
 //! and the force recorded at t_{n+1} is λ_n, the force that closed the gap

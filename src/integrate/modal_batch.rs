@@ -1,4 +1,4 @@
-//! `modal_exact` runs stepped together (issue 24): runs that share a basis
+//! `modal_exact` runs stepped together: runs that share a basis
 //! and Δt — a sweep over speed, mass, spring, preload, carriers — build the
 //! basis, its exact step maps and its fast-shape tables once
 //! ([`ModalCoefs`], shared by reference) and step in lockstep.

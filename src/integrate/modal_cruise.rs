@@ -1,5 +1,5 @@
 //! The mode shapes at a carrier moving at constant speed, advanced by a
-//! fixed rotation a step (`modal_exact`'s cruise; issue 24, MODEL §9.3).
+//! fixed rotation a step (`modal_exact`'s cruise; MODEL §9.3).
 //!
 //! Outside the clamped ends' boundary layers every mode shape of a
 //! `galerkin` basis is the real part of a phasor,

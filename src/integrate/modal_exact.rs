@@ -1,5 +1,5 @@
 //! `modal_exact`: exact propagation of every mode of a diagonal basis over
-//! the step (MODEL §9.3; issue 24), on `mesh.kind = "galerkin"` or `"modal"`.
+//! the step (MODEL §9.3), on `mesh.kind = "galerkin"` or `"modal"`.
 //!
 //! In a mass-normalized diagonal basis each coordinate is an undamped
 //! oscillator `η̈_j + ω_j² η_j = f_j(t)` (MODEL §1; with Rayleigh damping,

@@ -17,7 +17,7 @@
 //!    O(n p J)), which makes Φ mass-normalized: `Φᵀ M Φ = Yᵀ Y = I`;
 //! 5. the lowest min(J, n/8) pairs refined by two steps of subspace
 //!    iteration with the banded LDLᵀ of K + σM and Rayleigh–Ritz
-//!    (`refine`; issue 22): steps 1–4 are backward stable in ‖C‖ = ω²_max
+//!    (`refine`): steps 1–4 are backward stable in ‖C‖ = ω²_max
 //!    ∝ h⁻⁴, so the low eigenvectors they give lose digits as the mesh is
 //!    refined (measured against the exact FE modes of a pinned–pinned mesh,
 //!    J = 32: 3.1·10⁻⁶ at N = 128, 6.2·10⁻⁵ at 256, 3.2·10⁻³ at 512, O(1)
@@ -60,7 +60,7 @@
 //!
 //! faer's parallel eigensolver splits its work by the size of the pool it
 //! runs on, and so rounds differently on 1, 2 or 4 threads: a modal run gave
-//! different bytes under `--threads 1|2|4` or `taskset` (issue 25). The solve
+//! different bytes under `--threads 1|2|4` or `taskset`. The solve
 //! is therefore always sequential ([`faer::Par::Seq`]), whatever the pool or
 //! the machine's core count; a study's parallelism is across its runs.
 //! `tests/reliability.rs` compares a modal sweep's bytes on 1, 2 and 4
@@ -874,7 +874,7 @@ mod tests {
     /// pinned–pinned mesh ([`pinned_mode`]), in the M-norm of a
     /// mass-normalized shape. The dense solve alone gave up to 6.2·10⁻⁵ on
     /// 256 elements with J = 32, and 3.1·10⁻⁶ on 128 elements with all 256
-    /// modes kept (issue 22); refined, 3.9·10⁻¹⁰ and 1.4·10⁻¹⁰
+    /// modes kept; refined, 3.9·10⁻¹⁰ and 1.4·10⁻¹⁰
     /// (`accuracy_table`). 10⁻⁸ leaves a factor of 25 over the refined
     /// figures and fails the dense ones by more than 300×.
     const MODE_TOL: f64 = 1e-8;
@@ -895,7 +895,7 @@ mod tests {
         }
     }
 
-    /// The before/after table of the module doc (issue 22): the dense
+    /// The before/after table of the module doc: the dense
     /// solve's pairs and the refined ones on the space case's beam,
     /// `cargo test --release --lib model::eigen::tests::accuracy_table --
     /// --ignored --nocapture`.
@@ -993,7 +993,7 @@ mod tests {
 
 #[cfg(test)]
 mod determinism {
-    //! The same eigenpairs, bit for bit, on any pool size (issue 25): faer's
+    //! The same eigenpairs, bit for bit, on any pool size: faer's
     //! parallel solver rounded differently on 1, 2 and 4 threads from 50
     //! elements up (measured before the fix: 50, 200 and 400 elements all
     //! differed), so a 200-element beam in pools of 1, 2 and 4 threads fails

@@ -186,7 +186,7 @@ pub(crate) fn check_elements(grading: Grading, elements: usize) -> Result<()> {
 /// mesh taut allows (10⁶ elements graded 1000 : 1) has h_min ≈ 7·10⁻⁹ L, so
 /// a shorter element comes only from a `point` grading at the very end of
 /// the span, where the element matrices (∝ h⁻³) lose their precision and
-/// then overflow (`grading_at = 1e-300` gave a NaN pivot, issue 25).
+/// then overflow (`grading_at = 1e-300` gave a NaN pivot).
 pub(crate) const MIN_ELEMENT_FRACTION: f64 = 1e-10;
 
 /// The shortest element of `Mesh::new(length, elements, grading)`, m,

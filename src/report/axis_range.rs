@@ -6,7 +6,7 @@
 //! (1e-155 … 1e155: hi/lo overflows), a linear axis whose width overflows
 //! (−9e307 … 9e307), or an end that is infinite or zero on a log axis. A
 //! sweep over `carrier.stiffness=1e100:1e300` with `--log` hung in it after
-//! writing its tables, never releasing its folder (issue 25). Every plot of
+//! writing its tables, never releasing its folder. Every plot of
 //! taut (`force.svg`, `compare.svg`, `converge.svg`, `precision.svg` and the
 //! sweep maps) therefore passes each of its axes through [`drawable`]
 //! first; an axis that fails gets [`write_note`] in place of the plot, which

@@ -41,7 +41,7 @@ pub(crate) struct Panel {
 /// The label of a run's x axis: x_m/L, or t when every carrier is
 /// stationary ([`force_series`] reads the values from the history as it
 /// decimates; a copy of a column here was 8 bytes a row beyond the memory
-/// estimate, issue 25).
+/// estimate).
 pub(crate) fn abscissa_label(sc: &Resolved) -> &'static str {
     if sc.carriers.iter().all(|c| c.motion.is_stationary()) {
         "time t (s)"

@@ -3,7 +3,7 @@
 //!
 //! Written a line at a time from the recorded series: a field of 10⁸
 //! values is never copied into columns (a copy of the time and x of every
-//! row took four times the series' memory, issue 41).
+//! row took four times the series' memory).
 
 use std::io::Write;
 use std::path::Path;

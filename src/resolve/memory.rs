@@ -54,7 +54,7 @@ pub const MEMORY_BUDGET_BYTES: u64 = 2 << 30;
 /// Largest `history.csv` a run may plan to write, bytes (4 GiB), by the
 /// estimate [`CSV_BYTES_PER_VALUE`] × values per row × rows: like the memory
 /// budget a fixed number, so a scene is accepted the same way everywhere.
-/// A 4.35·10⁷-row run wrote a 4.15 GB file before it (issue 25).
+/// A 4.35·10⁷-row run wrote a 4.15 GB file before this bound.
 pub(crate) const OUTPUT_BUDGET_BYTES: u64 = 4 << 30;
 
 /// Bytes of one value of `history.csv`, counted generously: a value is at
@@ -119,7 +119,7 @@ pub(crate) const MAX_FILTERED_LINES: usize = 10;
 
 /// Rows of the history formatted at a time by `report::write_history`: a
 /// few MB of columns, however long the history (building the whole table
-/// copied the history once more: 1 GB more at 2·10⁷ rows, issue 25).
+/// copied the history once more: 1 GB more at 2·10⁷ rows).
 /// Defined here, with the memory plan that counts it (`csv_block_rows`).
 pub const HISTORY_ROWS_AT_A_TIME: usize = 1 << 16;
 

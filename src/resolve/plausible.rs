@@ -3,7 +3,7 @@
 //!
 //! A range check "> 0" lets through values no run can use:
 //! `dropper.0.stiffness = 5e-324` passed, and the run failed at step 1 with
-//! a singular Delassus matrix that named no key (issue 41). Every lumped
+//! a singular Delassus matrix that named no key. Every lumped
 //! element enters the step matrix beside the wire's own entries, whose
 //! scale is that of one element at the run's step,
 //!

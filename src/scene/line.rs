@@ -1,5 +1,5 @@
-//! `[line]`: a multi-span line generated from a few keys (issue 27;
-//! docs/scene.md#line, docs/lines.md#the-line-generator-g1g7).
+//! `[line]`: a multi-span line generated from a few keys
+//! (docs/scene.md#line, docs/lines.md#the-line-generator-g1g7).
 //!
 //! The table is expanded into plain scene keys **at the document level**
 //! (a TOML tree → TOML tree rewrite, [`expand_line`]), where every scene

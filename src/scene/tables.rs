@@ -4,7 +4,7 @@
 //! derive, `beam.damping = [1.0, 2.0]` became `{ mass = 1, stiffness = 2 }`,
 //! `attachment = [[10.0, 1e4]]` an attachment at x = 10 m of stiffness
 //! 1e4 N/m, `integrator = ["newmark"]` the Newmark method — silently, and
-//! in an order no document gave (issue 41). `Strict` wraps a deserializer
+//! in an order no document gave. `Strict` wraps a deserializer
 //! so that every struct it reads, at any depth, refuses a sequence with the
 //! form it expects (its keys); everything else reads as before. The scene
 //! (`super::scene_from_tree`) and the `[line]` table are read through it.

@@ -1,6 +1,6 @@
 //! `taut compare`: the same scene under several contact formulations, time
-//! integrators and space discretizations, with agreement on contact loss as the headline measure
-//! (issues: formulations side by side, methods side by side).
+//! integrators and space discretizations, with agreement on contact loss as the headline measure:
+//! formulations side by side, methods side by side.
 //!
 //! Every combination runs on the same scene text with the same overrides
 //! plus the method's `[integrator]` ([`MethodFactory::integrator`]), with

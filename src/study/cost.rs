@@ -4,8 +4,8 @@
 //! A study's runs are each a pure function of their resolved scene, so
 //! their work is known before any runs: unknowns × steps (DOF-steps) per
 //! run, summed. `taut converge --ratio 20 --levels 4` from 50 elements is
-//! about 3·10¹² DOF-steps (days on one core) and used to start silently
-//! (issue 25). Every study (`compare`, `converge`, `precision`, `sweep`)
+//! about 3·10¹² DOF-steps (days on one core) and used to start silently.
+//! Every study (`compare`, `converge`, `precision`, `sweep`)
 //! now builds an [`Estimate`] and calls [`Estimate::check`], which refuses
 //! above `MAX_DOF_STEPS` with the estimate and what to change, unless
 //! the caller said yes; `run --tolerance` refuses above the same bound

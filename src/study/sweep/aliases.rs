@@ -1,7 +1,7 @@
 //! One value per key: the scene values an axis sets, so that two axes (of
 //! a grid, or two columns of a list of points) that set one value are
 //! refused rather than one silently winning while a row records the
-//! other's value (issue 41).
+//! other's value.
 //!
 //! An axis's key is read as `--set` reads it, against the scene's tree
 //! (the text with the fixed overrides): an array of one entry may be

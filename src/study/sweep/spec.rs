@@ -275,7 +275,7 @@ impl SweepSpec {
 /// The most keys a list of points may set (columns of a `--points` file,
 /// keys of Python's points): each is set on every point's scene, and no
 /// study varies more than a few dozen scene values; a wider file is not a
-/// list of scene keys (40 000 columns took minutes to refuse, issue 41).
+/// list of scene keys (40 000 columns took minutes to refuse).
 pub const MAX_POINT_KEYS: usize = 1000;
 
 /// The most points a sweep may have: 100 000 runs is days of work at the

@@ -575,7 +575,7 @@ fn space_dt(c: &Combo) -> f64 {
 /// Levels of a J ladder: 4 (J = 4 … 32), 3 on a free–free modal basis,
 /// whose J = 32 level reaches 2.8e-11 m, where the time error at the
 /// ladder's Δt made 45 % of it (measured, generalized-α) once the basis's
-/// modes were refined (issue 22): its order is that of J = 4 … 16.
+/// modes were refined: its order is that of J = 4 … 16.
 fn free_free_modal_levels(space: Space, c: &Combo) -> usize {
     if space == Space::Modal && c.supports == (Support::Free, Support::Free) {
         3
