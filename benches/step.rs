@@ -36,7 +36,7 @@
 //! Group `run`: one complete `taut::run` of the reference scene as shipped
 //! (400 elements, 6000 steps, recording included), for context.
 //!
-//! Group `modal_exact` (issue 24): one complete run of the reference case
+//! Group `modal_exact`: one complete run of the reference case
 //! at V0/c = 0.9, Δt = 6.25e-5 s (7115 steps, recording every step),
 //! reported as steps per second: `modal_exact` on `galerkin` J = 400 and
 //! 800, and generalized-α on Hermite N = 1600 for the per-step ratio (the

@@ -227,7 +227,7 @@ fn main() -> Result<()> {
     // the series is the mesh's and does not move with Δt, and converge says
     // so (`regime`: limited by the mesh). The order of successive
     // differences (`observed_order`) is then the discrete model's, not the
-    // error's: print both, never the one without the other (issue 22)
+    // error's: print both, never the one without the other
     let moving_force = include_str!("../scenes/moving_force_beam.toml");
     let (studies, skipped) = converge_methods(
         moving_force,

@@ -1,4 +1,4 @@
-//! Where a `modal_exact` step's time goes (issue 24): the whole step, the
+//! Where a `modal_exact` step's time goes: the whole step, the
 //! fast shapes, the direct shapes, and a Hermite step for scale.
 //!
 //! `cargo run --release --example modal_profile [-- J [N]]` (default J = 800

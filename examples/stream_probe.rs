@@ -1,5 +1,5 @@
-//! What a `modal_exact` step's memory traffic alone costs (issue 24,
-//! docs/performance.md "Fewer bytes a step"): J = 800 modes, arrays of J
+//! What a `modal_exact` step's memory traffic alone costs
+//! (docs/performance.md "Fewer bytes a step"): J = 800 modes, arrays of J
 //! doubles read and written as the step's passes read and write theirs,
 //! with almost no arithmetic (a few adds per vector), so the time is the
 //! traffic's. If a step takes about what its streams take here, the step

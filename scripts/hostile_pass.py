@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The hostile pass of issue 25: scripted bad input against the `taut` binary.
+"""A hostile pass: scripted bad input against the `taut` binary.
 
 Every case runs under a time limit and an address-space limit (`ulimit -v`)
 and is judged by what came out:
@@ -14,7 +14,7 @@ and is judged by what came out:
 * thread dependence: a sweep whose `sweep.csv` differs between --threads 1
   and 2 (modal and Hermite).
 
-Families (the classes of issue 25 and a fuzz):
+Families (the failure classes of the second round and a fuzz):
   kinds      every bundled scene x every mesh kind x every method;
   set-fuzz   every scalar key of every bundled scene set to hostile values
              (0, -1, 1e-300, -1e-300, 1e300, 1.7e308, nan, inf, a 100 kB
@@ -31,7 +31,7 @@ Families (the classes of issue 25 and a fuzz):
              run pinned to one CPU (`taskset -c 0`) against the same run
              unpinned (skipped, saying so, without taskset).
 
-Families of issue 41 (round three), each case judged as above and, where
+Families of the third round, each case judged as above and, where
 its name is in `must`, by the key its error must name:
   budget     every key that sizes a run's memory or files (lines, droppers,
              attachments, probes, fields, snapshots, clarabel's solvers):
@@ -211,7 +211,7 @@ def dropper_tables(n: int, length: float) -> str:
 
 
 def round_three(work: Path, must: dict, out) -> list:
-    """The cases of issue 41's classes (module doc)."""
+    """The cases of the third round's classes (module doc)."""
     cases: list = []
     ref = str(ROOT / "scenes" / "reference.toml")
     line = str(ROOT / "scenes" / "line_10_spans.toml")

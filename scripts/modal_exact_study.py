@@ -4,7 +4,7 @@ or generalized-α on Hermite elements (docs/performance.md, "Picking the
 right tool"; docs/discretizations.md).
 
 The reference case at V0/c = 0.9 (`scenes/reference.toml`, cruise
-134.9157 m/s, the case of issue 24) under each route at several
+134.9157 m/s, the case `modal_exact` was built for) under each route at several
 resolutions, each against a fine Hermite run (N = 3200, Δt = 1.25e-5 s,
 generalized-α ρ∞ = 1, the study's method) on the run's own time grid (every
 Δt below divides into 1.25e-5 s):

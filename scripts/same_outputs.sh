@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Byte-identity of two `taut` binaries' outputs (issue 40: a redesign that
+# Byte-identity of two `taut` binaries' outputs (for a redesign that
 # must not move a bit).
 #
 #   scripts/same_outputs.sh OLD_BIN NEW_BIN OUT [--quick] [--no-run]

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Sibling runs at the finest level of every coverage pair: can a noise
 estimate made at the finest level move the coverage–sharpness frontier?
-(issue 37; docs/verification.md, "Can both targets be met at once on this
+(docs/verification.md, "Can both targets be met at once on this
 grid?").
 
 For each of the 129 stored pairs (golden/uncertainty_pairs.jsonl) the
@@ -57,7 +57,7 @@ CASES = {
 # the level parameter's changes of the siblings
 SIBLINGS = (1, 2, -1)
 
-# issue 37's coverage target
+# the coverage target (xtask's COVERAGE_TARGET)
 COVERAGE = 0.95
 
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The Slurm job array of docs/sweeps.md, run for real on a one-node cluster
-# started here (issue 25): slurmctld, slurmd and munged from Debian's
+# started here: slurmctld, slurmd and munged from Debian's
 # packages, on the loopback address only, with their state in a temporary
 # folder. It submits scripts/slurm/t7.sbatch (the docs' script) on a small
 # grid, kills one task mid-run with scancel, resubmits it (its finished runs

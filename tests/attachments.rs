@@ -1,4 +1,4 @@
-//! Point attachments along the beam (issue 27, MODEL §10; docs/lines.md
+//! Point attachments along the beam (MODEL §10; docs/lines.md
 //! "Point attachments"): springs and lumped masses at x_a assembled as
 //! `k_a r_a r_aᵀ` into K and `m_a r_a r_aᵀ` into M, checked against
 //! independent closed forms:

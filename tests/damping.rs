@@ -1,4 +1,4 @@
-//! Damping of the wire (issue 27; docs/lines.md §10.4): Rayleigh damping
+//! Damping of the wire (docs/lines.md §10.4): Rayleigh damping
 //! `C = α M + β K` (`[beam] damping`) and dashpots on attachments
 //! (`[[attachment]] damping`), in every method that carries them, each
 //! checked against an independent closed form:

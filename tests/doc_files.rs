@@ -1,4 +1,4 @@
-//! Every file a doc or a doc comment names is in the repository (issue 39):
+//! Every file a doc or a doc comment names is in the repository:
 //! the docs used to point ~100 times to a physics contract and a targets
 //! page users never see. A name like `docs/lines.md`, `src/run.rs`,
 //! `scenes/reference.toml` or `speed_map.py` in a Markdown page, a Rust

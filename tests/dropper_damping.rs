@@ -1,4 +1,4 @@
-//! Dropper dashpots (issue 27; docs/lines.md eq. D11, D12): a linear dropper's
+//! Dropper dashpots (docs/lines.md eq. D11, D12): a linear dropper's
 //! `damping` c_d puts c_d r_d r_dᵀ in the damping matrix C, as an
 //! `[[attachment]]` dashpot does (r_d = r_c − r_m on the messenger),
 //! checked against

@@ -1,4 +1,4 @@
-//! Droppers (issue 27, MODEL §10; docs/lines.md "Droppers", D1–D10):
+//! Droppers (MODEL §10; docs/lines.md "Droppers", D1–D10):
 //! tension-only links to fixed anchors, solved as rows of the step's
 //! contact problem while slack, checked against
 //!

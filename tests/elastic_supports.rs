@@ -1,5 +1,5 @@
 //! Elastic messenger supports and point attachments on the messenger
-//! (issue 42; docs/lines.md "Elastic supports and clamp masses", E1):
+//! (docs/lines.md "Elastic supports and clamp masses", E1):
 //! `[messenger] support = { stiffness, damping, mass }` (every support) or
 //! a list with one `"pinned"` or `{ … }` per support, and `[[attachment]]
 //! wire = "messenger"`. Checked against

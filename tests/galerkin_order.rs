@@ -1,5 +1,5 @@
 //! The `galerkin` discretization's order in J on the moving force
-//! (docs/discretizations.md, "Order in J"; issue 22).
+//! (docs/discretizations.md, "Order in J").
 //!
 //! On a pinned–pinned beam the `galerkin` basis is the moving-force
 //! series' own (MODEL §8), so with J modes its spatial error is the

@@ -32,7 +32,7 @@ fn a_stop_request_stops_runs_batches_and_sweeps_without_losing_or_faking_results
     // a Ctrl-C seen outside the calls (Python's main thread while a thread
     // pool's workers run them): nothing when none is at work; else a stop
     // that stands for the hold, so that the calls a shutting-down pool
-    // starts from its queue stop too (issue 41), and no longer
+    // starts from its queue stop too, and no longer
     let hold = std::time::Duration::from_millis(300);
     assert!(!interrupt::request_if_working(hold));
     assert!(

@@ -1,4 +1,4 @@
-//! The `[line]` generator from the command line (issue 27; docs/lines.md,
+//! The `[line]` generator from the command line (docs/lines.md,
 //! "The line generator"): `taut line expand` prints a scene that runs
 //! bit for bit as the `[line]` scene does, a fixed-anchor line runs end to
 //! end, `--set line.*` regenerates it, and a bad key is refused by name.

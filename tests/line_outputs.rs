@@ -1,4 +1,4 @@
-//! What a line engineer reads (issue 27, "Outputs"): the contact force's
+//! What a line engineer reads: the contact force's
 //! statistics per span and the uplift at the supports (`[output]
 //! supports`), the uplift envelope (`[output] envelope`), each checked
 //! against an independent computation from what the run records anyway

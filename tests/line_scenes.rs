@@ -1,5 +1,5 @@
 //! The bundled multi-span line (`scenes/line_10_spans.toml` and its linear
-//! twin, issue 27): each study runs on it end to end from the CLI, cut down
+//! twin): each study runs on it end to end from the CLI, cut down
 //! to a few spans and a fraction of a second so the default suite stays
 //! fast (the full runs and their convergence in N and Δt are in
 //! docs/lines.md "The bundled line").

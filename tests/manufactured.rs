@@ -274,8 +274,8 @@ const BATHE_MOVING_MAX_ORDER: f64 = 1.5;
 /// second-order part, which does not scale with V.
 const BATHE_SPEED_RATIO: (f64, f64) = (1.7, 2.3);
 
-/// Bathe's contact force at force level under a moving contact (issue 38:
-/// the cause of its `known` rows). Its multiplier carries a first-order
+/// Bathe's contact force at force level under a moving contact (the
+/// cause of its `known` rows). Its multiplier carries a first-order
 /// term proportional to the carrier's speed: with a moving contact the gap
 /// r(x_m(t))ᵀd − q is a time-dependent constraint, which the three-point
 /// sub-step differentiates inconsistently with the beam's own velocities

@@ -1,5 +1,5 @@
 //! A run's memory estimate is an upper bound of what the `taut` binary
-//! holds (issue 25, class 4): each case runs `taut run` in a child process
+//! holds: each case runs `taut run` in a child process
 //! and compares its peak resident size (`wait4`'s `ru_maxrss`, the kernel's
 //! high-water mark of the child alone) with the estimate validation checks
 //! against the budget ([`taut::Resolved::memory_estimate`]), plus the
@@ -179,14 +179,14 @@ fn every_case_peaks_within_its_estimate_and_the_baseline() {
         ("150 probes", probes, &probe_sets[..]),
         // 180 tension-only droppers on a three-span line with its
         // messenger: a dense response over the unknowns each, the
-        // contact problem's rows (issue 41: droppers were outside the
+        // contact problem's rows (droppers were once outside the
         // estimate)
         (
             "180 droppers",
             "scenes/line_10_spans.toml",
             &["line.spans=3", "line.droppers.count=60", "time.end=0.004"][..],
         ),
-        // a field of 101 rows × 10⁵ points (issue 41: its table took four
+        // a field of 101 rows × 10⁵ points (its table once took four
         // copies of the values while field.csv was written)
         (
             "field 101 × 1e5",

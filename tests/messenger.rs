@@ -1,4 +1,4 @@
-//! The messenger wire (issue 27; docs/lines.md "Messenger wire", W1–W6):
+//! The messenger wire (docs/lines.md "Messenger wire", W1–W6):
 //! a second tensioned line in the same banded model, coupled to the
 //! contact wire by droppers with `anchor = "messenger"`, and the static
 //! start `[time] initial = "static"`. Checked against

@@ -850,7 +850,7 @@ fn every_method_agrees_at_the_finest_step_of_the_ladder() {
     }
 }
 
-/// A built-in method value builds the method it is (issue 23):
+/// A built-in method value builds the method it is:
 /// `run_with(&scene, &Method::Newmark)` on the reference scene, whose own
 /// method is generalized-α, steps Newmark — bit-identical to the scene
 /// that names newmark, and not the scene's generalized-α (their forces
@@ -893,7 +893,7 @@ fn a_built_in_method_value_runs_that_method_whatever_the_scene_names() {
 }
 
 /// A method of one's own registered by name is reached as a built-in one
-/// is (issue 23): a scene naming it runs it (bit-identical to `run_with`
+/// is: a scene naming it runs it (bit-identical to `run_with`
 /// its factory), `--methods` parses it, and a key it does not read is
 /// refused naming both methods.
 #[test]

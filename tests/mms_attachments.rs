@@ -1,5 +1,5 @@
 //! Manufactured solutions that carry point attachments and dashpots
-//! (issue 27; `docs/verification.md`, "Point attachments and dashpots",
+//! (`docs/verification.md`, "Point attachments and dashpots",
 //! M4–M6): the source has each attachment's force −(m_a v*_tt + c_a v*_t +
 //! k_a v*) at x_a cancelled by a point load along r_a, and each dropper's
 //! N_d* = k_d e_d* + c_d ė_d* with its dashpot, so the model's own

@@ -1,5 +1,5 @@
-//! Manufactured solutions for the coupled two-wire system (issue 27;
-//! `docs/verification.md`, "Two coupled wires"): a contact wire and a
+//! Manufactured solutions for the coupled two-wire system
+//! (`docs/verification.md`, "Two coupled wires"): a contact wire and a
 //! messenger on an interior support, coupled by linear droppers, each line
 //! with its own manufactured motion, and a mass–spring moving under the
 //! contact wire (`scenes/verify/mms_two_wires.toml`).
@@ -182,7 +182,7 @@ const CD_IMPACT_GAP: f64 = 1e-14;
 const CD_IMPACT_LAGRANGE: f64 = 1e-9;
 
 /// Central difference with the impact law keeps the contact on the two
-/// wires (issue 38). Before, its velocity-level law read the gap rate at
+/// wires. Before, its velocity-level law read the gap rate at
 /// t_{n+1} with the half-step velocity v_{n+1/2}, an O(Δt) mismatch: the
 /// position gap drifted at that rate (1.5e-8, 7.5e-9, 3.8e-9 m at
 /// t = 0.1 s for Δt = 1e-5, 5e-6, 2.5e-6 s), and where it drifted open the

@@ -1,4 +1,4 @@
-//! `integrator.method = "modal_exact"` verified (MODEL §9.3, issue 24):
+//! `integrator.method = "modal_exact"` verified (MODEL §9.3):
 //! exact propagation of each mode of a diagonal basis, the contact force
 //! held over the step along the carrier's path, the mass dof exact.
 //!

@@ -336,7 +336,7 @@ fn droppers() {
     }
 }
 
-/// The line's outputs (issue 27) in a recorded run (`run::SteppedRun`, the
+/// The line's outputs in a recorded run (`run::SteppedRun`, the
 /// recorder [`taut::run`] drives): the span statistics, the uplift at the
 /// supports from point vectors made once, and the envelope at every node,
 /// through contact loss.

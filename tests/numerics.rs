@@ -1,4 +1,4 @@
-//! The library's numerical tests in one binary (issue 23: one link, not
+//! The library's numerical tests in one binary (one link, not
 //! nineteen): verification against analytic and manufactured references,
 //! methods, discretizations, contact laws, batches and properties. Each
 //! file below is a module, run with its name as a filter, e.g.

@@ -34,7 +34,7 @@ fn the_python_install_command_is_the_one_ci_runs() {
     // README "From Python": one command installs the module; CI installs it
     // the same way (with the test extras) and runs its tests and example
     assert!(README.contains("pip install ./python"));
-    // the install line brings the extras the README's example uses (issue 26)
+    // the install line brings the extras the README's example uses
     assert!(README.contains("pip install \"./python[all]\""));
     assert!(CI.contains("pip install --quiet --disable-pip-version-check \"./python[test]\""));
     assert!(CI.contains("pytest python/tests"));

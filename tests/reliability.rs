@@ -1,4 +1,4 @@
-//! Regression tests of issue 25 (reliability, round two), one section per
+//! Regression tests of the second round of hostile input, one section per
 //! failure class: each reproduces the class at a size the default suite can
 //! afford and checks the fix, through the `taut` binary where the class was
 //! seen there.
@@ -284,7 +284,7 @@ fn sweeps_over_overflowing_axes_exit_with_their_tables_and_notes() {
     let reference = scene("reference.toml");
     for (k, (vary, log)) in [
         // (stiffness, mass and damping of a carrier are held to the
-        // wire's scales since issue 41: its preload takes any size)
+        // wire's scales: its preload takes any size)
         ("carrier.preload=1e100:1e300:2", true),
         ("carrier.preload=0:1.7e308:2", false),
         ("carrier.preload=1e-300:1e300:8", true),
@@ -713,7 +713,7 @@ fn messages_name_the_field_and_stay_short() {
 /// Every integer option of every subcommand, with the start of its range
 /// as taut states it: each takes its value as text and refuses what is not
 /// in range with taut's own message (the flag, the text, the range), never
-/// clap's "unexpected argument" or "invalid digit" (issue 25, class 9).
+/// clap's "unexpected argument" or "invalid digit".
 const INTEGER_OPTIONS: [(&[&str], &str, &str); 11] = [
     (
         &[

@@ -1,5 +1,5 @@
-//! Regression tests of issue 41 (reliability, round three), one section
-//! per finding (1–10) of its hostile pass: each reproduces the finding at a
+//! Regression tests of the third round of hostile input, one section
+//! per finding (1–10) of its pass: each reproduces the finding at a
 //! size the default suite can afford, through the `taut` binary where it
 //! was seen there, and checks the fix. The memory estimate's property test
 //! is `tests/memory_budget.rs`; the Python findings are in

@@ -1,6 +1,6 @@
 //! The step-by-step API (`taut::app::Simulation`) and the external force
-//! on a carrier's mass (`[[carrier]] external_force`, issue 26 items 7 and
-//! 4): stepping k at a time gives `run`'s bytes; a constant series is a
+//! on a carrier's mass (`[[carrier]] external_force`):
+//! stepping k at a time gives `run`'s bytes; a constant series is a
 //! preload change; a ramp on a stiff beam is the force law's; a force
 //! held between steps goes through the series's hook; bad input is refused
 //! naming the field.

@@ -1,4 +1,4 @@
-//! The static start with its carriers (issue 27; docs/lines.md W6–W8):
+//! The static start with its carriers (docs/lines.md W6–W8):
 //! `[time] initial = "static"` puts each carrier's static contact force
 //! into d₀ (mass–springs, multi-mass pantographs, moving forces), so a
 //! scene of stationary carriers starts in equilibrium. Checked against

@@ -1,4 +1,4 @@
-//! No subnormal number forms in a step (issue 24; `model::banded`,
+//! No subnormal number forms in a step (`model::banded`,
 //! "Subnormals"). A banded solve's solution decays geometrically away from
 //! the loads; unchecked, its tails and then the states pass through the
 //! subnormal range, which many CPUs process one to two orders of magnitude

@@ -364,7 +364,7 @@ fn axes_that_change_nothing_are_refused() {
             "is given twice",
         ),
         (&["beam.length=50:50:3"], &[], "changes nothing"),
-        // the ratio and the plain key set one value (issue 41: before, the
+        // the ratio and the plain key set one value (before, the
         // ratio overrode it, and the plain axis changed nothing)
         (
             &["carrier.0.mass=1:2:2", "mass_ratio=0.01:0.02:2"],

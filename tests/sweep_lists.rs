@@ -1,5 +1,5 @@
 //! Sweeps over listed values (`--vary KEY=v1,v2,...`) and lists of points
-//! (`--points FILE.csv`), and `--unset` (issue 26, items 1–2), through the
+//! (`--points FILE.csv`), and `--unset`, through the
 //! `taut` binary.
 
 use crate::common;

@@ -1,5 +1,5 @@
-//! Accuracy-targeted sweeps (`taut sweep … --tolerance EPS --quantity Q`,
-//! issue 37): every point's u_num, the resolution it took, and the sweep's
+//! Accuracy-targeted sweeps (`taut sweep … --tolerance EPS --quantity Q`):
+//! every point's u_num, the resolution it took, and the sweep's
 //! promises kept (resume, shards and merge give the same bytes), through
 //! the `taut` binary.
 

@@ -1,5 +1,5 @@
 //! Observed orders in Δt, measured where Δt is what limits the error
-//! (docs/methods.md, "Observed time order"; issue 22).
+//! (docs/methods.md, "Observed time order").
 //!
 //! * A moving force on a problem whose excited modes are all resolved: the
 //!   `galerkin` basis of the J = 100 lowest exact modes of the pinned–pinned
@@ -239,7 +239,7 @@ fn bathe_error_keeps_falling_down_to_3e_6_s_on_a_riding_mass() {
 // ---------------------------------------------------------------------------
 // The studies behind docs/methods.md (ignored: about 3 minutes in release)
 
-/// The Δt ladder of the moving-force tables, s (issue 22's).
+/// The Δt ladder of the moving-force tables, s.
 const STUDY_DTS: [f64; 5] = [2e-4, 1e-4, 5e-5, 2.5e-5, 1.25e-5];
 
 /// `w_sampled`, or the error's message when the run is refused (central

@@ -1,4 +1,4 @@
-//! Solution verification (MODEL §12, issue 37): `taut uncertainty`'s
+//! Solution verification (MODEL §12): `taut uncertainty`'s
 //! u_num against true errors (a cut-down version of `cargo xtask
 //! uncertainty`'s coverage study), u_num growing outside the asymptotic
 //! range, a divergence named, and `taut converge` claiming no more than it

@@ -1,7 +1,7 @@
-//! The wire itself (issue 26 item 3): snapshots of v(x) and the space–time
+//! The wire itself: snapshots of v(x) and the space–time
 //! field (`[output] snapshots`, `field`), the modes of a scene (`taut
 //! modes`), the 0–20 Hz filtered force statistics of every summary, and
-//! tabulated speed profiles (item 4).
+//! tabulated speed profiles.
 
 use crate::common;
 use common::run;

@@ -120,7 +120,7 @@ def points(pts: Points) -> List[str]:
             "points: an empty list", field="points", value="[]", allowed="at least one point"
         )
     # the keys in order of first appearance (a dict: a million keys in one
-    # point took minutes as a list, issue 41)
+    # point took minutes as a list)
     seen: Dict[str, None] = {}
     for r in rows:
         if not isinstance(r, Mapping):

@@ -1,5 +1,5 @@
 """Elastic messenger supports, clamp masses and per-dropper keys from Python
-(issue 42; docs/lines.md "Elastic supports and clamp masses"): the same TOML
+(docs/lines.md "Elastic supports and clamp masses"): the same TOML
 runs to the CLI's numbers, and a bad value is refused naming its field."""
 
 from __future__ import annotations

@@ -65,7 +65,7 @@ def test_study_arguments_are_named_as_python_arguments():
     assert e.value.field == "vary.speed_ratio"
     with pytest.raises(taut.SceneError) as e:
         taut.run(REFERENCE, set={"beam.tension": object()}, progress=False)
-    # the key the value was given for (issue 25: was "set")
+    # the key the value was given for (the field once said "set")
     assert e.value.field == "beam.tension"
 
 
@@ -92,7 +92,7 @@ def test_a_non_finite_value_is_refused_by_name():
 
 def test_a_missing_file_is_a_scene_not_found_naming_it(tmp_path):
     # an input, not an output: SceneNotFound, a SceneError and a
-    # FileNotFoundError (issue 26; test_python_terms.py has the rest)
+    # FileNotFoundError (test_python_terms.py has the rest)
     missing = tmp_path / "no_such_scene.toml"
     with pytest.raises(taut.SceneNotFound) as e:
         taut.run(missing, progress=False)

@@ -1,4 +1,4 @@
-"""Results an engineer can hand in (issue 39): the filtered force and the
+"""Results an engineer can hand in: the filtered force and the
 standards' statistics from Python, tables by row, HTML and rounded reprs,
 progress that leaves no text in a saved notebook, a sign-safe force into
 the wire, speeds in km/h, and report.html."""

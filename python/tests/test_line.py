@@ -1,4 +1,4 @@
-"""The line's outputs from Python (issue 27, "Outputs"): the contact force
+"""The line's outputs from Python: the contact force
 per span, the uplift at the supports and the envelope of a run, each the
 CLI's spans.csv, supports.csv and envelope.csv for the same scene, exactly."""
 

@@ -1,4 +1,4 @@
-"""Any set of points on the sweep's engine (issue 26, item 2): listed
+"""Any set of points on the sweep's engine: listed
 values, lists of points, a grid's shape, and each point's force along the
 span and warnings, bit for bit the CLI's."""
 

@@ -1,4 +1,4 @@
-"""Errors in Python's terms (issue 26, item 6): a missing scene is a
+"""Errors in Python's terms: a missing scene is a
 FileNotFoundError, parse errors fill value and allowed, messages name
 keyword arguments, sane bounds, keyword-only `threads`."""
 

@@ -1,7 +1,7 @@
-"""Issue 25's Python messages: every bad argument raises SceneError naming
+"""Python's messages under hostile input: every bad argument raises SceneError naming
 the argument or key and the real range, never a bare Python or numpy error,
 and an empty `out` is refused (it would write into the current folder);
-and issue 41's Python findings (below): droppers past the memory budget,
+and the third hostile round's Python findings (below): droppers past the memory budget,
 a removal's field, `progress`, strings for numbers, points, two sweeps
 into one folder, Ctrl-C of runs in a thread pool."""
 
@@ -56,8 +56,8 @@ def test_an_empty_out_is_refused(tmp_path, monkeypatch):
 
 
 def test_a_sweep_over_an_axis_a_plot_cannot_draw_returns_its_table(tmp_path):
-    # issue 25: this hung in the plotting library's tick code after the tables
-    # (a carrier's stiffness is held to the wire's scales since issue 41:
+    # this once hung in the plotting library's tick code after the tables
+    # (a carrier's stiffness is held to the wire's scales:
     # its preload takes any size)
     t = taut.sweep(
         REFERENCE,
@@ -72,7 +72,7 @@ def test_a_sweep_over_an_axis_a_plot_cannot_draw_returns_its_table(tmp_path):
     assert "This plot is not drawn" in note
 
 
-# --- issue 41 (reliability, round three): the Python findings ----------
+# --- the third hostile round: the Python findings ---------------------
 
 
 def test_droppers_past_the_budget_are_refused_not_fatal():

@@ -1,4 +1,4 @@
-"""Scenes as Python objects (issue 26, item 1): load_scene, a dict / a
+"""Scenes as Python objects: load_scene, a dict / a
 bundled name / one-line TOML as the scene, `set` values (None removes a
 key, a str is a string), the scenes bundled in the extension."""
 

@@ -1,4 +1,4 @@
-"""Results that show themselves (issue 26, item 5): flat attributes with
+"""Results that show themselves: flat attributes with
 sweep.csv's names, HTML for notebooks, plots, and the progress switch."""
 
 from __future__ import annotations
@@ -67,7 +67,7 @@ def test_plots_draw_what_the_cli_svgs_draw(monkeypatch):
     mpl.use("Agg")
     r = taut.run(REFERENCE, set={**SHORT, "time.end": 0.3}, progress=False)
     ax = r.plot()
-    # the force light and its filtered force bold, as force.svg (issue 39)
+    # the force light and its filtered force bold, as force.svg
     assert ax.get_xlabel() == "carrier position x_m / L (–)" and len(ax.lines) == 2
     t = taut.sweep(REFERENCE, vary={"carrier.speed.cruise": [50.0, 60.0]}, set=SHORT, progress=False)
     ax = t.plot("force_std")

@@ -1,5 +1,5 @@
-"""`taut.Simulation`, the step-by-step API (issue 26 item 7), and the
-`external_force` scene key (item 4) from Python: stepping gives taut.run's
+"""`taut.Simulation`, the step-by-step API, and the
+`external_force` scene key from Python: stepping gives taut.run's
 numbers bit for bit, forces applied between steps act, the state reads
 what the history records, bad input is refused naming the field."""
 

@@ -1,4 +1,4 @@
-"""Every number with its error bar (issue 37): taut.uncertainty and the
+"""Every number with its error bar: taut.uncertainty and the
 accuracy-targeted sweep, bit for bit the CLI's."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The wire itself from Python (issue 26 items 3 and 4): snapshots and the
+"""The wire itself from Python: snapshots and the
 space-time field of a run, the modes and the mesh of a scene, the filtered
 force statistics of every summary, a tabulated speed profile; each compared
 exactly with the CLI's files for the same scene."""

@@ -96,7 +96,7 @@ is the refined variable's, not the result's.
 
 `omega_max_dt` is ω_max·Δt of each level's model. Above 1 its top modes are
 not resolved in time; a moving point load excites them, so its Δt order
-falls towards 1.5 on fine meshes (issue 22). The manufactured ladders of
+falls towards 1.5 on fine meshes. The manufactured ladders of
 [verification.md](verification.md#code-verification-manufactured-solutions-and-taut-verify)
 show order 2 at ω_max·Δt ≈ 10–170, since a smooth source does not excite
 them. On `scenes/verify/mms_beam_time.toml` (N = 64) the Δt ladder's

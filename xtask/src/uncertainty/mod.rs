@@ -8,7 +8,7 @@
 //! value ([`truth`]): the exact moving-force series, the riding mass's
 //! Galerkin solution, or a refined `modal_exact` run. A pair is *covered*
 //! when u_num ≥ |φ − φ_true|; its *sharpness* is u_num/|φ − φ_true|.
-//! Targets (issue 37): covered at ≥ [`COVERAGE_TARGET`] of the pairs,
+//! Targets: covered at ≥ [`COVERAGE_TARGET`] of the pairs,
 //! sharpness ≤ [`SHARPNESS_LIMIT`] at ≥ [`SHARPNESS_TARGET`] of them.
 //!
 //! Run: `cargo xtask uncertainty` (every pair, about 6 minutes on 2
@@ -38,14 +38,14 @@ use taut::study::uncertainty::{DEFAULT_LEVELS, Role, uncertainty};
 
 pub use cases::{Case, Truth, cases};
 
-/// Share of pairs whose u_num must cover the true error (issue 37's 95 %).
+/// Share of pairs whose u_num must cover the true error (95 %).
 pub const COVERAGE_TARGET: f64 = 0.95;
 
 /// The largest u_num / |true error| counted as sharp: an error bar ten
-/// times the error it bounds says little more than "small" (issue 37).
+/// times the error it bounds says little more than "small".
 pub const SHARPNESS_LIMIT: f64 = 10.0;
 
-/// Share of pairs that must be sharp (issue 37's 80 %).
+/// Share of pairs that must be sharp (80 %).
 pub const SHARPNESS_TARGET: f64 = 0.8;
 
 /// One pair's result.
