@@ -22,7 +22,7 @@ over the pairs are printed.
     python3 scripts/sibling_spread.py pairs.jsonl [--runs DIR] [--fit]
 
 316 runs (237 siblings, and the 79 distinct finest runs made again and
-checked against the family's values), ≈ 3.5 min on 2 cores. The runs are
+checked against the family's values), ≈ 3.5 min on an AMD EPYC, 2 vCPUs. The runs are
 kept in DIR (default out/siblings), one folder per run, so a second call
 only reads (≈ 50 s).
 """

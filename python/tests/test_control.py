@@ -197,7 +197,7 @@ def test_ctrl_c_stops_a_sweep_with_keyboard_interrupt(tmp_path):
     stopped_in, stdout, stderr = ctrl_c(SCRIPT, [REFERENCE, out], 0.3)
     assert "KeyboardInterrupt" in stderr, stderr
     assert "finished" not in stdout
-    # 40 runs of about 0.7 s each were pending (14 s on 2 cores): stopping
+    # 40 runs of about 0.7 s each were pending (14 s on an AMD EPYC, 2 vCPUs): stopping
     # takes a step per running run and one poll (0.1 s); the bound allows
     # for the interpreter's exit on a loaded machine
     assert stopped_in < 5.0, stopped_in

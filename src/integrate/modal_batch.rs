@@ -13,8 +13,8 @@
 //! instead of two; a run alone settles after every step): bit-identical
 //! to the run alone (`tests/batch.rs` compares the bytes). Interleaving the runs by blocks of modes, so that
 //! a block's coefficients are read once for all of them, was measured and
-//! gave nothing (0.9–1.07× on 8 runs at J = 800, within the noise of this
-//! shared machine: the passes stream from L2 as fast alone), so it was
+//! gave nothing (0.9–1.07× on 8 runs at J = 800, within the timing noise on
+//! an AMD EPYC, 2 vCPUs: the passes stream from L2 as fast alone), so it was
 //! left out.
 //!
 //! What batches: `integrator.method = "modal_exact"` on `galerkin` or

@@ -12,7 +12,7 @@
 //!    stable.
 //!
 //! Run: `cargo xtask methods` (about a minute);
-//! it prints markdown tables. Wall times are this machine's; all other
+//! it prints markdown tables. Wall times depend on the machine; all other
 //! figures are deterministic.
 
 use taut::resolve::{Resolved, resolve_scene};

@@ -5,7 +5,7 @@
 //! cargo xtask published-band
 //! ```
 //!
-//! Prints four tables (about a minute on two cores; sweep folders go to
+//! Prints four tables (about a minute on an AMD EPYC, 2 vCPUs; sweep folders go to
 //! `target/published_band/`):
 //!
 //! 1. speed sweeps V0/c ∈ [0.5, 1.3] of `scenes/reference.toml` at several

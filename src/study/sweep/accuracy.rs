@@ -176,7 +176,7 @@ impl Point {
 /// ones. Points are admitted [`CHUNK`] at a time whenever fewer jobs wait
 /// than there are workers, so no worker waits for a slow run of another
 /// point (rounds of a chunk waited for each round's slowest run: the 9 × 9
-/// subgrid of the Fig. 12 map kept 1.63 of 2 cores busy).
+/// subgrid of the Fig. 12 map kept 1.63 of 2 vCPUs busy, AMD EPYC).
 pub(super) fn run_points(
     spec: &SweepSpec,
     base: Option<&Table>,

@@ -15,8 +15,8 @@
 //! measures, with the criteria of every verdict; nothing is tuned to a
 //! published plot. Runs go to `target/reproduction/` (cleared at the start
 //! unless `--resume`). Wall times go to the terminal only, so the page does
-//! not depend on the machine. About 7 minutes on two free cores (10 while
-//! a build shares them).
+//! not depend on the machine. About 7 minutes on an AMD
+//! EPYC, 2 vCPUs.
 
 //!
 //! One study a file: [`targets_1d`] (T3–T6), [`t7`] (T7), [`resolution`]

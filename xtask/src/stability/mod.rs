@@ -13,7 +13,7 @@
 //! analytic solution of a moving-force scene), the row is scored for accuracy;
 //! a run that finishes without warning yet is clearly off its reference is
 //! listed under "Findings" as silently wrong. Runs are sequential and take
-//! a little over a minute on two cores.
+//! a little over a minute on an AMD EPYC, 2 vCPUs.
 //!
 //! One job a file: [`score`] (a case, its run and its score), [`cases`]
 //! (the cases), [`page`] (findings and tables); this file runs them and

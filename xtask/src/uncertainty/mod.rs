@@ -11,8 +11,8 @@
 //! Targets: covered at ≥ [`COVERAGE_TARGET`] of the pairs,
 //! sharpness ≤ [`SHARPNESS_LIMIT`] at ≥ [`SHARPNESS_TARGET`] of them.
 //!
-//! Run: `cargo xtask uncertainty` (every pair, about 6 minutes on 2
-//! cores), `cargo xtask uncertainty quick` (a few pairs a case), or with
+//! Run: `cargo xtask uncertainty` (every pair, about 6 minutes on an
+//! AMD EPYC, 2 vCPUs), `cargo xtask uncertainty quick` (a few pairs a case), or with
 //! words that pick cases by name (`cargo xtask uncertainty "reference
 //! case"`). It prints
 //! markdown tables to stdout; wall times go to stderr. `--dump FILE`
