@@ -5,10 +5,9 @@
 //!
 //! `ρA φ ω² = EI φ'''' − T φ''` on `0 ≤ x ≤ L` has the solutions
 //! `φ = A cosh αx + B sinh αx + C cos βx + D sin βx` with (as in
-//! [`super::modes`]) `α² = β² + T/EI`, `ω = sqrt(EI/ρA) α β`. For the reference
-//! span (L = 50 m, T = 30 kN, EI ≈ 129 N·m²) `αL ≥ L sqrt(T/EI) ≈ 760` already
-//! for mode 1, so `cosh αL` is ~10³³⁰ and the hyperbolic form overflows (and,
-//! before that, cancels: `cosh αx − sinh αx` at `x ≈ L`). Every shape here is
+//! [`super::modes`]) `α² = β² + T/EI`, `ω = sqrt(EI/ρA) α β`. On a tensioned
+//! span `αL` is in the hundreds already for mode 1, so `cosh αL` overflows
+//! (and, before that, `cosh αx − sinh αx` cancels). Every shape here is
 //! therefore written in the **stable form**
 //!
 //! ```text
@@ -18,90 +17,32 @@
 //! with `|P|, |Q|, |C|, |D| ≤ 2` before normalization: each term is O(1) on the
 //! whole span, the boundary layers of width `1/α` at either end are carried by
 //! the decaying exponentials, and `E = e^{−αL}` (which may underflow to 0,
-//! harmlessly) is the only coupling between the ends.
-//!
-//! ## Supports
-//!
-//! Writing `E = e^{−αL}`, `r = β/α`, `ℓ = L/2`:
-//!
-//! - **pinned–pinned** (`EI ≥ 0`, the string included): `φ_j = sqrt(2/(ρA L))
-//!   sin(jπx/L)`, `ω_j` from [`PinnedPinnedModes`] (`jπc/L` for a string).
-//! - **clamped (0) – pinned (L)**: `v(L) = v''(L) = 0` give `Q = −P E` and
-//!   `C cos βL + D sin βL = 0`; `v(0) = v'(0) = 0` then give `C = −P(1 − E²)`,
-//!   `D = P (α/β)(1 + E²)`, and the characteristic equation of
-//!   [`ClampedPinnedModes`] (`α sin βL − β tanh(αL) cos βL = 0`, its module doc
-//!   proves one root per `βL ∈ [jπ, jπ + π/2)`). With `P = r`:
-//!   `φ = r e^{−αx} − r E e^{−α(L−x)} − r(1 − E²) cos βx + (1 + E²) sin βx`.
-//! - **pinned (0) – clamped (L)**: the mirror image, `φ_PC(x) = φ_CP(L − x)`,
-//!   same frequencies.
-//! - **clamped–clamped**: symmetric about `x = ℓ`, so every mode is even or odd
-//!   in `y = x − ℓ`.
-//!   - *odd* `φ = b sinh αy + d sin βy`: `φ(ℓ) = φ'(ℓ) = 0` ⇔
-//!     `α sin βℓ − β tanh(αℓ) cos βℓ = 0`, which is exactly the clamped–pinned
-//!     equation for a span `ℓ` (an odd mode has `φ = φ'' = 0` at mid-span: it
-//!     *is* a clamped–pinned mode of the half span). Its roots are
-//!     [`ClampedPinnedModes`] of length `ℓ`: one per `βℓ ∈ [kπ, kπ + π/2)`,
-//!     k ≥ 1. Stable form with `d = 1`:
-//!     `φ = sin β(x − ℓ) + sin βℓ (e^{−αx} − e^{−α(L−x)})/(1 − E)`.
-//!   - *even* `φ = a cosh αy + c cos βy`: `a cosh αℓ + c cos βℓ = 0`,
-//!     `a α sinh αℓ − c β sin βℓ = 0`, determinant over `cosh αℓ`:
-//!
-//!     ```text
-//!     g(β) = [β sin βℓ + α tanh(αℓ) cos βℓ] / sqrt(α² + β²) = 0
-//!          ⇔ tan(βℓ − π/2) = s(β) := β coth(αℓ)/α  (> 0).
-//!     ```
-//!
-//!     *Bracketing.* With `z = βℓ − π/2`, `tan z < 0 < s` on every
-//!     `z ∈ (kπ − π/2, kπ)` (and on `βℓ ∈ (0, π/2)`): no roots there. On
-//!     `z ∈ [kπ, kπ + π/2)`, k ≥ 0, `tan z` rises from 0 to +∞ with
-//!     `d/dβ tan z ≥ ℓ`, while `s' = (T/EI) coth(αℓ)/α³ − (β/α)² ℓ csch²(αℓ)
-//!     ≤ coth(αℓ)/α`, and `coth(αℓ)/α < ℓ ⇔ αℓ tanh αℓ > 1 ⇔ αℓ > 1.1997`,
-//!     true since `αℓ ≥ βℓ ≥ π/2`. So `tan z − s` rises strictly from `−s < 0`
-//!     to +∞: exactly one root per `βℓ ∈ [kπ + π/2, kπ + π)`, bisected to
-//!     round-off. (`T = 0`: `cos βL cosh βL = 1`, βL = 4.7300, 10.9956, ….)
-//!     Stable form with `c = 1`:
-//!     `φ = cos β(x − ℓ) − cos βℓ (e^{−αx} + e^{−α(L−x)})/(1 + E)`.
-//!   - Together, in `βL = 2βℓ`: mode `n ≥ 1` has `βL ∈ [nπ, (n + 1)π)`, even
-//!     for odd n, odd for even n; the intervals are disjoint and ordered and
-//!     `ω(β)` increases, so this numbering is the ascending order of ω.
-//!
-//! A free end has no basis here (its rigid-body and boundary modes are left
-//! out of this task), nor has a string with a clamped end (MODEL §1: a string
-//! takes only v = 0 supports): both are refused naming `mesh.kind`.
-//!
-//! ## Normalization and loads: closed form
-//!
-//! `∫₀ᴸ φ² dx` and `∫₀ᴸ φ dx` of the stable form are sums of elementary
-//! integrals (`∫ e^{−2αx}`, `∫ e^{−αx} cos βx`, `∫ cos² βx`, …; see
-//! `Stable::integral_of_square`), each evaluated without overflow and
-//! without cancellation beyond a few ulps (the result ≈ L/2 is dominated by
-//! the positive `cos²`/`sin²` terms; the exponential cross terms are
-//! O(1/α)). This is exact, costs O(1) per mode, and needs no argument about
-//! resolving the boundary layer. The tests check it against an independent
-//! composite Gauss–Legendre quadrature that does resolve it.
-//!
-//! ## The limit on J
-//!
-//! [`MAX_MODES`] = 4000. The root β_J is found to a relative round-off `ε`,
-//! so the phase `β_J x` of the oscillating part carries an absolute error up
-//! to `ε β_J L ≈ ε J π` (and the argument reduction of `sin`/`cos` as much
-//! again): `≈ 1.4·10⁻¹²` at J = 1000 and `≈ 5.6·10⁻¹²` at J = 4000, which
-//! keeps every shape, slope/β and curvature/β² within ~10⁻¹¹ of its size.
-//! 4000 modes resolve half-wavelengths `L/4000` (1.25 cm on the 50 m
-//! reference span, finer than its 1600-element refined Hermite meshes),
-//! enough for `modal_exact` to refine J past J = 1000 (`sweep
-//! --check-refinement` doubles it, `run --tolerance` quadruples it). At O(J)
-//! transcendental calls per evaluation such a basis is slow on this
-//! direct path; `modal_exact` evaluates it without them
-//! ([`super::FastShapes`]).
+//! harmlessly) is the only coupling between the ends. The supports' shapes
+//! and characteristic equations (one bracketed root per interval, bisected
+//! to round-off) are derived on `Ends`; normalization and loads are closed
+//! form (`Stable::integral_of_square`); [`MAX_MODES`] bounds the phase error.
+//! A free end, or a string with a clamped end (MODEL §1), has no basis here:
+//! both are refused naming `mesh.kind`.
 
 use super::modes::{ClampedPinnedModes, PinnedPinnedModes};
 use crate::error::{Error, Result};
 use crate::scene::{BeamProps, Support};
 use std::f64::consts::PI;
 
-/// Largest basis accepted (module docs: phase error `ε β_J L` ≈ 6·10⁻¹² there,
-/// and finer than any mesh it is compared with).
+/// Largest basis accepted.
+///
+/// The root β_J is found to a relative round-off `ε`,
+/// so the phase `β_J x` of the oscillating part carries an absolute error up
+/// to `ε β_J L ≈ ε J π` (and the argument reduction of `sin`/`cos` as much
+/// again): `≈ 1.4·10⁻¹²` at J = 1000 and `≈ 5.6·10⁻¹²` at J = 4000, which
+/// keeps every shape, slope/β and curvature/β² within ~10⁻¹¹ of its size.
+/// 4000 modes resolve half-wavelengths `L/4000` (1.25 cm on the 50 m
+/// reference span, finer than its 1600-element refined Hermite meshes),
+/// enough for `modal_exact` to refine J past J = 1000 (`sweep
+/// --check-refinement` doubles it, `run --tolerance` quadruples it). At O(J)
+/// transcendental calls per evaluation such a basis is slow on this
+/// direct path; `modal_exact` evaluates it without them
+/// ([`super::FastShapes`]).
 pub const MAX_MODES: usize = 4000;
 
 /// Largest `T L²/EI` (the square of the clamped ends' boundary-layer
@@ -113,6 +54,49 @@ pub const MAX_MODES: usize = 4000;
 pub(crate) const MAX_MU_L_SQUARED: f64 = 1e200;
 
 /// Which supported end pair the basis is for.
+///
+/// Writing `E = e^{−αL}`, `r = β/α`, `ℓ = L/2`:
+///
+/// - **pinned–pinned** (`EI ≥ 0`, the string included): `φ_j = sqrt(2/(ρA L))
+///   sin(jπx/L)`, `ω_j` from [`PinnedPinnedModes`] (`jπc/L` for a string).
+/// - **clamped (0) – pinned (L)**: `v(L) = v''(L) = 0` give `Q = −P E` and
+///   `C cos βL + D sin βL = 0`; `v(0) = v'(0) = 0` then give `C = −P(1 − E²)`,
+///   `D = P (α/β)(1 + E²)`, and the characteristic equation of
+///   [`ClampedPinnedModes`] (`α sin βL − β tanh(αL) cos βL = 0`, its module doc
+///   proves one root per `βL ∈ [jπ, jπ + π/2)`). With `P = r`:
+///   `φ = r e^{−αx} − r E e^{−α(L−x)} − r(1 − E²) cos βx + (1 + E²) sin βx`.
+/// - **pinned (0) – clamped (L)**: the mirror image, `φ_PC(x) = φ_CP(L − x)`,
+///   same frequencies.
+/// - **clamped–clamped**: symmetric about `x = ℓ`, so every mode is even or odd
+///   in `y = x − ℓ`.
+///   - *odd* `φ = b sinh αy + d sin βy`: `φ(ℓ) = φ'(ℓ) = 0` ⇔
+///     `α sin βℓ − β tanh(αℓ) cos βℓ = 0`, which is exactly the clamped–pinned
+///     equation for a span `ℓ` (an odd mode has `φ = φ'' = 0` at mid-span: it
+///     *is* a clamped–pinned mode of the half span). Its roots are
+///     [`ClampedPinnedModes`] of length `ℓ`: one per `βℓ ∈ [kπ, kπ + π/2)`,
+///     k ≥ 1. Stable form with `d = 1`:
+///     `φ = sin β(x − ℓ) + sin βℓ (e^{−αx} − e^{−α(L−x)})/(1 − E)`.
+///   - *even* `φ = a cosh αy + c cos βy`: `a cosh αℓ + c cos βℓ = 0`,
+///     `a α sinh αℓ − c β sin βℓ = 0`, determinant over `cosh αℓ`:
+///
+///     ```text
+///     g(β) = [β sin βℓ + α tanh(αℓ) cos βℓ] / sqrt(α² + β²) = 0
+///          ⇔ tan(βℓ − π/2) = s(β) := β coth(αℓ)/α  (> 0).
+///     ```
+///
+///     *Bracketing.* With `z = βℓ − π/2`, `tan z < 0 < s` on every
+///     `z ∈ (kπ − π/2, kπ)` (and on `βℓ ∈ (0, π/2)`): no roots there. On
+///     `z ∈ [kπ, kπ + π/2)`, k ≥ 0, `tan z` rises from 0 to +∞ with
+///     `d/dβ tan z ≥ ℓ`, while `s' = (T/EI) coth(αℓ)/α³ − (β/α)² ℓ csch²(αℓ)
+///     ≤ coth(αℓ)/α`, and `coth(αℓ)/α < ℓ ⇔ αℓ tanh αℓ > 1 ⇔ αℓ > 1.1997`,
+///     true since `αℓ ≥ βℓ ≥ π/2`. So `tan z − s` rises strictly from `−s < 0`
+///     to +∞: exactly one root per `βℓ ∈ [kπ + π/2, kπ + π)`, bisected to
+///     round-off. (`T = 0`: `cos βL cosh βL = 1`, βL = 4.7300, 10.9956, ….)
+///     Stable form with `c = 1`:
+///     `φ = cos β(x − ℓ) − cos βℓ (e^{−αx} + e^{−α(L−x)})/(1 + E)`.
+///   - Together, in `βL = 2βℓ`: mode `n ≥ 1` has `βL ∈ [nπ, (n + 1)π)`, even
+///     for odd n, odd for even n; the intervals are disjoint and ordered and
+///     `ω(β)` increases, so this numbering is the ascending order of ω.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Ends {
     PinnedPinned,
@@ -135,7 +119,16 @@ pub(super) struct Stable {
 }
 
 impl Stable {
-    /// `∫₀ᴸ φ² ds`, m (closed form; module docs).
+    /// `∫₀ᴸ φ² dx` and `∫₀ᴸ φ dx` of the stable form are sums of elementary
+    /// integrals (`∫ e^{−2αx}`, `∫ e^{−αx} cos βx`, `∫ cos² βx`, …; see
+    /// `Stable::integral_of_square`), each evaluated without overflow and
+    /// without cancellation beyond a few ulps (the result ≈ L/2 is dominated by
+    /// the positive `cos²`/`sin²` terms; the exponential cross terms are
+    /// O(1/α)). This is exact, costs O(1) per mode, and needs no argument about
+    /// resolving the boundary layer. The tests check it against an independent
+    /// composite Gauss–Legendre quadrature that does resolve it.
+    ///
+    /// `∫₀ᴸ φ² ds`, m (closed form).
     fn integral_of_square(&self, l: f64) -> f64 {
         let Stable {
             alpha: a,
@@ -197,13 +190,13 @@ impl Stable {
 }
 
 /// The first J exact eigenfunctions of the tensioned beam on its supports
-/// (module docs), mass-normalized: `∫ ρA φ_i φ_j dx = δ_ij`, so the modal
+/// (the stable form of the module docs), mass-normalized: `∫ ρA φ_i φ_j dx = δ_ij`, so the modal
 /// mass is the identity and the modal stiffness `diag(ω_j²)`.
 ///
 /// Units: `φ` in kg^{−1/2} (so `φ_j(x) q_j` is metres when the modal
 /// coordinate `q_j` is in m·kg^{1/2}), slopes per metre, curvatures per m².
 /// Evaluation points are clamped to `[0, L]`. Signs are as the stable forms
-/// in the module docs give them (pinned–pinned: `+sin`); nothing else is
+/// of each support pair give them (pinned–pinned: `+sin`); nothing else is
 /// promised about them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModeShapes {
@@ -310,7 +303,7 @@ impl ModeShapes {
             }
             Ends::ClampedClamped => {
                 let half = 0.5 * l;
-                // odd modes: clamped–pinned on the half span (module docs)
+                // odd modes: clamped–pinned on the half span (`Ends`' docs)
                 let odd = ClampedPinnedModes::new(ei, t, ra, half)?;
                 for n in 1..=count {
                     let k = n / 2;
@@ -544,7 +537,7 @@ fn alpha_of(beta: f64, mu2: f64) -> f64 {
 
 /// The phase δ ∈ [0, π/2) of the even clamped–clamped mode of index k past
 /// `kπ + π/2` (`βℓ = kπ + π/2 + δ`), half span `half`, `mu2 = T/EI`: the
-/// root of `β cos δ − α tanh(αℓ) sin δ` (the module docs' `g(β)` times
+/// root of `β cos δ − α tanh(αℓ) sin δ` (`g(β)` of `Ends`' docs times
 /// `(−1)^k hypot(α, β)`), positive at 0 and negative at π/2, bisected in δ
 /// so that no rounded `cos βℓ` enters (see `ClampedPinnedModes::phase`).
 fn clamped_clamped_even_phase(k: usize, mu2: f64, half: f64) -> f64 {
@@ -559,7 +552,7 @@ fn clamped_clamped_even_phase(k: usize, mu2: f64, half: f64) -> f64 {
 }
 
 /// The scaled characteristic function of the even clamped–clamped modes
-/// (module docs), half span `half`, `mu2 = T/EI`; for tests.
+/// (`Ends`' docs), half span `half`, `mu2 = T/EI`; for tests.
 #[cfg(test)]
 fn clamped_clamped_even(beta: f64, mu2: f64, half: f64) -> f64 {
     let alpha = alpha_of(beta, mu2);

@@ -4,92 +4,23 @@
 //! (`[contact.complementarity] solver`):
 //!
 //! * `direct` (default): an exact principal-pivoting solve of the LCP
-//!   (Murty's least-index method) on scratch preallocated for the run's
-//!   contacts; it allocates nothing per step;
+//!   (Murty's least-index method, `Direct`) on scratch preallocated for the
+//!   run's contacts; it allocates nothing per step;
 //! * `clarabel`: the QP by clarabel's interior-point method, the
-//!   general-QP-solver reference that MODEL §6 names. It is the cross-check
-//!   of `direct` (tests below and `tests/formulations.rs`) and stays
-//!   reachable from every scene and from `taut replay`.
+//!   general-QP-solver reference that MODEL §6 names, one solver per problem
+//!   size updated in place (`Clarabel`); the cross-check of `direct` (tests
+//!   below and `tests/formulations.rs`), reachable from every scene and from
+//!   `taut replay`. Its `solve()` still allocates a little each call, which
+//!   is why `direct` is the default.
 //!
-//! Common to both:
-//!
-//! * Scaling: the problem is solved in μ = λ·w0/g0 (w0 = max W_cc,
-//!   g0 = max |g_free|), so M = P = W/w0 and q = g_free/g0 are O(1) and the
-//!   tolerances mean the same thing at every step and in every unit system.
-//!   If g0 = 0, λ = 0 and no solver is called.
-//! * W is symmetric for one contact and for the `alpha` placement (r_g = r_f).
-//!   With several contacts and the `end` placement, r_g (at t_{n+1}) and r_f
-//!   (at t_{n+1−α_f}) differ by the carriers' travel in α_fΔt and W is not
-//!   exactly symmetric; a QP needs a symmetric P, so its symmetric part is
-//!   used (by both solvers, so they solve the same problem). The coupling
-//!   terms themselves are tiny for carriers metres apart (A⁻¹ decays over a
-//!   few c·Δt; measured W₁₂/W₁₁ ≈ 1e-125 at 10 m), so this changes nothing
-//!   observable there; the late two-carrier differences are the dynamics
-//!   amplifying round-off (`docs/formulations.md`).
-//! * An interior-point λ is never exactly 0. A contact counts as open when its
-//!   force is smaller than the force that would close its gap, λ_c < g_c/W_cc;
-//!   its λ is then set to 0 (a change within the solver tolerance). The direct
-//!   solve gives exact zeros, and the same rule then changes nothing.
-//! * A failed solve stops the run with a typed [`ContactFailure`]; the
-//!   integrator's system saves the problem as a
-//!   [`ContactProblem`](super::ContactProblem) that `taut replay` solves again
-//!   (with the solver the file names).
-//!
-//! # `direct`: principal pivoting
-//!
-//! For symmetric positive definite M (a P-matrix) the LCP has exactly one
-//! solution, and Murty's least-index principal pivoting method reaches it in
-//! finitely many pivots from any start. It keeps a set α of closed contacts
-//! (start: empty), solves M_αα μ_α = −q_α (Gaussian elimination with partial
-//! pivoting, `super::dense`), forms w = q + Mμ, and flips the smallest index
-//! that violates the conditions: i ∈ α with μ_i < 0 leaves, i ∉ α with
-//! w_i < −[`PIVOT_GAP_TOLERANCE`] enters. No violation: μ is the answer, exact
-//! to round-off. Failures: a singular M_αα is [`ContactFailure::Singular`];
-//! more than [`max_pivots`] pivots (only a W that is not a P-matrix, e.g. a
-//! broken Delassus matrix, can cycle) is [`ContactFailure::Cycling`].
-//! Bilateral contact is the single solve M μ = −q. nc is 1 or 2 in the
-//! bundled scenes and at most a handful in any scene, so the O(nc³) solves
-//! cost less than a clarabel iteration.
-//!
-//! # `clarabel`: one solver per problem size, updated in place
-//!
-//! The number of contacts nc is fixed for a run, so the QP's sparsity pattern
-//! is too: P is the full upper triangle of an n×n matrix, A = −I (or 0×n when
-//! bilateral), b = 0. [`Complementarity::new`] builds one clarabel
-//! [`DefaultSolver`] per problem size (placeholder values P = I, q = 0; every
-//! size 1..=nc up to [`PREBUILT_SIZES`] contacts, because the velocity-level
-//! `moreau_jean` step hands the law only the contacts of its index set), and
-//! each step overwrites P's values and q through clarabel 0.11's
-//! data-updating API (`update_P`, `update_q`) and calls `solve()` again.
-//! What this relies on, read in clarabel 0.11.1's source
-//! (`solver/implementations/default/data_updating.rs`, `solver/core/solver.rs`,
-//! `timers/timers.rs`):
-//!
-//! * `update_P`/`update_q` `copy_from_slice` into the solver's own CSC values
-//!   and vectors and rewrite the KKT matrix's values through its precomputed
-//!   index maps; the symbolic LDLᵀ factorization is kept. They allocate
-//!   nothing (checked with a counting allocator). They are refused when the
-//!   presolver changed the problem or structural zeros were dropped:
-//!   `presolve_enable = false` and `input_sparse_dropzeros = false` keep the
-//!   pattern, so an off-diagonal W entry that is exactly 0 is still a slot.
-//! * `solve()` starts every call from clarabel's default (cold) starting
-//!   point: no warm start, so a step's answer does not depend on the previous
-//!   step's, and `taut replay` (a fresh law, one solve) reproduces a step.
-//! * An update re-applies the equilibration computed when the solver was
-//!   built, i.e. fitted to the placeholder problem, so equilibration is
-//!   switched off (`equilibrate_enable = false`) and the scaling above does
-//!   its job. For one contact clarabel's Ruiz equilibration of
-//!   (P = 1, q = ±1, A = −1) is the identity anyway, so single-contact
-//!   answers are those of a solver built per step.
-//! * **`solve()` itself still allocates**: one 404-byte hash table per call.
-//!   `Info::reset` clears the "solve" timer's sub-timers, so the
-//!   "IP iteration" timer is re-created empty and its own sub-timer map
-//!   ("scale cones", "kkt update", "kkt solve") allocates again on the next
-//!   solve (`clarabel::timers`, always compiled in; no setting or cargo
-//!   feature of 0.11.1 turns it off). That is why `direct` is the default:
-//!   the per-step path of the default allocates nothing, and the clarabel
-//!   path went from a full solver build per step (CSC matrices, KKT system,
-//!   symbolic factorization, workspace) to that one small allocation.
+//! Both solve in μ = λ·w0/g0 (w0 = max W_cc, g0 = max |g_free|), so the
+//! tolerances mean the same thing at every step and in every unit system;
+//! both take W's symmetric part (W is not exactly symmetric with several
+//! contacts and the `end` placement; its coupling terms are tiny for carriers
+//! metres apart); both set λ_c = 0 when λ_c < g_c/W_cc (an interior-point λ
+//! is never exactly 0). A failed solve stops the run with a typed
+//! [`ContactFailure`]; the problem is saved as a
+//! [`ContactProblem`](super::ContactProblem) that `taut replay` solves again.
 
 use super::dense::solve_in_place;
 use super::{ContactFailure, ContactLaw};
@@ -162,6 +93,44 @@ impl Qp {
 }
 
 /// The clarabel path: one solver per problem size, built once.
+///
+/// The number of contacts nc is fixed for a run, so the QP's sparsity pattern
+/// is too: P is the full upper triangle of an n×n matrix, A = −I (or 0×n when
+/// bilateral), b = 0. [`Complementarity::new`] builds one clarabel
+/// [`DefaultSolver`] per problem size (placeholder values P = I, q = 0; every
+/// size 1..=nc up to [`PREBUILT_SIZES`] contacts, because the velocity-level
+/// `moreau_jean` step hands the law only the contacts of its index set), and
+/// each step overwrites P's values and q through clarabel 0.11's
+/// data-updating API (`update_P`, `update_q`) and calls `solve()` again.
+/// What this relies on, read in clarabel 0.11.1's source
+/// (`solver/implementations/default/data_updating.rs`, `solver/core/solver.rs`,
+/// `timers/timers.rs`):
+///
+/// * `update_P`/`update_q` `copy_from_slice` into the solver's own CSC values
+///   and vectors and rewrite the KKT matrix's values through its precomputed
+///   index maps; the symbolic LDLᵀ factorization is kept. They allocate
+///   nothing (checked with a counting allocator). They are refused when the
+///   presolver changed the problem or structural zeros were dropped:
+///   `presolve_enable = false` and `input_sparse_dropzeros = false` keep the
+///   pattern, so an off-diagonal W entry that is exactly 0 is still a slot.
+/// * `solve()` starts every call from clarabel's default (cold) starting
+///   point: no warm start, so a step's answer does not depend on the previous
+///   step's, and `taut replay` (a fresh law, one solve) reproduces a step.
+/// * An update re-applies the equilibration computed when the solver was
+///   built, i.e. fitted to the placeholder problem, so equilibration is
+///   switched off (`equilibrate_enable = false`) and the scaling above does
+///   its job. For one contact clarabel's Ruiz equilibration of
+///   (P = 1, q = ±1, A = −1) is the identity anyway, so single-contact
+///   answers are those of a solver built per step.
+/// * **`solve()` itself still allocates**: one 404-byte hash table per call.
+///   `Info::reset` clears the "solve" timer's sub-timers, so the
+///   "IP iteration" timer is re-created empty and its own sub-timer map
+///   ("scale cones", "kkt update", "kkt solve") allocates again on the next
+///   solve (`clarabel::timers`, always compiled in; no setting or cargo
+///   feature of 0.11.1 turns it off). That is why `direct` is the default:
+///   the per-step path of the default allocates nothing, and the clarabel
+///   path went from a full solver build per step (CSC matrices, KKT system,
+///   symbolic factorization, workspace) to that one small allocation.
 struct Clarabel {
     settings: DefaultSettings<f64>,
     /// `qps[n - 1]`: the QP of n contacts, once built.
@@ -235,6 +204,20 @@ impl Clarabel {
 }
 
 /// The direct path's scratch, sized for nc contacts.
+///
+/// For symmetric positive definite M (a P-matrix) the LCP has exactly one
+/// solution, and Murty's least-index principal pivoting method reaches it in
+/// finitely many pivots from any start. It keeps a set α of closed contacts
+/// (start: empty), solves M_αα μ_α = −q_α (Gaussian elimination with partial
+/// pivoting, `super::dense`), forms w = q + Mμ, and flips the smallest index
+/// that violates the conditions: i ∈ α with μ_i < 0 leaves, i ∉ α with
+/// w_i < −[`PIVOT_GAP_TOLERANCE`] enters. No violation: μ is the answer, exact
+/// to round-off. Failures: a singular M_αα is [`ContactFailure::Singular`];
+/// more than [`max_pivots`] pivots (only a W that is not a P-matrix, e.g. a
+/// broken Delassus matrix, can cycle) is [`ContactFailure::Cycling`].
+/// Bilateral contact is the single solve M μ = −q. nc is 1 or 2 in the
+/// bundled scenes and at most a handful in any scene, so the O(nc³) solves
+/// cost less than a clarabel iteration.
 struct Direct {
     /// M_αα, overwritten by the elimination.
     a: Vec<f64>,
@@ -329,7 +312,7 @@ pub(crate) struct Complementarity {
 
 impl Complementarity {
     /// The law for `nc` contacts: solvers and scratch are built here, so
-    /// that the steps do not rebuild them (see the module docs).
+    /// that the steps do not rebuild them (see `Clarabel`).
     pub(crate) fn new(spec: &ComplementaritySpec, bilateral: bool, nc: usize) -> Self {
         let backend = match spec.solver {
             ComplementaritySolver::Direct => Backend::Direct(Direct::new(nc)),

@@ -1,116 +1,29 @@
 //! `modal_exact`: exact propagation of every mode of a diagonal basis over
 //! the step (MODEL §9.3), on `mesh.kind = "galerkin"` or `"modal"`.
 //!
-//! In a mass-normalized diagonal basis each coordinate is an undamped
-//! oscillator `η̈_j + ω_j² η_j = f_j(t)` (MODEL §1; with Rayleigh damping,
-//! docs/lines.md §10.4, a damped one `η̈_j + c_j η̇_j + ω_j² η_j = f_j(t)`,
-//! propagated as exactly by `damped_modes.rs`),
-//! coupled to the others only through the contact force. Over a step its
-//! motion is closed form once the load's shape within the step is fixed
-//! ([`super::oscillator`]): the free vibration carries no time error and no
-//! numerical dispersion, and the step is O(J) with no recurrence across
-//! modes.
+//! In a mass-normalized diagonal basis each coordinate is an oscillator
+//! `η̈_j + c_j η̇_j + ω_j² η_j = f_j(t)` (MODEL §1; c_j = 0 undamped, Rayleigh
+//! damping in `damped_modes.rs`), coupled to the others only through the
+//! contact force. Once the load's shape within the step is fixed its motion
+//! is closed form ([`super::oscillator`]): no time error and no dispersion in
+//! the free vibration, and a step is O(J). Fixed loads are held (exact);
+//! moving forces and a manufactured source (MODEL §11) are linear in time
+//! between t_n and t_{n+1} (second order in Δt); the mass dof is propagated
+//! exactly under the held force ([`MassStep`]).
 //!
-//! ## The loads within a step, and the order
+//! Key decision: the contact force λ is **held over the step** (λ_{n+1} its
+//! mean) with the gap imposed at t_{n+1}, so `g_{n+1} = g_free + W λ_{n+1}`,
+//! the pair every force-level law takes (MODEL §5, §6); a force linear over
+//! the step makes the multiplier recurrence unstable. The held force keeps a
+//! neutral (−1)ⁿ zigzag of amplitude O(Δt), so the **reported** force is the
+//! mean of the two held forces around t_n (`Multipliers::Held`): second
+//! order, as tests/modal_exact.rs asserts. The impact law is refused.
 //!
-//! * **Fixed loads** (the distributed load `p`, self-weight): held, exact.
-//! * **A moving force F** (constant, a `force` carrier): its modal load
-//!   `s F φ_j(x(t))` is taken linear in time between the samples at t_n
-//!   and t_{n+1} (first-order hold of the path): second order in Δt, the
-//!   error `∝ (β_j V Δt)²` largest in the highest modes; exact for a
-//!   carrier at rest.
-//! * **The contact force λ** of each mass carrier is **held over the step**:
-//!   the unknown λ_{n+1} is its mean over [t_n, t_{n+1}], applied along the
-//!   carrier's path (the same linear-in-time modal load as a moving force,
-//!   `s λ (a0 φ(x_n) + a1 φ(x_{n+1}))` in η_{n+1}), and the gap is imposed
-//!   at t_{n+1}. A force linear over the step, with the unknown its end
-//!   sample, makes the multiplier obey λ_{n+1} ≈ −2 λ_n + … (the linear-
-//!   acceleration weights of a compliant contact, 1/3 and 1/6): unstable,
-//!   measured ×(−3.73) a step on the reference scene (`python3
-//!   scripts/numpy_modal_exact.py --linear-force-demo --speeds 100:100:1
-//!   --modes 200 --dt 1e-4`). Held, the
-//!   multiplier recurrence has no λ_n term, but it keeps a neutral (−1)ⁿ
-//!   mode: each held force is off the step's mean by a zigzag of
-//!   amplitude O(Δt) that the start and every closing excite and nothing
-//!   damps (measured on `scenes/verify/mms_beam_time.toml`: 3.4e-3 N of
-//!   15 N at Δt = 1.25e-4 s, halving with Δt). The **reported force** at
-//!   t_n is the mean of the two held forces around it, where the zigzag
-//!   cancels (`Multipliers::Held`, recorded one step late): second order.
-//!   Measured on the reference scene with a bilateral contact
-//!   (tests/modal_exact.rs) the displacement under the carrier and the
-//!   reported force both converge at **second order** in Δt (force ratios
-//!   3.92, 4.04, 4.19 per halving), and on the manufactured cases of
-//!   `taut verify` (orders 1.88–2.12).
-//! * **A manufactured source** (MODEL §11; verification only): the smooth
-//!   source and the carriers' point loads sampled at t_n and t_{n+1} with
-//!   the same first-order hold, the mass source held at t_{n+1/2}.
-//! * **The mass dof** `m q̈ + c q̇ + k q = k δ0 − s m g − λ` is propagated
-//!   exactly under the held force ([`MassStep`]), dashpot included.
-//!
-//! So `g_{n+1} = g_free + W λ_{n+1}` with
-//! `g_free = s φ(x_{n+1})ᵀ η_free − q_free` and
-//! `W = s² Σ_j φ_j(x_{n+1}) (a0_j φ_j(x_n) + a1_j φ_j(x_{n+1})) + g_q`: sums
-//! over modes, the pair every force-level law takes (Lagrange, penalty,
-//! complementarity; MODEL §5, §6). The impact law is refused
-//! (by its method description, `scene/method.rs`): an impulse on the gap rate has no place in a force
-//! held over the step.
-//!
-//! ## One step, O(J), one pass over the modes in a batch
-//!
-//! 1. Place each carrier: the previous `φ(x_{n+1})` becomes `φ(x_n)`
-//!    (swapped, not copied) and `φ(x_{n+1})` is evaluated: without a
-//!    transcendental call per mode on a galerkin basis
-//!    ([`crate::analytic::FastShapes`]), from four rows of the FE modes on
-//!    a modal one. At constant speed outside the clamped ends' boundary
-//!    layers (a cruise, `modal_cruise.rs`) each shape is instead the real
-//!    part of a phasor advanced by one complex product a mode.
-//! 2. The free step of every mode (and the moving forces), fused with the
-//!    sums g_free and W when the scene has one contact and no moving force;
-//!    then, on a galerkin basis with AVX2 + FMA, fused with phase 1 too:
-//!    each block of 16 shapes (or each rotated phasor) is stored and taken
-//!    by the free step while in registers ([`crate::analytic::Blocks`], the
-//!    same operations, so the same bits). Within a boundary layer the
-//!    blocks a layer row reaches take their shapes first (into a scratch
-//!    vector), then the same fused pass stores them and takes their free
-//!    step.
-//! 3. The law, then every mode's update with the multipliers: with one
-//!    contact, deferred ("Deferred update" below).
-//!
-//! ## Deferred update
-//!
-//! The update `η += f (a0 φ(x_n) + a1 φ(x_{n+1}))`, `η̇ += f (b0 … + b1 …)`
-//! (f = sλ) needs the whole pass's sums first (λ depends on them), so
-//! taken at once it is a second pass over the modes, re-reading eight of
-//! their arrays from L2. With one contact the step instead leaves it
-//! pending ([`ModalExact::step_deferred`]) and the next step's fused pass
-//! adds it to each mode just before that mode's free step, with the very
-//! operations of the separate pass (so the same bits); the step still
-//! ends with both `φ(x_n)` and `φ(x_{n+1})` in hand, which the pending
-//! update needs. A run alone ([`Stepper::step`]) settles at the end of
-//! every step ([`ModalExact::settle`]: the separate pass), so its state
-//! is always the step's; a batch (`modal_batch.rs`) defers, reads
-//! displacements through [`ModalExact::displacement_at`] (the settled
-//! values, summed as [`PointVector::dot`] sums: the same bits) and settles
-//! a run as it retires. The state after every step, the multipliers and
-//! every recorded value are the same bits either way (`tests`).
-//!
-//! ## The sample
-//!
-//! A run records the displacement under each carrier after every step,
-//! `w = s r_gᵀd` with `r_g = φ(x_{n+1})`: a further pass over the modes.
-//! With one contact the step forms it from its pass's two sums,
-//! `r_gᵀ(η_free + f z) = g_free-sum + f · W-sum` (`dg + f·dw`), whether
-//! or not the update is deferred (so a batch and a run alone record the
-//! same bits); it is within 3.2·10⁻¹⁵ of max |w| of the dot on the
-//! settled state (`tests`). It is kept with the step count it holds for
-//! (`Carrier::gap_dot`), and a sample of that step reads it.
-//!
-//! The kernels round `a·b + c` once and take sums over modes in eight
-//! partial sums (mode j into lane j mod 8) added in a fixed order: AVX2 +
-//! FMA where the CPU has both, `f64::mul_add` lane by lane otherwise, the
-//! same bits either way (`crate::numeric::lanes`). A run in a batch
-//! (`modal_batch.rs`) calls the same functions and gets the same bits.
-//! Nothing is allocated after [`ModalExact::new`].
+//! With one contact the update with λ is deferred into the next step's single
+//! pass over the modes ([`ModalExact::step_deferred`]); a run alone settles
+//! every step ([`ModalExact::settle`]), a batch (`modal_batch.rs`) defers:
+//! the same bits either way, as are AVX2 + FMA and `mul_add` lanes
+//! (`crate::numeric::lanes`). Nothing is allocated after [`ModalExact::new`].
 
 use std::ops::Range;
 use std::sync::Arc;

@@ -19,62 +19,10 @@
 //! then has to deliver λ* for the beam to follow v* — the contact coupling
 //! is verified, not bypassed.
 //!
-//! **A mass–spring carrier** (MODEL §2). In contact its mass follows the
-//! beam, `q* = w* = s v*(x_m(t), t)`, whose second derivative carries the
-//! convective terms, `ẅ* = s(v_tt + 2V v_xt + V² v_xx + V̇ v_x)` at x_m;
-//! the consistent force is the mass equation's,
-//! `λ_c = kδ0 − s m g − m ẅ* − c_s ẇ* − k w*`. Without a loss interval
-//! λ* = λ_c and the mass needs no source. With `[manufactured.loss]`
-//! (t_a, t_b, gap G, blend τ): λ* = χ(t) λ_c, χ a C³ step from 1 to 0 over
-//! [t_a − τ, t_a] and back over [t_b, t_b + τ]; the gap opens as
-//! g* = G (4u(1 − u))⁴, u = (t − t_a)/(t_b − t_a), on [t_a, t_b] (zero with
-//! three derivatives at both ends), q* = w* − g*, and the mass equation gets
-//! the source `f_q = m q̈* + c_s q̇* + k q* − (kδ0 − s m g) + λ*`, zero
-//! wherever χ = 1. Signorini holds exactly: λ* = 0 while g* > 0, g* = 0
-//! while λ* > 0. A unilateral contact must keep λ* > 0 outside the loss:
-//! [`Manufactured::new`] checks it on a fine time grid and refuses the scene
-//! otherwise, naming the time and the value.
-//!
-//! **Two coupled wires** (`docs/lines.md` W1–W6, D1–D2). With a
-//! `[messenger]`, the messenger has its own motion
-//! `v_m*(x, t) = Σⱼ bⱼ X_m,j(x) T̂ⱼ(t)` (`[manufactured.messenger]`; absent:
-//! v_m* = 0), each shape `X_m = (S − c)·P`, `P(ξ) = Π (ξ − ξ_s)` over the
-//! messenger's pinned interior supports (so X_m = 0 there whatever c is) and c the
-//! correction of its ends (pinned where a pinned support sits at x = 0 or L, free
-//! otherwise, [`supports::Shape::weighted`]); an elastic support
-//! (`docs/lines.md` E1) is a point attachment on the messenger, below, and
-//! does not hold X_m = 0; its smooth source is
-//! `ρA_m v_m,tt + EI_m v_m,xxxx − T_m v_m,xx`. Each dropper d carries in the
-//! manufactured motion the force `N_d*(t) = k_d(e₀ + v_m*(x_d) − v_c*(x_d))`
-//! (W2; `e₀ − v_c*(x_d)` on a fixed anchor, D1), and the source gets the
-//! point load `−N_d*(t) r_d`, `r_d = r_c(x_d) − r_m(x_d)` (−N_d* on the
-//! contact wire, +N_d* on the messenger): the model's own dropper spring
-//! adds `k_d(e₀ − r_dᵀd) r_d`, which cancels it only when the run delivers
-//! N_d = N_d* — the coupling is verified, not bypassed. Separable again:
-//! `−N_d* = Σ_k c_k(t) w_k` over the source's parts plus a constant part
-//! `−k_d e₀` ([`Manufactured::dropper_weights`]). A dropper's dashpot c_d
-//! (D11) is in its force, `N_d* = k_d e_d* + c_d ė_d*` with
-//! `ė_d* = v̇_m*(x_d) − v̇_c*(x_d)` (`docs/verification.md` M6). A
-//! tension-only dropper must stay taut (N_d* > 0, dashpot included: the
-//! Kelvin–Voigt link's max(0, k_d e_d + c_d ė_d)) on the check grid, else
-//! the scene is refused naming the dropper and the time.
-//!
-//! **Point attachments, dashpots, self-weight** (`docs/verification.md`
-//! M4–M7). Each `[[attachment]]` a (spring k_a, dashpot c_a, mass m_a at
-//! x_a to a fixed anchor, no preload; on the messenger, with v_m* and r_m,
-//! the messenger's elastic supports and clamps, E1) exerts in the manufactured motion the
-//! force `−(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t)`; the source gets the
-//! point load `+(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t) r_a`, r_a the
-//! interpolation vector the model's attachment is assembled with
-//! (`BeamModel::attach`), so only the model's own `m_a r_a r_aᵀ`,
-//! `c_a r_a r_aᵀ` and `k_a r_a r_aᵀ` cancel it — between nodes to the
-//! interpolation error of r_aᵀd against v*(x_a), order 4 in h for Hermite
-//! ([`Manufactured::attachment_weights`]). A dashpot (c_a or c_d > 0) adds
-//! a **rate part** `aᵢ T̂ᵢ'(t)` per term of each line to the separable
-//! source (none otherwise: a scene without dashpots keeps its parts). With
-//! `gravity.beam_self_weight` the constant part gives each line's weight
-//! back (+ρA g, N/m), so v* stays the solution. Rayleigh damping is not in
-//! the source and is refused (`resolve::damping`).
+//! The consistent carrier force and a loss interval are derived on
+//! [`Manufactured::new`], two coupled wires and their droppers on
+//! [`Manufactured::dropper_weights`], point attachments, dashpots and self-weight
+//! on [`Manufactured::attachment_weights`].
 
 pub mod factor;
 pub mod jet;
@@ -158,7 +106,7 @@ struct Carrier {
     role: CarrierRole,
 }
 
-/// The prescribed loss (module docs).
+/// The prescribed loss (`Manufactured::new`'s docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Loss {
     start: f64,
@@ -235,10 +183,10 @@ pub struct Manufactured {
     /// The messenger's motion v_m* (`None`: no `[messenger]`, or v_m* = 0).
     messenger: Option<LineMotion>,
     /// The droppers, whose forces N_d* of the manufactured motion the
-    /// source cancels (module docs, two coupled wires).
+    /// source cancels (`Manufactured::dropper_weights`' docs).
     droppers: Vec<DropperLoad>,
     /// The scene's own point attachments (`[[attachment]]`), whose forces
-    /// of the manufactured motion the source cancels (module docs).
+    /// of the manufactured motion the source cancels (`Manufactured::attachment_weights`' docs).
     attachments: Vec<AttachmentLoad>,
     /// The source has rate parts aᵢT̂ᵢ'(t) (a dashpot c_a or c_d > 0).
     rates: bool,
@@ -428,7 +376,23 @@ impl Manufactured {
     /// Build the solution of `spec` for `at` and check that it is one: every
     /// shape meets the supports and is not removed by the correction, every
     /// time part is more than linear, and a unilateral contact keeps λ* > 0
-    /// outside the prescribed loss (module docs).
+    /// outside the prescribed loss (below).
+    ///
+    /// **A mass–spring carrier** (MODEL §2). In contact its mass follows the
+    /// beam, `q* = w* = s v*(x_m(t), t)`, whose second derivative carries the
+    /// convective terms, `ẅ* = s(v_tt + 2V v_xt + V² v_xx + V̇ v_x)` at x_m;
+    /// the consistent force is the mass equation's,
+    /// `λ_c = kδ0 − s m g − m ẅ* − c_s ẇ* − k w*`. Without a loss interval
+    /// λ* = λ_c and the mass needs no source. With `[manufactured.loss]`
+    /// (t_a, t_b, gap G, blend τ): λ* = χ(t) λ_c, χ a C³ step from 1 to 0 over
+    /// [t_a − τ, t_a] and back over [t_b, t_b + τ]; the gap opens as
+    /// g* = G (4u(1 − u))⁴, u = (t − t_a)/(t_b − t_a), on [t_a, t_b] (zero with
+    /// three derivatives at both ends), q* = w* − g*, and the mass equation gets
+    /// the source `f_q = m q̈* + c_s q̇* + k q* − (kδ0 − s m g) + λ*`, zero
+    /// wherever χ = 1. Signorini holds exactly: λ* = 0 while g* > 0, g* = 0
+    /// while λ* > 0. A unilateral contact must keep λ* > 0 outside the loss:
+    /// [`Manufactured::new`] checks it on a fine time grid and refuses the scene
+    /// otherwise, naming the time and the value.
     pub fn new(spec: &ManufacturedSpec, at: Setting) -> Result<Self> {
         spec.check(at.t_end)?;
         let b = at.beam;
@@ -538,7 +502,7 @@ impl Manufactured {
         Ok(m)
     }
 
-    /// The messenger's motion (module docs): its shapes meet the
+    /// The messenger's motion (`Manufactured::dropper_weights`' docs): its shapes meet the
     /// messenger's ends (pinned where a support sits at x = 0 or L, free
     /// beyond the outermost supports otherwise) and vanish at every
     /// interior support through the weight P(ξ) = Π (ξ − ξ_s).
@@ -598,7 +562,7 @@ impl Manufactured {
         }))
     }
 
-    /// The droppers the source cancels (module docs).
+    /// The droppers the source cancels (`Manufactured::dropper_weights`' docs).
     fn dropper_loads(at: Setting) -> Vec<DropperLoad> {
         at.droppers
             .iter()
@@ -704,6 +668,30 @@ impl Manufactured {
     /// messenger term j's, −k_d e₀ on the constant part. The load acts
     /// along r_d (r_c − r_m, or r_c): the model's own spring and dashpot add
     /// +N_d r_d, so the two cancel only when the run delivers N_d = N_d*.
+    ///
+    /// **Two coupled wires** (`docs/lines.md` W1–W6, D1–D2). With a
+    /// `[messenger]`, the messenger has its own motion
+    /// `v_m*(x, t) = Σⱼ bⱼ X_m,j(x) T̂ⱼ(t)` (`[manufactured.messenger]`; absent:
+    /// v_m* = 0), each shape `X_m = (S − c)·P`, `P(ξ) = Π (ξ − ξ_s)` over the
+    /// messenger's pinned interior supports (so X_m = 0 there whatever c is) and c the
+    /// correction of its ends (pinned where a pinned support sits at x = 0 or L, free
+    /// otherwise, [`supports::Shape::weighted`]); an elastic support
+    /// (`docs/lines.md` E1) is a point attachment on the messenger, below, and
+    /// does not hold X_m = 0; its smooth source is
+    /// `ρA_m v_m,tt + EI_m v_m,xxxx − T_m v_m,xx`. Each dropper d carries in the
+    /// manufactured motion the force `N_d*(t) = k_d(e₀ + v_m*(x_d) − v_c*(x_d))`
+    /// (W2; `e₀ − v_c*(x_d)` on a fixed anchor, D1), and the source gets the
+    /// point load `−N_d*(t) r_d`, `r_d = r_c(x_d) − r_m(x_d)` (−N_d* on the
+    /// contact wire, +N_d* on the messenger): the model's own dropper spring
+    /// adds `k_d(e₀ − r_dᵀd) r_d`, which cancels it only when the run delivers
+    /// N_d = N_d* — the coupling is verified, not bypassed. Separable again:
+    /// `−N_d* = Σ_k c_k(t) w_k` over the source's parts plus a constant part
+    /// `−k_d e₀` ([`Manufactured::dropper_weights`]). A dropper's dashpot c_d
+    /// (D11) is in its force, `N_d* = k_d e_d* + c_d ė_d*` with
+    /// `ė_d* = v̇_m*(x_d) − v̇_c*(x_d)` (`docs/verification.md` M6). A
+    /// tension-only dropper must stay taut (N_d* > 0, dashpot included: the
+    /// Kelvin–Voigt link's max(0, k_d e_d + c_d ė_d)) on the check grid, else
+    /// the scene is refused naming the dropper and the time.
     pub fn dropper_weights(&self, d: usize, out: &mut [f64]) {
         out.fill(0.0);
         let dr = &self.droppers[d];
@@ -775,6 +763,23 @@ impl Manufactured {
     /// model's own m_a r_a r_aᵀ, c_a r_a r_aᵀ, k_a r_a r_aᵀ cancel it only
     /// when r_aᵀd follows v*(x_a), to the interpolation error between
     /// nodes.
+    ///
+    /// **Point attachments, dashpots, self-weight** (`docs/verification.md`
+    /// M4–M7). Each `[[attachment]]` a (spring k_a, dashpot c_a, mass m_a at
+    /// x_a to a fixed anchor, no preload; on the messenger, with v_m* and r_m,
+    /// the messenger's elastic supports and clamps, E1) exerts in the manufactured motion the
+    /// force `−(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t)`; the source gets the
+    /// point load `+(m_a v*_tt + c_a v*_t + k_a v*)(x_a, t) r_a`, r_a the
+    /// interpolation vector the model's attachment is assembled with
+    /// (`BeamModel::attach`), so only the model's own `m_a r_a r_aᵀ`,
+    /// `c_a r_a r_aᵀ` and `k_a r_a r_aᵀ` cancel it — between nodes to the
+    /// interpolation error of r_aᵀd against v*(x_a), order 4 in h for Hermite
+    /// ([`Manufactured::attachment_weights`]). A dashpot (c_a or c_d > 0) adds
+    /// a **rate part** `aᵢ T̂ᵢ'(t)` per term of each line to the separable
+    /// source (none otherwise: a scene without dashpots keeps its parts). With
+    /// `gravity.beam_self_weight` the constant part gives each line's weight
+    /// back (+ρA g, N/m), so v* stays the solution. Rayleigh damping is not in
+    /// the source and is refused (`resolve::damping`).
     pub fn attachment_weights(&self, a: usize, out: &mut [f64]) {
         out.fill(0.0);
         let at = &self.attachments[a];
@@ -993,7 +998,7 @@ impl Manufactured {
     }
 
     /// w* = s v*(x_m(t), t) under carrier c and its first two total time
-    /// derivatives (with the convective terms, module docs).
+    /// derivatives (with the convective terms, `Manufactured::new`'s docs).
     pub fn w(&self, c: usize, t: f64) -> [f64; 3] {
         let car = &self.carriers[c];
         let (x, v, a) = (
@@ -1044,7 +1049,7 @@ impl Manufactured {
         }
     }
 
-    /// The source on mass carrier c's equation, N (module docs; 0 without
+    /// The source on mass carrier c's equation, N (`Manufactured::new`'s docs; 0 without
     /// a loss, and for a force).
     pub fn mass_source(&self, c: usize, t: f64) -> f64 {
         let Some(loss) = self.loss else {
