@@ -3,83 +3,28 @@
 //! evaluates every step, for every carrier, on a `galerkin` basis.
 //!
 //! [`super::ModeShapes::values_into`] costs one `sin_cos` (and, off
-//! pinned–pinned, two `exp`) per mode: at J = 800 that is ~80 % of a
-//! modal step. Here the same values come from one `sin_cos` per call, a
-//! rotation recurrence, and small tables built once per basis and shared by
-//! every run on it.
-//!
-//! ## The oscillating part: a rotation recurrence and a table of phase shifts
-//!
-//! Every mode's oscillating part is `C cos βs + D sin βs = Re[(C − iD) e^{iβs}]`
-//! in the stable form's coordinate `s` (`x`, or `L − x` for a mirrored
-//! basis). Write `β_j L = jπ + ε_j`: `ε_j = 0` pinned–pinned, `ε_j ∈ [0, π/2)`
-//! clamped–pinned, `[0, π)` clamped–clamped (mode numbering of
-//! `mode_shapes.rs`). With `θ = πs/L` and `ξ = s/L`,
-//!
-//! ```text
-//! e^{iβ_j s} = e^{ijθ} · e^{iε_j ξ}.
-//! ```
-//!
-//! * `e^{ijθ}` for j = 1 … J by a **rotation recurrence** in blocks of
-//!   `BLOCK` modes: `e^{iθ}` from one `sin_cos`, the first block by
-//!   repeated squaring and products, then block b+1 = block b × `e^{iBθ}`
-//!   (a complex product per mode; the B chains are independent, so they
-//!   vectorize). Each product adds at most a few ulps, so mode j carries
-//!   about `2.2·(j/B + log₂B)·ε` relative error: linear growth, independent
-//!   of θ. The textbook three-term (Chebyshev) recurrence
-//!   `sin (j+1)θ = 2 cos θ sin jθ − sin (j−1)θ` is cheaper but amplifies
-//!   errors by up to `j/sin θ`, which is unbounded as the carrier nears a
-//!   support (θ → 0); `tests` measure both.
-//! * `e^{iε_j ξ}`, a slow phase (at most π over the span), from a **table**
-//!   at `ξ_k = k/K` holding `(C_j − iD_j) e^{iε_j ξ_k}`, times
-//!   `e^{iε_j δ}`, `δ = ξ − ξ_k`, by its Taylor polynomial (cos to y⁶, sin
-//!   to y⁵). `K = ⌈32 max ε_j⌉` keeps `|ε_j δ| ≤ 1/64`, where the
-//!   remainders are below `(1/64)⁸/8! ≈ 2·10⁻¹⁹` and `(1/64)⁷/7! ≈
-//!   4.5·10⁻¹⁷`: the table's interpolation error is below round-off by
-//!   construction. (A coarser table with longer polynomials costs more per
-//!   step: the step reads one row, but evaluates the polynomial for every
-//!   mode.)
-//!
-//! ## The boundary layers: tables in the distance to each end
-//!
-//! The terms `P_j e^{−α_j s}` and `Q_j e^{−α_j (L − s)}` (clamped ends,
-//! mode_shapes.rs) are tabulated in the distance `d` to their end at
-//! spacing `Δ = 1/α_J`, times `e^{−α_j δ}` (`|α_j δ| ≤ 1/2`) by its Taylor
-//! polynomial to degree 15 (remainder ≤ `e^{1/2}·0.5¹⁶/16! ≈ 1.2·10⁻¹⁸`).
-//! A term with `α_j d ≥ LAYER_CUT` is below `e^{−40} ≈ 4·10⁻¹⁸` of its
-//! coefficient (itself at most ~2 amplitudes) and is left out: since α_j
-//! rises with j, row k keeps only the modes that count within half a row of
-//! it, and rows stop at `d = 40/α_1`. On the reference span (αL ≥ 760)
-//! the layer is 2.6 m wide at the clamped end and absent at the pinned one
-//! (there `Q_j = −P_j e^{−α_j L}` underflows to 0).
-//!
-//! ## Fused operations, vector and scalar paths
+//! pinned–pinned, two `exp`) per mode, most of a modal step. Here the same
+//! values come from one `sin_cos` per call and small tables built once per
+//! basis and shared by every run on it: the oscillating part
+//! `C cos βs + D sin βs = Re[(C − iD) e^{iβs}]` by a rotation recurrence in
+//! blocks of `BLOCK` modes (not the three-term recurrence, whose error grows
+//! without bound near a support) times a table of slow phase shifts, and the
+//! clamped ends' boundary layers `P e^{−αs}`, `Q e^{−α(L−s)}` from tables in
+//! the distance to each end (both derived on [`FastShapes`]).
 //!
 //! The kernels round `a·b + c` once (AVX2 + FMA vectors, or
-//! [`f64::mul_add`] lane by lane on a CPU without them: the same bits,
-//! `crate::numeric::lanes`), which saves about a third of the operations.
-//!
-//! ## Block by block
-//!
-//! `FastShapes::blocks_at` hands the same values out a block of `BLOCK`
-//! modes at a time (`BlocksAvx::next`, then `Blocks::tail_into`), with
-//! the very operations of the whole-vector kernels, for a caller that uses
-//! each block while it is in registers (the fused `modal_exact` step); it
-//! declines where a boundary-layer row applies (`tests` check both, bit for
-//! bit).
-//!
-//! ## Accuracy
-//!
-//! Against the direct evaluation [`super::ModeShapes::values_into`] (itself
-//! accurate to ~10⁻¹² at J = 1000, mode_shapes.rs "The limit on J"), the
-//! values agree to `FAST_SHAPES_AGREEMENT` of the amplitude `sqrt(2/(ρA L))`
-//! for every support pair and J up to [`super::MAX_MODES`] (`tests`).
+//! [`f64::mul_add`] lane by lane: the same bits, `crate::numeric::lanes`).
+//! `FastShapes::blocks_at` hands the values out a block of `BLOCK` modes at
+//! a time, with the very operations of the whole-vector kernels, for the
+//! fused `modal_exact` step. Against the direct evaluation the values agree
+//! to `FAST_SHAPES_AGREEMENT` of the amplitude `sqrt(2/(ρA L))` for every
+//! support pair and J up to [`super::MAX_MODES`] (`tests`).
 
 use super::mode_shapes::{Ends, ModeShapes};
 use crate::numeric::lanes;
 use std::f64::consts::PI;
 
-/// Modes advanced together by the rotation recurrence (module docs): four
+/// Modes advanced together by the rotation recurrence ([`FastShapes`]): four
 /// AVX2 vectors of independent chains, so the chain's latency is hidden,
 /// and a chain of J/16 products.
 pub(crate) const BLOCK: usize = 16;
@@ -97,7 +42,7 @@ pub(crate) const LAYER_CUT: f64 = 40.0;
 #[cfg(test)]
 pub(crate) const FAST_SHAPES_AGREEMENT: f64 = 1e-11;
 
-/// Table rows per radian of slow phase: `|ε_j δ| ≤ 1/64` (module docs).
+/// Table rows per radian of slow phase: `|ε_j δ| ≤ 1/64` ([`FastShapes`]).
 const ROWS_PER_RADIAN: f64 = 32.0;
 
 /// Half the boundary-layer row spacing times α_J: `|α_j δ| ≤ 1/2`.
@@ -108,6 +53,38 @@ const LAYER_DEGREE: usize = 15;
 
 /// The J mode shapes of a [`ModeShapes`] basis, fast at any point (module
 /// docs). Built once per basis; [`FastShapes::values_into`] allocates nothing.
+///
+/// ## The oscillating part: a rotation recurrence and a table of phase shifts
+///
+/// Every mode's oscillating part is `C cos βs + D sin βs = Re[(C − iD) e^{iβs}]`
+/// in the stable form's coordinate `s` (`x`, or `L − x` for a mirrored
+/// basis). Write `β_j L = jπ + ε_j`: `ε_j = 0` pinned–pinned, `ε_j ∈ [0, π/2)`
+/// clamped–pinned, `[0, π)` clamped–clamped (mode numbering of
+/// `mode_shapes.rs`). With `θ = πs/L` and `ξ = s/L`,
+///
+/// ```text
+/// e^{iβ_j s} = e^{ijθ} · e^{iε_j ξ}.
+/// ```
+///
+/// * `e^{ijθ}` for j = 1 … J by a **rotation recurrence** in blocks of
+///   `BLOCK` modes: `e^{iθ}` from one `sin_cos`, the first block by
+///   repeated squaring and products, then block b+1 = block b × `e^{iBθ}`
+///   (a complex product per mode; the B chains are independent, so they
+///   vectorize). Each product adds at most a few ulps, so mode j carries
+///   about `2.2·(j/B + log₂B)·ε` relative error: linear growth, independent
+///   of θ. The textbook three-term (Chebyshev) recurrence
+///   `sin (j+1)θ = 2 cos θ sin jθ − sin (j−1)θ` is cheaper but amplifies
+///   errors by up to `j/sin θ`, which is unbounded as the carrier nears a
+///   support (θ → 0); `tests` measure both.
+/// * `e^{iε_j ξ}`, a slow phase (at most π over the span), from a **table**
+///   at `ξ_k = k/K` holding `(C_j − iD_j) e^{iε_j ξ_k}`, times
+///   `e^{iε_j δ}`, `δ = ξ − ξ_k`, by its Taylor polynomial (cos to y⁶, sin
+///   to y⁵). `K = ⌈32 max ε_j⌉` keeps `|ε_j δ| ≤ 1/64`, where the
+///   remainders are below `(1/64)⁸/8! ≈ 2·10⁻¹⁹` and `(1/64)⁷/7! ≈
+///   4.5·10⁻¹⁷`: the table's interpolation error is below round-off by
+///   construction. (A coarser table with longer polynomials costs more per
+///   step: the step reads one row, but evaluates the polynomial for every
+///   mode.)
 #[derive(Debug, Clone)]
 pub struct FastShapes {
     length: f64,
@@ -138,7 +115,20 @@ enum Oscillating {
 }
 
 /// One end's boundary-layer terms `coef_j e^{−α_j d}` in the distance d to
-/// that end, tabulated (module docs).
+/// that end, tabulated (`Layer`).
+///
+/// ## The boundary layers: tables in the distance to each end
+///
+/// The terms `P_j e^{−α_j s}` and `Q_j e^{−α_j (L − s)}` (clamped ends,
+/// mode_shapes.rs) are tabulated in the distance `d` to their end at
+/// spacing `Δ = 1/α_J`, times `e^{−α_j δ}` (`|α_j δ| ≤ 1/2`) by its Taylor
+/// polynomial to degree 15 (remainder ≤ `e^{1/2}·0.5¹⁶/16! ≈ 1.2·10⁻¹⁸`).
+/// A term with `α_j d ≥ LAYER_CUT` is below `e^{−40} ≈ 4·10⁻¹⁸` of its
+/// coefficient (itself at most ~2 amplitudes) and is left out: since α_j
+/// rises with j, row k keeps only the modes that count within half a row of
+/// it, and rows stop at `d = 40/α_1`. On the reference span (αL ≥ 760)
+/// the layer is 2.6 m wide at the clamped end and absent at the pinned one
+/// (there `Q_j = −P_j e^{−α_j L}` underflows to 0).
 #[derive(Debug, Clone)]
 struct Layer {
     alpha: Vec<f64>,
@@ -277,7 +267,7 @@ unsafe fn layer_avx2(row: &[f64], alpha: &[f64], delta: f64, out: &mut [f64]) ->
 const COS: [f64; 3] = [-0.5, 1.0 / 24.0, -1.0 / 720.0];
 const SIN: [f64; 2] = [-1.0 / 6.0, 1.0 / 120.0];
 
-/// `(sin y, cos y)` for `|y| ≤ 1/64` (cos to y⁶, sin to y⁵; module docs),
+/// `(sin y, cos y)` for `|y| ≤ 1/64` (cos to y⁶, sin to y⁵; [`FastShapes`]),
 /// fused.
 #[inline(always)]
 fn small_sin_cos(y: f64) -> (f64, f64) {
@@ -288,7 +278,7 @@ fn small_sin_cos(y: f64) -> (f64, f64) {
 }
 
 /// One mode's shifted oscillating part: `Re[T e^{iy} R]` with
-/// `T = tr + i·ti`, `R = rr + i·ri`, `y = ε δ` (module docs), fused.
+/// `T = tr + i·ti`, `R = rr + i·ri`, `y = ε δ` ([`FastShapes`]), fused.
 #[inline(always)]
 fn shifted(e: f64, delta: f64, t: (f64, f64), (rr, ri): (f64, f64)) -> f64 {
     let (zr, zi) = shifted_row(e, delta, t);
@@ -401,7 +391,7 @@ impl FastShapes {
 
     /// The imaginary parts of the phasors `F_j(x) = (C_j − iD_j) e^{iβ_j s}`
     /// (kg^{−1/2}), whose real parts are the oscillating parts of
-    /// `φ_j(x)` (module docs), into `im` (length J): the same table row,
+    /// `φ_j(x)` ([`FastShapes`]), into `im` (length J): the same table row,
     /// slow-phase polynomial and rotation recurrence as
     /// [`FastShapes::values_into`] (scalar), taking `Im[z R]` where it takes
     /// `Re[z R]`. Outside the boundary layers `φ_j = Re F_j`, and a carrier
@@ -589,7 +579,7 @@ impl FastShapes {
         }
     }
 
-    /// The oscillating parts at `ξ = s/L` (module docs), overwriting `out`:
+    /// The oscillating parts at `ξ = s/L` ([`FastShapes`]), overwriting `out`:
     /// blocks of [`BLOCK`] modes, each an independent lane of the
     /// recurrence, with AVX2 + FMA where the CPU has them (the same fused
     /// operations, the same bits), then the last partial block.

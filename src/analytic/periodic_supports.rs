@@ -15,59 +15,11 @@
 //!      [[cos κd, sin κd/(Tκ)], [−Tκ sin κd, cos κd]], determinant 1)
 //! ```
 //!
-//! For the beam, `EI v'''' − T v'' = ρA ω² v` on a span has the solutions
-//! cosh/sinh αx, cos/sin βx with
-//! `α² = (T + sqrt(T² + 4 EI ρA ω²))/(2EI)`, `β² = α² − T/EI`.
-//!
-//! ```text
-//! (L5) rigid supports (three-moment form, Mead 1970): with end moments and
-//!      rotations of a pinned–pinned span,
-//!      cos qd = [α coth(αd) sin βd − β cos βd] / [α csch(αd) sin βd − β]
-//! ```
-//!
-//! The denominator is < 0 for every β > 0 (|α csch(αd) sin βd| < β because
-//! αd/sinh αd < 1 and |sin βd| ≤ βd), so L5 is smooth; coth and csch are
-//! evaluated as `(1 + e^{−2αd})/(1 − e^{−2αd})` and `2e^{−αd}/(1 − e^{−2αd})`,
-//! so no αd overflows. At βd = rπ (the span's pinned–pinned modes) it equals
-//! cos βd = ±1: those are band edges; the other edges are the span's
-//! clamped–clamped modes.
-//!
-//! ```text
-//! (L6) elastic supports: the span's dynamic stiffness R (4×4: end values
-//!      (v, v') ↦ (EI v'', EI v''') at both ends), blocks R_00, R_0d, R_d0, R_dd,
-//!      gives at each support (continuity of v, v', EI v''; the jump of
-//!      EI v''' balanced by s v)
-//!      [A + B λ + C/λ] u = 0,  A = R_00 − R_dd + [[0, 0], [s, 0]],
-//!      B = R_0d, C = −R_d0,  λ = e^{iqd},
-//!      det(Bλ² + Aλ + C) = q₄λ⁴ + q₃λ³ + q₂λ² + q₁λ + q₀ is palindromic
-//!      (q₀ = q₄, q₁ = q₃: reciprocity), so with z = λ + 1/λ = 2 cos qd
-//!      q₄ z² + q₃ z + (q₂ − 2q₄) = 0.
-//! ```
-//!
-//! Two wave types: each real root with |z/2| ≤ 1 is a propagating wave, a
-//! real root outside is evanescent, a complex pair attenuates. R is computed
-//! as F·E⁻¹ from a basis whose values stay bounded (e^{−αx}, e^{−α(d−x)},
-//! cos βx, sin βx once αd ≥ 1; cosh αx, sinh αx below).
-//!
-//! A frequency passes when some wave propagates. Band edges are found by
-//! scanning ω and bisecting the pass/stop switch to round-off (L7).
-//!
-//! ```text
-//! (L8) N spans, pinned ends, supports at the N − 1 interior points:
-//!      string:  rigid: ω = rπc/d, each N-fold; elastic: the roots of the
-//!               first entry of S (P S)^{N−1} (0, 1)ᵀ, S the span, P the support
-//!               transfer matrix of L4 (a product, not the trace).
-//!      beam, rigid supports: in band r, ω_pp,r (every span in its r-th
-//!               pinned–pinned mode, all support moments zero) and the N − 1
-//!               roots of L5 = cos(jπ/N), j = 1 … N − 1 (the support moments
-//!               M_n = sin(njπ/N) solve the three-moment recurrence with
-//!               M_0 = M_N = 0): N frequencies per band.
-//! ```
-//!
-//! The rigid-beam roots are bisected between the band's edges, which
-//! assumes L5 monotone within a band (true of the bands checked against
-//! Hermite elements in the tests; a non-monotone band would return one root
-//! per target, not all).
+//! The beam's rigid-support band function (L5, Mead 1970) is derived on
+//! [`PeriodicLine::cos_qd`], the elastic supports' palindromic Bloch
+//! polynomial (L6) on [`PeriodicLine::bloch_polynomial`], and the finite
+//! line's frequencies (L8) on [`PeriodicLine::span_line_frequencies`]; band
+//! edges are bisected to round-off (L7, [`PeriodicLine::pass_bands`]).
 
 use nalgebra::SMatrix;
 
@@ -168,7 +120,7 @@ impl PeriodicLine {
         }
     }
 
-    /// (α, β), rad/m, of the beam at ω (module docs), without cancellation.
+    /// (α, β), rad/m, of the beam at ω ([`PeriodicLine::cos_qd`]), without cancellation.
     pub fn alpha_beta(&self, omega: f64) -> (f64, f64) {
         let (ei, t) = (self.ei, self.tension);
         let root = (t * t + 4.0 * ei * self.rho_a * omega * omega).sqrt();
@@ -181,6 +133,23 @@ impl PeriodicLine {
     /// a beam on rigid supports, none or two for a beam on elastic supports
     /// (none: a complex pair, no wave propagates). A rigid string gives ±∞
     /// except at the span modes.
+    ///
+    /// For the beam, `EI v'''' − T v'' = ρA ω² v` on a span has the solutions
+    /// cosh/sinh αx, cos/sin βx with
+    /// `α² = (T + sqrt(T² + 4 EI ρA ω²))/(2EI)`, `β² = α² − T/EI`.
+    ///
+    /// ```text
+    /// (L5) rigid supports (three-moment form, Mead 1970): with end moments and
+    ///      rotations of a pinned–pinned span,
+    ///      cos qd = [α coth(αd) sin βd − β cos βd] / [α csch(αd) sin βd − β]
+    /// ```
+    ///
+    /// The denominator is < 0 for every β > 0 (|α csch(αd) sin βd| < β because
+    /// αd/sinh αd < 1 and |sin βd| ≤ βd), so L5 is smooth; coth and csch are
+    /// evaluated as `(1 + e^{−2αd})/(1 − e^{−2αd})` and `2e^{−αd}/(1 − e^{−2αd})`,
+    /// so no αd overflows. At βd = rπ (the span's pinned–pinned modes) it equals
+    /// cos βd = ±1: those are band edges; the other edges are the span's
+    /// clamped–clamped modes.
     pub fn cos_qd(&self, omega: f64) -> Vec<f64> {
         let d = self.spacing;
         if self.ei == 0.0 {
@@ -269,6 +238,26 @@ impl PeriodicLine {
     }
 
     /// Coefficients q₀ … q₄ of det(Bλ² + Aλ + C) (L6), for an elastic beam.
+    ///
+    /// ```text
+    /// (L6) elastic supports: the span's dynamic stiffness R (4×4: end values
+    ///      (v, v') ↦ (EI v'', EI v''') at both ends), blocks R_00, R_0d, R_d0, R_dd,
+    ///      gives at each support (continuity of v, v', EI v''; the jump of
+    ///      EI v''' balanced by s v)
+    ///      [A + B λ + C/λ] u = 0,  A = R_00 − R_dd + [[0, 0], [s, 0]],
+    ///      B = R_0d, C = −R_d0,  λ = e^{iqd},
+    ///      det(Bλ² + Aλ + C) = q₄λ⁴ + q₃λ³ + q₂λ² + q₁λ + q₀ is palindromic
+    ///      (q₀ = q₄, q₁ = q₃: reciprocity), so with z = λ + 1/λ = 2 cos qd
+    ///      q₄ z² + q₃ z + (q₂ − 2q₄) = 0.
+    /// ```
+    ///
+    /// Two wave types: each real root with |z/2| ≤ 1 is a propagating wave, a
+    /// real root outside is evanescent, a complex pair attenuates. R is computed
+    /// as F·E⁻¹ from a basis whose values stay bounded (e^{−αx}, e^{−α(d−x)},
+    /// cos βx, sin βx once αd ≥ 1; cosh αx, sinh αx below).
+    ///
+    /// A frequency passes when some wave propagates. Band edges are found by
+    /// scanning ω and bisecting the pass/stop switch to round-off (L7).
     pub fn bloch_polynomial(&self, omega: f64) -> [f64; 5] {
         let r = self.span_stiffness(omega);
         let s = self.support_stiffness(omega);
@@ -382,6 +371,23 @@ impl PeriodicLine {
     /// points (L8). A string on elastic supports scans its frequency function
     /// in `samples` steps (two roots within one step are missed); a beam on
     /// elastic supports is not covered (an error).
+    ///
+    /// ```text
+    /// (L8) N spans, pinned ends, supports at the N − 1 interior points:
+    ///      string:  rigid: ω = rπc/d, each N-fold; elastic: the roots of the
+    ///               first entry of S (P S)^{N−1} (0, 1)ᵀ, S the span, P the support
+    ///               transfer matrix of L4 (a product, not the trace).
+    ///      beam, rigid supports: in band r, ω_pp,r (every span in its r-th
+    ///               pinned–pinned mode, all support moments zero) and the N − 1
+    ///               roots of L5 = cos(jπ/N), j = 1 … N − 1 (the support moments
+    ///               M_n = sin(njπ/N) solve the three-moment recurrence with
+    ///               M_0 = M_N = 0): N frequencies per band.
+    /// ```
+    ///
+    /// The rigid-beam roots are bisected between the band's edges, which
+    /// assumes L5 monotone within a band (true of the bands checked against
+    /// Hermite elements in the tests; a non-monotone band would return one root
+    /// per target, not all).
     pub fn span_line_frequencies(
         &self,
         n_spans: usize,

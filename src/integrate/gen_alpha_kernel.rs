@@ -24,45 +24,8 @@
 //! (the contact columns' part of h, the mass dofs). Nothing is allocated
 //! and the work is O(n) per lane.
 //!
-//! **Lanes.** With L runs the beam vectors hold the runs interleaved
-//! (`x[i·L + l]`) and a right-hand side has k·L columns (column c of run l
-//! at c·L + l, [`Lanes`]); with L = 1 that is a run's own layout. Every
-//! run's columns get the same operations in the same order whatever L: the
-//! banded kernel is one generic kernel with more columns
-//! ([`BandedLdlt::solve_affine_lanes`]), and the update pass is
-//! [`UpdateCoefs::row`] per element (or its AVX2 transcription, operation
-//! for operation). Rust does not contract a·b + c into fused multiply–adds,
-//! so vectorized code rounds as scalar code does.
-//!
-//! **The residual in one band product.** F = f − α_m M a_n − K u with
-//! u = (1 − α_f) d̃ + α_f d_n takes two band products; with
-//! M a_n = (A a_n − c_k K a_n)/(1 − α_m), c_k = (1 − α_f)βΔt²,
-//!
-//! ```text
-//!   F = (f − α′ A a_n) − K (u − α′ c_k a_n) = h − K ũ,   α′ = α_m/(1 − α_m),
-//! ```
-//!
-//! one product, because A a_n needs none: it is the right-hand side the last
-//! step solved, b₀ + Σ λ_c s_c r_f,c. The two differ by that solve's backward
-//! error, ε|A||a_n|: an error every solve makes anyway, and which a's own
-//! round-off already carries into the step. h and ũ are formed in the update
-//! pass; the banded kernel computes h − Kũ row by row inside its forward
-//! sweep ([`BandedLdlt::solve_affine`]).
-//!
-//! **Damping.** C enters at the α-weighted velocity
-//! `(1 − α_f)v_{n+1} + α_f v_n = (1 − α_f)γΔt a_{n+1} + w`,
-//! `w = v_n + (1 − α_f)(1 − γ)Δt a_n`: the first term goes into A, and
-//! `−C w` into F. With `A a_n` now holding `c_c C a_n` too, the same
-//! rearrangement gives
-//!
-//! ```text
-//!   F = h − K ũ − C w̃,   w̃ = w − α′ c_c a_n = v_n + κ a_n,
-//!   κ = (1 − α_f)(1 − γ)Δt − α′ c_c,
-//! ```
-//!
-//! and [`Kernel::damp`] subtracts `C w̃` from h before the solve (so the
-//! solve's b₀, hence the next A a_n, includes it). O(n·p) per step, no
-//! allocation; a run without C skips it.
+//! How lanes are laid out and why the residual takes one band product are
+//! on `Kernel`; the damping term on `Damping`.
 
 #![allow(non_snake_case)]
 
@@ -154,7 +117,22 @@ struct MassLane {
     effective: Vec<Effective>,
 }
 
-/// What a damped run's step adds (module docs, "Damping").
+/// What a damped run's step adds.
+///
+/// **Damping.** C enters at the α-weighted velocity
+/// `(1 − α_f)v_{n+1} + α_f v_n = (1 − α_f)γΔt a_{n+1} + w`,
+/// `w = v_n + (1 − α_f)(1 − γ)Δt a_n`: the first term goes into A, and
+/// `−C w` into F. With `A a_n` now holding `c_c C a_n` too, the same
+/// rearrangement gives
+///
+/// ```text
+///   F = h − K ũ − C w̃,   w̃ = w − α′ c_c a_n = v_n + κ a_n,
+///   κ = (1 − α_f)(1 − γ)Δt − α′ c_c,
+/// ```
+///
+/// and [`Kernel::damp`] subtracts `C w̃` from h before the solve (so the
+/// solve's b₀, hence the next A a_n, includes it). O(n·p) per step, no
+/// allocation; a run without C skips it.
 struct Damping {
     /// C, the run's damping matrix.
     c: SymBand,
@@ -167,6 +145,32 @@ struct Damping {
 }
 
 /// The generalized-α step of L runs sharing A (module docs).
+///
+/// **Lanes.** With L runs the beam vectors hold the runs interleaved
+/// (`x[i·L + l]`) and a right-hand side has k·L columns (column c of run l
+/// at c·L + l, [`Lanes`]); with L = 1 that is a run's own layout. Every
+/// run's columns get the same operations in the same order whatever L: the
+/// banded kernel is one generic kernel with more columns
+/// ([`BandedLdlt::solve_affine_lanes`]), and the update pass is
+/// [`UpdateCoefs::row`] per element (or its AVX2 transcription, operation
+/// for operation). Rust does not contract a·b + c into fused multiply–adds,
+/// so vectorized code rounds as scalar code does.
+///
+///
+/// **The residual in one band product.** F = f − α_m M a_n − K u with
+/// u = (1 − α_f) d̃ + α_f d_n takes two band products; with
+/// M a_n = (A a_n − c_k K a_n)/(1 − α_m), c_k = (1 − α_f)βΔt²,
+///
+/// ```text
+///   F = (f − α′ A a_n) − K (u − α′ c_k a_n) = h − K ũ,   α′ = α_m/(1 − α_m),
+/// ```
+///
+/// one product, because A a_n needs none: it is the right-hand side the last
+/// step solved, b₀ + Σ λ_c s_c r_f,c. The two differ by that solve's backward
+/// error, ε|A||a_n|: an error every solve makes anyway, and which a's own
+/// round-off already carries into the step. h and ũ are formed in the update
+/// pass; the banded kernel computes h − Kũ row by row inside its forward
+/// sweep ([`BandedLdlt::solve_affine`]).
 pub(crate) struct Kernel {
     p: GenAlphaParams,
     /// Δt, s.
@@ -191,9 +195,9 @@ pub(crate) struct Kernel {
     a: Vec<f64>,
     /// d̃ of the next step, m.
     d_pred: Vec<f64>,
-    /// ũ = u − α′ c_k a_n with u = (1 − α_f) d̃ + α_f d_n (module docs), m.
+    /// ũ = u − α′ c_k a_n with u = (1 − α_f) d̃ + α_f d_n (`Kernel`'s docs), m.
     u_shift: Vec<f64>,
-    /// h = f − α′ A a_n, N (module docs).
+    /// h = f − α′ A a_n, N (`Kernel`'s docs).
     h: Vec<f64>,
     /// Column 0 of the last step's right-hand side before the solve, N.
     b0: Vec<f64>,
@@ -256,7 +260,7 @@ impl Kernel {
     /// Set lane `l` (the next one, in order) from its consistent initial
     /// state: the mass dofs' A_q and q̈₀, and the first predictors
     /// d̃ = d + Δt v + (½ − β)Δt² a, u = (1 − α_f) d̃ + α_f d and the
-    /// residual's operands ũ and h (module docs), with A a₀ formed
+    /// residual's operands ũ and h (`Kernel`'s docs), with A a₀ formed
     /// explicitly (the only time it is: afterwards A a_n is the last
     /// solve's right-hand side). `d`, `v` are the run's beam state at t = 0.
     pub(crate) fn start(&mut self, sys: &System, d: &[f64], v: &[f64], init: Initial) {
@@ -320,7 +324,7 @@ impl Kernel {
         sys.scatter_loads_in(&mut self.rhs[..n], self.k, lanes, 1.0);
     }
 
-    /// The damping's share of every lane's residual (module docs,
+    /// The damping's share of every lane's residual (`Damping`'s docs,
     /// "Damping"): h −= C w̃, w̃ = v_n + κ a_n, before [`Kernel::solve`].
     /// `v` is the lanes' beam velocities (interleaved). Nothing without C.
     pub(crate) fn damp(&mut self, v: &[f64]) {
@@ -415,7 +419,7 @@ impl Kernel {
         sys.solve_contact_in(&map, Lanes { count: L, lane: l }, st)
     }
 
-    /// The update pass of every lane (module docs): a = a★ + Σ λ_c z_c,
+    /// The update pass of every lane (`Kernel`'s docs): a = a★ + Σ λ_c z_c,
     /// d = d̃ + βΔt² a, v = v_n + Δt((1−γ)a_n + γa), and in the same pass
     /// the next step's d̃, ũ and h. `load` is the beam's distributed load f
     /// (any lane's: they share it), `d`, `v` the lanes' beam state
@@ -490,7 +494,7 @@ impl Kernel {
     }
 
     /// Lane `l` after the update pass: the contact columns' part of the
-    /// next h (A a_{n+1} = b₀ + Σ λ_c s_c r_f,c, module docs), and its mass
+    /// next h (A a_{n+1} = b₀ + Σ λ_c s_c r_f,c, `Kernel`'s docs), and its mass
     /// dofs q, q̇, q̈ from their unknowns u_q = u★_q − λ/A_q.
     pub(crate) fn finish(&mut self, l: usize, sys: &System, st: &mut State) {
         let (n, L, dt) = (self.n, self.lanes, self.dt);
