@@ -187,3 +187,179 @@ fn the_model_lists_every_quantity_of_the_registry() {
         "a row for a quantity the registry has not"
     );
 }
+
+/// The folders (and files) a reader of the repository meets, whose text
+/// must not name a tracker's issue number: a reader has no tracker, so a
+/// comment, a doc or a test says what and why in its own words.
+const NO_TRACKER_NUMBERS_IN: [&str; 11] = [
+    "src/",
+    "cli/",
+    "tests/",
+    "xtask/",
+    "scripts/",
+    "python/",
+    "benches/",
+    "examples/",
+    "scenes/",
+    "docs/",
+    "README.md",
+];
+
+/// The word a tracker reference starts with, built from pieces so that
+/// this file does not name one itself.
+const TRACKER_WORD: &str = concat!("iss", "ue");
+
+/// The places in `text` (1-based line numbers) where an issue number is
+/// named: the tracker's word, singular or plural, then an optional `#` and
+/// a number (also across a comment's line break), or a `#` and a number
+/// standing alone (after a space, a bracket or a comma), not part of a
+/// colour, an anchor (`#5-contact`) or a word.
+fn tracker_numbers(text: &str) -> Vec<usize> {
+    let lower = text.to_lowercase();
+    let b = lower.as_bytes();
+    let line_of = |i: usize| lower[..i].matches('\n').count() + 1;
+    let mut hits = Vec::new();
+    // the word, then a number
+    let mut from = 0;
+    while let Some(k) = lower[from..].find(TRACKER_WORD) {
+        let at = from + k;
+        from = at + TRACKER_WORD.len();
+        if at > 0 && b[at - 1].is_ascii_alphanumeric() {
+            continue;
+        }
+        let mut i = from;
+        if b.get(i) == Some(&b's') {
+            i += 1;
+        }
+        while i < b.len() && (b[i] == b' ' || b[i] == b'\t') {
+            i += 1;
+        }
+        if b.get(i) == Some(&b'\n') {
+            // a comment's next line: its indentation and marker
+            i += 1;
+            while i < b.len() && b" \t/!#*\"".contains(&b[i]) {
+                i += 1;
+            }
+        }
+        if b.get(i) == Some(&b'#') {
+            i += 1;
+        }
+        if b.get(i).is_some_and(u8::is_ascii_digit) {
+            hits.push(line_of(at));
+        }
+    }
+    // a `#` and a number standing alone
+    for (at, _) in lower.match_indices('#') {
+        let before_ok = at == 0 || b" \t([,".contains(&b[at - 1]);
+        let digits = b[at + 1..].iter().take_while(|c| c.is_ascii_digit()).count();
+        let after = b.get(at + 1 + digits).copied().unwrap_or(b' ');
+        let after_ok = !(after.is_ascii_alphanumeric() || b"-_.".contains(&after));
+        if before_ok && digits > 0 && after_ok {
+            hits.push(line_of(at));
+        }
+    }
+    hits.sort_unstable();
+    hits.dedup();
+    hits
+}
+
+#[test]
+fn the_tracker_finder_sees_numbers_but_not_words() {
+    let w = TRACKER_WORD;
+    let found = |t: &str| !tracker_numbers(t).is_empty();
+    for t in [
+        format!("fixed ({w} 41)"),
+        format!("{}{} 12: the fix", w[..1].to_uppercase(), &w[1..]),
+        format!("{w}s 30-32"),
+        format!("{w} {h}7", h = '#'),
+        format!("// the case ({w}\n// 27; docs)"),
+        format!("a regression ({h}44).", h = '#'),
+        format!("see {h}44, then", h = '#'),
+    ] {
+        assert!(found(&t), "{t:?} names an issue number");
+    }
+    for t in [
+        format!("the {w}'s band, ±0.3"),
+        format!("an {w} number, never named"),
+        "tissue 3".to_string(),
+        "color:#222; fill=\"#1f77b4\"".to_string(),
+        "[4. Loss](#4-contact-loss), MODEL §12".to_string(),
+        "#[derive(Debug)] # 3 cases".to_string(),
+    ] {
+        assert!(!found(&t), "{t:?} names no issue number");
+    }
+    assert_eq!(tracker_numbers(&format!("a\nb ({w} 5)\nc")), [2]);
+}
+
+/// No file a reader meets ([`NO_TRACKER_NUMBERS_IN`]) names an issue
+/// number; the failure lists every file and line that does.
+#[test]
+fn no_file_names_an_issue_number() {
+    let root = root();
+    let mut files = Vec::new();
+    walk(&root, &root, &mut files);
+    let mut seen = 0;
+    let mut named = Vec::new();
+    for f in &files {
+        let s = f.to_string_lossy().replace('\\', "/");
+        if !NO_TRACKER_NUMBERS_IN.iter().any(|p| s.starts_with(p)) {
+            continue;
+        }
+        // a binary file (a picture, a compiled module) has no prose
+        let Ok(text) = std::fs::read_to_string(root.join(f)) else {
+            continue;
+        };
+        seen += 1;
+        for line in tracker_numbers(&text) {
+            let shown = text.lines().nth(line - 1).unwrap_or("").trim();
+            named.push(format!("{s}:{line}: {shown}"));
+        }
+    }
+    assert!(seen > 300, "found the files ({seen})");
+    assert!(
+        named.is_empty(),
+        "{} lines name an issue number (say what and why instead):\n{}",
+        named.len(),
+        named.join("\n")
+    );
+}
+
+/// Most lines a module's doc header (the `//!` block at the top of a file
+/// of `src/`) may have: enough to say what the module is, why it is so,
+/// the MODEL.md equation it implements and its key design decision (about
+/// 25 lines, and a little slack for a list or a formula). Measured
+/// figures (timings, tables of errors) belong in tests that assert them
+/// and in docs/ that quote them, not in a header that grows with each
+/// measurement.
+const MODULE_HEADER_MAX_LINES: usize = 30;
+
+/// The lines of the `//!` block a file opens with.
+fn module_header_lines(text: &str) -> usize {
+    text.lines()
+        .take_while(|l| l.trim_start().starts_with("//!"))
+        .count()
+}
+
+#[test]
+fn module_headers_are_short() {
+    assert_eq!(module_header_lines("//! a\n//!\n//! b\n\nuse x;\n//! c"), 3);
+    let root = root();
+    let mut files = Vec::new();
+    walk(&root, &root.join("src"), &mut files);
+    assert!(files.len() > 50, "found src/ ({} files)", files.len());
+    let mut long: Vec<String> = files
+        .iter()
+        .filter(|f| f.extension().is_some_and(|e| e == "rs"))
+        .filter_map(|f| {
+            let text = std::fs::read_to_string(root.join(f)).ok()?;
+            let n = module_header_lines(&text);
+            (n > MODULE_HEADER_MAX_LINES).then(|| format!("{}: {n} lines", f.display()))
+        })
+        .collect();
+    long.sort();
+    assert!(
+        long.is_empty(),
+        "module headers longer than {MODULE_HEADER_MAX_LINES} lines:\n{}",
+        long.join("\n")
+    );
+}

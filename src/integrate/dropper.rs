@@ -21,46 +21,9 @@
 //! `0 ≤ μ_d ⊥ N_d ≥ 0` (D8); μ_d = 0 for a taut one, which is then
 //! exactly the linear dropper.
 //!
-//! **The rows of a step (D9).** z'_d = A'⁻¹r_d and Q_ab = r_aᵀz'_b are
-//! formed once ([`Droppers::prepare`]). A step's set S holds the droppers
-//! slack at the previous step and those whose free extension e_free,d
-//! (no μ, no contact force) is negative. With the contacts' forces λ and
-//! μ_S, e_d = e_free,d − κ(Σ_c P_dc λ_c + Σ_{b∈S} Q_db μ_b), P_dc =
-//! r_dᵀz'_c (z'_c the contact columns of the step). Written in the
-//! droppers' forces N_S (the law's multipliers, as before) the problem
-//! over the contacts and S is
-//!
-//! ```text
-//!   H = diag(k_S) − κ diag(k_S) Q_SS diag(k_S),   G = H⁻¹   (S × S, SPD)
-//!   g_S = G(−k∘e_free + κ diag(k) P λ + N_S)        [= μ_S / k_S]
-//!   g_c = g'_c + W'_cc λ + Ê G(−k∘e_free + κ diag(k) P λ + N_S)
-//! ```
-//!
-//! (Ê_cd = coef_c s_c r_cᵀz'_d k_d, the contact row's coefficient coef_c
-//! at its placement): the same pair as the problem with every dropper a
-//! row over A (the taut ones condensed exactly), so every law gives the
-//! same forces. The law's slack rows give μ_d = k_d g_d, its taut rows
-//! μ_d = 0.
-//!
-//! **Check (D10).** After the solve, each dropper outside S has
-//! N_d = k_d e_d; one below −[`FORCE_ROUNDOFF`] of the step's force scale
-//! joins S and the small problem is solved again (S only grows, so at
-//! most m + 1 passes). The free solution then gains Σ_S μ_d z'_d
-//! ([`Droppers::add_responses`]): a step costs O(n·(1 + |S|)) beyond the
-//! linear twin's, and the dense problem has nc + |S| rows. Nothing here
-//! allocates in a step.
-//!
-//! **Dashpots (D12).** A tension-only dropper with a dashpot c_d is a
-//! Kelvin–Voigt link, N_d = max(0, k_d e_d + c_d ė_d), ė_d = −r_dᵀv: its
-//! dashpot c_d r_d r_dᵀ is in C ([`Droppers::add_dashpots`]) as its spring
-//! is in K, and the slack correction μ_d cancels both together, N_d =
-//! k_d e_d + c_d ė_d + μ_d with `0 ≤ μ_d ⊥ N_d ≥ 0`. At the force level
-//! e_d and ė_d respond to μ (and λ) through the same z'_d, with κ and
-//! κ_v = (1 − α_f) c_v (v_{n+1} = ṽ + c_v u), so the spring and dashpot
-//! answer as one spring of stiffness k_eff,d = k_d + c_d c_v/c_d
-//! (= k_d + c_d γ/(βΔt)): every formula above holds with k_d → k_eff,d
-//! and k_d e_free,d → N_free,d = k_d e_free,d + c_d ė_free,d (the force of
-//! the free step). Without a dashpot k_eff,d = k_d and nothing changes.
+//! The step's rows (D9) are derived on [`Droppers::prepare`], the check
+//! that grows the slack set (D10) on [`Droppers::add_responses`], dashpots
+//! (D12) on [`Droppers::add_dashpots`]. Nothing here allocates in a step.
 
 use super::state::State;
 use super::step_map::{StepMap, VelocityPrediction};
@@ -162,7 +125,7 @@ pub(crate) struct Droppers {
     weight: f64,
     /// κ = (1 − α) c_d.
     coef: f64,
-    /// k_eff,d = k_d + c_d c_v/c_d of each row, N/m (module docs, D12;
+    /// k_eff,d = k_d + c_d c_v/c_d of each row, N/m ([`Droppers::add_dashpots`], D12;
     /// k_d without a dashpot).
     keff: Vec<f64>,
     /// True once a method formed z and Q ([`Droppers::prepare`]).
@@ -177,7 +140,7 @@ pub(crate) struct Droppers {
     scratch: Scratch,
 }
 
-/// A step's dense quantities (module docs, D9), sized once for the run.
+/// A step's dense quantities (D9, [`Droppers::prepare`]), sized once for the run.
 #[derive(Debug, Clone, Default)]
 struct Scratch {
     /// ê_d = N_free,d / k_eff,d of each row, m: the free extension e_free,d
@@ -288,6 +251,18 @@ impl Droppers {
 
     /// Add every tension-only dropper's dashpot c_d r_d r_dᵀ to `c` (D12; a
     /// linear dropper's is there already, D11).
+    ///
+    /// **Dashpots (D12).** A tension-only dropper with a dashpot c_d is a
+    /// Kelvin–Voigt link, N_d = max(0, k_d e_d + c_d ė_d), ė_d = −r_dᵀv: its
+    /// dashpot c_d r_d r_dᵀ is in C ([`Droppers::add_dashpots`]) as its spring
+    /// is in K, and the slack correction μ_d cancels both together, N_d =
+    /// k_d e_d + c_d ė_d + μ_d with `0 ≤ μ_d ⊥ N_d ≥ 0`. At the force level
+    /// e_d and ė_d respond to μ (and λ) through the same z'_d, with κ and
+    /// κ_v = (1 − α_f) c_v (v_{n+1} = ṽ + c_v u), so the spring and dashpot
+    /// answer as one spring of stiffness k_eff,d = k_d + c_d c_v/c_d
+    /// (= k_d + c_d γ/(βΔt)): every formula above holds with k_d → k_eff,d
+    /// and k_d e_free,d → N_free,d = k_d e_free,d + c_d ė_free,d (the force of
+    /// the free step). Without a dashpot k_eff,d = k_d and nothing changes.
     pub(crate) fn add_dashpots(&self, c: &mut SymBand) {
         self.add_outer(c, |l| l.c);
     }
@@ -372,10 +347,31 @@ impl Droppers {
         self.links[i].e0 = e0;
     }
 
-    /// Form z'_d = A'⁻¹ r_d and Q once (module docs), for a method with
+    /// Form z'_d = A'⁻¹ r_d and Q once (D9, below), for a method with
     /// constant A' (the droppers' springs and dashpots in it): `solve`
     /// overwrites a right-hand side with A'⁻¹ of it; `c_d`, `c_v` as in
     /// d_{n+1} = d̃ + c_d u, v_{n+1} = ṽ + c_v u; `weight` = α_f.
+    ///
+    /// **The rows of a step (D9).** z'_d = A'⁻¹r_d and Q_ab = r_aᵀz'_b are
+    /// formed once ([`Droppers::prepare`]). A step's set S holds the droppers
+    /// slack at the previous step and those whose free extension e_free,d
+    /// (no μ, no contact force) is negative. With the contacts' forces λ and
+    /// μ_S, e_d = e_free,d − κ(Σ_c P_dc λ_c + Σ_{b∈S} Q_db μ_b), P_dc =
+    /// r_dᵀz'_c (z'_c the contact columns of the step). Written in the
+    /// droppers' forces N_S (the law's multipliers, as before) the problem
+    /// over the contacts and S is
+    ///
+    /// ```text
+    ///   H = diag(k_S) − κ diag(k_S) Q_SS diag(k_S),   G = H⁻¹   (S × S, SPD)
+    ///   g_S = G(−k∘e_free + κ diag(k) P λ + N_S)        [= μ_S / k_S]
+    ///   g_c = g'_c + W'_cc λ + Ê G(−k∘e_free + κ diag(k) P λ + N_S)
+    /// ```
+    ///
+    /// (Ê_cd = coef_c s_c r_cᵀz'_d k_d, the contact row's coefficient coef_c
+    /// at its placement): the same pair as the problem with every dropper a
+    /// row over A (the taut ones condensed exactly), so every law gives the
+    /// same forces. The law's slack rows give μ_d = k_d g_d, its taut rows
+    /// μ_d = 0.
     pub(crate) fn prepare(&mut self, solve: impl Fn(&mut [f64]), c_d: f64, c_v: f64, weight: f64) {
         let (n, m) = (self.n, self.rows());
         self.z = vec![0.0; n * m];
@@ -412,7 +408,7 @@ impl Droppers {
         &self.z[r * self.n..(r + 1) * self.n]
     }
 
-    /// Begin a step's dropper problem (module docs, D9), from the
+    /// Begin a step's dropper problem (D9, [`Droppers::prepare`]), from the
     /// method's step `map` (`k` columns) and the state `st` at t_n: the
     /// free extensions from d̃, the free solution (column 0) and d_n, and
     /// with a dashpot (D12) the free rates from ṽ, the same column and
@@ -474,7 +470,7 @@ impl Droppers {
         }
     }
 
-    /// The pair (g, W) over the contacts and the set S (module docs, D9)
+    /// The pair (g, W) over the contacts and the set S (D9, [`Droppers::prepare`])
     /// into `g`, `w` (row-major, stride nc + |S|, the set's rows after the
     /// contacts); returns nc + |S|. A non-positive pivot of H (round-off
     /// destroying its definiteness) is [`ContactFailure::Singular`].
@@ -582,7 +578,7 @@ impl Droppers {
     /// After the law solved the pair of [`Droppers::assemble`] (`g`, `w`,
     /// stride `ns`) into `lambda`, `active` (ns each): the set's
     /// corrections μ_d = k_eff,d g_d (0 for a taut row), then the check of the
-    /// droppers outside S (module docs, D10). Returns false when some of
+    /// droppers outside S (D10, [`Droppers::add_responses`]). Returns false when some of
     /// them pushed and joined S (assemble and solve again), true when the
     /// step settled: the forces, corrections and slack states are then the
     /// step's.
@@ -636,6 +632,14 @@ impl Droppers {
     /// columns): the free solution becomes the solution with the dropper
     /// corrections, as the contacts' columns are added by the method's
     /// update.
+    ///
+    /// **Check (D10).** After the solve, each dropper outside S has
+    /// N_d = k_d e_d; one below −[`FORCE_ROUNDOFF`] of the step's force scale
+    /// joins S and the small problem is solved again (S only grows, so at
+    /// most m + 1 passes). The free solution then gains Σ_S μ_d z'_d
+    /// ([`Droppers::add_responses`]): a step costs O(n·(1 + |S|)) beyond the
+    /// linear twin's, and the dense problem has nc + |S| rows. Nothing here
+    /// allocates in a step.
     pub(crate) fn add_responses(&self, solved: &mut [f64], k: usize) {
         for (r, &mu) in self.mu.iter().enumerate() {
             if mu == 0.0 {
