@@ -2,79 +2,30 @@
 //! for the `[mesh] kind = "modal"` discretization of MODEL §9.2 (FE modal
 //! truncation: the run in the coordinates of the J lowest modes).
 //!
-//! # Route
+//! Route: a dense symmetric-definite eigenproblem reduced to a standard one
+//! for faer's dense self-adjoint eigensolver: (1) `M = L Lᵀ`, banded Cholesky,
+//! O(n p²); (2) `C = L⁻¹ K L⁻ᵀ` by banded triangular solves, O(n² p), L⁻¹
+//! never formed; (3) `C = Y Λ Yᵀ` by faer, O(n³); (4) `Φ = L⁻ᵀ Y` for the
+//! `count` lowest columns, so `Φᵀ M Φ = I`; (5) the lowest min(J, n/8) pairs
+//! refined by two steps of subspace iteration with the banded LDLᵀ of
+//! K + σM and Rayleigh–Ritz (`refine`): steps 1–4 are backward stable in
+//! ‖C‖ = ω²_max ∝ h⁻⁴, so without step 5 the low eigenvectors lose digits as
+//! the mesh is refined (`tests` hold the refined modes to `MODE_TOL`).
 //!
-//! A dense symmetric-definite eigenproblem, reduced to a standard one and
-//! handed to faer's dense self-adjoint eigensolver:
+//! Why: a dense solver is robust (no start vector, no convergence to tune, no
+//! missed modes, clustered or repeated frequencies without special care); a
+//! sparse shift-invert Lanczos would be cheaper when J ≪ n but needs
+//! restarts, locking and reorthogonalization to be trusted, and the cost here
+//! is paid once per run (or per (beam, mesh) shared by a study), not per
+//! step. The n³ solve dominates; `cargo test --release --lib
+//! model::eigen::tests::timing -- --ignored --nocapture` prints the timings.
 //!
-//! 1. `M = L Lᵀ` by a banded Cholesky factorization (M has half-bandwidth p,
-//!    so L has the same band: O(n p²));
-//! 2. `C = L⁻¹ K L⁻ᵀ`, dense and symmetric, by triangular solves with the
-//!    banded L: `W = L⁻¹ K` column by column, then `C = L⁻¹ Wᵀ` (since
-//!    `Wᵀ = K L⁻ᵀ`); O(n² p) work, L⁻¹ is never formed;
-//! 3. `C = Y Λ Yᵀ` by faer (`self_adjoint_eigen`): O(n³);
-//! 4. `Φ = L⁻ᵀ Y` for the `count` lowest columns (a banded back-substitution,
-//!    O(n p J)), which makes Φ mass-normalized: `Φᵀ M Φ = Yᵀ Y = I`;
-//! 5. the lowest min(J, n/8) pairs refined by two steps of subspace
-//!    iteration with the banded LDLᵀ of K + σM and Rayleigh–Ritz
-//!    (`refine`): steps 1–4 are backward stable in ‖C‖ = ω²_max
-//!    ∝ h⁻⁴, so the low eigenvectors they give lose digits as the mesh is
-//!    refined (measured against the exact FE modes of a pinned–pinned mesh,
-//!    J = 32: 3.1·10⁻⁶ at N = 128, 6.2·10⁻⁵ at 256, 3.2·10⁻³ at 512, O(1)
-//!    at 1024; refined 8·10⁻¹², 4·10⁻¹⁰, 7·10⁻⁹, 3·10⁻⁶;
-//!    `tests::accuracy_table`).
-//!
-//! Why this route: a dense symmetric eigensolver is robust (no start vector,
-//! no convergence to tune, no missed modes), gives every pair accurate to
-//! round-off relative to ‖C‖ (step 5 makes the low ones accurate relative
-//! to their own scale), and handles clustered or repeated frequencies
-//! (symmetric beams, the string limit) without special care. A sparse
-//! shift-invert Lanczos iteration on the banded factor would be cheaper when
-//! J ≪ n (O(n p J) per iteration instead of O(n³)), but faer has no ready one,
-//! a hand-written one would need restarts, locking and reorthogonalization to
-//! be trusted, and the cost here is paid once per run (or once per (beam,
-//! mesh) shared across a study's runs), not per step.
-//!
-//! # Cost
-//!
-//! Measured in release on this project's 2-core machine, shared with other
-//! builds at the time (load average ≈ 5, so an idle machine is faster), by
-//! `cargo test --release --lib model::eigen::tests::timing -- --ignored
-//! --nocapture`; clamped–pinned Hermite meshes, all n pairs computed by faer
-//! (the count kept changes only step 4):
-//!
-//! | N elements | n unknowns | reduction (steps 1–2) | eigen (step 3) | dense pairs (steps 1–4), J = 20 | `lowest_eigenpairs`, J = 20 | `lowest_eigenpairs`, J = n | [`eigenvalues`] (values only) |
-//! |---|---|---|---|---|---|---|---|
-//! | 800 | 1599 | 0.06 s | 1.34 s | 1.11 s | 1.11 s | 1.36 s | 0.43 s |
-//! | 1600 | 3199 | 0.32 s | 6.3 s | 6.6 s | 7.6 s | 14.8 s | 5.7 s |
-//!
-//! The n³ eigen solve dominates (×5–8 for ×2 in n); the O(n² p) reduction
-//! is a few per cent of it. The refinement (step 5) is within the noise at
-//! J = 20; with every mode kept it refines n/8 of them, measured +23 % at
-//! n = 1599 and +120 % at n = 3199 in one run on the loaded machine (load
-//! average 4–5: these rows are single timings, not medians, and the J = 20
-//! pair shows the noise). Sequential, see *Determinism*; measured
-//! 2026-11-25 on the shared machine (AMD EPYC, 2 cores).
-
-//! # Determinism
-//!
-//! faer's parallel eigensolver splits its work by the size of the pool it
-//! runs on, and so rounds differently on 1, 2 or 4 threads: a modal run gave
-//! different bytes under `--threads 1|2|4` or `taskset`. The solve
-//! is therefore always sequential ([`faer::Par::Seq`]), whatever the pool or
-//! the machine's core count; a study's parallelism is across its runs.
-//! `tests/reliability.rs` compares a modal sweep's bytes on 1, 2 and 4
-//! threads, and a modal run's and sweep's under `taskset -c 0` (a pool of
-//! one thread) with those unpinned.
-//!
-//! # Memory
-//!
-//! The reduction forms C in the storage of W (W is transposed in place and
-//! its columns solved), so the solve holds C, the eigenvectors and faer's
-//! workspace: `eigen_bytes` gives the exact figure from faer's own
-//! workspace requirement (≈ 3 n² · 8 bytes, ≈ 250 MB at n = 3199). Every
-//! dense allocation is fallible: memory the machine cannot give is an error
-//! naming the eigenproblem, never an abort.
+//! The solve is always sequential ([`faer::Par::Seq`]): faer's parallel
+//! solver rounds differently on pools of different sizes, and a run must give
+//! the same bytes on any `--threads` (`tests/reliability.rs`). C is formed in
+//! W's storage; `eigen_bytes` gives the memory from faer's own workspace
+//! requirement, and every dense allocation is fallible: memory the machine
+//! cannot give is an error naming the eigenproblem, never an abort.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::evd::{self, ComputeEigenvectors};
@@ -895,7 +846,7 @@ mod tests {
         }
     }
 
-    /// The before/after table of the module doc: the dense
+    /// The dense and refined errors side by side: the dense
     /// solve's pairs and the refined ones on the space case's beam,
     /// `cargo test --release --lib model::eigen::tests::accuracy_table --
     /// --ignored --nocapture`.
@@ -946,7 +897,7 @@ mod tests {
         }
     }
 
-    /// The timing table of the module doc: run in release,
+    /// The timings of each step of the route: run in release,
     /// `cargo test --release --lib model::eigen::tests::timing -- --ignored --nocapture`.
     #[test]
     #[ignore = "timing, release only"]
