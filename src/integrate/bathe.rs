@@ -21,27 +21,11 @@
 //!                A₂ e = f_{n+1} − K d̃,   d_{n+1} = d̃ + e,   v_{n+1} = ṽ + c₃e,   a_{n+1} = c₃²e
 //! ```
 //!
-//! (Δ₁ = d₁ − d_n, formed from its parts.) Solving for the displacement
-//! itself, `A₁ d₁ = f₁ + M(c₀²d_n + 2c₀v_n + a_n)` and
-//! `A₂ d_{n+1} = f_{n+1} − M(c₁v_n + c₂v₁ + c₃c₁d_n + c₃c₂d₁)`, is the same
-//! scheme in exact arithmetic but not in floating point: those right-hand
-//! sides hold terms of size c²|M d| ∝ |d|/Δt² that cancel to leave an
-//! acceleration-sized one, so each displacement is rounded to about ε|d|
-//! (times M's conditioning), the velocities and accelerations recovered as
-//! c·(differences of displacements) carry ε|d|/Δt and ε|d|/Δt², and over
-//! the T/Δt steps of a run the error grows like ε|d|T/Δt. Measured on a
-//! riding mass, the error stopped falling at Δt ≈ 1e-5 s and rose ∝ 1/Δt
-//! below (docs/methods.md, "Bathe at small steps"). Here every right-hand
-//! side is f − K d̃, of the size of M a, the unknown e is of the size
-//! a/c², and no velocity or acceleration is a difference of displacements;
-//! the cost is the same (one band product per sub-step, computed inside the
-//! forward sweep: [`BandedLdlt::solve_affine`]).
-//!
-//! The gap condition is imposed at the end of each sub-step (the
-//! [`System`]'s contact problem with `d = d̃ + e`, `v = ṽ + c e`, c = c₀,
-//! then c = c₃); the force recorded is the second sub-step's. Second order;
-//! strongly damps unresolved high frequencies (spectral radius → 0 as
-//! ωΔt → ∞ for γ_B = ½).
+//! Why corrections and not the displacements themselves: see [`Bathe`].
+//! The gap condition is imposed at the end of each sub-step (`d = d̃ + e`,
+//! `v = ṽ + c e` through the [`System`]); the force recorded is the second
+//! sub-step's. Second order; strongly damps unresolved high frequencies
+//! (spectral radius → 0 as ωΔt → ∞ for γ_B = ½).
 
 use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
@@ -54,6 +38,22 @@ use super::system::{Initial, System};
 use crate::model::banded::rhs_columns;
 
 /// A Bathe stepper for one run.
+///
+/// Why each sub-step solves for a correction (Δ₁ = d₁ − d_n is formed from
+/// its parts): solving for the displacement itself, `A₁ d₁ = f₁ + M(c₀²d_n + 2c₀v_n + a_n)` and
+/// `A₂ d_{n+1} = f_{n+1} − M(c₁v_n + c₂v₁ + c₃c₁d_n + c₃c₂d₁)`, is the same
+/// scheme in exact arithmetic but not in floating point: those right-hand
+/// sides hold terms of size c²|M d| ∝ |d|/Δt² that cancel to leave an
+/// acceleration-sized one, so each displacement is rounded to about ε|d|
+/// (times M's conditioning), the velocities and accelerations recovered as
+/// c·(differences of displacements) carry ε|d|/Δt and ε|d|/Δt², and over
+/// the T/Δt steps of a run the error grows like ε|d|T/Δt. Measured on a
+/// riding mass, the error stopped falling at Δt ≈ 1e-5 s and rose ∝ 1/Δt
+/// below (docs/methods.md, "Bathe at small steps"). Here every right-hand
+/// side is f − K d̃, of the size of M a, the unknown e is of the size
+/// a/c², and no velocity or acceleration is a difference of displacements;
+/// the cost is the same (one band product per sub-step, computed inside the
+/// forward sweep: [`BandedLdlt::solve_affine`]).
 pub(crate) struct Bathe {
     dt: f64,
     /// c₀ = 2/(γ_BΔt), c₁, c₂, c₃ (module docs).

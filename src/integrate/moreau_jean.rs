@@ -22,34 +22,11 @@
 //! impulses: the system hands the law
 //! `(U_free, W_v)` and the force recorded is P/Δt.
 //!
-//! **Where the impulse acts.** The gap rate is taken at t_{n+1} (the law's
-//! condition), but the impulse P_{n+1} is applied at the carrier's position
-//! at t_{n+θ}, `r(x_m(t_{n+θ}))`, like every other force of the θ-rule:
-//! P stands for `∫ r(x_m(t)) λ(t) dt` over the step, and with θ = ½ that is
-//! the midpoint rule, O(Δt³) per step. Applying it at `x_m(t_{n+1})`
-//! instead puts the force, on average, VΔt/2 ahead of where it acts: an
-//! O(Δt²) error per step (`V r'λΔt²/2`), first order over a run. Measured on
-//! a riding mass (docs/methods.md): first order (0.99–1.00) with the
-//! impulse at t_{n+1}, second order (1.98–2.01) at t_{n+½}. For a carrier
-//! at rest the two are the same. One exception: a step that ends with a
-//! carrier within one step's travel (|V|Δt) of an end of the beam applies
-//! its impulse at x_m(t_{n+1}). Arriving at a pinned end, the mass follows
-//! the beam's slope there (the convective rate V·v'), and an impulse
-//! behind it tilts that slope the wrong way: the velocity-level Delassus
-//! W_v becomes negative, and the law has no solution (measured: the
-//! reference case at V0 = 120 and 125 m/s, Δt = 1e-4 s, stopped at its last
-//! step). At most a step or two per arrival takes the end point, so a
-//! run's order is unchanged. The recorded force P/Δt is the step's mean
-//! force, the force near t_{n+θ}: read as λ(t_{n+1}) it lags by about θΔt,
-//! a first-order offset in the force history, while the displacements are
-//! second order.
-//!
-//! The position gap is not imposed, only its rate: between impacts, with
-//! U_n = U_{n+1} = 0, it drifts by O(Δt³) per step and O(Δt²) over a run
-//! (measured 4e-8 m at Δt = 1.25e-5 s on the riding mass), and by O(Δt²)
-//! at an impact; the largest penetration is reported. First order where
-//! impacts occur, however small Δt; second order between them with θ = ½
-//! (the trapezoidal rule, which conserves a linear system's energy).
+//! The impulse acts at the carrier's position at t_{n+θ}, like every other
+//! force of the θ-rule (the reason, and the exception near the beam's ends,
+//! on `impulse_time`). The position gap is not imposed, only its rate: it
+//! drifts by O(Δt²) over a run. First order where impacts occur, second
+//! order between them with θ = ½ (the trapezoidal rule).
 
 use crate::error::Result;
 use crate::model::banded::{Affine, BandedLdlt};
@@ -161,6 +138,28 @@ impl MoreauJean {
 /// When the impulse acts (module docs): t_{n+θ}, or t_{n+1} when a
 /// contact carrier ends the step within one step's travel, |V|Δt, of an
 /// end of the beam.
+///
+/// **Where the impulse acts.** The gap rate is taken at t_{n+1} (the law's
+/// condition), but the impulse P_{n+1} is applied at the carrier's position
+/// at t_{n+θ}, `r(x_m(t_{n+θ}))`, like every other force of the θ-rule:
+/// P stands for `∫ r(x_m(t)) λ(t) dt` over the step, and with θ = ½ that is
+/// the midpoint rule, O(Δt³) per step. Applying it at `x_m(t_{n+1})`
+/// instead puts the force, on average, VΔt/2 ahead of where it acts: an
+/// O(Δt²) error per step (`V r'λΔt²/2`), first order over a run. Measured on
+/// a riding mass (docs/methods.md): first order (0.99–1.00) with the
+/// impulse at t_{n+1}, second order (1.98–2.01) at t_{n+½}. For a carrier
+/// at rest the two are the same. One exception: a step that ends with a
+/// carrier within one step's travel (|V|Δt) of an end of the beam applies
+/// its impulse at x_m(t_{n+1}). Arriving at a pinned end, the mass follows
+/// the beam's slope there (the convective rate V·v'), and an impulse
+/// behind it tilts that slope the wrong way: the velocity-level Delassus
+/// W_v becomes negative, and the law has no solution (measured: the
+/// reference case at V0 = 120 and 125 m/s, Δt = 1e-4 s, stopped at its last
+/// step). At most a step or two per arrival takes the end point, so a
+/// run's order is unchanged. The recorded force P/Δt is the step's mean
+/// force, the force near t_{n+θ}: read as λ(t_{n+1}) it lags by about θΔt,
+/// a first-order offset in the force history, while the displacements are
+/// second order.
 fn impulse_time(sys: &System, t_theta: f64, t1: f64) -> f64 {
     let near_end = sys
         .physics

@@ -18,41 +18,8 @@
 //! static contact force at its start point x_c. That force follows from
 //! the carrier's own statics with its head at the wire's height
 //! w_c = s r_b(x_c)ᵀd₀ (MODEL §2 at rest; a multi-mass pantograph through
-//! its lower masses' equilibrium, `chain.rs`):
-//!
-//! ```text
-//!   λ_c = λ₀,c − S_c q_c,   q_c = w_c + λ_c/κ                            (W7)
-//! ```
-//!
-//! with λ₀ = k δ0 − s m g (a single mass; the chain's static force P2 for a
-//! pantograph), S the carrier's static stiffness seen from its head (k; the
-//! chain's Schur complement S = K₁₁ − K₁ₗK'⁻¹Kₗ₁) and κ the contact's
-//! stiffness (`contact.penalty.stiffness`; rigid, 1/κ = 0, for every other
-//! law and for a penalty given `relative` to the step, whose penetration
-//! λW/ρ is a property of the step, not of the statics: its head starts at
-//! the rigid equilibrium with its static force, and that penetration builds
-//! over the first steps). Eliminating q_c, λ_c = a_c − b_c w_c with
-//! b_c = S κ/(S + κ), a_c = λ₀ κ/(S + κ). The carriers couple through the
-//! wire, so with z_c = K'⁻¹ s r_b(x_c) (one banded solve per carrier) and
-//! d₀ = d_f + Σ λ_c z_c, the contact forces solve the small system
-//!
-//! ```text
-//!   λ_c + b_c Σ_j G_cj λ_j = a_c − b_c w_f,c,   G_cj = s r_b(x_c)ᵀ z_j     (W8)
-//! ```
-//!
-//! (G symmetric positive semi-definite, b ≥ 0, so I + diag(b) G is
-//! invertible). Each tension-only dropper's force k_d (e₀,d − r_dᵀd₀) must
-//! then be > 0, and each unilateral carrier's λ_c ≥ 0: a slack dropper or a
-//! carrier that would not press at rest is an error naming it (the
-//! equilibrium with it slack or lifted is a different problem). The wire
-//! and the carriers start at rest (ḋ₀ = 0, q̇₀ = 0), a chain's lower masses
-//! at their equilibrium against the held head. A mass–spring's external
-//! force series is in its free force f₀ at its value at t = 0
-//! (`System::new`), so d₀ is static under it. A manufactured scene is
-//! refused (`resolve`: its lines start straight and at rest). At a speed
-//! V > 0 the initial
-//! accelerations (MODEL §5) take up the convective gap acceleration
-//! V² v₀''(x_c) of the sagged shape.
+//! its lower masses' equilibrium, `chain.rs`); W7 and W8, the carriers'
+//! static forces through the wire, and what is refused are on `static_start`.
 
 use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;
@@ -62,9 +29,43 @@ use crate::scene::{CarrierKind, Formulation};
 use super::state::State;
 use super::system::System;
 
-/// Move `st` (at rest, straight) to the static start (module docs): d₀
+/// Move `st` (at rest, straight) to the static start (W6): d₀
 /// into `st.d`, q₀ into `st.q`, a chain's lower masses into its
 /// [`super::chain::Chain::z_start`].
+///
+/// ```text
+///   λ_c = λ₀,c − S_c q_c,   q_c = w_c + λ_c/κ                            (W7)
+/// ```
+///
+/// with λ₀ = k δ0 − s m g (a single mass; the chain's static force P2 for a
+/// pantograph), S the carrier's static stiffness seen from its head (k; the
+/// chain's Schur complement S = K₁₁ − K₁ₗK'⁻¹Kₗ₁) and κ the contact's
+/// stiffness (`contact.penalty.stiffness`; rigid, 1/κ = 0, for every other
+/// law and for a penalty given `relative` to the step, whose penetration
+/// λW/ρ is a property of the step, not of the statics: its head starts at
+/// the rigid equilibrium with its static force, and that penetration builds
+/// over the first steps). Eliminating q_c, λ_c = a_c − b_c w_c with
+/// b_c = S κ/(S + κ), a_c = λ₀ κ/(S + κ). The carriers couple through the
+/// wire, so with z_c = K'⁻¹ s r_b(x_c) (one banded solve per carrier) and
+/// d₀ = d_f + Σ λ_c z_c, the contact forces solve the small system
+///
+/// ```text
+///   λ_c + b_c Σ_j G_cj λ_j = a_c − b_c w_f,c,   G_cj = s r_b(x_c)ᵀ z_j     (W8)
+/// ```
+///
+/// (G symmetric positive semi-definite, b ≥ 0, so I + diag(b) G is
+/// invertible). Each tension-only dropper's force k_d (e₀,d − r_dᵀd₀) must
+/// then be > 0, and each unilateral carrier's λ_c ≥ 0: a slack dropper or a
+/// carrier that would not press at rest is an error naming it (the
+/// equilibrium with it slack or lifted is a different problem). The wire
+/// and the carriers start at rest (ḋ₀ = 0, q̇₀ = 0), a chain's lower masses
+/// at their equilibrium against the held head. A mass–spring's external
+/// force series is in its free force f₀ at its value at t = 0
+/// (`System::new`), so d₀ is static under it. A manufactured scene is
+/// refused (`resolve`: its lines start straight and at rest). At a speed
+/// V > 0 the initial
+/// accelerations (MODEL §5) take up the convective gap acceleration
+/// V² v₀''(x_c) of the sagged shape.
 pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> Result<()> {
     let beam = sys.beam();
     let n = beam.n;

@@ -3,46 +3,27 @@
 //! Instead of running at the scene's (N, Δt), measure how the chosen
 //! quantity converges, pick the cheapest (N, Δt) whose estimated error is
 //! within `TOL`, run there, and report an estimated error next to every
-//! result. The steps:
+//! result. One step a file:
 //!
-//! 1. **Pilots.** Five runs from the scene's own (N₀, Δt₀): the mesh ladder
-//!    N₀, 2N₀, 4N₀ at Δt₀ and the step ladder Δt₀/2, Δt₀/4 at N₀ (on a
-//!    `galerkin` or `modal` basis the ladder doubles the modes J instead,
-//!    with a `modal` basis's FE mesh grown in proportion; h = L/J) (the
-//!    (N₀, Δt₀) run serves both). Δt₀ is first shortened, if needed, so the
-//!    run's end is a whole number of steps, so every pilot's times contain
-//!    the base pilot's and histories compare sample by sample on that grid
-//!    (as [`crate::study::converge`] does).
-//! 2. **Model.** e(h, Δt) ≈ F_s (C_h h^p + C_t Δt^q) from the ladders'
-//!    successive differences (`error_model`). A ladder whose differences do not
-//!    fall at order ≥ `MIN_ORDER` stops the run with an error that names
-//!    the quantity, the differences and orders, and another quantity to try:
-//!    nothing is extrapolated from a quantity that does not converge.
-//! 3. **Choice.** If a pilot's estimate is already within the tolerance, the
-//!    cheapest such pilot is the result (it is already run). Otherwise the
-//!    model's cheapest (h, Δt) ([`ErrorModel::cheapest`]), with N rounded up
-//!    and Δt rounded down to a whole number of steps to the run's end, and
-//!    refused above `MAX_DOF_STEPS`.
-//! 4. **Estimates.** Every scalar result (force mean, std, min, max, the
-//!    0–20 Hz force's std, min, max, P_l, loss intervals, first loss
-//!    position, switches, per carrier) gets its own ladder fits from the same
-//!    pilots and an estimated error at the chosen resolution, or the verdict
-//!    "not converging in h / Δt".
+//! 1. `pilots`: five runs from the scene's (N₀, Δt₀), the mesh ladder N₀,
+//!    2N₀, 4N₀ (modes J on a `galerkin` or `modal` basis) and the step ladder
+//!    Δt₀/2, Δt₀/4, on one time grid (as [`crate::study::converge`] does);
+//! 2. `fit`: e(h, Δt) ≈ F_s (C_h h^p + C_t Δt^q) from the ladders' successive
+//!    differences (`error_model`); a ladder that does not fall at order ≥
+//!    `MIN_ORDER` stops the run with an error naming the quantity and another
+//!    to try: nothing is extrapolated from a quantity that does not converge;
+//! 3. `choose`: the cheapest pilot already within the tolerance, or the
+//!    model's cheapest (h, Δt) ([`ErrorModel::cheapest`]), refused above
+//!    `MAX_DOF_STEPS`;
+//! 4. `results`: every scalar result gets its own ladder fits and an
+//!    estimated error at the chosen resolution, or "not converging".
 //!
-//! Quantities ([`Quantity`]): `force` (default) is carrier 0's contact force
-//! low-pass filtered to 0–20 Hz, as railway practice evaluates it (EN
-//! 50317/50318), compared as a relative RMS. The raw force does not converge
-//! in Δt once contact is lost and re-made: re-contact spikes grow as Δt falls
-//! (docs/convergence.md §4, MODEL §6 has no impact law); the filter sees a
-//! spike by its impulse, which does converge. `force_raw`, `loss_fraction`
-//! (P_l, absolute error) and `displacement` (w under carrier 0, relative RMS)
-//! are the alternatives. See docs/accuracy.md for what this measures on the
-//! reference case.
-//!
-//! One step a file: `pilots` (1), `fit` (2), `choose` (3),
-//! `results` (4); beside them `quantity` (what the tolerance is on and
-//! its error measure), `limits` (the tolerance's range), `accuracy` (what the run returns), `refusal` (the errors that
-//! stop it) and `error_model`.
+//! [`Quantity`]: `force` (default) is carrier 0's contact force low-pass
+//! filtered to 0–20 Hz, as railway practice evaluates it (EN 50317/50318):
+//! the raw force does not converge in Δt once contact is lost and re-made
+//! (re-contact spikes grow as Δt falls), its impulse does. `force_raw`,
+//! `loss_fraction` and `displacement` are the alternatives. Beside the steps:
+//! `quantity`, `limits`, `accuracy` (what the run returns), `refusal`.
 
 mod accuracy;
 mod choose;

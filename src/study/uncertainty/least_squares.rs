@@ -4,27 +4,8 @@
 //! §12), for scattered or non-monotone data: solutions φ_i at relative step
 //! sizes h_i (h₁ = 1 the finest), n ≥ 3 of them.
 //!
-//! **Error estimators** (the paper's power-series expansions):
-//!
-//! ```text
-//! δ_RE = φ_i − φ₀ = α h_i^p          p free            (3 parameters)
-//! δ_1  = φ_i − φ₀ = α h_i            first order       (2 parameters)
-//! δ_2  = φ_i − φ₀ = α h_i²           second order      (2 parameters)
-//! δ_12 = φ_i − φ₀ = α₁ h_i + α₂ h_i²                   (3 parameters)
-//! ```
-//!
-//! each fitted by least squares, unweighted (minimize Σ(φ_i − φ_fit,i)²)
-//! and weighted (minimize Σ w_i(φ_i − φ_fit,i)², w_i = (1/h_i)/Σ_j(1/h_j),
-//! which favours the finer solutions), with the standard deviations
-//!
-//! ```text
-//! σ   = sqrt( Σ (φ_i − φ_fit,i)² / (n − n_p) )
-//! σ_w = sqrt( n Σ w_i (φ_i − φ_fit,i)² / (n − n_p) )
-//! ```
-//!
-//! (n_p the fit's parameters); of the two, the fit with the smaller σ is
-//! kept. δ_RE is fitted for every p on a fine grid (the fit is linear in φ₀
-//! and α at fixed p), refined by golden section.
+//! The four error estimators and their weighted fits are on [`FitKind`],
+//! the uncertainty of each solution on [`estimate`].
 //!
 //! **Which fit.** The observed order is δ_RE's p. When 0.5 ≤ p < p_th + 0.1
 //! (the paper's 0.5 ≤ p < 2.1 for a second-order method, p_th the formal
@@ -32,16 +13,6 @@
 //! δ_RE is the error estimate. Otherwise (p out of that range, or a poor
 //! fit) the estimate is the fit of smallest σ among δ_1, δ_2, δ_12 (and
 //! δ_RE when its p is in range).
-//!
-//! **Uncertainty of each solution** (ε_i the chosen fit's φ_fit,i − φ₀):
-//!
-//! ```text
-//! σ < Δ_φ:   U_i = F_s |ε_i| + σ + |φ_i − φ_fit,i|
-//! σ ≥ Δ_φ:   U_i = 3 σ/Δ_φ · (|ε_i| + σ + |φ_i − φ_fit,i|)
-//! ```
-//!
-//! F_s = 1.25 for δ_RE with p in range and σ < Δ_φ, 3 otherwise (always 3
-//! for a quantity that is not smooth, MODEL §12).
 //!
 //! Two choices of taut's where the paper, written for second-order CFD
 //! codes, is silent: the range's top is p_th + 0.1 for the formal order
@@ -71,6 +42,28 @@ pub(crate) const ORDER_SEARCH: (f64, f64) = (0.05, 10.0);
 const ORDER_SCAN: usize = 400;
 
 /// Which expansion a fit is.
+///
+/// **Error estimators** (the paper's power-series expansions):
+///
+/// ```text
+/// δ_RE = φ_i − φ₀ = α h_i^p          p free            (3 parameters)
+/// δ_1  = φ_i − φ₀ = α h_i            first order       (2 parameters)
+/// δ_2  = φ_i − φ₀ = α h_i²           second order      (2 parameters)
+/// δ_12 = φ_i − φ₀ = α₁ h_i + α₂ h_i²                   (3 parameters)
+/// ```
+///
+/// each fitted by least squares, unweighted (minimize Σ(φ_i − φ_fit,i)²)
+/// and weighted (minimize Σ w_i(φ_i − φ_fit,i)², w_i = (1/h_i)/Σ_j(1/h_j),
+/// which favours the finer solutions), with the standard deviations
+///
+/// ```text
+/// σ   = sqrt( Σ (φ_i − φ_fit,i)² / (n − n_p) )
+/// σ_w = sqrt( n Σ w_i (φ_i − φ_fit,i)² / (n − n_p) )
+/// ```
+///
+/// (n_p the fit's parameters); of the two, the fit with the smaller σ is
+/// kept. δ_RE is fitted for every p on a fine grid (the fit is linear in φ₀
+/// and α at fixed p), refined by golden section.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FitKind {
@@ -183,6 +176,16 @@ impl LeastSquares {
 /// length, n ≥ 3, h > 0 and distinct), for a quantity of formal order
 /// `formal`; `smooth` false keeps F_s = 3 (MODEL §12). `None` for fewer
 /// than three solutions or a fit that cannot be made (non-finite data).
+///
+/// **Uncertainty of each solution** (ε_i the chosen fit's φ_fit,i − φ₀):
+///
+/// ```text
+/// σ < Δ_φ:   U_i = F_s |ε_i| + σ + |φ_i − φ_fit,i|
+/// σ ≥ Δ_φ:   U_i = 3 σ/Δ_φ · (|ε_i| + σ + |φ_i − φ_fit,i|)
+/// ```
+///
+/// F_s = 1.25 for δ_RE with p in range and σ < Δ_φ, 3 otherwise (always 3
+/// for a quantity that is not smooth, MODEL §12).
 pub fn estimate(h: &[f64], phi: &[f64], formal: f64, smooth: bool) -> Option<LeastSquares> {
     let n = h.len();
     if n < 3 || phi.len() != n || !phi.iter().chain(h).all(|v| v.is_finite()) {
