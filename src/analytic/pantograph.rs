@@ -2,20 +2,13 @@
 //! against a rigid surface (docs/lines.md L9–L11): the independent
 //! reference for multi-mass carriers (MODEL §10), built before them.
 //!
-//! The model is the lumped-mass pantograph used in this field (the
-//! "three-mass model" as used for EN 50318's reference pantograph and by
-//! e.g. Pombo & Ambrósio 2012 — cited from memory, the standard's text not
-//! checked; two masses for head and frame when the upper arm is lumped): masses in series, numbered as in MODEL §10 from the head m₁
-//! (in contact) down to m_n (the frame); spring k_i and dashpot c_i between
-//! m_i and m_{i+1}, and k_n, c_n from m_n to the roof; the static uplift F₀
-//! acts on m_n. Displacements z_i are positive up, from the unloaded
-//! springs; gravity is left out (the uplift is the net static force).
-//!
-//! The rigid surface at height h(t) is one of
-//! - `Held`: the head follows the surface, z₁ = h (the classical reduction to
-//!   n − 1 degrees of freedom, m₂ … m_n);
-//! - `Spring { k_c }`: a stiff contact spring from the surface to the head,
-//!   force `k_c (z₁ − h)` (n degrees of freedom).
+//! The lumped-mass pantograph of this field (the "three-mass model" of EN
+//! 50318's reference pantograph and e.g. Pombo & Ambrósio 2012, cited from
+//! memory; two masses when the upper arm is lumped): masses in series from
+//! the head m₁ (in contact) down to the frame m_n (MODEL §10), spring k_i
+//! and dashpot c_i between m_i and m_{i+1}, k_n, c_n to the roof, the static
+//! uplift F₀ on m_n; z_i positive up from the unloaded springs, no gravity.
+//! The surface holds the head or meets it through a spring ([`SurfaceContact`]).
 //!
 //! In either case, with the free masses' z, the diagonal M and tridiagonal K, C
 //! assembled from the springs and dashpots,
@@ -34,10 +27,6 @@
 //!       y(t) = y_s + e^{At} (y(0) − y_s); ωⱼ = |sⱼ|, ζⱼ = −Re sⱼ/|sⱼ| from
 //!       A's complex eigenvalues sⱼ (Im sⱼ > 0: the underdamped modes).
 //! ```
-//!
-//! Steps start from the static state under F₀ and h = 0: an uplift step
-//! F₀ → F₀ + ΔF, or a surface step h: 0 → Δh (when held, the dashpot c₁ then
-//! gives m₂ the impulse c₁Δh: ż₂(0⁺) = c₁Δh/m₂).
 
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
@@ -50,6 +39,12 @@ use crate::error::{Error, Result};
 pub(crate) const PROPORTIONAL: f64 = 1e-10;
 
 /// How the head meets the rigid surface.
+///
+/// The rigid surface at height h(t) is one of
+/// - `Held`: the head follows the surface, z₁ = h (the classical reduction to
+///   n − 1 degrees of freedom, m₂ … m_n);
+/// - `Spring { k_c }`: a stiff contact spring from the surface to the head,
+///   force `k_c (z₁ − h)` (n degrees of freedom).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SurfaceContact {
     /// The head follows the surface (n − 1 degrees of freedom).
@@ -77,6 +72,10 @@ pub struct Pantograph {
 }
 
 /// A change from the static state at t = 0.
+///
+/// Steps start from the static state under F₀ and h = 0: an uplift step
+/// F₀ → F₀ + ΔF, or a surface step h: 0 → Δh (when held, the dashpot c₁ then
+/// gives m₂ the impulse c₁Δh: ż₂(0⁺) = c₁Δh/m₂).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PantographStep {
     /// F₀ → F₀ + ΔF, N.

@@ -21,22 +21,12 @@
 //! (M + m φφᵀ) a'' + 2mV φφ'ᵀ a' + (K + m V² φφ''ᵀ) a = −m g φ.
 //! ```
 //!
-//! The matrix `M + m φφᵀ` is diagonal plus rank one, so each evaluation of
-//! `a''` is solved exactly in O(J) (Sherman–Morrison): with
-//! `u = −Σ φ_j ω_j² a_j`, `c = 2V φ'ᵀa' + V² φ''ᵀa` and `S = Σ φ_j²/M_j`,
-//!
-//! ```text
-//! F_b = −m (g + u + c)/(1 + m S),   a_j'' = −ω_j² a_j + φ_j F_b/M_j.
-//! ```
-//!
-//! (a unit test holds this against a dense nalgebra LU of the projected
-//! system). The first-order system `(a, a')` is integrated with the classical
-//! fourth-order Runge–Kutta method — no relation to taut's implicit
-//! integrators — at a step at most `STEP_FACTOR/ω_J`. Initial state as
-//! MODEL §5: beam straight and at rest, gravity switched on at t = 0.
-//!
-//! Outputs: `w = s·v(x_m)` (m, as the FE history records it), its rate, and
-//! the contact force `λ` (N, MODEL §2 sign: positive pressing).
+//! `M + m φφᵀ` is diagonal plus rank one, so each `a''` is solved exactly in
+//! O(J) by Sherman–Morrison (a unit test holds it against a dense LU). The
+//! first-order system `(a, a')` is integrated with classical RK4 — no
+//! relation to taut's implicit integrators — at a step at most
+//! `STEP_FACTOR/ω_J`, from MODEL §5's start (straight, at rest, gravity on at
+//! t = 0). Outputs: `w = s·v(x_m)`, its rate, and the contact force `λ`.
 
 use std::f64::consts::PI;
 

@@ -27,19 +27,7 @@
 //! positive operator at distinct points, plus a non-negative diagonal) and is
 //! solved by Cholesky. Writing it in compliances `1/k_i` lets `k_i = ∞` be a
 //! rigid support (`v(x_i) = 0` exactly); `k → 0` leaves `f → 0`, the bare line.
-//!
-//! **Cancellation in L2.** `sinh` overflows for μL > 710 and the ratio of
-//! three of them loses nothing only if written as `e^{−μ(a − x)} s(μb) s(μx) /
-//! s(μL)` with `s(u) = (1 − e^{−2u})/2 = −expm1(−2u)/2` (each factor in
-//! [0, ½], no overflow at any μL). The remaining difference `x b/L − R/μ` is
-//! benign for μL ≳ 1: at the load both terms are O(L) and O(1/μ). For μL → 0
-//! the two terms agree to O((μL)²) and the difference carries a relative
-//! round-off of about ε/(μL)² (times the spread of the two terms); below
-//! `MU_L_BARE` the bare-beam form is used instead, whose relative error
-//! there is (μL)²/10, so neither exceeds ≈ 2e-8 of the midspan compliance.
-//! Near a support (`μx ≪ 1` and `μa ≪ 1`) the same cancellation costs
-//! relative accuracy in a deflection that is itself small: the absolute error
-//! stays ≲ ε·L/T.
+//! How L2 is evaluated without overflow or cancellation: `MU_L_BARE`.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -50,6 +38,19 @@ use crate::error::{Error, Result};
 /// (T = 0): there the round-off of L2 (measured 7.9e-10 of the midspan
 /// compliance at μL = 1e-3, growing like 1/(μL)²: ≈ 2e-8 here) and the
 /// neglected tension ((μL)²/10 = 4e-9 relative at midspan) are both small.
+///
+/// **Cancellation in L2.** `sinh` overflows for μL > 710 and the ratio of
+/// three of them loses nothing only if written as `e^{−μ(a − x)} s(μb) s(μx) /
+/// s(μL)` with `s(u) = (1 − e^{−2u})/2 = −expm1(−2u)/2` (each factor in
+/// [0, ½], no overflow at any μL). The remaining difference `x b/L − R/μ` is
+/// benign for μL ≳ 1: at the load both terms are O(L) and O(1/μ). For μL → 0
+/// the two terms agree to O((μL)²) and the difference carries a relative
+/// round-off of about ε/(μL)² (times the spread of the two terms); below
+/// `MU_L_BARE` the bare-beam form is used instead, whose relative error
+/// there is (μL)²/10, so neither exceeds ≈ 2e-8 of the midspan compliance.
+/// Near a support (`μx ≪ 1` and `μa ≪ 1`) the same cancellation costs
+/// relative accuracy in a deflection that is itself small: the absolute error
+/// stays ≲ ε·L/T.
 pub(crate) const MU_L_BARE: f64 = 2e-4;
 
 /// A vertical spring between the line at `x` and a fixed anchor.

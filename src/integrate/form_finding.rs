@@ -23,20 +23,13 @@
 //!   (F4) J Δℓ = ρ,   ℓ ← ℓ + Δℓ,   until max_i |ρ_i| ≤ ε_F
 //! ```
 //!
-//! One Newton step (F4) is exact in exact arithmetic; the ones after it take
-//! up round-off. J costs one banded solve per design dropper with the
-//! factored K (|D| ≪ unknowns) and one dense |D| × |D| LU, once. Each
-//! step rebuilds the load from f₀ and the new preloads exactly as a run
-//! does from given lengths, so a scene carrying the found lengths (`taut
-//! line expand`'s text) starts its correction loop already within ε_F,
-//! takes no step and runs the same bytes. Accepted only when
-//!
-//! ```text
-//!   (F5) ℓ_d > 0 and, for a tension-only dropper, N_d = k_d (H_d − ℓ_d − r_dᵀd) > 0
-//! ```
-//!
-//! (a design that needs a dropper to push, or of no length, is not
-//! reachable: refused naming the dropper's `design_height`).
+//! One Newton step (F4) is exact in exact arithmetic, the ones after it take
+//! up round-off; J costs one banded solve per design dropper with the
+//! factored K and one dense LU. Each step rebuilds the load exactly as a run
+//! does, so a scene carrying the found lengths (`taut line expand`) takes no
+//! step and runs the same bytes. Accepted only when (F5) ℓ_d > 0 and, for a
+//! tension-only dropper, N_d = k_d (H_d − ℓ_d − r_dᵀd) > 0; otherwise
+//! refused naming the dropper's `design_height`.
 
 use crate::error::{Error, Result};
 use crate::model::banded::BandedLdlt;

@@ -1,43 +1,29 @@
 //! Time integration with point contact (MODEL §5, §9.1): the methods users
 //! compare, side by side behind one seam.
 //!
-//! * [`System`] (`system.rs`): what every method shares, in three parts —
-//!   what a run steps (`physics.rs`: the beam, the carriers with their
-//!   contact kinematics, `carrier.rs`, their mass dofs, `mass_dofs.rs`, the
-//!   droppers, `dropper.rs`, a manufactured source), the contact law's
-//!   state (`law_state.rs`), and the step's contact problem, which it forms
-//!   and hands to the law.
-//! * [`StepMap`] (`step_map.rs`): how a method hands its step to the
-//!   contact problem; `contact_problem.rs` forms the pair (g_free, W) from
-//!   it at the acceleration, position or velocity level (MODEL §5, §6).
-//! * [`State`] (`state.rs`): time, beam displacements and velocities, the
-//!   mass dofs.
-//! * [`Stepper`] (`stepper.rs`): one method's step. A method is one file:
-//!   `gen_alpha.rs` (generalized-α, Newmark, HHT, WBZ; its step
-//!   `gen_alpha_kernel.rs`), `bathe.rs`, `central_difference.rs`,
-//!   `moreau_jean.rs`, `modal_exact.rs` (with `oscillator.rs`, the exact
-//!   step of one mode, and `modal_kernels.rs`). Each steps the mass dofs
-//!   with its one rule, a `Stage` that `mass_step.rs` applies to a single
-//!   mass and a multi-mass chain (`chain.rs`) alike. `stepper_for`
-//!   builds a built-in method's ([`crate::scene::Method`], described in
-//!   `scene/method.rs`) from its typed parameters.
-//! * `method.rs`: the seam — [`MethodFactory`] (a method's description and
-//!   the stepper it builds), [`register`] and `factory_of`: the one
-//!   registry is the scene layer's (`scene/method_registry.rs`), which
-//!   keeps a registered factory behind a type-erased handle this file
-//!   reads back. A method written outside the crate implements [`Stepper`]
-//!   and [`MethodFactory`], registers itself, and runs from a scene,
-//!   `--methods`, [`crate::run_with`] and the studies alike
-//!   (`examples/custom_method.rs`).
-//! * `diagnose.rs`: a run that goes unstable stops with a diagnosis;
-//!   `energy.rs`: the discrete energy, for the checks; `sample.rs`: what a
-//!   run records of each carrier.
+//! * [`System`] (`system.rs`): what every method shares — what a run steps
+//!   (`physics.rs`: the beam, the carriers `carrier.rs`, their mass dofs
+//!   `mass_dofs.rs`, the droppers `dropper.rs`, a manufactured source), the
+//!   contact law's state (`law_state.rs`), and the step's contact problem.
+//! * [`StepMap`] (`step_map.rs`): how a method hands its step to the contact
+//!   problem; `contact_problem.rs` forms (g_free, W) at the acceleration,
+//!   position or velocity level (MODEL §5, §6). [`State`]: t, d, v, mass dofs.
+//! * [`Stepper`] (`stepper.rs`): one method's step, one file each:
+//!   `gen_alpha.rs` (generalized-α, Newmark, HHT, WBZ; `gen_alpha_kernel.rs`),
+//!   `bathe.rs`, `central_difference.rs`, `moreau_jean.rs`, `modal_exact.rs`
+//!   (`oscillator.rs`, `modal_kernels.rs`); each steps the mass dofs with a
+//!   `Stage` that `mass_step.rs` applies to a mass or a chain (`chain.rs`).
+//! * `method.rs`: the seam — [`MethodFactory`], [`register`], `factory_of`
+//!   over the scene layer's registry (`scene/method_registry.rs`). A method
+//!   written outside the crate implements [`Stepper`] and [`MethodFactory`],
+//!   registers itself, and runs from a scene, `--methods`, [`crate::run_with`]
+//!   and the studies alike (`examples/custom_method.rs`).
+//! * `diagnose.rs` (a diagnosis when a run goes unstable), `energy.rs`,
+//!   `sample.rs` (what a run records of each carrier).
 //!
-//! Each file imports what it uses from the file that defines it; this
-//! file only declares the layer's files and re-exports its public face.
-//!
-//! [`Integrator`] (`integrator.rs`) drives one run: it builds the system,
-//! the consistent initial state and the stepper, and advances time.
+//! [`Integrator`] (`integrator.rs`) drives one run: it builds the system, the
+//! consistent initial state and the stepper, and advances time. This file only
+//! declares the layer's files and re-exports its public face.
 
 mod batch;
 mod batch_key;

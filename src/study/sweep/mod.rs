@@ -2,44 +2,28 @@
 //! dimensionless axes (TARGETS T3–T7), in parallel, deterministic, resumable
 //! and shardable.
 //!
-//! * A sweep is a 1-D or 2-D grid of `--vary key=start:stop:count` axes,
-//!   linear or (with `--log`) logarithmic, or of listed axes `--vary
-//!   key=v1,v2,...`; or a list of points (`--points FILE.csv`, `points`),
-//!   whose keys are walked together rather than as a grid. `key` is any dotted scene path
-//!   (`beam.tension`, `carrier.0.mass`) or one of the dimensionless axes:
-//!   `speed_ratio` = V0/c (every carrier's cruise speed), `tension_ratio` =
-//!   T/EA, `mass_ratio` = m/M with M = ρAL (every mass carrier),
-//!   `stiffness_ratio` = k/(T/L) (every mass carrier). Ratios are applied after
-//!   the plain keys and `tension_ratio` first, so `speed_ratio` and
-//!   `stiffness_ratio` use the swept tension.
-//! * A point's scene is typed values set on the scene tree: the text and
-//!   the fixed `--set`s are parsed once ([`SweepSpec::base_tree`]), each
-//!   axis is read as an [`AxisTarget`] (a key path or a [`Ratio`]) and its
-//!   grid value, an f64, stored on a copy of that tree, as are the values a
-//!   ratio fixes and the refined `mesh.elements` / `mesh.modes` /
-//!   `time.step`; no number is printed and parsed again. The spec file keeps
-//!   the axis key as text, so folders written by earlier binaries read back.
-//! * Runs are independent; rayon spreads them over the cores. Each finished
-//!   run is written at once to `runs/NNNNNN.json`; a sweep that is started
-//!   again skips the runs already there, so an interrupted sweep loses
-//!   nothing. The outputs are assembled in grid order from those files, so
-//!   they are the same bytes whatever the thread count or interruption
-//!   (wall times are kept apart, in `timing.csv`).
-//! * A run that stops (divergence, failed contact solve, even a panic) is a
-//!   finished point too: its record carries the error, the tables and maps
-//!   mark it, and a resumed sweep does not run it again (the same scene and
-//!   binary stop the same way).
-//! * The folder is claimed by one sweep at a time and every record is
-//!   stamped with its sweep, index and values ([`folder`]).
-//! * `--shard i/n` runs the points with index ≡ i (mod n); `merge` joins
-//!   shard folders (same `sweep.json` spec) into one.
+//! * A sweep is a 1-D or 2-D grid of `--vary key=start:stop:count` axes
+//!   (linear, `--log`, or listed `key=v1,v2,...`), or a list of points
+//!   (`--points FILE.csv`). `key` is a dotted scene path or a dimensionless
+//!   axis ([`Ratio`]: `speed_ratio`, `tension_ratio`, `mass_ratio`,
+//!   `stiffness_ratio`), applied after the plain keys, `tension_ratio` first.
+//! * A point's scene is typed values set on the scene tree parsed once
+//!   ([`SweepSpec::base_tree`], [`AxisTarget`]): no number is printed and
+//!   parsed again.
+//! * Runs are independent (rayon); each finished run is written at once to
+//!   `runs/NNNNNN.json` and a restarted sweep skips those, so an interruption
+//!   loses nothing. Outputs are assembled in grid order from those files: the
+//!   same bytes whatever the thread count or interruption (wall times apart,
+//!   in `timing.csv`). A run that stops is a finished point too: its record
+//!   carries the error.
+//! * The folder is claimed by one sweep at a time, every record stamped with
+//!   its sweep, index and values ([`folder`]); `--shard i/n` runs the points
+//!   with index ≡ i (mod n), `merge` joins shard folders.
 //!
-//! One concept a file: `axis` (one swept axis), `spec` (the grid and its
-//! checks), `points` (a list of points), `resolve` (a grid point's scene), `record` (what a run
-//! contributes), `refine` (`--check-refinement`), `shard` (`--shard`),
-//! `batch` (points stepped together), [`folder`] (the sweep's folder),
-//! `accuracy` (`--tolerance`: each point refined until its u_num is
-//! within EPS); this file runs the sweep.
+//! One concept a file: `axis`, `spec`, `points`, `resolve` (a point's scene),
+//! `record`, `refine` (`--check-refinement`), `shard`, `batch` (points
+//! stepped together), [`folder`], `accuracy` (`--tolerance`); this file runs
+//! the sweep.
 
 mod accuracy;
 mod aliases;
