@@ -1,40 +1,28 @@
 //! Symmetric banded matrices and their LDLᵀ factorization.
 //!
 //! Written by hand on purpose: neither faer nor nalgebra has a banded solver,
-//! and the general sparse LDLᵀ of faer is slower for this band (measured when
-//! this kernel was written: ≈ 28 µs vs ≈ 23 µs per step at n = 2000). The
-//! per-step solve is bound by the dependency chain of the triangular sweeps
-//! (row i needs rows i−1..i−p), so the kernel below sweeps several right-hand
-//! sides at once (the free step and A⁻¹r of each contact, MODEL §5): their
-//! chains are independent and overlap in the CPU, for nearly the price of one.
-//! The half-bandwidth p and the number of right-hand sides are compile-time
-//! constants in the kernels (p = 3 Hermite, p = 1 string, p = 7 the
-//! Hermite contact and messenger wires interleaved, `docs/lines.md` eq. W5;
-//! the two-line string's p = 3 is the Hermite kernel), so the inner loops
-//! unroll fully, the window of the last p solved rows stays in registers (no
-//! store-to-load forwarding on the chain), and an affine column h − K u (the
-//! generalized-α residual, `integrate::gen_alpha`) can be computed inside the
-//! forward sweep, in the arithmetic units the chain leaves idle
-//! ([`BandedLdlt::solve_affine`]; docs/performance.md has the figures).
+//! and faer's general sparse LDLᵀ is slower for this band. The per-step solve
+//! is bound by the dependency chain of the triangular sweeps (row i needs
+//! rows i−1..i−p), so the kernel sweeps several right-hand sides at once (the
+//! free step and A⁻¹r of each contact, MODEL §5): their chains overlap in the
+//! CPU, for nearly the price of one. The half-bandwidth p and the number of
+//! right-hand sides are compile-time constants (p = 3 Hermite, p = 1 string,
+//! p = 7 the Hermite contact and messenger wires interleaved, `docs/lines.md`
+//! eq. W5), so the inner loops unroll, the last p solved rows stay in
+//! registers, and an affine column h − K u (the generalized-α residual) is
+//! computed inside the forward sweep ([`BandedLdlt::solve_affine`];
+//! docs/performance.md has the figures).
 //!
-//! **Subnormals.** A solve's solution decays geometrically away from the
-//! loads (A is mass-dominated for small Δt), and on fine meshes the tails
-//! pass through the subnormal range (below 2.2e-308), where many CPUs take a
-//! microcode assist of ~100 cycles per operation: a step became up to 10×
-//! slower at N ≥ 1400 on an Intel Xeon. Every sweep therefore replaces a
-//! value below `NEGLIGIBLE` (1e-200) by exactly 0 as it produces it, so no
-//! subnormal is ever formed, in this kernel or downstream (the states are
-//! combinations of its outputs). This is plain IEEE arithmetic, not a
-//! processor mode (flush-to-zero/denormals-are-zero flags are undefined
-//! behaviour in Rust, per thread, and x86-only), so every machine, thread and
-//! batch width gives the same bytes; values that large and small never meet
-//! in a sum without the small one vanishing anyway, so the runs' outputs are
-//! unchanged (checked byte for byte on the bundled scenes; `tests/subnormal.rs`
-//! counts subnormals in the states of every method and discretization).
-//!
+//! **Subnormals.** A solution decays geometrically away from the loads, and
+//! on fine meshes its tails would pass through the subnormal range, where
+//! many CPUs are many times slower. Every sweep replaces a value below
+//! `NEGLIGIBLE` (1e-200) by exactly 0 as it produces it, so no subnormal is
+//! ever formed: plain IEEE arithmetic, not a processor mode (flush-to-zero
+//! flags are undefined behaviour in Rust), so every machine, thread and batch
+//! width gives the same bytes, and the outputs are unchanged
+//! (`tests/subnormal.rs` counts subnormals in every method's states).
 //! `tests/banded_faer.rs` cross-checks the factorization and the fused solves
-//! against faer's sparse LDLᵀ (random SPD bands and the assembled beam
-//! matrices, backward errors held to O(n ε)).
+//! against faer's sparse LDLᵀ (backward errors held to O(n ε)).
 
 use crate::error::{Error, Result};
 

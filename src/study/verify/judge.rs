@@ -15,26 +15,14 @@
 //!   finest pair's in the declared range, the approach (every pair at least
 //!   the range's least order − `APPROACH_SLACK`), and the finest relative
 //!   error within the declared bound;
-//! * **diverges** (`Diverges`, where the case declared `MayDiverge`), a
-//!   verdict on the ladder's runs, read from both quantities
-//!   ([`diverging`]): a pair's error stops falling or rises, the dominance
-//!   run's error is above every level's (refining the fixed variables makes
-//!   it grow), a run stops unstable, or the contact chatters (the runs lose
-//!   a contact the exact solution keeps at every level, more often at each
-//!   finer one);
+//! * **diverges** (`Diverges`, where the case declared `MayDiverge`): a
+//!   pair's error stops falling or rises, refining the fixed variables makes
+//!   it grow, a run stops unstable, or the contact chatters ([`diverging`]);
 //! * and for all of them the fixed variables' share of the finest error
 //!   (and, for penalty, the compliance's) at most [`DOMINANCE_LIMIT`] —
 //!   above it the row fails, or is `cannot` with the measured share when
-//!   the case declared it `Limited`. A prescribed loss's share is measured
-//!   over the window the row is judged on (after the start, the start's
-//!   ringing would hide it in the whole run's max).
-//!
-//! **δ(s).** With the fixed variables making a share s of the finest
-//! error e_f (a constant part E = s·e_f at every level) and the refined
-//! variable the rest at order p, the finest pair's ratio is
-//! 2^p(1 − s) + s when E adds, 2^p(1 + s) − s when it cancels: its order is
-//! off by at most δ₋(s) = p − log₂(2^p(1 − s) + s) below and
-//! δ₊(s) = log₂(2^p(1 + s) − s) − p above (at s = 0.25, p = 2: 0.30, 0.21).
+//!   the case declared it `Limited` (a prescribed loss's share is measured
+//!   over the window the row is judged on).
 
 use super::case::{Expect, Ladder, Quantity, Variable};
 use super::measure::{Measured, Window};
@@ -46,9 +34,16 @@ use crate::study::uncertainty::observed_order;
 const RATIO: f64 = 2.0;
 
 /// The shift (below, above) of a pair's order p that a constant share s of
-/// the finer error can cause (module docs).
+/// the finer error can cause (derived below).
 /// A share that is not a number gives a band of NaN, which no order is
 /// inside: the judge never widens or narrows on one ([`band_share`]).
+///
+/// **δ(s).** With the fixed variables making a share s of the finest
+/// error e_f (a constant part E = s·e_f at every level) and the refined
+/// variable the rest at order p, the finest pair's ratio is
+/// 2^p(1 − s) + s when E adds, 2^p(1 + s) − s when it cancels: its order is
+/// off by at most δ₋(s) = p − log₂(2^p(1 − s) + s) below and
+/// δ₊(s) = log₂(2^p(1 + s) − s) − p above (at s = 0.25, p = 2: 0.30, 0.21).
 pub(super) fn share_shift(p: f64, s: f64) -> (f64, f64) {
     if s.is_nan() {
         return (f64::NAN, f64::NAN);
@@ -99,7 +94,7 @@ fn fill_from(row: &mut VerifyRow, m: &Measured, q: Quantity, w: Window) {
     }
 }
 
-/// The share s that widens the finest pair's band by δ(s) (module docs):
+/// The share s that widens the finest pair's band by δ(s) ([`share_shift`]):
 /// the fixed variables' share, and the penalty's compliance's where it was
 /// measured (`Some`) and is not the refined variable (a κ ladder refines
 /// it). A share that was not measured (`None`) plays no part. `Err` names
