@@ -26,10 +26,8 @@
 //! `ω² − Ω² = κ²(κ² EI + T − ρA V²)/ρA` (no cancellation).
 //!
 //! The quasi-static part `Σ K sin(Ω_j t) sin(κ_j x)/(ω_j² − Ω_j²)` is the
-//! static Green's function with the effective tension `T_e = T − ρA V²`,
-//! because `ω_j² − Ω_j² = κ_j²(κ_j² EI + T_e)/ρA` and
-//! `Σ (2/L) sin κ_j a sin κ_j x/(EI κ_j⁴ + T_e κ_j²)` is that Green's function.
-//! For the string it is `F x_<(L − x_>)/(L T_e)`, `T_e = T(1 − V²/c²)`.
+//! static Green's function with the effective tension `T_e = T − ρA V²`
+//! (for the string `F x_<(L − x_>)/(L T_e)`, `T_e = T(1 − V²/c²)`).
 
 use std::f64::consts::PI;
 

@@ -26,10 +26,8 @@
 //! manufactured source (its load depends on time); `modal_exact` runs batch
 //! their own way (`modal_batch.rs`). Anything else steps alone, as before.
 //!
-//! **Retiring.** A run whose steps are done (its carrier left the beam) or
-//! that stops (divergence, failed contact solve) leaves the batch
-//! ([`Batch::retire`]); the others' data are moved down one lane, in place,
-//! and carry on bit-for-bit as before.
+//! **Retiring.** A run that is done or stops leaves the batch
+//! ([`Batch::retire`]); the others move down one lane and carry on.
 
 use crate::error::Error;
 use crate::model::beam::PointVector;

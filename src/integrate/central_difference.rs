@@ -23,11 +23,8 @@
 //! rate is the gap's increment over the step, ġ_{n+1/2} = (g_{n+1} − g_n)/Δt
 //! ([`System::set_increment_rates`]): the rate the half-step velocity gives
 //! the gap, the carrier's motion over the step included, so a contact held
-//! at ġ = 0 keeps its gap to round-off. (The convective rate at t_{n+1},
-//! s(r_{n+1}ᵀv_{n+1/2} + V r'ᵀd_{n+1}) − q̇_{n+1/2}, mixes two times: the gap
-//! drifted at O(Δt) and opened.)
-//!
-//! The state's `v` is the half-step velocity v_{n+1/2} (the method's own),
+//! at ġ = 0 keeps its gap to round-off (a convective rate at t_{n+1}
+//! mixes two times, and the gap drifts open at O(Δt)). The state's `v` is the half-step velocity v_{n+1/2} (the method's own),
 //! and the force recorded at t_{n+1} is λ_n, the force that closed the gap
 //! at t_{n+1} (it acts at t_n).
 

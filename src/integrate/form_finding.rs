@@ -1,9 +1,7 @@
 //! Form-finding (`docs/lines.md` eq. F1–F5): the dropper lengths that put
 //! the contact wire at its design heights in the line's exact static
-//! equilibrium — both wires with their EI, every dropper's spring (a
-//! tension-only one taken taut), the attachments (steady arms), the
-//! self-weight — the equilibrium `[time] initial = "static"` starts from,
-//! without the carriers (the line is designed unloaded).
+//! equilibrium (both wires, droppers taken taut, attachments, self-weight,
+//! no carriers) that `[time] initial = "static"` starts from.
 //!
 //! A dropper's length ℓ_d enters the model only through its preload
 //! k_d (H_d − ℓ_d) r_d (H_d the anchor height z_a, or h_m on the

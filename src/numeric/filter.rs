@@ -25,9 +25,7 @@
 //! per pass. Both are consistent in Δt; the Butterworth is the closer match to
 //! the standards' analog filters.
 //!
-//! The band is `[analysis] band` (default [`FORCE_BAND_HZ`]).
-//!
-//! Each pass starts from the steady state of its first sample (y = u, y' = 0),
+//! The band is `[analysis] band` (default [`FORCE_BAND_HZ`]). Each pass starts from the steady state of its first sample (y = u, y' = 0),
 //! the same for every run, so the ends are treated alike at every resolution.
 
 /// The band of the evaluated contact force, Hz: 0–20 Hz (EN 50317/50318).

@@ -18,20 +18,16 @@
 //! there is no boundary layer, the distance the carrier travels in a few of
 //! its contact's relaxation times m/Z (the time a mass m takes to settle on
 //! a string of drive-point impedance Z). Both are lengths of the physics,
-//! never of the discretization (an untensioned beam has neither, and no
-//! zone unless the scene gives one): a zone that followed h or Δt would make
+//! never of the discretization: a zone that followed h or Δt would make
 //! each level of a refinement study measure a different P_l (MODEL §7).
-//! A coarse run whose arrival spreads wider than z has a larger error in
-//! its in-span P_l, which refinement removes; the quantity stays the same.
 //! `[analysis] support_zone` sets z. P_l splits into an in-span part and a
 //! support part over the same window: they add up to P_l.
 //!
 //! **Suspect losses.** A loss interval that lasts fewer than
 //! `MIN_RESOLVED_LOSS_STEPS` steps, or less than the time the carrier
 //! takes to cross one element (h/V), away from the support zone, is below
-//! what the run resolves: a resolution artefact is likely (the reference
-//! scene's one-step loss at x/L = 0.6512 vanishes under refinement,
-//! `docs/convergence.md`). Such intervals are counted and warned about.
+//! what the run resolves: a resolution artefact is likely
+//! (`docs/convergence.md`). Such intervals are counted and warned about.
 
 use serde::Serialize;
 

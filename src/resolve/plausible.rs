@@ -20,19 +20,14 @@
 //! stiffness is lost in the round-off of that entry. So a non-zero
 //! stiffness must lie in [ε S, S/ε]; a mass likewise against the element's
 //! mass ρA h (a mass m contributes m/Δt² to the same entries), and a
-//! dashpot c against S Δt (it contributes c/Δt). The window is 32 decades
-//! wide around the wire's scale: the stability report's extremes (κ up to
-//! 1e16 N/m, m = 1e-6 kg on the reference wire, S ≈ 1.7e7 N/m) are well
-//! inside it. A value of exactly 0, where a key allows it, is no element
-//! and always accepted.
+//! dashpot c against S Δt (it contributes c/Δt): a window 32 decades wide
+//! around the wire's scale. A value of exactly 0, where a key allows it, is
+//! no element and always accepted.
 //!
-//! The messenger's own elements (its elastic supports' springs, dashpots
-//! and masses, and the dropper clamps on it) are held to the messenger's
-//! scales, built the same way from its ρA_m, T_m and EI_m. A pantograph's
-//! uplift F₀ + c_a V² is a load, not a matrix entry: only its top is
-//! bounded, by the force S h / ε that would move one element by h/ε
-//! (beyond it the wire's response is round-off of the load's), at the
-//! carrier's top speed.
+//! The messenger's own elements are held to the messenger's scales. A
+//! pantograph's uplift F₀ + c_a V² is a load, not a matrix entry: only its
+//! top is bounded, by the force S h / ε that would move one element by h/ε,
+//! at the carrier's top speed.
 
 use crate::error::{Error, Result};
 use crate::scene::{

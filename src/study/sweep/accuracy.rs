@@ -26,14 +26,8 @@
 //!    (J within the exact modes' range). A point that does not reach
 //!    EPS keeps the candidate of smallest u_num, marked not met.
 //!
-//! The points' runs go through one queue ([`run_points`]): a worker takes
-//! the costliest job waiting (runs that share their effective matrix or
-//! modal basis, stepped together, `--batch`), and a point moves on the
-//! moment its stage's runs are in, queuing its next ones; points are
-//! admitted [`CHUNK`] at a time as the queue runs low. Each point's
-//! numbers depend on its scene alone (a batch gives a run's own bits), so
-//! the records are the same whatever the order, threads or batch width; a
-//! finished point is saved at once (resumable).
+//! The points' runs go through one queue ([`run_points`]); the records are
+//! the same whatever the order, threads or batch width (resumable).
 
 use std::sync::{Condvar, Mutex, MutexGuard};
 
@@ -177,6 +171,15 @@ impl Point {
 /// than there are workers, so no worker waits for a slow run of another
 /// point (rounds of a chunk waited for each round's slowest run: the 9 × 9
 /// subgrid of the Fig. 12 map kept 1.63 of 2 vCPUs busy, AMD EPYC).
+///
+/// The points' runs go through one queue ([`run_points`]): a worker takes
+/// the costliest job waiting (runs that share their effective matrix or
+/// modal basis, stepped together, `--batch`), and a point moves on the
+/// moment its stage's runs are in, queuing its next ones; points are
+/// admitted [`CHUNK`] at a time as the queue runs low. Each point's
+/// numbers depend on its scene alone (a batch gives a run's own bits), so
+/// the records are the same whatever the order, threads or batch width; a
+/// finished point is saved at once (resumable).
 pub(super) fn run_points(
     spec: &SweepSpec,
     base: Option<&Table>,

@@ -14,12 +14,9 @@
 //!    force at the time the method's multiplier acts ([`crate::RunOutput::force_lag`]);
 //! 2. computes the orders between successive levels and the ladder's order
 //!    (first to last level) with the one `observed_order`;
-//! 3. **shows that the refined variable dominates**: the finest level is run
-//!    again with the fixed variables refined once more (N×2 or J×2 for a Δt
-//!    ladder, Δt/2 for an h or J ladder), and `other_share = |e − e'|/e`
-//!    is the part of the finest error that the fixed variables make; a row
-//!    whose share exceeds `DOMINANCE_LIMIT` fails, since its order would
-//!    not be the refined variable's;
+//! 3. **shows that the refined variable dominates**: the finest level run
+//!    again with the fixed variables refined once more gives the share of
+//!    the finest error they make; above `DOMINANCE_LIMIT` the row fails;
 //! 4. passes when the ladder's order is within the expectation's tolerance.
 //!
 //! `known` rows (a measured deviation from the formal order, documented
@@ -28,12 +25,9 @@
 //! formal order) do not fail; `fail` rows do, and `taut verify` exits with
 //! status 1.
 //!
-//! One job a file: `select` (what to run), `job` (one case under one
-//! combination), `run_job` (its rows), `level` (a case's scene at one ladder level),
-//! `explicit` (an explicit method's ladder held below its stable step),
-//! `measure` (a ladder's errors against the exact solution), `judge`
-//! (a row's orders and status), `row` (the rows of `verify.csv`); the
-//! cases are [`case`] and [`cases`].
+//! One job a file: `select`, `job`, `run_job`, `level`, `explicit` (a
+//! ladder held below the stable step), `measure`, `judge` (a row's orders
+//! and status), `row` (`verify.csv`); the cases are [`case`] and [`cases`].
 
 pub mod case;
 pub mod cases;
