@@ -226,7 +226,7 @@ def round_three(work: Path, must: dict, out) -> list:
         if key is not None:
             must[name] = key
 
-    # budget: the commands, then grids over the size-driving keys
+    # budget: the commands that once failed, then grids over the size-driving keys
     many = files / "droppers_30000.toml"
     many.write_text((ROOT / "scenes" / "reference.toml").read_text() + dropper_tables(30000, 50.0))
     attach = files / "attachments_100000.toml"

@@ -21,7 +21,7 @@
 use taut::study::converge::{Convergence, Refine, converge};
 use taut::study::reference::analytic_w;
 
-/// Acceptance band around the theoretical order on smooth cases (the issue's ±0.3).
+/// Acceptance band around the theoretical order on smooth cases (±0.3).
 const ORDER_TOL: f64 = 0.3;
 
 fn study(scene: &str, refine: Refine, levels: usize, sets: &[&str]) -> Convergence {

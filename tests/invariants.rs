@@ -1,4 +1,4 @@
-//! Invariants of the discrete model (issue: property tests), over random
+//! Invariants of the discrete model as property tests, over random
 //! valid scenes (proptest; case counts capped for CI, failures persisted in
 //! `tests/invariants.proptest-regressions`):
 //!

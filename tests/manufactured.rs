@@ -506,7 +506,7 @@ fn the_full_verification_matrix_passes() {
 #[test]
 fn converge_flags_a_ladder_limited_by_the_mesh_and_reports_omega_dt() {
     // the moving force on its 50-element mesh: the error against the series
-    // does not move with Δt (the finding)
+    // does not move with Δt
     let c = converge(
         MOVING_FORCE,
         &[],

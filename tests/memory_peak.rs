@@ -159,7 +159,7 @@ fn every_case_peaks_within_its_estimate_and_the_baseline() {
     assert!(estimate(probes, &probe_sets).rows > taut::report::HISTORY_ROWS_AT_A_TIME as u64);
 
     let failures: Vec<String> = [
-        // 2.2·10⁶ rows of 49 bytes (the case, a twentieth of its length)
+        // 2.2·10⁶ rows of 49 bytes (a twentieth of the run that once aborted)
         (
             "long history",
             "scenes/t2_stationary_mass.toml",

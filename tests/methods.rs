@@ -680,7 +680,7 @@ fn combinations_that_mean_nothing_are_refused_naming_both_keys() {
 }
 
 /// T2 under every method: the wave launched at t = 0 returns from the far
-/// support after 2(L − x0)/c within 1 % (the band, as
+/// support after 2(L − x0)/c within 1 % (the acceptance band of
 /// tests/verification_t2_wave_travel.rs), and T1's tip deflection at
 /// 0.15 s lies in the published band for every method.
 #[test]

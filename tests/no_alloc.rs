@@ -1,5 +1,5 @@
-//! The step loop allocates nothing (DESIGN habit 6; issue: "no allocation in
-//! the step loop"). A counting global allocator wraps the system one; after
+//! The step loop allocates nothing (DESIGN habit 6). A counting global
+//! allocator wraps the system one; after
 //! the integrator is built, a stretch of steps must not allocate at all, for
 //! one contact, two contacts (active set), a string, a moving force, the
 //! penalty, impact and complementarity formulations, and every time

@@ -18,7 +18,7 @@ fn scene(name: &str) -> String {
 /// well under a second here; the findings' hangs were endless).
 const HANG_SECONDS: u64 = 60;
 
-/// Address space of one case, KiB (3 GiB: under it the runs
+/// Address space of one case, KiB (3 GiB: under it the failing runs
 /// aborted on a failed allocation; a refused scene allocates next to
 /// nothing).
 const CAP_KIB: u64 = 3 << 20;

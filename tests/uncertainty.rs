@@ -100,7 +100,7 @@ fn the_rms_window_is_the_scene_s_whatever_the_step() {
     assert!(r.covered(), "u_num {:e} < error {:e}", r.u_num, r.error());
 }
 
-/// The test: a family outside the asymptotic range (N₀ = 25: h is
+/// A family outside the asymptotic range (N₀ = 25: h is
 /// 30 bending lengths) gets F_s = 3 and a wider band relative to its last
 /// change than one inside it (N₀ = 50).
 #[test]
@@ -177,7 +177,7 @@ fn a_divergence_is_named() {
 }
 
 /// Without a declared reference a Δt ladder measures Δt's error only: its
-/// error column and regime say the mesh's is unmeasured (the issue's
+/// error column and regime say the mesh's is unmeasured (the
 /// 50-element moving force, whose true error is 220 times the ladder's).
 #[test]
 fn a_one_variable_ladder_names_what_it_does_not_measure() {

@@ -20,7 +20,7 @@ use taut::analytic::StaticPointLoad;
 
 /// x0, m.
 const X0: f64 = 1.0;
-/// The acceptance band for the return time (relative).
+/// Acceptance band for the return time (relative): 1 %.
 const RETURN_TIME_TOL: f64 = 0.01;
 /// The time average over 5 s of an undamped response differs from its
 /// long-run mean by at most about σ_λ·T_p/(π·t_end) ≈ 4.2 N·0.667 s/(π·5 s)

@@ -23,8 +23,8 @@ const REFERENCE: &str = include_str!("../../scenes/reference.toml");
 
 /// In-span part of the span: x_m/L below this. The last 2 % (1 m, a few
 /// bending lengths sqrt(EI/T) = 0.066 m and eight elements) is the carrier's
-/// arrival at the pinned support, whose loss does not converge in Δt (issue
-/// "contact loss you can trust"; docs/convergence.md).
+/// arrival at the pinned support, whose loss does not converge in Δt
+/// (docs/convergence.md).
 const SPAN_END: f64 = 0.98;
 
 /// The filtered force is compared before x_m/L = 0.85: the 0–20 Hz
@@ -37,7 +37,7 @@ const FORCE_SPAN_END: f64 = 0.85;
 /// 1.25e-5 and 6.25e-6 s).
 const REFERENCE_DT: f64 = 6.25e-6;
 
-/// The issue's supercritical-ish case: V0/c = 0.9 on a fine mesh, where the
+/// A supercritical-ish case: V0/c = 0.9 on a fine mesh, where the
 /// contact is lost in span (not only at the support).
 pub const FAST: &[&str] = &["carrier.speed.cruise=134.92", "mesh.elements=1600"];
 

@@ -551,7 +551,7 @@ mod tests {
         assert!((a.space_share.unwrap() - 0.75).abs() < 1e-9);
     }
 
-    /// The test: outside the asymptotic range u_num grows (F_s = 3).
+    /// Outside the asymptotic range u_num grows (F_s = 3).
     #[test]
     fn u_num_grows_outside_the_asymptotic_range() {
         // the same last difference, at order 2 (formal) and at order 1.2

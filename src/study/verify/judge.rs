@@ -693,7 +693,7 @@ mod tests {
         pair: 0.3,
     };
 
-    /// The issue's `mms_string` h-ladder force: orders 2.81, 2.08, 0.99,
+    /// The `mms_string` h-ladder force once measured orders 2.81, 2.08, 0.99,
     /// first to last 1.95, which the first-to-last rule passed; its finest
     /// pair has stalled, and it fails now.
     #[test]
@@ -717,7 +717,7 @@ mod tests {
     }
 
     /// A known deviation is judged against its own range and bound: the
-    /// issue's Bathe force rows stayed `known` when a defect took their
+    /// Bathe force rows once stayed `known` when a defect took their
     /// order from 1.35 to 1.00 and their errors up 100×.
     #[test]
     fn a_known_row_outside_its_range_or_bound_fails() {
@@ -826,7 +826,7 @@ mod tests {
     }
 
     /// A row judged after the start through a prescribed loss: the loss's
-    /// share is measured within the window judged. The issue's `mms_loss`
+    /// share is measured within the window judged. The `mms_loss`
     /// κ force rows (HHT, WBZ ρ∞ = 0.8, …): the start made 99 % of the whole
     /// run's error, so the whole run's loss share was 0 and the rows failed
     /// at orders −0.29 … 0.54; after the start the reattachment made
@@ -867,7 +867,7 @@ mod tests {
 
     /// `diverges` is a verdict on the runs: a displacement row whose runs'
     /// contact force rises diverges though its own error falls. The
-    /// issue's Newmark Δt ladders on `mms_beam_time`, clamped–free: the
+    /// Newmark Δt ladders on `mms_beam_time`, clamped–free: the
     /// displacement 9.03e-6 … 2.63e-7 m (orders 2.00, 1.84, 1.26, the mesh
     /// "35 %" of it) failed, while the same runs' force went 1.8e-3 →
     /// 15.5 N (the contact lost 22 and 57 times at the finest levels).
@@ -894,7 +894,7 @@ mod tests {
     }
 
     /// A ladder that may diverge whose dominance run (the fixed variables
-    /// refined) has an error above every level's diverges: the issue's
+    /// refined) has an error above every level's diverges: the
     /// Newmark h ladder of the force on `mms_string` (6.24e-5, 3.28e-5,
     /// 1.06e-5 N; Δt halved at N = 256: 2.37e-4 N, the "2132 %" share)
     /// failed. Below every level, the share is judged as before.

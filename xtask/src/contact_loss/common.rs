@@ -15,7 +15,7 @@ pub(super) const REFERENCE: &str = include_str!("../../../scenes/reference.toml"
 // ---------------------------------------------------------------------------
 
 /// V0/c = 0.9 (c = 149.9 m/s): contact is lost in the span, not only at the
-/// support (the case).
+/// support.
 pub(super) const FAST_SPEED: f64 = 134.92;
 /// The reference scene's own cruise speed (V0/c = 0.67).
 pub(super) const SCENE_SPEED: f64 = 100.0;
@@ -23,19 +23,19 @@ pub(super) const SCENE_SPEED: f64 = 100.0;
 pub(super) const DT_LADDER_ELEMENTS: usize = 1600;
 /// The step of the h ladder.
 pub(super) const H_LADDER_DT: f64 = 2.5e-5;
-/// Δt ladder (s). The four levels and two more, 6.25e-6 and
+/// Δt ladder (s). Four levels and two more, 6.25e-6 and
 /// 3.125e-6 s, to give the peak and support fits more points and to test
-/// the trend beyond the range (the finest run takes about 2 s).
+/// the trend beyond the first four (the finest run takes about 2 s).
 pub(super) const DT_LADDER: [f64; 6] = [1e-4, 5e-5, 2.5e-5, 1.25e-5, 6.25e-6, 3.125e-6];
 pub(super) const DT_LADDER_QUICK: [f64; 3] = [1e-4, 5e-5, 2.5e-5];
-/// h ladder (elements N): the four levels and N = 6400, to check
+/// h ladder (elements N): four levels and N = 6400, to check
 /// the in-span part one level further (h/ℓ_b = 1.9 … 0.12).
 pub(super) const H_LADDER: [usize; 5] = [400, 800, 1600, 3200, 6400];
 pub(super) const H_LADDER_QUICK: [usize; 3] = [400, 800, 1600];
 /// The in-span part counts as converged when it changes by less than this
-/// fraction of its value between the two finest levels (the 2 %).
+/// fraction of its value between the two finest levels (2 %).
 pub(super) const CONVERGED_CHANGE: f64 = 0.02;
-/// Zone widths tried besides the 4ℓ_b (in bending lengths).
+/// Zone widths tried besides the default 4ℓ_b (in bending lengths).
 pub(super) const ZONE_CANDIDATES: [f64; 5] = [2.0, 4.0, 6.0, 8.0, 12.0];
 /// Bands of distance from the right support, in bending lengths, for the
 /// table of where the lost steps lie.

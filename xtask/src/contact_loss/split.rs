@@ -11,7 +11,7 @@ pub(super) struct SplitRow {
     pub(super) zone: f64,
     pub(super) pl: f64,
     pub(super) split: LossSplit,
-    /// The bands of x_m/L: < 0.98, 0.98–0.995, ≥ 0.995.
+    /// The bands of x_m/L: < 0.98, 0.98–0.995, ≥ 0.995.
     pub(super) bands: [f64; 3],
     /// Time with the contact open in the support zone, s.
     pub(super) support_time: f64,

@@ -33,7 +33,7 @@ pub fn support_zone_with(bending: f64, ei: f64, tension: f64, h: f64, speed: f64
         .max(SUPPORT_STEPS * speed * dt)
 }
 
-/// The support zone z = max(4ℓ_b, 4h, 4VΔt), m.
+/// The support zone z = max(4ℓ_b, 4h, 4VΔt), m.
 pub fn support_zone(ei: f64, tension: f64, h: f64, speed: f64, dt: f64) -> f64 {
     support_zone_with(SUPPORT_BENDING_LENGTHS, ei, tension, h, speed, dt)
 }
