@@ -1,4 +1,4 @@
-//! Writes `out/xtask/convergence.md`, in full: taut's refinement studies
+//! Writes its page of tables into the folder `out/xtask/`, in full: taut's refinement studies
 //! (the tables behind the figures docs/convergence.md quotes),
 //! run through the library (`taut::study::converge`, `taut::run`, the
 //! analytic references of `taut::analytic` and `taut::model::modal`).

@@ -1,6 +1,6 @@
 //! Reproduces the source study's parameter studies (TARGETS T3–T7: Lee, Cho
 //! & Chung 2012, Figs 8–12) through the library and writes
-//! `out/xtask/reproduction.md` (the tables behind the figures
+//! its page of tables into the folder `out/xtask/` (the tables behind the figures
 //! docs/reproduction.md quotes) and its maps in `docs/reproduction/`:
 //!
 //! ```text
