@@ -11,9 +11,9 @@
 //! |---|---|---|
 //! | [`methods`] | `docs/methods.md` (measured tables) | `cargo xtask methods` |
 //! | [`contact_loss`] | `docs/contact_loss.md` (measured tables) | `cargo xtask contact-loss [quick]` |
-//! | [`convergence`] | `docs/convergence.md` (written in full) | `cargo xtask convergence` |
+//! | [`convergence`] | the folder `out/xtask/`: the tables `docs/convergence.md` quotes | `cargo xtask convergence` |
 //! | [`stability`] | `docs/stability.md` (written in full) | `cargo xtask stability` |
-//! | [`reproduction`] | `docs/reproduction.md` and `docs/reproduction/` | `cargo xtask reproduction [--full] [--resume]` |
+//! | [`reproduction`] | the folder `out/xtask/`: the tables `docs/reproduction.md` quotes; the maps in `docs/reproduction/` | `cargo xtask reproduction [--full] [--resume]` |
 //! | [`published_band`] | the tables of `docs/reproduction.md`'s last section (printed) | `cargo xtask published-band` |
 //! | [`accuracy_check`] | the tables of `docs/accuracy.md` (printed) | `cargo xtask accuracy-check grid\|check …` |
 //! | [`uncertainty`] | `docs/verification.md` ("Solution verification": coverage tables) | `cargo xtask uncertainty [quick] [--dump FILE]`, `cargo xtask uncertainty replay FILE [--pairs OUT]` |

@@ -18,7 +18,7 @@ const PAGES: [(&str, fn(), &str); 8] = [
     (
         "convergence",
         xtask::convergence::main,
-        "docs/convergence.md, written in full",
+        "out/xtask/convergence.md, the tables docs/convergence.md quotes, written in full",
     ),
     (
         "stability",
@@ -28,7 +28,7 @@ const PAGES: [(&str, fn(), &str); 8] = [
     (
         "reproduction",
         xtask::reproduction::main,
-        "docs/reproduction.md and docs/reproduction/ (`--full`: T7 refined at 41 x 41; `--resume`: keep finished runs)",
+        "out/xtask/reproduction.md and the maps of docs/reproduction/ (`--full`: T7 refined at 41 x 41; `--resume`: keep finished runs)",
     ),
     (
         "published-band",

@@ -1,4 +1,5 @@
-//! Regenerates `docs/convergence.md`, in full: taut's refinement studies,
+//! Writes its page of tables into the folder `out/xtask/`, in full: taut's refinement studies
+//! (the tables behind the figures docs/convergence.md quotes),
 //! run through the library (`taut::study::converge`, `taut::run`, the
 //! analytic references of `taut::analytic` and `taut::model::modal`).
 //!
@@ -163,7 +164,9 @@ pub fn main() {
     w!(d, "");
     d.push_str(&body);
 
-    let path = format!("{}/docs/convergence.md", crate::ROOT);
+    let dir = format!("{}/out/xtask", crate::ROOT);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{dir}: {e}"));
+    let path = format!("{dir}/convergence.md");
     std::fs::write(&path, doc).unwrap_or_else(|e| panic!("{path}: {e}"));
     eprintln!(
         "wrote {path} in {:.1} s",
