@@ -4,7 +4,9 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::plot::{Panel, abscissa_label, filtered_label, force_series, panels_plot};
+use super::plot::{
+    Panel, abscissa_label, filtered_label, force_series, panels_plot, support_marks,
+};
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::{CompareRow, Comparison, NotRun};
@@ -123,6 +125,7 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
                     short(row.rms_force_difference)
                 ),
                 series: force_series(&r.scene, &r.output, "λ"),
+                marks: support_marks(&r.scene),
             }
         })
         .collect();
