@@ -377,6 +377,9 @@ fn relative_errors(c: &Convergence, quantity: &str) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// A labelled error series: (label, (h or Δt, relative error) points).
+type ErrorSeries = (String, Vec<(f64, f64)>);
+
 /// Pixel size of a convergence plot (the legend column included).
 const SIZE: (u32, u32) = (900 + style::LEGEND_WIDTH, 600);
 
@@ -391,7 +394,8 @@ fn log_log(
     series: &[(String, Vec<(f64, f64)>)],
     slopes: &[f64],
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let series: Vec<(usize, &(String, Vec<(f64, f64)>))> = series
+    // (index in the palette, (label, points)) of the series with points
+    let series: Vec<(usize, &ErrorSeries)> = series
         .iter()
         .enumerate()
         .filter(|(_, (_, v))| !v.is_empty())

@@ -28,7 +28,9 @@ mod verify;
 mod wire;
 
 pub use crate::study::lock::{FolderLock, claim_folder};
-pub use compare::{COMPARE_COLUMNS, compare_rows, compare_table, write_compare};
+pub use compare::{
+    COMPARE_COLUMNS, NO_CHATTER, chatter_note, compare_rows, compare_table, write_compare,
+};
 pub(crate) use converge::write_converge;
 pub use converge::{converge_methods_table, converge_rows, converge_table, write_converge_methods};
 pub(crate) use csv::write_history;

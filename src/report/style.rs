@@ -161,8 +161,10 @@ pub(crate) fn exact(k: i64, e: i32) -> f64 {
 /// about `target` of them, and the step.
 pub(crate) fn nice_ticks(lo: f64, hi: f64, target: usize) -> (Vec<f64>, f64) {
     let step = nice_step(hi - lo, target);
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
+    // a tick on an end survives the end's round-off (1.0000000000000009e-6)
+    const SLACK: f64 = 1e-9;
+    let first = (lo / step - SLACK).ceil() as i64;
+    let last = (hi / step + SLACK).floor() as i64;
     let ticks = (first..=last.max(first - 1))
         .take(64)
         .map(|k| {
