@@ -530,6 +530,9 @@ fn spaced(line: &[(f64, f64)], i: usize) -> impl Iterator<Item = (f64, f64)> + '
     line.iter().skip(shift).step_by(every).copied()
 }
 
+/// Tick labels a side of a line plot, at most.
+const AXIS_LABELS: usize = 10;
+
 /// A chart of two real axes on an SVG (every line plot of taut's).
 pub(crate) type Chart<'a, 'b> = ChartContext<
     'a,
@@ -544,8 +547,15 @@ pub(crate) fn style_axes(
     x_desc: &str,
     y_desc: &str,
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    // labels at the precision of plotters' 1-2-5 steps (about ten a side)
+    let step = |r: std::ops::Range<f64>| style::nice_step(r.end - r.start, AXIS_LABELS);
+    let (sx, sy) = (step(chart.x_range()), step(chart.y_range()));
     chart
         .configure_mesh()
+        .x_labels(AXIS_LABELS)
+        .y_labels(AXIS_LABELS)
+        .x_label_formatter(&|v| style::tick_label(*v, sx))
+        .y_label_formatter(&|v| style::tick_label(*v, sy))
         .x_desc(x_desc)
         .y_desc(y_desc)
         .axis_desc_style(("sans-serif", 14))
@@ -595,7 +605,7 @@ mod tests {
         let short = vec![(0.0, 1.0), (1.0, f64::NAN), (2.0, 3.0)];
         assert_eq!(decimate(&short), vec![(0.0, 1.0), (2.0, 3.0)]);
         // a long series: bounded, in order, with its extremes and ends
-        let n = 1_000_003;
+        let n: usize = 1_000_003;
         let pts: Vec<(f64, f64)> = (0..n)
             .map(|i| {
                 (
