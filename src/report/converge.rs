@@ -481,10 +481,13 @@ fn log_log(
                 dash.1,
                 grey.stroke_width(1),
             ))?;
-            // the label where the line is last inside the plot, rightmost
+            // the label on the line where it is inside the plot, leaving
+            // room for the text at the right, each guide further left (the
+            // guides meet at the middle point: apart, their labels are too)
+            let start = 0.12 + 0.1 * k as f64;
             let inside = (0..=40)
-                .map(|j| x1 * (x0 / x1).powf(f64::from(j) / 40.0))
-                .find(|&x| (y0..y1).contains(&at(x)) && at(x) < y1 / 1.6);
+                .map(|j| x1 * (x0 / x1).powf(start + (1.0 - start) * f64::from(j) / 40.0))
+                .find(|&x| (y0..y1).contains(&at(x)) && at(x) < y1 / 2.0 && at(x) > y0 * 2.0);
             if let Some(x) = inside {
                 chart.draw_series(std::iter::once(Text::new(
                     format!("order {p}"),

@@ -365,7 +365,7 @@ fn draw(
     }
     let mut caption = title.to_string();
     if clipped_any {
-        caption.push_str(" (axes from the 1st–99th percentiles; beyond: ▲▼ at the edge)");
+        caption.push_str(" (y: 1st–99th percentile; ▲▼ beyond)");
     }
     let single = panels.len() <= 1;
     let cols = if panels.len() <= 3 { 1 } else { 2 };
@@ -391,7 +391,13 @@ fn draw(
 
     let root = SVGBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE)?;
-    let root = root.titled(&caption, ("sans-serif", 18))?;
+    // a long title in a smaller font rather than cut at the edges
+    let title_px = if caption.chars().count() > LONG_TITLE {
+        14
+    } else {
+        18
+    };
+    let root = root.titled(&caption, ("sans-serif", title_px))?;
     let (plot_area, legend_area) = root.split_horizontally(style::legend_layout(size).0[2]);
     let areas = plot_area.split_evenly((rows, cols));
     let min_width = MIN_MARK_WIDTH * (x1 - x0);
@@ -517,6 +523,10 @@ fn draw(
     root.present()?;
     Ok(())
 }
+
+/// Characters of a title above which it is set smaller (about what 18 px
+/// fits across 1210 px).
+const LONG_TITLE: usize = 110;
 
 /// The colour of the support ticks.
 const SUPPORT_MARK: RGBColor = RGBColor(90, 90, 90);

@@ -257,13 +257,18 @@ pub(crate) fn decade_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
             }
         }
     }
-    if major.len() < 2 {
-        // fewer than two decades inside: label the 2 and 5 multiples too
+    if major.len() < 3 {
+        // fewer than three decades inside: label the 2 and 5 multiples too,
+        // and if still fewer than three, every multiple
         major.extend(minor.iter().copied().filter(|&v| {
             let m = v / 10f64.powf(v.log10().floor());
             (m - 2.0).abs() < 1e-9 || (m - 5.0).abs() < 1e-9
         }));
+        if major.len() < 3 {
+            major.extend(minor.iter().copied());
+        }
         major.sort_by(f64::total_cmp);
+        major.dedup();
         minor.retain(|v| !major.contains(v));
     } else if major.len() > MAX_DECADE_LABELS {
         // many decades: every k-th labelled, the others minor
@@ -470,6 +475,9 @@ mod tests {
     fn log_axes_carry_decades_with_minor_ticks_never_a_single_label() {
         let (major, minor) = decade_ticks(3e-7, 2e-3);
         assert_eq!(major, vec![1e-6, 1e-5, 1e-4, 1e-3]);
+        // two decades: the 2 and 5 multiples labelled too
+        let (major, _) = decade_ticks(0.15, 8.0);
+        assert_eq!(major, vec![0.2, 0.5, 1.0, 2.0, 5.0]);
         assert!(minor.contains(&2e-5) && minor.contains(&9e-4));
         assert_eq!(offset_label(2.931e-2), "+2.931e-2");
         assert_eq!(offset_label(-4.2e3), "−4.2e3");
