@@ -64,6 +64,10 @@ pub struct RunOutput {
 /// a step-to-step on/off pattern is a numerical oscillation (MODEL §5).
 pub(crate) const CHATTER_FRACTION: f64 = 0.05;
 
+/// The words of the chatter warning that name it (a comparison finds its
+/// chattering runs by them, `report::compare::chatter_note`).
+pub(crate) const CHATTER: &str = "step-to-step chatter";
+
 /// How a run ended: the status a study keeps beside each run it lists
 /// (a row, or a combination that gave none), so that a table can say
 /// which runs stopped and why without reading an error's text.
@@ -609,7 +613,7 @@ impl Recorder {
                     format!("; likely cause: {w}")
                 });
                 format!(
-                    "carrier {i}: contact switched {} times in {} steps: step-to-step chatter, a numerical oscillation (integrator.method = {}, contact.placement = {:?}; MODEL §5); these contact statistics are not a converged answer{cause}",
+                    "carrier {i}: contact switched {} times in {} steps: {CHATTER}, a numerical oscillation (integrator.method = {}, contact.placement = {:?}; MODEL §5); these contact statistics are not a converged answer{cause}",
                     st.contact_switches,
                     sc.steps,
                     f.method,

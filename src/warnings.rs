@@ -23,7 +23,10 @@ pub const MIN_ELEMENTS_PER_SHED_WAVE: f64 = 8.0;
 /// Penalty penetration above this fraction of the largest beam deflection
 /// under the carrier means κ is soft enough to change the answer (the
 /// stability study: κ = 1e2 N/m sank the mass 11 cm and cut the mean force
-/// by 89 %; κ ≥ ρ = 1e3 × 1/W keeps it below 1e-3).
+/// by 89 %; κ ≥ ρ = 1e3 × 1/W keeps it below 1e-3). It judges κ as a
+/// regularization of rigid contact; a κ the scene declares the physical
+/// contact stiffness (`contact.penalty.physical`) is the model, and its
+/// penetration is not checked against it.
 pub const MAX_PENALTY_PENETRATION_FRACTION: f64 = 0.01;
 
 /// The warnings of a finished run; `max_abs_w[c]` is the largest |w| under
@@ -72,12 +75,13 @@ pub fn resolution_warnings(
             ));
         }
         if sc.contact.formulation == Formulation::Penalty
+            && !sc.contact.penalty.physical
             && let (Some(st), Some(&wmax)) = (stats.get(i), max_abs_w.get(i))
             && wmax > 0.0
             && st.max_penetration > MAX_PENALTY_PENETRATION_FRACTION * wmax
         {
             w.push(format!(
-                "carrier {i}: penalty penetration {:.3e} m is {:.1} % of the largest deflection under the carrier ({wmax:.3e} m): κ is soft enough to change the contact forces and loss; raise contact.penalty",
+                "carrier {i}: penalty penetration {:.3e} m is {:.1} % of the largest deflection under the carrier ({wmax:.3e} m): κ is soft enough to change the contact forces and loss; raise contact.penalty (or, if κ is the physical contact stiffness, say so: contact.penalty.physical = true)",
                 st.max_penetration,
                 100.0 * st.max_penetration / wmax
             ));

@@ -81,6 +81,24 @@ fn the_line_and_its_twin_run_with_spans_and_supports() {
     );
 }
 
+/// The bundled line scenes run without warnings: their 50 kN/m contact
+/// is declared the physical contact stiffness (`contact.penalty.physical`),
+/// whose penetration is the model, not a soft penalty to warn of; both set
+/// `[analysis]`.
+#[test]
+fn the_bundled_line_scenes_run_without_warnings() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (name, scene) in [("line", LINE), ("twin", TWIN)] {
+        let text = std::fs::read_to_string(common::crate_root().join(scene)).unwrap();
+        assert!(text.contains("\n[analysis]\n"), "{scene} sets [analysis]");
+        let dir = common::out_dir(&tmp, name);
+        ok(&with_cut(&["run", scene], dir.to_str().unwrap()));
+        let s = json(&dir.join("summary.json"));
+        let warnings = s["warnings"].as_array().expect("warnings in the summary");
+        assert!(warnings.is_empty(), "{scene}: {warnings:?}");
+    }
+}
+
 /// `compare`, `converge` and `sweep` run on the line (cut down).
 #[test]
 fn compare_converge_and_sweep_run_on_the_line() {

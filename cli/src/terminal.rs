@@ -101,6 +101,59 @@ pub fn dropper_line(d: &DropperStats) -> String {
     )
 }
 
+/// Droppers listed one a line up to this many; more (a line's 90) are
+/// summed up in one line, and summary.json holds each.
+pub const MAX_DROPPER_LINES: usize = 4;
+
+/// The terminal's lines of a run's droppers: one each up to
+/// [`MAX_DROPPER_LINES`], else one summary line — how many, the range of
+/// their forces and which dropper holds each end, how many went slack.
+pub fn dropper_lines(ds: &[DropperStats]) -> String {
+    if ds.len() <= MAX_DROPPER_LINES {
+        return ds.iter().map(dropper_line).collect();
+    }
+    let by = |f: fn(&DropperStats) -> f64| {
+        let pick = |a: &&DropperStats, b: &&DropperStats| f(a).total_cmp(&f(b));
+        (ds.iter().min_by(pick), ds.iter().max_by(pick))
+    };
+    let (lo, _) = by(|d| d.force.min);
+    let (_, hi) = by(|d| d.force.max);
+    let (Some(lo), Some(hi)) = (lo, hi) else {
+        return String::new();
+    };
+    let linear = ds.iter().filter(|d| d.linear).count();
+    let kind = match linear {
+        0 => String::new(),
+        n if n == ds.len() => " (all linear)".into(),
+        n => format!(" ({n} linear)"),
+    };
+    let slack: Vec<&DropperStats> = ds.iter().filter(|d| d.slack_interval_count > 0).collect();
+    let slack = match slack
+        .iter()
+        .max_by(|a, b| a.slack_fraction.total_cmp(&b.slack_fraction))
+    {
+        None => "none went slack".to_string(),
+        Some(m) => format!(
+            "{} of {} went slack, longest {} at x = {} m ({:.4} of the steps)",
+            slack.len(),
+            ds.len(),
+            m.name,
+            m.x,
+            m.slack_fraction
+        ),
+    };
+    format!(
+        "  droppers {}{kind}: force min {:.2} N ({} at x = {} m), max {:.2} N ({} at x = {} m); {slack}; each in summary.json\n",
+        ds.len(),
+        lo.force.min,
+        lo.name,
+        lo.x,
+        hi.force.max,
+        hi.name,
+        hi.x
+    )
+}
+
 /// The run's one-screen summary; with `accuracy` (a tolerance run) the
 /// choice of resolution first and an estimated error beside every result.
 pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy>) -> String {
@@ -151,9 +204,7 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
         }
         t.push_str(&contact_loss_lines(c));
     }
-    for d in &s.droppers {
-        t.push_str(&dropper_line(d));
-    }
+    t.push_str(&dropper_lines(&s.droppers));
     if let Some(f) = &s.form_finding {
         let _ = writeln!(
             t,
@@ -357,4 +408,51 @@ pub fn modes(scene: &Path, dir: &Path, m: &taut::study::modes::Modes) -> String 
         dir.display()
     );
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dropper(i: usize, min: f64, max: f64, slack: usize) -> DropperStats {
+        DropperStats {
+            name: format!("d{i}"),
+            x: 3.5 + 6.0 * i as f64,
+            linear: false,
+            slack_fraction: 0.01 * slack as f64,
+            slack_time: 0.0,
+            slack_interval_count: slack,
+            slack_intervals_time: vec![[0.1, 0.2]; slack.min(1)],
+            force: taut::record::ForceStats {
+                mean: 0.5 * (min + max),
+                std: 1.0,
+                min,
+                max,
+            },
+        }
+    }
+
+    /// A line's 18 droppers are one line: count, the force range with the
+    /// droppers that hold it, how many went slack; a few stay one a line.
+    #[test]
+    fn many_droppers_are_summed_up_in_one_line() {
+        let ds: Vec<DropperStats> = (0..18)
+            .map(|i| {
+                dropper(
+                    i,
+                    10.0 + i as f64,
+                    60.0 - i as f64,
+                    usize::from(i % 6 == 0) * i,
+                )
+            })
+            .collect();
+        let t = dropper_lines(&ds);
+        assert_eq!(t.lines().count(), 1, "{t}");
+        assert!(t.contains("droppers 18"), "{t}");
+        assert!(t.contains("force min 10.00 N (d0 at x = 3.5 m)"), "{t}");
+        assert!(t.contains("max 60.00 N (d0 at x = 3.5 m)"), "{t}");
+        assert!(t.contains("2 of 18 went slack, longest d12"), "{t}");
+        let few = dropper_lines(&ds[..3]);
+        assert_eq!(few.lines().count(), 3, "{few}");
+    }
 }

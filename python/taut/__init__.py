@@ -197,7 +197,7 @@ class Run:
             (`[analysis]`), a row per carrier (Table of standard.csv's
             columns: carrier, x_start, x_end, band_hz, speed, speed_kmh,
             samples, mean, std, statistical_max, statistical_min, max, min,
-            loss_percent, uplift_max, uplift_x; docs/output.md).
+            loss_percent, uplift_max_mm, uplift_x; docs/output.md).
         envelope: the range of v over time at every mesh node with
             `[output] envelope = true` (Table of envelope.csv's columns: x,
             v_min, v_max), None otherwise.

@@ -82,18 +82,57 @@ def table_html(t: Table) -> str:
     )
 
 
+def _unit(name: str) -> str:
+    """The unit of a summary figure: the registry's, or one read off the
+    name's last word (a force is in N, a time in s, a position in m);
+    "" when the name does not say."""
+    found = QUANTITY_LABELS.get(name) or _LABELS.get(name)
+    if found and found.endswith(")") and "(" in found:
+        return found[found.rindex("(") + 1 : -1]
+    words = name.split("_")
+    last = words[-1]
+    if last in ("seconds", "time", "hz") or name.endswith("_time"):
+        return "Hz" if last == "hz" else "s"
+    if last in ("fraction", "ratio", "count", "switches", "steps", "order"):
+        return "–"
+    if "force" in words and last in ("mean", "std", "min", "max", "rms"):
+        return "N"
+    if last in ("length", "gap", "penetration"):
+        return "m"
+    return ""
+
+
+def _distinct(scalars: Dict[str, Any]) -> List[Tuple[str, Any]]:
+    """The figures once each: a flat summary name that is a registry name's
+    words in another order (`force_filtered_mean` beside
+    `filtered_force_mean`) is the same figure and left out; the first name
+    (the registry's, which every table uses) is kept."""
+    seen = set()
+    out = []
+    for k, v in scalars.items():
+        words = frozenset(k.split("_"))
+        if words in seen:
+            continue
+        seen.add(words)
+        out.append((k, v))
+    return out
+
+
 def run_html(scalars: Dict[str, Any], carriers: int, rows: int, warnings: Sequence[str]) -> str:
     """A run's summary figures (carrier 0's statistics and the derived
-    figures) as an HTML table, with its warnings."""
+    figures) as an HTML table of name, value and unit, each figure once,
+    with its warnings first."""
     cells = "".join(
-        f"<tr><td>{html.escape(k)}</td><td>{_cell(v)}</td></tr>" for k, v in scalars.items()
+        f"<tr><td>{html.escape(k)}</td><td>{_cell(v)}</td><td>{html.escape(_unit(k))}</td></tr>"
+        for k, v in _distinct(scalars)
     )
     warn = "".join(f"<li>{html.escape(w)}</li>" for w in warnings)
     return (
         f"<div><b>taut.Run</b>: {rows} history rows, {carriers} carrier(s)"
         f"{'' if carriers == 1 else ' (figures of carrier 0; run.carriers[i] for each)'}"
-        f"<table><tbody>{cells}</tbody></table>"
-        f"{'<b>warnings</b><ul>' + warn + '</ul>' if warnings else ''}</div>"
+        f"{'<p><b>warnings</b></p><ul>' + warn + '</ul>' if warnings else ''}"
+        f"<table><thead><tr><th>figure</th><th>value</th><th>unit</th></tr></thead>"
+        f"<tbody>{cells}</tbody></table></div>"
     )
 
 

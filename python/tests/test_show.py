@@ -3,6 +3,7 @@ sweep.csv's names, HTML for notebooks, plots, and the progress switch."""
 
 from __future__ import annotations
 
+import re
 import sys
 
 import numpy as np
@@ -60,6 +61,18 @@ def test_run_and_table_show_html():
     h = t._repr_html_()
     assert h.count("<tr>") == 1 + 2 * 5 + 1, "the head, five rows, an ellipsis and five"
     assert f"{t.rows} rows" in h and "in_contact" in h
+
+
+def test_run_html_has_units_each_figure_once_and_warnings_first():
+    r = taut.run(REFERENCE, set=SHORT, progress=False)
+    h = r._repr_html_()
+    names = re.findall(r"<tr><td>([^<]*)</td>", h)
+    words = [frozenset(n.split("_")) for n in names]
+    assert len(words) == len(set(words)), "a figure under two names"
+    assert "force_filtered_mean" not in names or "filtered_force_mean" not in names
+    assert "<th>unit</th>" in h and "<td>N</td>" in h
+    w = taut._show.run_html({"force_mean": 1.0}, 1, 3, ["soft"])
+    assert w.index("soft") < w.index("<table"), "warnings above the figures"
 
 
 def test_plots_draw_what_the_cli_svgs_draw(monkeypatch):

@@ -4,7 +4,9 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::plot::{Panel, abscissa_label, filtered_label, force_series, panels_plot};
+use super::plot::{
+    Panel, abscissa_label, filtered_label, force_series, panels_plot, support_marks,
+};
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::{CompareRow, Comparison, NotRun};
@@ -77,6 +79,10 @@ struct CompareJson<'a> {
     rows: &'a [CompareRow],
     skipped: &'a [NotRun],
     failed: &'a [NotRun],
+    /// Where runs chattered, which did not and the parameters measured not
+    /// to ([`chatter_note`]); absent when none chattered.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    chatter_note: Option<String>,
 }
 
 /// Write the three files into `dir`.
@@ -93,6 +99,7 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
         rows: &c.rows,
         skipped: &c.skipped,
         failed: &c.failed,
+        chatter_note: chatter_note(c),
     };
     super::write_json(&json, &doc)?;
 
@@ -123,6 +130,7 @@ pub fn write_compare(dir: &Path, c: &Comparison) -> Result<()> {
                     short(row.rms_force_difference)
                 ),
                 series: force_series(&r.scene, &r.output, "λ"),
+                marks: support_marks(&r.scene),
             }
         })
         .collect();
@@ -161,6 +169,55 @@ fn short(v: f64) -> String {
         a if a >= 0.01 => format!("{v:.3}"),
         _ => format!("{v:.1e}"),
     }
+}
+
+/// The parameters measured not to chatter on the reference case at
+/// Δt = 1e-4 s (docs/methods.md "The undamped constraint mode: ringing and
+/// chatter"), the advice a comparison that finds chatter gives.
+pub const NO_CHATTER: &str = "measured without chatter on the reference case at Δt = 1e-4 s (docs/methods.md): generalized_alpha with integrator.rho_inf = 1 or 0.5, hht with integrator.alpha ≥ 0.2, wbz with integrator.rho_inf ≤ 0.5, bathe; or contact.formulation = \"impact\", which does not impose the gap and avoids the mode";
+
+/// Where a comparison finds chatter, what to use instead: the runs that
+/// chattered, those of this comparison that did not, and [`NO_CHATTER`];
+/// None when no run chattered.
+pub fn chatter_note(c: &Comparison) -> Option<String> {
+    let space = c.several_discretizations;
+    let runs: Vec<(String, &[String])> = c
+        .rows
+        .iter()
+        .map(|r| {
+            let who = if space {
+                format!("{}/{}/{}", r.method, r.discretization, r.formulation)
+            } else {
+                format!("{}/{}", r.method, r.formulation)
+            };
+            (who, r.warnings.as_slice())
+        })
+        .collect();
+    chatter_note_of(&runs)
+}
+
+/// [`chatter_note`] of runs given as (label, warnings).
+fn chatter_note_of(runs: &[(String, &[String])]) -> Option<String> {
+    let chatters = |w: &[String]| w.iter().any(|w| w.contains(crate::run::CHATTER));
+    let (bad, good): (Vec<_>, Vec<_>) = runs.iter().partition(|(_, w)| chatters(w));
+    if bad.is_empty() {
+        return None;
+    }
+    let list = |v: &[&(String, &[String])]| {
+        v.iter()
+            .map(|r| r.0.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let here = if good.is_empty() {
+        String::new()
+    } else {
+        format!("; here without chatter: {}", list(&good))
+    };
+    Some(format!(
+        "chatter in {} (its contact statistics are no answer){here}; {NO_CHATTER}",
+        list(&bad)
+    ))
 }
 
 /// The terminal table.
@@ -246,6 +303,9 @@ pub fn compare_table(c: &Comparison) -> String {
             ));
         }
     }
+    if let Some(note) = chatter_note(c) {
+        s.push_str(&format!("  note     {note}\n"));
+    }
     for n in &c.skipped {
         s.push_str(&format!(
             "  skipped  {}/{}: {}\n",
@@ -263,4 +323,44 @@ pub fn compare_table(c: &Comparison) -> String {
         ));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A comparison with chatter names the runs that chattered, those that
+    /// did not, and the parameters measured not to; without chatter, none.
+    #[test]
+    fn the_chatter_note_names_the_parameters_that_do_not_chatter() {
+        let chatter = vec![format!(
+            "carrier 0: contact switched 1419 times in 2000 steps: {}, a numerical oscillation",
+            crate::run::CHATTER
+        )];
+        let none: Vec<String> = Vec::new();
+        let runs = [
+            ("newmark/lagrange".to_string(), chatter.as_slice()),
+            ("generalized_alpha/lagrange".to_string(), none.as_slice()),
+            ("hht/lagrange".to_string(), chatter.as_slice()),
+        ];
+        let note = chatter_note_of(&runs).expect("a note");
+        assert!(
+            note.contains("chatter in newmark/lagrange, hht/lagrange"),
+            "{note}"
+        );
+        assert!(
+            note.contains("here without chatter: generalized_alpha/lagrange"),
+            "{note}"
+        );
+        for p in [
+            "rho_inf = 1 or 0.5",
+            "alpha ≥ 0.2",
+            "rho_inf ≤ 0.5",
+            "bathe",
+            "\"impact\"",
+        ] {
+            assert!(note.contains(p), "{p} missing: {note}");
+        }
+        assert_eq!(chatter_note_of(&runs[1..2]), None);
+    }
 }

@@ -5,7 +5,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use super::PALETTE;
+use super::style;
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::compare::NotRun;
@@ -296,6 +296,39 @@ pub fn converge_table(c: &Convergence) -> String {
     s
 }
 
+/// What a study refines, in words for a plot's title.
+fn refine_words(r: Refine) -> &'static str {
+    match r {
+        Refine::Mesh => "refine: mesh h (Δt fixed)",
+        Refine::Step => "refine: time step Δt (mesh fixed)",
+        Refine::Both => "refine: both h and Δt",
+    }
+}
+
+/// The abscissa of a study, naming the levels' N and Δt: "h (m); levels
+/// N = 100…800, Δt = 1e-4…1.25e-5 s".
+fn abscissa(c: &Convergence) -> String {
+    let axis = match c.refine {
+        Refine::Mesh => "h (m)",
+        Refine::Step => "Δt (s)",
+        Refine::Both => "h (m), Δt ∝ h",
+    };
+    let (Some(a), Some(b)) = (c.scenes.first(), c.scenes.last()) else {
+        return axis.to_string();
+    };
+    let n = if a.elements == b.elements {
+        format!("N = {}", a.elements)
+    } else {
+        format!("N = {}…{}", a.elements, b.elements)
+    };
+    let dt = if a.dt == b.dt {
+        format!("Δt = {} s", super::fmt_f64(a.dt))
+    } else {
+        format!("Δt = {}…{} s", super::fmt_f64(a.dt), super::fmt_f64(b.dt))
+    };
+    format!("{axis}; levels {n}, {dt}")
+}
+
 /// One study: each quantity's relative error against h (or Δt), with
 /// reference slopes 1, 2 and 4.
 fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::error::Error>> {
@@ -304,10 +337,11 @@ fn draw(path: &Path, c: &Convergence) -> std::result::Result<(), Box<dyn std::er
         .map(|q| (q.to_string(), relative_errors(c, q)))
         .collect();
     let caption = format!(
-        "relative error against the reference, refine = {:?}, r = {}",
-        c.refine, c.ratio
+        "relative error against the reference; {}, ratio r = {}",
+        refine_words(c.refine),
+        c.ratio
     );
-    log_log(path, &caption, c.refine, &series, &[1.0, 2.0, 4.0])
+    log_log(path, &caption, &abscissa(c), &series, &[1.0, 2.0, 4.0])
 }
 
 /// Several methods: the relative error of the displacement under the
@@ -323,10 +357,11 @@ fn draw_methods(
         .map(|(m, c)| (m.to_string(), relative_errors(c, QUANTITY)))
         .collect();
     let caption = format!(
-        "{QUANTITY}: relative error by method, refine = {:?}, r = {}",
-        first.refine, first.ratio
+        "{QUANTITY}: relative error by method; {}, ratio r = {}",
+        refine_words(first.refine),
+        first.ratio
     );
-    log_log(path, &caption, first.refine, &series, &[1.0, 2.0])
+    log_log(path, &caption, &abscissa(first), &series, &[1.0, 2.0])
 }
 
 /// (h or Δt, relative error) of a quantity's rows with a known error.
@@ -342,18 +377,33 @@ fn relative_errors(c: &Convergence, quantity: &str) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Labelled error series on log–log axes, with reference slopes through the
-/// middle of the data.
+/// A labelled error series: (label, (h or Δt, relative error) points).
+type ErrorSeries = (String, Vec<(f64, f64)>);
+
+/// Pixel size of a convergence plot (the legend column included).
+const SIZE: (u32, u32) = (900 + style::LEGEND_WIDTH, 600);
+
+/// Labelled error series on log–log axes (decade ticks, a colour and a
+/// marker per series, the legend beside the plot), with reference slopes
+/// through the middle of the data, each dashed its own way and labelled
+/// "order p" at its right end.
 fn log_log(
     path: &Path,
     caption: &str,
-    refine: Refine,
+    x_desc: &str,
     series: &[(String, Vec<(f64, f64)>)],
     slopes: &[f64],
 ) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let series: Vec<&(String, Vec<(f64, f64)>)> =
-        series.iter().filter(|(_, v)| !v.is_empty()).collect();
-    let all: Vec<(f64, f64)> = series.iter().flat_map(|(_, v)| v.iter().copied()).collect();
+    // (index in the palette, (label, points)) of the series with points
+    let series: Vec<(usize, &ErrorSeries)> = series
+        .iter()
+        .enumerate()
+        .filter(|(_, (_, v))| !v.is_empty())
+        .collect();
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|(_, (_, v))| v.iter().copied())
+        .collect();
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for &(x, y) in &all {
         x0 = x0.min(x);
@@ -365,7 +415,7 @@ fn log_log(
         (x0, x1, y0, y1) = (1e-3, 1.0, 1e-6, 1.0);
     }
     let (x0, x1) = (x0 / 1.5, x1 * 1.5);
-    let (y0, y1) = (y0 / 10.0, y1 * 10.0);
+    let (y0, y1) = (y0 / 3.0, y1 * 3.0);
     let ranges = super::axis_range::drawable("horizontal", x0, x1, true)
         .and_then(|x| super::axis_range::drawable("vertical", y0, y1, true).map(|y| (x, y)));
     let ((x0, x1), (y0, y1)) = match ranges {
@@ -373,7 +423,7 @@ fn log_log(
         Err(reason) => {
             super::axis_range::write_note(
                 path,
-                (900, 600),
+                SIZE,
                 caption,
                 &reason,
                 "converge.csv and converge.json",
@@ -381,49 +431,77 @@ fn log_log(
             return Ok(());
         }
     };
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    let root = SVGBackend::new(path, SIZE).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(caption, ("sans-serif", 18))
+    let root = root.titled(caption, ("sans-serif", 17))?;
+    let (plot_area, legend_area) = root.split_horizontally(style::legend_layout(SIZE).0[2]);
+    let (xm, xn) = style::decade_ticks(x0, x1);
+    let (ym, yn) = style::decade_ticks(y0, y1);
+    let mut chart = ChartBuilder::on(&plot_area)
         .margin(12)
         .x_label_area_size(45)
-        .y_label_area_size(80)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+        .y_label_area_size(70)
+        .build_cartesian_2d(
+            (x0..x1)
+                .log_scale()
+                .with_key_points(xm)
+                .with_light_points(xn),
+            (y0..y1)
+                .log_scale()
+                .with_key_points(ym)
+                .with_light_points(yn),
+        )?;
     chart
         .configure_mesh()
-        .x_desc(match refine {
-            Refine::Mesh => "h (m)",
-            Refine::Step => "Δt (s)",
-            Refine::Both => "h (m), Δt ∝ h",
-        })
-        .y_desc("relative error")
-        .x_label_formatter(&|x| format!("{x:.1e}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .x_desc(x_desc)
+        .y_desc("relative error |q − q_ref| / |q|")
+        .axis_desc_style(("sans-serif", 14))
+        .label_style(("sans-serif", 12))
+        .bold_line_style(BLACK.mix(0.18))
+        .light_line_style(BLACK.mix(0.06))
+        .x_label_formatter(&|x| style::log_label(*x))
+        .y_label_formatter(&|y| style::log_label(*y))
         .draw()?;
-    for (i, (label, v)) in series.iter().enumerate() {
-        let col = PALETTE[i % PALETTE.len()];
-        chart
-            .draw_series(LineSeries::new(v.clone(), col.stroke_width(2)))?
-            .label(label.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col));
-        chart.draw_series(v.iter().map(|&p| Circle::new(p, 3, col.filled())))?;
+    let mut key: Vec<(String, style::Key)> = Vec::new();
+    for &(i, (label, v)) in &series {
+        let (col, m) = style::series_style(i);
+        chart.draw_series(LineSeries::new(v.clone(), col.stroke_width(2)))?;
+        chart.draw_series(v.iter().map(|&p| style::marker(m, p, 4, col)))?;
+        key.push((label.clone(), style::Key::Line(col, 2, Some(m))));
     }
     if let Some(&(xm, ym)) = all.get(all.len() / 2) {
+        let grey = RGBColor(70, 70, 70);
         for (k, &p) in slopes.iter().enumerate() {
-            let style = BLACK.mix(0.5 - 0.15 * k as f64);
-            let line = vec![(x0, ym * (x0 / xm).powf(p)), (x1, ym * (x1 / xm).powf(p))];
-            chart
-                .draw_series(LineSeries::new(line, style.stroke_width(1)))?
-                .label(format!("slope {p}"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
+            let dash = style::DASHES[k % style::DASHES.len()];
+            let at = |x: f64| ym * (x / xm).powf(p);
+            let line = vec![(x0, at(x0)), (x1, at(x1))];
+            chart.draw_series(DashedLineSeries::new(
+                line,
+                dash.0,
+                dash.1,
+                grey.stroke_width(1),
+            ))?;
+            // the label on the line where it is inside the plot, leaving
+            // room for the text at the right, each guide further left (the
+            // guides meet at the middle point: apart, their labels are too)
+            let start = 0.12 + 0.1 * k as f64;
+            let inside = (0..=40)
+                .map(|j| x1 * (x0 / x1).powf(start + (1.0 - start) * f64::from(j) / 40.0))
+                .find(|&x| (y0..y1).contains(&at(x)) && at(x) < y1 / 2.0 && at(x) > y0 * 2.0);
+            if let Some(x) = inside {
+                chart.draw_series(std::iter::once(Text::new(
+                    format!("order {p}"),
+                    (x / 1.02, at(x)),
+                    ("sans-serif", 12).into_font().color(&grey),
+                )))?;
+            }
+            key.push((
+                format!("slope guide, order {p}"),
+                style::Key::Dashed(grey, dash),
+            ));
         }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
+    style::draw_legend(&legend_area, &key, 50)?;
     root.present()?;
     Ok(())
 }

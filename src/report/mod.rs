@@ -17,6 +17,7 @@ mod plot;
 mod precision;
 mod staging;
 mod standard;
+mod style;
 mod summary;
 mod sweep;
 mod sweep_maps;
@@ -27,7 +28,9 @@ mod verify;
 mod wire;
 
 pub use crate::study::lock::{FolderLock, claim_folder};
-pub use compare::{COMPARE_COLUMNS, compare_rows, compare_table, write_compare};
+pub use compare::{
+    COMPARE_COLUMNS, NO_CHATTER, chatter_note, compare_rows, compare_table, write_compare,
+};
 pub(crate) use converge::write_converge;
 pub use converge::{converge_methods_table, converge_rows, converge_table, write_converge_methods};
 pub(crate) use csv::write_history;
@@ -113,22 +116,8 @@ pub fn write_run(dir: &Path, sc: &Resolved, out: &RunOutput) -> Result<Summary> 
     })
 }
 
-/// Line colours of every plot (matplotlib's tab10), cycled.
-pub(crate) const PALETTE: [plotters::style::RGBColor; 10] = {
-    use plotters::style::RGBColor;
-    [
-        RGBColor(31, 119, 180),
-        RGBColor(214, 39, 40),
-        RGBColor(44, 160, 44),
-        RGBColor(148, 103, 189),
-        RGBColor(255, 127, 14),
-        RGBColor(23, 190, 207),
-        RGBColor(140, 86, 75),
-        RGBColor(227, 119, 194),
-        RGBColor(127, 127, 127),
-        RGBColor(188, 189, 34),
-    ]
-};
+/// Line colours of every plot, cycled (see [`style`]).
+pub(crate) use style::PALETTE;
 
 /// Write a value as pretty-printed JSON with a final newline.
 pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {

@@ -16,11 +16,15 @@ use crate::resolve::Resolved;
 /// relates to EN 50317, EN 50318 and EN 50367).
 pub(crate) const STANDARD_BASIS: &str = "the contact force low-pass filtered to 0–band Hz (2nd-order Butterworth, forward and backward: zero phase); over the steps whose contact point lies in the section: mean F_m, population standard deviation σ, statistical max/min F_m ± 3σ, actual max/min of the filtered force, percentage of steps with the contact open; uplift at each support in the section = largest v(x_s, t) minus the support's static position (the wire under its own loads, no carrier)";
 
+/// Millimetres in a metre (the uplift of `standard.csv`).
+const MM_PER_M: f64 = 1e3;
+
 /// `standard.csv`: a row per carrier: `carrier`, `x_start`, `x_end` (m),
 /// `band_hz`, `speed` (m/s), `speed_kmh`, `samples`, `mean`, `std`,
 /// `statistical_max`, `statistical_min`, `max`, `min` (N, the filtered
-/// force), `loss_percent` (%), `uplift_max` (m), `uplift_x` (m); an empty
-/// cell where a value is not defined.
+/// force), `loss_percent` (%), `uplift_max_mm` (mm, as the terminal
+/// shows it; `uplift_max` in m in standard.json), `uplift_x` (m); an
+/// empty cell where a value is not defined.
 pub fn standard_table(rows: &[StandardStats]) -> Table {
     let mut t = Table::new();
     let real = |f: fn(&StandardStats) -> f64| Column::Real(rows.iter().map(f).collect());
@@ -47,7 +51,8 @@ pub fn standard_table(rows: &[StandardStats]) -> Table {
     t.push("max", opt(|r| r.max));
     t.push("min", opt(|r| r.min));
     t.push("loss_percent", opt(|r| r.loss_percent));
-    t.push("uplift_max", opt(|r| r.uplift_max));
+    // in mm, as the terminal prints it, the unit in the name
+    t.push("uplift_max_mm", opt(|r| r.uplift_max.map(|u| u * MM_PER_M)));
     t.push("uplift_x", opt(|r| r.uplift_x));
     t
 }

@@ -7,6 +7,7 @@ use plotters::prelude::*;
 use serde::Serialize;
 
 use super::PALETTE;
+use super::style;
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::uncertainty::{QuantityUncertainty, RATIO, Role, Uncertainty};
@@ -201,8 +202,34 @@ pub fn uncertainty_lines(u: &Uncertainty) -> String {
     s
 }
 
+/// The abscissa of the panels, naming the levels' N (or J) and Δt:
+/// "level ℓ (N = 100…800, Δt = 1e-4…1.25e-5 s)".
+fn abscissa(u: &Uncertainty) -> String {
+    let diag: Vec<_> = u
+        .family
+        .iter()
+        .filter(|m| m.role == Role::Diagonal)
+        .collect();
+    let (Some(a), Some(b)) = (diag.first(), diag.last()) else {
+        return "level ℓ".into();
+    };
+    let range = |x: String, y: String| if x == y { x } else { format!("{x}…{y}") };
+    let count = match (a.modes, b.modes) {
+        (Some(ja), Some(jb)) => format!("J = {}", range(ja.to_string(), jb.to_string())),
+        _ => format!(
+            "N = {}",
+            range(a.elements.to_string(), b.elements.to_string())
+        ),
+    };
+    format!(
+        "level ℓ ({count}, Δt = {} s)",
+        range(super::fmt_f64(a.dt), super::fmt_f64(b.dt))
+    )
+}
+
 /// One panel a quantity: the diagonal's values with their ±U bars against
-/// the level, the split runs between levels, the extrapolated value dashed.
+/// the level, the split runs between levels, the extrapolated value
+/// dashed; the legend once, beside the panels.
 fn draw(path: &Path, u: &Uncertainty) -> std::result::Result<(), Box<dyn std::error::Error>> {
     let shown: Vec<&QuantityUncertainty> = u
         .quantities
@@ -211,30 +238,51 @@ fn draw(path: &Path, u: &Uncertainty) -> std::result::Result<(), Box<dyn std::er
         .collect();
     let cols = 3usize;
     let rows = shown.len().div_ceil(cols).max(1);
-    let (w, h) = (1200u32, 300 * rows as u32 + 40);
+    let (w, h) = (1200u32 + style::LEGEND_WIDTH, 300 * rows as u32 + 40);
     let root = SVGBackend::new(path, (w, h)).into_drawing_area();
     root.fill(&WHITE)?;
     let (title, body) = root.split_vertically(40);
     title.draw(&Text::new(
         format!(
-            "value ± u_num against the level ({} and Δt refined ×{RATIO} a level; crosses: {} refined alone)",
-            u.level_symbol, u.level_symbol
+            "value ± u_num against the level ({} and Δt refined ×{RATIO} a level)",
+            u.level_symbol
         ),
         (10, 12),
         ("sans-serif", 17).into_font(),
     ))?;
+    let (body, legend) = body.split_horizontally(style::legend_layout((w, h)).0[2]);
+    let x_desc = abscissa(u);
     let panels = body.split_evenly((rows, cols));
     for (q, area) in shown.iter().zip(panels.iter()) {
-        panel(area, q, u.levels)?;
+        panel(area, q, u.levels, &x_desc)?;
     }
+    let key = [
+        (
+            format!("value ± u_num ({} and Δt refined)", u.level_symbol),
+            style::Key::Line(PALETTE[0], 2, Some(style::Marker::Circle)),
+        ),
+        (
+            format!("{} refined alone (Δt of the level before)", u.level_symbol),
+            style::Key::Mark(PALETTE[1], style::Marker::Cross),
+        ),
+        (
+            "extrapolated value (Richardson, dashed)".to_string(),
+            style::Key::Dashed(RGBColor(110, 110, 110), (6, 4)),
+        ),
+    ];
+    style::draw_legend(&legend, &key, 30)?;
     root.present()?;
     Ok(())
 }
+
+/// Tick labels on a panel's value axis.
+const Y_TICKS: usize = 5;
 
 fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     q: &QuantityUncertainty,
     levels: usize,
+    x_desc: &str,
 ) -> std::result::Result<(), Box<dyn std::error::Error>>
 where
     DB::ErrorType: 'static,
@@ -282,38 +330,62 @@ where
             return Ok(());
         }
     };
+    // a range tiny against its values is drawn as an offset and small labels
+    let off = style::axis_offset(y.0, y.1).unwrap_or(0.0);
+    let y_desc = if off == 0.0 {
+        format!("value ({})", q.unit)
+    } else {
+        format!(
+            "value {} ({})",
+            style::offset_label(-off)
+                .replacen('+', "+ ", 1)
+                .replacen('−', "− ", 1),
+            q.unit
+        )
+    };
+    // plotters picks 1-2-5 ticks near this count; the labels get the
+    // digits of such a step
+    let (ticks, step) = style::nice_ticks(y.0 - off, y.1 - off, Y_TICKS);
     let mut chart = ChartBuilder::on(area)
         .caption(caption, ("sans-serif", 14))
         .margin(8)
-        .x_label_area_size(28)
-        .y_label_area_size(72)
-        .build_cartesian_2d(-0.3..(levels as f64 - 0.7), y.0..y.1)?;
+        .x_label_area_size(34)
+        .y_label_area_size(64)
+        .build_cartesian_2d(-0.3..(levels as f64 - 0.7), (y.0 - off)..(y.1 - off))?;
     chart
         .configure_mesh()
         .x_labels(levels)
+        .y_labels(ticks.len().max(2))
         .x_label_formatter(&|x| format!("{x:.0}"))
-        .y_label_formatter(&|v| format!("{v:.4e}"))
-        .x_desc("level")
+        .y_label_formatter(&|v| style::tick_label(*v, step))
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .axis_desc_style(("sans-serif", 12))
+        .label_style(("sans-serif", 11))
         .draw()?;
     let col = PALETTE[0];
     if let Some(x) = a.extrapolated.filter(|x| x.is_finite()) {
         chart.draw_series(DashedLineSeries::new(
-            vec![(-0.3, x), (levels as f64 - 0.7, x)],
+            vec![(-0.3, x - off), (levels as f64 - 0.7, x - off)],
             6,
             4,
-            BLACK.mix(0.5).stroke_width(1),
+            RGBColor(110, 110, 110).stroke_width(1),
         ))?;
     }
     for &(l, v, e) in &bars {
         if e > 0.0 {
             chart.draw_series(LineSeries::new(
-                vec![(l, v - e), (l, v + e)],
+                vec![(l, v - e - off), (l, v + e - off)],
                 col.stroke_width(2),
             ))?;
         }
-        chart.draw_series(std::iter::once(Circle::new((l, v), 4, col.filled())))?;
+        chart.draw_series(std::iter::once(Circle::new((l, v - off), 4, col.filled())))?;
     }
     let sq = PALETTE[1];
-    chart.draw_series(split.iter().map(|&p| Cross::new(p, 4, sq.stroke_width(2))))?;
+    chart.draw_series(
+        split
+            .iter()
+            .map(|&(x, v)| Cross::new((x, v - off), 4, sq.stroke_width(2))),
+    )?;
     Ok(())
 }

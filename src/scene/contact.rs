@@ -62,6 +62,13 @@ pub struct PenaltySpec {
     /// relative/(1 + relative) of the Lagrange force for the same free gap.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub relative: Option<f64>,
+    /// κ (`stiffness`, N/m) is the modelled contact stiffness — a
+    /// pantograph strip's compliance, as in the EN 50318 reference models —
+    /// not a regularization of rigid contact: its penetration λ/κ is part
+    /// of the model, so the warning that κ is soft enough to change the
+    /// answer does not apply (default false).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub physical: bool,
 }
 
 /// Which solver answers the complementarity law's per-step LCP

@@ -527,6 +527,13 @@ pub(crate) fn validate_contact(c: &ContactSpec) -> Result<()> {
     if let Some(r) = p.relative {
         positive("contact.penalty.relative", r, "dimensionless, × 1/W")?;
     }
+    if p.physical && p.stiffness.is_none() {
+        return Err(Error::invalid(
+            "contact.penalty.physical",
+            "true",
+            "a physical contact stiffness is given in N/m (contact.penalty.stiffness); a relative κ follows the step's 1/W and is no property of the contact",
+        ));
+    }
     let q = &c.complementarity;
     for (name, v) in [
         ("tol_gap_abs", q.tol_gap_abs),
