@@ -12,7 +12,7 @@
 //! | [`methods`] | `docs/methods.md` (measured tables) | `cargo xtask methods` |
 //! | [`contact_loss`] | `docs/contact_loss.md` (measured tables) | `cargo xtask contact-loss [quick]` |
 //! | [`convergence`] | `docs/convergence.md` (written in full) | `cargo xtask convergence` |
-//! | [`stability`] | `docs/stability.md` (written in full) | `cargo xtask stability` |
+//! | [`stability`] | `out/xtask/stability.md` (written in full; explained in `docs/stability.md`) | `cargo xtask stability` |
 //! | [`reproduction`] | `docs/reproduction.md` and `docs/reproduction/` | `cargo xtask reproduction [--full] [--resume]` |
 //! | [`published_band`] | the tables of `docs/reproduction.md`'s last section (printed) | `cargo xtask published-band` |
 //! | [`accuracy_check`] | the tables of `docs/accuracy.md` (printed) | `cargo xtask accuracy-check grid\|check …` |

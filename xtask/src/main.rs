@@ -23,7 +23,7 @@ const PAGES: [(&str, fn(), &str); 8] = [
     (
         "stability",
         xtask::stability::main,
-        "docs/stability.md, written in full",
+        "the stability report, written in full to out/xtask/stability.md (docs/stability.md explains it)",
     ),
     (
         "reproduction",
