@@ -1,4 +1,5 @@
-//! The coverage tables of `docs/verification.md` ("Solution verification"):
+//! The coverage tables behind `docs/verification.md` ("Solution
+//! verification"; printed, `cargo xtask uncertainty > out/xtask/uncertainty.md`):
 //! does `taut uncertainty`'s u_num cover the true error? (MODEL §12, "check
 //! the estimator").
 //!
@@ -8,7 +9,7 @@
 //! value ([`truth`]): the exact moving-force series, the riding mass's
 //! Galerkin solution, or a refined `modal_exact` run. A pair is *covered*
 //! when u_num ≥ |φ − φ_true|; its *sharpness* is u_num/|φ − φ_true|.
-//! Targets (issue 37): covered at ≥ [`COVERAGE_TARGET`] of the pairs,
+//! Targets: covered at ≥ [`COVERAGE_TARGET`] of the pairs,
 //! sharpness ≤ [`SHARPNESS_LIMIT`] at ≥ [`SHARPNESS_TARGET`] of them.
 //!
 //! Run: `cargo xtask uncertainty` (every pair, about 6 minutes on 2
