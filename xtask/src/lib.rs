@@ -9,14 +9,14 @@
 //!
 //! | module | page | command |
 //! |---|---|---|
-//! | [`methods`] | `docs/methods.md` (measured tables) | `cargo xtask methods` |
-//! | [`contact_loss`] | `docs/contact_loss.md` (measured tables) | `cargo xtask contact-loss [quick]` |
+//! | [`methods`] | the tables behind `docs/methods.md` (printed) | `cargo xtask methods > out/xtask/methods.md` |
+//! | [`contact_loss`] | the tables behind `docs/contact_loss.md` (printed) | `cargo xtask contact-loss [quick] > out/xtask/contact_loss.md` |
 //! | [`convergence`] | the folder `out/xtask/`: the tables `docs/convergence.md` quotes | `cargo xtask convergence` |
-//! | [`stability`] | `docs/stability.md` (written in full) | `cargo xtask stability` |
+//! | [`stability`] | `out/xtask/stability.md` (written in full; explained in `docs/stability.md`) | `cargo xtask stability` |
 //! | [`reproduction`] | the folder `out/xtask/`: the tables `docs/reproduction.md` quotes; the maps in `docs/reproduction/` | `cargo xtask reproduction [--full] [--resume]` |
 //! | [`published_band`] | the tables of `docs/reproduction.md`'s last section (printed) | `cargo xtask published-band` |
 //! | [`accuracy_check`] | the tables of `docs/accuracy.md` (printed) | `cargo xtask accuracy-check grid\|check …` |
-//! | [`uncertainty`] | `docs/verification.md` ("Solution verification": coverage tables) | `cargo xtask uncertainty [quick] [--dump FILE]`, `cargo xtask uncertainty replay FILE [--pairs OUT]` |
+//! | [`uncertainty`] | the coverage tables behind `docs/verification.md` ("Solution verification"; printed) | `cargo xtask uncertainty [quick] [--dump FILE] > out/xtask/uncertainty.md`, `cargo xtask uncertainty replay FILE [--pairs OUT]` |
 
 /// The repository's top folder (scenes/, docs/): this crate sits one below it.
 pub const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");

@@ -8,12 +8,12 @@ const PAGES: [(&str, fn(), &str); 8] = [
     (
         "methods",
         xtask::methods::main,
-        "the measured tables of docs/methods.md, printed as markdown (about a minute)",
+        "the measured tables behind docs/methods.md, printed as markdown (about a minute; > out/xtask/methods.md)",
     ),
     (
         "contact-loss",
         xtask::contact_loss::main,
-        "the measured tables of docs/contact_loss.md, printed as markdown (`quick`: a cut-down ladder)",
+        "the measured tables behind docs/contact_loss.md, printed as markdown (`quick`: a cut-down ladder; > out/xtask/contact_loss.md)",
     ),
     (
         "convergence",
@@ -23,7 +23,7 @@ const PAGES: [(&str, fn(), &str); 8] = [
     (
         "stability",
         xtask::stability::main,
-        "docs/stability.md, written in full",
+        "the stability report, written in full to out/xtask/stability.md (docs/stability.md explains it)",
     ),
     (
         "reproduction",
@@ -43,7 +43,7 @@ const PAGES: [(&str, fn(), &str); 8] = [
     (
         "uncertainty",
         xtask::uncertainty::main,
-        "the coverage tables of docs/verification.md (solution verification), printed as markdown (`quick`: a few pairs a case)",
+        "the coverage tables behind docs/verification.md (solution verification), printed as markdown (`quick`: a few pairs a case; > out/xtask/uncertainty.md)",
     ),
 ];
 

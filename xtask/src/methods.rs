@@ -1,4 +1,5 @@
-//! The measured tables of `docs/methods.md`: every time integrator on the
+//! The measured tables behind `docs/methods.md` (printed; `cargo xtask
+//! methods > out/xtask/methods.md`): every time integrator on the
 //! study's reference case (docs/targets.md; `scenes/reference.toml`, N = 400).
 //!
 //! 1. Headline at each method's working step: P_l (whole run and in-span),

@@ -1,4 +1,5 @@
-//! The measured tables of `docs/contact_loss.md`: contact loss you can
+//! The measured tables behind `docs/contact_loss.md` (printed; `cargo
+//! xtask contact-loss > out/xtask/contact_loss.md`): contact loss you can
 //! trust on the study's reference case (docs/targets.md; `scenes/reference.toml`).
 //!
 //! 1. P_l split into an in-span part and a support part (the carrier's

@@ -1,4 +1,4 @@
-//! The cases of `docs/stability.md`, section by section (their scenes,
+//! The cases of the stability report (`out/xtask/stability.md`), section by section (their scenes,
 //! settings, references and expected verdicts).
 
 use super::score::*;

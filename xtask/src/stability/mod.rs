@@ -1,6 +1,8 @@
 //! Stability at the extremes: runs the reference case (and other bundled
 //! scenes where more apt) at extreme parameters and resolutions, for each
-//! contact formulation where it makes sense, and writes `docs/stability.md`.
+//! contact formulation where it makes sense, and writes the report
+//! `out/xtask/stability.md` (every row, its command and verdict);
+//! `docs/stability.md` explains it and quotes its summary.
 //!
 //! ```text
 //! cargo xtask stability
@@ -54,7 +56,9 @@ pub fn main() {
     }
     let elapsed = started.elapsed().as_secs_f64();
     let page = render(&sections, &results, cache.len());
-    let path = format!("{}/docs/stability.md", crate::ROOT);
+    let dir = format!("{}/out/xtask", crate::ROOT);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{dir}: {e}"));
+    let path = format!("{dir}/stability.md");
     std::fs::write(&path, page).unwrap_or_else(|e| panic!("{path}: {e}"));
     eprintln!(
         "wrote {path}: {total} rows and {} reference runs in {elapsed:.1} s",

@@ -1,4 +1,5 @@
-//! The page: the findings and the tables of `docs/stability.md`.
+//! The report: the findings and the tables of `out/xtask/stability.md`
+//! (explained in `docs/stability.md`).
 
 use super::{cases::*, score::*};
 // ---------------------------------------------------------------------------
@@ -82,11 +83,11 @@ pub(super) fn render(sections: &[Section], results: &[Vec<Row>], references: usi
     let _ = writeln!(w, "# Stability at the extremes\n");
     let _ = writeln!(
         w,
-        "*This page is generated, in full, by*\n\n\
+        "*This report is generated, in full, by*\n\n\
          ```sh\ncargo xtask stability\n```\n\n\
          *(`xtask/src/stability/`; {rows_total} runs plus {references} reference runs, \
-         one after another, a little over a minute on two cores). \
-         Do not edit it by hand: change the pipeline and run the command again.*\n"
+         one after another, a little over a minute on two cores), into \
+         `out/xtask/stability.md`; `docs/stability.md` explains it.*\n"
     );
     let _ = writeln!(
         w,

@@ -1,4 +1,4 @@
-//! What a case of `docs/stability.md` is, how it runs, and how its outcome
+//! What a case of the stability report (`out/xtask/stability.md`) is, how it runs, and how its outcome
 //! is scored against its reference (imports shared by the report).
 
 pub(super) use std::collections::HashMap;

@@ -1,4 +1,5 @@
-//! The coverage tables of `docs/verification.md` ("Solution verification"):
+//! The coverage tables behind `docs/verification.md` ("Solution
+//! verification"; printed, `cargo xtask uncertainty > out/xtask/uncertainty.md`):
 //! does `taut uncertainty`'s u_num cover the true error? (MODEL §12, "check
 //! the estimator").
 //!
