@@ -564,11 +564,11 @@ fn the_scanner_reads_what_it_should() {
     let t = strip("a /* { */ \"}\" '{' 'a r#\"}\"# // }\nb");
     assert_eq!(t.matches('{').count(), t.matches('}').count(), "{t}");
     assert_eq!(
-        expand("crate::a::{B,c::{D@E,*}}"),
+        expand("self::a::{B,c::{D@E,*}}"),
         vec![
-            vec!["crate", "a", "B"],
-            vec!["crate", "a", "c", "D@E"],
-            vec!["crate", "a", "c", "*"],
+            vec!["self", "a", "B"],
+            vec!["self", "a", "c", "D@E"],
+            vec!["self", "a", "c", "*"],
         ]
         .into_iter()
         .map(|v| v.into_iter().map(String::from).collect::<Vec<_>>())
