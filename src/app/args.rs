@@ -143,6 +143,16 @@ fn methods_help(what: &str, default: &str) -> String {
     )
 }
 
+/// The help of `compare --formulations`: the names come from
+/// [`Formulation::ALL`], so a new contact law needs no edit here.
+#[cfg(feature = "clap")]
+fn formulations_help() -> String {
+    format!(
+        "Comma-separated formulations: {}",
+        Formulation::ALL.map(Formulation::name).join(", ")
+    )
+}
+
 /// Every contact formulation, comma-separated in the order of
 /// [`Formulation::ALL`]: the default of `--formulations`.
 pub(crate) static ALL_FORMULATIONS: LazyLock<String> =
@@ -184,8 +194,12 @@ impl RunArgs {
 #[serde(default, deny_unknown_fields)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct CompareArgs {
-    /// Comma-separated formulations: lagrange, penalty, complementarity, impact.
-    #[cfg_attr(feature = "clap", arg(long, default_value = ALL_FORMULATIONS.as_str()))]
+    /// Comma-separated formulations (default: every one, in the order of
+    /// `Formulation::ALL`).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = ALL_FORMULATIONS.as_str(), help = formulations_help())
+    )]
     pub formulations: String,
     /// Comma-separated time integrators (default: the scene's own).
     #[cfg_attr(
