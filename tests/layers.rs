@@ -9,7 +9,7 @@ use std::path::Path;
 /// The floors of `docs/architecture.md`'s table: a room may import only
 /// rooms on a lower floor (and itself). `lib` is `src/lib.rs`; a path
 /// through its re-exports (`crate::Error`) counts as the room it re-exports.
-const FLOORS: [(&str, u32); 25] = [
+const FLOORS: [(&str, u32); 26] = [
     ("error", 1),
     ("interrupt", 1),
     ("numeric", 1),
@@ -30,6 +30,8 @@ const FLOORS: [(&str, u32); 25] = [
     ("quantity", 11),
     ("study", 12),
     ("lib", 12),
+    // lib.rs's test of docs/api.md's count (it imports nothing)
+    ("api_surface", 12),
     ("report", 13),
     ("app", 14),
     // lib.rs's re-exports, by the room that defines them

@@ -472,6 +472,27 @@ fn options<A: for<'de> serde::Deserialize<'de>>(py: Python<'_>, json: &str) -> P
     taut::app::args::from_json(json).map_err(|e| to_py_err(py, e))
 }
 
+/// A study of one scene as `app` takes it: the scene and its overrides,
+/// then the options (`args`, JSON of the command's `*Args`) made into the
+/// typed study by `study` (`CompareArgs::study`, …): the glue every study
+/// function shares, written once.
+fn study_request<A: for<'de> serde::Deserialize<'de>, S>(
+    py: Python<'_>,
+    on: SceneArg,
+    out: Option<PathBuf>,
+    args: &str,
+    study: fn(&A) -> taut::Result<S>,
+) -> PyResult<app::StudyRequest<S>> {
+    let (scene, set) = on.source(py)?;
+    let study = study(&options::<A>(py, args)?).map_err(|e| to_py_err(py, e))?;
+    Ok(app::StudyRequest {
+        scene,
+        set,
+        study,
+        out,
+    })
+}
+
 /// One run (`taut run`), or with `tolerance` an accuracy-targeted one
 /// (`taut run --tolerance TOL --quantity Q`); with `out` the CLI's files
 /// (`history.csv`, `summary.json`, `force.svg`, and `accuracy.csv`) are
@@ -562,16 +583,7 @@ fn compare<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
-    let err = |e| to_py_err(py, e);
-    let (scene, set) = on.source(py)?;
-    let request = app::CompareRequest {
-        scene,
-        set,
-        study: options::<taut::app::CompareArgs>(py, args)?
-            .study()
-            .map_err(err)?,
-        out,
-    };
+    let request = study_request(py, on, out, args, taut::app::CompareArgs::study)?;
     let c = call(py, progress.as_ref(), |fe| app::compare(&request, fe))?;
     Ok((
         table_to_py(py, &taut::report::compare_rows(&c))?,
@@ -590,16 +602,7 @@ fn converge<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
-    let err = |e| to_py_err(py, e);
-    let (scene, set) = on.source(py)?;
-    let request = app::ConvergeRequest {
-        scene,
-        set,
-        study: options::<taut::app::ConvergeArgs>(py, args)?
-            .study()
-            .map_err(err)?,
-        out,
-    };
+    let request = study_request(py, on, out, args, taut::app::ConvergeArgs::study)?;
     let outcome = call(py, progress.as_ref(), |fe| app::converge(&request, fe))?;
     let skipped = outcome.skipped().iter().map(not_run).collect();
     let rows = taut::report::converge_rows(&outcome.rows());
@@ -617,16 +620,7 @@ fn uncertainty<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
-    let err = |e| to_py_err(py, e);
-    let (scene, set) = on.source(py)?;
-    let request = app::UncertaintyRequest {
-        scene,
-        set,
-        study: options::<taut::app::UncertaintyArgs>(py, args)?
-            .study()
-            .map_err(err)?,
-        out,
-    };
+    let request = study_request(py, on, out, args, taut::app::UncertaintyArgs::study)?;
     let u = call(py, progress.as_ref(), |fe| app::uncertainty(&request, fe))?;
     Ok((
         table_to_py(py, &taut::report::uncertainty_table(&u))?,
@@ -644,16 +638,7 @@ fn precision<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
-    let err = |e| to_py_err(py, e);
-    let (scene, set) = on.source(py)?;
-    let request = app::PrecisionRequest {
-        scene,
-        set,
-        study: options::<taut::app::PrecisionArgs>(py, args)?
-            .study()
-            .map_err(err)?,
-        out,
-    };
+    let request = study_request(py, on, out, args, taut::app::PrecisionArgs::study)?;
     let p = call(py, progress.as_ref(), |fe| app::precision(&request, fe))?;
     Ok((
         table_to_py(py, &taut::report::precision_rows(&p))?,
@@ -817,6 +802,11 @@ fn quantities() -> String {
 fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("taut_version", taut::VERSION)?;
+    // every contact formulation, in the library's order (`taut.ALL_FORMULATIONS`)
+    m.add(
+        "formulations",
+        taut::scene::Formulation::ALL.map(|f| f.name()).to_vec(),
+    )?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;

@@ -173,7 +173,8 @@ Scene = _scenes.Scene
 """A path to a scene file, a bundled scene's name, the scene's TOML text,
 or the scene as a dict (docs/python.md, "Scenes")."""
 
-ALL_FORMULATIONS = ("lagrange", "penalty", "complementarity", "impact")
+# every contact formulation, in the library's order (`Formulation::ALL`)
+ALL_FORMULATIONS = tuple(_taut.formulations)
 
 
 class Run:

@@ -12,6 +12,7 @@ from typing import Callable, List, Optional, Tuple, Union, final
 
 __version__: str
 taut_version: str
+formulations: List[str]
 
 __all__ = [
     "Simulation",
@@ -19,6 +20,7 @@ __all__ = [
     "bundled_scenes",
     "compare",
     "converge",
+    "formulations",
     "mesh",
     "modes",
     "most_point_keys",

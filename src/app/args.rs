@@ -20,11 +20,13 @@
 
 use std::path::PathBuf;
 use std::str::FromStr;
+use std::sync::LazyLock;
 
 use serde::Deserialize;
 
 use super::words;
 use crate::error::{Error, Result};
+use crate::scene::Formulation;
 use crate::study::request;
 
 /// An option's value as a front end gives it, before it is read: the
@@ -141,8 +143,20 @@ fn methods_help(what: &str, default: &str) -> String {
     )
 }
 
-/// Every contact formulation, the default of `--formulations`.
-pub(crate) const ALL_FORMULATIONS: &str = "lagrange,penalty,complementarity,impact";
+/// The help of `compare --formulations`: the names come from
+/// [`Formulation::ALL`], so a new contact law needs no edit here.
+#[cfg(feature = "clap")]
+fn formulations_help() -> String {
+    format!(
+        "Comma-separated formulations: {}",
+        Formulation::ALL.map(Formulation::name).join(", ")
+    )
+}
+
+/// Every contact formulation, comma-separated in the order of
+/// [`Formulation::ALL`]: the default of `--formulations`.
+pub(crate) static ALL_FORMULATIONS: LazyLock<String> =
+    LazyLock::new(|| Formulation::ALL.map(Formulation::name).join(","));
 
 /// `taut run` / `taut.run`: one scene, or an accuracy-targeted run.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -180,8 +194,12 @@ impl RunArgs {
 #[serde(default, deny_unknown_fields)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct CompareArgs {
-    /// Comma-separated formulations: lagrange, penalty, complementarity, impact.
-    #[cfg_attr(feature = "clap", arg(long, default_value = ALL_FORMULATIONS))]
+    /// Comma-separated formulations (default: every one, in the order of
+    /// `Formulation::ALL`).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = ALL_FORMULATIONS.as_str(), help = formulations_help())
+    )]
     pub formulations: String,
     /// Comma-separated time integrators (default: the scene's own).
     #[cfg_attr(
@@ -234,7 +252,7 @@ impl Default for CompareArgs {
 
 impl CompareArgs {
     /// The typed study.
-    pub fn study(&self) -> Result<request::CompareRequest> {
+    pub fn study(&self) -> Result<request::CompareStudy> {
         words::compare(
             &self.formulations,
             (self.methods.as_deref(), self.discretizations.as_deref()),
@@ -301,7 +319,7 @@ impl Default for ConvergeArgs {
 
 impl ConvergeArgs {
     /// The typed study: levels and ratio by the study's own ranges.
-    pub fn study(&self) -> Result<request::ConvergeRequest> {
+    pub fn study(&self) -> Result<request::ConvergeStudy> {
         use crate::study::converge::{check_levels, check_ratio};
         let levels = self.levels.count(check_levels)?;
         let ratio = self.ratio.real(check_ratio)?;
@@ -343,7 +361,7 @@ impl Default for UncertaintyArgs {
 
 impl UncertaintyArgs {
     /// The typed study: the levels by the study's own range.
-    pub fn study(&self) -> Result<request::UncertaintyRequest> {
+    pub fn study(&self) -> Result<request::UncertaintyStudy> {
         let levels = self.levels.count(crate::study::uncertainty::check_levels)?;
         words::uncertainty(levels, self.yes)
     }
@@ -356,7 +374,7 @@ impl UncertaintyArgs {
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct PrecisionArgs {
     /// Comma-separated formulations.
-    #[cfg_attr(feature = "clap", arg(long, default_value = ALL_FORMULATIONS))]
+    #[cfg_attr(feature = "clap", arg(long, default_value = ALL_FORMULATIONS.as_str()))]
     pub formulations: String,
     /// Comma-separated time integrators (default: the scene's own).
     #[cfg_attr(
@@ -414,7 +432,7 @@ impl Default for PrecisionArgs {
 
 impl PrecisionArgs {
     /// The typed study: levels and ratio by the study's own ranges.
-    pub fn study(&self) -> Result<request::PrecisionRequest> {
+    pub fn study(&self) -> Result<request::PrecisionStudy> {
         use crate::study::precision::{check_levels, check_ratio};
         let levels = self.levels.count(check_levels)?;
         let ratio = self.ratio.count(check_ratio)?;
@@ -837,7 +855,7 @@ mod tests {
     fn python_s_keywords_are_read_and_unknown_ones_refused() {
         let a: CompareArgs = from_json(r#"{"batch": 2, "methods": "bathe"}"#).unwrap();
         assert_eq!(a.batch, Some(Word("2".into())));
-        assert_eq!(a.formulations, ALL_FORMULATIONS);
+        assert_eq!(a.formulations, *ALL_FORMULATIONS);
         let e = from_json::<CompareArgs>(r#"{"bach": 2}"#)
             .unwrap_err()
             .to_string();

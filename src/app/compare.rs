@@ -12,9 +12,9 @@ use crate::study::request;
 use super::{Frontend, Study, StudyRequest, run_study};
 
 /// A comparison of one scene.
-pub type CompareRequest = StudyRequest<request::CompareRequest>;
+pub type CompareRequest = StudyRequest<request::CompareStudy>;
 
-impl Study for request::CompareRequest {
+impl Study for request::CompareStudy {
     type Outcome = Comparison;
     const OUTPUTS: Outputs = Outputs::Compare;
     const COMMAND: &'static str = "taut compare";
@@ -22,7 +22,7 @@ impl Study for request::CompareRequest {
         self.yes
     }
     fn estimate(&self, text: &str, set: &[String]) -> Result<Estimate> {
-        request::CompareRequest::estimate(self, text, set)
+        request::CompareStudy::estimate(self, text, set)
     }
     fn run(
         &self,
@@ -30,7 +30,7 @@ impl Study for request::CompareRequest {
         set: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Comparison> {
-        request::CompareRequest::run(self, text, set, progress)
+        request::CompareStudy::run(self, text, set, progress)
     }
     fn write(dir: &Path, c: &Comparison) -> Result<()> {
         crate::report::write_compare(dir, c)

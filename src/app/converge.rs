@@ -11,9 +11,9 @@ use crate::study::request::{self, ConvergeOutcome};
 use super::{Frontend, Study, StudyRequest, run_study};
 
 /// A convergence study of one scene.
-pub type ConvergeRequest = StudyRequest<request::ConvergeRequest>;
+pub type ConvergeRequest = StudyRequest<request::ConvergeStudy>;
 
-impl Study for request::ConvergeRequest {
+impl Study for request::ConvergeStudy {
     type Outcome = ConvergeOutcome;
     const OUTPUTS: Outputs = Outputs::Converge;
     const COMMAND: &'static str = "taut converge";
@@ -21,7 +21,7 @@ impl Study for request::ConvergeRequest {
         self.yes
     }
     fn estimate(&self, text: &str, set: &[String]) -> Result<Estimate> {
-        request::ConvergeRequest::estimate(self, text, set)
+        request::ConvergeStudy::estimate(self, text, set)
     }
     fn run(
         &self,
@@ -29,7 +29,7 @@ impl Study for request::ConvergeRequest {
         set: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<ConvergeOutcome> {
-        request::ConvergeRequest::run(self, text, set, progress)
+        request::ConvergeStudy::run(self, text, set, progress)
     }
     fn write(dir: &Path, outcome: &ConvergeOutcome) -> Result<()> {
         match outcome {

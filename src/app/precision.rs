@@ -12,9 +12,9 @@ use crate::study::request;
 use super::{Frontend, Study, StudyRequest, run_study};
 
 /// A work–precision study of one scene.
-pub type PrecisionRequest = StudyRequest<request::PrecisionRequest>;
+pub type PrecisionRequest = StudyRequest<request::PrecisionStudy>;
 
-impl Study for request::PrecisionRequest {
+impl Study for request::PrecisionStudy {
     type Outcome = Precision;
     const OUTPUTS: Outputs = Outputs::Precision;
     const COMMAND: &'static str = "taut precision";
@@ -22,7 +22,7 @@ impl Study for request::PrecisionRequest {
         self.yes
     }
     fn estimate(&self, text: &str, set: &[String]) -> Result<Estimate> {
-        request::PrecisionRequest::estimate(self, text, set)
+        request::PrecisionStudy::estimate(self, text, set)
     }
     fn run(
         &self,
@@ -30,7 +30,7 @@ impl Study for request::PrecisionRequest {
         set: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Precision> {
-        request::PrecisionRequest::run(self, text, set, progress)
+        request::PrecisionStudy::run(self, text, set, progress)
     }
     fn write(dir: &Path, p: &Precision) -> Result<()> {
         crate::report::write_precision(dir, p)

@@ -13,9 +13,9 @@ use crate::study::uncertainty::Uncertainty;
 use super::{Frontend, Study, StudyRequest, run_study};
 
 /// A solution verification of one scene.
-pub type UncertaintyRequest = StudyRequest<request::UncertaintyRequest>;
+pub type UncertaintyRequest = StudyRequest<request::UncertaintyStudy>;
 
-impl Study for request::UncertaintyRequest {
+impl Study for request::UncertaintyStudy {
     type Outcome = Uncertainty;
     const OUTPUTS: Outputs = Outputs::Uncertainty;
     const COMMAND: &'static str = "taut uncertainty";
@@ -23,7 +23,7 @@ impl Study for request::UncertaintyRequest {
         self.yes
     }
     fn estimate(&self, text: &str, set: &[String]) -> Result<Estimate> {
-        request::UncertaintyRequest::estimate(self, text, set)
+        request::UncertaintyStudy::estimate(self, text, set)
     }
     fn run(
         &self,
@@ -31,7 +31,7 @@ impl Study for request::UncertaintyRequest {
         set: &[String],
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<Uncertainty> {
-        request::UncertaintyRequest::run(self, text, set, progress)
+        request::UncertaintyStudy::run(self, text, set, progress)
     }
     /// A run of the family that diverged: nothing is estimated.
     fn nothing(outcome: &mut Uncertainty) -> Option<Error> {

@@ -77,14 +77,14 @@ pub fn compare(
     (reference, reference_method): (&str, Option<&str>),
     batch: Option<usize>,
     yes: bool,
-) -> Result<request::CompareRequest> {
+) -> Result<request::CompareStudy> {
     let batch = request::batch_width(batch)?;
     let formulations = self::formulations(formulations)?;
     let methods = self::methods(methods)?;
     let discretizations = self::discretizations(discretizations)?;
     let reference = formulation(reference)?;
     let reference_method = self::reference_method(reference_method, &methods)?;
-    Ok(request::CompareRequest {
+    Ok(request::CompareStudy {
         formulations,
         methods,
         discretizations,
@@ -102,8 +102,8 @@ pub fn converge(
     (levels, ratio): (usize, f64),
     (methods, discretizations): (Option<&str>, Option<&str>),
     yes: bool,
-) -> Result<request::ConvergeRequest> {
-    Ok(request::ConvergeRequest {
+) -> Result<request::ConvergeStudy> {
+    Ok(request::ConvergeStudy {
         refine: refine.parse()?,
         levels,
         ratio,
@@ -121,9 +121,9 @@ pub fn precision(
     (levels, ratio): (usize, usize),
     batch: Option<usize>,
     yes: bool,
-) -> Result<request::PrecisionRequest> {
+) -> Result<request::PrecisionStudy> {
     let batch = request::batch_width(batch)?;
-    Ok(request::PrecisionRequest {
+    Ok(request::PrecisionStudy {
         formulations: self::formulations(formulations)?,
         methods: self::methods(methods)?,
         discretizations: self::discretizations(discretizations)?,
@@ -136,9 +136,9 @@ pub fn precision(
 
 /// The words of `taut uncertainty` (Python: `taut.uncertainty`) as its
 /// typed study; the levels are checked here, before the scene is read.
-pub fn uncertainty(levels: usize, yes: bool) -> Result<request::UncertaintyRequest> {
+pub fn uncertainty(levels: usize, yes: bool) -> Result<request::UncertaintyStudy> {
     crate::study::uncertainty::check_levels(levels)?;
-    Ok(request::UncertaintyRequest { levels, yes })
+    Ok(request::UncertaintyStudy { levels, yes })
 }
 
 /// `--tolerance TOL --quantity Q` (Python: `tolerance=`, `quantity=`): the

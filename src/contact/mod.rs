@@ -78,17 +78,20 @@ pub(crate) fn law_for(spec: &ContactSpec, nc: usize) -> Box<dyn ContactLaw> {
     let bilateral = spec.kind == ContactKind::Bilateral;
     match spec.formulation {
         Formulation::Lagrange | Formulation::Impact => Box::new(Lagrange::new(bilateral, nc)),
-        Formulation::Penalty => {
-            let kappa = match (spec.penalty.stiffness, spec.penalty.relative) {
-                (Some(k), _) => Kappa::Absolute(k),
-                (None, Some(r)) => Kappa::Relative(r),
-                (None, None) => Kappa::Relative(DEFAULT_PENALTY_RELATIVE),
-            };
-            Box::new(Penalty::new(kappa, bilateral, nc))
-        }
+        Formulation::Penalty => Box::new(Penalty::new(kappa(spec), bilateral, nc)),
         Formulation::Complementarity => {
             Box::new(Complementarity::new(&spec.complementarity, bilateral, nc))
         }
+    }
+}
+
+/// The penalty stiffness `[contact.penalty]` asks for: κ in N/m, or
+/// relative to the step's 1/W (default `relative = 1000`).
+fn kappa(spec: &ContactSpec) -> Kappa {
+    match (spec.penalty.stiffness, spec.penalty.relative) {
+        (Some(k), _) => Kappa::Absolute(k),
+        (None, Some(r)) => Kappa::Relative(r),
+        (None, None) => Kappa::Relative(DEFAULT_PENALTY_RELATIVE),
     }
 }
 
@@ -103,13 +106,8 @@ pub(crate) fn law_with_droppers(spec: &ContactSpec, nc: usize, nd: usize) -> Box
     }
     match spec.formulation {
         Formulation::Penalty => {
-            let kappa = match (spec.penalty.stiffness, spec.penalty.relative) {
-                (Some(k), _) => Kappa::Absolute(k),
-                (None, Some(r)) => Kappa::Relative(r),
-                (None, None) => Kappa::Relative(DEFAULT_PENALTY_RELATIVE),
-            };
             let bilateral = spec.kind == ContactKind::Bilateral;
-            Box::new(Penalty::new(kappa, bilateral, nc + nd).penalize_first(nc))
+            Box::new(Penalty::new(kappa(spec), bilateral, nc + nd).penalize_first(nc))
         }
         _ => law_for(spec, nc + nd),
     }

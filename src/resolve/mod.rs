@@ -15,6 +15,7 @@
 pub mod analysis;
 pub(crate) mod attachment;
 pub(crate) mod budget_check;
+mod builder;
 pub(crate) mod damping;
 pub(crate) mod dropper;
 pub mod memory;
@@ -29,6 +30,7 @@ use std::path::Path;
 
 pub(crate) use attachment::check_attachments;
 pub(crate) use budget_check::{DropperSource, check_budget};
+pub use builder::SceneBuilder;
 pub(crate) use damping::check_damping;
 pub(crate) use dropper::check_droppers;
 pub(crate) use memory::MAX_STORED_EVENTS;

@@ -55,3 +55,24 @@ pub struct BeamSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damping: Option<RayleighSpec>,
 }
+
+/// The source study's reference beam (MODEL §1, `scenes/reference.toml`):
+/// a 50 m copper contact wire under 30 kN, clamped at x = 0 and pinned at
+/// x = L, undamped.
+impl Default for BeamSpec {
+    fn default() -> Self {
+        BeamSpec {
+            length: 50.0,
+            tension: 3.0e4,
+            left: Support::Clamped,
+            right: Support::Pinned,
+            density: Some(8900.0),
+            area: Some(1.5e-4),
+            youngs_modulus: Some(1.34e11),
+            second_moment: Some(9.64e-10),
+            mass_per_length: None,
+            bending_stiffness: None,
+            damping: None,
+        }
+    }
+}

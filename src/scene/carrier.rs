@@ -81,3 +81,29 @@ pub struct CarrierSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub external_force: Option<ExternalForceSpec>,
 }
+
+/// The source study's reference carrier (MODEL §2, §3,
+/// `scenes/reference.toml`): a 1 kg mass on a 987 N/m spring preloaded by
+/// 5 cm, above the beam, starting at x = 0 and ramping smoothly to
+/// 100 m/s.
+impl Default for CarrierSpec {
+    fn default() -> Self {
+        CarrierSpec {
+            mass: Some(1.0),
+            stiffness: Some(987.0),
+            damping: None,
+            preload: Some(0.05),
+            force: None,
+            masses: None,
+            stiffnesses: None,
+            dampings: None,
+            uplift: None,
+            uplift_coefficient: None,
+            uplift_mass: None,
+            side: Side::Above,
+            start: 0.0,
+            speed: SpeedProfile::SmoothRamp { cruise: 100.0 },
+            external_force: None,
+        }
+    }
+}

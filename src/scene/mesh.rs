@@ -29,6 +29,21 @@ pub struct MeshSpec {
     pub grading_at: Option<f64>,
 }
 
+/// The reference case's mesh (`scenes/reference.toml`): 400 uniform
+/// Hermite elements.
+impl Default for MeshSpec {
+    fn default() -> Self {
+        MeshSpec {
+            elements: 400,
+            kind: MeshKind::Hermite,
+            modes: None,
+            grading: GradingKind::Uniform,
+            grading_ratio: None,
+            grading_at: None,
+        }
+    }
+}
+
 /// `mesh.kind` (MODEL §9.2).
 #[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "snake_case")]

@@ -76,3 +76,30 @@ pub struct Scene {
     #[serde(skip)]
     pub generated: Generated,
 }
+
+/// The source study's reference case (MODEL §1–§5, docs/targets.md; the
+/// same scene as `scenes/reference.toml`): each table's own default, one
+/// reference carrier, and the defaults of every optional table. Build a
+/// scene in code from it with [`Scene::builder`].
+impl Default for Scene {
+    fn default() -> Self {
+        Scene {
+            beam: BeamSpec::default(),
+            mesh: MeshSpec::default(),
+            carriers: vec![CarrierSpec::default()],
+            contact: ContactSpec::default(),
+            time: TimeSpec::default(),
+            integrator: IntegratorSpec::default(),
+            gravity: GravitySpec::default(),
+            probes: Vec::new(),
+            attachments: Vec::new(),
+            droppers: Vec::new(),
+            messenger: None,
+            output: OutputSpec::default(),
+            analysis: AnalysisSpec::default(),
+            manufactured: None,
+            reference: None,
+            generated: Generated::default(),
+        }
+    }
+}

@@ -16,6 +16,18 @@ pub struct TimeSpec {
     pub initial: Initial,
 }
 
+/// The reference case's time grid (`scenes/reference.toml`): Δt = 10⁻⁴ s
+/// until the carrier leaves the beam, from rest.
+impl Default for TimeSpec {
+    fn default() -> Self {
+        TimeSpec {
+            step: 1.0e-4,
+            end: EndTime::CarrierLeaves,
+            initial: Initial::Rest,
+        }
+    }
+}
+
 /// `[time] initial`: where the wire starts.
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]

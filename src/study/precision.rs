@@ -115,7 +115,7 @@ pub(crate) fn check_ratio(ratio: usize) -> Result<usize> {
 /// The reference run's mesh, N₀ × ratio^levels (one level beyond the
 /// grid's finest), checked: a ratio so large it overflows would wrap to a
 /// meaningless mesh in a release build. Also what the study's cost
-/// estimate checks first ([`super::request::PrecisionRequest::estimate`]).
+/// estimate checks first ([`super::request::PrecisionStudy::estimate`]).
 pub(crate) fn reference_elements(n0: usize, ratio: usize, levels: usize) -> Result<usize> {
     u32::try_from(levels)
         .ok()

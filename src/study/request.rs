@@ -60,7 +60,7 @@ fn variants(methods: &[&'static dyn MethodFactory], spaces: &[SpaceChoice]) -> u
 
 /// `taut compare`: formulations × methods × discretizations of one scene.
 #[derive(Clone)]
-pub struct CompareRequest {
+pub struct CompareStudy {
     /// The formulations compared (at least one).
     pub formulations: Vec<Formulation>,
     /// Time integrators (`--methods`); empty: the scene's own.
@@ -78,7 +78,7 @@ pub struct CompareRequest {
     pub yes: bool,
 }
 
-impl CompareRequest {
+impl CompareStudy {
     /// The study's estimated work: every run at the scene's resolution.
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
         let mut e = Estimate::new("taut compare");
@@ -115,7 +115,7 @@ impl CompareRequest {
 
 /// `taut converge`: a refinement ladder, per method and discretization.
 #[derive(Clone)]
-pub struct ConvergeRequest {
+pub struct ConvergeStudy {
     /// Mesh, step or both.
     pub refine: Refine,
     /// Levels (≥ 3 for observed orders).
@@ -164,7 +164,7 @@ impl ConvergeOutcome {
     }
 }
 
-impl ConvergeRequest {
+impl ConvergeStudy {
     /// The study's estimated work: level l refines the scene's mesh and/or
     /// step by ratio^l, for every method and discretization (with `both`,
     /// the split runs of level ℓ's mesh at level ℓ − 1's Δt too).
@@ -240,7 +240,7 @@ impl ConvergeRequest {
 
 /// `taut precision`: work against precision over a (mesh, Δt) grid.
 #[derive(Clone)]
-pub struct PrecisionRequest {
+pub struct PrecisionStudy {
     /// The formulations studied (at least one).
     pub formulations: Vec<Formulation>,
     /// Time integrators (`--methods`); empty: the scene's own.
@@ -257,7 +257,7 @@ pub struct PrecisionRequest {
     pub yes: bool,
 }
 
-impl PrecisionRequest {
+impl PrecisionStudy {
     /// The study's estimated work: grid point (i, j) at N₀·rⁱ elements and
     /// Δt₀/rʲ for every formulation, method and discretization, and the
     /// reference one level beyond the finest on both.
@@ -312,14 +312,14 @@ impl PrecisionRequest {
 /// `taut uncertainty`: the family of one scene (h and Δt refined together
 /// and apart) and every quantity's numerical uncertainty.
 #[derive(Debug, Clone, Copy)]
-pub struct UncertaintyRequest {
+pub struct UncertaintyStudy {
     /// Diagonal levels K (`super::uncertainty::LEVELS`).
     pub levels: usize,
     /// Start even above the cost bound (`--yes`, [`super::cost`]).
     pub yes: bool,
 }
 
-impl UncertaintyRequest {
+impl UncertaintyStudy {
     /// The study's estimated work: every run of the family.
     pub fn estimate(&self, text: &str, overrides: &[String]) -> Result<Estimate> {
         super::uncertainty::estimate(text, overrides, self.levels)
