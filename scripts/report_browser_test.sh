@@ -72,7 +72,7 @@ t run scenes/catenary_designed.toml --set time.end=0.5 --out "$OUT/form"
 FOLDERS=(run compare converge uncertainty tolerance line form)
 # the command each folder's section names
 COMMANDS=("taut run" "taut compare" "taut converge" "taut uncertainty"
-  "taut sweep --tolerance" "taut run (line)" "taut run (line, form-finding)")
+  "taut sweep --tolerance (or merge)" "taut run (line)" "taut run (line, form-finding)")
 "$TAUT_BIN" report "${FOLDERS[@]/#/$OUT/}" --out "$OUT/report.html" >/dev/null
 PAGE="$OUT/report.html"
 plots=$(ls "$OUT"/*/*.svg | wc -l)

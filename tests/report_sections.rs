@@ -7,7 +7,8 @@
 
 use std::path::{Path, PathBuf};
 
-use taut::app::{ReportRequest, ReportSummary, report};
+use taut::app::{ReportRequest, report};
+use taut::report::ReportSummary;
 
 use super::common::{scene_path, taut_ok};
 
