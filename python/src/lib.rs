@@ -750,7 +750,8 @@ fn mesh<'py>(
 }
 
 /// One self-contained `report.html` from output folders (`taut report`):
-/// returns the page's path and its numbers of plots and tables.
+/// returns the page's path, its numbers of plots and tables, and what it
+/// leaves out ([`ReportTuple`]).
 #[pyfunction]
 #[pyo3(signature = (dirs, out))]
 fn report(py: Python<'_>, dirs: Vec<PathBuf>, out: Option<PathBuf>) -> PyResult<ReportTuple> {

@@ -214,7 +214,7 @@ table{border-collapse:collapse;font-size:0.78em;margin:0.5em 0;max-width:100%;ta
 th,td{border:1px solid #ccc;padding:2px 5px;text-align:right;white-space:normal;overflow-wrap:anywhere;vertical-align:top}th{background:#f0f4f8}\
 td.text{text-align:left}.pass,.good{background:#e3f4e3}.fail,.bad{background:#fbe3e3}.warn{background:#fff6dc}\
 tr.row-note td{text-align:left;background:#fff3cd;font-size:0.95em}\
-table.transposed th,table.overview th{text-align:left}\
+table.transposed th,table.overview th{text-align:left}table.overview th,table.overview td:nth-child(n+4){white-space:nowrap}\
 .warning{background:#fff3cd;border-left:4px solid #e0a800;padding:0.4em 0.8em;margin:0.3em 0;overflow-wrap:anywhere}\
 .note{color:#555;font-size:0.9em}pre{background:#f7f7f7;padding:0.6em;white-space:pre-wrap;overflow-wrap:anywhere;font-size:0.85em}\
 li{overflow-wrap:anywhere}\

@@ -492,10 +492,21 @@ pub(crate) fn grid_html(g: &Grid, verdicts: &[&str], max_rows: usize, tally: &mu
         }
     };
     let shown = &g.rows[..g.rows.len().min(max_rows)];
+    // identifying columns: the leading text columns of the first row; the
+    // verdicts next, then the rest
+    let first = g.rows.first();
+    let mut keys = 0;
+    while keys < width.min(MAX_KEYS) && first.is_some_and(|r| !numeric(&cell(r, keys))) {
+        keys += 1;
+    }
+    let keys = keys.max(1);
+    let mut order: Vec<usize> = (0..keys).collect();
+    order.extend(vcols.iter().copied().filter(|&i| i >= keys));
+    order.extend((keys..width).filter(|i| !vcols.contains(i)));
     if width > MAX_COLUMNS && g.rows.len() <= TRANSPOSE_ROWS {
         // transposed: a row per column
         h.push_str("<table class=\"transposed\"><tbody>\n");
-        for i in 0..width {
+        for &i in &order {
             let _ = write!(h, "<tr><th>{}</th>", head(&g.names[i]));
             for r in shown {
                 td(&mut h, r, i);
@@ -503,18 +514,19 @@ pub(crate) fn grid_html(g: &Grid, verdicts: &[&str], max_rows: usize, tally: &mu
             h.push_str("</tr>\n");
         }
         h.push_str("</tbody></table>\n");
-        notes_list(&mut h, g);
-    } else {
-        // identifying columns: the leading text columns of the first row
-        let first = g.rows.first();
-        let mut keys = 0;
-        while keys < width.min(MAX_KEYS) && first.is_some_and(|r| !numeric(&cell(r, keys))) {
-            keys += 1;
+        // each row's notes under the table, named by its identifying cells
+        for (r, ns) in g.rows.iter().zip(&g.notes) {
+            let who: Vec<String> = (0..keys).map(|i| cell(r, i)).collect();
+            for n in ns {
+                let _ = writeln!(
+                    h,
+                    "<p class=\"warning\">WARNING {}: {}</p>",
+                    esc(&who.join("/")),
+                    esc(n)
+                );
+            }
         }
-        let keys = keys.max(1);
-        let mut order: Vec<usize> = (0..keys).collect();
-        order.extend(vcols.iter().copied().filter(|&i| i >= keys));
-        order.extend((keys..width).filter(|i| !vcols.contains(i)));
+    } else {
         let per = MAX_COLUMNS - keys;
         let rest = &order[keys..];
         let parts: Vec<&[usize]> = if rest.is_empty() {
@@ -578,20 +590,6 @@ pub(crate) fn grid_html(g: &Grid, verdicts: &[&str], max_rows: usize, tally: &mu
 /// them).
 fn head(name: &str) -> String {
     esc(name).replace('_', "_<wbr>")
-}
-
-/// A transposed table's row notes, listed under it.
-fn notes_list(h: &mut String, g: &Grid) {
-    for (k, ns) in g.notes.iter().enumerate() {
-        for n in ns {
-            let _ = writeln!(
-                h,
-                "<p class=\"warning\">WARNING (row {}) {}</p>",
-                k + 1,
-                esc(n)
-            );
-        }
-    }
 }
 
 /// A JSON array of objects as a grid of the given keys.
