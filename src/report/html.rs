@@ -1,8 +1,9 @@
 //! `report.html` (`taut report DIR…`): one self-contained page from the
-//! outputs taut wrote into one or more folders: each run's scene, summary,
-//! the standards' statistics and warnings, every SVG plot, and the tables
-//! of the studies (compare, converge, precision, sweep, verify, gate) with
-//! their verdicts. Inline CSS and `data:` images only: no script, no link,
+//! outputs taut wrote into one or more folders, of any command: first the
+//! verdicts of every folder, then each folder's runs (scene, summary,
+//! statistics, warnings), plots and study tables with their verdicts;
+//! every file a command writes is shown or named with the reason it is
+//! not (`super::page::FILES`). Inline CSS and `data:` images only: no script, no link,
 //! no font or image to fetch, so the file opens the same offline, attached
 //! to a review or kept as a CI artefact (docs/output.md#report).
 //!
