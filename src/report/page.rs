@@ -496,7 +496,10 @@ pub(crate) fn grid_html(g: &Grid, verdicts: &[&str], max_rows: usize, tally: &mu
     // verdicts next, then the rest
     let first = g.rows.first();
     let mut keys = 0;
-    while keys < width.min(MAX_KEYS) && first.is_some_and(|r| !numeric(&cell(r, keys))) {
+    while keys < width.min(MAX_KEYS)
+        && !vcols.contains(&keys)
+        && first.is_some_and(|r| !numeric(&cell(r, keys)))
+    {
         keys += 1;
     }
     let keys = keys.max(1);
