@@ -1,14 +1,22 @@
 #!/usr/bin/env bash
-# taut report in a real browser: makes the outputs of a run, a
-# line with its envelope, a comparison, a convergence ladder and a 1-D
-# sweep, writes one report.html of them (taut report), opens it in
-# headless Chromium (Debian's `chromium` package, installed here with
-# apt-get the way scripts/slurm_test.sh installs Slurm) and checks that
+# taut report in a real browser: makes the outputs of the reference run, a
+# compare (methods that chatter beside one that does not), a convergence
+# ladder, an uncertainty family, a tolerance sweep, a line and a
+# form-finding run, at small settings (about 15 s of runs on 2 cores),
+# writes one report.html of them (taut report), opens it in headless
+# Chromium at 1400 px wide (Debian's `chromium` package, installed here
+# with apt-get the way scripts/slurm_test.sh installs Slurm) and checks that
+#   * every folder has its section, headed by the command that wrote it,
+#     after a first section of verdicts with a row per folder,
+#   * nothing is wider than the window: no horizontal scrolling
+#     (document.documentElement.scrollWidth <= 1400), on screen and with
+#     the page's print style at the width of an A4 page,
 #   * the page loads with no console error and no failed request,
 #   * every figure is an image that decoded, has a non-zero size, and
 #     there is one per plot file,
 #   * the page fetches nothing (no http(s) URL in it);
-# then keeps a screenshot, out/report/report.png, and the page,
+# then keeps screenshots, out/report/report.png (the top) and
+# out/report/report-full.png (the whole page), and the page,
 # out/report/report.html. Last it makes a report of a tampered folder (a
 # plot with a script, an onload handler, a javascript: iframe and images
 # on a local HTTP server; a table with markup in a cell), opens that page
@@ -50,16 +58,33 @@ CHROMIUM=(chromium --headless --no-sandbox --disable-gpu --disable-extensions
 rm -rf "$OUT" && mkdir -p "$OUT"
 cd "$ROOT"
 t() { "$TAUT_BIN" "$@" --quiet >/dev/null; }
+SHORT=(--set time.end=0.3)
 t run scenes/reference.toml --out "$OUT/run"
+t compare scenes/reference.toml --methods newmark,hht,generalized_alpha \
+  --formulations lagrange,penalty "${SHORT[@]}" --out "$OUT/compare"
+t converge scenes/moving_force_beam.toml --refine step --levels 3 --out "$OUT/converge"
+t uncertainty scenes/reference.toml --levels 3 "${SHORT[@]}" --out "$OUT/uncertainty"
+t sweep scenes/reference.toml --vary speed_ratio=0.6:1.2:3 "${SHORT[@]}" \
+  --tolerance 0.05 --out "$OUT/tolerance"
 t run scenes/line_10_spans.toml --set time.end=1.0 --set output.envelope=true \
   --set 'analysis.spans=[0, 1]' --out "$OUT/line"
-t compare scenes/reference.toml --formulations lagrange,penalty,complementarity --out "$OUT/compare"
-t converge scenes/moving_force_beam.toml --refine step --levels 3 --out "$OUT/converge"
-t sweep scenes/reference.toml --vary speed_ratio=0.4:1.3:10 --out "$OUT/sweep"
-"$TAUT_BIN" report "$OUT/run" "$OUT/line" "$OUT/compare" "$OUT/converge" "$OUT/sweep" \
-  --out "$OUT/report.html"
+t run scenes/catenary_designed.toml --set time.end=0.5 --out "$OUT/form"
+FOLDERS=(run compare converge uncertainty tolerance line form)
+# the command each folder's section names
+COMMANDS=("taut run" "taut compare" "taut converge" "taut uncertainty"
+  "taut sweep --tolerance (or merge)" "taut run (line)" "taut run (line, form-finding)")
+"$TAUT_BIN" report "${FOLDERS[@]/#/$OUT/}" --out "$OUT/report.html" >/dev/null
 PAGE="$OUT/report.html"
 plots=$(ls "$OUT"/*/*.svg | wc -l)
+# every section, with its command, and the verdicts first
+grep -q '<section id="verdicts"><h2>Verdicts</h2>' "$PAGE" || fail "no verdicts section"
+for k in "${!FOLDERS[@]}"; do
+  grep -q "<section id=\"f$k\">" "$PAGE" || fail "no section for ${FOLDERS[$k]}"
+  grep -qF "<h3>${COMMANDS[$k]}</h3>" "$PAGE" || fail "the ${FOLDERS[$k]} section does not name ${COMMANDS[$k]}"
+done
+for f in tolerance.svg uncertainty.csv static_heights.csv droppers_static.csv compare.csv converge.csv; do
+  grep -qF "$f" "$PAGE" || fail "$f is not on the page"
+done
 
 # --- nothing to fetch ------------------------------------------------------------
 if grep -Eq '(src|href)="(https?:)?//' "$PAGE"; then
@@ -93,18 +118,32 @@ probe = """<script>
       if (!(r.width > 0 && r.height > 0 && figs[i].complete && figs[i].naturalWidth > 0)) zero++;
       sizes.push(Math.round(r.width) + 'x' + Math.round(r.height));
     }
+    // anything wider than the window: the page scrolls sideways
+    var vw = document.documentElement.clientWidth, wide = [];
+    var all = document.body.getElementsByTagName('*');
+    for (var j = 0; j < all.length && wide.length < 3; j++) {
+      var b = all[j].getBoundingClientRect();
+      if (b.right > vw + 0.5) wide.push(all[j].tagName + '(' + Math.round(b.right) + ')');
+    }
     var pre = document.createElement('pre');
     pre.id = 'taut-check';
     pre.textContent = 'figures=' + figs.length + ' zero=' + zero + ' errors=' + errors.length +
+      ' sections=' + document.querySelectorAll('section').length +
+      ' scroll=' + document.documentElement.scrollWidth + ' view=' + vw +
+      ' wide=' + (wide.join(',') || 'none') +
       ' sizes=' + sizes.join(',') + (errors.length ? ' first=' + errors[0] : '');
     document.body.appendChild(pre);
   });
 })();
 </script>"""
 open(check, "w", encoding="utf-8").write(html.replace("<head>", "<head>\n" + probe, 1))
+# the same with the page's print style applied on screen
+printed = html.replace("@media print{", "@media all{", 1)
+open(check.replace(".html", ".print.html"), "w", encoding="utf-8").write(printed.replace("<head>", "<head>\n" + probe, 1))
 PY
 DOM="$OUT/check.dom.html"
 "${CHROMIUM[@]}" --enable-logging=stderr --v=0 --virtual-time-budget=10000 \
+  --hide-scrollbars --window-size=1400,2000 \
   --dump-dom "file://$CHECK" >"$DOM" 2>"$OUT/chromium.log" \
   || fail "chromium could not load the page (log: $OUT/chromium.log)"
 line=$(grep -o 'figures=[0-9][^<]*' "$DOM" | tail -1 || true)
@@ -113,6 +152,21 @@ echo "report browser test: $line" | cut -c1-300
 figures=$(echo "$line" | sed -E 's/.*figures=([0-9]+).*/\1/')
 zero=$(echo "$line" | sed -E 's/.*zero=([0-9]+).*/\1/')
 errors=$(echo "$line" | sed -E 's/.*errors=([0-9]+).*/\1/')
+sections=$(echo "$line" | sed -E 's/.*sections=([0-9]+).*/\1/')
+scroll=$(echo "$line" | sed -E 's/.*scroll=([0-9]+).*/\1/')
+[ "$sections" = $((${#FOLDERS[@]} + 1)) ] || fail "$sections sections for ${#FOLDERS[@]} folders and the verdicts"
+[ "$scroll" -le 1400 ] || fail "the page scrolls sideways at 1400 px: $(echo "$line" | grep -o 'scroll=[^ ]* view=[^ ]* wide=[^ ]*')"
+echo "$line" | grep -q 'wide=none' || fail "elements wider than the window: $(echo "$line" | grep -o 'wide=[^ ]*')"
+# in print: the print style at an A4 page's width (210 mm at 96 px/in)
+PDOM="$OUT/check.print.dom.html"
+"${CHROMIUM[@]}" --virtual-time-budget=10000 --hide-scrollbars --window-size=794,1123 \
+  --dump-dom "file://${CHECK%.html}.print.html" >"$PDOM" 2>>"$OUT/chromium.log" \
+  || fail "chromium could not load the print copy"
+pline=$(grep -o 'figures=[0-9][^<]*' "$PDOM" | tail -1 || true)
+pscroll=$(echo "$pline" | sed -E 's/.*scroll=([0-9]+).*/\1/')
+[ -n "$pline" ] && [ "$pscroll" -le 794 ] \
+  || fail "in print the page is wider than A4: $(echo "$pline" | grep -o 'scroll=[^ ]* view=[^ ]* wide=[^ ]*')"
+rm -f "$PDOM" "${CHECK%.html}.print.html"
 [ "$figures" = "$plots" ] || fail "$figures figures in the page for $plots plot files"
 [ "$zero" = 0 ] || fail "$zero figures have no size or did not decode"
 [ "$errors" = 0 ] || fail "console errors: $line"
@@ -122,10 +176,15 @@ if grep -E 'CONSOLE\(|Uncaught' "$OUT/chromium.log" | grep -qv 'taut-check'; the
 fi
 
 # --- a picture of it -----------------------------------------------------------------
-"${CHROMIUM[@]}" --hide-scrollbars --window-size=1280,2400 \
+"${CHROMIUM[@]}" --hide-scrollbars --window-size=1400,2400 \
   --screenshot="$OUT/report.png" "file://$PAGE" >/dev/null 2>>"$OUT/chromium.log" \
   || fail "no screenshot (log: $OUT/chromium.log)"
 [ -s "$OUT/report.png" ] || fail "the screenshot is empty"
+# the whole page: as tall as its content at 1400 px (from the checker's
+# DOM: the page's height is not known before it is laid out), capped
+"${CHROMIUM[@]}" --hide-scrollbars --window-size=1400,16000 \
+  --screenshot="$OUT/report-full.png" "file://$PAGE" >/dev/null 2>>"$OUT/chromium.log" \
+  || fail "no full-page screenshot (log: $OUT/chromium.log)"
 rm -f "$CHECK" "$DOM"
 
 # --- a tampered folder -----------------------------------------------------------------
@@ -194,4 +253,4 @@ sleep 1
 if [ -s "$HITS" ]; then fail "the tampered page made requests: $(head -3 "$HITS" | tr '\n' ' ')"; fi
 kill "$SERVER" 2>/dev/null || true
 rm -f "$TDOM"
-echo "report browser test: passed: $figures figures, none empty, no console error; screenshot $OUT/report.png; tampered folder: no script ran, no request left the page"
+echo "report browser test: passed: ${#FOLDERS[@]} folders' sections and the verdicts, $figures figures, none empty, no console error, nothing wider than 1400 px (scroll width $scroll) or an A4 page in print ($pscroll); screenshots $OUT/report.png, $OUT/report-full.png; tampered folder: no script ran, no request left the page"

@@ -42,6 +42,8 @@ mod reliability;
 mod reliability_three;
 #[path = "report_hostile.rs"]
 mod report_hostile;
+#[path = "report_sections.rs"]
+mod report_sections;
 #[path = "simulation.rs"]
 mod simulation;
 #[path = "sweep.rs"]

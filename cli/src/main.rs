@@ -515,6 +515,13 @@ fn cmd_report(dirs: Vec<PathBuf>, out: Option<PathBuf>) -> taut::Result<()> {
     for why in &r.left_out {
         eprintln!("WARNING left out of the report: {why}");
     }
+    if !r.not_shown.is_empty() {
+        println!(
+            "  {} file{} not shown, named on the page with the reason",
+            r.not_shown.len(),
+            if r.not_shown.len() == 1 { "" } else { "s" }
+        );
+    }
     Ok(())
 }
 

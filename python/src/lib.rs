@@ -735,17 +735,29 @@ fn mesh<'py>(
 }
 
 /// One self-contained `report.html` from output folders (`taut report`):
-/// returns the page's path and its numbers of plots and tables.
+/// returns the page's path, its numbers of plots and tables, and what it
+/// leaves out ([`ReportTuple`]).
 #[pyfunction]
 #[pyo3(signature = (dirs, out))]
-fn report(
-    py: Python<'_>,
-    dirs: Vec<PathBuf>,
-    out: Option<PathBuf>,
-) -> PyResult<(String, usize, usize)> {
+fn report(py: Python<'_>, dirs: Vec<PathBuf>, out: Option<PathBuf>) -> PyResult<ReportTuple> {
     let r = app::report(&app::ReportRequest { dirs, out }).map_err(|e| to_py_err(py, e))?;
-    Ok((r.path.display().to_string(), r.plots, r.tables))
+    Ok((
+        r.path.display().to_string(),
+        r.plots,
+        r.tables,
+        r.left_out,
+        r.not_shown,
+        r.incomplete
+            .iter()
+            .map(|d| d.display().to_string())
+            .collect(),
+    ))
 }
+
+/// What `report` hands Python: the page, plots and tables shown, the files
+/// left out (could not be shown) and not shown (by design), each
+/// `path: reason`, and the folders marked incomplete.
+type ReportTuple = (String, usize, usize, Vec<String>, Vec<String>, Vec<String>);
 
 /// The most keys a list of points may set
 /// (`taut::study::sweep::MAX_POINT_KEYS`), so that the Python layer

@@ -88,6 +88,7 @@ __all__ = [
     "modes",
     "mesh",
     "report",
+    "Report",
     "quantities",
     "Run",
     "CarrierStats",
@@ -1081,30 +1082,61 @@ def mesh(
     return _f8(_taut.mesh(path, text, _overrides(set)))
 
 
+class Report(str):
+    """The path of a page `report` wrote (a `str`, usable wherever the path
+    is), with what the page holds and what it does not.
+
+    Attributes:
+        plots: plots embedded.
+        tables: tables shown.
+        left_out: each file that could not be shown, as "path: reason"
+            (a symbolic link, not a regular file, too large, not UTF-8, not
+            an SVG, a JSON that does not parse).
+        not_shown: each file the page names but does not show by design,
+            as "path: reason" (a time series drawn in a plot, a table's
+            JSON twin, a file taut does not write).
+        incomplete: the folders marked INCOMPLETE, shown as partial.
+    """
+
+    plots: int
+    tables: int
+    left_out: List[str]
+    not_shown: List[str]
+    incomplete: List[str]
+
+
 @_speaks_python
 def report(
     dirs: Union[str, "os.PathLike[str]", Iterable[Union[str, "os.PathLike[str]"]]],
     out: Union[None, str, "os.PathLike[str]"] = None,
-) -> str:
+) -> Report:
     """One self-contained report.html (plots as embedded images, inline
     CSS, no script, nothing fetched) from the outputs taut wrote into one
-    or more folders (`taut report`): each run's scene, summary, the
-    standards' statistics and warnings, the plots, and the studies' tables
-    with their verdicts (docs/output.md).
+    or more folders (`taut report`): a first section of every folder's
+    verdicts, then per folder each command's summary, tables (verdicts
+    coloured, a compared run's warnings under its row) and plots; a file
+    not shown is named with the reason (docs/output.md).
 
     Args:
         dirs: a folder, or a list of folders, given as `out=` to taut.run,
-            compare, converge, precision or sweep (or the CLI's --out).
+            compare, converge, precision, uncertainty, modes or sweep (or
+            the CLI's --out).
         out: the page (default: report.html in the folder when there is
             one, out/report.html for several).
 
     Returns:
-        The page's path.
+        The page's path, a `Report` (a `str`) whose `left_out`,
+        `not_shown` and `incomplete` list what the page leaves out.
 
     Raises:
         SceneError naming a folder that holds no taut outputs; OutputError.
     """
     if isinstance(dirs, (str, os.PathLike)):
         dirs = [dirs]
-    path, _, _ = _taut.report([os.fspath(d) for d in dirs], _out(out))
-    return path
+    path, plots, tables, left_out, not_shown, incomplete = _taut.report(
+        [os.fspath(d) for d in dirs], _out(out)
+    )
+    page = Report(path)
+    page.plots, page.tables = plots, tables
+    page.left_out, page.not_shown, page.incomplete = list(left_out), list(not_shown), list(incomplete)
+    return page

@@ -129,6 +129,21 @@ def test_a_report_of_run_and_sweep_folders(tmp_path: pathlib.Path) -> None:
     assert "not a folder" in str(e.value)
 
 
+def test_a_report_says_what_it_left_out(tmp_path: pathlib.Path) -> None:
+    taut.run(REFERENCE, set=SHORT, out=tmp_path / "run", progress=False)
+    (tmp_path / "run" / "extra.csv").write_text("a\n1\n")
+    (tmp_path / "run" / "standard.csv").write_bytes(b"\xff\xfe")
+    page = taut.report(tmp_path / "run")
+    assert isinstance(page, taut.Report) and isinstance(page, str)
+    assert pathlib.Path(page).is_file() and page.plots >= 1
+    # a file that could not be shown, and files not shown by design, each
+    # named with the reason
+    assert any("standard.csv" in w for w in page.left_out), page.left_out
+    assert any("history.csv: " in n for n in page.not_shown), page.not_shown
+    assert any("extra.csv: not a file taut writes" in n for n in page.not_shown)
+    assert page.incomplete == []
+
+
 def test_plots_label_units_and_draw_the_filtered_force(tmp_path: pathlib.Path) -> None:
     mpl = pytest.importorskip("matplotlib")
     mpl.use("Agg")

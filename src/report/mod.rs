@@ -13,6 +13,7 @@ mod line;
 mod line_svg;
 mod modes;
 mod outputs;
+mod page;
 mod plot;
 mod precision;
 mod staging;
