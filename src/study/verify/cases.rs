@@ -74,6 +74,13 @@ fn undamped_constraint(c: &Combo) -> bool {
     matches!(c.alphas, Some((am, af)) if am == 0.0 && af == 0.0)
 }
 
+/// A generalized-α member with no numerical dissipation that is not
+/// Newmark (α_m = α_f ≠ 0: ρ∞ = 1), whose penalty spring, an unresolved
+/// stiff component, rings undamped.
+fn undamped_penalty(c: &Combo) -> bool {
+    matches!(c.alphas, Some((am, af)) if am == af && am != 0.0)
+}
+
 /// No formal order: a method of one's own that declares none.
 fn undeclared() -> Expect {
     Expect::Report("the method declares no formal order in Δt".into())
@@ -233,6 +240,16 @@ fn moving_mass(
         } else {
             e.limited(PENALTY_START)
         };
+    }
+    if penalty
+        && q == Quantity::Force
+        && matches!(v, Variable::H | Variable::J)
+        && undamped_penalty(c)
+    {
+        e = e.may_diverge(format!(
+            "{}: the penalty spring rings undamped — generalized-α at ρ∞ = 1 (α_m = α_f) has no dissipation for the unresolved penalty frequency, so the start's ringing does not decay; measured on the quick matrix's J force ladders: κ × 16 raised the finest error 71–85× and the finest pair rose (orders −0.45 … −0.63), where ρ∞ < 1 damps it",
+            c.method
+        ));
     }
     if undamped_constraint(c) && f != Formulation::Impact {
         e = e.may_diverge(format!(
