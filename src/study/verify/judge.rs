@@ -441,7 +441,7 @@ pub(super) fn judge(row: &mut VerifyRow, m: &Measured, q: Quantity, e: Expect, l
             };
             let order = if first_order { 1.0 } else { FIXED_ORDER };
             let mut not_earned = unconfirmed(&scaled, ladder.variable, drops(m, q, window), order);
-            if !(row.relative_error <= CANNOT_BOUND) {
+            if row.relative_error.is_nan() || row.relative_error > CANNOT_BOUND {
                 not_earned.push(format!(
                     "the finest error is {:.2e} of the solution, above the {CANNOT_BOUND:.0e} a measured limitation may leave",
                     row.relative_error
@@ -679,7 +679,7 @@ fn unconfirmed(
     let fixed_over = row.other_share.is_nan() || row.other_share > DOMINANCE_LIMIT;
     if fixed_over {
         let part = drop / (1.0 - RATIO.powf(-order));
-        if !(part.abs() <= CONFIRM_PART) {
+        if part.is_nan() || part.abs() > CONFIRM_PART {
             out.push(format!(
                 "refining the fixed variables once {} the finest error by {:.0} %, where a part of order {order} falls by {:.0} % of itself (implied part {:.0} % of the error, at most {:.0} % confirms it)",
                 if drop > 0.0 { "lowered" } else { "raised" },
@@ -696,7 +696,7 @@ fn unconfirmed(
     {
         let k = super::PENALTY_STIFFEN;
         let part = d / (1.0 - 1.0 / k);
-        if !(part.abs() <= CONFIRM_PART) {
+        if part.is_nan() || part.abs() > CONFIRM_PART {
             out.push(format!(
                 "κ × {k} {} the finest error by {:.0} %, where a part ∝ 1/κ falls by {:.0} % of itself (implied part {:.0} % of the error, at most {:.0} % confirms it)",
                 if d > 0.0 { "lowered" } else { "raised" },
