@@ -74,6 +74,13 @@ fn undamped_constraint(c: &Combo) -> bool {
     matches!(c.alphas, Some((am, af)) if am == 0.0 && af == 0.0)
 }
 
+/// A generalized-α member with no numerical dissipation that is not
+/// Newmark (α_m = α_f ≠ 0: ρ∞ = 1), whose penalty spring, an unresolved
+/// stiff component, rings undamped.
+fn undamped_penalty(c: &Combo) -> bool {
+    matches!(c.alphas, Some((am, af)) if am == af && am != 0.0)
+}
+
 /// No formal order: a method of one's own that declares none.
 fn undeclared() -> Expect {
     Expect::Report("the method declares no formal order in Δt".into())
@@ -234,25 +241,46 @@ fn moving_mass(
             e.limited(PENALTY_START)
         };
     }
+    if penalty
+        && q == Quantity::Force
+        && matches!(v, Variable::H | Variable::J)
+        && undamped_penalty(c)
+    {
+        e = e.may_diverge(format!(
+            "{}: the penalty spring rings undamped — generalized-α at ρ∞ = 1 (α_m = α_f) has no dissipation for the unresolved penalty frequency, so the start's ringing does not decay; measured on the quick matrix's J force ladders: κ × 16 raised the finest error 71–85× and the finest pair rose (orders −0.45 … −0.63), where ρ∞ < 1 damps it",
+            c.method
+        ));
+    }
     if undamped_constraint(c) && f != Formulation::Impact {
         e = e.may_diverge(format!(
-            "{}: α_m = α_f = 0 imposes the gap and the force at t_{{n+1}} with no dissipation at the contact, so the moving contact's node kicks excite an undamped constraint oscillation, which grows where a run excites it (MODEL §5; with contact.formulation = impact it converges)",
+            "{}: the moving constraint — the gap imposed at force level at a point moving at V is a time-dependent constraint, and α_m = α_f = 0 applies it at t_{{n+1}} with no dissipation, so the constraint oscillation it excites is undamped and grows where a run excites it; measured: it vanishes at V = 0, with the impact law and at ρ∞ = 0.98 (MODEL §5)",
             c.method
         ));
     }
     e
 }
 
+/// Elements of `mms_beam_time`'s Δt ladders on a uniform mesh, the
+/// Hermite ladder's and a `modal` basis's alike. The dominance run of a
+/// `modal` Δt ladder refines J alone (`measure.rs`): its FE mesh's error is
+/// the Hermite ladder's at the same N, which that ladder's own dominance
+/// run (N × 2) measures. With the modal mesh at N = 64 beside a Hermite
+/// ladder at 128 nothing measured it: generalized-α ρ∞ = 0.5 and HHT
+/// α = 1/3 with the impact law on clamped–pinned then stalled at a finest
+/// force pair of 1.42 (J × 2 moving it by 1 %), and pass on N = 128.
+pub(crate) const BEAM_TIME_ELEMENTS: usize = 128;
+
 fn beam_time_ladders(space: Space, c: &Combo) -> Vec<Ladder> {
     // a graded mesh's longest element is about twice the uniform one's;
     // at N = 64 the mesh made 26–32 % of the finest force error of
     // generalized-α ρ∞ = 0.5 and HHT α = 1/3 with the impact law (their
-    // time error is the smallest), so the elements' ladders run at 128
+    // time error is the smallest), so the elements' ladders run at 128 —
+    // and so does a `modal` basis's mesh ([`BEAM_TIME_ELEMENTS`])
     let (elements, modes) = match space {
-        Space::Hermite => (128, 0),
-        Space::Graded => (256, 0),
+        Space::Hermite => (BEAM_TIME_ELEMENTS, 0),
+        Space::Graded => (2 * BEAM_TIME_ELEMENTS, 0),
         Space::Galerkin => (1, 64),
-        Space::Modal => (64, 64),
+        Space::Modal => (BEAM_TIME_ELEMENTS, 64),
     };
     // modal_exact's force error at a Δt is far below the others' (no
     // phase error in any mode): from 1e-3 s its finest force error was
@@ -811,3 +839,36 @@ pub const CASES: [Case; 9] = [
         skip: &["central_difference", "modal_exact"],
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A `modal` basis's Δt ladder on `mms_beam_time` stands on the
+    /// Hermite ladder's mesh, whose dominance run measures that mesh's
+    /// error (a `modal` Δt ladder's refines J alone): at N = 64 beside a
+    /// Hermite ladder at 128, the mesh's error went unmeasured and two
+    /// impact rows stalled at a finest force pair of 1.42.
+    #[test]
+    fn a_modal_time_ladder_stands_on_the_hermite_ladders_mesh() {
+        for supports in BEAM_SUPPORTS {
+            let combo = |space| Combo {
+                method: "generalized_alpha(rho_inf=0.5)",
+                family: "generalized_alpha",
+                alphas: Some((0.0, 0.0)),
+                time_order: Some(2.0),
+                space,
+                formulation: Formulation::Impact,
+                supports,
+            };
+            let dt_mesh = |space| {
+                beam_time_ladders(space, &combo(space))
+                    .iter()
+                    .find(|l| l.variable == Variable::Dt)
+                    .map(|l| l.elements)
+            };
+            assert_eq!(dt_mesh(Space::Modal), dt_mesh(Space::Hermite));
+            assert_eq!(dt_mesh(Space::Modal), Some(BEAM_TIME_ELEMENTS));
+        }
+    }
+}

@@ -155,5 +155,6 @@ pub fn verify(
     for r in rows {
         out.extend(r?);
     }
+    judge::witness_divergences(&mut out);
     Ok(out)
 }
