@@ -185,14 +185,19 @@ proptest! {
         let result = command(which, &set, dir);
         drop(held);
         let _ = std::fs::remove_file(&blocker);
-        prop_assert!(result.is_err(), "{which:?} with {failure:?} succeeded");
-        if matches!(failure, Failure::Interrupted) {
-            prop_assert!(
-                matches!(result, Err(taut::Error::Interrupted)),
-                "{which:?}: {:?}",
-                result.err().map(|e| e.to_string())
-            );
-        }
+        let Err(e) = result else {
+            return Err(TestCaseError::fail(format!("{which:?} with {failure:?} succeeded")));
+        };
+        // stopped by the failure made, not by anything else
+        let said = e.to_string();
+        let why = match failure {
+            Failure::Refused => "mesh.elemnts",
+            Failure::Diverged if matches!(which, Command::Modes) => "`mesh.elements` = -1",
+            Failure::Diverged => "diverged",
+            Failure::Unwritable => ".taut-staging-",
+            Failure::Interrupted => "interrupted on request",
+        };
+        prop_assert!(said.contains(why), "{:?} with {:?}: {}", which, failure, said);
         prop_assert_eq!(&files(dir), before, "{:?} with {:?} changed the folder", which, failure);
         let left: Vec<String> = std::fs::read_dir(dir)
             .unwrap()

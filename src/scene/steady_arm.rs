@@ -176,6 +176,20 @@ mod tests {
                 &["line.steady_arm.pivot_stiffness", "finite"],
             ),
             ("{ arm_length = 1.0 }", &["line.steady_arm", "an arm"]),
+            // ℓ_a² underflows to 0 or overflows: the length is named, no NaN
+            (
+                "{ arm_length = 5e-324, inertia = 2.0 }",
+                &["`line.steady_arm.arm_length` = 5e-324", "give a length in"],
+            ),
+            (
+                "{ arm_length = 1e308, inertia = 2.0 }",
+                &["`line.steady_arm.arm_length` = 1e308", "give a length in"],
+            ),
+            // I_a/ℓ_a² lost below the smallest normal number
+            (
+                "{ arm_length = 1.2, inertia = 5e-324 }",
+                &["`line.steady_arm.inertia` = 5e-324"],
+            ),
         ] {
             let e = arm(text).unwrap_err().to_string();
             for w in want {
