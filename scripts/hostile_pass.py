@@ -556,19 +556,23 @@ def round_three(work: Path, must: dict, out) -> list:
         grid.append((ref, "carrier.0.speed.cruise", [f"carrier.speed.cruise={v}"], v))
     for scene, key, sets, v in grid:
         name = f"plausible {Path(scene).stem} {key}={v}"
-        # a table's keys may be named by their table (`line.steady_arm` = { … })
+        # a table's keys may be named by their table (`line.steady_arm` = { … });
+        # a cruise so fast the carrier leaves the beam at once is named by
+        # the end time it must not pass, with the carrier
         named = "`" + (key.rsplit(".", 1)[0] if key.startswith("line.steady_arm.") else key)
+        also = "carrier 0 leaves the beam at t = 0" if key.endswith("cruise") else None
 
-        def keyed(r, name=name, scene=scene, sets=sets, named=named) -> list[str]:
+        def keyed(r, name=name, scene=scene, sets=sets, named=named, v=v, also=also) -> list[str]:
             args = ["run", scene, *[a for s2 in sets for a in ("--set", s2)], *short, *out("pg")]
             found, p = r.judged(name, args)
             if p is None or p.returncode == 0:
                 return found
             err = p.stderr.decode("utf-8", "replace")
             last = err.strip().splitlines()[-1] if err.strip() else ""
-            if named not in last:
+            if named not in last and not (also and also in last):
                 found.append(f"{name}: refused without naming {named}`: {last[:300]!r}")
-            if "NaN" in last:
+            # NaN only as the value written
+            if "NaN" in last.replace("` = NaN:", "", 1 if v == "nan" else 0):
                 found.append(f"{name}: NaN in the message: {last[:300]!r}")
             return found
         add(name, keyed)

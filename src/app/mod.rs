@@ -182,7 +182,13 @@ impl Writing {
     }
 
     /// Put the outputs in place, with a note of the earlier ones replaced.
+    /// A stop requested meanwhile ([`crate::interrupt`]) stops here too: a
+    /// command whose work took no step to notice it (`modes`) leaves the
+    /// folder as it was, as one stopped mid-run does.
     fn finish(mut self, fe: &dyn Frontend) -> Result<()> {
+        if crate::interrupt::requested() {
+            return Err(Error::Interrupted);
+        }
         self.created = None;
         let staged = self.staged.take().expect("open until finished");
         let dir = staged.dir().to_path_buf();
