@@ -455,7 +455,7 @@ fn resolve_carrier(i: usize, c: &CarrierSpec, l: f64) -> Result<CarrierProps> {
                     f("speed.cruise"),
                     *cruise,
                     format!(
-                        "is too slow: the smooth ramp over L/5 = {} m would take 2L/(5 V0) = {ramp} s, beyond any number (m/s; give V0 > {least:.3e} m/s, or profile = \"constant\" with value = 0 for a carrier that stands)",
+                        "is too slow: the smooth ramp over L/5 = {} m would take 2L/(5 V0) s, more than a number holds (m/s; give V0 > {least:.3e} m/s, or profile = \"constant\" with value = 0 for a carrier that stands)",
                         l / 5.0
                     ),
                 ));
