@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A hostile pass: scripted bad input against the `taut` binary.
+"""The hostile pass: scripted bad input against the `taut` binary.
 
 Every case runs under a time limit and an address-space limit (`ulimit -v`)
 and is judged by what came out:
@@ -51,9 +51,14 @@ its name is in `must`, by the key its error must name:
              diverging run, two runs on one folder (one refused naming
              the holder, never a mixed folder), a folder that cannot be
              written (refused before the work), an uncertainty whose
-             family diverged (exit 1);
+             family diverged (exit 1), a compare some of whose runs
+             stopped (exit 1, the good folder kept), a report into a
+             folder a command is writing (refused);
   plausible  lumped stiffnesses, masses and dashpots at 5e-324, 1e-300 and
-             1e300 (refused naming the key), the messenger's supports and
+             1e300 (refused naming the key); every key of a line, a
+             dropper's design height and a cruise speed at 0, -1, 5e-324,
+             1e308, NaN and inf (run, or refused naming the key written,
+             no NaN in the message); the messenger's supports and
              clamps, a pantograph's uplift at 1e308 and 3e152, and a saved
              contact problem with nulls (replay says why);
   fifo       a FIFO as scene, points file, run record, gate case, table file
@@ -427,6 +432,48 @@ def round_three(work: Path, must: dict, out) -> list:
             return found
         add(f"folders {command} survives", survives)
 
+    def compare_partial(r) -> list[str]:
+        case = "folders compare with stopped runs"
+        d = work / "compare_partial"
+        found, p = r.judged(case, ["compare", ref, *good, "--out", str(d), "--quiet"])
+        if p is None or p.returncode != 0:
+            return found + [f"{case}: the good compare did not run"]
+        before = snapshot(d)
+        f2, p2 = r.judged(case, ["compare", ref, "--reference", "impact", *diverges,
+                                 "--out", str(d), "--quiet"])
+        found += f2
+        if p2 is None or p2.returncode != 1:
+            found.append(f"{case}: exit {None if p2 is None else p2.returncode}, not 1")
+        if snapshot(d) != before:
+            found.append(f"{case}: the good folder changed")
+        return found
+    add("folders compare with stopped runs", compare_partial)
+
+    def report_claims(r) -> list[str]:
+        case = "folders report beside a writer"
+        d = work / "report_claims"
+        found, p = r.judged(case, ["run", ref, *good, "--out", str(d), "--quiet"])
+        if p is None or p.returncode != 0:
+            return found + [f"{case}: the good run did not run"]
+        # a run of seconds holds the folder while the report tries it
+        w = subprocess.Popen([r.taut, "run", ref, "--set", "mesh.elements=3000", "--set",
+                              "time.step=1e-5", "--set", "output.record_every=100",
+                              "--out", str(d), "--quiet"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        import time
+        deadline = time.monotonic() + 30
+        while not (d / "sweep.lock").exists() and time.monotonic() < deadline:
+            time.sleep(0.02)
+        f2, p2 = r.judged(case, ["report", str(d)])
+        w.kill()
+        w.wait()
+        found += f2
+        if p2 is None or p2.returncode != 1 or "in use by another command" not in \
+                p2.stderr.decode("utf-8", "replace"):
+            found.append(f"{case}: a report wrote beside a running command")
+        return found
+    add("folders report beside a writer", report_claims)
+
     def two_writers(r) -> list[str]:
         case = "folders two writers"
         found = []
@@ -481,6 +528,54 @@ def round_three(work: Path, must: dict, out) -> list:
                 ["run", line, "--set",
                  "line.messenger.support={" + ", ".join(f"{a}={b}" for a, b in t.items()) + "}",
                  *short, *out("ps")], f"`line.messenger.support.{k}`")
+
+    # plausible: every physical key of a line, a dropper's design height
+    # and a cruise speed at 0, negative, 5e-324, 1e308, NaN and inf: run,
+    # or refused naming the key written (its table for a table's keys),
+    # never a NaN in the message nor another key blamed
+    hostile = ["0", "-1", "5e-324", "1e308", "nan", "inf"]
+    grid = []
+    for key in ["line.dropper_stiffness", "line.dropper_damping", "line.dropper_mass",
+                "line.clamp_mass.contact", "line.clamp_mass.messenger",
+                "line.steady_arm.stiffness", "line.steady_arm.mass", "line.steady_arm.damping"]:
+        for v in hostile:
+            grid.append((line, key, [f"{key}={v}"], v))
+    for k in ["arm_length", "inertia", "pivot_stiffness"]:
+        for v in hostile:
+            t = {"arm_length": "1.2", "inertia": "2.0", "pivot_stiffness": "720.0", k: v}
+            grid.append((line, f"line.steady_arm.{k}", [
+                "line.steady_arm={" + ", ".join(f"{a} = {b}" for a, b in t.items()) + "}"], v))
+    for k in ["stiffness", "mass", "damping"]:
+        for v in hostile:
+            t = {"stiffness": "1e5", k: v}
+            grid.append((line, f"line.messenger.support.{k}", [
+                "line.messenger.support={" + ", ".join(f"{a} = {b}" for a, b in t.items()) + "}"], v))
+    for v in hostile + ["-1e308"]:
+        grid.append((drops, "dropper.0.design_height", [f"dropper.0.design_height={v}"], v))
+    for v in hostile + ["1e-320", '"1e-320 km/h"']:
+        grid.append((ref, "carrier.0.speed.cruise", [f"carrier.speed.cruise={v}"], v))
+    for scene, key, sets, v in grid:
+        name = f"plausible {Path(scene).stem} {key}={v}"
+        # a table's keys may be named by their table (`line.steady_arm` = { … });
+        # a cruise so fast the carrier leaves the beam at once is named by
+        # the end time it must not pass, with the carrier
+        named = "`" + (key.rsplit(".", 1)[0] if key.startswith("line.steady_arm.") else key)
+        also = "carrier 0 leaves the beam at t = 0" if key.endswith("cruise") else None
+
+        def keyed(r, name=name, scene=scene, sets=sets, named=named, v=v, also=also) -> list[str]:
+            args = ["run", scene, *[a for s2 in sets for a in ("--set", s2)], *short, *out("pg")]
+            found, p = r.judged(name, args)
+            if p is None or p.returncode == 0:
+                return found
+            err = p.stderr.decode("utf-8", "replace")
+            last = err.strip().splitlines()[-1] if err.strip() else ""
+            if named not in last and not (also and also in last):
+                found.append(f"{name}: refused without naming {named}`: {last[:300]!r}")
+            # NaN only as the value written
+            if "NaN" in last.replace("` = NaN:", "", 1 if v == "nan" else 0):
+                found.append(f"{name}: NaN in the message: {last[:300]!r}")
+            return found
+        add(name, keyed)
 
     # plausible: lumped elements a model cannot compute
     for scene, key in [(drops, "dropper.0.stiffness"), (drops, "dropper.0.damping"),

@@ -366,9 +366,16 @@ pub(crate) fn compact_number(v: f64) -> String {
 
 /// What an [`Error::Invalid`] is of: a command-line option (its field a
 /// flag, `--threads`) or the scene (a key path, `beam.length`).
+/// What an invalid value belongs to, for the message's head: a flag
+/// (`--threads`), a shard folder `taut merge` was given (`merge`), a run
+/// record of a sweep's folder (`runs`), or else a scene key.
 fn invalid_what(field: &str) -> &'static str {
     if field.starts_with("--") {
         "option"
+    } else if field == "merge" {
+        "merge input"
+    } else if field == "runs" || field.starts_with("runs.") {
+        "run record"
     } else {
         "scene"
     }

@@ -2,8 +2,8 @@
 //! input, sweeps and their faults, the gate, studies driven from the
 //! binary, and the README's commands. Each file below is a module, run with
 //! its name as a filter, e.g. `cargo test --release --test front cli::`.
-//! `no_alloc.rs` (a counting global allocator), `interrupt.rs` (the
-//! process-wide interrupt flag), `memory_peak.rs` (a child's peak memory
+//! `no_alloc.rs` (a counting global allocator), `interrupt.rs` and
+//! `folder_survival.rs` (the process-wide interrupt flag), `memory_peak.rs` (a child's peak memory
 //! includes its parent's: the parent must stay small) and
 //! `memory_budget.rs` (a counting allocator of the whole process's bytes)
 //! stay binaries of their own: tests beside them would disturb them or be
@@ -68,6 +68,7 @@ fn every_test_file_runs_in_some_binary() {
         "front.rs",
         "no_alloc.rs",
         "interrupt.rs",
+        "folder_survival.rs",
         "memory_peak.rs",
         "memory_budget.rs",
         "quantity_registry.rs",

@@ -270,9 +270,20 @@ fn standard_lines(s: &taut::report::Summary) -> String {
             (Some(u), Some(x)) => format!(", uplift {:.2} mm at x = {x:.2} m", u * 1e3),
             _ => String::new(),
         };
+        // a statistic shown as "-" says why it has no value
+        let why = if r.samples == 0 {
+            format!(
+                "; no samples: the carrier's contact point was never in x_m ∈ [{}, {}] m during the run (move [analysis] or raise time.end)",
+                r.x_start, r.x_end
+            )
+        } else if r.mean.is_none() {
+            "; no filtered force recorded, so no F_m, σ, max or min".to_string()
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             t,
-            "  standard carrier {}, x_m in {}–{} m, 0–{} Hz: F_m {} N, σ {} N, F_m ± 3σ {} / {} N, max {} N, min {} N, loss {} %{uplift}",
+            "  standard carrier {}, x_m in {}–{} m, 0–{} Hz: F_m {} N, σ {} N, F_m ± 3σ {} / {} N, max {} N, min {} N, loss {} %{uplift}{why}",
             r.carrier,
             r.x_start,
             r.x_end,

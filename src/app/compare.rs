@@ -32,13 +32,38 @@ impl Study for request::CompareStudy {
     ) -> Result<Comparison> {
         request::CompareStudy::run(self, text, set, progress)
     }
+    fn partial(c: &Comparison, dir: &Path) -> Option<crate::error::Error> {
+        partial(c, dir)
+    }
     fn write(dir: &Path, c: &Comparison) -> Result<()> {
         crate::report::write_compare(dir, c)
     }
 }
 
-/// Run the comparison and write its outputs; the runs that stopped are in
-/// the outcome's `failed` (the tables hold the others).
+/// A comparison some of whose runs stopped, refused before its tables
+/// are written: they would replace a folder's whole tables with a part
+/// (every stopped run is named with why it stopped).
+fn partial(c: &Comparison, dir: &Path) -> Option<crate::error::Error> {
+    if c.failed.is_empty() {
+        return None;
+    }
+    // each reason names its run (method/formulation)
+    let runs: Vec<String> = c.failed.iter().map(|n| n.reason.to_string()).collect();
+    Some(crate::error::Error::Output {
+        path: dir.join("compare.csv"),
+        reason: format!(
+            "the comparison is incomplete: {} of its {} runs stopped, so no tables were written ({}); change or leave out what stopped them and run it again",
+            c.failed.len(),
+            c.failed.len() + c.rows.len(),
+            runs.join("; ")
+        ),
+    })
+}
+
+/// Run the comparison and write its outputs. With an output folder, a
+/// comparison some of whose runs stopped fails naming them, the folder
+/// untouched; without one, the stopped runs are in the outcome's `failed`
+/// (the tables hold the others).
 pub fn compare(req: &CompareRequest, fe: &dyn Frontend) -> Result<Comparison> {
     run_study(req, fe)
 }

@@ -182,7 +182,13 @@ impl Writing {
     }
 
     /// Put the outputs in place, with a note of the earlier ones replaced.
+    /// A stop requested meanwhile ([`crate::interrupt`]) stops here too: a
+    /// command whose work took no step to notice it (`modes`) leaves the
+    /// folder as it was, as one stopped mid-run does.
     fn finish(mut self, fe: &dyn Frontend) -> Result<()> {
+        if crate::interrupt::requested() {
+            return Err(Error::Interrupted);
+        }
         self.created = None;
         let staged = self.staged.take().expect("open until finished");
         let dir = staged.dir().to_path_buf();
@@ -270,6 +276,14 @@ pub trait Study {
     fn nothing(_outcome: &mut Self::Outcome) -> Option<Error> {
         None
     }
+    /// The failure of an outcome that is only part of what was asked for
+    /// (a comparison some of whose runs stopped), when it would be written
+    /// to a folder: its tables would replace whole ones, so the command
+    /// fails and the folder keeps its earlier outputs. Without a folder the
+    /// partial outcome is returned (its `failed` says what is missing).
+    fn partial(_outcome: &Self::Outcome, _dir: &Path) -> Option<Error> {
+        None
+    }
     /// Write its outputs into `dir`.
     fn write(dir: &Path, outcome: &Self::Outcome) -> Result<()>;
 }
@@ -306,7 +320,10 @@ fn study_in<S: Study>(req: &StudyRequest<S>, fe: &dyn Frontend) -> Result<S::Out
     if let Some(e) = S::nothing(&mut outcome) {
         return Err(e);
     }
-    if let Some(w) = writing {
+    if let (Some(w), Some(d)) = (writing, dir) {
+        if let Some(e) = S::partial(&outcome, d) {
+            return Err(e);
+        }
         S::write(w.stage(), &outcome)?;
         w.finish(fe)?;
     }

@@ -196,7 +196,7 @@ pub(crate) fn form_find(sc: &Resolved, physics: &mut Physics) -> Result<Option<F
                     Error::invalid(
                         field(design[0].0),
                         value(design[0].0, design[0].1),
-                        "cannot be form-found: the design heights' response to the dropper lengths is singular (a dropper at a support, or two at one point)",
+                        "cannot be form-found: the design heights' response to the dropper lengths is singular, or its Newton step not finite (a dropper at a support, two at one point, or a design the droppers cannot reach)",
                     )
                 })?;
             for (&(i, v), dl) in design.iter().zip(step.iter()) {

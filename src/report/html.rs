@@ -174,9 +174,14 @@ pub(crate) fn write_report(dirs: &[PathBuf], out: &Path) -> Result<ReportSummary
         plural(plots),
         plural(tables),
     );
-    if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
-    }
+    // the folder the page goes into is claimed as every writer of a folder
+    // claims it (created if need be): a report never writes beside a
+    // command writing there, and no command starts there while it does
+    let folder = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let _claim = crate::study::lock::claim_folder(folder, "taut report")?;
     // written beside and renamed over: a report that fails while writing
     // (a full disk) leaves an earlier page whole
     let mut tmp = out.as_os_str().to_owned();

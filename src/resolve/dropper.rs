@@ -29,6 +29,29 @@ use crate::scene::{Attachment, ContactKind, Discretization, Dropper, Formulation
 
 /// Refuse the combinations a dropper breaks (module docs); nothing to check
 /// without droppers.
+/// Each dropper's `design_height` within the small slopes every line of
+/// the model takes (MODEL §2; `line.presag` is held to the same bound): a
+/// contact wire designed a quarter of its length `length` or more above or
+/// below its supports is no small-slope line, and form-finding towards it
+/// would fail with a singular or unreachable design rather than name it.
+pub(crate) fn check_design_heights(droppers: &[Dropper], length: f64) -> Result<()> {
+    let bound = length / 4.0;
+    for (i, d) in droppers.iter().enumerate() {
+        if let Some(h) = d.design_height
+            && h.abs() >= bound
+        {
+            return Err(Error::invalid(
+                format!("dropper.{i}.design_height"),
+                h,
+                format!(
+                    "must be within ± a quarter of the wire's length ({bound} m): the model takes small slopes (m, the contact wire's height at rest, positive up)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 pub(crate) fn check_droppers(scene: &Scene, droppers: &[Dropper], d: Discretization) -> Result<()> {
     if droppers.is_empty() {
         return Ok(());

@@ -73,6 +73,7 @@ impl Scene {
         let own = crate::scene::contact_indices(&self.attachments);
         let (discretization, grading) = resolve_mesh(&self.mesh, &beam)?;
         check_droppers(self, &droppers, discretization)?;
+        dropper::check_design_heights(&droppers, l)?;
         check_attachments(self, &beam, discretization)?;
         // a linear dropper's spring is an attachment (`dropper` module docs),
         // a linear messenger dropper's a tie between the lines

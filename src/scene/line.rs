@@ -27,6 +27,7 @@ use super::line_design::{PointSpring, StringLoad, dropper_forces, messenger_sag,
 use super::line_props::{EndMasses, dropper_props};
 use super::line_supports::{chord, line_supports, settlements};
 use super::range::{non_negative, positive};
+use super::scales::Scales;
 use super::steady_arm::{SteadyArm, SteadyArmSpec};
 use super::validate::MAX_ELEMENTS;
 use crate::error::{Error, Result, one_line};
@@ -215,6 +216,11 @@ struct Line {
     /// The point mass at each dropper's lower and upper end, kg: its clamp
     /// plus half its own mass (E3; 0: no attachment emitted).
     end_mass: EndMasses,
+    /// Each dropper's own mass as written, kg (`line.dropper_mass`).
+    own_mass: Vec<f64>,
+    /// Each dropper's clamps as written, kg (`line.clamp_mass`: contact,
+    /// messenger).
+    clamp_mass: (Vec<f64>, Vec<f64>),
     /// `[messenger] support` to write, and each support's kind (E2).
     supports: (Option<Value>, Vec<Option<super::ElasticSupport>>),
     /// Emit each dropper's `design_height` (form-finding, F1–F5).
@@ -315,6 +321,8 @@ impl Line {
             linear: s.linear_droppers,
             c_d: props.damping,
             end_mass: props.end_mass,
+            own_mass: props.own_mass,
+            clamp_mass: props.clamp_mass,
             supports,
             form_finding: s.form_finding,
         })
@@ -356,6 +364,7 @@ impl Line {
                 ));
             }
         };
+        self.check_plausible(tree, t_c, rho_a)?;
         let weight = |rho_a: f64| if self_weight { rho_a * g } else { 0.0 };
         let wire = StringLoad {
             tension: t_c,
@@ -416,8 +425,29 @@ impl Line {
                 (supports[k], supports[k + 1]),
                 (delta[k], delta[k + 1]),
             );
-            let length = self.messenger.height + vm - vc[i] - force / self.k_d[i];
-            if length.is_nan() || length <= 0.0 {
+            let room = self.messenger.height + vm - vc[i];
+            let stretch = force / self.k_d[i];
+            let length = room - stretch;
+            if !vm.is_finite() || !stretch.is_finite() {
+                // the checks above leave no key that gives these; said
+                // without a number that is none
+                return Err(Error::invalid(
+                    "line",
+                    format!("dropper {name} (x = {} m)", xs[i]),
+                    "has no finite design: the messenger's sag or the dropper's stretch there is not a number; check line.messenger (tension, support), line.steady_arm and line.dropper_stiffness",
+                ));
+            }
+            if room > 0.0 && length <= 0.0 {
+                return Err(Error::invalid(
+                    "line.dropper_stiffness",
+                    self.k_d[i],
+                    format!(
+                        "is too soft for dropper {name} (x = {} m): its design force {force:.4} N stretches it {stretch:.4e} m, more than the {room:.4} m between the wires there, which leaves it no length (N/m; raise it)",
+                        xs[i]
+                    ),
+                ));
+            }
+            if length <= 0.0 {
                 return Err(Error::invalid(
                     "line.messenger.height",
                     self.messenger.height,
@@ -437,6 +467,83 @@ impl Line {
             });
         }
         Ok(out)
+    }
+
+    /// Every lumped key a user wrote in `[line]`, each value against the
+    /// scales of the wire it acts on (`super::scales`): the contact wire's
+    /// from `[beam]` (tension `t_c`, ρA `rho_a`), the messenger's from
+    /// `line.messenger`, both on the line's mesh at `time.step`. Before the
+    /// design uses them, so that a value no run can use is named as written
+    /// and not as a sag or a clamp it makes. Without a usable `time.step`
+    /// the expanded scene's check (on the generated keys) is the one.
+    fn check_plausible(&self, tree: &Table, t_c: f64, rho_a: f64) -> Result<()> {
+        // read leniently: a value of the wrong kind is refused by its own
+        // check, with its own message
+        let read = |table: &str, key: &str| number(tree, table, key).ok().flatten();
+        let Some(dt) = read("time", "step").filter(|d| d.is_finite() && *d > 0.0) else {
+            return Ok(());
+        };
+        let elements = match tree
+            .get("mesh")
+            .and_then(|m| m.get("elements"))
+            .and_then(Value::as_integer)
+        {
+            Some(n) if n > 0 => n as usize,
+            _ => match self.elements_per_span() {
+                Ok(m) => m * self.spans,
+                Err(_) => return Ok(()),
+            },
+        };
+        let ei = match read("beam", "bending_stiffness") {
+            Some(ei) => ei,
+            None => match (
+                read("beam", "youngs_modulus"),
+                read("beam", "second_moment"),
+            ) {
+                (Some(e), Some(i)) => e * i,
+                _ => 0.0,
+            },
+        };
+        let ei = if ei.is_finite() { ei } else { 0.0 };
+        let length = self.length();
+        let wire = Scales::wire(length, (rho_a, t_c, ei), elements, dt);
+        let m = &self.messenger;
+        let messenger = Scales::wire(
+            length,
+            (
+                m.mass_per_length,
+                m.tension,
+                m.bending_stiffness.unwrap_or(0.0),
+            ),
+            elements,
+            dt,
+        )
+        .named("the messenger's");
+        // the upper clamps hang on the messenger only when it is a wire of
+        // the run; on fixed anchors they are refused by name earlier
+        let upper = if self.anchor == LineAnchor::Messenger {
+            &messenger
+        } else {
+            &wire
+        };
+        for i in 0..self.k_d.len() {
+            wire.stiffness("line.dropper_stiffness", self.k_d[i])?;
+            wire.damping("line.dropper_damping", self.c_d[i])?;
+            wire.mass("line.dropper_mass", self.own_mass[i])?;
+            wire.mass("line.clamp_mass.contact", self.clamp_mass.0[i])?;
+            upper.mass("line.clamp_mass.messenger", self.clamp_mass.1[i])?;
+        }
+        if let Some(arm) = &self.steady_arm {
+            wire.stiffness("line.steady_arm.stiffness", arm.stiffness)?;
+            wire.mass("line.steady_arm.mass", arm.mass)?;
+            wire.damping("line.steady_arm.damping", arm.damping)?;
+        }
+        for e in self.supports.1.iter().flatten() {
+            messenger.stiffness("line.messenger.support.stiffness", e.stiffness)?;
+            messenger.mass("line.messenger.support.mass", e.mass)?;
+            messenger.damping("line.messenger.support.damping", e.damping)?;
+        }
+        Ok(())
     }
 
     fn supports(&self) -> Vec<f64> {

@@ -108,6 +108,11 @@ pub(crate) struct DropperProps {
     pub damping: Vec<f64>,
     /// The point masses at the droppers' ends.
     pub end_mass: EndMasses,
+    /// Each dropper's own mass as written (`line.dropper_mass`), kg.
+    pub own_mass: Vec<f64>,
+    /// Each dropper's clamps as written (`line.clamp_mass`): (contact,
+    /// messenger), kg.
+    pub clamp_mass: (Vec<f64>, Vec<f64>),
 }
 
 /// The point masses at each dropper's two ends (E3), kg.
@@ -209,6 +214,8 @@ pub(crate) fn dropper_props(
                 ends(&clamp_m)
             },
         },
+        own_mass: own,
+        clamp_mass: (clamp_c, clamp_m),
     })
 }
 

@@ -107,7 +107,14 @@ pub(crate) fn apply_override(tree: &mut Table, spec: &str) -> Result<()> {
     if raw.is_empty() {
         return Err(bad("the value is empty".into()));
     }
-    set_typed(tree, path, parse_value(raw), || spec.to_string())
+    set_typed(tree, path, parse_value(raw), || spec.to_string())?;
+    // a carrier table given as `{ file = "…" }` is read here, as a scene
+    // file's is where the file is read (`super::table_files`), its path
+    // relative to the working directory (where the override was typed)
+    if raw.contains("file") || path.ends_with(".file") {
+        super::table_files::inline_table_files(tree, Path::new("."))?;
+    }
+    Ok(())
 }
 
 /// The override-list spelling of a removal: `unset key.path` (`--unset

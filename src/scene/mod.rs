@@ -43,6 +43,7 @@ mod output;
 mod pantograph;
 mod props;
 mod range;
+pub(crate) mod scales;
 mod scene_file;
 mod scheme;
 mod speed;

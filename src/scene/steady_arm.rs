@@ -72,7 +72,38 @@ impl SteadyArmSpec {
         let (m_arm, k_arm) = match self.arm_length {
             Some(l) => {
                 let l = positive(&f("arm_length"), l, "m, from the pivot to the tip")?;
-                (inertia / (l * l), k_phi / (l * l))
+                let (m_arm, k_arm) = (inertia / (l * l), k_phi / (l * l));
+                // I_a/ℓ_a² and k_φ/ℓ_a² must be numbers the run can use: an
+                // arm so short or so long that ℓ_a² is no normal number is
+                // no arm (S1, S2)
+                if (inertia != 0.0 || k_phi != 0.0) && !(l * l).is_normal() {
+                    let big = inertia.max(k_phi);
+                    let low = (big / f64::MAX).sqrt().max(f64::MIN_POSITIVE.sqrt());
+                    let high = f64::MAX.sqrt();
+                    return Err(Error::invalid(
+                        f("arm_length"),
+                        l,
+                        format!(
+                            "has a square ℓ_a² that is no normal number, so the tip's I_a/ℓ_a² and k_φ/ℓ_a² (S1, S2) cannot be formed: give a length in [{low:.3e}, {high:.3e}] m (m, from the pivot to the tip)"
+                        ),
+                    ));
+                }
+                for (key, given, tip, unit) in [
+                    ("inertia", inertia, m_arm, "kg·m²"),
+                    ("pivot_stiffness", k_phi, k_arm, "N·m/rad"),
+                ] {
+                    if given != 0.0 && !tip.is_normal() {
+                        return Err(Error::invalid(
+                            f(key),
+                            given,
+                            format!(
+                                "over ℓ_a² = {:.3e} m² gives the tip no finite non-zero value (S1, S2): give a value that does ({unit}, ≥ 0)",
+                                l * l
+                            ),
+                        ));
+                    }
+                }
+                (m_arm, k_arm)
             }
             None if inertia != 0.0 || k_phi != 0.0 => {
                 return Err(Error::invalid(
@@ -145,6 +176,20 @@ mod tests {
                 &["line.steady_arm.pivot_stiffness", "finite"],
             ),
             ("{ arm_length = 1.0 }", &["line.steady_arm", "an arm"]),
+            // ℓ_a² underflows to 0 or overflows: the length is named, no NaN
+            (
+                "{ arm_length = 5e-324, inertia = 2.0 }",
+                &["`line.steady_arm.arm_length` = 5e-324", "give a length in"],
+            ),
+            (
+                "{ arm_length = 1e308, inertia = 2.0 }",
+                &["`line.steady_arm.arm_length` = 1e308", "give a length in"],
+            ),
+            // I_a/ℓ_a² lost below the smallest normal number
+            (
+                "{ arm_length = 1.2, inertia = 5e-324 }",
+                &["`line.steady_arm.inertia` = 5e-324"],
+            ),
         ] {
             let e = arm(text).unwrap_err().to_string();
             for w in want {

@@ -446,6 +446,20 @@ fn resolve_carrier(i: usize, c: &CarrierSpec, l: f64) -> Result<CarrierProps> {
         }
         SpeedProfile::SmoothRamp { cruise } => {
             positive(&f("speed.cruise"), *cruise, "m/s")?;
+            // the ramp over L/5 takes 2L/(5 V0) (MODEL §3): a cruise so slow
+            // that this overflows leaves the carrier's position 0 × ∞, NaN
+            let ramp = 2.0 * l / (5.0 * cruise);
+            if !ramp.is_finite() {
+                let least = 2.0 * l / 5.0 / f64::MAX;
+                return Err(Error::invalid(
+                    f("speed.cruise"),
+                    *cruise,
+                    format!(
+                        "is too slow: the smooth ramp over L/5 = {} m would take 2L/(5 V0) s, more than a number holds (m/s; give V0 > {least:.3e} m/s, or profile = \"constant\" with value = 0 for a carrier that stands)",
+                        l / 5.0
+                    ),
+                ));
+            }
         }
         SpeedProfile::Table { time, speed } => check_speed_table(i, time, speed)?,
     }

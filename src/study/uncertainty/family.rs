@@ -99,9 +99,33 @@ pub fn scenes(base: &Resolved, levels: usize) -> Result<Vec<Resolved>> {
                 .variant(n, base.dt / d as f64)
                 .keeping_zone_of(base)
                 .apply(base)
-                .map_err(|e| e.in_run(&format!("the family's {role:?} run of level {l}")))
+                .map_err(|e| at_level(e, (role, l, f, d), (level.symbol(), n0)))
         })
         .collect()
+}
+
+/// An error of the family's run `(role, l, f, d)` (its level parameter
+/// `f` times the scene's `given` = (symbol, n0), its step the scene's ÷
+/// `d`): a value it names is that level's, not the one the user wrote,
+/// and says so; a divergence or failed contact names the run.
+fn at_level(e: Error, (role, l, f, d): (Role, usize, usize, usize), given: (&str, usize)) -> Error {
+    match e {
+        Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => Error::Invalid {
+            field,
+            value: format!(
+                "{value} at level {l} of the family ({role:?} run: {} = {} × {f} from the given {}, Δt = the given ÷ {d})",
+                given.0,
+                given.1.saturating_mul(f),
+                given.1
+            ),
+            allowed,
+        },
+        e => e.in_run(&format!("the family's {role:?} run of level {l}")),
+    }
 }
 
 impl Member {
