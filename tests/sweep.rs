@@ -123,6 +123,14 @@ fn same_bytes_for_any_thread_count_resume_and_shards() {
         "{csv}"
     );
     assert_eq!(csv.lines().count(), 1 + 6);
+    // each point's work is its one run's unknowns × steps, the same bytes
+    // on any thread count (its CPU seconds are in timing.csv)
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |n: &str| header.iter().position(|h| *h == n).unwrap();
+    for line in csv.lines().skip(1) {
+        let c: Vec<f64> = line.split(',').map(|x| x.parse().unwrap_or(f64::NAN)).collect();
+        assert_eq!(c[col("dof_steps_used")], c[col("dofs")] * c[col("steps")], "{line}");
+    }
 
     // interrupt: drop two finished runs, then resume; the others are not redone
     let runs = two.join("runs");

@@ -287,12 +287,7 @@ fn records_that_are_not_the_sweeps_are_refused_on_resume_and_merge() {
     std::fs::write(runs.join("000002.json"), "").unwrap();
     let again = sweep(&a, &dir, None, &|_, _| {}).unwrap();
     let strip = |r: &[taut::study::sweep::SweepRecord]| -> Vec<_> {
-        r.iter()
-            .map(|r| taut::study::sweep::SweepRecord {
-                wall_seconds: None,
-                ..r.clone()
-            })
-            .collect()
+        r.iter().map(|r| r.without_timing()).collect()
     };
     assert_eq!(strip(&whole), strip(&again));
 

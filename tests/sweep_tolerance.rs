@@ -182,3 +182,76 @@ fn bad_tolerance_flags_are_named() {
         assert!(err.contains(names), "{args:?}: {err}");
     }
 }
+
+/// Refinement that knows when to stop: a tolerance no budget reaches is
+/// not refined past the pilots to find out. The point's record says why
+/// (`not_met_because`), what the model predicted, and its work is the
+/// pilots' alone; the summary line splits the sweep's work between points
+/// met and not met.
+#[test]
+fn a_point_predicted_beyond_its_budget_stops_after_its_pilots() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = out_dir(&tmp, "beyond");
+    let mut all = vec![
+        "sweep",
+        "scenes/reference.toml",
+        "--vary",
+        "carrier.speed.cruise=120,140",
+    ];
+    all.extend_from_slice(&MAP);
+    all.extend_from_slice(&[
+        "--tolerance",
+        "1e-7",
+        "--max-cost",
+        "8",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let o = taut_bin(&all);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .unwrap_or_else(|| panic!("no column {name} in {header:?}"))
+    };
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells[col("tolerance_met")], "no", "{line}");
+        assert_eq!(cells[col("runs_used")], "5", "the pilots alone: {line}");
+        let why = cells[col("not_met_because")];
+        assert!(
+            why.contains("predicted") && why.contains("--max-cost 8"),
+            "{line}"
+        );
+        let predicted: f64 = cells[col("predicted_cost")].parse().unwrap();
+        assert!(predicted > 8.0, "{line}");
+        // the pilots' work: the point's own run and four coarser ones,
+        // less than twice its own (1/16 + 1/4 + 1 + 1/8 + 1/2 of it)
+        let own = cells[col("dofs")].parse::<f64>().unwrap()
+            * cells[col("steps")].parse::<f64>().unwrap();
+        let used: f64 = cells[col("dof_steps_used")].parse().unwrap();
+        assert!(used > own && used < 2.0 * own, "{used} vs {own}: {line}");
+    }
+    assert!(
+        stdout.contains("not met 2 (100 %"),
+        "the work line splits the time: {stdout}"
+    );
+    // CPU seconds per point are in timing.csv, beside its work
+    let timing = std::fs::read_to_string(dir.join("timing.csv")).unwrap();
+    assert!(
+        timing.starts_with("index,wall_seconds,cpu_seconds,dof_steps_used\n"),
+        "{timing}"
+    );
+    for line in timing.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        if cfg!(unix) {
+            assert!(cells[2].parse::<f64>().unwrap() > 0.0, "{timing}");
+        }
+        assert!(cells[3].parse::<f64>().unwrap() > 0.0, "{timing}");
+    }
+}

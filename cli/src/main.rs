@@ -485,6 +485,7 @@ fn cmd_sweep(on: &OnScene, args: &SweepArgs, quiet: bool) -> taut::Result<bool> 
         s.threads,
         s.stopped()
     );
+    println!("{}", terminal::work_line(&s.records));
     println!(
         "  wrote    {}/{{sweep.csv, sweep_force.csv, sweep_loss.csv, timing.csv, runs/}}",
         request.out.display()

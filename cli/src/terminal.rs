@@ -348,6 +348,38 @@ fn span_lines(s: &taut::report::Summary) -> String {
     t
 }
 
+/// Where a sweep's work went: its unknowns × steps and CPU seconds, split
+/// between points met, not met and refused (a plain sweep: points that ran
+/// and points that stopped).
+pub fn work_line(records: &[SweepRecord]) -> String {
+    use taut::study::sweep::{Work, WorkSplit};
+    let s = WorkSplit::of(records);
+    let tolerance = records.iter().any(|r| r.accuracy.is_some());
+    let part = |name: &str, w: &Work| {
+        format!(
+            "{name} {} ({:.0} %, {:.1} s)",
+            w.points,
+            100.0 * s.share(w),
+            w.cpu_seconds
+        )
+    };
+    let t = s.total();
+    let mut line = format!(
+        "  work     {:.3e} DOF-steps, {:.1} s CPU: ",
+        t.dof_steps, t.cpu_seconds
+    );
+    if tolerance {
+        line.push_str(&part("met", &s.met));
+        line.push_str(", ");
+        line.push_str(&part("not met", &s.not_met));
+    } else {
+        line.push_str(&part("ran", &s.met));
+    }
+    line.push_str(", ");
+    line.push_str(&part("refused or stopped", &s.refused));
+    line
+}
+
 /// The maps a sweep or merge drew (a shard draws none: merge does).
 pub fn maps(maps: &[PathBuf], shard: bool) -> String {
     if let Some((first, rest)) = maps.split_first() {

@@ -18,7 +18,7 @@ static REGISTERED: RwLock<Vec<&'static Quantity>> = RwLock::new(Vec::new());
 /// quantity): a quantity of that name would make two columns, or two JSON
 /// keys, of one name (the compare, precision and sweep rows flatten their
 /// quantities beside these; converge and uncertainty rows name them).
-pub const RESERVED: [&str; 42] = [
+pub const RESERVED: [&str; 46] = [
     // every table
     "method",
     "discretization",
@@ -58,6 +58,10 @@ pub const RESERVED: [&str; 42] = [
     "u_num",
     "tolerance_met",
     "estimator",
+    "dof_steps_used",
+    "cpu_seconds",
+    "predicted_cost",
+    "not_met_because",
     // converge and uncertainty rows
     "level",
     "quantity",

@@ -43,6 +43,17 @@ pub fn sweep_table(spec: &SweepSpec, records: &[SweepRecord]) -> Table {
         "error",
         Column::Text(records.iter().map(|r| r.error.clone()).collect()),
     );
+    // the point's work, every run made for it: where a map's time went, the
+    // same on any machine (its CPU seconds are in timing.csv)
+    t.push(
+        "dof_steps_used",
+        Column::RealOrNone(
+            records
+                .iter()
+                .map(|r| r.dof_steps.unwrap_or(f64::NAN))
+                .collect(),
+        ),
+    );
     if spec.tolerance.is_some() {
         tolerance_columns(&mut t, records);
     }
@@ -165,7 +176,20 @@ fn tolerance_columns(t: &mut Table, records: &[SweepRecord]) {
     t.push("modes_used", count(|a| a.modes.map(|j| j as u64)));
     t.push("dt_used", acc(|a| a.dt));
     t.push("runs_used", count(|a| Some(a.runs as u64)));
-    t.push("dof_steps_used", acc(|a| a.dof_steps));
+    t.push(
+        "predicted_cost",
+        Column::RealOrNone(
+            records
+                .iter()
+                .map(|r| {
+                    r.accuracy
+                        .as_ref()
+                        .and_then(|a| a.predicted_cost)
+                        .unwrap_or(f64::NAN)
+                })
+                .collect(),
+        ),
+    );
     t.push(
         "estimator",
         Column::Label(
@@ -179,9 +203,18 @@ fn tolerance_columns(t: &mut Table, records: &[SweepRecord]) {
                 .collect(),
         ),
     );
+    t.push(
+        "not_met_because",
+        Column::Text(
+            records
+                .iter()
+                .map(|r| r.accuracy.as_ref().and_then(|a| a.not_met.clone()))
+                .collect(),
+        ),
+    );
 }
 
-/// Write the CSV outputs of a sweep into `dir`. Wall times go to
+/// Write the CSV outputs of a sweep into `dir`. Wall and CPU times go to
 /// `timing.csv` only, so the other files are the same bytes on any machine
 /// and thread count.
 pub fn write_sweep(dir: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Result<()> {
@@ -216,9 +249,15 @@ pub fn write_sweep(dir: &Path, spec: &SweepSpec, records: &[SweepRecord]) -> Res
         write(&dir.join(file), &s)?;
     }
 
-    let mut t = String::from("index,wall_seconds\n");
+    let mut t = String::from("index,wall_seconds,cpu_seconds,dof_steps_used\n");
     for r in records {
-        t.push_str(&format!("{},{}\n", r.index, opt(r.wall_seconds)));
+        t.push_str(&format!(
+            "{},{},{},{}\n",
+            r.index,
+            opt(r.wall_seconds),
+            opt(r.cpu_seconds),
+            opt(r.dof_steps)
+        ));
     }
     write(&dir.join("timing.csv"), &t)
 }

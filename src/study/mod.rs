@@ -9,6 +9,7 @@
 pub mod compare;
 pub mod converge;
 pub mod cost;
+pub mod cpu_time;
 pub mod filter;
 pub mod gate;
 pub mod grid;

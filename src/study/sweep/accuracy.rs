@@ -44,6 +44,7 @@ use crate::quantity::formal_orders::MAX_STEP_ORDER;
 use crate::resolve::Resolved;
 use crate::run::{RunOutput, run_batch};
 use crate::study::cost::run_dof_steps;
+use crate::study::cpu_time::{shares, timed};
 use crate::study::level::Level;
 use crate::study::tolerance::{ErrorModel, LadderFit};
 use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, RATIO, assess};
@@ -86,6 +87,8 @@ struct Ran {
     key: Key,
     value: Option<f64>,
     dof_steps: f64,
+    /// CPU seconds of the run (its share of its batch's).
+    cpu: Option<f64>,
     loss: bool,
     /// The point's record from this run, kept for candidates only.
     record: Option<SweepRecord>,
@@ -111,6 +114,23 @@ struct Point {
     record: Option<SweepRecord>,
     /// Runs queued or being stepped.
     queued: Vec<Key>,
+    /// What the pilots' error model predicts of reaching EPS.
+    prediction: Prediction,
+    /// Why the point stopped short of EPS, once it has.
+    not_met: Option<String>,
+}
+
+/// What the pilots' error model predicts of a point reaching EPS.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Prediction {
+    /// Not asked (the pilots met EPS) or a ladder that does not converge.
+    Unknown,
+    /// Reaching EPS costs this many times the point's own run, pilots
+    /// included.
+    Cost(f64),
+    /// No scene the model takes reaches EPS (J beyond the exact modes'
+    /// range, or a refinement beyond 2^PREDICT_EXPONENT).
+    OutOfReach,
 }
 
 impl Point {
@@ -120,6 +140,11 @@ impl Point {
 
     fn spent(&self) -> f64 {
         self.runs.iter().map(|r| r.dof_steps).sum()
+    }
+
+    /// CPU seconds of the point's runs so far (none without a thread clock).
+    fn cpu(&self) -> Option<f64> {
+        self.runs.iter().map(|r| r.cpu).sum()
     }
 
     fn scene(&self, k: Key) -> Result<Resolved> {
@@ -448,6 +473,8 @@ fn start(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> Poin
         candidates: Vec::new(),
         record: None,
         queued: Vec::new(),
+        prediction: Prediction::Unknown,
+        not_met: None,
     };
     match spec.resolve_with(base, index) {
         Ok(sc) => {
@@ -469,7 +496,11 @@ fn fail(p: &mut Point, spec: &SweepSpec, id: &str, key: Key, e: Error) {
         return;
     }
     let e = e.in_run(&format!("--tolerance's run {}", describe(p, key)));
-    p.record = Some(record_of(spec, None, id, p.index, None, Err(&e)));
+    let mut record = record_of(spec, None, id, p.index, None, Err(&e));
+    // the work the point took before it stopped
+    record.dof_steps = Some(p.spent());
+    record.cpu_seconds = p.cpu();
+    p.record = Some(record);
     p.stage = Stage::Done;
 }
 
@@ -501,17 +532,21 @@ fn run_job(ctx: &Ctx, job: &Job, keep: &[bool], indices: &[usize]) -> Vec<Result
     let q = ctx.tol.spec();
     let go = || {
         let scenes: Vec<Resolved> = job.members.iter().map(|m| m.2.clone()).collect();
-        let outs = run_batch(&scenes, job.cap, &mut |_| {});
+        let (outs, cpu) = timed(|| run_batch(&scenes, job.cap, &mut |_| {}));
+        let work: Vec<f64> = outs
+            .iter()
+            .map(|o| o.as_ref().map_or(0.0, |o| o.dofs as f64 * o.steps as f64))
+            .collect();
         job.members
             .iter()
-            .zip(outs)
+            .zip(outs.into_iter().zip(shares(cpu, &work)))
             .enumerate()
-            .map(|(m, ((_, key, sc), out))| {
+            .map(|(m, ((_, key, sc), (out, cpu)))| {
                 out.map(|out| {
                     let record = keep[m].then(|| {
                         record_of(ctx.spec, ctx.base, ctx.id, indices[m], Some(sc), Ok(&out))
                     });
-                    reduce(q, *key, &out, record)
+                    reduce(q, *key, &out, cpu, record)
                 })
             })
             .collect::<Vec<_>>()
@@ -535,11 +570,18 @@ fn run_job(ctx: &Ctx, job: &Job, keep: &[bool], indices: &[usize]) -> Vec<Result
 }
 
 /// A run reduced to what the point keeps.
-fn reduce(q: &Quantity, key: Key, out: &RunOutput, record: Option<SweepRecord>) -> Ran {
+fn reduce(
+    q: &Quantity,
+    key: Key,
+    out: &RunOutput,
+    cpu: Option<f64>,
+    record: Option<SweepRecord>,
+) -> Ran {
     Ran {
         key,
         value: q.of(out, 0),
         dof_steps: out.dofs as f64 * out.steps as f64,
+        cpu,
         loss: out.stats.first().is_some_and(|s| s.loss_interval_count > 0),
         record,
     }
@@ -583,19 +625,31 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
         return finish(p, tol, key);
     }
     let next = match p.stage {
-        Stage::Pilot => plan(p, tol, formal),
-        _ => (key.0 + 1, key.1 + 1),
+        Stage::Pilot => {
+            p.prediction = predict(p, tol, formal);
+            // refinement that knows when to stop: a point the model puts
+            // beyond its budget is not refined to find out
+            if let Some(why) = beyond_budget(p.prediction, tol) {
+                p.not_met = Some(why);
+                return finish_best(p, tol, key);
+            }
+            plan(p, tol, formal)
+        }
+        _ => {
+            // and a check that missed: the walk down the diagonal
+            // predicted from how u_num fell since the last candidate
+            p.prediction = predict_walk(p, tol, key);
+            if let Some(why) = beyond_budget(p.prediction, tol) {
+                p.not_met = Some(why);
+                return finish_best(p, tol, key);
+            }
+            (key.0 + 1, key.1 + 1)
+        }
     };
     let mut next = (next.0.min(MAX_EXPONENT), next.1.min(MAX_EXPONENT));
     // within the budget: the plan cut down, the larger refinement first,
     // so a point out of reach still gets as close as its budget allows
-    let cost = |p: &Point, k: Key| -> f64 {
-        check_runs(k)
-            .iter()
-            .filter(|&&f| p.value(f).is_none())
-            .map(|f| p.base_cost * (RATIO as f64).powi(f.0 + f.1))
-            .sum()
-    };
+    let cost = check_cost;
     // a scene the model refuses (J beyond the exact modes' range) is out of
     // reach like one beyond the budget
     let fits = |p: &Point, k: Key| {
@@ -618,26 +672,54 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     let refines = next.0 > key.0 || next.1 > key.1;
     let affordable = fits(p, next);
     if !refines || !affordable || p.checks >= MAX_CHECKS {
-        let best = p
-            .candidates
-            .iter()
-            .min_by(|x, y| {
-                let u = |a: &Assessment| a.u_num.unwrap_or(f64::INFINITY);
-                u(&x.1).total_cmp(&u(&y.1))
-            })
-            .map(|c| c.0)
-            .unwrap_or(key);
-        return finish(p, tol, best);
+        p.not_met = Some(if p.checks >= MAX_CHECKS {
+            format!("{MAX_CHECKS} checks after the pilots did not reach it")
+        } else {
+            format!(
+                "its budget (--max-cost {}) allows no further refinement",
+                tol.budget
+            )
+        });
+        return finish_best(p, tol, key);
     }
     p.checks += 1;
     p.stage = Stage::Check(next);
 }
 
-/// The first check's (a, b): `run --tolerance`'s cheapest (h, Δt) for
-/// [`PLAN_SHARE`] × EPS from the split's differences, as the coarsest
-/// powers of two at or below it; one level on both when a ladder does not
-/// converge.
-fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
+/// Why a point is not refined past its pilots: the model puts reaching EPS
+/// above its budget, or out of any scene it takes; `None` to go on.
+fn beyond_budget(prediction: Prediction, tol: &SweepTolerance) -> Option<String> {
+    match prediction {
+        Prediction::Cost(c) if c > tol.budget => Some(format!(
+            "predicted cost {c:.0}× its own run to reach the tolerance, above --max-cost {}",
+            tol.budget
+        )),
+        Prediction::OutOfReach => Some(
+            "predicted out of reach: no resolution the model takes (J within the exact modes' range, 2^20 times the point's own at most) reaches the tolerance"
+                .to_string(),
+        ),
+        _ => None,
+    }
+}
+
+/// Finish a point with its candidate of smallest u_num (`key` when it has
+/// none measured).
+fn finish_best(p: &mut Point, tol: &SweepTolerance, key: Key) {
+    let best = p
+        .candidates
+        .iter()
+        .min_by(|x, y| {
+            let u = |a: &Assessment| a.u_num.unwrap_or(f64::INFINITY);
+            u(&x.1).total_cmp(&u(&y.1))
+        })
+        .map(|c| c.0)
+        .unwrap_or(key);
+    finish(p, tol, best)
+}
+
+/// The error model of the pilots' split: the mesh ladder at a fixed Δt and
+/// the Δt ladder on a fixed mesh, relative h and Δt (the point's own are 1).
+fn pilot_model(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> ErrorModel {
     let v = |k: Key| p.value(k).flatten().unwrap_or(f64::NAN);
     // mesh refined at a fixed Δt, Δt refined on a fixed mesh
     let dx = [v((-2, -2)) - v((-1, -2)), v((-1, -1)) - v((0, -1))];
@@ -648,12 +730,105 @@ fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
         .max(tol.tolerance);
     let mesh = LadderFit::new(dx.map(f64::abs), 1.0, scale, formal.0);
     let step = LadderFit::new(dt.map(f64::abs), 1.0, scale, formal.1);
-    let model = ErrorModel::new(mesh, step);
-    match model.cheapest(PLAN_SHARE * tol.tolerance, 1.0, 1.0) {
+    ErrorModel::new(mesh, step)
+}
+
+/// The coarsest (a, b) at or below relative (h, Δt).
+fn key_at(h: f64, dt: f64) -> Key {
+    let up = |x: f64| (-x.log2() - 1e-9).ceil().max(0.0) as i32;
+    (up(h), up(dt))
+}
+
+/// The cost of a check at `k` still to be run, in unknowns × steps.
+fn check_cost(p: &Point, k: Key) -> f64 {
+    check_runs(k)
+        .iter()
+        .filter(|&&f| p.value(f).is_none())
+        .map(|f| p.base_cost * (RATIO as f64).powi(f.0 + f.1))
+        .sum()
+}
+
+/// The furthest exponent a prediction looks: 2²⁰ times the point's own
+/// resolution in one variable is beyond any budget.
+const PREDICT_EXPONENT: i32 = 20;
+
+/// What the pilots' error model predicts it costs the point to reach EPS,
+/// as a multiple of its own run, pilots included: the cheapest (h, Δt)
+/// whose modelled error is within EPS × F_s,asymptotic / F_s,cautious (a
+/// quantity that is not smooth gets the cautious factor on its u_num),
+/// and its check family. Infinite when that scene is not one the model
+/// takes (J beyond the exact modes' range); unknown when a ladder does
+/// not converge (the model cannot say).
+fn predict(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Prediction {
+    let model = pilot_model(p, tol, formal);
+    let Some((h, d)) = model.cheapest(tol.tolerance * FS_ASYMPTOTIC / FS_CAUTIOUS, 1.0, 1.0)
+    else {
+        return Prediction::Unknown;
+    };
+    let k = key_at(h, d);
+    let k = if k == (0, 0) { (1, 1) } else { k };
+    if k.0 > PREDICT_EXPONENT
+        || k.1 > PREDICT_EXPONENT
+        || !check_runs(k)
+            .iter()
+            .all(|&f| p.value(f).is_some() || p.scene(f).is_ok())
+    {
+        return Prediction::OutOfReach;
+    }
+    Prediction::Cost((p.spent() + check_cost(p, k)) / p.base_cost)
+}
+
+/// What walking on down the diagonal from a check at `key` that missed
+/// costs to reach EPS, predicted from the last two candidates: u_num fell
+/// by r per diagonal level between them, so m = ⌈ln(EPS/u)/ln r⌉ more
+/// levels reach it, each a check family (runs made already reused).
+/// Unknown when u_num did not fall (or was not measured): the walk goes on
+/// one level as before; out of reach when the walk leaves the scenes the
+/// model takes.
+fn predict_walk(p: &Point, tol: &SweepTolerance, key: Key) -> Prediction {
+    let [.., (k0, a0), (k1, a1)] = p.candidates.as_slice() else {
+        return Prediction::Unknown;
+    };
+    let (Some(u0), Some(u1)) = (a0.u_num, a1.u_num) else {
+        return Prediction::Unknown;
+    };
+    let levels = (k1.0 - k0.0).max(k1.1 - k0.1).max(1);
+    let r = (u1 / u0).powf(1.0 / levels as f64);
+    let eps = tol.tolerance;
+    if !(r < 1.0 && r > 0.0 && u1 > eps) {
+        return Prediction::Unknown;
+    }
+    let m = ((eps / u1).ln() / r.ln()).ceil().max(1.0);
+    if m > PREDICT_EXPONENT as f64 {
+        return Prediction::OutOfReach;
+    }
+    let mut run: Vec<Key> = p.runs.iter().map(|r| r.key).collect();
+    let mut cost = p.spent();
+    for j in 1..=m as i32 {
+        let k = (key.0 + j, key.1 + j);
+        for f in check_runs(k) {
+            if run.contains(&f) {
+                continue;
+            }
+            if p.scene(f).is_err() {
+                return Prediction::OutOfReach;
+            }
+            cost += p.base_cost * (RATIO as f64).powi(f.0 + f.1);
+            run.push(f);
+        }
+    }
+    Prediction::Cost(cost / p.base_cost)
+}
+
+/// The first check's (a, b): `run --tolerance`'s cheapest (h, Δt) for
+/// [`PLAN_SHARE`] × EPS from the split's differences, as the coarsest
+/// powers of two at or below it; one level on both when a ladder does not
+/// converge.
+fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
+    match pilot_model(p, tol, formal).cheapest(PLAN_SHARE * tol.tolerance, 1.0, 1.0) {
         // relative h and Δt: the point's own are 1
         Some((h, d)) => {
-            let up = |x: f64| (-x.log2() - 1e-9).ceil().max(0.0) as i32;
-            let k = (up(h), up(d));
+            let k = key_at(h, d);
             if k == (0, 0) { (1, 1) } else { k }
         }
         None => (1, 1),
@@ -701,8 +876,16 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
         dof_steps: p.spent(),
         estimator: a.estimator.name().to_string(),
         checks: p.checks,
+        predicted_cost: match p.prediction {
+            Prediction::Cost(c) => Some(c),
+            _ => None,
+        },
+        not_met: (!met).then(|| p.not_met.clone()).flatten(),
+        u_num_ladder: p.candidates.iter().map(|c| c.1.u_num).collect(),
     });
     record.wall_seconds = None;
+    record.dof_steps = Some(p.spent());
+    record.cpu_seconds = p.cpu();
     p.record = Some(record);
     p.stage = Stage::Done;
 }

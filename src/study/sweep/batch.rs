@@ -98,14 +98,30 @@ pub(super) fn records_guarded(
             .iter()
             .filter_map(|s| s.as_ref().ok().cloned())
             .collect();
-        let mut outs = crate::run::run_batch(&ok, item.len(), &mut |_| {}).into_iter();
+        let (outs, cpu) = crate::study::cpu_time::timed(|| {
+            crate::run::run_batch(&ok, item.len(), &mut |_| {})
+        });
+        // the batch's CPU time shared among its runs by their work
+        let work: Vec<f64> = outs
+            .iter()
+            .map(|o| o.as_ref().map_or(0.0, |o| o.dofs as f64 * o.steps as f64))
+            .collect();
+        let mut cpu = crate::study::cpu_time::shares(cpu, &work).into_iter();
+        let mut outs = outs.into_iter();
         item.iter()
             .zip(&scenes)
             .map(|(&i, sc)| {
-                let ran = sc
-                    .as_ref()
-                    .map(|_| outs.next().expect("one output per scene"));
-                record_of(spec, base, id, i, sc.as_ref().ok(), ended(&ran))
+                let ran = sc.as_ref().map(|_| {
+                    (
+                        outs.next().expect("one output per scene"),
+                        cpu.next().expect("one share per output"),
+                    )
+                });
+                let cpu = ran.as_ref().ok().and_then(|r| r.1);
+                let ran = ran.map(|r| r.0);
+                let mut r = record_of(spec, base, id, i, sc.as_ref().ok(), ended(&ran));
+                r.add_cpu(cpu);
+                r
             })
             .collect::<Vec<_>>()
     };

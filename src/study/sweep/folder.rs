@@ -392,14 +392,8 @@ pub(crate) fn merge_into(
     Ok((spec, records))
 }
 
-/// Two records of one point agree on everything but wall time.
+/// Two records of one point agree on everything but wall and CPU time.
 fn same_result(a: &SweepRecord, b: &SweepRecord) -> bool {
-    let strip = |r: &SweepRecord| {
-        serde_json::to_string(&SweepRecord {
-            wall_seconds: None,
-            ..r.clone()
-        })
-        .expect("plain data")
-    };
+    let strip = |r: &SweepRecord| serde_json::to_string(&r.without_timing()).expect("plain data");
     strip(a) == strip(b)
 }

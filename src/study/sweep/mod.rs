@@ -38,6 +38,7 @@ mod resolve;
 mod shard;
 mod spec;
 mod tolerance_spec;
+mod work;
 
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -60,6 +61,7 @@ pub(crate) use refine::{REFINEMENT_ABS, REFINEMENT_REL, refinement_converged};
 pub use shard::Shard;
 pub use spec::{MAX_POINT_KEYS, SweepSpec};
 pub use tolerance_spec::{PointAccuracy, SweepTolerance, targets};
+pub use work::{Work, WorkSplit};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
 /// worker threads as runs finish. Returns the records of this shard, in grid

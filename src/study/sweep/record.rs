@@ -53,6 +53,17 @@ pub struct SweepRecord {
     /// Wall seconds (machine-dependent: written to timing.csv only).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub wall_seconds: Option<f64>,
+    /// Unknowns × steps of every run made for the point (its own, the
+    /// refined one, a tolerance's pilots and checks): the point's work,
+    /// the same on any machine (`sweep.csv`'s `dof_steps_used`). Absent in
+    /// records of a taut that did not count it.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub dof_steps: Option<f64>,
+    /// CPU seconds of those runs on the threads that stepped them (a
+    /// batch's shared by unknowns × steps; [`crate::study::cpu_time`]).
+    /// Machine-dependent: written to timing.csv only.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub cpu_seconds: Option<f64>,
 }
 
 impl SweepRecord {
@@ -72,11 +83,31 @@ impl SweepRecord {
             accuracy: None,
             error: None,
             wall_seconds: None,
+            dof_steps: None,
+            cpu_seconds: None,
         }
     }
 }
 
 impl SweepRecord {
+    /// The record without its machine-dependent times (wall and CPU
+    /// seconds): what two runs of one point must agree on.
+    pub fn without_timing(&self) -> Self {
+        SweepRecord {
+            wall_seconds: None,
+            cpu_seconds: None,
+            ..self.clone()
+        }
+    }
+
+    /// Count `cpu` more CPU seconds to the point (none where the platform
+    /// gives no thread clock).
+    pub(super) fn add_cpu(&mut self, cpu: Option<f64>) {
+        if let Some(c) = cpu {
+            self.cpu_seconds = Some(self.cpu_seconds.unwrap_or(0.0) + c);
+        }
+    }
+
     /// Its value of `q` (carrier 0), NaN where it has none.
     pub fn value(&self, q: &crate::quantity::Quantity) -> f64 {
         self.quantities.real(q)
@@ -105,8 +136,11 @@ impl SweepRecord {
 /// `base`: the spec's [`SweepSpec::base_tree`], when it could be made.
 fn record(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> SweepRecord {
     let sc = spec.resolve_with(base, index);
-    let ran = sc.as_ref().map(|sc| run(sc, &mut |_, _| {}));
-    record_of(spec, base, id, index, sc.as_ref().ok(), ended(&ran))
+    let (ran, cpu) =
+        crate::study::cpu_time::timed(|| sc.as_ref().map(|sc| run(sc, &mut |_, _| {})));
+    let mut r = record_of(spec, base, id, index, sc.as_ref().ok(), ended(&ran));
+    r.add_cpu(cpu);
+    r
 }
 
 /// What a point's run gave, its scene's refusal or its run's: the typed
@@ -157,6 +191,15 @@ pub(super) fn record_of(
         n[b] += 1;
     }
     let c = sc.beam.wave_speed();
+    // the refined run (with --check-refinement) is part of the point's work
+    let (refined_run, refined_cpu) = if spec.check_refinement {
+        let (r, cpu) = crate::study::cpu_time::timed(|| refined(spec, base, index));
+        (Some(r), cpu)
+    } else {
+        (None, None)
+    };
+    let dof_steps = out.dofs as f64 * out.steps as f64 + refined_run.as_ref().map_or(0.0, |r| r.1);
+    let refined_run = refined_run.map(|r| r.0);
     SweepRecord {
         sweep_id: id.to_string(),
         index,
@@ -170,10 +213,12 @@ pub(super) fn record_of(
             .map(|b| (n[b] > 0).then(|| lost[b] as f64 / n[b] as f64))
             .collect(),
         warnings: out.warnings.clone(),
-        refined: spec.check_refinement.then(|| refined(spec, base, index)),
+        refined: refined_run,
         accuracy: None,
         error: None,
         wall_seconds: Some(out.wall_seconds),
+        dof_steps: Some(dof_steps),
+        cpu_seconds: refined_cpu,
     }
 }
 

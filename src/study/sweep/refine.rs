@@ -69,8 +69,9 @@ pub(crate) const REFINEMENT_REL: f64 = 0.05;
 /// resolves.
 pub(crate) const REFINEMENT_ABS: f64 = 5e-4;
 
-/// Run point `index` refined (`base`: the spec's [`SweepSpec::base_tree`], when made).
-pub(super) fn refined(spec: &SweepSpec, base: Option<&Table>, index: usize) -> Refined {
+/// Run point `index` refined (`base`: the spec's [`SweepSpec::base_tree`],
+/// when made), with the run's unknowns × steps (0 when it did not start).
+pub(super) fn refined(spec: &SweepSpec, base: Option<&Table>, index: usize) -> (Refined, f64) {
     let stopped = |elements, modes, dt, e: Error| Refined {
         elements,
         modes,
@@ -81,18 +82,22 @@ pub(super) fn refined(spec: &SweepSpec, base: Option<&Table>, index: usize) -> R
     };
     let sc = match spec.resolve_refined_with(base, index) {
         Ok(sc) => sc,
-        Err(e) => return stopped(0, None, f64::NAN, e),
+        Err(e) => return (stopped(0, None, f64::NAN, e), 0.0),
     };
     let modes = sc.discretization.modes();
     match run(&sc, &mut |_, _| {}) {
-        Ok(o) => Refined {
-            elements: sc.elements,
-            modes,
-            dt: sc.dt,
-            loss_fraction: o.stats[0].loss_fraction,
-            loss_fraction_span: o.stats[0].loss_fraction_span,
-            error: None,
-        },
-        Err(e) => stopped(sc.elements, modes, sc.dt, e),
+        Ok(o) => (
+            Refined {
+                elements: sc.elements,
+                modes,
+                dt: sc.dt,
+                loss_fraction: o.stats[0].loss_fraction,
+                loss_fraction_span: o.stats[0].loss_fraction_span,
+                error: None,
+            },
+            o.dofs as f64 * o.steps as f64,
+        ),
+        // a run that stopped: its work up to the stop is not reported
+        Err(e) => (stopped(sc.elements, modes, sc.dt, e), 0.0),
     }
 }

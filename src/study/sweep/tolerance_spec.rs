@@ -112,6 +112,19 @@ pub struct PointAccuracy {
     pub estimator: String,
     /// Checks made after the pilots.
     pub checks: usize,
+    /// What the pilots' error model predicted reaching EPS would cost, as a
+    /// multiple of the point's own run, pilots included (absent: no scene
+    /// the model takes reaches it, a ladder did not converge, or the
+    /// pilots met EPS).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub predicted_cost: Option<f64>,
+    /// Why a point not met stopped where it did (absent for a point met).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub not_met: Option<String>,
+    /// u_num of each candidate in the order assessed: the point's own
+    /// resolution (from the pilots), then each check's (null: none given).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub u_num_ladder: Vec<Option<f64>>,
 }
 
 /// Check that every point's level parameter can be coarsened by
