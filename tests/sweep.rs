@@ -128,8 +128,15 @@ fn same_bytes_for_any_thread_count_resume_and_shards() {
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     let col = |n: &str| header.iter().position(|h| *h == n).unwrap();
     for line in csv.lines().skip(1) {
-        let c: Vec<f64> = line.split(',').map(|x| x.parse().unwrap_or(f64::NAN)).collect();
-        assert_eq!(c[col("dof_steps_used")], c[col("dofs")] * c[col("steps")], "{line}");
+        let c: Vec<f64> = line
+            .split(',')
+            .map(|x| x.parse().unwrap_or(f64::NAN))
+            .collect();
+        assert_eq!(
+            c[col("dof_steps_used")],
+            c[col("dofs")] * c[col("steps")],
+            "{line}"
+        );
     }
 
     // interrupt: drop two finished runs, then resume; the others are not redone

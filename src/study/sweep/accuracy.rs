@@ -761,8 +761,7 @@ const PREDICT_EXPONENT: i32 = 20;
 /// not converge (the model cannot say).
 fn predict(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Prediction {
     let model = pilot_model(p, tol, formal);
-    let Some((h, d)) = model.cheapest(tol.tolerance * FS_ASYMPTOTIC / FS_CAUTIOUS, 1.0, 1.0)
-    else {
+    let Some((h, d)) = model.cheapest(tol.tolerance * FS_ASYMPTOTIC / FS_CAUTIOUS, 1.0, 1.0) else {
         return Prediction::Unknown;
     };
     let k = key_at(h, d);

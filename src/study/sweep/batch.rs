@@ -98,9 +98,8 @@ pub(super) fn records_guarded(
             .iter()
             .filter_map(|s| s.as_ref().ok().cloned())
             .collect();
-        let (outs, cpu) = crate::study::cpu_time::timed(|| {
-            crate::run::run_batch(&ok, item.len(), &mut |_| {})
-        });
+        let (outs, cpu) =
+            crate::study::cpu_time::timed(|| crate::run::run_batch(&ok, item.len(), &mut |_| {}));
         // the batch's CPU time shared among its runs by their work
         let work: Vec<f64> = outs
             .iter()

@@ -106,7 +106,10 @@ mod tests {
             record(None, true, 1.0, 0.25),
         ];
         let s = WorkSplit::of(&rs);
-        assert_eq!((s.met.points, s.not_met.points, s.refused.points), (1, 2, 1));
+        assert_eq!(
+            (s.met.points, s.not_met.points, s.refused.points),
+            (1, 2, 1)
+        );
         assert_eq!(s.not_met.dof_steps, 8.0);
         assert_eq!(s.not_met.cpu_seconds, 4.0);
         assert_eq!(s.total().dof_steps, 10.0);
