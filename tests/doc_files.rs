@@ -377,3 +377,49 @@ fn module_headers_are_short() {
         long.join("\n")
     );
 }
+
+/// The guide's size: docs/ a reader gets through in an evening (7,000
+/// lines, about 140 pages of text at 50 lines a page), no page longer than
+/// a sitting (600 lines), and a README of a few screens (200 lines). A page
+/// that grows past them is split or condensed, and measured tables go to the
+/// files `cargo xtask` writes, not into the pages.
+const DOCS_MAX_LINES: usize = 7_000;
+const PAGE_MAX_LINES: usize = 600;
+const README_MAX_LINES: usize = 200;
+
+#[test]
+fn the_guide_stays_within_its_size() {
+    let root = root();
+    let mut total = 0;
+    let mut long = Vec::new();
+    let mut pages: Vec<PathBuf> = std::fs::read_dir(root.join("docs"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .collect();
+    pages.sort();
+    for p in &pages {
+        let n = std::fs::read_to_string(p).unwrap().lines().count();
+        total += n;
+        if n > PAGE_MAX_LINES {
+            long.push(format!("{}: {n} lines", p.display()));
+        }
+    }
+    assert!(
+        long.is_empty(),
+        "pages over {PAGE_MAX_LINES} lines: {long:?}"
+    );
+    assert!(
+        total <= DOCS_MAX_LINES,
+        "docs/*.md is {total} lines, over {DOCS_MAX_LINES}"
+    );
+    let readme = std::fs::read_to_string(root.join("README.md"))
+        .unwrap()
+        .lines()
+        .count();
+    assert!(
+        readme <= README_MAX_LINES,
+        "README.md is {readme} lines, over {README_MAX_LINES}"
+    );
+}
