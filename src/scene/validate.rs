@@ -448,9 +448,11 @@ fn resolve_carrier(i: usize, c: &CarrierSpec, l: f64) -> Result<CarrierProps> {
             positive(&f("speed.cruise"), *cruise, "m/s")?;
             // the ramp over L/5 takes 2L/(5 V0) (MODEL §3): a cruise so slow
             // that this overflows leaves the carrier's position 0 × ∞, NaN
-            let ramp = 2.0 * l / (5.0 * cruise);
+            // (2L/5 formed as 0.4 L: a length near the largest number is
+            // the length's own fault, named by its own check, not the speed's)
+            let ramp = 0.4 * l / cruise;
             if !ramp.is_finite() {
-                let least = 2.0 * l / 5.0 / f64::MAX;
+                let least = 0.4 * l / f64::MAX;
                 return Err(Error::invalid(
                     f("speed.cruise"),
                     *cruise,
