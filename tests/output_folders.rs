@@ -22,17 +22,7 @@ fn taut(args: &[&str]) -> (i32, String, String) {
 
 /// Every file of `dir` (not its subfolders) by name, with its bytes.
 fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap())
-        .filter(|e| e.file_type().unwrap().is_file())
-        .map(|e| {
-            (
-                e.file_name().into_string().unwrap(),
-                std::fs::read(e.path()).unwrap(),
-            )
-        })
-        .collect()
+    crate::common::folder_files(dir)
 }
 
 /// A small run of the reference scene: 20 elements, 0.02 s.

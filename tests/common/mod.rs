@@ -229,3 +229,19 @@ pub fn taut_capped(kib: u64, seconds: u64, args: &[&str]) -> (i32, String, Strin
         String::from_utf8_lossy(&o.stderr).into_owned(),
     )
 }
+
+/// Every file of `dir` (not its subfolders) by name, with its bytes: what
+/// a folder held, to compare before and after a command.
+pub fn folder_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap())
+        .filter(|e| e.file_type().unwrap().is_file())
+        .map(|e| {
+            (
+                e.file_name().into_string().unwrap(),
+                std::fs::read(e.path()).unwrap(),
+            )
+        })
+        .collect()
+}

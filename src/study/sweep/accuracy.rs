@@ -650,11 +650,10 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     let mut next = (next.0.min(MAX_EXPONENT), next.1.min(MAX_EXPONENT));
     // within the budget: the plan cut down, the larger refinement first,
     // so a point out of reach still gets as close as its budget allows
-    let cost = check_cost;
     // a scene the model refuses (J beyond the exact modes' range) is out of
     // reach like one beyond the budget
     let fits = |p: &Point, k: Key| {
-        p.spent() + cost(p, k) <= tol.budget * p.base_cost
+        p.spent() + check_cost(p, k) <= tol.budget * p.base_cost
             && check_runs(k)
                 .iter()
                 .all(|&f| p.value(f).is_some() || p.scene(f).is_ok())
