@@ -34,6 +34,8 @@ mod line_scenes;
 mod output_folders;
 #[path = "precision.rs"]
 mod precision;
+#[path = "python_build.rs"]
+mod python_build;
 #[path = "readme.rs"]
 mod readme;
 #[path = "reliability.rs"]
