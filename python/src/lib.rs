@@ -821,6 +821,17 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "formulations",
         taut::scene::Formulation::ALL.map(|f| f.name()).to_vec(),
     )?;
+    // the built-in time integrators and the mesh kinds, in the library's
+    // order (`Method::ALL`, `MeshKind::ALL`): the lists `taut.compare`'s
+    // help gives
+    m.add(
+        "methods",
+        taut::scene::Method::ALL.map(|x| x.name()).to_vec(),
+    )?;
+    m.add(
+        "mesh_kinds",
+        taut::scene::MeshKind::ALL.map(|k| k.name()).to_vec(),
+    )?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;

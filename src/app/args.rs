@@ -29,8 +29,10 @@ use serde::Deserialize;
 
 use super::words;
 use crate::error::{Error, Result};
-use crate::scene::Formulation;
+use crate::scene::{Formulation, MeshKind};
 use crate::study::request;
+#[cfg(feature = "clap")]
+use crate::study::verify::case::Space;
 
 /// An option's value as a front end gives it, before it is read: the
 /// command line's text, or Python's number or string. Counts and ratios
@@ -151,6 +153,49 @@ fn formulations_help() -> String {
     )
 }
 
+/// The help of a study's `--discretizations`: the kinds come from
+/// [`MeshKind::ALL`] (a modal basis with its optional J), so a new kind
+/// needs no edit here.
+#[cfg(feature = "clap")]
+fn discretizations_help() -> String {
+    let kinds: Vec<String> = MeshKind::ALL
+        .iter()
+        .map(|k| match k {
+            MeshKind::Hermite => k.name().to_string(),
+            _ => format!("{}[:J]", k.name()),
+        })
+        .collect();
+    format!(
+        "Comma-separated space discretizations to study side by side: {} (J: the number of \
+         modes; default the scene's mesh.modes). Default: the scene's own",
+        kinds.join(", ")
+    )
+}
+
+/// The help of `verify --discretizations`: the names come from the
+/// matrix's own list ([`Space::ALL`]).
+#[cfg(feature = "clap")]
+fn verify_discretizations_help() -> String {
+    format!(
+        "Comma-separated discretizations: {} (default: all; string elements run on the string cases)",
+        Space::ALL.map(Space::name).join(", ")
+    )
+}
+
+/// The help of `verify --formulations`: how many there are, in words,
+/// counted from [`Formulation::ALL`].
+#[cfg(feature = "clap")]
+fn verify_formulations_help() -> String {
+    const WORDS: [&str; 9] = [
+        "one", "two", "three", "four", "five", "six", "seven", "eight", "nine",
+    ];
+    let n = Formulation::ALL.len();
+    let all = WORDS
+        .get(n - 1)
+        .map_or_else(|| n.to_string(), |w| w.to_string());
+    format!("Comma-separated contact formulations (default: all {all})")
+}
+
 /// Every contact formulation, comma-separated in the order of
 /// [`Formulation::ALL`]: the default of `--formulations`.
 pub(crate) static ALL_FORMULATIONS: LazyLock<String> =
@@ -170,13 +215,13 @@ pub struct Runs {
         arg(long, value_name = "LIST", help = methods_help("", "the scene's own"))
     )]
     pub methods: Option<String>,
-    /// Comma-separated space discretizations to study side by side:
-    /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
-    /// the scene's mesh.modes). Default: the scene's own.
-    // the doc comment is also clap's help, printed as written: `[:J]`
-    // reads as an optional suffix there, not as a link
-    #[allow(rustdoc::broken_intra_doc_links)]
-    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
+    /// Comma-separated space discretizations to study side by side: the
+    /// kinds of `mesh.kind`, a modal one with `:J` (J: the number of modes;
+    /// default the scene's mesh.modes). Default: the scene's own.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = discretizations_help())
+    )]
     pub discretizations: Option<String>,
 }
 
@@ -672,12 +717,16 @@ pub struct VerifyArgs {
         arg(long, value_name = "LIST", help = methods_help("", "every built-in one"))
     )]
     pub methods: Option<String>,
-    /// Comma-separated discretizations: hermite, graded, galerkin,
-    /// modal (default: all; string elements run on the string cases).
-    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
+    /// Comma-separated discretizations of the matrix (default: all;
+    /// string elements run on the string cases).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = verify_discretizations_help())
+    )]
     pub discretizations: Option<String>,
-    /// Comma-separated contact formulations (default: all four).
-    #[cfg_attr(feature = "clap", arg(long))]
+    /// Comma-separated contact formulations (default: all of
+    /// [`Formulation::ALL`]).
+    #[cfg_attr(feature = "clap", arg(long, help = verify_formulations_help()))]
     pub formulations: Option<String>,
     /// The cut-down matrix of the default test suite (two support pairs).
     #[cfg_attr(feature = "clap", arg(long))]
@@ -825,6 +874,9 @@ impl ReplayArgs {
 /// front end's glue is one generic path for every command.
 #[cfg(feature = "clap")]
 pub trait CommandArgs: clap::Args + for<'de> Deserialize<'de> {
+    /// The command's name (`compare`: `taut compare`, `taut.compare`).
+    const COMMAND: &'static str;
+
     /// Keywords the Python module passes that the CLI does not take (a
     /// field clap skips).
     const PYTHON_ONLY: &'static [&'static str] = &[];
@@ -846,35 +898,44 @@ pub trait CommandArgs: clap::Args + for<'de> Deserialize<'de> {
     }
 }
 
-/// `impl CommandArgs for <Args> { type Typed = <T>; fn typed = <f> }`.
-macro_rules! command_args {
-    ($($args:ty => $typed:ty, $make:expr;)*) => {$(
-        #[cfg(feature = "clap")]
-        impl CommandArgs for $args {
-            type Typed = $typed;
-            fn typed(&self) -> Result<$typed> {
-                $make(self)
+/// The commands the Python module offers as well, one row each: the
+/// command, its options (with the keywords only Python passes, in
+/// brackets), what they make and the function that makes it. Each row is
+/// the command's [`CommandArgs`] and its entry in [`schema`], so that the
+/// list of commands is written once.
+macro_rules! python_commands {
+    ($($command:literal: $args:ty $([$($python:literal),*])? => $typed:ty, $make:expr;)*) => {
+        $(
+            #[cfg(feature = "clap")]
+            impl CommandArgs for $args {
+                const COMMAND: &'static str = $command;
+                $(const PYTHON_ONLY: &'static [&'static str] = &[$($python),*];)?
+                type Typed = $typed;
+                fn typed(&self) -> Result<$typed> {
+                    $make(self)
+                }
             }
+        )*
+
+        /// Every command's options as the struct of this module declares
+        /// them: `(command, options)` for each command the Python module
+        /// offers as well, for its tests to hold the Python signatures
+        /// against.
+        #[cfg(feature = "clap")]
+        pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
+            vec![$(($command, options_of::<$args>())),*]
         }
-    )*};
+    };
 }
 
-command_args! {
-    RunArgs => Option<super::Tolerance>, RunArgs::tolerance;
-    CompareArgs => request::CompareStudy, CompareArgs::study;
-    ConvergeArgs => request::ConvergeStudy, ConvergeArgs::study;
-    UncertaintyArgs => request::UncertaintyStudy, UncertaintyArgs::study;
-    PrecisionArgs => request::PrecisionStudy, PrecisionArgs::study;
-    ModesArgs => Option<usize>, ModesArgs::count;
-}
-
-#[cfg(feature = "clap")]
-impl CommandArgs for SweepArgs {
-    const PYTHON_ONLY: &'static [&'static str] = &["paired"];
-    type Typed = SweepStudy;
-    fn typed(&self) -> Result<SweepStudy> {
-        self.study()
-    }
+python_commands! {
+    "run": RunArgs => Option<super::Tolerance>, RunArgs::tolerance;
+    "compare": CompareArgs => request::CompareStudy, CompareArgs::study;
+    "converge": ConvergeArgs => request::ConvergeStudy, ConvergeArgs::study;
+    "uncertainty": UncertaintyArgs => request::UncertaintyStudy, UncertaintyArgs::study;
+    "precision": PrecisionArgs => request::PrecisionStudy, PrecisionArgs::study;
+    "sweep": SweepArgs ["paired"] => SweepStudy, SweepArgs::study;
+    "modes": ModesArgs => Option<usize>, ModesArgs::count;
 }
 
 /// Read a command's options from JSON (the Python module's keyword
@@ -926,36 +987,23 @@ pub struct OptionSchema {
     pub help: String,
 }
 
-/// Every command's options as the struct of this module declares them:
-/// `(command, options)` for each command the Python module offers as well
-/// (`run`, `compare`, `converge`, `precision`, `sweep`, `modes`), for its
-/// tests to hold the Python signatures against.
+/// A command's options as its clap arguments declare them (hidden ones
+/// left out).
 #[cfg(feature = "clap")]
-pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
-    fn of<A: clap::Args>() -> Vec<OptionSchema> {
-        A::augment_args(clap::Command::new("schema"))
-            .get_arguments()
-            .filter(|a| !a.is_hide_set())
-            .map(|a| OptionSchema {
-                name: a.get_id().to_string(),
-                default: a
-                    .get_default_values()
-                    .first()
-                    .map(|v| v.to_string_lossy().into_owned())
-                    .filter(|v| v != "false"),
-                help: a.get_help().map(|h| h.to_string()).unwrap_or_default(),
-            })
-            .collect()
-    }
-    vec![
-        ("run", of::<RunArgs>()),
-        ("compare", of::<CompareArgs>()),
-        ("converge", of::<ConvergeArgs>()),
-        ("uncertainty", of::<UncertaintyArgs>()),
-        ("precision", of::<PrecisionArgs>()),
-        ("sweep", of::<SweepArgs>()),
-        ("modes", of::<ModesArgs>()),
-    ]
+fn options_of<A: clap::Args>() -> Vec<OptionSchema> {
+    A::augment_args(clap::Command::new("schema"))
+        .get_arguments()
+        .filter(|a| !a.is_hide_set())
+        .map(|a| OptionSchema {
+            name: a.get_id().to_string(),
+            default: a
+                .get_default_values()
+                .first()
+                .map(|v| v.to_string_lossy().into_owned())
+                .filter(|v| v != "false"),
+            help: a.get_help().map(|h| h.to_string()).unwrap_or_default(),
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -1021,6 +1069,30 @@ mod tests {
         }
         let e = from_json::<ConvergeArgs>("[1]").unwrap_err().to_string();
         assert!(e.contains("arguments"), "{e}");
+    }
+
+    #[cfg(feature = "clap")]
+    #[test]
+    fn the_lists_in_the_help_are_the_enums() {
+        let s = schema();
+        let help = |cmd: &str, opt: &str| {
+            let o = s.iter().find(|(c, _)| *c == cmd).unwrap();
+            o.1.iter().find(|x| x.name == opt).unwrap().help.clone()
+        };
+        for cmd in ["compare", "converge", "precision"] {
+            let h = help(cmd, "discretizations");
+            for k in MeshKind::ALL {
+                assert!(h.contains(k.name()), "{cmd}: {h}");
+            }
+            let h = help(cmd, "methods");
+            for m in crate::scene::method_names() {
+                assert!(h.contains(&*m), "{cmd}: {h}");
+            }
+        }
+        let h = help("compare", "formulations");
+        for f in Formulation::ALL {
+            assert!(h.contains(f.name()), "{h}");
+        }
     }
 
     #[cfg(feature = "clap")]
