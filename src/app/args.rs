@@ -29,7 +29,9 @@ use serde::Deserialize;
 
 use super::words;
 use crate::error::{Error, Result};
-use crate::scene::{Formulation, MeshKind};
+use crate::scene::Formulation;
+#[cfg(feature = "clap")]
+use crate::scene::MeshKind;
 use crate::study::request;
 #[cfg(feature = "clap")]
 use crate::study::verify::case::Space;
