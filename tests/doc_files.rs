@@ -423,3 +423,45 @@ fn the_guide_stays_within_its_size() {
         "README.md is {readme} lines, over {README_MAX_LINES}"
     );
 }
+
+/// The names quoted (`"name"`) in the row of `key` under the heading
+/// `table` of docs/scene.md.
+fn scene_row_names(page: &str, table: &str, key: &str) -> Vec<String> {
+    let under = page
+        .split("\n## ")
+        .find(|s| s.starts_with(table))
+        .unwrap_or_else(|| panic!("docs/scene.md has no section {table}"));
+    let row = under
+        .lines()
+        .find(|l| l.starts_with(&format!("| `{key}` |")))
+        .unwrap_or_else(|| panic!("docs/scene.md's {table} has no row `{key}`"));
+    row.split("`\"")
+        .skip(1)
+        .filter_map(|s| s.split_once("\"`").map(|(name, _)| name.to_string()))
+        .collect()
+}
+
+#[test]
+fn the_scene_reference_lists_every_method_law_and_kind() {
+    // the lists of scene.md's reference rows are held to the enums they
+    // document: a new method, contact law or mesh kind fails here until
+    // the page names it
+    use taut::scene::{Formulation, MeshKind, Method};
+    let page = std::fs::read_to_string(root().join("docs/scene.md")).unwrap();
+    let kinds: Vec<&str> = MeshKind::ALL.iter().map(|k| k.name()).collect();
+    let laws: Vec<&str> = Formulation::ALL.iter().map(|f| f.name()).collect();
+    let methods: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+    for (table, key, names) in [
+        ("`[mesh]`", "kind", kinds),
+        ("`[contact]`", "formulation", laws),
+        ("`[integrator]`", "method", methods),
+    ] {
+        let listed = scene_row_names(&page, table, key);
+        for name in names {
+            assert!(
+                listed.iter().any(|l| l == name),
+                "docs/scene.md's {table} row `{key}` does not list {name:?}: {listed:?}"
+            );
+        }
+    }
+}

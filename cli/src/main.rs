@@ -591,3 +591,27 @@ fn cmd_compare(on: &OnScene, args: &CompareArgs, quiet: bool) -> taut::Result<bo
     );
     Ok(c.failed.is_empty())
 }
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    #[test]
+    fn every_command_python_offers_is_a_subcommand_with_its_options() {
+        // the library's one table of commands (`taut::app::args::schema`)
+        // against the CLI's subcommands: each is one, taking each option
+        let cli = super::Cli::command();
+        for (name, options) in taut::app::args::schema() {
+            let sub = cli
+                .find_subcommand(name)
+                .unwrap_or_else(|| panic!("`{name}` is no subcommand of taut"));
+            for o in options {
+                assert!(
+                    sub.get_arguments().any(|a| a.get_id() == o.name.as_str()),
+                    "taut {name} has no --{}",
+                    o.name
+                );
+            }
+        }
+    }
+}

@@ -468,23 +468,34 @@ impl SceneArg {
 
 /// A command's options, the keyword arguments of the Python function as
 /// JSON ([`taut::app::args`]: the struct the CLI's subcommand takes).
-fn options<A: for<'de> serde::Deserialize<'de>>(py: Python<'_>, json: &str) -> PyResult<A> {
+fn options<A: taut::app::args::CommandArgs>(py: Python<'_>, json: &str) -> PyResult<A> {
     taut::app::args::from_json(json).map_err(|e| to_py_err(py, e))
 }
 
-/// A study of one scene as `app` takes it: the scene and its overrides,
-/// then the options (`args`, JSON of the command's `*Args`) made into the
-/// typed study by `study` (`CompareArgs::study`, …): the glue every study
-/// function shares, written once.
-fn study_request<A: for<'de> serde::Deserialize<'de>, S>(
+/// A command's scene, its overrides and its options made typed: the
+/// options (`args`, JSON of the command's `*Args`) read and checked by
+/// [`taut::app::args::CommandArgs::typed`] (`CompareArgs::study`,
+/// `RunArgs::tolerance`, …): the glue every function shares, written once.
+fn typed<A: taut::app::args::CommandArgs>(
+    py: Python<'_>,
+    on: SceneArg,
+    args: &str,
+) -> PyResult<(SceneSource, Vec<String>, A::Typed)> {
+    let (scene, set) = on.source(py)?;
+    let typed = options::<A>(py, args)?
+        .typed()
+        .map_err(|e| to_py_err(py, e))?;
+    Ok((scene, set, typed))
+}
+
+/// A study of one scene as `app` takes it ([`typed`]).
+fn study_request<A: taut::app::args::CommandArgs>(
     py: Python<'_>,
     on: SceneArg,
     out: Option<PathBuf>,
     args: &str,
-    study: fn(&A) -> taut::Result<S>,
-) -> PyResult<app::StudyRequest<S>> {
-    let (scene, set) = on.source(py)?;
-    let study = study(&options::<A>(py, args)?).map_err(|e| to_py_err(py, e))?;
+) -> PyResult<app::StudyRequest<A::Typed>> {
+    let (scene, set, study) = typed::<A>(py, on, args)?;
     Ok(app::StudyRequest {
         scene,
         set,
@@ -505,14 +516,12 @@ fn run<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<RunTuple<'py>> {
-    let err = |e| to_py_err(py, e);
-    let args: taut::app::RunArgs = options(py, args)?;
-    let (scene, set) = on.source(py)?;
+    let (scene, set, tolerance) = typed::<taut::app::RunArgs>(py, on, args)?;
     let request = app::RunRequest {
         scene,
         set,
         out,
-        tolerance: args.tolerance().map_err(err)?,
+        tolerance,
     };
     let r = call(py, progress.as_ref(), |fe| app::run(&request, fe))?;
     let history = table_to_py(py, &taut::report::history_table(&r.output))?;
@@ -561,11 +570,7 @@ fn sweep<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<Bound<'py, PyList>> {
-    let err = |e| to_py_err(py, e);
-    let study = options::<taut::app::SweepArgs>(py, args)?
-        .study()
-        .map_err(err)?;
-    let (source, set) = on.source(py)?;
+    let (source, set, study) = typed::<taut::app::SweepArgs>(py, on, args)?;
     let mut request = app::SweepRequest::new(source, set, study, out);
     request.files = files;
     let s = call(py, progress.as_ref(), |fe| app::sweep(&request, fe))?;
@@ -583,7 +588,7 @@ fn compare<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
-    let request = study_request(py, on, out, args, taut::app::CompareArgs::study)?;
+    let request = study_request::<taut::app::CompareArgs>(py, on, out, args)?;
     let c = call(py, progress.as_ref(), |fe| app::compare(&request, fe))?;
     Ok((
         table_to_py(py, &taut::report::compare_rows(&c))?,
@@ -602,7 +607,7 @@ fn converge<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
-    let request = study_request(py, on, out, args, taut::app::ConvergeArgs::study)?;
+    let request = study_request::<taut::app::ConvergeArgs>(py, on, out, args)?;
     let outcome = call(py, progress.as_ref(), |fe| app::converge(&request, fe))?;
     let skipped = outcome.skipped().iter().map(not_run).collect();
     let rows = taut::report::converge_rows(&outcome.rows());
@@ -620,7 +625,7 @@ fn uncertainty<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
-    let request = study_request(py, on, out, args, taut::app::UncertaintyArgs::study)?;
+    let request = study_request::<taut::app::UncertaintyArgs>(py, on, out, args)?;
     let u = call(py, progress.as_ref(), |fe| app::uncertainty(&request, fe))?;
     Ok((
         table_to_py(py, &taut::report::uncertainty_table(&u))?,
@@ -638,7 +643,7 @@ fn precision<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
-    let request = study_request(py, on, out, args, taut::app::PrecisionArgs::study)?;
+    let request = study_request::<taut::app::PrecisionArgs>(py, on, out, args)?;
     let p = call(py, progress.as_ref(), |fe| app::precision(&request, fe))?;
     Ok((
         table_to_py(py, &taut::report::precision_rows(&p))?,
@@ -701,14 +706,11 @@ fn modes<'py>(
     out: Option<PathBuf>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
-    let err = |e| to_py_err(py, e);
-    let (scene, set) = on.source(py)?;
+    let (scene, set, count) = typed::<taut::app::ModesArgs>(py, on, args)?;
     let request = app::ModesRequest {
         scene,
         set,
-        count: options::<taut::app::ModesArgs>(py, args)?
-            .count()
-            .map_err(err)?,
+        count,
         out,
     };
     let m = call(py, None, |fe| app::modes(&request, fe))?;
@@ -818,6 +820,17 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add(
         "formulations",
         taut::scene::Formulation::ALL.map(|f| f.name()).to_vec(),
+    )?;
+    // the built-in time integrators and the mesh kinds, in the library's
+    // order (`Method::ALL`, `MeshKind::ALL`): the lists `taut.compare`'s
+    // help gives
+    m.add(
+        "methods",
+        taut::scene::Method::ALL.map(|x| x.name()).to_vec(),
+    )?;
+    m.add(
+        "mesh_kinds",
+        taut::scene::MeshKind::ALL.map(|k| k.name()).to_vec(),
     )?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;

@@ -178,6 +178,20 @@ or the scene as a dict (docs/python.md, "Scenes")."""
 ALL_FORMULATIONS = tuple(_taut.formulations)
 
 
+def _with_lists(doc: Optional[str]) -> Optional[str]:
+    """A docstring with its lists of names made from the library's enums
+    (`Formulation::ALL`, `Method::ALL`, `MeshKind::ALL`), so that a new
+    contact law, method or mesh kind needs no edit here."""
+    if doc is None:
+        return None
+    kinds = [k if k == "hermite" else f'"{k}:J"' for k in _taut.mesh_kinds]
+    return (
+        doc.replace("{FORMULATIONS}", ", ".join(ALL_FORMULATIONS))
+        .replace("{METHODS}", ", ".join(_taut.methods))
+        .replace("{DISCRETIZATIONS}", ", ".join(kinds))
+    )
+
+
 class Run:
     """One run's results.
 
@@ -867,11 +881,10 @@ def compare(
     discretizations on one scene (`taut compare`).
 
     Args:
-        formulations: lagrange, penalty, complementarity, impact.
-        methods: generalized_alpha, newmark, hht, wbz, bathe,
-            central_difference, moreau_jean, modal_exact (the last on a
-            galerkin or modal discretization only) (default: the scene's own).
-        discretizations: hermite, "galerkin:J", "modal:J" (default: the scene's own).
+        formulations: {FORMULATIONS}.
+        methods: {METHODS} (modal_exact on a galerkin or modal
+            discretization only) (default: the scene's own).
+        discretizations: {DISCRETIZATIONS} (default: the scene's own).
         reference: the formulation differences are measured against.
         reference_method: the method they are measured against (one of methods).
         set, batch, out, progress, yes: as for sweep().
@@ -901,6 +914,9 @@ def compare(
     t.failed = _not_run(failed)
     t.skipped = _not_run(skipped)
     return t
+
+
+compare.__doc__ = _with_lists(compare.__doc__)
 
 
 @_speaks_python

@@ -13,6 +13,8 @@ from typing import Callable, List, Optional, Tuple, Union, final
 __version__: str
 taut_version: str
 formulations: List[str]
+methods: List[str]
+mesh_kinds: List[str]
 
 __all__ = [
     "Simulation",
@@ -22,6 +24,8 @@ __all__ = [
     "converge",
     "formulations",
     "mesh",
+    "mesh_kinds",
+    "methods",
     "modes",
     "most_point_keys",
     "quantities",

@@ -49,3 +49,12 @@ def test_the_check_sees_a_python_option_the_library_does_not_declare():
     assert "levels" in options and _same_default(4, options["levels"])
     assert not _same_default(5, options["levels"])
     assert "bogus" not in options
+
+
+def test_compare_s_help_lists_the_library_s_names():
+    # the lists in compare()'s docstring are made from the library's enums
+    doc = taut.compare.__doc__
+    assert "{" not in doc
+    for name in [*taut.ALL_FORMULATIONS, *taut._taut.methods, *taut._taut.mesh_kinds]:
+        assert name in doc, name
+    assert "modal_exact" in taut._taut.methods and "hermite" in taut._taut.mesh_kinds

@@ -11,6 +11,9 @@
 //! …): the words are read, the counts checked and the defaults applied
 //! here, so both front ends refuse the same words with the same message
 //! (naming the CLI's flag; the Python module names its keyword instead).
+//! An option several commands share is a group declared once ([`Runs`],
+//! [`FormulationList`], [`CostBound`], [`Workers`]) and flattened into each;
+//! Python's keywords are checked against the command's clap arguments.
 //! `schema` lists every command's options (name, default, help), and the
 //! Python module's tests hold its functions' signatures against it.
 //!
@@ -27,7 +30,11 @@ use serde::Deserialize;
 use super::words;
 use crate::error::{Error, Result};
 use crate::scene::Formulation;
+#[cfg(feature = "clap")]
+use crate::scene::MeshKind;
 use crate::study::request;
+#[cfg(feature = "clap")]
+use crate::study::verify::case::Space;
 
 /// An option's value as a front end gives it, before it is read: the
 /// command line's text, or Python's number or string. Counts and ratios
@@ -123,11 +130,6 @@ fn count(w: &Option<Word>, check: impl Fn(usize) -> Result<usize>) -> Result<Opt
     w.as_ref().map(|w| w.count(check)).transpose()
 }
 
-/// `--threads N`: 1 ..= the most worker threads the library starts.
-fn threads(w: &Option<Word>) -> Result<Option<usize>> {
-    count(w, crate::study::threads::check_threads)
-}
-
 /// `--batch B`: 1 ..= the most runs stepped together.
 fn batch(w: &Option<Word>) -> Result<Option<usize>> {
     count(w, |n| request::batch_width(Some(n)).map(|_| n))
@@ -153,14 +155,142 @@ fn formulations_help() -> String {
     )
 }
 
+/// The help of a study's `--discretizations`: the kinds come from
+/// [`MeshKind::ALL`] (a modal basis with its optional J), so a new kind
+/// needs no edit here.
+#[cfg(feature = "clap")]
+fn discretizations_help() -> String {
+    let kinds: Vec<String> = MeshKind::ALL
+        .iter()
+        .map(|k| match k {
+            MeshKind::Hermite => k.name().to_string(),
+            _ => format!("{}[:J]", k.name()),
+        })
+        .collect();
+    format!(
+        "Comma-separated space discretizations to study side by side: {} (J: the number of \
+         modes; default the scene's mesh.modes). Default: the scene's own",
+        kinds.join(", ")
+    )
+}
+
+/// The help of `verify --discretizations`: the names come from the
+/// matrix's own list ([`Space::ALL`]).
+#[cfg(feature = "clap")]
+fn verify_discretizations_help() -> String {
+    format!(
+        "Comma-separated discretizations: {} (default: all; string elements run on the string cases)",
+        Space::ALL.map(Space::name).join(", ")
+    )
+}
+
+/// The help of `verify --formulations`: how many there are, in words,
+/// counted from [`Formulation::ALL`].
+#[cfg(feature = "clap")]
+fn verify_formulations_help() -> String {
+    const WORDS: [&str; 9] = [
+        "one", "two", "three", "four", "five", "six", "seven", "eight", "nine",
+    ];
+    let n = Formulation::ALL.len();
+    let all = WORDS
+        .get(n - 1)
+        .map_or_else(|| n.to_string(), |w| w.to_string());
+    format!("Comma-separated contact formulations (default: all {all})")
+}
+
 /// Every contact formulation, comma-separated in the order of
 /// [`Formulation::ALL`]: the default of `--formulations`.
 pub(crate) static ALL_FORMULATIONS: LazyLock<String> =
     LazyLock::new(|| Formulation::ALL.map(Formulation::name).join(","));
 
+/// The time integrators and space discretizations a study runs side by
+/// side (`--methods`, `--discretizations`): declared once, flattened into
+/// each study's options (a command whose help says more of them changes
+/// it with `mut_arg`).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct Runs {
+    /// Comma-separated time integrators (default: the scene's own).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = methods_help("", "the scene's own"))
+    )]
+    pub methods: Option<String>,
+    /// Comma-separated space discretizations to study side by side: the
+    /// kinds of `mesh.kind`, a modal one with `:J` (J: the number of modes;
+    /// default the scene's mesh.modes). Default: the scene's own.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = discretizations_help())
+    )]
+    pub discretizations: Option<String>,
+}
+
+impl Runs {
+    /// The two lists as [`words`] reads them.
+    fn lists(&self) -> (Option<&str>, Option<&str>) {
+        (self.methods.as_deref(), self.discretizations.as_deref())
+    }
+}
+
+/// The contact formulations a study runs side by side (`--formulations`;
+/// default: every one, in the order of [`Formulation::ALL`]).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct FormulationList {
+    /// Comma-separated formulations (default: every one, in the order of
+    /// `Formulation::ALL`).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = ALL_FORMULATIONS.as_str(), help = formulations_help())
+    )]
+    pub formulations: String,
+}
+
+impl Default for FormulationList {
+    fn default() -> Self {
+        FormulationList {
+            formulations: ALL_FORMULATIONS.to_string(),
+        }
+    }
+}
+
+/// `--yes`: a study starts even above the cost bound.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct CostBound {
+    /// Start even when the study's estimated cost is above 1e11
+    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub yes: bool,
+}
+
+/// `--threads N`: the worker threads of a study that runs in parallel.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct Workers {
+    /// Worker threads (default: all cores; at most 4 per core, 1024).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "N", allow_hyphen_values = true)
+    )]
+    pub threads: Option<Word>,
+}
+
+impl Workers {
+    /// The count: 1 ..= the most worker threads the library starts.
+    fn count(&self) -> Result<Option<usize>> {
+        count(&self.threads, crate::study::threads::check_threads)
+    }
+}
+
 /// `taut run` / `taut.run`: one scene, or an accuracy-targeted run.
 #[derive(Debug, Clone, Default, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct RunArgs {
     /// Choose mesh and Δt from measured convergence so the error of
@@ -191,30 +321,17 @@ impl RunArgs {
 /// `taut compare` / `taut.compare`: formulations × methods ×
 /// discretizations of one scene.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct CompareArgs {
-    /// Comma-separated formulations (default: every one, in the order of
-    /// `Formulation::ALL`).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, default_value = ALL_FORMULATIONS.as_str(), help = formulations_help())
-    )]
-    pub formulations: String,
-    /// Comma-separated time integrators (default: the scene's own).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "LIST", help = methods_help("", "the scene's own"))
-    )]
-    pub methods: Option<String>,
-    /// Comma-separated space discretizations to study side by side:
-    /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
-    /// the scene's mesh.modes). Default: the scene's own.
-    // the doc comment is also clap's help, printed as written: `[:J]`
-    // reads as an optional suffix there, not as a link
-    #[allow(rustdoc::broken_intra_doc_links)]
-    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
-    pub discretizations: Option<String>,
+    /// `--formulations`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub formulations: FormulationList,
+    /// `--methods`, `--discretizations`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub runs: Runs,
     /// The formulation the differences are measured against.
     #[cfg_attr(feature = "clap", arg(long, default_value = "lagrange"))]
     pub reference: String,
@@ -230,22 +347,21 @@ pub struct CompareArgs {
         arg(long, value_name = "B", allow_hyphen_values = true)
     )]
     pub batch: Option<Word>,
-    /// Start even when the study's estimated cost is above 1e11
-    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-    #[cfg_attr(feature = "clap", arg(long))]
-    pub yes: bool,
+    /// `--yes`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub cost: CostBound,
 }
 
 impl Default for CompareArgs {
     fn default() -> Self {
         CompareArgs {
-            formulations: ALL_FORMULATIONS.to_string(),
-            methods: None,
-            discretizations: None,
+            formulations: FormulationList::default(),
+            runs: Runs::default(),
             reference: "lagrange".to_string(),
             reference_method: None,
             batch: None,
-            yes: false,
+            cost: CostBound::default(),
         }
     }
 }
@@ -254,19 +370,23 @@ impl CompareArgs {
     /// The typed study.
     pub fn study(&self) -> Result<request::CompareStudy> {
         words::compare(
-            &self.formulations,
-            (self.methods.as_deref(), self.discretizations.as_deref()),
+            &self.formulations.formulations,
+            self.runs.lists(),
             (&self.reference, self.reference_method.as_deref()),
             batch(&self.batch)?,
-            self.yes,
+            self.cost.yes,
         )
     }
 }
 
 /// `taut converge` / `taut.converge`: a refinement ladder.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(
+    feature = "clap",
+    command(mut_arg("methods", |a| a.help(methods_help(" to study side by side", "the scene's own"))))
+)]
 pub struct ConvergeArgs {
     /// What to refine: mesh, step or both.
     #[cfg_attr(feature = "clap", arg(long, default_value = "both"))]
@@ -283,25 +403,14 @@ pub struct ConvergeArgs {
         arg(long, default_value = "2", allow_hyphen_values = true)
     )]
     pub ratio: Word,
-    /// Comma-separated time integrators to study side by side (default:
-    /// the scene's own).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "LIST", help = methods_help(" to study side by side", "the scene's own"))
-    )]
-    pub methods: Option<String>,
-    /// Comma-separated space discretizations to study side by side:
-    /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
-    /// the scene's mesh.modes). Default: the scene's own.
-    // the doc comment is also clap's help, printed as written: `[:J]`
-    // reads as an optional suffix there, not as a link
-    #[allow(rustdoc::broken_intra_doc_links)]
-    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
-    pub discretizations: Option<String>,
-    /// Start even when the study's estimated cost is above 1e11
-    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-    #[cfg_attr(feature = "clap", arg(long))]
-    pub yes: bool,
+    /// `--methods`, `--discretizations`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub runs: Runs,
+    /// `--yes`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub cost: CostBound,
 }
 
 impl Default for ConvergeArgs {
@@ -310,9 +419,8 @@ impl Default for ConvergeArgs {
             refine: "both".to_string(),
             levels: Word("4".to_string()),
             ratio: Word("2".to_string()),
-            methods: None,
-            discretizations: None,
-            yes: false,
+            runs: Runs::default(),
+            cost: CostBound::default(),
         }
     }
 }
@@ -326,8 +434,8 @@ impl ConvergeArgs {
         words::converge(
             &self.refine,
             (levels, ratio),
-            (self.methods.as_deref(), self.discretizations.as_deref()),
-            self.yes,
+            self.runs.lists(),
+            self.cost.yes,
         )
     }
 }
@@ -335,7 +443,7 @@ impl ConvergeArgs {
 /// `taut uncertainty` / `taut.uncertainty`: the numerical uncertainty of
 /// every reported quantity of one scene (solution verification).
 #[derive(Debug, Clone, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct UncertaintyArgs {
     /// Diagonal levels of the family (3 ..= 6; 2K − 1 runs).
@@ -344,17 +452,17 @@ pub struct UncertaintyArgs {
         arg(long, default_value = "4", allow_hyphen_values = true)
     )]
     pub levels: Word,
-    /// Start even when the study's estimated cost is above 1e11
-    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-    #[cfg_attr(feature = "clap", arg(long))]
-    pub yes: bool,
+    /// `--yes`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub cost: CostBound,
 }
 
 impl Default for UncertaintyArgs {
     fn default() -> Self {
         UncertaintyArgs {
             levels: Word("4".to_string()),
-            yes: false,
+            cost: CostBound::default(),
         }
     }
 }
@@ -363,33 +471,28 @@ impl UncertaintyArgs {
     /// The typed study: the levels by the study's own range.
     pub fn study(&self) -> Result<request::UncertaintyStudy> {
         let levels = self.levels.count(crate::study::uncertainty::check_levels)?;
-        words::uncertainty(levels, self.yes)
+        words::uncertainty(levels, self.cost.yes)
     }
 }
 
 /// `taut precision` / `taut.precision`: work against precision over a
 /// (mesh, Δt) grid.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(
+    feature = "clap",
+    command(mut_arg("formulations", |a| a.help("Comma-separated formulations")))
+)]
 pub struct PrecisionArgs {
-    /// Comma-separated formulations.
-    #[cfg_attr(feature = "clap", arg(long, default_value = ALL_FORMULATIONS.as_str()))]
-    pub formulations: String,
-    /// Comma-separated time integrators (default: the scene's own).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "LIST", help = methods_help("", "the scene's own"))
-    )]
-    pub methods: Option<String>,
-    /// Comma-separated space discretizations to study side by side:
-    /// hermite, galerkin[:J], modal[:J] (J: the number of modes; default
-    /// the scene's mesh.modes). Default: the scene's own.
-    // the doc comment is also clap's help, printed as written: `[:J]`
-    // reads as an optional suffix there, not as a link
-    #[allow(rustdoc::broken_intra_doc_links)]
-    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
-    pub discretizations: Option<String>,
+    /// `--formulations`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub formulations: FormulationList,
+    /// `--methods`, `--discretizations`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub runs: Runs,
     /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels; 1 ..= 5).
     #[cfg_attr(
         feature = "clap",
@@ -410,22 +513,21 @@ pub struct PrecisionArgs {
         arg(long, value_name = "B", allow_hyphen_values = true)
     )]
     pub batch: Option<Word>,
-    /// Start even when the study's estimated cost is above 1e11
-    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-    #[cfg_attr(feature = "clap", arg(long))]
-    pub yes: bool,
+    /// `--yes`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub cost: CostBound,
 }
 
 impl Default for PrecisionArgs {
     fn default() -> Self {
         PrecisionArgs {
-            formulations: ALL_FORMULATIONS.to_string(),
-            methods: None,
-            discretizations: None,
+            formulations: FormulationList::default(),
+            runs: Runs::default(),
             levels: Word("3".to_string()),
             ratio: Word("2".to_string()),
             batch: None,
-            yes: false,
+            cost: CostBound::default(),
         }
     }
 }
@@ -437,11 +539,11 @@ impl PrecisionArgs {
         let levels = self.levels.count(check_levels)?;
         let ratio = self.ratio.count(check_ratio)?;
         words::precision(
-            &self.formulations,
-            (self.methods.as_deref(), self.discretizations.as_deref()),
+            &self.formulations.formulations,
+            self.runs.lists(),
             (levels, ratio),
             batch(&self.batch)?,
-            self.yes,
+            self.cost.yes,
         )
     }
 }
@@ -449,7 +551,7 @@ impl PrecisionArgs {
 /// `taut sweep` / `taut.sweep`: scene values or dimensionless axes over a
 /// grid, or a list of points, in parallel; resumable.
 #[derive(Debug, Clone, Default, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct SweepArgs {
     /// An axis, key=start:stop:count, or key=v1,v2,... (a list of
@@ -513,12 +615,10 @@ pub struct SweepArgs {
         )
     )]
     pub max_cost: Option<Word>,
-    /// Worker threads (default: all cores; at most 4 per core, 1024).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "N", allow_hyphen_values = true)
-    )]
-    pub threads: Option<Word>,
+    /// `--threads`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub workers: Workers,
     /// Runs stepped together when they share their effective matrix
     /// (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of
     /// lanes). The records are the same bytes whatever the width.
@@ -527,10 +627,10 @@ pub struct SweepArgs {
         arg(long, value_name = "B", allow_hyphen_values = true)
     )]
     pub batch: Option<Word>,
-    /// Start even when the study's estimated cost is above 1e11
-    /// DOF-steps (unknowns × steps over its runs; docs/scene.md#study-cost).
-    #[cfg_attr(feature = "clap", arg(long))]
-    pub yes: bool,
+    /// `--yes`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub cost: CostBound,
 }
 
 /// A sweep as [`SweepArgs`] give it: what [`super::SweepRequest`] takes
@@ -559,7 +659,7 @@ impl SweepArgs {
     /// The typed sweep: axes parsed (or read from the points file), counts
     /// checked.
     pub fn study(&self) -> Result<SweepStudy> {
-        let threads = threads(&self.threads)?;
+        let threads = self.workers.count()?;
         let batch = request::batch_width(batch(&self.batch)?)?;
         let paired = self.paired || self.points.is_some();
         let axes = match &self.points {
@@ -603,14 +703,14 @@ impl SweepArgs {
             shard,
             threads,
             batch,
-            yes: self.yes,
+            yes: self.cost.yes,
         })
     }
 }
 
 /// `taut verify`: the verification matrix.
 #[derive(Debug, Clone, Default, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct VerifyArgs {
     /// Comma-separated time integrators (default: every built-in one).
@@ -619,28 +719,30 @@ pub struct VerifyArgs {
         arg(long, value_name = "LIST", help = methods_help("", "every built-in one"))
     )]
     pub methods: Option<String>,
-    /// Comma-separated discretizations: hermite, graded, galerkin,
-    /// modal (default: all; string elements run on the string cases).
-    #[cfg_attr(feature = "clap", arg(long, value_name = "LIST"))]
+    /// Comma-separated discretizations of the matrix (default: all;
+    /// string elements run on the string cases).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "LIST", help = verify_discretizations_help())
+    )]
     pub discretizations: Option<String>,
-    /// Comma-separated contact formulations (default: all four).
-    #[cfg_attr(feature = "clap", arg(long))]
+    /// Comma-separated contact formulations (default: all of
+    /// [`Formulation::ALL`]).
+    #[cfg_attr(feature = "clap", arg(long, help = verify_formulations_help()))]
     pub formulations: Option<String>,
     /// The cut-down matrix of the default test suite (two support pairs).
     #[cfg_attr(feature = "clap", arg(long))]
     pub quick: bool,
-    /// Worker threads (default: all cores; at most 4 per core, 1024).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "N", allow_hyphen_values = true)
-    )]
-    pub threads: Option<Word>,
+    /// `--threads`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub workers: Workers,
 }
 
 impl VerifyArgs {
     /// The typed matrix into `out`.
     pub fn request(&self, out: PathBuf) -> Result<super::VerifyRequest> {
-        let threads = threads(&self.threads)?;
+        let threads = self.workers.count()?;
         Ok(super::VerifyRequest {
             selection: crate::study::verify::selection(
                 self.methods.as_deref(),
@@ -656,7 +758,7 @@ impl VerifyArgs {
 
 /// `taut gate`: a golden suite re-run against its references.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct GateArgs {
     /// Suite folder of case files (*.json).
@@ -699,7 +801,7 @@ impl GateArgs {
 
 /// `taut modes` / `taut.modes`: natural frequencies and mode shapes.
 #[derive(Debug, Clone, Default, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct ModesArgs {
     /// Number of modes (default 10, or the mesh's unknowns if fewer).
@@ -725,7 +827,7 @@ impl ModesArgs {
 
 /// `taut replay`: a saved contact problem solved again.
 #[derive(Debug, Clone, Default, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct ReplayArgs {
     /// The saved problem (JSON).
@@ -767,21 +869,112 @@ impl ReplayArgs {
     }
 }
 
+/// A command's options as [`from_json`] reads them: the names it accepts
+/// are the command's flags as clap declares them (each option group
+/// flattened in), so the keyword check has no list of its own; and what
+/// the options make, read and checked ([`CommandArgs::typed`]), so that a
+/// front end's glue is one generic path for every command.
+#[cfg(feature = "clap")]
+pub trait CommandArgs: clap::Args + for<'de> Deserialize<'de> {
+    /// The command's name (`compare`: `taut compare`, `taut.compare`).
+    const COMMAND: &'static str;
+
+    /// Keywords the Python module passes that the CLI does not take (a
+    /// field clap skips).
+    const PYTHON_ONLY: &'static [&'static str] = &[];
+
+    /// What the options make: the typed study, or what the command's
+    /// request takes of them.
+    type Typed;
+
+    /// The options read and checked ([`CompareArgs::study`], …).
+    fn typed(&self) -> Result<Self::Typed>;
+
+    /// Every keyword the command accepts, in the order of its `--help`.
+    fn keywords() -> Vec<String> {
+        let command = Self::augment_args(clap::Command::new("keywords"));
+        let declared = command.get_arguments().map(|a| a.get_id().to_string());
+        declared
+            .chain(Self::PYTHON_ONLY.iter().map(|k| k.to_string()))
+            .collect()
+    }
+}
+
+/// The commands the Python module offers as well, one row each: the
+/// command, its options (with the keywords only Python passes, in
+/// brackets), what they make and the function that makes it. Each row is
+/// the command's [`CommandArgs`] and its entry in [`schema`], so that the
+/// list of commands is written once.
+macro_rules! python_commands {
+    ($($command:literal: $args:ty $([$($python:literal),*])? => $typed:ty, $make:expr;)*) => {
+        $(
+            #[cfg(feature = "clap")]
+            impl CommandArgs for $args {
+                const COMMAND: &'static str = $command;
+                $(const PYTHON_ONLY: &'static [&'static str] = &[$($python),*];)?
+                type Typed = $typed;
+                fn typed(&self) -> Result<$typed> {
+                    $make(self)
+                }
+            }
+        )*
+
+        /// Every command's options as the struct of this module declares
+        /// them: `(command, options)` for each command the Python module
+        /// offers as well, for its tests to hold the Python signatures
+        /// against.
+        #[cfg(feature = "clap")]
+        pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
+            vec![$(($command, options_of::<$args>())),*]
+        }
+    };
+}
+
+python_commands! {
+    "run": RunArgs => Option<super::Tolerance>, RunArgs::tolerance;
+    "compare": CompareArgs => request::CompareStudy, CompareArgs::study;
+    "converge": ConvergeArgs => request::ConvergeStudy, ConvergeArgs::study;
+    "uncertainty": UncertaintyArgs => request::UncertaintyStudy, UncertaintyArgs::study;
+    "precision": PrecisionArgs => request::PrecisionStudy, PrecisionArgs::study;
+    "sweep": SweepArgs ["paired"] => SweepStudy, SweepArgs::study;
+    "modes": ModesArgs => Option<usize>, ModesArgs::count;
+}
+
 /// Read a command's options from JSON (the Python module's keyword
 /// arguments): unknown names and values of the wrong kind are refused,
-/// naming the option.
-pub fn from_json<A: for<'de> Deserialize<'de>>(json: &str) -> Result<A> {
-    let mut d = serde_json::Deserializer::from_str(json);
-    serde_path_to_error::deserialize(&mut d).map_err(|e| {
-        let path = e.path().to_string();
-        let field = if path == "." {
-            "arguments".to_string()
-        } else {
-            format!("--{}", path.replace('_', "-"))
-        };
-        let reason = e.into_inner().to_string();
-        Error::invalid(field, reason, "an option of this command, of its kind")
-    })
+/// naming the option (an unknown one with the names allowed).
+#[cfg(feature = "clap")]
+pub fn from_json<A: CommandArgs>(json: &str) -> Result<A> {
+    const ALLOWED: &str = "an option of this command, of its kind";
+    let flag = |key: &str| format!("--{}", key.replace('_', "-"));
+    // the names first: the option groups are flattened, which serde's own
+    // check of unknown fields does not see through
+    if let Ok(serde_json::Value::Object(given)) = serde_json::from_str(json) {
+        let known = A::keywords();
+        if let Some(key) = given.keys().find(|k| !known.contains(k)) {
+            let expected = match known.as_slice() {
+                [] => "there are no options".to_string(),
+                [one] => format!("expected `{one}`"),
+                many => format!("expected one of `{}`", many.join("`, `")),
+            };
+            let reason = format!("unknown field `{key}`, {expected}");
+            return Err(Error::invalid(flag(key), reason, ALLOWED));
+        }
+        // a value of the wrong kind in a flattened group has no path:
+        // the keyword is the one whose value alone is refused
+        let all = serde_json::Value::Object(given.clone());
+        return serde_json::from_value::<A>(all).map_err(|e| {
+            let culprit = given.iter().find_map(|(k, v)| {
+                let alone = [(k.clone(), v.clone())].into_iter().collect();
+                let refused = serde_json::from_value::<A>(serde_json::Value::Object(alone));
+                refused.err().map(|e| (flag(k), e))
+            });
+            let (field, e) = culprit.unwrap_or_else(|| ("arguments".to_string(), e));
+            Error::invalid(field, e.to_string(), ALLOWED)
+        });
+    }
+    // not an object of keywords: the arguments as a whole are refused
+    serde_json::from_str(json).map_err(|e| Error::invalid("arguments", e.to_string(), ALLOWED))
 }
 
 /// One option as a front end declares it.
@@ -796,36 +989,23 @@ pub struct OptionSchema {
     pub help: String,
 }
 
-/// Every command's options as the struct of this module declares them:
-/// `(command, options)` for each command the Python module offers as well
-/// (`run`, `compare`, `converge`, `precision`, `sweep`, `modes`), for its
-/// tests to hold the Python signatures against.
+/// A command's options as its clap arguments declare them (hidden ones
+/// left out).
 #[cfg(feature = "clap")]
-pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
-    fn of<A: clap::Args>() -> Vec<OptionSchema> {
-        A::augment_args(clap::Command::new("schema"))
-            .get_arguments()
-            .filter(|a| !a.is_hide_set())
-            .map(|a| OptionSchema {
-                name: a.get_id().to_string(),
-                default: a
-                    .get_default_values()
-                    .first()
-                    .map(|v| v.to_string_lossy().into_owned())
-                    .filter(|v| v != "false"),
-                help: a.get_help().map(|h| h.to_string()).unwrap_or_default(),
-            })
-            .collect()
-    }
-    vec![
-        ("run", of::<RunArgs>()),
-        ("compare", of::<CompareArgs>()),
-        ("converge", of::<ConvergeArgs>()),
-        ("uncertainty", of::<UncertaintyArgs>()),
-        ("precision", of::<PrecisionArgs>()),
-        ("sweep", of::<SweepArgs>()),
-        ("modes", of::<ModesArgs>()),
-    ]
+fn options_of<A: clap::Args>() -> Vec<OptionSchema> {
+    A::augment_args(clap::Command::new("schema"))
+        .get_arguments()
+        .filter(|a| !a.is_hide_set())
+        .map(|a| OptionSchema {
+            name: a.get_id().to_string(),
+            default: a
+                .get_default_values()
+                .first()
+                .map(|v| v.to_string_lossy().into_owned())
+                .filter(|v| v != "false"),
+            help: a.get_help().map(|h| h.to_string()).unwrap_or_default(),
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -851,19 +1031,70 @@ mod tests {
         assert_eq!(Word(" 3 ".into()).count(check).unwrap(), 3);
     }
 
+    #[cfg(feature = "clap")]
     #[test]
     fn python_s_keywords_are_read_and_unknown_ones_refused() {
-        let a: CompareArgs = from_json(r#"{"batch": 2, "methods": "bathe"}"#).unwrap();
+        let a: CompareArgs = from_json(r#"{"batch": 2, "methods": "bathe", "yes": true}"#).unwrap();
         assert_eq!(a.batch, Some(Word("2".into())));
-        assert_eq!(a.formulations, *ALL_FORMULATIONS);
+        assert_eq!(a.runs.methods.as_deref(), Some("bathe"));
+        assert!(a.cost.yes);
+        assert_eq!(a.formulations.formulations, *ALL_FORMULATIONS);
+        let s: SweepArgs =
+            from_json(r#"{"vary": ["a=1,2"], "paired": true, "threads": 3}"#).unwrap();
+        assert!(s.paired);
+        assert_eq!(s.workers.threads, Some(Word("3".into())));
+        // an unknown keyword is named, with the ones allowed (options of
+        // the flattened groups among them)
         let e = from_json::<CompareArgs>(r#"{"bach": 2}"#)
             .unwrap_err()
             .to_string();
         assert!(e.contains("bach"), "{e}");
-        let e = from_json::<ConvergeArgs>(r#"{"levels": true}"#)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("--levels"), "{e}");
+        for allowed in [
+            "`formulations`",
+            "`methods`",
+            "`discretizations`",
+            "`batch`",
+            "`yes`",
+        ] {
+            assert!(e.contains(allowed), "{e}");
+        }
+        assert!(!e.contains("paired"), "{e}");
+        assert!(from_json::<CompareArgs>(r#"{"paired": true}"#).is_err());
+        // a value of the wrong kind is named, in a group or not
+        for (json, flag) in [
+            (r#"{"levels": true}"#, "--levels"),
+            (r#"{"refine": "mesh", "yes": 3}"#, "--yes"),
+            (r#"{"methods": 3}"#, "--methods"),
+        ] {
+            let e = from_json::<ConvergeArgs>(json).unwrap_err().to_string();
+            assert!(e.contains(flag), "{json}: {e}");
+        }
+        let e = from_json::<ConvergeArgs>("[1]").unwrap_err().to_string();
+        assert!(e.contains("arguments"), "{e}");
+    }
+
+    #[cfg(feature = "clap")]
+    #[test]
+    fn the_lists_in_the_help_are_the_enums() {
+        let s = schema();
+        let help = |cmd: &str, opt: &str| {
+            let o = s.iter().find(|(c, _)| *c == cmd).unwrap();
+            o.1.iter().find(|x| x.name == opt).unwrap().help.clone()
+        };
+        for cmd in ["compare", "converge", "precision"] {
+            let h = help(cmd, "discretizations");
+            for k in MeshKind::ALL {
+                assert!(h.contains(k.name()), "{cmd}: {h}");
+            }
+            let h = help(cmd, "methods");
+            for m in crate::scene::method_names() {
+                assert!(h.contains(&*m), "{cmd}: {h}");
+            }
+        }
+        let h = help("compare", "formulations");
+        for f in Formulation::ALL {
+            assert!(h.contains(f.name()), "{h}");
+        }
     }
 
     #[cfg(feature = "clap")]
@@ -886,7 +1117,10 @@ mod tests {
         assert_eq!(find("converge", "refine"), Some(c.refine));
         let p = PrecisionArgs::default();
         assert_eq!(find("precision", "levels"), Some(p.levels.0));
-        assert_eq!(find("precision", "formulations"), Some(p.formulations));
+        assert_eq!(
+            find("precision", "formulations"),
+            Some(p.formulations.formulations)
+        );
         let k = CompareArgs::default();
         assert_eq!(find("compare", "reference"), Some(k.reference));
         assert_eq!(find("compare", "batch"), None);

@@ -42,8 +42,8 @@ use crate::report::Outputs;
 use crate::study::cost::Estimate;
 
 pub use args::{
-    CompareArgs, ConvergeArgs, GateArgs, ModesArgs, PrecisionArgs, ReplayArgs, RunArgs, SweepArgs,
-    UncertaintyArgs, VerifyArgs, Word,
+    CompareArgs, ConvergeArgs, CostBound, FormulationList, GateArgs, ModesArgs, PrecisionArgs,
+    ReplayArgs, RunArgs, Runs, SweepArgs, UncertaintyArgs, VerifyArgs, Word, Workers,
 };
 pub use compare::{CompareRequest, compare};
 pub use converge::{ConvergeRequest, converge};

@@ -58,6 +58,9 @@ pub enum MeshKind {
 }
 
 impl MeshKind {
+    /// Every kind, in the order the help and the docs list them.
+    pub const ALL: [MeshKind; 3] = [MeshKind::Hermite, MeshKind::Galerkin, MeshKind::Modal];
+
     fn is_default(&self) -> bool {
         *self == MeshKind::Hermite
     }
