@@ -9,6 +9,8 @@ mod form;
 mod gate;
 mod html;
 mod incomplete;
+#[cfg(test)]
+mod legend_check;
 mod line;
 mod line_svg;
 mod modes;
