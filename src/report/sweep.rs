@@ -214,6 +214,24 @@ fn tolerance_columns(t: &mut Table, records: &[SweepRecord]) {
     );
 }
 
+/// `merge.csv` of `taut merge`: the shard folders it joined, one a row, as
+/// named on its command line. A merged folder's other files are the same
+/// bytes as a sweep's; this one tells the report (and a reader) which
+/// command wrote it.
+pub(crate) fn write_merge(dir: &Path, shards: &[std::path::PathBuf]) -> Result<()> {
+    let mut t = Table::new();
+    t.push(
+        "shard",
+        Column::Text(
+            shards
+                .iter()
+                .map(|s| Some(s.display().to_string()))
+                .collect(),
+        ),
+    );
+    t.write_csv(&dir.join("merge.csv"))
+}
+
 /// Write the CSV outputs of a sweep into `dir`. Wall and CPU times go to
 /// `timing.csv` only, so the other files are the same bytes on any machine
 /// and thread count.

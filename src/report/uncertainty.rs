@@ -454,3 +454,25 @@ fn value_range(
     let pad = style::ROBUST_MARGIN * 2.0 * e;
     Some((v0 - e - pad, v0 + e + pad))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panel_is_scaled_by_its_values_not_by_a_wide_bar() {
+        // level 0's bar is 100 times the others': the axis holds the values
+        // (and the extrapolated one), not the bar
+        let bars = [(0.0, 57.0, 50.0), (1.0, 57.2, 0.5), (2.0, 57.1, 0.2)];
+        let split = [(0.5, 57.3), (1.5, 57.15)];
+        let (lo, hi) = value_range(&bars, &split, Some(56.9)).unwrap();
+        assert!(lo < 56.9 && lo > 56.8, "{lo}");
+        assert!(hi > 57.3 && hi < 57.4, "{hi}");
+        // one value throughout: the bars set the axis
+        let flat = [(0.0, 2.0, 0.1), (1.0, 2.0, 0.05)];
+        let (lo, hi) = value_range(&flat, &[], None).unwrap();
+        assert!(lo < 1.9 && hi > 2.1 && hi - lo < 0.3, "{lo} {hi}");
+        // nothing finite: no axis
+        assert_eq!(value_range(&[(0.0, f64::NAN, 1.0)], &[], None), None);
+    }
+}
