@@ -1,5 +1,6 @@
 //! `sweep.csv`, `sweep_force.csv`, `sweep_loss.csv` and `timing.csv` of
-//! `taut sweep` / `taut merge` (maps: see `report::sweep_maps`).
+//! `taut sweep` / `taut merge`, and a merge's `merge.csv` (maps: see
+//! `report::sweep_maps`).
 
 use std::io::Write;
 use std::path::Path;

@@ -138,7 +138,9 @@ fn draw(path: &Path, key: &str, t: &Table) -> std::result::Result<(), Box<dyn st
                 .filter(|p| p.0.is_finite() && p.1.is_finite())
                 .collect();
             chart.draw_series(LineSeries::new(pts.clone(), col.stroke_width(2)))?;
-            chart.draw_series(pts.iter().map(|&p| style::marker(m, p, 3, col)))?;
+            // larger markers first: a later line on an earlier one leaves it showing
+            let r = (5 - i as i32).max(3);
+            chart.draw_series(pts.iter().map(|&p| style::marker(m, p, r, col)))?;
             entries.push((legend.to_string(), style::Key::Line(col, 2, Some(m))));
             if let Some(e) = e {
                 // ± u: a vertical bar with caps 1 % of the axis wide
