@@ -11,6 +11,8 @@
 //! - the uplift envelope: the largest and smallest v(x, t) over the run at
 //!   every node (`envelope.csv`), in mm, with the supports and their largest
 //!   uplift (`supports.csv`) marked.
+//!
+//! Each panel's legend is a column beside it ([`style::draw_legend`]).
 
 use std::path::Path;
 

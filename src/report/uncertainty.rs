@@ -229,7 +229,8 @@ fn abscissa(u: &Uncertainty) -> String {
 
 /// One panel a quantity: the diagonal's values with their ±U bars against
 /// the level, the split runs between levels, the extrapolated value
-/// dashed; the legend once, beside the panels.
+/// dashed, each panel on its own value axis ([`value_range`]); the legend
+/// once, beside the panels.
 fn draw(path: &Path, u: &Uncertainty) -> std::result::Result<(), Box<dyn std::error::Error>> {
     let shown: Vec<&QuantityUncertainty> = u
         .quantities
@@ -312,10 +313,10 @@ where
         .filter_map(|(i, v)| Some((i as f64 + 0.5, (*v)?)))
         .collect();
     let caption = format!("{} ({}): {}", q.quantity, q.unit, a.estimator.name());
-    let Some((lo, hi)) = value_range(&bars, &split, a.extrapolated) else {
-        return Ok(false);
-    };
-    let y = match super::axis_range::drawable("value", lo, hi, false) {
+    let range = value_range(&bars, &split, a.extrapolated)
+        .ok_or_else(|| "no value is a finite number".to_string())
+        .and_then(|(lo, hi)| super::axis_range::drawable("value", lo, hi, false));
+    let y = match range {
         Ok(y) => y,
         Err(reason) => {
             area.draw(&Text::new(
