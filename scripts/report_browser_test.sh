@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # taut report in a real browser: makes the outputs of the reference run, a
 # compare (methods that chatter beside one that does not), a convergence
-# ladder, an uncertainty family, a tolerance sweep, a line and a
-# form-finding run, at small settings (about 15 s of runs on 2 cores),
+# ladder, an uncertainty family, a tolerance sweep, a line, a
+# form-finding run, a work-precision grid and a sweep run in two shards and
+# merged, at small settings (about 20 s of runs on 2 cores),
 # writes one report.html of them (taut report), opens it in headless
 # Chromium at 1400 px wide (Debian's `chromium` package, installed here
 # with apt-get the way scripts/slurm_test.sh installs Slurm) and checks that
@@ -16,7 +17,8 @@
 #     there is one per plot file,
 #   * the page fetches nothing (no http(s) URL in it);
 # then keeps screenshots, out/report/report.png (the top) and
-# out/report/report-full.png (the whole page), and the page,
+# out/report/report-full.png (the whole page), one of each plot file,
+# out/report/plots/FOLDER-NAME.png, and the page,
 # out/report/report.html. Last it makes a report of a tampered folder (a
 # plot with a script, an onload handler, a javascript: iframe and images
 # on a local HTTP server; a table with markup in a cell), opens that page
@@ -69,10 +71,19 @@ t sweep scenes/reference.toml --vary speed_ratio=0.6:1.2:3 "${SHORT[@]}" \
 t run scenes/line_10_spans.toml --set time.end=1.0 --set output.envelope=true \
   --set 'analysis.spans=[0, 1]' --out "$OUT/line"
 t run scenes/catenary_designed.toml --set time.end=0.5 --out "$OUT/form"
-FOLDERS=(run compare converge uncertainty tolerance line form)
+t precision scenes/reference.toml --levels 2 --formulations lagrange,penalty "${SHORT[@]}" \
+  --out "$OUT/precision"
+# a 2-D sweep checked under refinement, run in two shards and merged
+for s in 0 1; do
+  t sweep scenes/reference.toml --vary speed_ratio=0.6:1.2:3 --vary beam.tension=1.5e4:2.5e4:2 \
+    --check-refinement "${SHORT[@]}" --shard "$s/2" --out "$OUT/shards/$s"
+done
+"$TAUT_BIN" merge "$OUT/shards/0" "$OUT/shards/1" --out "$OUT/merge" >/dev/null
+FOLDERS=(run compare converge uncertainty tolerance line form precision merge)
 # the command each folder's section names
 COMMANDS=("taut run" "taut compare" "taut converge" "taut uncertainty"
-  "taut sweep --tolerance (or merge)" "taut run (line)" "taut run (line, form-finding)")
+  "taut sweep --tolerance" "taut run (line)" "taut run (line, form-finding)"
+  "taut precision" "taut merge")
 "$TAUT_BIN" report "${FOLDERS[@]/#/$OUT/}" --out "$OUT/report.html" >/dev/null
 PAGE="$OUT/report.html"
 plots=$(ls "$OUT"/*/*.svg | wc -l)
@@ -186,6 +197,26 @@ fi
   --screenshot="$OUT/report-full.png" "file://$PAGE" >/dev/null 2>>"$OUT/chromium.log" \
   || fail "no full-page screenshot (log: $OUT/chromium.log)"
 rm -f "$CHECK" "$DOM"
+
+# --- a picture of each plot --------------------------------------------------------
+# every plot file as the browser draws it, at its own size, kept as
+# out/report/plots/FOLDER-NAME.png for a person to look at (that each
+# kind's legend lies beside its data, with distinct series, is checked from
+# the SVGs by `cargo test -p taut --lib report::legend_check`); a screenshot
+# of a few kB is a blank page
+mkdir -p "$OUT/plots"
+shots=0
+for svg in "$OUT"/*/*.svg; do
+  size=$(head -c 400 "$svg" | grep -o 'width="[0-9]*" height="[0-9]*"' | head -1 \
+    | sed -E 's/width="([0-9]+)" height="([0-9]+)"/\1,\2/')
+  [ -n "$size" ] || fail "$svg names no size"
+  png="$OUT/plots/$(basename "$(dirname "$svg")")-$(basename "$svg" .svg).png"
+  "${CHROMIUM[@]}" --hide-scrollbars --window-size="$size" --screenshot="$png" \
+    "file://$svg" >/dev/null 2>>"$OUT/chromium.log" || fail "no screenshot of $svg"
+  [ "$(stat -c %s "$png")" -gt 8000 ] || fail "the screenshot of $svg is blank ($png)"
+  shots=$((shots + 1))
+done
+echo "report browser test: $shots plots kept as pictures in $OUT/plots"
 
 # --- a tampered folder -----------------------------------------------------------------
 # the run's folder with a hostile plot and table, and a local HTTP server

@@ -169,6 +169,13 @@ fn same_bytes_for_any_thread_count_resume_and_shards() {
         merged.to_str().unwrap(),
     ]);
     assert_eq!(files(&one), files(&merged));
+    // the merge names its shards; a sweep writes no merge.csv
+    let shards = std::fs::read_to_string(merged.join("merge.csv")).unwrap();
+    assert!(
+        shards.starts_with("shard\n") && shards.contains("s1"),
+        "{shards}"
+    );
+    assert!(!one.join("merge.csv").exists());
 }
 
 #[test]

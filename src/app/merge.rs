@@ -40,6 +40,7 @@ fn merge_in(shards: &[PathBuf], out: &Path, fe: &dyn Frontend) -> Result<MergeOu
     // a folder holding another sweep is refused here, its tables kept
     let (spec, records) = merge_into(&claimed, shards)?;
     crate::report::write_sweep(staged.path(), &spec, &records)?;
+    crate::report::write_merge(staged.path(), shards)?;
     let maps = crate::report::write_sweep_maps(staged.path(), &spec, &records)?;
     let maps = maps.iter().map(|m| staged.in_place(m)).collect();
     let removed = staged.commit()?;

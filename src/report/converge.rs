@@ -387,7 +387,7 @@ const SIZE: (u32, u32) = (900 + style::LEGEND_WIDTH, 600);
 /// marker per series, the legend beside the plot), with reference slopes
 /// through the middle of the data, each dashed its own way and labelled
 /// "order p" at its right end.
-fn log_log(
+pub(super) fn log_log(
     path: &Path,
     caption: &str,
     x_desc: &str,

@@ -11,6 +11,8 @@
 //! - the uplift envelope: the largest and smallest v(x, t) over the run at
 //!   every node (`envelope.csv`), in mm, with the supports and their largest
 //!   uplift (`supports.csv`) marked.
+//!
+//! Each panel's legend is a column beside it ([`style::draw_legend`]).
 
 use std::path::Path;
 
@@ -18,6 +20,7 @@ use plotters::prelude::*;
 
 use super::PALETTE;
 use super::axis_range::{drawable, write_note};
+use super::style::{self, Key};
 use crate::error::{Error, Result};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
@@ -163,10 +166,11 @@ pub fn write_line_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()
         root.fill(&WHITE)?;
         let root = root.titled(&title, ("sans-serif", 18))?;
         let (upper, lower) = root.split_vertically(SIZE.1 / 2 - 20);
-        // each half's legend in a strip of its own on the right, off the wires
-        let (upper, upper_key) = upper.split_horizontally(SIZE.0 - LEGEND_STRIP);
-        let (lower, lower_key) = lower.split_horizontally(SIZE.0 - LEGEND_STRIP);
-        let mut key: Vec<(String, Mark)> = Vec::new();
+        // each half's legend in a column of its own on the right, off the wires
+        let split = style::legend_layout(SIZE).0[2];
+        let (upper, upper_key) = upper.split_horizontally(split);
+        let (lower, lower_key) = lower.split_horizontally(split);
+        let mut key: Vec<(String, Key)> = Vec::new();
 
         // the line
         let mut chart = ChartBuilder::on(&upper)
@@ -188,7 +192,7 @@ pub fn write_line_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()
             (vec![(0.0, 0.0), (l, 0.0)], "contact wire at rest")
         };
         chart.draw_series(LineSeries::new(wire, BLACK.stroke_width(2)))?;
-        key.push((wire_label.into(), Mark::Line(BLACK, 2)));
+        key.push((wire_label.into(), Key::Line(BLACK, 2, None)));
         let support = RGBColor(90, 90, 90);
         let masts = out
             .history
@@ -197,28 +201,28 @@ pub fn write_line_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()
             .map(|s| PathElement::new(vec![(s.x, hr.0), (s.x, hr.1)], support.stroke_width(2)));
         if !out.history.supports.is_empty() {
             chart.draw_series(masts)?;
-            key.push(("supports".into(), Mark::Bar(support, 2)));
+            key.push(("supports".into(), Key::Bar(support, 2)));
         }
         let dropper = PALETTE[2];
         if !sc.droppers.is_empty() {
             chart.draw_series(sc.droppers.iter().zip(&ends).map(|(d, &(z0, z1))| {
                 PathElement::new(vec![(d.x, z0), (d.x, z1)], dropper.stroke_width(1))
             }))?;
-            key.push(("droppers (to their anchors)".into(), Mark::Bar(dropper, 1)));
+            key.push(("droppers (to their anchors)".into(), Key::Bar(dropper, 1)));
         }
         if let Some(m) = messenger {
             let col = PALETTE[4];
             chart.draw_series(LineSeries::new(m, col.stroke_width(2)))?;
-            key.push(("messenger wire".into(), Mark::Line(col, 2)));
+            key.push(("messenger wire".into(), Key::Line(col, 2, None)));
         }
         for (c, span) in travel(out).into_iter().enumerate() {
             let Some((a, b)) = span else { continue };
             let y = bottom - step * (c as f64 + 1.0);
             let col = PALETTE[c % PALETTE.len()];
             chart.draw_series(LineSeries::new([(a, y), (b, y)], col.stroke_width(4)))?;
-            key.push((format!("carrier {c} travel"), Mark::Line(col, 4)));
+            key.push((format!("carrier {c} travel"), Key::Line(col, 4, None)));
         }
-        side_legend(&upper_key, &std::mem::take(&mut key))?;
+        style::draw_legend(&upper_key, &std::mem::take(&mut key), 24)?;
 
         // the uplift envelope
         let mut chart = ChartBuilder::on(&lower)
@@ -247,61 +251,20 @@ pub fn write_line_plot(path: &Path, sc: &Resolved, out: &RunOutput) -> Result<()
             let v = if k == 0 { &env.v_max } else { &env.v_min };
             let pts: Vec<(f64, f64)> = env.x.iter().zip(v).map(|(&x, &v)| (x, v * MM)).collect();
             chart.draw_series(LineSeries::new(pts, col.stroke_width(2)))?;
-            key.push((name.into(), Mark::Line(col, 2)));
+            key.push((name.into(), Key::Line(col, 2, None)));
         }
         if !out.history.supports.is_empty() {
-            chart.draw_series(
-                out.history
-                    .supports
-                    .iter()
-                    .map(|s| TriangleMarker::new((s.x, s.v_max * MM), 6, BLACK.filled())),
-            )?;
-            key.push(("uplift at the supports".into(), Mark::Triangle));
+            chart.draw_series(out.history.supports.iter().map(|s| {
+                style::marker(style::Marker::TriangleUp, (s.x, s.v_max * MM), 5, BLACK)
+            }))?;
+            key.push((
+                "uplift at the supports".into(),
+                Key::Mark(BLACK, style::Marker::TriangleUp),
+            ));
         }
-        side_legend(&lower_key, &key)?;
+        style::draw_legend(&lower_key, &key, 24)?;
         root.present()?;
         Ok(())
     };
     draw().map_err(fail)
-}
-
-/// Width of the strip that holds each half's legend, px.
-const LEGEND_STRIP: u32 = 230;
-
-/// How a legend entry is drawn.
-#[derive(Clone, Copy)]
-enum Mark {
-    /// A line of this colour and width.
-    Line(RGBColor, u32),
-    /// A short vertical bar (supports, droppers).
-    Bar(RGBColor, u32),
-    /// A black triangle (uplift at a support).
-    Triangle,
-}
-
-/// A legend in its own strip beside a chart: one entry a line, from the
-/// top.
-fn side_legend(
-    area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
-    entries: &[(String, Mark)],
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    for (k, (text, mark)) in entries.iter().enumerate() {
-        let y = 24 + 20 * k as i32;
-        match *mark {
-            Mark::Line(c, w) => {
-                area.draw(&PathElement::new(vec![(4, y), (26, y)], c.stroke_width(w)))?
-            }
-            Mark::Bar(c, w) => area.draw(&PathElement::new(
-                vec![(15, y - 7), (15, y + 7)],
-                c.stroke_width(w),
-            ))?,
-            Mark::Triangle => area.draw(&TriangleMarker::new((15, y), 5, BLACK.filled()))?,
-        }
-        area.draw(&Text::new(
-            text.clone(),
-            (32, y - 7),
-            ("sans-serif", 13).into_font(),
-        ))?;
-    }
-    Ok(())
 }

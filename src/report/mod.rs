@@ -9,6 +9,8 @@ mod form;
 mod gate;
 mod html;
 mod incomplete;
+#[cfg(test)]
+mod legend_check;
 mod line;
 mod line_svg;
 mod modes;
@@ -56,6 +58,7 @@ pub use standard::standard_table;
 pub(crate) use standard::write_standard;
 pub(crate) use summary::write_summary;
 pub use summary::{Derived, FormSummary, Summary, mesh_label};
+pub(crate) use sweep::write_merge;
 pub use sweep::{sweep_table, write_sweep};
 pub(crate) use sweep_maps::write_sweep_maps;
 pub use sweep_maps::{

@@ -76,6 +76,7 @@ impl Outputs {
                 "sweep_force.csv",
                 "sweep_loss.csv",
                 "timing.csv",
+                "merge.csv",
                 "sweep.svg",
                 "force_map.svg",
                 "loss_map.svg",

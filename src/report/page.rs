@@ -196,6 +196,11 @@ pub(crate) const FILES: &[(&str, Outputs, Show)] = &[
         ),
     ),
     (
+        "merge.csv",
+        Outputs::Sweep,
+        Show::Table("the shard folders this merge joined", &[]),
+    ),
+    (
         "timing.csv",
         Outputs::Sweep,
         Show::Table("wall time of each point", &[]),
@@ -280,11 +285,15 @@ pub(crate) fn command(kind: Outputs, present: &dyn Fn(&str) -> bool) -> String {
         Outputs::Uncertainty => "taut uncertainty",
         Outputs::Verify => "taut verify",
         Outputs::Sweep => {
-            return if present("tolerance.svg") || present("u_num_map.svg") {
-                "taut sweep --tolerance (or merge)".into()
-            } else {
-                "taut sweep (or merge)".into()
-            };
+            // a merge's tables and maps are a sweep's; its merge.csv is not
+            let tolerance = present("tolerance.svg") || present("u_num_map.svg");
+            return match (present("merge.csv"), tolerance) {
+                (true, true) => "taut merge (of a sweep --tolerance)",
+                (true, false) => "taut merge",
+                (false, true) => "taut sweep --tolerance",
+                (false, false) => "taut sweep",
+            }
+            .into();
         }
     };
     s.into()
@@ -631,6 +640,22 @@ pub(crate) fn run_verdict(warnings: &[String]) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_merged_folder_is_told_from_a_swept_one() {
+        let with = |files: &'static [&'static str]| move |f: &str| files.contains(&f);
+        let name = |files: &'static [&'static str]| command(Outputs::Sweep, &with(files));
+        assert_eq!(name(&["sweep.csv"]), "taut sweep");
+        assert_eq!(
+            name(&["sweep.csv", "tolerance.svg"]),
+            "taut sweep --tolerance"
+        );
+        assert_eq!(name(&["sweep.csv", "merge.csv"]), "taut merge");
+        assert_eq!(
+            name(&["sweep.csv", "merge.csv", "u_num_map.svg"]),
+            "taut merge (of a sweep --tolerance)"
+        );
+    }
 
     #[test]
     fn csv_cells_keep_quoted_commas() {

@@ -575,21 +575,6 @@ pub(crate) fn style_axes(
     Ok(())
 }
 
-/// The legend of a line plot, top left, in the room kept free above the
-/// lines.
-pub(crate) fn legend_upper_left<'a>(
-    chart: &mut Chart<'a, 'a>,
-) -> std::result::Result<(), Box<dyn std::error::Error>> {
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font(("sans-serif", 12))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .draw()?;
-    Ok(())
-}
-
 /// Pixel height of one panel of small multiples.
 const PANEL_HEIGHT: u32 = 260;
 

@@ -4,7 +4,7 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::PALETTE;
+use super::style;
 use super::table::{Column, Table};
 use crate::error::{Error, Result};
 use crate::study::precision::{Precision, PrecisionRow};
@@ -122,9 +122,17 @@ pub fn precision_table(p: &Precision) -> String {
     s
 }
 
-/// A labelled refinement path of one formulation and its line style.
-type RefinementPath<'a> = (&'a str, Vec<(f64, f64)>, ShapeStyle);
+/// A labelled refinement path of one formulation, its line width and
+/// dashes (none: solid).
+type RefinementPath<'a> = (&'a str, Vec<(f64, f64)>, u32, Option<(u32, u32)>);
 
+/// Pixel size of `precision.svg` (the legend column included).
+const SIZE: (u32, u32) = (900 + style::LEGEND_WIDTH, 600);
+
+/// Work–precision on log–log axes (decade ticks): a colour and a marker a
+/// (method, formulation), its three refinement paths solid (both refined)
+/// and dashed (mesh alone, step alone), Pareto points larger; the legend
+/// beside the plot.
 fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::error::Error>> {
     let ok = |r: &&PrecisionRow| r.force_error > 0.0 && r.wall_seconds > 0.0;
     let pts: Vec<&PrecisionRow> = p.rows.iter().filter(ok).collect();
@@ -145,25 +153,40 @@ fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::erro
     let ((x0, x1), (y0, y1)) = match ranges {
         Ok(r) => r,
         Err(reason) => {
-            super::axis_range::write_note(path, (900, 600), title, &reason, "precision.csv")?;
+            super::axis_range::write_note(path, SIZE, title, &reason, "precision.csv")?;
             return Ok(());
         }
     };
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    let root = SVGBackend::new(path, SIZE).into_drawing_area();
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 18))
+    let root = root.titled(title, ("sans-serif", 18))?;
+    let (plot_area, legend_area) = root.split_horizontally(style::legend_layout(SIZE).0[2]);
+    let (xm, xn) = style::decade_ticks(x0, x1);
+    let (ym, yn) = style::decade_ticks(y0, y1);
+    let mut chart = ChartBuilder::on(&plot_area)
         .margin(12)
         .x_label_area_size(45)
-        .y_label_area_size(80)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+        .y_label_area_size(70)
+        .build_cartesian_2d(
+            (x0..x1)
+                .log_scale()
+                .with_key_points(xm)
+                .with_light_points(xn),
+            (y0..y1)
+                .log_scale()
+                .with_key_points(ym)
+                .with_light_points(yn),
+        )?;
     chart
         .configure_mesh()
         .x_desc("wall time per run (s)")
-        .x_labels(6)
         .y_desc("relative RMS force error")
-        .x_label_formatter(&|x| format!("{x:.1e}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .axis_desc_style(("sans-serif", 14))
+        .label_style(("sans-serif", 12))
+        .bold_line_style(BLACK.mix(0.18))
+        .light_line_style(BLACK.mix(0.06))
+        .x_label_formatter(&|x| style::log_label(*x))
+        .y_label_formatter(&|y| style::log_label(*y))
         .draw()?;
     let levels = p.rows.iter().map(|r| r.mesh_level).max().unwrap_or(0);
     // one family of lines per (method, formulation), in row order
@@ -178,8 +201,9 @@ fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::erro
     keys.dedup();
     let several_methods = keys.iter().any(|k| k.0 != keys[0].0);
     let several_spaces = keys.iter().any(|k| k.1 != keys[0].1);
+    let mut legend: Vec<(String, style::Key)> = Vec::new();
     for (fi, key) in keys.iter().enumerate() {
-        let col = PALETTE[fi % PALETTE.len()];
+        let (col, m) = style::series_style(fi);
         let name = match (several_methods, several_spaces) {
             (true, true) => format!("{}/{}/{}", key.0, key.1, key.2),
             (true, false) => format!("{}/{}", key.0, key.2),
@@ -196,42 +220,52 @@ fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::erro
                 .collect()
         };
         let paths: [RefinementPath; 3] = [
-            (
-                "both",
-                of(&|r| r.mesh_level == r.step_level),
-                col.stroke_width(2),
-            ),
+            ("both", of(&|r| r.mesh_level == r.step_level), 2, None),
             (
                 "mesh",
                 of(&|r| r.step_level == levels),
-                col.mix(0.6).stroke_width(1),
+                1,
+                Some(style::DASHES[1]),
             ),
             (
                 "step",
                 of(&|r| r.mesh_level == levels),
-                col.mix(0.35).stroke_width(1),
+                1,
+                Some(style::DASHES[0]),
             ),
         ];
-        for (label, v, style) in paths {
-            chart
-                .draw_series(LineSeries::new(v, style))?
-                .label(format!("{name}, refine {label}"))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], style));
+        for (label, v, width, dash) in paths {
+            let label = format!("{name}, refine {label}");
+            match dash {
+                None => {
+                    chart.draw_series(LineSeries::new(v, col.stroke_width(width)))?;
+                    legend.push((label, style::Key::Line(col, width, Some(m))));
+                }
+                Some((on, off)) => {
+                    chart.draw_series(DashedLineSeries::new(
+                        v,
+                        on,
+                        off,
+                        col.stroke_width(width),
+                    ))?;
+                    legend.push((label, style::Key::Dashed(col, (on, off))));
+                }
+            }
         }
         chart.draw_series(p.rows.iter().filter(|r| of_key(r)).filter(ok).map(|r| {
-            Circle::new(
+            style::marker(
+                m,
                 (r.wall_seconds, r.force_error),
-                if r.pareto { 5 } else { 2 },
-                col.filled(),
+                if r.pareto { 5 } else { 3 },
+                col,
             )
         }))?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
+    legend.push((
+        "larger marker: on the Pareto front".into(),
+        style::Key::Mark(BLACK, style::Marker::Circle),
+    ));
+    style::draw_legend(&legend_area, &legend, 50)?;
     root.present()?;
     Ok(())
 }

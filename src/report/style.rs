@@ -345,6 +345,8 @@ pub(crate) enum Key {
     Shade(RGBAColor),
     /// A marker alone.
     Mark(RGBColor, Marker),
+    /// A short vertical bar of this width (supports, droppers).
+    Bar(RGBColor, u32),
 }
 
 /// Draw a legend of `entries` in `area` (beside the plot), top down.
@@ -383,6 +385,10 @@ where
                 area.draw(&Rectangle::new([(8, y - 5), (32, y + 5)], c.filled()))?;
             }
             Key::Mark(c, m) => area.draw(&marker(m, (20, y), 4, c))?,
+            Key::Bar(c, width) => area.draw(&PathElement::new(
+                vec![(20, y - 7), (20, y + 7)],
+                c.stroke_width(width),
+            ))?,
         }
         // long labels wrap onto a second line rather than run off the page
         let (first, rest) = split_label(label, max_chars);

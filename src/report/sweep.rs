@@ -1,5 +1,6 @@
 //! `sweep.csv`, `sweep_force.csv`, `sweep_loss.csv` and `timing.csv` of
-//! `taut sweep` / `taut merge` (maps: see `report::sweep_maps`).
+//! `taut sweep` / `taut merge`, and a merge's `merge.csv` (maps: see
+//! `report::sweep_maps`).
 
 use std::io::Write;
 use std::path::Path;
@@ -212,6 +213,24 @@ fn tolerance_columns(t: &mut Table, records: &[SweepRecord]) {
                 .collect(),
         ),
     );
+}
+
+/// `merge.csv` of `taut merge`: the shard folders it joined, one a row, as
+/// named on its command line. A merged folder's other files are the same
+/// bytes as a sweep's; this one tells the report (and a reader) which
+/// command wrote it.
+pub(crate) fn write_merge(dir: &Path, shards: &[std::path::PathBuf]) -> Result<()> {
+    let mut t = Table::new();
+    t.push(
+        "shard",
+        Column::Text(
+            shards
+                .iter()
+                .map(|s| Some(s.display().to_string()))
+                .collect(),
+        ),
+    );
+    t.write_csv(&dir.join("merge.csv"))
 }
 
 /// Write the CSV outputs of a sweep into `dir`. Wall and CPU times go to

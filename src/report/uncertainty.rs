@@ -229,7 +229,8 @@ fn abscissa(u: &Uncertainty) -> String {
 
 /// One panel a quantity: the diagonal's values with their ±U bars against
 /// the level, the split runs between levels, the extrapolated value
-/// dashed; the legend once, beside the panels.
+/// dashed, each panel on its own value axis ([`value_range`]); the legend
+/// once, beside the panels.
 fn draw(path: &Path, u: &Uncertainty) -> std::result::Result<(), Box<dyn std::error::Error>> {
     let shown: Vec<&QuantityUncertainty> = u
         .quantities
@@ -253,10 +254,11 @@ fn draw(path: &Path, u: &Uncertainty) -> std::result::Result<(), Box<dyn std::er
     let (body, legend) = body.split_horizontally(style::legend_layout((w, h)).0[2]);
     let x_desc = abscissa(u);
     let panels = body.split_evenly((rows, cols));
+    let mut clipped = false;
     for (q, area) in shown.iter().zip(panels.iter()) {
-        panel(area, q, u.levels, &x_desc)?;
+        clipped |= panel(area, q, u.levels, &x_desc)?;
     }
-    let key = [
+    let mut key = vec![
         (
             format!("value ± u_num ({} and Δt refined)", u.level_symbol),
             style::Key::Line(PALETTE[0], 2, Some(style::Marker::Circle)),
@@ -270,6 +272,12 @@ fn draw(path: &Path, u: &Uncertainty) -> std::result::Result<(), Box<dyn std::er
             style::Key::Dashed(RGBColor(110, 110, 110), (6, 4)),
         ),
     ];
+    if clipped {
+        key.push((
+            "bar beyond the axis (clipped; axis from the values)".into(),
+            style::Key::Mark(BLACK, style::Marker::TriangleUp),
+        ));
+    }
     style::draw_legend(&legend, &key, 30)?;
     root.present()?;
     Ok(())
@@ -283,7 +291,7 @@ fn panel<DB: DrawingBackend>(
     q: &QuantityUncertainty,
     levels: usize,
     x_desc: &str,
-) -> std::result::Result<(), Box<dyn std::error::Error>>
+) -> std::result::Result<bool, Box<dyn std::error::Error>>
 where
     DB::ErrorType: 'static,
 {
@@ -304,22 +312,11 @@ where
         .enumerate()
         .filter_map(|(i, v)| Some((i as f64 + 0.5, (*v)?)))
         .collect();
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for &(_, v, e) in &bars {
-        lo = lo.min(v - e);
-        hi = hi.max(v + e);
-    }
-    for &(_, v) in &split {
-        lo = lo.min(v);
-        hi = hi.max(v);
-    }
-    if let Some(x) = a.extrapolated.filter(|x| x.is_finite()) {
-        lo = lo.min(x);
-        hi = hi.max(x);
-    }
     let caption = format!("{} ({}): {}", q.quantity, q.unit, a.estimator.name());
-    let pad = 0.08 * (hi - lo).abs();
-    let y = match super::axis_range::drawable("value", lo - pad, hi + pad, false) {
+    let range = value_range(&bars, &split, a.extrapolated)
+        .ok_or_else(|| "no value is a finite number".to_string())
+        .and_then(|(lo, hi)| super::axis_range::drawable("value", lo, hi, false));
+    let y = match range {
         Ok(y) => y,
         Err(reason) => {
             area.draw(&Text::new(
@@ -327,7 +324,7 @@ where
                 (10, 20),
                 ("sans-serif", 12).into_font(),
             ))?;
-            return Ok(());
+            return Ok(false);
         }
     };
     // a range tiny against its values is drawn as an offset and small labels
@@ -372,20 +369,111 @@ where
             RGBColor(110, 110, 110).stroke_width(1),
         ))?;
     }
+    // a bar or value beyond the axis ends at the edge, a triangle there
+    let clamp = |v: f64| v.clamp(y.0, y.1) - off;
+    let mut clipped = false;
+    let mut beyond = |v: f64, x: f64| -> Option<style::MarkerElement<(f64, f64)>> {
+        let shape = if v > y.1 {
+            style::Marker::TriangleUp
+        } else if v < y.0 {
+            style::Marker::TriangleDown
+        } else {
+            return None;
+        };
+        clipped = true;
+        Some(style::marker(shape, (x, clamp(v)), 4, BLACK))
+    };
+    let mut edges = Vec::new();
     for &(l, v, e) in &bars {
         if e > 0.0 {
             chart.draw_series(LineSeries::new(
-                vec![(l, v - e - off), (l, v + e - off)],
+                vec![(l, clamp(v - e)), (l, clamp(v + e))],
                 col.stroke_width(2),
             ))?;
         }
-        chart.draw_series(std::iter::once(Circle::new((l, v - off), 4, col.filled())))?;
+        edges.extend(beyond(v + e, l));
+        edges.extend(beyond(v - e, l));
+        if (y.0..=y.1).contains(&v) {
+            chart.draw_series(std::iter::once(Circle::new((l, v - off), 4, col.filled())))?;
+        }
     }
     let sq = PALETTE[1];
-    chart.draw_series(
-        split
-            .iter()
-            .map(|&(x, v)| Cross::new((x, v - off), 4, sq.stroke_width(2))),
-    )?;
-    Ok(())
+    for &(x, v) in &split {
+        match beyond(v, x) {
+            Some(m) => edges.push(m),
+            None => {
+                chart.draw_series(std::iter::once(Cross::new(
+                    (x, v - off),
+                    4,
+                    sq.stroke_width(2),
+                )))?;
+            }
+        }
+    }
+    chart.draw_series(edges)?;
+    Ok(clipped)
+}
+
+/// The value axis of a panel: the robust range ([`style::robust_range`])
+/// of the values drawn (the diagonal's, the split runs', the extrapolated
+/// one kept whole), not of the bars: a first level's bar ten times the
+/// others' no longer squashes the levels that converge (what a bar or
+/// value leaves the axis by is marked ▲▼ at its edge). Where every value
+/// is the same the bars set it (with [`style::ROBUST_MARGIN`]); None
+/// without a finite value.
+fn value_range(
+    bars: &[(f64, f64, f64)],
+    split: &[(f64, f64)],
+    extrapolated: Option<f64>,
+) -> Option<(f64, f64)> {
+    let x = extrapolated.filter(|x| x.is_finite());
+    let mut values: Vec<f64> = bars
+        .iter()
+        .map(|b| b.1)
+        .chain(split.iter().map(|s| s.1))
+        .chain(x)
+        .filter(|v| v.is_finite())
+        .collect();
+    let (v0, v1) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    if !v0.is_finite() {
+        return None;
+    }
+    if v1 > v0 {
+        let keep = x.unwrap_or(f64::NAN);
+        return style::robust_range(&mut values, (keep, keep));
+    }
+    // one value: the bars around it (or the axis code's own widening)
+    let e = bars
+        .iter()
+        .map(|b| b.2.abs())
+        .filter(|e| e.is_finite())
+        .fold(0.0, f64::max);
+    let pad = style::ROBUST_MARGIN * 2.0 * e;
+    Some((v0 - e - pad, v0 + e + pad))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panel_is_scaled_by_its_values_not_by_a_wide_bar() {
+        // level 0's bar is 100 times the others': the axis holds the values
+        // (and the extrapolated one), not the bar
+        let bars = [(0.0, 57.0, 50.0), (1.0, 57.2, 0.5), (2.0, 57.1, 0.2)];
+        let split = [(0.5, 57.3), (1.5, 57.15)];
+        let (lo, hi) = value_range(&bars, &split, Some(56.9)).unwrap();
+        assert!(lo < 56.9 && lo > 56.8, "{lo}");
+        assert!(hi > 57.3 && hi < 57.4, "{hi}");
+        // one value throughout: the bars set the axis
+        let flat = [(0.0, 2.0, 0.1), (1.0, 2.0, 0.05)];
+        let (lo, hi) = value_range(&flat, &[], None).unwrap();
+        assert!(lo < 1.9 && hi > 2.1 && hi - lo < 0.3, "{lo} {hi}");
+        // nothing finite: no axis
+        assert_eq!(value_range(&[(0.0, f64::NAN, 1.0)], &[], None), None);
+    }
 }

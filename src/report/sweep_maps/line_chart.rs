@@ -3,7 +3,8 @@
 //! mean, its statistical max and min F_m ± 3σ and its actual max), read
 //! from `sweep.csv`'s own table, with error bars where the table has an
 //! uncertainty column for a quantity (`<column>_u_num`, or
-//! `<column>_uncertainty`: ± that value).
+//! `<column>_uncertainty`: ± that value). Each panel's legend is beside
+//! it, a colour and a marker a line ([`style`]).
 
 use std::path::Path;
 
@@ -11,8 +12,8 @@ use plotters::prelude::*;
 
 use super::axes::axis_label;
 use crate::error::{Error, Result};
-use crate::report::PALETTE;
-use crate::report::plot::{legend_upper_left, style_axes};
+use crate::report::plot::style_axes;
+use crate::report::style;
 use crate::report::table::{Column, Table};
 
 /// The columns of each panel: (y axis label, [(column, legend)]).
@@ -41,8 +42,8 @@ const PANELS: [PanelSpec<'static>; 2] = [
 /// A line of a panel: its legend, its values and their ± errors, if any.
 type Line<'a> = (&'a str, Vec<f64>, Option<Vec<f64>>);
 
-/// Pixel size of `sweep.svg`.
-const SIZE: (u32, u32) = (960, 720);
+/// Pixel size of `sweep.svg` (the legend column included).
+const SIZE: (u32, u32) = (960 + style::LEGEND_WIDTH, 720);
 
 /// The values of column `name` of `t` as reals (NaN for an empty cell);
 /// the statistical max and min are made from the mean and σ columns.
@@ -99,7 +100,10 @@ fn draw(path: &Path, key: &str, t: &Table) -> std::result::Result<(), Box<dyn st
         return Ok(());
     }
     let xpad = 0.02 * (x1 - x0).max(1e-12 * x1.abs().max(1.0));
-    for ((y_desc, lines), area) in PANELS.iter().zip(root.split_evenly((2, 1))) {
+    for ((y_desc, lines), row) in PANELS.iter().zip(root.split_evenly((2, 1))) {
+        let (w, h) = row.dim_in_pixel();
+        let (area, legend_area) = row.split_horizontally(style::legend_layout((w, h)).0[2]);
+        let mut entries: Vec<(String, style::Key)> = Vec::new();
         let data: Vec<Line<'_>> = lines
             .iter()
             .filter_map(|(name, legend)| Some((*legend, column(t, name)?, error_bars(t, name))))
@@ -118,7 +122,7 @@ fn draw(path: &Path, key: &str, t: &Table) -> std::result::Result<(), Box<dyn st
             (y0, y1) = (0.0, 1.0);
         }
         let span = (y1 - y0).max(1e-9 * y1.abs().max(1.0));
-        let (y0, y1) = (y0 - 0.05 * span, y1 + 0.3 * span);
+        let (y0, y1) = (y0 - 0.05 * span, y1 + 0.05 * span);
         let mut chart = ChartBuilder::on(&area)
             .margin(12)
             .x_label_area_size(44)
@@ -126,20 +130,18 @@ fn draw(path: &Path, key: &str, t: &Table) -> std::result::Result<(), Box<dyn st
             .build_cartesian_2d((x0 - xpad)..(x1 + xpad), y0..y1)?;
         style_axes(&mut chart, &axis_label(key), y_desc)?;
         for (i, (legend, y, e)) in data.iter().enumerate() {
-            let col = PALETTE[i % PALETTE.len()];
+            let (col, m) = style::series_style(i);
             let pts: Vec<(f64, f64)> = x
                 .iter()
                 .zip(y)
                 .map(|(&a, &b)| (a, b))
                 .filter(|p| p.0.is_finite() && p.1.is_finite())
                 .collect();
-            chart
-                .draw_series(LineSeries::new(pts.clone(), col.stroke_width(2)))?
-                .label(*legend)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(2))
-                });
-            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, col.filled())))?;
+            chart.draw_series(LineSeries::new(pts.clone(), col.stroke_width(2)))?;
+            // larger markers first: a later line on an earlier one leaves it showing
+            let r = (5 - i as i32).max(3);
+            chart.draw_series(pts.iter().map(|&p| style::marker(m, p, r, col)))?;
+            entries.push((legend.to_string(), style::Key::Line(col, 2, Some(m))));
             if let Some(e) = e {
                 // ± u: a vertical bar with caps 1 % of the axis wide
                 let cap = 0.01 * (x1 - x0);
@@ -160,7 +162,7 @@ fn draw(path: &Path, key: &str, t: &Table) -> std::result::Result<(), Box<dyn st
                 }
             }
         }
-        legend_upper_left(&mut chart)?;
+        style::draw_legend(&legend_area, &entries, 24)?;
     }
     root.present()?;
     Ok(())
