@@ -274,7 +274,7 @@ fn draw(path: &Path, u: &Uncertainty) -> std::result::Result<(), Box<dyn std::er
     ];
     if clipped {
         key.push((
-            "bar beyond the axis (clipped; axis from the values)".into(),
+            "bar beyond the axis (an outlier, clipped)".into(),
             style::Key::Mark(BLACK, style::Marker::TriangleUp),
         ));
     }
@@ -414,13 +414,21 @@ where
     Ok(clipped)
 }
 
+/// A bar whose half-width is more than this many times the median bar's
+/// is an outlier: the axis does not stretch to hold it (its end is marked
+/// ▲▼ at the edge). A pre-asymptotic first level's bar is typically 10–100×
+/// the finer levels' (docs/verification.md); bars within a factor of a few
+/// of one another are all drawn whole, since reading them is the plot's
+/// purpose.
+const BAR_OUTLIER: f64 = 4.0;
+
 /// The value axis of a panel: the robust range ([`style::robust_range`])
 /// of the values drawn (the diagonal's, the split runs', the extrapolated
-/// one kept whole), not of the bars: a first level's bar ten times the
-/// others' no longer squashes the levels that converge (what a bar or
-/// value leaves the axis by is marked ▲▼ at its edge). Where every value
-/// is the same the bars set it (with [`style::ROBUST_MARGIN`]); None
-/// without a finite value.
+/// one kept whole) and of the ends of every bar that is not an outlier
+/// ([`BAR_OUTLIER`]): a first level's bar ten times the others' no longer
+/// squashes the levels that converge, while the ordinary bars show whole.
+/// Where every value is the same the bars set it (with
+/// [`style::ROBUST_MARGIN`]); None without a finite value.
 fn value_range(
     bars: &[(f64, f64, f64)],
     split: &[(f64, f64)],
@@ -442,16 +450,26 @@ fn value_range(
     if !v0.is_finite() {
         return None;
     }
+    let mut widths: Vec<f64> = bars
+        .iter()
+        .map(|b| b.2.abs())
+        .filter(|e| e.is_finite() && *e > 0.0)
+        .collect();
     if v1 > v0 {
+        widths.sort_by(f64::total_cmp);
+        if let Some(&median) = widths.get(widths.len() / 2) {
+            for &(_, v, e) in bars {
+                if v.is_finite() && e.is_finite() && e > 0.0 && e <= BAR_OUTLIER * median {
+                    values.push(v - e);
+                    values.push(v + e);
+                }
+            }
+        }
         let keep = x.unwrap_or(f64::NAN);
         return style::robust_range(&mut values, (keep, keep));
     }
     // one value: the bars around it (or the axis code's own widening)
-    let e = bars
-        .iter()
-        .map(|b| b.2.abs())
-        .filter(|e| e.is_finite())
-        .fold(0.0, f64::max);
+    let e = widths.iter().copied().fold(0.0, f64::max);
     let pad = style::ROBUST_MARGIN * 2.0 * e;
     Some((v0 - e - pad, v0 + e + pad))
 }
@@ -467,8 +485,9 @@ mod tests {
         let bars = [(0.0, 57.0, 50.0), (1.0, 57.2, 0.5), (2.0, 57.1, 0.2)];
         let split = [(0.5, 57.3), (1.5, 57.15)];
         let (lo, hi) = value_range(&bars, &split, Some(56.9)).unwrap();
-        assert!(lo < 56.9 && lo > 56.8, "{lo}");
-        assert!(hi > 57.3 && hi < 57.4, "{hi}");
+        // the ordinary bars show whole (57.2 ± 0.5 reaches 56.7 and 57.7)
+        assert!(lo < 56.7 && lo > 56.5, "{lo}");
+        assert!(hi > 57.7 && hi < 57.9, "{hi}");
         // one value throughout: the bars set the axis
         let flat = [(0.0, 2.0, 0.1), (1.0, 2.0, 0.05)];
         let (lo, hi) = value_range(&flat, &[], None).unwrap();
