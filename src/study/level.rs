@@ -72,17 +72,4 @@ impl Level {
         }
         v
     }
-
-    /// J on a modal basis (None for a Hermite mesh).
-    pub(crate) fn modes(&self, n: usize) -> Option<usize> {
-        match self {
-            Level::Elements(_) => None,
-            _ => Some(n),
-        }
-    }
-
-    /// The level of a resolved scene.
-    pub(crate) fn of_scene(&self, sc: &Resolved) -> usize {
-        sc.discretization.modes().unwrap_or(sc.elements)
-    }
 }
