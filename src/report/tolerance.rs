@@ -151,7 +151,7 @@ fn unit(u: &str) -> String {
 
 fn estimate_text(r: &ResultEstimate) -> String {
     match r.u_num {
-        Some(u) if u == 0.0 => format!("± 0 (u_num, {})", r.estimator),
+        Some(0.0) => format!("± 0 (u_num, {})", r.estimator),
         Some(u) => format!("± {u:.2e} (u_num, {})", r.estimator),
         None => format!("no u_num (values {})", r.behaviour),
     }

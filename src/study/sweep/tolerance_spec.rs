@@ -56,10 +56,7 @@ impl SweepTolerance {
             return Err(Error::invalid(
                 "--quantity",
                 quantity,
-                format!(
-                    "must be one of {} (with --tolerance on a sweep)",
-                    names.join(", ")
-                ),
+                format!("must be one of {} (with --tolerance)", names.join(", ")),
             ));
         }
         if !(tolerance.is_finite() && tolerance > 0.0) {
