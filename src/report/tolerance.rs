@@ -153,6 +153,7 @@ fn estimate_text(r: &ResultEstimate) -> String {
     match r.u_num {
         Some(0.0) => format!("± 0 (u_num, {})", r.estimator),
         Some(u) => format!("± {u:.2e} (u_num, {})", r.estimator),
+        None if r.value.is_none() => "no u_num (undefined)".to_string(),
         None => format!("no u_num (values {})", r.behaviour),
     }
 }

@@ -574,7 +574,23 @@ fn fail(p: &mut Point, spec: &SweepSpec, id: &str, key: Key, e: Error) {
     if matches!(p.stage, Stage::Done) {
         return;
     }
-    let e = e.in_run(&format!("--tolerance's run {}", describe(p, key)));
+    let run = format!("--tolerance's run {}", describe(p, key));
+    // a scene refused at a refined level: the scene's own run is accepted,
+    // so say which run it is and why it is made
+    let e = match e {
+        Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => Error::invalid(
+            field,
+            value,
+            format!(
+                "{allowed} (in {run}, which --tolerance makes to measure convergence: every run of its families must be accepted, so give values that hold 2 and 4 times finer and coarser in mesh and step)"
+            ),
+        ),
+        other => other.in_run(&run),
+    };
     let mut record = record_of(spec, None, id, p.index, None, Err(&e));
     // the work the point took before it stopped
     record.dof_steps = Some(p.spent());
