@@ -703,8 +703,8 @@ def run(
             (default 64).
         out: a folder to write the CLI's files into as well (history.csv,
             summary.json, force.svg; accuracy.csv with a tolerance).
-        progress: see the module doc (steps done, steps; pilot runs done,
-            runs with a tolerance).
+        progress: see the module doc (steps done, steps; with a tolerance,
+            0 of 1 run at the start and 1 of 1 at the end).
 
     Returns:
         Run with `.summary` (dict of summary.json), `.history` (Table of
