@@ -196,6 +196,18 @@ fn tolerance_run_writes_a_u_num_next_to_every_result() {
         rows.iter().filter(|r| r.starts_with("reported,")).count(),
         1
     );
+    // and `taut report` reads the run's u_num
+    let page = tmp.path().join("report.html");
+    taut::app::report(&taut::app::ReportRequest {
+        dirs: vec![dir.clone()],
+        out: Some(page.clone()),
+    })
+    .unwrap();
+    let html = std::fs::read_to_string(page).unwrap();
+    assert!(
+        html.contains("accuracy target on force_mean") && html.contains("(u_num, "),
+        "the report's accuracy line"
+    );
 }
 
 // ---- bad input ------------------------------------------------------------
