@@ -1,6 +1,6 @@
 //! The level parameter a study refines in space: N of a Hermite mesh, J of
-//! a modal basis (`run --tolerance`'s pilots, `taut uncertainty`'s family,
-//! the accuracy-targeted sweep).
+//! a modal basis (`taut uncertainty`'s family, the accuracy-targeted sweep
+//! and so `run --tolerance`).
 
 use crate::resolve::Resolved;
 use crate::scene::{Discretization, MeshKind};

@@ -12,7 +12,7 @@
 //!    own run. Q's u_num at (0, 0) ([`assess`]; for a quantity that is
 //!    not smooth, at least the [split floor](crate::study::uncertainty::assess::split_floor): its mesh and Δt parts added
 //!    without their signs); within EPS: done.
-//! 2. **Plan**: `run --tolerance`'s error model from the split's mesh and
+//! 2. **Plan**: the mesh-plus-step error model from the split's mesh and
 //!    Δt differences ([`LadderFit`], [`ErrorModel::cheapest`]) gives the
 //!    cheapest (h, Δt) whose modelled error is within [`PLAN_SHARE`] × EPS;
 //!    the candidate is the coarsest (a, b) at or below it.
@@ -28,6 +28,9 @@
 //!
 //! The points' runs go through one queue ([`run_points`]); the records are
 //! the same whatever the order, threads or batch width (resumable).
+//! `taut run --tolerance` is this engine on one point
+//! ([`run_points_with`] keeping its runs: `super::refine_alone`), so a
+//! scene alone and the same point of a sweep get the same answer.
 
 use std::sync::{Condvar, Mutex, MutexGuard};
 
@@ -53,7 +56,7 @@ use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, 
 /// point may end 2⁵ times finer in h and Δt than the plan's first guess.
 pub(crate) const MAX_CHECKS: usize = 3;
 
-/// The share of EPS the plan asks of `run --tolerance`'s model: its
+/// The share of EPS the plan asks of the error model ([`ErrorModel`]): its
 /// estimate carries Roache's 1.25, the check's u_num the 3 of a quantity
 /// that is not smooth, and the check adds its fit's scatter, so the plan
 /// aims at 1.25/3 of EPS and leaves a fifth of that for the scatter.
@@ -1015,7 +1018,7 @@ fn predict_walk(p: &Point, tol: &SweepTolerance, key: Key) -> Prediction {
     Prediction::Cost(cost / p.base_cost)
 }
 
-/// The first check's (a, b): `run --tolerance`'s cheapest (h, Δt) for
+/// The first check's (a, b): the error model's cheapest (h, Δt) for
 /// [`PLAN_SHARE`] × EPS from the split's differences, as the coarsest
 /// powers of two at or below it; one level on both when a ladder does not
 /// converge.

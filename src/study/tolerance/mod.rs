@@ -4,7 +4,7 @@
 //! One engine for every accuracy target: the scene is refined as the one
 //! point of an accuracy-targeted sweep ([`crate::study::sweep`]'s
 //! `refine_alone`), with the same pilots, checks, budget and uncertainty
-//! estimators ([`crate::study::uncertainty::assess`]) as each point of
+//! estimators ([`crate::study::uncertainty::assess()`]) as each point of
 //! `taut sweep --tolerance`. So a scene run alone and the same point of a
 //! sweep get the same resolution, value and u_num, and what one refuses
 //! the other marks not met for the same stated reason
