@@ -130,6 +130,10 @@ struct Point {
     reported: Option<Key>,
     /// The error of a run (or scene) that stopped the point.
     error: Option<Error>,
+    /// Runs of the current stage that stopped, waiting for the stage's
+    /// other runs: the error reported is then the coarsest run's, the same
+    /// whatever order the workers ended them in.
+    failed: Vec<(Key, Error)>,
 }
 
 /// What the pilots' error model predicts of a point reaching EPS.
@@ -391,6 +395,17 @@ impl Queue {
     /// its record returned for saving.
     fn next_of(&mut self, ctx: &Ctx, slot: usize) -> Option<Finished> {
         let point = self.points[slot].as_mut().expect("a point in flight");
+        if !point.failed.is_empty() {
+            if !point.queued.is_empty() {
+                return None;
+            }
+            let at = (0..point.failed.len())
+                .min_by_key(|&i| coarsest_first(point.failed[i].0))
+                .expect("a failed run");
+            let (k, e) = point.failed.swap_remove(at);
+            point.failed.clear();
+            fail(point, ctx.spec, ctx.id, k, e);
+        }
         advance(point, ctx.tol);
         let mut wants = Vec::new();
         let mut refused = Vec::new();
@@ -496,7 +511,7 @@ fn work(ctx: &Ctx, queue: &Mutex<Queue>, wake: &Condvar) {
             point.queued.retain(|k| k != key);
             match result {
                 Ok(ran) => point.runs.push(ran),
-                Err(e) => fail(point, ctx.spec, ctx.id, *key, e),
+                Err(e) => point.failed.push((*key, e)),
             }
         }
         let mut slots: Vec<usize> = job.members.iter().map(|m| m.0).collect();
@@ -556,6 +571,7 @@ fn start(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> Poin
         not_met: None,
         reported: None,
         error: None,
+        failed: Vec::new(),
     };
     match spec.resolve_with(base, index) {
         Ok(sc) => {
@@ -570,6 +586,11 @@ fn start(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> Poin
         }
     }
     p
+}
+
+/// The order of runs coarsest first: by the refinements' sum, then the mesh's.
+fn coarsest_first(k: Key) -> (i32, i32) {
+    (k.0 + k.1, k.0)
 }
 
 /// A point whose run (or its scene) failed: its record carries the error.
@@ -847,7 +868,7 @@ fn detail(p: &mut Point) -> Detail {
         })
         .collect();
     // the queue's order is the workers' and not the point's: coarsest first
-    runs.sort_by_key(|r| (r.mesh_exponent + r.step_exponent, r.mesh_exponent));
+    runs.sort_by_key(|r| coarsest_first((r.mesh_exponent, r.step_exponent)));
     let chosen = reported.and_then(|k| {
         let out = p.runs.iter_mut().find(|r| r.key == k)?.output.take()?;
         Some((p.scene(k).ok()?, out))
