@@ -267,28 +267,3 @@ fn sweep_check_refinement_adds_the_change_and_a_map() {
     let svg = std::fs::read_to_string(one.join("refinement.svg")).unwrap();
     assert!(svg.contains("points converged") && svg.contains("refined: 2N"));
 }
-
-#[test]
-fn the_tolerance_study_takes_the_in_span_part_and_says_why_not_the_whole() {
-    let q: taut::study::tolerance::Quantity = "loss_fraction_span".parse().unwrap();
-    assert!(q.is_loss());
-    // on the reference scene the pilots refuse P_l and point at its span part
-    let tmp = tempfile::tempdir().unwrap();
-    let o = taut_bin(&[
-        "run",
-        "scenes/reference.toml",
-        "--tolerance",
-        "1e-3",
-        "--quantity",
-        "loss_fraction",
-        "--quiet",
-        "--out",
-        tmp.path().join("t").to_str().unwrap(),
-    ]);
-    let e = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "P_l does not converge in Δt here");
-    assert!(
-        e.contains("does not converge in Δt") && e.contains("Try --quantity loss_fraction_span"),
-        "{e}"
-    );
-}

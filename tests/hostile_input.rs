@@ -164,22 +164,6 @@ fn the_largest_mesh_fits_the_budget_but_not_with_thousands_of_carriers() {
     resolve_scene(&text, &[]).unwrap();
 }
 
-#[test]
-fn studies_that_read_every_step_refuse_a_thin_history() {
-    let text = REFERENCE;
-    let e = taut::study::tolerance::tolerance_run(
-        text,
-        &o(&["output.record_every=2"]),
-        taut::study::tolerance::Quantity::Force,
-        1e-2,
-        &mut |_, _| {},
-    )
-    .map(|_| ())
-    .unwrap_err();
-    assert_eq!(invalid_field(&e), "output.record_every", "{e}");
-    assert!(e.to_string().contains("taut run --tolerance"), "{e}");
-}
-
 // ----------------------------------------------------- quadratic checks
 
 fn many_probes(n: usize, duplicate_of: Option<usize>) -> String {

@@ -149,12 +149,7 @@ fn every_table_offers_what_the_registry_says() {
     let q = register();
     let all = quantity::all();
     assert!(all.contains(&q));
-    for r in [
-        Offer::RUN_TABLES,
-        Offer::CONVERGE,
-        Offer::UNCERTAINTY,
-        Offer::TOLERANCE,
-    ] {
+    for r in [Offer::RUN_TABLES, Offer::CONVERGE, Offer::UNCERTAINTY] {
         assert!(quantity::offered(r).contains(&q));
     }
     // the uncertainty table: every quantity offered to it but the exact ones

@@ -373,10 +373,7 @@ fn bad_requests_are_refused_naming_the_field() {
     assert!(m.contains("carrier.0") && m.contains("no mass"), "{m}");
     // a tolerance run is not one run
     let mut req = request("t2_stationary_mass.toml", &set, None);
-    req.tolerance = Some(app::Tolerance {
-        quantity: taut::study::tolerance::Quantity::Force,
-        tol: 1e-2,
-    });
+    req.tolerance = Some(app::Tolerance::new("force_mean", 1e-2, None).unwrap());
     let m = e(Simulation::new(&req, &Silent).map(|_| ()));
     assert!(m.contains("tolerance"), "{m}");
     // a series on a moving force, one that does not cover the run

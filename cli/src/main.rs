@@ -345,6 +345,7 @@ fn on_scene<S, R>(
 
 fn cmd_run(on: &OnScene, args: &RunArgs, quiet: bool) -> taut::Result<()> {
     let tolerance = args.tolerance()?;
+    let unit = if tolerance.is_some() { "runs" } else { "steps" };
     let dir = on.dir("");
     let request = app::RunRequest {
         scene: on.source(),
@@ -352,7 +353,6 @@ fn cmd_run(on: &OnScene, args: &RunArgs, quiet: bool) -> taut::Result<()> {
         out: Some(dir.clone()),
         tolerance,
     };
-    let unit = if tolerance.is_some() { "runs" } else { "steps" };
     let outcome = Terminal::new(unit, quiet).run(|fe| app::run(&request, fe))?;
     print!(
         "{}",

@@ -184,9 +184,12 @@ pub fn summary(scene: &Path, dir: &Path, s: &Summary, accuracy: Option<&Accuracy
         d.end_time
     );
     for (i, c) in s.carriers.iter().enumerate() {
-        if let Some(a) = accuracy {
-            let _ = writeln!(t, "  carrier {i} (± estimated error at this N and Δt):");
-            t.push_str(&taut::report::result_lines(a, i));
+        if let Some(a) = accuracy.filter(|_| i == 0) {
+            let _ = writeln!(
+                t,
+                "  carrier {i} (± u_num at this resolution, from its own family of runs):"
+            );
+            t.push_str(&taut::report::result_lines(a));
             continue;
         }
         let f = &c.force;

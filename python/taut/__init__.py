@@ -693,6 +693,7 @@ def run(
     *,
     tolerance: Optional[float] = None,
     quantity: Optional[str] = None,
+    max_cost: Optional[float] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
 ) -> Run:
@@ -703,18 +704,21 @@ def run(
         scene: a path to a scene file, or its TOML text.
         set: overrides, {"beam.tension": 2.01e4, "mesh.elements": 400}
             (the CLI's `--set`; a list of "key=value" strings works too).
-        tolerance: the largest error allowed in `quantity` (relative;
-            absolute for loss fractions): pilot runs measure convergence,
-            the run is made at the resolution they call for, and every
-            result gets an estimated error (`Run.accuracy`,
-            summary["accuracy"]).
-        quantity: what the tolerance is on: "force" (0–20 Hz contact force,
-            the default), "force_raw", "loss_fraction", "loss_fraction_span"
-            or "displacement".
+        tolerance: the largest u_num allowed in `quantity` (absolute, in
+            its unit): the scene is refined as the one point of
+            `sweep(..., tolerance=...)`, with the same resolution, value and
+            u_num, and every result gets a u_num (`Run.accuracy`,
+            summary["accuracy"]); a tolerance not reached raises
+            ToleranceError.
+        quantity: what the tolerance is on: a quantity `sweep` takes
+            ("loss_fraction_span", the default; "force_mean", …).
+        max_cost: with `tolerance`, the most the run may cost, pilots
+            included, as a multiple of its run at the scene's resolution
+            (default 64).
         out: a folder to write the CLI's files into as well (history.csv,
             summary.json, force.svg; accuracy.csv with a tolerance).
-        progress: see the module doc (steps done, steps; pilot runs done,
-            runs with a tolerance).
+        progress: see the module doc (steps done, steps; with a tolerance,
+            0 of 1 run at the start and 1 of 1 at the end).
 
     Returns:
         Run with `.summary` (dict of summary.json), `.history` (Table of
@@ -727,7 +731,7 @@ def run(
     """
     path, text = _scene(scene)
     sets = _overrides(set)
-    args = _options(tolerance=tolerance, quantity=quantity)
+    args = _options(tolerance=tolerance, quantity=quantity, max_cost=max_cost)
     with _Sink(progress, "steps" if tolerance is None else "runs") as p:
         summary, history, warnings, accuracy, (snap, field), line = _taut.run(
             (path, text, sets), _out(out), p, args

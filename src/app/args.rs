@@ -293,28 +293,54 @@ impl Workers {
 #[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct RunArgs {
-    /// Choose mesh and Δt from measured convergence so the error of
-    /// --quantity is at most TOL (relative; absolute for loss_fraction),
-    /// and print an estimated error next to every result (docs/accuracy.md).
+    /// Refine mesh and Δt until the numerical uncertainty u_num of
+    /// --quantity is at most TOL (absolute, in its unit), as a one-point
+    /// `taut sweep --tolerance` does, and print a u_num next to every
+    /// result (docs/accuracy.md).
     #[cfg_attr(
         feature = "clap",
         arg(long, value_name = "TOL", allow_hyphen_values = true)
     )]
     pub tolerance: Option<Word>,
-    /// What --tolerance is on: force (0–20 Hz contact force, the default),
-    /// force_raw, loss_fraction, loss_fraction_span or displacement.
+    /// What --tolerance is on: a quantity `taut sweep --tolerance` takes
+    /// (loss_fraction_span, the default; loss_fraction, force_mean,
+    /// force_std, …).
     #[cfg_attr(feature = "clap", arg(long, value_name = "Q", requires = "tolerance"))]
     pub quantity: Option<String>,
+    /// With --tolerance: the most the run may cost, pilots included, as a
+    /// multiple of its run at the scene's resolution (default 64).
+    #[cfg_attr(
+        feature = "clap",
+        arg(
+            long,
+            value_name = "F",
+            requires = "tolerance",
+            allow_hyphen_values = true
+        )
+    )]
+    pub max_cost: Option<Word>,
 }
 
 impl RunArgs {
     /// The error target, if one is given.
     pub fn tolerance(&self) -> Result<Option<super::Tolerance>> {
-        match (&self.tolerance, &self.quantity) {
-            (Some(t), q) => words::tolerance(&t.0, q.as_deref()).map(Some),
-            (None, Some(q)) => Err(quantity_without_tolerance(q)),
-            (None, None) => Ok(None),
+        if self.tolerance.is_none() {
+            if let Some(q) = &self.quantity {
+                return Err(quantity_without_tolerance(q));
+            }
+            if let Some(f) = &self.max_cost {
+                return Err(Error::invalid(
+                    "--max-cost",
+                    &f.0,
+                    "bounds the refinement of --tolerance: give tolerance too",
+                ));
+            }
         }
+        words::sweep_tolerance(
+            self.tolerance.as_ref().map(|w| w.0.as_str()),
+            self.quantity.as_deref(),
+            self.max_cost.as_ref().map(|w| w.0.as_str()),
+        )
     }
 }
 

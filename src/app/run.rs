@@ -7,19 +7,15 @@ use std::path::PathBuf;
 use crate::error::Result;
 use crate::report::{Outputs, Summary};
 use crate::run::RunOutput;
-use crate::study::tolerance::{Accuracy, Quantity, tolerance_run};
+use crate::study::sweep::SweepTolerance;
+use crate::study::tolerance::{Accuracy, tolerance_run};
 
 use super::{Frontend, SceneSource, Writing, kept, save_failure};
 
-/// An error target: choose mesh and Δt so that the error of `quantity` is
-/// at most `tol` (docs/accuracy.md).
-#[derive(Debug, Clone, Copy)]
-pub struct Tolerance {
-    /// What the tolerance is on.
-    pub quantity: Quantity,
-    /// The tolerance (relative; absolute for a loss fraction).
-    pub tol: f64,
-}
+/// An error target: refine mesh and Δt until the u_num of the quantity is
+/// within the tolerance, as a one-point `taut sweep --tolerance` does
+/// (docs/accuracy.md).
+pub type Tolerance = SweepTolerance;
 
 /// One run of a scene.
 #[derive(Debug, Clone)]
@@ -63,11 +59,11 @@ fn run_in(req: &RunRequest, fe: &dyn Frontend) -> Result<RunOutcome> {
     }
     let text = req.scene.read()?;
     let progress = &mut |d, t| fe.progress(d, t);
-    if let Some(Tolerance { quantity, tol }) = req.tolerance {
+    if let Some(tol) = &req.tolerance {
         crate::study::tolerance::check_start(&text, &req.set, tol)
             .map_err(|e| req.scene.name(e))?;
         let writing = Writing::open_some(dir, Outputs::Run, "taut run --tolerance")?;
-        let r = tolerance_run(&text, &req.set, quantity, tol, progress)
+        let r = tolerance_run(&text, &req.set, tol, progress)
             .map_err(|e| req.scene.name(e))
             .map_err(|e| save_failure(dir, e, fe))?;
         let summary = match writing {

@@ -101,10 +101,10 @@ impl Simulation {
     /// whose outputs replace an earlier call's as `run`'s do. A tolerance
     /// is refused (module docs).
     pub fn new(req: &RunRequest, fe: &dyn Frontend) -> Result<Self> {
-        if let Some(t) = req.tolerance {
+        if let Some(t) = &req.tolerance {
             return Err(Error::invalid(
                 "tolerance",
-                t.tol,
+                t.tolerance,
                 "is not for a simulation stepped on request: a tolerance run chooses mesh and Δt by running the scene several times (use run with a tolerance, then step a simulation with the mesh and step it reports)",
             ));
         }

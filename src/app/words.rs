@@ -141,17 +141,10 @@ pub fn uncertainty(levels: usize, yes: bool) -> Result<request::UncertaintyStudy
     Ok(request::UncertaintyStudy { levels, yes })
 }
 
-/// `--tolerance TOL --quantity Q` (Python: `tolerance=`, `quantity=`): the
-/// quantity defaults to the filtered force.
-pub fn tolerance(tol: &str, quantity: Option<&str>) -> Result<super::Tolerance> {
-    let quantity = quantity.unwrap_or("force").parse()?;
-    let tol = crate::study::tolerance::parse_tolerance(tol)?;
-    Ok(super::Tolerance { quantity, tol })
-}
-
-/// `taut sweep --tolerance TOL [--quantity Q] [--max-cost F]` (Python:
-/// `tolerance=`, `quantity=`, `max_cost=`): Q defaults to
-/// `loss_fraction_span`; none without a tolerance.
+/// `taut sweep` or `taut run --tolerance TOL [--quantity Q] [--max-cost
+/// F]` (Python: `tolerance=`, `quantity=`, `max_cost=`): one target for
+/// both, Q defaulting to [`crate::study::sweep::DEFAULT_QUANTITY`]; none
+/// without a tolerance.
 pub fn sweep_tolerance(
     tol: Option<&str>,
     quantity: Option<&str>,
@@ -173,8 +166,12 @@ pub fn sweep_tolerance(
     let budget = max_cost
         .map(|b| number("--max-cost", b, "must be a finite number ≥ 2"))
         .transpose()?;
-    crate::study::sweep::SweepTolerance::new(quantity.unwrap_or("loss_fraction_span"), t, budget)
-        .map(Some)
+    crate::study::sweep::SweepTolerance::new(
+        quantity.unwrap_or(crate::study::sweep::DEFAULT_QUANTITY),
+        t,
+        budget,
+    )
+    .map(Some)
 }
 
 /// `--vary KEY=START:STOP:COUNT` or `KEY=V1,V2,...` (one or two), spaced

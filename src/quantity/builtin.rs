@@ -7,8 +7,7 @@ use crate::record::window::time_rms;
 const RUN_TABLES: Offer = Offer::RUN_TABLES;
 const STUDIES: Offer = Offer::RUN_TABLES
     .and(Offer::CONVERGE)
-    .and(Offer::UNCERTAINTY)
-    .and(Offer::TOLERANCE);
+    .and(Offer::UNCERTAINTY);
 
 /// Steps taken.
 pub static STEPS: Quantity = Quantity {
@@ -48,7 +47,7 @@ pub static CONTACT_SWITCHES: Quantity = Quantity {
     count: true,
     smooth: false,
     error: ErrorKind::Contact,
-    offer: RUN_TABLES.and(Offer::TOLERANCE),
+    offer: RUN_TABLES,
     read: |r| Some(r.stats.contact_switches as f64),
 };
 
@@ -118,7 +117,7 @@ pub static LOSS_INTERVAL_COUNT: Quantity = Quantity {
     count: true,
     smooth: false,
     error: ErrorKind::Contact,
-    offer: Offer::UNCERTAINTY.and(Offer::TOLERANCE),
+    offer: Offer::UNCERTAINTY,
     read: |r| Some(r.stats.loss_interval_count as f64),
 };
 
@@ -146,7 +145,7 @@ pub static FORCE_MEAN: Quantity = Quantity {
     count: false,
     smooth: true,
     error: ErrorKind::Contact,
-    offer: RUN_TABLES.and(Offer::UNCERTAINTY).and(Offer::TOLERANCE),
+    offer: RUN_TABLES.and(Offer::UNCERTAINTY),
     read: |r| Some(r.stats.force.mean),
 };
 
@@ -160,7 +159,7 @@ pub static FORCE_STD: Quantity = Quantity {
     count: false,
     smooth: false,
     error: ErrorKind::Contact,
-    offer: RUN_TABLES.and(Offer::UNCERTAINTY).and(Offer::TOLERANCE),
+    offer: RUN_TABLES.and(Offer::UNCERTAINTY),
     read: |r| Some(r.stats.force.std),
 };
 
@@ -174,7 +173,7 @@ pub static FORCE_MIN: Quantity = Quantity {
     count: false,
     smooth: false,
     error: ErrorKind::Contact,
-    offer: RUN_TABLES.and(Offer::UNCERTAINTY).and(Offer::TOLERANCE),
+    offer: RUN_TABLES.and(Offer::UNCERTAINTY),
     read: |r| Some(r.stats.force.min),
 };
 
@@ -188,7 +187,7 @@ pub static FORCE_MAX: Quantity = Quantity {
     count: false,
     smooth: false,
     error: ErrorKind::Contact,
-    offer: RUN_TABLES.and(Offer::UNCERTAINTY).and(Offer::TOLERANCE),
+    offer: RUN_TABLES.and(Offer::UNCERTAINTY),
     read: |r| Some(r.stats.force.max),
 };
 

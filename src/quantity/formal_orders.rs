@@ -1,6 +1,6 @@
 //! The formal orders the studies cap observed ones at, and the round-off
-//! floor of a difference: shared by `run --tolerance`
-//! (`study::tolerance`), solution verification (`study::uncertainty`) and
+//! floor of a difference: shared by the accuracy-targeted sweep's error
+//! model (`study::tolerance`), solution verification (`study::uncertainty`) and
 //! `converge`, in a file of their own so that those modules import it and
 //! not each other.
 

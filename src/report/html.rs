@@ -768,25 +768,27 @@ fn gate_html(g: &serde_json::Value, tally: &mut Tally) -> String {
     h
 }
 
-/// A `--tolerance` run's outcome: its tolerance, the chosen run's
-/// estimated error and whether it met the tolerance.
+/// A `--tolerance` run's outcome: its tolerance, the reported run's u_num
+/// and resolution, and whether it met the tolerance.
 fn accuracy_html(a: &serde_json::Value, tally: &mut Tally) -> String {
-    let (Some(tol), Some(est)) = (
-        a["tolerance"].as_f64(),
-        a["estimated_error"]["total"].as_f64(),
-    ) else {
+    let (Some(tol), Some(u)) = (a["tolerance"].as_f64(), a["u_num"].as_f64()) else {
         return String::new();
     };
-    let met = if est <= tol { "met" } else { "not met" };
+    let met = if u <= tol { "met" } else { "not met" };
     let class = page::verdict_class("tolerance_met", met);
     tally.add(met, class);
+    let level = match a["modes"].as_u64() {
+        Some(j) => format!("J = {j}"),
+        None => format!("N = {}", num(&a["elements"])),
+    };
     format!(
-        "<p>accuracy target on {}: tolerance {}, estimated error {} (mesh {}, step {}): <span class=\"{class}\">{met}</span></p>\n",
+        "<p>accuracy target on {}: tolerance {}, value {} ± {} (u_num, {}) at {level}, Δt = {} s: <span class=\"{class}\">{met}</span></p>\n",
         esc(a["quantity"].as_str().unwrap_or_default()),
         short(tol),
-        short(est),
-        num(&a["estimated_error"]["mesh"]),
-        num(&a["estimated_error"]["step"]),
+        num(&a["value"]),
+        short(u),
+        num(&a["estimator"]),
+        num(&a["dt"]),
     )
 }
 

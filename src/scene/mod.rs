@@ -97,6 +97,4 @@ pub use speed::SpeedProfile;
 pub use time::{EndTime, Initial, TimeSpec};
 pub use validate::MAX_STEPS;
 pub(crate) use validate::check_chain_scene;
-pub(crate) use validate::{
-    DEFAULT_PENALTY_RELATIVE, STEP_COUNT_SLACK, check_speed_tables_cover, validate_contact,
-};
+pub(crate) use validate::{DEFAULT_PENALTY_RELATIVE, check_speed_tables_cover, validate_contact};

@@ -1,5 +1,5 @@
-//! Time grids and ladders shared by the studies (`converge`, `precision`,
-//! `run --tolerance`): the one check that a coarse run's times are a
+//! Time grids and ladders shared by the studies (`converge`,
+//! `precision`): the one check that a coarse run's times are a
 //! fine run's and the one resampling of a fine history onto the coarse
 //! grid (observed orders and error estimates: [`super::uncertainty`]).
 

@@ -1,6 +1,6 @@
 //! The level parameter a study refines in space: N of a Hermite mesh, J of
-//! a modal basis (`run --tolerance`'s pilots, `taut uncertainty`'s family,
-//! the accuracy-targeted sweep).
+//! a modal basis (`taut uncertainty`'s family, the accuracy-targeted sweep
+//! and so `run --tolerance`).
 
 use crate::resolve::Resolved;
 use crate::scene::{Discretization, MeshKind};
@@ -71,18 +71,5 @@ impl Level {
             }
         }
         v
-    }
-
-    /// J on a modal basis (None for a Hermite mesh).
-    pub(crate) fn modes(&self, n: usize) -> Option<usize> {
-        match self {
-            Level::Elements(_) => None,
-            _ => Some(n),
-        }
-    }
-
-    /// The level of a resolved scene.
-    pub(crate) fn of_scene(&self, sc: &Resolved) -> usize {
-        sc.discretization.modes().unwrap_or(sc.elements)
     }
 }

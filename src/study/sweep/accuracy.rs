@@ -12,7 +12,7 @@
 //!    own run. Q's u_num at (0, 0) ([`assess`]; for a quantity that is
 //!    not smooth, at least the [split floor](crate::study::uncertainty::assess::split_floor): its mesh and Δt parts added
 //!    without their signs); within EPS: done.
-//! 2. **Plan**: `run --tolerance`'s error model from the split's mesh and
+//! 2. **Plan**: the mesh-plus-step error model from the split's mesh and
 //!    Δt differences ([`LadderFit`], [`ErrorModel::cheapest`]) gives the
 //!    cheapest (h, Δt) whose modelled error is within [`PLAN_SHARE`] × EPS;
 //!    the candidate is the coarsest (a, b) at or below it.
@@ -28,6 +28,9 @@
 //!
 //! The points' runs go through one queue ([`run_points`]); the records are
 //! the same whatever the order, threads or batch width (resumable).
+//! `taut run --tolerance` is this engine on one point
+//! ([`run_points_with`] keeping its runs: `super::refine_alone`), so a
+//! scene alone and the same point of a sweep get the same answer.
 
 use std::sync::{Condvar, Mutex, MutexGuard};
 
@@ -53,7 +56,7 @@ use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, 
 /// point may end 2⁵ times finer in h and Δt than the plan's first guess.
 pub(crate) const MAX_CHECKS: usize = 3;
 
-/// The share of EPS the plan asks of `run --tolerance`'s model: its
+/// The share of EPS the plan asks of the error model ([`ErrorModel`]): its
 /// estimate carries Roache's 1.25, the check's u_num the 3 of a quantity
 /// that is not smooth, and the check adds its fit's scatter, so the plan
 /// aims at 1.25/3 of EPS and leaves a fifth of that for the scatter.
@@ -86,6 +89,11 @@ fn check_runs(k: Key) -> [Key; 5] {
 struct Ran {
     key: Key,
     value: Option<f64>,
+    /// Every target's value ([`super::targets`]), for a point run alone
+    /// (`run --tolerance`: a bar on every result); empty in a sweep.
+    values: Vec<Option<f64>>,
+    /// The run itself, kept for a candidate of a point run alone.
+    output: Option<RunOutput>,
     dof_steps: f64,
     /// CPU seconds of the run (its share of its batch's).
     cpu: Option<f64>,
@@ -118,6 +126,14 @@ struct Point {
     prediction: Prediction,
     /// Why the point stopped short of EPS, once it has.
     not_met: Option<String>,
+    /// The candidate reported, once finished.
+    reported: Option<Key>,
+    /// The error of a run (or scene) that stopped the point.
+    error: Option<Error>,
+    /// Runs of the current stage that stopped, waiting for the stage's
+    /// other runs: the error reported is then the coarsest run's, the same
+    /// whatever order the workers ended them in.
+    failed: Vec<(Key, Error)>,
 }
 
 /// What the pilots' error model predicts of a point reaching EPS.
@@ -213,6 +229,69 @@ pub(super) fn run_points(
     batch: BatchWidth,
     save: &(dyn Fn(SweepRecord) -> Result<()> + Sync),
 ) -> Result<()> {
+    run_points_with(spec, base, id, todo, batch, false, &|f: Finished| {
+        save(f.record)
+    })
+}
+
+/// A finished point: its record and, for a point run alone, its detail.
+pub(crate) struct Finished {
+    /// The point's record (as `runs/NNNNNN.json` holds it).
+    pub(crate) record: SweepRecord,
+    /// What a point run alone adds (`run --tolerance`).
+    pub(crate) detail: Option<Detail>,
+}
+
+/// What `run --tolerance` reports beyond a sweep point's record: the
+/// reported run itself, every run made, a bar on every result, and the
+/// error that stopped the point (if one did).
+pub(crate) struct Detail {
+    /// The reported run's scene and output (none when the point stopped).
+    pub(crate) chosen: Option<(Resolved, RunOutput)>,
+    /// Every run made, coarsest first.
+    pub(crate) runs: Vec<RunMade>,
+    /// Every target at the reported run, assessed on its family.
+    pub(crate) results: Vec<(&'static Quantity, Assessment)>,
+    /// The error of a run or scene that stopped the point.
+    pub(crate) error: Option<Error>,
+}
+
+/// One run a point made (a row of `accuracy.csv`).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct RunMade {
+    /// a of N₀·2^a (J₀·2^a on a modal basis).
+    pub mesh_exponent: i32,
+    /// b of Δt₀/2^b.
+    pub step_exponent: i32,
+    /// Elements N.
+    pub elements: usize,
+    /// Modes J on a modal basis.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modes: Option<usize>,
+    /// Time step, s.
+    pub dt: f64,
+    /// The quantity's value (null when undefined).
+    pub value: Option<f64>,
+    /// Unknowns × steps.
+    pub dof_steps: f64,
+    /// u_num when the run ends a candidate's family (null otherwise, or
+    /// when none could be given).
+    pub u_num: Option<f64>,
+    /// `pilot`, `check` or `reported` (the run whose results are reported).
+    pub role: &'static str,
+}
+
+/// Run the points `todo` ([`run_points`]), each finished point handed to
+/// `save`; with `keep`, each with its [`Detail`].
+pub(crate) fn run_points_with(
+    spec: &SweepSpec,
+    base: Option<&Table>,
+    id: &str,
+    todo: &[usize],
+    batch: BatchWidth,
+    keep: bool,
+    save: &(dyn Fn(Finished) -> Result<()> + Sync),
+) -> Result<()> {
     let tol = spec.tolerance.as_ref().expect("an accuracy-targeted sweep");
     let workers = rayon::current_num_threads().max(1);
     let queue = Mutex::new(Queue {
@@ -231,6 +310,7 @@ pub(super) fn run_points(
         tol,
         batch,
         workers,
+        keep,
         save,
     };
     rayon::scope(|s| {
@@ -254,7 +334,10 @@ struct Ctx<'a> {
     tol: &'a SweepTolerance,
     batch: BatchWidth,
     workers: usize,
-    save: &'a (dyn Fn(SweepRecord) -> Result<()> + Sync),
+    /// A point run alone (`run --tolerance`): keep every target's value and
+    /// the candidates' runs, and hand back the point's [`Detail`].
+    keep: bool,
+    save: &'a (dyn Fn(Finished) -> Result<()> + Sync),
 }
 
 /// Runs that may step together ([`crate::integrate::batch_key`]), waiting
@@ -310,8 +393,19 @@ impl Queue {
 
     /// Queue what point `slot` needs next; a point done is taken out and
     /// its record returned for saving.
-    fn next_of(&mut self, ctx: &Ctx, slot: usize) -> Option<SweepRecord> {
+    fn next_of(&mut self, ctx: &Ctx, slot: usize) -> Option<Finished> {
         let point = self.points[slot].as_mut().expect("a point in flight");
+        if !point.failed.is_empty() {
+            if !point.queued.is_empty() {
+                return None;
+            }
+            let at = (0..point.failed.len())
+                .min_by_key(|&i| coarsest_first(point.failed[i].0))
+                .expect("a failed run");
+            let (k, e) = point.failed.swap_remove(at);
+            point.failed.clear();
+            fail(point, ctx.spec, ctx.id, k, e);
+        }
         advance(point, ctx.tol);
         let mut wants = Vec::new();
         let mut refused = Vec::new();
@@ -330,8 +424,8 @@ impl Queue {
         }
         if matches!(point.stage, Stage::Done) {
             if point.queued.is_empty() {
-                let mut p = self.points[slot].take().expect("in flight");
-                return p.record.take();
+                let p = self.points[slot].take().expect("in flight");
+                return finished(p, ctx);
             }
             return None;
         }
@@ -344,7 +438,7 @@ impl Queue {
 
     /// Admit the next [`CHUNK`] points when fewer jobs wait than workers;
     /// the records of points that finish at once (a refused scene).
-    fn admit(&mut self, ctx: &Ctx) -> Vec<SweepRecord> {
+    fn admit(&mut self, ctx: &Ctx) -> Vec<Finished> {
         let mut done = Vec::new();
         while self.pending.len() < ctx.workers && self.admitted < ctx.todo.len() {
             let end = (self.admitted + CHUNK).min(ctx.todo.len());
@@ -417,7 +511,7 @@ fn work(ctx: &Ctx, queue: &Mutex<Queue>, wake: &Condvar) {
             point.queued.retain(|k| k != key);
             match result {
                 Ok(ran) => point.runs.push(ran),
-                Err(e) => fail(point, ctx.spec, ctx.id, *key, e),
+                Err(e) => point.failed.push((*key, e)),
             }
         }
         let mut slots: Vec<usize> = job.members.iter().map(|m| m.0).collect();
@@ -445,7 +539,7 @@ fn save_unlocked<'a>(
     queue: &'a Mutex<Queue>,
     wake: &Condvar,
     q: MutexGuard<'a, Queue>,
-    saved: Vec<SweepRecord>,
+    saved: Vec<Finished>,
 ) -> Option<MutexGuard<'a, Queue>> {
     drop(q);
     let r = saved.into_iter().try_for_each(|r| (ctx.save)(r));
@@ -475,6 +569,9 @@ fn start(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> Poin
         queued: Vec::new(),
         prediction: Prediction::Unknown,
         not_met: None,
+        reported: None,
+        error: None,
+        failed: Vec::new(),
     };
     match spec.resolve_with(base, index) {
         Ok(sc) => {
@@ -484,10 +581,16 @@ fn start(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> Poin
         }
         Err(e) => {
             p.record = Some(record_of(spec, base, id, index, None, Err(&e)));
+            p.error = Some(e);
             p.stage = Stage::Done;
         }
     }
     p
+}
+
+/// The order of runs coarsest first: by the refinements' sum, then the mesh's.
+fn coarsest_first(k: Key) -> (i32, i32) {
+    (k.0 + k.1, k.0)
 }
 
 /// A point whose run (or its scene) failed: its record carries the error.
@@ -495,12 +598,29 @@ fn fail(p: &mut Point, spec: &SweepSpec, id: &str, key: Key, e: Error) {
     if matches!(p.stage, Stage::Done) {
         return;
     }
-    let e = e.in_run(&format!("--tolerance's run {}", describe(p, key)));
+    let run = format!("--tolerance's run {}", describe(p, key));
+    // a scene refused at a refined level: the scene's own run is accepted,
+    // so say which run it is and why it is made
+    let e = match e {
+        Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => Error::invalid(
+            field,
+            value,
+            format!(
+                "{allowed} (in {run}, which --tolerance makes to measure convergence: every run of its families must be accepted, so give values that hold 2 and 4 times finer and coarser in mesh and step)"
+            ),
+        ),
+        other => other.in_run(&run),
+    };
     let mut record = record_of(spec, None, id, p.index, None, Err(&e));
     // the work the point took before it stopped
     record.dof_steps = Some(p.spent());
     record.cpu_seconds = p.cpu();
     p.record = Some(record);
+    p.error = Some(e);
     p.stage = Stage::Done;
 }
 
@@ -546,7 +666,12 @@ fn run_job(ctx: &Ctx, job: &Job, keep: &[bool], indices: &[usize]) -> Vec<Result
                     let record = keep[m].then(|| {
                         record_of(ctx.spec, ctx.base, ctx.id, indices[m], Some(sc), Ok(&out))
                     });
-                    reduce(q, *key, &out, cpu, record)
+                    let mut ran = reduce(q, *key, &out, cpu, record);
+                    if ctx.keep {
+                        ran.values = super::targets().iter().map(|t| t.of(&out, 0)).collect();
+                        ran.output = keep[m].then_some(out);
+                    }
+                    ran
                 })
             })
             .collect::<Vec<_>>()
@@ -584,6 +709,8 @@ fn reduce(
         cpu,
         loss: out.stats.first().is_some_and(|s| s.loss_interval_count > 0),
         record,
+        values: Vec::new(),
+        output: None,
     }
 }
 
@@ -593,32 +720,13 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
         return;
     }
     let q = tol.spec();
-    let base = p.base.as_ref().expect("a point being worked has its scene");
-    let method_order = scene_method(base)
-        .time_order(base)
-        .unwrap_or(MAX_STEP_ORDER);
-    let switch = p.runs.iter().any(|r| r.loss);
-    let string =
-        base.beam.is_string() && base.discretization == crate::scene::Discretization::Hermite;
-    let formal =
-        crate::study::uncertainty::quantity::formal_orders(q, method_order, switch, string);
-    let at =
-        |keys: &[Key]| -> Vec<Option<f64>> { keys.iter().map(|&k| p.value(k).flatten()).collect() };
-    let (key, keys) = match p.stage {
-        Stage::Pilot => ((0, 0), PILOTS),
-        Stage::Check(k) => (k, check_runs(k)),
+    let formal = formal_of(p, q);
+    let key = match p.stage {
+        Stage::Pilot => (0, 0),
+        Stage::Check(k) => k,
         Stage::Done => return,
     };
-    let (diag, split) = (at(&keys[..3]), at(&keys[3..]));
-    // a quantity that is not smooth gets at least the split floor: its
-    // mesh and Δt parts may cancel along the diagonal
-    let a = assess(&Inputs {
-        diagonal: &diag,
-        space: &split,
-        ratio: RATIO as f64,
-        formal,
-        smooth: q.smooth,
-    });
+    let a = assess_at(p, q, key, |r| r.value);
     let u = a.u_num.unwrap_or(f64::INFINITY);
     p.candidates.push((key, a));
     if u <= tol.tolerance {
@@ -684,6 +792,106 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     }
     p.checks += 1;
     p.stage = Stage::Check(next);
+}
+
+/// Q's formal orders in space and time on the point's scene.
+fn formal_of(p: &Point, q: &Quantity) -> (f64, f64) {
+    let base = p.base.as_ref().expect("a point being worked has its scene");
+    let method_order = scene_method(base)
+        .time_order(base)
+        .unwrap_or(MAX_STEP_ORDER);
+    let switch = p.runs.iter().any(|r| r.loss);
+    let string =
+        base.beam.is_string() && base.discretization == crate::scene::Discretization::Hermite;
+    crate::study::uncertainty::quantity::formal_orders(q, method_order, switch, string)
+}
+
+/// `q`'s assessment on the family ending at `key` ([`check_runs`]: the
+/// pilots at (0, 0)), its values read off each run by `value`.
+fn assess_at(p: &Point, q: &Quantity, key: Key, value: impl Fn(&Ran) -> Option<f64>) -> Assessment {
+    let at = |keys: &[Key]| -> Vec<Option<f64>> {
+        keys.iter()
+            .map(|&k| p.runs.iter().find(|r| r.key == k).and_then(&value))
+            .collect()
+    };
+    let keys = check_runs(key);
+    let (diag, split) = (at(&keys[..3]), at(&keys[3..]));
+    // a quantity that is not smooth gets at least the split floor: its
+    // mesh and Δt parts may cancel along the diagonal
+    assess(&Inputs {
+        diagonal: &diag,
+        space: &split,
+        ratio: RATIO as f64,
+        formal: formal_of(p, q),
+        smooth: q.smooth,
+    })
+}
+
+/// A finished point as handed to `save`; with `ctx.keep`, its [`Detail`].
+fn finished(mut p: Point, ctx: &Ctx) -> Option<Finished> {
+    let record = p.record.take()?;
+    let detail = ctx.keep.then(|| detail(&mut p));
+    Some(Finished { record, detail })
+}
+
+/// What a point run alone reports beyond its record.
+fn detail(p: &mut Point) -> Detail {
+    let reported = p.reported;
+    let u_of = |k: Key| {
+        p.candidates
+            .iter()
+            .rfind(|c| c.0 == k)
+            .and_then(|c| c.1.u_num)
+    };
+    let mut runs: Vec<RunMade> = p
+        .runs
+        .iter()
+        .map(|r| {
+            let sc = p.scene(r.key).ok();
+            RunMade {
+                mesh_exponent: r.key.0,
+                step_exponent: r.key.1,
+                elements: sc.as_ref().map_or(0, |s| s.elements),
+                modes: sc.as_ref().and_then(|s| s.discretization.modes()),
+                dt: sc.as_ref().map_or(f64::NAN, |s| s.dt),
+                value: r.value,
+                dof_steps: r.dof_steps,
+                u_num: u_of(r.key),
+                role: if Some(r.key) == reported {
+                    "reported"
+                } else if PILOTS.contains(&r.key) {
+                    "pilot"
+                } else {
+                    "check"
+                },
+            }
+        })
+        .collect();
+    // the queue's order is the workers' and not the point's: coarsest first
+    runs.sort_by_key(|r| coarsest_first((r.mesh_exponent, r.step_exponent)));
+    let chosen = reported.and_then(|k| {
+        let out = p.runs.iter_mut().find(|r| r.key == k)?.output.take()?;
+        Some((p.scene(k).ok()?, out))
+    });
+    let results = match reported {
+        Some(k) => super::targets()
+            .into_iter()
+            .enumerate()
+            .map(|(i, q)| {
+                (
+                    q,
+                    assess_at(p, q, k, |r| r.values.get(i).copied().flatten()),
+                )
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    Detail {
+        chosen,
+        runs,
+        results,
+        error: p.error.take(),
+    }
 }
 
 /// Why a point is not refined further: the model puts reaching EPS above
@@ -831,7 +1039,7 @@ fn predict_walk(p: &Point, tol: &SweepTolerance, key: Key) -> Prediction {
     Prediction::Cost(cost / p.base_cost)
 }
 
-/// The first check's (a, b): `run --tolerance`'s cheapest (h, Δt) for
+/// The first check's (a, b): the error model's cheapest (h, Δt) for
 /// [`PLAN_SHARE`] × EPS from the split's differences, as the coarsest
 /// powers of two at or below it; one level on both when a ladder does not
 /// converge.
@@ -898,5 +1106,6 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
     record.dof_steps = Some(p.spent());
     record.cpu_seconds = p.cpu();
     p.record = Some(record);
+    p.reported = Some(key);
     p.stage = Stage::Done;
 }

@@ -47,7 +47,8 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
-pub use accuracy::CHUNK;
+pub use accuracy::{CHUNK, RunMade};
+pub(crate) use accuracy::{Detail, SUPERSONIC_MET};
 pub use axis::{Axis, AxisTarget, Ratio};
 pub(crate) use batch::AUTO_BATCH_LANES;
 pub use batch::BatchWidth;
@@ -60,7 +61,8 @@ pub use refine::Refined;
 pub(crate) use refine::{REFINEMENT_ABS, REFINEMENT_REL, refinement_converged};
 pub use shard::Shard;
 pub use spec::{MAX_POINT_KEYS, SweepSpec};
-pub use tolerance_spec::{PointAccuracy, SweepTolerance, targets};
+pub(crate) use tolerance_spec::check_level;
+pub use tolerance_spec::{DEFAULT_QUANTITY, PointAccuracy, SweepTolerance, targets};
 pub use work::{Work, WorkSplit};
 
 /// Run (or resume) a sweep into `dir`. `progress(done, total)` is called from
@@ -156,4 +158,45 @@ pub fn sweep_batched(
             Ok(())
         })?;
     folder::collect(dir, spec, &mine)
+}
+
+/// One scene refined as the one point of an accuracy-targeted sweep
+/// (`taut run --tolerance`): the same queue, runs and estimators as every
+/// point of `taut sweep --tolerance`, so the scene alone and the same
+/// point of a sweep get the same resolution, value and u_num. Nothing is
+/// written; the point's record and its [`Detail`] are returned.
+pub(crate) fn refine_alone(
+    scene_text: &str,
+    set: &[String],
+    tolerance: SweepTolerance,
+) -> Result<(SweepRecord, Detail)> {
+    // no axes: a grid of one point, the scene with its overrides
+    let spec = SweepSpec {
+        scene_text: scene_text.to_string(),
+        set: set.to_vec(),
+        axes: Vec::new(),
+        check_refinement: false,
+        paired: false,
+        tolerance: Some(tolerance),
+    };
+    let id = folder::sweep_id(&spec);
+    let base = spec.base_tree().ok();
+    let slot = std::sync::Mutex::new(None);
+    accuracy::run_points_with(
+        &spec,
+        base.as_ref(),
+        &id,
+        &[0],
+        BatchWidth::Auto,
+        true,
+        &|f| {
+            *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(f);
+            Ok(())
+        },
+    )?;
+    let f = slot
+        .into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+        .expect("the one point is finished");
+    Ok((f.record, f.detail.expect("kept for a point run alone")))
 }

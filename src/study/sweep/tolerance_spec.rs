@@ -17,6 +17,11 @@ use crate::study::uncertainty::quantity;
 /// with their check families.
 pub(crate) const DEFAULT_BUDGET: f64 = 64.0;
 
+/// The quantity `--tolerance` is on when `--quantity` is not given, for
+/// `taut sweep` and `taut run` alike: the in-span loss fraction, the
+/// figure the loss maps are drawn of.
+pub const DEFAULT_QUANTITY: &str = "loss_fraction_span";
+
 /// The level parameter must be a multiple of this, so the pilots can be
 /// made 2 and 4 times coarser.
 pub(crate) const LEVEL_MULTIPLE: usize = 4;
@@ -51,10 +56,7 @@ impl SweepTolerance {
             return Err(Error::invalid(
                 "--quantity",
                 quantity,
-                format!(
-                    "must be one of {} (with --tolerance on a sweep)",
-                    names.join(", ")
-                ),
+                format!("must be one of {} (with --tolerance)", names.join(", ")),
             ));
         }
         if !(tolerance.is_finite() && tolerance > 0.0) {
@@ -129,7 +131,7 @@ pub struct PointAccuracy {
 
 /// Check that every point's level parameter can be coarsened by
 /// [`LEVEL_MULTIPLE`] (called with the spec's validation).
-pub(super) fn check_level(sc: &Resolved) -> Result<()> {
+pub(crate) fn check_level(sc: &Resolved) -> Result<()> {
     let level = Level::of(sc);
     let n = level.start();
     if n.is_multiple_of(LEVEL_MULTIPLE) {

@@ -1,134 +1,160 @@
-//! What an accuracy-targeted run returns: the pilots, the estimate of every
-//! result, and how the resolution was chosen (`accuracy` in
-//! `summary.json`, `accuracy.csv`).
+//! What an accuracy-targeted run returns (`accuracy` in `summary.json`,
+//! `accuracy.csv`), made from the one-point sweep's record and detail, or
+//! the refusal of a point that did not reach its tolerance.
 
 use serde::Serialize;
 
-use super::error_model::{ErrorModel, Estimate, LadderFit};
-use super::quantity::Quantity;
+use crate::error::{Error, Result};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
+use crate::study::sweep::{
+    Detail, PointAccuracy, RunMade, SUPERSONIC_MET, SweepRecord, SweepTolerance,
+};
 
-/// One pilot run (a row of `accuracy.csv`).
-#[derive(Debug, Clone, Serialize)]
-pub struct PilotRun {
-    /// `base`, `mesh x2`, `mesh x4`, `step /2` or `step /4`.
-    pub role: &'static str,
-    /// Elements N.
-    pub elements: usize,
-    /// Modes J of a `galerkin` or `modal` basis (refined in J, not N).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub modes: Option<usize>,
-    /// Time step, s.
-    pub dt: f64,
-    /// Steps.
-    pub steps: usize,
-    /// Unknowns.
-    pub dofs: usize,
-    /// dofs × steps.
-    pub dof_steps: f64,
-    /// Wall seconds (machine-dependent).
-    pub wall_seconds: f64,
-    /// The quantity's difference to the next coarser rung of its ladder
-    /// (NaN, JSON null, for the base run).
-    pub ladder_difference: f64,
-    /// The model's estimated error of the quantity at this resolution.
-    pub estimate: Estimate,
-    #[serde(skip)]
-    pub(super) output: RunOutput,
-}
-
-/// The estimated error of one scalar result of the chosen run.
+/// The u_num of one result of the reported run, from its own family.
 #[derive(Debug, Clone, Serialize)]
 pub struct ResultEstimate {
-    /// Carrier index.
-    pub carrier: usize,
-    /// `force_mean`, `force_std`, …, `loss_fraction`, ….
+    /// The quantity's name (a column of `sweep.csv`).
     pub name: &'static str,
-    /// Unit (`N`, `x/L` or `-`).
+    /// Its unit.
     pub unit: &'static str,
-    /// The chosen run's value (null when undefined, e.g. no loss).
+    /// The reported run's value (null when undefined, e.g. no loss).
     pub value: Option<f64>,
-    /// F_s·(mesh + step part) at the chosen resolution, in the result's unit;
-    /// null when not converging or undefined.
-    pub estimated_error: Option<f64>,
-    /// `estimated`, `exact` (no change over the pilots), `not converging in
-    /// h`, `not converging in Δt`, `not converging in h and Δt`, `undefined`
-    /// (at every pilot) or `undefined at some pilots`.
-    pub status: String,
-    /// The mesh ladder's fit (null when undefined).
-    pub mesh: Option<LadderFit>,
-    /// The step ladder's fit (null when undefined).
-    pub step: Option<LadderFit>,
-}
-
-impl PilotRun {
-    /// Its level parameter: J on a modal basis, else N.
-    pub(super) fn level(&self) -> usize {
-        self.modes.unwrap_or(self.elements)
-    }
+    /// Its u_num (null when none could be given).
+    pub u_num: Option<f64>,
+    /// The estimator (`gci`, `least_squares`, `exact`, …).
+    pub estimator: &'static str,
+    /// How the family's values behave (`monotone`, `scattered`, …).
+    pub behaviour: &'static str,
 }
 
 /// Everything an accuracy-targeted run adds to `summary.json` (`accuracy`).
 #[derive(Debug, Clone, Serialize)]
 pub struct Accuracy {
     /// The quantity the tolerance is on.
-    pub quantity: Quantity,
-    /// What it is and how its error is measured.
-    pub description: &'static str,
-    /// The band of the filtered force, Hz (null for other quantities).
-    pub filter_band_hz: Option<f64>,
-    /// The requested tolerance.
+    pub quantity: &'static str,
+    /// Its unit (the tolerance's and u_num's).
+    pub unit: &'static str,
+    /// What it is.
+    pub definition: &'static str,
+    /// The requested tolerance EPS, absolute, in the quantity's unit.
     pub tolerance: f64,
-    /// Chosen elements N.
-    pub elements: usize,
-    /// Chosen modes J of a `galerkin` or `modal` basis.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub modes: Option<usize>,
-    /// Chosen time step, s.
-    pub dt: f64,
-    /// Steps of the chosen run.
+    /// The budget: the most the run may cost, pilots included, as a
+    /// multiple of the scene's own run (`--max-cost`).
+    pub max_cost: f64,
+    /// What the point reached: exactly a sweep point's accuracy (value,
+    /// u_num, resolution, runs, estimator, …).
+    #[serde(flatten)]
+    pub point: PointAccuracy,
+    /// Steps of the reported run.
     pub steps: usize,
-    /// Unknowns × steps of the chosen run.
-    pub dof_steps: f64,
-    /// The pilot whose result this is when a pilot already met the
-    /// tolerance, else null (a new run was made).
-    pub met_by_pilot: Option<&'static str>,
-    /// Estimated error of the quantity at the chosen resolution.
-    pub estimated_error: Estimate,
-    /// Mesh order p used.
-    pub p: f64,
-    /// Step order q used.
-    pub q: f64,
-    /// C_h (quantity's unit per m^p).
-    pub c_h: f64,
-    /// C_t (quantity's unit per s^q).
-    pub c_t: f64,
-    /// The full model: both ladder fits and F_s.
-    pub model: ErrorModel,
-    /// Pilot start (N₀, Δt₀): the scene's, Δt₀ shortened to a whole number
-    /// of steps when needed.
-    pub pilot_start: (usize, f64),
-    /// The pilot runs, in the order run.
-    pub pilots: Vec<PilotRun>,
-    /// Sum of the pilots' wall seconds.
-    pub pilot_wall_seconds: f64,
-    /// Sum of the pilots' DOF-steps.
-    pub pilot_dof_steps: f64,
-    /// Wall seconds of the chosen run (0 when a pilot is reused).
-    pub run_wall_seconds: f64,
-    /// Things the user should know (Δt₀ adjusted, a pilot reused, …).
-    pub notes: Vec<String>,
-    /// Estimated errors of every scalar result, carrier by carrier.
+    /// Warnings on the estimate itself (met at or above the wave speed).
+    pub warnings: Vec<String>,
+    /// Every run made, coarsest first (`accuracy.csv`).
+    pub runs_made: Vec<RunMade>,
+    /// A u_num on every result a sweep can target, at the reported run.
     pub results: Vec<ResultEstimate>,
 }
 
 /// A finished accuracy-targeted run.
 pub struct TolerantRun {
-    /// The chosen scene (N, Δt set).
+    /// The reported run's scene (N, J, Δt set).
     pub scene: Resolved,
     /// Its run.
     pub output: RunOutput,
-    /// How it was chosen and how accurate its results are.
+    /// How it was reached and how accurate its results are.
     pub accuracy: Accuracy,
+}
+
+/// The run from the one-point sweep's record and detail; the point's error
+/// when a run stopped it, and a refusal when it did not reach EPS.
+pub(super) fn tolerant_run(
+    tol: &SweepTolerance,
+    record: SweepRecord,
+    detail: Detail,
+) -> Result<TolerantRun> {
+    if let Some(e) = detail.error {
+        return Err(e);
+    }
+    let q = crate::study::uncertainty::quantity::quantity(&tol.quantity)
+        .expect("a target checked by SweepTolerance::new");
+    let point = record
+        .accuracy
+        .expect("a finished point of an accuracy-targeted sweep has its accuracy");
+    if !point.met {
+        return Err(refusal(tol, &point, &detail));
+    }
+    let (scene, output) = detail.chosen.expect("a point met keeps its reported run");
+    let results = detail
+        .results
+        .iter()
+        .map(|(q, a)| ResultEstimate {
+            name: q.name,
+            unit: q.unit,
+            value: a.value,
+            u_num: a.u_num,
+            estimator: a.estimator.name(),
+            behaviour: a.behaviour.name(),
+        })
+        .collect();
+    let accuracy = Accuracy {
+        quantity: q.name,
+        unit: q.unit,
+        definition: q.definition,
+        tolerance: tol.tolerance,
+        max_cost: tol.budget,
+        steps: output.steps,
+        warnings: record
+            .warnings
+            .iter()
+            .filter(|w| w.as_str() == SUPERSONIC_MET)
+            .cloned()
+            .collect(),
+        runs_made: detail.runs,
+        results,
+        point,
+    };
+    Ok(TolerantRun {
+        scene,
+        output,
+        accuracy,
+    })
+}
+
+/// The refusal of a point that did not reach EPS: the quantity, the
+/// tolerance, why the point stopped (the sweep's `not_met_because`) and
+/// the smallest u_num it reached, where.
+fn refusal(tol: &SweepTolerance, p: &PointAccuracy, detail: &Detail) -> Error {
+    let why = p
+        .not_met
+        .clone()
+        .unwrap_or_else(|| "no candidate reached it".to_string());
+    let (sym, level) = match p.modes {
+        Some(j) => ("J", j),
+        None => ("N", p.elements),
+    };
+    let best = if p.u_num.is_finite() {
+        format!("the smallest u_num reached is {:.3e}", p.u_num)
+    } else {
+        let how = detail
+            .results
+            .iter()
+            .find(|(q, _)| q.name == tol.quantity)
+            .map_or("", |(_, a)| a.behaviour.name());
+        format!("no u_num could be given (the family's values are {how})")
+    };
+    let own = p.dof_steps
+        / detail
+            .runs
+            .iter()
+            .find(|r| (r.mesh_exponent, r.step_exponent) == (0, 0))
+            .map_or(f64::NAN, |r| r.dof_steps);
+    Error::Tolerance {
+        quantity: tol.quantity.clone(),
+        tolerance: tol.tolerance,
+        reason: format!(
+            "not met: {why}; {best}, at {sym} = {level}, Δt = {:e} s (value {:.4e}), after {} runs costing {own:.1}× the scene's own run. The same point of `taut sweep --tolerance` is marked tolerance_met = no for this reason. Ask for a looser tolerance, give a larger --max-cost (now {}), or start from a finer scene (--set time.step=…, mesh.elements or mesh.modes)",
+            p.dt, p.value, p.runs, tol.budget
+        ),
+    }
 }

@@ -1,5 +1,6 @@
-//! The convergence model of an accuracy-targeted run and the cheapest
-//! resolution it allows.
+//! The convergence model an accuracy-targeted sweep (and so `run
+//! --tolerance`) plans its first check and predicts its cost with, and the
+//! cheapest resolution it allows.
 //!
 //! The discretization error of a quantity is modelled as a mesh part plus a
 //! step part,
@@ -14,7 +15,7 @@
 //! d₁ = ‖u₀ − u₁‖, d₂ = ‖u₁ − u₂‖ the observed order is log_r(d₁/d₂), the
 //! Richardson estimate of the finest rung's error is d₂/(r^p − 1) and
 //! C = that / (finest h or Δt)^p. An observed order above the method's
-//! ([`MAX_MESH_ORDER`], …) is capped, and d₂ raised to d₁/r^p: differences
+//! ([`crate::quantity::formal_orders::MAX_MESH_ORDER`], …) is capped, and d₂ raised to d₁/r^p: differences
 //! that fall faster than the method allows are a chance cancellation at the
 //! finest rung, not a smaller error. F_s is Roache's three-grid safety factor
 //! ([`FS_ASYMPTOTIC`]): the reported estimate is a GCI-style band, not a
@@ -28,9 +29,7 @@ use crate::study::uncertainty::{FS_ASYMPTOTIC, observed_order, richardson_error}
 /// finer time and histories compare sample by sample.
 pub(crate) const LADDER_RATIO: f64 = 2.0;
 
-pub(crate) use crate::quantity::formal_orders::{
-    MAX_MESH_ORDER, MAX_MESH_ORDER_FORCE, MAX_STEP_ORDER, MAX_STEP_ORDER_CONTACT, ROUND_OFF,
-};
+use crate::quantity::formal_orders::ROUND_OFF;
 
 /// Smallest observed order accepted as convergence. Below it a halving
 /// shrinks the difference by less than 2^0.5 ≈ 1.41: too little to tell a
@@ -237,6 +236,7 @@ impl ErrorModel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::quantity::formal_orders::{MAX_MESH_ORDER, MAX_STEP_ORDER};
 
     const H0: f64 = 0.125;
     const DT0: f64 = 1e-4;
