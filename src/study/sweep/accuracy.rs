@@ -9,9 +9,9 @@
 //! 1. **Pilots**: the family of `taut uncertainty` with three levels ending
 //!    at the point's own resolution, coarsened — (−2, −2), (−1, −1), (0, 0)
 //!    and the split runs (−1, −2), (0, −1), together 1.81 times the point's
-//!    own run. Q's u_num at (0, 0) ([`assess`]; for a quantity that is
-//!    not smooth, at least the [split floor](crate::study::uncertainty::assess::split_floor): its mesh and Δt parts added
-//!    without their signs); within EPS: done.
+//!    own run. Q's u_num at (0, 0) ([`assess`]; not smooth: at least the
+//!    [split floor](crate::study::uncertainty::assess::split_floor));
+//!    within EPS: done.
 //! 2. **Plan**: the mesh-plus-step error model from the split's mesh and
 //!    Δt differences ([`LadderFit`], [`ErrorModel::cheapest`]) gives the
 //!    cheapest (h, Δt) whose modelled error is within [`PLAN_SHARE`] × EPS;
@@ -19,18 +19,14 @@
 //! 3. **Check**: the candidate's own three-level family, (a − 2, b − 2),
 //!    (a − 1, b − 1), (a, b), and its split (a − 1, b − 2), (a, b − 1)
 //!    (runs made already are reused), gives its u_num. Within EPS: done;
-//!    else one more level on both (a + 1, b + 1),
-//!    up to [`MAX_CHECKS`] checks. Every candidate is cut down, its larger
-//!    refinement first, to what the point's budget (`budget` × its own
-//!    run, in unknowns × steps) still allows and to scenes the model takes
-//!    (J within the exact modes' range). A point that does not reach
-//!    EPS keeps the candidate of smallest u_num, marked not met.
+//!    else one more level on both (a + 1, b + 1), up to [`MAX_CHECKS`]
+//!    checks, each cut down to the point's budget (`budget` × its own run,
+//!    in unknowns × steps) and to scenes the model takes. A point that does
+//!    not reach EPS keeps the candidate of smallest u_num, marked not met.
 //!
-//! The points' runs go through one queue ([`run_points`]); the records are
+//! The points' runs go through one queue ([`run_points`]): the records are
 //! the same whatever the order, threads or batch width (resumable).
-//! `taut run --tolerance` is this engine on one point
-//! ([`run_points_with`] keeping its runs: `super::refine_alone`), so a
-//! scene alone and the same point of a sweep get the same answer.
+//! `taut run --tolerance` is this engine on one point (`super::refine_alone`).
 
 use std::sync::{Condvar, Mutex, MutexGuard};
 
