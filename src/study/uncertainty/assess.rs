@@ -742,7 +742,9 @@ mod tests {
     /// below the finest level's 0.0036 though level 0 is the coarser.
     #[test]
     fn the_scene_bar_covers_whenever_u_num_does() {
-        let cases: [(&[Option<f64>], &[Option<f64>], bool); 3] = [
+        /// A family: its diagonal, its split runs, and whether smooth.
+        type Family<'a> = (&'a [Option<f64>], &'a [Option<f64>], bool);
+        let cases: [Family; 3] = [
             (
                 &[
                     Some(0.030066932947582888),

@@ -339,10 +339,11 @@ mod tests {
     use super::*;
     use crate::uncertainty::{COVERAGE_TARGET, shares};
 
-    /// Pairs the estimators were sharp at (u_num ≤ 10× the true error)
-    /// when the pairs were stored, of 129: the estimators may not get
-    /// wider than that without the docs' tables being made again.
-    const SHARP_WHEN_STORED: usize = 73;
+    /// Pairs the estimators are sharp at (u_num ≤ 10× the true error), of
+    /// 129: 73 when the pairs were stored, 74 once a pre-asymptotic level
+    /// 0 is left out. The estimators may not get wider than that without
+    /// the docs' tables being made again.
+    const SHARP_WHEN_STORED: usize = 74;
 
     #[test]
     fn the_stored_pairs_are_covered_at_the_target_and_no_wider_than_measured() {
