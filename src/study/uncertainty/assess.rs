@@ -282,7 +282,7 @@ pub fn cover_coarser_levels(a: &mut Assessment, diagonal: &[Option<f64>]) {
 fn assess_with_floor(inputs: &Inputs) -> Assessment {
     let mut a = assess_diagonal(inputs);
     let floor = (!inputs.smooth)
-        .then(|| split_floor(inputs.diagonal, inputs.space, inputs.ratio, inputs.formal))
+        .then(|| split_floor(inputs.diagonal, inputs.space, inputs.ratio))
         .flatten()
         .filter(|&f| a.u_num.is_some_and(|u| f > u));
     if let Some(f) = floor {
@@ -295,7 +295,7 @@ fn assess_with_floor(inputs: &Inputs) -> Assessment {
         a.safety_factor = Some(FS_CAUTIOUS);
         a.asymptotic = false;
         let why = format!(
-            "u_num widened from {below:.3e} to the split floor: the finest step's mesh and Δt parts, each carried down at its own order (≤ {FLOOR_ORDER}, or its formal order where observed at it), added without their signs, times {FS_CAUTIOUS}"
+            "u_num widened from {below:.3e} to the split floor: the finest step's mesh and Δt parts, each carried down at its own order (≤ {FLOOR_ORDER}), added without their signs, times {FS_CAUTIOUS}"
         );
         a.note = if a.note.is_empty() {
             why
@@ -329,12 +329,6 @@ const FLOOR_ORDER: f64 = 1.0;
 /// `FLOOR_ORDER` (1) (a part that does not fall gets `LOWEST_ORDER`: it is
 /// not converging, and 1/(r^0.5 − 1) = 2.4 its last change is the least
 /// left); otherwise (one level, or a sign change) p = `FLOOR_ORDER` (1).
-/// A part whose order is within `ORDER_WINDOW` of its own variable's
-/// formal order (`formal`: space, time) is in its asymptotic range by
-/// Roache's test and is carried at up to that formal order: the mesh part
-/// of P_l,span from N₀ = 200 at V/c = 0.9 falls 0.0483 → 0.0109 (order
-/// 2.15, formal 2), and held to order 1 it alone made a bar 60× the true
-/// error.
 ///
 /// Along the diagonal the two parts can cancel: on the Fig. 12 map above
 /// V0/c = 1 the in-span P_l falls with h and rises with Δt, and three
@@ -344,12 +338,7 @@ const FLOOR_ORDER: f64 = 1.0;
 /// (0.0046, 0.0037, 0.0081, 0.0108 at J = 3200,
 /// docs/performance.md#the-fig-12-map-with---tolerance-0002). None without
 /// the split's last value.
-pub fn split_floor(
-    diag: &[Option<f64>],
-    split: &[Option<f64>],
-    ratio: f64,
-    formal: (f64, f64),
-) -> Option<f64> {
+pub fn split_floor(diag: &[Option<f64>], split: &[Option<f64>], ratio: f64) -> Option<f64> {
     let k = diag.len();
     if split.len() + 1 != k || k < 2 {
         return None;
@@ -361,28 +350,17 @@ pub fn split_floor(
     };
     let (dx, dt) = parts(k - 1)?;
     let before = (k >= 3).then(|| parts(k - 2)).flatten();
-    // 1/(r^p − 1) at the part's own order, within LOWEST_ORDER ..=
-    // FLOOR_ORDER, or up to its formal order where observed at it
-    let carried = |last: f64, coarser: Option<f64>, formal: f64| -> f64 {
+    // 1/(r^p − 1) at the part's own order, within LOWEST_ORDER ..= FLOOR_ORDER
+    let carried = |last: f64, coarser: Option<f64>| -> f64 {
         let p = match coarser {
-            Some(c) if c * last > 0.0 => {
-                let p = (c.abs() / last.abs()).log(ratio);
-                let top = if (p - formal).abs() <= ORDER_WINDOW {
-                    formal.max(FLOOR_ORDER)
-                } else {
-                    FLOOR_ORDER
-                };
-                p.clamp(LOWEST_ORDER, top)
-            }
+            Some(c) if c * last > 0.0 => (c.abs() / last.abs())
+                .log(ratio)
+                .clamp(LOWEST_ORDER, FLOOR_ORDER),
             _ => FLOOR_ORDER,
         };
         last.abs() / (ratio.powf(p) - 1.0)
     };
-    Some(
-        FS_CAUTIOUS
-            * (carried(dx, before.map(|b| b.0), formal.0)
-                + carried(dt, before.map(|b| b.1), formal.1)),
-    )
+    Some(FS_CAUTIOUS * (carried(dx, before.map(|b| b.0)) + carried(dt, before.map(|b| b.1))))
 }
 
 /// The diagonal's own estimate (module docs) with the split's orders and
@@ -627,7 +605,7 @@ mod tests {
         let split = [Some(0.58349), Some(0.57808)];
         let parts = (0.58208f64 - 0.57808).abs() + (0.57808f64 - 0.58181).abs();
         // both parts change sign between the two steps: each at order 1
-        let f = split_floor(&diag, &split, 2.0, PL).unwrap();
+        let f = split_floor(&diag, &split, 2.0).unwrap();
         assert!((f - FS_CAUTIOUS * parts).abs() < 1e-12, "{f}");
         let a = assess(&inputs(&diag, &split, false));
         assert_eq!(a.estimator, Estimator::SplitFloor, "{a:?}");
@@ -643,8 +621,8 @@ mod tests {
         let smooth = assess(&inputs(&diag, &split, true));
         assert_ne!(smooth.estimator, Estimator::SplitFloor);
         // no split, or a split value missing: no floor
-        assert_eq!(split_floor(&diag, &[], 2.0, PL), None);
-        assert_eq!(split_floor(&diag, &[Some(0.5), None], 2.0, PL), None);
+        assert_eq!(split_floor(&diag, &[], 2.0), None);
+        assert_eq!(split_floor(&diag, &[Some(0.5), None], 2.0), None);
     }
 
     /// A part that keeps its sign is carried down at its own order: one
@@ -657,18 +635,18 @@ mod tests {
         // 0.0037 then 0.0081
         let diag = [Some(0.5), Some(0.4963), Some(0.4882)];
         let split = [Some(0.5), Some(0.4963)];
-        let f = split_floor(&diag, &split, 2.0, PL).unwrap();
+        let f = split_floor(&diag, &split, 2.0).unwrap();
         let want = FS_CAUTIOUS * 0.0081 / (2f64.sqrt() - 1.0);
         assert!((f - want).abs() < 1e-12, "{f} against {want}");
         // falling by 8 (order 3): carried at order 1, its change itself
         let diag = [Some(0.5), Some(0.492), Some(0.491)];
         let split = [Some(0.5), Some(0.492)];
-        let f = split_floor(&diag, &split, 2.0, PL).unwrap();
+        let f = split_floor(&diag, &split, 2.0).unwrap();
         assert!((f - FS_CAUTIOUS * 0.001).abs() < 1e-12, "{f}");
         // falling by 1.6 (order 0.68): carried at its own order
         let diag = [Some(0.5), Some(0.4984), Some(0.4974)];
         let split = [Some(0.5), Some(0.4984)];
-        let f = split_floor(&diag, &split, 2.0, PL).unwrap();
+        let f = split_floor(&diag, &split, 2.0).unwrap();
         let p = (0.0016f64 / 0.001).log2();
         let want = FS_CAUTIOUS * 0.001 / (2f64.powf(p) - 1.0);
         assert!(
@@ -716,32 +694,11 @@ mod tests {
         assert_eq!(pre_asymptotic_start(&inputs(&flat, &[], false)), None);
     }
 
-    /// P_l,span of the reference scene at 134.92 m/s from N₀ = 200 (three
-    /// levels; N₀ = 400 and 800 give 0.0308 ± 0.0047 and ± 0.0036): the
-    /// mesh part of the split falls at order 2.15 (formal 2) and is carried
-    /// at it, not at order 1. The bar was 0.0384; it is now below 0.02 and
-    /// still covers the refined value 0.0309.
-    #[test]
-    fn a_split_part_observed_at_its_formal_order_is_carried_at_it() {
-        let diag = [
-            Some(0.08892053454164266),
-            Some(0.041579944707133235),
-            Some(0.03148215685204653),
-        ];
-        let space = [Some(0.04058757497553871), Some(0.030690406693530597)];
-        let a = assess(&Inputs {
-            formal: PL,
-            ..inputs(&diag, &space, false)
-        });
-        let u = a.u_num.unwrap();
-        assert!(u < 0.02, "u_num {u}: {}", a.note);
-        assert!(u >= (0.03148215685204653f64 - 0.0309).abs());
-    }
-
     /// The bar of every level is at least |φ_ℓ − φ_fine| + u_num, so the
-    /// scene's own (level 0) covers whenever the finest's does. From N₀ =
-    /// 800 (the scene above) the least-squares U of level 0 was 0.0024,
-    /// below the finest level's 0.0036 though level 0 is the coarser.
+    /// scene's own (level 0) covers whenever the finest's does. P_l,span
+    /// of the reference scene at 134.92 m/s from N₀ = 800 (three levels):
+    /// the least-squares U of level 0 was 0.0024, below the finest level's
+    /// 0.0036 though level 0 is the coarser.
     #[test]
     fn the_scene_bar_covers_whenever_u_num_does() {
         /// A family: its diagonal, its split runs, and whether smooth.
