@@ -59,7 +59,8 @@ pub struct QuantityUncertainty {
     pub formal: (f64, f64),
     /// The scene's own value (the coarsest level).
     pub value_scene: Option<f64>,
-    /// Its U.
+    /// Its U: at least |value_scene − value| + u_num, so it covers
+    /// whenever u_num does ([`assess::cover_coarser_levels`]).
     pub u_scene: Option<f64>,
     /// The values of the diagonal, coarsest first.
     pub diagonal: Vec<Option<f64>>,

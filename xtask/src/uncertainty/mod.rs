@@ -64,6 +64,9 @@ pub struct Row {
     pub value: f64,
     /// Its u_num (NaN when none was given).
     pub u_num: f64,
+    /// The bar of the family's level 0, the scene's own resolution
+    /// (`u_scene`; NaN when none was given).
+    pub u_scene: f64,
     /// The true value.
     pub truth: f64,
     /// The estimator and F_s.
@@ -218,6 +221,7 @@ pub fn run_case(case: &Case, levels: usize, rm: Option<&RidingMassHistory>) -> R
             finest: (finest_level, fine.dt),
             value: a.value.unwrap_or(f64::NAN),
             u_num: a.u_num.unwrap_or(f64::NAN),
+            u_scene: q.u_scene.unwrap_or(f64::NAN),
             truth: t,
             estimator: a.estimator.name().to_string(),
             error_estimated: a.error.unwrap_or(f64::NAN),
