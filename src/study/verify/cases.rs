@@ -284,6 +284,16 @@ fn moving_mass(
             e.limited(PENALTY_START)
         };
     }
+    if penalty
+        && q == Quantity::Force
+        && matches!(v, Variable::H | Variable::J)
+        && c.family == "bathe"
+    {
+        e = e.may_diverge(format!(
+            "{}: at the space ladders' fixed Δt the κ → ∞ penalty force carries Bathe's first-order Δt term (measured on mms_beam_time: orders 0.98–1.15), which grows as the mesh or basis refines (κ = ρ/W follows the compliance); measured on the quick matrix: errors rise from the second level (8.1e-5 → 3.1e-4 N in h, 2.5e-5 → 5.5e-5 N in J), and the κ → ∞ value does not settle at the finest",
+            c.method
+        ));
+    }
     if penalty && q == Quantity::Force && v != Variable::Kappa && undamped_penalty(c) {
         e = e.may_diverge(format!(
             "{}: the penalty spring rings undamped — generalized-α at ρ∞ = 1 (α_m = α_f) has no dissipation for the unresolved penalty frequency, so the start's ringing does not decay; measured on the quick matrix's J force ladders: κ × 16 raised the finest error 71–85× and the finest pair rose (orders −0.45 … −0.63); its Δt ladders' κ → ∞ value does not settle (κ and 4κ against κ and 16κ: 175–265 % of the finest error), where ρ∞ < 1 damps it",

@@ -203,8 +203,14 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
     let coarse = (scenes[0].steps, scenes[0].dt);
     // a penalty ladder in h, Δt or J judges the κ → ∞ value: each level run
     // at κ and PENALTY_STIFFEN·κ, extrapolated in 1/κ ([`richardson`])
+    // (not an explicit method: its stable step falls as 1/√κ, so at a
+    // fixed Δt it has no κ → ∞ value; its κ × 16 rerun measures the share)
     m.extrapolated = ladder.variable != Variable::Kappa
-        && finest.contact.formulation == crate::scene::Formulation::Penalty;
+        && finest.contact.formulation == crate::scene::Formulation::Penalty
+        && !matches!(
+            finest.method.scheme,
+            crate::scene::Scheme::CentralDifference
+        );
     let stiff_run = |base: &Scene, factor: f64, n: usize, dt: f64, jm: usize| {
         level(&stiffened(base, factor), j.space, n, dt, jm)
             .and_then(|sc| run_with(&sc, j.factory, &mut |_, _| {}))
