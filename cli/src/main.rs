@@ -417,6 +417,31 @@ fn cmd_verify(args: &VerifyArgs, out: Option<PathBuf>, quiet: bool) -> taut::Res
         v.threads
     );
     print!("{}", taut::report::verify_table(&v.rows));
+    let g = &v.golden;
+    if g.failed > 0 {
+        println!(
+            "  golden   {} pass rows above their golden error ({}): their notes give each",
+            g.failed,
+            taut::study::verify::GOLDEN_FILE
+        );
+    }
+    if g.missing > 0 {
+        println!(
+            "  golden   {} pass rows have no golden error in {} (not judged on one; --update-golden adds them)",
+            g.missing,
+            taut::study::verify::GOLDEN_FILE
+        );
+    }
+    if g.updated.is_some() {
+        for line in &g.diff {
+            println!("  {line}");
+        }
+        println!(
+            "  updated  {} ({} constants moved, added or removed)",
+            taut::study::verify::GOLDEN_FILE,
+            g.diff.len()
+        );
+    }
     println!(
         "  wrote    {}/{{verify.csv, verify.json, verify.md}}",
         request.out.display()

@@ -759,6 +759,11 @@ pub struct VerifyArgs {
     /// The cut-down matrix of the default test suite (two support pairs).
     #[cfg_attr(feature = "clap", arg(long))]
     pub quick: bool,
+    /// Accept this run's finest errors as the golden ones: rewrite
+    /// golden/verify/quick_errors.json of the source tree (the rows that
+    /// ran) and list every constant that moved.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub update_golden: bool,
     /// `--threads`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
@@ -778,6 +783,7 @@ impl VerifyArgs {
             )?,
             threads,
             out,
+            update_golden: self.update_golden,
         })
     }
 }

@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use crate::error::Result;
-use crate::study::verify::{Selection, VerifyRow, any_failed, cases::CASES};
+use crate::error::{Error, Result};
+use crate::study::verify::{GOLDEN_FILE, Selection, VerifyRow, any_failed, cases::CASES};
 
 use super::{Frontend, Writing, kept};
 use crate::report::Outputs;
@@ -19,6 +19,10 @@ pub struct VerifyRequest {
     pub threads: Option<usize>,
     /// Output folder.
     pub out: PathBuf,
+    /// Accept the rows that ran as the golden errors: rewrite the
+    /// repository's `golden/verify/quick_errors.json` (their constants
+    /// replaced, the others kept) instead of failing rows on them.
+    pub update_golden: bool,
 }
 
 /// What the matrix gives.
@@ -31,6 +35,9 @@ pub struct VerifyOutcome {
     pub threads: usize,
     /// Whether every row passed (or is known, cannot, reported).
     pub passed: bool,
+    /// What the golden error check did (rows failed, rows without a
+    /// constant; with `update_golden`, the diff of the file written).
+    pub golden: crate::study::verify::GoldenOutcome,
 }
 
 /// Run the matrix and write its tables. The output folder is claimed (and
@@ -49,10 +56,18 @@ fn verify_in(req: &VerifyRequest, fe: &dyn Frontend) -> Result<VerifyOutcome> {
     }
     let writing = Writing::open(&req.out, Outputs::Verify, "taut verify")?;
     let (rows, threads) = crate::study::threads::in_pool(req.threads, || {
-        let rows = crate::study::verify::verify(&CASES, &req.selection, &|d, t| fe.progress(d, t));
+        let rows = crate::study::verify::verify_golden(
+            &CASES,
+            &req.selection,
+            req.update_golden,
+            &|d, t| fe.progress(d, t),
+        );
         (rows, rayon::current_num_threads())
     })?;
-    let rows = rows?;
+    let (rows, golden) = rows?;
+    if let Some(text) = &golden.updated {
+        write_golden(text)?;
+    }
     let wall_seconds = start.elapsed().as_secs_f64();
     crate::report::write_verify(writing.stage(), &rows, wall_seconds)?;
     writing.finish(fe)?;
@@ -61,5 +76,20 @@ fn verify_in(req: &VerifyRequest, fe: &dyn Frontend) -> Result<VerifyOutcome> {
         rows,
         wall_seconds,
         threads,
+        golden,
     })
+}
+
+/// Write the golden errors to the repository's file: the source tree this
+/// binary was built from (a binary built elsewhere has none to update).
+fn write_golden(text: &str) -> Result<()> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(GOLDEN_FILE);
+    if !path.parent().is_some_and(|d| d.is_dir()) {
+        return Err(Error::invalid(
+            "--update-golden",
+            path.display(),
+            "needs the source tree taut was built from (its golden/verify/ folder is not there)",
+        ));
+    }
+    std::fs::write(&path, text).map_err(|e| Error::io(&path, e))
 }

@@ -112,7 +112,14 @@ fn fill_from(row: &mut VerifyRow, m: &Measured, q: Quantity, w: Window) {
         row.observed = observed_order(errors[0], errors[k - 1], RATIO.powi(k as i32 - 1));
         row.relative_error = errors[k - 1] / scale.max(f64::MIN_POSITIVE);
         row.other_share = (errors[k - 1] - refined).abs() / errors[k - 1];
-        row.penalty_share = stiffened.map(|s| (errors[k - 1] - s).abs() / errors[k - 1]);
+        // an extrapolated ladder's check differs from its κ → ∞ value by
+        // PENALTY_STIFFEN/PENALTY_CHECK − 1 = 3 times that value's remainder
+        let spread = if m.extrapolated {
+            super::PENALTY_STIFFEN / super::measure::PENALTY_CHECK - 1.0
+        } else {
+            1.0
+        };
+        row.penalty_share = stiffened.map(|s| (errors[k - 1] - s).abs() / errors[k - 1] / spread);
     }
 }
 
@@ -214,6 +221,30 @@ fn diverging(m: &Measured, q: Quantity, complete: bool, has_loss: bool) -> Optio
         return (f.contains("unstable") || f.contains("diverg"))
             .then(|| format!("a run stopped: {f}"));
     }
+    // an extrapolated penalty ladder whose κ → ∞ value does not settle:
+    // the runs do not converge in κ (the spring rings)
+    if m.extrapolated && complete {
+        let w = if q == Quantity::Force {
+            Window::AfterStart
+        } else {
+            Window::Whole
+        };
+        let v = &m.views[w as usize];
+        let (e, s) = match q {
+            Quantity::Displacement => (v.displacement.last(), v.stiffened.map(|s| s.0)),
+            Quantity::Force => (v.force.last(), v.stiffened.map(|s| s.1)),
+        };
+        let spread = super::PENALTY_STIFFEN / super::measure::PENALTY_CHECK - 1.0;
+        if let (Some(&e), Some(s)) = (e, s) {
+            let share = (e - s).abs() / e / spread;
+            if share.is_nan() || share > DOMINANCE_LIMIT {
+                return Some(format!(
+                    "the κ → ∞ extrapolation does not settle: its remainder makes {:.0} % of the finest error",
+                    100.0 * share
+                ));
+            }
+        }
+    }
     if !complete {
         return None;
     }
@@ -270,15 +301,20 @@ fn diverging(m: &Measured, q: Quantity, complete: bool, has_loss: bool) -> Optio
 /// no constraint oscillation to grow.
 const WITNESS_FORMULATION: &str = "impact";
 
-/// A `diverges` row earns its label only beside a row that must pass on the
+/// A `diverges` row earns its label only beside rows that must pass on the
 /// same method: the same case, discretization, supports and quantity with
 /// the impact law ([`WITNESS_FORMULATION`]), which removes the mechanism
-/// the label names (the moving constraint, held at force level). Where
-/// every such row passes, the note names them; where one fails or none was
-/// run, the row fails: a defect of the method then shows, and a `diverges`
-/// is never a label that no run can contradict.
+/// the label names (the moving constraint, held at force level); and, where
+/// the standing case ran ([`super::cases::STANDING_CASE`]: the mass–spring
+/// at V = 0), its rows of the same method, law, supports and quantity,
+/// which remove the motion itself (but for those that diverge themselves,
+/// as the penalty spring does at V = 0). Where every such row passes, the note
+/// names them; where one fails or no impact row was run, the row fails: a
+/// defect of the method then shows, and a `diverges` is never a label that
+/// no run can contradict.
 pub(super) fn witness_divergences(rows: &mut [VerifyRow]) {
-    let verdicts: Vec<Option<Result<usize, String>>> = rows
+    let standing = super::cases::STANDING_CASE;
+    let verdicts: Vec<Option<Result<(usize, usize), String>>> = rows
         .iter()
         .map(|r| {
             (r.status == Status::Diverges).then(|| {
@@ -293,29 +329,58 @@ pub(super) fn witness_divergences(rows: &mut [VerifyRow]) {
                             && w.quantity == r.quantity
                     })
                     .collect();
+                let still: Vec<&VerifyRow> = rows
+                    .iter()
+                    .filter(|w| {
+                        // a standing row that diverges itself has its own
+                        // witnesses (the impact law beside it)
+                        w.case == standing
+                            && r.case != standing
+                            && w.status != Status::Diverges
+                            && w.formulation == r.formulation
+                            && w.method == r.method
+                            && w.supports == r.supports
+                            && w.quantity == r.quantity
+                    })
+                    .collect();
                 if beside.is_empty() {
                     return Err(format!(
                         "no row with contact.formulation = {WITNESS_FORMULATION} ran beside it (run the matrix with that law)"
                     ));
                 }
-                match beside.iter().find(|w| w.status != Status::Pass) {
-                    Some(w) => Err(format!(
+                if let Some(w) = beside.iter().find(|w| w.status != Status::Pass) {
+                    return Err(format!(
                         "the same method with contact.formulation = {WITNESS_FORMULATION} does not pass beside it ({} ladder: {})",
                         w.variable,
                         w.status.name()
-                    )),
-                    None => Ok(beside.len()),
+                    ));
                 }
+                if let Some(w) = still.iter().find(|w| w.status != Status::Pass) {
+                    return Err(format!(
+                        "the same method and law with the mass–spring standing ({standing}, {} {} ladder) does not pass: {}",
+                        w.discretization,
+                        w.variable,
+                        w.status.name()
+                    ));
+                }
+                Ok((beside.len(), still.len()))
             })
         })
         .collect();
     for (r, v) in rows.iter_mut().zip(verdicts) {
         match v {
-            Some(Ok(n)) => r.note.push_str(&format!(
-                " [witnessed: the same method with contact.formulation = {WITNESS_FORMULATION} passes its {n} {} ladder{} here]",
-                r.quantity,
-                if n == 1 { "" } else { "s" }
-            )),
+            Some(Ok((n, k))) => {
+                let standing_note = if k > 0 {
+                    format!(", and standing ({standing}) its {k}")
+                } else {
+                    String::new()
+                };
+                r.note.push_str(&format!(
+                    " [witnessed: the same method with contact.formulation = {WITNESS_FORMULATION} passes its {n} {} ladder{} here{standing_note}]",
+                    r.quantity,
+                    if n == 1 { "" } else { "s" }
+                ))
+            }
             Some(Err(why)) => {
                 r.status = Status::Fail;
                 r.note = format!("diverges not earned: {why}; {}", r.note);
@@ -427,7 +492,7 @@ pub(super) fn judge(row: &mut VerifyRow, m: &Measured, q: Quantity, e: Expect, l
             },
             ..row.clone()
         };
-        let over = exceeded(&scaled, ladder.variable, true);
+        let over = exceeded(&scaled, ladder.variable, true, m.extrapolated);
         if !over.is_empty() {
             let window = if after {
                 Window::AfterStart
@@ -435,7 +500,13 @@ pub(super) fn judge(row: &mut VerifyRow, m: &Measured, q: Quantity, e: Expect, l
                 Window::Whole
             };
             let order = if first_order { 1.0 } else { FIXED_ORDER };
-            let mut not_earned = unconfirmed(&scaled, ladder.variable, drops(m, q, window), order);
+            let mut not_earned = unconfirmed(
+                &scaled,
+                ladder.variable,
+                drops(m, q, window),
+                order,
+                m.extrapolated,
+            );
             if row.relative_error.is_nan() || row.relative_error > CANNOT_BOUND {
                 not_earned.push(format!(
                     "the finest error is {:.2e} of the solution, above the {CANNOT_BOUND:.0e} a measured limitation may leave",
@@ -588,7 +659,7 @@ fn judge_expectation(
                     "known deviation above its declared bound: relative error {:.2e} > {bound:.1e} ({cause})",
                     row.relative_error
                 )
-            } else if let Some(note) = dominated(row, ladder.variable, false) {
+            } else if let Some(note) = dominated(row, ladder.variable, false, m.extrapolated) {
                 note
             } else {
                 row.status = Status::Known;
@@ -604,8 +675,15 @@ fn judge_expectation(
 /// Every limit a row's measured shares exceed (the fixed variables', the
 /// prescribed loss's where `declared`, the penalty's compliance's), each
 /// named with its share: the note of a row gives them all, not only the
-/// first. Empty within every limit.
-fn exceeded(row: &VerifyRow, variable: Variable, declared: bool) -> Vec<String> {
+/// first. Empty within every limit. `extrapolated`: the row's errors are
+/// of the κ → ∞ value, and its penalty share is the extrapolation check's
+/// (`measure::PENALTY_CHECK`).
+fn exceeded(
+    row: &VerifyRow,
+    variable: Variable,
+    declared: bool,
+    extrapolated: bool,
+) -> Vec<String> {
     let fixed = if variable == Variable::Dt {
         "the mesh"
     } else if variable == Variable::Kappa {
@@ -633,6 +711,17 @@ fn exceeded(row: &VerifyRow, variable: Variable, declared: bool) -> Vec<String> 
     if variable != Variable::Kappa
         && let Some(share) = row.penalty_share
         && (share.is_nan() || share > DOMINANCE_LIMIT)
+        && extrapolated
+    {
+        over.push(format!(
+            "the κ → ∞ extrapolation is not settled: its remainder, measured as a third of the difference from the one from κ and {}κ, makes {:.0} % of the finest error (limit {:.0} %): the compliance's error is not c/κ here",
+            super::measure::PENALTY_CHECK,
+            100.0 * share,
+            100.0 * DOMINANCE_LIMIT
+        ));
+    } else if variable != Variable::Kappa
+        && let Some(share) = row.penalty_share
+        && (share.is_nan() || share > DOMINANCE_LIMIT)
     {
         over.push(format!(
             "the penalty's compliance makes {:.0} % of the finest error (a run with κ × {} measured; limit {:.0} %): the order is not the refined variable's",
@@ -646,8 +735,13 @@ fn exceeded(row: &VerifyRow, variable: Variable, declared: bool) -> Vec<String> 
 
 /// The note of a row whose shares exceed their limits ([`exceeded`], all
 /// of them, joined); `None` within every limit.
-fn dominated(row: &VerifyRow, variable: Variable, declared: bool) -> Option<String> {
-    let over = exceeded(row, variable, declared);
+fn dominated(
+    row: &VerifyRow,
+    variable: Variable,
+    declared: bool,
+    extrapolated: bool,
+) -> Option<String> {
+    let over = exceeded(row, variable, declared, extrapolated);
     (!over.is_empty()).then(|| over.join("; "))
 }
 
@@ -669,8 +763,21 @@ fn unconfirmed(
     variable: Variable,
     (drop, stiff_drop): (f64, Option<f64>),
     order: f64,
+    extrapolated: bool,
 ) -> Vec<String> {
     let mut out = Vec::new();
+    // the κ → ∞ value's check above its limit confirms no excuse: the
+    // extrapolation that was to remove the compliance did not settle
+    if extrapolated
+        && variable != Variable::Kappa
+        && row
+            .penalty_share
+            .is_some_and(|s| s.is_nan() || s > DOMINANCE_LIMIT)
+    {
+        out.push(
+            "no excuse is confirmed where the κ → ∞ extrapolation does not settle".to_string(),
+        );
+    }
     let fixed_over = row.other_share.is_nan() || row.other_share > DOMINANCE_LIMIT;
     if fixed_over {
         let part = drop / (1.0 - RATIO.powf(-order));
@@ -686,6 +793,7 @@ fn unconfirmed(
         }
     }
     if variable != Variable::Kappa
+        && !extrapolated
         && let (Some(share), Some(d)) = (row.penalty_share, stiff_drop)
         && (share.is_nan() || share > DOMINANCE_LIMIT)
     {
@@ -726,7 +834,7 @@ fn judge_order(
         row.note = "no order: an error is zero or not finite".into();
         return;
     }
-    if let Some(note) = dominated(row, ladder.variable, false) {
+    if let Some(note) = dominated(row, ladder.variable, false, m.extrapolated) {
         row.note = note;
         return;
     }
@@ -848,6 +956,7 @@ mod tests {
             runs: force.len() + 1,
             failed: None,
             tail: None,
+            extrapolated: false,
         }
     }
 
@@ -1033,6 +1142,41 @@ mod tests {
         assert!(r.note.contains("order 1"), "{}", r.note);
     }
 
+    /// A penalty ladder judged on its κ → ∞ value: a check (κ and 4κ)
+    /// within the limit leaves the row to its order; one above it is no
+    /// excuse, whatever the declaration: the row fails, naming the check.
+    #[test]
+    fn an_unsettled_extrapolation_in_kappa_is_no_excuse() {
+        let e = [1.6e-3, 4.0e-4, 1.0e-4, 2.5e-5];
+        let judged = |check: f64| {
+            let mut m = measured(&e, 2.5e-5);
+            m.extrapolated = true;
+            for v in &mut m.views {
+                v.stiffened = Some((f64::NAN, check));
+            }
+            let mut r = row();
+            judge(
+                &mut r,
+                &m,
+                Quantity::Force,
+                SMOOTH.limited("test"),
+                &ladder(e.len()),
+            );
+            r
+        };
+        // the check within 4 % of the extrapolated error: pass
+        let r = judged(2.6e-5);
+        assert_eq!(r.status, Status::Pass, "{}", r.note);
+        // 60 % off: a remainder of 20 % (a third of it), within the limit
+        let r = judged(1.0e-5);
+        assert_eq!(r.status, Status::Pass, "{}", r.note);
+        // 90 % off: a remainder of 30 %; the same numbers were a confirmed
+        // `cannot` for a stiffer run; for the extrapolation's check they fail
+        let r = judged(2.5e-6);
+        assert_eq!(r.status, Status::Fail, "{}", r.note);
+        assert!(r.note.contains("κ → ∞ extrapolation"), "{}", r.note);
+    }
+
     /// Every limit a row exceeds is named, not only the first: a
     /// `generalized_alpha hermite penalty pinned-pinned dt force` row said
     /// only "the mesh makes 31 %" where κ × 16 removed 93.6 %.
@@ -1094,6 +1238,30 @@ mod tests {
         witness_divergences(&mut rows);
         assert_eq!(rows[0].status, Status::Fail, "{}", rows[0].note);
         assert!(rows[0].note.contains("no row"), "{}", rows[0].note);
+        // the standing case's row of the same law must pass too: a Newmark
+        // defect the impact law does not see shows there
+        let standing = |status: Status| {
+            let mut r = named("lagrange", "dt", status);
+            r.case = super::super::cases::STANDING_CASE.into();
+            r
+        };
+        for (still, expected) in [
+            (Status::Pass, Status::Diverges),
+            (Status::Fail, Status::Fail),
+        ] {
+            let mut rows = vec![
+                named("lagrange", "h", Status::Diverges),
+                named("impact", "h", Status::Pass),
+                standing(still),
+            ];
+            witness_divergences(&mut rows);
+            assert_eq!(rows[0].status, expected, "{}", rows[0].note);
+            assert!(
+                rows[0].note.contains("mms_beam_standing"),
+                "{}",
+                rows[0].note
+            );
+        }
     }
 
     /// A ladder that may diverge: `diverges` where it grows, judged by its

@@ -61,6 +61,40 @@ pub(super) struct Measured {
     pub(super) failed: Option<String>,
     /// The exact solution's modal tail per J level (J ladders).
     pub(super) tail: Option<Vec<f64>>,
+    /// A penalty ladder in h, Δt or J whose levels are the κ → ∞ values
+    /// ([`richardson`]): its `stiffened` view is then the extrapolation's
+    /// check ([`PENALTY_CHECK`]), not a stiffer run.
+    pub(super) extrapolated: bool,
+}
+
+/// The κ of the extrapolation's check, times the level's: the κ → ∞ value
+/// extrapolated from κ and 4κ differs from the one from κ and 16κ by three
+/// times the latter's remainder where the compliance's error is c₁/κ +
+/// c₂/κ² (−c₂/(16κ²) against −3c₂/(16κ²)), so the check's difference
+/// bounds the remainder three times over.
+pub(crate) const PENALTY_CHECK: f64 = 4.0;
+
+/// The κ → ∞ value of a penalty run from runs at κ (`a`) and `factor`·κ
+/// (`b`, same steps and probes): Richardson in 1/κ, x∞ = (f·x_b − x_a)/(f − 1)
+/// row by row, for every carrier's w, q and force and every probe (the
+/// compliance's error ∝ 1/κ removed, its c₂/κ² part left at −c₂/(f κ²)).
+/// The contact statistics stay `a`'s (the run at the scene's κ).
+fn richardson(a: &RunOutput, mut b: RunOutput, factor: f64) -> RunOutput {
+    let mix = |xb: &mut [f64], xa: &[f64]| {
+        for (y, x) in xb.iter_mut().zip(xa) {
+            *y = (factor * *y - x) / (factor - 1.0);
+        }
+    };
+    for (cb, ca) in b.history.carriers.iter_mut().zip(&a.history.carriers) {
+        mix(&mut cb.w, &ca.w);
+        mix(&mut cb.q, &ca.q);
+        mix(&mut cb.force, &ca.force);
+    }
+    for ((_, pb), (_, pa)) in b.history.probes.iter_mut().zip(&a.history.probes) {
+        mix(pb, pa);
+    }
+    b.stats = a.stats.clone();
+    b
 }
 
 /// The per-level value of the refined variable, and the level's (N, Δt, J).
@@ -130,6 +164,7 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
         runs: 0,
         failed: None,
         tail: None,
+        extrapolated: false,
     };
     let owned;
     let scene = match ladder.end {
@@ -166,6 +201,21 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
     };
     m.omega_max_dt = central_difference_limit(finest).map_or(f64::NAN, |l| l.omega_max * finest.dt);
     let coarse = (scenes[0].steps, scenes[0].dt);
+    // a penalty ladder in h, Δt or J judges the κ → ∞ value: each level run
+    // at κ and PENALTY_STIFFEN·κ, extrapolated in 1/κ ([`richardson`])
+    // (not an explicit method: its stable step falls as 1/√κ, so at a
+    // fixed Δt it has no κ → ∞ value; its κ × 16 rerun measures the share)
+    m.extrapolated = ladder.variable != Variable::Kappa
+        && finest.contact.formulation == crate::scene::Formulation::Penalty
+        && !matches!(
+            finest.method.scheme,
+            crate::scene::Scheme::CentralDifference
+        );
+    let stiff_run = |base: &Scene, factor: f64, n: usize, dt: f64, jm: usize| {
+        level(&stiffened(base, factor), j.space, n, dt, jm)
+            .and_then(|sc| run_with(&sc, j.factory, &mut |_, _| {}))
+    };
+    let mut finest_plain = None;
     for (k, sc) in scenes.iter().enumerate() {
         m.levels.push(match ladder.variable {
             Variable::H => sc.resolution(),
@@ -183,6 +233,33 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
         m.runs += 1;
         m.loss_intervals
             .push(out.stats.first().map_or(0, |s| s.loss_interval_count));
+        let out = if m.extrapolated {
+            let (_, n, dt, jm) = level_params(ladder, k);
+            let stiff = match stiff_run(
+                &at_level(scene, ladder, k),
+                super::PENALTY_STIFFEN,
+                n,
+                dt,
+                jm,
+            ) {
+                Ok(o) => o,
+                Err(e) => {
+                    m.failed = Some(format!(
+                        "level {k} with κ × {} (the κ → ∞ extrapolation): {e}",
+                        super::PENALTY_STIFFEN
+                    ));
+                    return m;
+                }
+            };
+            m.runs += 1;
+            let x = richardson(&out, stiff, super::PENALTY_STIFFEN);
+            if k + 1 == ladder.levels {
+                finest_plain = Some(out);
+            }
+            x
+        } else {
+            out
+        };
         let Ok(stride) = nest(coarse, (sc.steps, sc.dt), Reach::SameEnd) else {
             m.failed = Some("the levels' time grids do not nest".into());
             return m;
@@ -199,7 +276,10 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
     {
         m.tail = modal_tail(&scenes, mf, j.space).ok();
     }
-    // penalty: the finest level with κ stiffened, for the compliance's share
+    // penalty: the finest level with κ stiffened, for the compliance's
+    // share; an extrapolated ladder's check instead: the κ → ∞ value from κ
+    // and PENALTY_CHECK·κ, whose difference from the ladder's bounds the
+    // extrapolation's remainder ([`PENALTY_CHECK`])
     let last = &at_level(scene, ladder, ladder.levels - 1);
     if finest.contact.formulation == crate::scene::Formulation::Penalty {
         // measured from here on: NaN until its run succeeds
@@ -207,12 +287,16 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
             v.stiffened = Some((f64::NAN, f64::NAN));
         }
         let (_, n, dt, jm) = level_params(ladder, ladder.levels - 1);
-        if let Ok(sc) = level(&stiffened(last, super::PENALTY_STIFFEN), j.space, n, dt, jm)
-            && let Ok(out) = run_with(&sc, j.factory, &mut |_, _| {})
-            && let Ok(stride) = nest(coarse, (sc.steps, sc.dt), Reach::SameEnd)
+        let checked = match &finest_plain {
+            Some(plain) => stiff_run(last, PENALTY_CHECK, n, dt, jm)
+                .map(|o| richardson(plain, o, PENALTY_CHECK)),
+            None => stiff_run(last, super::PENALTY_STIFFEN, n, dt, jm),
+        };
+        if let Ok(out) = checked
+            && let Ok(stride) = nest(coarse, (finest.steps, finest.dt), Reach::SameEnd)
         {
             m.runs += 1;
-            let e = errors(&sc, &out, &ex, stride, coarse.0);
+            let e = errors(finest, &out, &ex, stride, coarse.0);
             for (v, (d, f)) in m.views.iter_mut().zip(e.d.iter().zip(&e.f)) {
                 v.stiffened = Some((*d, *f));
             }
@@ -253,11 +337,21 @@ pub(super) fn measure(scene: &Scene, j: &Job, ladder: &Ladder) -> Measured {
             _ => (n * 2, dt / 2.0, jm),
         },
     };
+    // an extrapolated ladder's dominance run is extrapolated too
+    let refined_run = |sc: &Resolved| -> Result<RunOutput> {
+        let out = run_with(sc, j.factory, &mut |_, _| {})?;
+        if m.extrapolated {
+            let stiff = stiff_run(last, super::PENALTY_STIFFEN, n2, dt2, j2)?;
+            Ok(richardson(&out, stiff, super::PENALTY_STIFFEN))
+        } else {
+            Ok(out)
+        }
+    };
     if let Ok(sc) = level(last, j.space, n2, dt2, j2)
-        && let Ok(out) = run_with(&sc, j.factory, &mut |_, _| {})
+        && let Ok(out) = refined_run(&sc)
         && let Ok(stride) = nest(coarse, (sc.steps, sc.dt), Reach::SameEnd)
     {
-        m.runs += 1;
+        m.runs += if m.extrapolated { 2 } else { 1 };
         let e = errors(&sc, &out, &ex, stride, coarse.0);
         for (v, (d, f)) in m.views.iter_mut().zip(e.d.iter().zip(&e.f)) {
             v.refined = (*d, *f);

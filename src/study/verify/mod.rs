@@ -32,7 +32,6 @@
 pub mod case;
 pub mod cases;
 mod explicit;
-#[cfg(test)]
 mod golden;
 mod job;
 mod judge;
@@ -54,6 +53,7 @@ use case::Case;
 use job::Job;
 use run_job::run_job;
 
+pub use golden::{GOLDEN_FILE, GoldenOutcome};
 pub use row::{Status, VerifyRow, any_failed};
 pub use select::{Selection, selection};
 
@@ -98,8 +98,45 @@ pub(crate) const ROUND_OFF_FLOOR: f64 = 2e-10;
 /// Run the matrix of `sel` over `cases` on the current rayon pool;
 /// `progress(done, total)` after each combination. Rows in a fixed order
 /// (case, supports, discretization, formulation, method, ladder, quantity),
-/// whatever the thread count.
+/// whatever the thread count. Each `pass` row is then held to its golden
+/// error (`golden`: fails above `GOLDEN_FACTOR` times the constant bundled
+/// from `golden/verify/quick_errors.json`; a row with no constant is noted),
+/// before the `diverges` rows look for their witnesses.
 pub fn verify(
+    cases: &[Case],
+    sel: &Selection,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Vec<VerifyRow>> {
+    Ok(verify_golden(cases, sel, false, progress)?.0)
+}
+
+/// [`verify`], with what the golden check did; `update`: the rows that ran
+/// become the golden constants instead (each judged against its new one,
+/// so none fails on it), the new file text and the diff in the outcome
+/// (the caller writes it to `golden/verify/quick_errors.json`).
+pub fn verify_golden(
+    cases: &[Case],
+    sel: &Selection,
+    update: bool,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<(Vec<VerifyRow>, GoldenOutcome)> {
+    let mut out = run_matrix(cases, sel, progress)?;
+    let before = golden::bundled()?;
+    let outcome = if update {
+        let (now, diff) = golden::update(&out, before);
+        let mut o = golden::judge(&mut out, &now);
+        o.diff = diff;
+        o.updated = Some(golden::text(&now));
+        o
+    } else {
+        golden::judge(&mut out, before)
+    };
+    judge::witness_divergences(&mut out);
+    Ok((out, outcome))
+}
+
+/// The matrix's rows, each judged on its own ladder.
+fn run_matrix(
     cases: &[Case],
     sel: &Selection,
     progress: &(dyn Fn(usize, usize) + Sync),
@@ -155,6 +192,5 @@ pub fn verify(
     for r in rows {
         out.extend(r?);
     }
-    judge::witness_divergences(&mut out);
     Ok(out)
 }
