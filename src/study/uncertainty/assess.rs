@@ -204,7 +204,7 @@ const LEVELS_LEFT: usize = 3;
 /// [`PRE_ASYMPTOTIC_MARGIN`] · r^p_fast · max_{ℓ≥2} |φ_ℓ − φ_{ℓ−1}|, with
 /// p_fast the larger formal order (no level of a ladder in its asymptotic
 /// range falls faster than its fastest variable allows), and at least
-/// [`LEVELS_LEFT`] levels remain. The finer levels must change (beyond
+/// `LEVELS_LEFT` (3) levels remain. The finer levels must change (beyond
 /// round-off): identical finer levels give no order to judge level 0 by,
 /// and the family is left whole. Returns level 0's change over that
 /// allowance.

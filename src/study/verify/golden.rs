@@ -43,7 +43,7 @@ const DIFF_SHOWN: f64 = 0.01;
 /// What the golden check did to a matrix's rows.
 #[derive(Debug, Clone, Default)]
 pub struct GoldenOutcome {
-    /// `pass` rows failed: finest error above [`GOLDEN_FACTOR`] × constant.
+    /// `pass` rows failed: finest error above `GOLDEN_FACTOR` (1.5) × constant.
     pub failed: usize,
     /// `pass` rows with no constant in the file (not judged on one).
     pub missing: usize,
