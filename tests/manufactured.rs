@@ -466,7 +466,9 @@ fn the_cut_down_verification_matrix_passes() {
     // WBZ runs at ρ∞ = 0.5, not only at Newmark's ρ∞ = 1
     let errors_of = |method: &str| -> Vec<Vec<f64>> {
         rows.iter()
+            // the standing case runs Newmark alone (a witness of its moving rows)
             .filter(|r| r.method == method && r.formulation == "impact")
+            .filter(|r| r.case != "mms_beam_standing")
             .map(|r| r.errors.clone())
             .collect()
     };
