@@ -285,6 +285,9 @@ impl Line {
                 format!("must be at most the span length ({span} m)"),
             ));
         }
+        // before the design: a line no mesh can hold is refused by its
+        // lengths, not by what the design makes of them
+        least_elements_per_span(s.spans, span, h)?;
         let m = &s.messenger;
         positive("line.messenger.tension", m.tension, "N")?;
         positive("line.messenger.mass_per_length", m.mass_per_length, "kg/m")?;
@@ -557,18 +560,7 @@ impl Line {
     /// Elements per span m: the smallest with S/m ≤ h and every dropper on
     /// a node (p m / S an integer, to [`ON_NODE`]).
     fn elements_per_span(&self) -> Result<usize> {
-        let first = ((self.span / self.h) * (1.0 - ON_NODE)).ceil().max(1.0);
-        if first * self.spans as f64 > MAX_ELEMENTS as f64 {
-            return Err(Error::invalid(
-                "line.element_length",
-                self.h,
-                format!(
-                    "is too small: {} spans of {} m would need more than {MAX_ELEMENTS} elements in all (m; raise it)",
-                    self.spans, self.span
-                ),
-            ));
-        }
-        let first = first as usize;
+        let first = least_elements_per_span(self.spans, self.span, self.h)? as usize;
         let most = (MAX_ELEMENTS / self.spans).min(MAX_REFINEMENT.saturating_mul(first));
         for m in first..=most.max(first) {
             if m * self.spans > MAX_ELEMENTS {
@@ -770,6 +762,23 @@ impl Line {
 /// The positions within a span (m) from `line.droppers` (G1): a list
 /// (strictly increasing, each in (0, S)) or `{ count, end_distance }`
 /// (count 1: mid-span; count ≥ 2: from e to S − e, evenly).
+/// The fewest elements a span of `span` m takes at element length `h`
+/// (S/m ≤ h, to [`ON_NODE`]), refused where `spans` of them exceed
+/// [`MAX_ELEMENTS`]: the message names both lengths.
+fn least_elements_per_span(spans: usize, span: f64, h: f64) -> Result<f64> {
+    let first = ((span / h) * (1.0 - ON_NODE)).ceil().max(1.0);
+    if first * spans as f64 > MAX_ELEMENTS as f64 {
+        return Err(Error::invalid(
+            "line.element_length",
+            h,
+            format!(
+                "is too small: {spans} spans of {span} m (line.span_length) would need more than {MAX_ELEMENTS} elements in all (m; raise it, or shorten the spans)"
+            ),
+        ));
+    }
+    Ok(first)
+}
+
 fn dropper_positions(v: &Value, span: f64) -> Result<Vec<f64>> {
     let out = match v {
         Value::Array(list) => {
@@ -1122,7 +1131,7 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
 
     #[test]
     fn bad_keys_name_the_field_the_value_and_the_range() {
-        let cases: [(&[&str], &[&str]); 18] = [
+        let cases: [(&[&str], &[&str]); 19] = [
             (&["line.spanz=3"], &["line", "spanz", "unknown"]),
             (
                 &["line.droppers={ count = 2305843009213693952, end_distance = 3 }"],
@@ -1134,6 +1143,12 @@ steady_arm = { stiffness = 1000.0, mass = 1.0 }
             ),
             (&["line.spans=0"], &["line.spans", "0", "1 ..= 1000"]),
             (&["line.span_length=-5"], &["line.span_length", "-5", "> 0"]),
+            // refused by its lengths before the design (whose droppers
+            // rounded onto the supports and panicked)
+            (
+                &["line.span_length=1e300"],
+                &["line.span_length", "1e300", "elements in all"],
+            ),
             (&["line.presag=-0.1"], &["line.presag", "-0.1", "≥ 0"]),
             (
                 &["line.dropper_stiffness=0"],

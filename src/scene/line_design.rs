@@ -63,9 +63,10 @@ pub fn dropper_forces(
     let mut forces = vec![0.0; n];
     for seg in 0..=n {
         let ((a, va), (b, vb)) = (point(seg), point(seg + 1));
-        // the springs strictly inside (a, b) (`springs` rise in x)
-        let inside = &springs
-            [springs.partition_point(|sp| sp.x <= a)..springs.partition_point(|sp| sp.x < b)];
+        // the springs strictly inside (a, b) (`springs` rise in x; none
+        // where a = b, as points of a span of 1e300 m can round to)
+        let first = springs.partition_point(|sp| sp.x <= a);
+        let inside = &springs[first..springs.partition_point(|sp| sp.x < b).max(first)];
         let (ra, rb) = segment_pushes(a, va, b, vb, wire, inside);
         if seg >= 1 {
             forces[seg - 1] += ra;
