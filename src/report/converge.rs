@@ -435,22 +435,7 @@ pub(super) fn log_log(
     root.fill(&WHITE)?;
     let root = root.titled(caption, ("sans-serif", 17))?;
     let (plot_area, legend_area) = root.split_horizontally(style::legend_layout(SIZE).0[2]);
-    let (xm, xn) = style::decade_ticks(x0, x1);
-    let (ym, yn) = style::decade_ticks(y0, y1);
-    let mut chart = ChartBuilder::on(&plot_area)
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(
-            (x0..x1)
-                .log_scale()
-                .with_key_points(xm)
-                .with_light_points(xn),
-            (y0..y1)
-                .log_scale()
-                .with_key_points(ym)
-                .with_light_points(yn),
-        )?;
+    let mut chart = style::log_log_chart(&plot_area, (x0, x1), (y0, y1))?;
     chart
         .configure_mesh()
         .x_desc(x_desc)

@@ -289,6 +289,38 @@ pub(crate) fn log_label(v: f64) -> String {
     format!("{v:.0e}")
 }
 
+/// Both axes of a log–log plot: decades labelled, the 2–9 between them as
+/// light grid lines ([`decade_ticks`]).
+pub(crate) type LogLog = plotters::coord::cartesian::Cartesian2d<
+    plotters::coord::combinators::WithKeyPoints<plotters::coord::combinators::LogCoord<f64>>,
+    plotters::coord::combinators::WithKeyPoints<plotters::coord::combinators::LogCoord<f64>>,
+>;
+
+/// A log–log chart on `area` over `x` and `y` with decade ticks: the one
+/// builder the work–precision and convergence plots share.
+pub(crate) fn log_log_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> std::result::Result<ChartContext<'a, DB, LogLog>, DrawingAreaErrorKind<DB::ErrorType>> {
+    let (xm, xn) = decade_ticks(x0, x1);
+    let (ym, yn) = decade_ticks(y0, y1);
+    ChartBuilder::on(area)
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(
+            (x0..x1)
+                .log_scale()
+                .with_key_points(xm)
+                .with_light_points(xn),
+            (y0..y1)
+                .log_scale()
+                .with_key_points(ym)
+                .with_light_points(yn),
+        )
+}
+
 /// Share of the data left out at each end when a robust range is chosen.
 pub(crate) const ROBUST_TAIL: f64 = 0.01;
 

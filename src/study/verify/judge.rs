@@ -1078,7 +1078,13 @@ mod tests {
     /// A penalty row declared limited, its force errors `e`, the dominance
     /// run's finest error `refined` and the κ × 16 run's `stiffened`.
     fn limited_penalty(e: &[f64], refined: f64, stiffened: f64) -> VerifyRow {
+        penalty_judged(e, refined, stiffened, false)
+    }
+
+    /// [`limited_penalty`] with the ladder's values extrapolated in κ or not.
+    fn penalty_judged(e: &[f64], refined: f64, stiffened: f64, extrapolated: bool) -> VerifyRow {
         let mut m = measured(e, refined);
+        m.extrapolated = extrapolated;
         for v in &mut m.views {
             v.stiffened = Some((f64::NAN, stiffened));
         }
@@ -1148,22 +1154,7 @@ mod tests {
     #[test]
     fn an_unsettled_extrapolation_in_kappa_is_no_excuse() {
         let e = [1.6e-3, 4.0e-4, 1.0e-4, 2.5e-5];
-        let judged = |check: f64| {
-            let mut m = measured(&e, 2.5e-5);
-            m.extrapolated = true;
-            for v in &mut m.views {
-                v.stiffened = Some((f64::NAN, check));
-            }
-            let mut r = row();
-            judge(
-                &mut r,
-                &m,
-                Quantity::Force,
-                SMOOTH.limited("test"),
-                &ladder(e.len()),
-            );
-            r
-        };
+        let judged = |check: f64| penalty_judged(&e, 2.5e-5, check, true);
         // the check within 4 % of the extrapolated error: pass
         let r = judged(2.6e-5);
         assert_eq!(r.status, Status::Pass, "{}", r.note);
