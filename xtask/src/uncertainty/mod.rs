@@ -23,7 +23,9 @@
 //! each pair's u_num and errors for `scripts/sibling_spread.py`): a change
 //! to an estimator is measured against the whole grid before the grid is
 //! run again. The default test
-//! suite runs a cut-down version (`tests/uncertainty.rs`).
+//! suite runs a cut-down version (`tests/uncertainty.rs`). `cargo xtask
+//! uncertainty heldout` runs and stores the held-out pairs ([`heldout`]),
+//! which check the estimator chosen on these without choosing it.
 
 pub mod cases;
 pub mod heldout;

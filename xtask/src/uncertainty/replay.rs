@@ -3,7 +3,10 @@
 //! assessed again by the library's current estimators (`cargo xtask
 //! uncertainty replay FILE`), so a change to an estimator is measured on
 //! the whole grid in seconds. The tables it prints are the study's; only
-//! the final `cargo xtask uncertainty` run goes into the docs.
+//! the final `cargo xtask uncertainty` run goes into the docs. It also
+//! compares taut's estimator with Roache's GCI, Eça & Hoekstra's and Xing
+//! & Stern's per kind of quantity, and checks the one chosen on the stored
+//! pairs ([`choose`]) on the file replayed (the held-out pairs).
 
 use std::io::Write;
 
