@@ -28,11 +28,41 @@ def _same_default(python: object, library: object) -> bool:
     return python == library
 
 
+STUDIES = {name for name, _ in taut.studies()}
+
+
 def test_every_command_of_the_library_has_its_python_function():
-    assert set(SCHEMA) == {"run", "compare", "converge", "precision", "sweep", "modes", "uncertainty"}
+    assert set(SCHEMA) == {"run", "sweep", "modes"} | STUDIES
+    assert {"compare", "converge", "precision", "uncertainty"} <= STUDIES
 
 
-@pytest.mark.parametrize("command", sorted(SCHEMA))
+def test_every_study_of_the_library_is_offered_by_taut_study():
+    # the library's list of studies is what taut.study() takes: a study
+    # added there needs no function here
+    e = pytest.raises(taut.SceneError, taut.study, "bogus", "reference").value
+    for name in STUDIES:
+        assert name in str(e), str(e)
+
+
+def test_the_stub_names_what_the_native_module_has():
+    # the typing stub (_taut.pyi) is written by hand: it is held to the
+    # module, so that a function added or removed fails here until it is
+    import ast
+    import pathlib
+
+    stub = ast.parse((pathlib.Path(taut.__file__).parent / "_taut.pyi").read_text())
+    listed = next(
+        ast.literal_eval(n.value)
+        for n in stub.body
+        if isinstance(n, ast.Assign) and getattr(n.targets[0], "id", "") == "__all__"
+    )
+    defined = {n.name for n in stub.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    native = {n for n in dir(taut._taut) if not n.startswith("_")} | {"__version__"}
+    assert set(listed) == native
+    assert {n for n in native if callable(getattr(taut._taut, n))} == defined
+
+
+@pytest.mark.parametrize("command", sorted(set(SCHEMA) - (STUDIES - {"compare", "converge", "precision", "uncertainty"})))
 def test_a_python_function_takes_its_command_s_options(command):
     params = inspect.signature(getattr(taut, command)).parameters
     options = {name: default for name, default, _ in SCHEMA[command]}

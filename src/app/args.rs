@@ -997,44 +997,50 @@ pub trait CommandArgs: clap::Args + for<'de> Deserialize<'de> {
     }
 }
 
-/// The commands the Python module offers as well, one row each: the
-/// command, its options (with the keywords only Python passes, in
-/// brackets), what they make and the function that makes it. Each row is
-/// the command's [`CommandArgs`] and its entry in [`schema`], so that the
-/// list of commands is written once.
-macro_rules! python_commands {
-    ($($command:literal: $args:ty $([$($python:literal),*])? => $typed:ty, $make:expr;)*) => {
-        $(
-            #[cfg(feature = "clap")]
-            impl CommandArgs for $args {
-                const COMMAND: &'static str = $command;
-                $(const PYTHON_ONLY: &'static [&'static str] = &[$($python),*];)?
-                type Typed = $typed;
-                fn typed(&self) -> Result<$typed> {
-                    $make(self)
-                }
-            }
-        )*
-
-        /// Every command's options as the struct of this module declares
-        /// them: `(command, options)` for each command the Python module
-        /// offers as well, for its tests to hold the Python signatures
-        /// against.
+/// A command's [`CommandArgs`], one row: the command, its options (with
+/// the keywords only Python passes, in brackets), what they make and the
+/// function that makes it. A study of one scene writes its row beside its
+/// [`super::StudyCommand`] (`app/compare.rs`); the others are here.
+macro_rules! command_args {
+    ($command:literal: $args:ty $([$($python:literal),*])? => $typed:ty, $make:expr) => {
         #[cfg(feature = "clap")]
-        pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
-            vec![$(($command, options_of::<$args>())),*]
+        impl $crate::app::args::CommandArgs for $args {
+            const COMMAND: &'static str = $command;
+            $(const PYTHON_ONLY: &'static [&'static str] = &[$($python),*];)?
+            type Typed = $typed;
+            fn typed(&self) -> $crate::error::Result<$typed> {
+                $make(self)
+            }
         }
     };
 }
+pub(crate) use command_args;
 
-python_commands! {
-    "run": RunArgs => Option<super::Tolerance>, RunArgs::tolerance;
-    "compare": CompareArgs => request::CompareStudy, CompareArgs::study;
-    "converge": ConvergeArgs => request::ConvergeStudy, ConvergeArgs::study;
-    "uncertainty": UncertaintyArgs => request::UncertaintyStudy, UncertaintyArgs::study;
-    "precision": PrecisionArgs => request::PrecisionStudy, PrecisionArgs::study;
-    "sweep": SweepArgs ["paired"] => SweepStudy, SweepArgs::study;
-    "modes": ModesArgs => Option<usize>, ModesArgs::count;
+command_args!("run": RunArgs => Option<super::Tolerance>, RunArgs::tolerance);
+command_args!("sweep": SweepArgs ["paired"] => SweepStudy, SweepArgs::study);
+command_args!("modes": ModesArgs => Option<usize>, ModesArgs::count);
+
+/// Every command's options as the struct of this module declares them:
+/// `(command, options)` for each command the Python module offers as well
+/// (`run`, the studies of [`super::each_study`], `sweep`, `modes`), for its
+/// tests to hold the Python signatures against.
+#[cfg(feature = "clap")]
+pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
+    struct Studies(Vec<(&'static str, Vec<OptionSchema>)>);
+    impl super::StudyVisitor for Studies {
+        fn visit<S: super::StudyCommand>(&mut self)
+        where
+            S::Outcome: Send,
+        {
+            let args = options_of::<S::Args>();
+            self.0.push((<S::Args as CommandArgs>::COMMAND, args));
+        }
+    }
+    let mut all = Studies(vec![("run", options_of::<RunArgs>())]);
+    super::each_study(&mut all);
+    all.0.push(("sweep", options_of::<SweepArgs>()));
+    all.0.push(("modes", options_of::<ModesArgs>()));
+    all.0
 }
 
 /// Read a command's options from JSON (the Python module's keyword

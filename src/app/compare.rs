@@ -68,6 +68,8 @@ pub fn compare(req: &CompareRequest, fe: &dyn Frontend) -> Result<Comparison> {
     run_study(req, fe)
 }
 
+super::args::command_args!("compare": super::CompareArgs => request::CompareStudy, super::CompareArgs::study);
+
 #[cfg(feature = "clap")]
 impl super::StudyCommand for request::CompareStudy {
     type Args = super::CompareArgs;

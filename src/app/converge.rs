@@ -46,6 +46,8 @@ pub fn converge(req: &ConvergeRequest, fe: &dyn Frontend) -> Result<ConvergeOutc
     run_study(req, fe)
 }
 
+super::args::command_args!("converge": super::ConvergeArgs => request::ConvergeStudy, super::ConvergeArgs::study);
+
 #[cfg(feature = "clap")]
 impl super::StudyCommand for request::ConvergeStudy {
     type Args = super::ConvergeArgs;

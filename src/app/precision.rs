@@ -42,6 +42,8 @@ pub fn precision(req: &PrecisionRequest, fe: &dyn Frontend) -> Result<Precision>
     run_study(req, fe)
 }
 
+super::args::command_args!("precision": super::PrecisionArgs => request::PrecisionStudy, super::PrecisionArgs::study);
+
 #[cfg(feature = "clap")]
 impl super::StudyCommand for request::PrecisionStudy {
     type Args = super::PrecisionArgs;

@@ -50,6 +50,8 @@ pub fn uncertainty(req: &UncertaintyRequest, fe: &dyn Frontend) -> Result<Uncert
     run_study(req, fe)
 }
 
+super::args::command_args!("uncertainty": super::UncertaintyArgs => request::UncertaintyStudy, super::UncertaintyArgs::study);
+
 #[cfg(feature = "clap")]
 impl super::StudyCommand for request::UncertaintyStudy {
     type Args = super::UncertaintyArgs;
