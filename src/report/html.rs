@@ -950,7 +950,7 @@ mod tests {
     #[test]
     fn a_folder_without_outputs_is_named() {
         let d = tempfile::tempdir().unwrap();
-        let e = write_report(&[d.path().to_path_buf()], &d.path().join("r.html"))
+        let e = write_report(&[d.path().to_path_buf()], &d.path().join("r.html"), &[])
             .unwrap_err()
             .to_string();
         assert!(e.contains("no taut outputs"), "{e}");

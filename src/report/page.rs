@@ -675,11 +675,28 @@ mod tests {
         ] {
             for f in kind.files() {
                 assert!(
-                    FILES.iter().any(|(n, k, _)| n == f && *k == kind),
+                    FILES.iter().any(|(n, k, _)| *n == f && *k == kind),
                     "{f} of {kind:?} has no place in the report"
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_study_that_declares_its_files_has_them_placed() {
+        // a study of one's own names its files and their place itself
+        // (Outputs::Declared): no line of FILES or Outputs for it
+        static MINE: super::super::outputs::Declared = super::super::outputs::Declared {
+            command: "taut mine",
+            files: &[("mine.csv", Show::Table("mine", &[]))],
+        };
+        let kind = Outputs::Declared(&MINE);
+        assert_eq!(kind.files(), ["mine.csv"]);
+        assert_eq!(command(kind, &|_| true), "taut mine");
+        let all = files(&[kind, Outputs::Compare]);
+        assert_eq!(all.len(), FILES.len() + 1);
+        assert!(all.iter().any(|(n, k, _)| *n == "mine.csv" && *k == kind));
+        assert!(!FILES.iter().any(|(n, _, _)| *n == "mine.csv"));
     }
 
     #[test]
