@@ -88,3 +88,25 @@ def test_compare_s_help_lists_the_library_s_names():
     for name in [*taut.ALL_FORMULATIONS, *taut._taut.methods, *taut._taut.mesh_kinds]:
         assert name in doc, name
     assert "modal_exact" in taut._taut.methods and "hermite" in taut._taut.mesh_kinds
+
+
+def test_a_study_by_name_is_the_named_function_s(tmp_path):
+    # taut.study runs the study of the library's list as taut.compare does:
+    # the same table, and the CLI's files in `out`
+    import numpy as np
+
+    from conftest import ROOT
+
+    scene = ROOT / "scenes" / "oscillator_one_dof.toml"
+    named = taut.compare(scene, ["lagrange", "penalty"])
+    found = taut.study("compare", scene, formulations=["lagrange", "penalty"], out=tmp_path)
+    assert set(found) == {"compare.csv"}
+    by_name = found["compare.csv"]
+    assert by_name.columns == named.columns
+    same = [c for c in named.columns if "wall" not in c and by_name[c].dtype.kind == "f"]
+    assert same
+    for c in same:
+        assert np.array_equal(by_name[c], named[c], equal_nan=True), c
+    assert (tmp_path / "compare.csv").exists()
+    with pytest.raises(taut.SceneError, match="levels"):
+        taut.study("converge", scene, levels=1)
