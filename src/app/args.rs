@@ -314,9 +314,16 @@ pub struct Levels<const D: u8> {
     /// Number of levels.
     #[cfg_attr(
         feature = "clap",
-        arg(long, default_value = DIGITS[D as usize], allow_hyphen_values = true)
+        arg(long, default_value = Self::DEFAULT, allow_hyphen_values = true)
     )]
     pub levels: Word,
+}
+
+#[cfg(feature = "clap")]
+impl<const D: u8> Levels<D> {
+    /// `D` as text, evaluated when compiled: a default of more than one
+    /// digit fails to build rather than at the command's start.
+    const DEFAULT: &'static str = DIGITS[D as usize];
 }
 
 impl<const D: u8> Default for Levels<D> {
