@@ -9,17 +9,17 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 mod terminal;
 
+use taut::app::args::CommandArgs;
 use taut::app::{
-    self, CompareArgs, ConvergeArgs, Frontend, GateArgs, ModesArgs, Note, PrecisionArgs,
-    ReplayArgs, RunArgs, SceneSource, SweepArgs, UncertaintyArgs, VerifyArgs,
+    self, Frontend, GateArgs, ModesArgs, Note, ReplayArgs, RunArgs, SceneSource, StudyCommand,
+    StudyVisitor, SweepArgs, VerifyArgs,
 };
-use taut::report::{compare_table, converge_table, gate_table};
-use taut::study::request::ConvergeOutcome;
+use taut::report::gate_table;
 
 /// taut: dynamic contact of a tensioned beam and a moving mass–spring.
 #[derive(Parser)]
@@ -93,29 +93,6 @@ enum Command {
         #[command(flatten)]
         q: Quiet,
     },
-    /// Refine mesh, step or both and report errors, observed orders and GCI
-    /// (converge.csv, converge.json, converge.svg).
-    Converge {
-        #[command(flatten)]
-        on: OnScene,
-        #[command(flatten)]
-        args: ConvergeArgs,
-        #[command(flatten)]
-        q: Quiet,
-    },
-    /// Solution verification: run a small family of the scene refined in
-    /// space and time, together and apart, and give every reported quantity
-    /// its numerical uncertainty u_num (GCI, Eça–Hoekstra least squares),
-    /// observed orders and the space/time split (uncertainty.csv,
-    /// uncertainty.json, uncertainty.svg; docs/verification.md).
-    Uncertainty {
-        #[command(flatten)]
-        on: OnScene,
-        #[command(flatten)]
-        args: UncertaintyArgs,
-        #[command(flatten)]
-        q: Quiet,
-    },
     /// Re-run a golden suite and compare each quantity with its reference
     /// (gate.json, junit.xml); exit code 1 when any check fails.
     Gate {
@@ -168,16 +145,6 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
     },
-    /// Work–precision: error against cost for each formulation over a
-    /// (mesh, Δt) grid, with the Pareto front (precision.csv, precision.svg).
-    Precision {
-        #[command(flatten)]
-        on: OnScene,
-        #[command(flatten)]
-        args: PrecisionArgs,
-        #[command(flatten)]
-        q: Quiet,
-    },
     /// Run the verification matrix: every method × discretization ×
     /// formulation × support pair on the declared cases (manufactured and
     /// exact), each observed order beside the expected one (verify.csv,
@@ -196,16 +163,6 @@ enum Command {
     Replay {
         #[command(flatten)]
         args: ReplayArgs,
-    },
-    /// Run one scene under several contact formulations and time integrators
-    /// and compare them (compare.csv, compare.json, compare.svg).
-    Compare {
-        #[command(flatten)]
-        on: OnScene,
-        #[command(flatten)]
-        args: CompareArgs,
-        #[command(flatten)]
-        q: Quiet,
     },
     /// Multi-span lines generated from a scene's `[line]` table
     /// (docs/lines.md#the-line-generator-g1g7).
@@ -235,8 +192,126 @@ enum LineAction {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let result = match cli.command {
+    let matches = with_studies(Cli::command()).get_matches();
+    let mut dispatch = Dispatch {
+        matches: &matches,
+        result: None,
+    };
+    app::each_study(&mut dispatch);
+    let result = match dispatch.result {
+        Some(study) => study,
+        None => command(Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())),
+    };
+    match result {
+        Ok(true) => ExitCode::SUCCESS,
+        // tables were written, but a run, point, row or check failed
+        Ok(false) => ExitCode::from(1),
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `taut`'s commands: those declared here, and the studies of one scene
+/// of the library's list ([`app::each_study`]), each with the options of
+/// [`OnScene`], its own and [`Quiet`].
+fn with_studies(cli: clap::Command) -> clap::Command {
+    struct Add(Option<clap::Command>);
+    impl StudyVisitor for Add {
+        fn visit<S: StudyCommand>(&mut self)
+        where
+            S::Outcome: Send,
+        {
+            let sub = clap::Command::new(<S::Args as CommandArgs>::COMMAND);
+            let sub = Quiet::augment_args(S::Args::augment_args(OnScene::augment_args(sub)));
+            // after the groups, whose own doc would be the command's help
+            let sub = sub.about(S::ABOUT);
+            self.0 = self.0.take().map(|c| c.subcommand(sub));
+        }
+    }
+    let mut add = Add(Some(cli));
+    app::each_study(&mut add);
+    let cli = add.0.expect("kept");
+    // `taut --help` lists `run`, then the studies of one scene, then the
+    // other commands, each group in its order of declaration
+    let studies: Vec<String> = {
+        struct Names(Vec<String>);
+        impl StudyVisitor for Names {
+            fn visit<S: StudyCommand>(&mut self)
+            where
+                S::Outcome: Send,
+            {
+                self.0.push(<S::Args as CommandArgs>::COMMAND.to_string());
+            }
+        }
+        let mut names = Names(Vec::new());
+        app::each_study(&mut names);
+        names.0
+    };
+    let mut order: Vec<String> = vec!["run".to_string()];
+    order.extend(studies);
+    for sub in cli.get_subcommands() {
+        let name = sub.get_name().to_string();
+        if !order.contains(&name) {
+            order.push(name);
+        }
+    }
+    order.iter().enumerate().fold(cli, |c, (k, name)| {
+        c.mut_subcommand(name, |s| s.display_order(k))
+    })
+}
+
+/// The study of [`app::each_study`] the command line names, run
+/// ([`cmd_study`]); none when it names another command.
+struct Dispatch<'a> {
+    matches: &'a clap::ArgMatches,
+    result: Option<taut::Result<bool>>,
+}
+
+impl StudyVisitor for Dispatch<'_> {
+    fn visit<S: StudyCommand>(&mut self)
+    where
+        S::Outcome: Send,
+    {
+        if let Some((name, m)) = self.matches.subcommand()
+            && name == <S::Args as CommandArgs>::COMMAND
+        {
+            self.result = Some(cmd_study::<S>(m));
+        }
+    }
+}
+
+/// A study of one scene: its outputs in `--out` (default: out/<scene
+/// stem><suffix>), a progress bar of runs, its table printed; returns
+/// whether the outcome is whole.
+fn cmd_study<S: StudyCommand>(m: &clap::ArgMatches) -> taut::Result<bool>
+where
+    S::Outcome: Send,
+{
+    let parsed = |e: clap::Error| -> ! { e.exit() };
+    let on = OnScene::from_arg_matches(m).unwrap_or_else(|e| parsed(e));
+    let args = S::Args::from_arg_matches(m).unwrap_or_else(|e| parsed(e));
+    let quiet = Quiet::from_arg_matches(m)
+        .unwrap_or_else(|e| parsed(e))
+        .quiet;
+    let request = app::StudyRequest {
+        scene: on.source(),
+        set: on.overrides(),
+        study: args.typed()?,
+        out: Some(on.dir(S::SUFFIX)),
+    };
+    let outcome = Terminal::new(S::UNIT, quiet).run(|fe| S::command(&request, fe))?;
+    let (kind, table) = request.study.terminal(&outcome);
+    let dir = request.out.as_deref().expect("given");
+    let files = S::OUTPUTS.files().join(", ");
+    print!("{}", terminal::study(&kind, &on.scene, &table, dir, &files));
+    Ok(S::whole(&outcome))
+}
+
+/// A command declared here, run.
+fn command(cli: Cli) -> taut::Result<bool> {
+    match cli.command {
         Command::Run { on, args, q } => cmd_run(&on, &args, q.quiet).map(|()| true),
         Command::Replay { args } => cmd_replay(&args).map(|()| true),
         Command::Sweep { on, args, q } => cmd_sweep(&on, &args, q.quiet),
@@ -244,11 +319,7 @@ fn main() -> ExitCode {
         Command::Merge { shards, out } => cmd_merge(&shards, &out),
         Command::Report { dirs, out } => cmd_report(dirs, out).map(|()| true),
         Command::Modes { on, args } => cmd_modes(&on, &args).map(|()| true),
-        Command::Precision { on, args, q } => cmd_precision(&on, &args, q.quiet).map(|()| true),
         Command::Gate { args, out, q } => cmd_gate(&args, out, q.quiet),
-        Command::Converge { on, args, q } => cmd_converge(&on, &args, q.quiet).map(|()| true),
-        Command::Uncertainty { on, args, q } => cmd_uncertainty(&on, &args, q.quiet).map(|()| true),
-        Command::Compare { on, args, q } => cmd_compare(&on, &args, q.quiet),
         Command::Line {
             action: LineAction::Expand { scene, set, unset },
         } => {
@@ -262,15 +333,6 @@ fn main() -> ExitCode {
                 print!("{text}");
                 true
             })
-        }
-    };
-    match result {
-        Ok(true) => ExitCode::SUCCESS,
-        // tables were written, but a run, point, row or check failed
-        Ok(false) => ExitCode::from(1),
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
         }
     }
 }
@@ -323,26 +385,6 @@ impl Frontend for Terminal {
     }
 }
 
-/// A study of one scene (`compare`, `converge`, `precision`), its outputs
-/// in `--out` (default: out/<scene stem><suffix>), run by `command` with a
-/// progress bar of runs; returns its outcome and output folder.
-fn on_scene<S, R>(
-    on: &OnScene,
-    suffix: &str,
-    study: S,
-    quiet: bool,
-    command: fn(&app::StudyRequest<S>, &dyn Frontend) -> taut::Result<R>,
-) -> taut::Result<(R, PathBuf)> {
-    let request = app::StudyRequest {
-        scene: on.source(),
-        set: on.overrides(),
-        study,
-        out: Some(on.dir(suffix)),
-    };
-    let outcome = Terminal::new("runs", quiet).run(|fe| command(&request, fe))?;
-    Ok((outcome, request.out.expect("given")))
-}
-
 fn cmd_run(on: &OnScene, args: &RunArgs, quiet: bool) -> taut::Result<()> {
     let tolerance = args.tolerance()?;
     let unit = if tolerance.is_some() { "runs" } else { "steps" };
@@ -371,37 +413,6 @@ fn cmd_modes(on: &OnScene, args: &ModesArgs) -> taut::Result<()> {
     };
     let m = Terminal::new("", true).run(|fe| app::modes(&request, fe))?;
     print!("{}", terminal::modes(&on.scene, &dir, &m));
-    Ok(())
-}
-
-fn cmd_converge(on: &OnScene, args: &ConvergeArgs, quiet: bool) -> taut::Result<()> {
-    let study = args.study()?;
-    let kind = format!("converge ({:?}, r = {})", study.refine, study.ratio);
-    let (outcome, dir) = on_scene(on, "-converge", study, quiet, app::converge)?;
-    let table = match &outcome {
-        ConvergeOutcome::One(c) => converge_table(c),
-        ConvergeOutcome::Variants { studies, skipped } => {
-            taut::report::converge_methods_table(studies, skipped)
-        }
-    };
-    let files = "converge.csv, converge.json, converge.svg";
-    print!("{}", terminal::study(&kind, &on.scene, &table, &dir, files));
-    Ok(())
-}
-
-fn cmd_uncertainty(on: &OnScene, args: &UncertaintyArgs, quiet: bool) -> taut::Result<()> {
-    let study = args.study()?;
-    let (u, dir) = on_scene(on, "-uncertainty", study, quiet, app::uncertainty)?;
-    let runs = u.family.len();
-    let kind = format!(
-        "uncertainty ({} levels, {runs} runs in {:.2} s wall)",
-        u.levels, u.wall_seconds
-    );
-    let files = "uncertainty.csv, uncertainty.json, uncertainty.svg";
-    print!(
-        "{}",
-        terminal::study(&kind, &on.scene, &terminal::family(&u), &dir, files)
-    );
     Ok(())
 }
 
@@ -565,17 +576,6 @@ fn cmd_merge(shards: &[PathBuf], out: &Path) -> taut::Result<bool> {
     Ok(m.stopped() == 0)
 }
 
-fn cmd_precision(on: &OnScene, args: &PrecisionArgs, quiet: bool) -> taut::Result<()> {
-    let (p, dir) = on_scene(on, "-precision", args.study()?, quiet, app::precision)?;
-    let table = taut::report::precision_table(&p);
-    let files = "precision.csv, precision.svg";
-    print!(
-        "{}",
-        terminal::study("precision", &on.scene, &table, &dir, files)
-    );
-    Ok(())
-}
-
 fn cmd_replay(args: &ReplayArgs) -> taut::Result<()> {
     use taut::contact::Level;
     let r = app::replay(&args.request()?)?;
@@ -605,18 +605,6 @@ fn cmd_replay(args: &ReplayArgs) -> taut::Result<()> {
     Ok(())
 }
 
-/// Returns false when a run of the comparison stopped (tables are written
-/// for the others).
-fn cmd_compare(on: &OnScene, args: &CompareArgs, quiet: bool) -> taut::Result<bool> {
-    let (c, dir) = on_scene(on, "-compare", args.study()?, quiet, app::compare)?;
-    let files = "compare.csv, compare.json, compare.svg";
-    print!(
-        "{}",
-        terminal::study("compare", &on.scene, &compare_table(&c), &dir, files)
-    );
-    Ok(c.failed.is_empty())
-}
-
 #[cfg(test)]
 mod tests {
     use clap::CommandFactory;
@@ -625,7 +613,7 @@ mod tests {
     fn every_command_python_offers_is_a_subcommand_with_its_options() {
         // the library's one table of commands (`taut::app::args::schema`)
         // against the CLI's subcommands: each is one, taking each option
-        let cli = super::Cli::command();
+        let cli = super::with_studies(super::Cli::command());
         for (name, options) in taut::app::args::schema() {
             let sub = cli
                 .find_subcommand(name)

@@ -24,34 +24,6 @@ pub fn study(kind: &str, scene: &Path, table: &str, dir: &Path, files: &str) -> 
     s
 }
 
-/// The family of `taut uncertainty` (each diagonal level's N or J and Δt)
-/// and its table of value ± u_num.
-pub fn family(u: &taut::study::uncertainty::Uncertainty) -> String {
-    use taut::study::uncertainty::Role;
-    let mut s = String::from("  family  ");
-    let levels: Vec<String> = u
-        .family
-        .iter()
-        .filter(|m| m.role == Role::Diagonal)
-        .map(|m| {
-            format!(
-                "{} = {} × Δt = {:e} s",
-                u.level_symbol,
-                m.modes.unwrap_or(m.elements),
-                m.dt
-            )
-        })
-        .collect();
-    let _ = writeln!(
-        s,
-        "{} (diagonal), and each level's {} at the previous Δt",
-        levels.join(", "),
-        u.level_symbol
-    );
-    s.push_str(&taut::report::uncertainty_lines(u));
-    s
-}
-
 /// The terminal's contact-loss lines of one carrier: P_l split into the
 /// in-span part (the number to quote) and the support part, the first loss
 /// flagged when the run does not resolve it, the re-contacts.

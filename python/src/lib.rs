@@ -588,8 +588,7 @@ fn compare<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>, Vec<NotRunTuple>)> {
-    let request = study_request::<taut::app::CompareArgs>(py, on, out, args)?;
-    let c = call(py, progress.as_ref(), |fe| app::compare(&request, fe))?;
+    let c = study::<taut::study::request::CompareStudy>(py, on, out, progress, args)?;
     Ok((
         table_to_py(py, &taut::report::compare_rows(&c))?,
         c.failed.iter().map(not_run).collect(),
@@ -607,8 +606,7 @@ fn converge<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
-    let request = study_request::<taut::app::ConvergeArgs>(py, on, out, args)?;
-    let outcome = call(py, progress.as_ref(), |fe| app::converge(&request, fe))?;
+    let outcome = study::<taut::study::request::ConvergeStudy>(py, on, out, progress, args)?;
     let skipped = outcome.skipped().iter().map(not_run).collect();
     let rows = taut::report::converge_rows(&outcome.rows());
     Ok((table_to_py(py, &rows)?, skipped))
@@ -625,8 +623,7 @@ fn uncertainty<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Bound<'py, PyList>)> {
-    let request = study_request::<taut::app::UncertaintyArgs>(py, on, out, args)?;
-    let u = call(py, progress.as_ref(), |fe| app::uncertainty(&request, fe))?;
+    let u = study::<taut::study::request::UncertaintyStudy>(py, on, out, progress, args)?;
     Ok((
         table_to_py(py, &taut::report::uncertainty_table(&u))?,
         table_to_py(py, &taut::report::family_table(&u))?,
@@ -643,12 +640,102 @@ fn precision<'py>(
     progress: Option<Bound<'py, PyAny>>,
     args: &str,
 ) -> PyResult<(Bound<'py, PyList>, Vec<NotRunTuple>)> {
-    let request = study_request::<taut::app::PrecisionArgs>(py, on, out, args)?;
-    let p = call(py, progress.as_ref(), |fe| app::precision(&request, fe))?;
+    let p = study::<taut::study::request::PrecisionStudy>(py, on, out, progress, args)?;
     Ok((
         table_to_py(py, &taut::report::precision_rows(&p))?,
         p.skipped.iter().map(not_run).collect(),
     ))
+}
+
+/// A study of one scene of the library's list (`taut::app::each_study`)
+/// run as its command runs it ([`study_request`], [`call`]): the glue of
+/// every study, written once.
+fn study<'py, S: taut::app::StudyCommand>(
+    py: Python<'py>,
+    on: SceneArg,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+    args: &str,
+) -> PyResult<S::Outcome>
+where
+    S::Outcome: Send,
+{
+    let request = study_request::<S::Args>(py, on, out, args)?;
+    call(py, progress.as_ref(), |fe| S::command(&request, fe))
+}
+
+/// Any study of one scene of the library's list by its command's name
+/// (`taut.study("converge", …)`): `[(name, columns)]`, its tables by the
+/// file each is written as ([`taut::app::StudyCommand::tables`]); with
+/// `out` the CLI's files too. `args`: the study's options as JSON. A study
+/// added to the list is offered here with no edit of this module.
+#[pyfunction]
+fn study_tables<'py>(
+    py: Python<'py>,
+    name: &str,
+    on: SceneArg,
+    out: Option<PathBuf>,
+    progress: Option<Bound<'py, PyAny>>,
+    args: &str,
+) -> PyResult<Vec<(String, Bound<'py, PyList>)>> {
+    struct Named<'a, 'py> {
+        py: Python<'py>,
+        name: &'a str,
+        given: Option<(SceneArg, Option<PathBuf>, Option<Bound<'py, PyAny>>)>,
+        args: &'a str,
+        found: Option<PyResult<Vec<(&'static str, Table)>>>,
+    }
+    impl taut::app::StudyVisitor for Named<'_, '_> {
+        fn visit<S: taut::app::StudyCommand>(&mut self)
+        where
+            S::Outcome: Send,
+        {
+            use taut::app::args::CommandArgs;
+            if <S::Args as CommandArgs>::COMMAND != self.name {
+                return;
+            }
+            let (on, out, progress) = self.given.take().expect("one study of a name");
+            let outcome = study::<S>(self.py, on, out, progress, self.args);
+            self.found = Some(outcome.map(|o| S::tables(&o)));
+        }
+    }
+    let mut named = Named {
+        py,
+        name,
+        given: Some((on, out, progress)),
+        args,
+        found: None,
+    };
+    taut::app::each_study(&mut named);
+    let Some(found) = named.found else {
+        let known: Vec<String> = studies().into_iter().map(|(n, _)| n).collect();
+        let allowed = format!("one of {}", known.join(", "));
+        return Err(to_py_err(py, taut::Error::invalid("study", name, allowed)));
+    };
+    found?
+        .into_iter()
+        .map(|(n, t)| Ok((n.to_string(), table_to_py(py, &t)?)))
+        .collect()
+}
+
+/// The studies of one scene of the library's list: `[(name, help)]`, the
+/// command and its help line (`taut.studies()`).
+#[pyfunction]
+fn studies() -> Vec<(String, String)> {
+    struct Names(Vec<(String, String)>);
+    impl taut::app::StudyVisitor for Names {
+        fn visit<S: taut::app::StudyCommand>(&mut self)
+        where
+            S::Outcome: Send,
+        {
+            use taut::app::args::CommandArgs;
+            let name = <S::Args as CommandArgs>::COMMAND;
+            self.0.push((name.to_string(), S::ABOUT.to_string()));
+        }
+    }
+    let mut names = Names(Vec::new());
+    taut::app::each_study(&mut names);
+    names.0
 }
 
 /// One option: `(name, default, help)` ([`taut::app::args::OptionSchema`]).
@@ -838,6 +925,8 @@ fn _taut(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precision, m)?)?;
     m.add_function(wrap_pyfunction!(uncertainty, m)?)?;
+    m.add_function(wrap_pyfunction!(study_tables, m)?)?;
+    m.add_function(wrap_pyfunction!(studies, m)?)?;
     m.add_function(wrap_pyfunction!(scene_json, m)?)?;
     m.add_function(wrap_pyfunction!(schema, m)?)?;
     m.add_function(wrap_pyfunction!(scenes::bundled_scenes, m)?)?;

@@ -80,6 +80,8 @@ __all__ = [
     "converge",
     "precision",
     "uncertainty",
+    "study",
+    "studies",
     "load_scene",
     "scenes",
     "scene_text",
@@ -1013,6 +1015,48 @@ def uncertainty(
     t = table(cols)
     t.family = table(family)
     return t
+
+
+def studies() -> List[Tuple[str, str]]:
+    """Every study of one scene the library offers as a command, as
+    `(name, help)`: the names `study()` takes (`taut <name>` on the
+    command line)."""
+    return list(_taut.studies())
+
+
+@_speaks_python
+def study(
+    name: str,
+    scene: Scene,
+    set: Union[None, Mapping[str, Any], Iterable[str]] = None,
+    *,
+    out: Union[None, str, "os.PathLike[str]"] = None,
+    progress: Progress = None,
+    **options: Any,
+) -> Dict[str, Table]:
+    """Any study of one scene the library offers as a command (`taut
+    <name>`; `studies()` lists them), its options as keywords with the
+    CLI's names (`taut <name> --help`: `--reference-method` is
+    `reference_method`; a list may be a sequence of names). A study added
+    to the library is offered here with no edit of this package;
+    `compare()`, `converge()`, `precision()` and `uncertainty()` are the
+    same studies with their own signatures and docs.
+
+    Args:
+        name: the study's command (`"converge"`).
+        set, out, progress: as for sweep().
+        options: the study's options.
+
+    Returns:
+        Its tables by the file each is written as (`"converge.csv"`).
+    """
+    path, text = _scene(scene)
+    words = {k: _list(v) if isinstance(v, (list, tuple)) else v for k, v in options.items()}
+    with _Sink(progress, "runs") as p:
+        found = _taut.study_tables(
+            name, (path, text, _overrides(set)), _out(out), p, _options(**words)
+        )
+    return {file: table(cols) for file, cols in found}
 
 
 @_speaks_python

@@ -34,6 +34,8 @@ __all__ = [
     "run",
     "scene_json",
     "schema",
+    "studies",
+    "study_tables",
     "stop_running_calls",
     "sweep",
     "taut_version",
@@ -70,6 +72,10 @@ def converge(
 def precision(
     on: _SceneArg, out: Optional[str], progress: _Progress, args: str
 ) -> Tuple[List[_Column], List[_NotRun]]: ...
+def study_tables(
+    name: str, on: _SceneArg, out: Optional[str], progress: _Progress, args: str
+) -> List[Tuple[str, List[_Column]]]: ...
+def studies() -> List[Tuple[str, str]]: ...
 def schema() -> List[Tuple[str, List[Tuple[str, Optional[str], str]]]]: ...
 def uncertainty(
     on: _SceneArg, out: Optional[str], progress: _Progress, args: str

@@ -28,11 +28,41 @@ def _same_default(python: object, library: object) -> bool:
     return python == library
 
 
+STUDIES = {name for name, _ in taut.studies()}
+
+
 def test_every_command_of_the_library_has_its_python_function():
-    assert set(SCHEMA) == {"run", "compare", "converge", "precision", "sweep", "modes", "uncertainty"}
+    assert set(SCHEMA) == {"run", "sweep", "modes"} | STUDIES
+    assert {"compare", "converge", "precision", "uncertainty"} <= STUDIES
 
 
-@pytest.mark.parametrize("command", sorted(SCHEMA))
+def test_every_study_of_the_library_is_offered_by_taut_study():
+    # the library's list of studies is what taut.study() takes: a study
+    # added there needs no function here
+    e = pytest.raises(taut.SceneError, taut.study, "bogus", "reference").value
+    for name in STUDIES:
+        assert name in str(e), str(e)
+
+
+def test_the_stub_names_what_the_native_module_has():
+    # the typing stub (_taut.pyi) is written by hand: it is held to the
+    # module, so that a function added or removed fails here until it is
+    import ast
+    import pathlib
+
+    stub = ast.parse((pathlib.Path(taut.__file__).parent / "_taut.pyi").read_text())
+    listed = next(
+        ast.literal_eval(n.value)
+        for n in stub.body
+        if isinstance(n, ast.Assign) and getattr(n.targets[0], "id", "") == "__all__"
+    )
+    defined = {n.name for n in stub.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    native = {n for n in dir(taut._taut) if not n.startswith("_")} | {"__version__"}
+    assert set(listed) == native
+    assert {n for n in native if callable(getattr(taut._taut, n))} == defined
+
+
+@pytest.mark.parametrize("command", sorted(set(SCHEMA) - (STUDIES - {"compare", "converge", "precision", "uncertainty"})))
 def test_a_python_function_takes_its_command_s_options(command):
     params = inspect.signature(getattr(taut, command)).parameters
     options = {name: default for name, default, _ in SCHEMA[command]}
@@ -58,3 +88,25 @@ def test_compare_s_help_lists_the_library_s_names():
     for name in [*taut.ALL_FORMULATIONS, *taut._taut.methods, *taut._taut.mesh_kinds]:
         assert name in doc, name
     assert "modal_exact" in taut._taut.methods and "hermite" in taut._taut.mesh_kinds
+
+
+def test_a_study_by_name_is_the_named_function_s(tmp_path):
+    # taut.study runs the study of the library's list as taut.compare does:
+    # the same table, and the CLI's files in `out`
+    import numpy as np
+
+    from conftest import ROOT
+
+    scene = ROOT / "scenes" / "oscillator_one_dof.toml"
+    named = taut.compare(scene, ["lagrange", "penalty"])
+    found = taut.study("compare", scene, formulations=["lagrange", "penalty"], out=tmp_path)
+    assert set(found) == {"compare.csv"}
+    by_name = found["compare.csv"]
+    assert by_name.columns == named.columns
+    same = [c for c in named.columns if "wall" not in c and by_name[c].dtype.kind == "f"]
+    assert same
+    for c in same:
+        assert np.array_equal(by_name[c], named[c], equal_nan=True), c
+    assert (tmp_path / "compare.csv").exists()
+    with pytest.raises(taut.SceneError, match="levels"):
+        taut.study("converge", scene, levels=1)

@@ -12,7 +12,9 @@
 //! here, so both front ends refuse the same words with the same message
 //! (naming the CLI's flag; the Python module names its keyword instead).
 //! An option several commands share is a group declared once ([`Runs`],
-//! [`FormulationList`], [`CostBound`], [`Workers`]) and flattened into each;
+//! [`FormulationList`], [`CostBound`], [`Workers`], [`Batch`], [`Levels`],
+//! [`Ratio`], [`AccuracyTarget`]) and flattened into each, a command whose
+//! help says more of it changing that with `mut_arg`;
 //! Python's keywords are checked against the command's clap arguments.
 //! `schema` lists every command's options (name, default, help), and the
 //! Python module's tests hold its functions' signatures against it.
@@ -116,23 +118,9 @@ impl Word {
     }
 }
 
-/// `--quantity Q` given without `--tolerance` (run and sweep alike).
-fn quantity_without_tolerance(q: &str) -> Error {
-    Error::invalid(
-        "--quantity",
-        q,
-        "is what --tolerance is on: give tolerance too",
-    )
-}
-
 /// An optional count ([`Word::count`]).
 fn count(w: &Option<Word>, check: impl Fn(usize) -> Result<usize>) -> Result<Option<usize>> {
     w.as_ref().map(|w| w.count(check)).transpose()
-}
-
-/// `--batch B`: 1 ..= the most runs stepped together.
-fn batch(w: &Option<Word>) -> Result<Option<usize>> {
-    count(w, |n| request::batch_width(Some(n)).map(|_| n))
 }
 
 /// The help of `--methods`: the names come from the method registry, so a
@@ -288,27 +276,124 @@ impl Workers {
     }
 }
 
-/// `taut run` / `taut.run`: one scene, or an accuracy-targeted run.
+/// `--batch B`: runs stepped together when they share their effective
+/// matrix. The range is [`request::batch_width`]'s; each command's help
+/// says what it steps together (`mut_arg`).
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
-pub struct RunArgs {
-    /// Refine mesh and Δt until the numerical uncertainty u_num of
-    /// --quantity is at most TOL (absolute, in its unit), as a one-point
-    /// `taut sweep --tolerance` does, and print a u_num next to every
-    /// result (docs/accuracy.md).
+pub struct Batch {
+    /// Runs stepped together when they share their effective matrix
+    /// (1 ..= 8, 1: every run alone; default 4). The results are the same
+    /// whatever it is.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "B", allow_hyphen_values = true)
+    )]
+    pub batch: Option<Word>,
+}
+
+impl Batch {
+    /// The width given, checked: 1 ..= the most runs stepped together.
+    fn width(&self) -> Result<Option<usize>> {
+        count(&self.batch, |n| request::batch_width(Some(n)).map(|_| n))
+    }
+}
+
+/// The digits a default of [`Levels`] is written with: a const generic
+/// cannot be a `&str`, and clap's `default_value` takes one.
+#[cfg(feature = "clap")]
+const DIGITS: [&str; 10] = ["0", "1", "2", "3", "4", "5", "6", "7", "8", "9"];
+
+/// `--levels K` of a refinement study, `D` levels by default (a digit).
+/// The range is the study's own (its `check_levels`), which the command's
+/// help states (`mut_arg`).
+#[derive(Debug, Clone)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct Levels<const D: u8> {
+    /// Number of levels.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = Self::DEFAULT, allow_hyphen_values = true)
+    )]
+    pub levels: Word,
+}
+
+#[cfg(feature = "clap")]
+impl<const D: u8> Levels<D> {
+    /// `D` as text, evaluated when compiled: a default of more than one
+    /// digit fails to build rather than at the command's start.
+    const DEFAULT: &'static str = DIGITS[D as usize];
+}
+
+impl<const D: u8> Default for Levels<D> {
+    fn default() -> Self {
+        Levels {
+            levels: Word(D.to_string()),
+        }
+    }
+}
+
+/// [`Levels`] as the keywords give it (serde derives no const generic).
+#[derive(Deserialize)]
+struct LevelsGiven {
+    levels: Option<Word>,
+}
+
+impl<'de, const D: u8> Deserialize<'de> for Levels<D> {
+    fn deserialize<De: serde::Deserializer<'de>>(d: De) -> std::result::Result<Self, De::Error> {
+        let given = LevelsGiven::deserialize(d)?;
+        Ok(given
+            .levels
+            .map_or_else(Levels::default, |levels| Levels { levels }))
+    }
+}
+
+/// `--ratio R`: the refinement ratio between levels, 2 by default. What
+/// it may be (a real > 1, an integer ≥ 2) is the study's own check, which
+/// the command's help states (`mut_arg`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct Ratio {
+    /// Refinement ratio between levels.
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, default_value = "2", allow_hyphen_values = true)
+    )]
+    pub ratio: Word,
+}
+
+impl Default for Ratio {
+    fn default() -> Self {
+        Ratio {
+            ratio: Word("2".to_string()),
+        }
+    }
+}
+
+/// `--tolerance TOL` with `--quantity Q` and `--max-cost F`: refine until
+/// the numerical uncertainty u_num of a quantity is at most TOL (`taut run`
+/// for one run, `taut sweep` for each point). Each command's help says
+/// what is refined (`mut_arg`).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct AccuracyTarget {
+    /// Refine until the numerical uncertainty u_num of --quantity is at
+    /// most TOL (absolute, in its unit) (docs/accuracy.md).
     #[cfg_attr(
         feature = "clap",
         arg(long, value_name = "TOL", allow_hyphen_values = true)
     )]
     pub tolerance: Option<Word>,
-    /// What --tolerance is on: a quantity `taut sweep --tolerance` takes
-    /// (loss_fraction_span, the default; loss_fraction, force_mean,
-    /// force_std, …).
+    /// What --tolerance is on: a quantity of the registry
+    /// (loss_fraction_span, the default; loss_fraction, force_mean, …).
     #[cfg_attr(feature = "clap", arg(long, value_name = "Q", requires = "tolerance"))]
     pub quantity: Option<String>,
-    /// With --tolerance: the most the run may cost, pilots included, as a
-    /// multiple of its run at the scene's resolution (default 64).
+    /// With --tolerance: the most the refinement may cost, pilots
+    /// included, as a multiple of a run at the scene's resolution
+    /// (default 64).
     #[cfg_attr(
         feature = "clap",
         arg(
@@ -321,18 +406,24 @@ pub struct RunArgs {
     pub max_cost: Option<Word>,
 }
 
-impl RunArgs {
-    /// The error target, if one is given.
-    pub fn tolerance(&self) -> Result<Option<super::Tolerance>> {
+impl AccuracyTarget {
+    /// The error target, if one is given; `--quantity` or `--max-cost`
+    /// without `--tolerance` is refused, the latter as bounding `refined`
+    /// (`the refinement of --tolerance`).
+    fn target(&self, refined: &str) -> Result<Option<super::Tolerance>> {
         if self.tolerance.is_none() {
             if let Some(q) = &self.quantity {
-                return Err(quantity_without_tolerance(q));
+                return Err(Error::invalid(
+                    "--quantity",
+                    q,
+                    "is what --tolerance is on: give tolerance too",
+                ));
             }
             if let Some(f) = &self.max_cost {
                 return Err(Error::invalid(
                     "--max-cost",
                     &f.0,
-                    "bounds the refinement of --tolerance: give tolerance too",
+                    format!("bounds {refined}: give tolerance too"),
                 ));
             }
         }
@@ -344,11 +435,43 @@ impl RunArgs {
     }
 }
 
+/// `taut run` / `taut.run`: one scene, or an accuracy-targeted run.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(
+    feature = "clap",
+    command(
+        mut_arg("tolerance", |a| a.help("Refine mesh and Δt until the numerical uncertainty u_num of --quantity is at most TOL (absolute, in its unit), as a one-point `taut sweep --tolerance` does, and print a u_num next to every result (docs/accuracy.md)")),
+        mut_arg("quantity", |a| a.help("What --tolerance is on: a quantity `taut sweep --tolerance` takes (loss_fraction_span, the default; loss_fraction, force_mean, force_std, …)")),
+        mut_arg("max_cost", |a| a.help("With --tolerance: the most the run may cost, pilots included, as a multiple of its run at the scene's resolution (default 64)")),
+    )
+)]
+pub struct RunArgs {
+    /// `--tolerance`, `--quantity`, `--max-cost`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub target: AccuracyTarget,
+}
+
+impl RunArgs {
+    /// The error target, if one is given.
+    pub fn tolerance(&self) -> Result<Option<super::Tolerance>> {
+        self.target.target("the refinement of --tolerance")
+    }
+}
+
 /// `taut compare` / `taut.compare`: formulations × methods ×
 /// discretizations of one scene.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(
+    feature = "clap",
+    command(
+        mut_arg("batch", |a| a.help("Runs stepped together when they share their effective matrix (formulations under one method and discretization; 1 ..= 8, 1: every run alone; default 4). The table is the same whatever it is")),
+    )
+)]
 pub struct CompareArgs {
     /// `--formulations`.
     #[serde(flatten)]
@@ -365,14 +488,10 @@ pub struct CompareArgs {
     /// first of --methods).
     #[cfg_attr(feature = "clap", arg(long, value_name = "METHOD"))]
     pub reference_method: Option<String>,
-    /// Runs stepped together when they share their effective matrix
-    /// (formulations under one method and discretization; 1 ..= 8,
-    /// 1: every run alone; default 4). The table is the same whatever it is.
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "B", allow_hyphen_values = true)
-    )]
-    pub batch: Option<Word>,
+    /// `--batch`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub batch: Batch,
     /// `--yes`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
@@ -386,7 +505,7 @@ impl Default for CompareArgs {
             runs: Runs::default(),
             reference: "lagrange".to_string(),
             reference_method: None,
-            batch: None,
+            batch: Batch::default(),
             cost: CostBound::default(),
         }
     }
@@ -399,7 +518,7 @@ impl CompareArgs {
             &self.formulations.formulations,
             self.runs.lists(),
             (&self.reference, self.reference_method.as_deref()),
-            batch(&self.batch)?,
+            self.batch.width()?,
             self.cost.yes,
         )
     }
@@ -411,24 +530,24 @@ impl CompareArgs {
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 #[cfg_attr(
     feature = "clap",
-    command(mut_arg("methods", |a| a.help(methods_help(" to study side by side", "the scene's own"))))
+    command(
+        mut_arg("methods", |a| a.help(methods_help(" to study side by side", "the scene's own"))),
+        mut_arg("levels", |a| a.help("Number of levels (2 ..= 12; ≥ 3 for observed orders)")),
+        mut_arg("ratio", |a| a.help("Refinement ratio between levels (> 1)")),
+    )
 )]
 pub struct ConvergeArgs {
     /// What to refine: mesh, step or both.
     #[cfg_attr(feature = "clap", arg(long, default_value = "both"))]
     pub refine: String,
-    /// Number of levels (2 ..= 12; ≥ 3 for observed orders).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, default_value = "4", allow_hyphen_values = true)
-    )]
-    pub levels: Word,
-    /// Refinement ratio between levels (> 1).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, default_value = "2", allow_hyphen_values = true)
-    )]
-    pub ratio: Word,
+    /// `--levels`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub levels: Levels<4>,
+    /// `--ratio`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub ratio: Ratio,
     /// `--methods`, `--discretizations`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
@@ -443,8 +562,8 @@ impl Default for ConvergeArgs {
     fn default() -> Self {
         ConvergeArgs {
             refine: "both".to_string(),
-            levels: Word("4".to_string()),
-            ratio: Word("2".to_string()),
+            levels: Levels::default(),
+            ratio: Ratio::default(),
             runs: Runs::default(),
             cost: CostBound::default(),
         }
@@ -455,8 +574,8 @@ impl ConvergeArgs {
     /// The typed study: levels and ratio by the study's own ranges.
     pub fn study(&self) -> Result<request::ConvergeStudy> {
         use crate::study::converge::{check_levels, check_ratio};
-        let levels = self.levels.count(check_levels)?;
-        let ratio = self.ratio.real(check_ratio)?;
+        let levels = self.levels.levels.count(check_levels)?;
+        let ratio = self.ratio.ratio.real(check_ratio)?;
         words::converge(
             &self.refine,
             (levels, ratio),
@@ -468,47 +587,50 @@ impl ConvergeArgs {
 
 /// `taut uncertainty` / `taut.uncertainty`: the numerical uncertainty of
 /// every reported quantity of one scene (solution verification).
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Default, Deserialize)]
 #[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(
+    feature = "clap",
+    command(
+        mut_arg("levels", |a| a.help("Diagonal levels of the family (3 ..= 6; 2K − 1 runs)")),
+    )
+)]
 pub struct UncertaintyArgs {
-    /// Diagonal levels of the family (3 ..= 6; 2K − 1 runs).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, default_value = "4", allow_hyphen_values = true)
-    )]
-    pub levels: Word,
+    /// `--levels`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub levels: Levels<4>,
     /// `--yes`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
     pub cost: CostBound,
 }
 
-impl Default for UncertaintyArgs {
-    fn default() -> Self {
-        UncertaintyArgs {
-            levels: Word("4".to_string()),
-            cost: CostBound::default(),
-        }
-    }
-}
-
 impl UncertaintyArgs {
     /// The typed study: the levels by the study's own range.
     pub fn study(&self) -> Result<request::UncertaintyStudy> {
-        let levels = self.levels.count(crate::study::uncertainty::check_levels)?;
+        let levels = self
+            .levels
+            .levels
+            .count(crate::study::uncertainty::check_levels)?;
         words::uncertainty(levels, self.cost.yes)
     }
 }
 
 /// `taut precision` / `taut.precision`: work against precision over a
 /// (mesh, Δt) grid.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Default, Deserialize)]
 #[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 #[cfg_attr(
     feature = "clap",
-    command(mut_arg("formulations", |a| a.help("Comma-separated formulations")))
+    command(
+        mut_arg("formulations", |a| a.help("Comma-separated formulations")),
+        mut_arg("levels", |a| a.help("Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels; 1 ..= 5)")),
+        mut_arg("ratio", |a| a.help("Refinement ratio (an integer ≥ 2)")),
+        mut_arg("batch", |a| a.help("Runs stepped together when they share their effective matrix (the formulations of a grid point; 1 ..= 8, 1: every run alone; default 4). The table is the same whatever it is")),
+    )
 )]
 pub struct PrecisionArgs {
     /// `--formulations`.
@@ -519,56 +641,35 @@ pub struct PrecisionArgs {
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
     pub runs: Runs,
-    /// Grid levels per axis (N₀·rⁱ, Δt₀/rʲ, i, j < levels; 1 ..= 5).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, default_value = "3", allow_hyphen_values = true)
-    )]
-    pub levels: Word,
-    /// Refinement ratio (an integer ≥ 2).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, default_value = "2", allow_hyphen_values = true)
-    )]
-    pub ratio: Word,
-    /// Runs stepped together when they share their effective matrix
-    /// (the formulations of a grid point; 1 ..= 8, 1: every run alone;
-    /// default 4). The table is the same whatever it is.
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "B", allow_hyphen_values = true)
-    )]
-    pub batch: Option<Word>,
+    /// `--levels`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub levels: Levels<3>,
+    /// `--ratio`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub ratio: Ratio,
+    /// `--batch`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub batch: Batch,
     /// `--yes`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
     pub cost: CostBound,
 }
 
-impl Default for PrecisionArgs {
-    fn default() -> Self {
-        PrecisionArgs {
-            formulations: FormulationList::default(),
-            runs: Runs::default(),
-            levels: Word("3".to_string()),
-            ratio: Word("2".to_string()),
-            batch: None,
-            cost: CostBound::default(),
-        }
-    }
-}
-
 impl PrecisionArgs {
     /// The typed study: levels and ratio by the study's own ranges.
     pub fn study(&self) -> Result<request::PrecisionStudy> {
         use crate::study::precision::{check_levels, check_ratio};
-        let levels = self.levels.count(check_levels)?;
-        let ratio = self.ratio.count(check_ratio)?;
+        let levels = self.levels.levels.count(check_levels)?;
+        let ratio = self.ratio.ratio.count(check_ratio)?;
         words::precision(
             &self.formulations.formulations,
             self.runs.lists(),
             (levels, ratio),
-            batch(&self.batch)?,
+            self.batch.width()?,
             self.cost.yes,
         )
     }
@@ -579,6 +680,15 @@ impl PrecisionArgs {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(
+    feature = "clap",
+    command(
+        mut_arg("tolerance", |a| a.help("Refine each point until the numerical uncertainty u_num of --quantity is at most TOL (absolute, in its unit), only as far as it must; adds u_num and the resolution used to sweep.csv (docs/sweeps.md)")),
+        mut_arg("quantity", |a| a.help("What --tolerance is on: a column of sweep.csv (loss_fraction_span, the default; loss_fraction, loss_fraction_support, force_mean, force_std, force_max, force_min, first_loss_position)")),
+        mut_arg("max_cost", |a| a.help("With --tolerance: the most a point may cost, pilots included, as a multiple of its run at the scene's resolution (default 64)")),
+        mut_arg("batch", |a| a.help("Runs stepped together when they share their effective matrix (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of lanes). The records are the same bytes whatever the width")),
+    )
+)]
 pub struct SweepArgs {
     /// An axis, key=start:stop:count, or key=v1,v2,... (a list of
     /// values); one or two.
@@ -615,44 +725,18 @@ pub struct SweepArgs {
     /// (and, for a 2-D sweep, a map of where the loss map is converged).
     #[cfg_attr(feature = "clap", arg(long))]
     pub check_refinement: bool,
-    /// Refine each point until the numerical uncertainty u_num of
-    /// --quantity is at most TOL (absolute, in its unit), only as far as
-    /// it must; adds u_num and the resolution used to sweep.csv
-    /// (docs/sweeps.md).
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "TOL", allow_hyphen_values = true)
-    )]
-    pub tolerance: Option<Word>,
-    /// What --tolerance is on: a column of sweep.csv (loss_fraction_span,
-    /// the default; loss_fraction, loss_fraction_support, force_mean,
-    /// force_std, force_max, force_min, first_loss_position).
-    #[cfg_attr(feature = "clap", arg(long, value_name = "Q", requires = "tolerance"))]
-    pub quantity: Option<String>,
-    /// With --tolerance: the most a point may cost, pilots included, as a
-    /// multiple of its run at the scene's resolution (default 64).
-    #[cfg_attr(
-        feature = "clap",
-        arg(
-            long,
-            value_name = "F",
-            requires = "tolerance",
-            allow_hyphen_values = true
-        )
-    )]
-    pub max_cost: Option<Word>,
+    /// `--tolerance`, `--quantity`, `--max-cost`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub target: AccuracyTarget,
     /// `--threads`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
     pub workers: Workers,
-    /// Runs stepped together when they share their effective matrix
-    /// (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of
-    /// lanes). The records are the same bytes whatever the width.
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "B", allow_hyphen_values = true)
-    )]
-    pub batch: Option<Word>,
+    /// `--batch`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub batch: Batch,
     /// `--yes`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
@@ -686,7 +770,7 @@ impl SweepArgs {
     /// checked.
     pub fn study(&self) -> Result<SweepStudy> {
         let threads = self.workers.count()?;
-        let batch = request::batch_width(batch(&self.batch)?)?;
+        let batch = request::batch_width(self.batch.width()?)?;
         let paired = self.paired || self.points.is_some();
         let axes = match &self.points {
             Some(file) => crate::study::sweep::read_points(file)?,
@@ -704,23 +788,9 @@ impl SweepArgs {
             .as_deref()
             .map(crate::study::sweep::Shard::parse)
             .transpose()?;
-        if self.tolerance.is_none() {
-            if let Some(q) = &self.quantity {
-                return Err(quantity_without_tolerance(q));
-            }
-            if let Some(f) = &self.max_cost {
-                return Err(Error::invalid(
-                    "--max-cost",
-                    &f.0,
-                    "bounds a point's refinement under --tolerance: give tolerance too",
-                ));
-            }
-        }
-        let tolerance = words::sweep_tolerance(
-            self.tolerance.as_ref().map(|w| w.0.as_str()),
-            self.quantity.as_deref(),
-            self.max_cost.as_ref().map(|w| w.0.as_str()),
-        )?;
+        let tolerance = self
+            .target
+            .target("a point's refinement under --tolerance")?;
         Ok(SweepStudy {
             axes,
             points: paired,
@@ -792,6 +862,12 @@ impl VerifyArgs {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(default)]
 #[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(
+    feature = "clap",
+    command(
+        mut_arg("batch", |a| a.help("Cases stepped together when their runs share the effective matrix (1 ..= 8, 1: every case alone; default 4). The checks are the same whatever it is")),
+    )
+)]
 pub struct GateArgs {
     /// Suite folder of case files (*.json).
     #[cfg_attr(feature = "clap", arg(default_value = "golden"))]
@@ -799,14 +875,10 @@ pub struct GateArgs {
     /// Accept this run's values as the new references and show what changed.
     #[cfg_attr(feature = "clap", arg(long))]
     pub update: bool,
-    /// Cases stepped together when their runs share the effective
-    /// matrix (1 ..= 8, 1: every case alone; default 4). The checks are
-    /// the same whatever it is.
-    #[cfg_attr(
-        feature = "clap",
-        arg(long, value_name = "B", allow_hyphen_values = true)
-    )]
-    pub batch: Option<Word>,
+    /// `--batch`.
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub batch: Batch,
 }
 
 impl Default for GateArgs {
@@ -814,7 +886,7 @@ impl Default for GateArgs {
         GateArgs {
             suite: PathBuf::from("golden"),
             update: false,
-            batch: None,
+            batch: Batch::default(),
         }
     }
 }
@@ -823,7 +895,7 @@ impl GateArgs {
     /// The typed gate, its reports into `out`.
     pub fn request(&self, out: PathBuf) -> Result<super::GateRequest> {
         Ok(super::GateRequest {
-            batch: request::batch_lanes(batch(&self.batch)?)?,
+            batch: request::batch_lanes(self.batch.width()?)?,
             suite: self.suite.clone(),
             out,
             update: self.update,
@@ -932,44 +1004,50 @@ pub trait CommandArgs: clap::Args + for<'de> Deserialize<'de> {
     }
 }
 
-/// The commands the Python module offers as well, one row each: the
-/// command, its options (with the keywords only Python passes, in
-/// brackets), what they make and the function that makes it. Each row is
-/// the command's [`CommandArgs`] and its entry in [`schema`], so that the
-/// list of commands is written once.
-macro_rules! python_commands {
-    ($($command:literal: $args:ty $([$($python:literal),*])? => $typed:ty, $make:expr;)*) => {
-        $(
-            #[cfg(feature = "clap")]
-            impl CommandArgs for $args {
-                const COMMAND: &'static str = $command;
-                $(const PYTHON_ONLY: &'static [&'static str] = &[$($python),*];)?
-                type Typed = $typed;
-                fn typed(&self) -> Result<$typed> {
-                    $make(self)
-                }
-            }
-        )*
-
-        /// Every command's options as the struct of this module declares
-        /// them: `(command, options)` for each command the Python module
-        /// offers as well, for its tests to hold the Python signatures
-        /// against.
+/// A command's [`CommandArgs`], one row: the command, its options (with
+/// the keywords only Python passes, in brackets), what they make and the
+/// function that makes it. A study of one scene writes its row beside its
+/// [`super::StudyCommand`] (`app/compare.rs`); the others are here.
+macro_rules! command_args {
+    ($command:literal: $args:ty $([$($python:literal),*])? => $typed:ty, $make:expr) => {
         #[cfg(feature = "clap")]
-        pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
-            vec![$(($command, options_of::<$args>())),*]
+        impl $crate::app::args::CommandArgs for $args {
+            const COMMAND: &'static str = $command;
+            $(const PYTHON_ONLY: &'static [&'static str] = &[$($python),*];)?
+            type Typed = $typed;
+            fn typed(&self) -> $crate::error::Result<$typed> {
+                $make(self)
+            }
         }
     };
 }
+pub(crate) use command_args;
 
-python_commands! {
-    "run": RunArgs => Option<super::Tolerance>, RunArgs::tolerance;
-    "compare": CompareArgs => request::CompareStudy, CompareArgs::study;
-    "converge": ConvergeArgs => request::ConvergeStudy, ConvergeArgs::study;
-    "uncertainty": UncertaintyArgs => request::UncertaintyStudy, UncertaintyArgs::study;
-    "precision": PrecisionArgs => request::PrecisionStudy, PrecisionArgs::study;
-    "sweep": SweepArgs ["paired"] => SweepStudy, SweepArgs::study;
-    "modes": ModesArgs => Option<usize>, ModesArgs::count;
+command_args!("run": RunArgs => Option<super::Tolerance>, RunArgs::tolerance);
+command_args!("sweep": SweepArgs ["paired"] => SweepStudy, SweepArgs::study);
+command_args!("modes": ModesArgs => Option<usize>, ModesArgs::count);
+
+/// Every command's options as the struct of this module declares them:
+/// `(command, options)` for each command the Python module offers as well
+/// (`run`, the studies of [`super::each_study`], `sweep`, `modes`), for its
+/// tests to hold the Python signatures against.
+#[cfg(feature = "clap")]
+pub fn schema() -> Vec<(&'static str, Vec<OptionSchema>)> {
+    struct Studies(Vec<(&'static str, Vec<OptionSchema>)>);
+    impl super::StudyVisitor for Studies {
+        fn visit<S: super::StudyCommand>(&mut self)
+        where
+            S::Outcome: Send,
+        {
+            let args = options_of::<S::Args>();
+            self.0.push((<S::Args as CommandArgs>::COMMAND, args));
+        }
+    }
+    let mut all = Studies(vec![("run", options_of::<RunArgs>())]);
+    super::each_study(&mut all);
+    all.0.push(("sweep", options_of::<SweepArgs>()));
+    all.0.push(("modes", options_of::<ModesArgs>()));
+    all.0
 }
 
 /// Read a command's options from JSON (the Python module's keyword
@@ -1067,7 +1145,7 @@ mod tests {
     #[test]
     fn python_s_keywords_are_read_and_unknown_ones_refused() {
         let a: CompareArgs = from_json(r#"{"batch": 2, "methods": "bathe", "yes": true}"#).unwrap();
-        assert_eq!(a.batch, Some(Word("2".into())));
+        assert_eq!(a.batch.batch, Some(Word("2".into())));
         assert_eq!(a.runs.methods.as_deref(), Some("bathe"));
         assert!(a.cost.yes);
         assert_eq!(a.formulations.formulations, *ALL_FORMULATIONS);
@@ -1144,11 +1222,11 @@ mod tests {
                 .clone()
         };
         let c = ConvergeArgs::default();
-        assert_eq!(find("converge", "levels"), Some(c.levels.0));
-        assert_eq!(find("converge", "ratio"), Some(c.ratio.0));
+        assert_eq!(find("converge", "levels"), Some(c.levels.levels.0));
+        assert_eq!(find("converge", "ratio"), Some(c.ratio.ratio.0));
         assert_eq!(find("converge", "refine"), Some(c.refine));
         let p = PrecisionArgs::default();
-        assert_eq!(find("precision", "levels"), Some(p.levels.0));
+        assert_eq!(find("precision", "levels"), Some(p.levels.levels.0));
         assert_eq!(
             find("precision", "formulations"),
             Some(p.formulations.formulations)
@@ -1156,5 +1234,15 @@ mod tests {
         let k = CompareArgs::default();
         assert_eq!(find("compare", "reference"), Some(k.reference));
         assert_eq!(find("compare", "batch"), None);
+        // a keyword left out takes the command's default through its
+        // flattened group, as the CLI's flag does
+        let p: PrecisionArgs = from_json("{}").unwrap();
+        assert_eq!(Some(p.levels.levels.0), find("precision", "levels"));
+        assert_eq!(Some(p.ratio.ratio.0), find("precision", "ratio"));
+        let u: UncertaintyArgs = from_json(r#"{"yes": true}"#).unwrap();
+        assert_eq!(Some(u.levels.levels.0), find("uncertainty", "levels"));
+        let c: ConvergeArgs = from_json(r#"{"levels": 5}"#).unwrap();
+        assert_eq!(c.levels.levels, Word("5".into()));
+        assert_eq!(find("converge", "levels"), Some("4".into()));
     }
 }

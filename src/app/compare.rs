@@ -67,3 +67,22 @@ fn partial(c: &Comparison, dir: &Path) -> Option<crate::error::Error> {
 pub fn compare(req: &CompareRequest, fe: &dyn Frontend) -> Result<Comparison> {
     run_study(req, fe)
 }
+
+super::args::command_args!("compare": super::CompareArgs => request::CompareStudy, super::CompareArgs::study);
+
+#[cfg(feature = "clap")]
+impl super::StudyCommand for request::CompareStudy {
+    type Args = super::CompareArgs;
+    const ABOUT: &'static str = "Run one scene under several contact formulations and time integrators and compare them (compare.csv, compare.json, compare.svg)";
+    const SUFFIX: &'static str = "-compare";
+    fn terminal(&self, c: &Comparison) -> (String, String) {
+        ("compare".into(), crate::report::compare_table(c))
+    }
+    /// A run that stopped: its table is written for the others.
+    fn whole(c: &Comparison) -> bool {
+        c.failed.is_empty()
+    }
+    fn tables(c: &Comparison) -> Vec<(&'static str, crate::report::Table)> {
+        vec![("compare.csv", crate::report::compare_rows(c))]
+    }
+}

@@ -45,3 +45,28 @@ impl Study for request::ConvergeStudy {
 pub fn converge(req: &ConvergeRequest, fe: &dyn Frontend) -> Result<ConvergeOutcome> {
     run_study(req, fe)
 }
+
+super::args::command_args!("converge": super::ConvergeArgs => request::ConvergeStudy, super::ConvergeArgs::study);
+
+#[cfg(feature = "clap")]
+impl super::StudyCommand for request::ConvergeStudy {
+    type Args = super::ConvergeArgs;
+    const ABOUT: &'static str = "Refine mesh, step or both and report errors, observed orders and GCI (converge.csv, converge.json, converge.svg)";
+    const SUFFIX: &'static str = "-converge";
+    fn terminal(&self, outcome: &ConvergeOutcome) -> (String, String) {
+        let kind = format!("converge ({:?}, r = {})", self.refine, self.ratio);
+        let table = match outcome {
+            ConvergeOutcome::One(c) => crate::report::converge_table(c),
+            ConvergeOutcome::Variants { studies, skipped } => {
+                crate::report::converge_methods_table(studies, skipped)
+            }
+        };
+        (kind, table)
+    }
+    fn tables(outcome: &ConvergeOutcome) -> Vec<(&'static str, crate::report::Table)> {
+        vec![(
+            "converge.csv",
+            crate::report::converge_rows(&outcome.rows()),
+        )]
+    }
+}

@@ -329,3 +329,63 @@ fn study_in<S: Study>(req: &StudyRequest<S>, fe: &dyn Frontend) -> Result<S::Out
     }
     Ok(outcome)
 }
+
+/// A study of one scene offered as a command: what the front ends need of
+/// it beyond [`Study`], declared with the study, so that the `taut`
+/// subcommand (its options, default folder, progress and printed text)
+/// and the Python function (`taut.study(name, …)`) are made from
+/// [`each_study`] and a new study edits neither front end.
+#[cfg(feature = "clap")]
+pub trait StudyCommand: Study + Send + Sync + Sized
+where
+    Self::Outcome: Send,
+{
+    /// Its options, which make it ([`args::CommandArgs::typed`]); their
+    /// `COMMAND` is the subcommand's name (`taut compare`).
+    type Args: args::CommandArgs<Typed = Self>;
+    /// The subcommand's help line (`taut --help`, `taut compare --help`).
+    const ABOUT: &'static str;
+    /// The default output folder's suffix: out/<scene stem><suffix>.
+    const SUFFIX: &'static str;
+    /// What the progress bar counts.
+    const UNIT: &'static str = "runs";
+    /// What the terminal prints of an outcome: the kind of study (after
+    /// `taut <version> — `) and its table.
+    fn terminal(&self, outcome: &Self::Outcome) -> (String, String);
+    /// Whether the outcome is whole (the exit code is 1 when not: a run
+    /// stopped, its table written for the others).
+    fn whole(_outcome: &Self::Outcome) -> bool {
+        true
+    }
+    /// Its tables by name (the file each is written as), as Python's
+    /// `taut.study` hands them back.
+    fn tables(outcome: &Self::Outcome) -> Vec<(&'static str, crate::report::Table)>;
+    /// Run it and write its outputs (the course of every study of one
+    /// scene: scene read, cost checked, folder claimed, outputs put in
+    /// place).
+    fn command(req: &StudyRequest<Self>, fe: &dyn Frontend) -> Result<Self::Outcome> {
+        run_study(req, fe)
+    }
+}
+
+/// What a front end does with each study of [`each_study`]: add it as a
+/// subcommand, run the one asked for, register its function.
+#[cfg(feature = "clap")]
+pub trait StudyVisitor {
+    /// One study command.
+    fn visit<S: StudyCommand>(&mut self)
+    where
+        S::Outcome: Send;
+}
+
+/// The studies of one scene offered as commands, the one list both front
+/// ends are made from (in the order `taut --help` lists them): a new study
+/// command is one line here and its [`StudyCommand`].
+#[cfg(feature = "clap")]
+pub fn each_study(v: &mut impl StudyVisitor) {
+    use crate::study::request::{CompareStudy, ConvergeStudy, PrecisionStudy, UncertaintyStudy};
+    v.visit::<ConvergeStudy>();
+    v.visit::<UncertaintyStudy>();
+    v.visit::<PrecisionStudy>();
+    v.visit::<CompareStudy>();
+}

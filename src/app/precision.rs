@@ -41,3 +41,18 @@ impl Study for request::PrecisionStudy {
 pub fn precision(req: &PrecisionRequest, fe: &dyn Frontend) -> Result<Precision> {
     run_study(req, fe)
 }
+
+super::args::command_args!("precision": super::PrecisionArgs => request::PrecisionStudy, super::PrecisionArgs::study);
+
+#[cfg(feature = "clap")]
+impl super::StudyCommand for request::PrecisionStudy {
+    type Args = super::PrecisionArgs;
+    const ABOUT: &'static str = "Work–precision: error against cost for each formulation over a (mesh, Δt) grid, with the Pareto front (precision.csv, precision.svg)";
+    const SUFFIX: &'static str = "-precision";
+    fn terminal(&self, p: &Precision) -> (String, String) {
+        ("precision".into(), crate::report::precision_table(p))
+    }
+    fn tables(p: &Precision) -> Vec<(&'static str, crate::report::Table)> {
+        vec![("precision.csv", crate::report::precision_rows(p))]
+    }
+}

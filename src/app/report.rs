@@ -30,5 +30,31 @@ impl ReportRequest {
 /// Write the report.
 pub fn report(req: &ReportRequest) -> Result<ReportSummary> {
     let out = req.out.clone().unwrap_or_else(|| req.default_out());
-    crate::report::write_report(&req.dirs, &out)
+    crate::report::write_report(&req.dirs, &out, &declared())
+}
+
+/// The outputs of the studies of [`super::each_study`] that declare their
+/// files ([`crate::report::Outputs::Declared`]), so that the page shows
+/// them as it shows the built-in ones.
+#[cfg(feature = "clap")]
+fn declared() -> Vec<crate::report::Outputs> {
+    struct Kinds(Vec<crate::report::Outputs>);
+    impl super::StudyVisitor for Kinds {
+        fn visit<S: super::StudyCommand>(&mut self)
+        where
+            S::Outcome: Send,
+        {
+            self.0.push(<S as super::Study>::OUTPUTS);
+        }
+    }
+    let mut kinds = Kinds(Vec::new());
+    super::each_study(&mut kinds);
+    kinds.0
+}
+
+/// Without the command schema there is no list of studies: the built-in
+/// kinds only.
+#[cfg(not(feature = "clap"))]
+fn declared() -> Vec<crate::report::Outputs> {
+    Vec::new()
 }

@@ -49,3 +49,57 @@ impl Study for request::UncertaintyStudy {
 pub fn uncertainty(req: &UncertaintyRequest, fe: &dyn Frontend) -> Result<Uncertainty> {
     run_study(req, fe)
 }
+
+super::args::command_args!("uncertainty": super::UncertaintyArgs => request::UncertaintyStudy, super::UncertaintyArgs::study);
+
+#[cfg(feature = "clap")]
+impl super::StudyCommand for request::UncertaintyStudy {
+    type Args = super::UncertaintyArgs;
+    const ABOUT: &'static str = "Solution verification: run a small family of the scene refined in space and time, together and apart, and give every reported quantity its numerical uncertainty u_num (GCI, Eça–Hoekstra least squares), observed orders and the space/time split (uncertainty.csv, uncertainty.json, uncertainty.svg; docs/verification.md)";
+    const SUFFIX: &'static str = "-uncertainty";
+    fn terminal(&self, u: &Uncertainty) -> (String, String) {
+        let kind = format!(
+            "uncertainty ({} levels, {} runs in {:.2} s wall)",
+            u.levels,
+            u.family.len(),
+            u.wall_seconds
+        );
+        (kind, family_text(u))
+    }
+    fn tables(u: &Uncertainty) -> Vec<(&'static str, crate::report::Table)> {
+        vec![
+            ("uncertainty.csv", crate::report::uncertainty_table(u)),
+            ("family", crate::report::family_table(u)),
+        ]
+    }
+}
+
+/// The family of `taut uncertainty` (each diagonal level's N or J and Δt)
+/// and its table of value ± u_num, as the terminal prints them.
+#[cfg(feature = "clap")]
+fn family_text(u: &Uncertainty) -> String {
+    use crate::study::uncertainty::Role;
+    use std::fmt::Write as _;
+    let mut s = String::from("  family  ");
+    let levels: Vec<String> = u
+        .family
+        .iter()
+        .filter(|m| m.role == Role::Diagonal)
+        .map(|m| {
+            format!(
+                "{} = {} × Δt = {:e} s",
+                u.level_symbol,
+                m.modes.unwrap_or(m.elements),
+                m.dt
+            )
+        })
+        .collect();
+    let _ = writeln!(
+        s,
+        "{} (diagonal), and each level's {} at the previous Δt",
+        levels.join(", "),
+        u.level_symbol
+    );
+    s.push_str(&crate::report::uncertainty_lines(u));
+    s
+}

@@ -24,7 +24,8 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::outputs::Outputs;
-use super::page::{self, Grid, Show, Tally, grid_html};
+use super::outputs::Show;
+use super::page::{self, Grid, Tally, grid_html};
 use crate::error::{Error, Result};
 use crate::report::INCOMPLETE_FILE;
 
@@ -82,7 +83,12 @@ pub struct ReportSummary {
 
 /// Make `report.html` at `out` from the folders `dirs`. A folder without
 /// any output taut writes is an error naming it.
-pub(crate) fn write_report(dirs: &[PathBuf], out: &Path) -> Result<ReportSummary> {
+pub(crate) fn write_report(
+    dirs: &[PathBuf],
+    out: &Path,
+    declared: &[Outputs],
+) -> Result<ReportSummary> {
+    let files = page::files(declared);
     if dirs.is_empty() {
         return Err(Error::invalid(
             "OUT_DIR",
@@ -101,7 +107,7 @@ pub(crate) fn write_report(dirs: &[PathBuf], out: &Path) -> Result<ReportSummary
     );
     let mut all = Tally::default();
     for (k, dir) in dirs.iter().enumerate() {
-        let section = folder_section(dir, k)?;
+        let section = folder_section(dir, k, &files)?;
         plots += section.plots;
         tables += section.tables;
         let name = esc(&dir.display().to_string());
@@ -251,7 +257,11 @@ struct Section {
 /// One folder's part of the page: a part per command whose outputs it
 /// holds ([`page::FILES`]), every file shown or named with the reason it
 /// is not.
-fn folder_section(dir: &Path, k: usize) -> Result<Section> {
+fn folder_section(
+    dir: &Path,
+    k: usize,
+    files: &[(&'static str, Outputs, Show)],
+) -> Result<Section> {
     if !dir.is_dir() {
         return Err(Error::invalid(
             format!("OUT_DIR {}", dir.display()),
@@ -290,7 +300,7 @@ fn folder_section(dir: &Path, k: usize) -> Result<Section> {
     let incomplete = std::fs::symlink_metadata(&marker).is_ok();
     let kinds: Vec<Outputs> = {
         let mut v: Vec<Outputs> = Vec::new();
-        for (f, kind, _) in page::FILES {
+        for (f, kind, _) in files {
             if present(f) && !v.contains(kind) {
                 v.push(*kind);
             }
@@ -348,10 +358,7 @@ fn folder_section(dir: &Path, k: usize) -> Result<Section> {
         let _ = writeln!(html, "<h3>{}</h3>", esc(command));
         // the JSON a table needs beside it (compare's warnings, …)
         let mut extra: Option<serde_json::Value> = None;
-        for &(file, _, show) in page::FILES
-            .iter()
-            .filter(|(f, k, _)| *k == kind && present(f))
-        {
+        for &(file, _, show) in files.iter().filter(|(f, k, _)| *k == kind && present(f)) {
             match show {
                 Show::Summary => {
                     if let Some(s) = read(file, &mut left_out)
@@ -433,7 +440,7 @@ fn folder_section(dir: &Path, k: usize) -> Result<Section> {
     }
     // what else the folder holds: named, not read
     for n in &names {
-        if page::FILES.iter().any(|(f, _, _)| f == n) || page::QUIET.contains(&n.as_str()) {
+        if files.iter().any(|(f, _, _)| f == n) || page::QUIET.contains(&n.as_str()) {
             continue;
         }
         let why = if n.starts_with(super::outputs::FAILED_CONTACT_PREFIX) && n.ends_with(".json") {
@@ -943,7 +950,7 @@ mod tests {
     #[test]
     fn a_folder_without_outputs_is_named() {
         let d = tempfile::tempdir().unwrap();
-        let e = write_report(&[d.path().to_path_buf()], &d.path().join("r.html"))
+        let e = write_report(&[d.path().to_path_buf()], &d.path().join("r.html"), &[])
             .unwrap_err()
             .to_string();
         assert!(e.contains("no taut outputs"), "{e}");

@@ -48,7 +48,7 @@ pub(crate) use line::write_line;
 pub use line::{envelope_table, spans_table, supports_table};
 pub(crate) use modes::write_modes;
 pub use modes::{mode_shapes_table, modes_table};
-pub use outputs::Outputs;
+pub use outputs::{Declared, Outputs, Show};
 pub(crate) use outputs::{check_out_dir, kept_note, replaced_note};
 pub(crate) use plot::write_force_plot;
 pub(crate) use precision::write_precision;

@@ -39,6 +39,36 @@ pub enum Outputs {
     Uncertainty,
     /// `taut verify`.
     Verify,
+    /// A study of one scene that declares its files itself (a
+    /// `StudyCommand` of `app::each_study`): built-in kinds are listed
+    /// here, a new study needs no line in this module.
+    Declared(&'static Declared),
+}
+
+/// How `report.html` shows one file (`super::page`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Show {
+    /// `summary.json` of a run.
+    Summary,
+    /// A CSV as a table: its title and the columns that hold verdicts.
+    Table(&'static str, &'static [&'static str]),
+    /// An SVG plot, embedded as an image, with its caption.
+    Plot(&'static str),
+    /// A JSON file the page reads for what its table lacks (warnings,
+    /// skipped runs, notes, a gate's checks).
+    Json,
+    /// Not shown, for this reason (the page names it).
+    Named(&'static str),
+}
+
+/// The outputs of a study that declares them: its command and each file
+/// it writes with the way `report.html` shows it.
+#[derive(Debug, PartialEq, Eq)]
+pub struct Declared {
+    /// The command, as the page names it (`taut compare`).
+    pub command: &'static str,
+    /// Each file and how the page shows it, in page order.
+    pub files: &'static [(&'static str, Show)],
 }
 
 /// Prefix of a saved failing contact problem (`failed_contact_step_N.json`).
@@ -46,8 +76,8 @@ pub const FAILED_CONTACT_PREFIX: &str = "failed_contact_step_";
 
 impl Outputs {
     /// The files this kind of command writes into its folder.
-    pub fn files(self) -> &'static [&'static str] {
-        match self {
+    pub fn files(self) -> Vec<&'static str> {
+        let files: &[&str] = match self {
             Outputs::Run => &[
                 "history.csv",
                 "summary.json",
@@ -87,7 +117,9 @@ impl Outputs {
                 "u_num_map.svg",
                 "tolerance.svg",
             ],
-        }
+            Outputs::Declared(d) => return d.files.iter().map(|(f, _)| *f).collect(),
+        };
+        files.to_vec()
     }
 }
 

@@ -10,23 +10,7 @@
 use std::fmt::Write as _;
 
 use super::html::{esc, short};
-use super::outputs::Outputs;
-
-/// How the page shows one file.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum Show {
-    /// `summary.json` of a run.
-    Summary,
-    /// A CSV as a table: its title and the columns that hold verdicts.
-    Table(&'static str, &'static [&'static str]),
-    /// An SVG plot, embedded as an image, with its caption.
-    Plot(&'static str),
-    /// A JSON file the page reads for what its table lacks (warnings,
-    /// skipped runs, notes, a gate's checks).
-    Json,
-    /// Not shown, for this reason (the page names it).
-    Named(&'static str),
-}
+use super::outputs::{Outputs, Show};
 
 /// Every file a command writes, by the command's kind, in page order.
 pub(crate) const FILES: &[(&str, Outputs, Show)] = &[
@@ -262,6 +246,18 @@ pub(crate) const FILES: &[(&str, Outputs, Show)] = &[
     ),
 ];
 
+/// Every file of [`FILES`] and of the studies that declare theirs
+/// (`declared`: [`Outputs::Declared`]), in page order.
+pub(crate) fn files(declared: &[Outputs]) -> Vec<(&'static str, Outputs, Show)> {
+    let mut all = FILES.to_vec();
+    for &kind in declared {
+        if let Outputs::Declared(d) = kind {
+            all.extend(d.files.iter().map(|&(f, show)| (f, kind, show)));
+        }
+    }
+    all
+}
+
 /// The command that writes a kind of folder, as the page names it.
 pub(crate) fn command(kind: Outputs, present: &dyn Fn(&str) -> bool) -> String {
     let s = match kind {
@@ -284,6 +280,7 @@ pub(crate) fn command(kind: Outputs, present: &dyn Fn(&str) -> bool) -> String {
         Outputs::Modes => "taut modes",
         Outputs::Uncertainty => "taut uncertainty",
         Outputs::Verify => "taut verify",
+        Outputs::Declared(d) => d.command,
         Outputs::Sweep => {
             // a merge's tables and maps are a sweep's; its merge.csv is not
             let tolerance = present("tolerance.svg") || present("u_num_map.svg");
@@ -678,11 +675,28 @@ mod tests {
         ] {
             for f in kind.files() {
                 assert!(
-                    FILES.iter().any(|(n, k, _)| n == f && *k == kind),
+                    FILES.iter().any(|(n, k, _)| *n == f && *k == kind),
                     "{f} of {kind:?} has no place in the report"
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_study_that_declares_its_files_has_them_placed() {
+        // a study of one's own names its files and their place itself
+        // (Outputs::Declared): no line of FILES or Outputs for it
+        static MINE: super::super::outputs::Declared = super::super::outputs::Declared {
+            command: "taut mine",
+            files: &[("mine.csv", Show::Table("mine", &[]))],
+        };
+        let kind = Outputs::Declared(&MINE);
+        assert_eq!(kind.files(), ["mine.csv"]);
+        assert_eq!(command(kind, &|_| true), "taut mine");
+        let all = files(&[kind, Outputs::Compare]);
+        assert_eq!(all.len(), FILES.len() + 1);
+        assert!(all.iter().any(|(n, k, _)| *n == "mine.csv" && *k == kind));
+        assert!(!FILES.iter().any(|(n, _, _)| *n == "mine.csv"));
     }
 
     #[test]
