@@ -478,6 +478,14 @@ pub struct UncertaintyArgs {
         arg(long, default_value = "4", allow_hyphen_values = true)
     )]
     pub levels: Word,
+    /// The most the family may cost, in runs of the scene (unknowns ×
+    /// steps), when level 0 is pre-asymptotic and a finer level is added
+    /// (default 128: a three-level family may grow to four).
+    #[cfg_attr(
+        feature = "clap",
+        arg(long, value_name = "F", allow_hyphen_values = true)
+    )]
+    pub max_cost: Option<Word>,
     /// `--yes`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
@@ -488,6 +496,7 @@ impl Default for UncertaintyArgs {
     fn default() -> Self {
         UncertaintyArgs {
             levels: Word("4".to_string()),
+            max_cost: None,
             cost: CostBound::default(),
         }
     }
@@ -497,7 +506,11 @@ impl UncertaintyArgs {
     /// The typed study: the levels by the study's own range.
     pub fn study(&self) -> Result<request::UncertaintyStudy> {
         let levels = self.levels.count(crate::study::uncertainty::check_levels)?;
-        words::uncertainty(levels, self.cost.yes)
+        words::uncertainty(
+            levels,
+            self.max_cost.as_ref().map(|w| w.0.as_str()),
+            self.cost.yes,
+        )
     }
 }
 
