@@ -2,7 +2,7 @@
 //! --tolerance`) are one estimator on one family: `taut uncertainty` run
 //! from the start of the family the engine chose for a point, with the
 //! same level count, gives the same value and u_num to the bit, or the
-//! same refusal (docs/convergence.md#taut-uncertainty-and-the-accuracy-engine).
+//! same refusal (docs/accuracy.md#error-bars-on-every-quantity-taut-uncertainty).
 
 use crate::common;
 
@@ -118,4 +118,25 @@ fn uncertainty_on_the_engine_s_family_gives_the_engine_s_answer() {
             );
         }
     }
+}
+
+#[test]
+fn a_bad_max_cost_is_refused_by_name() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = out_dir(&tmp, "u");
+    let o = taut_bin(&[
+        "uncertainty",
+        "scenes/reference.toml",
+        "--max-cost",
+        "-1",
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        e.contains("--max-cost") && e.contains("-1") && e.contains("≥ 0"),
+        "{e}"
+    );
 }

@@ -125,13 +125,15 @@ mod tests {
     /// oscillating ladder and one in its asymptotic range are not.
     #[test]
     fn a_coarse_start_that_falls_too_fast_is_found() {
-        let i = |d: &'static [Option<f64>]| Inputs {
-            diagonal: d,
-            space: &[],
-            ratio: 2.0,
-            formal: (2.0, 1.0),
-            smooth: false,
-        };
+        fn i(d: &[Option<f64>]) -> Inputs<'_> {
+            Inputs {
+                diagonal: d,
+                space: &[],
+                ratio: 2.0,
+                formal: (2.0, 1.0),
+                smooth: false,
+            }
+        }
         let known = [
             Some(0.08892053454164266),
             Some(0.041579944707133235),
