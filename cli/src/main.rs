@@ -394,8 +394,13 @@ fn cmd_uncertainty(on: &OnScene, args: &UncertaintyArgs, quiet: bool) -> taut::R
     let (u, dir) = on_scene(on, "-uncertainty", study, quiet, app::uncertainty)?;
     let runs = u.family.len();
     let kind = format!(
-        "uncertainty ({} levels, {runs} runs in {:.2} s wall)",
-        u.levels, u.wall_seconds
+        "uncertainty ({} levels{}, {runs} runs in {:.2} s wall)",
+        u.levels,
+        match u.levels_added {
+            0 => String::new(),
+            n => format!(" ({n} added: level 0 pre-asymptotic)"),
+        },
+        u.wall_seconds
     );
     let files = "uncertainty.csv, uncertainty.json, uncertainty.svg";
     print!(

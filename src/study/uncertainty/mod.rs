@@ -328,8 +328,15 @@ pub fn uncertainty_within(
             names.join(", "),
             found[0].1
         );
-        if levels < *family::LEVELS.end() && grown <= max_cost {
-            let all = family::scenes(&base, levels + 1)?;
+        // the grown family's scenes, when it is one the model takes and
+        // within the study's cost bound (`--yes` does not lift it here)
+        let all = (levels < *family::LEVELS.end() && grown <= max_cost)
+            .then(|| family::scenes(&base, levels + 1).ok())
+            .flatten()
+            .filter(|all| {
+                all.iter().map(run_dof_steps).sum::<f64>() <= crate::study::cost::MAX_DOF_STEPS
+            });
+        if let Some(all) = all {
             let wider = family::plan(levels + 1);
             let added: Vec<usize> = (0..wider.len()).filter(|&i| wider[i].1 == levels).collect();
             let scenes: Vec<Resolved> = added.iter().map(|&i| all[i].clone()).collect();
@@ -354,8 +361,13 @@ pub fn uncertainty_within(
             let note = format!(
                 "{why}, so their bars are dominated by it: run --levels {} (the family {grown:.0} runs of the scene{}), or start from a finer scene ({} × 2, time.step ÷ 2)",
                 levels + 1,
-                if max_cost > 0.0 {
+                if grown > max_cost && max_cost > 0.0 {
                     format!(", above --max-cost {max_cost}")
+                } else if grown <= max_cost {
+                    format!(
+                        ", above the cost bound of {:e} DOF-steps: add --yes",
+                        crate::study::cost::MAX_DOF_STEPS
+                    )
                 } else {
                     String::new()
                 },
