@@ -68,11 +68,14 @@ fn u_num_covers_the_true_error_of_the_moving_force() {
 
 /// Every level's statistics over the scene's window, [0, T], whatever the
 /// step: on the moving force with an end time no step of the family
-/// divides (0.49488 s; the levels' last steps end at 0.49485, 0.494875,
-/// 0.494875 and 0.49488125 s), the RMS displacement's true errors against
-/// the exact series fall at every level, by at least `MIN_FALL` (the
-/// formal order 2 less half an order: 2^1.5), the family is not called
-/// diverging, and u_num covers the finest level's error.
+/// divides (0.49488 s; from N₀ = 50, Δt₀ = 5e-5 s the levels' last steps
+/// end at 0.49485, 0.494875, 0.494875 and 0.49488125 s), the RMS
+/// displacement's true errors against the exact series fall at every
+/// level, by at least `MIN_FALL` (the formal order 2 less half an order:
+/// 2^1.5), the family is not called diverging, and u_num covers the finest
+/// level's error — from three starts (`the_rms_from_many_starts` measures
+/// twelve and three end times; from N₀ = 20 the first level falls by 2.6
+/// only, the truth's own pre-asymptotic start, still covered).
 #[test]
 fn the_rms_window_is_the_scene_s_whatever_the_step() {
     const MIN_FALL: f64 = 2.83;
@@ -82,24 +85,24 @@ fn the_rms_window_is_the_scene_s_whatever_the_step() {
         set: &["time.end=0.49488"],
         quantity: "displacement_rms",
         truth: Truth::Series,
-        starts: vec![(50, 5e-5)],
+        starts: vec![(50, 5e-5), (40, 1e-4), (160, 1e-4)],
     };
-    let rows = run_case(&case, 4, None).unwrap();
-    let r = &rows[0];
-    let errors: Vec<f64> = r
-        .diagonal
-        .iter()
-        .map(|v| (v.unwrap() - r.truth).abs())
-        .collect();
-    println!(
-        "true errors {errors:?}, u_num {:.3e}, {}",
-        r.u_num, r.behaviour
-    );
-    for w in errors.windows(2) {
-        assert!(w[1] * MIN_FALL <= w[0], "{errors:?}");
+    for r in run_case(&case, 4, None).unwrap() {
+        let errors: Vec<f64> = r
+            .diagonal
+            .iter()
+            .map(|v| (v.unwrap() - r.truth).abs())
+            .collect();
+        println!(
+            "{:?}: true errors {errors:?}, u_num {:.3e}, {}",
+            r.start, r.u_num, r.behaviour
+        );
+        for w in errors.windows(2) {
+            assert!(w[1] * MIN_FALL <= w[0], "{:?}: {errors:?}", r.start);
+        }
+        assert_ne!(r.behaviour, "diverging");
+        assert!(r.covered(), "u_num {:e} < error {:e}", r.u_num, r.error());
     }
-    assert_ne!(r.behaviour, "diverging");
-    assert!(r.covered(), "u_num {:e} < error {:e}", r.u_num, r.error());
 }
 
 /// A family outside the asymptotic range (N₀ = 25: h is
