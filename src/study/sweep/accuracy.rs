@@ -26,7 +26,9 @@
 //!
 //! The points' runs go through one queue ([`run_points`]): the records are
 //! the same whatever the order, threads or batch width (resumable).
-//! `taut run --tolerance` is this engine on one point (`super::refine_alone`).
+//! `taut run --tolerance` is this engine on one point (`super::refine_alone`);
+//! its runs and their assessment are `taut uncertainty`'s
+//! ([`crate::study::uncertainty::engine`]).
 
 use std::sync::{Condvar, Mutex, MutexGuard};
 

@@ -15,6 +15,8 @@
 //!   data support, and the split of the error between space and time;
 //! * [`family`]: the family of runs of `taut uncertainty` (h and Δt refined
 //!   together, and apart);
+//! * [`engine`]: what `taut uncertainty` and the accuracy engine share —
+//!   a family's runs, its formal orders and its assessment;
 //! * [`mod@quantity`]: what is given an error bar.
 //!
 //! This file runs the family and assesses every quantity
