@@ -3,13 +3,13 @@
 //! family of the same runs gets the same value, u_num and refusal from
 //! either (MODEL §12).
 //!
-//! * [`member_scene`]: the run N₀·2^a (J₀·2^a), Δt₀/2^b of a scene, every
+//! * `member_scene`: the run N₀·2^a (J₀·2^a), Δt₀/2^b of a scene, every
 //!   run measuring P_l over the scene's own support zone;
 //! * [`switches`]: whether a contact opens or closes in a run (then the
 //!   formal Δt order of anything read from the contact force is 1);
 //! * [`assess_family`]: a quantity's assessment on one family of a scene:
 //!   its formal orders on that scene, contacts switching when they do in
-//!   any run *of that family*, then [`assess`] (the diagonal's estimator,
+//!   any run *of that family*, then [`assess()`] (the diagonal's estimator,
 //!   the split floor, a pre-asymptotic level 0 dropped from a family of
 //!   four levels or more, every level's U at least |φ_ℓ − φ_fine| + u_num).
 
