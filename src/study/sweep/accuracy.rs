@@ -26,9 +26,7 @@
 //!
 //! The points' runs go through one queue ([`run_points`]): the records are
 //! the same whatever the order, threads or batch width (resumable).
-//! `taut run --tolerance` is this engine on one point (`super::refine_alone`);
-//! its runs and their assessment are `taut uncertainty`'s
-//! ([`crate::study::uncertainty::engine`]).
+//! `taut run --tolerance` is this engine on one point (`super::refine_alone`).
 
 use std::sync::{Condvar, Mutex, MutexGuard};
 
