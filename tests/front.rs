@@ -58,6 +58,8 @@ mod sweep_lists;
 mod sweep_tolerance;
 #[path = "tolerance.rs"]
 mod tolerance;
+#[path = "uncertainty_engine.rs"]
+mod uncertainty_engine;
 
 /// Every test file in tests/ is a group's root, a module of a group, or a
 /// binary of its own: a file in no group would never run (`autotests =

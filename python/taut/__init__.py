@@ -983,6 +983,7 @@ def uncertainty(
     set: Union[None, Mapping[str, Any], Iterable[str]] = None,
     *,
     levels: int = 4,
+    max_cost: Optional[float] = None,
     out: Union[None, str, "os.PathLike[str]"] = None,
     progress: Progress = None,
     yes: bool = False,
@@ -997,6 +998,8 @@ def uncertainty(
     Args:
         levels: diagonal levels K (3 ..= 6; 2K − 1 runs, the finest 4^(K−1)
             times the scene's run).
+        max_cost: the most the family may cost, in runs of the scene, when
+            a pre-asymptotic level 0 calls for one finer level (default 128).
         set, out, progress, yes: as for sweep().
 
     Returns:
@@ -1010,7 +1013,10 @@ def uncertainty(
     path, text = _scene(scene)
     with _Sink(progress, "runs") as p:
         cols, family = _taut.uncertainty(
-            (path, text, _overrides(set)), _out(out), p, _options(levels=levels, yes=yes)
+            (path, text, _overrides(set)),
+            _out(out),
+            p,
+            _options(levels=levels, max_cost=max_cost, yes=yes),
         )
     t = table(cols)
     t.family = table(family)

@@ -391,19 +391,35 @@ pub struct AccuracyTarget {
     /// (loss_fraction_span, the default; loss_fraction, force_mean, …).
     #[cfg_attr(feature = "clap", arg(long, value_name = "Q", requires = "tolerance"))]
     pub quantity: Option<String>,
-    /// With --tolerance: the most the refinement may cost, pilots
-    /// included, as a multiple of a run at the scene's resolution
-    /// (default 64).
+    /// `--max-cost`, which needs `--tolerance` here ([`Self::target`]).
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub max_cost: MaxCost,
+}
+
+/// `--max-cost F`: the most a study may cost, as a multiple of one run at
+/// the scene's resolution (unknowns × steps). With `--tolerance` it bounds
+/// the refinement, pilots included (default 64); on `taut uncertainty` the
+/// family grown by a finer level when level 0 is pre-asymptotic (default
+/// 128). Each command's help says which (`mut_arg`).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+pub struct MaxCost {
+    /// The most the refinement may cost, pilots included, as a multiple
+    /// of a run at the scene's resolution (default 64).
     #[cfg_attr(
         feature = "clap",
-        arg(
-            long,
-            value_name = "F",
-            requires = "tolerance",
-            allow_hyphen_values = true
-        )
+        arg(long, value_name = "F", allow_hyphen_values = true)
     )]
     pub max_cost: Option<Word>,
+}
+
+impl MaxCost {
+    /// The word given, if any.
+    pub fn word(&self) -> Option<&str> {
+        self.max_cost.as_ref().map(|w| w.0.as_str())
+    }
 }
 
 impl AccuracyTarget {
@@ -419,10 +435,10 @@ impl AccuracyTarget {
                     "is what --tolerance is on: give tolerance too",
                 ));
             }
-            if let Some(f) = &self.max_cost {
+            if let Some(f) = self.max_cost.word() {
                 return Err(Error::invalid(
                     "--max-cost",
-                    &f.0,
+                    f,
                     format!("bounds {refined}: give tolerance too"),
                 ));
             }
@@ -430,7 +446,7 @@ impl AccuracyTarget {
         words::sweep_tolerance(
             self.tolerance.as_ref().map(|w| w.0.as_str()),
             self.quantity.as_deref(),
-            self.max_cost.as_ref().map(|w| w.0.as_str()),
+            self.max_cost.word(),
         )
     }
 }
@@ -444,7 +460,7 @@ impl AccuracyTarget {
     command(
         mut_arg("tolerance", |a| a.help("Refine mesh and Δt until the numerical uncertainty u_num of --quantity is at most TOL (absolute, in its unit), as a one-point `taut sweep --tolerance` does, and print a u_num next to every result (docs/accuracy.md)")),
         mut_arg("quantity", |a| a.help("What --tolerance is on: a quantity `taut sweep --tolerance` takes (loss_fraction_span, the default; loss_fraction, force_mean, force_std, …)")),
-        mut_arg("max_cost", |a| a.help("With --tolerance: the most the run may cost, pilots included, as a multiple of its run at the scene's resolution (default 64)")),
+        mut_arg("max_cost", |a| a.help("With --tolerance: the most the run may cost, pilots included, as a multiple of its run at the scene's resolution (default 64)").requires("tolerance")),
     )
 )]
 pub struct RunArgs {
@@ -594,6 +610,7 @@ impl ConvergeArgs {
     feature = "clap",
     command(
         mut_arg("levels", |a| a.help("Diagonal levels of the family (3 ..= 6; 2K − 1 runs)")),
+        mut_arg("max_cost", |a| a.help("The most the family may cost, in runs of the scene (unknowns × steps), when level 0 is pre-asymptotic and a finer level is added (default 128: a three-level family may grow to four)")),
     )
 )]
 pub struct UncertaintyArgs {
@@ -601,6 +618,11 @@ pub struct UncertaintyArgs {
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
     pub levels: Levels<4>,
+    /// `--max-cost`: when level 0 is pre-asymptotic and a finer level is
+    /// added (default 128 runs of the scene: three levels may grow to four).
+    #[serde(flatten)]
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub max_cost: MaxCost,
     /// `--yes`.
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
@@ -614,7 +636,7 @@ impl UncertaintyArgs {
             .levels
             .levels
             .count(crate::study::uncertainty::check_levels)?;
-        words::uncertainty(levels, self.cost.yes)
+        words::uncertainty(levels, self.max_cost.word(), self.cost.yes)
     }
 }
 
@@ -685,7 +707,7 @@ impl PrecisionArgs {
     command(
         mut_arg("tolerance", |a| a.help("Refine each point until the numerical uncertainty u_num of --quantity is at most TOL (absolute, in its unit), only as far as it must; adds u_num and the resolution used to sweep.csv (docs/sweeps.md)")),
         mut_arg("quantity", |a| a.help("What --tolerance is on: a column of sweep.csv (loss_fraction_span, the default; loss_fraction, loss_fraction_support, force_mean, force_std, force_max, force_min, first_loss_position)")),
-        mut_arg("max_cost", |a| a.help("With --tolerance: the most a point may cost, pilots included, as a multiple of its run at the scene's resolution (default 64)")),
+        mut_arg("max_cost", |a| a.help("With --tolerance: the most a point may cost, pilots included, as a multiple of its run at the scene's resolution (default 64)").requires("tolerance")),
         mut_arg("batch", |a| a.help("Runs stepped together when they share their effective matrix (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of lanes). The records are the same bytes whatever the width")),
     )
 )]

@@ -58,8 +58,12 @@ impl super::StudyCommand for request::UncertaintyStudy {
     const ABOUT: &'static str = "Solution verification: run a small family of the scene refined in space and time, together and apart, and give every reported quantity its numerical uncertainty u_num (GCI, Eça–Hoekstra least squares), observed orders and the space/time split (uncertainty.csv, uncertainty.json, uncertainty.svg; docs/verification.md)";
     const SUFFIX: &'static str = "-uncertainty";
     fn terminal(&self, u: &Uncertainty) -> (String, String) {
+        let added = match u.levels_added {
+            0 => String::new(),
+            n => format!(" ({n} added: level 0 pre-asymptotic)"),
+        };
         let kind = format!(
-            "uncertainty ({} levels, {} runs in {:.2} s wall)",
+            "uncertainty ({} levels{added}, {} runs in {:.2} s wall)",
             u.levels,
             u.family.len(),
             u.wall_seconds

@@ -135,10 +135,34 @@ pub fn precision(
 }
 
 /// The words of `taut uncertainty` (Python: `taut.uncertainty`) as its
-/// typed study; the levels are checked here, before the scene is read.
-pub fn uncertainty(levels: usize, yes: bool) -> Result<request::UncertaintyStudy> {
+/// typed study; the levels and `--max-cost` are checked here, before the
+/// scene is read.
+pub fn uncertainty(
+    levels: usize,
+    max_cost: Option<&str>,
+    yes: bool,
+) -> Result<request::UncertaintyStudy> {
     crate::study::uncertainty::check_levels(levels)?;
-    Ok(request::UncertaintyStudy { levels, yes })
+    let max_cost = max_cost
+        .map(|text| {
+            text.trim()
+                .parse::<f64>()
+                .map_err(|_| {
+                    Error::invalid(
+                        "--max-cost",
+                        text,
+                        crate::study::uncertainty::MAX_COST_ALLOWED,
+                    )
+                })
+                .and_then(crate::study::uncertainty::check_max_cost)
+        })
+        .transpose()?
+        .unwrap_or(crate::study::uncertainty::DEFAULT_MAX_COST);
+    Ok(request::UncertaintyStudy {
+        levels,
+        max_cost,
+        yes,
+    })
 }
 
 /// `taut sweep` or `taut run --tolerance TOL [--quantity Q] [--max-cost

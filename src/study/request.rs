@@ -315,6 +315,9 @@ impl PrecisionStudy {
 pub struct UncertaintyStudy {
     /// Diagonal levels K (`super::uncertainty::LEVELS`).
     pub levels: usize,
+    /// The most the family may cost, in runs of the scene, when a level is
+    /// added (`--max-cost`, [`super::uncertainty::DEFAULT_MAX_COST`]).
+    pub max_cost: f64,
     /// Start even above the cost bound (`--yes`, [`super::cost`]).
     pub yes: bool,
 }
@@ -338,6 +341,12 @@ impl UncertaintyStudy {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<super::uncertainty::Uncertainty> {
         self.estimate(text, overrides)?.check(self.yes)?;
-        super::uncertainty::uncertainty(text, overrides, self.levels, progress)
+        super::uncertainty::uncertainty_within(
+            text,
+            overrides,
+            self.levels,
+            self.max_cost,
+            progress,
+        )
     }
 }

@@ -37,16 +37,15 @@ use super::record::{SweepRecord, record_of};
 use super::spec::SweepSpec;
 use super::tolerance_spec::{PointAccuracy, SweepTolerance};
 use crate::error::{Error, Result};
-use crate::integrate::{batch_key, scene_method};
+use crate::integrate::batch_key;
 use crate::quantity::Quantity;
-use crate::quantity::formal_orders::MAX_STEP_ORDER;
 use crate::resolve::Resolved;
 use crate::run::{RunOutput, run_batch};
 use crate::study::cost::run_dof_steps;
 use crate::study::cpu_time::{shares, timed};
 use crate::study::level::Level;
 use crate::study::tolerance::{ErrorModel, LadderFit};
-use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, RATIO, assess};
+use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, RATIO, engine};
 
 /// Checks after the pilots at most: with one more level on both each, a
 /// point may end 2⁵ times finer in h and Δt than the plan's first guess.
@@ -166,23 +165,15 @@ impl Point {
                 .expect("a point being worked has its scene"),
             self.level.expect("and its level"),
         );
-        let n0 = level.start();
-        let n = if k.0 >= 0 {
-            n0.checked_mul(RATIO.pow(k.0 as u32))
-        } else {
-            Some(n0 / RATIO.pow((-k.0) as u32))
-        }
-        .filter(|&n| n > 0)
-        .ok_or_else(|| {
+        let n = engine::level_parameter(level.start(), k.0).ok_or_else(|| {
             Error::invalid(
                 "--tolerance",
                 format!("{k:?}"),
                 "a level parameter out of range",
             )
         })?;
-        let dt = base.dt * (RATIO as f64).powi(-k.1);
-        // every run measures P_l over the point's own support zone
-        level.variant(n, dt).keeping_zone_of(base).apply(base)
+        // as `taut uncertainty` makes its family's runs
+        engine::member_scene(base, level, n, k.1)
     }
 
     /// The keys the point needs next that it has not run.
@@ -703,7 +694,7 @@ fn reduce(
         value: q.of(out, 0),
         dof_steps: out.dofs as f64 * out.steps as f64,
         cpu,
-        loss: out.stats.first().is_some_and(|s| s.loss_interval_count > 0),
+        loss: engine::switches(out),
         record,
         values: Vec::new(),
         output: None,
@@ -716,12 +707,12 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
         return;
     }
     let q = tol.spec();
-    let formal = formal_of(p, q);
     let key = match p.stage {
         Stage::Pilot => (0, 0),
         Stage::Check(k) => k,
         Stage::Done => return,
     };
+    let formal = formal_of(p, q, key);
     let a = assess_at(p, q, key, |r| r.value);
     let u = a.u_num.unwrap_or(f64::INFINITY);
     p.candidates.push((key, a));
@@ -790,16 +781,18 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     p.stage = Stage::Check(next);
 }
 
-/// Q's formal orders in space and time on the point's scene.
-fn formal_of(p: &Point, q: &Quantity) -> (f64, f64) {
+/// Q's formal orders in space and time on the point's scene, for the
+/// family ending at `key` ([`engine::formal_on`]).
+fn formal_of(p: &Point, q: &Quantity, key: Key) -> (f64, f64) {
     let base = p.base.as_ref().expect("a point being worked has its scene");
-    let method_order = scene_method(base)
-        .time_order(base)
-        .unwrap_or(MAX_STEP_ORDER);
-    let switch = p.runs.iter().any(|r| r.loss);
-    let string =
-        base.beam.is_string() && base.discretization == crate::scene::Discretization::Hermite;
-    crate::study::uncertainty::quantity::formal_orders(q, method_order, switch, string)
+    engine::formal_on(base, q, family_switches(p, key))
+}
+
+/// Whether a contact opens or closes in a run of the family ending at
+/// `key`: the same family `taut uncertainty` would run from its start.
+fn family_switches(p: &Point, key: Key) -> bool {
+    let keys = check_runs(key);
+    p.runs.iter().any(|r| r.loss && keys.contains(&r.key))
 }
 
 /// `q`'s assessment on the family ending at `key` ([`check_runs`]: the
@@ -812,15 +805,9 @@ fn assess_at(p: &Point, q: &Quantity, key: Key, value: impl Fn(&Ran) -> Option<f
     };
     let keys = check_runs(key);
     let (diag, split) = (at(&keys[..3]), at(&keys[3..]));
-    // a quantity that is not smooth gets at least the split floor: its
-    // mesh and Δt parts may cancel along the diagonal
-    assess(&Inputs {
-        diagonal: &diag,
-        space: &split,
-        ratio: RATIO as f64,
-        formal: formal_of(p, q),
-        smooth: q.smooth,
-    })
+    let base = p.base.as_ref().expect("a point being worked has its scene");
+    // the one assessment `taut uncertainty` makes of the same family
+    engine::assess_family(base, q, &diag, &split, family_switches(p, key))
 }
 
 /// A finished point as handed to `save`; with `ctx.keep`, its [`Detail`].

@@ -176,7 +176,7 @@ impl Assessment {
 /// ([`cover_coarser_levels`]).
 pub fn assess(inputs: &Inputs) -> Assessment {
     let mut a = match pre_asymptotic_start(inputs) {
-        Some(excess) => assess_without_level_zero(inputs, excess),
+        Some(excess) => assess_without_level_zero(inputs, excess, PRE_ASYMPTOTIC_MARGIN),
         None => None,
     }
     .unwrap_or_else(|| assess_with_floor(inputs));
@@ -198,7 +198,7 @@ pub const PRE_ASYMPTOTIC_MARGIN: f64 = 4.0;
 
 /// The fewest diagonal levels left once level 0 is dropped: three, what
 /// an order (and a GCI or a fit with a free order) needs.
-const LEVELS_LEFT: usize = 3;
+pub(crate) const LEVELS_LEFT: usize = 3;
 
 /// Level 0 is pre-asymptotic when its change φ₁ − φ₀ exceeds
 /// [`PRE_ASYMPTOTIC_MARGIN`] · r^p_fast · max_{ℓ≥2} |φ_ℓ − φ_{ℓ−1}|, with
@@ -209,8 +209,18 @@ const LEVELS_LEFT: usize = 3;
 /// and the family is left whole. Returns level 0's change over that
 /// allowance.
 pub fn pre_asymptotic_start(inputs: &Inputs) -> Option<f64> {
-    let k = inputs.diagonal.len();
-    if k < LEVELS_LEFT + 1 {
+    if inputs.diagonal.len() < LEVELS_LEFT + 1 {
+        return None;
+    }
+    level_zero_excess(inputs).filter(|&excess| excess > PRE_ASYMPTOTIC_MARGIN)
+}
+
+/// Level 0's change over what the finer levels allow
+/// ([`pre_asymptotic_start`]), for any family of three levels or more
+/// whose finer levels change beyond round-off; on three levels it tells
+/// `taut uncertainty` to add a finer one.
+pub fn level_zero_excess(inputs: &Inputs) -> Option<f64> {
+    if inputs.diagonal.len() < LEVELS_LEFT {
         return None;
     }
     let phi: Vec<f64> = inputs.diagonal.iter().copied().collect::<Option<_>>()?;
@@ -225,15 +235,25 @@ pub fn pre_asymptotic_start(inputs: &Inputs) -> Option<f64> {
         return None;
     }
     let fastest = inputs.formal.0.max(inputs.formal.1);
-    let excess = first / (inputs.ratio.powf(fastest) * finer);
-    (excess > PRE_ASYMPTOTIC_MARGIN).then_some(excess)
+    Some(first / (inputs.ratio.powf(fastest) * finer))
+}
+
+/// [`assess`] with level 0 dropped from the fit whatever its excess: for a
+/// family grown by a level because its level 0 was found pre-asymptotic
+/// on the first three (`excess` over `margin`, [`level_zero_excess`]),
+/// which leaves the levels the accuracy engine's next check would assess.
+pub fn assess_without_start(inputs: &Inputs, excess: f64, margin: f64) -> Assessment {
+    let mut a = assess_without_level_zero(inputs, excess, margin)
+        .unwrap_or_else(|| assess_with_floor(inputs));
+    cover_coarser_levels(&mut a, inputs.diagonal);
+    a
 }
 
 /// The assessment of the levels above 0 (and their split runs), with level
 /// 0's entry put back in front (its U set by [`cover_coarser_levels`]);
 /// None when the finer levels give no u_num by themselves (then the whole
 /// family is assessed).
-fn assess_without_level_zero(inputs: &Inputs, excess: f64) -> Option<Assessment> {
+fn assess_without_level_zero(inputs: &Inputs, excess: f64, margin: f64) -> Option<Assessment> {
     let k = inputs.diagonal.len();
     let finer = Inputs {
         diagonal: &inputs.diagonal[1..],
@@ -248,7 +268,7 @@ fn assess_without_level_zero(inputs: &Inputs, excess: f64) -> Option<Assessment>
     a.u_num?;
     a.u_levels.insert(0, None);
     let why = format!(
-        "level 0 dropped from the fit as pre-asymptotic: its change is {excess:.0}× what the finer levels allow at order {}, times {PRE_ASYMPTOTIC_MARGIN}",
+        "level 0 dropped from the fit as pre-asymptotic: its change is {excess:.2}× what the finer levels allow at order {}, above {margin}",
         inputs.formal.0.max(inputs.formal.1)
     );
     a.note = if a.note.is_empty() {

@@ -84,21 +84,20 @@ pub(crate) fn plan(levels: usize) -> Vec<(Role, usize, usize, usize)> {
 pub fn scenes(base: &Resolved, levels: usize) -> Result<Vec<Resolved>> {
     let level = Level::of(base);
     let n0 = level.start();
+    let log2 = |x: usize| x.ilog(RATIO) as i32;
     plan(levels)
         .into_iter()
         .map(|(role, l, f, d)| {
-            let n = n0.checked_mul(f).ok_or_else(|| {
+            let n = super::engine::level_parameter(n0, log2(f)).ok_or_else(|| {
                 Error::invalid(
                     "--levels",
                     levels,
                     format!("{} = {n0} × {f} is too large", level.symbol()),
                 )
             })?;
-            // every level measures P_l over the scene's own support zone
-            level
-                .variant(n, base.dt / d as f64)
-                .keeping_zone_of(base)
-                .apply(base)
+            // the runs the accuracy engine makes: every level measures P_l
+            // over the scene's own support zone
+            super::engine::member_scene(base, level, n, log2(d))
                 .map_err(|e| at_level(e, (role, l, f, d), (level.symbol(), n0)))
         })
         .collect()

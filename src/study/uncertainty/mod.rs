@@ -15,12 +15,15 @@
 //!   data support, and the split of the error between space and time;
 //! * [`family`]: the family of runs of `taut uncertainty` (h and Δt refined
 //!   together, and apart);
+//! * [`engine`]: what `taut uncertainty` and the accuracy engine share —
+//!   a family's runs, its formal orders and its assessment;
 //! * [`mod@quantity`]: what is given an error bar.
 //!
 //! This file runs the family and assesses every quantity
 //! ([`uncertainty`]).
 
 pub mod assess;
+pub mod engine;
 pub mod family;
 pub mod gci;
 pub mod least_squares;
@@ -30,11 +33,8 @@ pub mod quantity;
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::integrate::scene_method;
-use crate::quantity::formal_orders::MAX_STEP_ORDER;
-use crate::resolve::resolve_scene;
+use crate::resolve::{Resolved, resolve_scene};
 use crate::run::run;
-use crate::scene::Discretization;
 use crate::study::cost::{Estimate, run_dof_steps};
 use crate::study::level::Level;
 
@@ -79,8 +79,11 @@ pub struct Uncertainty {
     pub scene: crate::scene::Scene,
     /// `N` or `J`: the level parameter refined in space.
     pub level_symbol: &'static str,
-    /// Diagonal levels K.
+    /// Diagonal levels K (with any added).
     pub levels: usize,
+    /// Finer levels added beyond `--levels` because level 0 was
+    /// pre-asymptotic ([`uncertainty_within`]): 0 or 1.
+    pub levels_added: usize,
     /// The runs, in `family::plan`'s order (the diagonal, then the split).
     pub family: Vec<Member>,
     /// One row a quantity, in the registry's order (uplift only with
@@ -97,16 +100,6 @@ pub struct Uncertainty {
     pub stopped: Option<std::sync::Arc<Error>>,
 }
 
-/// Whether a contact opens or closes in any run of the family (a loss
-/// interval), read from the values of `qs`.
-fn outs_switch(values: &[Vec<Option<f64>>], qs: &[&crate::quantity::Quantity]) -> bool {
-    let loss = qs
-        .iter()
-        .position(|q| q.name == crate::quantity::LOSS_INTERVAL_COUNT.name)
-        .expect("loss_interval_count is given an error bar");
-    values.iter().any(|v| v[loss].is_some_and(|n| n > 0.0))
-}
-
 /// The study's estimated work: every run of the family.
 pub fn estimate(text: &str, overrides: &[String], levels: usize) -> Result<Estimate> {
     check_levels(levels)?;
@@ -119,43 +112,77 @@ pub fn estimate(text: &str, overrides: &[String], levels: usize) -> Result<Estim
 }
 
 /// Run the family of scene `text` with `overrides` and `levels` diagonal
-/// levels, and assess every quantity. `progress(done, runs)` as runs
-/// finish. A run that stops on a divergence makes every quantity
-/// `diverged`, naming it; any other error of a run is the study's.
+/// levels, and assess every quantity ([`uncertainty_within`] adding no
+/// level: a pre-asymptotic level 0 is stated, not refined past).
 pub fn uncertainty(
     text: &str,
     overrides: &[String],
     levels: usize,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Uncertainty> {
-    check_levels(levels)?;
-    let start = std::time::Instant::now();
-    let base = resolve_scene(text, overrides)?;
-    base.require_every_step("taut uncertainty")?;
-    let scenes = family::scenes(&base, levels)?;
-    let plan = family::plan(levels);
+    uncertainty_within(text, overrides, levels, 0.0, progress)
+}
+
+/// The most a family may cost by default, in runs of the scene
+/// (`--max-cost`), once a pre-asymptotic level 0 calls for one more
+/// level: 128, so a three-level family (31 runs of the scene) may grow to
+/// the default four (127); a larger one grows only when asked.
+pub const DEFAULT_MAX_COST: f64 = 128.0;
+
+/// What `--max-cost` of `taut uncertainty` allows.
+pub const MAX_COST_ALLOWED: &str = "must be a finite number ≥ 0: the most the family may cost, in runs of the scene (unknowns × steps)";
+
+/// `--max-cost` if finite and ≥ 0, else the error naming it.
+pub fn check_max_cost(f: f64) -> Result<f64> {
+    if f.is_finite() && f >= 0.0 {
+        Ok(f)
+    } else {
+        Err(Error::invalid("--max-cost", f, MAX_COST_ALLOWED))
+    }
+}
+
+/// The family's cost in runs of the scene (unknowns × steps): Σ f·d over
+/// [`family::plan`].
+fn family_cost(levels: usize) -> f64 {
+    family::plan(levels)
+        .iter()
+        .map(|&(_, _, f, d)| (f * d) as f64)
+        .sum()
+}
+
+/// The family's runs made: each member, its values of `qs`, whether a
+/// contact switched in it, and the first divergence (named).
+struct Ran {
+    family: Vec<Member>,
+    values: Vec<Vec<Option<f64>>>,
+    switch: bool,
+    stopped: Option<String>,
+    first_divergence: Option<Error>,
+}
+
+/// Run `scenes` (members `plan` of the family), appending to `ran`.
+fn run_members(
+    ran: &mut Ran,
+    scenes: &[Resolved],
+    plan: &[(Role, usize, usize, usize)],
+    qs: &[&crate::quantity::Quantity],
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<()> {
     let outs = crate::study::threads::map_with_progress(
-        &scenes,
+        scenes,
         run_dof_steps,
         |sc| run(sc, &mut |_, _| {}),
         progress,
     );
-    let mut family: Vec<Member> = plan
-        .iter()
-        .zip(&scenes)
-        .map(|(&(role, l, _, _), sc)| Member::of(role, l, sc))
-        .collect();
-    let qs = quantities();
-    let mut values: Vec<Vec<Option<f64>>> = Vec::with_capacity(outs.len());
-    let mut stopped: Option<String> = None;
-    let mut first_divergence: Option<Error> = None;
-    for (m, out) in family.iter_mut().zip(outs) {
+    for ((&(role, l, _, _), sc), out) in plan.iter().zip(scenes).zip(outs) {
+        let mut m = Member::of(role, l, sc);
         match out {
             Ok(o) => {
                 m.steps = o.steps;
                 m.dofs = o.dofs;
                 m.wall_seconds = o.wall_seconds;
-                values.push(quantity::all_values(&o, &qs));
+                ran.switch |= engine::switches(&o);
+                ran.values.push(quantity::all_values(&o, qs));
             }
             Err(Error::Interrupted) => return Err(Error::Interrupted),
             Err(e @ Error::Diverged { .. }) => {
@@ -167,11 +194,11 @@ pub fn uncertainty(
                     m.modes.map_or(String::new(), |j| format!(", J = {j}")),
                     m.dt
                 );
-                stopped.get_or_insert_with(|| format!("{run}: {e}"));
-                if first_divergence.is_none() {
-                    first_divergence = Some(e.in_run(&format!("the family's {run}")));
+                ran.stopped.get_or_insert_with(|| format!("{run}: {e}"));
+                if ran.first_divergence.is_none() {
+                    ran.first_divergence = Some(e.in_run(&format!("the family's {run}")));
                 }
-                values.push(vec![None; qs.len()]);
+                ran.values.push(vec![None; qs.len()]);
             }
             Err(e) => {
                 return Err(e.in_run(&format!(
@@ -180,14 +207,19 @@ pub fn uncertainty(
                 )));
             }
         }
+        ran.family.push(m);
     }
-    // an opening or closing contact (a loss interval) makes the
-    // displacement's Δt order 1
-    let switch = outs_switch(&values, &qs);
-    let method_order = scene_method(&base)
-        .time_order(&base)
-        .unwrap_or(MAX_STEP_ORDER);
-    let string = base.beam.is_string() && base.discretization == Discretization::Hermite;
+    Ok(())
+}
+
+/// Every quantity of `qs` assessed on the family `ran`
+/// ([`engine::assess_family`]).
+fn assess_all(
+    base: &Resolved,
+    ran: &Ran,
+    qs: &[&crate::quantity::Quantity],
+    without_start: &[(&'static str, f64)],
+) -> Vec<QuantityUncertainty> {
     let has_supports = !base.wire.supports.is_empty();
     let mut quantities = Vec::new();
     for (i, q) in qs.iter().enumerate() {
@@ -195,31 +227,28 @@ pub fn uncertainty(
             continue;
         }
         let column = |role: Role| -> Vec<Option<f64>> {
-            family
+            ran.family
                 .iter()
-                .zip(&values)
+                .zip(&ran.values)
                 .filter(|(m, _)| m.role == role)
                 .map(|(_, v)| v[i])
                 .collect()
         };
         let (diagonal, space) = (column(Role::Diagonal), column(Role::Space));
-        let formal = quantity::formal_orders(q, method_order, switch, string);
-        let inputs = Inputs {
-            diagonal: &diagonal,
-            space: &space,
-            ratio: RATIO as f64,
-            formal,
-            smooth: q.smooth,
-        };
-        let assessment = match &stopped {
-            Some(why) => Assessment::diverged(&inputs, why),
-            None => assess(&inputs),
+        let inputs = engine::inputs(base, q, &diagonal, &space, ran.switch);
+        let start = without_start.iter().find(|(name, _)| *name == q.name);
+        let assessment = match (&ran.stopped, start) {
+            (Some(why), _) => Assessment::diverged(&inputs, why),
+            (None, Some(&(_, excess))) => {
+                assess::assess_without_start(&inputs, excess, engine::ADD_LEVEL_MARGIN)
+            }
+            (None, None) => assess(&inputs),
         };
         quantities.push(QuantityUncertainty {
             quantity: q.name,
             unit: q.unit,
             smooth: q.smooth,
-            formal,
+            formal: inputs.formal,
             value_scene: diagonal[0],
             u_scene: assessment.u_levels.first().copied().flatten(),
             diagonal,
@@ -227,7 +256,140 @@ pub fn uncertainty(
             assessment,
         });
     }
+    quantities
+}
+
+/// The quantities of a three-level family whose level 0 is pre-asymptotic
+/// ([`engine::dominated_start`]), each with its excess, largest first.
+fn dominated(quantities: &[QuantityUncertainty], ratio: f64) -> Vec<(&'static str, f64)> {
+    let mut found: Vec<(&'static str, f64)> = quantities
+        .iter()
+        .filter(|r| r.assessment.u_num.is_some())
+        .filter_map(|r| {
+            let inputs = Inputs {
+                diagonal: &r.diagonal,
+                space: &r.space,
+                ratio,
+                formal: r.formal,
+                smooth: r.smooth,
+            };
+            engine::dominated_start(&inputs).map(|x| (r.quantity, x))
+        })
+        .collect();
+    found.sort_by(|a, b| b.1.total_cmp(&a.1));
+    found
+}
+
+/// Run the family of scene `text` with `overrides` and `levels` diagonal
+/// levels, and assess every quantity. `progress(done, runs)` as runs
+/// finish. A run that stops on a divergence makes every quantity
+/// `diverged`, naming it; any other error of a run is the study's.
+///
+/// A three-level family whose level 0 is pre-asymptotic for some quantity
+/// (its change [`assess::PRE_ASYMPTOTIC_MARGIN`] times beyond what the
+/// finer change allows) gets one finer level, diagonal and split, as the
+/// accuracy engine refines a point further, when the grown family costs at
+/// most `max_cost` runs of the scene; the assessment then drops level 0
+/// from the fit. Otherwise a note says the bar is dominated by that level
+/// and what to run instead.
+pub fn uncertainty_within(
+    text: &str,
+    overrides: &[String],
+    levels: usize,
+    max_cost: f64,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Uncertainty> {
+    check_levels(levels)?;
+    let start = std::time::Instant::now();
+    let base = resolve_scene(text, overrides)?;
+    base.require_every_step("taut uncertainty")?;
+    let scenes = family::scenes(&base, levels)?;
+    let plan = family::plan(levels);
+    let qs = quantities();
+    let mut ran = Ran {
+        family: Vec::new(),
+        values: Vec::new(),
+        switch: false,
+        stopped: None,
+        first_divergence: None,
+    };
+    run_members(&mut ran, &scenes, &plan, &qs, progress)?;
+    let mut quantities = assess_all(&base, &ran, &qs, &[]);
+    let mut levels_added = 0;
     let mut notes = Vec::new();
+    let found = if ran.stopped.is_none() {
+        dominated(&quantities, RATIO as f64)
+    } else {
+        Vec::new()
+    };
+    if !found.is_empty() {
+        let grown = family_cost(levels + 1);
+        let names: Vec<&str> = found.iter().map(|f| f.0).collect();
+        let why = format!(
+            "level 0 is pre-asymptotic for {}: it changes faster than the fastest formal order allows (up to {:.2}× r^p times the next change)",
+            names.join(", "),
+            found[0].1
+        );
+        // the grown family's scenes, when it is one the model takes and
+        // within the study's cost bound (`--yes` does not lift it here)
+        let all = (levels < *family::LEVELS.end() && grown <= max_cost)
+            .then(|| family::scenes(&base, levels + 1).ok())
+            .flatten()
+            .filter(|all| {
+                all.iter().map(run_dof_steps).sum::<f64>() <= crate::study::cost::MAX_DOF_STEPS
+            });
+        if let Some(all) = all {
+            let wider = family::plan(levels + 1);
+            let added: Vec<usize> = (0..wider.len()).filter(|&i| wider[i].1 == levels).collect();
+            let scenes: Vec<Resolved> = added.iter().map(|&i| all[i].clone()).collect();
+            let plan: Vec<_> = added.iter().map(|&i| wider[i]).collect();
+            let done = ran.family.len();
+            let total = done + added.len();
+            run_members(&mut ran, &scenes, &plan, &qs, &mut |d, _| {
+                progress(done + d, total)
+            })?;
+            // back in the grown family's order: the diagonal, then the split
+            let mut order: Vec<usize> = (0..ran.family.len()).collect();
+            order.sort_by_key(|&i| (ran.family[i].role == Role::Space, ran.family[i].level));
+            ran.family = order.iter().map(|&i| ran.family[i].clone()).collect();
+            ran.values = order.iter().map(|&i| ran.values[i].clone()).collect();
+            levels_added = 1;
+            quantities = assess_all(&base, &ran, &qs, &found);
+            notes.push(format!(
+                "{why}: one finer level added ({} runs; the family {grown:.0} runs of the scene, within --max-cost {max_cost}), and level 0 dropped from their fits",
+                added.len()
+            ));
+        } else {
+            let note = format!(
+                "{why}, so their bars are dominated by it: run --levels {} (the family {grown:.0} runs of the scene{}), or start from a finer scene ({} × 2, time.step ÷ 2)",
+                levels + 1,
+                if grown > max_cost && max_cost > 0.0 {
+                    format!(", above --max-cost {max_cost}")
+                } else if grown <= max_cost {
+                    format!(
+                        ", above the cost bound of {:e} DOF-steps: add --yes",
+                        crate::study::cost::MAX_DOF_STEPS
+                    )
+                } else {
+                    String::new()
+                },
+                if Level::of(&base).symbol() == "J" {
+                    "mesh.modes"
+                } else {
+                    "mesh.elements"
+                }
+            );
+            for r in quantities
+                .iter_mut()
+                .filter(|r| names.contains(&r.quantity))
+            {
+                r.assessment.note = format!("{note}; {}", r.assessment.note);
+            }
+            notes.push(note);
+        }
+    }
+    let (family, switch, stopped, first_divergence) =
+        (ran.family, ran.switch, ran.stopped, ran.first_divergence);
     if let Some(why) = &stopped {
         notes.push(format!(
             "a run of the family stopped, so nothing is estimated: {why}"
@@ -243,7 +405,8 @@ pub fn uncertainty(
     Ok(Uncertainty {
         scene: base.scene.clone(),
         level_symbol: Level::of(&base).symbol(),
-        levels,
+        levels: levels + levels_added,
+        levels_added,
         family,
         quantities,
         notes,
