@@ -277,7 +277,7 @@ impl Workers {
 }
 
 /// `--batch B`: runs stepped together when they share their effective
-/// matrix. The range is [`request::batch_width`]'s; each command's help
+/// matrix. The range is `request::batch_width`'s; each command's help
 /// says what it steps together (`mut_arg`).
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(default)]
@@ -391,7 +391,7 @@ pub struct AccuracyTarget {
     /// (loss_fraction_span, the default; loss_fraction, force_mean, …).
     #[cfg_attr(feature = "clap", arg(long, value_name = "Q", requires = "tolerance"))]
     pub quantity: Option<String>,
-    /// `--max-cost`, which needs `--tolerance` here ([`Self::target`]).
+    /// `--max-cost`, which needs `--tolerance` here (refused without it).
     #[serde(flatten)]
     #[cfg_attr(feature = "clap", command(flatten))]
     pub max_cost: MaxCost,

@@ -219,7 +219,7 @@ pub fn pre_asymptotic_start(inputs: &Inputs) -> Option<f64> {
 /// ([`pre_asymptotic_start`]), for any family of three levels or more
 /// whose finer levels change beyond round-off; on three levels it tells
 /// `taut uncertainty` to add a finer one.
-pub fn level_zero_excess(inputs: &Inputs) -> Option<f64> {
+pub(crate) fn level_zero_excess(inputs: &Inputs) -> Option<f64> {
     if inputs.diagonal.len() < LEVELS_LEFT {
         return None;
     }
@@ -242,7 +242,7 @@ pub fn level_zero_excess(inputs: &Inputs) -> Option<f64> {
 /// family grown by a level because its level 0 was found pre-asymptotic
 /// on the first three (`excess` over `margin`, [`level_zero_excess`]),
 /// which leaves the levels the accuracy engine's next check would assess.
-pub fn assess_without_start(inputs: &Inputs, excess: f64, margin: f64) -> Assessment {
+pub(crate) fn assess_without_start(inputs: &Inputs, excess: f64, margin: f64) -> Assessment {
     let mut a = assess_without_level_zero(inputs, excess, margin)
         .unwrap_or_else(|| assess_with_floor(inputs));
     cover_coarser_levels(&mut a, inputs.diagonal);

@@ -15,7 +15,7 @@
 //!   data support, and the split of the error between space and time;
 //! * [`family`]: the family of runs of `taut uncertainty` (h and Δt refined
 //!   together, and apart);
-//! * [`engine`]: what `taut uncertainty` and the accuracy engine share —
+//! * `engine`: what `taut uncertainty` and the accuracy engine share —
 //!   a family's runs, its formal orders and its assessment;
 //! * [`mod@quantity`]: what is given an error bar.
 //!
@@ -23,7 +23,7 @@
 //! ([`uncertainty`]).
 
 pub mod assess;
-pub mod engine;
+pub(crate) mod engine;
 pub mod family;
 pub mod gci;
 pub mod least_squares;
