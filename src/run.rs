@@ -137,6 +137,7 @@ fn drive(
     let _memory = crate::budget::reserve(sc.memory_estimate().total());
     let start = Instant::now();
     let mut run = SteppedRun::new(sc, build(sc)?, start)?;
+    run.defer = sc.droppers.is_empty();
     let report_every = (sc.steps / 200).max(1);
     for n in 1..=sc.steps {
         if crate::interrupt::requested() {
@@ -159,6 +160,11 @@ pub struct SteppedRun {
     it: Integrator,
     rec: Recorder,
     start: Instant,
+    /// Steps leave their last update pending ([`Integrator::step_deferred`]):
+    /// for [`run`], which reads nothing between steps but the samples and
+    /// the wire's displacements, and only without droppers (their samples
+    /// read the state itself).
+    defer: bool,
 }
 
 impl SteppedRun {
@@ -169,7 +175,12 @@ impl SteppedRun {
         rec.observe(it.time(), true, true, &it)?;
         rec.observe_droppers(it.time(), true, |out| it.dropper_samples_into(out));
         rec.observe_wire(0, it.time(), |pv| it.displacement_at(pv));
-        Ok(SteppedRun { it, rec, start })
+        Ok(SteppedRun {
+            it,
+            rec,
+            start,
+            defer: false,
+        })
     }
 
     /// True once every step of `sc` (the scene it was started with) is taken.
@@ -183,7 +194,11 @@ impl SteppedRun {
     pub fn step(&mut self, sc: &Resolved) -> Result<()> {
         debug_assert!(!self.done(sc), "stepped past the run's end");
         let it = &mut self.it;
-        it.step()?;
+        if self.defer {
+            it.step_deferred()?;
+        } else {
+            it.step()?;
+        }
         let n = it.steps_taken();
         let it = &self.it;
         let keep = self.rec.keeps(n, sc.steps);

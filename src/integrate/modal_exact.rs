@@ -20,9 +20,11 @@
 //! order, as tests/modal_exact.rs asserts. The impact law is refused.
 //!
 //! With one contact the update with λ is deferred into the next step's single
-//! pass over the modes ([`ModalExact::step_deferred`]); a run alone settles
-//! every step ([`ModalExact::settle`]), a batch (`modal_batch.rs`) defers:
-//! the same bits either way, as are AVX2 + FMA and `mul_add` lanes
+//! pass over the modes ([`ModalExact::step_deferred`]); a whole run
+//! (`crate::run`, alone or in a batch, `modal_batch.rs`) defers and reads
+//! its samples through [`ModalExact::displacement_at`], a step taken by
+//! [`Stepper::step`] settles at once ([`ModalExact::settle`]): the same
+//! bits either way, as are AVX2 + FMA and `mul_add` lanes
 //! (`crate::numeric::lanes`). Nothing is allocated after [`ModalExact::new`].
 
 use std::ops::Range;
@@ -269,8 +271,20 @@ impl ModalExact {
 impl Stepper for ModalExact {
     fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
         step(self, sys, st)?;
-        self.settle(sys, st);
+        ModalExact::settle(self, sys, st);
         Ok(())
+    }
+
+    fn step_deferred(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
+        ModalExact::step_deferred(self, sys, st)
+    }
+
+    fn settle(&mut self, sys: &System, st: &mut State) {
+        ModalExact::settle(self, sys, st)
+    }
+
+    fn displacement_at(&self, sys: &System, st: &State, pv: &PointVector) -> f64 {
+        ModalExact::displacement_at(self, sys, st, pv)
     }
 }
 
