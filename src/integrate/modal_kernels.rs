@@ -4,7 +4,8 @@
 //! the modes — scalar, and AVX2 + FMA eight or four modes at a time with
 //! the very operations of the scalar loops (the same bits) — and the fused
 //! passes that take a block of shapes or a rotated phasor and the free
-//! step of its modes while in registers.
+//! step of its modes while in registers (the latter also with AVX-512F,
+//! eight modes a register, the same bits).
 //!
 //! The kernels round `a·b + c` once (AVX2 + FMA vectors where the CPU has
 //! both, `f64::mul_add` lane by lane otherwise: the same bits,
@@ -181,6 +182,82 @@ pub(crate) unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bo
             i += LANES;
         }
         sums.store_avx2(g, w);
+    }
+}
+
+/// [`fused_free_pair_avx2`] with eight modes in one AVX-512 register:
+/// the same operations lane by lane, mode i in lane i mod 8 of the same
+/// partial sums, so the same bits, in half the instructions (the pass is
+/// bound by issuing them once its operands stream from L2).
+///
+/// # Safety
+/// The CPU supports AVX-512F; `end` is a multiple of [`LANES`]; every
+/// slice has at least `end` entries (`rr` and `ri` only with `ROTATE`),
+/// or the held step's are both empty.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+pub(crate) unsafe fn fused_free_pair_avx512<const ROTATE: bool, const DEFERRED: bool>(
+    pass: FusedPass,
+    phasors: Phasors,
+    end: usize,
+    f: f64,
+) {
+    use std::arch::x86_64::*;
+    let FusedPass {
+        m,
+        modes: ModeState { d, v },
+        pn,
+        pn1,
+        held: HeldStep { d: hp, v: hv },
+        sums,
+    } = pass;
+    let Phasors { fi, rr, ri } = phasors;
+    let held = !hp.is_empty();
+    // SAFETY (whole body): loads and stores at k .. k + 8 ≤ end.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm512_loadu_pd(x.as_ptr().add(i));
+        let (mut g, mut w) = (ld(&sums.g, 0), ld(&sums.w, 0));
+        let fv = _mm512_set1_pd(f);
+        let mut k = 0;
+        while k < end {
+            let (p, b) = (ld(pn, k), ld(fi, k));
+            let (mut e, mut ev) = (ld(d, k), ld(v, k));
+            if DEFERRED {
+                // the last step's update: from φ(x_{n−1}) (pn1 before this
+                // pass stores into it) to φ(x_n) (pn), as `path_load4`
+                let p0 = ld(pn1, k);
+                let z = _mm512_fmadd_pd(ld(&m.a0, k), p0, _mm512_mul_pd(ld(&m.a1, k), p));
+                let zv = _mm512_fmadd_pd(ld(&m.b0, k), p0, _mm512_mul_pd(ld(&m.b1, k), p));
+                e = _mm512_fmadd_pd(fv, z, e);
+                ev = _mm512_fmadd_pd(fv, zv, ev);
+            }
+            let q = if ROTATE {
+                let (cr, ci) = (ld(rr, k), ld(ri, k));
+                let q = _mm512_fmsub_pd(p, cr, _mm512_mul_pd(b, ci));
+                let im = _mm512_fmadd_pd(p, ci, _mm512_mul_pd(b, cr));
+                _mm512_storeu_pd(fi.as_mut_ptr().add(k), im);
+                q
+            } else {
+                b
+            };
+            _mm512_storeu_pd(pn1.as_mut_ptr().add(k), q);
+            // the free step and the two sums, as `free_pair4`
+            let c = ld(&m.cos, k);
+            let mut e1 = _mm512_fmadd_pd(c, e, _mm512_mul_pd(ld(&m.sin_over_omega, k), ev));
+            let mut v1 = _mm512_fmadd_pd(ld(&m.minus_omega_sin, k), e, _mm512_mul_pd(c, ev));
+            if held {
+                e1 = _mm512_add_pd(e1, ld(hp, k));
+                v1 = _mm512_add_pd(v1, ld(hv, k));
+            }
+            _mm512_storeu_pd(d.as_mut_ptr().add(k), e1);
+            _mm512_storeu_pd(v.as_mut_ptr().add(k), v1);
+            g = _mm512_fmadd_pd(q, e1, g);
+            let z = _mm512_fmadd_pd(ld(&m.a0, k), p, _mm512_mul_pd(ld(&m.a1, k), q));
+            w = _mm512_fmadd_pd(q, z, w);
+            k += LANES;
+        }
+        _mm512_storeu_pd(sums.g.as_mut_ptr(), g);
+        _mm512_storeu_pd(sums.w.as_mut_ptr(), w);
     }
 }
 
