@@ -20,7 +20,9 @@
 //!
 //! taut is timed on whole runs ([`taut::run`], and [`taut::run_batch`] of
 //! eight speeds stepped together), recording included; the reference on
-//! the same number of steps and modes. The scenes: the reference scene on
+//! the same number of steps and modes. The row `steps` is a run alone less
+//! the build of its basis, step maps and shape tables (a batch builds them
+//! once). The scenes: the reference scene on
 //! a `galerkin` basis, J = 800, at constant speed, without gravity (no
 //! held distributed load, which the reference does not carry), clamped–
 //! pinned as shipped and pinned–pinned. On pinned–pinned the reference
@@ -383,6 +385,18 @@ fn main() {
             ra,
             ra_min,
             ta / ra
+        );
+        // the run's basis, step maps and shape tables, built once a run
+        // alone (once for a batch): its share of a run alone
+        let (build, _) = timed(steps * MODES, || {
+            std::hint::black_box(Integrator::new(&sc).expect("integrator builds").dofs());
+        });
+        println!(
+            "{name:<15} {:<8} {:>7.3}         {:>16} {:>8.2}",
+            "  steps",
+            ta - build,
+            "",
+            (ta - build) / ra
         );
         let sweep: Vec<taut::Resolved> = SWEEP.iter().map(|&v| scene(pinned, v)).collect();
         let total: usize = sweep.iter().map(|s| s.steps).sum::<usize>() * MODES;
