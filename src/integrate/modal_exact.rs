@@ -431,6 +431,11 @@ fn rotate_free_pair(
         };
         done = full;
     }
+    cruise.rotated(st.step);
+    if done == j {
+        // J a multiple of LANES: no last partial vector
+        return;
+    }
     if let Some(f) = deferred {
         // the rest of the deferred update, before their shapes overwrite
         // φ(x_{n−1}): from φ(x_{n−1}) (now pv_g) to φ(x_n) (now pv_f)
@@ -441,7 +446,6 @@ fn rotate_free_pair(
         add_path_load(&coefs.steps, f, path, st, done..j, false);
     }
     cruise.rotate_range(c.pv_f.dense(), c.pv_g.dense_mut(), done..j);
-    cruise.rotated(st.step);
     free_pair_range(coefs, sys, st, done..j, sums, vector);
 }
 
