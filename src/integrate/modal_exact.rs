@@ -39,8 +39,8 @@ use crate::scene::CarrierKind;
 
 use super::modal_cruise::Cruise;
 use super::modal_kernels::{
-    FusedPass, HeldStep, ModeState, PairSums, PathShapes, Phasors, add_path_load, free,
-    free_with_pair, path, path_dot,
+    CoefBlock, FusedPass, HeldStep, ModeState, PairSums, PathShapes, Phasors, add_path_load,
+    coef_blocks, free, free_with_pair, path, path_dot,
 };
 #[cfg(target_arch = "x86_64")]
 use super::modal_kernels::{fused_free_pair_avx2, fused_free_pair_avx512, shapes_free_pair_avx2};
@@ -65,6 +65,9 @@ pub(crate) struct ModalCoefs {
     /// True when the modes are damped (`[beam] damping`): their velocity
     /// row has its own diagonal, which only the scalar free step reads.
     damped: bool,
+    /// `steps`' coefficients in blocks of eight modes, for the AVX-512
+    /// cruise pass ([`coef_blocks`]).
+    blocks: Vec<CoefBlock>,
 }
 
 impl ModalCoefs {
@@ -114,6 +117,7 @@ impl ModalCoefs {
             (a, b)
         });
         Ok(ModalCoefs {
+            blocks: coef_blocks(&steps),
             steps,
             held,
             shapes,
@@ -418,13 +422,18 @@ fn rotate_free_pair(
             rr: &rr[..j],
             ri: &ri[..j],
         };
+        let blocks = &coefs.blocks[..];
         // SAFETY: `vector` is true only where the CPU has AVX2 and FMA,
         // the AVX-512 kernel only where it has AVX-512F too; every slice
         // holds J ≥ full, a multiple of LANES.
         unsafe {
             match (deferred, lanes::avx512()) {
-                (Some(f), true) => fused_free_pair_avx512::<true, true>(pass, phasors, full, f),
-                (None, true) => fused_free_pair_avx512::<true, false>(pass, phasors, full, 0.0),
+                (Some(f), true) => {
+                    fused_free_pair_avx512::<true, true>(pass, blocks, phasors, full, f)
+                }
+                (None, true) => {
+                    fused_free_pair_avx512::<true, false>(pass, blocks, phasors, full, 0.0)
+                }
                 (Some(f), false) => fused_free_pair_avx2::<true, true>(pass, phasors, full, f),
                 (None, false) => fused_free_pair_avx2::<true, false>(pass, phasors, full, 0.0),
             }
@@ -948,6 +957,7 @@ mod tests {
             .map(|i| 9.4 * i as f64 * (1.0 + 1e-3 * i as f64))
             .collect();
         let m = ModeSteps::new(&omega, 6.25e-5);
+        let blocks = coef_blocks(&m);
         let wave = |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
         let held = (wave(0.2), wave(0.9));
         let (rr, ri) = (wave(0.05), wave(0.06));
@@ -979,10 +989,18 @@ mod tests {
             // multiple of LANES, every slice holds J.
             unsafe {
                 match (wide, rotate, f) {
-                    (true, true, Some(f)) => fused_free_pair_avx512::<true, true>(fp, ph, j, f),
-                    (true, true, None) => fused_free_pair_avx512::<true, false>(fp, ph, j, 0.0),
-                    (true, false, Some(f)) => fused_free_pair_avx512::<false, true>(fp, ph, j, f),
-                    (true, false, None) => fused_free_pair_avx512::<false, false>(fp, ph, j, 0.0),
+                    (true, true, Some(f)) => {
+                        fused_free_pair_avx512::<true, true>(fp, &blocks, ph, j, f)
+                    }
+                    (true, true, None) => {
+                        fused_free_pair_avx512::<true, false>(fp, &blocks, ph, j, 0.0)
+                    }
+                    (true, false, Some(f)) => {
+                        fused_free_pair_avx512::<false, true>(fp, &blocks, ph, j, f)
+                    }
+                    (true, false, None) => {
+                        fused_free_pair_avx512::<false, false>(fp, &blocks, ph, j, 0.0)
+                    }
                     (false, true, Some(f)) => fused_free_pair_avx2::<true, true>(fp, ph, j, f),
                     (false, true, None) => fused_free_pair_avx2::<true, false>(fp, ph, j, 0.0),
                     (false, false, Some(f)) => fused_free_pair_avx2::<false, true>(fp, ph, j, f),
