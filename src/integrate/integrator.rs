@@ -26,6 +26,9 @@ pub struct Integrator {
     /// The method's likely cause of an instability with a moving contact
     /// ([`MethodFactory::constraint_note`]), for diagnoses.
     note: Option<String>,
+    /// True after [`Integrator::step_deferred`]: the stepper may hold an
+    /// update of the state not yet added ([`Stepper::settle`]).
+    pending: bool,
 }
 
 impl Integrator {
@@ -68,16 +71,43 @@ impl Integrator {
             stepper,
             method: factory.name(),
             note: factory.constraint_note(sc),
+            pending: false,
         })
     }
 
     /// Advance one step, t_n → t_{n+1}.
     pub fn step(&mut self) -> Result<()> {
+        self.settle();
         self.stepper.step(&mut self.sys, &mut self.state)?;
+        self.end_step();
+        Ok(())
+    }
+
+    /// Advance one step whose last update of the state may stay pending
+    /// ([`Stepper::step_deferred`]: one pass over the modes a step instead
+    /// of two on `modal_exact`), for a whole run that reads the step only
+    /// through [`Integrator::sample`] and [`Integrator::displacement_at`]
+    /// (which account for it) until [`Integrator::settle`]. The same bits
+    /// as [`Integrator::step`] once settled.
+    pub(crate) fn step_deferred(&mut self) -> Result<()> {
+        self.stepper.step_deferred(&mut self.sys, &mut self.state)?;
+        self.pending = true;
+        self.end_step();
+        Ok(())
+    }
+
+    /// Add an update left pending by [`Integrator::step_deferred`].
+    pub(crate) fn settle(&mut self) {
+        if std::mem::take(&mut self.pending) {
+            self.stepper.settle(&self.sys, &mut self.state);
+        }
+    }
+
+    /// The driver's part of a step: time and the system's end of step.
+    fn end_step(&mut self) {
         self.state.step += 1;
         self.state.t = self.state.step as f64 * self.sys.physics.dt;
         self.sys.end_step(&self.state);
-        Ok(())
     }
 
     /// Number of unknowns: free beam dofs plus one per mass (a multi-mass
@@ -107,6 +137,7 @@ impl Integrator {
 
     /// The state at the current time.
     pub fn state(&self) -> &State {
+        debug_assert!(!self.pending, "the state read with an update pending");
         &self.state
     }
 
@@ -122,17 +153,19 @@ impl Integrator {
 
     /// Current beam dofs d_b.
     pub fn beam_dofs(&self) -> &[f64] {
+        debug_assert!(!self.pending, "the state read with an update pending");
         &self.state.d
     }
 
     /// Beam displacement v(x) (positive up), m, for a precomputed point vector.
     pub fn displacement_at(&self, pv: &PointVector) -> f64 {
-        pv.dot(&self.state.d)
+        self.stepper.displacement_at(&self.sys, &self.state, pv)
     }
 
     /// Each dropper's force and slack state now, in scene order
     /// ([`System::dropper_samples_into`]).
     pub fn dropper_samples_into(&self, out: &mut [DropperSample]) {
+        debug_assert!(!self.pending, "the state read with an update pending");
         self.sys
             .dropper_samples_into(&self.state.d, &self.state.v, out)
     }
@@ -144,11 +177,12 @@ impl Integrator {
 
     /// The values of carrier `i` at the current time.
     pub fn sample(&self, i: usize) -> CarrierSample {
-        sample::sample_of(&self.sys, &self.state, i, |pv| pv.dot(&self.state.d))
+        sample::sample_of(&self.sys, &self.state, i, |pv| self.displacement_at(pv))
     }
 
     /// The discrete energy, J ([`Energy`]; allocates: for checks).
     pub fn energy(&self) -> Energy {
+        debug_assert!(!self.pending, "the state read with an update pending");
         energy::energy(&self.sys, &self.state)
     }
 

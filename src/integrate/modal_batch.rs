@@ -10,7 +10,7 @@
 //! and steps each run with the very function a run alone calls, on its own
 //! state, with its contact update deferred to the next step's pass
 //! (`modal_exact.rs`, "Deferred update": one pass over the modes a step
-//! instead of two; a run alone settles after every step): bit-identical
+//! instead of two, as a whole run alone does): bit-identical
 //! to the run alone (`tests/batch.rs` compares the bytes). Interleaving the runs by blocks of modes, so that
 //! a block's coefficients are read once for all of them, was measured and
 //! gave nothing (0.9–1.07× on 8 runs at J = 800, within the timing noise on

@@ -20,9 +20,11 @@
 //! order, as tests/modal_exact.rs asserts. The impact law is refused.
 //!
 //! With one contact the update with λ is deferred into the next step's single
-//! pass over the modes ([`ModalExact::step_deferred`]); a run alone settles
-//! every step ([`ModalExact::settle`]), a batch (`modal_batch.rs`) defers:
-//! the same bits either way, as are AVX2 + FMA and `mul_add` lanes
+//! pass over the modes ([`ModalExact::step_deferred`]); a whole run
+//! (`crate::run`, alone or in a batch, `modal_batch.rs`) defers and reads
+//! its samples through [`ModalExact::displacement_at`], a step taken by
+//! [`Stepper::step`] settles at once ([`ModalExact::settle`]): the same
+//! bits either way, as are AVX2 + FMA and `mul_add` lanes
 //! (`crate::numeric::lanes`). Nothing is allocated after [`ModalExact::new`].
 
 use std::ops::Range;
@@ -37,11 +39,11 @@ use crate::scene::CarrierKind;
 
 use super::modal_cruise::Cruise;
 use super::modal_kernels::{
-    FusedPass, HeldStep, ModeState, PairSums, PathShapes, Phasors, add_path_load, free,
-    free_with_pair, path, path_dot,
+    CoefBlock, FusedPass, HeldStep, ModeState, PairSums, PathShapes, Phasors, add_path_load,
+    coef_blocks, free, free_with_pair, path, path_dot,
 };
 #[cfg(target_arch = "x86_64")]
-use super::modal_kernels::{fused_free_pair_avx2, shapes_free_pair_avx2};
+use super::modal_kernels::{fused_free_pair_avx2, fused_free_pair_avx512, shapes_free_pair_avx2};
 use super::oscillator::{MassStep, ModeSteps};
 use super::state::State;
 use super::step_map::Multipliers;
@@ -63,6 +65,9 @@ pub(crate) struct ModalCoefs {
     /// True when the modes are damped (`[beam] damping`): their velocity
     /// row has its own diagonal, which only the scalar free step reads.
     damped: bool,
+    /// `steps`' coefficients in blocks of eight modes, for the AVX-512
+    /// cruise pass ([`coef_blocks`]).
+    blocks: Vec<CoefBlock>,
 }
 
 impl ModalCoefs {
@@ -112,6 +117,7 @@ impl ModalCoefs {
             (a, b)
         });
         Ok(ModalCoefs {
+            blocks: coef_blocks(&steps),
             steps,
             held,
             shapes,
@@ -269,8 +275,20 @@ impl ModalExact {
 impl Stepper for ModalExact {
     fn step(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
         step(self, sys, st)?;
-        self.settle(sys, st);
+        ModalExact::settle(self, sys, st);
         Ok(())
+    }
+
+    fn step_deferred(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
+        ModalExact::step_deferred(self, sys, st)
+    }
+
+    fn settle(&mut self, sys: &System, st: &mut State) {
+        ModalExact::settle(self, sys, st)
+    }
+
+    fn displacement_at(&self, sys: &System, st: &State, pv: &PointVector) -> f64 {
+        ModalExact::displacement_at(self, sys, st, pv)
     }
 }
 
@@ -404,15 +422,28 @@ fn rotate_free_pair(
             rr: &rr[..j],
             ri: &ri[..j],
         };
-        // SAFETY: `vector` is true only where the CPU has AVX2 and FMA;
-        // every slice holds J ≥ full, a multiple of LANES.
+        let blocks = &coefs.blocks[..];
+        // SAFETY: `vector` is true only where the CPU has AVX2 and FMA,
+        // the AVX-512 kernel only where it has AVX-512F too; every slice
+        // holds J ≥ full, a multiple of LANES.
         unsafe {
-            match deferred {
-                Some(f) => fused_free_pair_avx2::<true, true>(pass, phasors, full, f),
-                None => fused_free_pair_avx2::<true, false>(pass, phasors, full, 0.0),
+            match (deferred, lanes::avx512()) {
+                (Some(f), true) => {
+                    fused_free_pair_avx512::<true, true>(pass, blocks, phasors, full, f)
+                }
+                (None, true) => {
+                    fused_free_pair_avx512::<true, false>(pass, blocks, phasors, full, 0.0)
+                }
+                (Some(f), false) => fused_free_pair_avx2::<true, true>(pass, phasors, full, f),
+                (None, false) => fused_free_pair_avx2::<true, false>(pass, phasors, full, 0.0),
             }
         };
         done = full;
+    }
+    cruise.rotated(st.step);
+    if done == j {
+        // J a multiple of LANES: no last partial vector
+        return;
     }
     if let Some(f) = deferred {
         // the rest of the deferred update, before their shapes overwrite
@@ -424,7 +455,6 @@ fn rotate_free_pair(
         add_path_load(&coefs.steps, f, path, st, done..j, false);
     }
     cruise.rotate_range(c.pv_f.dense(), c.pv_g.dense_mut(), done..j);
-    cruise.rotated(st.step);
     free_pair_range(coefs, sys, st, done..j, sums, vector);
 }
 
@@ -908,6 +938,90 @@ mod tests {
                 }
                 assert_eq!(a, b, "J = {j}");
                 assert_eq!(a, c, "J = {j}");
+            }
+        }
+    }
+
+    /// The cruise pass in AVX-512 registers gives the bits of the AVX2
+    /// one: the shapes stored, the phasors advanced, the state and the
+    /// pair's partial sums, with and without a deferred update and a held
+    /// load, rotated and from stored shapes.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_avx512_fused_pass_gives_the_bits_of_the_avx2_one() {
+        if !lanes::avx512() {
+            return;
+        }
+        let j = 808;
+        let omega: Vec<f64> = (1..=j)
+            .map(|i| 9.4 * i as f64 * (1.0 + 1e-3 * i as f64))
+            .collect();
+        let m = ModeSteps::new(&omega, 6.25e-5);
+        let blocks = coef_blocks(&m);
+        let wave = |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
+        let held = (wave(0.2), wave(0.9));
+        let (rr, ri) = (wave(0.05), wave(0.06));
+        type Run = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, PairSums);
+        let pass = |wide: bool, rotate: bool, f: Option<f64>, h: bool| -> Run {
+            let (mut d, mut v, mut pn1, mut fi) = (wave(1.3), wave(0.7), wave(0.33), wave(0.41));
+            let pn = wave(0.37);
+            let mut sums = PairSums {
+                g: [0.5; LANES],
+                w: [-0.25; LANES],
+            };
+            let fp = FusedPass {
+                m: &m,
+                modes: ModeState {
+                    d: &mut d,
+                    v: &mut v,
+                },
+                pn: &pn,
+                pn1: &mut pn1,
+                held: HeldStep::of(h.then_some(&held), j),
+                sums: &mut sums,
+            };
+            let ph = Phasors {
+                fi: &mut fi,
+                rr: if rotate { &rr } else { &[] },
+                ri: if rotate { &ri } else { &[] },
+            };
+            // SAFETY: AVX-512F (so AVX2 and FMA) checked above; J a
+            // multiple of LANES, every slice holds J.
+            unsafe {
+                match (wide, rotate, f) {
+                    (true, true, Some(f)) => {
+                        fused_free_pair_avx512::<true, true>(fp, &blocks, ph, j, f)
+                    }
+                    (true, true, None) => {
+                        fused_free_pair_avx512::<true, false>(fp, &blocks, ph, j, 0.0)
+                    }
+                    (true, false, Some(f)) => {
+                        fused_free_pair_avx512::<false, true>(fp, &blocks, ph, j, f)
+                    }
+                    (true, false, None) => {
+                        fused_free_pair_avx512::<false, false>(fp, &blocks, ph, j, 0.0)
+                    }
+                    (false, true, Some(f)) => fused_free_pair_avx2::<true, true>(fp, ph, j, f),
+                    (false, true, None) => fused_free_pair_avx2::<true, false>(fp, ph, j, 0.0),
+                    (false, false, Some(f)) => fused_free_pair_avx2::<false, true>(fp, ph, j, f),
+                    (false, false, None) => fused_free_pair_avx2::<false, false>(fp, ph, j, 0.0),
+                }
+            }
+            (d, v, pn1, fi, sums)
+        };
+        let bits = |x: &[f64]| -> Vec<u64> { x.iter().map(|y| y.to_bits()).collect() };
+        for rotate in [true, false] {
+            for f in [None, Some(-37.5)] {
+                for h in [false, true] {
+                    let (a, b) = (pass(true, rotate, f, h), pass(false, rotate, f, h));
+                    let case = format!("rotate {rotate}, deferred {f:?}, held {h}");
+                    assert_eq!(bits(&a.0), bits(&b.0), "d, {case}");
+                    assert_eq!(bits(&a.1), bits(&b.1), "v, {case}");
+                    assert_eq!(bits(&a.2), bits(&b.2), "shapes, {case}");
+                    assert_eq!(bits(&a.3), bits(&b.3), "phasors, {case}");
+                    assert_eq!(bits(&a.4.g), bits(&b.4.g), "g, {case}");
+                    assert_eq!(bits(&a.4.w), bits(&b.4.w), "w, {case}");
+                }
             }
         }
     }

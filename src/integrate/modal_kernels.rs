@@ -4,7 +4,8 @@
 //! the modes — scalar, and AVX2 + FMA eight or four modes at a time with
 //! the very operations of the scalar loops (the same bits) — and the fused
 //! passes that take a block of shapes or a rotated phasor and the free
-//! step of its modes while in registers.
+//! step of its modes while in registers (the latter also with AVX-512F,
+//! eight modes a register, the same bits).
 //!
 //! The kernels round `a·b + c` once (AVX2 + FMA vectors where the CPU has
 //! both, `f64::mul_add` lane by lane otherwise: the same bits,
@@ -81,6 +82,40 @@ impl PairSums {
             _mm256_storeu_pd(self.w.as_mut_ptr().add(4), w[1]);
         }
     }
+}
+
+/// Eight modes' step coefficients side by side, each row one 64-byte
+/// line: what the AVX-512 cruise pass reads of a block of modes in one
+/// aligned stream instead of seven ([`fused_free_pair_avx512`]). Copies
+/// of [`ModeSteps`]' values (the same bits).
+#[derive(Debug, Clone, Copy, Default)]
+#[repr(C, align(64))]
+pub(crate) struct CoefBlock {
+    pub(crate) cos: [f64; LANES],
+    pub(crate) sin_over_omega: [f64; LANES],
+    pub(crate) minus_omega_sin: [f64; LANES],
+    pub(crate) a0: [f64; LANES],
+    pub(crate) a1: [f64; LANES],
+    pub(crate) b0: [f64; LANES],
+    pub(crate) b1: [f64; LANES],
+}
+
+/// The ⌊J/8⌋ whole blocks of `m`'s coefficients ([`CoefBlock`]).
+pub(crate) fn coef_blocks(m: &ModeSteps) -> Vec<CoefBlock> {
+    (0..m.len() / LANES)
+        .map(|b| {
+            let row = |x: &[f64]| -> [f64; LANES] { std::array::from_fn(|l| x[b * LANES + l]) };
+            CoefBlock {
+                cos: row(&m.cos),
+                sin_over_omega: row(&m.sin_over_omega),
+                minus_omega_sin: row(&m.minus_omega_sin),
+                a0: row(&m.a0),
+                a1: row(&m.a1),
+                b0: row(&m.b0),
+                b1: row(&m.b1),
+            }
+        })
+        .collect()
 }
 
 /// The operands of one fused pass over the modes ([`fused_free_pair_avx2`],
@@ -181,6 +216,88 @@ pub(crate) unsafe fn fused_free_pair_avx2<const ROTATE: bool, const DEFERRED: bo
             i += LANES;
         }
         sums.store_avx2(g, w);
+    }
+}
+
+/// [`fused_free_pair_avx2`] with eight modes in one AVX-512 register,
+/// their coefficients from `blocks` (`pass.m`'s, [`coef_blocks`]): the
+/// same operations lane by lane, mode i in lane i mod 8 of the same
+/// partial sums, so the same bits, in half the instructions and one
+/// aligned stream of coefficients.
+///
+/// # Safety
+/// The CPU supports AVX-512F; `end` is a multiple of [`LANES`]; `blocks`
+/// holds `end / LANES` blocks; every slice has at least `end` entries
+/// (`rr` and `ri` only with `ROTATE`), or the held step's are both empty.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+pub(crate) unsafe fn fused_free_pair_avx512<const ROTATE: bool, const DEFERRED: bool>(
+    pass: FusedPass,
+    blocks: &[CoefBlock],
+    phasors: Phasors,
+    end: usize,
+    f: f64,
+) {
+    use std::arch::x86_64::*;
+    let FusedPass {
+        m: _,
+        modes: ModeState { d, v },
+        pn,
+        pn1,
+        held: HeldStep { d: hp, v: hv },
+        sums,
+    } = pass;
+    let Phasors { fi, rr, ri } = phasors;
+    let held = !hp.is_empty();
+    // SAFETY (whole body): loads and stores at k .. k + 8 ≤ end, block
+    // k / 8 < end / 8 of `blocks`, whose rows are 64-byte aligned.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm512_loadu_pd(x.as_ptr().add(i));
+        let (mut g, mut w) = (ld(&sums.g, 0), ld(&sums.w, 0));
+        let fv = _mm512_set1_pd(f);
+        let mut k = 0;
+        let row = |x: &[f64; LANES]| _mm512_load_pd(x.as_ptr());
+        while k < end {
+            let c = blocks.get_unchecked(k / LANES);
+            let (a0, a1) = (row(&c.a0), row(&c.a1));
+            let (p, b) = (ld(pn, k), ld(fi, k));
+            let (mut e, mut ev) = (ld(d, k), ld(v, k));
+            if DEFERRED {
+                // the last step's update: from φ(x_{n−1}) (pn1 before this
+                // pass stores into it) to φ(x_n) (pn), as `path_load4`
+                let p0 = ld(pn1, k);
+                let z = _mm512_fmadd_pd(a0, p0, _mm512_mul_pd(a1, p));
+                let zv = _mm512_fmadd_pd(row(&c.b0), p0, _mm512_mul_pd(row(&c.b1), p));
+                e = _mm512_fmadd_pd(fv, z, e);
+                ev = _mm512_fmadd_pd(fv, zv, ev);
+            }
+            let q = if ROTATE {
+                let (cr, ci) = (ld(rr, k), ld(ri, k));
+                let q = _mm512_fmsub_pd(p, cr, _mm512_mul_pd(b, ci));
+                let im = _mm512_fmadd_pd(p, ci, _mm512_mul_pd(b, cr));
+                _mm512_storeu_pd(fi.as_mut_ptr().add(k), im);
+                q
+            } else {
+                b
+            };
+            _mm512_storeu_pd(pn1.as_mut_ptr().add(k), q);
+            // the free step and the two sums, as `free_pair4`
+            let (cs, so, mos) = (row(&c.cos), row(&c.sin_over_omega), row(&c.minus_omega_sin));
+            let mut e1 = _mm512_fmadd_pd(cs, e, _mm512_mul_pd(so, ev));
+            let mut v1 = _mm512_fmadd_pd(mos, e, _mm512_mul_pd(cs, ev));
+            if held {
+                e1 = _mm512_add_pd(e1, ld(hp, k));
+                v1 = _mm512_add_pd(v1, ld(hv, k));
+            }
+            _mm512_storeu_pd(d.as_mut_ptr().add(k), e1);
+            _mm512_storeu_pd(v.as_mut_ptr().add(k), v1);
+            g = _mm512_fmadd_pd(q, e1, g);
+            let z = _mm512_fmadd_pd(a0, p, _mm512_mul_pd(a1, q));
+            w = _mm512_fmadd_pd(q, z, w);
+            k += LANES;
+        }
+        _mm512_storeu_pd(sums.g.as_mut_ptr(), g);
+        _mm512_storeu_pd(sums.w.as_mut_ptr(), w);
     }
 }
 

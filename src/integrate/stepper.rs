@@ -2,6 +2,7 @@
 //! method's step of the shared [`System`].
 
 use crate::error::Result;
+use crate::model::beam::PointVector;
 
 use super::state::State;
 use super::system::System;
@@ -24,5 +25,26 @@ pub trait Stepper: Send {
     /// MODEL §10) whole; a run with one is refused by every other method.
     fn carries_chains(&self) -> bool {
         false
+    }
+
+    /// Advance one step, possibly leaving the step's last update of `st.d`
+    /// and `st.v` pending, to be added by the next step's pass over the
+    /// unknowns (one pass a step instead of two: `modal_exact` with one
+    /// contact). `st` is the step's state only after [`Stepper::settle`];
+    /// [`Stepper::displacement_at`] reads it as settled without settling.
+    /// By default a whole [`Stepper::step`], nothing left pending.
+    fn step_deferred(&mut self, sys: &mut System, st: &mut State) -> Result<()> {
+        self.step(sys, st)
+    }
+
+    /// Add an update left pending by [`Stepper::step_deferred`] into `st`
+    /// (the operations the step would have taken: the same bits). By
+    /// default there is none.
+    fn settle(&mut self, _sys: &System, _st: &mut State) {}
+
+    /// `pvᵀd` of `st` as [`Stepper::settle`] would leave it, the same bits
+    /// as the dot on the settled state. By default `pv · st.d`.
+    fn displacement_at(&self, _sys: &System, st: &State, pv: &PointVector) -> f64 {
+        pv.dot(&st.d)
     }
 }
