@@ -234,11 +234,15 @@ impl Point {
     /// other runs. The floor is computed as if the finest run gave
     /// φ(a, b − 1) (a Δt part of zero), the least it can be. Exact: a
     /// candidate this excludes is never met, so the skipped run (half the
-    /// check's cost) changes no point's outcome.
+    /// check's cost) changes no point's outcome. Only once a candidate has
+    /// a u_num: a point not met still reports a bar.
     fn hopeless(&self, k: Key) -> bool {
         let Some(eps) = self.staged else {
             return false;
         };
+        if !self.candidates.iter().any(|c| c.1.u_num.is_some()) {
+            return false;
+        }
         let v = |f: Key| self.value(f).flatten();
         let [c, m, _] = family(k);
         let ([Some(d0), Some(d1)], [Some(s0), Some(s1)]) =
