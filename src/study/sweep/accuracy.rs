@@ -1202,15 +1202,6 @@ fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
     }
 }
 
-/// The warning a point gets when its quantity is not smooth, its u_num is
-/// within EPS and its carrier runs at or above the wave speed c: there
-/// the estimate was measured to miss. On the Fig. 12 map only 34 of the 78
-/// points with V0/c ≥ 1 marked met lay within their u_num of a run at
-/// J = 3200, Δt = 3.9e-6 s: P_l kept rising as Δt fell past the family's
-/// finest step, which no estimator of those levels sees
-/// (docs/performance.md, "The Fig. 12 map with --tolerance 0.002").
-pub const SUPERSONIC_MET: &str = "tolerance met at or above the wave speed (V0/c ≥ 1), where u_num of a quantity that is not smooth was measured to miss (P_l can keep changing below the family's finest Δt): confirm this point with one run at a finer Δt";
-
 /// Finish a point with candidate `key`: its record and accuracy.
 fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
     let a = p
@@ -1228,10 +1219,6 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
     let sc = p.scene(key).ok();
     let u = a.u_num.unwrap_or(f64::NAN);
     let met = u <= tol.tolerance;
-    let smooth = tol.spec().smooth;
-    if met && !smooth && record.speed_ratio.is_some_and(|r| r >= 1.0) {
-        record.warnings.push(SUPERSONIC_MET.to_string());
-    }
     record.accuracy = Some(PointAccuracy {
         value: a.value.unwrap_or(f64::NAN),
         u_num: u,
