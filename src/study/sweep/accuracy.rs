@@ -23,10 +23,11 @@
 //!    checks, each cut down to the point's budget (`budget` × its own run,
 //!    in unknowns × steps) and to scenes the model takes. A point that does
 //!    not reach EPS keeps the candidate of smallest u_num, marked not met.
+//!    Q not smooth: a hopeless check skips its finest run (`Point::hopeless`);
+//!    a met candidate is reported one Δt finer (`confirm`).
 //!
-//! The points' runs go through one queue ([`run_points`]): the records are
-//! the same whatever the order, threads or batch width (resumable).
-//! `taut run --tolerance` is this engine on one point (`super::refine_alone`).
+//! One queue runs every point's runs ([`run_points`]), the records the same
+//! whatever the order or threads; `run --tolerance` is one point of it.
 
 use std::sync::{Condvar, Mutex, MutexGuard};
 
