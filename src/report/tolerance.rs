@@ -129,9 +129,6 @@ pub fn accuracy_header(a: &Accuracy) -> String {
         "  chosen   {sym} = {level}, Δt = {:.5e} s: {} = {:.6e} ± {:.3e} (u_num, {}); the same run: --set {key}={level}{fe} --set time.step={:e}\n",
         p.dt, a.quantity, p.value, p.u_num, p.estimator, p.dt
     ));
-    for w in &a.warnings {
-        s.push_str(&format!("  warning  {w}\n"));
-    }
     s
 }
 

@@ -47,8 +47,8 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
+pub(crate) use accuracy::Detail;
 pub use accuracy::{CHUNK, RunMade};
-pub(crate) use accuracy::{Detail, SUPERSONIC_MET};
 pub use axis::{Axis, AxisTarget, Ratio};
 pub(crate) use batch::AUTO_BATCH_LANES;
 pub use batch::BatchWidth;

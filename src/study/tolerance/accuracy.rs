@@ -7,9 +7,7 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::study::sweep::{
-    Detail, PointAccuracy, RunMade, SUPERSONIC_MET, SweepRecord, SweepTolerance,
-};
+use crate::study::sweep::{Detail, PointAccuracy, RunMade, SweepRecord, SweepTolerance};
 
 /// The u_num of one result of the reported run, from its own family.
 #[derive(Debug, Clone, Serialize)]
@@ -48,8 +46,6 @@ pub struct Accuracy {
     pub point: PointAccuracy,
     /// Steps of the reported run.
     pub steps: usize,
-    /// Warnings on the estimate itself (met at or above the wave speed).
-    pub warnings: Vec<String>,
     /// Every run made, coarsest first (`accuracy.csv`).
     pub runs_made: Vec<RunMade>,
     /// A u_num on every result a sweep can target, at the reported run.
@@ -104,12 +100,6 @@ pub(super) fn tolerant_run(
         tolerance: tol.tolerance,
         max_cost: tol.budget,
         steps: output.steps,
-        warnings: record
-            .warnings
-            .iter()
-            .filter(|w| w.as_str() == SUPERSONIC_MET)
-            .cloned()
-            .collect(),
         runs_made: detail.runs,
         results,
         point,
