@@ -43,7 +43,7 @@ const PAGES: [(&str, fn(), &str); 8] = [
     (
         "uncertainty",
         xtask::uncertainty::main,
-        "the coverage tables behind docs/verification.md (solution verification), printed as markdown (`quick`: a few pairs a case; > out/xtask/uncertainty.md)",
+        "the coverage tables behind docs/verification.md (solution verification), printed as markdown (`quick`: a few pairs a case; `heldout`: the held-out pairs; > out/xtask/uncertainty.md)",
     ),
 ];
 

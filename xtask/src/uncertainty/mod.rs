@@ -23,9 +23,12 @@
 //! each pair's u_num and errors for `scripts/sibling_spread.py`): a change
 //! to an estimator is measured against the whole grid before the grid is
 //! run again. The default test
-//! suite runs a cut-down version (`tests/uncertainty.rs`).
+//! suite runs a cut-down version (`tests/uncertainty.rs`). `cargo xtask
+//! uncertainty heldout` runs and stores the held-out pairs ([`heldout`]),
+//! which check the estimator chosen on these without choosing it.
 
 pub mod cases;
+pub mod heldout;
 pub mod replay;
 pub mod truth;
 
@@ -131,7 +134,12 @@ impl Row {
 
 /// The scene text of a case.
 pub fn scene_text(case: &Case) -> String {
-    let path = format!("{}/{}", crate::ROOT, case.scene);
+    scene_text_of(case.scene)
+}
+
+/// The text of scene file `scene`, relative to the repository.
+pub fn scene_text_of(scene: &str) -> String {
+    let path = format!("{}/{scene}", crate::ROOT);
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
@@ -309,6 +317,10 @@ pub fn main() {
             [_, file, flag, out] if flag == "--pairs" => replay::main(file, Some(out)),
             _ => panic!("usage: cargo xtask uncertainty replay FILE [--pairs OUT]"),
         }
+        return;
+    }
+    if args.first().is_some_and(|a| a == "heldout") {
+        heldout::main(args.get(1).map(String::as_str));
         return;
     }
     let quick = args.iter().any(|a| a == "quick");

@@ -3,14 +3,17 @@
 //! assessed again by the library's current estimators (`cargo xtask
 //! uncertainty replay FILE`), so a change to an estimator is measured on
 //! the whole grid in seconds. The tables it prints are the study's; only
-//! the final `cargo xtask uncertainty` run goes into the docs.
+//! the final `cargo xtask uncertainty` run goes into the docs. It also
+//! compares taut's estimator with Roache's GCI, Eça & Hoekstra's and Xing
+//! & Stern's per kind of quantity, and checks the one chosen on the stored
+//! pairs ([`choose`]) on the file replayed (the held-out pairs).
 
 use std::io::Write;
 
 use serde_json::{Value, json};
-use taut::study::uncertainty::{Inputs, RATIO, assess};
+use taut::study::uncertainty::{FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, RATIO, assess, least_squares};
 
-use super::{Row, summary, table_rows};
+use super::{COVERAGE_TARGET, Row, summary, table_rows};
 
 /// Write `rows`, one JSON object a line.
 pub fn write(path: &str, rows: &[Row]) -> std::io::Result<()> {
@@ -79,6 +82,184 @@ pub fn main(path: &str, pairs: Option<&str>) {
     print!("{}", summary(&rows));
     print!("{}", kinds(&rows));
     print!("{}", frontier(&rows));
+    print!("{}", estimator_table(&rows));
+    let stored = read(&format!("{}/{STORED}", crate::ROOT)).unwrap_or_else(|e| panic!("{e}"));
+    print!("{}", selection(&stored, &rows));
+}
+
+/// The estimators compared on the same runs, per kind of quantity:
+/// taut's (`assess`), Roache's GCI, Eça & Hoekstra's least squares and
+/// Xing & Stern's factor of safety.
+pub const ESTIMATORS: [&str; 4] = ["taut's", "Roache's GCI", "Eça & Hoekstra", "Xing & Stern"];
+
+/// The kinds of quantity the figures are given for: smooth in the
+/// resolution, and not (MODEL §12).
+pub const KINDS: [(&str, bool); 2] = [("smooth", true), ("not smooth", false)];
+
+/// u_num of estimator `ESTIMATORS[e]` for `r` (NaN where it gives none).
+pub fn u_of(e: usize, r: &Row) -> f64 {
+    match e {
+        0 => r.u_num,
+        1 => roache_gci(r),
+        2 => eca_hoekstra(r),
+        _ => xing_stern(r),
+    }
+}
+
+/// Coverage and sharpness of one estimator on one kind of pairs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Figures {
+    /// Pairs of the kind.
+    pub pairs: usize,
+    /// Share whose u_num covers the true error (no u_num: not covered).
+    pub covered: f64,
+    /// The median of u_num/|error|, a pair without u_num counted as ∞ (no
+    /// bound) and an exact pair (u_num = error = 0) left out.
+    pub median: f64,
+    /// Pairs given a u_num (the rest are refused: diverging data, or no
+    /// monotone triple for a three-level estimator).
+    pub given: usize,
+    /// Share of those covered.
+    pub covered_given: f64,
+}
+
+/// [`Figures`] of estimator `e` over the pairs of `rows` that are
+/// `smooth` (or not).
+pub fn figures(rows: &[Row], e: usize, smooth: bool) -> Figures {
+    let of: Vec<&Row> = rows.iter().filter(|r| r.smooth == smooth).collect();
+    let u: Vec<(f64, f64)> = of.iter().map(|r| (u_of(e, r), r.error())).collect();
+    let covered = u.iter().filter(|(u, err)| *u >= *err).count();
+    let ratios = u
+        .iter()
+        .filter(|(u, err)| !(*u == 0.0 && *err == 0.0))
+        .map(|(u, err)| if u.is_nan() { f64::INFINITY } else { u / err })
+        .collect();
+    let given = u.iter().filter(|(u, _)| !u.is_nan()).count();
+    Figures {
+        pairs: of.len(),
+        covered: covered as f64 / of.len().max(1) as f64,
+        median: median(ratios),
+        given,
+        covered_given: covered as f64 / given.max(1) as f64,
+    }
+}
+
+/// Every estimator's [`Figures`] per kind of quantity in `rows`.
+fn estimator_table(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "\n| estimator | kind | pairs | covered | median u_num / error | given a u_num | of those covered |\n|---|---|---|---|---|---|---|\n",
+    );
+    for (e, name) in ESTIMATORS.iter().enumerate() {
+        for (kind, smooth) in KINDS {
+            let f = figures(rows, e, smooth);
+            s.push_str(&format!(
+                "| {name} | {kind} | {} | {:.1} % | {:.2} | {} | {:.1} % |\n",
+                f.pairs,
+                100.0 * f.covered,
+                f.median,
+                f.given,
+                100.0 * f.covered_given
+            ));
+        }
+    }
+    s
+}
+
+/// The estimator used for a kind of quantity, chosen on the stored pairs
+/// alone (never on the held-out ones): of those covering at least
+/// [`COVERAGE_TARGET`] of the stored pairs of that kind, the one with the
+/// smallest median u_num/|error|; if none does, the one covering most.
+/// Returns its index in [`ESTIMATORS`] and whether it reached the target.
+pub fn choose(stored: &[Row], smooth: bool) -> (usize, bool) {
+    let f: Vec<Figures> = (0..ESTIMATORS.len())
+        .map(|e| figures(stored, e, smooth))
+        .collect();
+    let met = (0..f.len())
+        .filter(|&e| f[e].covered >= COVERAGE_TARGET)
+        .min_by(|&a, &b| f[a].median.total_cmp(&f[b].median));
+    match met {
+        Some(e) => (e, true),
+        None => (
+            (0..f.len())
+                .max_by(|&a, &b| f[a].covered.total_cmp(&f[b].covered))
+                .expect("estimators"),
+            false,
+        ),
+    }
+}
+
+/// The choice made on `stored` ([`choose`]) and its figures on `rows`.
+fn selection(stored: &[Row], rows: &[Row]) -> String {
+    let mut s = String::from(
+        "\n| kind | chosen on the stored pairs | stored: covered, median | these pairs: covered, median |\n|---|---|---|---|\n",
+    );
+    for (kind, smooth) in KINDS {
+        let (e, met) = choose(stored, smooth);
+        let (a, b) = (figures(stored, e, smooth), figures(rows, e, smooth));
+        s.push_str(&format!(
+            "| {kind} | {}{} | {:.1} %, {:.2} | {:.1} %, {:.2} |\n",
+            ESTIMATORS[e],
+            if met {
+                ""
+            } else {
+                " (none reaches the target)"
+            },
+            100.0 * a.covered,
+            a.median,
+            100.0 * b.covered,
+            b.median
+        ));
+    }
+    s
+}
+
+/// The finest three diagonal values, coarsest first, when all are given.
+fn finest_three(r: &Row) -> Option<(f64, f64, f64)> {
+    let k = r.diagonal.len();
+    if k < 3 {
+        return None;
+    }
+    Some((r.diagonal[k - 3]?, r.diagonal[k - 2]?, r.diagonal[k - 1]?))
+}
+
+/// Roache's GCI of the finest three diagonal levels as published (no
+/// carrying down of a fast finest difference, which taut adds): F_s
+/// [`FS_ASYMPTOTIC`] when the observed order is within 0.5 of the formal
+/// one (the smaller of space and time: the diagonal refines both), else
+/// [`FS_CAUTIOUS`]; NaN where the three do not converge monotonically.
+fn roache_gci(r: &Row) -> f64 {
+    let Some((s3, s2, s1)) = finest_three(r) else {
+        return f64::NAN;
+    };
+    let (e32, e21) = (s2 - s3, s1 - s2);
+    let ratio = e21 / e32;
+    if !(ratio > 0.0 && ratio < 1.0) {
+        return f64::NAN;
+    }
+    let rr = RATIO as f64;
+    let p = (1.0 / ratio).ln() / rr.ln();
+    let formal = r.formal.0.min(r.formal.1);
+    let fs = if (p - formal).abs() <= 0.5 {
+        FS_ASYMPTOTIC
+    } else {
+        FS_CAUTIOUS
+    };
+    fs * (e21 / (rr.powf(p) - 1.0)).abs()
+}
+
+/// Eça & Hoekstra's least-squares estimator (the library's
+/// `least_squares::estimate`) on the whole diagonal, h_i = r^−i, at the
+/// smaller formal order; NaN where a level is missing or no fit is made.
+fn eca_hoekstra(r: &Row) -> f64 {
+    let Some(phi) = r.diagonal.iter().copied().collect::<Option<Vec<f64>>>() else {
+        return f64::NAN;
+    };
+    let h: Vec<f64> = (0..phi.len())
+        .map(|i| (RATIO as f64).powi(-(i as i32)))
+        .collect();
+    least_squares::estimate(&h, &phi, r.formal.0.min(r.formal.1), r.smooth)
+        .and_then(|ls| ls.u.last().copied())
+        .unwrap_or(f64::NAN)
 }
 
 /// The median of `x` (NaN when empty).
@@ -337,7 +518,7 @@ pub const STORED: &str = "golden/uncertainty_pairs.jsonl";
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::uncertainty::{COVERAGE_TARGET, shares};
+    use crate::uncertainty::{COVERAGE_TARGET, SHARPNESS_LIMIT, shares};
 
     /// Pairs the estimators are sharp at (u_num ≤ 10× the true error), of
     /// 129: 73 when the pairs were stored, 74 once a pre-asymptotic level
@@ -353,6 +534,94 @@ mod tests {
         assert!(covered >= COVERAGE_TARGET, "covered {covered}");
         let n_sharp = (sharp * rows.len() as f64).round() as usize;
         assert!(n_sharp >= SHARP_WHEN_STORED, "sharp at {n_sharp} of 129");
+    }
+
+    /// The held-out pairs' coverage the estimator chosen on the stored
+    /// pairs must reach for each kind of quantity: the stored pairs'
+    /// target, since a bar's coverage is only known on pairs it was not
+    /// chosen or tuned on.
+    const HELD_OUT_COVERAGE: f64 = COVERAGE_TARGET;
+
+    /// Held-out pairs (smooth, not smooth) covered by the estimator chosen
+    /// on the stored pairs when the held-out set was stored: 86 of 96 and
+    /// 33 of 48, below [`HELD_OUT_COVERAGE`]. The estimators may not cover
+    /// fewer without the docs' figures being made again.
+    const HELD_OUT_COVERED_WHEN_STORED: [usize; 2] = [86, 33];
+
+    /// The held-out pairs (smooth, not smooth), and the estimator chosen
+    /// for each kind on the stored pairs.
+    fn held_out_by_kind() -> Vec<(Vec<Row>, usize)> {
+        use crate::uncertainty::heldout::HELD_OUT;
+        let stored = read(&format!("{}/{STORED}", crate::ROOT)).unwrap();
+        let held = read(&format!("{}/{HELD_OUT}", crate::ROOT)).unwrap();
+        assert_eq!(held.len(), 144);
+        KINDS
+            .iter()
+            .map(|&(_, smooth)| {
+                let of: Vec<Row> = held
+                    .iter()
+                    .filter(|r| r.smooth == smooth)
+                    .cloned()
+                    .collect();
+                (of, choose(&stored, smooth).0)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_estimator_is_chosen_on_the_stored_pairs_and_held_out_no_worse_than_measured() {
+        for (k, (rows, e)) in held_out_by_kind().iter().enumerate() {
+            let f = figures(rows, *e, KINDS[k].1);
+            let covered = (f.covered * f.pairs as f64).round() as usize;
+            assert!(
+                covered >= HELD_OUT_COVERED_WHEN_STORED[k],
+                "{}: {} covers {covered} of {}",
+                KINDS[k].0,
+                ESTIMATORS[*e],
+                f.pairs
+            );
+            if KINDS[k].1 {
+                assert!(f.median <= SHARPNESS_LIMIT, "smooth median {}", f.median);
+            }
+        }
+    }
+
+    #[test]
+    #[ignore = "fails as measured: the held-out pairs are covered at 89.6 % (smooth) and 68.8 % (not smooth), docs/verification.md"]
+    fn the_held_out_pairs_are_covered_at_the_target() {
+        for (k, (rows, e)) in held_out_by_kind().iter().enumerate() {
+            let f = figures(rows, *e, KINDS[k].1);
+            assert!(
+                f.covered >= HELD_OUT_COVERAGE,
+                "{}: {} covers {:.3}",
+                KINDS[k].0,
+                ESTIMATORS[*e],
+                f.covered
+            );
+        }
+    }
+
+    #[test]
+    fn the_sharpest_estimator_at_the_target_is_chosen() {
+        // a family converging at order 2 to 1.0 (finest 1.001), its true
+        // error 1e-3 and 1e-3 + 1e-9: several estimators cover both, and
+        // the choice is the sharpest of them
+        let mut a = row(&[1.016, 1.004, 1.001], &[1.0041, 1.00102], 1.0);
+        a.value = 1.001;
+        a.u_num = 0.01;
+        let mut b = a.clone();
+        b.truth = 1.0 - 1e-9;
+        let rows = [a, b];
+        let f: Vec<Figures> = (0..ESTIMATORS.len())
+            .map(|e| figures(&rows, e, true))
+            .collect();
+        let (e, met) = choose(&rows, true);
+        assert!(met);
+        assert!(f.iter().filter(|g| g.covered >= COVERAGE_TARGET).count() >= 2);
+        assert!(f[e].covered >= COVERAGE_TARGET);
+        for g in f.iter().filter(|g| g.covered >= COVERAGE_TARGET) {
+            assert!(f[e].median <= g.median);
+        }
     }
 
     fn row(diagonal: &[f64], space: &[f64], truth: f64) -> Row {
