@@ -43,8 +43,8 @@ fn taut(args: &[String]) {
 }
 
 /// On `force_mean` with EPS = 0.5 N, J₀ = 100, Δt₀ = 2e-4 s: 100 m/s is
-/// met after one check, 140 m/s is refused (its families diverge: no
-/// u_num). The reported candidate's family is N·2^(a−2), N·2^(a−1), N·2^a
+/// met after one check, 140 m/s is not (its families' differences grow:
+/// the bar for anomalous data, 3·Δ_M, is wider than EPS). The reported candidate's family is N·2^(a−2), N·2^(a−1), N·2^a
 /// with its split, the family `taut uncertainty --levels 3` runs from
 /// the candidate's J/4, 4Δt.
 #[test]
@@ -111,7 +111,11 @@ fn uncertainty_on_the_engine_s_family_gives_the_engine_s_answer() {
         assert_eq!(row["u_num"], acc["u_num"], "{speed} m/s: u_num");
         assert_eq!(row["estimator"], acc["estimator"], "{speed} m/s");
         if !met {
-            assert!(row["u_num"].is_null(), "{row}");
+            // growing differences: Eça & Hoekstra's bar for anomalous
+            // data, wider than EPS, and the record still says "diverging"
+            assert_eq!(row["behaviour"], "diverging", "{row}");
+            assert_eq!(row["estimator"], "data_range", "{row}");
+            assert!(row["u_num"].as_f64().unwrap() > 0.5, "{row}\n{acc}");
             assert!(
                 row["note"].as_str().unwrap().contains("grow"),
                 "{speed} m/s: {row}"

@@ -3,7 +3,8 @@
 //! data support, and how the error splits between space and time.
 //!
 //! * every value the same (to round-off): `exact`, u_num = 0;
-//! * differences growing at every level: `diverging`, no u_num;
+//! * differences growing at every level: behaviour `diverging`, and Eça
+//!   & Hoekstra's bar for anomalous data, U = 3·Δ_M ([`anomalous_data_bar`]);
 //! * a smooth quantity whose levels converge monotonically at an order
 //!   ≥ `LOWEST_ORDER`: Roache's GCI on the three finest ([`Gci`]), with
 //!   F_s = 1.25 only when every triplet of the family shows an order within
@@ -52,6 +53,10 @@ pub enum Estimator {
     SplitFloor,
     /// The differences grow at every level: no estimate.
     Diverging,
+    /// The differences grow at every level: Eça & Hoekstra's bar for
+    /// anomalous data, 3·Δ_M ([`anomalous_data_bar`]); the behaviour
+    /// still reads "diverging".
+    DataRange,
     /// A run of the family stopped (diverged): no estimate.
     Diverged,
     /// The quantity is not defined at some level (no first loss).
@@ -68,6 +73,7 @@ impl Estimator {
             Estimator::LeastSquares => "least_squares",
             Estimator::SplitFloor => "split_floor",
             Estimator::Diverging => "diverging",
+            Estimator::DataRange => "data_range",
             Estimator::Diverged => "diverged",
             Estimator::Undefined => "undefined",
         }
@@ -193,7 +199,7 @@ pub fn assess(inputs: &Inputs) -> Assessment {
 /// P_l,span reach 4.1–19× (0.0400, 0.0277, 0.0269, 0.0269 from N₀ = 400:
 /// 4.1×) and a mean force from N₀ = 100 whose finer levels agree to 0.01 N
 /// 4.02×. Every one stays covered (one P_l family, whose finer levels
-/// alone diverge, is assessed whole).
+/// alone diverge, gets their 3·Δ_M, [`anomalous_data_bar`]).
 pub const PRE_ASYMPTOTIC_MARGIN: f64 = 4.0;
 
 /// The fewest diagonal levels left once level 0 is dropped: three, what
@@ -421,11 +427,12 @@ fn assess_diagonal(inputs: &Inputs) -> Assessment {
         Behaviour::Diverging => {
             a.estimator = Estimator::Diverging;
             a.note = if inputs.smooth {
-                "the differences grow at every level: no estimate (refining makes it worse: an instability, or round-off)".into()
+                "the differences grow at every level (refining makes it worse: an instability, or round-off; or the coarse levels are far from the asymptotic range)".into()
             } else {
                 // P_l, counts, first loss: finer runs resolve shorter events
-                "the differences grow at every level: no estimate (finer runs resolve events the coarser ones step over — shorter losses, more bounces — or refining makes it worse: an instability)".into()
+                "the differences grow at every level (finer runs resolve events the coarser ones step over — shorter losses, more bounces — or refining makes it worse: an instability)".into()
             };
+            anomalous_data_bar(&mut a, &phi);
             return a;
         }
         _ => {}
@@ -528,6 +535,40 @@ fn assess_diagonal(inputs: &Inputs) -> Assessment {
         }
     );
     a
+}
+
+/// The safety factor of the bar for anomalous data: Eça & Hoekstra
+/// (J. Comput. Phys. 262, 2014) give U = 3·Δ_M where no order can be
+/// fitted, Δ_M the largest difference among the levels.
+pub const FS_ANOMALOUS: f64 = FS_CAUTIOUS;
+
+/// The bar of a family whose differences grow at every level: U =
+/// [`FS_ANOMALOUS`]·Δ_M, Δ_M = max φ − min φ over the diagonal (Eça &
+/// Hoekstra's rule for anomalous data), with "diverging" kept as the
+/// behaviour and in the note, so the record still warns. Growing
+/// differences are what a pre-asymptotic ladder shows as well as a
+/// quantity without a limit: the held-out pairs (a mean contact force
+/// under impacts, the raw force's std, a filtered std) had refusals whose
+/// refined truth moved by 2–10 % of the error, so a refusal there gave
+/// the user nothing where the published rule gives a bar. A quantity that
+/// truly has no limit (the raw force maximum under re-contact) gets the
+/// bar too, and the warning says what it may be.
+fn anomalous_data_bar(a: &mut Assessment, phi: &[f64]) {
+    let hi = phi.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let lo = phi.iter().copied().fold(f64::INFINITY, f64::min);
+    let u = FS_ANOMALOUS * (hi - lo);
+    a.estimator = Estimator::DataRange;
+    a.u_num = Some(u);
+    a.safety_factor = Some(FS_ANOMALOUS);
+    a.data_range = Some(hi - lo);
+    if let Some(last) = a.u_levels.last_mut() {
+        *last = Some(u);
+    }
+    a.note = format!(
+        "diverging: {}; U = {FS_ANOMALOUS}·Δ_M, Δ_M = {:.3e} the largest difference among the levels (Eça & Hoekstra's rule for anomalous data)",
+        a.note,
+        hi - lo
+    );
 }
 
 fn set_gci(a: &mut Assessment, g: &Gci, phi: &[f64], estimator: Estimator) {
@@ -810,10 +851,19 @@ mod tests {
             assess(&inputs(&same, &[], true)).estimator,
             Estimator::Exact
         );
+        // growing differences: Eça & Hoekstra's 3·Δ_M, still read as
+        // diverging
         let grow = [Some(1.0), Some(1.1), Some(1.4), Some(2.4)];
         let a = assess(&inputs(&grow, &[], true));
-        assert_eq!(a.estimator, Estimator::Diverging);
-        assert!(a.u_num.is_none());
+        assert_eq!(a.estimator, Estimator::DataRange);
+        assert_eq!(a.behaviour, Behaviour::Diverging);
+        assert!(
+            (a.u_num.unwrap() - FS_ANOMALOUS * 1.4).abs() < 1e-12,
+            "{a:?}"
+        );
+        assert!(a.note.starts_with("diverging"), "{}", a.note);
+        // the scene's bar covers level 0 as well
+        assert!(a.u_levels[0].unwrap() >= 1.4 + FS_ANOMALOUS * 1.4 - 1e-12);
         let some = [None, Some(0.98), Some(0.98), Some(0.97)];
         assert_eq!(
             assess(&inputs(&some, &[], false)).estimator,
