@@ -1294,3 +1294,33 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
     p.reported = Some(key);
     p.stage = Stage::Done;
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::uncertainty::assess::{Inputs, assess};
+
+    /// A family all 0 gets the unseen-loss floor 3 × Δt / t_end; one that
+    /// saw a loss keeps its own bar.
+    #[test]
+    fn a_zero_family_gets_the_unseen_loss_floor() {
+        let zero = [Some(0.0); 3];
+        let split = [Some(0.0); 2];
+        assert!(all_zero(&zero, &split));
+        let a = assess(&Inputs {
+            diagonal: &zero,
+            space: &split,
+            ratio: 2.0,
+            formal: (2.0, 1.0),
+            smooth: false,
+        });
+        assert_eq!(a.u_num, Some(0.0), "the family alone: no bar");
+        let f = unseen_floor(a, 6.25e-5, 0.8276);
+        let want = FS_CAUTIOUS * 6.25e-5 / 0.8276;
+        assert!((f.u_num.unwrap() - want).abs() < 1e-15 * want.max(1.0));
+        assert!(f.note.contains("unseen"));
+        let seen = [Some(0.0), Some(1e-3), Some(1.2e-3)];
+        assert!(!all_zero(&seen, &split));
+        assert!(!all_zero(&[None, Some(0.0), Some(0.0)], &split));
+    }
+}
