@@ -866,9 +866,9 @@ fn refine(p: &mut Point, tol: &SweepTolerance, key: Key, formal: (f64, f64), fro
 fn met(p: &mut Point, tol: &SweepTolerance, key: Key) {
     let u = p.candidates.last().and_then(|c| c.1.u_num).unwrap_or(0.0);
     // a family all 0 has moved nowhere: its bar is the floor of what its
-    // finest Δt cannot see ([`unseen_floor`]), not a change to confirm
+    // finest Δt cannot see ([`engine::unseen_loss_floor`]), not a change to confirm
     let runs = check_runs(key).map(|k| p.value(k).flatten());
-    if p.staged.is_some() && u > 0.0 && !all_zero(&runs, &[]) {
+    if p.staged.is_some() && u > 0.0 && !engine::all_zero(&runs, &[]) {
         p.stage = Stage::Confirm(key);
     } else {
         finish(p, tol, key);
@@ -967,57 +967,9 @@ fn assess_at(p: &Point, q: &Quantity, key: Key, value: impl Fn(&Ran) -> Option<f
     // the one assessment `taut uncertainty` makes of the same family
     let a = engine::assess_family(base, q, &diag, &split, family_switches(p, key));
     match p.scene(key) {
-        Ok(sc) if LOSS_FRACTIONS.contains(&q.name) && all_zero(&diag, &split) => {
-            unseen_floor(a, sc.dt, sc.t_end)
-        }
+        Ok(sc) => engine::unseen_loss_floor(a, q, &diag, &split, sc.dt, sc.t_end),
         _ => a,
     }
-}
-
-/// The quantities that are a time in loss over the run's window (P_l and
-/// its parts): a family all of whose runs give exactly 0 for one of them
-/// saw no loss, which bounds only the losses its finest Δt can see
-/// ([`unseen_floor`]).
-const LOSS_FRACTIONS: [&str; 4] = [
-    "loss_fraction",
-    "loss_fraction_steps",
-    "loss_fraction_span",
-    "loss_fraction_support",
-];
-
-/// Every run of a family defined and exactly zero.
-fn all_zero(diag: &[Option<f64>], split: &[Option<f64>]) -> bool {
-    diag.iter().chain(split).all(|v| *v == Some(0.0))
-}
-
-/// A loss fraction that is 0 at every run of its family, its finest Δt
-/// `dt`, over a window of `t_end`: a loss shorter than `dt` can open and
-/// close between two step ends, and then no run of the family sees it
-/// (the located instants are found only within a step whose end is in
-/// loss). u_num at least [`FS_CAUTIOUS`] × dt / t_end, one such loss with
-/// the factor of any part of a quantity that is not smooth. Derived, not
-/// fitted; on the Fig. 12 map's 9 × 9 subgrid the two points whose
-/// families were all 0 and the reference (J = 3200, Δt = 3.90625e-6 s) was
-/// not were at 2.1 and 2.3 × dt / t_end, and at EPS = 0.002 the floor
-/// (≤ 3.0e-4 there) un-meets no point.
-fn unseen_floor(mut a: Assessment, dt: f64, t_end: f64) -> Assessment {
-    if !t_end.is_finite() || t_end <= 0.0 {
-        return a;
-    }
-    let floor = FS_CAUTIOUS * dt / t_end;
-    if a.u_num.is_some_and(|u| u >= floor) {
-        return a;
-    }
-    a.u_num = Some(floor);
-    let why = format!(
-        "0 at every run: a loss shorter than the finest Δt ({dt:.3e} s) is unseen, u_num at least {FS_CAUTIOUS} × Δt / t_end"
-    );
-    a.note = if a.note.is_empty() {
-        why
-    } else {
-        format!("{}; {why}", a.note)
-    };
-    a
 }
 
 /// A finished point as handed to `save`; with `ctx.keep`, its [`Detail`].
@@ -1306,7 +1258,7 @@ mod tests {
     fn a_zero_family_gets_the_unseen_loss_floor() {
         let zero = [Some(0.0); 3];
         let split = [Some(0.0); 2];
-        assert!(all_zero(&zero, &split));
+        assert!(engine::all_zero(&zero, &split));
         let a = assess(&Inputs {
             diagonal: &zero,
             space: &split,
@@ -1315,12 +1267,12 @@ mod tests {
             smooth: false,
         });
         assert_eq!(a.u_num, Some(0.0), "the family alone: no bar");
-        let f = unseen_floor(a, 6.25e-5, 0.8276);
+        let f = engine::unseen_floor(a, 6.25e-5, 0.8276);
         let want = FS_CAUTIOUS * 6.25e-5 / 0.8276;
         assert!((f.u_num.unwrap() - want).abs() < 1e-15 * want.max(1.0));
         assert!(f.note.contains("unseen"));
         let seen = [Some(0.0), Some(1e-3), Some(1.2e-3)];
-        assert!(!all_zero(&seen, &split));
-        assert!(!all_zero(&[None, Some(0.0), Some(0.0)], &split));
+        assert!(!engine::all_zero(&seen, &split));
+        assert!(!engine::all_zero(&[None, Some(0.0), Some(0.0)], &split));
     }
 }

@@ -13,7 +13,7 @@
 //!   the split floor, a pre-asymptotic level 0 dropped from a family of
 //!   four levels or more, every level's U at least |φ_ℓ − φ_fine| + u_num).
 
-use super::{Assessment, Inputs, RATIO, assess};
+use super::{Assessment, FS_CAUTIOUS, Inputs, RATIO, assess};
 use crate::error::Result;
 use crate::integrate::scene_method;
 use crate::quantity::Quantity;
@@ -159,4 +159,69 @@ mod tests {
         assert_eq!(level_parameter(3, -2), None);
         assert_eq!(level_parameter(usize::MAX, 1), None);
     }
+}
+
+/// The floor of [`unseen_floor`] on `a` when `q` is a loss fraction and
+/// every run of its family (`diagonal`, `space`) gives exactly 0; `dt` the
+/// family's finest Δt, `t_end` the window's end. `taut uncertainty` and the
+/// accuracy engine both apply it after [`assess_family`].
+pub(crate) fn unseen_loss_floor(
+    a: Assessment,
+    q: &Quantity,
+    diagonal: &[Option<f64>],
+    space: &[Option<f64>],
+    dt: f64,
+    t_end: f64,
+) -> Assessment {
+    if LOSS_FRACTIONS.contains(&q.name) && all_zero(diagonal, space) {
+        unseen_floor(a, dt, t_end)
+    } else {
+        a
+    }
+}
+
+/// The quantities that are a time in loss over the run's window (P_l and
+/// its parts): a family all of whose runs give exactly 0 for one of them
+/// saw no loss, which bounds only the losses its finest Δt can see
+/// ([`unseen_floor`]).
+const LOSS_FRACTIONS: [&str; 4] = [
+    "loss_fraction",
+    "loss_fraction_steps",
+    "loss_fraction_span",
+    "loss_fraction_support",
+];
+
+/// Every run of a family defined and exactly zero.
+pub(crate) fn all_zero(diag: &[Option<f64>], split: &[Option<f64>]) -> bool {
+    diag.iter().chain(split).all(|v| *v == Some(0.0))
+}
+
+/// A loss fraction that is 0 at every run of its family, its finest Δt
+/// `dt`, over a window of `t_end`: a loss shorter than `dt` can open and
+/// close between two step ends, and then no run of the family sees it
+/// (the located instants are found only within a step whose end is in
+/// loss). u_num at least [`FS_CAUTIOUS`] × dt / t_end, one such loss with
+/// the factor of any part of a quantity that is not smooth. Derived, not
+/// fitted; on the Fig. 12 map's 9 × 9 subgrid the two points whose
+/// families were all 0 and the reference (J = 3200, Δt = 3.90625e-6 s) was
+/// not were at 2.1 and 2.3 × dt / t_end, and at EPS = 0.002 the floor
+/// (≤ 3.0e-4 there) un-meets no point.
+pub(crate) fn unseen_floor(mut a: Assessment, dt: f64, t_end: f64) -> Assessment {
+    if !t_end.is_finite() || t_end <= 0.0 {
+        return a;
+    }
+    let floor = FS_CAUTIOUS * dt / t_end;
+    if a.u_num.is_some_and(|u| u >= floor) {
+        return a;
+    }
+    a.u_num = Some(floor);
+    let why = format!(
+        "0 at every run: a loss shorter than the finest Δt ({dt:.3e} s) is unseen, u_num at least {FS_CAUTIOUS} × Δt / t_end"
+    );
+    a.note = if a.note.is_empty() {
+        why
+    } else {
+        format!("{}; {why}", a.note)
+    };
+    a
 }

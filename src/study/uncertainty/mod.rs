@@ -244,6 +244,14 @@ fn assess_all(
             }
             (None, None) => assess(&inputs),
         };
+        // a loss fraction 0 at every run: what the finest Δt cannot see
+        let finest_dt = ran
+            .family
+            .iter()
+            .map(|m| m.dt)
+            .fold(f64::INFINITY, f64::min);
+        let assessment =
+            engine::unseen_loss_floor(assessment, q, &diagonal, &space, finest_dt, base.t_end);
         quantities.push(QuantityUncertainty {
             quantity: q.name,
             unit: q.unit,
