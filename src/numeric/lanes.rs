@@ -147,3 +147,70 @@ mod tests {
         }
     }
 }
+
+/// One 64-byte line of [`LANES`] values, aligned to a cache line.
+#[derive(Debug, Clone, Copy, Default)]
+#[repr(C, align(64))]
+struct Line([f64; LANES]);
+
+/// `len` values in whole 64-byte-aligned lines, seen as a slice: each
+/// block of [`LANES`] modes one cache line, so that a kernel's 512-bit
+/// load at a multiple of [`LANES`] never spans two lines (a split load
+/// costs about a second one). The same values as a `Vec<f64>`.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct AlignedLanes {
+    lines: Vec<Line>,
+    len: usize,
+}
+
+impl AlignedLanes {
+    /// `len` zeros.
+    pub(crate) fn zeros(len: usize) -> Self {
+        AlignedLanes {
+            lines: vec![Line::default(); len.div_ceil(LANES)],
+            len,
+        }
+    }
+
+    /// Empty, its lines kept.
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// `len` values: the first ones kept, any new ones `value` (as
+    /// `Vec::resize`); allocates only beyond the lines held.
+    pub(crate) fn resize(&mut self, len: usize, value: f64) {
+        let lines = len.div_ceil(LANES);
+        if lines > self.lines.len() {
+            self.lines.resize(lines, Line::default());
+        }
+        let old = self.len;
+        self.len = len;
+        if len > old {
+            self[old..].fill(value);
+        }
+    }
+}
+
+impl PartialEq for AlignedLanes {
+    fn eq(&self, other: &Self) -> bool {
+        **self == **other
+    }
+}
+
+impl std::ops::Deref for AlignedLanes {
+    type Target = [f64];
+    fn deref(&self) -> &[f64] {
+        // SAFETY: `Line` is `repr(C)` over `[f64; LANES]` with no padding
+        // (64 bytes), so the lines are `LANES · lines.len() ≥ len`
+        // contiguous, initialized f64s.
+        unsafe { std::slice::from_raw_parts(self.lines.as_ptr().cast::<f64>(), self.len) }
+    }
+}
+
+impl std::ops::DerefMut for AlignedLanes {
+    fn deref_mut(&mut self) -> &mut [f64] {
+        // SAFETY: as in `deref`, through the unique borrow of `lines`.
+        unsafe { std::slice::from_raw_parts_mut(self.lines.as_mut_ptr().cast::<f64>(), self.len) }
+    }
+}
