@@ -122,6 +122,31 @@ fn dot_avx2(x: &[f64], y: &[f64]) -> f64 {
 mod tests {
     use super::*;
 
+    /// Aligned lines hold what a `Vec<f64>` holds through zeros, resize
+    /// (up, down, up again within the lines) and clear, each start on a
+    /// 64-byte boundary.
+    #[test]
+    fn aligned_lanes_behave_as_a_vec() {
+        let mut a = AlignedLanes::zeros(13);
+        let mut v = vec![0.0; 13];
+        assert_eq!(a.as_ptr() as usize % 64, 0);
+        for (i, (x, y)) in a.iter_mut().zip(v.iter_mut()).enumerate() {
+            (*x, *y) = (i as f64, i as f64);
+        }
+        for (len, value) in [(30, 2.5), (5, 1.0), (9, -3.0), (0, 4.0), (17, 7.0)] {
+            a.resize(len, value);
+            v.resize(len, value);
+            assert_eq!(*a, *v, "resize to {len}");
+            assert_eq!(a.as_ptr() as usize % 64, 0);
+        }
+        a.clear();
+        v.clear();
+        a.resize(4, 1.5);
+        v.resize(4, 1.5);
+        assert_eq!(*a, *v);
+        assert_eq!(a, a.clone());
+    }
+
     #[test]
     fn the_two_paths_agree_bit_for_bit_and_give_the_sum() {
         for n in [0, 1, 7, 8, 9, 64, 803] {
