@@ -32,6 +32,7 @@ use std::ops::Range;
 
 use crate::analytic::FastShapes;
 use crate::analytic::fast_shapes::rotate;
+use crate::numeric::lanes::AlignedLanes;
 
 /// Steps a carrier's phasors are advanced by rotation before they restart
 /// from the tables: bounds the rotation's accumulated round-off to about
@@ -47,10 +48,11 @@ pub const RESYNC_STEPS: usize = 1024;
 pub struct Cruise {
     /// `Im F_j` at the position of [`Cruise::at_step`] (the real parts are
     /// the carrier's `φ(x_n)` itself).
-    im: Vec<f64>,
-    /// `e^{iβ_j V Δt}`, real and imaginary parts.
-    rot_re: Vec<f64>,
-    rot_im: Vec<f64>,
+    im: AlignedLanes,
+    /// `e^{iβ_j V Δt}`, real and imaginary parts (cache-line aligned, as
+    /// `im`, for the AVX-512 pass's loads).
+    rot_re: AlignedLanes,
+    rot_im: AlignedLanes,
     /// The speed the rotations are for, m/s (NaN before any).
     speed: f64,
     /// The step whose carrier position the phasors hold (`None`: not
@@ -64,9 +66,9 @@ impl Cruise {
     /// Room for J modes, nothing valid yet.
     pub fn new(j: usize) -> Self {
         Cruise {
-            im: vec![0.0; j],
-            rot_re: vec![0.0; j],
-            rot_im: vec![0.0; j],
+            im: AlignedLanes::zeros(j),
+            rot_re: AlignedLanes::zeros(j),
+            rot_im: AlignedLanes::zeros(j),
             speed: f64::NAN,
             at_step: None,
             since: 0,

@@ -18,6 +18,7 @@ use super::element;
 use super::mesh::Mesh;
 use crate::analytic::ModeShapes;
 use crate::error::Result;
+use crate::numeric::lanes::AlignedLanes;
 use crate::scene::{Attachment, BeamProps, Discretization, MeshPlan, Support};
 
 /// Which element family the beam uses.
@@ -41,8 +42,9 @@ pub struct PointVector {
     pub idx: [usize; 4],
     /// Weights (shape function values).
     pub val: [f64; 4],
-    /// The dense weights of a modal basis (empty on a mesh).
-    dense: Vec<f64>,
+    /// The dense weights of a modal basis (empty on a mesh), cache-line
+    /// aligned for the modal kernels' 512-bit loads.
+    dense: AlignedLanes,
 }
 
 impl PointVector {
@@ -564,7 +566,7 @@ impl BeamModel {
             Basis::Elements => PointVector {
                 idx,
                 val,
-                dense: Vec::new(),
+                dense: AlignedLanes::default(),
             },
             // the modes of the two-line model (`BeamModel::modal`): Φᵀ of
             // the messenger's FE point vector, as on the contact wire

@@ -122,6 +122,31 @@ fn dot_avx2(x: &[f64], y: &[f64]) -> f64 {
 mod tests {
     use super::*;
 
+    /// Aligned lines hold what a `Vec<f64>` holds through zeros, resize
+    /// (up, down, up again within the lines) and clear, each start on a
+    /// 64-byte boundary.
+    #[test]
+    fn aligned_lanes_behave_as_a_vec() {
+        let mut a = AlignedLanes::zeros(13);
+        let mut v = vec![0.0; 13];
+        assert_eq!(a.as_ptr() as usize % 64, 0);
+        for (i, (x, y)) in a.iter_mut().zip(v.iter_mut()).enumerate() {
+            (*x, *y) = (i as f64, i as f64);
+        }
+        for (len, value) in [(30, 2.5), (5, 1.0), (9, -3.0), (0, 4.0), (17, 7.0)] {
+            a.resize(len, value);
+            v.resize(len, value);
+            assert_eq!(*a, *v, "resize to {len}");
+            assert_eq!(a.as_ptr() as usize % 64, 0);
+        }
+        a.clear();
+        v.clear();
+        a.resize(4, 1.5);
+        v.resize(4, 1.5);
+        assert_eq!(*a, *v);
+        assert_eq!(a, a.clone());
+    }
+
     #[test]
     fn the_two_paths_agree_bit_for_bit_and_give_the_sum() {
         for n in [0, 1, 7, 8, 9, 64, 803] {
@@ -145,5 +170,72 @@ mod tests {
             let plain: f64 = x.iter().zip(&y).map(|(a, b)| a * b).sum();
             assert!((s - plain).abs() <= 1e-12 * (1.0 + plain.abs()));
         }
+    }
+}
+
+/// One 64-byte line of [`LANES`] values, aligned to a cache line.
+#[derive(Debug, Clone, Copy, Default)]
+#[repr(C, align(64))]
+struct Line([f64; LANES]);
+
+/// `len` values in whole 64-byte-aligned lines, seen as a slice: each
+/// block of [`LANES`] modes one cache line, so that a kernel's 512-bit
+/// load at a multiple of [`LANES`] never spans two lines (a split load
+/// costs about a second one). The same values as a `Vec<f64>`.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct AlignedLanes {
+    lines: Vec<Line>,
+    len: usize,
+}
+
+impl AlignedLanes {
+    /// `len` zeros.
+    pub(crate) fn zeros(len: usize) -> Self {
+        AlignedLanes {
+            lines: vec![Line::default(); len.div_ceil(LANES)],
+            len,
+        }
+    }
+
+    /// Empty, its lines kept.
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// `len` values: the first ones kept, any new ones `value` (as
+    /// `Vec::resize`); allocates only beyond the lines held.
+    pub(crate) fn resize(&mut self, len: usize, value: f64) {
+        let lines = len.div_ceil(LANES);
+        if lines > self.lines.len() {
+            self.lines.resize(lines, Line::default());
+        }
+        let old = self.len;
+        self.len = len;
+        if len > old {
+            self[old..].fill(value);
+        }
+    }
+}
+
+impl PartialEq for AlignedLanes {
+    fn eq(&self, other: &Self) -> bool {
+        **self == **other
+    }
+}
+
+impl std::ops::Deref for AlignedLanes {
+    type Target = [f64];
+    fn deref(&self) -> &[f64] {
+        // SAFETY: `Line` is `repr(C)` over `[f64; LANES]` with no padding
+        // (64 bytes), so the lines are `LANES · lines.len() ≥ len`
+        // contiguous, initialized f64s.
+        unsafe { std::slice::from_raw_parts(self.lines.as_ptr().cast::<f64>(), self.len) }
+    }
+}
+
+impl std::ops::DerefMut for AlignedLanes {
+    fn deref_mut(&mut self) -> &mut [f64] {
+        // SAFETY: as in `deref`, through the unique borrow of `lines`.
+        unsafe { std::slice::from_raw_parts_mut(self.lines.as_mut_ptr().cast::<f64>(), self.len) }
     }
 }
