@@ -116,51 +116,6 @@ pub fn dominated_start(inputs: &Inputs) -> Option<f64> {
     super::assess::level_zero_excess(inputs).filter(|&x| x > ADD_LEVEL_MARGIN)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// P_l,span of the reference scene at 134.92 m/s from N₀ = 200 (three
-    /// levels, formal orders (2, 1)): level 0 is found pre-asymptotic; an
-    /// oscillating ladder and one in its asymptotic range are not.
-    #[test]
-    fn a_coarse_start_that_falls_too_fast_is_found() {
-        fn i(d: &[Option<f64>]) -> Inputs<'_> {
-            Inputs {
-                diagonal: d,
-                space: &[],
-                ratio: 2.0,
-                formal: (2.0, 1.0),
-                smooth: false,
-            }
-        }
-        let known = [
-            Some(0.08892053454164266),
-            Some(0.041579944707133235),
-            Some(0.03148215685204653),
-        ];
-        let x = dominated_start(&i(&known)).unwrap();
-        assert!((x - 1.17).abs() < 0.01, "{x}");
-        assert_eq!(
-            dominated_start(&i(&[Some(1.0), Some(0.9), Some(1.0)])),
-            None
-        );
-        assert_eq!(
-            dominated_start(&i(&[Some(1.16), Some(1.04), Some(1.01)])),
-            None
-        );
-        assert_eq!(dominated_start(&i(&known[..2])), None);
-    }
-
-    #[test]
-    fn level_parameters_refine_and_coarsen_by_the_ratio() {
-        assert_eq!(level_parameter(200, 2), Some(800));
-        assert_eq!(level_parameter(200, -2), Some(50));
-        assert_eq!(level_parameter(3, -2), None);
-        assert_eq!(level_parameter(usize::MAX, 1), None);
-    }
-}
-
 /// The floor of [`unseen_floor`] on `a` when `q` is a loss fraction and
 /// every run of its family (`diagonal`, `space`) gives exactly 0; `dt` the
 /// family's finest Δt, `t_end` the window's end. `taut uncertainty` and the
@@ -224,4 +179,49 @@ pub(crate) fn unseen_floor(mut a: Assessment, dt: f64, t_end: f64) -> Assessment
         format!("{}; {why}", a.note)
     };
     a
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// P_l,span of the reference scene at 134.92 m/s from N₀ = 200 (three
+    /// levels, formal orders (2, 1)): level 0 is found pre-asymptotic; an
+    /// oscillating ladder and one in its asymptotic range are not.
+    #[test]
+    fn a_coarse_start_that_falls_too_fast_is_found() {
+        fn i(d: &[Option<f64>]) -> Inputs<'_> {
+            Inputs {
+                diagonal: d,
+                space: &[],
+                ratio: 2.0,
+                formal: (2.0, 1.0),
+                smooth: false,
+            }
+        }
+        let known = [
+            Some(0.08892053454164266),
+            Some(0.041579944707133235),
+            Some(0.03148215685204653),
+        ];
+        let x = dominated_start(&i(&known)).unwrap();
+        assert!((x - 1.17).abs() < 0.01, "{x}");
+        assert_eq!(
+            dominated_start(&i(&[Some(1.0), Some(0.9), Some(1.0)])),
+            None
+        );
+        assert_eq!(
+            dominated_start(&i(&[Some(1.16), Some(1.04), Some(1.01)])),
+            None
+        );
+        assert_eq!(dominated_start(&i(&known[..2])), None);
+    }
+
+    #[test]
+    fn level_parameters_refine_and_coarsen_by_the_ratio() {
+        assert_eq!(level_parameter(200, 2), Some(800));
+        assert_eq!(level_parameter(200, -2), Some(50));
+        assert_eq!(level_parameter(3, -2), None);
+        assert_eq!(level_parameter(usize::MAX, 1), None);
+    }
 }
