@@ -4,7 +4,7 @@
 //!
 //! * every value the same (to round-off): `exact`, u_num = 0;
 //! * differences growing at every level: behaviour `diverging`, and Eça
-//!   & Hoekstra's bar for anomalous data, U = 3·Δ_M ([`anomalous_data_bar`]);
+//!   & Hoekstra's bar for anomalous data, U = 3·Δ_M (`anomalous_data_bar`);
 //! * a smooth quantity whose levels converge monotonically at an order
 //!   ≥ `LOWEST_ORDER`: Roache's GCI on the three finest ([`Gci`]), with
 //!   F_s = 1.25 only when every triplet of the family shows an order within
@@ -54,7 +54,7 @@ pub enum Estimator {
     /// The differences grow at every level: no estimate.
     Diverging,
     /// The differences grow at every level: Eça & Hoekstra's bar for
-    /// anomalous data, 3·Δ_M ([`anomalous_data_bar`]); the behaviour
+    /// anomalous data, 3·Δ_M (`anomalous_data_bar`); the behaviour
     /// still reads "diverging".
     DataRange,
     /// A run of the family stopped (diverged): no estimate.
@@ -199,7 +199,7 @@ pub fn assess(inputs: &Inputs) -> Assessment {
 /// P_l,span reach 4.1–19× (0.0400, 0.0277, 0.0269, 0.0269 from N₀ = 400:
 /// 4.1×) and a mean force from N₀ = 100 whose finer levels agree to 0.01 N
 /// 4.02×. Every one stays covered (one P_l family, whose finer levels
-/// alone diverge, gets their 3·Δ_M, [`anomalous_data_bar`]).
+/// alone diverge, gets their 3·Δ_M, `anomalous_data_bar`).
 pub const PRE_ASYMPTOTIC_MARGIN: f64 = 4.0;
 
 /// The fewest diagonal levels left once level 0 is dropped: three, what
