@@ -116,6 +116,14 @@ fn uncertainty_on_the_engine_s_family_gives_the_engine_s_answer() {
         assert_eq!(row["value"], acc["value"], "{speed} m/s: value");
         assert_eq!(row["u_num"], acc["u_num"], "{speed} m/s: u_num");
         assert_eq!(row["estimator"], acc["estimator"], "{speed} m/s");
+        if quantity == "loss_fraction_span" {
+            // no loss at any run: the floor of a loss shorter than the
+            // finest Δt, on the scene's own bar too
+            assert_eq!(row["value"], 0.0, "{row}");
+            assert!(row["u_num"].as_f64().unwrap() > 0.0, "{row}");
+            assert!(row["note"].as_str().unwrap().contains("unseen"), "{row}");
+            assert_eq!(row["u_scene"], row["u_num"], "the scene's bar: {row}");
+        }
         if !met {
             // growing differences: Eça & Hoekstra's bar for anomalous
             // data, wider than EPS, and the record still says "diverging"

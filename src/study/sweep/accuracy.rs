@@ -21,10 +21,10 @@
 //!    (runs made already are reused), gives its u_num. Within EPS: done;
 //!    else one more level on both (a + 1, b + 1), up to [`MAX_CHECKS`]
 //!    checks, each cut down to the point's budget (`budget` × its own run,
-//!    in unknowns × steps) and to scenes the model takes. A point that does
-//!    not reach EPS keeps the candidate of smallest u_num, marked not met.
-//!    Q not smooth: a hopeless check skips its finest run (`Point::hopeless`);
-//!    a met candidate is reported one Δt finer (`confirm`).
+//!    in unknowns × steps) and to scenes the model takes; else the
+//!    candidate of smallest u_num, not met. Not smooth: hopeless checks
+//!    skip their finest run, a met candidate is confirmed one Δt finer
+//!    (`confirm`, outside the budget); smooth: growing differences never meet.
 //!
 //! One queue runs every point's runs ([`run_points`]), the records the same
 //! whatever the order or threads; `run --tolerance` is one point of it.
@@ -46,7 +46,7 @@ use crate::study::cost::run_dof_steps;
 use crate::study::cpu_time::{shares, timed};
 use crate::study::level::Level;
 use crate::study::tolerance::{ErrorModel, LadderFit};
-use crate::study::uncertainty::assess::split_floor;
+use crate::study::uncertainty::assess::{Estimator, split_floor};
 use crate::study::uncertainty::{Assessment, FS_ASYMPTOTIC, FS_CAUTIOUS, RATIO, engine};
 
 /// Checks after the pilots at most: with one more level on both each, a
@@ -785,8 +785,12 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     if p.value(key).is_some() {
         let a = assess_at(p, q, key, |r| r.value);
         let u = a.u_num.unwrap_or(f64::INFINITY);
+        // a smooth quantity whose differences grow (3·Δ_M, `data_range`)
+        // has not converged, and no confirmation follows a smooth one: a
+        // bar within EPS does not end its refinement
+        let growing = q.smooth && a.estimator == Estimator::DataRange;
         p.candidates.push((key, a));
-        if u <= tol.tolerance {
+        if u <= tol.tolerance && !growing {
             return met(p, tol, key);
         }
     }
@@ -1271,6 +1275,12 @@ mod tests {
         let want = FS_CAUTIOUS * 6.25e-5 / 0.8276;
         assert!((f.u_num.unwrap() - want).abs() < 1e-15 * want.max(1.0));
         assert!(f.note.contains("unseen"));
+        // the scene's own bar (level 0) covers as the finest's does
+        assert!(
+            f.u_levels.iter().all(|u| u.is_some_and(|x| x >= want)),
+            "{:?}",
+            f.u_levels
+        );
         let seen = [Some(0.0), Some(1e-3), Some(1.2e-3)];
         assert!(!engine::all_zero(&seen, &split));
         assert!(!engine::all_zero(&[None, Some(0.0), Some(0.0)], &split));

@@ -170,6 +170,11 @@ pub(crate) fn unseen_floor(mut a: Assessment, dt: f64, t_end: f64) -> Assessment
         return a;
     }
     a.u_num = Some(floor);
+    // every level's value is the finest one's (0), so each level's bar is
+    // at least the finest's (|φ_ℓ − φ_fine| + u_num, as for any family)
+    for u in a.u_levels.iter_mut() {
+        *u = Some(u.map_or(floor, |x| x.max(floor)));
+    }
     let why = format!(
         "0 at every run: a loss shorter than the finest Δt ({dt:.3e} s) is unseen, u_num at least {FS_CAUTIOUS} × Δt / t_end"
     );

@@ -340,12 +340,17 @@ pub fn uncertainty_within(
         );
         // the grown family's scenes, when it is one the model takes and
         // within the study's cost bound (`--yes` does not lift it here)
-        let all = (levels < *family::LEVELS.end() && grown <= max_cost)
-            .then(|| family::scenes(&base, levels + 1).ok())
-            .flatten()
-            .filter(|all| {
-                all.iter().map(run_dof_steps).sum::<f64>() <= crate::study::cost::MAX_DOF_STEPS
-            });
+        let built = (levels < *family::LEVELS.end() && grown <= max_cost)
+            .then(|| family::scenes(&base, levels + 1));
+        // a finer level the model refuses (J beyond the exact modes' range,
+        // an N too large) is named, not blamed on the cost
+        let unbuildable = match &built {
+            Some(Err(e)) => Some(e.to_string()),
+            _ => None,
+        };
+        let all = built.and_then(|r| r.ok()).filter(|all| {
+            all.iter().map(run_dof_steps).sum::<f64>() <= crate::study::cost::MAX_DOF_STEPS
+        });
         if let Some(all) = all {
             let wider = family::plan(levels + 1);
             let added: Vec<usize> = (0..wider.len()).filter(|&i| wider[i].1 == levels).collect();
@@ -371,7 +376,9 @@ pub fn uncertainty_within(
             let note = format!(
                 "{why}, so their bars are dominated by it: run --levels {} (the family {grown:.0} runs of the scene{}), or start from a finer scene ({} × 2, time.step ÷ 2)",
                 levels + 1,
-                if grown > max_cost && max_cost > 0.0 {
+                if let Some(e) = &unbuildable {
+                    format!("; its finer level cannot be built: {e}")
+                } else if grown > max_cost && max_cost > 0.0 {
                     format!(", above --max-cost {max_cost}")
                 } else if grown <= max_cost {
                     format!(
