@@ -13,16 +13,7 @@ use common::{out_dir, taut_bin};
 /// 120 and 140 m/s the contact is lost in the span (outside the support
 /// zones, 4ℓ_b = 0.26 m) and the points are refined, at 100 m/s the
 /// in-span P_l is 0 at every pilot; 0.1 s in all.
-const MAP: [&str; 8] = [
-    "--set",
-    "mesh.kind=galerkin",
-    "--set",
-    "mesh.modes=100",
-    "--set",
-    "time.step=2e-4",
-    "--set",
-    "integrator={ method = \"modal_exact\" }",
-];
+const MAP: [&str; 8] = common::SMALL_MODAL;
 
 /// `taut sweep scenes/reference.toml --vary … MAP --tolerance TOL ARGS
 /// --out DIR`: its status, sweep.csv and stderr.

@@ -435,18 +435,12 @@ pub(super) fn log_log(
     root.fill(&WHITE)?;
     let root = root.titled(caption, ("sans-serif", 17))?;
     let (plot_area, legend_area) = root.split_horizontally(style::legend_layout(SIZE).0[2]);
-    let mut chart = style::log_log_chart(&plot_area, (x0, x1), (y0, y1))?;
-    chart
-        .configure_mesh()
-        .x_desc(x_desc)
-        .y_desc("relative error |q − q_ref| / |q|")
-        .axis_desc_style(("sans-serif", 14))
-        .label_style(("sans-serif", 12))
-        .bold_line_style(BLACK.mix(0.18))
-        .light_line_style(BLACK.mix(0.06))
-        .x_label_formatter(&|x| style::log_label(*x))
-        .y_label_formatter(&|y| style::log_label(*y))
-        .draw()?;
+    let mut chart = style::log_log_chart(
+        &plot_area,
+        (x0, x1),
+        (y0, y1),
+        (x_desc, "relative error |q − q_ref| / |q|"),
+    )?;
     let mut key: Vec<(String, style::Key)> = Vec::new();
     for &(i, (label, v)) in &series {
         let (col, m) = style::series_style(i);

@@ -161,18 +161,12 @@ fn draw(path: &Path, p: &Precision) -> std::result::Result<(), Box<dyn std::erro
     root.fill(&WHITE)?;
     let root = root.titled(title, ("sans-serif", 18))?;
     let (plot_area, legend_area) = root.split_horizontally(style::legend_layout(SIZE).0[2]);
-    let mut chart = style::log_log_chart(&plot_area, (x0, x1), (y0, y1))?;
-    chart
-        .configure_mesh()
-        .x_desc("wall time per run (s)")
-        .y_desc("relative RMS force error")
-        .axis_desc_style(("sans-serif", 14))
-        .label_style(("sans-serif", 12))
-        .bold_line_style(BLACK.mix(0.18))
-        .light_line_style(BLACK.mix(0.06))
-        .x_label_formatter(&|x| style::log_label(*x))
-        .y_label_formatter(&|y| style::log_label(*y))
-        .draw()?;
+    let mut chart = style::log_log_chart(
+        &plot_area,
+        (x0, x1),
+        (y0, y1),
+        ("wall time per run (s)", "relative RMS force error"),
+    )?;
     let levels = p.rows.iter().map(|r| r.mesh_level).max().unwrap_or(0);
     // one family of lines per (method, formulation), in row order
     let key_of = |r: &PrecisionRow| {

@@ -296,16 +296,18 @@ pub(crate) type LogLog = plotters::coord::cartesian::Cartesian2d<
     plotters::coord::combinators::WithKeyPoints<plotters::coord::combinators::LogCoord<f64>>,
 >;
 
-/// A log–log chart on `area` over `x` and `y` with decade ticks: the one
-/// builder the work–precision and convergence plots share.
+/// A log–log chart on `area` over `x` and `y` with decade ticks, its grid
+/// and axes drawn and described by `x_desc`, `y_desc`: the one builder the
+/// work–precision and convergence plots share.
 pub(crate) fn log_log_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, plotters::coord::Shift>,
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
+    (x_desc, y_desc): (&str, &str),
 ) -> std::result::Result<ChartContext<'a, DB, LogLog>, DrawingAreaErrorKind<DB::ErrorType>> {
     let (xm, xn) = decade_ticks(x0, x1);
     let (ym, yn) = decade_ticks(y0, y1);
-    ChartBuilder::on(area)
+    let mut chart = ChartBuilder::on(area)
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(70)
@@ -318,7 +320,19 @@ pub(crate) fn log_log_chart<'a, DB: DrawingBackend>(
                 .log_scale()
                 .with_key_points(ym)
                 .with_light_points(yn),
-        )
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .axis_desc_style(("sans-serif", 14))
+        .label_style(("sans-serif", 12))
+        .bold_line_style(BLACK.mix(0.18))
+        .light_line_style(BLACK.mix(0.06))
+        .x_label_formatter(&|x| log_label(*x))
+        .y_label_formatter(&|y| log_label(*y))
+        .draw()?;
+    Ok(chart)
 }
 
 /// Share of the data left out at each end when a robust range is chosen.

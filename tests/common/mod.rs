@@ -245,3 +245,17 @@ pub fn folder_files(dir: &Path) -> std::collections::BTreeMap<String, Vec<u8>> {
         })
         .collect()
 }
+
+/// The reference case on a small modal basis (J = 100, Δt = 2e-4 s),
+/// as `--set` arguments: every run of an accuracy-targeted point takes
+/// milliseconds.
+pub const SMALL_MODAL: [&str; 8] = [
+    "--set",
+    "mesh.kind=galerkin",
+    "--set",
+    "mesh.modes=100",
+    "--set",
+    "time.step=2e-4",
+    "--set",
+    "integrator={ method = \"modal_exact\" }",
+];

@@ -935,11 +935,7 @@ fn confirmed(a: &Assessment, at: Option<f64>, half: Option<f64>) -> Assessment {
     let why = format!(
         "at half the candidate's Δt, which moved it by {change:.3e}: u_num at least {FS_CAUTIOUS} times that"
     );
-    a.note = if a.note.is_empty() {
-        why
-    } else {
-        format!("{}; {why}", a.note)
-    };
+    a.add_note(why);
     a
 }
 

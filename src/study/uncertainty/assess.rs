@@ -142,6 +142,15 @@ pub struct Assessment {
 }
 
 impl Assessment {
+    /// `why` after the notes already made (`; ` between them).
+    pub(crate) fn add_note(&mut self, why: String) {
+        self.note = if self.note.is_empty() {
+            why
+        } else {
+            format!("{}; {why}", self.note)
+        };
+    }
+
     fn none(estimator: Estimator, inputs: &Inputs, note: String) -> Self {
         Assessment {
             value: inputs.diagonal.last().copied().flatten(),
@@ -323,11 +332,7 @@ fn assess_with_floor(inputs: &Inputs) -> Assessment {
         let why = format!(
             "u_num widened from {below:.3e} to the split floor: the finest step's mesh and Δt parts, each carried down at its own order (≤ {FLOOR_ORDER}), added without their signs, times {FS_CAUTIOUS}"
         );
-        a.note = if a.note.is_empty() {
-            why
-        } else {
-            format!("{}; {why}", a.note)
-        };
+        a.add_note(why);
     }
     a
 }

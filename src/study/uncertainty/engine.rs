@@ -178,11 +178,7 @@ pub(crate) fn unseen_floor(mut a: Assessment, dt: f64, t_end: f64) -> Assessment
     let why = format!(
         "0 at every run: a loss shorter than the finest Δt ({dt:.3e} s) is unseen, u_num at least {FS_CAUTIOUS} × Δt / t_end"
     );
-    a.note = if a.note.is_empty() {
-        why
-    } else {
-        format!("{}; {why}", a.note)
-    };
+    a.add_note(why);
     a
 }
 

@@ -13,7 +13,6 @@
 
 use std::io::Write;
 
-use serde_json::json;
 use taut::error::Result;
 use taut::record::zone::support_zone_of;
 use taut::resolve::resolve_scene;
@@ -292,28 +291,13 @@ pub fn run_case(case: &HeldOut) -> Result<Vec<(Row, String)>> {
 }
 
 /// Write the held-out pairs to `path`: the stored pairs' fields
-/// ([`super::replay::write`]) and how the truth was computed.
+/// ([`super::replay::row_json`]) and how the truth was computed.
 fn write(path: &str, rows: &[(Row, String)]) -> std::io::Result<()> {
     let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
     for (r, how) in rows {
-        writeln!(
-            f,
-            "{}",
-            json!({
-                "case": r.case,
-                "quantity": r.quantity,
-                "start": [r.start.0, r.start.1],
-                "finest": [r.finest.0, r.finest.1],
-                "truth": r.truth,
-                "truth_source": how,
-                "truth_spread": r.truth_spread,
-                "support_zone": r.support_zone,
-                "diagonal": r.diagonal,
-                "space": r.space,
-                "formal": [r.formal.0, r.formal.1],
-                "smooth": r.smooth,
-            })
-        )?;
+        let mut line = super::replay::row_json(r);
+        line["truth_source"] = how.as_str().into();
+        writeln!(f, "{line}")?;
     }
     f.flush()
 }

@@ -15,10 +15,15 @@ use taut::study::uncertainty::{FS_ASYMPTOTIC, FS_CAUTIOUS, Inputs, RATIO, assess
 
 use super::{COVERAGE_TARGET, Row, summary, table_rows};
 
-/// Write `rows`, one JSON object a line.
+/// Write `rows`, one JSON object a line ([`row_json`]).
 pub fn write(path: &str, rows: &[Row]) -> std::io::Result<()> {
-    write_lines(path, rows, |r| {
-        json!({
+    write_lines(path, rows, row_json)
+}
+
+/// One stored pair as its JSON line: the family, its truth and how to
+/// assess it again ([`read`]).
+pub fn row_json(r: &Row) -> Value {
+    json!({
             "case": r.case,
             "quantity": r.quantity,
             "start": [r.start.0, r.start.1],
@@ -30,7 +35,6 @@ pub fn write(path: &str, rows: &[Row]) -> std::io::Result<()> {
             "space": r.space,
             "formal": [r.formal.0, r.formal.1],
             "smooth": r.smooth,
-        })
     })
 }
 
@@ -249,29 +253,37 @@ fn finest_three(r: &Row) -> Option<(f64, f64, f64)> {
     Some((r.diagonal[k - 3]?, r.diagonal[k - 2]?, r.diagonal[k - 1]?))
 }
 
+/// The finest three diagonal levels' observed order p and Richardson
+/// error |ε₂₁|/(r^p − 1), where they converge monotonically (0 < R < 1);
+/// what Roache's GCI and Xing & Stern's estimator scale by their F_s.
+fn richardson_finest(r: &Row) -> Option<(f64, f64)> {
+    let (s3, s2, s1) = finest_three(r)?;
+    let (e32, e21) = (s2 - s3, s1 - s2);
+    let ratio = e21 / e32;
+    if !(ratio > 0.0 && ratio < 1.0) {
+        return None;
+    }
+    let rr = RATIO as f64;
+    let p = (1.0 / ratio).ln() / rr.ln();
+    Some((p, (e21 / (rr.powf(p) - 1.0)).abs()))
+}
+
 /// Roache's GCI of the finest three diagonal levels as published (no
 /// carrying down of a fast finest difference, which taut adds): F_s
 /// [`FS_ASYMPTOTIC`] when the observed order is within 0.5 of the formal
 /// one (the smaller of space and time: the diagonal refines both), else
 /// [`FS_CAUTIOUS`]; NaN where the three do not converge monotonically.
 fn roache_gci(r: &Row) -> f64 {
-    let Some((s3, s2, s1)) = finest_three(r) else {
+    let Some((p, delta)) = richardson_finest(r) else {
         return f64::NAN;
     };
-    let (e32, e21) = (s2 - s3, s1 - s2);
-    let ratio = e21 / e32;
-    if !(ratio > 0.0 && ratio < 1.0) {
-        return f64::NAN;
-    }
-    let rr = RATIO as f64;
-    let p = (1.0 / ratio).ln() / rr.ln();
     let formal = r.formal.0.min(r.formal.1);
     let fs = if (p - formal).abs() <= 0.5 {
         FS_ASYMPTOTIC
     } else {
         FS_CAUTIOUS
     };
-    fs * (e21 / (rr.powf(p) - 1.0)).abs()
+    fs * delta
 }
 
 /// Eça & Hoekstra's least-squares estimator (the library's
@@ -376,28 +388,16 @@ fn split_sum(r: &Row) -> f64 {
 /// variables, and the slower one rules). NaN where the three levels do not
 /// converge monotonically (no p; the method gives no estimate there).
 fn xing_stern(r: &Row) -> f64 {
-    let k = r.diagonal.len();
-    if k < 3 {
-        return f64::NAN;
-    }
-    let (Some(s3), Some(s2), Some(s1)) = (r.diagonal[k - 3], r.diagonal[k - 2], r.diagonal[k - 1])
-    else {
+    let Some((p, delta)) = richardson_finest(r) else {
         return f64::NAN;
     };
-    let (e32, e21) = (s2 - s3, s1 - s2);
-    let ratio = e21 / e32;
-    if !(ratio > 0.0 && ratio < 1.0) {
-        return f64::NAN;
-    }
-    let rr = RATIO as f64;
-    let p = (1.0 / ratio).ln() / rr.ln();
     let big_p = p / r.formal.0.min(r.formal.1);
     let fs = if big_p <= 1.0 {
         2.45 - 0.85 * big_p
     } else {
         16.4 * big_p - 14.8
     };
-    fs * (e21 / (rr.powf(p) - 1.0)).abs()
+    fs * delta
 }
 
 /// Safety factors of the frontier's split estimators.
