@@ -295,3 +295,46 @@ fn a_point_predicted_beyond_its_budget_stops_when_the_model_says_so() {
         assert!(cells[3].parse::<f64>().unwrap() > 0.0, "{timing}");
     }
 }
+
+/// Where a point's time went: its record lists every run it made, with
+/// its role, resolution, work and CPU seconds, summing to the point's own
+/// totals; a point not met says why it stopped where it did.
+#[test]
+fn each_point_records_the_runs_it_made() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = out_dir(&tmp, "runs");
+    // 1e-5 is out of reach at --max-cost 16: every point stops not met
+    let (ok, _, err) = sweep_at(&dir, "1e-5", &["--max-cost", "16"]);
+    assert!(ok, "{err}");
+    let mut roles = std::collections::BTreeSet::new();
+    for i in 0..3 {
+        let text = std::fs::read_to_string(dir.join(format!("runs/{i:06}.json"))).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let a = &v["accuracy"];
+        let made = a["runs_made"].as_array().unwrap();
+        assert_eq!(made.len() as u64, a["runs"].as_u64().unwrap(), "{a}");
+        let work: f64 = made.iter().map(|r| r["dof_steps"].as_f64().unwrap()).sum();
+        assert_eq!(work, a["dof_steps"].as_f64().unwrap(), "{a}");
+        if let Some(cpu) = v["cpu_seconds"].as_f64() {
+            let sum: f64 = made
+                .iter()
+                .map(|r| r["cpu_seconds"].as_f64().unwrap())
+                .sum();
+            assert!((sum - cpu).abs() <= 1e-9 * cpu.max(1.0), "{sum} {cpu}");
+        }
+        let pilots = made.iter().filter(|r| r["role"] == "pilot").count();
+        let reported: Vec<_> = made.iter().filter(|r| r["role"] == "reported").collect();
+        assert!(pilots >= 4, "{a}");
+        assert_eq!(reported.len(), 1, "{a}");
+        assert_eq!(reported[0]["dt"], a["dt"]);
+        assert_eq!(reported[0]["modes"], a["modes"]);
+        roles.extend(made.iter().map(|r| r["role"].as_str().unwrap().to_string()));
+        assert!(!a["met"].as_bool().unwrap(), "{a}");
+        let why = a["not_met"].as_str().unwrap();
+        assert!(
+            why.contains("--max-cost 16") || why.contains("checks"),
+            "{why}"
+        );
+    }
+    assert!(roles.contains("check"), "{roles:?}");
+}

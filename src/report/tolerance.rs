@@ -66,9 +66,9 @@ pub(crate) fn write_tolerant_run(dir: &Path, r: &TolerantRun) -> Result<Summary>
 /// a modal basis) and Δt₀/2^b; `u_num` is given on the run that ends a
 /// candidate's family. Unknown values are empty cells.
 pub fn accuracy_table(a: &Accuracy) -> Table {
-    let rows = &a.runs_made;
+    let rows = &a.point.runs_made;
     let columns = [
-        Column::Label(rows.iter().map(|r| r.role.to_string()).collect()),
+        Column::Label(rows.iter().map(|r| r.role.name().to_string()).collect()),
         Column::Label(rows.iter().map(|r| r.mesh_exponent.to_string()).collect()),
         Column::Label(rows.iter().map(|r| r.step_exponent.to_string()).collect()),
         Column::Count(rows.iter().map(|r| r.elements as u64).collect()),
@@ -102,6 +102,7 @@ pub fn accuracy_header(a: &Accuracy) -> String {
         a.definition
     );
     let own = a
+        .point
         .runs_made
         .iter()
         .find(|r| (r.mesh_exponent, r.step_exponent) == (0, 0))
@@ -120,7 +121,7 @@ pub fn accuracy_header(a: &Accuracy) -> String {
     };
     let fe = match p.modes {
         // a modal basis's FE mesh grows with J
-        Some(_) if a.runs_made.iter().any(|r| r.elements != p.elements) => {
+        Some(_) if a.point.runs_made.iter().any(|r| r.elements != p.elements) => {
             format!(" --set mesh.elements={}", p.elements)
         }
         _ => String::new(),

@@ -141,6 +141,9 @@ struct Point {
     staged: Option<f64>,
     /// The candidates confirmed by a run at half their Δt, in order.
     confirmed: Vec<Key>,
+    /// The last check whose finest run was not made ([`Point::hopeless`]),
+    /// with the least u_num its candidate could have had.
+    unmade: Option<(Key, f64)>,
     /// Runs of the current stage that stopped, waiting for the stage's
     /// other runs: the error reported is then the coarsest run's, the same
     /// whatever order the workers ended them in.
@@ -229,21 +232,29 @@ impl Point {
     /// check's cost) changes no point's outcome. Only once a candidate has
     /// a u_num: a point not met still reports a bar.
     fn hopeless(&self, k: Key) -> bool {
-        let Some(eps) = self.staged else {
-            return false;
-        };
+        match (self.staged, self.least_u(k)) {
+            (Some(eps), Some(least)) => least > eps,
+            _ => false,
+        }
+    }
+
+    /// The least u_num candidate `k` can have, from its family's runs but
+    /// the finest ([`Point::hopeless`]); None before any candidate has a
+    /// u_num, or when a run it needs is missing or undefined.
+    fn least_u(&self, k: Key) -> Option<f64> {
+        self.staged?;
         if !self.candidates.iter().any(|c| c.1.u_num.is_some()) {
-            return false;
+            return None;
         }
         let v = |f: Key| self.value(f).flatten();
         let [c, m, _] = family(k);
         let ([Some(d0), Some(d1)], [Some(s0), Some(s1)]) =
             ([v(c), v(m)], [v((k.0 - 1, k.1 - 2)), v((k.0, k.1 - 1))])
         else {
-            return false;
+            return None;
         };
         let least = [Some(d0), Some(d1), Some(s1)];
-        split_floor(&least, &[Some(s0), Some(s1)], RATIO as f64).is_some_and(|f| f > eps)
+        split_floor(&least, &[Some(s0), Some(s1)], RATIO as f64)
     }
 }
 
@@ -293,16 +304,15 @@ pub(crate) struct Finished {
 pub(crate) struct Detail {
     /// The reported run's scene and output (none when the point stopped).
     pub(crate) chosen: Option<(Resolved, RunOutput)>,
-    /// Every run made, coarsest first.
-    pub(crate) runs: Vec<RunMade>,
     /// Every target at the reported run, assessed on its family.
     pub(crate) results: Vec<(&'static Quantity, Assessment)>,
     /// The error of a run or scene that stopped the point.
     pub(crate) error: Option<Error>,
 }
 
-/// One run a point made (a row of `accuracy.csv`).
-#[derive(Debug, Clone, serde::Serialize)]
+/// One run a point made (a row of `accuracy.csv`, an entry of a sweep
+/// point's `runs_made`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunMade {
     /// a of N₀·2^a (J₀·2^a on a modal basis).
     pub mesh_exponent: i32,
@@ -322,8 +332,38 @@ pub struct RunMade {
     /// u_num when the run ends a candidate's family (null otherwise, or
     /// when none could be given).
     pub u_num: Option<f64>,
-    /// `pilot`, `check` or `reported` (the run whose results are reported).
-    pub role: &'static str,
+    /// CPU seconds of the run (its share of its batch's; absent without a
+    /// thread clock).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpu_seconds: Option<f64>,
+    /// Why the run was made.
+    pub role: RunRole,
+}
+
+/// Why a point made a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunRole {
+    /// One of the five pilots around the point's own resolution.
+    Pilot,
+    /// A run of a check's family after the pilots.
+    Check,
+    /// A met candidate's run at half its Δt (a quantity that is not smooth).
+    Confirm,
+    /// The run whose results are reported.
+    Reported,
+}
+
+impl RunRole {
+    /// The role as written in `accuracy.csv`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RunRole::Pilot => "pilot",
+            RunRole::Check => "check",
+            RunRole::Confirm => "confirm",
+            RunRole::Reported => "reported",
+        }
+    }
 }
 
 /// Run the points `todo` ([`run_points`]), each finished point handed to
@@ -622,6 +662,7 @@ fn start(spec: &SweepSpec, base: Option<&Table>, id: &str, index: usize) -> Poin
             .filter(|t| !t.spec().smooth)
             .map(|t| t.tolerance),
         confirmed: Vec::new(),
+        unmade: None,
         failed: Vec::new(),
     };
     match spec.resolve_with(base, index) {
@@ -782,7 +823,10 @@ fn advance(p: &mut Point, tol: &SweepTolerance) {
     let formal = formal_of(p, q, key);
     // a check whose finest run was not made (`Point::hopeless`) missed
     // without an assessment
-    if p.value(key).is_some() {
+    if p.value(key).is_none() {
+        p.unmade = p.least_u(key).map(|u| (key, u));
+    } else {
+        p.unmade = None;
         let a = assess_at(p, q, key, |r| r.value);
         let u = a.u_num.unwrap_or(f64::INFINITY);
         // a smooth quantity whose differences grow (3·Δ_M, `data_range`)
@@ -825,6 +869,7 @@ fn refine(p: &mut Point, tol: &SweepTolerance, key: Key, formal: (f64, f64), fro
         }
     };
     let mut next = (next.0.min(MAX_EXPONENT), next.1.min(MAX_EXPONENT));
+    let wanted = next;
     // within the budget: the plan cut down, the larger refinement first,
     // so a point out of reach still gets as close as its budget allows
     // a scene the model refuses (J beyond the exact modes' range) is out of
@@ -849,18 +894,57 @@ fn refine(p: &mut Point, tol: &SweepTolerance, key: Key, formal: (f64, f64), fro
     let refines = next.0 > key.0 || next.1 > key.1;
     let affordable = fits(p, next);
     if !refines || !affordable || p.checks >= MAX_CHECKS {
-        p.not_met = Some(if p.checks >= MAX_CHECKS {
+        let mut why = if p.checks >= MAX_CHECKS {
             format!("{MAX_CHECKS} checks after the pilots did not reach it")
         } else {
             format!(
                 "its budget (--max-cost {}) allows no further refinement",
                 tol.budget
             )
-        });
+        };
+        why.push_str(&stopped_because(p, wanted));
+        p.not_met = Some(why);
         return finish_best(p, tol, key);
     }
     p.checks += 1;
     p.stage = Stage::Check(next);
+}
+
+/// What a point not met adds to why it stopped: a finer level its scene
+/// refuses (J beyond the exact modes' range, say) on the way to the check
+/// it `wanted`, and the last check whose finest run was not made, with the
+/// least u_num that check could have given.
+fn stopped_because(p: &Point, wanted: Key) -> String {
+    let mut s = String::new();
+    if let Some(e) = check_runs(wanted)
+        .iter()
+        .filter(|&&f| p.value(f).is_none())
+        .find_map(|&f| p.scene(f).err())
+    {
+        s.push_str(&match e {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => format!("; a finer level is out of range (`{field}` = {value}: {allowed})"),
+            other => format!("; a finer level is refused ({other})"),
+        });
+    }
+    if let Some((k, u)) = p.unmade {
+        let at = match (p.level, p.scene(k)) {
+            (Some(l), Ok(sc)) => format!(
+                " ({} = {}, Δt = {:e} s)",
+                l.symbol(),
+                sc.discretization.modes().unwrap_or(sc.elements),
+                sc.dt
+            ),
+            _ => String::new(),
+        };
+        s.push_str(&format!(
+            "; its last check{at} did not make its finest run, as u_num is at least {u:.3e} without it"
+        ));
+    }
+    s
 }
 
 /// A candidate within EPS: done, or, when Q is not smooth and the
@@ -982,38 +1066,6 @@ fn finished(mut p: Point, ctx: &Ctx) -> Option<Finished> {
 /// What a point run alone reports beyond its record.
 fn detail(p: &mut Point) -> Detail {
     let reported = p.reported;
-    let u_of = |k: Key| {
-        p.candidates
-            .iter()
-            .rfind(|c| c.0 == k)
-            .and_then(|c| c.1.u_num)
-    };
-    let mut runs: Vec<RunMade> = p
-        .runs
-        .iter()
-        .map(|r| {
-            let sc = p.scene(r.key).ok();
-            RunMade {
-                mesh_exponent: r.key.0,
-                step_exponent: r.key.1,
-                elements: sc.as_ref().map_or(0, |s| s.elements),
-                modes: sc.as_ref().and_then(|s| s.discretization.modes()),
-                dt: sc.as_ref().map_or(f64::NAN, |s| s.dt),
-                value: r.value,
-                dof_steps: r.dof_steps,
-                u_num: u_of(r.key),
-                role: if Some(r.key) == reported {
-                    "reported"
-                } else if PILOTS.contains(&r.key) {
-                    "pilot"
-                } else {
-                    "check"
-                },
-            }
-        })
-        .collect();
-    // the queue's order is the workers' and not the point's: coarsest first
-    runs.sort_by_key(|r| coarsest_first((r.mesh_exponent, r.step_exponent)));
     let chosen = reported.and_then(|k| {
         let out = p.runs.iter_mut().find(|r| r.key == k)?.output.take()?;
         Some((p.scene(k).ok()?, out))
@@ -1038,10 +1090,50 @@ fn detail(p: &mut Point) -> Detail {
     };
     Detail {
         chosen,
-        runs,
         results,
         error: p.error.take(),
     }
+}
+
+/// Every run point `p` made, coarsest first (the queue's order is the
+/// workers' and not the point's), each with its role and, when it ends a
+/// candidate's family, that candidate's u_num.
+fn runs_made(p: &Point) -> Vec<RunMade> {
+    let u_of = |k: Key| {
+        p.candidates
+            .iter()
+            .rfind(|c| c.0 == k)
+            .and_then(|c| c.1.u_num)
+    };
+    let mut runs: Vec<RunMade> = p
+        .runs
+        .iter()
+        .map(|r| {
+            let sc = p.scene(r.key).ok();
+            RunMade {
+                mesh_exponent: r.key.0,
+                step_exponent: r.key.1,
+                elements: sc.as_ref().map_or(0, |s| s.elements),
+                modes: sc.as_ref().and_then(|s| s.discretization.modes()),
+                dt: sc.as_ref().map_or(f64::NAN, |s| s.dt),
+                value: r.value,
+                dof_steps: r.dof_steps,
+                u_num: u_of(r.key),
+                cpu_seconds: r.cpu,
+                role: if Some(r.key) == p.reported {
+                    RunRole::Reported
+                } else if PILOTS.contains(&r.key) {
+                    RunRole::Pilot
+                } else if p.confirmed.iter().any(|&k| confirm_key(k) == r.key) {
+                    RunRole::Confirm
+                } else {
+                    RunRole::Check
+                },
+            }
+        })
+        .collect();
+    runs.sort_by_key(|r| coarsest_first((r.mesh_exponent, r.step_exponent)));
+    runs
 }
 
 /// Why a point is not refined further: the model puts reaching EPS above
@@ -1238,12 +1330,17 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
         },
         not_met: (!met).then(|| p.not_met.clone()).flatten(),
         u_num_ladder: p.candidates.iter().map(|c| c.1.u_num).collect(),
+        runs_made: Vec::new(),
     });
     record.wall_seconds = None;
     record.dof_steps = Some(p.spent());
     record.cpu_seconds = p.cpu();
     p.record = Some(record);
     p.reported = Some(key);
+    let runs = runs_made(p);
+    if let Some(a) = p.record.as_mut().and_then(|r| r.accuracy.as_mut()) {
+        a.runs_made = runs;
+    }
     p.stage = Stage::Done;
 }
 

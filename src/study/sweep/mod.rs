@@ -48,7 +48,7 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 
 pub(crate) use accuracy::Detail;
-pub use accuracy::{CHUNK, RunMade};
+pub use accuracy::{CHUNK, RunMade, RunRole};
 pub use axis::{Axis, AxisTarget, Ratio};
 pub(crate) use batch::AUTO_BATCH_LANES;
 pub use batch::BatchWidth;

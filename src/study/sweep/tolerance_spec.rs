@@ -4,6 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::accuracy::RunMade;
+
 use super::nan_as_null;
 use crate::error::{Error, Result};
 use crate::quantity::{Offer, Quantity};
@@ -127,6 +129,10 @@ pub struct PointAccuracy {
     /// resolution (from the pilots), then each check's (null: none given).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub u_num_ladder: Vec<Option<f64>>,
+    /// Every run made for the point, coarsest first, each with its cost:
+    /// where the point's time went (`accuracy.csv` of `run --tolerance`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub runs_made: Vec<RunMade>,
 }
 
 /// Check that every point's level parameter can be coarsened by

@@ -93,6 +93,7 @@ mod tests {
             predicted_cost: None,
             not_met: None,
             u_num_ladder: vec![],
+            runs_made: vec![],
         });
         r
     }

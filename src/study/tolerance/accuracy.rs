@@ -7,7 +7,7 @@ use serde::Serialize;
 use crate::error::{Error, Result};
 use crate::resolve::Resolved;
 use crate::run::RunOutput;
-use crate::study::sweep::{Detail, PointAccuracy, RunMade, SweepRecord, SweepTolerance};
+use crate::study::sweep::{Detail, PointAccuracy, SweepRecord, SweepTolerance};
 
 /// The u_num of one result of the reported run, from its own family.
 #[derive(Debug, Clone, Serialize)]
@@ -41,13 +41,12 @@ pub struct Accuracy {
     /// multiple of the scene's own run (`--max-cost`).
     pub max_cost: f64,
     /// What the point reached: exactly a sweep point's accuracy (value,
-    /// u_num, resolution, runs, estimator, …).
+    /// u_num, resolution, runs, estimator, every run made as the rows of
+    /// `accuracy.csv`, …).
     #[serde(flatten)]
     pub point: PointAccuracy,
     /// Steps of the reported run.
     pub steps: usize,
-    /// Every run made, coarsest first (`accuracy.csv`).
-    pub runs_made: Vec<RunMade>,
     /// A u_num on every result a sweep can target, at the reported run.
     pub results: Vec<ResultEstimate>,
 }
@@ -100,7 +99,6 @@ pub(super) fn tolerant_run(
         tolerance: tol.tolerance,
         max_cost: tol.budget,
         steps: output.steps,
-        runs_made: detail.runs,
         results,
         point,
     };
@@ -134,8 +132,7 @@ fn refusal(tol: &SweepTolerance, p: &PointAccuracy, detail: &Detail) -> Error {
         format!("no u_num could be given (the family's values are {how})")
     };
     let own = p.dof_steps
-        / detail
-            .runs
+        / p.runs_made
             .iter()
             .find(|r| (r.mesh_exponent, r.step_exponent) == (0, 0))
             .map_or(f64::NAN, |r| r.dof_steps);
