@@ -197,3 +197,84 @@ impl LayerRow<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::FastShapes;
+    use super::super::tests::{REFERENCE, shapes};
+    use super::*;
+    use crate::numeric::lanes;
+    use crate::scene::Support::{Clamped, Pinned};
+
+    /// The values of `f` at `x` by [`BlocksAvx512`] (the whole blocks, the
+    /// layer terms added in registers) and [`Blocks::tail_into`], or
+    /// `None` where [`FastShapes::blocks_at`] declines.
+    ///
+    /// # Safety
+    /// The CPU supports AVX-512F.
+    #[target_feature(enable = "avx512f")]
+    unsafe fn by_blocks(f: &FastShapes, x: f64, out: &mut [f64]) -> Option<bool> {
+        let mut b = f.blocks_at(x)?;
+        let full = b.full();
+        // SAFETY: AVX-512F (the contract); out holds J ≥ full.
+        unsafe {
+            let mut v = BlocksAvx512::new(&b);
+            for at in (0..full).step_by(BLOCK) {
+                for (u, q) in v.next(&b, at).into_iter().enumerate() {
+                    _mm512_storeu_pd(out.as_mut_ptr().add(at + 8 * u), q);
+                }
+            }
+            v.finish(&mut b);
+        }
+        b.tail_into(&mut out[full..]);
+        Some(b.layered > 0)
+    }
+
+    /// The blocks in AVX-512 registers, the boundary layers' terms added
+    /// there (masked in a row's last partial register), give the bits of
+    /// [`FastShapes::values_into`] (whose AVX2 and scalar paths agree bit
+    /// for bit, `the_vector_and_scalar_paths_give_the_same_bits`): each
+    /// support pair with a layer, one end or both, mirrored or not, J with
+    /// and without a partial block, points crowded towards both ends.
+    #[test]
+    fn the_avx512_blocks_give_the_values_bit_for_bit() {
+        if !lanes::avx512() {
+            return;
+        }
+        const BARE: (f64, f64, f64, f64) = (3.0, 0.0, 2.0, 1.7);
+        let mut layered = 0;
+        for (case, ends) in [
+            (REFERENCE, (Clamped, Pinned)),
+            (REFERENCE, (Pinned, Clamped)),
+            (REFERENCE, (Clamped, Clamped)),
+            (REFERENCE, (Pinned, Pinned)),
+            (BARE, (Clamped, Clamped)),
+        ] {
+            for j in [5, 16, 61, 803] {
+                let s = shapes(case, ends, j);
+                let f = FastShapes::new(&s);
+                let (mut a, mut b) = (vec![0.0; j], vec![0.0; j]);
+                for i in 0..=600 {
+                    let u = (i as f64 / 600.0).powi(3);
+                    for x in [case.3 * u, case.3 * (1.0 - u)] {
+                        f.values_into(x, &mut a);
+                        b.fill(f64::NAN);
+                        // SAFETY: AVX-512F checked above.
+                        let Some(l) = (unsafe { by_blocks(&f, x, &mut b) }) else {
+                            continue;
+                        };
+                        layered += usize::from(l);
+                        for (u, v) in a.iter().zip(&b) {
+                            assert_eq!(
+                                u.to_bits(),
+                                v.to_bits(),
+                                "{case:?} {ends:?} J = {j} x = {x}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(layered > 1000, "the layers were met: {layered}");
+    }
+}
