@@ -497,7 +497,9 @@ impl FastShapes {
     /// `integrate/modal_exact.rs`): the same operations as
     /// [`FastShapes::values_into`], so the same bits. Within a clamped
     /// end's boundary layer the first blocks, those a layer row reaches,
-    /// are evaluated whole first ([`Blocks::layered_into`]); `None` where a
+    /// are evaluated whole first ([`Blocks::layered_into`]), or, in
+    /// AVX-512 registers, get their layer terms block by block
+    /// ([`BlocksAvx512`]); `None` where a
     /// row reaches past the whole blocks (take [`FastShapes::values_into`]
     /// there). Inlined into its caller, so that in the fused step (compiled
     /// for AVX2 + FMA) the first block's products use the FMA instruction,

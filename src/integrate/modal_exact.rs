@@ -346,7 +346,8 @@ fn free_pair_range(
 /// is stored and used by the free step of its modes while in registers
 /// (module docs, "One step"); within a clamped end's boundary layer, the
 /// blocks a layer row reaches take their shapes whole first, then their
-/// fused pass; at constant speed the shapes are rotated phasors
+/// fused pass (with AVX-512F one pass of eight modes a register, the layer
+/// terms added in registers: `modal_table_avx512.rs`); at constant speed the shapes are rotated phasors
 /// ([`rotate_free_pair`]). A deferred update (`pass.deferred`) is added by
 /// the same passes. The same operations as separate passes, so the same
 /// bits.
