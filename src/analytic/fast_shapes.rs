@@ -24,6 +24,11 @@ use super::mode_shapes::{Ends, ModeShapes};
 use crate::numeric::lanes;
 use std::f64::consts::PI;
 
+#[cfg(target_arch = "x86_64")]
+mod avx512;
+#[cfg(target_arch = "x86_64")]
+pub(crate) use avx512::BlocksAvx512;
+
 /// Modes advanced together by the rotation recurrence ([`FastShapes`]): four
 /// AVX2 vectors of independent chains, so the chain's latency is hidden,
 /// and a chain of J/16 products.
@@ -180,18 +185,28 @@ impl Layer {
         }
     }
 
+    /// The row that applies at `d`, its modes' α (the same length) and
+    /// `δ = d − kΔ`; `None` beyond the last row.
+    #[inline(always)]
+    fn row_at(&self, d: f64) -> Option<(&[f64], &[f64], f64)> {
+        let k = (d / self.spacing).round() as usize;
+        if k + 1 >= self.starts.len() {
+            return None;
+        }
+        let delta = d - k as f64 * self.spacing;
+        let row = &self.values[self.starts[k]..self.starts[k + 1]];
+        Some((row, &self.alpha[..row.len()], delta))
+    }
+
     /// Add `coef_j e^{−α_j d}` into `out` for the modes that count at `d`
     /// (AVX2 + FMA where the CPU has them: the same fused operations, the
     /// same bits; `crate::numeric::lanes`).
     #[inline(always)]
     fn add_into(&self, d: f64, out: &mut [f64], vector: bool) {
-        let k = (d / self.spacing).round() as usize;
-        if k + 1 >= self.starts.len() {
+        let Some((row, alpha, delta)) = self.row_at(d) else {
             return;
-        }
-        let delta = d - k as f64 * self.spacing;
-        let row = &self.values[self.starts[k]..self.starts[k + 1]];
-        let (out, alpha) = (&mut out[..row.len()], &self.alpha[..row.len()]);
+        };
+        let out = &mut out[..row.len()];
         let mut done = 0;
         #[cfg(target_arch = "x86_64")]
         if vector {
@@ -482,7 +497,9 @@ impl FastShapes {
     /// `integrate/modal_exact.rs`): the same operations as
     /// [`FastShapes::values_into`], so the same bits. Within a clamped
     /// end's boundary layer the first blocks, those a layer row reaches,
-    /// are evaluated whole first ([`Blocks::layered_into`]); `None` where a
+    /// are evaluated whole first ([`Blocks::layered_into`]), or, in
+    /// AVX-512 registers, get their layer terms block by block
+    /// ([`BlocksAvx512`]); `None` where a
     /// row reaches past the whole blocks (take [`FastShapes::values_into`]
     /// there). Inlined into its caller, so that in the fused step (compiled
     /// for AVX2 + FMA) the first block's products use the FMA instruction,

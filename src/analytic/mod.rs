@@ -17,7 +17,7 @@ pub mod static_load;
 
 pub use fast_shapes::FastShapes;
 #[cfg(target_arch = "x86_64")]
-pub(crate) use fast_shapes::{BLOCK as SHAPE_BLOCK, Blocks, BlocksAvx};
+pub(crate) use fast_shapes::{BLOCK as SHAPE_BLOCK, Blocks, BlocksAvx, BlocksAvx512};
 pub use mode_shapes::{MAX_MODES, ModeShapes};
 #[cfg(test)]
 pub(crate) use modes::Dispersion;

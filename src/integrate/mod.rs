@@ -54,6 +54,8 @@ mod modal_batch;
 mod modal_cruise;
 mod modal_exact;
 mod modal_kernels;
+#[cfg(target_arch = "x86_64")]
+mod modal_table_avx512;
 mod moreau_jean;
 mod oscillator;
 mod physics;

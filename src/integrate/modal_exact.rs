@@ -44,11 +44,15 @@ use super::modal_kernels::{
 };
 #[cfg(target_arch = "x86_64")]
 use super::modal_kernels::{fused_free_pair_avx2, fused_free_pair_avx512, shapes_free_pair_avx2};
+#[cfg(target_arch = "x86_64")]
+use super::modal_table_avx512::shapes_free_pair_avx512;
 use super::oscillator::{MassStep, ModeSteps};
 use super::state::State;
 use super::step_map::Multipliers;
 use super::stepper::Stepper;
 use super::system::System;
+#[cfg(target_arch = "x86_64")]
+use crate::analytic::Blocks;
 
 /// What every run on one basis at one Δt shares (module docs): the modes'
 /// step maps, the fixed load's share of them, and the fast shapes.
@@ -342,7 +346,8 @@ fn free_pair_range(
 /// is stored and used by the free step of its modes while in registers
 /// (module docs, "One step"); within a clamped end's boundary layer, the
 /// blocks a layer row reaches take their shapes whole first, then their
-/// fused pass; at constant speed the shapes are rotated phasors
+/// fused pass (with AVX-512F one pass of eight modes a register, the layer
+/// terms added in registers: `modal_table_avx512.rs`); at constant speed the shapes are rotated phasors
 /// ([`rotate_free_pair`]). A deferred update (`pass.deferred`) is added by
 /// the same passes. The same operations as separate passes, so the same
 /// bits.
@@ -498,58 +503,37 @@ fn place_free_pair_tables(
             }
             let pn1 = &mut c.pv_g.dense_mut()[..j];
             let pn = &c.pv_f.dense()[..j];
-            let held = HeldStep::of(coefs.held.as_ref(), j);
-            // within a clamped end's boundary layer, the blocks a layer row
-            // reaches first: their shapes whole (into `layered`), then one
-            // fused pass (the deferred update, the free step, the sums,
-            // the shapes stored)
-            // SAFETY: `vector` is true only where the CPU has AVX2 and FMA;
-            // `layered` holds J ≥ the blocks' end.
-            let lo = unsafe { blocks.layered_into(&mut layered[..j]) };
-            let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
-            if lo > 0 {
+            if lanes::avx512() {
+                // one pass in AVX-512 registers, the boundary layer's
+                // terms added to each block as it is made
                 let pass = FusedPass {
                     m: &coefs.steps,
                     modes: ModeState {
-                        d: &mut *d,
-                        v: &mut *v,
+                        d: &mut st.d[..j],
+                        v: &mut st.v[..j],
                     },
                     pn,
                     pn1: &mut *pn1,
-                    held,
+                    held: HeldStep::of(coefs.held.as_ref(), j),
                     sums: &mut *sums,
                 };
-                // the shapes stored in `layered`, not rotated
-                let stored = Phasors {
-                    fi: &mut layered[..j],
-                    rr: &[],
-                    ri: &[],
-                };
-                // SAFETY: as above; lo is a multiple of SHAPE_BLOCK (so of
-                // LANES) and every slice holds J ≥ lo.
+                let table = &coefs.blocks[..];
+                // SAFETY: the CPU has AVX-512F (checked just above); every
+                // slice holds J ≥ full, `table` ⌊J/8⌋ ≥ full / 8 blocks.
                 unsafe {
                     match deferred {
-                        Some(f) => fused_free_pair_avx2::<false, true>(pass, stored, lo, f),
-                        None => fused_free_pair_avx2::<false, false>(pass, stored, lo, 0.0),
+                        Some(f) => shapes_free_pair_avx512::<true>(&mut blocks, pass, table, f),
+                        None => shapes_free_pair_avx512::<false>(&mut blocks, pass, table, 0.0),
                     }
                 };
+            } else {
+                let path = (pn, &mut *pn1);
+                // SAFETY: `vector` is true only where the CPU has AVX2 and
+                // FMA; `layered` and every slice hold J.
+                unsafe {
+                    place_layered_blocks(coefs, deferred, layered, &mut blocks, st, path, sums)
+                };
             }
-            let pass = FusedPass {
-                m: &coefs.steps,
-                modes: ModeState { d, v },
-                pn,
-                pn1: &mut *pn1,
-                held,
-                sums: &mut *sums,
-            };
-            // SAFETY: as above; every slice holds J ≥ full, lo and full are
-            // multiples of SHAPE_BLOCK.
-            unsafe {
-                match deferred {
-                    Some(f) => shapes_free_pair_avx2::<true>(&mut blocks, lo, pass, f),
-                    None => shapes_free_pair_avx2::<false>(&mut blocks, lo, pass, 0.0),
-                }
-            };
             blocks.tail_into(&mut pn1[full..]);
             let c = &sys.physics.carriers[0];
             free_with_pair(
@@ -571,6 +555,79 @@ fn place_free_pair_tables(
     }
     place(coefs, sys, st);
     free_pair_range(coefs, sys, st, 0..j, sums, vector);
+}
+
+/// Modes `0 .. blocks.full()` of [`place_free_pair_tables`] in AVX2
+/// registers: within a clamped end's boundary layer the blocks a layer
+/// row reaches take their shapes whole first (into `layered`), then one
+/// fused pass; the other blocks are evaluated and taken block by block.
+///
+/// # Safety
+/// The CPU supports AVX2 and FMA; `layered` and every slice hold J.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn place_layered_blocks(
+    coefs: &ModalCoefs,
+    deferred: Option<f64>,
+    layered: &mut [f64],
+    blocks: &mut Blocks,
+    st: &mut State,
+    (pn, pn1): (&[f64], &mut [f64]),
+    sums: &mut PairSums,
+) {
+    let j = coefs.modes();
+    let held = HeldStep::of(coefs.held.as_ref(), j);
+    // within a clamped end's boundary layer, the blocks a layer row
+    // reaches first: their shapes whole (into `layered`), then one fused
+    // pass (the deferred update, the free step, the sums, the shapes
+    // stored)
+    // SAFETY: AVX2 and FMA (the caller's contract); `layered` holds J ≥
+    // the blocks' end.
+    let lo = unsafe { blocks.layered_into(&mut layered[..j]) };
+    let (d, v) = (&mut st.d[..j], &mut st.v[..j]);
+    if lo > 0 {
+        let pass = FusedPass {
+            m: &coefs.steps,
+            modes: ModeState {
+                d: &mut *d,
+                v: &mut *v,
+            },
+            pn,
+            pn1: &mut *pn1,
+            held,
+            sums: &mut *sums,
+        };
+        // the shapes stored in `layered`, not rotated
+        let stored = Phasors {
+            fi: &mut layered[..j],
+            rr: &[],
+            ri: &[],
+        };
+        // SAFETY: as above; lo is a multiple of SHAPE_BLOCK (so of LANES)
+        // and every slice holds J ≥ lo.
+        unsafe {
+            match deferred {
+                Some(f) => fused_free_pair_avx2::<false, true>(pass, stored, lo, f),
+                None => fused_free_pair_avx2::<false, false>(pass, stored, lo, 0.0),
+            }
+        };
+    }
+    let pass = FusedPass {
+        m: &coefs.steps,
+        modes: ModeState { d, v },
+        pn,
+        pn1,
+        held,
+        sums,
+    };
+    // SAFETY: as above; every slice holds J ≥ full, lo and full are
+    // multiples of SHAPE_BLOCK.
+    unsafe {
+        match deferred {
+            Some(f) => shapes_free_pair_avx2::<true>(blocks, lo, pass, f),
+            None => shapes_free_pair_avx2::<false>(blocks, lo, pass, 0.0),
+        }
+    };
 }
 
 /// Phase 3: the mass dofs' free step, the contact problem (g_free and W,
