@@ -5,7 +5,8 @@
 //! [`super::ModeShapes::values_into`] costs one `sin_cos` (and, off
 //! pinned–pinned, two `exp`) per mode, most of a modal step. Here the same
 //! values come from one `sin_cos` per call and small tables built once per
-//! basis and shared by every run on it: the oscillating part
+//! basis (the phase table's rows on first use) and shared by every run on
+//! it: the oscillating part
 //! `C cos βs + D sin βs = Re[(C − iD) e^{iβs}]` by a rotation recurrence in
 //! blocks of `BLOCK` modes (not the three-term recurrence, whose error grows
 //! without bound near a support) times a table of slow phase shifts, and the
@@ -22,7 +23,9 @@
 
 use super::mode_shapes::{Ends, ModeShapes};
 use crate::numeric::lanes;
+use std::cell::UnsafeCell;
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 #[cfg(target_arch = "x86_64")]
 mod avx512;
@@ -109,14 +112,129 @@ enum Oscillating {
     /// Pinned–pinned: `d_j sin(jθ)`.
     Sine { d: Vec<f64> },
     /// `Re[(C_j − iD_j) e^{iε_j ξ} e^{ijθ}]` with the table of
-    /// `(C_j − iD_j) e^{iε_j ξ_k}` at `ξ_k = k/K`, row-major (row k at
-    /// `k·J`), real and imaginary parts apart.
+    /// `(C_j − iD_j) e^{iε_j ξ_k}` at `ξ_k = k/K` ([`PhaseRows`]).
     Shifted {
         eps: Vec<f64>,
         rows: usize,
-        re: Vec<f64>,
-        im: Vec<f64>,
+        table: PhaseRows,
     },
+}
+
+/// The table of `(C_j − iD_j) e^{iε_j ξ_k}`, `ξ_k = k/K`, k = 0 … K, real
+/// and imaginary parts apart, each row made the first time it is read
+/// ([`PhaseRows::row`]): a run reads only the rows near the points where
+/// its shapes come from the tables (a boundary layer, a cruise's
+/// restarts), so most of the K + 1 rows of J `sin_cos` each are never
+/// made. A row holds the values the whole table held (the same
+/// operations), whenever and on whichever thread it is made.
+struct PhaseRows {
+    count: usize,
+    /// `C_j`, `D_j` and `ε_j` of each mode.
+    c: Vec<f64>,
+    d: Vec<f64>,
+    eps: Vec<f64>,
+    rows: usize,
+    /// Row k's real parts at `k·J`, its imaginary parts at `(K + 1 + k)·J`;
+    /// written once, under `made[k]`.
+    cells: Box<[UnsafeCell<f64>]>,
+    made: Vec<OnceLock<()>>,
+}
+
+// SAFETY: `cells` is written only inside `made[k].get_or_init` for row k
+// (one writer, once), and read only through `PhaseRows::row`, after that
+// row's `get_or_init` has returned (which orders the write before every
+// read); rows are disjoint. So sharing across threads has no data race.
+unsafe impl Sync for PhaseRows {}
+
+impl PhaseRows {
+    fn new(c: Vec<f64>, d: Vec<f64>, eps: Vec<f64>, rows: usize) -> Self {
+        let count = c.len();
+        PhaseRows {
+            cells: (0..2 * (rows + 1) * count)
+                .map(|_| UnsafeCell::new(0.0))
+                .collect(),
+            made: (0..=rows).map(|_| OnceLock::new()).collect(),
+            count,
+            c,
+            d,
+            eps,
+            rows,
+        }
+    }
+
+    /// Row k's real and imaginary parts (J each), made now if not yet.
+    #[inline]
+    fn row(&self, k: usize) -> (&[f64], &[f64]) {
+        assert!(k <= self.rows, "a phase row within the table");
+        let j = self.count;
+        let base = UnsafeCell::raw_get(self.cells.as_ptr());
+        let (at_re, at_im) = (k * j, (self.rows + 1 + k) * j);
+        self.made[k].get_or_init(|| {
+            // SAFETY: row k's cells lie within `cells`, and nothing else
+            // reads or writes them until this returns (type docs).
+            let (re, im) = unsafe {
+                (
+                    std::slice::from_raw_parts_mut(base.add(at_re), j),
+                    std::slice::from_raw_parts_mut(base.add(at_im), j),
+                )
+            };
+            self.make(k, re, im);
+        });
+        // SAFETY: row k is made (just above) and never written again.
+        unsafe {
+            (
+                std::slice::from_raw_parts(base.add(at_re).cast_const(), j),
+                std::slice::from_raw_parts(base.add(at_im).cast_const(), j),
+            )
+        }
+    }
+
+    /// Row k's values into `re` and `im`: `(C − iD)(cos + i sin)(ε_j ξ_k)`.
+    /// Kept out of line, so that it rounds as it always did wherever it is
+    /// first called from.
+    #[inline(never)]
+    fn make(&self, k: usize, re: &mut [f64], im: &mut [f64]) {
+        let xi = k as f64 / self.rows as f64;
+        for j in 0..self.count {
+            let (s, c) = (self.eps[j] * xi).sin_cos();
+            // (C − iD)(c + is)
+            re[j] = self.c[j] * c + self.d[j] * s;
+            im[j] = self.c[j] * s - self.d[j] * c;
+        }
+    }
+}
+
+impl Clone for PhaseRows {
+    /// A table with the rows made so far.
+    fn clone(&self) -> Self {
+        let t = PhaseRows::new(self.c.clone(), self.d.clone(), self.eps.clone(), self.rows);
+        for k in 0..=self.rows {
+            if self.made[k].get().is_some() {
+                let (re, im) = self.row(k);
+                t.made[k].get_or_init(|| {
+                    let (j, base) = (t.count, UnsafeCell::raw_get(t.cells.as_ptr()));
+                    // SAFETY: row k of the new table, not yet shared.
+                    unsafe {
+                        std::slice::from_raw_parts_mut(base.add(k * j), j).copy_from_slice(re);
+                        std::slice::from_raw_parts_mut(base.add((t.rows + 1 + k) * j), j)
+                            .copy_from_slice(im);
+                    }
+                });
+            }
+        }
+        t
+    }
+}
+
+impl std::fmt::Debug for PhaseRows {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let made = self.made.iter().filter(|m| m.get().is_some()).count();
+        f.debug_struct("PhaseRows")
+            .field("count", &self.count)
+            .field("rows", &(self.rows + 1))
+            .field("made", &made)
+            .finish()
+    }
 }
 
 /// One end's boundary-layer terms `coef_j e^{−α_j d}` in the distance d to
@@ -348,17 +466,9 @@ impl FastShapes {
                 .collect();
             let eps_max = eps.iter().fold(0.0f64, |a, e| a.max(e.abs()));
             let rows = (ROWS_PER_RADIAN * eps_max).ceil().max(1.0) as usize;
-            let (mut re, mut im) = (vec![0.0; (rows + 1) * count], vec![0.0; (rows + 1) * count]);
-            for k in 0..=rows {
-                let xi = k as f64 / rows as f64;
-                for (j, (m, e)) in modes.iter().zip(&eps).enumerate() {
-                    let (s, c) = (e * xi).sin_cos();
-                    // (C − iD)(c + is)
-                    re[k * count + j] = m.c * c + m.d * s;
-                    im[k * count + j] = m.c * s - m.d * c;
-                }
-            }
-            Oscillating::Shifted { eps, rows, re, im }
+            let (c, d) = modes.iter().map(|m| (m.c, m.d)).unzip();
+            let table = PhaseRows::new(c, d, eps.clone(), rows);
+            Oscillating::Shifted { eps, rows, table }
         };
         let alpha: Vec<f64> = modes.iter().map(|m| m.alpha).collect();
         let (p, q): (Vec<f64>, Vec<f64>) = modes.iter().map(|m| (m.p, m.q)).unzip();
@@ -382,7 +492,7 @@ impl FastShapes {
     pub fn table_bytes(&self) -> usize {
         let osc = match &self.oscillating {
             Oscillating::Sine { d } => d.len(),
-            Oscillating::Shifted { eps, re, im, .. } => eps.len() + re.len() + im.len(),
+            Oscillating::Shifted { eps, table, .. } => eps.len() + table.cells.len(),
         };
         let layer = |l: &Option<Layer>| l.as_ref().map_or(0, |l| l.values.len() + l.alpha.len());
         8 * (osc + layer(&self.left) + layer(&self.right))
@@ -452,15 +562,10 @@ impl FastShapes {
                     advance(&mut rr, &mut ri, rot);
                 }
             }
-            Oscillating::Shifted {
-                eps,
-                rows,
-                re,
-                im: tim,
-            } => {
+            Oscillating::Shifted { eps, rows, table } => {
                 let k = (xi * *rows as f64).round() as usize;
                 let delta = xi - k as f64 / *rows as f64;
-                let (tre, tim) = (&re[k * j..(k + 1) * j], &tim[k * j..(k + 1) * j]);
+                let (tre, tim) = table.row(k);
                 for at in (0..j).step_by(BLOCK) {
                     for l in 0..BLOCK.min(j - at) {
                         let i = at + l;
@@ -529,13 +634,14 @@ impl FastShapes {
         let (rr, ri, rot) = first_block(PI * xi);
         let rows = match &self.oscillating {
             Oscillating::Sine { d } => BlockRows::Sine(&d[..j]),
-            Oscillating::Shifted { eps, rows, re, im } => {
+            Oscillating::Shifted { eps, rows, table } => {
                 let k = (xi * *rows as f64).round() as usize;
                 let delta = xi - k as f64 / *rows as f64;
+                let (tre, tim) = table.row(k);
                 BlockRows::Shifted {
                     eps: &eps[..j],
-                    tre: &re[k * j..(k + 1) * j],
-                    tim: &im[k * j..(k + 1) * j],
+                    tre,
+                    tim,
                     delta,
                 }
             }
@@ -625,10 +731,10 @@ impl FastShapes {
                     out[i] = d[i] * ri[i - full];
                 }
             }
-            Oscillating::Shifted { eps, rows, re, im } => {
+            Oscillating::Shifted { eps, rows, table } => {
                 let k = (xi * *rows as f64).round() as usize;
                 let delta = xi - k as f64 / *rows as f64;
-                let (tre, tim) = (&re[k * j..(k + 1) * j], &im[k * j..(k + 1) * j]);
+                let (tre, tim) = table.row(k);
                 let mut done = 0;
                 #[cfg(target_arch = "x86_64")]
                 if vector {
@@ -1129,6 +1235,48 @@ pub(crate) mod tests {
             cheb_worst > 1e3,
             "the three-term recurrence loses accuracy near θ = 0, π"
         );
+    }
+
+    /// The phase table's rows give the same bits whenever, in whatever
+    /// order and on whichever thread they are made, and a clone carries
+    /// the rows made so far.
+    #[test]
+    fn phase_rows_made_on_first_use_give_the_same_bits_in_any_order() {
+        let s = shapes(REFERENCE, ENDS[1], 800);
+        let xs: Vec<f64> = (0..=60).map(|i| REFERENCE.3 * i as f64 / 60.0).collect();
+        let values = |f: &FastShapes, x: f64| -> Vec<u64> {
+            let mut out = vec![0.0; 800];
+            f.values_into(x, &mut out);
+            out.iter().map(|v| v.to_bits()).collect()
+        };
+        let forward = FastShapes::new(&s);
+        let expected: Vec<Vec<u64>> = xs.iter().map(|&x| values(&forward, x)).collect();
+        let backward = FastShapes::new(&s);
+        for (x, e) in xs.iter().zip(&expected).rev() {
+            assert_eq!(&values(&backward, *x), e, "x = {x}");
+        }
+        // half the rows made, then cloned: the clone's made and new rows
+        let half = FastShapes::new(&s);
+        for &x in xs.iter().step_by(2) {
+            values(&half, x);
+        }
+        let copy = half.clone();
+        for (x, e) in xs.iter().zip(&expected) {
+            assert_eq!(&values(&copy, *x), e, "clone, x = {x}");
+        }
+        // two threads making the rows of one shared table
+        let shared = FastShapes::new(&s);
+        std::thread::scope(|sc| {
+            for t in 0..2 {
+                let (shared, xs, expected) = (&shared, &xs, &expected);
+                sc.spawn(move || {
+                    for i in 0..xs.len() {
+                        let i = if t == 0 { i } else { xs.len() - 1 - i };
+                        assert_eq!(values(shared, xs[i]), expected[i], "thread {t}");
+                    }
+                });
+            }
+        });
     }
 
     #[test]
