@@ -248,29 +248,17 @@ pub(crate) unsafe fn fused_free_pair_avx512<const ROTATE: bool, const DEFERRED: 
         sums,
     } = pass;
     let Phasors { fi, rr, ri } = phasors;
-    let held = !hp.is_empty();
+    let held = HeldStep { d: hp, v: hv };
     // SAFETY (whole body): loads and stores at k .. k + 8 ≤ end, block
     // k / 8 < end / 8 of `blocks`, whose rows are 64-byte aligned.
     unsafe {
         let ld = |x: &[f64], i: usize| _mm512_loadu_pd(x.as_ptr().add(i));
-        let (mut g, mut w) = (ld(&sums.g, 0), ld(&sums.w, 0));
+        let mut acc = [ld(&sums.g, 0), ld(&sums.w, 0)];
         let fv = _mm512_set1_pd(f);
         let mut k = 0;
-        let row = |x: &[f64; LANES]| _mm512_load_pd(x.as_ptr());
         while k < end {
             let c = blocks.get_unchecked(k / LANES);
-            let (a0, a1) = (row(&c.a0), row(&c.a1));
             let (p, b) = (ld(pn, k), ld(fi, k));
-            let (mut e, mut ev) = (ld(d, k), ld(v, k));
-            if DEFERRED {
-                // the last step's update: from φ(x_{n−1}) (pn1 before this
-                // pass stores into it) to φ(x_n) (pn), as `path_load4`
-                let p0 = ld(pn1, k);
-                let z = _mm512_fmadd_pd(a0, p0, _mm512_mul_pd(a1, p));
-                let zv = _mm512_fmadd_pd(row(&c.b0), p0, _mm512_mul_pd(row(&c.b1), p));
-                e = _mm512_fmadd_pd(fv, z, e);
-                ev = _mm512_fmadd_pd(fv, zv, ev);
-            }
             let q = if ROTATE {
                 let (cr, ci) = (ld(rr, k), ld(ri, k));
                 let q = _mm512_fmsub_pd(p, cr, _mm512_mul_pd(b, ci));
@@ -280,24 +268,73 @@ pub(crate) unsafe fn fused_free_pair_avx512<const ROTATE: bool, const DEFERRED: 
             } else {
                 b
             };
-            _mm512_storeu_pd(pn1.as_mut_ptr().add(k), q);
-            // the free step and the two sums, as `free_pair4`
-            let (cs, so, mos) = (row(&c.cos), row(&c.sin_over_omega), row(&c.minus_omega_sin));
-            let mut e1 = _mm512_fmadd_pd(cs, e, _mm512_mul_pd(so, ev));
-            let mut v1 = _mm512_fmadd_pd(mos, e, _mm512_mul_pd(cs, ev));
-            if held {
-                e1 = _mm512_add_pd(e1, ld(hp, k));
-                v1 = _mm512_add_pd(v1, ld(hv, k));
-            }
-            _mm512_storeu_pd(d.as_mut_ptr().add(k), e1);
-            _mm512_storeu_pd(v.as_mut_ptr().add(k), v1);
-            g = _mm512_fmadd_pd(q, e1, g);
-            let z = _mm512_fmadd_pd(a0, p, _mm512_mul_pd(a1, q));
-            w = _mm512_fmadd_pd(q, z, w);
+            let modes = ModeState {
+                d: &mut *d,
+                v: &mut *v,
+            };
+            step_block_avx512::<DEFERRED>(c, k, [p, q], modes, &mut *pn1, &held, fv, &mut acc);
             k += LANES;
         }
-        _mm512_storeu_pd(sums.g.as_mut_ptr(), g);
-        _mm512_storeu_pd(sums.w.as_mut_ptr(), w);
+        _mm512_storeu_pd(sums.g.as_mut_ptr(), acc[0]);
+        _mm512_storeu_pd(sums.w.as_mut_ptr(), acc[1]);
+    }
+}
+
+/// Eight modes of a fused pass, their shapes in registers: `p` = φ(x_n)
+/// and `q` = φ(x_{n+1}) of modes `k .. k + 8`. With `DEFERRED` the last
+/// step's update first (from `pn1` before `q` is stored into it,
+/// φ(x_{n−1}), to `p`; `path_load4`'s operations), then `q` stored, the
+/// free step plus the held load and the two sums `acc` = [g, w]
+/// (`free_pair4`'s), lane by lane: what the cruise's and the tables'
+/// AVX-512 passes share.
+///
+/// # Safety
+/// The CPU supports AVX-512F; `c` is modes `k .. k + 8`'s block; every
+/// slice holds `k + 8` entries, or the held step's are both empty.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+#[inline]
+#[allow(clippy::too_many_arguments)] // the pass's registers, kept out of memory
+pub(crate) unsafe fn step_block_avx512<const DEFERRED: bool>(
+    c: &CoefBlock,
+    k: usize,
+    [p, q]: [std::arch::x86_64::__m512d; 2],
+    modes: ModeState,
+    pn1: &mut [f64],
+    held: &HeldStep,
+    fv: std::arch::x86_64::__m512d,
+    acc: &mut [std::arch::x86_64::__m512d; 2],
+) {
+    use std::arch::x86_64::*;
+    let ModeState { d, v } = modes;
+    // SAFETY: loads and stores at k .. k + 8, within every slice; `c`'s
+    // rows are 64-byte aligned.
+    unsafe {
+        let ld = |x: &[f64], i: usize| _mm512_loadu_pd(x.as_ptr().add(i));
+        let row = |x: &[f64; LANES]| _mm512_load_pd(x.as_ptr());
+        let (a0, a1) = (row(&c.a0), row(&c.a1));
+        let (mut e, mut ev) = (ld(d, k), ld(v, k));
+        if DEFERRED {
+            let p0 = ld(pn1, k);
+            let z = _mm512_fmadd_pd(a0, p0, _mm512_mul_pd(a1, p));
+            let zv = _mm512_fmadd_pd(row(&c.b0), p0, _mm512_mul_pd(row(&c.b1), p));
+            e = _mm512_fmadd_pd(fv, z, e);
+            ev = _mm512_fmadd_pd(fv, zv, ev);
+        }
+        _mm512_storeu_pd(pn1.as_mut_ptr().add(k), q);
+        let (cs, so, mos) = (row(&c.cos), row(&c.sin_over_omega), row(&c.minus_omega_sin));
+        let mut e1 = _mm512_fmadd_pd(cs, e, _mm512_mul_pd(so, ev));
+        let mut v1 = _mm512_fmadd_pd(mos, e, _mm512_mul_pd(cs, ev));
+        if !held.d.is_empty() {
+            e1 = _mm512_add_pd(e1, ld(held.d, k));
+            v1 = _mm512_add_pd(v1, ld(held.v, k));
+        }
+        _mm512_storeu_pd(d.as_mut_ptr().add(k), e1);
+        _mm512_storeu_pd(v.as_mut_ptr().add(k), v1);
+        let [g, w] = acc;
+        *g = _mm512_fmadd_pd(q, e1, *g);
+        let z = _mm512_fmadd_pd(a0, p, _mm512_mul_pd(a1, q));
+        *w = _mm512_fmadd_pd(q, z, *w);
     }
 }
 

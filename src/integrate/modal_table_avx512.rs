@@ -12,7 +12,7 @@ use std::arch::x86_64::*;
 use crate::analytic::{Blocks, BlocksAvx512, SHAPE_BLOCK};
 use crate::numeric::lanes::LANES;
 
-use super::modal_kernels::{CoefBlock, FusedPass, HeldStep, ModeState};
+use super::modal_kernels::{CoefBlock, FusedPass, HeldStep, ModeState, step_block_avx512};
 
 /// Modes `0 .. blocks.full()` of a single contact's step from the
 /// tables: each block of shapes evaluated with its boundary-layer terms
@@ -41,52 +41,32 @@ pub(crate) unsafe fn shapes_free_pair_avx512<const DEFERRED: bool>(
         held: HeldStep { d: hp, v: hv },
         sums,
     } = pass;
-    let held = !hp.is_empty();
+    let held = HeldStep { d: hp, v: hv };
     let end = blocks.full();
     // SAFETY (whole body): loads and stores at k .. k + 8 ≤ end, block
     // k / 8 < end / 8 of `coefs`, whose rows are 64-byte aligned.
     unsafe {
         let mut shapes = BlocksAvx512::new(blocks);
         let ld = |x: &[f64], i: usize| _mm512_loadu_pd(x.as_ptr().add(i));
-        let row = |x: &[f64; LANES]| _mm512_load_pd(x.as_ptr());
-        let (mut g, mut w) = (ld(&sums.g, 0), ld(&sums.w, 0));
+        let mut acc = [ld(&sums.g, 0), ld(&sums.w, 0)];
         let fv = _mm512_set1_pd(f);
         let mut at = 0;
         while at < end {
             for (u, q) in shapes.next(blocks, at).into_iter().enumerate() {
                 let k = at + LANES * u;
                 let c = coefs.get_unchecked(k / LANES);
-                let (a0, a1) = (row(&c.a0), row(&c.a1));
-                let p = ld(pn, k);
-                let (mut e, mut ev) = (ld(d, k), ld(v, k));
-                if DEFERRED {
-                    // as `path_load4`
-                    let p0 = ld(pn1, k);
-                    let z = _mm512_fmadd_pd(a0, p0, _mm512_mul_pd(a1, p));
-                    let zv = _mm512_fmadd_pd(row(&c.b0), p0, _mm512_mul_pd(row(&c.b1), p));
-                    e = _mm512_fmadd_pd(fv, z, e);
-                    ev = _mm512_fmadd_pd(fv, zv, ev);
-                }
-                _mm512_storeu_pd(pn1.as_mut_ptr().add(k), q);
-                // the free step and the two sums, as `free_pair4`
-                let (cs, so, mos) = (row(&c.cos), row(&c.sin_over_omega), row(&c.minus_omega_sin));
-                let mut e1 = _mm512_fmadd_pd(cs, e, _mm512_mul_pd(so, ev));
-                let mut v1 = _mm512_fmadd_pd(mos, e, _mm512_mul_pd(cs, ev));
-                if held {
-                    e1 = _mm512_add_pd(e1, ld(hp, k));
-                    v1 = _mm512_add_pd(v1, ld(hv, k));
-                }
-                _mm512_storeu_pd(d.as_mut_ptr().add(k), e1);
-                _mm512_storeu_pd(v.as_mut_ptr().add(k), v1);
-                g = _mm512_fmadd_pd(q, e1, g);
-                let z = _mm512_fmadd_pd(a0, p, _mm512_mul_pd(a1, q));
-                w = _mm512_fmadd_pd(q, z, w);
+                let modes = ModeState {
+                    d: &mut *d,
+                    v: &mut *v,
+                };
+                let pq = [ld(pn, k), q];
+                step_block_avx512::<DEFERRED>(c, k, pq, modes, &mut *pn1, &held, fv, &mut acc);
             }
             at += SHAPE_BLOCK;
         }
         shapes.finish(blocks);
-        _mm512_storeu_pd(sums.g.as_mut_ptr(), g);
-        _mm512_storeu_pd(sums.w.as_mut_ptr(), w);
+        _mm512_storeu_pd(sums.g.as_mut_ptr(), acc[0]);
+        _mm512_storeu_pd(sums.w.as_mut_ptr(), acc[1]);
     }
 }
 
