@@ -43,6 +43,13 @@ pub(crate) unsafe fn shapes_free_pair_avx512<const DEFERRED: bool>(
     } = pass;
     let held = HeldStep { d: hp, v: hv };
     let end = blocks.full();
+    debug_assert!(
+        coefs.len() >= end / LANES
+            && [pn.len(), pn1.len(), d.len(), v.len()]
+                .iter()
+                .all(|&n| n >= end),
+        "the pass's preconditions"
+    );
     // SAFETY (whole body): loads and stores at k .. k + 8 ≤ end, block
     // k / 8 < end / 8 of `coefs`, whose rows are 64-byte aligned.
     unsafe {

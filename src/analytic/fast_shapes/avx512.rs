@@ -174,12 +174,16 @@ impl LayerRow<'_> {
             }
         };
         let k: [__mmask8; V] = std::array::from_fn(mask);
-        // SAFETY: the masked loads touch lanes i .. min(i + 8, m) of
-        // slices of length m (none when the mask is empty).
+        // register v's first lane, at most m: a register wholly beyond the
+        // row (mask empty) points one past its end, never further
+        let first = |v: usize| (at + 8 * v).min(m);
+        // SAFETY: `first(v)` ≤ m, the length of both slices (one past the
+        // end at most); the masked loads touch lanes i .. min(i + 8, m)
+        // only, none when the mask is empty.
         unsafe {
             // z = −(α δ): as the scalar −y with y = α·δ
             let z: [__m512d; V] = std::array::from_fn(|v| {
-                let alpha = _mm512_maskz_loadu_pd(k[v], self.alpha.as_ptr().add(at + 8 * v));
+                let alpha = _mm512_maskz_loadu_pd(k[v], self.alpha.as_ptr().add(first(v)));
                 _mm512_mul_pd(alpha, self.minus_delta)
             });
             let mut acc = [_mm512_set1_pd(INV_FACT[LAYER_DEGREE]); V];
@@ -191,7 +195,7 @@ impl LayerRow<'_> {
             }
             // the lanes outside the row keep q's bits
             std::array::from_fn(|v| {
-                let row = _mm512_maskz_loadu_pd(k[v], self.row.as_ptr().add(at + 8 * v));
+                let row = _mm512_maskz_loadu_pd(k[v], self.row.as_ptr().add(first(v)));
                 _mm512_mask3_fmadd_pd(row, acc[v], q[v], k[v])
             })
         }
