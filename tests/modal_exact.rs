@@ -368,24 +368,20 @@ fn refinement_and_tolerance_refine_the_modes() {
     use common::{out_dir, taut_bin};
     let tmp = tempfile::tempdir().unwrap();
     let out = out_dir(&tmp, "sweep");
-    let o = taut_bin(&[
+    let mut args = vec![
         "sweep",
         "scenes/reference.toml",
         "--vary",
         "carrier.speed.cruise=120:140:2",
-        "--set",
-        "mesh.kind=galerkin",
-        "--set",
-        "mesh.modes=100",
-        "--set",
-        "time.step=2e-4",
-        "--set",
-        EXACT,
+    ];
+    args.extend_from_slice(&common::SMALL_MODAL);
+    args.extend_from_slice(&[
         "--check-refinement",
         "--quiet",
         "--out",
         out.to_str().unwrap(),
     ]);
+    let o = taut_bin(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();

@@ -820,6 +820,7 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrate::modal_kernels::samples;
 
     /// A run agrees with its shapes taken from the tables at every step,
     /// step by step up to its first re-contact after a loss (the cases of
@@ -1010,12 +1011,9 @@ mod tests {
             return;
         }
         let j = 808;
-        let omega: Vec<f64> = (1..=j)
-            .map(|i| 9.4 * i as f64 * (1.0 + 1e-3 * i as f64))
-            .collect();
-        let m = ModeSteps::new(&omega, 6.25e-5);
+        let m = samples::steps(j);
         let blocks = coef_blocks(&m);
-        let wave = |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
+        let wave = |k: f64| samples::wave(j, k);
         let held = (wave(0.2), wave(0.9));
         let (rr, ri) = (wave(0.05), wave(0.06));
         type Run = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, PairSums);

@@ -118,6 +118,27 @@ pub(crate) fn coef_blocks(m: &ModeSteps) -> Vec<CoefBlock> {
         .collect()
 }
 
+/// Inputs of the AVX-512 kernels' bit-for-bit tests: J modes of distinct
+/// frequencies, ω_j = 9.4·j·(1 + 10⁻³ j) rad/s, stepped at Δt = 6.25e-5 s,
+/// and J sample values sin(k·j).
+#[cfg(test)]
+pub(crate) mod samples {
+    use super::ModeSteps;
+
+    /// The steps of J such modes.
+    pub(crate) fn steps(j: usize) -> ModeSteps {
+        let omega: Vec<f64> = (1..=j)
+            .map(|i| 9.4 * i as f64 * (1.0 + 1e-3 * i as f64))
+            .collect();
+        ModeSteps::new(&omega, 6.25e-5)
+    }
+
+    /// J sample values sin(k·j), j = 1 … J.
+    pub(crate) fn wave(j: usize, k: f64) -> Vec<f64> {
+        (0..j).map(|i| (k * (i + 1) as f64).sin()).collect()
+    }
+}
+
 /// The operands of one fused pass over the modes ([`fused_free_pair_avx2`],
 /// [`shapes_free_pair_avx2`]): the modes' steps, their state, the shapes
 /// `pn` = φ(x_n) and `pn1` (the pass stores φ(x_{n+1}) there), the held

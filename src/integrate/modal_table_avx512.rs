@@ -83,9 +83,8 @@ mod tests {
     use crate::analytic::FastShapes;
     use crate::analytic::fast_shapes::tests::{REFERENCE, shapes};
     use crate::integrate::modal_kernels::{
-        PairSums, Phasors, coef_blocks, fused_free_pair_avx2, shapes_free_pair_avx2,
+        PairSums, Phasors, coef_blocks, fused_free_pair_avx2, samples, shapes_free_pair_avx2,
     };
-    use crate::integrate::oscillator::ModeSteps;
     use crate::numeric::lanes;
     use crate::scene::Support::{Clamped, Pinned};
 
@@ -103,12 +102,9 @@ mod tests {
             return;
         }
         let j = 808;
-        let omega: Vec<f64> = (1..=j)
-            .map(|i| 9.4 * i as f64 * (1.0 + 1e-3 * i as f64))
-            .collect();
-        let m = ModeSteps::new(&omega, 6.25e-5);
+        let m = samples::steps(j);
         let coefs = coef_blocks(&m);
-        let wave = |k: f64| -> Vec<f64> { (0..j).map(|i| (k * (i + 1) as f64).sin()).collect() };
+        let wave = |k: f64| samples::wave(j, k);
         let held = (wave(0.2), wave(0.9));
         type Run = (Vec<f64>, Vec<f64>, Vec<f64>, PairSums, Vec<f64>);
         let pass = |f: &FastShapes, x: f64, wide: bool, deferred: Option<f64>, h: bool| {
