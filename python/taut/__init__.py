@@ -800,7 +800,8 @@ def sweep(
             tolerance_met, elements_used, modes_used, dt_used, runs_used,
             dof_steps_used and estimator.
         quantity: what `tolerance` is on: a column of the table
-            ("loss_fraction_span", the default; "loss_fraction",
+            ("loss_fraction_span", the default;
+            "loss_fraction_span_sustained", "loss_fraction",
             "loss_fraction_support", "force_mean", "force_std", "force_max",
             "force_min", "first_loss_position").
         max_cost: with `tolerance`, the most a point may cost, pilots

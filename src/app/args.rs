@@ -459,7 +459,7 @@ impl AccuracyTarget {
     feature = "clap",
     command(
         mut_arg("tolerance", |a| a.help("Refine mesh and Δt until the numerical uncertainty u_num of --quantity is at most TOL (absolute, in its unit), as a one-point `taut sweep --tolerance` does, and print a u_num next to every result (docs/accuracy.md)")),
-        mut_arg("quantity", |a| a.help("What --tolerance is on: a quantity `taut sweep --tolerance` takes (loss_fraction_span, the default; loss_fraction, force_mean, force_std, …)")),
+        mut_arg("quantity", |a| a.help("What --tolerance is on: a quantity `taut sweep --tolerance` takes (loss_fraction_span, the default; loss_fraction_span_sustained, loss_fraction, force_mean, force_std, …)")),
         mut_arg("max_cost", |a| a.help("With --tolerance: the most the run may cost, pilots included, as a multiple of its run at the scene's resolution (default 64)").requires("tolerance")),
     )
 )]
@@ -706,7 +706,7 @@ impl PrecisionArgs {
     feature = "clap",
     command(
         mut_arg("tolerance", |a| a.help("Refine each point until the numerical uncertainty u_num of --quantity is at most TOL (absolute, in its unit), only as far as it must; adds u_num and the resolution used to sweep.csv (docs/sweeps.md)")),
-        mut_arg("quantity", |a| a.help("What --tolerance is on: a column of sweep.csv (loss_fraction_span, the default; loss_fraction, loss_fraction_support, force_mean, force_std, force_max, force_min, first_loss_position)")),
+        mut_arg("quantity", |a| a.help("What --tolerance is on: a column of sweep.csv (loss_fraction_span, the default; loss_fraction_span_sustained, loss_fraction, loss_fraction_support, force_mean, force_std, force_max, force_min, first_loss_position)")),
         mut_arg("max_cost", |a| a.help("With --tolerance: the most a point may cost, pilots included, as a multiple of its run at the scene's resolution (default 64)").requires("tolerance")),
         mut_arg("batch", |a| a.help("Runs stepped together when they share their effective matrix (1 ..= 8; 1: every run alone; default 4, one AVX2 vector of lanes). The records are the same bytes whatever the width")),
     )

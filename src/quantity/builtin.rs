@@ -107,6 +107,20 @@ pub static LOSS_FRACTION_SUPPORT: Quantity = Quantity {
     read: |r| Some(r.stats.loss_fraction_support),
 };
 
+/// P_l in span from sustained losses.
+pub static LOSS_FRACTION_SPAN_SUSTAINED: Quantity = Quantity {
+    name: "loss_fraction_span_sustained",
+    label: "P_l in span, losses ≥ 0.2 ms",
+    unit: "-",
+    definition: "the part of P_l in span from losses lasting at least 0.2 ms: the bounces after a re-contact, whose number grows as Δt falls, left out",
+    window: Window::RunSplitAtSupports,
+    count: false,
+    smooth: false,
+    error: ErrorKind::Contact,
+    offer: STUDIES,
+    read: |r| Some(r.stats.loss_fraction_span_sustained),
+};
+
 /// Loss intervals.
 pub static LOSS_INTERVAL_COUNT: Quantity = Quantity {
     name: "loss_interval_count",
@@ -370,10 +384,11 @@ pub static UPLIFT_MAX: Quantity = Quantity {
 };
 
 /// taut's own quantities, in the order of every table.
-pub static BUILTIN: [&Quantity; 25] = [
+pub static BUILTIN: [&Quantity; 26] = [
     &LOSS_FRACTION,
     &LOSS_FRACTION_SPAN,
     &LOSS_FRACTION_SUPPORT,
+    &LOSS_FRACTION_SPAN_SUSTAINED,
     &LOSS_FRACTION_STEPS,
     &LOSS_INTERVAL_COUNT,
     &FIRST_LOSS_POSITION,

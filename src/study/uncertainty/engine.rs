@@ -139,11 +139,12 @@ pub(crate) fn unseen_loss_floor(
 /// its parts): a family all of whose runs give exactly 0 for one of them
 /// saw no loss, which bounds only the losses its finest Δt can see
 /// ([`unseen_floor`]).
-const LOSS_FRACTIONS: [&str; 4] = [
+const LOSS_FRACTIONS: [&str; 5] = [
     "loss_fraction",
     "loss_fraction_steps",
     "loss_fraction_span",
     "loss_fraction_support",
+    "loss_fraction_span_sustained",
 ];
 
 /// Every run of a family defined and exactly zero.
