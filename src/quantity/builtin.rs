@@ -110,7 +110,7 @@ pub static LOSS_FRACTION_SUPPORT: Quantity = Quantity {
 /// P_l in span from sustained losses.
 pub static LOSS_FRACTION_SPAN_SUSTAINED: Quantity = Quantity {
     name: "loss_fraction_span_sustained",
-    label: "P_l in span, losses ≥ 0.2 ms",
+    label: "P_l in span, ≥0.2 ms",
     unit: "-",
     definition: "the part of P_l in span from losses lasting at least 0.2 ms: the bounces after a re-contact, whose number grows as Δt falls, left out",
     window: Window::RunSplitAtSupports,
