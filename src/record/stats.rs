@@ -92,10 +92,17 @@ const _: () = assert!(
 /// A re-contact after a loss at least this long starts a new event; a
 /// shorter loss inside an event's window is a bounce of that event (the
 /// number of bounces grows as Δt falls), and only losses at least this
-/// long count in `loss_fraction_span_sustained`. 0.2 ms = 2 steps at
-/// Δt = 1e-4 s; the bounces measured at the Fig. 12 map's points last
-/// mostly under 0.1 ms (docs/contact_loss.md §3).
+/// long count in `loss_fraction_span_sustained` (there measured between
+/// the located instants, here in whole steps). 0.2 ms = 2 steps at
+/// Δt = 1e-4 s.
 pub const MIN_LOSS_TIME: f64 = 2e-4;
+
+/// Relative slack on [`MIN_LOSS_TIME`] for a loss's summed pieces: a loss
+/// whose instants fall at step starts lasts a whole number of steps, and
+/// one of exactly 0.2 ms (2 steps of 1e-4 s, 4 of 5e-5 s, …) sums to
+/// within round-off either side of it (measured 2.00000000000089e-4 on the
+/// reference scene); it counts.
+const SUSTAINED_SLACK: f64 = 1e-9;
 
 /// Relative slack on the window's end, so that round-off in summed steps
 /// does not drop the step that ends exactly at the window.
@@ -160,8 +167,8 @@ pub struct ContactStats {
     /// The part of `loss_fraction_span` from losses lasting at least
     /// [`MIN_LOSS_TIME`] (each from its located loss instant to its located
     /// re-contact): the bounces after a re-contact, whose number and total
-    /// time grow as Δt falls, left out, so that it converges in Δt where
-    /// `loss_fraction_span` keeps rising (docs/contact_loss.md).
+    /// time grow as Δt falls, left out, so that it settles in Δt where
+    /// `loss_fraction_span` keeps rising (docs/contact_loss.md §3).
     pub loss_fraction_span_sustained: f64,
     /// P_l as the source study counts it: the steps with the contact open
     /// over all steps (moves in whole steps as Δt changes).
@@ -426,7 +433,7 @@ impl ContactAccumulator {
     /// time in span counts as sustained when the whole loss lasted at
     /// least [`MIN_LOSS_TIME`].
     fn end_loss(&mut self) {
-        if self.open_lost >= MIN_LOSS_TIME {
+        if self.open_lost >= MIN_LOSS_TIME * (1.0 - SUSTAINED_SLACK) {
             self.sustained_span += self.open_lost_span;
         }
         self.open_lost = 0.0;
@@ -651,7 +658,12 @@ impl ContactAccumulator {
             loss_fraction: self.lost_time * per_time,
             loss_fraction_span: (self.lost_time - self.lost_time_support) * per_time,
             loss_fraction_support: self.lost_time_support * per_time,
-            loss_fraction_span_sustained: self.sustained_span * per_time,
+            // a sum of its losses' span parts: at most the span part,
+            // which is P_l less the support part, up to round-off
+            loss_fraction_span_sustained: self
+                .sustained_span
+                .min(self.lost_time - self.lost_time_support)
+                * per_time,
             loss_fraction_steps: self.lost as f64 * per_step,
             support_zone: self.geometry.support_zone,
             first_loss_position: self.intervals.first().map(|iv| iv[0]),
@@ -750,6 +762,73 @@ mod tests {
         assert!((s.loss_fraction_support - 1.0 / 10.0).abs() < SUMMED_STEPS);
         assert!((s.loss_fraction_span_sustained - 2.0 / 10.0).abs() < SUMMED_STEPS);
         assert!(s.loss_fraction_span_sustained <= s.loss_fraction_span);
+    }
+
+    /// A trace at steps of 0.1 ms with λ and the gap given row by row, so
+    /// that the located instants fall within their steps.
+    fn located_trace(force: &[f64], gap: &[f64]) -> (Vec<f64>, CarrierTrace) {
+        let contact: Vec<bool> = force.iter().map(|&f| f > 0.0).collect();
+        let (t, mut tr) = fast_trace(&contact);
+        tr.force = force.to_vec();
+        tr.gap = gap.to_vec();
+        (t, tr)
+    }
+
+    /// The pieces of a loss are its located parts: λ falling 3 → 1 N puts
+    /// the loss half a step into its first open step, and the gap closing
+    /// 5 → 3 → 1 mm puts the re-contact half a step into its step. One open
+    /// row (no two open rows to locate the re-contact on: the step's start)
+    /// makes a loss of half a step, a bounce; three make 0.5 + 1 + 1 + 0.5
+    /// steps, 0.3 ms, sustained; and a loss open at the window's end, 0.8
+    /// of a step after the last row, counts that part too (1.5 + 0.8 steps,
+    /// where the rows alone hold 1.5).
+    #[test]
+    fn a_sustained_loss_is_timed_by_its_located_instants() {
+        let close = |s: &ContactStats, want: f64| {
+            assert!(
+                (s.loss_fraction_span_sustained - want).abs() < SUMMED_STEPS,
+                "{} against {want}",
+                s.loss_fraction_span_sustained
+            )
+        };
+        let g = |mm: f64| mm * 1e-3;
+        let (t, tr) = located_trace(&[4.0, 3.0, 1.0, 0.0, 2.0], &[0.0, 0.0, 0.0, g(1.0), 0.0]);
+        let s = ContactStats::from_trace(&t, &tr, LossGeometry::span_only(4.0));
+        assert!(
+            (s.loss_fraction - 0.5 / 4.0).abs() < SUMMED_STEPS,
+            "{}",
+            s.loss_fraction
+        );
+        close(&s, 0.0);
+        let (t, tr) = located_trace(
+            &[4.0, 3.0, 1.0, 0.0, 0.0, 0.0, 2.0],
+            &[0.0, 0.0, 0.0, g(5.0), g(3.0), g(1.0), 0.0],
+        );
+        let s = ContactStats::from_trace(&t, &tr, LossGeometry::span_only(6.0));
+        assert!((s.loss_fraction - 3.0 / 6.0).abs() < SUMMED_STEPS);
+        close(&s, 3.0 / 6.0);
+        let (t, tr) = located_trace(&[4.0, 3.0, 1.0, 0.0, 0.0], &[0.0, 0.0, 0.0, g(1.0), g(2.0)]);
+        let mut acc = ContactAccumulator::new(LossGeometry::span_only(4.8)).with_window_end(4.8e-4);
+        for (i, &ti) in t.iter().enumerate() {
+            acc.push(
+                ti,
+                &CarrierSample {
+                    x: tr.x[i],
+                    w: 0.0,
+                    q: 0.0,
+                    gap: tr.gap[i],
+                    force: tr.force[i],
+                    in_contact: tr.in_contact[i],
+                },
+            );
+        }
+        close(&acc.finish(), 2.3 / 4.8);
+        // a loss of exactly two steps of 0.1 ms (instants at step starts)
+        // is 0.2 ms: it counts, whatever the round-off of its sum
+        let (f, o) = (false, true);
+        let (t, tr) = fast_trace(&[o, o, f, f, o, o]);
+        let s = ContactStats::from_trace(&t, &tr, LossGeometry::span_only(5.0));
+        close(&s, 2.0 / 5.0);
     }
 
     #[test]
