@@ -132,12 +132,52 @@ fn a_budget_too_small_is_the_same_refusal_in_both() {
     let record = sweep_at(&out_dir(&tmp, "s"), "100", &args);
     let why = record["accuracy"]["not_met"].as_str().unwrap();
     assert!(why.contains("--max-cost 2"), "{why}");
+    assert!(!why.contains("bounces"), "no P_l hint on force_mean: {why}");
     let e = run_at(&out_dir(&tmp, "r"), "100", &args).unwrap_err();
     assert!(e.contains(why), "{e}");
     assert!(
         !out_dir(&tmp, "r").exists(),
         "a refused run leaves no folder"
     );
+}
+
+/// P_l in span not met where its error is mostly Δt's (T = 38190 N,
+/// V0 = 149 m/s, J = 800 to 3200: the split gives Δt most of the last
+/// check's error) names the bounces and the quantity that leaves them out.
+#[test]
+fn p_l_not_met_by_its_delta_t_part_points_to_its_sustained_part() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = out_dir(&tmp, "r");
+    let o = taut_bin(&[
+        "run",
+        "scenes/reference.toml",
+        "--set",
+        "mesh.kind=galerkin",
+        "--set",
+        "mesh.modes=800",
+        "--set",
+        "time.step=6.25e-5",
+        "--set",
+        "integrator={ method = \"modal_exact\" }",
+        "--set",
+        "beam.tension=38190",
+        "--set",
+        "carrier.speed.cruise=149",
+        "--tolerance",
+        "0.002",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{e}");
+    for part in [
+        "its error is mostly Δt's",
+        "contact_loss.md §3",
+        "--quantity loss_fraction_span_sustained",
+    ] {
+        assert!(e.contains(part), "lacks {part:?}: {e}");
+    }
 }
 
 #[test]

@@ -1296,6 +1296,19 @@ fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
     }
 }
 
+/// What a point of P_l (or its in-span part) not met adds to why, when
+/// its candidate's error is mostly Δt's (its split's space share below
+/// one half): the bounces after a re-contact move P_l with Δt
+/// (docs/contact_loss.md §3), which its sustained part leaves out.
+fn bounce_hint(q: &Quantity, a: &Assessment) -> &'static str {
+    let loss = q.name == "loss_fraction" || q.name == "loss_fraction_span";
+    if loss && a.space_share.is_some_and(|s| s < 0.5) {
+        "; its error is mostly Δt's: the bounces after a re-contact move P_l with Δt (docs/contact_loss.md §3), which --quantity loss_fraction_span_sustained leaves out"
+    } else {
+        ""
+    }
+}
+
 /// Finish a point with candidate `key`: its record and accuracy.
 fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
     let a = p
@@ -1328,7 +1341,9 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
             Prediction::Cost(c) => Some(c),
             _ => None,
         },
-        not_met: (!met).then(|| p.not_met.clone()).flatten(),
+        not_met: (!met)
+            .then(|| p.not_met.clone().map(|w| w + bounce_hint(tol.spec(), &a)))
+            .flatten(),
         u_num_ladder: p.candidates.iter().map(|c| c.1.u_num).collect(),
         runs_made: Vec::new(),
     });
