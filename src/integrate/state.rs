@@ -46,10 +46,11 @@ impl State {
 /// slice (`&[f64]`, indexing, iteration), held in whole 64-byte-aligned
 /// lines, so that the modal kernels' 512-bit loads of eight modes at a
 /// multiple of eight never span two cache lines (a `Vec<f64>` starts
-/// wherever the allocator puts it, 16-byte aligned: then every such load
-/// and store is split, measured 8 % of a clamped–pinned `modal_exact` run
-/// at J = 800, `cargo bench --bench modal_roofline`). The same values as a
-/// `Vec<f64>`, which converts into it.
+/// wherever the allocator puts it, 16-byte aligned, and then every such
+/// load and store of the state is split: the AVX-512 cruise pass at
+/// J = 800 measured 2–6 % slower with the state one, two or four values
+/// off a line, on an AMD EPYC, Zen 4). The same values as a `Vec<f64>`,
+/// which converts into it.
 #[derive(Clone, Default, PartialEq)]
 pub struct Dofs(AlignedLanes);
 
