@@ -260,6 +260,9 @@ struct Layer {
     /// Row k's values `coef_j e^{−α_j kΔ}` for its first `starts[k+1] − starts[k]` modes.
     values: Vec<f64>,
     starts: Vec<usize>,
+    /// `K + 1/2`, K the last row with a mode: a row applies at d exactly
+    /// when `d/Δ < K + 1/2` ([`Layer::reaches`]).
+    edge: f64,
 }
 
 impl Layer {
@@ -283,12 +286,30 @@ impl Layer {
             values.extend((0..m).map(|j| coef[j] * (-alpha[j] * d).exp()));
             starts.push(values.len());
         }
+        // rows shorten as d grows (α ascending): the last one with a mode
+        let last = (0..rows)
+            .rev()
+            .find(|&k| starts[k + 1] > starts[k])
+            .unwrap_or(0);
         Some(Layer {
             alpha: alpha.to_vec(),
             spacing,
             values,
             starts,
+            edge: last as f64 + 0.5,
         })
+    }
+
+    /// True when a row with a mode applies at `d ≥ 0`: `modes_at(d) > 0`
+    /// without its `round` (a library call, not an instruction, on
+    /// x86-64), for the test every cruise step makes
+    /// ([`FastShapes::in_layer`]). Rows shorten as d grows, so a row with
+    /// a mode applies exactly when `round(d/Δ) ≤ K`, K the last such row,
+    /// that is (`round` takes halves away from zero) when `d/Δ < K + 1/2`:
+    /// the same quotient, so the same answer.
+    #[inline(always)]
+    fn reaches(&self, d: f64) -> bool {
+        d / self.spacing < self.edge
     }
 
     /// How many modes [`Layer::add_into`] adds to at `d` (the length of
@@ -506,11 +527,11 @@ impl FastShapes {
             return true;
         }
         let s = if self.mirrored { self.length - x } else { x };
-        let left = self.left.as_ref().is_some_and(|l| l.modes_at(s) > 0);
+        let left = self.left.as_ref().is_some_and(|l| l.reaches(s));
         let right = self
             .right
             .as_ref()
-            .is_some_and(|r| r.modes_at(self.length - s) > 0);
+            .is_some_and(|r| r.reaches(self.length - s));
         left || right
     }
 
@@ -1389,6 +1410,33 @@ pub(crate) mod tests {
                 "{y}"
             );
         }
+    }
+
+    /// [`Layer::reaches`] answers as `modes_at(d) > 0` everywhere, the
+    /// points where `d/Δ` is a half (where `round` turns) and their
+    /// neighbours one ulp either side included.
+    #[test]
+    fn a_layer_reaches_where_its_rows_hold_a_mode() {
+        let mut checked = 0;
+        for ends in ENDS {
+            for (length, j) in [(50.0, 800), (20.0, 200), (50.0, 40)] {
+                let (ei, tension, rho_a, _) = REFERENCE;
+                let f = FastShapes::new(&shapes((ei, tension, rho_a, length), ends, j));
+                for l in [&f.left, &f.right].into_iter().flatten() {
+                    let rows = l.starts.len() - 1;
+                    let mut ds: Vec<f64> = (0..=4000).map(|i| i as f64 * 1e-3 * length).collect();
+                    for k in 0..rows + 2 {
+                        let d = (k as f64 + 0.5) * l.spacing;
+                        ds.extend([d, d.next_up(), d.next_down(), k as f64 * l.spacing]);
+                    }
+                    for d in ds.into_iter().filter(|d| *d >= 0.0) {
+                        assert_eq!(l.reaches(d), l.modes_at(d) > 0, "{ends:?}, d = {d}");
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
     }
 
     #[test]

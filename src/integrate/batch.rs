@@ -37,7 +37,7 @@ use crate::scene::Scheme;
 use super::gen_alpha_kernel::Kernel;
 pub(crate) use super::gen_alpha_kernel::MAX_LANES;
 use super::sample::CarrierSample;
-use super::state::State;
+use super::state::{Dofs, State};
 use super::step_map::Lanes;
 use super::system::{Initial, System};
 
@@ -129,8 +129,8 @@ impl Batch {
             kernel.start(&sys, &st.d, &st.v, init);
             lanes.push(Lane {
                 st: State {
-                    d: Vec::new(),
-                    v: Vec::new(),
+                    d: Dofs::default(),
+                    v: Dofs::default(),
                     ..st
                 },
                 sys,

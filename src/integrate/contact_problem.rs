@@ -244,8 +244,17 @@ impl ProblemBuilder {
     /// A pair a method formed itself (`modal_exact`, MODEL §9.3: sums over
     /// modes), at position level: `g_free` (one per contact, m) and `w`
     /// (row-major nc × nc, m/N).
+    ///
+    /// One contact (a run's usual case, every step) by two moves, not
+    /// two calls to the library's `memcpy`.
+    #[inline]
     pub(crate) fn set(&mut self, g_free: &[f64], w: &[f64]) {
         let nc = self.nc;
+        if nc == 1 {
+            self.g_free[0] = g_free[0];
+            self.w[0] = w[0];
+            return;
+        }
         self.g_free.copy_from_slice(&g_free[..nc]);
         self.w.copy_from_slice(&w[..nc * nc]);
     }

@@ -82,7 +82,15 @@ impl LawState {
     /// Keep the multipliers of the step just taken before the next solve
     /// replaces them ([`Multipliers::Held`]: the reported force is the
     /// mean of the two held forces around a time step).
+    ///
+    /// One multiplier (a run's usual case, every step) by a move, not a
+    /// call to the library's `memcpy`.
+    #[inline]
     pub(crate) fn hold_multipliers(&mut self) {
+        if let ([held], [lambda]) = (&mut self.held_prev[..], &self.lambda[..]) {
+            *held = *lambda;
+            return;
+        }
         self.held_prev.copy_from_slice(&self.lambda);
     }
 

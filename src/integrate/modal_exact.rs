@@ -961,7 +961,7 @@ mod tests {
                 step: 3,
                 t: 0.0,
                 d: wave(1.3).iter().map(|x| 1e-3 * x).collect(),
-                v: wave(0.7),
+                v: wave(0.7).into(),
                 q: vec![],
                 q_dot: vec![],
             };

@@ -171,6 +171,6 @@ pub(crate) fn static_start(sys: &mut System, sc: &Resolved, st: &mut State) -> R
             ));
         }
     }
-    st.d = d;
+    st.d = d.into();
     Ok(())
 }
