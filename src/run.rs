@@ -139,13 +139,18 @@ fn drive(
     let mut run = SteppedRun::new(sc, build(sc)?, start)?;
     run.defer = sc.droppers.is_empty();
     let report_every = (sc.steps / 200).max(1);
+    // the next multiple of report_every, counted rather than divided for
+    let mut next_report = report_every;
     for n in 1..=sc.steps {
         if crate::interrupt::requested() {
             return Err(Error::Interrupted);
         }
         run.step(sc)?;
-        if n % report_every == 0 || n == sc.steps {
+        if n == next_report || n == sc.steps {
             progress(n, sc.steps);
+        }
+        if n == next_report {
+            next_report += report_every;
         }
     }
     Ok(run.finish(sc))
@@ -530,8 +535,10 @@ impl Recorder {
     }
 
     /// True when step n's row is kept in the history.
+    #[inline]
     fn keeps(&self, n: usize, steps: usize) -> bool {
-        n.is_multiple_of(self.every) || n == steps
+        // every row (the default) without a division a step
+        self.every == 1 || n.is_multiple_of(self.every) || n == steps
     }
 
     /// Record the state of `run` at time t (checking every carrier's
