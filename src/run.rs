@@ -139,13 +139,18 @@ fn drive(
     let mut run = SteppedRun::new(sc, build(sc)?, start)?;
     run.defer = sc.droppers.is_empty();
     let report_every = (sc.steps / 200).max(1);
+    // the next multiple of report_every, counted rather than divided for
+    let mut next_report = report_every;
     for n in 1..=sc.steps {
         if crate::interrupt::requested() {
             return Err(Error::Interrupted);
         }
         run.step(sc)?;
-        if n % report_every == 0 || n == sc.steps {
+        if n == next_report || n == sc.steps {
             progress(n, sc.steps);
+        }
+        if n == next_report {
+            next_report += report_every;
         }
     }
     Ok(run.finish(sc))
@@ -426,8 +431,9 @@ fn record_row(
 trait Observed {
     /// Carrier `c`'s values now.
     fn sample(&self, c: usize) -> CarrierSample;
-    /// Stop with a diagnosis if carrier `c`'s values `s` are absurd.
-    fn check(&self, s: &CarrierSample, c: usize) -> Result<()>;
+    /// Stop with a diagnosis if carrier `c`'s values `s` are absurd;
+    /// `near`: [`Observed::near_support`] at `s.x`.
+    fn check(&self, s: &CarrierSample, c: usize, near: bool) -> Result<()>;
     /// True when x lies in the last element before a supported end.
     fn near_support(&self, x: f64) -> bool;
     /// rᵀd of the run's beam displacements.
@@ -439,8 +445,8 @@ impl Observed for Integrator {
         Integrator::sample(self, c)
     }
 
-    fn check(&self, s: &CarrierSample, c: usize) -> Result<()> {
-        Integrator::check(self, s, c)
+    fn check(&self, s: &CarrierSample, c: usize, near: bool) -> Result<()> {
+        Integrator::check_near(self, s, c, near)
     }
 
     fn near_support(&self, x: f64) -> bool {
@@ -466,8 +472,8 @@ impl Observed for LaneView<'_> {
         self.batch.sample(self.l, c)
     }
 
-    fn check(&self, s: &CarrierSample, c: usize) -> Result<()> {
-        crate::integrate::check_lane(&self.lane.sys, &self.lane.st, s, c, self.note)
+    fn check(&self, s: &CarrierSample, c: usize, near: bool) -> Result<()> {
+        crate::integrate::check_near_lane(&self.lane.sys, &self.lane.st, s, c, self.note, near)
     }
 
     fn near_support(&self, x: f64) -> bool {
@@ -529,8 +535,10 @@ impl Recorder {
     }
 
     /// True when step n's row is kept in the history.
+    #[inline]
     fn keeps(&self, n: usize, steps: usize) -> bool {
-        n.is_multiple_of(self.every) || n == steps
+        // every row (the default) without a division a step
+        self.every == 1 || n.is_multiple_of(self.every) || n == steps
     }
 
     /// Record the state of `run` at time t (checking every carrier's
@@ -542,9 +550,11 @@ impl Recorder {
         }
         for c in 0..self.acc.len() {
             let s = run.sample(c);
-            run.check(&s, c)?;
+            // once for the check's force bound and the support peak
+            let near = run.near_support(s.x);
+            run.check(&s, c, near)?;
             self.acc[c].push(t, &s);
-            if !first && run.near_support(s.x) {
+            if !first && near {
                 self.support_peak[c] = self.support_peak[c].max(s.force.abs());
             }
             if !first && let Some(k) = span_of(&self.supports, s.x) {

@@ -18,6 +18,7 @@ const DISPLACEMENT_BOUND_IN_LENGTHS: f64 = 1.0;
 /// True when x lies in the last element before a supported end (v = 0
 /// there): a carrier arriving at a support meets the beam's support corner,
 /// an impact the model has no law for (MODEL §6).
+#[inline]
 pub(crate) fn near_support(sys: &System, x: f64) -> bool {
     let h = sys.physics.beam.h;
     let held = |s: Support| s != Support::Free;
@@ -39,12 +40,47 @@ pub(crate) fn check(
     carrier: usize,
     note: Option<&str>,
 ) -> Result<()> {
+    check_near(sys, st, s, carrier, note, near_support(sys, s.x))
+}
+
+/// [`check`] with `near` = [`near_support`] at `s.x` already known (a
+/// recorder takes it once a step for both). The sane values, every step's
+/// case, pass without building the diagnosis; [`diagnose`] builds it.
+#[inline]
+pub(crate) fn check_near(
+    sys: &System,
+    st: &State,
+    s: &CarrierSample,
+    carrier: usize,
+    note: Option<&str>,
+    near: bool,
+) -> Result<()> {
     let bound = DISPLACEMENT_BOUND_IN_LENGTHS * sys.physics.length;
-    let force_limit = if near_support(sys, s.x) {
+    let force_limit = if near {
         f64::INFINITY
     } else {
         sys.law.force_bound
     };
+    let sane = |value: f64, limit: f64| value.is_finite() && value.abs() <= limit;
+    if sane(s.force, force_limit) && sane(s.w, bound) && sane(s.q, bound) {
+        return Ok(());
+    }
+    diagnose(sys, st, s, carrier, note, bound, force_limit)
+}
+
+/// The diagnosis of a sample [`check_near`] found absurd: the first value
+/// out of its range (force, w, q) with its likely cause.
+#[cold]
+#[inline(never)]
+fn diagnose(
+    sys: &System,
+    st: &State,
+    s: &CarrierSample,
+    carrier: usize,
+    note: Option<&str>,
+    bound: f64,
+    force_limit: f64,
+) -> Result<()> {
     let checks = [
         ("contact force λ (N)", s.force, force_limit),
         ("beam displacement under the carrier w (m)", s.w, bound),

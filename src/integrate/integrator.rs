@@ -176,6 +176,7 @@ impl Integrator {
     }
 
     /// The values of carrier `i` at the current time.
+    #[inline]
     pub fn sample(&self, i: usize) -> CarrierSample {
         sample::sample_of(&self.sys, &self.state, i, |pv| self.displacement_at(pv))
     }
@@ -209,6 +210,7 @@ impl Integrator {
     }
 
     /// True when x lies in the last element before a supported end.
+    #[inline]
     pub fn near_support(&self, x: f64) -> bool {
         diagnose::near_support(&self.sys, x)
     }
@@ -256,5 +258,19 @@ impl Integrator {
     /// Stop with a diagnosis if a recorded value is non-finite or absurd.
     pub fn check(&self, s: &CarrierSample, carrier: usize) -> Result<()> {
         diagnose::check(&self.sys, &self.state, s, carrier, self.note.as_deref())
+    }
+
+    /// [`Integrator::check`] with `near` = [`Integrator::near_support`] at
+    /// `s.x` already known.
+    #[inline]
+    pub(crate) fn check_near(&self, s: &CarrierSample, carrier: usize, near: bool) -> Result<()> {
+        diagnose::check_near(
+            &self.sys,
+            &self.state,
+            s,
+            carrier,
+            self.note.as_deref(),
+            near,
+        )
     }
 }

@@ -96,6 +96,7 @@ impl LawState {
 
     /// The contact force of contact `j` reported after step `step` of Δt
     /// = `dt` (s), N ([`Multipliers`]).
+    #[inline]
     pub(crate) fn reported_force(&self, j: usize, step: usize, dt: f64) -> f64 {
         match self.multipliers {
             Multipliers::Forces => self.lambda[j],

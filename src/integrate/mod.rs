@@ -74,7 +74,8 @@ pub(crate) use batch_run::lanes_cap;
 pub use batch_run::new_batch;
 pub use central_difference::{CentralDifference, StabilityLimit, central_difference_limit};
 pub(crate) use diagnose::{
-    check as check_lane, damping_note as damping_note_of, near_support as near_support_lane,
+    check_near as check_near_lane, damping_note as damping_note_of,
+    near_support as near_support_lane,
 };
 pub use dropper::DropperSample;
 pub use energy::Energy;

@@ -122,6 +122,7 @@ impl System {
 
     /// The contact force of contact `j` reported after step `step`, N
     /// ([`Multipliers`]).
+    #[inline]
     pub(crate) fn reported_force(&self, j: usize, step: usize) -> f64 {
         self.law.reported_force(j, step, self.physics.dt)
     }

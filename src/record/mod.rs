@@ -67,6 +67,7 @@ impl CarrierTrace {
     }
 
     /// Append one sample (no allocation while within capacity).
+    #[inline]
     pub fn push(&mut self, s: &CarrierSample) {
         self.x.push(s.x);
         self.w.push(s.w);

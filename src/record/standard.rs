@@ -77,6 +77,7 @@ pub(crate) struct SectionCount {
 
 impl SectionCount {
     /// Count one step at `x` (m) with the contact `closed`.
+    #[inline]
     pub fn push(&mut self, section: [f64; 2], x: f64, closed: bool) {
         if section[0] <= x && x <= section[1] {
             self.samples += 1;

@@ -25,6 +25,7 @@ pub(crate) struct TimeAverage {
 
 impl TimeAverage {
     /// Add sample `x` standing for `w` seconds (w ≥ 0; 0 adds nothing).
+    #[inline]
     pub(crate) fn add(&mut self, x: f64, w: f64) {
         if w <= 0.0 {
             return;
@@ -37,6 +38,7 @@ impl TimeAverage {
 
     /// Add the step from `(t0, x0)` to `(t1, x1)`: the trapezoid's half
     /// length to each end.
+    #[inline]
     pub(crate) fn add_step(&mut self, x0: f64, x1: f64, dt: f64) {
         self.add(x0, 0.5 * dt);
         self.add(x1, 0.5 * dt);
