@@ -224,7 +224,16 @@ impl ContactStats {
     /// zones). The same numbers, bit for bit, as `ContactAccumulator` fed
     /// row by row. Rows beyond the shortest column are ignored.
     pub fn from_trace(t: &[f64], tr: &CarrierTrace, geometry: LossGeometry) -> Self {
-        let mut acc = ContactAccumulator::new(geometry);
+        Self::from_trace_into(ContactAccumulator::new(geometry), t, tr)
+    }
+
+    /// [`ContactStats::from_trace`] into accumulator `acc` (its window's
+    /// end set, say).
+    pub(crate) fn from_trace_into(
+        mut acc: ContactAccumulator,
+        t: &[f64],
+        tr: &CarrierTrace,
+    ) -> Self {
         let n = [
             t.len(),
             tr.x.len(),
@@ -627,6 +636,7 @@ impl ContactAccumulator {
         self.end_loss();
         let window = t_end - self.t_first;
         let per_time = if window > 0.0 { 1.0 / window } else { 0.0 };
+        let span_time = self.lost_time - self.lost_time_support;
         let min_gap = if self.min_gap.is_finite() {
             self.min_gap
         } else {
@@ -656,14 +666,11 @@ impl ContactAccumulator {
         };
         ContactStats {
             loss_fraction: self.lost_time * per_time,
-            loss_fraction_span: (self.lost_time - self.lost_time_support) * per_time,
+            loss_fraction_span: span_time * per_time,
             loss_fraction_support: self.lost_time_support * per_time,
             // a sum of its losses' span parts: at most the span part,
             // which is P_l less the support part, up to round-off
-            loss_fraction_span_sustained: self
-                .sustained_span
-                .min(self.lost_time - self.lost_time_support)
-                * per_time,
+            loss_fraction_span_sustained: self.sustained_span.min(span_time) * per_time,
             loss_fraction_steps: self.lost as f64 * per_step,
             support_zone: self.geometry.support_zone,
             first_loss_position: self.intervals.first().map(|iv| iv[0]),
@@ -808,21 +815,8 @@ mod tests {
         assert!((s.loss_fraction - 3.0 / 6.0).abs() < SUMMED_STEPS);
         close(&s, 3.0 / 6.0);
         let (t, tr) = located_trace(&[4.0, 3.0, 1.0, 0.0, 0.0], &[0.0, 0.0, 0.0, g(1.0), g(2.0)]);
-        let mut acc = ContactAccumulator::new(LossGeometry::span_only(4.8)).with_window_end(4.8e-4);
-        for (i, &ti) in t.iter().enumerate() {
-            acc.push(
-                ti,
-                &CarrierSample {
-                    x: tr.x[i],
-                    w: 0.0,
-                    q: 0.0,
-                    gap: tr.gap[i],
-                    force: tr.force[i],
-                    in_contact: tr.in_contact[i],
-                },
-            );
-        }
-        close(&acc.finish(), 2.3 / 4.8);
+        let acc = ContactAccumulator::new(LossGeometry::span_only(4.8)).with_window_end(4.8e-4);
+        close(&ContactStats::from_trace_into(acc, &t, &tr), 2.3 / 4.8);
         // a loss of exactly two steps of 0.1 ms (instants at step starts)
         // is 0.2 ms: it counts, whatever the round-off of its sum
         let (f, o) = (false, true);

@@ -39,7 +39,7 @@ use super::spec::SweepSpec;
 use super::tolerance_spec::{PointAccuracy, SweepTolerance};
 use crate::error::{Error, Result};
 use crate::integrate::batch_key;
-use crate::quantity::Quantity;
+use crate::quantity::{LOSS_FRACTION, LOSS_FRACTION_SPAN, Quantity};
 use crate::resolve::Resolved;
 use crate::run::{RunOutput, run_batch};
 use crate::study::cost::run_dof_steps;
@@ -1296,13 +1296,19 @@ fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
     }
 }
 
+/// A candidate's error is mostly Δt's when its split gives space less than
+/// this share of it (the rest is Δt's).
+const SPACE_SHARE_MINORITY: f64 = 0.5;
+
 /// What a point of P_l (or its in-span part) not met adds to why, when
-/// its candidate's error is mostly Δt's (its split's space share below
-/// one half): the bounces after a re-contact move P_l with Δt
-/// (docs/contact_loss.md §3), which its sustained part leaves out.
+/// its candidate's error is mostly Δt's ([`SPACE_SHARE_MINORITY`]): the
+/// bounces after a re-contact move P_l with Δt (docs/contact_loss.md §3),
+/// which its sustained part leaves out.
 fn bounce_hint(q: &Quantity, a: &Assessment) -> &'static str {
-    let loss = q.name == "loss_fraction" || q.name == "loss_fraction_span";
-    if loss && a.space_share.is_some_and(|s| s < 0.5) {
+    let loss = [&LOSS_FRACTION, &LOSS_FRACTION_SPAN]
+        .iter()
+        .any(|l| l.name == q.name);
+    if loss && a.space_share.is_some_and(|s| s < SPACE_SHARE_MINORITY) {
         "; its error is mostly Δt's: the bounces after a re-contact move P_l with Δt (docs/contact_loss.md §3), which --quantity loss_fraction_span_sustained leaves out"
     } else {
         ""
