@@ -53,6 +53,7 @@ mod method;
 mod modal_batch;
 mod modal_cruise;
 mod modal_exact;
+mod modal_impact;
 mod modal_kernels;
 #[cfg(target_arch = "x86_64")]
 mod modal_table_avx512;
@@ -85,6 +86,7 @@ pub use mass_dofs::MassDof;
 pub(crate) use method::scene_method;
 pub use method::{MethodFactory, parse_methods, register};
 pub use modal_cruise::RESYNC_STEPS as CRUISE_RESYNC_STEPS;
+pub(crate) use modal_impact::refusal as impact_refusal;
 pub use oscillator::ModeSteps;
 pub use run_batch::RunBatch;
 pub use sample::CarrierSample;

@@ -177,13 +177,6 @@ impl Method {
                 ),
             ));
         }
-        if self == Method::ModalExact && c.formulation == Formulation::Impact {
-            return Err(Error::invalid(
-                "contact.formulation",
-                "\"impact\"",
-                "integrator.method = modal_exact holds the contact force over each step and imposes the gap itself at the step's end (MODEL §9.3); an impact law acts by impulses on the gap rate, which that representation has no place for, and a velocity-level condition would replace the position gap it propagates exactly: use lagrange, penalty or complementarity (or integrator.method = moreau_jean for an impact law)",
-            ));
-        }
         if self == Method::MoreauJean {
             let why = match c.formulation {
                 Formulation::Penalty => Some(
