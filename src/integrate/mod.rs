@@ -86,7 +86,6 @@ pub use mass_dofs::MassDof;
 pub(crate) use method::scene_method;
 pub use method::{MethodFactory, parse_methods, register};
 pub use modal_cruise::RESYNC_STEPS as CRUISE_RESYNC_STEPS;
-pub(crate) use modal_impact::refusal as impact_refusal;
 pub use oscillator::ModeSteps;
 pub use run_batch::RunBatch;
 pub use sample::CarrierSample;

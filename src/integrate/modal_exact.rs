@@ -17,10 +17,9 @@
 //! the step makes the multiplier recurrence unstable. The held force keeps a
 //! neutral (−1)ⁿ zigzag of amplitude O(Δt), so the **reported** force is the
 //! mean of the two held forces around t_n (`Multipliers::Held`): second
-//! order, as tests/modal_exact.rs asserts. With `contact.formulation =
-//! "impact"` a re-contact step is re-taken with the re-contact located
-//! within it and a Newton impact there (`modal_impact.rs`); every other
-//! step is this one.
+//! order, as tests/modal_exact.rs asserts. The impact law re-takes a
+//! re-contact step with the instant located and an impulse there
+//! (`modal_impact.rs`).
 //!
 //! With one contact the update with λ is deferred into the next step's single
 //! pass over the modes ([`ModalExact::step_deferred`]); a whole run

@@ -1,44 +1,34 @@
-//! `modal_exact` with an impact law (`contact.formulation = "impact"`):
-//! the re-contact located within its step and taken as a Newton impact
-//! there (MODEL §6, "an impact-capable … variant is a legitimate extra
-//! formulation"; MODEL §9.3).
+//! `modal_exact` with an impact law (`contact.formulation = "impact"`;
+//! MODEL §6's impact-capable variant, §9.3): each re-contact located within
+//! its step and taken as a Newton impact there.
 //!
-//! Why: with the force held over a step and the gap imposed at its end
-//! (the study's law, `modal_exact.rs`), a gap closing at rate ġ at
-//! t* = t_n + θΔt is shut by a force that acted from t_n: the step is an
-//! impact of restitution 1 − 2θ, a number the step boundary sets. The
-//! motion after a re-contact, and P_l with it, then has no limit as Δt
-//! falls (docs/contact_loss.md §3). Here the re-contact step is re-taken:
+//! Why: a held force shuts a gap closing at t* = t_n + θΔt with a force
+//! that acted from t_n, an impact of restitution 1 − 2θ set by the step
+//! boundary, so P_l after a re-contact has no limit as Δt falls
+//! (docs/contact_loss.md §3). Here a re-contact step (the last step open,
+//! g_n > 0, the free gap at t_{n+1} closed) is re-taken:
 //!
-//! 1. θ from the free step's gap line: `θ = g_n/(g_n − g_free)` (the gap
-//!    at t_n open, g_n > 0, and the free gap at t_{n+1} closed);
-//! 2. the free motion at t* from the free state at t_{n+1}, propagated
-//!    back by τ = (1 − θ)Δt (each mode's exact map at −τ, the held
-//!    distributed load included; the mass dof's by its exponential);
-//! 3. the impulse `P = −(1 + e) ġ*/(Σ_j φ_j(x*)² + 1/m)` (P ≥ 0, zero when
-//!    the gap is not closing at t*), with `ġ* = s(φ(x*)·η̇* + V φ'(x*)·η*)
-//!    − q̇*` (the convective term V·w' included) and e
-//!    `contact.impact.restitution`: the beam's modes take `s P φ(x*)` and
-//!    the mass `−P/m` in velocity at t*, carried to t_{n+1} by the exact
-//!    maps over τ;
-//! 4. the force held over [t*, t_{n+1}] along the path φ(x*) → φ(x_{n+1})
-//!    (coefficients over τ), the gap imposed at t_{n+1} by the same law
-//!    (`g = g_free + W λ`, λ ≥ 0).
+//! 1. `θ = g_n/(g_n − g_free)`, the free step's gap line;
+//! 2. the free motion at t* from the free state at t_{n+1}, carried back by
+//!    τ = (1 − θ)Δt (each mode's exact map at −τ, held load included; the
+//!    mass dof's exponential);
+//! 3. the impulse `P = −(1 + e) ġ*/(Σ_j φ_j(x*)² + 1/m)` (zero unless the
+//!    gap closes), `ġ* = s(φ(x*)·η̇* + V φ'(x*)·η*) − q̇*`, e the
+//!    restitution; the modes take `s P φ(x*)`, the mass `−P/m` in velocity,
+//!    carried to t_{n+1} by the maps over τ;
+//! 4. the force held over [t*, t_{n+1}] along φ(x*) → φ(x_{n+1}), the gap
+//!    imposed at t_{n+1} by the same law (`g = g_free + W λ`, λ ≥ 0).
 //!
-//! The step is settled at once (nothing deferred). Its reported force is
-//! its mean over the step, `(λτ + P)/Δt`: ∫λ dt — the mean force, a
-//! re-contact's impulse — keeps the impact's momentum, as `moreau_jean`'s
-//! impulses and the study's held force do (a row's peak then grows as Δt
-//! falls, as theirs do). Every other step is the study's step, unchanged.
-//! With e = 0 the limit is the plastic one `moreau_jean` (e = 0)
-//! converges to.
-//!
-//! Cost: an event evaluates each mode's map at τ (a few trigonometric
-//! functions a mode) and the basis's slopes at x*: O(J), at re-contacts
-//! only. Nothing is allocated after [`LocatedImpact::new`].
+//! The step settles at once. Its reported force is its mean, `(λτ + P)/Δt`,
+//! so ∫λ dt keeps the impact's momentum as `moreau_jean`'s impulses do.
+//! Every other step is the study's. With e = 0 the limit is the plastic one
+//! `moreau_jean` (e = 0) converges to. An event costs O(J) (a few
+//! trigonometric functions a mode, the slopes at x*); nothing is allocated
+//! after [`LocatedImpact::new`].
 
 use crate::error::{Error, Result};
 use crate::model::beam::PointVector;
+use crate::scene::impact_refusal;
 
 use super::modal_exact::ModalCoefs;
 use super::oscillator::{MassStep, ModeStep};
@@ -62,29 +52,6 @@ pub(crate) struct LocatedImpact {
     maps: Vec<ModeStep>,
 }
 
-/// Why a scene cannot take the impact law with `modal_exact`, or `None`
-/// when it can: `carriers` carriers with `contacts` contacts in all, a
-/// manufactured source on a unilateral contact (`source`), damped modes
-/// (`damped`). Checked when the scene resolves and when a run is built.
-pub(crate) fn refusal(
-    carriers: usize,
-    contacts: usize,
-    source: bool,
-    damped: bool,
-) -> Option<String> {
-    if contacts != 1 || carriers != 1 {
-        Some(format!(
-            "with integrator.method = modal_exact locates each re-contact of one mass–spring carrier within its step; this scene has {carriers} carriers and {contacts} contacts: use one carrier, or integrator.method = moreau_jean for an impact law on several"
-        ))
-    } else if source {
-        Some("with integrator.method = modal_exact propagates the free motion back from t_{n+1} to a re-contact instant, which a manufactured source's time-dependent load does not allow on a unilateral contact: use contact.formulation = \"lagrange\" for a manufactured solution, or integrator.method = moreau_jean".to_string())
-    } else if damped {
-        Some("with integrator.method = modal_exact propagates each mode back to a re-contact instant by its undamped map, and the modes are damped (beam.damping): remove beam.damping, or use integrator.method = moreau_jean".to_string())
-    } else {
-        None
-    }
-}
-
 impl LocatedImpact {
     /// The events of a run on `coefs`' basis whose contact settings ask for
     /// an impact law; `None` for any other formulation. Refuses a scene this
@@ -95,7 +62,7 @@ impl LocatedImpact {
         };
         let carriers = sys.physics.carriers.len();
         let source = sys.has_source() && !sys.law.bilateral;
-        let why = refusal(carriers, sys.contacts(), source, coefs.is_damped());
+        let why = impact_refusal(carriers, sys.contacts(), source, coefs.is_damped());
         if let Some(why) = why {
             return Err(Error::invalid("contact.formulation", "\"impact\"", why));
         }
@@ -264,22 +231,5 @@ mod tests {
             assert_eq!(newton_impulse(0.1, 7.0, e), 0.0);
             assert_eq!(newton_impulse(0.0, 7.0, e), 0.0);
         }
-    }
-
-    #[test]
-    fn a_scene_the_located_impact_cannot_carry_is_named() {
-        let two = refusal(2, 2, false, false).unwrap();
-        assert!(
-            two.contains("2 carriers") && two.contains("moreau_jean"),
-            "{two}"
-        );
-        let src = refusal(1, 1, true, false).unwrap();
-        assert!(
-            src.contains("manufactured") && src.contains("lagrange"),
-            "{src}"
-        );
-        let damped = refusal(1, 1, false, true).unwrap();
-        assert!(damped.contains("beam.damping"), "{damped}");
-        assert!(refusal(1, 1, false, false).is_none());
     }
 }

@@ -112,12 +112,9 @@ impl Scene {
                 .count();
             let source = self.manufactured.is_some()
                 && self.contact.kind == crate::scene::ContactKind::Unilateral;
-            if let Some(why) = crate::integrate::impact_refusal(
-                carriers.len(),
-                contacts,
-                source,
-                !damping.is_zero(),
-            ) {
+            if let Some(why) =
+                crate::scene::impact_refusal(carriers.len(), contacts, source, !damping.is_zero())
+            {
                 return Err(crate::Error::invalid(
                     "contact.formulation",
                     "\"impact\"",
