@@ -35,6 +35,13 @@ use super::oscillator::{MassStep, ModeStep};
 use super::state::State;
 use super::system::System;
 
+/// A re-contact instant within this fraction of Δt of the step's end
+/// (1 − θ below it) is left to the held step: over so short a τ the held
+/// force's W vanishes to round-off (W ∝ τ², below 1e-18 of its size over
+/// Δt) and the law cannot impose the gap with it; the held step's error
+/// for that event is of the order of this fraction.
+const AT_STEP_END: f64 = 1e-9;
+
 /// The re-contact events of one `modal_exact` run (module docs).
 #[derive(Debug, Clone)]
 pub(crate) struct LocatedImpact {
@@ -86,10 +93,15 @@ impl LocatedImpact {
 
     /// True when the step whose free gap is `g_free` (m) is a re-contact
     /// to locate: the last step ended open with its gap open, this one's
-    /// free step closes it, and no update is pending.
+    /// free step closes it before the step's end ([`AT_STEP_END`]), and no
+    /// update is pending.
     #[inline]
     pub fn fires(&self, g_free: f64, deferred: bool) -> bool {
-        self.open && self.gap > 0.0 && g_free < 0.0 && !deferred
+        self.open
+            && self.gap > 0.0
+            && g_free < 0.0
+            && !deferred
+            && -g_free > AT_STEP_END * (self.gap - g_free)
     }
 
     /// Keep what the next step's test needs: whether the law left the
@@ -213,6 +225,26 @@ mod tests {
 
     /// The rate after the impulse against `−e·rate`: a few ulps of the rate.
     const ROUND_OFF: f64 = 1e-14;
+
+    /// An open step whose free step closes the gap: an event, unless the
+    /// instant falls at the step's end to round-off (θ = 1, τ = 0).
+    #[test]
+    fn a_re_contact_at_the_step_s_end_is_left_to_the_held_step() {
+        let mut ev = LocatedImpact {
+            restitution: 0.0,
+            open: true,
+            gap: 1e-4,
+            at: PointVector::default(),
+            slope: PointVector::default(),
+            maps: Vec::new(),
+        };
+        assert!(ev.fires(-1e-6, false));
+        assert!(!ev.fires(-1e-21, false), "θ rounds to 1: τ = 0");
+        assert!(!ev.fires(1e-6, false), "the free step leaves the gap open");
+        assert!(!ev.fires(-1e-6, true), "an update is pending");
+        ev.end_step(false, 1e-4);
+        assert!(!ev.fires(-1e-6, false), "the last step ended closed");
+    }
 
     #[test]
     fn the_impulse_turns_a_closing_rate_into_minus_e_times_it() {
