@@ -29,7 +29,9 @@
 //! uses taut's own step coefficients, so its fraction of steps without
 //! contact is printed beside taut's as a check that it does the same work.
 //!
-//! Run with `cargo bench --bench modal_roofline`.
+//! Run with `cargo bench --bench modal_roofline`; `-- clamped` (or
+//! `pinned–pinned`, `alone`, `batch`) runs only the cases whose basis or
+//! row contains each word given (a profile of one case).
 
 use std::time::Duration;
 
@@ -342,6 +344,16 @@ fn main() {
     if std::env::args().any(|a| a == "--list") {
         return;
     }
+    // words a case's basis or row must contain (cargo's flags aside)
+    let words: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-'))
+        .collect();
+    let wanted = |name: &str, row: &str| {
+        words
+            .iter()
+            .all(|w| name.contains(w.as_str()) || row.contains(w.as_str()))
+    };
     println!(
         "modal_exact vs the reference kernel, J = {MODES}, CPU ns per mode-step (median, min of {REPEATS})"
     );
@@ -358,46 +370,51 @@ fn main() {
         let sc = scene(pinned, 80.0);
         let sh = RefShared::new(&sc);
         let steps = sc.steps;
-        // taut alone, and a check of the reference's work on pinned–pinned
-        let out = taut::run(&sc, &mut |_, _| {}).expect("run");
-        let mut one = [sh.run(80.0)];
-        ref_steps(&sh, &mut one, steps, !pinned);
-        if pinned {
-            println!(
-                "  check: steps without contact, taut {:.5}, reference {:.5}",
-                out.stats[0].loss_fraction_steps,
-                one[0].lost as f64 / steps as f64
-            );
-        }
-        let (ta, ta_min) = timed(steps * MODES, || {
-            std::hint::black_box(taut::run(&sc, &mut |_, _| {}).expect("run").steps);
-        });
-        let (ra, ra_min) = timed(steps * MODES, || {
+        if wanted(name, "alone steps") {
+            // taut alone, and a check of the reference's work on pinned–pinned
+            let out = taut::run(&sc, &mut |_, _| {}).expect("run");
             let mut one = [sh.run(80.0)];
             ref_steps(&sh, &mut one, steps, !pinned);
-            std::hint::black_box(one[0].q);
-        });
-        println!(
-            "{name:<15} {:<8} {:>7.3} ({:.3}) {:>7.3} ({:.3}) {:>8.2}",
-            "alone",
-            ta,
-            ta_min,
-            ra,
-            ra_min,
-            ta / ra
-        );
-        // the run's basis, step maps and shape tables, built once a run
-        // alone (once for a batch): its share of a run alone
-        let (build, _) = timed(steps * MODES, || {
-            std::hint::black_box(Integrator::new(&sc).expect("integrator builds").dofs());
-        });
-        println!(
-            "{name:<15} {:<8} {:>7.3}         {:>16} {:>8.2}",
-            "  steps",
-            ta - build,
-            "",
-            (ta - build) / ra
-        );
+            if pinned {
+                println!(
+                    "  check: steps without contact, taut {:.5}, reference {:.5}",
+                    out.stats[0].loss_fraction_steps,
+                    one[0].lost as f64 / steps as f64
+                );
+            }
+            let (ta, ta_min) = timed(steps * MODES, || {
+                std::hint::black_box(taut::run(&sc, &mut |_, _| {}).expect("run").steps);
+            });
+            let (ra, ra_min) = timed(steps * MODES, || {
+                let mut one = [sh.run(80.0)];
+                ref_steps(&sh, &mut one, steps, !pinned);
+                std::hint::black_box(one[0].q);
+            });
+            println!(
+                "{name:<15} {:<8} {:>7.3} ({:.3}) {:>7.3} ({:.3}) {:>8.2}",
+                "alone",
+                ta,
+                ta_min,
+                ra,
+                ra_min,
+                ta / ra
+            );
+            // the run's basis, step maps and shape tables, built once a run
+            // alone (once for a batch): its share of a run alone
+            let (build, _) = timed(steps * MODES, || {
+                std::hint::black_box(Integrator::new(&sc).expect("integrator builds").dofs());
+            });
+            println!(
+                "{name:<15} {:<8} {:>7.3}         {:>16} {:>8.2}",
+                "  steps",
+                ta - build,
+                "",
+                (ta - build) / ra
+            );
+        }
+        if !wanted(name, "batch 8") {
+            continue;
+        }
         let sweep: Vec<taut::Resolved> = SWEEP.iter().map(|&v| scene(pinned, v)).collect();
         let total: usize = sweep.iter().map(|s| s.steps).sum::<usize>() * MODES;
         let (tb, tb_min) = timed(total, || {

@@ -227,7 +227,8 @@ fn compare_and_precision_give_the_same_rows_batched() {
 /// `modal_exact` runs on one basis and Δt step together (`integrate::
 /// modal_batch`: the basis, step maps and shape tables built once), each
 /// bit-identical to the run alone: speeds (retirement), masses, springs,
-/// preloads, formulations, two carriers, a run that stops, and runs on
+/// preloads, formulations (the impact law's located re-contacts too), two
+/// carriers, a run that stops, and runs on
 /// other bases or steps in the same list (other batches, or alone).
 #[test]
 fn modal_exact_runs_batch_bit_identically() {
@@ -291,6 +292,16 @@ fn modal_exact_runs_batch_bit_identically() {
             "time.end=0.1".into(),
         ]),
     ));
+    // the impact law: re-contacts located within their steps, one with a
+    // held load in every mode (indices 12, 13)
+    for more in [vec![], vec!["gravity.beam_self_weight=true".to_string()]] {
+        let mut o = vec![
+            "contact.formulation=impact".to_string(),
+            "carrier.0.speed.cruise=160".to_string(),
+        ];
+        o.extend(more);
+        scenes.push(scene(REFERENCE, &exact(&o)));
+    }
     let keys: Vec<Option<taut::integrate::BatchKey>> =
         scenes.iter().map(taut::integrate::batch_key).collect();
     assert!(keys.iter().all(Option::is_some));

@@ -4,7 +4,7 @@
 //!
 //! Checks, each against an independent reference:
 //! * the method is refused where it means nothing (Hermite elements, the
-//!   impact law, the `alpha` placement), naming the field and what to use;
+//!   `alpha` placement), naming the field and what to use;
 //! * a force at rest is a load the step represents exactly: the history is
 //!   the J-mode closed form `F Σ φ_j² (1 − cos ω_j t)/ω_j²` to round-off
 //!   at any Δt (the error is set by J alone);
@@ -94,16 +94,6 @@ fn modal_exact_is_refused_where_it_means_nothing() {
         "{e}"
     );
     let g = galerkin(40);
-    let e = resolve(
-        "reference.toml",
-        &with(&g, &[EXACT, "contact.formulation=impact"]),
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(
-        e.contains("contact.formulation") && e.contains("impulse") && e.contains("lagrange"),
-        "{e}"
-    );
     let e = resolve(
         "reference.toml",
         &with(&g, &[EXACT, "contact.placement=alpha"]),

@@ -367,7 +367,7 @@ fn line_outputs() {
 
 /// `modal_exact` (MODEL §9.3): on each diagonal basis through contact loss,
 /// the fast shapes near the clamped end (its boundary-layer table) and
-/// mid-span, two contacts, the penalty and complementarity laws, a moving
+/// mid-span, two contacts, the penalty, complementarity and impact laws, a moving
 /// force with self-weight, and a batch of runs sharing one basis.
 fn modal_exact(force: &str) {
     let me = "integrator={ method = \"modal_exact\" }";
@@ -388,6 +388,20 @@ fn modal_exact(force: &str) {
             "modal_exact, {f}"
         );
     }
+    // the impact law: 8 re-contacts in these 3000 steps, each step re-taken
+    // in place
+    let impact = [
+        "contact.formulation=impact",
+        "beam.left=pinned",
+        "carrier.speed={ profile = \"constant\", value = 165 }",
+    ];
+    let s = measure_steps(
+        REFERENCE,
+        &[me, g[0], g[1], impact[0], impact[1], impact[2]],
+        3000,
+    );
+    assert_eq!(s.allocations, 0, "modal_exact, impact");
+    assert!(s.open > 0, "modal_exact, impact: the contact never opened");
     assert_eq!(
         allocations_in_steps(TWO_PANTOGRAPHS, &[me, g[0], g[1]], 4000),
         0,

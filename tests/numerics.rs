@@ -58,6 +58,8 @@ mod mms_attachments;
 mod mms_two_wires;
 #[path = "modal_exact.rs"]
 mod modal_exact;
+#[path = "modal_impact.rs"]
+mod modal_impact;
 #[path = "pantograph_chain.rs"]
 mod pantograph_chain;
 #[path = "pantograph_uplift.rs"]

@@ -79,6 +79,20 @@ impl LawState {
         }
     }
 
+    /// For a method that takes impacts itself (`modal_exact` with
+    /// `contact.formulation = "impact"`, `modal_impact.rs`): the law
+    /// becomes the force-level rule the impact law would solve its rate
+    /// problems with (Lagrange), for the `nc` contacts, and the
+    /// restitution e is returned; `None` (nothing changed) for any other
+    /// formulation.
+    pub(crate) fn impacts_taken_by_method(&mut self, nc: usize) -> Option<f64> {
+        if self.contact.formulation != crate::scene::Formulation::Impact {
+            return None;
+        }
+        self.law = RunLaw::Force(crate::contact::law_for(&self.contact, nc));
+        Some(self.contact.impact.restitution)
+    }
+
     /// Keep the multipliers of the step just taken before the next solve
     /// replaces them ([`Multipliers::Held`]: the reported force is the
     /// mean of the two held forces around a time step).

@@ -53,6 +53,7 @@ mod method;
 mod modal_batch;
 mod modal_cruise;
 mod modal_exact;
+mod modal_impact;
 mod modal_kernels;
 #[cfg(target_arch = "x86_64")]
 mod modal_table_avx512;

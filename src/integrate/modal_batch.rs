@@ -71,7 +71,7 @@ impl ModalBatch {
                 let mut sys = System::with_beam(sc, beam.clone())?;
                 let st = State::at_rest(sys.beam().n, sys.contacts());
                 sys.initial()?;
-                let stepper = ModalExact::with_coefs(Arc::clone(&coefs), &mut sys);
+                let stepper = ModalExact::with_coefs(Arc::clone(&coefs), &mut sys)?;
                 Ok((sys, st, stepper))
             })();
             match made {

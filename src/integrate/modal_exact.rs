@@ -17,7 +17,9 @@
 //! the step makes the multiplier recurrence unstable. The held force keeps a
 //! neutral (−1)ⁿ zigzag of amplitude O(Δt), so the **reported** force is the
 //! mean of the two held forces around t_n (`Multipliers::Held`): second
-//! order, as tests/modal_exact.rs asserts. The impact law is refused.
+//! order, as tests/modal_exact.rs asserts. The impact law re-takes a
+//! re-contact step with the instant located and an impulse there
+//! (`modal_impact.rs`).
 //!
 //! With one contact the update with λ is deferred into the next step's single
 //! pass over the modes ([`ModalExact::step_deferred`]); a whole run
@@ -38,6 +40,7 @@ use crate::numeric::lanes::{self, LANES};
 use crate::scene::CarrierKind;
 
 use super::modal_cruise::Cruise;
+use super::modal_impact::LocatedImpact;
 use super::modal_kernels::{
     CoefBlock, FusedPass, HeldStep, ModeState, PairSums, PathShapes, Phasors, add_path_load,
     coef_blocks, free, free_with_pair, path, path_dot,
@@ -72,6 +75,9 @@ pub(crate) struct ModalCoefs {
     /// `steps`' coefficients in blocks of eight modes, for the AVX-512
     /// cruise pass ([`coef_blocks`]).
     blocks: Vec<CoefBlock>,
+    /// ω_j, rad/s (a located re-contact's maps over its own sub-steps,
+    /// `modal_impact.rs`).
+    omega: Vec<f64>,
 }
 
 impl ModalCoefs {
@@ -126,12 +132,23 @@ impl ModalCoefs {
             held,
             shapes,
             damped: damping.is_some(),
+            omega,
         })
     }
 
     /// J.
     pub fn modes(&self) -> usize {
         self.steps.len()
+    }
+
+    /// ω_j of the J modes, rad/s.
+    pub fn omega(&self) -> &[f64] {
+        &self.omega
+    }
+
+    /// True when the modes are damped (`[beam] damping`).
+    pub fn is_damped(&self) -> bool {
+        self.damped
     }
 
     /// `φ(x)` of the basis into `pv` (the fast shapes, or the FE modes'
@@ -166,6 +183,9 @@ pub(crate) struct ModalExact {
     pending: Option<f64>,
     /// A manufactured scene's source samples (`None` without one).
     source: Option<SourceLoads>,
+    /// The located re-contacts of an impact law (`contact.formulation =
+    /// "impact"`, `modal_impact.rs`); `None` for the study's law.
+    impact: Option<LocatedImpact>,
 }
 
 /// A manufactured source's modal load sampled at t_n and t_{n+1} (MODEL
@@ -190,14 +210,15 @@ impl ModalExact {
             sys.damping(),
             sys.dt(),
         )?);
-        Ok(Self::with_coefs(coefs, sys))
+        Self::with_coefs(coefs, sys)
     }
 
     /// The stepper with coefficients shared by several runs on the same
     /// basis and Δt (a batch). Re-evaluates the carriers' point vectors at
     /// t = 0 with the basis's fast shapes, so every step reads shapes of one
-    /// kind.
-    pub fn with_coefs(coefs: Arc<ModalCoefs>, sys: &mut System) -> Self {
+    /// kind. Refuses an impact law on a scene it does not carry
+    /// ([`LocatedImpact::new`]).
+    pub fn with_coefs(coefs: Arc<ModalCoefs>, sys: &mut System) -> Result<Self> {
         let dt = sys.dt();
         let mass_steps = sys
             .masses()
@@ -219,7 +240,8 @@ impl ModalExact {
             t_n1: f64::NAN,
         });
         let cruise = coefs.shapes.as_ref().map(|_| Cruise::new(j));
-        ModalExact {
+        let impact = LocatedImpact::new(&coefs, sys)?;
+        Ok(ModalExact {
             coefs,
             mass_steps,
             g: vec![0.0; nc],
@@ -228,7 +250,8 @@ impl ModalExact {
             layered: vec![0.0; j],
             pending: None,
             source,
-        }
+            impact,
+        })
     }
 }
 
@@ -757,6 +780,7 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         layered,
         pending,
         source,
+        impact,
     } = me;
     let deferred = pending.take();
     let (coefs, source) = (&**coefs, source.as_mut());
@@ -796,20 +820,33 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
         // external forces on the masses, held at the step's midpoint
         sys.set_mass_source(0.5 * (st.t + st.next_time(sys.physics.dt)));
     }
+    let mass_n = impact.as_ref().map(|_| (st.q[0], st.q_dot[0]));
     contact(coefs, mass_steps, g, w, pair, sys, st)?;
     match pair {
         Some((dg, dw)) => {
             // one contact: its update deferred to the next step's pass
             // (or `settle`), the sample's r_gᵀd from the pass's two sums:
             // r_g·(η_free + f z) = dg + f dw
-            let lambda = sys.law.lambda[0];
-            let rd = if lambda != 0.0 {
-                let f = sys.physics.carriers[0].s * lambda;
-                *pending = Some(f);
-                f.mul_add(dw, dg)
-            } else {
-                dg
+            let rd = match (impact.as_mut(), mass_n) {
+                (Some(ev), Some(mass_n)) if ev.fires(g[0], deferred.is_some()) => {
+                    // a re-contact located within the step, settled at once
+                    ev.recontact(coefs, &mass_steps[0], mass_n, g[0], sys, st)?
+                }
+                _ => {
+                    let lambda = sys.law.lambda[0];
+                    if lambda != 0.0 {
+                        let f = sys.physics.carriers[0].s * lambda;
+                        *pending = Some(f);
+                        f.mul_add(dw, dg)
+                    } else {
+                        dg
+                    }
+                }
             };
+            if let Some(ev) = impact.as_mut() {
+                let gap = sys.physics.carriers[0].s * rd - st.q[0];
+                ev.end_step(!sys.law.active[0], gap);
+            }
             sys.physics.carriers[0].gap_dot = Some((st.step + 1, rd));
         }
         None => update_range(coefs, sys, st, all, vector),

@@ -86,6 +86,56 @@ fn u_minus_sin_over_u3(u: f64) -> f64 {
     }
 }
 
+/// The exact step map of one undamped mode over `dt` (module docs): what
+/// [`ModeSteps`] stores for each of J modes at the run's Δt, and what a
+/// located re-contact (`modal_impact.rs`) evaluates at its own sub-steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ModeStep {
+    /// cos(ωΔt).
+    pub cos: f64,
+    /// sin(ωΔt)/ω, s.
+    pub sin_over_omega: f64,
+    /// −ω sin(ωΔt), 1/s.
+    pub minus_omega_sin: f64,
+    /// η_{n+1} per unit load sample at t_n, t_{n+1}, s².
+    pub a0: f64,
+    /// See `a0`.
+    pub a1: f64,
+    /// η̇_{n+1} per unit load sample at t_n, t_{n+1}, s.
+    pub b0: f64,
+    /// See `b0`.
+    pub b1: f64,
+}
+
+impl ModeStep {
+    /// The step map of a mode of angular frequency `w` (rad/s, ≥ 0) over
+    /// `dt` (s), every coefficient without cancellation (module docs).
+    #[inline]
+    pub fn of(w: f64, dt: f64) -> Self {
+        let u = w * dt;
+        let (su, cu) = u.sin_cos();
+        // 2 sin²(u/2)/u² = (1 − cos u)/u², and sin(u)/u
+        let (c2, sinc) = if u > 0.0 {
+            let h = (0.5 * u).sin();
+            (2.0 * h * h / (u * u), su / u)
+        } else {
+            (0.5, 1.0)
+        };
+        let s3 = u_minus_sin_over_u3(u);
+        let a1 = dt * dt * s3;
+        let b1 = dt * c2;
+        ModeStep {
+            cos: cu,
+            sin_over_omega: dt * sinc,
+            minus_omega_sin: -w * su,
+            a0: dt * dt * c2 - a1,
+            a1,
+            b0: dt * sinc - b1,
+            b1,
+        }
+    }
+}
+
 impl ModeSteps {
     /// The step maps of modes with angular frequencies `omega` (rad/s, ≥ 0) at `dt`.
     pub fn new(omega: &[f64], dt: f64) -> Self {
@@ -102,33 +152,21 @@ impl ModeSteps {
             b1: Vec::with_capacity(n),
         };
         for &w in omega {
-            let u = w * dt;
-            let (su, cu) = u.sin_cos();
-            // 2 sin²(u/2)/u² = (1 − cos u)/u², and sin(u)/u
-            let (c2, sinc) = if u > 0.0 {
-                let h = (0.5 * u).sin();
-                (2.0 * h * h / (u * u), su / u)
-            } else {
-                (0.5, 1.0)
-            };
-            let s3 = u_minus_sin_over_u3(u);
-            let a1 = dt * dt * s3;
-            let b1 = dt * c2;
-            m.cos.push(cu);
-            m.sin_over_omega.push(dt * sinc);
-            m.minus_omega_sin.push(-w * su);
-            m.cos_v.push(cu);
-            let a0 = dt * dt * c2 - a1;
+            let c = ModeStep::of(w, dt);
+            m.cos.push(c.cos);
+            m.sin_over_omega.push(c.sin_over_omega);
+            m.minus_omega_sin.push(c.minus_omega_sin);
+            m.cos_v.push(c.cos);
             // a deliberate defect of the test build (`crate::defects`)
             let (a0, a1) = if crate::defects::on(crate::defects::Defect::HoldSwapped) {
-                (a1, a0)
+                (c.a1, c.a0)
             } else {
-                (a0, a1)
+                (c.a0, c.a1)
             };
             m.a0.push(a0);
             m.a1.push(a1);
-            m.b0.push(dt * sinc - b1);
-            m.b1.push(b1);
+            m.b0.push(c.b0);
+            m.b1.push(c.b1);
         }
         m
     }

@@ -120,6 +120,15 @@ impl System {
         self.law.hold_multipliers();
     }
 
+    /// A method that takes impacts itself asks for the restitution e of
+    /// `contact.formulation = "impact"`, its law then at force level
+    /// ([`LawState::impacts_taken_by_method`]); `None` for any other
+    /// formulation.
+    pub(crate) fn impact_restitution(&mut self) -> Option<f64> {
+        let nc = self.contacts();
+        self.law.impacts_taken_by_method(nc)
+    }
+
     /// The contact force of contact `j` reported after step `step`, N
     /// ([`Multipliers`]).
     #[inline]

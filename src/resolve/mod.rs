@@ -103,6 +103,25 @@ impl Scene {
         validate_contact(&self.contact)?;
         // the method's own check of the contact settings and basis
         method.accepts(&self.contact, discretization)?;
+        if method.built_in_method() == Some(crate::scene::Method::ModalExact)
+            && self.contact.formulation == crate::scene::Formulation::Impact
+        {
+            let contacts = carriers
+                .iter()
+                .filter(|c| !matches!(c.kind, crate::scene::CarrierKind::Force { .. }))
+                .count();
+            let source = self.manufactured.is_some()
+                && self.contact.kind == crate::scene::ContactKind::Unilateral;
+            if let Some(why) =
+                crate::scene::impact_refusal(carriers.len(), contacts, source, !damping.is_zero())
+            {
+                return Err(crate::Error::invalid(
+                    "contact.formulation",
+                    "\"impact\"",
+                    why,
+                ));
+            }
+        }
 
         let time = self.resolve_time(&carriers, l)?;
         let (dt, t_end, steps) = (time.dt, time.t_end, time.steps);

@@ -177,13 +177,6 @@ impl Method {
                 ),
             ));
         }
-        if self == Method::ModalExact && c.formulation == Formulation::Impact {
-            return Err(Error::invalid(
-                "contact.formulation",
-                "\"impact\"",
-                "integrator.method = modal_exact holds the contact force over each step and imposes the gap itself at the step's end (MODEL §9.3); an impact law acts by impulses on the gap rate, which that representation has no place for, and a velocity-level condition would replace the position gap it propagates exactly: use lagrange, penalty or complementarity (or integrator.method = moreau_jean for an impact law)",
-            ));
-        }
         if self == Method::MoreauJean {
             let why = match c.formulation {
                 Formulation::Penalty => Some(
@@ -319,9 +312,49 @@ impl MethodInfo for Method {
     }
 }
 
+/// Why a scene cannot take the impact law with `modal_exact`, or `None`
+/// when it can: `carriers` carriers with `contacts` contacts in all, a
+/// manufactured source on a unilateral contact (`source`), damped modes
+/// (`damped`). Checked when the scene resolves and when a run is built.
+pub(crate) fn impact_refusal(
+    carriers: usize,
+    contacts: usize,
+    source: bool,
+    damped: bool,
+) -> Option<String> {
+    if contacts != 1 || carriers != 1 {
+        Some(format!(
+            "with integrator.method = modal_exact locates each re-contact of one mass–spring carrier within its step; this scene has {carriers} carriers and {contacts} contacts: use one carrier, or integrator.method = moreau_jean for an impact law on several"
+        ))
+    } else if source {
+        Some("with integrator.method = modal_exact propagates the free motion back from t_{n+1} to a re-contact instant, which a manufactured source's time-dependent load does not allow on a unilateral contact: use contact.formulation = \"lagrange\" for a manufactured solution, or integrator.method = moreau_jean".to_string())
+    } else if damped {
+        Some("with integrator.method = modal_exact propagates each mode back to a re-contact instant by its undamped map, and the modes are damped (beam.damping): remove beam.damping, or use integrator.method = moreau_jean".to_string())
+    } else {
+        None
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_scene_the_located_impact_cannot_carry_is_named() {
+        let two = impact_refusal(2, 2, false, false).unwrap();
+        assert!(
+            two.contains("2 carriers") && two.contains("moreau_jean"),
+            "{two}"
+        );
+        let src = impact_refusal(1, 1, true, false).unwrap();
+        assert!(
+            src.contains("manufactured") && src.contains("lagrange"),
+            "{src}"
+        );
+        let damped = impact_refusal(1, 1, false, true).unwrap();
+        assert!(damped.contains("beam.damping"), "{damped}");
+        assert!(impact_refusal(1, 1, false, false).is_none());
+    }
 
     #[test]
     fn the_default_method_is_the_study_s() {

@@ -82,6 +82,7 @@ pub use manufactured::{Declared, ManufacturedSpec, ReferenceKind, ReferenceSpec}
 pub use mesh::{GradingKind, MeshKind, MeshSpec};
 pub use messenger::{Messenger, MessengerSpec};
 pub use messenger_support::ElasticSupport;
+pub(crate) use method::impact_refusal;
 pub use method::{Method, MethodInfo, Parameter};
 pub use method_choice::ResolvedMethod;
 pub use method_registry::MethodRef;
