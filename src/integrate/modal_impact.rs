@@ -38,8 +38,9 @@ use super::system::System;
 /// A re-contact instant within this fraction of Δt of the step's end
 /// (1 − θ below it) is left to the held step: over so short a τ the held
 /// force's W vanishes to round-off (W ∝ τ², below 1e-18 of its size over
-/// Δt) and the law cannot impose the gap with it; the held step's error
-/// for that event is of the order of this fraction.
+/// Δt) and the law cannot impose the gap with it. Such an event keeps the
+/// held step's restitution; with θ spread over the step, about this
+/// fraction of the events falls there.
 const AT_STEP_END: f64 = 1e-9;
 
 /// The re-contact events of one `modal_exact` run (module docs).
