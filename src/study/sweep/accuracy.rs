@@ -1301,14 +1301,17 @@ fn plan(p: &Point, tol: &SweepTolerance, formal: (f64, f64)) -> Key {
 const SPACE_SHARE_MINORITY: f64 = 0.5;
 
 /// What a point of P_l (or its in-span part) not met adds to why, when
-/// its candidate's error is mostly Δt's ([`SPACE_SHARE_MINORITY`]): the
-/// bounces after a re-contact move P_l with Δt (docs/contact_loss.md §3),
-/// which its sustained part leaves out.
-fn bounce_hint(q: &Quantity, a: &Assessment) -> &'static str {
+/// its candidate's error is mostly Δt's ([`SPACE_SHARE_MINORITY`]) under a
+/// force-level law: the bounces after a re-contact move P_l with Δt
+/// (docs/contact_loss.md §3), which its sustained part leaves out. Under
+/// the impact law (`sc`'s formulation) a re-contact does not bounce by the
+/// step's timing, so the hint would mislead.
+fn bounce_hint(q: &Quantity, space_share: Option<f64>, sc: Option<&Resolved>) -> &'static str {
     let loss = [&LOSS_FRACTION, &LOSS_FRACTION_SPAN]
         .iter()
         .any(|l| l.name == q.name);
-    if loss && a.space_share.is_some_and(|s| s < SPACE_SHARE_MINORITY) {
+    let impact = sc.is_some_and(|s| s.contact.formulation == crate::scene::Formulation::Impact);
+    if loss && !impact && space_share.is_some_and(|s| s < SPACE_SHARE_MINORITY) {
         "; its error is mostly Δt's: the bounces after a re-contact move P_l with Δt (docs/contact_loss.md §3), which --quantity loss_fraction_span_sustained leaves out"
     } else {
         ""
@@ -1348,7 +1351,10 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
             _ => None,
         },
         not_met: (!met)
-            .then(|| p.not_met.clone().map(|w| w + bounce_hint(tol.spec(), &a)))
+            .then(|| {
+                let hint = bounce_hint(tol.spec(), a.space_share, sc.as_ref());
+                p.not_met.clone().map(|w| w + hint)
+            })
             .flatten(),
         u_num_ladder: p.candidates.iter().map(|c| c.1.u_num).collect(),
         runs_made: Vec::new(),
@@ -1369,6 +1375,31 @@ fn finish(p: &mut Point, tol: &SweepTolerance, key: Key) {
 mod tests {
     use super::*;
     use crate::study::uncertainty::assess::{Inputs, assess};
+
+    /// P_l not met, its error mostly Δt's: the bounces are named under the
+    /// study's law, not under the impact law (no bounce by the step's
+    /// timing there), nor for a quantity other than P_l or a space-led error.
+    #[test]
+    fn the_bounce_hint_is_the_force_level_laws_only() {
+        let scene = |f: &str| {
+            let o = [
+                "mesh.kind=galerkin".to_string(),
+                "mesh.modes=40".to_string(),
+                "integrator={ method = \"modal_exact\" }".to_string(),
+                format!("contact.formulation={f}"),
+            ];
+            crate::resolve_scene(include_str!("../../../scenes/reference.toml"), &o).unwrap()
+        };
+        let (held, impact) = (scene("lagrange"), scene("impact"));
+        let dt_led = Some(SPACE_SHARE_MINORITY / 2.0);
+        assert!(bounce_hint(&LOSS_FRACTION_SPAN, dt_led, Some(&held)).contains("bounces"));
+        assert_eq!(bounce_hint(&LOSS_FRACTION_SPAN, dt_led, Some(&impact)), "");
+        assert_eq!(bounce_hint(&LOSS_FRACTION_SPAN, Some(0.9), Some(&held)), "");
+        assert_eq!(
+            bounce_hint(&crate::quantity::FORCE_MEAN, dt_led, Some(&held)),
+            ""
+        );
+    }
 
     /// A family all 0 gets the unseen-loss floor 3 × Δt / t_end; one that
     /// saw a loss keeps its own bar.
