@@ -141,16 +141,6 @@ impl ModalCoefs {
         self.steps.len()
     }
 
-    /// ω_j of the J modes, rad/s.
-    pub fn omega(&self) -> &[f64] {
-        &self.omega
-    }
-
-    /// True when the modes are damped (`[beam] damping`).
-    pub fn is_damped(&self) -> bool {
-        self.damped
-    }
-
     /// `φ(x)` of the basis into `pv` (the fast shapes, or the FE modes'
     /// interpolation on a modal basis).
     #[inline]
@@ -240,7 +230,7 @@ impl ModalExact {
             t_n1: f64::NAN,
         });
         let cruise = coefs.shapes.as_ref().map(|_| Cruise::new(j));
-        let impact = LocatedImpact::new(&coefs, sys)?;
+        let impact = LocatedImpact::new(&coefs.omega, coefs.damped, sys)?;
         Ok(ModalExact {
             coefs,
             mass_steps,
@@ -830,7 +820,8 @@ fn step_kernel(me: &mut ModalExact, sys: &mut System, st: &mut State, vector: bo
             let rd = match (impact.as_mut(), mass_n) {
                 (Some(ev), Some(mass_n)) if ev.fires(g[0], deferred.is_some()) => {
                     // a re-contact located within the step, settled at once
-                    ev.recontact(coefs, &mass_steps[0], mass_n, g[0], sys, st)?
+                    let place = |b: &BeamModel, x, pv: &mut PointVector| coefs.place(b, x, pv);
+                    ev.recontact(place, &mass_steps[0], mass_n, g[0], sys, st)?
                 }
                 _ => {
                     let lambda = sys.law.lambda[0];

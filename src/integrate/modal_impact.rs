@@ -27,10 +27,9 @@
 //! after [`LocatedImpact::new`].
 
 use crate::error::{Error, Result};
-use crate::model::beam::PointVector;
+use crate::model::beam::{BeamModel, PointVector};
 use crate::scene::impact_refusal;
 
-use super::modal_exact::ModalCoefs;
 use super::oscillator::{MassStep, ModeStep};
 use super::state::State;
 use super::system::System;
@@ -58,23 +57,25 @@ pub(crate) struct LocatedImpact {
     slope: PointVector,
     /// Each mode's map over τ (J; scratch).
     maps: Vec<ModeStep>,
+    /// ω_j of the J modes, rad/s.
+    omega: Vec<f64>,
 }
 
 impl LocatedImpact {
-    /// The events of a run on `coefs`' basis whose contact settings ask for
-    /// an impact law; `None` for any other formulation. Refuses a scene this
-    /// representation does not carry, naming the key.
-    pub fn new(coefs: &ModalCoefs, sys: &mut System) -> Result<Option<Self>> {
-        let Some(restitution) = sys.impact_restitution() else {
+    /// The events of a run on a basis of modes with angular frequencies
+    /// `omega` (rad/s; `damped`: with their own damping) whose contact
+    /// settings ask for an impact law; `None` for any other formulation.
+    /// Refuses a scene this representation does not carry, naming the key.
+    pub fn new(omega: &[f64], damped: bool, sys: &mut System) -> Result<Option<Self>> {
+        let Some(restitution) = sys.take_impacts() else {
             return Ok(None);
         };
         let carriers = sys.physics.carriers.len();
         let source = sys.has_source() && !sys.law.bilateral;
-        let why = impact_refusal(carriers, sys.contacts(), source, coefs.is_damped());
+        let why = impact_refusal(carriers, sys.contacts(), source, damped);
         if let Some(why) = why {
             return Err(Error::invalid("contact.formulation", "\"impact\"", why));
         }
-        let j = coefs.modes();
         let beam = sys.beam();
         let x0 = sys.physics.carriers[0].props.motion.position(0.0);
         let mut at = PointVector::default();
@@ -88,7 +89,8 @@ impl LocatedImpact {
             gap: 0.0,
             at,
             slope,
-            maps: vec![ModeStep::of(0.0, 0.0); j],
+            maps: vec![ModeStep::of(0.0, 0.0); omega.len()],
+            omega: omega.to_vec(),
         }))
     }
 
@@ -116,12 +118,13 @@ impl LocatedImpact {
     /// Re-take the step from t_n to t_{n+1} as a located impact (module
     /// docs). `st` holds the free state at t_{n+1} (modes) and the mass at
     /// t_n is `mass_n` = (q, q̇); `g_free` is the free gap at t_{n+1} (m),
-    /// `mass` the mass dof's map over Δt. On return `st` is the step's
+    /// `mass` the mass dof's map over Δt; `place` puts the basis's `φ(x)`
+    /// into a point vector (the run's own shapes). On return `st` is the step's
     /// settled state, the law holds the step's mean force, and the result
     /// is `r_gᵀd` at t_{n+1}.
     pub fn recontact(
         &mut self,
-        coefs: &ModalCoefs,
+        place: impl Fn(&BeamModel, f64, &mut PointVector),
         mass: &MassStep,
         mass_n: (f64, f64),
         g_free: f64,
@@ -138,12 +141,12 @@ impl LocatedImpact {
         let motion = &c.props.motion;
         let x_star = motion.position(t_star);
         let speed = motion.speed(t_star);
-        coefs.place(beam, x_star, &mut self.at);
+        place(beam, x_star, &mut self.at);
         beam.point_vector_into(x_star, true, &mut self.slope);
-        let j = coefs.modes();
+        let j = self.omega.len();
         let (at, slope) = (&self.at.dense()[..j], &self.slope.dense()[..j]);
         let load = &beam.load[..];
-        let omega = coefs.omega();
+        let omega = &self.omega[..];
         // 2. the free motion at t*: each mode's map at −τ (cos even; sin/ω,
         // −ω sin and the held load's velocity share odd; its displacement
         // share even)
@@ -238,6 +241,7 @@ mod tests {
             at: PointVector::default(),
             slope: PointVector::default(),
             maps: Vec::new(),
+            omega: Vec::new(),
         };
         assert!(ev.fires(-1e-6, false));
         assert!(!ev.fires(-1e-21, false), "θ rounds to 1: τ = 0");

@@ -124,7 +124,7 @@ impl System {
     /// `contact.formulation = "impact"`, its law then at force level
     /// ([`LawState::impacts_taken_by_method`]); `None` for any other
     /// formulation.
-    pub(crate) fn impact_restitution(&mut self) -> Option<f64> {
+    pub(crate) fn take_impacts(&mut self) -> Option<f64> {
         let nc = self.contacts();
         self.law.impacts_taken_by_method(nc)
     }

@@ -115,7 +115,7 @@ impl Scene {
             if let Some(why) =
                 crate::scene::impact_refusal(carriers.len(), contacts, source, !damping.is_zero())
             {
-                return Err(crate::Error::invalid(
+                return Err(crate::error::Error::invalid(
                     "contact.formulation",
                     "\"impact\"",
                     why,

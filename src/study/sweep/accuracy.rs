@@ -1388,7 +1388,8 @@ mod tests {
                 "integrator={ method = \"modal_exact\" }".to_string(),
                 format!("contact.formulation={f}"),
             ];
-            crate::resolve_scene(include_str!("../../../scenes/reference.toml"), &o).unwrap()
+            crate::resolve::resolve_scene(include_str!("../../../scenes/reference.toml"), &o)
+                .unwrap()
         };
         let (held, impact) = (scene("lagrange"), scene("impact"));
         let dt_led = Some(SPACE_SHARE_MINORITY / 2.0);
